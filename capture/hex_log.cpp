@@ -1,0 +1,211 @@
+#include "capture/hex_log.hpp"
+
+#include <fmt/format.h>
+
+namespace dpscope {
+
+namespace {
+
+bool is_hex(char c) {
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
+}
+
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+std::uint8_t hex_value(char c) {
+    if (c >= '0' && c <= '9') return static_cast<std::uint8_t>(c - '0');
+    if (c >= 'a' && c <= 'f') return static_cast<std::uint8_t>(c - 'a' + 10);
+    return static_cast<std::uint8_t>(c - 'A' + 10);
+}
+
+std::string_view strip_prefix_0x(std::string_view token) {
+    if (token.size() > 2 && token[0] == '0' && (token[1] == 'x' || token[1] == 'X'))
+        token.remove_prefix(2);
+    return token;
+}
+
+std::string_view strip_punctuation(std::string_view token) {
+    while (!token.empty() && (token.back() == ',' || token.back() == ';')) token.remove_suffix(1);
+    return token;
+}
+
+bool all_hex(std::string_view text) {
+    if (text.empty()) return false;
+    for (char c : text)
+        if (!is_hex(c)) return false;
+    return true;
+}
+
+// "68" or "0x68": exactly one byte.
+std::optional<std::uint8_t> byte_token(std::string_view token) {
+    token = strip_prefix_0x(strip_punctuation(token));
+    if (token.size() != 2 || !all_hex(token)) return std::nullopt;
+    return static_cast<std::uint8_t>(hex_value(token[0]) << 4 | hex_value(token[1]));
+}
+
+void append_hex_run(std::string_view run, std::vector<std::uint8_t>& bytes) {
+    for (std::size_t i = 0; i + 1 < run.size(); i += 2)
+        bytes.push_back(static_cast<std::uint8_t>(hex_value(run[i]) << 4 | hex_value(run[i + 1])));
+}
+
+std::vector<std::string_view> split_whitespace(std::string_view line) {
+    std::vector<std::string_view> tokens;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+        std::size_t start = i;
+        while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
+        if (i > start) tokens.push_back(line.substr(start, i - start));
+    }
+    return tokens;
+}
+
+// Parses "[digits][.digits]" into nanoseconds; `digits_before` bounds the integer part.
+std::optional<std::int64_t> seconds_with_fraction(std::string_view text) {
+    std::int64_t seconds = 0;
+    std::size_t i = 0;
+    while (i < text.size() && is_digit(text[i])) {
+        if (seconds > 9'000'000'000LL) return std::nullopt;
+        seconds = seconds * 10 + (text[i] - '0');
+        ++i;
+    }
+    if (i == 0) return std::nullopt;
+    std::int64_t nanos = 0;
+    if (i < text.size()) {
+        if (text[i] != '.') return std::nullopt;
+        ++i;
+        std::int64_t scale = 100'000'000;
+        std::size_t digits = 0;
+        while (i < text.size() && is_digit(text[i])) {
+            nanos += (text[i] - '0') * scale;
+            scale /= 10;
+            ++i;
+            ++digits;
+        }
+        if (digits == 0 || i != text.size()) return std::nullopt;
+    }
+    return seconds * 1'000'000'000 + nanos;
+}
+
+// HH:MM:SS[.frac] -> nanoseconds since midnight.
+std::optional<std::int64_t> time_of_day(std::string_view text) {
+    if (!text.empty() && (text.back() == 'Z' || text.back() == 'z')) text.remove_suffix(1);
+    if (text.size() < 8 || text[2] != ':' || text[5] != ':') return std::nullopt;
+    for (std::size_t i : {0u, 1u, 3u, 4u})
+        if (!is_digit(text[i])) return std::nullopt;
+    int hours = (text[0] - '0') * 10 + (text[1] - '0');
+    int minutes = (text[3] - '0') * 10 + (text[4] - '0');
+    auto seconds = seconds_with_fraction(text.substr(6));
+    if (!seconds || hours > 23 || minutes > 59 || *seconds >= 61'000'000'000LL) return std::nullopt;
+    return (hours * 3600LL + minutes * 60LL) * 1'000'000'000LL + *seconds;
+}
+
+// Days since 1970-01-01 of a proleptic Gregorian date (Howard Hinnant's algorithm).
+std::int64_t days_from_civil(int y, unsigned m, unsigned d) {
+    y -= m <= 2;
+    const int era = (y >= 0 ? y : y - 399) / 400;
+    const unsigned yoe = static_cast<unsigned>(y - era * 400);
+    const unsigned doy = (153 * (m > 2 ? m - 3 : m + 9) + 2) / 5 + d - 1;
+    const unsigned doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+    return era * 146097LL + static_cast<std::int64_t>(doe) - 719468;
+}
+
+std::optional<std::int64_t> date_nanos(std::string_view text) {
+    if (text.size() != 10 || text[4] != '-' || text[7] != '-') return std::nullopt;
+    for (std::size_t i : {0u, 1u, 2u, 3u, 5u, 6u, 8u, 9u})
+        if (!is_digit(text[i])) return std::nullopt;
+    int year = (text[0] - '0') * 1000 + (text[1] - '0') * 100 + (text[2] - '0') * 10 + (text[3] - '0');
+    unsigned month = static_cast<unsigned>((text[5] - '0') * 10 + (text[6] - '0'));
+    unsigned day = static_cast<unsigned>((text[8] - '0') * 10 + (text[9] - '0'));
+    if (month < 1 || month > 12 || day < 1 || day > 31) return std::nullopt;
+    return days_from_civil(year, month, day) * 86'400LL * 1'000'000'000LL;
+}
+
+std::string_view unwrap(std::string_view token) {
+    if (!token.empty() && token.front() == '[') token.remove_prefix(1);
+    while (!token.empty() && (token.back() == ']' || token.back() == ':' || token.back() == ','))
+        token.remove_suffix(1);
+    return token;
+}
+
+}  // namespace
+
+std::optional<std::int64_t> parse_timestamp(std::string_view first, std::string_view next) {
+    first = unwrap(first);
+    if (first.size() > 10 && (first[10] == 'T' || first[10] == 't')) {
+        auto date = date_nanos(first.substr(0, 10));
+        auto time = time_of_day(first.substr(11));
+        if (date && time) return *date + *time;
+        return std::nullopt;
+    }
+    if (auto date = date_nanos(first)) {
+        if (auto time = time_of_day(unwrap(next))) return *date + *time;
+        return *date;
+    }
+    if (auto time = time_of_day(first)) return time;
+    if (first.find('.') != std::string_view::npos) return seconds_with_fraction(first);
+    return std::nullopt;
+}
+
+HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& bytes) {
+    HexLogLine result;
+    // A hexdump -C ASCII column: "|....|" at the end of the line.
+    if (!line.empty() && line.back() == '|') {
+        std::size_t open = line.rfind('|', line.size() - 2);
+        if (open != std::string_view::npos) line = line.substr(0, open);
+    }
+    std::vector<std::string_view> tokens = split_whitespace(line);
+    // The longest run of byte tokens; the later one wins a tie.
+    std::size_t best_start = 0, best_length = 0;
+    for (std::size_t i = 0; i < tokens.size();) {
+        if (!byte_token(tokens[i])) {
+            ++i;
+            continue;
+        }
+        std::size_t start = i;
+        while (i < tokens.size() && byte_token(tokens[i])) ++i;
+        if (i - start >= best_length) {
+            best_start = start;
+            best_length = i - start;
+        }
+    }
+    std::size_t before = bytes.size();
+    std::size_t first_data_token = tokens.size();
+    if (best_length > 0) {
+        for (std::size_t i = best_start; i < best_start + best_length; ++i)
+            bytes.push_back(*byte_token(tokens[i]));
+        first_data_token = best_start;
+    } else if (!tokens.empty()) {
+        std::string_view run = strip_prefix_0x(strip_punctuation(tokens.back()));
+        if (run.size() >= 2 && run.size() % 2 == 0 && all_hex(run)) {
+            append_hex_run(run, bytes);
+            first_data_token = tokens.size() - 1;
+        }
+    }
+    result.byte_count = bytes.size() - before;
+    if (first_data_token > 0 && !tokens.empty())
+        result.time_ns = parse_timestamp(tokens[0], first_data_token > 1 ? tokens[1] : "");
+    return result;
+}
+
+bool parse_hex_bytes(std::string_view text, std::vector<std::uint8_t>& bytes, std::string& error) {
+    std::string cleaned(text);
+    for (char& c : cleaned)
+        if (c == ',' || c == '\n') c = ' ';
+    for (std::string_view token : split_whitespace(cleaned)) {
+        std::string_view body = strip_prefix_0x(token);
+        std::string digits;
+        for (char c : body)
+            if (c != ':' && c != '-') digits.push_back(c);
+        if (digits.empty() || digits.size() % 2 != 0 || !all_hex(digits)) {
+            error = fmt::format("'{}' is not hex bytes (expected pairs of hex digits such as 68 or "
+                                "0x68 or 680707)",
+                                token);
+            return false;
+        }
+        append_hex_run(digits, bytes);
+    }
+    return true;
+}
+
+}  // namespace dpscope

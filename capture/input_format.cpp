@@ -1,0 +1,56 @@
+#include "capture/input_format.hpp"
+
+#include <cstdint>
+
+namespace dpscope {
+
+std::string_view input_format_name(InputFormat format) {
+    switch (format) {
+        case InputFormat::Auto: return "auto";
+        case InputFormat::Pcap: return "pcap";
+        case InputFormat::Pcapng: return "pcapng";
+        case InputFormat::Raw: return "raw";
+        case InputFormat::Hex: return "hex";
+    }
+    return "auto";
+}
+
+std::optional<InputFormat> input_format_from_name(std::string_view name) {
+    for (InputFormat format : {InputFormat::Auto, InputFormat::Pcap, InputFormat::Pcapng,
+                               InputFormat::Raw, InputFormat::Hex})
+        if (input_format_name(format) == name) return format;
+    return std::nullopt;
+}
+
+namespace {
+
+bool is_hex_digit(std::uint8_t c) {
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
+}
+
+}  // namespace
+
+InputFormat detect_input_format(Bytes head) {
+    ByteReader reader(head);
+    if (auto magic = reader.u32_be()) {
+        switch (*magic) {
+            case 0xA1B2C3D4:
+            case 0xD4C3B2A1:
+            case 0xA1B23C4D:
+            case 0x4D3CB2A1: return InputFormat::Pcap;
+            case 0x0A0D0D0A: return InputFormat::Pcapng;
+            default: break;
+        }
+    }
+    bool text = !head.empty();
+    bool hex_pair = false;
+    for (std::size_t i = 0; i < head.size() && text; ++i) {
+        std::uint8_t c = head[i];
+        bool printable = (c >= 0x20 && c < 0x7F) || c == '\t' || c == '\n' || c == '\r';
+        text = printable;
+        if (i + 1 < head.size() && is_hex_digit(c) && is_hex_digit(head[i + 1])) hex_pair = true;
+    }
+    return text && hex_pair ? InputFormat::Hex : InputFormat::Raw;
+}
+
+}  // namespace dpscope

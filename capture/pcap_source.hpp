@@ -1,0 +1,25 @@
+// pcap and pcapng captures read through libpcap. Accepted link types: 257 (PROFIBUS_DL, one
+// telegram per record from start to end delimiter) and 147 (USER0, the same records).
+#pragma once
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "capture/telegram_source.hpp"
+
+namespace dpscope {
+
+inline constexpr int kLinkTypeProfibusDl = 257;
+inline constexpr int kLinkTypeUser0 = 147;
+
+// Takes ownership of `file`. Returns null and sets `error` when libpcap cannot read the file or
+// the link type is not one dpscope decodes. `classic_pcap`: the file starts with a pcap (not
+// pcapng) header, so record byte offsets can be counted and named in messages.
+std::unique_ptr<TelegramSource> open_pcap_source(FILE* file, const std::string& name,
+                                                 bool classic_pcap, std::string& error);
+
+// "PROFIBUS_DL", "USER0", or libpcap's name for other link types.
+std::string link_type_name(int link_type);
+
+}  // namespace dpscope

@@ -1,0 +1,13 @@
+// The subcommands. Each add_* function registers a subcommand on `app`; when the subcommand is
+// chosen, its callback runs the command and stores the exit code in `exit_code`.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace dpscope::cli {
+
+void add_decode_command(CLI::App& app, int& exit_code);
+void add_hex_command(CLI::App& app, int& exit_code);
+void add_simulate_command(CLI::App& app, int& exit_code);
+
+}  // namespace dpscope::cli

@@ -1,0 +1,64 @@
+// Options shared by the subcommands that decode (decode, hex), their validation, and the exit
+// codes every subcommand uses.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "decoder/bus_decoder.hpp"
+#include "formats/renderer.hpp"
+
+namespace dpscope::cli {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFindings = 1;      // report: findings at or above --fail-on
+inline constexpr int kExitUsage = 2;         // bad command line, or input unusable from the start
+inline constexpr int kExitDamagedInput = 3;  // input stopped early; what came before was decoded
+inline constexpr int kExitOutputError = 4;   // output could not be written
+
+inline constexpr std::string_view kExitCodeHelp =
+    "Exit codes: 0 success; 1 report found something at or above --fail-on; 2 bad usage or "
+    "unusable input (cannot open, unknown format, unsupported link type); 3 the input ended in "
+    "damage (truncated record, read error) after what was decoded; 4 output could not be "
+    "written.";
+
+// What the command line says, before validation.
+struct DecodeOptionValues {
+    std::string format = "text";
+    bool verbose = false;
+    bool quiet = false;
+    std::uint64_t count = 0;
+    std::vector<unsigned> stations;
+    std::vector<unsigned> pnus;
+    std::vector<std::string> ppo;
+    std::vector<std::string> dialects;
+    std::string pcd_profile;
+};
+
+void add_decode_options(CLI::App& app, DecodeOptionValues& values, std::string_view default_format);
+
+struct DecodeSettings {
+    DecoderOptions decoder;
+    OutputFormat format = OutputFormat::Text;
+    bool quiet = false;
+    std::uint64_t count = 0;  // 0: no limit
+    std::vector<std::uint8_t> stations;
+    std::vector<std::uint16_t> pnus;
+};
+
+// Validates the values; nullopt with `error` naming the bad option otherwise.
+std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
+                                                     std::string& error);
+
+// --station and --pnu: does the telegram pass?
+bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t) noexcept;
+
+// "dpscope: <message>" on standard error.
+void print_error(std::string_view message);
+
+}  // namespace dpscope::cli

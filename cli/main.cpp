@@ -1,0 +1,35 @@
+// dpscope: a protocol analyzer for drive parameter channels on PROFIBUS DP.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <exception>
+#include <string>
+
+#include "cli/commands.hpp"
+#include "cli/common_options.hpp"
+#include "cli/version.hpp"
+
+int main(int argc, char** argv) {
+    using namespace dpscope::cli;
+    CLI::App app{
+        "dpscope: decode PROFIBUS DP captures down to the drive parameter channel (PPO "
+        "PCV/PKW: RC/AK, SPM, PNU, IND, PVA, PCD words)."};
+    app.set_version_flag("--version", std::string("dpscope ") + dpscope::kVersion);
+    app.require_subcommand(1);
+    app.footer(std::string(kExitCodeHelp) +
+               "\nRun 'dpscope SUBCOMMAND --help' for the options of each subcommand.");
+    int exit_code = kExitOk;
+    add_decode_command(app, exit_code);
+    add_hex_command(app, exit_code);
+    add_simulate_command(app, exit_code);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int rc = app.exit(e);
+        return rc == 0 ? kExitOk : kExitUsage;
+    } catch (const std::exception& e) {
+        print_error(fmt::format("error: {}", e.what()));
+        return kExitUsage;
+    }
+    return exit_code;
+}

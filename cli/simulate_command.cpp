@@ -1,0 +1,164 @@
+// dpscope simulate: write a simulated bus session as a capture.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "capture/capture_writer.hpp"
+#include "capture/pcap_source.hpp"
+#include "capture/simulator.hpp"
+#include "cli/commands.hpp"
+#include "cli/common_options.hpp"
+
+namespace dpscope::cli {
+
+namespace {
+
+struct SimulateCommand {
+    std::string output;
+    std::string output_format = "pcap";
+    std::string link_type = "profibus";
+    std::uint64_t seed = 1;
+    std::uint32_t baud = 1'500'000;
+    unsigned master = 2;
+    std::vector<std::string> slaves;
+    std::uint64_t cycles = 1000;
+    std::uint64_t count = 0;
+    std::uint32_t cycle_us = 2000;
+    double start = 1'704'067'200.0;
+    std::vector<std::string> faults;
+    bool list_injections = false;
+    bool no_start_up = false;
+};
+
+int run_simulate(const SimulateCommand& command) {
+    SimulatorOptions options;
+    options.seed = command.seed;
+    options.baud = command.baud;
+    options.master = static_cast<std::uint8_t>(command.master);
+    options.cycles = command.cycles;
+    options.max_telegrams = command.count;
+    options.cycle_us = command.cycle_us;
+    options.start_time_ns = static_cast<std::int64_t>(std::llround(command.start * 1e9));
+    options.record_start_up = !command.no_start_up;
+    std::string error;
+    for (const std::string& text : command.slaves) {
+        auto slave = parse_slave_spec(text, error);
+        if (!slave) {
+            print_error(fmt::format("--slave {}", error));
+            return kExitUsage;
+        }
+        if (slave->address == options.master) {
+            print_error(fmt::format("--slave {}: the master has address {}", text, command.master));
+            return kExitUsage;
+        }
+        options.slaves.push_back(*slave);
+    }
+    for (const std::string& text : command.faults) {
+        auto fault = parse_fault_spec(text, error);
+        if (!fault) {
+            print_error(fmt::format("--fault {}", error));
+            return kExitUsage;
+        }
+        options.faults.push_back(*fault);
+    }
+    if (command.cycles == 0 && command.count == 0) {
+        print_error("simulate: --cycles 0 runs until -c N telegrams; give -c");
+        return kExitUsage;
+    }
+    CaptureFormat format = capture_format_from_name(command.output_format).value_or(CaptureFormat::Pcap);
+    int link_type = command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
+    WriterResult opened = open_capture_writer(command.output, format, link_type);
+    if (!opened.writer) {
+        print_error(opened.error);
+        return kExitUsage;
+    }
+    Simulator simulator(options);
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns = 0;
+    while (simulator.next(bytes, time_ns)) {
+        if (!opened.writer->write(Bytes(bytes.data(), bytes.size()), time_ns)) break;
+    }
+    if (!opened.writer->close()) {
+        print_error(opened.writer->error());
+        return kExitOutputError;
+    }
+    if (command.list_injections) {
+        for (const Injection& injection : simulator.injections())
+            fmt::print(stderr, "injected {} on slave {} in cycle {} at telegram {}\n",
+                       fault_kind_name(injection.kind), injection.slave, injection.cycle,
+                       injection.telegram);
+        fmt::print(stderr, "wrote {} telegrams\n", simulator.telegrams());
+    }
+    return kExitOk;
+}
+
+}  // namespace
+
+void add_simulate_command(CLI::App& app, int& exit_code) {
+    auto command = std::make_shared<SimulateCommand>();
+    CLI::App* sub = app.add_subcommand(
+        "simulate",
+        "Write a simulated PROFIBUS DP session: start-up of each slave (FDL_Status, Slave_Diag, "
+        "Set_Prm, Chk_Cfg, Slave_Diag), then cyclic Data_Exchange with parameter requests and "
+        "responses, token passing, gap polls and Global_Control, timed at the baud rate. The same "
+        "options and seed give the same bytes.");
+    sub->add_option("-w,--write", command->output, "Output file; - writes to standard output")
+        ->required()
+        ->type_name("FILE");
+    sub->add_option("-F,--output-format", command->output_format,
+                    "pcap (nanosecond timestamps), pcapng, raw (bytes as on the wire) or hex "
+                    "(one line a telegram with its timestamp)")
+        ->check(CLI::IsMember({"pcap", "pcapng", "raw", "hex"}))
+        ->default_str("pcap");
+    sub->add_option("--linktype", command->link_type,
+                    "pcap link type: profibus (257, PROFIBUS_DL) or user0 (147) for tools that "
+                    "cannot open 257")
+        ->check(CLI::IsMember({"profibus", "user0"}))
+        ->default_str("profibus");
+    sub->add_option("--seed", command->seed, "Random seed; the same seed gives the same session")
+        ->default_str("1");
+    sub->add_option("--baud", command->baud, "Bus baud rate used for the timing")
+        ->check(CLI::Range(9600u, 12'000'000u))
+        ->default_str("1500000");
+    sub->add_option("--master", command->master, "Address of the DP master")
+        ->check(CLI::Range(0, 126))
+        ->default_str("2");
+    sub->add_option("--slave", command->slaves,
+                    "ADDR:PPO[:DIALECT] adds a slave, e.g. 5:1 or 7:2:profidrive; repeatable. "
+                    "Default: 3:1 4:2 5:5 (vlt)")
+        ->type_name("SPEC")
+        ->allow_extra_args(false);
+    sub->add_option("--cycles", command->cycles,
+                    "Data_Exchange cycles after start-up; 0 runs until -c telegrams")
+        ->default_str("1000");
+    sub->add_option("-c,--count", command->count, "Stop after writing N telegrams");
+    sub->add_option("--cycle-us", command->cycle_us, "Target bus cycle time in microseconds")
+        ->check(CLI::Range(100u, 1'000'000u))
+        ->default_str("2000");
+    sub->add_option("--start", command->start,
+                    "Time of the first telegram, seconds since the epoch (UTC)")
+        ->default_str("1704067200 (2024-01-01T00:00:00Z)");
+    sub->add_option("--fault", command->faults,
+                    "Inject a fault: KIND (once, at a cycle the seed picks), KIND@CYCLE (once, at "
+                    "the first chance from that cycle), or KIND=RATE (chance per cycle and slave); "
+                    "append :ADDR to pick the slave. Kinds: fcs_error (alias bad_fcs), garbage, "
+                    "malformed_telegram, stacked_request, orphan_response, mismatched_response, "
+                    "unexpected_response_type, response_timeout, request_rejected, no_authority, "
+                    "spontaneous_message, spontaneous_unacknowledged, spm_violation, "
+                    "config_mismatch, unknown_code, fdl_retry, fdl_no_response. Repeatable.")
+        ->type_name("SPEC")
+        ->allow_extra_args(false);
+    sub->add_flag("--no-start-up", command->no_start_up,
+                  "Leave the start-up out of the capture, as when a tap is clipped on a running "
+                  "bus: slaves' PPO types must then be inferred from the Data_Exchange length");
+    sub->add_flag("-v,--list-injections", command->list_injections,
+                  "Print each injected fault (kind, slave, cycle, telegram number) on standard "
+                  "error");
+    sub->footer(std::string(kExitCodeHelp));
+    sub->callback([command, &exit_code] { exit_code = run_simulate(*command); });
+}
+
+}  // namespace dpscope::cli

@@ -1,0 +1,254 @@
+#include "decoder/code_tables.hpp"
+
+#include <array>
+
+namespace dpscope {
+
+std::string_view dialect_name(Dialect dialect) {
+    return dialect == Dialect::Vlt ? "vlt" : "profidrive";
+}
+
+std::optional<Dialect> dialect_from_name(std::string_view name) {
+    if (name == "vlt") return Dialect::Vlt;
+    if (name == "profidrive") return Dialect::Profidrive;
+    return std::nullopt;
+}
+
+std::optional<Pcv> read_pcv(ByteReader& reader) noexcept {
+    if (reader.remaining() < 8) return std::nullopt;
+    Pcv pcv;
+    pcv.pca = *reader.u16_be();
+    pcv.rc = static_cast<std::uint8_t>(pcv.pca >> 12);
+    pcv.spm = (pcv.pca & 0x0800) != 0;
+    pcv.pnu = pcv.pca & 0x07FF;
+    pcv.ind = *reader.u8();
+    pcv.ind_low = *reader.u8();
+    pcv.pva = *reader.u32_be();
+    return pcv;
+}
+
+std::uint32_t pcv_value(const Pcv& pcv, ValueWidth width) noexcept {
+    return width == ValueWidth::Word ? (pcv.pva & 0xFFFF) : pcv.pva;
+}
+
+namespace {
+
+using W = ValueWidth;
+using K = ResponseKind;
+
+// Seed 000 (VLT 5000 MG.90.D1.02) request table.
+constexpr std::array<RequestCode, 16> kVltRequests{{
+    {"No request", W::None, true, false, false},
+    {"Request parameter value", W::None, true, false, false},
+    {"Change parameter value (word)", W::Word, true, true, false},
+    {"Change parameter value (double word)", W::DoubleWord, true, true, false},
+    {"Request description element", W::None, true, false, false},
+    {"Change description element", W::DoubleWord, true, true, false},
+    {"Request parameter value (array)", W::None, true, false, true},
+    {"Change parameter value (array word)", W::Word, true, true, true},
+    {"Change parameter value (array double word)", W::DoubleWord, true, true, true},
+    {"Request number of array elements", W::None, true, false, false},
+    {"Not assigned", W::None, false, false, false},
+    {"Not assigned", W::None, false, false, false},
+    {"Not assigned", W::None, false, false, false},
+    {"Not assigned", W::None, false, false, false},
+    {"Not assigned", W::None, false, false, false},
+    {"Not assigned", W::None, false, false, false},
+}};
+
+// Seed 000 response table (seed 002, GE AF-600, prints 9..12 as "not used").
+constexpr std::array<ResponseCode, 16> kVltResponses{{
+    {"No response", W::None, K::None, false},
+    {"Transmit parameter value (word)", W::Word, K::Value, false},
+    {"Transmit parameter value (double word)", W::DoubleWord, K::Value, false},
+    {"Transmit description element", W::DoubleWord, K::Value, false},
+    {"Transmit parameter value (array word)", W::Word, K::Value, true},
+    {"Transmit parameter value (array double word)", W::DoubleWord, K::Value, true},
+    {"Transmit number of array elements", W::Word, K::Value, false},
+    {"Request not executable", W::Word, K::Rejected, false},
+    {"No operating authority for PCV interface", W::None, K::NoAuthority, false},
+    {"Spontaneous message (word)", W::Word, K::Spontaneous, false},
+    {"Spontaneous message (double word)", W::DoubleWord, K::Spontaneous, false},
+    {"Spontaneous message (array word)", W::Word, K::Spontaneous, true},
+    {"Spontaneous message (array double word)", W::DoubleWord, K::Spontaneous, true},
+    {"Not assigned", W::None, K::Undefined, false},
+    {"Not assigned", W::None, K::Undefined, false},
+    {"Not assigned", W::None, K::Undefined, false},
+}};
+
+// PROFIdrive V2 task identifiers (MICROMASTER 440 table).
+constexpr std::array<RequestCode, 16> kProfidriveRequests{{
+    {"No task", W::None, true, false, false},
+    {"Request parameter value", W::None, true, false, false},
+    {"Change parameter value (word)", W::Word, true, true, false},
+    {"Change parameter value (double word)", W::DoubleWord, true, true, false},
+    {"Request descriptive element", W::None, true, false, false},
+    {"Change descriptive element", W::DoubleWord, true, true, false},
+    {"Request parameter value (array)", W::None, true, false, true},
+    {"Change parameter value (array word)", W::Word, true, true, true},
+    {"Change parameter value (array double word)", W::DoubleWord, true, true, true},
+    {"Request number of array elements", W::None, true, false, false},
+    {"Reserved", W::None, false, false, false},
+    {"Change parameter value (array double word) and store in EEPROM", W::DoubleWord, true, true,
+     true},
+    {"Change parameter value (array word) and store in EEPROM", W::Word, true, true, true},
+    {"Change parameter value (double word) and store in EEPROM", W::DoubleWord, true, true, false},
+    {"Change parameter value (word) and store in EEPROM", W::Word, true, true, false},
+    {"Read or change text", W::None, true, true, false},
+}};
+
+// PROFIdrive V2 reply identifiers.
+constexpr std::array<ResponseCode, 16> kProfidriveResponses{{
+    {"No reply", W::None, K::None, false},
+    {"Transfer parameter value (word)", W::Word, K::Value, false},
+    {"Transfer parameter value (double word)", W::DoubleWord, K::Value, false},
+    {"Transfer descriptive element", W::DoubleWord, K::Value, false},
+    {"Transfer parameter value (array word)", W::Word, K::Value, true},
+    {"Transfer parameter value (array double word)", W::DoubleWord, K::Value, true},
+    {"Transfer number of array elements", W::Word, K::Value, false},
+    {"Request cannot be executed", W::Word, K::Rejected, false},
+    {"No master authority for the PKW interface", W::None, K::NoAuthority, false},
+    {"Parameter change report (word)", W::Word, K::Spontaneous, false},
+    {"Parameter change report (double word)", W::DoubleWord, K::Spontaneous, false},
+    {"Parameter change report (array word)", W::Word, K::Spontaneous, true},
+    {"Parameter change report (array double word)", W::DoubleWord, K::Spontaneous, true},
+    {"Reserved", W::None, K::Undefined, false},
+    {"Reserved", W::None, K::Undefined, false},
+    {"Transfer text", W::None, K::Text, false},
+}};
+
+struct ErrorEntry {
+    std::uint16_t number;
+    std::string_view text;
+};
+
+// Seed 000 (0..19) and seed 002 (130, 131).
+constexpr ErrorEntry kVltErrors[] = {
+    {0, "Improper PNU"},
+    {1, "Parameter value not changeable"},
+    {2, "Upper or lower limit passed"},
+    {3, "Faulty subindex"},
+    {4, "No array"},
+    {5, "Wrong data type"},
+    {6, "Setting not permitted (resettable only)"},
+    {7, "Description element not changeable"},
+    {8, "No PPO-Write for IR"},
+    {9, "Description data not available"},
+    {10, "Access group"},
+    {11, "No parameter operating authority"},
+    {12, "Keyword missing"},
+    {13, "Text not readable in cyclical traffic"},
+    {14, "Name not readable in cyclical traffic"},
+    {15, "Text array not available"},
+    {16, "PPO-Write missing"},
+    {17, "Request temporarily unexecutable"},
+    {18, "Other error"},
+    {19, "Data not readable in cyclical traffic"},
+    {130, "No bus access to this parameter"},
+    {131, "Change not possible: factory set-up selected"},
+};
+
+// PROFIdrive V2 0..19, continuation 20..24 (MASTERDRIVES), and manufacturer numbers seen in
+// PKW replies of Siemens drives (MASTERDRIVES, MICROMASTER, G120).
+constexpr ErrorEntry kProfidriveErrors[] = {
+    {0, "Illegal parameter number"},
+    {1, "Parameter value cannot be changed"},
+    {2, "Upper or lower limit exceeded"},
+    {3, "Faulty subindex"},
+    {4, "No array"},
+    {5, "Wrong data type"},
+    {6, "Setting not allowed (reset only)"},
+    {7, "Descriptive element cannot be changed"},
+    {8, "PPO-Write requested in IR not available"},
+    {9, "Description data not available"},
+    {10, "Access group wrong"},
+    {11, "No operating (change) rights"},
+    {12, "Keyword (password) missing"},
+    {13, "Text not readable in cyclic transfer"},
+    {14, "Name not readable in cyclic transfer"},
+    {15, "Text array not available"},
+    {16, "PPO-Write missing"},
+    {17, "Request cannot be executed in the current operating state"},
+    {18, "Other error"},
+    {19, "Data not readable in cyclic transfer"},
+    {20, "Illegal value"},
+    {21, "Response too long"},
+    {22, "Illegal parameter address"},
+    {23, "Illegal format"},
+    {24, "Number of values inconsistent"},
+    {101, "Parameter number currently deactivated (manufacturer)"},
+    {102, "Channel width too small (manufacturer)"},
+    {103, "Incorrect number of PKWs (manufacturer)"},
+    {104, "Parameter value not permitted (manufacturer)"},
+    {105, "Parameter is indexed (manufacturer)"},
+    {106, "Task not implemented (manufacturer)"},
+    {107, "No write access while controller enabled (manufacturer)"},
+    {200, "Modified minimum not reached (manufacturer)"},
+    {201, "Modified maximum exceeded (manufacturer)"},
+    {204, "Access level does not allow change (manufacturer)"},
+};
+
+template <std::size_t N>
+std::string_view find_error(const ErrorEntry (&table)[N], std::uint16_t number) {
+    for (const ErrorEntry& entry : table)
+        if (entry.number == number) return entry.text;
+    return {};
+}
+
+struct Pairing {
+    std::uint16_t positive;  // bit n set: response RC n is a positive answer
+};
+
+constexpr std::uint16_t bit(int n) { return static_cast<std::uint16_t>(1u << n); }
+
+constexpr std::array<Pairing, 16> kPairings{{
+    {bit(0)},            // 0: no request -> no response
+    {bit(1) | bit(2)},   // 1: read -> word or double word
+    {bit(1)},            // 2
+    {bit(2)},            // 3
+    {bit(3)},            // 4
+    {bit(3)},            // 5
+    {bit(4) | bit(5)},   // 6
+    {bit(4)},            // 7
+    {bit(5)},            // 8
+    {bit(6)},            // 9
+    {0},                 // 10: reserved
+    {bit(5)},            // 11 (profidrive)
+    {bit(4)},            // 12 (profidrive)
+    {bit(2)},            // 13 (profidrive)
+    {bit(1)},            // 14 (profidrive)
+    {bit(15)},           // 15 (profidrive)
+}};
+
+}  // namespace
+
+const RequestCode& request_code(Dialect dialect, std::uint8_t rc) noexcept {
+    return dialect == Dialect::Vlt ? kVltRequests[rc & 0x0F] : kProfidriveRequests[rc & 0x0F];
+}
+
+const ResponseCode& response_code(Dialect dialect, std::uint8_t rc) noexcept {
+    return dialect == Dialect::Vlt ? kVltResponses[rc & 0x0F] : kProfidriveResponses[rc & 0x0F];
+}
+
+std::string_view error_text(Dialect dialect, std::uint16_t number) noexcept {
+    return dialect == Dialect::Vlt ? find_error(kVltErrors, number)
+                                   : find_error(kProfidriveErrors, number);
+}
+
+AnswerVerdict judge_answer(Dialect dialect, std::uint8_t request_rc, std::uint8_t response_rc,
+                           bool strict) noexcept {
+    const RequestCode& request = request_code(dialect, request_rc);
+    const ResponseCode& response = response_code(dialect, response_rc);
+    if (!request.defined || response.kind == ResponseKind::Undefined) return AnswerVerdict::Invalid;
+    if (kPairings[request_rc & 0x0F].positive & bit(response_rc & 0x0F))
+        return AnswerVerdict::Positive;
+    if (request_rc == 0) return AnswerVerdict::Invalid;
+    if (response.kind == ResponseKind::Rejected) return AnswerVerdict::Negative;
+    if (response.kind == ResponseKind::NoAuthority) {
+        if (request.is_change) return AnswerVerdict::Negative;
+        return strict ? AnswerVerdict::Invalid : AnswerVerdict::Unusual;
+    }
+    return AnswerVerdict::Invalid;
+}
+
+}  // namespace dpscope

@@ -1,0 +1,32 @@
+// Process data (PCD/PZD) words: the control word (CTW, master -> drive) and status word (STW,
+// drive -> master) in PCD 1, the main reference / actual value in PCD 2 (0x4000 = 100 %).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+namespace dpscope {
+
+// profidrive: Danfoss "PROFIdrive profile" (par. 8-10), bits 0..10 as the PROFIdrive STW1/ZSW1.
+// fc:         Danfoss "FC profile" (VLT 5000 par. 512, FC series par. 8-10).
+enum class PcdProfile : std::uint8_t { Profidrive, Fc };
+
+std::string_view pcd_profile_name(PcdProfile profile);  // "profidrive", "fc"
+std::optional<PcdProfile> pcd_profile_from_name(std::string_view name);
+
+struct WordBit {
+    std::string_view when_0;  // meaning when the bit is 0 ("" when it has none)
+    std::string_view when_1;  // meaning when the bit is 1
+};
+
+using WordBits = std::array<WordBit, 16>;
+
+const WordBits& control_word_bits(PcdProfile profile);
+const WordBits& status_word_bits(PcdProfile profile);
+
+// A 16-bit reference or actual value as a percentage: signed, 0x4000 = 100 %, 0xC000 = -100 %.
+double reference_percent(std::uint16_t word) noexcept;
+
+}  // namespace dpscope

@@ -1,0 +1,287 @@
+#include "formats/describe.hpp"
+
+#include <ctime>
+#include <iterator>
+#include <vector>
+
+namespace dpscope {
+
+namespace {
+
+constexpr std::int64_t kNanos = 1'000'000'000;
+
+void split_time(std::int64_t time_ns, std::int64_t& seconds, std::int64_t& nanos) {
+    seconds = time_ns / kNanos;
+    nanos = time_ns % kNanos;
+    if (nanos < 0) {
+        nanos += kNanos;
+        --seconds;
+    }
+}
+
+}  // namespace
+
+void append_iso_time(TextBuffer& out, std::int64_t time_ns) {
+    std::int64_t seconds = 0, nanos = 0;
+    split_time(time_ns, seconds, nanos);
+    std::time_t t = static_cast<std::time_t>(seconds);
+    std::tm tm{};
+    gmtime_r(&t, &tm);
+    fmt::format_to(std::back_inserter(out), "{:04}-{:02}-{:02}T{:02}:{:02}:{:02}.{:09}Z",
+                   tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec,
+                   nanos);
+}
+
+void append_epoch_seconds(TextBuffer& out, std::int64_t time_ns) {
+    std::int64_t seconds = 0, nanos = 0;
+    split_time(time_ns, seconds, nanos);
+    fmt::format_to(std::back_inserter(out), "{}.{:09}", seconds, nanos);
+}
+
+bool append_flags(TextBuffer& out, std::uint8_t value, std::span<const FlagBit> flags,
+                  std::string_view none, std::uint8_t ignore_mask) {
+    bool any = false;
+    for (const FlagBit& flag : flags) {
+        if (!(value & flag.mask) || (flag.mask & ignore_mask)) continue;
+        if (any) out.push_back(' ');
+        append(out, flag.name);
+        any = true;
+    }
+    if (!any) append(out, none);
+    return any;
+}
+
+void append_hex(TextBuffer& out, Bytes bytes, std::string_view separator) {
+    static constexpr char kDigits[] = "0123456789ABCDEF";
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+        if (i > 0) append(out, separator);
+        out.push_back(kDigits[bytes[i] >> 4]);
+        out.push_back(kDigits[bytes[i] & 0x0F]);
+    }
+}
+
+void append_frame_control(TextBuffer& out, FrameControl fc) {
+    if (fc.is_request()) {
+        fmt::format_to(std::back_inserter(out), "request, FCB {}, FCV {}, {}", fc.fcb() ? 1 : 0,
+                       fc.fcv() ? 1 : 0, request_function_name(fc.function()));
+    } else {
+        fmt::format_to(std::back_inserter(out), "response, {}, {} ({})",
+                       station_type_name(fc.station_type()), response_status_name(fc.function()),
+                       response_status_text(fc.function()));
+    }
+}
+
+void append_ppo_short(TextBuffer& out, const PpoLayout& layout) {
+    const char* guess = layout.source == PpoSource::Length ? "?" : "";
+    if (layout.type != 0) {
+        if (layout.alternative != 0)
+            fmt::format_to(std::back_inserter(out), "PPO{}/{}{}", layout.type, layout.alternative,
+                           guess);
+        else
+            fmt::format_to(std::back_inserter(out), "PPO{}{}", layout.type, guess);
+        return;
+    }
+    if (layout.has_pcv)
+        fmt::format_to(std::back_inserter(out), "PCV+{}w", (layout.output_bytes - kPcvBytes) / 2);
+    else
+        fmt::format_to(std::back_inserter(out), "{}w", layout.output_bytes / 2);
+}
+
+void append_ppo_long(TextBuffer& out, const PpoLayout& layout) {
+    auto words = [&](std::uint16_t bytes) {
+        return (bytes - (layout.has_pcv ? kPcvBytes : 0)) / 2;
+    };
+    if (layout.type != 0) {
+        fmt::format_to(std::back_inserter(out), "PPO {}", layout.type);
+        if (layout.alternative != 0)
+            fmt::format_to(std::back_inserter(out), " or PPO {}", layout.alternative);
+        append(out, " (");
+    } else {
+        append(out, "no standard PPO (");
+    }
+    if (layout.has_pcv) append(out, "PCV + ");
+    if (layout.output_bytes == layout.input_bytes)
+        fmt::format_to(std::back_inserter(out), "{} PCD words, {} bytes each way)",
+                       words(layout.output_bytes), layout.output_bytes);
+    else
+        fmt::format_to(std::back_inserter(out), "{} PCD words out, {} in; {} bytes out, {} in)",
+                       words(layout.output_bytes), words(layout.input_bytes), layout.output_bytes,
+                       layout.input_bytes);
+    switch (layout.source) {
+        case PpoSource::ChkCfg: append(out, " from Chk_Cfg"); break;
+        case PpoSource::GetCfg: append(out, " from Get_Cfg"); break;
+        case PpoSource::Length: append(out, " guessed from the length"); break;
+        case PpoSource::Option: append(out, " given by --ppo"); break;
+        case PpoSource::None: break;
+    }
+}
+
+void append_pcv_summary(TextBuffer& out, const DecodedTelegram& t) {
+    const Pcv& pcv = t.pcv;
+    bool request = t.direction == Direction::Request;
+    fmt::format_to(std::back_inserter(out), "RC={} {}", pcv.rc, t.pcv_meaning());
+    if (pcv.spm) append(out, " SPM=1");
+    fmt::format_to(std::back_inserter(out), " PNU={} IND={}", pcv.pnu, pcv.ind);
+    if (!request && response_code(t.dialect, pcv.rc).kind == ResponseKind::Rejected) {
+        std::uint16_t error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
+        std::string_view text = error_text(t.dialect, error);
+        fmt::format_to(std::back_inserter(out), " error {} ({})", error,
+                       text.empty() ? "unknown error number" : text);
+        return;
+    }
+    fmt::format_to(std::back_inserter(out), " PVA={}", t.pcv_value());
+}
+
+std::string_view pcd_word_name(Direction direction, std::size_t index) {
+    if (index == 0) return direction == Direction::Request ? "CTW" : "STW";
+    if (index == 1) return direction == Direction::Request ? "MRV" : "MAV";
+    return "";
+}
+
+void append_pcd_summary(TextBuffer& out, const DecodedTelegram& t) {
+    ByteReader reader(t.pcd);
+    auto first = reader.u16_be();
+    if (!first) {
+        append(out, "no PCD");
+        return;
+    }
+    fmt::format_to(std::back_inserter(out), "{}=0x{:04X}", pcd_word_name(t.direction, 0), *first);
+    if (auto second = reader.u16_be())
+        fmt::format_to(std::back_inserter(out), " {}={:.2f}%", pcd_word_name(t.direction, 1),
+                       reference_percent(*second));
+    if (std::size_t more = reader.remaining() / 2; more > 0)
+        fmt::format_to(std::back_inserter(out), " +{}w", more);
+}
+
+void append_cfg_summary(TextBuffer& out, const DecodedTelegram& t) {
+    append_hex(out, t.fdl.du);
+    std::vector<CfgModule> modules;
+    ProblemList ignored;
+    parse_cfg(ByteReader(t.fdl.du, t.fdl.du_offset), modules, ignored);
+    PpoLayout layout = ppo_from_cfg(modules, PpoSource::ChkCfg);
+    append(out, " = ");
+    append_ppo_short(out, layout);
+}
+
+void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
+    const FdlTelegram& f = t.fdl;
+    bool request = t.direction == Direction::Request;
+    ByteReader du(f.du, f.du_offset);
+    ProblemList ignored;
+    if (f.type == FrameType::ShortAck) {
+        append(out, "short acknowledge");
+        return;
+    }
+    switch (t.service) {
+        case Service::Token: append(out, "token"); return;
+        case Service::DataExchange:
+            append_ppo_short(out, t.ppo);
+            out.push_back(' ');
+            if (t.has_pcv) {
+                append_pcv_summary(out, t);
+                append(out, " | ");
+            }
+            append_pcd_summary(out, t);
+            return;
+        case Service::SlaveDiag:
+            if (request) {
+                append(out, "diagnosis request");
+                return;
+            }
+            if (auto diag = parse_slave_diag(du, ignored)) {
+                fmt::format_to(std::back_inserter(out), "ident 0x{:04X} master ", diag->ident);
+                if (diag->master_address == kNoMasterAddress)
+                    append(out, "none");
+                else
+                    fmt::format_to(std::back_inserter(out), "{}", diag->master_address);
+                append(out, " [");
+                TextBuffer second;
+                bool first_any =
+                    append_flags(out, diag->station_status_1, station_status_1_flags(), "");
+                bool second_any = append_flags(second, diag->station_status_2,
+                                               station_status_2_flags(), "", kDiagAlwaysOne);
+                if (first_any && second_any) out.push_back(' ');
+                out.append(second.data(), second.data() + second.size());
+                if (!first_any && !second_any) append(out, "OK");
+                append(out, "]");
+                if (!diag->extended.empty())
+                    fmt::format_to(std::back_inserter(out), " +{} ext bytes", diag->extended.size());
+                return;
+            }
+            break;
+        case Service::SetPrm:
+            if (!request) break;
+            if (auto prm = parse_set_prm(du, ignored)) {
+                fmt::format_to(std::back_inserter(out), "ident 0x{:04X} ", prm->ident);
+                if (prm->watchdog_on())
+                    fmt::format_to(std::back_inserter(out), "WD {} ms ", prm->watchdog_ms());
+                append(out, "[");
+                append_flags(out, prm->station_status, set_prm_station_flags());
+                fmt::format_to(std::back_inserter(out), "] group 0x{:02X}", prm->group_ident);
+                if (prm->has_dpv1_status) append(out, " DP-V1");
+                if (!prm->user_prm.empty())
+                    fmt::format_to(std::back_inserter(out), " user {} bytes", prm->user_prm.size());
+                return;
+            }
+            break;
+        case Service::ChkCfg:
+            if (request) {
+                append_cfg_summary(out, t);
+                return;
+            }
+            break;
+        case Service::GetCfg:
+            if (request) {
+                append(out, "configuration request");
+                return;
+            }
+            if (!f.du.empty()) {
+                append_cfg_summary(out, t);
+                return;
+            }
+            break;
+        case Service::RdInp:
+        case Service::RdOutp:
+            if (request) {
+                append(out, t.service == Service::RdInp ? "read inputs" : "read outputs");
+                return;
+            }
+            break;
+        case Service::GlobalControl:
+            if (auto gc = parse_global_control(du, ignored)) {
+                append_flags(out, gc->command, global_control_flags(), "operate");
+                fmt::format_to(std::back_inserter(out), " group 0x{:02X}", gc->group_select);
+                return;
+            }
+            break;
+        case Service::SetSlaveAdd:
+            if (auto ssa = parse_set_slave_add(du, ignored)) {
+                fmt::format_to(std::back_inserter(out), "new address {} ident 0x{:04X}",
+                               ssa->new_address, ssa->ident);
+                return;
+            }
+            break;
+        default: break;
+    }
+    // Generic: the FDL function or status, and the data when there is any.
+    if (f.has_fc) {
+        if (f.fc.is_request())
+            append(out, request_function_name(f.fc.function()));
+        else
+            fmt::format_to(std::back_inserter(out), "{} {}", response_status_name(f.fc.function()),
+                           station_type_name(f.fc.station_type()));
+    }
+    if (f.has_dsap || f.has_ssap) {
+        append(out, " SAP ");
+        if (f.has_ssap) fmt::format_to(std::back_inserter(out), "{}", f.ssap);
+        append(out, "->");
+        if (f.has_dsap) fmt::format_to(std::back_inserter(out), "{}", f.dsap);
+    }
+    if (!f.du.empty()) {
+        append(out, " data ");
+        append_hex(out, f.du.first(std::min<std::size_t>(f.du.size(), 16)));
+        if (f.du.size() > 16) append(out, " ...");
+    }
+}
+
+}  // namespace dpscope

@@ -1,0 +1,46 @@
+// Wording shared by the renderers: how a time, a frame control byte, a PPO layout, the PCV and
+// the PCD words, and each service's content are written for a person.
+#pragma once
+
+#include <fmt/format.h>
+
+#include <span>
+#include <string_view>
+
+#include "decoder/bus_decoder.hpp"
+#include "decoder/dp_payload.hpp"
+
+namespace dpscope {
+
+using TextBuffer = fmt::memory_buffer;
+
+inline void append(TextBuffer& out, std::string_view text) {
+    out.append(text.data(), text.data() + text.size());
+}
+
+// 2024-01-01T00:00:00.000123000Z
+void append_iso_time(TextBuffer& out, std::int64_t time_ns);
+// Seconds with nanoseconds, e.g. 1704067200.000123000; "-" style handled by callers.
+void append_epoch_seconds(TextBuffer& out, std::int64_t time_ns);
+// Names of the set bits, separated by spaces; `none` when no bit is set. True if any was named.
+bool append_flags(TextBuffer& out, std::uint8_t value, std::span<const FlagBit> flags,
+                  std::string_view none = "none", std::uint8_t ignore_mask = 0);
+void append_hex(TextBuffer& out, Bytes bytes, std::string_view separator = " ");
+// "request, FCB 1, FCV 1, SRD high" or "response, slave, DL (response data low)".
+void append_frame_control(TextBuffer& out, FrameControl fc);
+// "PPO1", "PPO1/4?" (from length, ambiguous), "PPO2?" (from length), "PCV+8w", "10w".
+void append_ppo_short(TextBuffer& out, const PpoLayout& layout);
+// "PPO 1 (PCV + 2 PCD words, 12 bytes each way) from Chk_Cfg".
+void append_ppo_long(TextBuffer& out, const PpoLayout& layout);
+// "RC=1 Request parameter value PNU=520 IND=0 PVA=0" (+ "SPM=1", error text).
+void append_pcv_summary(TextBuffer& out, const DecodedTelegram& t);
+// "CTW=0x047F MRV=50.00%".
+void append_pcd_summary(TextBuffer& out, const DecodedTelegram& t);
+// The detail column of the text format for any service.
+void append_service_detail(TextBuffer& out, const DecodedTelegram& t);
+// "CTW"/"MRV" for requests, "STW"/"MAV" for responses, "" for further words.
+std::string_view pcd_word_name(Direction direction, std::size_t index);
+// Configuration identifiers of a Chk_Cfg / Get_Cfg data unit, e.g. "F3 F1 = PCV + 2 words".
+void append_cfg_summary(TextBuffer& out, const DecodedTelegram& t);
+
+}  // namespace dpscope

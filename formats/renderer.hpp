@@ -1,0 +1,44 @@
+// Telegram renderers: text (one summary line a telegram, like tshark), verbose (the whole field
+// tree), jsonl (one JSON object a telegram; schema in README.md) and csv.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "decoder/bus_decoder.hpp"
+#include "decoder/finding.hpp"
+#include "formats/output.hpp"
+
+namespace dpscope {
+
+enum class OutputFormat { Text, Verbose, Jsonl, Csv };
+
+std::string_view output_format_name(OutputFormat format);  // "text", "verbose", "jsonl", "csv"
+std::optional<OutputFormat> output_format_from_name(std::string_view name);
+
+class TelegramRenderer {
+public:
+    explicit TelegramRenderer(Output& out) : out_(out) {}
+    virtual ~TelegramRenderer() = default;
+    TelegramRenderer(const TelegramRenderer&) = delete;
+    TelegramRenderer& operator=(const TelegramRenderer&) = delete;
+
+    virtual void begin() {}
+    // `findings`: what the session tracker found on this telegram (may be empty).
+    virtual void render(const DecodedTelegram& telegram, std::span<const Finding> findings) = 0;
+    virtual void end() {}
+
+protected:
+    Output& out_;
+};
+
+std::unique_ptr<TelegramRenderer> make_renderer(OutputFormat format, Output& out);
+
+std::unique_ptr<TelegramRenderer> make_text_renderer(Output& out);
+std::unique_ptr<TelegramRenderer> make_verbose_renderer(Output& out);
+std::unique_ptr<TelegramRenderer> make_jsonl_renderer(Output& out);
+std::unique_ptr<TelegramRenderer> make_csv_renderer(Output& out);
+
+}  // namespace dpscope

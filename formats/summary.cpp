@@ -1,0 +1,80 @@
+#include "formats/summary.hpp"
+
+#include <iterator>
+
+#include "formats/describe.hpp"
+
+namespace dpscope {
+
+void Summary::render_text(Output& out, const InputSummary& input, const BusDecoder& decoder) const {
+    TextBuffer& b = out.buffer();
+    auto it = std::back_inserter(b);
+    fmt::format_to(it, "Summary of {} ({})\n", input.name, input.format);
+    fmt::format_to(it, "  telegrams: {}", telegrams_);
+    if (first_time_ != kNoTime) {
+        append(b, ", from ");
+        append_iso_time(b, first_time_);
+        append(b, " to ");
+        append_iso_time(b, last_time_);
+        std::int64_t span = last_time_ - first_time_;
+        fmt::format_to(it, " ({}.{:09} s)", span / 1'000'000'000, span % 1'000'000'000);
+    }
+    b.push_back('\n');
+    if (input.damaged) append(b, "  input: reading stopped early (see the message above)\n");
+    if (input.bytes_skipped > 0)
+        fmt::format_to(it, "  bytes skipped between telegrams: {}\n", input.bytes_skipped);
+
+    append(b, "  by frame type:");
+    for (FrameType type : {FrameType::Sd1, FrameType::Sd2, FrameType::Sd3, FrameType::Sd4,
+                           FrameType::ShortAck, FrameType::Invalid}) {
+        std::uint64_t n = frame_types_[static_cast<std::size_t>(type)];
+        if (n) fmt::format_to(it, " {} {}", frame_type_name(type), n);
+    }
+    b.push_back('\n');
+
+    append(b, "  by service:\n");
+    for (std::size_t s = 0; s < kServiceCount; ++s) {
+        std::uint64_t total = requests_[s] + responses_[s];
+        if (total == 0) continue;
+        fmt::format_to(it, "    {:<16} {:>10}  ({} requests, {} responses)\n",
+                       service_name(static_cast<Service>(s)), total, requests_[s], responses_[s]);
+    }
+
+    fmt::format_to(it, "  telegrams with problems: {}\n", with_problems_);
+    for (std::size_t k = 0; k < kProblemKindCount; ++k)
+        if (problems_[k])
+            fmt::format_to(it, "    {:<26} {:>10}\n", problem_kind_name(static_cast<ProblemKind>(k)),
+                           problems_[k]);
+
+    std::uint64_t total_findings = 0;
+    for (std::uint64_t n : findings_) total_findings += n;
+    fmt::format_to(it, "  findings: {}\n", total_findings);
+    for (std::size_t k = 0; k < kFindingKindCount; ++k)
+        if (findings_[k]) {
+            auto kind = static_cast<FindingKind>(k);
+            fmt::format_to(it, "    {:<26} {:>10}  ({})\n", finding_kind_name(kind), findings_[k],
+                           severity_name(default_severity(kind)));
+        }
+
+    bool header = false;
+    for (std::size_t a = 0; a < kStationCount; ++a) {
+        const StationConfig& station = decoder.station(static_cast<std::uint8_t>(a));
+        if (data_exchange_[a] == 0 && !station.ppo.known()) continue;
+        if (!header) {
+            append(b, "  slaves:\n");
+            header = true;
+        }
+        fmt::format_to(it, "    {:>3}: ", a);
+        if (station.ppo.known() || decoder.options().station_ppo[a] != 0)
+            append_ppo_long(b, decoder.layout_for(static_cast<std::uint8_t>(a), 0));
+        else
+            append(b, "PPO guessed from each Data_Exchange length");
+        fmt::format_to(it, "; dialect {}", dialect_name(decoder.options().dialect_of(
+                                               static_cast<std::uint8_t>(a))));
+        if (station.has_ident) fmt::format_to(it, "; ident 0x{:04X}", station.ident);
+        fmt::format_to(it, "; {} Data_Exchange telegrams\n", data_exchange_[a]);
+    }
+    out.end_record();
+}
+
+}  // namespace dpscope

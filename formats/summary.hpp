@@ -1,0 +1,80 @@
+// Counts kept while decoding (cheap enough for every telegram) and the summary `decode -q`
+// prints: telegrams by frame type and service, problems by kind, findings by kind, and per
+// slave the PPO layout in use.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "decoder/bus_decoder.hpp"
+#include "decoder/finding.hpp"
+#include "formats/output.hpp"
+
+namespace dpscope {
+
+struct InputSummary {
+    std::string name;
+    std::string format;             // "pcap", "pcapng", "raw", "hex"
+    std::uint64_t bytes_skipped = 0;
+    bool damaged = false;           // reading stopped early
+};
+
+class Summary {
+public:
+    void add(const DecodedTelegram& t) noexcept {
+        ++telegrams_;
+        ++frame_types_[static_cast<std::size_t>(t.fdl.type)];
+        auto service = static_cast<std::size_t>(t.service);
+        if (t.direction == Direction::Request)
+            ++requests_[service];
+        else
+            ++responses_[service];
+        if (!t.problems().empty()) {
+            ++with_problems_;
+            for (const Problem& p : t.problems()) ++problems_[static_cast<std::size_t>(p.kind)];
+        }
+        if (t.has_time()) {
+            if (first_time_ == kNoTime) first_time_ = t.time_ns;
+            last_time_ = t.time_ns;
+        }
+        if (t.service == Service::DataExchange && t.has_roles) ++data_exchange_[t.slave & 0x7F];
+    }
+
+    void add_findings(std::span<const Finding> findings) noexcept {
+        for (const Finding& f : findings) ++findings_[static_cast<std::size_t>(f.kind)];
+    }
+
+    std::uint64_t telegrams() const noexcept { return telegrams_; }
+    std::uint64_t with_problems() const noexcept { return with_problems_; }
+    std::uint64_t problems(ProblemKind kind) const noexcept {
+        return problems_[static_cast<std::size_t>(kind)];
+    }
+    std::uint64_t findings(FindingKind kind) const noexcept {
+        return findings_[static_cast<std::size_t>(kind)];
+    }
+    std::uint64_t requests(Service s) const noexcept { return requests_[static_cast<std::size_t>(s)]; }
+    std::uint64_t responses(Service s) const noexcept {
+        return responses_[static_cast<std::size_t>(s)];
+    }
+    std::uint64_t data_exchange(std::uint8_t slave) const noexcept {
+        return data_exchange_[slave & 0x7F];
+    }
+
+    void render_text(Output& out, const InputSummary& input, const BusDecoder& decoder) const;
+
+private:
+    std::uint64_t telegrams_ = 0;
+    std::uint64_t with_problems_ = 0;
+    std::array<std::uint64_t, 6> frame_types_{};
+    std::array<std::uint64_t, kServiceCount> requests_{};
+    std::array<std::uint64_t, kServiceCount> responses_{};
+    std::array<std::uint64_t, kProblemKindCount> problems_{};
+    std::array<std::uint64_t, kFindingKindCount> findings_{};
+    std::array<std::uint64_t, kStationCount> data_exchange_{};
+    std::int64_t first_time_ = kNoTime;
+    std::int64_t last_time_ = kNoTime;
+};
+
+}  // namespace dpscope

@@ -1,0 +1,74 @@
+// One line a telegram:
+//   frame  time(s, relative to the first)  source → destination  frame type  service  req|rsp
+//   detail  [problem kinds] [severity finding-kind ...]
+#include <iterator>
+
+#include "formats/describe.hpp"
+#include "formats/renderer.hpp"
+
+namespace dpscope {
+
+namespace {
+
+class TextRenderer final : public TelegramRenderer {
+public:
+    using TelegramRenderer::TelegramRenderer;
+
+    void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
+        TextBuffer& b = out_.buffer();
+        auto it = std::back_inserter(b);
+        fmt::format_to(it, "{:>6} ", t.frame);
+        if (t.has_time()) {
+            if (first_time_ == kNoTime) first_time_ = t.time_ns;
+            std::int64_t relative = t.time_ns - first_time_;
+            bool negative = relative < 0;
+            std::uint64_t magnitude =
+                negative ? 0 - static_cast<std::uint64_t>(relative) : static_cast<std::uint64_t>(relative);
+            fmt::format_to(it, "{:>5}.{:06} ",
+                           fmt::format("{}{}", negative ? "-" : "", magnitude / 1'000'000'000),
+                           (magnitude % 1'000'000'000) / 1000);
+        } else {
+            append(b, "           - ");
+        }
+        if (t.fdl.has_addresses) {
+            fmt::format_to(it, "{:>3} → {:<3} ", t.fdl.sa, t.fdl.da);
+        } else if (t.has_roles) {
+            fmt::format_to(it, "{:>3} → {:<3} ", t.slave, t.master);
+        } else {
+            append(b, "  ? → ?   ");
+        }
+        fmt::format_to(it, "{:<3} {:<14} {} ",
+                       t.fdl.type == FrameType::Invalid ? "bad" : frame_type_name(t.fdl.type),
+                       service_name(t.service),
+                       t.direction == Direction::Request ? "req" : "rsp");
+        if (t.fdl.type == FrameType::Invalid)
+            append_hex(b, t.bytes.first(std::min<std::size_t>(t.bytes.size(), 16)));
+        else
+            append_service_detail(b, t);
+        if (!t.problems().empty()) {
+            append(b, " [");
+            bool first = true;
+            for (const Problem& p : t.problems()) {
+                if (!first) b.push_back(',');
+                append(b, problem_kind_name(p.kind));
+                first = false;
+            }
+            append(b, "]");
+        }
+        for (const Finding& f : findings)
+            fmt::format_to(it, " [{} {}]", severity_name(f.severity), finding_kind_name(f.kind));
+        b.push_back('\n');
+        out_.end_record();
+    }
+
+private:
+    std::int64_t first_time_ = kNoTime;
+};
+
+}  // namespace
+
+std::unique_ptr<TelegramRenderer> make_text_renderer(Output& out) {
+    return std::make_unique<TextRenderer>(out);
+}
+
+}  // namespace dpscope

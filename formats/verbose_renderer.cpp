@@ -1,0 +1,360 @@
+// The whole field tree of each telegram, like tshark -V.
+#include <iterator>
+#include <vector>
+
+#include "decoder/dp_payload.hpp"
+#include "formats/describe.hpp"
+#include "formats/renderer.hpp"
+
+namespace dpscope {
+
+namespace {
+
+class VerboseRenderer final : public TelegramRenderer {
+public:
+    using TelegramRenderer::TelegramRenderer;
+
+    void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
+        TextBuffer& b = out_.buffer();
+        auto it = std::back_inserter(b);
+        fmt::format_to(it, "Frame {}: {} bytes", t.frame, t.bytes.size());
+        if (t.has_time()) {
+            append(b, ", ");
+            append_iso_time(b, t.time_ns);
+        }
+        b.push_back('\n');
+        line(1, "Bytes: ");
+        append_hex(b, t.bytes);
+        b.push_back('\n');
+        render_fdl(t);
+        render_dp(t);
+        if (!t.problems().empty()) {
+            append(b, "Problems\n");
+            for (const Problem& p : t.problems()) {
+                line(1, "");
+                fmt::format_to(it, "{} ({}): {}\n", problem_kind_name(p.kind),
+                               severity_name(problem_severity(p.kind)), problem_message(p));
+            }
+        }
+        if (!findings.empty()) {
+            append(b, "Findings\n");
+            for (const Finding& f : findings) {
+                line(1, "");
+                fmt::format_to(it, "{} {}: {}\n", severity_name(f.severity),
+                               finding_kind_name(f.kind), f.message);
+            }
+        }
+        b.push_back('\n');
+        out_.end_record();
+    }
+
+private:
+    void line(int level, std::string_view text) {
+        TextBuffer& b = out_.buffer();
+        for (int i = 0; i < level; ++i) append(b, "    ");
+        append(b, text);
+    }
+
+    template <typename... Args>
+    void field(int level, fmt::format_string<Args...> format, Args&&... args) {
+        line(level, "");
+        fmt::format_to(std::back_inserter(out_.buffer()), format, std::forward<Args>(args)...);
+        out_.buffer().push_back('\n');
+    }
+
+    void flags_field(int level, std::string_view name, std::uint8_t value,
+                     std::span<const FlagBit> flags, std::uint8_t ignore = 0) {
+        line(level, "");
+        fmt::format_to(std::back_inserter(out_.buffer()), "{}: 0x{:02X} (", name, value);
+        append_flags(out_.buffer(), value, flags, "none", ignore);
+        append(out_.buffer(), ")\n");
+    }
+
+    static std::string_view sap_label(std::uint8_t value, bool slave_side) {
+        std::string_view name = sap_name(value, slave_side);
+        return name.empty() ? "no DP meaning" : name;
+    }
+
+    void render_fdl(const DecodedTelegram& t) {
+        const FdlTelegram& f = t.fdl;
+        TextBuffer& b = out_.buffer();
+        auto it = std::back_inserter(b);
+        append(b, "PROFIBUS FDL\n");
+        if (f.type == FrameType::Invalid) {
+            field(1, "Start delimiter: 0x{:02X} (not a start delimiter)",
+                  t.bytes.empty() ? 0 : t.bytes[0]);
+            return;
+        }
+        field(1, "Start delimiter: {} (0x{:02X})", frame_type_name(f.type), t.bytes[0]);
+        if (f.type == FrameType::Sd2) {
+            ByteReader reader(t.bytes);
+            reader.skip(2);
+            auto ler = reader.u8();
+            field(1, "Length: LE {}, LEr {}", f.length_field,
+                  ler ? fmt::format("{}", *ler) : std::string("missing"));
+        }
+        if (f.has_addresses) {
+            line(1, "");
+            fmt::format_to(it, "Destination address: {}{}", f.da,
+                           f.da == kBroadcastAddress ? " (broadcast)" : "");
+            // The slave's SAP is the DSAP of a request and the SSAP of a response.
+            bool request = f.has_fc && f.fc.is_request();
+            if (f.has_dsap) fmt::format_to(it, ", DSAP {} ({})", f.dsap, sap_label(f.dsap, request));
+            if (f.has_dest_segment) fmt::format_to(it, ", segment {}", f.dest_segment);
+            b.push_back('\n');
+            line(1, "");
+            fmt::format_to(it, "Source address: {}", f.sa);
+            if (f.has_ssap) fmt::format_to(it, ", SSAP {} ({})", f.ssap, sap_label(f.ssap, !request));
+            if (f.has_source_segment) fmt::format_to(it, ", segment {}", f.source_segment);
+            b.push_back('\n');
+        }
+        if (f.has_fc) {
+            line(1, "");
+            fmt::format_to(it, "Frame control: 0x{:02X} (", f.fc.raw);
+            append_frame_control(b, f.fc);
+            append(b, ")\n");
+        }
+        if (!f.du.empty()) field(1, "Data unit: {} bytes from byte {}", f.du.size(), f.du_offset);
+        if (f.has_fcs) {
+            if (f.fcs_ok)
+                field(1, "FCS: 0x{:02X} (correct)", f.fcs);
+            else
+                field(1, "FCS: 0x{:02X} (wrong)", f.fcs);
+        }
+        if (f.type == FrameType::Sd1 || f.type == FrameType::Sd2 || f.type == FrameType::Sd3) {
+            if (t.bytes.size() >= f.size && f.size > 0)
+                field(1, "End delimiter: 0x{:02X}", t.bytes[f.size - 1]);
+        }
+    }
+
+    void render_dp(const DecodedTelegram& t) {
+        if (t.fdl.type == FrameType::Invalid) return;
+        TextBuffer& b = out_.buffer();
+        auto it = std::back_inserter(b);
+        fmt::format_to(it, "PROFIBUS DP: {} {}", service_name(t.service),
+                       direction_name(t.direction));
+        if (t.has_roles && t.service != Service::Token)
+            fmt::format_to(it, ", master {} / slave {}", t.master, t.slave);
+        if (t.request_frame != 0) fmt::format_to(it, ", answers frame {}", t.request_frame);
+        b.push_back('\n');
+        ByteReader du(t.fdl.du, t.fdl.du_offset);
+        ProblemList ignored;
+        bool request = t.direction == Direction::Request;
+        switch (t.service) {
+            case Service::DataExchange: render_data_exchange(t); break;
+            case Service::SlaveDiag:
+                if (!request && !t.fdl.du.empty())
+                    if (auto diag = parse_slave_diag(du, ignored)) render_diag(*diag);
+                break;
+            case Service::SetPrm:
+                if (request)
+                    if (auto prm = parse_set_prm(du, ignored)) render_prm(*prm);
+                break;
+            case Service::ChkCfg:
+            case Service::GetCfg:
+                if (!t.fdl.du.empty() && (request == (t.service == Service::ChkCfg)))
+                    render_cfg(t);
+                break;
+            case Service::GlobalControl:
+                if (auto gc = parse_global_control(du, ignored)) {
+                    flags_field(1, "Control command", gc->command, global_control_flags());
+                    field(1, "Group select: 0x{:02X}{}", gc->group_select,
+                          gc->group_select == 0 ? " (all slaves)" : "");
+                }
+                break;
+            case Service::SetSlaveAdd:
+                if (auto ssa = parse_set_slave_add(du, ignored)) {
+                    field(1, "New slave address: {}", ssa->new_address);
+                    field(1, "Ident number: 0x{:04X}", ssa->ident);
+                    field(1, "No_Add_Chg: {}", ssa->no_add_chg);
+                    if (!ssa->rem_slave_data.empty()) {
+                        line(1, "Rem_Slave_Data: ");
+                        append_hex(b, ssa->rem_slave_data);
+                        b.push_back('\n');
+                    }
+                }
+                break;
+            default:
+                if (!t.fdl.du.empty()) {
+                    line(1, "Data: ");
+                    append_hex(b, t.fdl.du);
+                    b.push_back('\n');
+                }
+                break;
+        }
+    }
+
+    void render_data_exchange(const DecodedTelegram& t) {
+        TextBuffer& b = out_.buffer();
+        line(1, "PPO: ");
+        append_ppo_long(b, t.ppo);
+        b.push_back('\n');
+        field(1, "Dialect: {}; control/status word profile: {}", dialect_name(t.dialect),
+              pcd_profile_name(t.pcd_profile));
+        bool request = t.direction == Direction::Request;
+        if (t.has_pcv) {
+            const Pcv& pcv = t.pcv;
+            field(1, "PCV (parameter channel), bytes {}-{}", t.fdl.du_offset,
+                  t.fdl.du_offset + kPcvBytes - 1);
+            field(2, "PCA: 0x{:04X}", pcv.pca);
+            bool defined = request ? request_code(t.dialect, pcv.rc).defined
+                                   : response_code(t.dialect, pcv.rc).kind != ResponseKind::Undefined;
+            field(3, "RC: {} = {}{}", pcv.rc, t.pcv_meaning(),
+                  defined ? "" : " (not defined by the dialect)");
+            field(3, "SPM: {}", pcv.spm ? 1 : 0);
+            field(3, "PNU: {}", pcv.pnu);
+            field(2, "IND: {} (byte 4: 0x{:02X})", pcv.ind, pcv.ind_low);
+            ValueWidth width = request ? request_code(t.dialect, pcv.rc).width
+                                       : response_code(t.dialect, pcv.rc).width;
+            bool rejected = !request && response_code(t.dialect, pcv.rc).kind == ResponseKind::Rejected;
+            if (rejected) {
+                auto error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
+                std::string_view text = error_text(t.dialect, error);
+                field(2, "PVA: 0x{:08X}", pcv.pva);
+                field(2, "Error number: {} = {}", error,
+                      text.empty() ? "not known to the dialect" : text);
+            } else if (width == ValueWidth::Word) {
+                field(2, "PVA: 0x{:08X}, word value {}", pcv.pva, pcv_value(pcv, width));
+            } else if (width == ValueWidth::DoubleWord) {
+                field(2, "PVA: 0x{:08X}, double word value {}", pcv.pva, pcv.pva);
+            } else {
+                field(2, "PVA: 0x{:08X} (the code carries no value)", pcv.pva);
+            }
+        }
+        ByteReader reader(t.pcd, t.pcd_offset);
+        if (reader.empty()) return;
+        field(1, "PCD ({} words)", reader.remaining() / 2);
+        const WordBits& bits = request ? control_word_bits(t.pcd_profile)
+                                       : status_word_bits(t.pcd_profile);
+        for (std::size_t index = 0;; ++index) {
+            auto word = reader.u16_be();
+            if (!word) break;
+            std::string_view name = pcd_word_name(t.direction, index);
+            if (index == 0) {
+                field(2, "PCD 1 {}: 0x{:04X}", name, *word);
+                for (int bit = 0; bit < 16; ++bit) {
+                    bool set = (*word >> bit) & 1;
+                    const WordBit& meaning = bits[static_cast<std::size_t>(bit)];
+                    field(3, "bit {:>2} = {}: {}", bit, set ? 1 : 0,
+                          set ? meaning.when_1 : meaning.when_0);
+                }
+            } else if (index == 1) {
+                field(2, "PCD 2 {}: 0x{:04X} = {:.2f} %", name, *word, reference_percent(*word));
+            } else {
+                field(2, "PCD {}: 0x{:04X} ({})", index + 1, *word, *word);
+            }
+        }
+        if (!reader.empty()) field(2, "odd trailing byte: 0x{:02X}", *reader.u8());
+    }
+
+    void render_diag(const SlaveDiag& diag) {
+        flags_field(1, "Station status 1", diag.station_status_1, station_status_1_flags());
+        flags_field(1, "Station status 2", diag.station_status_2, station_status_2_flags());
+        flags_field(1, "Station status 3", diag.station_status_3, station_status_3_flags());
+        if (diag.master_address == kNoMasterAddress)
+            field(1, "Master address: 255 (not parameterised)");
+        else
+            field(1, "Master address: {}", diag.master_address);
+        field(1, "Ident number: 0x{:04X}", diag.ident);
+        if (diag.extended.empty()) return;
+        field(1, "Extended diagnosis: {} bytes", diag.extended.size());
+        ProblemList ignored;
+        for (const DiagBlock& block :
+             parse_extended_diag(ByteReader(diag.extended, diag.extended_offset), ignored)) {
+            TextBuffer& b = out_.buffer();
+            switch (block.type) {
+                case DiagBlockType::Channel:
+                    field(2, "channel-related: module {}, channel {}, {}, {}: error {} ({})",
+                          block.module, block.channel,
+                          block.io == 1 ? "input" : block.io == 2 ? "output" : "input/output",
+                          channel_type_text(block.channel_type), block.error_type,
+                          channel_error_text(block.error_type));
+                    break;
+                case DiagBlockType::Revision:
+                    field(2, "revision number {}", block.revision);
+                    break;
+                case DiagBlockType::Identifier: {
+                    line(2, "identifier-related: modules with diagnosis:");
+                    bool any = false;
+                    for (std::size_t i = 0; i < block.data.size(); ++i)
+                        for (int bit = 0; bit < 8; ++bit)
+                            if ((block.data[i] >> bit) & 1) {
+                                fmt::format_to(std::back_inserter(b), " {}", i * 8 + bit);
+                                any = true;
+                            }
+                    if (!any) append(b, " none");
+                    b.push_back('\n');
+                    break;
+                }
+                case DiagBlockType::Device:
+                    line(2, "device-related: ");
+                    append_hex(b, block.data);
+                    if (block.data.size() >= 3)
+                        fmt::format_to(std::back_inserter(b), " (DP-V1: {}, slot {})",
+                                       dpv1_alarm_or_status_text(block.data[0]), block.data[1]);
+                    b.push_back('\n');
+                    break;
+            }
+        }
+    }
+
+    void render_prm(const SetPrm& prm) {
+        flags_field(1, "Station status", prm.station_status, set_prm_station_flags());
+        field(1, "Watchdog: factors {} x {}{}", prm.wd_fact_1, prm.wd_fact_2,
+              prm.watchdog_on() ? fmt::format(" = {} ms", prm.watchdog_ms()) : std::string(" (off)"));
+        field(1, "min TSDR: {} bit times", prm.min_tsdr);
+        field(1, "Ident number: 0x{:04X}", prm.ident);
+        field(1, "Group ident: 0x{:02X}", prm.group_ident);
+        if (prm.has_dpv1_status) {
+            flags_field(1, "DPV1_Status_1", prm.dpv1_status[0], dpv1_status_1_flags());
+            flags_field(1, "DPV1_Status_2", prm.dpv1_status[1], dpv1_status_2_flags());
+            flags_field(1, "DPV1_Status_3", prm.dpv1_status[2], dpv1_status_3_flags());
+        }
+        if (!prm.user_prm.empty()) {
+            line(1, "User_Prm_Data: ");
+            append_hex(out_.buffer(), prm.user_prm);
+            out_.buffer().push_back('\n');
+        }
+    }
+
+    void render_cfg(const DecodedTelegram& t) {
+        std::vector<CfgModule> modules;
+        ProblemList ignored;
+        parse_cfg(ByteReader(t.fdl.du, t.fdl.du_offset), modules, ignored);
+        line(1, "Identifier bytes: ");
+        append_hex(out_.buffer(), t.fdl.du);
+        out_.buffer().push_back('\n');
+        std::size_t number = 1;
+        for (const CfgModule& m : modules) {
+            if (m.free_place) {
+                field(2, "module {}: 0x00 free place", number++);
+                continue;
+            }
+            std::string lengths;
+            if (m.output_units)
+                lengths += fmt::format(" out {} {}{}", m.output_units,
+                                       m.output_words ? "words" : "bytes",
+                                       m.output_consistent ? " consistent" : "");
+            if (m.input_units)
+                lengths += fmt::format(" in {} {}{}", m.input_units, m.input_words ? "words" : "bytes",
+                                       m.input_consistent ? " consistent" : "");
+            field(2, "module {}: 0x{:02X} {}{}{}{}", number++, m.identifier,
+                  m.special ? "special format," : "", cfg_direction_name(m.direction), lengths,
+                  m.manufacturer_bytes ? fmt::format(", {} manufacturer bytes", m.manufacturer_bytes)
+                                       : std::string());
+        }
+        line(1, "Layout: ");
+        append_ppo_long(out_.buffer(), ppo_from_cfg(modules, t.service == Service::ChkCfg
+                                                                 ? PpoSource::ChkCfg
+                                                                 : PpoSource::GetCfg));
+        out_.buffer().push_back('\n');
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<TelegramRenderer> make_verbose_renderer(Output& out) {
+    return std::make_unique<VerboseRenderer>(out);
+}
+
+}  // namespace dpscope

@@ -1,0 +1,50 @@
+# Golden cases: golden_case(NAME EXPECTED [EXIT n] ARGS...) runs `dpscope ARGS...` in the source
+# directory with TZ=UTC LANG=C and compares standard output with EXPECTED. Refresh every expected
+# file with one command:  cmake --build <build dir> --target update-golden
+set(golden_script ${CMAKE_CURRENT_SOURCE_DIR}/run_golden.cmake)
+set(golden_update_commands "")
+
+function(golden_case name expected)
+    set(args ${ARGN})
+    set(exit_code 0)
+    list(GET args 0 first)
+    if(first STREQUAL "EXIT")
+        list(GET args 1 exit_code)
+        list(REMOVE_AT args 0 1)
+    endif()
+    string(REPLACE ";" "|" joined "${args}")
+    set(command ${CMAKE_COMMAND} -DDPSCOPE=$<TARGET_FILE:dpscope> "-DARGS=${joined}"
+                -DEXPECTED=${expected} -DEXIT_CODE=${exit_code} -DSOURCE_DIR=${PROJECT_SOURCE_DIR})
+    add_test(NAME golden.${name} COMMAND ${command} -P ${golden_script})
+    set_tests_properties(golden.${name} PROPERTIES LABELS golden)
+    set(golden_update_commands ${golden_update_commands} COMMAND ${command} -DUPDATE=ON -P
+                               ${golden_script} PARENT_SCOPE)
+endfunction()
+
+# One capture per PPO type, with and without a Chk_Cfg, in every input format.
+foreach(sample ppo1 ppo2 ppo3 ppo4)
+    golden_case(${sample}_text samples/expected/${sample}.txt decode samples/${sample}.pcap)
+    golden_case(${sample}_jsonl samples/expected/${sample}.jsonl decode -T jsonl samples/${sample}.pcap)
+endforeach()
+golden_case(ppo5_text samples/expected/ppo5.txt decode samples/ppo5.pcapng)
+golden_case(ppo5_jsonl samples/expected/ppo5.jsonl decode -T jsonl samples/ppo5.pcapng)
+golden_case(faults_text samples/expected/faults.txt EXIT 0 decode samples/faults.pcap)
+golden_case(faults_jsonl samples/expected/faults.jsonl decode -T jsonl samples/faults.pcap)
+golden_case(faults_summary samples/expected/faults.summary.txt decode -q samples/faults.pcap)
+golden_case(profidrive_text samples/expected/profidrive.txt decode --dialect profidrive samples/profidrive.pcap)
+golden_case(profidrive_jsonl samples/expected/profidrive.jsonl decode -T jsonl --dialect profidrive samples/profidrive.pcap)
+golden_case(user0_text samples/expected/user0.txt decode samples/user0.pcap)
+golden_case(midstream_text samples/expected/midstream.txt decode samples/midstream.pcap)
+golden_case(midstream_ppo_option samples/expected/midstream.ppo4.txt decode --ppo 6=4 samples/midstream.pcap)
+golden_case(serial_raw_text samples/expected/serial.txt decode samples/serial.raw)
+golden_case(terminal_hex_text samples/expected/terminal.txt decode samples/terminal.log)
+golden_case(ppo1_verbose samples/expected/ppo1.verbose.txt decode -V -c 60 samples/ppo1.pcap)
+golden_case(ppo2_csv samples/expected/ppo2.csv decode -T csv samples/ppo2.pcap)
+golden_case(faults_station_filter samples/expected/faults.station4.txt decode --station 4 samples/faults.pcap)
+golden_case(ppo1_pnu_filter samples/expected/ppo1.pnu207.txt decode --pnu 207 -T jsonl samples/ppo1.pcap)
+golden_case(truncated_capture samples/expected/truncated.txt EXIT 3 decode samples/truncated.pcap)
+
+add_custom_target(update-golden ${golden_update_commands}
+    DEPENDS dpscope
+    COMMENT "Rewriting samples/expected/ from the current dpscope"
+    VERBATIM)

@@ -1,0 +1,100 @@
+#include "tests/test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "capture/hex_log.hpp"
+
+namespace dpscope::test {
+
+std::vector<std::uint8_t> hex(std::string_view text) {
+    std::vector<std::uint8_t> bytes;
+    std::string error;
+    EXPECT_TRUE(parse_hex_bytes(text, bytes, error)) << error;
+    return bytes;
+}
+
+std::string source_dir() { return DPSCOPE_SOURCE_DIR; }
+std::string dpscope_executable() { return DPSCOPE_EXECUTABLE; }
+
+std::string temp_path(std::string_view name) {
+    static int counter = 0;
+    const char* base = std::getenv("TEST_TMPDIR");
+    std::string dir = base ? base : "/tmp";
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string test = info ? std::string(info->test_suite_name()) + "." + info->name() : "test";
+    return dir + "/dpscope-" + std::to_string(getpid()) + "-" + test + "-" +
+           std::to_string(counter++) + "-" + std::string(name);
+}
+
+void write_file(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+    std::ofstream out(path, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    ASSERT_TRUE(out.good()) << "cannot write " << path;
+}
+
+void write_text_file(const std::string& path, std::string_view text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    ASSERT_TRUE(out.good()) << "cannot write " << path;
+}
+
+std::vector<std::uint8_t> read_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), {});
+}
+
+namespace {
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream content;
+    content << in.rdbuf();
+    return content.str();
+}
+
+std::string shell_quote(const std::string& text) {
+    std::string quoted = "'";
+    for (char c : text) {
+        if (c == '\'')
+            quoted += "'\\''";
+        else
+            quoted += c;
+    }
+    return quoted + "'";
+}
+
+}  // namespace
+
+CommandResult run_dpscope(const std::vector<std::string>& args, const std::string& input) {
+    std::string out_path = temp_path("stdout");
+    std::string err_path = temp_path("stderr");
+    std::string in_path = "/dev/null";
+    if (!input.empty()) {
+        in_path = temp_path("stdin");
+        write_text_file(in_path, input);
+    }
+    std::string command = "cd " + shell_quote(source_dir()) + " && TZ=UTC LANG=C LC_ALL=C " +
+                          shell_quote(dpscope_executable());
+    for (const std::string& arg : args) command += " " + shell_quote(arg);
+    command += " < " + shell_quote(in_path) + " > " + shell_quote(out_path) + " 2> " +
+               shell_quote(err_path);
+    int status = std::system(command.c_str());
+    CommandResult result;
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.out = slurp(out_path);
+    result.err = slurp(err_path);
+    std::remove(out_path.c_str());
+    std::remove(err_path.c_str());
+    if (in_path != "/dev/null") std::remove(in_path.c_str());
+    return result;
+}
+
+}  // namespace dpscope::test
