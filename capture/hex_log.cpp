@@ -177,7 +177,10 @@ HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& 
         first_data_token = best_start;
     } else if (!tokens.empty()) {
         std::string_view run = strip_prefix_0x(strip_punctuation(tokens.back()));
-        if (run.size() >= 2 && run.size() % 2 == 0 && all_hex(run)) {
+        // A line holding nothing but 7 or 8 hex digits is the closing offset line of hexdump,
+        // not data.
+        bool hexdump_offset = tokens.size() == 1 && (run.size() == 7 || run.size() == 8);
+        if (!hexdump_offset && run.size() >= 2 && run.size() % 2 == 0 && all_hex(run)) {
             append_hex_run(run, bytes);
             first_data_token = tokens.size() - 1;
         }

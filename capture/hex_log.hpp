@@ -2,7 +2,8 @@
 //
 // A log line carries its bytes as the longest run of two-digit hex tokens ("68", "0x68", "68,"),
 // or, when it has none, as one compact hex string ("6807076805..."). Whatever else is on the line
-// (a timestamp, "TX"/"RX", a prompt, a hexdump offset or ASCII column) is tolerated. A leading
+// (a timestamp, "TX"/"RX", a prompt, a hexdump offset or ASCII column) is tolerated; a line of
+// only 7 or 8 hex digits is taken for hexdump's closing offset line, not for data. A leading
 // timestamp gives the line's time: epoch seconds ("1700000000.000125"), a time of day
 // ("12:00:01.5"), or an ISO date and time ("2024-01-02T12:00:01.5Z" or "2024-01-02 12:00:01.5"),
 // optionally in brackets; all UTC.

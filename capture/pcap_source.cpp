@@ -41,13 +41,13 @@ public:
             record.time_ns = static_cast<std::int64_t>(header->ts.tv_sec) * 1'000'000'000 +
                              static_cast<std::int64_t>(header->ts.tv_usec);
             record.number = number_;
-            record.offset = offset_;
+            record.offset = classic_pcap_ ? offset_ : 0;
             record.original_length = header->len;
-            offset_ += kPcapRecordHeaderBytes + header->caplen;
             if (header->caplen < header->len)
                 report(Severity::Warning,
                        fmt::format("{}: {}: only {} of {} bytes captured (snapshot length)",
                                    name(), where(number_), header->caplen, header->len));
+            offset_ += kPcapRecordHeaderBytes + header->caplen;
             return true;
         }
         finished_ = true;

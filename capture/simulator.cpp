@@ -294,10 +294,17 @@ void Simulator::generate_cycle() {
         emit(build_telegram({gap_address_, master, request_fc(FdlFunction::FdlStatus), {}, {}, {}}),
              60);
         now_ += bit_ns(100);  // slot time expires
-        gap_address_ = static_cast<std::uint8_t>(gap_address_ >= 125 ? 1 : gap_address_ + 1);
-        for (const Slave& slave : slaves_)
-            if (slave.config.address == gap_address_ || gap_address_ == master)
-                gap_address_ = static_cast<std::uint8_t>(gap_address_ >= 125 ? 1 : gap_address_ + 1);
+        // The next address nobody uses (the master and the slaves are on the bus).
+        auto in_use = [&](std::uint8_t address) {
+            if (address == master) return true;
+            return std::any_of(slaves_.begin(), slaves_.end(), [&](const Slave& slave) {
+                return slave.config.address == address;
+            });
+        };
+        for (int tries = 0; tries < 126; ++tries) {
+            gap_address_ = static_cast<std::uint8_t>(gap_address_ >= 125 ? 1 : gap_address_ + 1);
+            if (!in_use(gap_address_)) break;
+        }
     }
     if (cycle_ % 250 == 249) {
         std::vector<std::uint8_t> operate = {0x00, 0x00};

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
@@ -36,9 +37,12 @@ ssize_t replay_read(void* cookie, char* buffer, std::size_t size) {
         replay->position += n;
         return static_cast<ssize_t>(n);
     }
-    std::size_t n = std::fread(buffer, 1, size, replay->rest);
-    if (n == 0 && std::ferror(replay->rest)) return -1;
-    return static_cast<ssize_t>(n);
+    // read(2), not fread: hand over what has arrived, so a pipe or a terminal is decoded as it
+    // is written instead of when a buffer is full.
+    for (;;) {
+        ssize_t n = ::read(fileno(replay->rest), buffer, size);
+        if (n >= 0 || errno != EINTR) return n;
+    }
 }
 
 int replay_close(void* cookie) {
@@ -46,6 +50,22 @@ int replay_close(void* cookie) {
     int rc = replay->rest == stdin ? 0 : std::fclose(replay->rest);
     delete replay;
     return rc;
+}
+
+// Reads the first bytes for format detection: at least a pcap magic's worth unless the input
+// ends first, without waiting for more than has arrived after that.
+bool read_head(int fd, std::vector<std::uint8_t>& head) {
+    head.resize(kDetectBytes);
+    std::size_t got = 0;
+    while (got < 4) {
+        ssize_t n = ::read(fd, head.data() + got, kDetectBytes - got);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) return false;
+        if (n == 0) break;
+        got += static_cast<std::size_t>(n);
+    }
+    head.resize(got);
+    return true;
 }
 
 }  // namespace
@@ -67,15 +87,18 @@ OpenResult open_source(const std::string& path, InputFormat format) {
     }
     auto* replay = new ReplayCookie;
     replay->rest = file;
-    replay->head.resize(kDetectBytes);
-    std::size_t got = std::fread(replay->head.data(), 1, kDetectBytes, file);
-    if (got == 0 && std::ferror(file)) {
-        result.error = fmt::format("{}: cannot read: {}", name, std::strerror(errno));
-        replay_close(replay);
-        return result;
+    // A forced format needs no look at the content (and a typed hex log must not wait for 4 KiB).
+    bool classic_pcap = false;
+    if (format == InputFormat::Auto || format == InputFormat::Pcap ||
+        format == InputFormat::Pcapng) {
+        if (!read_head(fileno(file), replay->head)) {
+            result.error = fmt::format("{}: cannot read: {}", name, std::strerror(errno));
+            replay_close(replay);
+            return result;
+        }
+        classic_pcap = detect_input_format(replay->head) == InputFormat::Pcap;
+        if (format == InputFormat::Auto) format = detect_input_format(replay->head);
     }
-    replay->head.resize(got);
-    if (format == InputFormat::Auto) format = detect_input_format(replay->head);
     FILE* stream = fopencookie(replay, "rb", cookie_io_functions_t{replay_read, nullptr, nullptr,
                                                                     replay_close});
     if (!stream) {
@@ -87,9 +110,7 @@ OpenResult open_source(const std::string& path, InputFormat format) {
     switch (format) {
         case InputFormat::Pcap:
         case InputFormat::Pcapng:
-            result.source = open_pcap_source(
-                stream, name, detect_input_format(replay->head) == InputFormat::Pcap,
-                result.error);
+            result.source = open_pcap_source(stream, name, classic_pcap, result.error);
             break;
         case InputFormat::Hex: result.source = make_hex_source(stream, name); break;
         case InputFormat::Raw:

@@ -19,7 +19,8 @@ struct Record {
     Bytes bytes;                     // valid until the next call to next()
     std::int64_t time_ns = kNoTime;  // nanoseconds since the epoch, kNoTime when unknown
     std::uint64_t number = 0;        // 1-based
-    std::uint64_t offset = 0;        // byte offset in the input where the record (telegram) starts
+    std::uint64_t offset = 0;        // where the record starts: byte offset in a pcap file, stream
+                                     // offset for raw/hex input; 0 for pcapng (not known)
     std::uint32_t original_length = 0;  // pcap: the length on the wire (> bytes.size() if cut)
 };
 

@@ -1,5 +1,7 @@
 #include "cli/common_options.hpp"
 
+#include "cli/pipeline.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,7 +10,8 @@
 
 namespace dpscope::cli {
 
-void add_decode_options(CLI::App& app, DecodeOptionValues& values, std::string_view default_format) {
+void add_display_options(CLI::App& app, DecodeOptionValues& values,
+                         std::string_view default_format) {
     values.format = std::string(default_format);
     app.add_option("-T,--format", values.format,
                    "Output format: text (one line a telegram), verbose (every field), jsonl (one "
@@ -19,11 +22,9 @@ void add_decode_options(CLI::App& app, DecodeOptionValues& values, std::string_v
     app.add_flag("-q,--quiet", values.quiet,
                  "Decode everything but print only a summary: telegrams by frame type and "
                  "service, problems and findings by kind, and the PPO layout of each slave");
-    app.add_option("-c,--count", values.count, "Stop after reading N telegrams")
-        ->check(CLI::PositiveNumber);
     app.add_option("--station", values.stations,
                    "Show only telegrams to or from station ADDR (0..127); repeat for more "
-                   "stations. All telegrams are still decoded.")
+                   "stations. All telegrams are still decoded and tracked.")
         ->check(CLI::Range(0, 127))
         ->type_name("ADDR")
         ->allow_extra_args(false);
@@ -33,6 +34,11 @@ void add_decode_options(CLI::App& app, DecodeOptionValues& values, std::string_v
         ->check(CLI::Range(0, 2047))
         ->type_name("N")
         ->allow_extra_args(false);
+}
+
+void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
+    app.add_option("-c,--count", values.count, "Stop after reading N telegrams")
+        ->check(CLI::PositiveNumber);
     app.add_option("--ppo", values.ppo,
                    "ADDR=TYPE: decode slave ADDR as PPO TYPE (1..5) instead of inferring the type "
                    "from Chk_Cfg, Get_Cfg or the Data_Exchange length; repeatable")
@@ -49,6 +55,14 @@ void add_decode_options(CLI::App& app, DecodeOptionValues& values, std::string_v
                    "fc for vlt slaves, profidrive for profidrive slaves")
         ->check(CLI::IsMember({"fc", "profidrive"}))
         ->type_name("NAME");
+    app.add_option("--timeout-ms", values.timeout_ms,
+                   "Session tracker: a parameter request unanswered (or a spontaneous message "
+                   "unacknowledged) for longer than this is a finding")
+        ->check(CLI::Range(1u, 3'600'000u))
+        ->default_str("1000");
+    app.add_flag("--strict", values.strict,
+                 "Session tracker: RC 8 (no operating authority) after a read request is an "
+                 "unexpected response type, not only unusual");
 }
 
 namespace {
@@ -68,6 +82,8 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
                                            OutputFormat::Text);
     settings.quiet = values.quiet;
     settings.count = values.count;
+    settings.tracker.timeout_ns = static_cast<std::int64_t>(values.timeout_ms) * 1'000'000;
+    settings.tracker.strict = values.strict;
     for (unsigned station : values.stations) settings.stations.push_back(static_cast<std::uint8_t>(station));
     for (unsigned pnu : values.pnus) settings.pnus.push_back(static_cast<std::uint16_t>(pnu));
     for (const std::string& item : values.ppo) {
@@ -121,6 +137,13 @@ bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t) noe
             return false;
     }
     return true;
+}
+
+void report_input_issues(TelegramSource& source, Output& out) {
+    source.on_issue([&out](const InputIssue& issue) {
+        out.flush();
+        print_error(fmt::format("{}: {}", severity_name(issue.severity), issue.message));
+    });
 }
 
 void print_error(std::string_view message) {

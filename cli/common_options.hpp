@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "decoder/bus_decoder.hpp"
+#include "decoder/session_tracker.hpp"
 #include "formats/renderer.hpp"
 
 namespace dpscope::cli {
@@ -38,12 +39,18 @@ struct DecodeOptionValues {
     std::vector<std::string> ppo;
     std::vector<std::string> dialects;
     std::string pcd_profile;
+    std::uint32_t timeout_ms = 1000;
+    bool strict = false;
 };
 
-void add_decode_options(CLI::App& app, DecodeOptionValues& values, std::string_view default_format);
+// How to decode and track: -c, --ppo, --dialect, --pcd-profile, --timeout-ms, --strict.
+void add_tracking_options(CLI::App& app, DecodeOptionValues& values);
+// What decode and hex print: -T, -V, -q, --station, --pnu.
+void add_display_options(CLI::App& app, DecodeOptionValues& values, std::string_view default_format);
 
 struct DecodeSettings {
     DecoderOptions decoder;
+    TrackerOptions tracker;
     OutputFormat format = OutputFormat::Text;
     bool quiet = false;
     std::uint64_t count = 0;  // 0: no limit

@@ -11,7 +11,7 @@
 #include "capture/telegram_source.hpp"
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
-#include "formats/summary.hpp"
+#include "cli/pipeline.hpp"
 
 namespace dpscope::cli {
 
@@ -21,12 +21,8 @@ namespace {
 // code. Input problems are reported on standard error as they are met.
 int run_decoding(TelegramSource& source, const DecodeSettings& settings) {
     Output out(stdout, isatty(STDOUT_FILENO) != 0);
-    source.on_issue([&](const InputIssue& issue) {
-        out.flush();
-        print_error(fmt::format("{}: {}", severity_name(issue.severity), issue.message));
-    });
-    BusDecoder decoder(settings.decoder);
-    Summary summary;
+    report_input_issues(source, out);
+    Pipeline pipeline(settings);
     std::unique_ptr<TelegramRenderer> renderer;
     if (!settings.quiet) {
         renderer = make_renderer(settings.format, out);
@@ -34,18 +30,19 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings) {
     }
     Record record;
     std::uint64_t read = 0;
+    std::span<const Finding> findings;
     while ((settings.count == 0 || read < settings.count) && source.next(record)) {
         ++read;
-        const DecodedTelegram& t = decoder.decode(record.bytes, record.time_ns, record.number);
-        summary.add(t);
-        if (renderer && passes_filter(settings, t)) renderer->render(t, {});
+        const DecodedTelegram& t = pipeline.feed(record, findings);
+        if (renderer && passes_filter(settings, t)) renderer->render(t, findings);
     }
-    if (renderer) renderer->end();
-    if (settings.quiet) {
-        InputSummary input{source.name(), std::string(input_format_name(source.format())),
-                           source.bytes_skipped(), source.status() == InputStatus::Damaged};
-        summary.render_text(out, input, decoder);
+    std::span<const Finding> open_at_end = pipeline.finish();
+    if (renderer) {
+        renderer->render_end_findings(open_at_end);
+        renderer->end();
     }
+    if (settings.quiet)
+        pipeline.summary().render_text(out, describe_input(source), pipeline.decoder());
     if (!out.flush()) {
         print_error("error: cannot write the output");
         return kExitOutputError;
@@ -83,7 +80,8 @@ void add_decode_command(CLI::App& app, int& exit_code) {
                     "stream, framed by structure), hex (text lines of hex bytes)")
         ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "hex"}))
         ->default_str("auto");
-    add_decode_options(*sub, command->options, "text");
+    add_display_options(*sub, command->options, "text");
+    add_tracking_options(*sub, command->options);
     sub->footer(std::string(kExitCodeHelp));
     sub->callback([command, &exit_code] {
         std::string path = !command->read_option.empty() ? command->read_option : command->file;
@@ -125,7 +123,8 @@ void add_hex_command(CLI::App& app, int& exit_code) {
     sub->add_option("bytes", command->bytes,
                     "Hex bytes: 68 or 0x68 or 680707 or 68:07:07, in one or more arguments")
         ->type_name("BYTES");
-    add_decode_options(*sub, command->options, "verbose");
+    add_display_options(*sub, command->options, "verbose");
+    add_tracking_options(*sub, command->options);
     sub->footer(std::string(kExitCodeHelp));
     sub->callback([command, &exit_code] {
         std::string error;

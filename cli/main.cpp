@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
     int exit_code = kExitOk;
     add_decode_command(app, exit_code);
     add_hex_command(app, exit_code);
+    add_report_command(app, exit_code);
     add_simulate_command(app, exit_code);
     try {
         app.parse(argc, argv);

@@ -86,8 +86,9 @@ enum class AnswerVerdict : std::uint8_t {
 
 // Pairing table (MICROMASTER 440 / ABB FPBA-01 / PROFIdrive), applied to both dialects:
 // 1 -> 1|2, 2 -> 1, 3 -> 2, 4 -> 3, 5 -> 3, 6 -> 4|5, 7 -> 4, 8 -> 5, 9 -> 6; profidrive adds
-// 11 -> 5, 12 -> 4, 13 -> 2, 14 -> 1, 15 -> 15. RC 7 answers any request; RC 8 answers change
-// requests, and after a read it is Unusual (Invalid when strict).
+// 11 -> 5, 12 -> 4, 13 -> 2, 14 -> 1, 15 -> 15. RC 7 answers any request 1..15 (RC 0 is no
+// request: only RC 0 answers it); RC 8 answers change requests, and after a read it is Unusual
+// (Invalid when strict).
 AnswerVerdict judge_answer(Dialect dialect, std::uint8_t request_rc, std::uint8_t response_rc,
                            bool strict) noexcept;
 

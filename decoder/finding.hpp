@@ -46,6 +46,7 @@ struct Finding {
     std::uint64_t frame = 0;          // the telegram where it was found
     std::uint64_t request_frame = 0;  // the related request, 0 when there is none
     std::int64_t time_ns = 0;         // kNoTime (see bus_decoder.hpp) when unknown
+    bool has_stations = false;        // false for a telegram nobody can be named for (garbage)
     std::uint8_t master = 0;
     std::uint8_t slave = 0;
     std::optional<std::uint16_t> pnu;

@@ -33,9 +33,11 @@ void append_iso_time(TextBuffer& out, std::int64_t time_ns) {
 }
 
 void append_epoch_seconds(TextBuffer& out, std::int64_t time_ns) {
-    std::int64_t seconds = 0, nanos = 0;
-    split_time(time_ns, seconds, nanos);
-    fmt::format_to(std::back_inserter(out), "{}.{:09}", seconds, nanos);
+    // Sign and magnitude: -1.5 s is "-1.500000000", not "-2" and a positive fraction.
+    std::uint64_t magnitude = time_ns < 0 ? 0 - static_cast<std::uint64_t>(time_ns)
+                                          : static_cast<std::uint64_t>(time_ns);
+    fmt::format_to(std::back_inserter(out), "{}{}.{:09}", time_ns < 0 ? "-" : "",
+                   magnitude / kNanos, magnitude % kNanos);
 }
 
 bool append_flags(TextBuffer& out, std::uint8_t value, std::span<const FlagBit> flags,

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include "decoder/finding.hpp"
+
 namespace dpscope::json {
 
 inline void raw(fmt::memory_buffer& out, std::string_view text) {
@@ -41,5 +43,12 @@ inline void string(fmt::memory_buffer& out, std::string_view text) {
     }
     out.push_back('"');
 }
+
+// A finding as an object: kind, severity, frame, request_frame, time, master, slave, pnu,
+// message (null where unknown). The same shape in jsonl and in the JSON report.
+void finding(fmt::memory_buffer& out, const Finding& f);
+
+// Seconds since the epoch with nanoseconds ("1704067200.000123000"), or null for kNoTime.
+void time(fmt::memory_buffer& out, std::int64_t time_ns);
 
 }  // namespace dpscope::json

@@ -56,10 +56,7 @@ public:
         raw(b, "{\"frame\":");
         integer(b, static_cast<std::int64_t>(t.frame));
         raw(b, ",\"time\":");
-        if (t.has_time())
-            append_epoch_seconds(b, t.time_ns);
-        else
-            null(b);
+        json::time(b, t.time_ns);
         raw(b, ",\"len\":");
         integer(b, static_cast<std::int64_t>(t.bytes.size()));
         raw(b, ",\"sd\":");
@@ -165,7 +162,22 @@ public:
         for (const Finding& finding : findings) {
             if (!first) b.push_back(',');
             first = false;
-            render_finding(b, finding);
+            json::finding(b, finding);
+        }
+        raw(b, "]}\n");
+        out_.end_record();
+    }
+
+    // A last line for findings that belong to no telegram: {"end_of_capture":true,"findings":[...]}.
+    void render_end_findings(std::span<const Finding> findings) override {
+        if (findings.empty()) return;
+        TextBuffer& b = out_.buffer();
+        raw(b, "{\"end_of_capture\":true,\"findings\":[");
+        bool first = true;
+        for (const Finding& f : findings) {
+            if (!first) b.push_back(',');
+            first = false;
+            json::finding(b, f);
         }
         raw(b, "]}\n");
         out_.end_record();
@@ -372,31 +384,6 @@ private:
         } else {
             null(b);
         }
-    }
-
-    static void render_finding(TextBuffer& b, const Finding& f) {
-        raw(b, "{\"kind\":");
-        string(b, finding_kind_name(f.kind));
-        raw(b, ",\"severity\":");
-        string(b, severity_name(f.severity));
-        raw(b, ",\"frame\":");
-        integer(b, static_cast<std::int64_t>(f.frame));
-        raw(b, ",\"request_frame\":");
-        optional_int(b, f.request_frame != 0, static_cast<std::int64_t>(f.request_frame));
-        raw(b, ",\"time\":");
-        if (f.time_ns != kNoTime)
-            append_epoch_seconds(b, f.time_ns);
-        else
-            null(b);
-        raw(b, ",\"master\":");
-        integer(b, f.master);
-        raw(b, ",\"slave\":");
-        integer(b, f.slave);
-        raw(b, ",\"pnu\":");
-        optional_int(b, f.pnu.has_value(), f.pnu.value_or(0));
-        raw(b, ",\"message\":");
-        string(b, f.message);
-        b.push_back('}');
     }
 };
 

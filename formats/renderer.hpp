@@ -28,6 +28,8 @@ public:
     virtual void begin() {}
     // `findings`: what the session tracker found on this telegram (may be empty).
     virtual void render(const DecodedTelegram& telegram, std::span<const Finding> findings) = 0;
+    // Findings only known at the end of the capture (time-outs still open then).
+    virtual void render_end_findings(std::span<const Finding> /*findings*/) {}
     virtual void end() {}
 
 protected:

@@ -16,8 +16,9 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
         append_iso_time(b, first_time_);
         append(b, " to ");
         append_iso_time(b, last_time_);
-        std::int64_t span = last_time_ - first_time_;
-        fmt::format_to(it, " ({}.{:09} s)", span / 1'000'000'000, span % 1'000'000'000);
+        append(b, " (");
+        append_epoch_seconds(b, last_time_ - first_time_);
+        append(b, " s)");
     }
     b.push_back('\n');
     if (input.damaged) append(b, "  input: reading stopped early (see the message above)\n");

@@ -58,6 +58,8 @@ public:
     std::uint64_t responses(Service s) const noexcept {
         return responses_[static_cast<std::size_t>(s)];
     }
+    std::int64_t first_time_ns() const noexcept { return first_time_; }
+    std::int64_t last_time_ns() const noexcept { return last_time_; }
     std::uint64_t data_exchange(std::uint8_t slave) const noexcept {
         return data_exchange_[slave & 0x7F];
     }

@@ -61,6 +61,14 @@ public:
         out_.end_record();
     }
 
+    void render_end_findings(std::span<const Finding> findings) override {
+        for (const Finding& f : findings)
+            fmt::format_to(std::back_inserter(out_.buffer()),
+                           "     - end of capture [{} {}] {}\n", severity_name(f.severity),
+                           finding_kind_name(f.kind), f.message);
+        out_.end_record();
+    }
+
 private:
     std::int64_t first_time_ = kNoTime;
 };

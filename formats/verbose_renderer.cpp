@@ -48,6 +48,15 @@ public:
         out_.end_record();
     }
 
+    void render_end_findings(std::span<const Finding> findings) override {
+        if (findings.empty()) return;
+        append(out_.buffer(), "End of capture\nFindings\n");
+        for (const Finding& f : findings)
+            field(1, "{} {}: {}", severity_name(f.severity), finding_kind_name(f.kind), f.message);
+        out_.buffer().push_back('\n');
+        out_.end_record();
+    }
+
 private:
     void line(int level, std::string_view text) {
         TextBuffer& b = out_.buffer();

@@ -1,0 +1,147 @@
+// dpscope report: the protocol-conformance report of a capture.
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "capture/telegram_source.hpp"
+#include "cli/commands.hpp"
+#include "cli/common_options.hpp"
+#include "cli/pipeline.hpp"
+#include "cli/version.hpp"
+#include "formats/report.hpp"
+
+namespace dpscope::cli {
+
+namespace {
+
+struct ReportCommand {
+    DecodeOptionValues options;
+    std::string file;
+    std::string read_option;
+    std::string input_format = "auto";
+    std::string format = "text";
+    std::string output = "-";
+    std::string fail_on = "error";
+    std::vector<unsigned> stations;
+};
+
+int run_report(const ReportCommand& command) {
+    std::string path = !command.read_option.empty() ? command.read_option : command.file;
+    if (path.empty()) {
+        print_error("report: no input; give a FILE or -r FILE (- for standard input)");
+        return kExitUsage;
+    }
+    std::string error;
+    auto settings = resolve_decode_options(command.options, error);
+    if (!settings) {
+        print_error(error);
+        return kExitUsage;
+    }
+    OpenResult opened = open_source(
+        path, input_format_from_name(command.input_format).value_or(InputFormat::Auto));
+    if (!opened.source) {
+        print_error(opened.error);
+        return kExitUsage;
+    }
+    FILE* file = stdout;
+    if (command.output != "-") {
+        file = std::fopen(command.output.c_str(), "wb");
+        if (!file) {
+            print_error(fmt::format("{}: cannot open for writing: {}", command.output,
+                                    std::strerror(errno)));
+            return kExitUsage;
+        }
+    }
+    TelegramSource& source = *opened.source;
+    int exit_code = kExitOk;
+    {
+        Output out(file);
+        Output diagnostics(stderr);
+        report_input_issues(source, diagnostics);
+        Pipeline pipeline(*settings);
+        FindingLog log;
+        Record record;
+        std::uint64_t read = 0;
+        std::span<const Finding> findings;
+        while ((settings->count == 0 || read < settings->count) && source.next(record)) {
+            ++read;
+            pipeline.feed(record, findings);
+            if (!findings.empty()) log.append(findings);
+        }
+        log.append(pipeline.finish());
+        ReportContext context;
+        context.input = describe_input(source);
+        context.summary = &pipeline.summary();
+        context.decoder = &pipeline.decoder();
+        context.tracker = &pipeline.tracker();
+        context.findings = &log;
+        context.fail_on = fail_on_from_name(command.fail_on).value_or(FailOn::Error);
+        for (unsigned station : command.stations)
+            context.stations.push_back(static_cast<std::uint8_t>(station));
+        context.version = kVersion;
+        render_report(report_format_from_name(command.format).value_or(ReportFormat::Text),
+                      context, out);
+        if (!log.error().empty()) print_error(fmt::format("warning: {}", log.error()));
+        if (!out.flush()) {
+            print_error(fmt::format("error: cannot write the report to {}",
+                                    command.output == "-" ? "standard output" : command.output));
+            exit_code = kExitOutputError;
+        } else if (report_fails(context)) {
+            exit_code = kExitFindings;
+        } else if (source.status() == InputStatus::Damaged) {
+            exit_code = kExitDamagedInput;
+        }
+    }
+    if (file != stdout && std::fclose(file) != 0 && exit_code == kExitOk) {
+        print_error(fmt::format("error: cannot write the report to {}", command.output));
+        exit_code = kExitOutputError;
+    }
+    return exit_code;
+}
+
+}  // namespace
+
+void add_report_command(CLI::App& app, int& exit_code) {
+    auto command = std::make_shared<ReportCommand>();
+    CLI::App* sub = app.add_subcommand(
+        "report",
+        "Protocol-conformance report of a capture: pairs every parameter request with its "
+        "response and lists, per slave, transactions, latency, parameters, rejections and "
+        "handshake findings; exit code 1 when a finding reaches --fail-on.");
+    sub->add_option("file", command->file, "Capture file to read; - reads standard input")
+        ->type_name("FILE");
+    sub->add_option("-r,--read", command->read_option,
+                    "Capture file to read (as tshark -r); - reads standard input")
+        ->type_name("FILE");
+    sub->add_option("--input-format", command->input_format,
+                    "Input kind: auto (detect from the content), pcap, pcapng, raw, hex")
+        ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "hex"}))
+        ->default_str("auto");
+    sub->add_option("-T,--format", command->format,
+                    "Report format: text, json (stable schema, see README), markdown, html (one "
+                    "self-contained page with SVG charts), junit (JUnit XML for CI servers)")
+        ->check(CLI::IsMember({"text", "json", "markdown", "html", "junit"}))
+        ->default_str("text");
+    sub->add_option("-w,--write", command->output, "Write the report to FILE; - is standard output")
+        ->type_name("FILE")
+        ->default_str("-");
+    sub->add_option("--fail-on", command->fail_on,
+                    "Exit code 1 when a finding of this severity or above is in the report: "
+                    "error, warning, or never")
+        ->check(CLI::IsMember({"error", "warning", "never"}))
+        ->default_str("error");
+    sub->add_option("--station", command->stations,
+                    "Report only slave ADDR (repeatable); telegrams of other stations are still "
+                    "decoded")
+        ->check(CLI::Range(0, 127))
+        ->type_name("ADDR")
+        ->allow_extra_args(false);
+    add_tracking_options(*sub, command->options);
+    sub->footer(std::string(kExitCodeHelp) +
+                " For report, 1 takes precedence over 3.");
+    sub->callback([command, &exit_code] { exit_code = run_report(*command); });
+}
+
+}  // namespace dpscope::cli

@@ -1,0 +1,971 @@
+#include "formats/report.hpp"
+
+#include <algorithm>
+#include <iterator>
+
+#include "formats/describe.hpp"
+#include "formats/json.hpp"
+
+namespace dpscope {
+
+std::string_view report_format_name(ReportFormat format) {
+    switch (format) {
+        case ReportFormat::Text: return "text";
+        case ReportFormat::Json: return "json";
+        case ReportFormat::Markdown: return "markdown";
+        case ReportFormat::Html: return "html";
+        case ReportFormat::Junit: return "junit";
+    }
+    return "text";
+}
+
+std::optional<ReportFormat> report_format_from_name(std::string_view name) {
+    for (ReportFormat format : {ReportFormat::Text, ReportFormat::Json, ReportFormat::Markdown,
+                                ReportFormat::Html, ReportFormat::Junit})
+        if (report_format_name(format) == name) return format;
+    return std::nullopt;
+}
+
+std::string_view fail_on_name(FailOn fail_on) {
+    switch (fail_on) {
+        case FailOn::Error: return "error";
+        case FailOn::Warning: return "warning";
+        case FailOn::Never: return "never";
+    }
+    return "error";
+}
+
+std::optional<FailOn> fail_on_from_name(std::string_view name) {
+    for (FailOn f : {FailOn::Error, FailOn::Warning, FailOn::Never})
+        if (fail_on_name(f) == name) return f;
+    return std::nullopt;
+}
+
+bool severity_fails(Severity severity, FailOn fail_on) noexcept {
+    switch (fail_on) {
+        case FailOn::Error: return severity == Severity::Error;
+        case FailOn::Warning: return severity != Severity::Note;
+        case FailOn::Never: return false;
+    }
+    return false;
+}
+
+namespace {
+
+constexpr std::size_t kHtmlFindingRows = 2000;
+constexpr std::array<FindingKind, kFindingKindCount> all_kinds() {
+    std::array<FindingKind, kFindingKindCount> kinds{};
+    for (std::size_t i = 0; i < kFindingKindCount; ++i) kinds[i] = static_cast<FindingKind>(i);
+    return kinds;
+}
+constexpr auto kAllKinds = all_kinds();
+
+struct Latency {
+    bool any = false;
+    double min_ms = 0, median_ms = 0, p95_ms = 0, max_ms = 0;
+    std::uint64_t min_cycles = 0, median_cycles = 0, p95_cycles = 0, max_cycles = 0;
+    bool any_cycles = false;
+};
+
+struct StationView {
+    const ChannelStats* stats = nullptr;
+    bool has_ident = false;
+    std::uint16_t ident = 0;
+    Latency latency;
+};
+
+struct Model {
+    std::vector<StationView> stations;
+    std::array<std::uint64_t, 3> by_severity{};
+    std::uint64_t shown = 0;
+    bool fails = false;
+    bool has_bus_findings = false;
+};
+
+bool shows(const ReportContext& c, const Finding& f) {
+    if (c.stations.empty() || !f.has_stations) return true;
+    return std::find(c.stations.begin(), c.stations.end(), f.slave) != c.stations.end();
+}
+
+double to_ms(std::uint64_t ns) { return static_cast<double>(ns) / 1e6; }
+
+Model build_model(const ReportContext& c) {
+    Model m;
+    for (const ChannelStats* stats : c.tracker->channels()) {
+        if (!c.stations.empty() &&
+            std::find(c.stations.begin(), c.stations.end(), stats->slave) == c.stations.end())
+            continue;
+        StationView view;
+        view.stats = stats;
+        const StationConfig& config = c.decoder->station(stats->slave);
+        view.has_ident = config.has_ident;
+        view.ident = config.ident;
+        const LogHistogram& ns = stats->latency_ns;
+        if (ns.count() > 0) {
+            view.latency.any = true;
+            view.latency.min_ms = to_ms(ns.min());
+            view.latency.median_ms = to_ms(ns.percentile(50));
+            view.latency.p95_ms = to_ms(ns.percentile(95));
+            view.latency.max_ms = to_ms(ns.max());
+        }
+        const LogHistogram& cycles = stats->latency_cycles;
+        if (cycles.count() > 0) {
+            view.latency.any_cycles = true;
+            view.latency.min_cycles = cycles.min();
+            view.latency.median_cycles = cycles.percentile(50);
+            view.latency.p95_cycles = cycles.percentile(95);
+            view.latency.max_cycles = cycles.max();
+        }
+        m.stations.push_back(view);
+    }
+    c.findings->for_each([&](const Finding& f) {
+        if (!shows(c, f)) return;
+        ++m.shown;
+        ++m.by_severity[static_cast<std::size_t>(f.severity)];
+        if (severity_fails(f.severity, c.fail_on)) m.fails = true;
+        if (!f.has_stations) m.has_bus_findings = true;
+    });
+    return m;
+}
+
+std::uint64_t errors(const Model& m) { return m.by_severity[static_cast<std::size_t>(Severity::Error)]; }
+std::uint64_t warnings(const Model& m) {
+    return m.by_severity[static_cast<std::size_t>(Severity::Warning)];
+}
+std::uint64_t notes(const Model& m) { return m.by_severity[static_cast<std::size_t>(Severity::Note)]; }
+
+std::string verdict_text(const ReportContext& c, const Model& m) {
+    return fmt::format("{}: {} errors, {} warnings, {} notes (fail on {})",
+                       m.fails ? "FAIL" : "PASS", errors(m), warnings(m), notes(m),
+                       fail_on_name(c.fail_on));
+}
+
+std::string ppo_text(const ChannelStats& s) {
+    TextBuffer b;
+    if (s.ppo.known())
+        append_ppo_long(b, s.ppo);
+    else
+        append(b, "PPO unknown");
+    return fmt::to_string(b);
+}
+
+std::string ppo_type_label(const PpoLayout& layout) {
+    if (!layout.known()) return "unknown";
+    TextBuffer b;
+    append_ppo_short(b, layout);
+    return fmt::to_string(b);
+}
+
+std::string relative_seconds(const ReportContext& c, std::int64_t time_ns) {
+    std::int64_t first = c.summary->first_time_ns();
+    if (time_ns == kNoTime || first == kNoTime) return "-";
+    return fmt::format("{:.6f}", static_cast<double>(time_ns - first) / 1e9);
+}
+
+std::string outcomes_text(const TransactionCounts& t) {
+    return fmt::format("{} positive, {} rejected, {} no authority, {} mismatched, {} unexpected",
+                       t.positive, t.rejected, t.no_authority, t.mismatched, t.unexpected);
+}
+
+std::string parameters_text(const ChannelStats& s) {
+    std::string text;
+    for (const auto& [pnu, count] : s.pnu_requests)
+        text += fmt::format("{}{} ({}x)", text.empty() ? "" : ", ", pnu, count);
+    return text.empty() ? "none" : text;
+}
+
+std::string findings_by_kind_text(const std::array<std::uint64_t, kFindingKindCount>& counts) {
+    std::string text;
+    for (FindingKind kind : kAllKinds)
+        if (counts[static_cast<std::size_t>(kind)])
+            text += fmt::format("{}{} {}", text.empty() ? "" : ", ", finding_kind_name(kind),
+                                counts[static_cast<std::size_t>(kind)]);
+    return text.empty() ? "none" : text;
+}
+
+std::string station_label(const Finding& f) {
+    return f.has_stations ? fmt::format("{} / {}", f.master, f.slave) : std::string("-");
+}
+
+// ---- text ---------------------------------------------------------------------------------------
+
+void render_text(const ReportContext& c, const Model& m, Output& out) {
+    TextBuffer& b = out.buffer();
+    auto it = std::back_inserter(b);
+    const TrackerOptions& options = c.tracker->options();
+    fmt::format_to(it, "dpscope {} conformance report\n", c.version);
+    fmt::format_to(it, "Input:   {} ({}), {} telegrams", c.input.name, c.input.format,
+                   c.summary->telegrams());
+    if (c.summary->first_time_ns() != kNoTime) {
+        append(b, ", ");
+        append_iso_time(b, c.summary->first_time_ns());
+        append(b, " to ");
+        append_iso_time(b, c.summary->last_time_ns());
+    }
+    b.push_back('\n');
+    if (c.input.damaged) append(b, "         the input ended in damage; the report covers what was read\n");
+    fmt::format_to(it, "Checks:  time-out {} ms; RC 8 after a read is {}\n",
+                   options.timeout_ns / 1'000'000,
+                   options.strict ? "an unexpected response (strict)" : "unusual, a warning");
+    fmt::format_to(it, "Result:  {}\n\n", verdict_text(c, m));
+    append(b, "Summary\n");
+    fmt::format_to(it, "  telegrams      {}\n", c.summary->telegrams());
+    fmt::format_to(it, "  FCS errors     {}\n", c.summary->problems(ProblemKind::FcsMismatch));
+    std::uint64_t transactions = 0;
+    for (const StationView& v : m.stations) transactions += v.stats->transactions.total();
+    fmt::format_to(it, "  transactions   {}\n", transactions);
+    fmt::format_to(it, "  findings       {} errors, {} warnings, {} notes\n", errors(m), warnings(m),
+                   notes(m));
+    for (const StationView& v : m.stations) {
+        const ChannelStats& s = *v.stats;
+        fmt::format_to(it, "\nSlave {} (master {})\n", s.slave, s.master);
+        fmt::format_to(it, "  layout         {}; dialect {}", ppo_text(s), dialect_name(s.dialect));
+        if (v.has_ident) fmt::format_to(it, "; ident 0x{:04X}", v.ident);
+        b.push_back('\n');
+        fmt::format_to(it, "  Data_Exchange  {} telegrams, {} cycles\n", s.data_exchange, s.cycles);
+        fmt::format_to(it, "  requests       {}\n", s.requests);
+        fmt::format_to(it, "  transactions   {}: {}\n", s.transactions.total(),
+                       outcomes_text(s.transactions));
+        fmt::format_to(it, "  unanswered     {} timed out, {} abandoned by the master\n", s.timeouts,
+                       s.abandoned);
+        fmt::format_to(it, "  spontaneous    {} messages\n", s.spontaneous);
+        if (v.latency.any)
+            fmt::format_to(it, "  latency ms     min {:.3f}  median {:.3f}  p95 {:.3f}  max {:.3f}\n",
+                           v.latency.min_ms, v.latency.median_ms, v.latency.p95_ms, v.latency.max_ms);
+        if (v.latency.any_cycles)
+            fmt::format_to(it, "  latency cycles min {}  median {}  p95 {}  max {}\n",
+                           v.latency.min_cycles, v.latency.median_cycles, v.latency.p95_cycles,
+                           v.latency.max_cycles);
+        fmt::format_to(it, "  parameters     {}\n", parameters_text(s));
+        if (!s.rejections.empty()) {
+            append(b, "  rejections    ");
+            for (const auto& [key, count] : s.rejections) {
+                std::string_view text = error_text(s.dialect, key.second);
+                fmt::format_to(it, " PNU {} error {} ({}) {}x;", key.first, key.second,
+                               text.empty() ? "unknown" : text, count);
+            }
+            b.push_back('\n');
+        }
+        fmt::format_to(it, "  findings       {}\n", findings_by_kind_text(s.findings));
+    }
+    if (m.has_bus_findings)
+        fmt::format_to(it, "\nBus (telegrams no station can be named for)\n  findings       {}\n",
+                       findings_by_kind_text(c.tracker->bus().findings));
+    fmt::format_to(it, "\nFindings ({}, in capture order)\n", m.shown);
+    if (m.shown > 0)
+        fmt::format_to(it, "  {:>8}  {:>12}  {:<8} {:<27} {:<9} {:>5}  {}\n", "frame", "time (s)",
+                       "severity", "kind", "master/slave", "pnu", "message");
+    c.findings->for_each([&](const Finding& f) {
+        if (!shows(c, f)) return;
+        fmt::format_to(it, "  {:>8}  {:>12}  {:<8} {:<27} {:<12} {:>5}  {}\n", f.frame,
+                       relative_seconds(c, f.time_ns), severity_name(f.severity),
+                       finding_kind_name(f.kind), station_label(f),
+                       f.pnu ? fmt::format("{}", *f.pnu) : std::string("-"), f.message);
+        out.end_record();
+    });
+    if (!c.findings->error().empty())
+        fmt::format_to(it, "  (some findings could not be listed: {})\n", c.findings->error());
+    out.end_record();
+}
+
+// ---- markdown -----------------------------------------------------------------------------------
+
+std::string md_escape(std::string_view text) {
+    std::string out;
+    for (char ch : text) {
+        if (ch == '|' || ch == '*' || ch == '_' || ch == '`' || ch == '<' || ch == '>') out += '\\';
+        out += ch;
+    }
+    return out;
+}
+
+void render_markdown(const ReportContext& c, const Model& m, Output& out) {
+    TextBuffer& b = out.buffer();
+    auto it = std::back_inserter(b);
+    const TrackerOptions& options = c.tracker->options();
+    fmt::format_to(it, "# dpscope conformance report\n\n");
+    fmt::format_to(it, "**{}**\n\n", verdict_text(c, m));
+    fmt::format_to(it, "- Input: `{}` ({}), {} telegrams{}\n", c.input.name, c.input.format,
+                   c.summary->telegrams(), c.input.damaged ? " (ended in damage)" : "");
+    fmt::format_to(it, "- Checks: time-out {} ms; RC 8 after a read: {}\n",
+                   options.timeout_ns / 1'000'000, options.strict ? "strict" : "lenient");
+    fmt::format_to(it, "- dpscope {}\n\n", c.version);
+    std::uint64_t transactions = 0;
+    for (const StationView& v : m.stations) transactions += v.stats->transactions.total();
+    append(b, "## Summary\n\n| telegrams | FCS errors | transactions | errors | warnings | notes |\n"
+              "|---:|---:|---:|---:|---:|---:|\n");
+    fmt::format_to(it, "| {} | {} | {} | {} | {} | {} |\n\n", c.summary->telegrams(),
+                   c.summary->problems(ProblemKind::FcsMismatch), transactions, errors(m),
+                   warnings(m), notes(m));
+    append(b, "## Slaves\n\n| slave | master | PPO | dialect | transactions | rejected | "
+              "time-outs | latency ms (min / median / p95 / max) | latency cycles | findings |\n"
+              "|---:|---:|---|---|---:|---:|---:|---|---|---|\n");
+    for (const StationView& v : m.stations) {
+        const ChannelStats& s = *v.stats;
+        std::string ms = v.latency.any ? fmt::format("{:.3f} / {:.3f} / {:.3f} / {:.3f}",
+                                                     v.latency.min_ms, v.latency.median_ms,
+                                                     v.latency.p95_ms, v.latency.max_ms)
+                                       : "-";
+        std::string cycles = v.latency.any_cycles
+                                 ? fmt::format("{} / {} / {} / {}", v.latency.min_cycles,
+                                               v.latency.median_cycles, v.latency.p95_cycles,
+                                               v.latency.max_cycles)
+                                 : "-";
+        fmt::format_to(it, "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", s.slave,
+                       s.master, md_escape(ppo_type_label(s.ppo)), dialect_name(s.dialect),
+                       s.transactions.total(), s.transactions.rejected, s.timeouts, ms, cycles,
+                       md_escape(findings_by_kind_text(s.findings)));
+    }
+    for (const StationView& v : m.stations) {
+        const ChannelStats& s = *v.stats;
+        fmt::format_to(it, "\n### Slave {} (master {})\n\n", s.slave, s.master);
+        fmt::format_to(it, "- Layout: {}\n", md_escape(ppo_text(s)));
+        if (v.has_ident) fmt::format_to(it, "- Ident number: 0x{:04X}\n", v.ident);
+        fmt::format_to(it, "- Data_Exchange: {} telegrams, {} cycles; {} requests\n",
+                       s.data_exchange, s.cycles, s.requests);
+        fmt::format_to(it, "- Transactions: {} ({})\n", s.transactions.total(),
+                       outcomes_text(s.transactions));
+        fmt::format_to(it, "- Unanswered: {} timed out, {} abandoned; spontaneous messages: {}\n",
+                       s.timeouts, s.abandoned, s.spontaneous);
+        fmt::format_to(it, "- Parameters: {}\n", parameters_text(s));
+        for (const auto& [key, count] : s.rejections) {
+            std::string_view text = error_text(s.dialect, key.second);
+            fmt::format_to(it, "- Rejected: PNU {} error {} ({}), {}x\n", key.first, key.second,
+                           md_escape(text.empty() ? "unknown" : text), count);
+        }
+    }
+    fmt::format_to(it, "\n## Findings ({})\n\n", m.shown);
+    if (m.shown > 0)
+        append(b, "| frame | time (s) | severity | kind | master / slave | PNU | message |\n"
+                  "|---:|---:|---|---|---|---:|---|\n");
+    c.findings->for_each([&](const Finding& f) {
+        if (!shows(c, f)) return;
+        fmt::format_to(it, "| {} | {} | {} | {} | {} | {} | {} |\n", f.frame,
+                       relative_seconds(c, f.time_ns), severity_name(f.severity),
+                       md_escape(finding_kind_name(f.kind)), station_label(f),
+                       f.pnu ? fmt::format("{}", *f.pnu) : std::string("-"), md_escape(f.message));
+        out.end_record();
+    });
+    out.end_record();
+}
+
+// ---- json ---------------------------------------------------------------------------------------
+
+void json_latency(TextBuffer& b, bool any, double min, double median, double p95, double max,
+                  bool integers) {
+    if (!any) {
+        json::null(b);
+        return;
+    }
+    auto value = [&](double v) {
+        if (integers)
+            json::integer(b, static_cast<std::int64_t>(v));
+        else
+            fmt::format_to(std::back_inserter(b), "{:.6f}", v);
+    };
+    json::raw(b, "{\"min\":");
+    value(min);
+    json::raw(b, ",\"median\":");
+    value(median);
+    json::raw(b, ",\"p95\":");
+    value(p95);
+    json::raw(b, ",\"max\":");
+    value(max);
+    b.push_back('}');
+}
+
+void json_kind_counts(TextBuffer& b, const std::array<std::uint64_t, kFindingKindCount>& counts) {
+    b.push_back('{');
+    for (std::size_t i = 0; i < kFindingKindCount; ++i) {
+        if (i) b.push_back(',');
+        json::string(b, finding_kind_name(static_cast<FindingKind>(i)));
+        b.push_back(':');
+        json::integer(b, static_cast<std::int64_t>(counts[i]));
+    }
+    b.push_back('}');
+}
+
+void render_json(const ReportContext& c, const Model& m, Output& out) {
+    TextBuffer& b = out.buffer();
+    using json::integer;
+    using json::raw;
+    using json::string;
+    const TrackerOptions& options = c.tracker->options();
+    raw(b, "{\"dpscope\":");
+    string(b, c.version);
+    raw(b, ",\"input\":{\"file\":");
+    string(b, c.input.name);
+    raw(b, ",\"format\":");
+    string(b, c.input.format);
+    raw(b, ",\"damaged\":");
+    json::boolean(b, c.input.damaged);
+    raw(b, ",\"bytes_skipped\":");
+    integer(b, static_cast<std::int64_t>(c.input.bytes_skipped));
+    raw(b, ",\"first_time\":");
+    json::time(b, c.summary->first_time_ns());
+    raw(b, ",\"last_time\":");
+    json::time(b, c.summary->last_time_ns());
+    raw(b, "},\"options\":{\"timeout_ms\":");
+    integer(b, options.timeout_ns / 1'000'000);
+    raw(b, ",\"strict\":");
+    json::boolean(b, options.strict);
+    raw(b, ",\"fail_on\":");
+    string(b, fail_on_name(c.fail_on));
+    raw(b, "},\"result\":");
+    string(b, m.fails ? "fail" : "pass");
+    std::uint64_t transactions = 0;
+    for (const StationView& v : m.stations) transactions += v.stats->transactions.total();
+    raw(b, ",\"summary\":{\"telegrams\":");
+    integer(b, static_cast<std::int64_t>(c.summary->telegrams()));
+    raw(b, ",\"fcs_errors\":");
+    integer(b, static_cast<std::int64_t>(c.summary->problems(ProblemKind::FcsMismatch)));
+    raw(b, ",\"transactions\":");
+    integer(b, static_cast<std::int64_t>(transactions));
+    raw(b, ",\"findings\":{\"error\":");
+    integer(b, static_cast<std::int64_t>(errors(m)));
+    raw(b, ",\"warning\":");
+    integer(b, static_cast<std::int64_t>(warnings(m)));
+    raw(b, ",\"note\":");
+    integer(b, static_cast<std::int64_t>(notes(m)));
+    raw(b, "}},\"stations\":[");
+    bool first = true;
+    for (const StationView& v : m.stations) {
+        const ChannelStats& s = *v.stats;
+        if (!first) b.push_back(',');
+        first = false;
+        raw(b, "{\"master\":");
+        integer(b, s.master);
+        raw(b, ",\"slave\":");
+        integer(b, s.slave);
+        raw(b, ",\"ppo_type\":");
+        if (s.ppo.known() && s.ppo.type != 0)
+            integer(b, s.ppo.type);
+        else
+            json::null(b);
+        raw(b, ",\"ppo_source\":");
+        string(b, ppo_source_name(s.ppo.source));
+        raw(b, ",\"dialect\":");
+        string(b, dialect_name(s.dialect));
+        raw(b, ",\"ident\":");
+        if (v.has_ident)
+            integer(b, v.ident);
+        else
+            json::null(b);
+        raw(b, ",\"data_exchange\":");
+        integer(b, static_cast<std::int64_t>(s.data_exchange));
+        raw(b, ",\"cycles\":");
+        integer(b, static_cast<std::int64_t>(s.cycles));
+        raw(b, ",\"requests\":");
+        integer(b, static_cast<std::int64_t>(s.requests));
+        raw(b, ",\"transactions\":");
+        integer(b, static_cast<std::int64_t>(s.transactions.total()));
+        raw(b, ",\"outcomes\":{\"positive\":");
+        integer(b, static_cast<std::int64_t>(s.transactions.positive));
+        raw(b, ",\"rejected\":");
+        integer(b, static_cast<std::int64_t>(s.transactions.rejected));
+        raw(b, ",\"no_authority\":");
+        integer(b, static_cast<std::int64_t>(s.transactions.no_authority));
+        raw(b, ",\"mismatched\":");
+        integer(b, static_cast<std::int64_t>(s.transactions.mismatched));
+        raw(b, ",\"unexpected\":");
+        integer(b, static_cast<std::int64_t>(s.transactions.unexpected));
+        raw(b, "},\"timeouts\":");
+        integer(b, static_cast<std::int64_t>(s.timeouts));
+        raw(b, ",\"abandoned\":");
+        integer(b, static_cast<std::int64_t>(s.abandoned));
+        raw(b, ",\"spontaneous\":");
+        integer(b, static_cast<std::int64_t>(s.spontaneous));
+        raw(b, ",\"latency_ms\":");
+        json_latency(b, v.latency.any, v.latency.min_ms, v.latency.median_ms, v.latency.p95_ms,
+                     v.latency.max_ms, false);
+        raw(b, ",\"latency_cycles\":");
+        json_latency(b, v.latency.any_cycles, static_cast<double>(v.latency.min_cycles),
+                     static_cast<double>(v.latency.median_cycles),
+                     static_cast<double>(v.latency.p95_cycles),
+                     static_cast<double>(v.latency.max_cycles), true);
+        raw(b, ",\"parameters\":[");
+        bool first_pnu = true;
+        for (const auto& [pnu, count] : s.pnu_requests) {
+            if (!first_pnu) b.push_back(',');
+            first_pnu = false;
+            raw(b, "{\"pnu\":");
+            integer(b, pnu);
+            raw(b, ",\"requests\":");
+            integer(b, static_cast<std::int64_t>(count));
+            b.push_back('}');
+        }
+        raw(b, "],\"rejections\":[");
+        bool first_rejection = true;
+        for (const auto& [key, count] : s.rejections) {
+            if (!first_rejection) b.push_back(',');
+            first_rejection = false;
+            raw(b, "{\"pnu\":");
+            integer(b, key.first);
+            raw(b, ",\"error\":");
+            integer(b, key.second);
+            raw(b, ",\"error_text\":");
+            std::string_view text = error_text(s.dialect, key.second);
+            if (text.empty())
+                json::null(b);
+            else
+                string(b, text);
+            raw(b, ",\"count\":");
+            integer(b, static_cast<std::int64_t>(count));
+            b.push_back('}');
+        }
+        raw(b, "],\"findings\":");
+        json_kind_counts(b, s.findings);
+        b.push_back('}');
+        out.end_record();
+    }
+    raw(b, "],\"bus\":{\"findings\":");
+    json_kind_counts(b, c.tracker->bus().findings);
+    raw(b, "},\"findings\":[");
+    first = true;
+    c.findings->for_each([&](const Finding& f) {
+        if (!shows(c, f)) return;
+        if (!first) b.push_back(',');
+        first = false;
+        json::finding(b, f);
+        out.end_record();
+    });
+    raw(b, "]}\n");
+    out.end_record();
+}
+
+// ---- html ---------------------------------------------------------------------------------------
+
+void escape_xml(TextBuffer& b, std::string_view text) {
+    for (char ch : text) {
+        switch (ch) {
+            case '&': append(b, "&amp;"); break;
+            case '<': append(b, "&lt;"); break;
+            case '>': append(b, "&gt;"); break;
+            case '"': append(b, "&quot;"); break;
+            case '\'': append(b, "&#39;"); break;
+            default: b.push_back(ch);
+        }
+    }
+}
+
+std::string xml(std::string_view text) {
+    TextBuffer b;
+    escape_xml(b, text);
+    return fmt::to_string(b);
+}
+
+constexpr std::string_view kHtmlStyle = R"(
+body { font: 14px/1.45 system-ui, -apple-system, "Segoe UI", sans-serif; color: #1d2330;
+       margin: 0 auto; max-width: 1100px; padding: 24px; background: #fafbfc; }
+h1 { font-size: 24px; margin: 0 0 4px; }
+h2 { font-size: 19px; margin: 32px 0 8px; border-bottom: 1px solid #d8dde6; padding-bottom: 4px; }
+h3 { font-size: 15px; margin: 18px 0 6px; color: #394150; }
+.meta { color: #5b6476; margin: 0 0 12px; }
+.verdict { display: inline-block; padding: 6px 14px; border-radius: 6px; font-weight: 600; }
+.verdict.pass { background: #e3f4e8; color: #1b6b34; border: 1px solid #9fd3ae; }
+.verdict.fail { background: #fde8e8; color: #9b1c1c; border: 1px solid #f1a9a9; }
+.cards { display: flex; flex-wrap: wrap; gap: 12px; margin: 12px 0; }
+.card { background: #fff; border: 1px solid #d8dde6; border-radius: 8px; padding: 10px 16px;
+        min-width: 110px; }
+.card .n { font-size: 22px; font-weight: 600; }
+.card .l { color: #5b6476; font-size: 12px; text-transform: uppercase; letter-spacing: .04em; }
+table { border-collapse: collapse; background: #fff; margin: 6px 0 12px; }
+th, td { border: 1px solid #d8dde6; padding: 4px 8px; text-align: left; vertical-align: top; }
+th { background: #eef1f6; font-weight: 600; }
+td.n, th.n { text-align: right; font-variant-numeric: tabular-nums; }
+table.kv th { width: 190px; }
+section.station { background: #fff; border: 1px solid #d8dde6; border-radius: 8px;
+                  padding: 4px 18px 14px; margin: 18px 0; }
+.error { color: #b42318; } .warning { color: #a15c07; } .note { color: #175cd3; }
+tr.error td:first-child { border-left: 4px solid #d92d20; }
+tr.warning td:first-child { border-left: 4px solid #f79009; }
+tr.note td:first-child { border-left: 4px solid #2e90fa; }
+svg { background: #fff; display: block; }
+svg text { font: 11px system-ui, sans-serif; fill: #394150; }
+.legend span { display: inline-block; margin-right: 14px; font-size: 12px; }
+.swatch { display: inline-block; width: 10px; height: 10px; margin-right: 4px; vertical-align: -1px; }
+)";
+
+void svg_latency_histogram(TextBuffer& b, const ChannelStats& s) {
+    const LogHistogram& h = s.latency_ns;
+    auto it = std::back_inserter(b);
+    if (h.count() == 0) {
+        append(b, "<p class=\"meta\">No answered requests.</p>\n");
+        return;
+    }
+    constexpr int kBars = 30, kWidth = 720, kHeight = 170, kLeft = 48, kBottom = 28, kTop = 10;
+    const double max_ms = std::max(to_ms(h.max()), 0.001);
+    std::array<std::uint64_t, kBars> bars{};
+    h.for_each_bucket([&](std::uint64_t lower, std::uint64_t upper, std::uint64_t count) {
+        double middle = to_ms(lower + (upper - lower) / 2);
+        auto bar = static_cast<std::size_t>(std::min<double>(kBars - 1, middle / max_ms * kBars));
+        bars[bar] += count;
+    });
+    std::uint64_t tallest = *std::max_element(bars.begin(), bars.end());
+    const double bar_width = static_cast<double>(kWidth - kLeft - 10) / kBars;
+    const int plot_height = kHeight - kBottom - kTop;
+    fmt::format_to(it,
+                   "<svg class=\"latency\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} {}\" "
+                   "role=\"img\" aria-label=\"latency histogram of slave {}\">\n",
+                   kWidth, kHeight, kWidth, kHeight, s.slave);
+    fmt::format_to(it, "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#8a93a6\"/>\n", kLeft,
+                   kHeight - kBottom, kWidth - 10, kHeight - kBottom);
+    for (int i = 0; i < kBars; ++i) {
+        if (bars[static_cast<std::size_t>(i)] == 0) continue;
+        double height = static_cast<double>(bars[static_cast<std::size_t>(i)]) /
+                        static_cast<double>(tallest) * plot_height;
+        double x = kLeft + i * bar_width;
+        fmt::format_to(it,
+                       "<rect class=\"bar\" x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" "
+                       "height=\"{:.1f}\" fill=\"#4e79c5\"><title>{:.3f}-{:.3f} ms: {} "
+                       "transactions</title></rect>\n",
+                       x + 1, kHeight - kBottom - height, bar_width - 2, height,
+                       max_ms * i / kBars, max_ms * (i + 1) / kBars,
+                       bars[static_cast<std::size_t>(i)]);
+    }
+    fmt::format_to(it, "<text x=\"{}\" y=\"{}\">0 ms</text>\n", kLeft, kHeight - 10);
+    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:.3f} ms</text>\n",
+                   kWidth - 10, kHeight - 10, max_ms);
+    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", kLeft - 6,
+                   kTop + 10, tallest);
+    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">0</text>\n", kLeft - 6,
+                   kHeight - kBottom);
+    append(b, "</svg>\n");
+}
+
+void svg_timeline(TextBuffer& b, const ChannelStats& s, const ReportContext& c) {
+    const Timeline& timeline = s.timeline;
+    auto it = std::back_inserter(b);
+    if (timeline.empty()) {
+        append(b, "<p class=\"meta\">No timed transactions or findings.</p>\n");
+        return;
+    }
+    constexpr int kWidth = 720, kLeft = 48, kRight = 10;
+    constexpr int kBarsTop = 64, kBarsHeight = 80, kHeight = 178;
+    const auto& bins = timeline.bins();
+    std::size_t used = 0;
+    std::uint32_t tallest = 1;
+    for (std::size_t i = 0; i < bins.size(); ++i) {
+        const Timeline::Bin& bin = bins[i];
+        if (bin.transactions || bin.errors || bin.warnings || bin.notes) used = i + 1;
+        tallest = std::max(tallest, bin.transactions);
+    }
+    used = std::max<std::size_t>(used, 1);
+    const double step = static_cast<double>(kWidth - kLeft - kRight) / static_cast<double>(used);
+    fmt::format_to(it,
+                   "<svg class=\"timeline\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} {}\" "
+                   "role=\"img\" aria-label=\"timeline of slave {}\">\n",
+                   kWidth, kHeight, kWidth, kHeight, s.slave);
+    const char* rows[] = {"errors", "warnings", "notes"};
+    const char* colours[] = {"#d92d20", "#f79009", "#2e90fa"};
+    for (int row = 0; row < 3; ++row)
+        fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", kLeft - 6,
+                       14 + row * 16, rows[row]);
+    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">transactions</text>\n",
+                   kLeft + 66, kBarsTop - 6);
+    fmt::format_to(it, "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#8a93a6\"/>\n", kLeft,
+                   kBarsTop + kBarsHeight, kWidth - kRight, kBarsTop + kBarsHeight);
+    const std::int64_t width_ns = timeline.bin_width_ns();
+    for (std::size_t i = 0; i < used; ++i) {
+        const Timeline::Bin& bin = bins[i];
+        const double x = kLeft + static_cast<double>(i) * step;
+        std::int64_t from = timeline.start_ns() + static_cast<std::int64_t>(i) * width_ns;
+        std::string when = relative_seconds(c, from);
+        if (bin.transactions) {
+            double height = static_cast<double>(bin.transactions) / tallest * kBarsHeight;
+            fmt::format_to(it,
+                           "<rect class=\"tx\" x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" "
+                           "height=\"{:.2f}\" fill=\"#4e79c5\"><title>from {} s: {} "
+                           "transactions</title></rect>\n",
+                           x, kBarsTop + kBarsHeight - height, std::max(step - 0.5, 0.8), height,
+                           when, bin.transactions);
+        }
+        const std::uint32_t counts[] = {bin.errors, bin.warnings, bin.notes};
+        for (int row = 0; row < 3; ++row) {
+            if (!counts[row]) continue;
+            fmt::format_to(it,
+                           "<rect class=\"mark {}\" x=\"{:.2f}\" y=\"{}\" width=\"{:.2f}\" "
+                           "height=\"10\" fill=\"{}\"><title>from {} s: {} {}</title></rect>\n",
+                           rows[row], x, 5 + row * 16, std::max(step, 3.0), colours[row], when,
+                           counts[row], rows[row]);
+        }
+    }
+    std::int64_t end_ns = timeline.start_ns() + static_cast<std::int64_t>(used) * width_ns;
+    fmt::format_to(it, "<text x=\"{}\" y=\"{}\">{} s</text>\n", kLeft, kHeight - 8,
+                   relative_seconds(c, timeline.start_ns()));
+    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{} s</text>\n", kWidth - kRight,
+                   kHeight - 8, relative_seconds(c, end_ns));
+    append(b, "</svg>\n");
+}
+
+void html_kv(TextBuffer& b, std::string_view key, std::string_view value) {
+    append(b, "<tr><th>");
+    escape_xml(b, key);
+    append(b, "</th><td>");
+    escape_xml(b, value);
+    append(b, "</td></tr>\n");
+}
+
+void render_html(const ReportContext& c, const Model& m, Output& out) {
+    TextBuffer& b = out.buffer();
+    auto it = std::back_inserter(b);
+    const TrackerOptions& options = c.tracker->options();
+    std::uint64_t transactions = 0;
+    for (const StationView& v : m.stations) transactions += v.stats->transactions.total();
+    fmt::format_to(it,
+                   "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+                   "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+                   "<title>dpscope report: {}</title>\n<style>{}</style>\n</head>\n<body>\n",
+                   xml(c.input.name), kHtmlStyle);
+    append(b, "<h1>dpscope conformance report</h1>\n");
+    fmt::format_to(it, "<p class=\"meta\">{} ({}) &middot; dpscope {} &middot; time-out {} ms "
+                       "&middot; RC 8 rule {}</p>\n",
+                   xml(c.input.name), xml(c.input.format), xml(c.version),
+                   options.timeout_ns / 1'000'000, options.strict ? "strict" : "lenient");
+    fmt::format_to(it, "<p class=\"verdict {}\" id=\"verdict\">{}</p>\n", m.fails ? "fail" : "pass",
+                   xml(verdict_text(c, m)));
+    if (c.input.damaged)
+        append(b, "<p class=\"error\">The input ended in damage; the report covers what was "
+                  "read.</p>\n");
+    append(b, "<section id=\"summary\">\n<h2>Summary</h2>\n<div class=\"cards\">\n");
+    auto card = [&](std::string_view label, std::uint64_t n, std::string_view cls) {
+        fmt::format_to(it, "<div class=\"card {}\"><div class=\"n\">{}</div><div class=\"l\">{}</div>"
+                           "</div>\n",
+                       cls, n, label);
+    };
+    card("telegrams", c.summary->telegrams(), "");
+    card("FCS errors", c.summary->problems(ProblemKind::FcsMismatch), "");
+    card("transactions", transactions, "");
+    card("slaves", m.stations.size(), "");
+    card("errors", errors(m), "error");
+    card("warnings", warnings(m), "warning");
+    card("notes", notes(m), "note");
+    append(b, "</div>\n<table class=\"slaves\">\n<tr><th class=\"n\">slave</th><th class=\"n\">"
+              "master</th><th>PPO</th><th>dialect</th><th class=\"n\">transactions</th><th "
+              "class=\"n\">median ms</th><th class=\"n\">p95 ms</th><th class=\"n\">errors</th><th "
+              "class=\"n\">warnings</th><th class=\"n\">notes</th></tr>\n");
+    for (const StationView& v : m.stations) {
+        const ChannelStats& s = *v.stats;
+        std::array<std::uint64_t, 3> severities{};
+        for (FindingKind kind : kAllKinds)
+            severities[static_cast<std::size_t>(default_severity(kind))] +=
+                s.findings[static_cast<std::size_t>(kind)];
+        fmt::format_to(it,
+                       "<tr><td class=\"n\"><a href=\"#slave-{}-{}\">{}</a></td><td class=\"n\">{}"
+                       "</td><td>{}</td><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>"
+                       "<td class=\"n\">{}</td><td class=\"n error\">{}</td><td class=\"n "
+                       "warning\">{}</td><td class=\"n note\">{}</td></tr>\n",
+                       s.slave, s.master, s.slave, s.master, xml(ppo_type_label(s.ppo)),
+                       dialect_name(s.dialect), s.transactions.total(),
+                       v.latency.any ? fmt::format("{:.3f}", v.latency.median_ms) : "-",
+                       v.latency.any ? fmt::format("{:.3f}", v.latency.p95_ms) : "-",
+                       severities[2], severities[1], severities[0]);
+    }
+    append(b, "</table>\n</section>\n");
+
+    for (const StationView& v : m.stations) {
+        const ChannelStats& s = *v.stats;
+        fmt::format_to(it, "<section class=\"station\" id=\"slave-{}-{}\">\n<h2>Slave {} (master {})"
+                           "</h2>\n<table class=\"kv\">\n",
+                       s.slave, s.master, s.slave, s.master);
+        html_kv(b, "Layout", ppo_text(s));
+        html_kv(b, "Dialect", dialect_name(s.dialect));
+        if (v.has_ident) html_kv(b, "Ident number", fmt::format("0x{:04X}", v.ident));
+        html_kv(b, "Data_Exchange", fmt::format("{} telegrams, {} cycles", s.data_exchange, s.cycles));
+        html_kv(b, "Parameter requests", fmt::format("{}", s.requests));
+        html_kv(b, "Transactions",
+                fmt::format("{}: {}", s.transactions.total(), outcomes_text(s.transactions)));
+        html_kv(b, "Unanswered",
+                fmt::format("{} timed out, {} abandoned by the master", s.timeouts, s.abandoned));
+        html_kv(b, "Spontaneous messages", fmt::format("{}", s.spontaneous));
+        html_kv(b, "Latency (ms)",
+                v.latency.any ? fmt::format("min {:.3f}, median {:.3f}, p95 {:.3f}, max {:.3f}",
+                                            v.latency.min_ms, v.latency.median_ms,
+                                            v.latency.p95_ms, v.latency.max_ms)
+                              : "-");
+        html_kv(b, "Latency (cycles)",
+                v.latency.any_cycles
+                    ? fmt::format("min {}, median {}, p95 {}, max {}", v.latency.min_cycles,
+                                  v.latency.median_cycles, v.latency.p95_cycles,
+                                  v.latency.max_cycles)
+                    : "-");
+        append(b, "</table>\n<h3>Latency histogram</h3>\n");
+        svg_latency_histogram(b, s);
+        append(b, "<h3>Timeline</h3>\n<div class=\"legend\"><span><i class=\"swatch\" "
+                  "style=\"background:#4e79c5\"></i>transactions</span><span><i class=\"swatch\" "
+                  "style=\"background:#d92d20\"></i>errors</span><span><i class=\"swatch\" "
+                  "style=\"background:#f79009\"></i>warnings</span><span><i class=\"swatch\" "
+                  "style=\"background:#2e90fa\"></i>notes</span></div>\n");
+        svg_timeline(b, s, c);
+        append(b, "<h3>Parameters accessed</h3>\n");
+        if (s.pnu_requests.empty()) {
+            append(b, "<p class=\"meta\">None.</p>\n");
+        } else {
+            append(b, "<table class=\"parameters\"><tr><th class=\"n\">PNU</th><th "
+                      "class=\"n\">requests</th></tr>\n");
+            for (const auto& [pnu, count] : s.pnu_requests)
+                fmt::format_to(it, "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td></tr>\n", pnu,
+                               count);
+            append(b, "</table>\n");
+        }
+        if (!s.rejections.empty()) {
+            append(b, "<h3>Rejected requests</h3>\n<table class=\"rejections\"><tr><th "
+                      "class=\"n\">PNU</th><th class=\"n\">error</th><th>meaning</th><th "
+                      "class=\"n\">count</th></tr>\n");
+            for (const auto& [key, count] : s.rejections) {
+                std::string_view text = error_text(s.dialect, key.second);
+                fmt::format_to(it, "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td>"
+                                   "<td class=\"n\">{}</td></tr>\n",
+                               key.first, key.second, xml(text.empty() ? "unknown" : text), count);
+            }
+            append(b, "</table>\n");
+        }
+        append(b, "<h3>Findings by kind</h3>\n");
+        bool any = false;
+        for (FindingKind kind : kAllKinds) any |= s.findings[static_cast<std::size_t>(kind)] > 0;
+        if (!any) {
+            append(b, "<p class=\"meta\">None.</p>\n");
+        } else {
+            append(b, "<table class=\"kinds\"><tr><th>kind</th><th>severity</th><th "
+                      "class=\"n\">count</th></tr>\n");
+            for (FindingKind kind : kAllKinds) {
+                std::uint64_t n = s.findings[static_cast<std::size_t>(kind)];
+                if (!n) continue;
+                std::string_view severity = severity_name(default_severity(kind));
+                fmt::format_to(it, "<tr class=\"{}\"><td>{}</td><td class=\"{}\">{}</td><td "
+                                   "class=\"n\">{}</td></tr>\n",
+                               severity, finding_kind_name(kind), severity, severity, n);
+            }
+            append(b, "</table>\n");
+        }
+        append(b, "</section>\n");
+        out.end_record();
+    }
+
+    fmt::format_to(it, "<section id=\"findings\">\n<h2>Findings ({})</h2>\n", m.shown);
+    if (m.shown == 0) {
+        append(b, "<p class=\"meta\">No findings.</p>\n");
+    } else {
+        append(b, "<table class=\"findings\">\n<tr><th class=\"n\">frame</th><th class=\"n\">time "
+                  "(s)</th><th>severity</th><th>kind</th><th>master / slave</th><th "
+                  "class=\"n\">PNU</th><th>message</th></tr>\n");
+        std::size_t rows = 0;
+        c.findings->for_each([&](const Finding& f) {
+            if (!shows(c, f) || rows++ >= kHtmlFindingRows) return;
+            std::string_view severity = severity_name(f.severity);
+            fmt::format_to(it,
+                           "<tr class=\"{}\"><td class=\"n\">{}</td><td class=\"n\">{}</td><td "
+                           "class=\"{}\">{}</td><td>{}</td><td>{}</td><td class=\"n\">{}</td><td>{}"
+                           "</td></tr>\n",
+                           severity, f.frame, relative_seconds(c, f.time_ns), severity, severity,
+                           finding_kind_name(f.kind), xml(station_label(f)),
+                           f.pnu ? fmt::format("{}", *f.pnu) : std::string("-"), xml(f.message));
+            out.end_record();
+        });
+        append(b, "</table>\n");
+        if (rows > kHtmlFindingRows)
+            fmt::format_to(it, "<p class=\"meta\">{} more findings are listed in the text and JSON "
+                               "reports.</p>\n",
+                           rows - kHtmlFindingRows);
+    }
+    append(b, "</section>\n</body>\n</html>\n");
+    out.end_record();
+}
+
+// ---- junit --------------------------------------------------------------------------------------
+
+void render_junit(const ReportContext& c, const Model& m, Output& out) {
+    TextBuffer& b = out.buffer();
+    auto it = std::back_inserter(b);
+    struct Suite {
+        std::string name;
+        std::string classname;
+        bool has_stations;
+        std::uint8_t slave;
+        std::array<std::vector<Finding>, kFindingKindCount> failures;
+        std::array<std::uint64_t, kFindingKindCount> others{};
+    };
+    // Findings at or above --fail-on (errors at least) become failures; gather them per suite.
+    std::vector<Suite> suites;
+    for (const StationView& v : m.stations)
+        suites.push_back(Suite{fmt::format("slave {} (master {})", v.stats->slave, v.stats->master),
+                               fmt::format("dpscope.slave_{}", v.stats->slave), true,
+                               v.stats->slave, {}, {}});
+    if (m.has_bus_findings) suites.push_back(Suite{"bus", "dpscope.bus", false, 0, {}, {}});
+    auto suite_of = [&](const Finding& f) -> Suite* {
+        for (Suite& s : suites)
+            if (s.has_stations == f.has_stations && (!f.has_stations || s.slave == f.slave))
+                return &s;
+        return nullptr;
+    };
+    c.findings->for_each([&](const Finding& f) {
+        if (!shows(c, f)) return;
+        Suite* s = suite_of(f);
+        if (!s) return;
+        auto kind = static_cast<std::size_t>(f.kind);
+        bool fails = f.severity == Severity::Error || severity_fails(f.severity, c.fail_on);
+        if (fails && s->failures[kind].size() < 10'000)
+            s->failures[kind].push_back(f);
+        else
+            ++s->others[kind];
+    });
+    std::size_t total_tests = suites.size() * kFindingKindCount;
+    std::size_t total_failed = 0;
+    for (const Suite& s : suites)
+        for (const auto& failures : s.failures) total_failed += failures.empty() ? 0 : 1;
+    fmt::format_to(it, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                       "<testsuites name=\"dpscope {}\" tests=\"{}\" failures=\"{}\" errors=\"0\">\n",
+                   xml(c.input.name), total_tests, total_failed);
+    for (const Suite& s : suites) {
+        std::size_t failed = 0;
+        for (const auto& failures : s.failures) failed += failures.empty() ? 0 : 1;
+        fmt::format_to(it, "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" "
+                           "skipped=\"0\">\n",
+                       xml(s.name), kFindingKindCount, failed);
+        for (FindingKind kind : kAllKinds) {
+            auto k = static_cast<std::size_t>(kind);
+            fmt::format_to(it, "    <testcase classname=\"{}\" name=\"{}: {}\"", s.classname,
+                           finding_kind_name(kind), xml(finding_rule_text(kind)));
+            if (s.failures[k].empty() && s.others[k] == 0) {
+                append(b, "/>\n");
+                continue;
+            }
+            append(b, ">\n");
+            for (const Finding& f : s.failures[k]) {
+                fmt::format_to(it, "      <failure type=\"{}\" message=\"frame {}: {}\">{} {} frame "
+                                   "{}{}: {}</failure>\n",
+                               finding_kind_name(kind), f.frame, xml(f.message),
+                               severity_name(f.severity), finding_kind_name(kind), f.frame,
+                               f.request_frame ? fmt::format(" (request frame {})", f.request_frame)
+                                               : std::string(),
+                               xml(f.message));
+            }
+            if (s.others[k] > 0)
+                fmt::format_to(it, "      <system-out>{} {} finding(s) below the failure threshold"
+                                   "</system-out>\n",
+                               s.others[k], severity_name(default_severity(kind)));
+            append(b, "    </testcase>\n");
+        }
+        append(b, "  </testsuite>\n");
+        out.end_record();
+    }
+    append(b, "</testsuites>\n");
+    out.end_record();
+}
+
+}  // namespace
+
+bool report_fails(const ReportContext& context) { return build_model(context).fails; }
+
+void render_report(ReportFormat format, const ReportContext& context, Output& out) {
+    Model model = build_model(context);
+    switch (format) {
+        case ReportFormat::Text: render_text(context, model, out); break;
+        case ReportFormat::Json: render_json(context, model, out); break;
+        case ReportFormat::Markdown: render_markdown(context, model, out); break;
+        case ReportFormat::Html: render_html(context, model, out); break;
+        case ReportFormat::Junit: render_junit(context, model, out); break;
+    }
+}
+
+}  // namespace dpscope

@@ -1,0 +1,46 @@
+// The protocol-conformance report: per slave the PPO layout, dialect, transactions, latency,
+// parameters accessed, rejections and findings by kind; then every finding in capture order.
+// Formats: text, json (schema in README.md, stable), markdown, html (one self-contained file
+// with inline SVG) and junit (one test suite per slave, one test case per rule).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "decoder/session_tracker.hpp"
+#include "formats/finding_log.hpp"
+#include "formats/output.hpp"
+#include "formats/summary.hpp"
+
+namespace dpscope {
+
+enum class ReportFormat { Text, Json, Markdown, Html, Junit };
+
+std::string_view report_format_name(ReportFormat format);
+std::optional<ReportFormat> report_format_from_name(std::string_view name);
+
+// --fail-on: the lowest severity that makes the report (and the exit code) fail.
+enum class FailOn { Error, Warning, Never };
+std::string_view fail_on_name(FailOn fail_on);
+std::optional<FailOn> fail_on_from_name(std::string_view name);
+bool severity_fails(Severity severity, FailOn fail_on) noexcept;
+
+struct ReportContext {
+    InputSummary input;
+    const Summary* summary = nullptr;
+    const BusDecoder* decoder = nullptr;
+    const SessionTracker* tracker = nullptr;
+    const FindingLog* findings = nullptr;
+    FailOn fail_on = FailOn::Error;
+    std::vector<std::uint8_t> stations;  // report only these slaves (empty: all)
+    std::string version;                 // dpscope's version, named in the report
+};
+
+// Findings at or above --fail-on among those the report shows.
+bool report_fails(const ReportContext& context);
+
+void render_report(ReportFormat format, const ReportContext& context, Output& out);
+
+}  // namespace dpscope

@@ -1,0 +1,762 @@
+// BusDecoder: responses named after their request, unpaired responses, unanswered requests, PPO
+// layout from configuration / option / length, dialects and profiles per station, PCV/PCD split,
+// station configuration and problems in the service data.
+#include <gtest/gtest.h>
+
+#include <deque>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "decoder/bus_decoder.hpp"
+#include "decoder/telegram_builder.hpp"
+#include "tests/test_support.hpp"
+
+namespace dpscope {
+namespace {
+
+using test::hex;
+
+constexpr std::uint8_t kMasterAddress = 2;
+
+// Owns the telegram bytes so a DecodedTelegram's spans stay valid while a test looks at it.
+class Bus {
+public:
+    explicit Bus(DecoderOptions options = {}) : decoder(options) {}
+
+    const DecodedTelegram& decode(std::vector<std::uint8_t> bytes, std::int64_t time_ns = kNoTime) {
+        frames_.push_back(std::move(bytes));
+        const auto& stored = frames_.back();
+        return decoder.decode(Bytes(stored.data(), stored.size()), time_ns, frames_.size());
+    }
+
+    BusDecoder decoder;
+
+private:
+    std::deque<std::vector<std::uint8_t>> frames_;
+};
+
+std::vector<std::uint8_t> telegram(std::uint8_t da, std::uint8_t sa, std::uint8_t fc,
+                                   std::optional<std::uint8_t> dsap,
+                                   std::optional<std::uint8_t> ssap,
+                                   const std::vector<std::uint8_t>& du) {
+    TelegramSpec spec;
+    spec.da = da;
+    spec.sa = sa;
+    spec.fc = fc;
+    spec.dsap = dsap;
+    spec.ssap = ssap;
+    spec.du = Bytes(du.data(), du.size());
+    return build_telegram(spec);
+}
+
+// Master -> slave DP service request (SRD high) with SAPs.
+std::vector<std::uint8_t> service_request(std::uint8_t slave, std::uint8_t dsap,
+                                          const std::vector<std::uint8_t>& du = {},
+                                          FdlFunction function = FdlFunction::SrdHigh) {
+    return telegram(slave, kMasterAddress, request_fc(function, true, true), dsap, sap::kMaster,
+                    du);
+}
+
+// Slave -> master DP service response with SAPs.
+std::vector<std::uint8_t> service_response(std::uint8_t slave, std::uint8_t ssap,
+                                           const std::vector<std::uint8_t>& du) {
+    return telegram(kMasterAddress, slave, response_fc(FdlStatus::DataLow), sap::kMaster, ssap,
+                    du);
+}
+
+std::vector<std::uint8_t> exchange_request(std::uint8_t slave,
+                                           const std::vector<std::uint8_t>& du) {
+    return telegram(slave, kMasterAddress, request_fc(FdlFunction::SrdHigh, true, true),
+                    std::nullopt, std::nullopt, du);
+}
+
+std::vector<std::uint8_t> exchange_response(std::uint8_t slave,
+                                            const std::vector<std::uint8_t>& du) {
+    return telegram(kMasterAddress, slave, response_fc(FdlStatus::DataLow), std::nullopt,
+                    std::nullopt, du);
+}
+
+std::vector<std::uint8_t> token(std::uint8_t da = kMasterAddress,
+                                std::uint8_t sa = kMasterAddress) {
+    std::vector<std::uint8_t> out;
+    append_token(out, da, sa);
+    return out;
+}
+
+std::vector<std::uint8_t> short_ack() { return hex("E5"); }
+
+std::vector<std::uint8_t> bytes_of(Bytes bytes) { return {bytes.begin(), bytes.end()}; }
+
+// ---- Pairing ---------------------------------------------------------------------------------
+
+TEST(BusDecoderTest, ShortAckAfterChkCfgIsNamedChkCfg) {
+    Bus bus;
+    const DecodedTelegram& request = bus.decode(service_request(3, sap::kChkCfg, hex("F3 F1")));
+    EXPECT_EQ(request.frame, 1u);
+    EXPECT_EQ(request.service, Service::ChkCfg);
+    EXPECT_EQ(request.direction, Direction::Request);
+    EXPECT_TRUE(request.has_roles);
+    EXPECT_EQ(request.master, 2);
+    EXPECT_EQ(request.slave, 3);
+    EXPECT_EQ(request.request_frame, 0u);
+    EXPECT_FALSE(request.unanswered);
+    EXPECT_TRUE(request.problems().empty());
+
+    const DecodedTelegram& ack = bus.decode(short_ack());
+    EXPECT_EQ(ack.frame, 2u);
+    EXPECT_EQ(ack.fdl.type, FrameType::ShortAck);
+    EXPECT_EQ(ack.service, Service::ChkCfg);
+    EXPECT_EQ(ack.direction, Direction::Response);
+    EXPECT_EQ(ack.request_frame, 1u);
+    EXPECT_TRUE(ack.has_roles);
+    EXPECT_EQ(ack.master, 2);
+    EXPECT_EQ(ack.slave, 3);
+
+    const DecodedTelegram& next = bus.decode(token());
+    EXPECT_FALSE(next.unanswered);
+}
+
+TEST(BusDecoderTest, ResponsesAreNamedAfterTheRequestTheyAnswer) {
+    Bus bus;
+    bus.decode(service_request(3, sap::kSlaveDiag));
+    const DecodedTelegram& diag = bus.decode(service_response(3, sap::kSlaveDiag,
+                                                              hex("02 05 00 FF 04 02")));
+    EXPECT_EQ(diag.fdl.type, FrameType::Sd3);
+    EXPECT_EQ(diag.service, Service::SlaveDiag);
+    EXPECT_EQ(diag.request_frame, 1u);
+
+    bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00")));
+    const DecodedTelegram& prm_ack = bus.decode(short_ack());
+    EXPECT_EQ(prm_ack.service, Service::SetPrm);
+    EXPECT_EQ(prm_ack.request_frame, 3u);
+
+    bus.decode(exchange_request(3, hex("04 7F 20 00")));
+    const DecodedTelegram& inputs = bus.decode(exchange_response(3, hex("0F 07 20 00")));
+    EXPECT_EQ(inputs.service, Service::DataExchange);
+    EXPECT_EQ(inputs.request_frame, 5u);
+    EXPECT_EQ(inputs.direction, Direction::Response);
+
+    bus.decode(telegram(3, 2, request_fc(FdlFunction::FdlStatus), std::nullopt, std::nullopt, {}));
+    const DecodedTelegram& status = bus.decode(
+        telegram(2, 3, response_fc(FdlStatus::Ok), std::nullopt, std::nullopt, {}));
+    EXPECT_EQ(status.fdl.type, FrameType::Sd1);
+    EXPECT_EQ(status.service, Service::FdlStatus);
+    EXPECT_EQ(status.request_frame, 7u);
+}
+
+TEST(BusDecoderTest, UnpairedResponsesAreClassifiedBySourceSap) {
+    Bus bus;
+    const DecodedTelegram& diag =
+        bus.decode(service_response(3, sap::kSlaveDiag, hex("02 05 00 FF 04 02")));
+    EXPECT_EQ(diag.service, Service::SlaveDiag);
+    EXPECT_EQ(diag.direction, Direction::Response);
+    EXPECT_EQ(diag.request_frame, 0u);
+    EXPECT_TRUE(diag.has_roles);
+    EXPECT_EQ(diag.master, 2);
+    EXPECT_EQ(diag.slave, 3);
+
+    const DecodedTelegram& cfg = bus.decode(service_response(4, sap::kGetCfg, hex("F1")));
+    EXPECT_EQ(cfg.service, Service::GetCfg);
+    EXPECT_EQ(cfg.slave, 4);
+
+    const DecodedTelegram& inputs = bus.decode(exchange_response(5, hex("0F 07 20 00")));
+    EXPECT_EQ(inputs.service, Service::DataExchange);
+    EXPECT_EQ(inputs.request_frame, 0u);
+
+    const DecodedTelegram& ack = bus.decode(short_ack());
+    EXPECT_EQ(ack.service, Service::ShortAck);
+    EXPECT_EQ(ack.direction, Direction::Response);
+    EXPECT_FALSE(ack.has_roles);
+}
+
+TEST(BusDecoderTest, ResponseFromAnotherStationDoesNotAnswerThePendingRequest) {
+    Bus bus;
+    bus.decode(exchange_request(3, hex("04 7F 20 00")));
+    const DecodedTelegram& other = bus.decode(exchange_response(4, hex("0F 07 20 00")));
+    EXPECT_EQ(other.request_frame, 0u);
+    EXPECT_EQ(other.slave, 4);
+    const DecodedTelegram& next = bus.decode(token());
+    ASSERT_TRUE(next.unanswered);
+    EXPECT_EQ(next.unanswered->frame, 1u);
+    EXPECT_EQ(next.unanswered->slave, 3);
+}
+
+TEST(BusDecoderTest, ResponseToAnotherMasterDoesNotAnswerThePendingRequest) {
+    Bus bus;
+    bus.decode(exchange_request(3, hex("04 7F 20 00")));
+    const DecodedTelegram& other =
+        bus.decode(telegram(1, 3, response_fc(FdlStatus::DataLow), std::nullopt, std::nullopt,
+                            hex("0F 07 20 00")));
+    EXPECT_EQ(other.request_frame, 0u);
+    EXPECT_EQ(other.master, 1);
+}
+
+// ---- Unanswered requests ---------------------------------------------------------------------
+
+TEST(BusDecoderTest, UnansweredSrdReportedOnTheNextRequest) {
+    Bus bus;
+    bus.decode(exchange_request(3, hex("04 7F 20 00")), 1000);
+    const DecodedTelegram& next = bus.decode(exchange_request(4, hex("04 7F 20 00")), 2000);
+    ASSERT_TRUE(next.unanswered);
+    EXPECT_EQ(next.unanswered->frame, 1u);
+    EXPECT_EQ(next.unanswered->time_ns, 1000);
+    EXPECT_EQ(next.unanswered->master, 2);
+    EXPECT_EQ(next.unanswered->slave, 3);
+    EXPECT_EQ(next.unanswered->function, static_cast<std::uint8_t>(FdlFunction::SrdHigh));
+    EXPECT_EQ(next.unanswered->service, Service::DataExchange);
+    EXPECT_EQ(next.time_ns, 2000);
+    EXPECT_TRUE(next.has_time());
+
+    // The second request is answered normally.
+    const DecodedTelegram& answer = bus.decode(exchange_response(4, hex("0F 07 20 00")));
+    EXPECT_EQ(answer.request_frame, 2u);
+    EXPECT_FALSE(bus.decode(token()).unanswered);
+}
+
+TEST(BusDecoderTest, UnansweredRequestReportedOnTheTokenOnlyOnce) {
+    Bus bus;
+    bus.decode(service_request(3, sap::kSlaveDiag));
+    const DecodedTelegram& first = bus.decode(token());
+    EXPECT_EQ(first.service, Service::Token);
+    ASSERT_TRUE(first.unanswered);
+    EXPECT_EQ(first.unanswered->service, Service::SlaveDiag);
+    EXPECT_EQ(first.unanswered->time_ns, kNoTime);
+    EXPECT_FALSE(bus.decode(token()).unanswered);
+}
+
+TEST(BusDecoderTest, UnansweredSdaIsReported) {
+    Bus bus;
+    bus.decode(service_request(3, sap::kGlobalControl, hex("08 00"), FdlFunction::SdaHigh));
+    const DecodedTelegram& next = bus.decode(token());
+    ASSERT_TRUE(next.unanswered);
+    EXPECT_EQ(next.unanswered->function, static_cast<std::uint8_t>(FdlFunction::SdaHigh));
+}
+
+TEST(BusDecoderTest, NoReplyExpectedAfterSdnOrBroadcast) {
+    Bus bus;
+    // Global_Control: SDN to the broadcast address.
+    const DecodedTelegram& gc =
+        bus.decode(service_request(kBroadcastAddress, sap::kGlobalControl, hex("08 00"),
+                                   FdlFunction::SdnHigh));
+    EXPECT_EQ(gc.service, Service::GlobalControl);
+    EXPECT_FALSE(bus.decode(token()).unanswered);
+    // SDN to a single slave.
+    bus.decode(service_request(3, sap::kGlobalControl, hex("08 00"), FdlFunction::SdnLow));
+    EXPECT_FALSE(bus.decode(token()).unanswered);
+    // Even an SRD to the broadcast address waits for nobody.
+    bus.decode(exchange_request(kBroadcastAddress, hex("00 00")));
+    EXPECT_FALSE(bus.decode(token()).unanswered);
+    // A token itself waits for nothing.
+    bus.decode(token(3, 2));
+    EXPECT_FALSE(bus.decode(token()).unanswered);
+}
+
+TEST(BusDecoderTest, InvalidTelegramKeepsTheRequestPending) {
+    Bus bus;
+    bus.decode(exchange_request(3, hex("04 7F 20 00")));
+    const DecodedTelegram& garbage = bus.decode(hex("2A 3F 9F"));
+    EXPECT_EQ(garbage.fdl.type, FrameType::Invalid);
+    EXPECT_EQ(garbage.service, Service::Unknown);
+    EXPECT_EQ(garbage.direction, Direction::Request);
+    EXPECT_FALSE(garbage.has_roles);
+    EXPECT_FALSE(garbage.unanswered);
+    EXPECT_TRUE(garbage.problems().contains(ProblemKind::BadStartDelimiter));
+    const DecodedTelegram& answer = bus.decode(exchange_response(3, hex("0F 07 20 00")));
+    EXPECT_EQ(answer.request_frame, 1u);
+}
+
+TEST(BusDecoderTest, TokenHasRolesFromItsAddresses) {
+    Bus bus;
+    const DecodedTelegram& t = bus.decode(token(5, 2));
+    EXPECT_EQ(t.service, Service::Token);
+    EXPECT_EQ(t.direction, Direction::Request);
+    EXPECT_TRUE(t.has_roles);
+    EXPECT_EQ(t.master, 2);
+    EXPECT_EQ(t.slave, 5);
+    EXPECT_FALSE(t.has_pcv);
+}
+
+// ---- PPO layout ------------------------------------------------------------------------------
+
+TEST(BusDecoderTest, PpoFromChkCfgSplitsDataExchange) {
+    Bus bus;
+    bus.decode(service_request(3, sap::kChkCfg, hex("F3 F1")));
+    const StationConfig& config = bus.decoder.station(3);
+    EXPECT_EQ(config.ppo.type, 1);
+    EXPECT_EQ(config.ppo.source, PpoSource::ChkCfg);
+    EXPECT_EQ(config.cfg_frame, 1u);
+    bus.decode(short_ack());
+
+    const DecodedTelegram& out =
+        bus.decode(exchange_request(3, hex("10 01 00 00 00 00 00 00 04 7F 20 00")));
+    EXPECT_EQ(out.service, Service::DataExchange);
+    EXPECT_EQ(out.ppo.type, 1);
+    EXPECT_EQ(out.ppo.source, PpoSource::ChkCfg);
+    ASSERT_TRUE(out.has_pcv);
+    EXPECT_EQ(out.pcv.rc, 1);
+    EXPECT_EQ(out.pcv.pnu, 1);
+    EXPECT_EQ(out.pcd_offset, 15);
+    EXPECT_EQ(bytes_of(out.pcd), hex("04 7F 20 00"));
+}
+
+TEST(BusDecoderTest, PpoFromGetCfgResponse) {
+    Bus bus;
+    const DecodedTelegram& request = bus.decode(service_request(3, sap::kGetCfg));
+    EXPECT_EQ(request.service, Service::GetCfg);
+    const DecodedTelegram& response = bus.decode(service_response(3, sap::kGetCfg, hex("F5")));
+    EXPECT_EQ(response.service, Service::GetCfg);
+    EXPECT_EQ(response.request_frame, 1u);
+    const StationConfig& config = bus.decoder.station(3);
+    EXPECT_EQ(config.ppo.type, 4);
+    EXPECT_EQ(config.ppo.source, PpoSource::GetCfg);
+    EXPECT_FALSE(config.ppo.has_pcv);
+    EXPECT_EQ(config.cfg_frame, 2u);
+
+    // 12 bytes are PPO 4 here, whatever the length heuristic would say.
+    auto du = hex("10 01 00 00 00 00 00 00 04 7F 20 00");
+    const DecodedTelegram& out = bus.decode(exchange_request(3, du));
+    EXPECT_EQ(out.ppo.type, 4);
+    EXPECT_FALSE(out.has_pcv);
+    EXPECT_EQ(out.pcd_offset, 7);
+    EXPECT_EQ(bytes_of(out.pcd), du);
+}
+
+TEST(BusDecoderTest, UnpairedGetCfgResponseAlsoConfigures) {
+    Bus bus;
+    bus.decode(service_response(6, sap::kGetCfg, hex("F3 F5")));
+    EXPECT_EQ(bus.decoder.station(6).ppo.type, 2);
+    EXPECT_EQ(bus.decoder.station(6).ppo.source, PpoSource::GetCfg);
+}
+
+TEST(BusDecoderTest, PpoOptionOverridesConfiguration) {
+    DecoderOptions options;
+    options.station_ppo[3] = 4;
+    Bus bus(options);
+    bus.decode(service_request(3, sap::kChkCfg, hex("F3 F1")));
+    EXPECT_EQ(bus.decoder.station(3).ppo.type, 1);  // still recorded
+    auto du = hex("10 01 00 00 00 00 00 00 04 7F 20 00");
+    const DecodedTelegram& out = bus.decode(exchange_request(3, du));
+    EXPECT_EQ(out.ppo.type, 4);
+    EXPECT_EQ(out.ppo.source, PpoSource::Option);
+    EXPECT_FALSE(out.has_pcv);
+    EXPECT_EQ(bytes_of(out.pcd), du);
+
+    // Other stations are not affected.
+    EXPECT_EQ(bus.decoder.layout_for(4, 12).source, PpoSource::Length);
+    EXPECT_EQ(bus.decoder.layout_for(3, 20).type, 4);
+    EXPECT_EQ(bus.decoder.layout_for(3 | 0x80, 4).source, PpoSource::Option);
+}
+
+TEST(BusDecoderTest, PpoOption3GivesPcdOnly) {
+    DecoderOptions options;
+    options.station_ppo[3] = 3;
+    Bus bus(options);
+    const DecodedTelegram& out = bus.decode(exchange_request(3, hex("04 7F 20 00")));
+    EXPECT_EQ(out.ppo.type, 3);
+    EXPECT_EQ(out.ppo.source, PpoSource::Option);
+    EXPECT_FALSE(out.has_pcv);
+    EXPECT_EQ(out.pcd_offset, 7);
+    EXPECT_EQ(bytes_of(out.pcd), hex("04 7F 20 00"));
+}
+
+TEST(BusDecoderTest, PpoFromLength) {
+    Bus bus;
+    struct LengthCase {
+        std::size_t length;
+        std::uint8_t type;
+        bool has_pcv;
+        std::size_t pcd;
+    };
+    for (const LengthCase& c : std::vector<LengthCase>{
+             {4, 3, false, 4}, {20, 2, true, 12}, {28, 5, true, 20}, {8, 0, false, 8}}) {
+        SCOPED_TRACE("length " + std::to_string(c.length));
+        std::vector<std::uint8_t> du(c.length, 0x00);
+        const DecodedTelegram& t = bus.decode(exchange_request(3, du));
+        EXPECT_EQ(t.ppo.type, c.type);
+        EXPECT_EQ(t.ppo.source, PpoSource::Length);
+        EXPECT_EQ(t.has_pcv, c.has_pcv);
+        EXPECT_EQ(t.pcd.size(), c.pcd);
+        bus.decode(exchange_response(3, du));
+    }
+}
+
+TEST(BusDecoderTest, TwelveBytesWithoutEvidenceArePpo1) {
+    Bus bus;
+    const DecodedTelegram& t = bus.decode(exchange_request(3, std::vector<std::uint8_t>(12, 0)));
+    EXPECT_EQ(t.ppo.type, 1);
+    EXPECT_EQ(t.ppo.alternative, 4);
+    EXPECT_TRUE(t.has_pcv);
+    EXPECT_EQ(t.pcd.size(), 4u);
+    EXPECT_EQ(bus.decoder.station(3).length12_type, 0);
+}
+
+TEST(BusDecoderTest, TwelveBytesWithControlWordFirstArePpo4) {
+    Bus bus;
+    auto du = hex("04 7F 20 00 00 00 00 00 00 00 00 00");
+    const DecodedTelegram& out = bus.decode(exchange_request(3, du));
+    EXPECT_EQ(bus.decoder.station(3).length12_type, 4);
+    EXPECT_EQ(out.ppo.type, 4);
+    EXPECT_EQ(out.ppo.alternative, 1);
+    EXPECT_EQ(out.ppo.source, PpoSource::Length);
+    EXPECT_FALSE(out.has_pcv);
+    EXPECT_EQ(bytes_of(out.pcd), du);
+    // The slave's answer uses the same layout.
+    const DecodedTelegram& in =
+        bus.decode(exchange_response(3, hex("0F 07 20 00 00 00 00 00 00 00 00 00")));
+    EXPECT_EQ(in.ppo.type, 4);
+    EXPECT_FALSE(in.has_pcv);
+    EXPECT_EQ(in.pcd.size(), 12u);
+}
+
+TEST(BusDecoderTest, TwelveBytesWithControlWordInBytes9And10ArePpo1) {
+    Bus bus;
+    const DecodedTelegram& out =
+        bus.decode(exchange_request(3, hex("10 01 00 00 00 00 00 00 04 7F 20 00")));
+    EXPECT_EQ(bus.decoder.station(3).length12_type, 1);
+    EXPECT_EQ(out.ppo.type, 1);
+    EXPECT_TRUE(out.has_pcv);
+    EXPECT_EQ(out.pcv.pnu, 1);
+    EXPECT_EQ(bytes_of(out.pcd), hex("04 7F 20 00"));
+}
+
+TEST(BusDecoderTest, TwelveBytesWithBit10InBothWordsArePpo1) {
+    // PCA 14 00 = RC 1, PNU 1024: bit 10 is a PNU bit here; bytes 9-10 decide.
+    Bus bus;
+    const DecodedTelegram& out =
+        bus.decode(exchange_request(3, hex("14 00 00 00 00 00 00 00 04 7F 20 00")));
+    EXPECT_EQ(out.ppo.type, 1);
+    EXPECT_EQ(out.pcv.pnu, 1024);
+}
+
+TEST(BusDecoderTest, LastTwelveByteRequestWithEvidenceDecides) {
+    Bus bus;
+    bus.decode(exchange_request(3, hex("04 7F 20 00 00 00 00 00 00 00 00 00")));
+    EXPECT_EQ(bus.decoder.station(3).length12_type, 4);
+    bus.decode(exchange_request(3, hex("10 01 00 00 00 00 00 00 04 7F 20 00")));
+    EXPECT_EQ(bus.decoder.station(3).length12_type, 1);
+    // No evidence: the last decision stays.
+    const DecodedTelegram& t = bus.decode(exchange_request(3, std::vector<std::uint8_t>(12, 0)));
+    EXPECT_EQ(bus.decoder.station(3).length12_type, 1);
+    EXPECT_EQ(t.ppo.type, 1);
+    // Evidence for another station does not leak.
+    EXPECT_EQ(bus.decoder.station(4).length12_type, 0);
+}
+
+TEST(BusDecoderTest, ResponsesDoNotTeachTheTwelveByteType) {
+    Bus bus;
+    bus.decode(exchange_response(3, hex("04 7F 20 00 00 00 00 00 00 00 00 00")));
+    EXPECT_EQ(bus.decoder.station(3).length12_type, 0);
+}
+
+TEST(BusDecoderTest, ConfiguredStationsDoNotUseTheHeuristic) {
+    Bus bus;
+    bus.decode(service_request(3, sap::kChkCfg, hex("F5")));
+    const DecodedTelegram& out =
+        bus.decode(exchange_request(3, hex("10 01 00 00 00 00 00 00 04 7F 20 00")));
+    EXPECT_EQ(out.ppo.type, 4);
+    EXPECT_EQ(out.ppo.source, PpoSource::ChkCfg);
+    EXPECT_EQ(bus.decoder.station(3).length12_type, 0);
+}
+
+// ---- Dialects and profiles -------------------------------------------------------------------
+
+TEST(BusDecoderTest, DecoderOptionsDefaults) {
+    DecoderOptions options;
+    EXPECT_EQ(options.dialect, Dialect::Vlt);
+    EXPECT_EQ(options.dialect_of(3), Dialect::Vlt);
+    EXPECT_EQ(options.pcd_profile_of(3), PcdProfile::Fc);
+    options.station_dialect[3] = Dialect::Profidrive;
+    EXPECT_EQ(options.dialect_of(3), Dialect::Profidrive);
+    EXPECT_EQ(options.dialect_of(3 | 0x80), Dialect::Profidrive);
+    EXPECT_EQ(options.pcd_profile_of(3), PcdProfile::Profidrive);
+    EXPECT_EQ(options.dialect_of(4), Dialect::Vlt);
+    EXPECT_EQ(options.pcd_profile_of(4), PcdProfile::Fc);
+    options.pcd_profile = PcdProfile::Fc;
+    EXPECT_EQ(options.pcd_profile_of(3), PcdProfile::Fc);
+    options.dialect = Dialect::Profidrive;
+    EXPECT_EQ(options.dialect_of(4), Dialect::Profidrive);
+    options.pcd_profile.reset();
+    EXPECT_EQ(options.pcd_profile_of(4), PcdProfile::Profidrive);
+}
+
+TEST(BusDecoderTest, PerStationDialectAndProfile) {
+    DecoderOptions options;
+    options.station_dialect[3] = Dialect::Profidrive;
+    options.station_ppo[3] = 1;
+    options.station_ppo[4] = 1;
+    Bus bus(options);
+
+    std::vector<std::uint8_t> du;
+    append_pcv(du, 14, false, 202, 0, 50);
+    append_u16_be(du, 0x047F);
+    append_u16_be(du, 0x2000);
+    const DecodedTelegram& to3 = bus.decode(exchange_request(3, du));
+    EXPECT_EQ(to3.dialect, Dialect::Profidrive);
+    EXPECT_EQ(to3.pcd_profile, PcdProfile::Profidrive);
+    ASSERT_TRUE(to3.has_pcv);
+    EXPECT_EQ(to3.pcv_meaning(), "Change parameter value (word) and store in EEPROM");
+    EXPECT_EQ(to3.pcv_value(), 50u);
+    const DecodedTelegram& from3 = bus.decode(exchange_response(3, du));
+    EXPECT_EQ(from3.dialect, Dialect::Profidrive);
+    EXPECT_EQ(from3.pcd_profile, PcdProfile::Profidrive);
+
+    const DecodedTelegram& to4 = bus.decode(exchange_request(4, du));
+    EXPECT_EQ(to4.dialect, Dialect::Vlt);
+    EXPECT_EQ(to4.pcd_profile, PcdProfile::Fc);
+    EXPECT_EQ(to4.pcv_meaning(), "Not assigned");
+}
+
+TEST(BusDecoderTest, ExplicitPcdProfileAppliesToEveryStation) {
+    DecoderOptions options;
+    options.dialect = Dialect::Profidrive;
+    options.pcd_profile = PcdProfile::Fc;
+    Bus bus(options);
+    const DecodedTelegram& t = bus.decode(exchange_request(9, hex("04 7F 20 00")));
+    EXPECT_EQ(t.dialect, Dialect::Profidrive);
+    EXPECT_EQ(t.pcd_profile, PcdProfile::Fc);
+}
+
+// ---- PCV and PCD -----------------------------------------------------------------------------
+
+TEST(BusDecoderTest, Ppo2SplitsPcvAndPcd) {
+    DecoderOptions options;
+    options.station_ppo[3] = 2;
+    Bus bus(options);
+    auto out_du = hex("30 CF 00 00 00 00 03 E8  04 7F 20 00 00 00 00 00 00 00 00 00");
+    const DecodedTelegram& out = bus.decode(exchange_request(3, out_du));
+    EXPECT_EQ(out.ppo.type, 2);
+    ASSERT_TRUE(out.has_pcv);
+    EXPECT_EQ(out.pcv.rc, 3);
+    EXPECT_EQ(out.pcv.pnu, 207);
+    EXPECT_EQ(out.pcv_value(), 1000u);
+    EXPECT_EQ(out.pcv_meaning(), "Change parameter value (double word)");
+    EXPECT_EQ(out.pcd_offset, 15);
+    ASSERT_EQ(out.pcd.size(), 12u);
+    EXPECT_EQ(out.pcd[0], 0x04);
+    EXPECT_EQ(out.pcd[1], 0x7F);
+
+    auto in_du = hex("20 CF 00 00 00 00 03 E8  0F 07 20 00 00 00 00 00 00 00 00 00");
+    const DecodedTelegram& in = bus.decode(exchange_response(3, in_du));
+    ASSERT_TRUE(in.has_pcv);
+    EXPECT_EQ(in.pcv.rc, 2);
+    EXPECT_EQ(in.pcv_value(), 1000u);
+    EXPECT_EQ(in.pcv_meaning(), "Transmit parameter value (double word)");
+    EXPECT_EQ(bytes_of(in.pcd), hex("0F 07 20 00 00 00 00 00 00 00 00 00"));
+}
+
+TEST(BusDecoderTest, PcvValueFollowsTheResponseWidth) {
+    DecoderOptions options;
+    options.station_ppo[3] = 1;
+    Bus bus(options);
+    const DecodedTelegram& in =
+        bus.decode(exchange_response(3, hex("12 08 00 00 00 AB 00 F0 0F 07 20 00")));
+    ASSERT_TRUE(in.has_pcv);
+    EXPECT_EQ(in.pcv.pnu, 520);
+    EXPECT_EQ(in.pcv_value(), 0xF0u);  // word: bytes 7-8 only
+    EXPECT_EQ(in.pcv_meaning(), "Transmit parameter value (word)");
+    const DecodedTelegram& rejected =
+        bus.decode(exchange_response(3, hex("70 00 00 00 00 00 00 02 0F 07 20 00")));
+    EXPECT_EQ(rejected.pcv.rc, 7);
+    EXPECT_EQ(rejected.pcv_value(), 2u);
+    EXPECT_EQ(rejected.pcv_meaning(), "Request not executable");
+}
+
+TEST(BusDecoderTest, Ppo5SplitsPcvAndTenPcdWords) {
+    DecoderOptions options;
+    options.station_ppo[3] = 5;
+    Bus bus(options);
+    std::vector<std::uint8_t> du(28, 0x11);
+    const DecodedTelegram& out = bus.decode(exchange_request(3, du));
+    EXPECT_TRUE(out.has_pcv);
+    EXPECT_EQ(out.pcd.size(), 20u);
+    EXPECT_EQ(out.pcd_offset, 15);
+}
+
+TEST(BusDecoderTest, Ppo1OptionWithShortDataHasNoPcv) {
+    DecoderOptions options;
+    options.station_ppo[3] = 1;
+    Bus bus(options);
+    const DecodedTelegram& out = bus.decode(exchange_request(3, hex("04 7F 20 00")));
+    EXPECT_EQ(out.ppo.type, 1);
+    EXPECT_FALSE(out.has_pcv);
+    EXPECT_EQ(bytes_of(out.pcd), hex("04 7F 20 00"));
+    EXPECT_EQ(out.pcd_offset, 7);
+}
+
+TEST(BusDecoderTest, EightByteDataExchangeInSd3) {
+    DecoderOptions options;
+    options.station_ppo[3] = 1;
+    Bus bus(options);
+    const DecodedTelegram& out = bus.decode(exchange_request(3, hex("12 08 00 00 00 00 00 00")));
+    EXPECT_EQ(out.fdl.type, FrameType::Sd3);
+    EXPECT_EQ(out.service, Service::DataExchange);
+    ASSERT_TRUE(out.has_pcv);
+    EXPECT_EQ(out.pcv.pnu, 520);
+    EXPECT_TRUE(out.pcd.empty());
+    EXPECT_EQ(out.pcd_offset, 12);
+}
+
+TEST(BusDecoderTest, StateOfThePreviousTelegramIsCleared) {
+    DecoderOptions options;
+    options.station_ppo[3] = 1;
+    Bus bus(options);
+    bus.decode(exchange_request(3, hex("12 08 00 00 00 00 00 00 04 7F 20 00")), 5);
+    const DecodedTelegram& t = bus.decode(token());
+    EXPECT_FALSE(t.has_pcv);
+    EXPECT_TRUE(t.pcd.empty());
+    EXPECT_EQ(t.pcd_offset, 0);
+    EXPECT_FALSE(t.ppo.known());
+    EXPECT_EQ(t.request_frame, 0u);
+    EXPECT_FALSE(t.has_time());
+}
+
+TEST(BusDecoderTest, CorruptedFcsStillDecodesThePcv) {
+    DecoderOptions options;
+    options.station_ppo[3] = 1;
+    Bus bus(options);
+    auto bytes = exchange_request(3, hex("12 08 00 00 00 00 00 00 04 7F 20 00"));
+    bytes[bytes.size() - 2] ^= 0xFF;
+    const DecodedTelegram& t = bus.decode(bytes);
+    EXPECT_TRUE(t.problems().contains(ProblemKind::FcsMismatch));
+    EXPECT_FALSE(t.fdl.fcs_ok);
+    EXPECT_EQ(t.service, Service::DataExchange);
+    ASSERT_TRUE(t.has_pcv);
+    EXPECT_EQ(t.pcv.pnu, 520);
+}
+
+TEST(BusDecoderTest, TruncatedDataExchangeKeepsWhatIsThere) {
+    DecoderOptions options;
+    options.station_ppo[3] = 2;
+    Bus bus(options);
+    auto bytes = exchange_request(3, std::vector<std::uint8_t>(20, 0x22));
+    bytes.resize(12);  // header + 5 data bytes
+    const DecodedTelegram& t = bus.decode(bytes);
+    EXPECT_TRUE(t.problems().contains(ProblemKind::Truncated));
+    EXPECT_EQ(t.service, Service::DataExchange);
+    EXPECT_FALSE(t.has_pcv);
+    EXPECT_EQ(t.pcd.size(), 5u);
+}
+
+// ---- Station configuration -------------------------------------------------------------------
+
+TEST(BusDecoderTest, SetPrmRecordsTheIdentNumber) {
+    Bus bus;
+    EXPECT_FALSE(bus.decoder.station(3).has_ident);
+    const DecodedTelegram& t =
+        bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00")));
+    EXPECT_EQ(t.service, Service::SetPrm);
+    EXPECT_TRUE(t.problems().empty());
+    EXPECT_TRUE(bus.decoder.station(3).has_ident);
+    EXPECT_EQ(bus.decoder.station(3).ident, 0x0402);
+    bus.decode(short_ack());
+    bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 12 34 00 80 00 00")));
+    EXPECT_EQ(bus.decoder.station(3).ident, 0x1234);
+    EXPECT_FALSE(bus.decoder.station(4).has_ident);
+}
+
+TEST(BusDecoderTest, SlaveDiagRecordsCfgFault) {
+    Bus bus;
+    bus.decode(service_request(3, sap::kSlaveDiag));
+    bus.decode(service_response(3, sap::kSlaveDiag, hex("04 05 00 02 04 02")));
+    EXPECT_TRUE(bus.decoder.station(3).cfg_fault);
+    // A short acknowledge carries no diagnosis and changes nothing.
+    bus.decode(service_request(3, sap::kSlaveDiag));
+    bus.decode(short_ack());
+    EXPECT_TRUE(bus.decoder.station(3).cfg_fault);
+    bus.decode(service_request(3, sap::kSlaveDiag));
+    bus.decode(service_response(3, sap::kSlaveDiag, hex("00 0C 00 02 04 02")));
+    EXPECT_FALSE(bus.decoder.station(3).cfg_fault);
+}
+
+TEST(BusDecoderTest, ChkCfgResponseDoesNotConfigure) {
+    Bus bus;
+    // A Chk_Cfg request with data is configuration; the SC answer is not.
+    bus.decode(service_request(3, sap::kChkCfg, hex("F1")));
+    EXPECT_EQ(bus.decoder.station(3).ppo.type, 3);
+    EXPECT_EQ(bus.decoder.station(3).cfg_frame, 1u);
+    bus.decode(short_ack());
+    EXPECT_EQ(bus.decoder.station(3).cfg_frame, 1u);
+    // A later Chk_Cfg replaces the configuration.
+    bus.decode(service_request(3, sap::kChkCfg, hex("F3 F9")));
+    EXPECT_EQ(bus.decoder.station(3).ppo.type, 5);
+    EXPECT_EQ(bus.decoder.station(3).cfg_frame, 3u);
+}
+
+// ---- Problems in service data ----------------------------------------------------------------
+
+TEST(BusDecoderTest, ShortSetPrmIsAProblem) {
+    Bus bus;
+    const DecodedTelegram& t = bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 04")));
+    ASSERT_EQ(t.problems().size(), 1u);
+    const Problem& p = t.problems()[0];
+    EXPECT_EQ(p.kind, ProblemKind::ServiceDataShort);
+    EXPECT_EQ(p.offset, 9);
+    EXPECT_EQ(p.expected, 7u);
+    EXPECT_EQ(p.actual, 5u);
+    EXPECT_FALSE(bus.decoder.station(3).has_ident);
+}
+
+TEST(BusDecoderTest, ShortSlaveDiagIsAProblem) {
+    Bus bus;
+    bus.decode(service_request(3, sap::kSlaveDiag));
+    const DecodedTelegram& t = bus.decode(service_response(3, sap::kSlaveDiag, hex("04 05 00 02")));
+    EXPECT_EQ(t.service, Service::SlaveDiag);
+    ASSERT_EQ(t.problems().size(), 1u);
+    EXPECT_EQ(t.problems()[0].kind, ProblemKind::ServiceDataShort);
+    EXPECT_EQ(t.problems()[0].offset, 9);
+    EXPECT_EQ(t.problems()[0].expected, 6u);
+    EXPECT_EQ(t.problems()[0].actual, 4u);
+    EXPECT_FALSE(bus.decoder.station(3).cfg_fault);
+}
+
+TEST(BusDecoderTest, ShortGlobalControlAndSetSlaveAddAreProblems) {
+    Bus bus;
+    const DecodedTelegram& gc = bus.decode(service_request(
+        kBroadcastAddress, sap::kGlobalControl, hex("08"), FdlFunction::SdnHigh));
+    ASSERT_EQ(gc.problems().size(), 1u);
+    EXPECT_EQ(gc.problems()[0].kind, ProblemKind::ServiceDataShort);
+    EXPECT_EQ(gc.problems()[0].expected, 2u);
+
+    const DecodedTelegram& ssa = bus.decode(service_request(126, sap::kSetSlaveAdd,
+                                                            hex("05 04 02")));
+    EXPECT_EQ(ssa.service, Service::SetSlaveAdd);
+    ASSERT_EQ(ssa.problems().size(), 1u);
+    EXPECT_EQ(ssa.problems()[0].kind, ProblemKind::ServiceDataShort);
+    EXPECT_EQ(ssa.problems()[0].expected, 4u);
+    EXPECT_EQ(ssa.problems()[0].actual, 3u);
+
+    const DecodedTelegram& ok = bus.decode(service_request(126, sap::kSetSlaveAdd,
+                                                           hex("05 04 02 00")));
+    EXPECT_TRUE(ok.problems().empty());
+}
+
+TEST(BusDecoderTest, TruncatedCfgIdentifierIsAProblem) {
+    Bus bus;
+    const DecodedTelegram& t = bus.decode(service_request(3, sap::kChkCfg, hex("F3 C0 C3")));
+    ASSERT_EQ(t.problems().size(), 1u);
+    EXPECT_EQ(t.problems()[0].kind, ProblemKind::CfgIdentifierTruncated);
+    EXPECT_EQ(t.problems()[0].offset, 10);
+    // The module read before the cut is still used.
+    EXPECT_EQ(bus.decoder.station(3).ppo.output_bytes, 8);
+}
+
+TEST(BusDecoderTest, TruncatedDiagBlockIsAProblem) {
+    Bus bus;
+    bus.decode(service_request(3, sap::kSlaveDiag));
+    const DecodedTelegram& t =
+        bus.decode(service_response(3, sap::kSlaveDiag, hex("08 0C 00 02 04 02 05 AA")));
+    ASSERT_EQ(t.problems().size(), 1u);
+    EXPECT_EQ(t.problems()[0].kind, ProblemKind::DiagBlockTruncated);
+    EXPECT_EQ(t.problems()[0].offset, 15);
+    EXPECT_EQ(t.problems()[0].expected, 5u);
+    EXPECT_EQ(t.problems()[0].actual, 2u);
+}
+
+TEST(BusDecoderTest, DirectionNames) {
+    EXPECT_EQ(direction_name(Direction::Request), "request");
+    EXPECT_EQ(direction_name(Direction::Response), "response");
+}
+
+}  // namespace
+}  // namespace dpscope

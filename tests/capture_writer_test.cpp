@@ -1,0 +1,267 @@
+// Capture writers: pcap, pcapng, raw and hex files read back through open_source give the same
+// bytes, nanosecond timestamps and link type; failures name the file.
+#include "capture/capture_writer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "capture/pcap_source.hpp"
+#include "capture/simulator.hpp"
+#include "capture/telegram_source.hpp"
+#include "tests/test_support.hpp"
+
+namespace dpscope {
+namespace {
+
+using test::hex;
+
+constexpr std::int64_t kT0 = 1'704'067'200'000'000'000;  // 2024-01-01T00:00:00Z
+
+struct Telegram {
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns;
+};
+
+const std::vector<Telegram> kTelegrams = {
+    {hex("10 03 02 49 4E 16"), kT0 + 1},
+    {hex("68 07 07 68 83 82 7D 3E 3E F3 F1 E2 16"), kT0 + 123'456'789},
+    {hex("E5"), kT0 + 999'999'999},
+    {hex("DC 02 02"), kT0 + 61'000'000'007},
+};
+
+struct TempFile {
+    explicit TempFile(std::string_view name) : path(test::temp_path(name)) {}
+    ~TempFile() { std::remove(path.c_str()); }
+    std::string path;
+};
+
+void write_all(const std::string& path, CaptureFormat format, int link_type,
+               const std::vector<Telegram>& telegrams) {
+    WriterResult opened = open_capture_writer(path, format, link_type);
+    ASSERT_TRUE(opened.writer) << opened.error;
+    EXPECT_TRUE(opened.error.empty());
+    for (const Telegram& t : telegrams)
+        ASSERT_TRUE(opened.writer->write(Bytes(t.bytes.data(), t.bytes.size()), t.time_ns));
+    ASSERT_TRUE(opened.writer->flush()) << opened.writer->error();
+    ASSERT_TRUE(opened.writer->close()) << opened.writer->error();
+    EXPECT_TRUE(opened.writer->error().empty());
+}
+
+struct ReadBack {
+    std::vector<Telegram> telegrams;
+    InputFormat format = InputFormat::Auto;
+    int link_type = -1;
+    InputStatus status = InputStatus::Ok;
+    std::size_t issues = 0;
+};
+
+ReadBack read_back(const std::string& path) {
+    ReadBack result;
+    OpenResult opened = open_source(path, InputFormat::Auto);
+    EXPECT_TRUE(opened.source) << opened.error;
+    if (!opened.source) return result;
+    opened.source->on_issue([&](const InputIssue&) { ++result.issues; });
+    Record record;
+    while (opened.source->next(record))
+        result.telegrams.push_back(
+            {std::vector<std::uint8_t>(record.bytes.begin(), record.bytes.end()), record.time_ns});
+    result.format = opened.source->format();
+    result.link_type = opened.source->link_type();
+    result.status = opened.source->status();
+    return result;
+}
+
+void expect_same(const std::vector<Telegram>& got, const std::vector<Telegram>& want,
+                 bool with_times) {
+    ASSERT_EQ(got.size(), want.size());
+    for (std::size_t i = 0; i < want.size(); ++i) {
+        SCOPED_TRACE(i);
+        EXPECT_EQ(got[i].bytes, want[i].bytes);
+        EXPECT_EQ(got[i].time_ns, with_times ? want[i].time_ns : kNoTime);
+    }
+}
+
+TEST(CaptureWriterTest, FormatNames) {
+    EXPECT_EQ(capture_format_name(CaptureFormat::Pcap), "pcap");
+    EXPECT_EQ(capture_format_name(CaptureFormat::Pcapng), "pcapng");
+    EXPECT_EQ(capture_format_name(CaptureFormat::Raw), "raw");
+    EXPECT_EQ(capture_format_name(CaptureFormat::Hex), "hex");
+    for (CaptureFormat format :
+         {CaptureFormat::Pcap, CaptureFormat::Pcapng, CaptureFormat::Raw, CaptureFormat::Hex})
+        EXPECT_EQ(capture_format_from_name(capture_format_name(format)), format);
+    EXPECT_FALSE(capture_format_from_name("auto").has_value());
+    EXPECT_FALSE(capture_format_from_name("PCAP").has_value());
+    EXPECT_FALSE(capture_format_from_name("").has_value());
+}
+
+TEST(CaptureWriterTest, PcapRoundTrip) {
+    for (int link_type : {kLinkTypeProfibusDl, kLinkTypeUser0}) {
+        SCOPED_TRACE(link_type);
+        TempFile file("round.pcap");
+        write_all(file.path, CaptureFormat::Pcap, link_type, kTelegrams);
+        ReadBack r = read_back(file.path);
+        EXPECT_EQ(r.format, InputFormat::Pcap);
+        EXPECT_EQ(r.link_type, link_type);
+        EXPECT_EQ(r.status, InputStatus::Ok);
+        EXPECT_EQ(r.issues, 0u);
+        expect_same(r.telegrams, kTelegrams, true);
+    }
+}
+
+TEST(CaptureWriterTest, PcapUsesTheNanosecondMagic) {
+    TempFile file("magic.pcap");
+    write_all(file.path, CaptureFormat::Pcap, kLinkTypeProfibusDl, kTelegrams);
+    std::vector<std::uint8_t> bytes = test::read_file(file.path);
+    ASSERT_GE(bytes.size(), 24u);
+    // Little-endian nanosecond magic 0xA1B23C4D, link type 257 in the last header word.
+    EXPECT_EQ(std::vector<std::uint8_t>(bytes.begin(), bytes.begin() + 4), hex("4D 3C B2 A1"));
+    EXPECT_EQ(std::vector<std::uint8_t>(bytes.begin() + 20, bytes.begin() + 24),
+              hex("01 01 00 00"));
+    EXPECT_EQ(bytes.size(), 24u + 4 * 16 + 6 + 13 + 1 + 3);
+}
+
+TEST(CaptureWriterTest, PcapngRoundTrip) {
+    for (int link_type : {kLinkTypeProfibusDl, kLinkTypeUser0}) {
+        SCOPED_TRACE(link_type);
+        TempFile file("round.pcapng");
+        write_all(file.path, CaptureFormat::Pcapng, link_type, kTelegrams);
+        ReadBack r = read_back(file.path);
+        EXPECT_EQ(r.format, InputFormat::Pcapng);
+        EXPECT_EQ(r.link_type, link_type);
+        EXPECT_EQ(r.status, InputStatus::Ok);
+        EXPECT_EQ(r.issues, 0u);
+        expect_same(r.telegrams, kTelegrams, true);
+    }
+}
+
+TEST(CaptureWriterTest, PcapngBlockLayout) {
+    TempFile file("layout.pcapng");
+    write_all(file.path, CaptureFormat::Pcapng, kLinkTypeProfibusDl, {kTelegrams[0]});
+    std::vector<std::uint8_t> bytes = test::read_file(file.path);
+    // Section header 28 + interface description 32 + one enhanced packet block 32 + 8.
+    ASSERT_EQ(bytes.size(), 28u + 32 + 40);
+    EXPECT_EQ(std::vector<std::uint8_t>(bytes.begin(), bytes.begin() + 12),
+              hex("0A 0D 0D 0A 1C 00 00 00 4D 3C 2B 1A"));
+    EXPECT_EQ(std::vector<std::uint8_t>(bytes.begin() + 28, bytes.begin() + 36),
+              hex("01 00 00 00 20 00 00 00"));
+    EXPECT_EQ(bytes[36], 0x01);  // link type 257, little endian
+    EXPECT_EQ(bytes[37], 0x01);
+    EXPECT_EQ(std::vector<std::uint8_t>(bytes.begin() + 60, bytes.begin() + 68),
+              hex("06 00 00 00 28 00 00 00"));
+}
+
+TEST(CaptureWriterTest, RawRoundTrip) {
+    TempFile file("round.raw");
+    write_all(file.path, CaptureFormat::Raw, kLinkTypeProfibusDl, kTelegrams);
+    std::vector<std::uint8_t> expected;
+    for (const Telegram& t : kTelegrams)
+        expected.insert(expected.end(), t.bytes.begin(), t.bytes.end());
+    EXPECT_EQ(test::read_file(file.path), expected);
+    ReadBack r = read_back(file.path);
+    EXPECT_EQ(r.format, InputFormat::Raw);
+    EXPECT_EQ(r.link_type, 0);
+    EXPECT_EQ(r.issues, 0u);
+    expect_same(r.telegrams, kTelegrams, false);
+}
+
+TEST(CaptureWriterTest, HexRoundTrip) {
+    TempFile file("round.txt");
+    write_all(file.path, CaptureFormat::Hex, kLinkTypeProfibusDl, kTelegrams);
+    ReadBack r = read_back(file.path);
+    EXPECT_EQ(r.format, InputFormat::Hex);
+    EXPECT_EQ(r.issues, 0u);
+    expect_same(r.telegrams, kTelegrams, true);
+}
+
+TEST(CaptureWriterTest, HexLineFormat) {
+    TempFile file("lines.txt");
+    write_all(file.path, CaptureFormat::Hex, kLinkTypeProfibusDl,
+              {kTelegrams[0], {hex("E5"), kNoTime}, {hex("DC 02 02"), kT0 + 61'000'000'007}});
+    std::vector<std::uint8_t> bytes = test::read_file(file.path);
+    EXPECT_EQ(std::string(bytes.begin(), bytes.end()),
+              "1704067200.000000001 10 03 02 49 4E 16\n"
+              "E5\n"
+              "1704067261.000000007 DC 02 02\n");
+    ReadBack r = read_back(file.path);
+    ASSERT_EQ(r.telegrams.size(), 3u);
+    EXPECT_EQ(r.telegrams[1].time_ns, kNoTime);
+    EXPECT_EQ(r.telegrams[2].time_ns, kT0 + 61'000'000'007);
+}
+
+TEST(CaptureWriterTest, UnknownTimeIsZeroInPcap) {
+    TempFile file("notime.pcap");
+    write_all(file.path, CaptureFormat::Pcap, kLinkTypeProfibusDl, {{hex("E5"), kNoTime}});
+    ReadBack r = read_back(file.path);
+    ASSERT_EQ(r.telegrams.size(), 1u);
+    EXPECT_EQ(r.telegrams[0].time_ns, 0);
+}
+
+TEST(CaptureWriterTest, EmptyCapturesReadBackEmpty) {
+    for (CaptureFormat format : {CaptureFormat::Pcap, CaptureFormat::Pcapng}) {
+        SCOPED_TRACE(capture_format_name(format));
+        TempFile file("empty.cap");
+        write_all(file.path, format, kLinkTypeProfibusDl, {});
+        ReadBack r = read_back(file.path);
+        EXPECT_TRUE(r.telegrams.empty());
+        EXPECT_EQ(r.status, InputStatus::Ok);
+        EXPECT_EQ(r.link_type, kLinkTypeProfibusDl);
+    }
+}
+
+TEST(CaptureWriterTest, SimulatedSessionRoundTripsInEveryFormat) {
+    SimulatorOptions options;
+    options.seed = 5;
+    options.cycles = 40;
+    options.faults = {FaultSpec{FaultKind::FcsError, 0, 10, std::nullopt}};
+    Simulator simulator(options);
+    std::vector<Telegram> telegrams;
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns = 0;
+    while (simulator.next(bytes, time_ns))
+        telegrams.push_back({bytes, time_ns});
+    ASSERT_GT(telegrams.size(), 100u);
+    for (CaptureFormat format :
+         {CaptureFormat::Pcap, CaptureFormat::Pcapng, CaptureFormat::Raw, CaptureFormat::Hex}) {
+        SCOPED_TRACE(capture_format_name(format));
+        TempFile file("session.cap");
+        write_all(file.path, format, kLinkTypeProfibusDl, telegrams);
+        ReadBack r = read_back(file.path);
+        EXPECT_EQ(r.issues, 0u);
+        expect_same(r.telegrams, telegrams, format != CaptureFormat::Raw);
+    }
+}
+
+TEST(CaptureWriterTest, UnwritablePathFailsNamingIt) {
+    TempFile blocker("plain-file");
+    test::write_file(blocker.path, {0x00});
+    // A path below a regular file cannot be created, not even by root.
+    const std::string path = blocker.path + "/capture.out";
+    for (CaptureFormat format :
+         {CaptureFormat::Pcap, CaptureFormat::Pcapng, CaptureFormat::Raw, CaptureFormat::Hex}) {
+        SCOPED_TRACE(capture_format_name(format));
+        WriterResult opened = open_capture_writer(path, format, kLinkTypeProfibusDl);
+        EXPECT_FALSE(opened.writer);
+        EXPECT_EQ(opened.error.rfind(path + ": cannot open for writing: ", 0), 0u) << opened.error;
+    }
+}
+
+TEST(CaptureWriterTest, WriteErrorIsReportedOnClose) {
+    // /dev/full accepts the open and fails every write.
+    for (CaptureFormat format :
+         {CaptureFormat::Pcap, CaptureFormat::Pcapng, CaptureFormat::Raw, CaptureFormat::Hex}) {
+        SCOPED_TRACE(capture_format_name(format));
+        WriterResult opened = open_capture_writer("/dev/full", format, kLinkTypeProfibusDl);
+        ASSERT_TRUE(opened.writer) << opened.error;
+        for (const Telegram& t : kTelegrams)
+            opened.writer->write(Bytes(t.bytes.data(), t.bytes.size()), t.time_ns);
+        EXPECT_FALSE(opened.writer->close());
+        EXPECT_EQ(opened.writer->error().rfind("/dev/full: write failed: ", 0), 0u)
+            << opened.writer->error();
+    }
+}
+
+}  // namespace
+}  // namespace dpscope

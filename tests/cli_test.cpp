@@ -1,0 +1,492 @@
+// The dpscope executable: help and version, decode from a file and from standard input, exit
+// codes and error messages, filters, the hex and simulate subcommands.
+#include <gtest/gtest.h>
+#include <pcap/pcap.h>
+
+#include <cstdio>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "capture/simulator.hpp"
+#include "capture/telegram_source.hpp"
+#include "tests/test_support.hpp"
+
+namespace dpscope {
+namespace {
+
+using test::CommandResult;
+using test::run_dpscope;
+
+const std::string kPpo1 = "samples/ppo1.pcap";
+const std::string kTruncated = "samples/truncated.pcap";
+
+struct TempFile {
+    explicit TempFile(std::string_view name) : path(test::temp_path(name)) {}
+    ~TempFile() { std::remove(path.c_str()); }
+    std::string path;
+};
+
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+        lines.push_back(line);
+    return lines;
+}
+
+// The whole file as a string, for standard input (binary safe).
+std::string file_content(const std::string& path) {
+    std::vector<std::uint8_t> bytes = test::read_file(path);
+    return std::string(bytes.begin(), bytes.end());
+}
+
+std::size_t records_in(const std::string& path) {
+    OpenResult opened = open_source(path, InputFormat::Auto);
+    EXPECT_TRUE(opened.source) << opened.error;
+    if (!opened.source) return 0;
+    Record record;
+    std::size_t n = 0;
+    while (opened.source->next(record))
+        ++n;
+    return n;
+}
+
+std::string sample(const std::string& relative) {
+    return test::source_dir() + "/" + relative;
+}
+
+void expect_mentions(const std::string& help, const std::vector<std::string>& options) {
+    for (const std::string& option : options)
+        EXPECT_NE(help.find(option), std::string::npos) << option << " missing from:\n" << help;
+}
+
+// ---- version and help ------------------------------------------------------------------------
+
+TEST(CliTest, Version) {
+    CommandResult r = run_dpscope({"--version"});
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_TRUE(std::regex_match(r.out, std::regex("dpscope [0-9]+\\.[0-9]+\\.[0-9]+\n"))) << r.out;
+}
+
+TEST(CliTest, AppHelpListsSubcommandsAndExitCodes) {
+    CommandResult r = run_dpscope({"--help"});
+    EXPECT_EQ(r.exit_code, 0);
+    expect_mentions(r.out, {"--help", "--version", "decode", "hex", "simulate",
+                            "Exit codes:", "2 bad usage", "3 the input ended in damage"});
+}
+
+const std::vector<std::string> kDecodeOptions = {
+    "-T,--format", "-V,--verbose", "-q,--quiet",    "-c,--count",   "--station", "--pnu",
+    "--ppo",       "--dialect",    "--pcd-profile", "--timeout-ms", "--strict",  "-h,--help"};
+
+TEST(CliTest, DecodeHelpMentionsEveryOption) {
+    CommandResult r = run_dpscope({"decode", "--help"});
+    EXPECT_EQ(r.exit_code, 0);
+    expect_mentions(r.out, kDecodeOptions);
+    expect_mentions(r.out, {"file", "-r,--read", "--input-format", "auto,pcap,pcapng,raw,hex",
+                            "text,verbose,jsonl,csv", "Exit codes:"});
+}
+
+TEST(CliTest, HexHelpMentionsEveryOption) {
+    CommandResult r = run_dpscope({"hex", "--help"});
+    EXPECT_EQ(r.exit_code, 0);
+    expect_mentions(r.out, kDecodeOptions);
+    expect_mentions(r.out, {"bytes", "BYTES", "Exit codes:"});
+}
+
+TEST(CliTest, SimulateHelpMentionsEveryOption) {
+    CommandResult r = run_dpscope({"simulate", "--help"});
+    EXPECT_EQ(r.exit_code, 0);
+    expect_mentions(
+        r.out, {"-w,--write", "-F,--output-format", "--linktype", "--seed", "--baud", "--master",
+                "--slave", "--cycles", "-c,--count", "--cycle-us", "--start", "--fault",
+                "--no-start-up", "-v,--list-injections", "-h,--help", "Exit codes:"});
+    // Every fault kind is listed.
+    for (std::size_t i = 0; i < static_cast<std::size_t>(FaultKind::Count); ++i)
+        expect_mentions(r.out, {std::string(fault_kind_name(static_cast<FaultKind>(i)))});
+}
+
+TEST(CliTest, MissingSubcommandIsUsageError) {
+    CommandResult r = run_dpscope({});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(r.out.empty());
+}
+
+// ---- decode ----------------------------------------------------------------------------------
+
+TEST(CliTest, DecodeFileReadOptionAndStandardInputAgree) {
+    CommandResult positional = run_dpscope({"decode", kPpo1});
+    EXPECT_EQ(positional.exit_code, 0) << positional.err;
+    EXPECT_TRUE(positional.err.empty()) << positional.err;
+    std::vector<std::string> lines = lines_of(positional.out);
+    ASSERT_EQ(lines.size(), records_in(sample(kPpo1)));
+    EXPECT_EQ(lines[0].rfind("     1     0.000000   2 → 3   SD1 FDL_Status     req FDL status", 0),
+              0u)
+        << lines[0];
+    EXPECT_EQ(lines[6].rfind("     7     0.000", 0), 0u) << lines[6];
+    EXPECT_NE(lines[6].find("SD2 Chk_Cfg        req F3 F1 = PPO1"), std::string::npos) << lines[6];
+
+    CommandResult read = run_dpscope({"decode", "-r", kPpo1});
+    EXPECT_EQ(read.exit_code, 0) << read.err;
+    EXPECT_EQ(read.out, positional.out);
+
+    CommandResult stdin_read = run_dpscope({"decode", "-r", "-"}, file_content(sample(kPpo1)));
+    EXPECT_EQ(stdin_read.exit_code, 0) << stdin_read.err;
+    EXPECT_EQ(stdin_read.out, positional.out);
+
+    CommandResult stdin_positional = run_dpscope({"decode", "-"}, file_content(sample(kPpo1)));
+    EXPECT_EQ(stdin_positional.exit_code, 0) << stdin_positional.err;
+    EXPECT_EQ(stdin_positional.out, positional.out);
+}
+
+TEST(CliTest, DecodeWithoutInputOrWithTwoInputsIsUsageError) {
+    CommandResult none = run_dpscope({"decode"});
+    EXPECT_EQ(none.exit_code, 2);
+    EXPECT_NE(none.err.find("decode: no input"), std::string::npos) << none.err;
+    CommandResult both = run_dpscope({"decode", "-r", kPpo1, kPpo1});
+    EXPECT_EQ(both.exit_code, 2);
+    EXPECT_NE(both.err.find("give the input once"), std::string::npos) << both.err;
+    EXPECT_TRUE(both.out.empty());
+}
+
+TEST(CliTest, MissingFileIsUsageErrorNamingIt) {
+    CommandResult r = run_dpscope({"decode", "samples/does-not-exist.pcap"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(r.out.empty());
+    EXPECT_EQ(r.err,
+              "dpscope: samples/does-not-exist.pcap: cannot open: No such file or directory\n");
+}
+
+TEST(CliTest, UnsupportedLinkTypeIsUsageErrorNamingFileAndLinkType) {
+    TempFile file("ethernet.pcap");
+    pcap_t* dead = pcap_open_dead(DLT_EN10MB, 65535);
+    ASSERT_NE(dead, nullptr);
+    pcap_dumper_t* dumper = pcap_dump_open(dead, file.path.c_str());
+    ASSERT_NE(dumper, nullptr) << pcap_geterr(dead);
+    std::vector<std::uint8_t> frame(60, 0x00);
+    pcap_pkthdr header{};
+    header.caplen = header.len = static_cast<bpf_u_int32>(frame.size());
+    pcap_dump(reinterpret_cast<u_char*>(dumper), &header, frame.data());
+    pcap_dump_close(dumper);
+    pcap_close(dead);
+
+    CommandResult r = run_dpscope({"decode", file.path});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(r.out.empty());
+    EXPECT_NE(r.err.find("dpscope: " + file.path + ": unsupported link type 1 (EN10MB)"),
+              std::string::npos)
+        << r.err;
+}
+
+TEST(CliTest, ForcedPcapOnTextIsUsageError) {
+    TempFile file("log.txt");
+    test::write_text_file(file.path, "10 03 02 49 4E 16\n");
+    CommandResult r = run_dpscope({"decode", "--input-format", "pcap", file.path});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find(file.path + ": not a readable pcap or pcapng file"), std::string::npos)
+        << r.err;
+    // Detected as hex it decodes.
+    CommandResult detected = run_dpscope({"decode", file.path});
+    EXPECT_EQ(detected.exit_code, 0);
+    EXPECT_EQ(detected.out, "     1            -   2 → 3   SD1 FDL_Status     req FDL status\n");
+}
+
+TEST(CliTest, BadOptionValuesAreUsageErrors) {
+    CommandResult ppo = run_dpscope({"decode", "--ppo", "3=9", kPpo1});
+    EXPECT_EQ(ppo.exit_code, 2);
+    EXPECT_TRUE(ppo.out.empty());
+    EXPECT_EQ(ppo.err, "dpscope: --ppo 3=9: expected ADDR=TYPE with ADDR 0..126 and TYPE 1..5\n");
+
+    CommandResult dialect = run_dpscope({"decode", "--dialect", "foo", kPpo1});
+    EXPECT_EQ(dialect.exit_code, 2);
+    EXPECT_TRUE(dialect.out.empty());
+    EXPECT_EQ(dialect.err, "dpscope: --dialect foo: 'foo' is not a dialect (vlt, profidrive)\n");
+
+    CommandResult station_dialect = run_dpscope({"decode", "--dialect", "200=vlt", kPpo1});
+    EXPECT_EQ(station_dialect.exit_code, 2);
+    EXPECT_NE(station_dialect.err.find("'200' is not a station address"), std::string::npos);
+
+    for (std::vector<std::string> args : {std::vector<std::string>{"decode", "-T", "json", kPpo1},
+                                          {"decode", "--station", "128", kPpo1},
+                                          {"decode", "--pnu", "2048", kPpo1},
+                                          {"decode", "-c", "0", kPpo1},
+                                          {"decode", "--input-format", "pcapng2", kPpo1},
+                                          {"decode", "--no-such-option", kPpo1}}) {
+        CommandResult r = run_dpscope(args);
+        EXPECT_EQ(r.exit_code, 2) << args[1];
+        EXPECT_TRUE(r.out.empty()) << args[1];
+        EXPECT_FALSE(r.err.empty()) << args[1];
+    }
+}
+
+TEST(CliTest, TruncatedCaptureExitsThreeAfterPrintingWhatCameBefore) {
+    CommandResult r = run_dpscope({"decode", kTruncated});
+    EXPECT_EQ(r.exit_code, 3);
+    EXPECT_NE(r.err.find("dpscope: error: " + kTruncated + ": record 102 (byte offset 3098): "),
+              std::string::npos)
+        << r.err;
+    std::vector<std::string> lines = lines_of(r.out);
+    ASSERT_EQ(lines.size(), 101u);
+    EXPECT_EQ(lines.back().rfind("   101 ", 0), 0u) << lines.back();
+    // The same telegrams as the intact capture.
+    std::vector<std::string> intact = lines_of(run_dpscope({"decode", kPpo1}).out);
+    ASSERT_GE(intact.size(), 101u);
+    EXPECT_EQ(lines.front(), intact.front());
+}
+
+TEST(CliTest, TruncatedCaptureInSummaryMode) {
+    CommandResult r = run_dpscope({"decode", "-q", kTruncated});
+    EXPECT_EQ(r.exit_code, 3);
+    EXPECT_NE(r.out.find("  telegrams: 101, "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("  input: reading stopped early"), std::string::npos) << r.out;
+}
+
+TEST(CliTest, CountStopsAfterNTelegrams) {
+    CommandResult r = run_dpscope({"decode", "-c", "5", kPpo1});
+    EXPECT_EQ(r.exit_code, 0);
+    std::vector<std::string> lines = lines_of(r.out);
+    ASSERT_EQ(lines.size(), 5u);
+    EXPECT_EQ(lines[4].rfind("     5 ", 0), 0u);
+    CommandResult jsonl = run_dpscope({"decode", "--count", "3", "-T", "jsonl", kPpo1});
+    EXPECT_EQ(lines_of(jsonl.out).size(), 3u);
+}
+
+// Source and destination of a text line: "frame time SRC → DST ...".
+std::pair<std::string, std::string> ends_of(const std::string& line) {
+    std::istringstream in(line);
+    std::string frame, time, source, arrow, destination;
+    in >> frame >> time >> source >> arrow >> destination;
+    EXPECT_EQ(arrow, "→") << line;
+    return {source, destination};
+}
+
+TEST(CliTest, StationFilter) {
+    CommandResult all = run_dpscope({"decode", "samples/faults.pcap"});
+    CommandResult r = run_dpscope({"decode", "--station", "5", "samples/faults.pcap"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::vector<std::string> lines = lines_of(r.out);
+    ASSERT_FALSE(lines.empty());
+    EXPECT_LT(lines.size(), lines_of(all.out).size());
+    for (const std::string& line : lines) {
+        auto [source, destination] = ends_of(line);
+        EXPECT_TRUE(source == "5" || destination == "5") << line;
+    }
+    // Two stations: the union.
+    CommandResult two =
+        run_dpscope({"decode", "--station", "5", "--station", "4", "samples/faults.pcap"});
+    std::size_t fours = 0;
+    for (const std::string& line : lines_of(two.out)) {
+        auto [source, destination] = ends_of(line);
+        EXPECT_TRUE(source == "5" || destination == "5" || source == "4" || destination == "4")
+            << line;
+        if (source == "4" || destination == "4") ++fours;
+    }
+    EXPECT_GT(fours, 0u);
+}
+
+TEST(CliTest, PnuFilter) {
+    CommandResult r = run_dpscope({"decode", "--pnu", "207", "-T", "jsonl", kPpo1});
+    EXPECT_EQ(r.exit_code, 0);
+    std::vector<std::string> lines = lines_of(r.out);
+    ASSERT_FALSE(lines.empty());
+    for (const std::string& line : lines) {
+        EXPECT_NE(line.find("\"service\":\"Data_Exchange\""), std::string::npos) << line;
+        EXPECT_NE(line.find("\"pcv\":{\"pca\":"), std::string::npos) << line;
+        EXPECT_NE(line.find(",\"pnu\":207,"), std::string::npos) << line;
+    }
+    CommandResult none = run_dpscope({"decode", "--pnu", "2000", kPpo1});
+    EXPECT_EQ(none.exit_code, 0);
+    EXPECT_TRUE(none.out.empty());
+}
+
+TEST(CliTest, QuietPrintsOnlyTheSummary) {
+    CommandResult r = run_dpscope({"decode", "-q", kPpo1});
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_EQ(r.out.rfind("Summary of samples/ppo1.pcap (pcap)\n", 0), 0u) << r.out;
+    EXPECT_NE(r.out.find("  telegrams: " + std::to_string(records_in(sample(kPpo1))) +
+                         ", from 2024-01-01T00:00:00."),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("    Data_Exchange            60  (30 requests, 30 responses)\n"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("      3: PPO 1 (PCV + 2 PCD words, 12 bytes each way) from Chk_Cfg; "
+                         "dialect vlt; ident 0x0402; 60 Data_Exchange telegrams\n"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("FDL_Status     req"), std::string::npos);
+}
+
+TEST(CliTest, OutputFormatsFromTheCommandLine) {
+    CommandResult csv = run_dpscope({"decode", "-T", "csv", "-c", "2", kPpo1});
+    std::vector<std::string> lines = lines_of(csv.out);
+    ASSERT_EQ(lines.size(), 3u);
+    EXPECT_EQ(lines[0].rfind("frame,time,len,sd,", 0), 0u);
+    CommandResult verbose = run_dpscope({"decode", "-V", "-c", "1", kPpo1});
+    EXPECT_EQ(verbose.out.rfind("Frame 1: 6 bytes, 2024-01-01T00:00:00.", 0), 0u) << verbose.out;
+    EXPECT_NE(verbose.out.find("    Start delimiter: SD1 (0x10)\n"), std::string::npos);
+}
+
+// ---- hex -------------------------------------------------------------------------------------
+
+TEST(CliTest, HexFromArguments) {
+    CommandResult r = run_dpscope({"hex", "10", "03", "02", "49", "4E", "16"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out.rfind("Frame 1: 6 bytes\n", 0), 0u) << r.out;
+    EXPECT_NE(r.out.find("    Start delimiter: SD1 (0x10)\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("    Frame control: 0x49 (request, FCB 0, FCV 0, FDL status)\n"),
+              std::string::npos)
+        << r.out;
+
+    // Every documented spelling, split over arguments; two telegrams.
+    CommandResult text = run_dpscope({"hex", "-T", "text", "0x10", "0302", "49:4E", "16,E5"});
+    EXPECT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_EQ(text.out,
+              "     1            -   2 → 3   SD1 FDL_Status     req FDL status\n"
+              "     2            -   3 → 2   SC  FDL_Status     rsp short acknowledge\n");
+}
+
+TEST(CliTest, HexFromStandardInput) {
+    CommandResult r = run_dpscope({"hex", "-T", "text"},
+                                  "12:00:00.000 TX: 10 03 02 49 4E 16\n"
+                                  "12:00:00.001 RX: 10 02 03 00 05 16\n");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out,
+              "     1     0.000000   2 → 3   SD1 FDL_Status     req FDL status\n"
+              "     2     0.001000   3 → 2   SD1 FDL_Status     rsp OK slave\n");
+}
+
+TEST(CliTest, HexSkippedBytesAreReported) {
+    CommandResult r = run_dpscope({"hex", "-T", "text", "01 02", "E5"});
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_EQ(lines_of(r.out).size(), 1u);
+    EXPECT_NE(r.err.find("<command line>: byte 0: skipped 2 byte(s): no start delimiter"),
+              std::string::npos)
+        << r.err;
+}
+
+TEST(CliTest, BadHexArgumentIsUsageErrorNamingIt) {
+    CommandResult r = run_dpscope({"hex", "10", "zz", "02"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(r.out.empty());
+    EXPECT_EQ(r.err.rfind("dpscope: hex: argument 2: 'zz' is not hex bytes", 0), 0u) << r.err;
+    CommandResult odd = run_dpscope({"hex", "680"});
+    EXPECT_EQ(odd.exit_code, 2);
+    EXPECT_NE(odd.err.find("argument 1: '680'"), std::string::npos) << odd.err;
+}
+
+// ---- simulate --------------------------------------------------------------------------------
+
+TEST(CliTest, SimulateThenDecodeRoundTrip) {
+    TempFile file("sim.pcap");
+    CommandResult sim = run_dpscope(
+        {"simulate", "-w", file.path, "--seed", "11", "--slave", "3:1", "--cycles", "30"});
+    EXPECT_EQ(sim.exit_code, 0) << sim.err;
+    EXPECT_TRUE(sim.out.empty());
+    // The same options as samples/ppo1.pcap: the same bytes.
+    EXPECT_EQ(test::read_file(file.path), test::read_file(sample(kPpo1)));
+
+    // The file matches the simulator run in-process.
+    SimulatorOptions options;
+    options.seed = 11;
+    options.slaves = {{3, 1, Dialect::Vlt}};
+    options.cycles = 30;
+    Simulator simulator(options);
+    OpenResult opened = open_source(file.path, InputFormat::Auto);
+    ASSERT_TRUE(opened.source) << opened.error;
+    Record record;
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns = 0;
+    std::size_t n = 0;
+    while (simulator.next(bytes, time_ns)) {
+        ASSERT_TRUE(opened.source->next(record)) << n;
+        EXPECT_EQ(std::vector<std::uint8_t>(record.bytes.begin(), record.bytes.end()), bytes);
+        EXPECT_EQ(record.time_ns, time_ns);
+        ++n;
+    }
+    EXPECT_FALSE(opened.source->next(record));
+}
+
+TEST(CliTest, SimulateToStandardOutputThenDecodeFromStandardInput) {
+    for (std::string format : {"pcap", "pcapng", "raw", "hex"}) {
+        SCOPED_TRACE(format);
+        CommandResult sim =
+            run_dpscope({"simulate", "-w", "-", "-F", format, "--seed", "4", "--cycles", "12"});
+        ASSERT_EQ(sim.exit_code, 0) << sim.err;
+        ASSERT_FALSE(sim.out.empty());
+        TempFile file("sim.cap");
+        test::write_text_file(file.path, sim.out);
+        CommandResult from_file = run_dpscope({"decode", "-T", "jsonl", file.path});
+        CommandResult from_stdin = run_dpscope({"decode", "-T", "jsonl", "-r", "-"}, sim.out);
+        EXPECT_EQ(from_file.exit_code, 0) << from_file.err;
+        EXPECT_EQ(from_stdin.exit_code, 0) << from_stdin.err;
+        EXPECT_EQ(from_stdin.out, from_file.out);
+        // Start-up of three slaves (32 telegrams) plus 12 cycles of at least 7 telegrams.
+        EXPECT_GE(lines_of(from_stdin.out).size(), 32u + 12 * 7);
+    }
+}
+
+TEST(CliTest, SimulateListsInjections) {
+    TempFile file("faults.pcap");
+    CommandResult r = run_dpscope({"simulate", "-w", file.path, "--cycles", "10", "--fault",
+                                   "fcs_error@3:3", "--fault", "garbage@5:4", "-v"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("injected fcs_error on slave 3 in cycle 3 at telegram "),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("injected garbage on slave 4 in cycle 5 at telegram "), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("\nwrote " + std::to_string(records_in(file.path)) + " telegrams\n"),
+              std::string::npos)
+        << r.err;
+}
+
+TEST(CliTest, SimulateCountLimitsTheTelegrams) {
+    TempFile file("count.pcap");
+    CommandResult r = run_dpscope({"simulate", "-w", file.path, "-c", "40"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(records_in(file.path), 40u);
+}
+
+TEST(CliTest, SimulateUsageErrors) {
+    CommandResult slave = run_dpscope({"simulate", "-w", "-", "--slave", "3"});
+    EXPECT_EQ(slave.exit_code, 2);
+    EXPECT_TRUE(slave.out.empty());
+    EXPECT_EQ(slave.err, "dpscope: --slave slave '3': expected ADDR:PPO or ADDR:PPO:DIALECT\n");
+    CommandResult master = run_dpscope({"simulate", "-w", "-", "--slave", "2:1"});
+    EXPECT_EQ(master.exit_code, 2);
+    EXPECT_NE(master.err.find("the master has address 2"), std::string::npos) << master.err;
+    CommandResult fault = run_dpscope({"simulate", "-w", "-", "--fault", "nonsense"});
+    EXPECT_EQ(fault.exit_code, 2);
+    EXPECT_NE(fault.err.find("dpscope: --fault fault 'nonsense': unknown kind 'nonsense'"),
+              std::string::npos)
+        << fault.err;
+    CommandResult endless = run_dpscope({"simulate", "-w", "-", "--cycles", "0"});
+    EXPECT_EQ(endless.exit_code, 2);
+    EXPECT_TRUE(endless.out.empty());
+    CommandResult no_output = run_dpscope({"simulate"});
+    EXPECT_EQ(no_output.exit_code, 2);
+    CommandResult format = run_dpscope({"simulate", "-w", "-", "-F", "json"});
+    EXPECT_EQ(format.exit_code, 2);
+}
+
+TEST(CliTest, SimulateUnwritableOutputNamesIt) {
+    TempFile blocker("plain-file");
+    test::write_file(blocker.path, {0x00});
+    const std::string path = blocker.path + "/out.pcap";
+    CommandResult r = run_dpscope({"simulate", "-w", path, "--cycles", "1"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("dpscope: " + path + ": cannot open for writing"), std::string::npos)
+        << r.err;
+}
+
+TEST(CliTest, SimulateWriteErrorExitsFour) {
+    CommandResult r = run_dpscope({"simulate", "-w", "/dev/full", "--cycles", "5"});
+    EXPECT_EQ(r.exit_code, 4);
+    EXPECT_NE(r.err.find("dpscope: /dev/full: write failed"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace dpscope

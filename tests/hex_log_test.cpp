@@ -1,0 +1,324 @@
+// Hex text: log lines with timestamps, TX/RX prefixes, prompts and hexdump columns; strict hex
+// arguments; timestamp tokens.
+#include "capture/hex_log.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tests/test_support.hpp"
+
+namespace dpscope {
+namespace {
+
+using test::hex;
+
+constexpr std::int64_t kSecond = 1'000'000'000;
+// 2024-01-02T00:00:00Z.
+constexpr std::int64_t kJan2 = 1'704'153'600 * kSecond;
+// 12:00:01.5 after midnight.
+constexpr std::int64_t kNoonAndABit = (12 * 3600 + 1) * kSecond + 500'000'000;
+
+const std::vector<std::uint8_t> kSd1 = hex("10 03 02 49 4E 16");
+const std::vector<std::uint8_t> kSd2 = hex("68 07 07 68 83 82 7D 3E 3E F3 F1 E2 16");
+
+struct Parsed {
+    HexLogLine line;
+    std::vector<std::uint8_t> bytes;
+};
+
+Parsed parse(std::string_view text) {
+    Parsed parsed;
+    parsed.line = parse_hex_log_line(text, parsed.bytes);
+    return parsed;
+}
+
+// ---- parse_hex_log_line: bytes ---------------------------------------------------------------
+
+TEST(HexLogTest, PlainBytes) {
+    Parsed p = parse("10 03 02 49 4E 16");
+    EXPECT_EQ(p.line.byte_count, 6u);
+    EXPECT_EQ(p.bytes, kSd1);
+    EXPECT_FALSE(p.line.time_ns.has_value());
+}
+
+TEST(HexLogTest, LowerCaseAndTabs) {
+    Parsed p = parse("\t68 07 07 68\t83 82 7d 3e 3e f3 f1 e2 16\r");
+    EXPECT_EQ(p.bytes, kSd2);
+}
+
+TEST(HexLogTest, AppendsToExistingBytes) {
+    std::vector<std::uint8_t> bytes = {0xAA};
+    HexLogLine line = parse_hex_log_line("E5", bytes);
+    EXPECT_EQ(line.byte_count, 1u);
+    EXPECT_EQ(bytes, hex("AA E5"));
+}
+
+TEST(HexLogTest, TxRxPrefixes) {
+    for (std::string_view prefix : {"TX:", "RX:", "TX", "RX", "<TX>", "rx>"}) {
+        Parsed p = parse(std::string(prefix) + " 10 03 02 49 4E 16");
+        EXPECT_EQ(p.bytes, kSd1) << prefix;
+        EXPECT_FALSE(p.line.time_ns.has_value()) << prefix;
+    }
+}
+
+TEST(HexLogTest, Prompts) {
+    for (std::string_view prompt : {">", "$", "dpscope>", "COM3>>", "#"}) {
+        Parsed p = parse(std::string(prompt) + " 10 03 02 49 4E 16");
+        EXPECT_EQ(p.bytes, kSd1) << prompt;
+        EXPECT_FALSE(p.line.time_ns.has_value()) << prompt;
+    }
+}
+
+TEST(HexLogTest, HexdumpCanonicalLine) {
+    Parsed p = parse("00000000  68 07 07 68 83 82 7d 3e  3e f3 f1 e2 16           |h..h...>>....|");
+    EXPECT_EQ(p.line.byte_count, 13u);
+    EXPECT_EQ(p.bytes, kSd2);
+    // The offset column is not a timestamp.
+    EXPECT_FALSE(p.line.time_ns.has_value());
+}
+
+TEST(HexLogTest, HexdumpAsciiColumnThatLooksLikeHex) {
+    // Bytes "AB CD E" print as the ASCII column |AB CD E|: its "tokens" must not count.
+    Parsed p = parse("00000010  41 42 20 43 44 20 45                              |AB CD E|");
+    EXPECT_EQ(p.bytes, hex("41 42 20 43 44 20 45"));
+}
+
+TEST(HexLogTest, HexdumpFinalOffsetLineHasNoBytes) {
+    // hexdump -C ends its output with a line holding only the total length, e.g. after 13 bytes:
+    // "0000000d". It is an offset, not four data bytes.
+    Parsed p = parse("0000000d");
+    EXPECT_EQ(p.line.byte_count, 0u);
+    EXPECT_TRUE(p.bytes.empty());
+}
+
+TEST(HexLogTest, ZeroXPrefixedAndCommaSeparated) {
+    EXPECT_EQ(parse("0x10 0x03 0x02 0x49 0x4E 0x16").bytes, kSd1);
+    EXPECT_EQ(parse("0x10, 0x03, 0x02, 0x49, 0x4E, 0x16").bytes, kSd1);
+    EXPECT_EQ(parse("10, 03, 02, 49, 4E, 16").bytes, kSd1);
+    EXPECT_EQ(parse("0X10; 0X03; 0X02; 0X49; 0X4E; 0X16;").bytes, kSd1);
+}
+
+TEST(HexLogTest, CompactHexRun) {
+    EXPECT_EQ(parse("6807076883827D3E3EF3F1E216").bytes, kSd2);
+    EXPECT_EQ(parse("RX: 0x100302494E16").bytes, kSd1);
+    Parsed timed = parse("12:00:01.5 TX 100302494E16");
+    EXPECT_EQ(timed.bytes, kSd1);
+    ASSERT_TRUE(timed.line.time_ns.has_value());
+    EXPECT_EQ(*timed.line.time_ns, kNoonAndABit);
+}
+
+TEST(HexLogTest, CompactRunWithOddDigitCountIsNotBytes) {
+    // Truncated compact run: an odd number of digits.
+    Parsed p = parse("100302494E1");
+    EXPECT_EQ(p.line.byte_count, 0u);
+    EXPECT_TRUE(p.bytes.empty());
+    // Corrupted: a non-hex digit inside.
+    EXPECT_EQ(parse("100302494G16").line.byte_count, 0u);
+}
+
+TEST(HexLogTest, LongestRunWinsAndLaterRunWinsATie) {
+    Parsed longest = parse("AB CD status: 10 03 02 49 4E 16 ok FF");
+    EXPECT_EQ(longest.bytes, kSd1);
+    Parsed tie = parse("AB CD -- E5 16");
+    EXPECT_EQ(tie.bytes, hex("E5 16"));
+}
+
+TEST(HexLogTest, LinesWithoutBytes) {
+    for (std::string_view text : {"", "   ", "# dpscope sample: PROFIBUS tap on /dev/ttyUSB0",
+                                  "hello world", "Frame 12: nothing", "ABC DEF"}) {
+        Parsed p = parse(text);
+        EXPECT_EQ(p.line.byte_count, 0u) << text;
+        EXPECT_TRUE(p.bytes.empty()) << text;
+    }
+}
+
+TEST(HexLogTest, CorruptedTokensAreNotBytes) {
+    // Three-digit and one-digit tokens are not byte tokens; the run around them is split.
+    Parsed p = parse("10 03 123 02 4 49 4E 16");
+    EXPECT_EQ(p.bytes, hex("49 4E 16"));
+}
+
+// ---- parse_hex_log_line: timestamps ----------------------------------------------------------
+
+TEST(HexLogTest, EpochSecondsTimestamp) {
+    Parsed p = parse("1700000000.000125 10 03 02 49 4E 16");
+    EXPECT_EQ(p.bytes, kSd1);
+    ASSERT_TRUE(p.line.time_ns.has_value());
+    EXPECT_EQ(*p.line.time_ns, 1'700'000'000'000'125'000);
+}
+
+TEST(HexLogTest, EpochSecondsWithNanosecondsAndPrefix) {
+    // As written by `dpscope simulate -F hex` and the sample terminal log.
+    Parsed p = parse("1704067200.000066666 TX: 10 03 02 49 4E 16");
+    EXPECT_EQ(p.bytes, kSd1);
+    ASSERT_TRUE(p.line.time_ns.has_value());
+    EXPECT_EQ(*p.line.time_ns, 1'704'067'200'000'066'666);
+}
+
+TEST(HexLogTest, TimeOfDayTimestamp) {
+    Parsed p = parse("12:00:01.5 10 03 02 49 4E 16");
+    EXPECT_EQ(p.bytes, kSd1);
+    ASSERT_TRUE(p.line.time_ns.has_value());
+    EXPECT_EQ(*p.line.time_ns, kNoonAndABit);
+    Parsed whole = parse("23:59:59 E5");
+    ASSERT_TRUE(whole.line.time_ns.has_value());
+    EXPECT_EQ(*whole.line.time_ns, (23 * 3600 + 59 * 60 + 59) * kSecond);
+}
+
+TEST(HexLogTest, IsoDateTimeWithT) {
+    Parsed p = parse("2024-01-02T12:00:01.5Z RX: 10 03 02 49 4E 16");
+    EXPECT_EQ(p.bytes, kSd1);
+    ASSERT_TRUE(p.line.time_ns.has_value());
+    EXPECT_EQ(*p.line.time_ns, kJan2 + kNoonAndABit);
+}
+
+TEST(HexLogTest, IsoDateAndTimeAsTwoTokens) {
+    Parsed p = parse("2024-01-02 12:00:01.5 10 03 02 49 4E 16");
+    EXPECT_EQ(p.bytes, kSd1);
+    ASSERT_TRUE(p.line.time_ns.has_value());
+    EXPECT_EQ(*p.line.time_ns, kJan2 + kNoonAndABit);
+}
+
+TEST(HexLogTest, BracketedTimestamps) {
+    Parsed time = parse("[12:00:01.5] TX 10 03 02 49 4E 16");
+    ASSERT_TRUE(time.line.time_ns.has_value());
+    EXPECT_EQ(*time.line.time_ns, kNoonAndABit);
+    Parsed iso = parse("[2024-01-02 12:00:01.5] 10 03 02 49 4E 16");
+    ASSERT_TRUE(iso.line.time_ns.has_value());
+    EXPECT_EQ(*iso.line.time_ns, kJan2 + kNoonAndABit);
+    Parsed iso_t = parse("[2024-01-02T12:00:01.5Z] 10 03 02 49 4E 16");
+    ASSERT_TRUE(iso_t.line.time_ns.has_value());
+    EXPECT_EQ(*iso_t.line.time_ns, kJan2 + kNoonAndABit);
+    Parsed epoch = parse("[1700000000.000125] 10 03 02 49 4E 16");
+    ASSERT_TRUE(epoch.line.time_ns.has_value());
+    EXPECT_EQ(*epoch.line.time_ns, 1'700'000'000'000'125'000);
+    EXPECT_EQ(epoch.bytes, kSd1);
+}
+
+TEST(HexLogTest, TimestampWithTrailingColon) {
+    Parsed p = parse("12:00:01.5: 10 03 02 49 4E 16");
+    ASSERT_TRUE(p.line.time_ns.has_value());
+    EXPECT_EQ(*p.line.time_ns, kNoonAndABit);
+    EXPECT_EQ(p.bytes, kSd1);
+}
+
+TEST(HexLogTest, CorruptedTimestampGivesNoTime) {
+    Parsed hour = parse("25:00:00.0 10 03 02 49 4E 16");
+    EXPECT_EQ(hour.bytes, kSd1);
+    EXPECT_FALSE(hour.line.time_ns.has_value());
+    Parsed month = parse("2024-13-02T12:00:01.5Z 10 03 02 49 4E 16");
+    EXPECT_EQ(month.bytes, kSd1);
+    EXPECT_FALSE(month.line.time_ns.has_value());
+}
+
+TEST(HexLogTest, TruncatedTimestampGivesNoTime) {
+    Parsed p = parse("12:00 10 03 02 49 4E 16");
+    EXPECT_EQ(p.bytes, kSd1);
+    EXPECT_FALSE(p.line.time_ns.has_value());
+    Parsed iso = parse("2024-01-02T12:0 10 03 02 49 4E 16");
+    EXPECT_EQ(iso.bytes, kSd1);
+    EXPECT_FALSE(iso.line.time_ns.has_value());
+}
+
+TEST(HexLogTest, TimestampOnlyAtTheStartOfTheLine) {
+    // A time after the bytes is not the line's timestamp.
+    Parsed p = parse("10 03 02 49 4E 16 12:00:01.5");
+    EXPECT_EQ(p.bytes, kSd1);
+    EXPECT_FALSE(p.line.time_ns.has_value());
+}
+
+// ---- parse_hex_bytes -------------------------------------------------------------------------
+
+std::vector<std::uint8_t> strict(std::string_view text) {
+    std::vector<std::uint8_t> bytes;
+    std::string error;
+    EXPECT_TRUE(parse_hex_bytes(text, bytes, error)) << error;
+    EXPECT_TRUE(error.empty());
+    return bytes;
+}
+
+std::string strict_error(std::string_view text) {
+    std::vector<std::uint8_t> bytes;
+    std::string error;
+    EXPECT_FALSE(parse_hex_bytes(text, bytes, error)) << text;
+    return error;
+}
+
+TEST(HexLogTest, StrictAcceptsEveryDocumentedSpelling) {
+    EXPECT_EQ(strict("68 07 07 68"), hex("68 07 07 68"));
+    EXPECT_EQ(strict("0x68 0x07"), hex("68 07"));
+    EXPECT_EQ(strict("0x68,0x07,0X07"), hex("68 07 07"));
+    EXPECT_EQ(strict("680707"), hex("68 07 07"));
+    EXPECT_EQ(strict("0x680707"), hex("68 07 07"));
+    EXPECT_EQ(strict("68:07:07"), hex("68 07 07"));
+    EXPECT_EQ(strict("68-07-07"), hex("68 07 07"));
+    EXPECT_EQ(strict("10 0302\n49,4e:16"), kSd1);
+    EXPECT_TRUE(strict("").empty());
+    EXPECT_TRUE(strict("  \n ").empty());
+}
+
+TEST(HexLogTest, StrictAppends) {
+    std::vector<std::uint8_t> bytes = {0x10};
+    std::string error;
+    ASSERT_TRUE(parse_hex_bytes("03 02", bytes, error));
+    EXPECT_EQ(bytes, hex("10 03 02"));
+}
+
+TEST(HexLogTest, StrictRejectsCorruptedTokenAndNamesIt) {
+    std::string error = strict_error("68 zz 07");
+    EXPECT_NE(error.find("'zz'"), std::string::npos) << error;
+    EXPECT_NE(error.find("is not hex bytes"), std::string::npos) << error;
+    EXPECT_EQ(error.find("'68'"), std::string::npos) << error;
+    EXPECT_NE(strict_error("0xG1").find("'0xG1'"), std::string::npos);
+    EXPECT_NE(strict_error("10 03 TX").find("'TX'"), std::string::npos);
+}
+
+TEST(HexLogTest, StrictRejectsTruncatedTokenAndNamesIt) {
+    // An odd number of digits: half a byte.
+    EXPECT_NE(strict_error("68 070").find("'070'"), std::string::npos);
+    EXPECT_NE(strict_error("6").find("'6'"), std::string::npos);
+    EXPECT_NE(strict_error("0x").find("'0x'"), std::string::npos);
+    EXPECT_NE(strict_error("68:0").find("'68:0'"), std::string::npos);
+}
+
+// ---- parse_timestamp -------------------------------------------------------------------------
+
+TEST(HexLogTest, ParseTimestampForms) {
+    EXPECT_EQ(parse_timestamp("1700000000.000125"), 1'700'000'000'000'125'000);
+    EXPECT_EQ(parse_timestamp("0.5"), 500'000'000);
+    EXPECT_EQ(parse_timestamp("12:00:01"), (12 * 3600 + 1) * kSecond);
+    EXPECT_EQ(parse_timestamp("12:00:01.123456789"), (12 * 3600 + 1) * kSecond + 123'456'789);
+    EXPECT_EQ(parse_timestamp("00:00:00.000000001Z"), 1);
+    EXPECT_EQ(parse_timestamp("1970-01-01T00:00:00Z"), 0);
+    EXPECT_EQ(parse_timestamp("2024-01-02T12:00:01.5Z"), kJan2 + kNoonAndABit);
+    EXPECT_EQ(parse_timestamp("2024-01-02t12:00:01.5z"), kJan2 + kNoonAndABit);
+    EXPECT_EQ(parse_timestamp("2024-01-02", "12:00:01.5"), kJan2 + kNoonAndABit);
+    EXPECT_EQ(parse_timestamp("[2024-01-02", "12:00:01.5]"), kJan2 + kNoonAndABit);
+    EXPECT_EQ(parse_timestamp("[12:00:01.5]:"), kNoonAndABit);
+    EXPECT_EQ(parse_timestamp("2024-01-02"), kJan2);
+    // Leap day and a date before the Unix epoch.
+    EXPECT_EQ(parse_timestamp("2024-02-29T00:00:00Z"), (1'704'067'200LL + 59 * 86'400) * kSecond);
+    EXPECT_EQ(parse_timestamp("1969-12-31T00:00:00Z"), -86'400 * kSecond);
+}
+
+TEST(HexLogTest, ParseTimestampRejectsCorruptedTokens) {
+    for (std::string_view text : {"", "abc", "TX:", "68", "1700000000", "1.2.3", ".5", "5.",
+                                  "24:00:00", "12:60:00", "12:00:61", "1a:00:00", "2024-00-10",
+                                  "2024-01-32", "2024-01-02T25:00:00Z", "2024/01/02"}) {
+        EXPECT_FALSE(parse_timestamp(text).has_value()) << text;
+    }
+}
+
+TEST(HexLogTest, ParseTimestampRejectsTruncatedTokens) {
+    for (std::string_view text :
+         {"12:00", "12:00:0", "2024-01-0", "2024-01-02T", "2024-01-02T12:00"})
+        EXPECT_FALSE(parse_timestamp(text).has_value()) << text;
+}
+
+}  // namespace
+}  // namespace dpscope

@@ -1,0 +1,399 @@
+// pcap and pcapng captures through open_source: link types 257 and 147, nanosecond times,
+// record numbering, and every way a capture file can be unusable or damaged.
+#include "capture/pcap_source.hpp"
+
+#include <gtest/gtest.h>
+#include <pcap/pcap.h>
+#include <sys/stat.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "capture/capture_writer.hpp"
+#include "capture/telegram_source.hpp"
+#include "tests/test_support.hpp"
+
+namespace dpscope {
+namespace {
+
+using test::hex;
+
+const std::vector<std::uint8_t> kSd1 = hex("10 03 02 49 4E 16");
+const std::vector<std::uint8_t> kSd2 = hex("68 07 07 68 83 82 7D 3E 3E F3 F1 E2 16");
+const std::vector<std::uint8_t> kToken = hex("DC 02 02");
+
+constexpr std::int64_t kT0 = 1'704'067'200'000'000'000;  // 2024-01-01T00:00:00Z
+
+struct Telegram {
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns;
+};
+
+const std::vector<Telegram> kTelegrams = {
+    {kSd1, kT0 + 1},
+    {kSd2, kT0 + 123'456'789},
+    {kToken, kT0 + 2'000'000'007},
+};
+
+// Removes the file when the test ends.
+struct TempFile {
+    explicit TempFile(std::string_view name) : path(test::temp_path(name)) {}
+    ~TempFile() { std::remove(path.c_str()); }
+    std::string path;
+};
+
+void write_capture(const std::string& path, CaptureFormat format, int link_type,
+                   const std::vector<Telegram>& telegrams = kTelegrams) {
+    WriterResult opened = open_capture_writer(path, format, link_type);
+    ASSERT_TRUE(opened.writer) << opened.error;
+    for (const Telegram& t : telegrams)
+        ASSERT_TRUE(opened.writer->write(Bytes(t.bytes.data(), t.bytes.size()), t.time_ns));
+    ASSERT_TRUE(opened.writer->close()) << opened.writer->error();
+}
+
+struct ReadResult {
+    std::vector<Record> records;  // bytes point into `data`
+    std::vector<std::vector<std::uint8_t>> data;
+    std::vector<InputIssue> issues;
+    InputStatus status = InputStatus::Ok;
+    InputFormat format = InputFormat::Auto;
+    int link_type = -1;
+};
+
+ReadResult read_all(const std::string& path, InputFormat format = InputFormat::Auto) {
+    ReadResult result;
+    OpenResult opened = open_source(path, format);
+    EXPECT_TRUE(opened.source) << opened.error;
+    if (!opened.source) return result;
+    EXPECT_TRUE(opened.error.empty()) << opened.error;
+    opened.source->on_issue([&](const InputIssue& issue) { result.issues.push_back(issue); });
+    Record record;
+    while (opened.source->next(record)) {
+        result.data.emplace_back(record.bytes.begin(), record.bytes.end());
+        result.records.push_back(record);
+    }
+    result.status = opened.source->status();
+    result.format = opened.source->format();
+    result.link_type = opened.source->link_type();
+    return result;
+}
+
+std::string open_error(const std::string& path, InputFormat format = InputFormat::Auto) {
+    OpenResult opened = open_source(path, format);
+    EXPECT_FALSE(opened.source) << path;
+    return opened.error;
+}
+
+// A classic pcap file built byte by byte.
+class PcapBuilder {
+  public:
+    PcapBuilder(bool big_endian, bool nano, std::uint32_t link_type, std::uint32_t snaplen = 65535)
+        : big_endian_(big_endian) {
+        u32(nano ? 0xA1B23C4D : 0xA1B2C3D4);
+        u16(2);
+        u16(4);
+        u32(0);
+        u32(0);
+        u32(snaplen);
+        u32(link_type);
+    }
+    PcapBuilder& record(std::uint32_t seconds, std::uint32_t fraction,
+                        const std::vector<std::uint8_t>& data, std::uint32_t length = 0,
+                        std::uint32_t caplen = 0xFFFFFFFF) {
+        u32(seconds);
+        u32(fraction);
+        u32(caplen == 0xFFFFFFFF ? static_cast<std::uint32_t>(data.size()) : caplen);
+        u32(length ? length : static_cast<std::uint32_t>(data.size()));
+        bytes_.insert(bytes_.end(), data.begin(), data.end());
+        return *this;
+    }
+    const std::vector<std::uint8_t>& bytes() const { return bytes_; }
+
+  private:
+    void u16(std::uint16_t v) {
+        if (big_endian_) {
+            bytes_.push_back(static_cast<std::uint8_t>(v >> 8));
+            bytes_.push_back(static_cast<std::uint8_t>(v));
+        } else {
+            bytes_.push_back(static_cast<std::uint8_t>(v));
+            bytes_.push_back(static_cast<std::uint8_t>(v >> 8));
+        }
+    }
+    void u32(std::uint32_t v) {
+        if (big_endian_) {
+            u16(static_cast<std::uint16_t>(v >> 16));
+            u16(static_cast<std::uint16_t>(v));
+        } else {
+            u16(static_cast<std::uint16_t>(v));
+            u16(static_cast<std::uint16_t>(v >> 16));
+        }
+    }
+    bool big_endian_;
+    std::vector<std::uint8_t> bytes_;
+};
+
+void expect_telegrams(const ReadResult& r, const std::vector<Telegram>& telegrams) {
+    ASSERT_EQ(r.records.size(), telegrams.size());
+    for (std::size_t i = 0; i < telegrams.size(); ++i) {
+        SCOPED_TRACE(i);
+        EXPECT_EQ(r.data[i], telegrams[i].bytes);
+        EXPECT_EQ(r.records[i].time_ns, telegrams[i].time_ns);
+        EXPECT_EQ(r.records[i].number, i + 1);
+        EXPECT_EQ(r.records[i].original_length, telegrams[i].bytes.size());
+    }
+}
+
+// ---- valid captures --------------------------------------------------------------------------
+
+TEST(PcapSourceTest, ReadsPcapWithLinkTypeProfibusDl) {
+    TempFile file("dl.pcap");
+    write_capture(file.path, CaptureFormat::Pcap, kLinkTypeProfibusDl);
+    ReadResult r = read_all(file.path);
+    EXPECT_EQ(r.format, InputFormat::Pcap);
+    EXPECT_EQ(r.link_type, 257);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    EXPECT_TRUE(r.issues.empty());
+    expect_telegrams(r, kTelegrams);
+    // Record offsets: after the 24-byte file header, each record has a 16-byte header.
+    ASSERT_EQ(r.records.size(), 3u);
+    EXPECT_EQ(r.records[0].offset, 24u);
+    EXPECT_EQ(r.records[1].offset, 24u + 16 + 6);
+    EXPECT_EQ(r.records[2].offset, 24u + 16 + 6 + 16 + 13);
+}
+
+TEST(PcapSourceTest, ReadsPcapWithLinkTypeUser0) {
+    TempFile file("user0.pcap");
+    write_capture(file.path, CaptureFormat::Pcap, kLinkTypeUser0);
+    ReadResult r = read_all(file.path);
+    EXPECT_EQ(r.format, InputFormat::Pcap);
+    EXPECT_EQ(r.link_type, 147);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    expect_telegrams(r, kTelegrams);
+}
+
+TEST(PcapSourceTest, ReadsPcapng) {
+    TempFile file("dl.pcapng");
+    write_capture(file.path, CaptureFormat::Pcapng, kLinkTypeProfibusDl);
+    ReadResult r = read_all(file.path);
+    EXPECT_EQ(r.format, InputFormat::Pcapng);
+    EXPECT_EQ(r.link_type, 257);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    EXPECT_TRUE(r.issues.empty());
+    expect_telegrams(r, kTelegrams);
+}
+
+TEST(PcapSourceTest, ReadsPcapngWithLinkTypeUser0) {
+    TempFile file("user0.pcapng");
+    write_capture(file.path, CaptureFormat::Pcapng, kLinkTypeUser0);
+    ReadResult r = read_all(file.path);
+    EXPECT_EQ(r.link_type, 147);
+    expect_telegrams(r, kTelegrams);
+}
+
+TEST(PcapSourceTest, PcapngRecordOffsetsAreUnknown) {
+    TempFile file("offsets.pcapng");
+    write_capture(file.path, CaptureFormat::Pcapng, kLinkTypeProfibusDl);
+    ReadResult r = read_all(file.path);
+    ASSERT_EQ(r.records.size(), 3u);
+    // libpcap does not tell where a pcapng block starts: the offset is documented as 0.
+    for (const Record& record : r.records)
+        EXPECT_EQ(record.offset, 0u);
+}
+
+TEST(PcapSourceTest, MicrosecondLittleEndianPcapTimesInNanoseconds) {
+    TempFile file("usec-le.pcap");
+    PcapBuilder pcap(false, false, 257);
+    pcap.record(1'704'067'200, 125, kSd1).record(1'704'067'201, 999'999, kToken);
+    test::write_file(file.path, pcap.bytes());
+    ReadResult r = read_all(file.path);
+    EXPECT_EQ(r.format, InputFormat::Pcap);
+    expect_telegrams(r, {{kSd1, kT0 + 125'000}, {kToken, kT0 + 1'999'999'000}});
+}
+
+TEST(PcapSourceTest, NanosecondBigEndianPcap) {
+    TempFile file("nsec-be.pcap");
+    PcapBuilder pcap(true, true, 147);
+    pcap.record(1'704'067'200, 123'456'789, kSd2);
+    test::write_file(file.path, pcap.bytes());
+    ReadResult r = read_all(file.path);
+    EXPECT_EQ(r.format, InputFormat::Pcap);
+    EXPECT_EQ(r.link_type, 147);
+    expect_telegrams(r, {{kSd2, kT0 + 123'456'789}});
+}
+
+TEST(PcapSourceTest, SnapshotLengthCutIsAWarning) {
+    TempFile file("snap.pcap");
+    PcapBuilder pcap(false, true, 257);
+    pcap.record(1'704'067'200, 0, hex("68 07 07 68"), 13).record(1'704'067'200, 5, kSd1);
+    test::write_file(file.path, pcap.bytes());
+    ReadResult r = read_all(file.path);
+    ASSERT_EQ(r.records.size(), 2u);
+    EXPECT_EQ(r.data[0], hex("68 07 07 68"));
+    EXPECT_EQ(r.records[0].original_length, 13u);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    ASSERT_EQ(r.issues.size(), 1u);
+    EXPECT_EQ(r.issues[0].severity, Severity::Warning);
+    EXPECT_NE(r.issues[0].message.find(file.path), std::string::npos) << r.issues[0].message;
+    EXPECT_NE(r.issues[0].message.find("record 1 (byte offset 24): only 4 of 13 bytes captured"),
+              std::string::npos)
+        << r.issues[0].message;
+    // The next record's offset counts the captured bytes only.
+    EXPECT_EQ(r.records[1].offset, 24u + 16 + 4);
+}
+
+TEST(PcapSourceTest, LinkTypeNames) {
+    EXPECT_EQ(link_type_name(257), "PROFIBUS_DL");
+    EXPECT_EQ(link_type_name(147), "USER0");
+    EXPECT_EQ(link_type_name(1), "EN10MB");
+    EXPECT_EQ(link_type_name(-5), "unknown");
+}
+
+// ---- unusable inputs -------------------------------------------------------------------------
+
+TEST(PcapSourceTest, UnsupportedLinkTypeNamesFileNumberAndName) {
+    TempFile file("ethernet.pcap");
+    pcap_t* dead = pcap_open_dead(DLT_EN10MB, 65535);
+    ASSERT_NE(dead, nullptr);
+    pcap_dumper_t* dumper = pcap_dump_open(dead, file.path.c_str());
+    ASSERT_NE(dumper, nullptr) << pcap_geterr(dead);
+    std::vector<std::uint8_t> frame(60, 0xFF);
+    pcap_pkthdr header{};
+    header.ts.tv_sec = 1'704'067'200;
+    header.caplen = header.len = static_cast<bpf_u_int32>(frame.size());
+    pcap_dump(reinterpret_cast<u_char*>(dumper), &header, frame.data());
+    pcap_dump_close(dumper);
+    pcap_close(dead);
+
+    std::string error = open_error(file.path);
+    EXPECT_NE(error.find(file.path), std::string::npos) << error;
+    EXPECT_NE(error.find("unsupported link type 1 "), std::string::npos) << error;
+    EXPECT_NE(error.find("(EN10MB)"), std::string::npos) << error;
+    // Forcing the format changes nothing.
+    EXPECT_NE(open_error(file.path, InputFormat::Pcap).find("unsupported link type 1 "),
+              std::string::npos);
+}
+
+TEST(PcapSourceTest, BadMagicWithPcapForcedIsAnError) {
+    TempFile file("notpcap.bin");
+    test::write_file(file.path, kSd2);
+    std::string error = open_error(file.path, InputFormat::Pcap);
+    EXPECT_NE(error.find(file.path), std::string::npos) << error;
+    EXPECT_NE(error.find("not a readable pcap or pcapng file"), std::string::npos) << error;
+    // The same with pcapng forced.
+    EXPECT_NE(open_error(file.path, InputFormat::Pcapng).find(file.path), std::string::npos);
+}
+
+TEST(PcapSourceTest, TruncatedFileHeaderIsAnError) {
+    TempFile file("short-header.pcap");
+    std::vector<std::uint8_t> bytes = PcapBuilder(false, true, 257).bytes();
+    bytes.resize(12);
+    test::write_file(file.path, bytes);
+    std::string error = open_error(file.path);
+    EXPECT_NE(error.find(file.path), std::string::npos) << error;
+    EXPECT_NE(error.find("not a readable pcap or pcapng file"), std::string::npos) << error;
+}
+
+TEST(PcapSourceTest, EmptyFileHasNoTelegrams) {
+    TempFile file("empty.pcap");
+    test::write_file(file.path, {});
+    ReadResult r = read_all(file.path);
+    EXPECT_TRUE(r.records.empty());
+    EXPECT_TRUE(r.issues.empty());
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    // As a pcap it is unusable.
+    std::string error = open_error(file.path, InputFormat::Pcap);
+    EXPECT_NE(error.find(file.path), std::string::npos) << error;
+}
+
+TEST(PcapSourceTest, DirectoryIsAnError) {
+    std::string dir = test::temp_path("dir");
+    ASSERT_EQ(mkdir(dir.c_str(), 0700), 0);
+    std::string error = open_error(dir);
+    rmdir(dir.c_str());
+    EXPECT_EQ(error, dir + ": is a directory, not a capture file");
+}
+
+TEST(PcapSourceTest, MissingFileIsAnError) {
+    std::string path = test::temp_path("missing.pcap");
+    EXPECT_EQ(open_error(path), path + ": cannot open: No such file or directory");
+}
+
+// ---- damaged captures ------------------------------------------------------------------------
+
+TEST(PcapSourceTest, TruncatedRecordDataStopsWithDamage) {
+    TempFile file("cut.pcap");
+    write_capture(file.path, CaptureFormat::Pcap, kLinkTypeProfibusDl);
+    std::vector<std::uint8_t> bytes = test::read_file(file.path);
+    ASSERT_EQ(bytes.size(), 24u + 16 + 6 + 16 + 13 + 16 + 3);
+    bytes.resize(bytes.size() - 2);
+    test::write_file(file.path, bytes);
+
+    ReadResult r = read_all(file.path);
+    expect_telegrams(r, {kTelegrams[0], kTelegrams[1]});
+    EXPECT_EQ(r.status, InputStatus::Damaged);
+    ASSERT_EQ(r.issues.size(), 1u);
+    EXPECT_EQ(r.issues[0].severity, Severity::Error);
+    const std::string& message = r.issues[0].message;
+    EXPECT_EQ(message.rfind(file.path + ": record 3 (byte offset 75): ", 0), 0u) << message;
+    EXPECT_NE(message.find("decoding stopped after 2 record(s)"), std::string::npos) << message;
+}
+
+TEST(PcapSourceTest, TruncatedRecordHeaderStopsWithDamage) {
+    TempFile file("cut-header.pcap");
+    write_capture(file.path, CaptureFormat::Pcap, kLinkTypeProfibusDl);
+    std::vector<std::uint8_t> bytes = test::read_file(file.path);
+    bytes.resize(24 + 16 + 6 + 16 + 13 + 8);  // half of record 3's header
+    test::write_file(file.path, bytes);
+
+    ReadResult r = read_all(file.path);
+    expect_telegrams(r, {kTelegrams[0], kTelegrams[1]});
+    EXPECT_EQ(r.status, InputStatus::Damaged);
+    ASSERT_EQ(r.issues.size(), 1u);
+    EXPECT_NE(r.issues[0].message.find(file.path + ": record 3 (byte offset 75)"),
+              std::string::npos)
+        << r.issues[0].message;
+}
+
+TEST(PcapSourceTest, CorruptedRecordLengthStopsWithDamage) {
+    TempFile file("bad-length.pcap");
+    PcapBuilder pcap(false, true, 257);
+    pcap.record(1'704'067'200, 1, kSd1).record(1'704'067'200, 2, kToken, 0x7FFFFFF0, 0x7FFFFFF0);
+    test::write_file(file.path, pcap.bytes());
+
+    ReadResult r = read_all(file.path);
+    expect_telegrams(r, {{kSd1, kT0 + 1}});
+    EXPECT_EQ(r.status, InputStatus::Damaged);
+    ASSERT_EQ(r.issues.size(), 1u);
+    EXPECT_NE(r.issues[0].message.find(file.path + ": record 2 (byte offset 46)"),
+              std::string::npos)
+        << r.issues[0].message;
+}
+
+TEST(PcapSourceTest, TruncatedPcapngNamesRecord) {
+    TempFile file("cut.pcapng");
+    write_capture(file.path, CaptureFormat::Pcapng, kLinkTypeProfibusDl);
+    std::vector<std::uint8_t> bytes = test::read_file(file.path);
+    bytes.resize(bytes.size() - 6);
+    test::write_file(file.path, bytes);
+
+    ReadResult r = read_all(file.path);
+    expect_telegrams(r, {kTelegrams[0], kTelegrams[1]});
+    EXPECT_EQ(r.status, InputStatus::Damaged);
+    ASSERT_EQ(r.issues.size(), 1u);
+    EXPECT_NE(r.issues[0].message.find(file.path + ": record 3: "), std::string::npos)
+        << r.issues[0].message;
+}
+
+TEST(PcapSourceTest, TruncatedSampleCapture) {
+    std::string path = test::source_dir() + "/samples/truncated.pcap";
+    ReadResult r = read_all(path);
+    EXPECT_EQ(r.status, InputStatus::Damaged);
+    EXPECT_EQ(r.records.size(), 101u);
+    ASSERT_EQ(r.issues.size(), 1u);
+    EXPECT_NE(r.issues[0].message.find("record 102 (byte offset 3098)"), std::string::npos)
+        << r.issues[0].message;
+}
+
+}  // namespace
+}  // namespace dpscope

@@ -1,0 +1,1056 @@
+// Renderers: text, verbose, jsonl and csv on telegrams decoded by BusDecoder. The jsonl lines are
+// checked with a strict JSON parser written here (the project has no JSON library).
+#include "formats/renderer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "capture/simulator.hpp"
+#include "decoder/bus_decoder.hpp"
+#include "decoder/telegram_builder.hpp"
+#include "formats/json.hpp"
+#include "tests/test_support.hpp"
+
+namespace dpscope {
+namespace {
+
+using test::hex;
+
+// ---- a strict JSON parser --------------------------------------------------------------------
+
+struct Json {
+    enum class Type { Null, Bool, Number, String, Array, Object };
+    Type type = Type::Null;
+    bool boolean = false;
+    std::string text;  // the number literal, or the decoded string
+    std::vector<Json> items;
+    std::vector<std::pair<std::string, Json>> members;
+
+    bool is_null() const { return type == Type::Null; }
+    const Json* find(std::string_view key) const {
+        for (const auto& [name, value] : members)
+            if (name == key) return &value;
+        return nullptr;
+    }
+    const Json& operator[](std::string_view key) const {
+        static const Json missing;
+        const Json* value = find(key);
+        if (!value) ADD_FAILURE() << "no key '" << key << "'";
+        return value ? *value : missing;
+    }
+    const Json& operator[](std::size_t index) const {
+        static const Json missing;
+        if (index >= items.size()) ADD_FAILURE() << "no item " << index;
+        return index < items.size() ? items[index] : missing;
+    }
+    std::vector<std::string> keys() const {
+        std::vector<std::string> out;
+        for (const auto& member : members)
+            out.push_back(member.first);
+        return out;
+    }
+    long long integer() const {
+        EXPECT_EQ(type, Type::Number);
+        EXPECT_EQ(text.find_first_of(".eE"), std::string::npos) << text;
+        return std::strtoll(text.c_str(), nullptr, 10);
+    }
+    const std::string& string() const {
+        EXPECT_EQ(type, Type::String);
+        return text;
+    }
+};
+
+class JsonParser {
+  public:
+    explicit JsonParser(std::string_view text) : text_(text) {}
+
+    // The whole text must be exactly one value (white space around it allowed).
+    std::optional<Json> parse(std::string& error) {
+        skip_space();
+        std::optional<Json> result = value(0);
+        if (result) {
+            skip_space();
+            if (pos_ != text_.size()) result = fail("text after the value");
+        }
+        if (!result) error = error_ + " at offset " + std::to_string(pos_);
+        return result;
+    }
+
+  private:
+    std::optional<Json> fail(std::string message) {
+        if (error_.empty()) error_ = std::move(message);
+        return std::nullopt;
+    }
+    bool at_end() const { return pos_ >= text_.size(); }
+    char peek() const { return at_end() ? '\0' : text_[pos_]; }
+    void skip_space() {
+        while (!at_end() && (peek() == ' ' || peek() == '\t' || peek() == '\n' || peek() == '\r'))
+            ++pos_;
+    }
+    bool literal(std::string_view word) {
+        if (text_.substr(pos_, word.size()) != word) return false;
+        pos_ += word.size();
+        return true;
+    }
+
+    std::optional<Json> value(int depth) {
+        if (depth > 64) return fail("nesting too deep");
+        Json out;
+        switch (peek()) {
+            case '{':
+                return object(depth);
+            case '[':
+                return array(depth);
+            case '"': {
+                auto s = string();
+                if (!s) return std::nullopt;
+                out.type = Json::Type::String;
+                out.text = *s;
+                return out;
+            }
+            case 't':
+            case 'f':
+                out.type = Json::Type::Bool;
+                out.boolean = peek() == 't';
+                if (!literal(out.boolean ? "true" : "false")) return fail("bad literal");
+                return out;
+            case 'n':
+                if (!literal("null")) return fail("bad literal");
+                return out;
+            default:
+                return number();
+        }
+    }
+
+    std::optional<Json> number() {
+        std::size_t start = pos_;
+        auto digits = [&] {
+            std::size_t from = pos_;
+            while (!at_end() && peek() >= '0' && peek() <= '9')
+                ++pos_;
+            return pos_ - from;
+        };
+        if (peek() == '-') ++pos_;
+        if (peek() == '0') {
+            ++pos_;
+        } else if (digits() == 0) {
+            return fail("expected a value");
+        }
+        if (peek() == '.') {
+            ++pos_;
+            if (digits() == 0) return fail("digits expected after '.'");
+        }
+        if (peek() == 'e' || peek() == 'E') {
+            ++pos_;
+            if (peek() == '+' || peek() == '-') ++pos_;
+            if (digits() == 0) return fail("digits expected in the exponent");
+        }
+        Json out;
+        out.type = Json::Type::Number;
+        out.text = std::string(text_.substr(start, pos_ - start));
+        return out;
+    }
+
+    static void append_utf8(std::string& out, unsigned code) {
+        if (code < 0x80) {
+            out.push_back(static_cast<char>(code));
+        } else if (code < 0x800) {
+            out.push_back(static_cast<char>(0xC0 | (code >> 6)));
+            out.push_back(static_cast<char>(0x80 | (code & 0x3F)));
+        } else if (code < 0x10000) {
+            out.push_back(static_cast<char>(0xE0 | (code >> 12)));
+            out.push_back(static_cast<char>(0x80 | ((code >> 6) & 0x3F)));
+            out.push_back(static_cast<char>(0x80 | (code & 0x3F)));
+        } else {
+            out.push_back(static_cast<char>(0xF0 | (code >> 18)));
+            out.push_back(static_cast<char>(0x80 | ((code >> 12) & 0x3F)));
+            out.push_back(static_cast<char>(0x80 | ((code >> 6) & 0x3F)));
+            out.push_back(static_cast<char>(0x80 | (code & 0x3F)));
+        }
+    }
+
+    std::optional<unsigned> hex4() {
+        if (pos_ + 4 > text_.size()) return std::nullopt;
+        unsigned code = 0;
+        for (int i = 0; i < 4; ++i) {
+            char c = text_[pos_++];
+            code <<= 4;
+            if (c >= '0' && c <= '9') {
+                code |= static_cast<unsigned>(c - '0');
+            } else if (c >= 'a' && c <= 'f') {
+                code |= static_cast<unsigned>(c - 'a' + 10);
+            } else if (c >= 'A' && c <= 'F') {
+                code |= static_cast<unsigned>(c - 'A' + 10);
+            } else {
+                return std::nullopt;
+            }
+        }
+        return code;
+    }
+
+    std::optional<std::string> string() {
+        ++pos_;  // opening quote
+        std::string out;
+        for (;;) {
+            if (at_end()) {
+                fail("unterminated string");
+                return std::nullopt;
+            }
+            char c = text_[pos_++];
+            if (c == '"') return out;
+            if (static_cast<unsigned char>(c) < 0x20) {
+                fail("control character in a string");
+                return std::nullopt;
+            }
+            if (c != '\\') {
+                out.push_back(c);
+                continue;
+            }
+            char e = at_end() ? '\0' : text_[pos_++];
+            switch (e) {
+                case '"':
+                    out.push_back('"');
+                    break;
+                case '\\':
+                    out.push_back('\\');
+                    break;
+                case '/':
+                    out.push_back('/');
+                    break;
+                case 'b':
+                    out.push_back('\b');
+                    break;
+                case 'f':
+                    out.push_back('\f');
+                    break;
+                case 'n':
+                    out.push_back('\n');
+                    break;
+                case 'r':
+                    out.push_back('\r');
+                    break;
+                case 't':
+                    out.push_back('\t');
+                    break;
+                case 'u': {
+                    auto code = hex4();
+                    if (!code || (*code >= 0xD800 && *code < 0xE000)) {
+                        fail("bad \\u escape");
+                        return std::nullopt;
+                    }
+                    append_utf8(out, *code);
+                    break;
+                }
+                default:
+                    fail("bad escape");
+                    return std::nullopt;
+            }
+        }
+    }
+
+    std::optional<Json> array(int depth) {
+        ++pos_;
+        Json out;
+        out.type = Json::Type::Array;
+        skip_space();
+        if (peek() == ']') {
+            ++pos_;
+            return out;
+        }
+        for (;;) {
+            skip_space();
+            auto item = value(depth + 1);
+            if (!item) return std::nullopt;
+            out.items.push_back(std::move(*item));
+            skip_space();
+            if (peek() == ',') {
+                ++pos_;
+                continue;
+            }
+            if (peek() == ']') {
+                ++pos_;
+                return out;
+            }
+            return fail("expected ',' or ']'");
+        }
+    }
+
+    std::optional<Json> object(int depth) {
+        ++pos_;
+        Json out;
+        out.type = Json::Type::Object;
+        skip_space();
+        if (peek() == '}') {
+            ++pos_;
+            return out;
+        }
+        for (;;) {
+            skip_space();
+            if (peek() != '"') return fail("expected a key");
+            auto key = string();
+            if (!key) return std::nullopt;
+            if (out.find(*key)) return fail("duplicate key " + *key);
+            skip_space();
+            if (peek() != ':') return fail("expected ':'");
+            ++pos_;
+            skip_space();
+            auto item = value(depth + 1);
+            if (!item) return std::nullopt;
+            out.members.emplace_back(std::move(*key), std::move(*item));
+            skip_space();
+            if (peek() == ',') {
+                ++pos_;
+                continue;
+            }
+            if (peek() == '}') {
+                ++pos_;
+                return out;
+            }
+            return fail("expected ',' or '}'");
+        }
+    }
+
+    std::string_view text_;
+    std::size_t pos_ = 0;
+    std::string error_;
+};
+
+std::optional<Json> parse_json(std::string_view text) {
+    std::string error;
+    std::optional<Json> result = JsonParser(text).parse(error);
+    if (!result) ADD_FAILURE() << "invalid JSON (" << error << "): " << text;
+    return result;
+}
+
+std::vector<std::string> split_lines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) {
+            ADD_FAILURE() << "last line has no newline";
+            end = text.size();
+        }
+        lines.push_back(text.substr(start, end - start));
+        start = end + 1;
+    }
+    return lines;
+}
+
+TEST(RendererTest, JsonCheckerAcceptsValidAndRejectsBrokenJson) {
+    std::string error;
+    EXPECT_TRUE(JsonParser(R"({"a":[1,-2.5e3,true,null,"x\"\u00e9"],"b":{}})").parse(error));
+    auto parsed = JsonParser(R"("\u00e9\n")").parse(error);
+    ASSERT_TRUE(parsed);
+    EXPECT_EQ(parsed->text, "\xC3\xA9\n");
+    for (std::string_view broken :
+         {"", "{", R"({"a":1,})", R"({"a" 1})", "[1,]", "01", "1.", "-", R"("a)", "\"\x01\"",
+          R"("\x")", R"({"a":1,"a":2})", "{} {}", "nul", "[1 2]", R"({a:1})"}) {
+        std::string message;
+        EXPECT_FALSE(JsonParser(broken).parse(message)) << broken;
+    }
+}
+
+// ---- rendering helpers -----------------------------------------------------------------------
+
+constexpr std::int64_t kT0 = 1'704'067'200'000'000'000;  // 2024-01-01T00:00:00Z
+constexpr std::uint8_t kMaster = 2;
+constexpr std::uint8_t kSlave = 3;
+
+struct Input {
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns = kNoTime;
+    std::vector<Finding> findings;
+};
+
+std::string render(OutputFormat format, const std::vector<Input>& inputs,
+                   DecoderOptions options = {}) {
+    char* data = nullptr;
+    std::size_t size = 0;
+    FILE* file = open_memstream(&data, &size);
+    EXPECT_NE(file, nullptr);
+    {
+        Output out(file);
+        auto renderer = make_renderer(format, out);
+        BusDecoder decoder(options);
+        renderer->begin();
+        for (std::size_t i = 0; i < inputs.size(); ++i) {
+            const Input& input = inputs[i];
+            const DecodedTelegram& t =
+                decoder.decode(Bytes(input.bytes.data(), input.bytes.size()), input.time_ns, i + 1);
+            renderer->render(t, input.findings);
+        }
+        renderer->end();
+        EXPECT_TRUE(out.flush());
+    }
+    std::fclose(file);
+    std::string text(data, size);
+    std::free(data);
+    return text;
+}
+
+std::vector<std::uint8_t> request(std::optional<std::uint8_t> dsap, std::vector<std::uint8_t> du,
+                                  FdlFunction function = FdlFunction::SrdHigh) {
+    return build_telegram({kSlave, kMaster, request_fc(function, true, true), dsap,
+                           dsap ? std::optional<std::uint8_t>(62) : std::nullopt, Bytes(du)});
+}
+
+std::vector<std::uint8_t> response(std::optional<std::uint8_t> ssap, std::vector<std::uint8_t> du) {
+    return build_telegram({kMaster, kSlave, response_fc(FdlStatus::DataLow),
+                           ssap ? std::optional<std::uint8_t>(62) : std::nullopt, ssap, Bytes(du)});
+}
+
+std::vector<std::uint8_t> pcv_and_pcd(std::uint8_t rc, bool spm, std::uint16_t pnu,
+                                      std::uint8_t ind, std::uint32_t pva, std::uint16_t word1,
+                                      std::uint16_t word2) {
+    std::vector<std::uint8_t> du;
+    append_pcv(du, rc, spm, pnu, ind, pva);
+    append_u16_be(du, word1);
+    append_u16_be(du, word2);
+    return du;
+}
+
+// Start-up of slave 3 as PPO 1, then a parameter write, a rejected read, a token.
+std::vector<Input> session() {
+    std::vector<Input> in;
+    auto add = [&](std::vector<std::uint8_t> bytes) {
+        in.push_back({std::move(bytes), kT0 + static_cast<std::int64_t>(in.size()) * 100'000, {}});
+    };
+    add(request(61, {0x88, 10, 10, 11, 0x04, 0x02, 0x00}));                          // 1 Set_Prm
+    add(hex("E5"));                                                                  // 2 SC
+    add(request(62, {0xF3, 0xF1}));                                                  // 3 Chk_Cfg
+    add(hex("E5"));                                                                  // 4 SC
+    add(request(60, {}));                                                            // 5 Slave_Diag
+    add(response(60, {0x00, 0x0C, 0x00, 0x02, 0x04, 0x02}));                         // 6 diag
+    add(request(std::nullopt, pcv_and_pcd(2, false, 215, 0, 17, 0x047F, 0x2000)));   // 7 DE
+    add(response(std::nullopt, pcv_and_pcd(1, true, 215, 0, 17, 0x0F07, 0x2000)));   // 8 DE
+    add(request(std::nullopt, pcv_and_pcd(1, false, 999, 0, 0, 0x047F, 0x2000)));    // 9 DE
+    add(response(std::nullopt, pcv_and_pcd(7, false, 999, 0, 17, 0x0F07, 0x2000)));  // 10 RC 7
+    add(hex("DC 02 02"));                                                            // 11 token
+    add(build_telegram(
+        {127, kMaster, request_fc(FdlFunction::SdnHigh), 58, 62, Bytes(hex("08 00"))}));  // 12 GC
+    return in;
+}
+
+const std::vector<std::string> kJsonKeys = {
+    "frame",      "time",     "len",           "sd",
+    "da",         "sa",       "dsap",          "ssap",
+    "fc",         "fcs_ok",   "service",       "direction",
+    "master",     "slave",    "request_frame", "ppo",
+    "ppo_source", "dialect",  "pcv",           "pcd",
+    "diag",       "prm",      "cfg",           "global_control",
+    "data",       "problems", "findings"};
+
+const std::vector<std::string> kPcvKeys = {"pca",        "rc",    "spm",       "pnu",   "ind",
+                                           "ind_low",    "pva",   "pva_raw",   "width", "meaning",
+                                           "code_known", "error", "error_text"};
+
+std::vector<Json> jsonl(const std::vector<Input>& inputs, DecoderOptions options = {}) {
+    std::vector<Json> out;
+    for (const std::string& line : split_lines(render(OutputFormat::Jsonl, inputs, options))) {
+        auto parsed = parse_json(line);
+        if (!parsed) continue;
+        EXPECT_EQ(parsed->type, Json::Type::Object) << line;
+        EXPECT_EQ(parsed->keys(), kJsonKeys) << line;
+        out.push_back(std::move(*parsed));
+    }
+    return out;
+}
+
+// ---- jsonl -----------------------------------------------------------------------------------
+
+TEST(RendererTest, JsonlEveryLineIsOneObjectWithTheDocumentedKeys) {
+    SimulatorOptions options;
+    options.seed = 3;
+    options.cycles = 30;
+    options.faults = {FaultSpec{FaultKind::Garbage, 0, 5, std::nullopt},
+                      FaultSpec{FaultKind::MalformedTelegram, 0, 7, std::nullopt}};
+    Simulator simulator(options);
+    std::vector<Input> inputs;
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns = 0;
+    while (simulator.next(bytes, time_ns))
+        inputs.push_back({bytes, time_ns, {}});
+    std::vector<Json> lines = jsonl(inputs);
+    ASSERT_EQ(lines.size(), inputs.size());
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        EXPECT_EQ(lines[i]["frame"].integer(), static_cast<long long>(i + 1));
+        EXPECT_EQ(lines[i]["len"].integer(), static_cast<long long>(inputs[i].bytes.size()));
+        const Json& pcv = lines[i]["pcv"];
+        if (!pcv.is_null()) {
+            EXPECT_EQ(pcv.keys(), kPcvKeys);
+        }
+    }
+}
+
+TEST(RendererTest, JsonlDataExchangeWithPcv) {
+    std::vector<Json> lines = jsonl(session());
+    ASSERT_EQ(lines.size(), 12u);
+    const Json& request = lines[6];
+    EXPECT_EQ(request["frame"].integer(), 7);
+    EXPECT_EQ(request["time"].text, "1704067200.000600000");
+    EXPECT_EQ(request["len"].integer(), 21);
+    EXPECT_EQ(request["sd"].string(), "SD2");
+    EXPECT_EQ(request["da"].integer(), 3);
+    EXPECT_EQ(request["sa"].integer(), 2);
+    EXPECT_TRUE(request["dsap"].is_null());
+    EXPECT_TRUE(request["ssap"].is_null());
+    EXPECT_EQ(request["fc"]["raw"].integer(), 0x7D);
+    EXPECT_TRUE(request["fc"]["request"].boolean);
+    EXPECT_TRUE(request["fc"]["fcb"].boolean);
+    EXPECT_TRUE(request["fc"]["fcv"].boolean);
+    EXPECT_EQ(request["fc"]["function"].string(), "SRD high");
+    EXPECT_TRUE(request["fcs_ok"].boolean);
+    EXPECT_EQ(request["service"].string(), "Data_Exchange");
+    EXPECT_EQ(request["direction"].string(), "request");
+    EXPECT_EQ(request["master"].integer(), 2);
+    EXPECT_EQ(request["slave"].integer(), 3);
+    EXPECT_TRUE(request["request_frame"].is_null());
+    EXPECT_EQ(request["ppo"].integer(), 1);
+    EXPECT_EQ(request["ppo_source"].string(), "chk_cfg");
+    EXPECT_EQ(request["dialect"].string(), "vlt");
+    const Json& pcv = request["pcv"];
+    EXPECT_EQ(pcv.keys(), kPcvKeys);
+    EXPECT_EQ(pcv["pca"].integer(), 0x2000 | 215);
+    EXPECT_EQ(pcv["rc"].integer(), 2);
+    EXPECT_EQ(pcv["spm"].integer(), 0);
+    EXPECT_EQ(pcv["pnu"].integer(), 215);
+    EXPECT_EQ(pcv["ind"].integer(), 0);
+    EXPECT_EQ(pcv["ind_low"].integer(), 0);
+    EXPECT_EQ(pcv["pva"].integer(), 17);
+    EXPECT_EQ(pcv["pva_raw"].integer(), 17);
+    EXPECT_EQ(pcv["width"].string(), "word");
+    EXPECT_EQ(pcv["meaning"].string(), "Change parameter value (word)");
+    EXPECT_TRUE(pcv["code_known"].boolean);
+    EXPECT_TRUE(pcv["error"].is_null());
+    EXPECT_TRUE(pcv["error_text"].is_null());
+    ASSERT_EQ(request["pcd"].items.size(), 2u);
+    EXPECT_EQ(request["pcd"][0].integer(), 0x047F);
+    EXPECT_EQ(request["pcd"][1].integer(), 0x2000);
+    EXPECT_EQ(request["data"].string(), "20D7000000000011047F2000");
+    for (const char* key : {"diag", "prm", "cfg", "global_control"})
+        EXPECT_TRUE(request[key].is_null()) << key;
+    EXPECT_TRUE(request["problems"].items.empty());
+    EXPECT_EQ(request["problems"].type, Json::Type::Array);
+    EXPECT_EQ(request["findings"].type, Json::Type::Array);
+
+    const Json& answer = lines[7];
+    EXPECT_EQ(answer["direction"].string(), "response");
+    EXPECT_EQ(answer["request_frame"].integer(), 7);
+    EXPECT_EQ(answer["master"].integer(), 2);
+    EXPECT_EQ(answer["slave"].integer(), 3);
+    EXPECT_FALSE(answer["fc"]["request"].boolean);
+    EXPECT_EQ(answer["fc"]["station"].string(), "slave");
+    EXPECT_EQ(answer["fc"]["status"].string(), "DL");
+    EXPECT_EQ(answer["fc"].find("fcb"), nullptr);
+    EXPECT_EQ(answer["pcv"]["rc"].integer(), 1);
+    EXPECT_EQ(answer["pcv"]["spm"].integer(), 1);
+    EXPECT_EQ(answer["pcv"]["pca"].integer(), 0x1000 | 0x0800 | 215);
+    EXPECT_EQ(answer["pcv"]["meaning"].string(), "Transmit parameter value (word)");
+    EXPECT_EQ(answer["pcd"][0].integer(), 0x0F07);
+}
+
+TEST(RendererTest, JsonlRejectedRequestCarriesErrorNumberAndText) {
+    std::vector<Json> lines = jsonl(session());
+    ASSERT_EQ(lines.size(), 12u);
+    const Json& pcv = lines[9]["pcv"];
+    EXPECT_EQ(pcv["rc"].integer(), 7);
+    EXPECT_EQ(pcv["pnu"].integer(), 999);
+    EXPECT_EQ(pcv["meaning"].string(), "Request not executable");
+    EXPECT_EQ(pcv["error"].integer(), 17);
+    EXPECT_EQ(pcv["error_text"].string(), "Request temporarily unexecutable");
+    EXPECT_EQ(pcv["pva"].integer(), 17);
+
+    // An error number the dialect does not know: the number, and a null text.
+    std::vector<Input> unknown = session();
+    unknown[9].bytes = response(std::nullopt, pcv_and_pcd(7, false, 999, 0, 77, 0x0F07, 0x2000));
+    std::vector<Json> again = jsonl(unknown);
+    ASSERT_EQ(again.size(), 12u);
+    EXPECT_EQ(again[9]["pcv"]["error"].integer(), 77);
+    EXPECT_TRUE(again[9]["pcv"]["error_text"].is_null());
+}
+
+TEST(RendererTest, JsonlServiceObjects) {
+    std::vector<Json> lines = jsonl(session());
+    ASSERT_EQ(lines.size(), 12u);
+    // Set_Prm request.
+    const Json& prm = lines[0]["prm"];
+    EXPECT_EQ(prm["ident"].integer(), 0x0402);
+    EXPECT_EQ(prm["station_status"].integer(), 0x88);
+    ASSERT_EQ(prm["flags"].items.size(), 2u);
+    EXPECT_EQ(prm["flags"][0].string(), "WD_On");
+    EXPECT_EQ(prm["flags"][1].string(), "Lock_Req");
+    EXPECT_EQ(prm["watchdog_ms"].integer(), 1000);
+    EXPECT_EQ(prm["min_tsdr"].integer(), 11);
+    EXPECT_TRUE(prm["dpv1_status"].is_null());
+    EXPECT_EQ(prm["user_prm"].string(), "");
+    EXPECT_EQ(lines[0]["dsap"].integer(), 61);
+    EXPECT_EQ(lines[0]["ssap"].integer(), 62);
+    EXPECT_TRUE(lines[0]["diag"].is_null());
+    // Its short acknowledge: no addresses of its own, roles from the request.
+    const Json& ack = lines[1];
+    EXPECT_EQ(ack["sd"].string(), "SC");
+    EXPECT_TRUE(ack["da"].is_null());
+    EXPECT_TRUE(ack["fc"].is_null());
+    EXPECT_EQ(ack["service"].string(), "Set_Prm");
+    EXPECT_EQ(ack["request_frame"].integer(), 1);
+    EXPECT_EQ(ack["master"].integer(), 2);
+    EXPECT_TRUE(ack["prm"].is_null());
+    EXPECT_TRUE(ack["data"].is_null());
+    // Chk_Cfg request.
+    const Json& cfg = lines[2]["cfg"];
+    ASSERT_EQ(cfg["bytes"].items.size(), 2u);
+    EXPECT_EQ(cfg["bytes"][0].integer(), 0xF3);
+    EXPECT_EQ(cfg["bytes"][1].integer(), 0xF1);
+    ASSERT_EQ(cfg["modules"].items.size(), 2u);
+    const Json& pcv_module = cfg["modules"][0];
+    EXPECT_EQ(pcv_module["identifier"].integer(), 0xF3);
+    EXPECT_FALSE(pcv_module["special"].boolean);
+    EXPECT_EQ(pcv_module["dir"].string(), "in/out");
+    EXPECT_EQ(pcv_module["out_bytes"].integer(), 8);
+    EXPECT_EQ(pcv_module["in_bytes"].integer(), 8);
+    EXPECT_EQ(pcv_module["unit"].string(), "word");
+    EXPECT_TRUE(pcv_module["consistent"].boolean);
+    EXPECT_EQ(cfg["modules"][1]["identifier"].integer(), 0xF1);
+    EXPECT_EQ(cfg["modules"][1]["out_bytes"].integer(), 4);
+    EXPECT_EQ(cfg["ppo"].integer(), 1);
+    EXPECT_TRUE(cfg["has_pcv"].boolean);
+    EXPECT_EQ(lines[2]["data"].string(), "F3F1");
+    // Slave_Diag response.
+    const Json& diag = lines[5]["diag"];
+    EXPECT_EQ(diag["ident"].integer(), 0x0402);
+    EXPECT_EQ(diag["master"].integer(), 2);
+    ASSERT_EQ(diag["station_status"].items.size(), 3u);
+    EXPECT_EQ(diag["station_status"][1].integer(), 0x0C);
+    ASSERT_EQ(diag["flags"].items.size(), 1u);
+    EXPECT_EQ(diag["flags"][0].string(), "WD_On");
+    EXPECT_TRUE(diag["ext"].is_null());
+    EXPECT_TRUE(lines[4]["diag"].is_null());  // the request has none
+    // Global_Control broadcast.
+    const Json& gc = lines[11]["global_control"];
+    EXPECT_EQ(gc["command"].integer(), 8);
+    ASSERT_EQ(gc["flags"].items.size(), 1u);
+    EXPECT_EQ(gc["flags"][0].string(), "Freeze");
+    EXPECT_EQ(gc["group"].integer(), 0);
+    EXPECT_EQ(lines[11]["da"].integer(), 127);
+}
+
+TEST(RendererTest, JsonlDiagWithoutMasterIsNull) {
+    std::vector<Input> in = {{request(60, {}), kT0, {}},
+                             {response(60, {0x02, 0x05, 0x00, 0xFF, 0x04, 0x02}), kT0 + 1, {}}};
+    std::vector<Json> lines = jsonl(in);
+    ASSERT_EQ(lines.size(), 2u);
+    EXPECT_TRUE(lines[1]["diag"]["master"].is_null());
+    const Json& flags = lines[1]["diag"]["flags"];
+    ASSERT_EQ(flags.items.size(), 2u);
+    EXPECT_EQ(flags[0].string(), "Station_Not_Ready");
+    EXPECT_EQ(flags[1].string(), "Prm_Req");
+}
+
+TEST(RendererTest, JsonlNullsWhereAbsent) {
+    std::vector<Input> in = {{hex("DC 02 02"), kNoTime, {}}};
+    std::vector<Json> lines = jsonl(in);
+    ASSERT_EQ(lines.size(), 1u);
+    const Json& token = lines[0];
+    EXPECT_TRUE(token["time"].is_null());
+    EXPECT_EQ(token["sd"].string(), "SD4");
+    EXPECT_EQ(token["da"].integer(), 2);
+    EXPECT_EQ(token["service"].string(), "Token");
+    for (const char* key : {"dsap", "ssap", "fc", "request_frame", "ppo", "ppo_source", "dialect",
+                            "pcv", "pcd", "diag", "prm", "cfg", "global_control", "data"})
+        EXPECT_TRUE(token[key].is_null()) << key;
+    EXPECT_TRUE(token["fcs_ok"].boolean);
+}
+
+TEST(RendererTest, JsonlMalformedTelegramsListTheirProblems) {
+    std::vector<std::uint8_t> bad_fcs = hex("68 07 07 68 83 82 7D 3E 3E F3 F1 E2 16");
+    bad_fcs[11] ^= 0x5A;
+    std::vector<Input> in = {{bad_fcs, kT0, {}},
+                             {hex("68 07 07 68 83 82 7D 3E 3E F3"), kT0 + 1, {}},
+                             {hex("2A 3F 9F"), kT0 + 2, {}}};
+    std::vector<Json> lines = jsonl(in);
+    ASSERT_EQ(lines.size(), 3u);
+
+    EXPECT_FALSE(lines[0]["fcs_ok"].boolean);
+    ASSERT_EQ(lines[0]["problems"].items.size(), 1u);
+    const Json& fcs = lines[0]["problems"][0];
+    EXPECT_EQ(fcs.keys(), (std::vector<std::string>{"kind", "severity", "offset", "message"}));
+    EXPECT_EQ(fcs["kind"].string(), "fcs_mismatch");
+    EXPECT_EQ(fcs["severity"].string(), "error");
+    EXPECT_EQ(fcs["offset"].integer(), 11);
+    EXPECT_EQ(fcs["message"].string(), "byte 11: FCS 0xB8 wrong, checksum of the data is 0xE2");
+
+    ASSERT_EQ(lines[1]["problems"].items.size(), 1u);
+    EXPECT_EQ(lines[1]["problems"][0]["kind"].string(), "truncated");
+    EXPECT_EQ(lines[1]["problems"][0]["offset"].integer(), 10);
+    EXPECT_EQ(lines[1]["problems"][0]["message"].string(),
+              "telegram truncated: needs 13 bytes, has 10");
+
+    const Json& junk = lines[2];
+    EXPECT_TRUE(junk["sd"].is_null());
+    EXPECT_TRUE(junk["da"].is_null());
+    EXPECT_TRUE(junk["fc"].is_null());
+    EXPECT_TRUE(junk["master"].is_null());
+    EXPECT_EQ(junk["service"].string(), "Unknown");
+    EXPECT_EQ(junk["len"].integer(), 3);
+    ASSERT_EQ(junk["problems"].items.size(), 1u);
+    EXPECT_EQ(junk["problems"][0]["kind"].string(), "bad_start_delimiter");
+    EXPECT_EQ(junk["problems"][0]["offset"].integer(), 0);
+}
+
+TEST(RendererTest, JsonlFindingsAndStringEscaping) {
+    Finding finding;
+    finding.kind = FindingKind::StackedRequest;
+    finding.severity = Severity::Warning;
+    finding.frame = 1;
+    finding.request_frame = 0;
+    finding.time_ns = kT0 + 5;
+    finding.master = 2;
+    finding.slave = 3;
+    finding.pnu = 215;
+    finding.message = "quote \" backslash \\ newline \n tab \t cr \r bell \x01 arrow \xE2\x86\x92";
+    std::vector<Input> in = {{hex("DC 02 02"), kT0, {finding}}};
+    std::string text = render(OutputFormat::Jsonl, in);
+    EXPECT_NE(text.find(R"(quote \" backslash \\ newline \n tab \t cr \r bell \u0001 arrow )"),
+              std::string::npos)
+        << text;
+    std::vector<Json> lines = jsonl(in);
+    ASSERT_EQ(lines.size(), 1u);
+    ASSERT_EQ(lines[0]["findings"].items.size(), 1u);
+    const Json& f = lines[0]["findings"][0];
+    EXPECT_EQ(f.keys(), (std::vector<std::string>{"kind", "severity", "frame", "request_frame",
+                                                  "time", "master", "slave", "pnu", "message"}));
+    EXPECT_EQ(f["kind"].string(), "stacked_request");
+    EXPECT_EQ(f["severity"].string(), "warning");
+    EXPECT_EQ(f["frame"].integer(), 1);
+    EXPECT_TRUE(f["request_frame"].is_null());
+    EXPECT_EQ(f["time"].text, "1704067200.000000005");
+    EXPECT_EQ(f["pnu"].integer(), 215);
+    EXPECT_EQ(f["message"].string(), finding.message);
+}
+
+TEST(RendererTest, JsonStringHelperEscapesControlCharacters) {
+    fmt::memory_buffer buffer;
+    json::string(buffer, std::string_view("a\"b\\c\x1f\x7f", 7));
+    EXPECT_EQ(std::string(buffer.data(), buffer.size()), "\"a\\\"b\\\\c\\u001f\x7f\"");
+}
+
+TEST(RendererTest, TimesBeforeTheEpoch) {
+    // 1969-12-31T23:59:58.5Z is -1.5 s since the epoch.
+    std::vector<Input> in = {{hex("E5"), -1'500'000'000, {}}};
+    std::vector<std::string> verbose = split_lines(render(OutputFormat::Verbose, in));
+    ASSERT_FALSE(verbose.empty());
+    EXPECT_EQ(verbose[0], "Frame 1: 1 bytes, 1969-12-31T23:59:58.500000000Z");
+    std::vector<Json> lines = jsonl(in);
+    ASSERT_EQ(lines.size(), 1u);
+    std::string csv_text = render(OutputFormat::Csv, in);
+    std::string csv_time = csv_text.substr(csv_text.find('\n') + 3);
+    csv_time = csv_time.substr(0, csv_time.find(','));
+    EXPECT_EQ(lines[0]["time"].text, "-1.500000000");
+    EXPECT_EQ(csv_time, "-1.500000000");
+}
+
+TEST(RendererTest, JsonlDialectFollowsTheOptions) {
+    DecoderOptions options;
+    options.dialect = Dialect::Profidrive;
+    std::vector<Json> lines = jsonl(session(), options);
+    ASSERT_EQ(lines.size(), 12u);
+    EXPECT_EQ(lines[6]["dialect"].string(), "profidrive");
+    EXPECT_EQ(lines[9]["pcv"]["meaning"].string(), "Request cannot be executed");
+    EXPECT_EQ(lines[9]["pcv"]["error_text"].string(),
+              "Request cannot be executed in the current operating state");
+}
+
+// ---- text ------------------------------------------------------------------------------------
+
+TEST(RendererTest, TextOneLinePerTelegram) {
+    std::vector<std::string> lines = split_lines(render(OutputFormat::Text, session()));
+    ASSERT_EQ(lines.size(), 12u);
+    EXPECT_EQ(lines[0],
+              "     1     0.000000   2 → 3   SD2 Set_Prm        req ident 0x0402 WD 1000 ms "
+              "[WD_On Lock_Req] group 0x00");
+    EXPECT_EQ(lines[1], "     2     0.000100   3 → 2   SC  Set_Prm        rsp short acknowledge");
+    EXPECT_EQ(lines[2], "     3     0.000200   2 → 3   SD2 Chk_Cfg        req F3 F1 = PPO1");
+    EXPECT_EQ(lines[5],
+              "     6     0.000500   3 → 2   SD3 Slave_Diag     rsp ident 0x0402 master 2 [WD_On]");
+    EXPECT_EQ(lines[6],
+              "     7     0.000600   2 → 3   SD2 Data_Exchange  req PPO1 RC=2 Change parameter "
+              "value (word) PNU=215 IND=0 PVA=17 | CTW=0x047F MRV=50.00%");
+    EXPECT_EQ(lines[7],
+              "     8     0.000700   3 → 2   SD2 Data_Exchange  rsp PPO1 RC=1 Transmit parameter "
+              "value (word) SPM=1 PNU=215 IND=0 PVA=17 | STW=0x0F07 MAV=50.00%");
+    EXPECT_EQ(lines[9],
+              "    10     0.000900   3 → 2   SD2 Data_Exchange  rsp PPO1 RC=7 Request not "
+              "executable PNU=999 IND=0 error 17 (Request temporarily unexecutable) | "
+              "STW=0x0F07 MAV=50.00%");
+    EXPECT_EQ(lines[10], "    11     0.001000   2 → 2   SD4 Token          req token");
+    EXPECT_EQ(lines[11], "    12     0.001100   2 → 127 SD2 Global_Control req Freeze group 0x00");
+}
+
+TEST(RendererTest, TextWithoutTimeProblemsAndFindings) {
+    Finding finding;
+    finding.kind = FindingKind::FcsError;
+    finding.severity = Severity::Error;
+    std::vector<std::uint8_t> bad_fcs = hex("10 03 02 49 4F 16");
+    std::vector<Input> in = {{hex("2A 3F 9F"), kNoTime, {}},
+                             {bad_fcs, kT0 + 2'500'000'000, {finding}},
+                             {hex("DC 02 02"), kT0, {}}};
+    std::vector<std::string> lines = split_lines(render(OutputFormat::Text, in));
+    ASSERT_EQ(lines.size(), 3u);
+    EXPECT_EQ(lines[0],
+              "     1            -   ? → ?   bad Unknown        req 2A 3F 9F "
+              "[bad_start_delimiter]");
+    EXPECT_EQ(lines[1],
+              "     2     0.000000   2 → 3   SD1 FDL_Status     req FDL status "
+              "[fcs_mismatch] [error fcs_error]");
+    // Relative to the first telegram that has a time; earlier times are negative.
+    EXPECT_EQ(lines[2], "     3    -2.500000   2 → 2   SD4 Token          req token");
+}
+
+// ---- csv -------------------------------------------------------------------------------------
+
+const std::string kCsvHeader =
+    "frame,time,len,sd,da,sa,dsap,ssap,fc,service,direction,master,slave,request_frame,fcs_ok,"
+    "ppo,rc,spm,pnu,ind,pva,meaning,error,error_text,pcd,detail,problems,findings";
+
+// RFC 4180 rows; fails the test on a stray quote.
+std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
+    std::vector<std::vector<std::string>> rows;
+    std::vector<std::string> row;
+    std::string field;
+    bool quoted = false, was_quoted = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        char c = text[i];
+        if (quoted) {
+            if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+                field.push_back('"');
+                ++i;
+            } else if (c == '"') {
+                quoted = false;
+            } else {
+                field.push_back(c);
+            }
+            continue;
+        }
+        if (c == '"') {
+            if (!field.empty() || was_quoted) ADD_FAILURE() << "stray quote at " << i;
+            quoted = was_quoted = true;
+        } else if (c == ',') {
+            row.push_back(field);
+            field.clear();
+            was_quoted = false;
+        } else if (c == '\n') {
+            row.push_back(field);
+            rows.push_back(row);
+            row.clear();
+            field.clear();
+            was_quoted = false;
+        } else {
+            if (was_quoted) ADD_FAILURE() << "text after a closing quote at " << i;
+            field.push_back(c);
+        }
+    }
+    EXPECT_FALSE(quoted) << "unterminated quote";
+    EXPECT_TRUE(row.empty() && field.empty()) << "last row has no newline";
+    return rows;
+}
+
+TEST(RendererTest, CsvHeaderAndRowsWithTheSameColumnCount) {
+    std::string text = render(OutputFormat::Csv, session());
+    EXPECT_EQ(text.substr(0, text.find('\n')), kCsvHeader);
+    std::vector<std::vector<std::string>> rows = parse_csv(text);
+    ASSERT_EQ(rows.size(), 13u);
+    for (const auto& row : rows)
+        EXPECT_EQ(row.size(), 28u);
+    const std::vector<std::string>& header = rows[0];
+    auto column = [&](std::string_view name) {
+        for (std::size_t i = 0; i < header.size(); ++i)
+            if (header[i] == name) return i;
+        ADD_FAILURE() << "no column " << name;
+        return std::size_t{0};
+    };
+    const auto& de = rows[7];  // frame 7
+    EXPECT_EQ(de[column("frame")], "7");
+    EXPECT_EQ(de[column("time")], "1704067200.000600000");
+    EXPECT_EQ(de[column("len")], "21");
+    EXPECT_EQ(de[column("sd")], "SD2");
+    EXPECT_EQ(de[column("da")], "3");
+    EXPECT_EQ(de[column("sa")], "2");
+    EXPECT_EQ(de[column("dsap")], "");
+    EXPECT_EQ(de[column("fc")], "0x7D");
+    EXPECT_EQ(de[column("service")], "Data_Exchange");
+    EXPECT_EQ(de[column("direction")], "request");
+    EXPECT_EQ(de[column("master")], "2");
+    EXPECT_EQ(de[column("slave")], "3");
+    EXPECT_EQ(de[column("request_frame")], "");
+    EXPECT_EQ(de[column("fcs_ok")], "true");
+    EXPECT_EQ(de[column("ppo")], "1");
+    EXPECT_EQ(de[column("rc")], "2");
+    EXPECT_EQ(de[column("spm")], "0");
+    EXPECT_EQ(de[column("pnu")], "215");
+    EXPECT_EQ(de[column("pva")], "17");
+    EXPECT_EQ(de[column("meaning")], "Change parameter value (word)");
+    EXPECT_EQ(de[column("error")], "");
+    EXPECT_EQ(de[column("pcd")], "047F 2000");
+    EXPECT_EQ(de[column("detail")],
+              "PPO1 RC=2 Change parameter value (word) PNU=215 IND=0 PVA=17 | CTW=0x047F "
+              "MRV=50.00%");
+    const auto& rejected = rows[10];
+    EXPECT_EQ(rejected[column("request_frame")], "9");
+    EXPECT_EQ(rejected[column("rc")], "7");
+    EXPECT_EQ(rejected[column("error")], "17");
+    EXPECT_EQ(rejected[column("error_text")], "Request temporarily unexecutable");
+    const auto& token = rows[11];
+    EXPECT_EQ(token[column("sd")], "SD4");
+    EXPECT_EQ(token[column("fc")], "");
+    EXPECT_EQ(token[column("rc")], "");
+    EXPECT_EQ(token[column("pcd")], "");
+    EXPECT_EQ(token[column("detail")], "token");
+}
+
+TEST(RendererTest, CsvQuotesTextFields) {
+    std::string text = render(OutputFormat::Csv, session());
+    std::vector<std::string> lines = split_lines(text);
+    ASSERT_EQ(lines.size(), 13u);
+    // meaning, error_text and detail are quoted; an empty error text is still quoted.
+    EXPECT_NE(lines[10].find(",\"Request not executable\",17,\"Request temporarily "
+                             "unexecutable\",0F07 2000,\"PPO1 RC=7 "),
+              std::string::npos)
+        << lines[10];
+    EXPECT_NE(lines[11].find(",\"token\",,"), std::string::npos) << lines[11];
+}
+
+TEST(RendererTest, CsvProblemsAndFindings) {
+    Finding finding;
+    finding.kind = FindingKind::FcsError;
+    std::vector<Input> in = {{hex("10 03 02 49 4F 17"), kNoTime, {finding, finding}},
+                             {hex("2A 3F 9F"), kNoTime, {}}};
+    std::vector<std::vector<std::string>> rows = parse_csv(render(OutputFormat::Csv, in));
+    ASSERT_EQ(rows.size(), 3u);
+    for (const auto& row : rows)
+        ASSERT_EQ(row.size(), 28u);
+    EXPECT_EQ(rows[1][1], "");  // no time
+    EXPECT_EQ(rows[1][14], "false");
+    EXPECT_EQ(rows[1][26], "fcs_mismatch@4 bad_end_delimiter@5");
+    EXPECT_EQ(rows[1][27], "fcs_error fcs_error");
+    EXPECT_EQ(rows[2][3], "");  // no frame type
+    EXPECT_EQ(rows[2][26], "bad_start_delimiter@0");
+    EXPECT_EQ(rows[2][25], "");
+}
+
+// ---- verbose ---------------------------------------------------------------------------------
+
+std::vector<std::string> verbose_block(const std::vector<Input>& inputs, std::size_t frame) {
+    std::vector<std::string> lines = split_lines(render(OutputFormat::Verbose, inputs));
+    std::vector<std::string> block;
+    bool inside = false;
+    std::string start = "Frame " + std::to_string(frame) + ":";
+    for (const std::string& line : lines) {
+        if (line.rfind(start, 0) == 0) {
+            inside = true;
+        } else if (inside && line.empty()) {
+            break;
+        }
+        if (inside) block.push_back(line);
+    }
+    return block;
+}
+
+bool contains(const std::vector<std::string>& lines, std::string_view wanted) {
+    for (const std::string& line : lines)
+        if (line == wanted) return true;
+    return false;
+}
+
+TEST(RendererTest, VerboseFieldTreeOfADataExchange) {
+    std::vector<std::string> block = verbose_block(session(), 7);
+    ASSERT_FALSE(block.empty());
+    EXPECT_EQ(block[0], "Frame 7: 21 bytes, 2024-01-01T00:00:00.000600000Z");
+    for (std::string_view line : {
+             "PROFIBUS FDL",
+             "    Start delimiter: SD2 (0x68)",
+             "    Length: LE 15, LEr 15",
+             "    Destination address: 3",
+             "    Source address: 2",
+             "    Frame control: 0x7D (request, FCB 1, FCV 1, SRD high)",
+             "    Data unit: 12 bytes from byte 7",
+             "    End delimiter: 0x16",
+             "PROFIBUS DP: Data_Exchange request, master 2 / slave 3",
+             "    PPO: PPO 1 (PCV + 2 PCD words, 12 bytes each way) from Chk_Cfg",
+             "    Dialect: vlt; control/status word profile: fc",
+             "    PCV (parameter channel), bytes 7-14",
+             "        PCA: 0x20D7",
+             "            RC: 2 = Change parameter value (word)",
+             "            SPM: 0",
+             "            PNU: 215",
+             "        IND: 0 (byte 4: 0x00)",
+             "        PVA: 0x00000011, word value 17",
+             "    PCD (2 words)",
+             "        PCD 1 CTW: 0x047F",
+             "        PCD 2 MRV: 0x2000 = 50.00 %",
+         })
+        EXPECT_TRUE(contains(block, line)) << line;
+    std::size_t bit_lines = 0;
+    for (const std::string& line : block)
+        if (line.rfind("            bit ", 0) == 0) ++bit_lines;
+    EXPECT_EQ(bit_lines, 16u);
+    EXPECT_TRUE(std::any_of(block.begin(), block.end(), [](const std::string& line) {
+        return line.rfind("            bit  0 = 1: ", 0) == 0;
+    }));
+    EXPECT_TRUE(std::any_of(block.begin(), block.end(), [](const std::string& line) {
+        return line.rfind("            bit 15 = 0: ", 0) == 0;
+    }));
+    EXPECT_TRUE(std::any_of(block.begin(), block.end(), [](const std::string& line) {
+        return line.rfind("    FCS: 0x", 0) == 0 && line.find("(correct)") != std::string::npos;
+    }));
+}
+
+TEST(RendererTest, VerboseRejectedResponseAndServices) {
+    std::vector<std::string> rejected = verbose_block(session(), 10);
+    EXPECT_TRUE(contains(rejected,
+                         "PROFIBUS DP: Data_Exchange response, master 2 / slave 3, "
+                         "answers frame 9"));
+    EXPECT_TRUE(contains(rejected, "            RC: 7 = Request not executable"));
+    EXPECT_TRUE(contains(rejected, "        Error number: 17 = Request temporarily unexecutable"));
+    std::vector<std::string> prm = verbose_block(session(), 1);
+    EXPECT_TRUE(contains(prm, "    Ident number: 0x0402"));
+    EXPECT_TRUE(contains(prm, "    Watchdog: factors 10 x 10 = 1000 ms"));
+    std::vector<std::string> cfg = verbose_block(session(), 3);
+    EXPECT_TRUE(contains(cfg, "    Identifier bytes: F3 F1"));
+    std::vector<std::string> diag = verbose_block(session(), 6);
+    EXPECT_TRUE(contains(diag, "    Master address: 2"));
+    EXPECT_TRUE(contains(diag, "    Station status 2: 0x0C (always_1 WD_On)"));
+}
+
+TEST(RendererTest, VerboseMalformedTelegram) {
+    std::vector<Input> in = {{hex("10 03 02 49 4F 16"), kNoTime, {}}, {hex("2A"), kNoTime, {}}};
+    std::vector<std::string> bad_fcs = verbose_block(in, 1);
+    ASSERT_FALSE(bad_fcs.empty());
+    EXPECT_EQ(bad_fcs[0], "Frame 1: 6 bytes");
+    EXPECT_TRUE(contains(bad_fcs, "    Bytes: 10 03 02 49 4F 16"));
+    EXPECT_TRUE(contains(bad_fcs, "    FCS: 0x4F (wrong)"));
+    EXPECT_TRUE(contains(bad_fcs, "Problems"));
+    EXPECT_TRUE(contains(bad_fcs,
+                         "    fcs_mismatch (error): byte 4: FCS 0x4F wrong, checksum of "
+                         "the data is 0x4E"));
+    std::vector<std::string> junk = verbose_block(in, 2);
+    EXPECT_TRUE(contains(junk, "    Start delimiter: 0x2A (not a start delimiter)"));
+}
+
+TEST(RendererTest, OutputFormatNames) {
+    for (OutputFormat format :
+         {OutputFormat::Text, OutputFormat::Verbose, OutputFormat::Jsonl, OutputFormat::Csv})
+        EXPECT_EQ(output_format_from_name(output_format_name(format)), format);
+    EXPECT_EQ(output_format_name(OutputFormat::Jsonl), "jsonl");
+    EXPECT_FALSE(output_format_from_name("json").has_value());
+}
+
+}  // namespace
+}  // namespace dpscope

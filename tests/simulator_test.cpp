@@ -1,0 +1,554 @@
+// The bus simulator: reproducible sessions, the start-up sequence of each slave, clean cyclic
+// traffic, fault injection, and the fault and slave specifications of the command line.
+#include "capture/simulator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "decoder/bus_decoder.hpp"
+#include "decoder/dp_payload.hpp"
+#include "tests/test_support.hpp"
+
+namespace dpscope {
+namespace {
+
+using test::hex;
+
+struct Telegram {
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns;
+};
+
+std::vector<Telegram> run(Simulator& simulator) {
+    std::vector<Telegram> out;
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns = 0;
+    while (simulator.next(bytes, time_ns))
+        out.push_back({bytes, time_ns});
+    return out;
+}
+
+std::vector<Telegram> run(const SimulatorOptions& options) {
+    Simulator simulator(options);
+    return run(simulator);
+}
+
+SimulatorOptions small_session(std::uint64_t seed = 1, std::uint64_t cycles = 50) {
+    SimulatorOptions options;
+    options.seed = seed;
+    options.cycles = cycles;
+    return options;
+}
+
+// What a decoded telegram says, copied out of the decoder's reused result.
+struct Decoded {
+    FrameType type;
+    Service service;
+    Direction direction;
+    std::uint8_t master;
+    std::uint8_t slave;
+    std::vector<std::uint8_t> du;
+    bool fcs_ok;
+    std::vector<ProblemKind> problems;
+};
+
+std::vector<Decoded> decode_all(const std::vector<Telegram>& telegrams, BusDecoder& decoder) {
+    std::vector<Decoded> out;
+    for (std::size_t i = 0; i < telegrams.size(); ++i) {
+        const Telegram& t = telegrams[i];
+        const DecodedTelegram& d =
+            decoder.decode(Bytes(t.bytes.data(), t.bytes.size()), t.time_ns, i + 1);
+        Decoded copy{d.fdl.type,   d.service,
+                     d.direction,  d.master,
+                     d.slave,      std::vector<std::uint8_t>(d.fdl.du.begin(), d.fdl.du.end()),
+                     d.fdl.fcs_ok, {}};
+        for (const Problem& p : d.problems())
+            copy.problems.push_back(p.kind);
+        out.push_back(copy);
+    }
+    return out;
+}
+
+// ---- reproducibility and timing --------------------------------------------------------------
+
+TEST(SimulatorTest, SameSeedGivesIdenticalSessions) {
+    std::vector<Telegram> a = run(small_session(7));
+    std::vector<Telegram> b = run(small_session(7));
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        ASSERT_EQ(a[i].bytes, b[i].bytes) << i;
+        ASSERT_EQ(a[i].time_ns, b[i].time_ns) << i;
+    }
+}
+
+TEST(SimulatorTest, DifferentSeedGivesDifferentSessions) {
+    std::vector<Telegram> a = run(small_session(7));
+    std::vector<Telegram> b = run(small_session(8));
+    bool differ = a.size() != b.size();
+    for (std::size_t i = 0; !differ && i < a.size(); ++i)
+        differ = a[i].bytes != b[i].bytes || a[i].time_ns != b[i].time_ns;
+    EXPECT_TRUE(differ);
+}
+
+TEST(SimulatorTest, TimesStrictlyIncreaseFromTheStartTime) {
+    SimulatorOptions options = small_session(3, 300);
+    std::vector<Telegram> telegrams = run(options);
+    ASSERT_FALSE(telegrams.empty());
+    EXPECT_GT(telegrams[0].time_ns, options.start_time_ns);
+    EXPECT_LT(telegrams[0].time_ns, options.start_time_ns + 1'000'000);
+    for (std::size_t i = 1; i < telegrams.size(); ++i)
+        ASSERT_GT(telegrams[i].time_ns, telegrams[i - 1].time_ns) << i;
+    // 300 cycles of 2 ms at least.
+    EXPECT_GE(telegrams.back().time_ns - telegrams[0].time_ns, 299 * 2'000'000LL);
+}
+
+TEST(SimulatorTest, MaxTelegramsIsHonoured) {
+    SimulatorOptions options = small_session(1, 1000);
+    options.max_telegrams = 57;
+    Simulator simulator(options);
+    std::vector<Telegram> telegrams = run(simulator);
+    EXPECT_EQ(telegrams.size(), 57u);
+    EXPECT_EQ(simulator.telegrams(), 57u);
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns = 0;
+    EXPECT_FALSE(simulator.next(bytes, time_ns));
+    // The limit also ends an endless session (cycles 0).
+    options.cycles = 0;
+    options.max_telegrams = 500;
+    EXPECT_EQ(run(options).size(), 500u);
+}
+
+TEST(SimulatorTest, DefaultSlaves) {
+    Simulator simulator(SimulatorOptions{});
+    ASSERT_EQ(simulator.slaves().size(), 3u);
+    EXPECT_EQ(simulator.slaves()[0].address, 3);
+    EXPECT_EQ(simulator.slaves()[0].ppo_type, 1);
+    EXPECT_EQ(simulator.slaves()[1].address, 4);
+    EXPECT_EQ(simulator.slaves()[1].ppo_type, 2);
+    EXPECT_EQ(simulator.slaves()[2].address, 5);
+    EXPECT_EQ(simulator.slaves()[2].ppo_type, 5);
+    EXPECT_EQ(simulator.slaves()[2].dialect, Dialect::Vlt);
+}
+
+// ---- start-up --------------------------------------------------------------------------------
+
+struct StartUpCase {
+    SimulatedSlave slave;
+    std::vector<std::uint8_t> cfg;
+    std::uint16_t ident;
+};
+
+TEST(SimulatorTest, StartUpSequencePerSlave) {
+    const std::vector<StartUpCase> cases = {
+        {{3, 1, Dialect::Vlt}, hex("F3 F1"), 0x0402},
+        {{4, 2, Dialect::Vlt}, hex("F3 F5"), 0x0402},
+        {{5, 3, Dialect::Vlt}, hex("F1"), 0x0402},
+        {{6, 4, Dialect::Vlt}, hex("F5"), 0x0402},
+        {{7, 5, Dialect::Profidrive}, hex("F3 F9"), 0x6001},
+    };
+    SimulatorOptions options = small_session(2, 1);
+    for (const StartUpCase& c : cases)
+        options.slaves.push_back(c.slave);
+    std::vector<Telegram> telegrams = run(options);
+    BusDecoder decoder;
+    std::vector<Decoded> decoded = decode_all(telegrams, decoder);
+    ASSERT_GE(decoded.size(), cases.size() * 10 + 2);
+
+    const Service kServices[] = {Service::FdlStatus, Service::FdlStatus, Service::SlaveDiag,
+                                 Service::SlaveDiag, Service::SetPrm,    Service::SetPrm,
+                                 Service::ChkCfg,    Service::ChkCfg,    Service::SlaveDiag,
+                                 Service::SlaveDiag};
+    for (std::size_t s = 0; s < cases.size(); ++s) {
+        const StartUpCase& c = cases[s];
+        SCOPED_TRACE(static_cast<int>(c.slave.address));
+        for (std::size_t k = 0; k < 10; ++k) {
+            const Decoded& d = decoded[s * 10 + k];
+            SCOPED_TRACE(k);
+            EXPECT_EQ(d.service, kServices[k]);
+            EXPECT_EQ(d.direction, k % 2 == 0 ? Direction::Request : Direction::Response);
+            EXPECT_EQ(d.master, 2);
+            EXPECT_EQ(d.slave, c.slave.address);
+            EXPECT_TRUE(d.problems.empty());
+        }
+        const Decoded* seq = &decoded[s * 10];
+        EXPECT_EQ(seq[0].type, FrameType::Sd1);
+        EXPECT_EQ(seq[5].type, FrameType::ShortAck);
+        EXPECT_EQ(seq[7].type, FrameType::ShortAck);
+        EXPECT_EQ(seq[6].du, c.cfg);
+        // First diagnosis: not parameterised yet, no master; the last one: master 2, WD on.
+        std::vector<std::uint8_t> first_diag = hex("02 05 00 FF");
+        std::vector<std::uint8_t> last_diag = hex("00 0C 00 02");
+        for (auto* diag : {&first_diag, &last_diag}) {
+            diag->push_back(static_cast<std::uint8_t>(c.ident >> 8));
+            diag->push_back(static_cast<std::uint8_t>(c.ident));
+        }
+        EXPECT_EQ(seq[3].du, first_diag);
+        EXPECT_EQ(seq[9].du, last_diag);
+        ASSERT_GE(seq[4].du.size(), 7u);
+        EXPECT_EQ(seq[4].du[4], c.ident >> 8);
+        EXPECT_EQ(seq[4].du[5], c.ident & 0xFF);
+        EXPECT_EQ(seq[4].du.size(), c.slave.dialect == Dialect::Profidrive ? 10u : 7u);
+
+        const StationConfig& station = decoder.station(c.slave.address);
+        EXPECT_TRUE(station.has_ident);
+        EXPECT_EQ(station.ident, c.ident);
+        EXPECT_EQ(station.ppo.type, c.slave.ppo_type);
+        EXPECT_EQ(station.ppo.source, PpoSource::ChkCfg);
+        EXPECT_EQ(station.cfg_frame, s * 10 + 7);
+    }
+    const Decoded& gc = decoded[cases.size() * 10];
+    EXPECT_EQ(gc.service, Service::GlobalControl);
+    EXPECT_EQ(gc.du, hex("00 00"));
+    EXPECT_EQ(decoded[cases.size() * 10 + 1].service, Service::Token);
+    EXPECT_EQ(decoded[cases.size() * 10 + 2].service, Service::DataExchange);
+}
+
+TEST(SimulatorTest, CleanRunDecodesWithoutProblems) {
+    std::vector<Telegram> telegrams = run(small_session(4, 600));
+    BusDecoder decoder;
+    std::vector<Decoded> decoded = decode_all(telegrams, decoder);
+    std::size_t tokens = 0, data_exchange = 0, unknown = 0, gap_polls = 0, global_control = 0;
+    for (std::size_t i = 0; i < decoded.size(); ++i) {
+        const Decoded& d = decoded[i];
+        ASSERT_TRUE(d.problems.empty()) << "telegram " << i + 1;
+        ASSERT_TRUE(d.fcs_ok) << "telegram " << i + 1;
+        if (d.service == Service::Token) ++tokens;
+        if (d.service == Service::DataExchange) ++data_exchange;
+        if (d.service == Service::Unknown) ++unknown;
+        if (d.service == Service::FdlStatus && d.direction == Direction::Request &&
+            (d.slave < 3 || d.slave > 5))
+            ++gap_polls;
+        if (d.service == Service::GlobalControl) ++global_control;
+    }
+    EXPECT_EQ(unknown, 0u);
+    EXPECT_EQ(tokens, 601u);                 // one per cycle and one after start-up
+    EXPECT_EQ(data_exchange, 600u * 3 * 2);  // request and response per slave and cycle
+    EXPECT_EQ(gap_polls, 6u);                // every 100 cycles
+    EXPECT_EQ(global_control, 1u + 2);       // start-up, then every 250 cycles
+}
+
+TEST(SimulatorTest, GapPollsNeverAddressAStationOnTheBus) {
+    // Gap polls ask addresses where nobody is; they start above the highest station and wrap
+    // around after 125, skipping the master and the slaves.
+    SimulatorOptions options = small_session(1, 500);
+    options.slaves = {{124, 3, Dialect::Vlt}, {4, 3, Dialect::Vlt}, {3, 3, Dialect::Vlt}};
+    std::vector<Telegram> telegrams = run(options);
+    BusDecoder decoder;
+    std::vector<Decoded> decoded = decode_all(telegrams, decoder);
+    std::vector<int> polled;
+    for (std::size_t i = 3 * 10; i < decoded.size(); ++i)
+        if (decoded[i].service == Service::FdlStatus && decoded[i].direction == Direction::Request)
+            polled.push_back(decoded[i].slave);
+    ASSERT_EQ(polled.size(), 5u);
+    EXPECT_EQ(polled[0], 125);
+    EXPECT_EQ(polled[1], 1);
+    for (int address : polled) {
+        EXPECT_TRUE(address != 2 && address != 3 && address != 4 && address != 124)
+            << "gap poll sent to station " << address << ", which is on the bus (polled: "
+            << ::testing::PrintToString(polled) << ")";
+    }
+    EXPECT_EQ(polled[2], 5);
+}
+
+TEST(SimulatorTest, WithoutStartUpTheCaptureBeginsWithTheFirstCycle) {
+    SimulatorOptions options = small_session(6, 20);
+    options.record_start_up = false;
+    std::vector<Telegram> telegrams = run(options);
+    BusDecoder decoder;
+    std::vector<Decoded> decoded = decode_all(telegrams, decoder);
+    ASSERT_FALSE(decoded.empty());
+    EXPECT_EQ(decoded[0].service, Service::DataExchange);
+    EXPECT_EQ(decoded[0].direction, Direction::Request);
+    EXPECT_EQ(decoded[0].slave, 3);
+    for (const Decoded& d : decoded) {
+        EXPECT_NE(d.service, Service::SetPrm);
+        EXPECT_NE(d.service, Service::ChkCfg);
+        EXPECT_NE(d.service, Service::SlaveDiag);
+        EXPECT_NE(d.service, Service::FdlStatus);
+    }
+    // The start-up still took its time on the bus.
+    std::vector<Telegram> with_start_up = run(small_session(6, 20));
+    EXPECT_EQ(telegrams.size(), with_start_up.size() - 32);
+    EXPECT_EQ(telegrams[0].time_ns, with_start_up[32].time_ns);
+    EXPECT_EQ(telegrams[0].bytes, with_start_up[32].bytes);
+}
+
+// ---- fault specifications --------------------------------------------------------------------
+
+TEST(SimulatorTest, FaultKindNamesRoundTrip) {
+    for (std::size_t i = 0; i < static_cast<std::size_t>(FaultKind::Count); ++i) {
+        auto kind = static_cast<FaultKind>(i);
+        std::string_view name = fault_kind_name(kind);
+        EXPECT_NE(name, "unknown");
+        EXPECT_EQ(fault_kind_from_name(name), kind) << name;
+    }
+    EXPECT_EQ(fault_kind_name(FaultKind::FcsError), "fcs_error");
+    EXPECT_EQ(fault_kind_name(FaultKind::FdlNoResponse), "fdl_no_response");
+    EXPECT_EQ(fault_kind_name(FaultKind::Count), "unknown");
+    EXPECT_EQ(fault_kind_from_name("bad_fcs"), FaultKind::FcsError);
+    EXPECT_FALSE(fault_kind_from_name("FCS_ERROR").has_value());
+    EXPECT_FALSE(fault_kind_from_name("").has_value());
+}
+
+FaultSpec fault(std::string_view text) {
+    std::string error;
+    auto spec = parse_fault_spec(text, error);
+    EXPECT_TRUE(spec.has_value()) << text << ": " << error;
+    return spec.value_or(FaultSpec{});
+}
+
+std::string fault_error(std::string_view text) {
+    std::string error;
+    EXPECT_FALSE(parse_fault_spec(text, error).has_value()) << text;
+    return error;
+}
+
+TEST(SimulatorTest, ParseFaultSpecValid) {
+    FaultSpec once = fault("garbage");
+    EXPECT_EQ(once.kind, FaultKind::Garbage);
+    EXPECT_EQ(once.rate, 0);
+    EXPECT_FALSE(once.cycle.has_value());
+    EXPECT_FALSE(once.slave.has_value());
+
+    FaultSpec at = fault("fdl_retry@26:3");
+    EXPECT_EQ(at.kind, FaultKind::FdlRetry);
+    EXPECT_EQ(at.cycle, 26u);
+    EXPECT_EQ(at.slave, 3);
+    EXPECT_EQ(at.rate, 0);
+
+    FaultSpec rate = fault("request_rejected=0.25");
+    EXPECT_EQ(rate.kind, FaultKind::RequestRejected);
+    EXPECT_DOUBLE_EQ(rate.rate, 0.25);
+    EXPECT_FALSE(rate.cycle.has_value());
+
+    FaultSpec rate_slave = fault("spm_violation=1:126");
+    EXPECT_DOUBLE_EQ(rate_slave.rate, 1.0);
+    EXPECT_EQ(rate_slave.slave, 126);
+
+    FaultSpec alias = fault("bad_fcs@0:0");
+    EXPECT_EQ(alias.kind, FaultKind::FcsError);
+    EXPECT_EQ(alias.cycle, 0u);
+    EXPECT_EQ(alias.slave, 0);
+
+    EXPECT_EQ(fault("stacked_request:5").slave, 5);
+}
+
+TEST(SimulatorTest, ParseFaultSpecInvalid) {
+    std::string unknown = fault_error("nonsense@3");
+    EXPECT_EQ(unknown.rfind("fault 'nonsense@3': unknown kind 'nonsense' (known: fcs_error, "
+                            "garbage, ",
+                            0),
+              0u)
+        << unknown;
+    EXPECT_NE(unknown.find("fdl_no_response)"), std::string::npos) << unknown;
+    EXPECT_EQ(fault_error("garbage@x"), "fault 'garbage@x': 'x' is not a cycle number");
+    EXPECT_EQ(fault_error("garbage@-1"), "fault 'garbage@-1': '-1' is not a cycle number");
+    EXPECT_EQ(fault_error("garbage@"), "fault 'garbage@': '' is not a cycle number");
+    EXPECT_EQ(fault_error("garbage=0"), "fault 'garbage=0': rate '0' must be a number in (0, 1]");
+    EXPECT_EQ(fault_error("garbage=1.5"),
+              "fault 'garbage=1.5': rate '1.5' must be a number in (0, 1]");
+    EXPECT_EQ(fault_error("garbage=abc"),
+              "fault 'garbage=abc': rate 'abc' must be a number in (0, 1]");
+    EXPECT_EQ(fault_error("garbage="), "fault 'garbage=': rate '' must be a number in (0, 1]");
+    EXPECT_EQ(fault_error("garbage:127"),
+              "fault 'garbage:127': '127' is not a station address 0..126");
+    EXPECT_EQ(fault_error("garbage@3:x"),
+              "fault 'garbage@3:x': 'x' is not a station address 0..126");
+    EXPECT_EQ(fault_error("garbage:"), "fault 'garbage:': '' is not a station address 0..126");
+    EXPECT_NE(fault_error("").find("unknown kind ''"), std::string::npos);
+}
+
+SimulatedSlave slave(std::string_view text) {
+    std::string error;
+    auto spec = parse_slave_spec(text, error);
+    EXPECT_TRUE(spec.has_value()) << text << ": " << error;
+    return spec.value_or(SimulatedSlave{});
+}
+
+std::string slave_error(std::string_view text) {
+    std::string error;
+    EXPECT_FALSE(parse_slave_spec(text, error).has_value()) << text;
+    return error;
+}
+
+TEST(SimulatorTest, ParseSlaveSpecValid) {
+    SimulatedSlave a = slave("5:2");
+    EXPECT_EQ(a.address, 5);
+    EXPECT_EQ(a.ppo_type, 2);
+    EXPECT_EQ(a.dialect, Dialect::Vlt);
+    SimulatedSlave b = slave("7:1:profidrive");
+    EXPECT_EQ(b.address, 7);
+    EXPECT_EQ(b.ppo_type, 1);
+    EXPECT_EQ(b.dialect, Dialect::Profidrive);
+    SimulatedSlave c = slave("125:5:vlt");
+    EXPECT_EQ(c.address, 125);
+    EXPECT_EQ(c.ppo_type, 5);
+    EXPECT_EQ(c.dialect, Dialect::Vlt);
+    EXPECT_EQ(slave("0:3").address, 0);
+}
+
+TEST(SimulatorTest, ParseSlaveSpecInvalid) {
+    EXPECT_EQ(slave_error("5"), "slave '5': expected ADDR:PPO or ADDR:PPO:DIALECT");
+    EXPECT_EQ(slave_error("126:1"), "slave '126:1': address must be 0..125");
+    EXPECT_EQ(slave_error("x:1"), "slave 'x:1': address must be 0..125");
+    EXPECT_EQ(slave_error(":1"), "slave ':1': address must be 0..125");
+    EXPECT_EQ(slave_error("5:0"), "slave '5:0': PPO type must be 1..5");
+    EXPECT_EQ(slave_error("5:6"), "slave '5:6': PPO type must be 1..5");
+    EXPECT_EQ(slave_error("5:"), "slave '5:': PPO type must be 1..5");
+    EXPECT_EQ(slave_error("5:1:foo"), "slave '5:1:foo': dialect must be vlt or profidrive");
+    EXPECT_EQ(slave_error("5:1:"), "slave '5:1:': dialect must be vlt or profidrive");
+    EXPECT_EQ(slave_error("5:1:vlt:x"), "slave '5:1:vlt:x': dialect must be vlt or profidrive");
+}
+
+// ---- fault injection -------------------------------------------------------------------------
+
+TEST(SimulatorTest, EveryFaultKindIsInjectedExactlyOnce) {
+    for (std::size_t i = 0; i < static_cast<std::size_t>(FaultKind::Count); ++i) {
+        auto kind = static_cast<FaultKind>(i);
+        for (std::uint8_t address : std::initializer_list<std::uint8_t>{3, 4, 5}) {
+            SCOPED_TRACE(std::string(fault_kind_name(kind)) + " on slave " +
+                         std::to_string(address));
+            SimulatorOptions options = small_session(9, 300);
+            options.faults = {FaultSpec{kind, 0, 5, address}};
+            Simulator simulator(options);
+            std::vector<Telegram> telegrams = run(simulator);
+            ASSERT_EQ(simulator.injections().size(), 1u);
+            const Injection& injection = simulator.injections()[0];
+            EXPECT_EQ(injection.kind, kind);
+            EXPECT_EQ(injection.slave, address);
+            EXPECT_GE(injection.cycle, 5u);
+            EXPECT_GE(injection.telegram, 1u);
+            EXPECT_LE(injection.telegram, telegrams.size());
+        }
+    }
+}
+
+TEST(SimulatorTest, FaultWithoutCycleHappensOnceAtASeededCycle) {
+    SimulatorOptions options = small_session(9, 300);
+    options.faults = {FaultSpec{FaultKind::Garbage, 0, std::nullopt, std::nullopt}};
+    Simulator first(options);
+    run(first);
+    ASSERT_EQ(first.injections().size(), 1u);
+    EXPECT_GE(first.injections()[0].cycle, 20u);
+    EXPECT_LT(first.injections()[0].cycle, 20u + 150);
+    Simulator second(options);
+    run(second);
+    ASSERT_EQ(second.injections().size(), 1u);
+    EXPECT_EQ(second.injections()[0].cycle, first.injections()[0].cycle);
+    EXPECT_EQ(second.injections()[0].slave, first.injections()[0].slave);
+}
+
+TEST(SimulatorTest, FaultRateInjectsEveryCycle) {
+    SimulatorOptions options = small_session(9, 10);
+    options.faults = {FaultSpec{FaultKind::FcsError, 1.0, std::nullopt, 5}};
+    Simulator simulator(options);
+    run(simulator);
+    ASSERT_EQ(simulator.injections().size(), 10u);
+    for (std::size_t i = 0; i < 10; ++i) {
+        EXPECT_EQ(simulator.injections()[i].cycle, i);
+        EXPECT_EQ(simulator.injections()[i].slave, 5);
+    }
+}
+
+TEST(SimulatorTest, FaultOnASlaveWithoutPcvIsNotInjected) {
+    SimulatorOptions options = small_session(9, 100);
+    options.slaves = {{3, 3, Dialect::Vlt}};  // PPO 3: no parameter channel
+    options.faults = {FaultSpec{FaultKind::RequestRejected, 0, 5, std::nullopt},
+                      FaultSpec{FaultKind::ConfigMismatch, 0, 5, std::nullopt}};
+    Simulator simulator(options);
+    run(simulator);
+    ASSERT_EQ(simulator.injections().size(), 1u);
+    EXPECT_EQ(simulator.injections()[0].kind, FaultKind::ConfigMismatch);
+}
+
+TEST(SimulatorTest, FcsErrorProducesABadFcs) {
+    SimulatorOptions options = small_session(9, 20);
+    options.faults = {FaultSpec{FaultKind::FcsError, 0, 5, 3}};
+    Simulator simulator(options);
+    std::vector<Telegram> telegrams = run(simulator);
+    ASSERT_EQ(simulator.injections().size(), 1u);
+    const Injection& injection = simulator.injections()[0];
+    EXPECT_EQ(injection.cycle, 5u);
+    BusDecoder decoder;
+    std::vector<Decoded> decoded = decode_all(telegrams, decoder);
+    std::size_t bad = 0;
+    for (std::size_t i = 0; i < decoded.size(); ++i) {
+        if (decoded[i].fcs_ok) continue;
+        ++bad;
+        EXPECT_EQ(i + 1, injection.telegram);
+        EXPECT_EQ(decoded[i].problems, std::vector<ProblemKind>{ProblemKind::FcsMismatch});
+        EXPECT_EQ(decoded[i].service, Service::DataExchange);
+        EXPECT_EQ(decoded[i].direction, Direction::Response);
+    }
+    EXPECT_EQ(bad, 1u);
+    // The master repeats the request, and this time the answer arrives.
+    ASSERT_GT(decoded.size(), injection.telegram + 1);
+    EXPECT_EQ(telegrams[injection.telegram].bytes, telegrams[injection.telegram - 2].bytes);
+    EXPECT_TRUE(decoded[injection.telegram + 1].fcs_ok);
+}
+
+TEST(SimulatorTest, GarbageProducesARecordThatIsNotATelegram) {
+    SimulatorOptions options = small_session(9, 20);
+    options.faults = {FaultSpec{FaultKind::Garbage, 0, 5, 4}};
+    Simulator simulator(options);
+    std::vector<Telegram> telegrams = run(simulator);
+    ASSERT_EQ(simulator.injections().size(), 1u);
+    std::uint64_t number = simulator.injections()[0].telegram;
+    BusDecoder decoder;
+    std::vector<Decoded> decoded = decode_all(telegrams, decoder);
+    std::size_t invalid = 0;
+    for (std::size_t i = 0; i < decoded.size(); ++i) {
+        if (decoded[i].type != FrameType::Invalid) continue;
+        ++invalid;
+        EXPECT_EQ(i + 1, number);
+        EXPECT_EQ(decoded[i].problems, std::vector<ProblemKind>{ProblemKind::BadStartDelimiter});
+        EXPECT_GE(telegrams[i].bytes.size(), 3u);
+        EXPECT_LE(telegrams[i].bytes.size(), 12u);
+    }
+    EXPECT_EQ(invalid, 1u);
+}
+
+TEST(SimulatorTest, MalformedTelegramIsCutShort) {
+    SimulatorOptions options = small_session(9, 20);
+    options.faults = {FaultSpec{FaultKind::MalformedTelegram, 0, 5, 3}};
+    Simulator simulator(options);
+    std::vector<Telegram> telegrams = run(simulator);
+    ASSERT_EQ(simulator.injections().size(), 1u);
+    BusDecoder decoder;
+    std::vector<Decoded> decoded = decode_all(telegrams, decoder);
+    const Decoded& cut = decoded[simulator.injections()[0].telegram - 1];
+    EXPECT_EQ(cut.problems, std::vector<ProblemKind>{ProblemKind::Truncated});
+    for (std::size_t i = 0; i < decoded.size(); ++i)
+        if (i + 1 != simulator.injections()[0].telegram) {
+            EXPECT_TRUE(decoded[i].problems.empty()) << i;
+        }
+}
+
+TEST(SimulatorTest, ConfigMismatchLengthensOneRequest) {
+    SimulatorOptions options = small_session(9, 20);
+    options.slaves = {{3, 1, Dialect::Vlt}};
+    options.faults = {FaultSpec{FaultKind::ConfigMismatch, 0, 5, 3}};
+    Simulator simulator(options);
+    std::vector<Telegram> telegrams = run(simulator);
+    ASSERT_EQ(simulator.injections().size(), 1u);
+    BusDecoder decoder;
+    std::vector<Decoded> decoded = decode_all(telegrams, decoder);
+    std::size_t long_requests = 0;
+    for (std::size_t i = 0; i < decoded.size(); ++i) {
+        const Decoded& d = decoded[i];
+        if (d.service != Service::DataExchange || d.direction != Direction::Request) continue;
+        if (d.du.size() == 14) {
+            ++long_requests;
+            EXPECT_EQ(i + 1, simulator.injections()[0].telegram);
+        } else {
+            EXPECT_EQ(d.du.size(), 12u);
+        }
+    }
+    EXPECT_EQ(long_requests, 1u);
+}
+
+}  // namespace
+}  // namespace dpscope

@@ -1,0 +1,269 @@
+// The decode summary: counts by frame type, service, problem kind and finding kind, per-slave
+// Data_Exchange counts, and the text `decode -q` prints.
+#include "formats/summary.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "capture/simulator.hpp"
+#include "decoder/bus_decoder.hpp"
+#include "decoder/telegram_builder.hpp"
+#include "tests/test_support.hpp"
+
+namespace dpscope {
+namespace {
+
+using test::hex;
+
+constexpr std::int64_t kT0 = 1'704'067'200'000'000'000;  // 2024-01-01T00:00:00Z
+constexpr std::int64_t kMs = 1'000'000;
+
+struct Input {
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns;
+};
+
+std::vector<std::uint8_t> data_exchange(std::uint8_t da, std::uint8_t sa, bool request,
+                                        std::vector<std::uint8_t> du) {
+    std::uint8_t fc =
+        request ? request_fc(FdlFunction::SrdHigh, true, true) : response_fc(FdlStatus::DataLow);
+    return build_telegram({da, sa, fc, std::nullopt, std::nullopt, Bytes(du)});
+}
+
+// Slave 3 configured as PPO 1, slave 6 guessed from the length, then damage.
+std::vector<Input> inputs() {
+    std::vector<std::uint8_t> ppo1(12, 0);
+    std::vector<std::uint8_t> ppo3 = {0x04, 0x7F, 0x20, 0x00};
+    std::vector<std::uint8_t> bad_response = data_exchange(2, 6, false, ppo3);
+    bad_response[bad_response.size() - 2] ^= 0x5A;
+    std::vector<std::vector<std::uint8_t>> telegrams = {
+        build_telegram({3, 2, request_fc(FdlFunction::SrdHigh, true, true), 61, 62,
+                        Bytes(hex("88 0A 0A 0B 04 02 00"))}),  // 1 Set_Prm
+        hex("E5"),                                             // 2
+        build_telegram({3, 2, request_fc(FdlFunction::SrdHigh, false, true), 62, 62,
+                        Bytes(hex("F3 F1"))}),  // 3 Chk_Cfg
+        hex("E5"),                              // 4
+        data_exchange(3, 2, true, ppo1),        // 5
+        data_exchange(2, 3, false, ppo1),       // 6
+        hex("DC 02 02"),                        // 7 token
+        data_exchange(6, 2, true, ppo3),        // 8
+        bad_response,                           // 9 bad FCS
+        hex("2A 3F"),                           // 10 junk
+    };
+    std::vector<Input> out;
+    for (std::size_t i = 0; i < telegrams.size(); ++i)
+        out.push_back({telegrams[i], kT0 + static_cast<std::int64_t>(i) * kMs});
+    out.push_back({hex("10 09 02 49"), kNoTime});  // 11: truncated FDL_Status, no time
+    return out;
+}
+
+struct Counted {
+    Summary summary;
+    BusDecoder decoder;
+};
+
+void count(Counted& c, const std::vector<Input>& in) {
+    for (std::size_t i = 0; i < in.size(); ++i) {
+        const DecodedTelegram& t =
+            c.decoder.decode(Bytes(in[i].bytes.data(), in[i].bytes.size()), in[i].time_ns, i + 1);
+        c.summary.add(t);
+    }
+}
+
+std::vector<Finding> findings() {
+    Finding fcs;
+    fcs.kind = FindingKind::FcsError;
+    Finding stacked;
+    stacked.kind = FindingKind::StackedRequest;
+    Finding rejected;
+    rejected.kind = FindingKind::RequestRejected;
+    return {fcs, stacked, fcs, rejected};
+}
+
+std::string render_text(const Counted& c, const InputSummary& input) {
+    char* data = nullptr;
+    std::size_t size = 0;
+    FILE* file = open_memstream(&data, &size);
+    EXPECT_NE(file, nullptr);
+    {
+        Output out(file);
+        c.summary.render_text(out, input, c.decoder);
+        EXPECT_TRUE(out.flush());
+    }
+    std::fclose(file);
+    std::string text(data, size);
+    std::free(data);
+    return text;
+}
+
+TEST(SummaryTest, EmptySummary) {
+    Summary summary;
+    EXPECT_EQ(summary.telegrams(), 0u);
+    EXPECT_EQ(summary.with_problems(), 0u);
+    EXPECT_EQ(summary.requests(Service::DataExchange), 0u);
+    EXPECT_EQ(summary.findings(FindingKind::FcsError), 0u);
+    Counted c;
+    std::string text = render_text(c, InputSummary{"empty.raw", "raw", 0, false});
+    EXPECT_EQ(text,
+              "Summary of empty.raw (raw)\n"
+              "  telegrams: 0\n"
+              "  by frame type:\n"
+              "  by service:\n"
+              "  telegrams with problems: 0\n"
+              "  findings: 0\n");
+}
+
+TEST(SummaryTest, CountsByServiceAndDirection) {
+    Counted c;
+    count(c, inputs());
+    const Summary& s = c.summary;
+    EXPECT_EQ(s.telegrams(), 11u);
+    EXPECT_EQ(s.requests(Service::SetPrm), 1u);
+    EXPECT_EQ(s.responses(Service::SetPrm), 1u);
+    EXPECT_EQ(s.requests(Service::ChkCfg), 1u);
+    EXPECT_EQ(s.responses(Service::ChkCfg), 1u);
+    EXPECT_EQ(s.requests(Service::DataExchange), 2u);
+    EXPECT_EQ(s.responses(Service::DataExchange), 2u);
+    EXPECT_EQ(s.requests(Service::Token), 1u);
+    EXPECT_EQ(s.requests(Service::Unknown), 1u);
+    EXPECT_EQ(s.requests(Service::FdlStatus), 1u);
+    EXPECT_EQ(s.responses(Service::FdlStatus), 0u);
+    EXPECT_EQ(s.requests(Service::SlaveDiag), 0u);
+    EXPECT_EQ(s.data_exchange(3), 2u);
+    EXPECT_EQ(s.data_exchange(6), 2u);
+    EXPECT_EQ(s.data_exchange(2), 0u);
+}
+
+TEST(SummaryTest, CountsProblemsAndFindingsByKind) {
+    Counted c;
+    count(c, inputs());
+    c.summary.add_findings(findings());
+    const Summary& s = c.summary;
+    EXPECT_EQ(s.with_problems(), 3u);
+    EXPECT_EQ(s.problems(ProblemKind::FcsMismatch), 1u);
+    EXPECT_EQ(s.problems(ProblemKind::BadStartDelimiter), 1u);
+    EXPECT_EQ(s.problems(ProblemKind::Truncated), 1u);
+    EXPECT_EQ(s.problems(ProblemKind::LengthMismatch), 0u);
+    EXPECT_EQ(s.findings(FindingKind::FcsError), 2u);
+    EXPECT_EQ(s.findings(FindingKind::StackedRequest), 1u);
+    EXPECT_EQ(s.findings(FindingKind::RequestRejected), 1u);
+    EXPECT_EQ(s.findings(FindingKind::OrphanResponse), 0u);
+}
+
+TEST(SummaryTest, RenderText) {
+    Counted c;
+    count(c, inputs());
+    c.summary.add_findings(findings());
+    std::string text = render_text(c, InputSummary{"bus.pcap", "pcap", 0, false});
+    EXPECT_EQ(text,
+              "Summary of bus.pcap (pcap)\n"
+              "  telegrams: 11, from 2024-01-01T00:00:00.000000000Z to "
+              "2024-01-01T00:00:00.009000000Z (0.009000000 s)\n"
+              "  by frame type: SD1 1 SD2 6 SD4 1 SC 2 invalid 1\n"
+              "  by service:\n"
+              "    Unknown                   1  (1 requests, 0 responses)\n"
+              "    FDL_Status                1  (1 requests, 0 responses)\n"
+              "    Set_Prm                   2  (1 requests, 1 responses)\n"
+              "    Chk_Cfg                   2  (1 requests, 1 responses)\n"
+              "    Data_Exchange             4  (2 requests, 2 responses)\n"
+              "    Token                     1  (1 requests, 0 responses)\n"
+              "  telegrams with problems: 3\n"
+              "    bad_start_delimiter                 1\n"
+              "    truncated                           1\n"
+              "    fcs_mismatch                        1\n"
+              "  findings: 4\n"
+              "    stacked_request                     1  (error)\n"
+              "    request_rejected                    1  (note)\n"
+              "    fcs_error                           2  (error)\n"
+              "  slaves:\n"
+              "      3: PPO 1 (PCV + 2 PCD words, 12 bytes each way) from Chk_Cfg; dialect vlt; "
+              "ident 0x0402; 2 Data_Exchange telegrams\n"
+              "      6: PPO guessed from each Data_Exchange length; dialect vlt; 2 Data_Exchange "
+              "telegrams\n");
+}
+
+TEST(SummaryTest, RenderTextNotesDamageAndSkippedBytes) {
+    Counted c;
+    count(c, {{hex("E5"), kNoTime}});
+    std::string text = render_text(c, InputSummary{"<stdin>", "raw", 17, true});
+    EXPECT_EQ(text,
+              "Summary of <stdin> (raw)\n"
+              "  telegrams: 1\n"
+              "  input: reading stopped early (see the message above)\n"
+              "  bytes skipped between telegrams: 17\n"
+              "  by frame type: SC 1\n"
+              "  by service:\n"
+              "    Short_Ack                 1  (0 requests, 1 responses)\n"
+              "  telegrams with problems: 0\n"
+              "  findings: 0\n");
+}
+
+TEST(SummaryTest, RenderTextWithTimesGoingBackwards) {
+    // A log whose clock steps back: the span from the first to the last telegram is negative.
+    Counted c;
+    count(c, {{hex("E5"), kT0 + 1'000'000'000}, {hex("E5"), kT0 + 500'000'000}});
+    std::string text = render_text(c, InputSummary{"log.txt", "hex", 0, false});
+    std::string expected_line =
+        "  telegrams: 2, from 2024-01-01T00:00:01.000000000Z to 2024-01-01T00:00:00.500000000Z "
+        "(-0.500000000 s)\n";
+    EXPECT_NE(text.find(expected_line), std::string::npos) << text;
+    EXPECT_EQ(text.find(".-"), std::string::npos) << text;
+}
+
+TEST(SummaryTest, SlaveLayoutGivenByOption) {
+    DecoderOptions options;
+    options.station_ppo[6] = 4;
+    options.station_dialect[6] = Dialect::Profidrive;
+    Counted c{Summary{}, BusDecoder(options)};
+    count(c, {{data_exchange(6, 2, true, std::vector<std::uint8_t>(12, 0)), kT0}});
+    std::string text = render_text(c, InputSummary{"x", "pcap", 0, false});
+    EXPECT_NE(text.find("      6: PPO 4 (6 PCD words, 12 bytes each way) given by --ppo; dialect "
+                        "profidrive; 1 Data_Exchange telegrams\n"),
+              std::string::npos)
+        << text;
+}
+
+TEST(SummaryTest, SimulatedSessionTotalsAddUp) {
+    SimulatorOptions options;
+    options.seed = 11;
+    options.cycles = 120;
+    options.faults = {FaultSpec{FaultKind::FcsError, 0, 10, 3},
+                      FaultSpec{FaultKind::Garbage, 0, 20, 4}};
+    Simulator simulator(options);
+    std::vector<Input> in;
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns = 0;
+    while (simulator.next(bytes, time_ns))
+        in.push_back({bytes, time_ns});
+    Counted c;
+    count(c, in);
+    const Summary& s = c.summary;
+    EXPECT_EQ(s.telegrams(), in.size());
+    std::uint64_t by_service = 0;
+    for (std::size_t i = 0; i < kServiceCount; ++i)
+        by_service += s.requests(static_cast<Service>(i)) + s.responses(static_cast<Service>(i));
+    EXPECT_EQ(by_service, in.size());
+    EXPECT_EQ(s.with_problems(), 2u);
+    EXPECT_EQ(s.problems(ProblemKind::FcsMismatch), 1u);
+    EXPECT_EQ(s.problems(ProblemKind::BadStartDelimiter), 1u);
+    EXPECT_EQ(s.requests(Service::Token), 121u);
+    // 120 cycles, one request and one response each, plus the retry after the bad FCS.
+    EXPECT_EQ(s.data_exchange(3), 242u);
+    EXPECT_EQ(s.data_exchange(4), 240u);
+    EXPECT_EQ(s.data_exchange(5), 240u);
+    std::string text = render_text(c, InputSummary{"sim.pcap", "pcap", 0, false});
+    EXPECT_NE(text.find("  telegrams: " + std::to_string(in.size()) + ", from "),
+              std::string::npos);
+    EXPECT_NE(text.find("    fcs_mismatch                        1\n"), std::string::npos);
+    EXPECT_NE(text.find("      4: PPO 2 (PCV + 6 PCD words, 20 bytes each way) from Chk_Cfg; "
+                        "dialect vlt; ident 0x0402; 240 Data_Exchange telegrams\n"),
+              std::string::npos)
+        << text;
+}
+
+}  // namespace
+}  // namespace dpscope
