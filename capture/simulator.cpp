@@ -391,9 +391,9 @@ void Simulator::master_step(Slave& slave) {
     const Request& seen = slave.master_seen_answer;
     const bool saw = slave.master_saw_response;
     const bool spontaneous_seen = saw && seen.rc >= kSpontaneousWord && seen.rc <= 12;
-    // The master reacts to the response of the previous cycle. An idle slave answer (RC 0)
-    // means the next answer will be fresh even if it repeats the last one.
-    if (saw && seen.rc == 0) slave.accepted_answer = {};
+    // The master reacts to the response of the previous cycle (cycle_ - 1). The slave lags one
+    // cycle, so only a response from a cycle after the request was first sent can answer it.
+    const bool fresh = cycle_ >= slave.request_cycle + 2;
     if (spontaneous_seen) {
         if (slave.master_seen_spm != slave.master_acked_slave_spm) {  // a new message
             bool hold_back = slave.spontaneous_late_ack && now_ - slave.spontaneous_time < give_up;
@@ -402,17 +402,23 @@ void Simulator::master_step(Slave& slave) {
                 slave.master_acked_slave_spm = slave.master_seen_spm;
             }
         }
-    } else if (saw && slave.master_busy && seen.rc != 0 && !(seen == slave.accepted_answer)) {
-        // A fresh answer (a stale repeat of the previous one is equal to accepted_answer). One
-        // for another parameter is wrong; the master drops the request all the same.
-        slave.accepted_answer = seen;
+    } else if (saw && fresh && slave.master_busy && seen.rc != 0 &&
+               response_code(slave.config.dialect, seen.rc).kind != ResponseKind::Undefined &&
+               (seen.pnu == slave.master_request.pnu || seen.rc == kRejected ||
+                seen.rc == kNoAuthority || slave.answer_mismatched)) {
+        // An answer to this request (a late answer to an abandoned request names another PNU).
+        // RC 7 and 8 need not echo the PNU. An injected wrong-PNU answer ends the request too.
+        // A code the dialect does not define is no answer: the master keeps waiting.
         slave.master_busy = false;
+        slave.answer_mismatched = false;  // consumed: its repeats answer nothing else
         slave.last_request = slave.master_request;
         slave.next_request = choose_request(slave);
         slave.has_next = true;
         bool positive = seen.rc != kRejected && seen.rc != kNoAuthority;
+        // Straight on to the next request (no RC 0 cycle) only for another parameter than the
+        // one the slave's answer shows, or its stale repeats would pass for the new answer.
         bool direct = positive && slave.next_request.pnu != slave.last_request.pnu &&
-                      random(3) == 0;
+                      slave.next_request.pnu != seen.pnu && random(3) == 0;
         slave.idle_cycles = direct ? 0 : static_cast<std::uint32_t>(1 + random(4));
     }
     if (slave.master_busy && now_ - slave.request_time > give_up) {
@@ -423,11 +429,18 @@ void Simulator::master_step(Slave& slave) {
     }
     if (slave.master_busy && take_fault(FaultKind::StackedRequest, index)) {
         record_injection(FaultKind::StackedRequest, index);
+        // Another parameter than the pending one and than the last one answered: the slave's
+        // register may still hold that answer, and a real master could not tell it from a new one.
         Request other = choose_request(slave);
-        if (other.pnu == slave.master_request.pnu)
-            other = {kRead, static_cast<std::uint16_t>(other.pnu == 520 ? 518 : 520), 0, 0};
+        for (std::uint16_t pnu : {std::uint16_t{520}, std::uint16_t{518}, std::uint16_t{516}}) {
+            if (other.pnu != slave.master_request.pnu && other.pnu != slave.last_request.pnu &&
+                other.pnu != slave.master_seen_answer.pnu)
+                break;
+            other = {kRead, pnu, 0, 0};
+        }
         slave.master_request = other;
         slave.request_time = now_;
+        slave.request_cycle = cycle_;
     }
     const bool message_pending =
         spontaneous_seen && slave.master_seen_spm != slave.master_acked_slave_spm;
@@ -444,6 +457,7 @@ void Simulator::master_step(Slave& slave) {
             slave.master_request = slave.has_next ? slave.next_request : choose_request(slave);
             slave.has_next = false;
             slave.request_time = now_;
+            slave.request_cycle = cycle_;
         }
     }
 }
@@ -483,9 +497,11 @@ Simulator::Request Simulator::compute_answer(Slave& slave, std::size_t index) {
         case kReadCount: answer = {6, r.pnu, 0, 10}; break;
         default: answer = {kRejected, r.pnu, r.ind, 18}; break;
     }
+    slave.answer_mismatched = false;
     if (take_fault(FaultKind::MismatchedResponse, index)) {
         record_injection(FaultKind::MismatchedResponse, index);
         answer.pnu = static_cast<std::uint16_t>(r.pnu + 1);
+        slave.answer_mismatched = true;
     } else if (take_fault(FaultKind::UnexpectedResponseType, index)) {
         record_injection(FaultKind::UnexpectedResponseType, index);
         answer.rc = r.rc == kReadCount ? 1 : 6;
@@ -545,8 +561,10 @@ void Simulator::slave_step(Slave& slave, std::size_t index) {
                 slave.working = false;
             }
         }
+        // An orphan: an answer out of nothing, on a channel idle on both sides (the slave's last
+        // output was RC 0 too, so it cannot pass for the previous answer repeated).
         if (!override_active && !slave.working && !slave.master_busy && slave.seen.rc == 0 &&
-            slave.answer.rc == 0 && !slave.spontaneous_active &&
+            slave.answer.rc == 0 && slave.out.rc == 0 && !slave.spontaneous_active &&
             take_fault(FaultKind::OrphanResponse, index)) {
             record_injection(FaultKind::OrphanResponse, index);
             override_active = true;

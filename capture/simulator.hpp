@@ -128,7 +128,7 @@ private:
         std::uint32_t idle_cycles = 0;
         bool master_spm = false;
         bool master_acked_slave_spm = false;  // the slave SPM of the last message acknowledged
-        Request accepted_answer;              // the last answer the master took
+        std::uint64_t request_cycle = 0;      // the cycle the current request was first sent
         bool master_saw_response = false;     // the master's view of the last response
         Request master_seen_answer;
         bool master_seen_spm = false;
@@ -140,6 +140,7 @@ private:
         Request current;
         std::uint64_t ready_cycle = 0;
         Request answer;                  // what the slave's PCV says now
+        bool answer_mismatched = false;  // `answer` is an injected wrong-PNU answer
         Request out;                     // what it sends this cycle
         bool slave_spm = false;
         bool spontaneous_active = false;

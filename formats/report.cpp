@@ -640,7 +640,7 @@ void svg_timeline(TextBuffer& b, const ChannelStats& s, const ReportContext& c) 
         append(b, "<p class=\"meta\">No timed transactions or findings.</p>\n");
         return;
     }
-    constexpr int kWidth = 720, kLeft = 48, kRight = 10;
+    constexpr int kWidth = 720, kLeft = 84, kRight = 10;
     constexpr int kBarsTop = 64, kBarsHeight = 80, kHeight = 178;
     const auto& bins = timeline.bins();
     std::size_t used = 0;
@@ -662,7 +662,7 @@ void svg_timeline(TextBuffer& b, const ChannelStats& s, const ReportContext& c) 
         fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", kLeft - 6,
                        14 + row * 16, rows[row]);
     fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">transactions</text>\n",
-                   kLeft + 66, kBarsTop - 6);
+                   kLeft - 6, kBarsTop + kBarsHeight / 2);
     fmt::format_to(it, "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#8a93a6\"/>\n", kLeft,
                    kBarsTop + kBarsHeight, kWidth - kRight, kBarsTop + kBarsHeight);
     const std::int64_t width_ns = timeline.bin_width_ns();

@@ -44,6 +44,17 @@ golden_case(faults_station_filter samples/expected/faults.station4.txt decode --
 golden_case(ppo1_pnu_filter samples/expected/ppo1.pnu207.txt decode --pnu 207 -T jsonl samples/ppo1.pcap)
 golden_case(truncated_capture samples/expected/truncated.txt EXIT 3 decode samples/truncated.pcap)
 
+# Conformance reports: a capture with every fault kind (exit 1: errors found) and a clean one.
+golden_case(report_faults_text samples/expected/report.faults.txt EXIT 1 report samples/faults.pcap)
+golden_case(report_faults_json samples/expected/report.faults.json EXIT 1 report -T json samples/faults.pcap)
+golden_case(report_faults_markdown samples/expected/report.faults.md EXIT 1 report -T markdown samples/faults.pcap)
+golden_case(report_faults_junit samples/expected/report.faults.junit.xml EXIT 1 report -T junit samples/faults.pcap)
+golden_case(report_faults_html samples/expected/report.faults.html EXIT 1 report -T html samples/faults.pcap)
+golden_case(report_faults_warning samples/expected/report.faults.station4.txt EXIT 1 report --station 4 --fail-on warning samples/faults.pcap)
+golden_case(report_clean_text samples/expected/report.ppo2.txt report samples/ppo2.pcap)
+golden_case(report_profidrive_json samples/expected/report.profidrive.json report -T json --dialect profidrive samples/profidrive.pcap)
+golden_case(decode_faults_findings_jsonl samples/expected/faults.findings.jsonl decode -T jsonl --station 5 -c 120 samples/faults.pcap)
+
 add_custom_target(update-golden ${golden_update_commands}
     DEPENDS dpscope
     COMMENT "Rewriting samples/expected/ from the current dpscope"
