@@ -1,5 +1,7 @@
 #include "decoder/fdl.hpp"
 
+#include <cstring>
+
 namespace dpscope {
 
 std::string_view frame_type_name(FrameType type) {
@@ -101,8 +103,18 @@ bool function_expects_reply(std::uint8_t function) noexcept {
 }
 
 std::uint8_t fcs_of(Bytes bytes) noexcept {
-    unsigned sum = 0;
-    for (std::uint8_t b : bytes) sum += b;
+    // Eight bytes at a time: the even and odd bytes of a word summed in 16-bit lanes, which
+    // cannot overflow for a telegram (at most 255 bytes, 32 words, 510 per lane and word).
+    constexpr std::uint64_t kLowBytes = 0x00FF00FF00FF00FFULL;
+    std::uint64_t lanes = 0;
+    std::size_t i = 0;
+    for (; i + 8 <= bytes.size(); i += 8) {
+        std::uint64_t word;
+        std::memcpy(&word, bytes.data() + i, sizeof word);
+        lanes += (word & kLowBytes) + ((word >> 8) & kLowBytes);
+    }
+    unsigned sum = static_cast<unsigned>((lanes * 0x0001000100010001ULL) >> 48);
+    for (; i < bytes.size(); ++i) sum += bytes[i];
     return static_cast<std::uint8_t>(sum);
 }
 
@@ -176,7 +188,21 @@ void check_trailer(Bytes bytes, std::size_t sum_from, std::size_t fcs_at, FdlTel
 }  // namespace
 
 void parse_fdl(Bytes bytes, FdlTelegram& out) noexcept {
-    out = FdlTelegram{};
+    // Field by field rather than `out = FdlTelegram{}`: the problem list's storage need not be
+    // zeroed for every telegram.
+    out.type = FrameType::Invalid;
+    out.size = 0;
+    out.length_field = 0;
+    out.has_addresses = out.has_fc = out.has_dsap = out.has_ssap = false;
+    out.has_dest_segment = out.has_source_segment = false;
+    out.da = out.sa = out.dsap = out.ssap = out.dest_segment = out.source_segment = 0;
+    out.fc = FrameControl{};
+    out.du = {};
+    out.du_offset = 0;
+    out.has_fcs = false;
+    out.fcs = 0;
+    out.fcs_ok = true;
+    out.problems.clear();
     ByteReader reader(bytes);
     auto sd = reader.u8();
     if (!sd) {

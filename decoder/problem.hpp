@@ -77,7 +77,7 @@ public:
     }
 
 private:
-    std::array<Problem, kCapacity> items_{};
+    std::array<Problem, kCapacity> items_;  // only the first count_ are meaningful
     std::uint8_t count_ = 0;
     std::uint8_t dropped_ = 0;
 };

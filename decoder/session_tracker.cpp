@@ -202,11 +202,11 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
     bool usable = true;
     check_link(t, usable);
     if (!usable || !t.has_roles) return current_;
+    Channel& ch = channel(t.master, t.slave);
     bool retry = false;
-    check_frame_count(t, retry);
+    check_frame_count(ch, t, retry);
     if (t.service != Service::DataExchange) return current_;
 
-    Channel& ch = channel(t.master, t.slave);
     ChannelStats& stats = ch.stats;
     ++stats.data_exchange;
     stats.ppo = t.ppo;
@@ -249,10 +249,9 @@ void SessionTracker::check_link(const DecodedTelegram& t, bool& usable) {
     }
 }
 
-void SessionTracker::check_frame_count(const DecodedTelegram& t, bool& retry) {
+void SessionTracker::check_frame_count(Channel& ch, const DecodedTelegram& t, bool& retry) {
     if (t.direction != Direction::Request || !t.fdl.has_fc || t.fdl.da == kBroadcastAddress) return;
     std::uint8_t function = t.fdl.fc.function();
-    Channel& ch = channel(t.master, t.slave);
     if (function == static_cast<std::uint8_t>(FdlFunction::FdlStatus)) {
         ch.fcb_valid = false;  // the frame count restarts after FDL_Status
         return;

@@ -141,7 +141,7 @@ private:
                      std::uint64_t request_frame, bool has_stations, std::uint8_t master,
                      std::uint8_t slave);
     void check_link(const DecodedTelegram& t, bool& usable);
-    void check_frame_count(const DecodedTelegram& t, bool& retry);
+    void check_frame_count(Channel& ch, const DecodedTelegram& t, bool& retry);
     void check_config(Channel& ch, const DecodedTelegram& t);
     void master_pcv(Channel& ch, const DecodedTelegram& t);
     void slave_pcv(Channel& ch, const DecodedTelegram& t);

@@ -77,6 +77,7 @@ struct StationView {
 struct Model {
     std::vector<StationView> stations;
     std::array<std::uint64_t, 3> by_severity{};
+    std::uint64_t fcs_errors = 0;  // fcs_error findings shown (every bad FCS is one)
     std::uint64_t shown = 0;
     bool fails = false;
     bool has_bus_findings = false;
@@ -122,6 +123,7 @@ Model build_model(const ReportContext& c) {
         if (!shows(c, f)) return;
         ++m.shown;
         ++m.by_severity[static_cast<std::size_t>(f.severity)];
+        if (f.kind == FindingKind::FcsError) ++m.fcs_errors;
         if (severity_fails(f.severity, c.fail_on)) m.fails = true;
         if (!f.has_stations) m.has_bus_findings = true;
     });
@@ -138,6 +140,14 @@ std::string verdict_text(const ReportContext& c, const Model& m) {
     return fmt::format("{}: {} errors, {} warnings, {} notes (fail on {})",
                        m.fails ? "FAIL" : "PASS", errors(m), warnings(m), notes(m),
                        fail_on_name(c.fail_on));
+}
+
+// "" without a station filter, else "slaves 3, 5".
+std::string filter_text(const ReportContext& c) {
+    std::string text;
+    for (std::uint8_t station : c.stations)
+        text += fmt::format("{}{}", text.empty() ? "slaves " : ", ", station);
+    return text;
 }
 
 std::string ppo_text(const ChannelStats& s) {
@@ -207,10 +217,13 @@ void render_text(const ReportContext& c, const Model& m, Output& out) {
     fmt::format_to(it, "Checks:  time-out {} ms; RC 8 after a read is {}\n",
                    options.timeout_ns / 1'000'000,
                    options.strict ? "an unexpected response (strict)" : "unusual, a warning");
+    if (!c.stations.empty())
+        fmt::format_to(it, "Filter:  {} (telegram counts cover the whole capture)\n",
+                       filter_text(c));
     fmt::format_to(it, "Result:  {}\n\n", verdict_text(c, m));
     append(b, "Summary\n");
     fmt::format_to(it, "  telegrams      {}\n", c.summary->telegrams());
-    fmt::format_to(it, "  FCS errors     {}\n", c.summary->problems(ProblemKind::FcsMismatch));
+    fmt::format_to(it, "  FCS errors     {}\n", m.fcs_errors);
     std::uint64_t transactions = 0;
     for (const StationView& v : m.stations) transactions += v.stats->transactions.total();
     fmt::format_to(it, "  transactions   {}\n", transactions);
@@ -273,7 +286,9 @@ void render_text(const ReportContext& c, const Model& m, Output& out) {
 std::string md_escape(std::string_view text) {
     std::string out;
     for (char ch : text) {
-        if (ch == '|' || ch == '*' || ch == '_' || ch == '`' || ch == '<' || ch == '>') out += '\\';
+        if (ch == '\\' || ch == '|' || ch == '*' || ch == '_' || ch == '`' || ch == '<' ||
+            ch == '>')
+            out += '\\';
         out += ch;
     }
     return out;
@@ -289,13 +304,16 @@ void render_markdown(const ReportContext& c, const Model& m, Output& out) {
                    c.summary->telegrams(), c.input.damaged ? " (ended in damage)" : "");
     fmt::format_to(it, "- Checks: time-out {} ms; RC 8 after a read: {}\n",
                    options.timeout_ns / 1'000'000, options.strict ? "strict" : "lenient");
+    if (!c.stations.empty())
+        fmt::format_to(it, "- Filter: {} (telegram counts cover the whole capture)\n",
+                       filter_text(c));
     fmt::format_to(it, "- dpscope {}\n\n", c.version);
     std::uint64_t transactions = 0;
     for (const StationView& v : m.stations) transactions += v.stats->transactions.total();
     append(b, "## Summary\n\n| telegrams | FCS errors | transactions | errors | warnings | notes |\n"
               "|---:|---:|---:|---:|---:|---:|\n");
     fmt::format_to(it, "| {} | {} | {} | {} | {} | {} |\n\n", c.summary->telegrams(),
-                   c.summary->problems(ProblemKind::FcsMismatch), transactions, errors(m),
+                   m.fcs_errors, transactions, errors(m),
                    warnings(m), notes(m));
     append(b, "## Slaves\n\n| slave | master | PPO | dialect | transactions | rejected | "
               "time-outs | latency ms (min / median / p95 / max) | latency cycles | findings |\n"
@@ -411,6 +429,17 @@ void render_json(const ReportContext& c, const Model& m, Output& out) {
     json::boolean(b, options.strict);
     raw(b, ",\"fail_on\":");
     string(b, fail_on_name(c.fail_on));
+    raw(b, ",\"stations\":");
+    if (c.stations.empty()) {
+        json::null(b);
+    } else {
+        b.push_back('[');
+        for (std::size_t i = 0; i < c.stations.size(); ++i) {
+            if (i) b.push_back(',');
+            integer(b, c.stations[i]);
+        }
+        b.push_back(']');
+    }
     raw(b, "},\"result\":");
     string(b, m.fails ? "fail" : "pass");
     std::uint64_t transactions = 0;
@@ -418,7 +447,7 @@ void render_json(const ReportContext& c, const Model& m, Output& out) {
     raw(b, ",\"summary\":{\"telegrams\":");
     integer(b, static_cast<std::int64_t>(c.summary->telegrams()));
     raw(b, ",\"fcs_errors\":");
-    integer(b, static_cast<std::int64_t>(c.summary->problems(ProblemKind::FcsMismatch)));
+    integer(b, static_cast<std::int64_t>(m.fcs_errors));
     raw(b, ",\"transactions\":");
     integer(b, static_cast<std::int64_t>(transactions));
     raw(b, ",\"findings\":{\"error\":");
@@ -576,11 +605,16 @@ td.n, th.n { text-align: right; font-variant-numeric: tabular-nums; }
 table.kv th { width: 190px; }
 section.station { background: #fff; border: 1px solid #d8dde6; border-radius: 8px;
                   padding: 4px 18px 14px; margin: 18px 0; }
-.error { color: #b42318; } .warning { color: #a15c07; } .note { color: #175cd3; }
+td.error, .card.error, p.error { color: #b42318; }
+td.warning, .card.warning { color: #a15c07; }
+td.note, .card.note { color: #175cd3; }
 tr.error td:first-child { border-left: 4px solid #d92d20; }
 tr.warning td:first-child { border-left: 4px solid #f79009; }
 tr.note td:first-child { border-left: 4px solid #2e90fa; }
-svg { background: #fff; display: block; }
+svg { background: #fff; display: block; max-width: 100%; height: auto; }
+.scroll { overflow-x: auto; max-width: 100%; }
+table.findings td:last-child { overflow-wrap: anywhere; }
+section.station h2 { margin-top: 14px; }
 svg text { font: 11px system-ui, sans-serif; fill: #394150; }
 .legend span { display: inline-block; margin-right: 14px; font-size: 12px; }
 .swatch { display: inline-block; width: 10px; height: 10px; margin-right: 4px; vertical-align: -1px; }
@@ -590,7 +624,10 @@ void svg_latency_histogram(TextBuffer& b, const ChannelStats& s) {
     const LogHistogram& h = s.latency_ns;
     auto it = std::back_inserter(b);
     if (h.count() == 0) {
-        append(b, "<p class=\"meta\">No answered requests.</p>\n");
+        append(b, s.transactions.total() == 0
+                      ? "<p class=\"meta\">No answered requests.</p>\n"
+                      : "<p class=\"meta\">The capture carries no timestamps: latency in cycles "
+                        "only (see above).</p>\n");
         return;
     }
     constexpr int kBars = 30, kWidth = 720, kHeight = 170, kLeft = 48, kBottom = 28, kTop = 10;
@@ -722,6 +759,10 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
                        "&middot; RC 8 rule {}</p>\n",
                    xml(c.input.name), xml(c.input.format), xml(c.version),
                    options.timeout_ns / 1'000'000, options.strict ? "strict" : "lenient");
+    if (!c.stations.empty())
+        fmt::format_to(it, "<p class=\"meta\">Filter: {} (telegram counts cover the whole "
+                           "capture)</p>\n",
+                       xml(filter_text(c)));
     fmt::format_to(it, "<p class=\"verdict {}\" id=\"verdict\">{}</p>\n", m.fails ? "fail" : "pass",
                    xml(verdict_text(c, m)));
     if (c.input.damaged)
@@ -734,13 +775,13 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
                        cls, n, label);
     };
     card("telegrams", c.summary->telegrams(), "");
-    card("FCS errors", c.summary->problems(ProblemKind::FcsMismatch), "");
+    card("FCS errors", m.fcs_errors, "");
     card("transactions", transactions, "");
     card("slaves", m.stations.size(), "");
     card("errors", errors(m), "error");
     card("warnings", warnings(m), "warning");
     card("notes", notes(m), "note");
-    append(b, "</div>\n<table class=\"slaves\">\n<tr><th class=\"n\">slave</th><th class=\"n\">"
+    append(b, "</div>\n<div class=\"scroll\"><table class=\"slaves\">\n<tr><th class=\"n\">slave</th><th class=\"n\">"
               "master</th><th>PPO</th><th>dialect</th><th class=\"n\">transactions</th><th "
               "class=\"n\">median ms</th><th class=\"n\">p95 ms</th><th class=\"n\">errors</th><th "
               "class=\"n\">warnings</th><th class=\"n\">notes</th></tr>\n");
@@ -761,7 +802,7 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
                        v.latency.any ? fmt::format("{:.3f}", v.latency.p95_ms) : "-",
                        severities[2], severities[1], severities[0]);
     }
-    append(b, "</table>\n</section>\n");
+    append(b, "</table></div>\n</section>\n");
 
     for (const StationView& v : m.stations) {
         const ChannelStats& s = *v.stats;
@@ -846,7 +887,7 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
     if (m.shown == 0) {
         append(b, "<p class=\"meta\">No findings.</p>\n");
     } else {
-        append(b, "<table class=\"findings\">\n<tr><th class=\"n\">frame</th><th class=\"n\">time "
+        append(b, "<div class=\"scroll\"><table class=\"findings\">\n<tr><th class=\"n\">frame</th><th class=\"n\">time "
                   "(s)</th><th>severity</th><th>kind</th><th>master / slave</th><th "
                   "class=\"n\">PNU</th><th>message</th></tr>\n");
         std::size_t rows = 0;
@@ -862,7 +903,7 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
                            f.pnu ? fmt::format("{}", *f.pnu) : std::string("-"), xml(f.message));
             out.end_record();
         });
-        append(b, "</table>\n");
+        append(b, "</table></div>\n");
         if (rows > kHtmlFindingRows)
             fmt::format_to(it, "<p class=\"meta\">{} more findings are listed in the text and JSON "
                                "reports.</p>\n",
@@ -881,6 +922,7 @@ void render_junit(const ReportContext& c, const Model& m, Output& out) {
         std::string name;
         std::string classname;
         bool has_stations;
+        std::uint8_t master;
         std::uint8_t slave;
         std::array<std::vector<Finding>, kFindingKindCount> failures;
         std::array<std::uint64_t, kFindingKindCount> others{};
@@ -889,12 +931,14 @@ void render_junit(const ReportContext& c, const Model& m, Output& out) {
     std::vector<Suite> suites;
     for (const StationView& v : m.stations)
         suites.push_back(Suite{fmt::format("slave {} (master {})", v.stats->slave, v.stats->master),
-                               fmt::format("dpscope.slave_{}", v.stats->slave), true,
-                               v.stats->slave, {}, {}});
-    if (m.has_bus_findings) suites.push_back(Suite{"bus", "dpscope.bus", false, 0, {}, {}});
+                               fmt::format("dpscope.master_{}.slave_{}", v.stats->master,
+                                           v.stats->slave),
+                               true, v.stats->master, v.stats->slave, {}, {}});
+    if (m.has_bus_findings) suites.push_back(Suite{"bus", "dpscope.bus", false, 0, 0, {}, {}});
     auto suite_of = [&](const Finding& f) -> Suite* {
         for (Suite& s : suites)
-            if (s.has_stations == f.has_stations && (!f.has_stations || s.slave == f.slave))
+            if (s.has_stations == f.has_stations &&
+                (!f.has_stations || (s.master == f.master && s.slave == f.slave)))
                 return &s;
         return nullptr;
     };

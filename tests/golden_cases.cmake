@@ -51,6 +51,8 @@ golden_case(report_faults_markdown samples/expected/report.faults.md EXIT 1 repo
 golden_case(report_faults_junit samples/expected/report.faults.junit.xml EXIT 1 report -T junit samples/faults.pcap)
 golden_case(report_faults_html samples/expected/report.faults.html EXIT 1 report -T html samples/faults.pcap)
 golden_case(report_faults_warning samples/expected/report.faults.station4.txt EXIT 1 report --station 4 --fail-on warning samples/faults.pcap)
+golden_case(report_timeouts_text samples/expected/report.timeouts.txt EXIT 1 report samples/timeouts.pcap)
+golden_case(report_timeouts_json samples/expected/report.timeouts.json EXIT 1 report -T json samples/timeouts.pcap)
 golden_case(report_clean_text samples/expected/report.ppo2.txt report samples/ppo2.pcap)
 golden_case(report_profidrive_json samples/expected/report.profidrive.json report -T json --dialect profidrive samples/profidrive.pcap)
 golden_case(decode_faults_findings_jsonl samples/expected/faults.findings.jsonl decode -T jsonl --station 5 -c 120 samples/faults.pcap)

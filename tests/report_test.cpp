@@ -30,6 +30,7 @@
 #include "decoder/finding.hpp"
 #include "decoder/log_histogram.hpp"
 #include "decoder/session_tracker.hpp"
+#include "decoder/telegram_builder.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/summary.hpp"
 #include "tests/test_support.hpp"
@@ -361,8 +362,8 @@ struct XmlNode {
     std::string inner;  // all character data inside, descendants included, in document order
 
     const std::string* find_attribute(std::string_view key) const {
-        for (const auto& [name, value] : attributes)
-            if (name == key) return &value;
+        for (const auto& [attribute_name, value] : attributes)
+            if (attribute_name == key) return &value;
         return nullptr;
     }
     std::string attribute(std::string_view key) const {
@@ -394,7 +395,7 @@ struct XmlNode {
         return out;
     }
 
-private:
+  private:
     void collect(std::string_view tag, std::string_view cls,
                  std::vector<const XmlNode*>& out) const {
         for (const XmlNode& child : children) {
@@ -405,7 +406,7 @@ private:
 };
 
 class XmlParser {
-public:
+  public:
     XmlParser(std::string_view text, bool html) : text_(text), html_(html) {}
 
     std::optional<XmlNode> parse(std::string& error) {
@@ -414,16 +415,19 @@ public:
         return result;
     }
 
-private:
+  private:
     std::optional<XmlNode> fail(std::string message) {
         if (error_.empty()) error_ = std::move(message);
         return std::nullopt;
     }
-    bool starts(std::string_view prefix) const { return text_.substr(pos_, prefix.size()) == prefix; }
+    bool starts(std::string_view prefix) const {
+        return text_.substr(pos_, prefix.size()) == prefix;
+    }
     char peek() const { return pos_ < text_.size() ? text_[pos_] : '\0'; }
     bool skip_space() {
         std::size_t from = pos_;
-        while (peek() == ' ' || peek() == '\n' || peek() == '\t' || peek() == '\r') ++pos_;
+        while (peek() == ' ' || peek() == '\n' || peek() == '\t' || peek() == '\r')
+            ++pos_;
         return pos_ > from;
     }
     static bool name_start(char c) {
@@ -531,7 +535,8 @@ private:
                     std::string value;
                     if (!decode(raw, value)) return fail("bad entity reference");
                     stack.back().text += value;
-                    for (XmlNode& open : stack) open.inner += value;
+                    for (XmlNode& open : stack)
+                        open.inner += value;
                 }
                 pos_ = end;
                 continue;
@@ -621,9 +626,10 @@ std::optional<XmlNode> parse_xml(std::string_view text, bool html = false) {
 
 TEST(ReportTest, CheckersAcceptValidAndRejectBrokenDocuments) {
     std::string error;
-    auto xml = XmlParser("<?xml version=\"1.0\"?>\n<a x=\"1 &amp; &quot;2&quot;\"><b/>t&lt;&#39;"
-                         "<c y=\"\">u</c></a>\n",
-                         false)
+    auto xml = XmlParser(
+                   "<?xml version=\"1.0\"?>\n<a x=\"1 &amp; &quot;2&quot;\"><b/>t&lt;&#39;"
+                   "<c y=\"\">u</c></a>\n",
+                   false)
                    .parse(error);
     ASSERT_TRUE(xml) << error;
     EXPECT_EQ(xml->attribute("x"), "1 & \"2\"");
@@ -631,9 +637,9 @@ TEST(ReportTest, CheckersAcceptValidAndRejectBrokenDocuments) {
     EXPECT_EQ(xml->inner, "t<'u");
     EXPECT_EQ(xml->children.size(), 2u);
     for (std::string_view broken :
-         {"", "<a>", "<a></b>", "<a><b></a></b>", "<a x=1/>", "<a x=\"1\" x=\"2\"/>", "<a>&foo;</a>",
-          "<a>&amp</a>", "<a>x < y</a>", "<a/><b/>", "<a x=\"<\"/>", "text<a/>", "<a></a>tail",
-          "<a x=\"1\"y=\"2\"/>", "<a>&#0;</a>"}) {
+         {"", "<a>", "<a></b>", "<a><b></a></b>", "<a x=1/>", "<a x=\"1\" x=\"2\"/>",
+          "<a>&foo;</a>", "<a>&amp</a>", "<a>x < y</a>", "<a/><b/>", "<a x=\"<\"/>", "text<a/>",
+          "<a></a>tail", "<a x=\"1\"y=\"2\"/>", "<a>&#0;</a>"}) {
         std::string message;
         EXPECT_FALSE(XmlParser(broken, false).parse(message)) << broken;
     }
@@ -674,7 +680,8 @@ struct Analysis {
         for (const ChannelStats* stats : tracker.channels())
             if (stats->slave == slave) return *stats;
         ADD_FAILURE() << "no channel for slave " << int(slave);
-        return *tracker.channels().front();
+        static const ChannelStats none;
+        return none;
     }
 
     BusDecoder decoder;
@@ -692,7 +699,8 @@ std::unique_ptr<Analysis> analyse_file(const std::string& relative) {
     if (!opened.source) return analysis;
     TelegramSource& source = *opened.source;
     Record record;
-    while (source.next(record)) analysis->feed(record.bytes, record.time_ns, record.number);
+    while (source.next(record))
+        analysis->feed(record.bytes, record.time_ns, record.number);
     analysis->finish();
     analysis->input = InputSummary{relative, std::string(input_format_name(source.format())),
                                    source.bytes_skipped(), source.status() == InputStatus::Damaged};
@@ -813,7 +821,7 @@ const std::vector<ExpectedFinding> kFaultsFindings = {
     {162, "mismatched_response", "error", 5},
     {179, "unknown_code", "warning", 3},
     {180, "config_mismatch", "error", 4},
-    {204, "orphan_response", "warning", 5},
+    {211, "orphan_response", "warning", 5},
     {221, "fdl_no_response", "warning", 3},
     {221, "fdl_retry", "note", 3},
     {275, "unexpected_response_type", "error", 5},
@@ -832,6 +840,8 @@ std::vector<std::string> all_kind_names() {
     return names;
 }
 
+constexpr std::int64_t kT0Sample = 1'704'067'200'000'000'000;  // 2024-01-01T00:00:00Z
+
 const Analysis& faults() {
     static const std::unique_ptr<Analysis> analysis = analyse_file("samples/faults.pcap");
     return *analysis;
@@ -847,26 +857,25 @@ const Analysis& clean() {
 std::optional<Json> json_report(const ReportContext& context) {
     std::string text = render(ReportFormat::Json, context);
     EXPECT_FALSE(text.empty());
-    if (!text.empty()) EXPECT_EQ(text.back(), '\n');
+    EXPECT_TRUE(!text.empty() && text.back() == '\n');
     EXPECT_EQ(count_of(text, "\n"), 1u) << "one line";
     return parse_json(text);
 }
 
 const std::vector<std::string> kStationKeys = {
-    "master",      "slave",          "ppo_type",   "ppo_source", "dialect",
-    "ident",       "data_exchange",  "cycles",     "requests",   "transactions",
-    "outcomes",    "timeouts",       "abandoned",  "spontaneous", "latency_ms",
-    "latency_cycles", "parameters",  "rejections", "findings"};
+    "master",         "slave",         "ppo_type",   "ppo_source",  "dialect",
+    "ident",          "data_exchange", "cycles",     "requests",    "transactions",
+    "outcomes",       "timeouts",      "abandoned",  "spontaneous", "latency_ms",
+    "latency_cycles", "parameters",    "rejections", "findings"};
 
-const std::vector<std::string> kFindingKeys = {"kind",  "severity", "frame", "request_frame", "time",
-                                               "master", "slave",   "pnu",   "message"};
+const std::vector<std::string> kFindingKeys = {
+    "kind", "severity", "frame", "request_frame", "time", "master", "slave", "pnu", "message"};
 
 TEST(ReportTest, JsonHasTheDocumentedTopLevelSummaryAndStationKeys) {
     auto report = json_report(context_of(faults()));
     ASSERT_TRUE(report);
     EXPECT_EQ(report->keys(), (std::vector<std::string>{"dpscope", "input", "options", "result",
-                                                        "summary", "stations", "bus",
-                                                        "findings"}));
+                                                        "summary", "stations", "bus", "findings"}));
     EXPECT_EQ((*report)["dpscope"].string(), "7.8.9-test");
     EXPECT_EQ((*report)["input"].keys(),
               (std::vector<std::string>{"file", "format", "damaged", "bytes_skipped", "first_time",
@@ -876,7 +885,7 @@ TEST(ReportTest, JsonHasTheDocumentedTopLevelSummaryAndStationKeys) {
     EXPECT_EQ((*report)["input"]["first_time"].text, "1704067200.000066666");
     EXPECT_EQ((*report)["input"]["last_time"].text, "1704067200.123415968");
     EXPECT_EQ((*report)["options"].keys(),
-              (std::vector<std::string>{"timeout_ms", "strict", "fail_on"}));
+              (std::vector<std::string>{"timeout_ms", "strict", "fail_on", "stations"}));
     EXPECT_EQ((*report)["options"]["timeout_ms"].integer(), 1000);
     EXPECT_EQ((*report)["options"]["fail_on"].string(), "error");
     const Json& summary = (*report)["summary"];
@@ -896,7 +905,8 @@ TEST(ReportTest, JsonHasTheDocumentedTopLevelSummaryAndStationKeys) {
     }
     EXPECT_EQ((*report)["bus"]["findings"].keys(), all_kind_names());
     ASSERT_EQ((*report)["findings"].type, Json::Type::Array);
-    for (const Json& finding : (*report)["findings"].items) EXPECT_EQ(finding.keys(), kFindingKeys);
+    for (const Json& finding : (*report)["findings"].items)
+        EXPECT_EQ(finding.keys(), kFindingKeys);
 }
 
 TEST(ReportTest, JsonValuesOfTheFaultsSample) {
@@ -984,8 +994,7 @@ TEST(ReportTest, JsonValuesOfTheFaultsSample) {
 
 TEST(ReportTest, JsonCountsAgreeWithTheListedFindings) {
     for (FailOn fail_on : {FailOn::Error, FailOn::Warning, FailOn::Never}) {
-        for (std::vector<std::uint8_t> stations :
-             {std::vector<std::uint8_t>{}, {3}, {4, 5}, {9}}) {
+        for (std::vector<std::uint8_t> stations : {std::vector<std::uint8_t>{}, {3}, {4, 5}, {9}}) {
             auto report = json_report(context_of(faults(), fail_on, stations));
             ASSERT_TRUE(report);
             std::map<std::string, long long> by_severity;
@@ -993,7 +1002,8 @@ TEST(ReportTest, JsonCountsAgreeWithTheListedFindings) {
             long long failing = 0;
             for (const Json& f : (*report)["findings"].items) {
                 ++by_severity[f["severity"].string()];
-                if (!f["slave"].is_null()) ++by_slave_kind[{f["slave"].integer(), f["kind"].string()}];
+                if (!f["slave"].is_null())
+                    ++by_slave_kind[{f["slave"].integer(), f["kind"].string()}];
                 Severity severity = f["severity"].string() == "error"     ? Severity::Error
                                     : f["severity"].string() == "warning" ? Severity::Warning
                                                                           : Severity::Note;
@@ -1031,7 +1041,8 @@ TEST(ReportTest, JsonCleanCapturePassesWithoutFindings) {
     const Json& station = (*report)["stations"][0];
     EXPECT_EQ(station["slave"].integer(), 4);
     EXPECT_EQ(station["ppo_type"].integer(), 2);
-    for (const auto& [kind, count] : station["findings"].members) EXPECT_EQ(count.integer(), 0);
+    for (const auto& [kind, count] : station["findings"].members)
+        EXPECT_EQ(count.integer(), 0);
     for (const auto& [kind, count] : (*report)["bus"]["findings"].members)
         EXPECT_EQ(count.integer(), 0);
     EXPECT_EQ(station["latency_ms"]["min"].text, "2.232000");
@@ -1042,7 +1053,8 @@ TEST(ReportTest, JsonLatencyFollowsTheTrackersHistograms) {
     auto report = json_report(context_of(faults()));
     ASSERT_TRUE(report);
     for (const Json& station : (*report)["stations"].items) {
-        const ChannelStats& stats = faults().station(static_cast<std::uint8_t>(station["slave"].integer()));
+        const ChannelStats& stats =
+            faults().station(static_cast<std::uint8_t>(station["slave"].integer()));
         const LogHistogram& ns = stats.latency_ns;
         ASSERT_GT(ns.count(), 0u);
         const Json& ms = station["latency_ms"];
@@ -1094,8 +1106,9 @@ TEST(ReportTest, JsonStationFilterKeepsTheSlaveAndTheBusFindings) {
 
 TEST(ReportTest, JsonMessagesAreEscapedAndRoundTrip) {
     auto analysis = analyse_file("samples/ppo2.pcap");
-    std::string message = "quote \" backslash \\ tab \t newline \n cr \r bell \x07 esc \x1b "
-                          "utf8 \xC3\xA9 <&>";
+    std::string message =
+        "quote \" backslash \\ tab \t newline \n cr \r bell \x07 esc \x1b "
+        "utf8 \xC3\xA9 <&>";
     Finding f = make_finding(FindingKind::OrphanResponse, 7, 4, message);
     f.pnu = 0;
     analysis->log.append(std::span<const Finding>(&f, 1));
@@ -1120,7 +1133,7 @@ std::optional<XmlNode> junit_report(const ReportContext& context) {
     std::string text = render(ReportFormat::Junit, context);
     EXPECT_TRUE(starts_with(text, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"));
     auto root = parse_xml(text);
-    if (root) EXPECT_EQ(root->name, "testsuites");
+    EXPECT_TRUE(!root || root->name == "testsuites");
     return root;
 }
 
@@ -1145,7 +1158,7 @@ TEST(ReportTest, JunitOneSuitePerSlavePlusBusWithSixteenCasesEach) {
     EXPECT_EQ(root->attribute("failures"), "7");
     EXPECT_EQ(root->attribute("errors"), "0");
     const std::vector<std::string> kinds = all_kind_names();
-    const char* classnames[] = {"dpscope.slave_3", "dpscope.slave_4", "dpscope.slave_5",
+    const char* classnames[] = {"dpscope.master_2.slave_3", "dpscope.master_2.slave_4", "dpscope.master_2.slave_5",
                                 "dpscope.bus"};
     const char* failures[] = {"2", "1", "3", "1"};
     for (std::size_t s = 0; s < suites.size(); ++s) {
@@ -1159,9 +1172,9 @@ TEST(ReportTest, JunitOneSuitePerSlavePlusBusWithSixteenCasesEach) {
         ASSERT_EQ(cases.size(), kFindingKindCount);
         for (std::size_t k = 0; k < cases.size(); ++k) {
             EXPECT_EQ(cases[k]->attribute("classname"), classnames[s]);
-            EXPECT_EQ(cases[k]->attribute("name"),
-                      kinds[k] + ": " +
-                          std::string(finding_rule_text(static_cast<FindingKind>(k))));
+            EXPECT_EQ(
+                cases[k]->attribute("name"),
+                kinds[k] + ": " + std::string(finding_rule_text(static_cast<FindingKind>(k))));
         }
     }
 }
@@ -1300,8 +1313,9 @@ TEST(ReportTest, TextHasTheSectionsAndOneLinePerFinding) {
     std::vector<std::string> lines = lines_of(text);
     ASSERT_GT(lines.size(), 10u);
     EXPECT_EQ(lines[0], "dpscope 7.8.9-test conformance report");
-    EXPECT_EQ(lines[1], "Input:   samples/faults.pcap (pcap), 458 telegrams, "
-                        "2024-01-01T00:00:00.000066666Z to 2024-01-01T00:00:00.123415968Z");
+    EXPECT_EQ(lines[1],
+              "Input:   samples/faults.pcap (pcap), 458 telegrams, "
+              "2024-01-01T00:00:00.000066666Z to 2024-01-01T00:00:00.123415968Z");
     EXPECT_EQ(lines[2], "Checks:  time-out 1000 ms; RC 8 after a read is unusual, a warning");
     EXPECT_EQ(lines[3], "Result:  FAIL: 7 errors, 7 warnings, 6 notes (fail on error)");
     for (std::string_view line :
@@ -1316,8 +1330,9 @@ TEST(ReportTest, TextHasTheSectionsAndOneLinePerFinding) {
         EXPECT_EQ(std::count(lines.begin(), lines.end(), std::string(line)), 1) << line;
     std::vector<std::string> rows = lines_after(lines, "Findings (");
     ASSERT_EQ(rows.size(), kFaultsFindings.size() + 1);  // the column heads, then the findings
-    EXPECT_EQ(rows[0], "     frame      time (s)  severity kind                        "
-                       "master/slave   pnu  message");
+    EXPECT_EQ(rows[0],
+              "     frame      time (s)  severity kind                        "
+              "master/slave   pnu  message");
     for (std::size_t i = 0; i < kFaultsFindings.size(); ++i) {
         const ExpectedFinding& f = kFaultsFindings[i];
         char start[128];
@@ -1330,8 +1345,9 @@ TEST(ReportTest, TextHasTheSectionsAndOneLinePerFinding) {
         std::string station = f.slave ? "2 / " + std::to_string(f.slave) : "-   ";
         EXPECT_NE(row.find(station), std::string::npos) << row;
     }
-    EXPECT_EQ(rows[1], "        62      0.011905  error    fcs_error                   2 / 3      "
-                       "      -  byte 19: FCS 0x7C wrong, checksum of the data is 0x26");
+    EXPECT_EQ(rows[1],
+              "        62      0.011905  error    fcs_error                   2 / 3      "
+              "      -  byte 19: FCS 0x7C wrong, checksum of the data is 0x26");
 }
 
 TEST(ReportTest, TextCleanCapturePassesAndListsNoFindings) {
@@ -1445,8 +1461,9 @@ TEST(ReportTest, MarkdownHasTheSectionsAndOneRowPerFinding) {
         EXPECT_EQ(cells[3], kind);
         EXPECT_EQ(cells[4], f.slave ? "2 / " + std::to_string(f.slave) : "-");
     }
-    EXPECT_EQ(rows[0], "| 62 | 0.011905 | error | fcs\\_error | 2 / 3 | - | byte 19: FCS 0x7C "
-                       "wrong, checksum of the data is 0x26 |");
+    EXPECT_EQ(rows[0],
+              "| 62 | 0.011905 | error | fcs\\_error | 2 / 3 | - | byte 19: FCS 0x7C "
+              "wrong, checksum of the data is 0x26 |");
 }
 
 TEST(ReportTest, MarkdownCleanCaptureHasNoFindingsTable) {
@@ -1463,10 +1480,12 @@ TEST(ReportTest, MarkdownStationFilterHidesOtherSlavesAndTheirFindings) {
     EXPECT_NE(text.find("### Slave 3 (master 2)"), std::string::npos);
     EXPECT_NE(text.find("### Slave 5 (master 2)"), std::string::npos);
     EXPECT_EQ(text.find("Slave 4"), std::string::npos);
-    EXPECT_EQ(text.find("2 / 4"), std::string::npos);
+    EXPECT_EQ(text.find("| 2 / 4 |"), std::string::npos);
+    EXPECT_NE(text.find("| 2 / 5 |"), std::string::npos);
     std::size_t expected = 0;
-    for (const ExpectedFinding& f : kFaultsFindings) expected += f.slave != 4 ? 1 : 0;
-    EXPECT_EQ(expected, 15u);
+    for (const ExpectedFinding& f : kFaultsFindings)
+        expected += f.slave != 4 ? 1 : 0;
+    EXPECT_EQ(expected, 16u);  // slaves 3 and 5 and the garbage
     EXPECT_EQ(markdown_findings_rows(text, expected).size(), expected);
 }
 
@@ -1490,10 +1509,7 @@ TEST(ReportTest, MarkdownBackslashInAMessageDoesNotBreakTheRow) {
     std::vector<std::string> rows = markdown_findings_rows(text, 1);
     ASSERT_EQ(rows.size(), 1u);
     auto cells = markdown_cells(rows[0]);
-    if (cells.size() != 7u)
-        GTEST_SKIP() << "BUG: md_escape (formats/report.cpp) does not escape '\\', so a message "
-                        "ending in a backslash or holding \"\\|\" escapes the cell separator: "
-                     << rows[0];
+    ASSERT_EQ(cells.size(), 7u) << rows[0];
     EXPECT_EQ(cells[6], "C:\\\\dir\\\\ and a\\\\\\|b ends \\\\");
 }
 
@@ -1593,7 +1609,7 @@ std::vector<const XmlNode*> findings_rows(const XmlNode& html) {
     if (tables.size() != 1) return {};
     auto rows = tables[0]->elements("tr");
     EXPECT_FALSE(rows.empty());
-    if (!rows.empty()) EXPECT_FALSE(rows[0]->elements("th").empty());
+    EXPECT_TRUE(rows.empty() || !rows[0]->elements("th").empty()) << "a header row";
     return rows.empty() ? rows : std::vector<const XmlNode*>(rows.begin() + 1, rows.end());
 }
 
@@ -1649,7 +1665,8 @@ TEST(ReportTest, HtmlOneSectionPerSlaveWithLatencyHistogramAndTimeline) {
         ASSERT_EQ(timeline.size(), 1u);
         EXPECT_EQ(timeline[0]->attribute("width"), "720");
         std::uint64_t transactions = 0;
-        for (const XmlNode* bar : timeline[0]->all("rect", "tx")) transactions += title_count(*bar);
+        for (const XmlNode* bar : timeline[0]->all("rect", "tx"))
+            transactions += title_count(*bar);
         EXPECT_EQ(transactions, stats.transactions.total());
         std::array<std::uint64_t, 3> marks{}, findings{};  // by severity
         const char* rows[] = {"notes", "warnings", "errors"};
@@ -1678,7 +1695,8 @@ TEST(ReportTest, HtmlVerdictSummaryAndFindingsTable) {
     auto cards = html->all("div", "card");
     ASSERT_EQ(cards.size(), 7u);
     std::vector<std::string> numbers;
-    for (const XmlNode* card : cards) numbers.push_back(card->all("div", "n")[0]->text);
+    for (const XmlNode* card : cards)
+        numbers.push_back(card->all("div", "n")[0]->text);
     EXPECT_EQ(numbers, (std::vector<std::string>{"458", "1", "35", "3", "7", "7", "6"}));
     auto slave_rows = html->all("table", "slaves")[0]->elements("tr");
     ASSERT_EQ(slave_rows.size(), 4u);
@@ -1736,14 +1754,15 @@ TEST(ReportTest, HtmlStationWithoutTransactionsHasNoCharts) {
 }
 
 TEST(ReportTest, HtmlStationFilterHidesOtherSlavesAndTheirFindings) {
-    auto html = parse_xml(render(ReportFormat::Html, context_of(faults(), FailOn::Error, {5})), true);
+    auto html =
+        parse_xml(render(ReportFormat::Html, context_of(faults(), FailOn::Error, {5})), true);
     ASSERT_TRUE(html);
     auto sections = html->all("section", "station");
     ASSERT_EQ(sections.size(), 1u);
     EXPECT_EQ(sections[0]->attribute("id"), "slave-5-2");
     EXPECT_EQ(html->all("table", "slaves")[0]->elements("tr").size(), 2u);
     auto rows = findings_rows(*html);
-    ASSERT_EQ(rows.size(), 10u);  // nine of slave 5 and the garbage
+    ASSERT_EQ(rows.size(), 9u);  // eight of slave 5 and the garbage
     for (const XmlNode* row : rows) {
         std::string station = row->elements("td")[4]->text;
         EXPECT_TRUE(station == "2 / 5" || station == "-") << station;
@@ -1795,6 +1814,121 @@ TEST(ReportTest, HtmlListsAtMostTwoThousandFindings) {
     EXPECT_EQ((*report)["findings"].items.size(), 2345u);
 }
 
+// ---- inputs without times, damaged inputs, several masters -------------------------------------
+
+TEST(ReportTest, UntimedCaptureHasCycleLatencyButNoTimes) {
+    auto analysis = analyse_file("samples/serial.raw");
+    auto report = json_report(context_of(*analysis));
+    ASSERT_TRUE(report);
+    EXPECT_EQ((*report)["input"]["format"].string(), "raw");
+    EXPECT_TRUE((*report)["input"]["first_time"].is_null());
+    EXPECT_TRUE((*report)["input"]["last_time"].is_null());
+    EXPECT_EQ((*report)["summary"]["transactions"].integer(), 6);
+    for (const Json& station : (*report)["stations"].items) {
+        EXPECT_EQ(station["transactions"].integer(), 3);
+        EXPECT_TRUE(station["latency_ms"].is_null());
+        EXPECT_FALSE(station["latency_cycles"].is_null());
+    }
+    for (const Json& finding : (*report)["findings"].items)
+        EXPECT_TRUE(finding["time"].is_null());
+    std::string text = render(ReportFormat::Text, context_of(*analysis));
+    EXPECT_NE(text.find("Input:   samples/serial.raw (raw), 99 telegrams\n"), std::string::npos);
+    EXPECT_EQ(text.find("latency ms"), std::string::npos);
+    EXPECT_NE(text.find("  latency cycles min 1  median 2  p95 3  max 3\n"), std::string::npos);
+    std::vector<std::string> rows = lines_after(lines_of(text), "Findings (2, in capture order)");
+    ASSERT_EQ(rows.size(), 3u);
+    EXPECT_NE(rows[1].find("         -  "), std::string::npos) << rows[1];
+}
+
+TEST(ReportTest, HtmlUntimedCaptureDoesNotClaimRequestsWentUnanswered) {
+    auto analysis = analyse_file("samples/serial.raw");
+    ASSERT_EQ(analysis->station(3).transactions.total(), 3u);
+    ASSERT_EQ(analysis->station(3).latency_ns.count(), 0u);
+    std::string text = render(ReportFormat::Html, context_of(*analysis));
+    ASSERT_TRUE(parse_xml(text, true));
+    EXPECT_EQ(text.find("No answered requests."), std::string::npos);
+    EXPECT_NE(text.find("carries no timestamps"), std::string::npos);
+    EXPECT_EQ(count_of(text, "<section class=\"station\""), 2u);
+}
+
+TEST(ReportTest, DamagedInputIsNamedInEveryFormat) {
+    auto analysis = analyse_file("samples/truncated.pcap");
+    ASSERT_TRUE(analysis->input.damaged);
+    auto report = json_report(context_of(*analysis));
+    ASSERT_TRUE(report);
+    EXPECT_TRUE((*report)["input"]["damaged"].boolean);
+    EXPECT_EQ((*report)["result"].string(), "pass");
+    EXPECT_NE(render(ReportFormat::Text, context_of(*analysis))
+                  .find("\n         the input ended in damage; the report covers what was read\n"),
+              std::string::npos);
+    EXPECT_NE(
+        render(ReportFormat::Markdown, context_of(*analysis))
+            .find("- Input: `samples/truncated.pcap` (pcap), 101 telegrams (ended in damage)\n"),
+        std::string::npos);
+    auto html = parse_xml(render(ReportFormat::Html, context_of(*analysis)), true);
+    ASSERT_TRUE(html);
+    auto notes = html->all("p", "error");
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_EQ(notes[0]->text, "The input ended in damage; the report covers what was read.");
+    auto clean_html = parse_xml(render(ReportFormat::Html, context_of(clean())), true);
+    ASSERT_TRUE(clean_html);
+    EXPECT_TRUE(clean_html->all("p", "error").empty());
+}
+
+std::vector<std::uint8_t> exchange(std::uint8_t da, std::uint8_t sa, bool request, bool fcb,
+                                   std::uint8_t rc, std::uint16_t pnu, std::uint32_t pva) {
+    std::vector<std::uint8_t> du;
+    append_pcv(du, rc, false, pnu, 0, pva);
+    append_u16_be(du, request ? 0x047F : 0x0F07);
+    append_u16_be(du, 0x2000);
+    std::uint8_t fc =
+        request ? request_fc(FdlFunction::SrdHigh, fcb, true) : response_fc(FdlStatus::DataLow);
+    return build_telegram({da, sa, fc, std::nullopt, std::nullopt, Bytes(du)});
+}
+
+// Two masters exchange data with slave 3; the slave answers master 2 with nothing pending.
+std::unique_ptr<Analysis> two_masters() {
+    auto analysis = std::make_unique<Analysis>();
+    std::vector<std::vector<std::uint8_t>> telegrams;
+    for (int cycle = 0; cycle < 4; ++cycle) {
+        bool fcb = cycle % 2 == 0;
+        telegrams.push_back(exchange(3, 1, true, fcb, 0, 0, 0));
+        telegrams.push_back(exchange(1, 3, false, fcb, 0, 0, 0));
+        telegrams.push_back(exchange(3, 2, true, fcb, 0, 0, 0));
+        bool orphan = cycle == 2;
+        telegrams.push_back(exchange(2, 3, false, fcb, orphan ? 1 : 0, orphan ? 520 : 0, 5));
+    }
+    std::uint64_t number = 0;
+    for (const auto& bytes : telegrams) {
+        ++number;
+        analysis->feed(Bytes(bytes.data(), bytes.size()),
+                       kT0Sample + static_cast<std::int64_t>(number) * 500'000, number);
+    }
+    analysis->finish();
+    analysis->input = InputSummary{"two-masters.pcap", "pcap", 0, false};
+    return analysis;
+}
+
+TEST(ReportTest, JunitPutsAFindingInTheSuiteOfItsMasterAndSlave) {
+    auto analysis = two_masters();
+    auto channels = analysis->tracker.channels();
+    ASSERT_EQ(channels.size(), 2u);
+    EXPECT_EQ(channels[0]->master, 1);
+    EXPECT_EQ(channels[1]->master, 2);
+    ASSERT_EQ(analysis->log.size(), 1u);
+    ASSERT_EQ(channels[1]->findings[static_cast<std::size_t>(FindingKind::OrphanResponse)], 1u);
+    auto root = junit_report(context_of(*analysis, FailOn::Warning));
+    ASSERT_TRUE(root);
+    auto suites = root->elements("testsuite");
+    ASSERT_EQ(suites.size(), 2u);
+    EXPECT_EQ(suites[0]->attribute("name"), "slave 3 (master 1)");
+    EXPECT_EQ(suites[1]->attribute("name"), "slave 3 (master 2)");
+    EXPECT_TRUE(suites[0]->all("failure").empty());
+    EXPECT_EQ(suites[1]->all("failure").size(), 1u);
+    EXPECT_EQ(suites[1]->attribute("failures"), "1");
+    EXPECT_EQ(suites[0]->attribute("failures"), "0");
+}
+
 // ---- FindingLog --------------------------------------------------------------------------------
 
 bool same_finding(const Finding& a, const Finding& b) {
@@ -1818,12 +1952,17 @@ std::vector<Finding> random_findings(std::size_t n, std::uint64_t seed) {
         f.master = static_cast<std::uint8_t>(random());
         f.slave = static_cast<std::uint8_t>(random());
         switch (random() % 3) {
-            case 0: break;
-            case 1: f.pnu = 0; break;  // present and zero is not absent
-            default: f.pnu = static_cast<std::uint16_t>(random());
+            case 0:
+                break;
+            case 1:
+                f.pnu = 0;
+                break;  // present and zero is not absent
+            default:
+                f.pnu = static_cast<std::uint16_t>(random());
         }
         std::size_t length = random() % 4 == 0 ? 0 : random() % 300;
-        for (std::size_t c = 0; c < length; ++c) f.message.push_back(static_cast<char>(random()));
+        for (std::size_t c = 0; c < length; ++c)
+            f.message.push_back(static_cast<char>(random()));
         if (i % 97 == 0) f.message = std::string("nul\0inside\xff\xfe", 12);
         out.push_back(std::move(f));
     }
@@ -1846,7 +1985,8 @@ std::size_t open_descriptors() {
     std::size_t n = 0;
     DIR* dir = opendir("/proc/self/fd");
     if (!dir) return 0;
-    while (readdir(dir)) ++n;
+    while (readdir(dir))
+        ++n;
     closedir(dir);
     return n;
 }
@@ -1904,7 +2044,8 @@ TEST(ReportTest, FindingLogSpillsBeyond4096AndReadsBackInOrder) {
 TEST(ReportTest, FindingLogOneByOneAcrossTheLimit) {
     std::vector<Finding> findings = random_findings(9000, 4);
     FindingLog log;
-    for (const Finding& f : findings) log.append(std::span<const Finding>(&f, 1));
+    for (const Finding& f : findings)
+        log.append(std::span<const Finding>(&f, 1));
     EXPECT_EQ(log.size(), 9000u);
     expect_same(read_back(log), findings);
 }
@@ -1940,7 +2081,8 @@ std::uint64_t exact_percentile(const std::vector<std::uint64_t>& sorted, int p) 
 
 void expect_percentiles_close(const std::vector<std::uint64_t>& samples) {
     LogHistogram h;
-    for (std::uint64_t v : samples) h.add(v);
+    for (std::uint64_t v : samples)
+        h.add(v);
     std::vector<std::uint64_t> sorted = samples;
     std::sort(sorted.begin(), sorted.end());
     EXPECT_EQ(h.count(), samples.size());
@@ -1969,12 +2111,14 @@ TEST(ReportTest, LogHistogramPercentilesWithinOnePointSixPercent) {
     expect_percentiles_close(latencies);
 
     std::vector<std::uint64_t> cycles;  // small integers, partly below the exact limit of 128
-    for (int i = 0; i < 10'000; ++i) cycles.push_back(random() % 300);
+    for (int i = 0; i < 10'000; ++i)
+        cycles.push_back(random() % 300);
     expect_percentiles_close(cycles);
 
     std::vector<std::uint64_t> narrow;  // a tight cluster around 2 ms
     std::normal_distribution<double> around(2'000'000.0, 50'000.0);
-    for (int i = 0; i < 10'000; ++i) narrow.push_back(static_cast<std::uint64_t>(around(random)));
+    for (int i = 0; i < 10'000; ++i)
+        narrow.push_back(static_cast<std::uint64_t>(around(random)));
     expect_percentiles_close(narrow);
 
     std::vector<std::uint64_t> huge = {std::uint64_t{1} << 62, ~std::uint64_t{0}, 12345678901234};
@@ -1985,7 +2129,8 @@ TEST(ReportTest, LogHistogramSmallValuesAreExact) {
     LogHistogram h;
     EXPECT_EQ(h.count(), 0u);
     EXPECT_EQ(h.percentile(50), 0u);
-    for (std::uint64_t v : {7, 3, 127, 0, 3}) h.add(v);
+    for (std::uint64_t v : {7, 3, 127, 0, 3})
+        h.add(v);
     EXPECT_EQ(h.count(), 5u);
     EXPECT_EQ(h.min(), 0u);
     EXPECT_EQ(h.max(), 127u);
@@ -2003,14 +2148,17 @@ TEST(ReportTest, LogHistogramBucketsAreNarrowAndFew) {
         std::size_t b = LogHistogram::bucket_of(v);
         ASSERT_LE(LogHistogram::lower_of(b), v);
         ASSERT_GE(LogHistogram::upper_of(b), v);
-        if (v >= 128)
-            ASSERT_LE(static_cast<double>(LogHistogram::upper_of(b) - LogHistogram::lower_of(b) + 1),
-                      static_cast<double>(LogHistogram::lower_of(b)) / 64.0)
+        if (v >= 128) {
+            ASSERT_LE(
+                static_cast<double>(LogHistogram::upper_of(b) - LogHistogram::lower_of(b) + 1),
+                static_cast<double>(LogHistogram::lower_of(b)) / 64.0)
                 << v;
+        }
     }
     // A million samples over one decade occupy a few hundred buckets at most.
     LogHistogram h;
-    for (int i = 0; i < 1'000'000; ++i) h.add(1'000'000 + random() % 9'000'000);
+    for (int i = 0; i < 1'000'000; ++i)
+        h.add(1'000'000 + random() % 9'000'000);
     std::size_t buckets = 0;
     std::uint64_t counted = 0;
     std::uint64_t previous_upper = 0;
@@ -2055,14 +2203,17 @@ TEST(ReportTest, TimelineStartsEmptyWithTenMillisecondBins) {
 
 TEST(ReportTest, TimelineBinsMergeWhenTimeGrows) {
     Timeline timeline;
-    for (std::int64_t i = 0; i < 240; ++i) timeline.add_transaction(kStart + i * 10 * kMs + 5 * kMs);
+    for (std::int64_t i = 0; i < 240; ++i)
+        timeline.add_transaction(kStart + i * 10 * kMs);
     EXPECT_EQ(timeline.bin_width_ns(), 10 * kMs);
-    for (const Timeline::Bin& bin : timeline.bins()) EXPECT_EQ(bin.transactions, 1u);
+    for (const Timeline::Bin& bin : timeline.bins())
+        EXPECT_EQ(bin.transactions, 1u);
 
     timeline.add_finding(kStart + 2400 * kMs, Severity::Error);  // just past the last bin
     EXPECT_EQ(timeline.bin_width_ns(), 20 * kMs);
     EXPECT_EQ(timeline.start_ns(), kStart);
-    for (std::size_t i = 0; i < 120; ++i) EXPECT_EQ(timeline.bins()[i].transactions, 2u) << i;
+    for (std::size_t i = 0; i < 120; ++i)
+        EXPECT_EQ(timeline.bins()[i].transactions, 2u) << i;
     EXPECT_EQ(timeline.bins()[120].errors, 1u);
     for (std::size_t i = 121; i < 240; ++i) {
         const Timeline::Bin& bin = timeline.bins()[i];
