@@ -98,7 +98,9 @@ void BM_Render(benchmark::State& state) {
         std::uint64_t frame = 0;
         for (std::size_t i = 0; i < s.telegrams.size(); ++i) {
             const auto& bytes = s.telegrams[i];
-            renderer->render(decoder.decode(dpscope::Bytes(bytes.data(), bytes.size()), s.times[i], ++frame), {});
+            renderer->render(
+                decoder.decode(dpscope::Bytes(bytes.data(), bytes.size()), s.times[i], ++frame),
+                {});
         }
     }
     std::fclose(sink);

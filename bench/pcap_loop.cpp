@@ -9,7 +9,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     char errbuf[PCAP_ERRBUF_SIZE];
-    pcap_t* handle = pcap_open_offline_with_tstamp_precision(argv[1], PCAP_TSTAMP_PRECISION_NANO, errbuf);
+    pcap_t* handle =
+        pcap_open_offline_with_tstamp_precision(argv[1], PCAP_TSTAMP_PRECISION_NANO, errbuf);
     if (!handle) {
         std::fprintf(stderr, "%s\n", errbuf);
         return 2;

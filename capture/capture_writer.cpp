@@ -37,7 +37,7 @@ std::int64_t time_or_zero(std::int64_t time_ns) { return time_ns == kNoTime ? 0 
 
 // Writers over a stdio stream: raw bytes, hex lines, pcapng blocks.
 class StdioWriter : public CaptureWriter {
-public:
+  public:
     StdioWriter(FILE* file, std::string name) : file_(file), name_(std::move(name)) {}
     ~StdioWriter() override { close(); }
 
@@ -55,7 +55,7 @@ public:
         return ok;
     }
 
-protected:
+  protected:
     bool put(const void* data, std::size_t size) {
         if (!file_) return false;
         if (std::fwrite(data, 1, size, file_) != size) return fail();
@@ -63,7 +63,8 @@ protected:
     }
     bool check() { return std::ferror(file_) ? fail() : error_.empty(); }
     bool fail() {
-        if (error_.empty()) error_ = fmt::format("{}: write failed: {}", name_, std::strerror(errno));
+        if (error_.empty())
+            error_ = fmt::format("{}: write failed: {}", name_, std::strerror(errno));
         return false;
     }
 
@@ -72,7 +73,7 @@ protected:
 };
 
 class RawWriter final : public StdioWriter {
-public:
+  public:
     using StdioWriter::StdioWriter;
     bool write(Bytes telegram, std::int64_t) override {
         return put(telegram.data(), telegram.size());
@@ -80,7 +81,7 @@ public:
 };
 
 class HexWriter final : public StdioWriter {
-public:
+  public:
     using StdioWriter::StdioWriter;
     bool write(Bytes telegram, std::int64_t time_ns) override {
         line_.clear();
@@ -96,16 +97,16 @@ public:
         return put(line_.data(), line_.size());
     }
 
-private:
+  private:
     std::string line_;
 };
 
 class PcapngWriter final : public StdioWriter {
-public:
-    PcapngWriter(FILE* file, std::string name, int link_type)
-        : StdioWriter(file, std::move(name)) {
+  public:
+    PcapngWriter(FILE* file, std::string name, int link_type) : StdioWriter(file, std::move(name)) {
         // Section header block: type, length, byte-order magic, version 1.0, unknown length.
-        for (std::uint32_t word : {0x0A0D0D0Au, 28u, 0x1A2B3C4Du, 0x00000001u}) u32(word);
+        for (std::uint32_t word : {0x0A0D0D0Au, 28u, 0x1A2B3C4Du, 0x00000001u})
+            u32(word);
         u64(~0ULL);
         u32(28);
         // Interface description block: link type, snapshot length, if_tsresol = 9 (ns).
@@ -114,10 +115,10 @@ public:
         u16(static_cast<std::uint16_t>(link_type));
         u16(0);
         u32(65535);
-        u16(9);   // option if_tsresol
-        u16(1);   // option length
-        u32(9);   // value 9 and three padding bytes
-        u32(0);   // opt_endofopt
+        u16(9);  // option if_tsresol
+        u16(1);  // option length
+        u32(9);  // value 9 and three padding bytes
+        u32(0);  // opt_endofopt
         u32(32);
         put(block_.data(), block_.size());
         block_.clear();
@@ -141,7 +142,7 @@ public:
         return put(block_.data(), block_.size());
     }
 
-private:
+  private:
     void u16(std::uint16_t v) {
         block_.push_back(static_cast<std::uint8_t>(v));
         block_.push_back(static_cast<std::uint8_t>(v >> 8));
@@ -160,7 +161,7 @@ private:
 
 // pcap through libpcap's dump API, nanosecond magic.
 class PcapWriter final : public CaptureWriter {
-public:
+  public:
     PcapWriter(pcap_t* dead, pcap_dumper_t* dumper, std::string name)
         : dead_(dead), dumper_(dumper), name_(std::move(name)) {}
     ~PcapWriter() override {
@@ -197,7 +198,7 @@ public:
         return ok;
     }
 
-private:
+  private:
     bool check() {
         if (std::ferror(pcap_dump_file(dumper_))) return fail();
         return true;
@@ -220,8 +221,8 @@ WriterResult open_capture_writer(const std::string& path, CaptureFormat format, 
     bool to_stdout = path == "-";
     std::string name = to_stdout ? std::string("<stdout>") : path;
     if (format == CaptureFormat::Pcap) {
-        pcap_t* dead = pcap_open_dead_with_tstamp_precision(link_type, 65535,
-                                                            PCAP_TSTAMP_PRECISION_NANO);
+        pcap_t* dead =
+            pcap_open_dead_with_tstamp_precision(link_type, 65535, PCAP_TSTAMP_PRECISION_NANO);
         if (!dead) {
             result.error = fmt::format("{}: libpcap cannot create a writer", name);
             return result;

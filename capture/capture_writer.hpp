@@ -18,7 +18,7 @@ std::string_view capture_format_name(CaptureFormat format);  // "pcap", "pcapng"
 std::optional<CaptureFormat> capture_format_from_name(std::string_view name);
 
 class CaptureWriter {
-public:
+  public:
     virtual ~CaptureWriter() = default;
     // Each returns false after a write error; error() says what happened.
     virtual bool write(Bytes telegram, std::int64_t time_ns) = 0;
@@ -26,7 +26,7 @@ public:
     virtual bool close() = 0;
     const std::string& error() const noexcept { return error_; }
 
-protected:
+  protected:
     std::string error_;
 };
 

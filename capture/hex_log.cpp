@@ -25,7 +25,8 @@ std::string_view strip_prefix_0x(std::string_view token) {
 }
 
 std::string_view strip_punctuation(std::string_view token) {
-    while (!token.empty() && (token.back() == ',' || token.back() == ';')) token.remove_suffix(1);
+    while (!token.empty() && (token.back() == ',' || token.back() == ';'))
+        token.remove_suffix(1);
     return token;
 }
 
@@ -52,9 +53,11 @@ std::vector<std::string_view> split_whitespace(std::string_view line) {
     std::vector<std::string_view> tokens;
     std::size_t i = 0;
     while (i < line.size()) {
-        while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+        while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r'))
+            ++i;
         std::size_t start = i;
-        while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
+        while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r')
+            ++i;
         if (i > start) tokens.push_back(line.substr(start, i - start));
     }
     return tokens;
@@ -114,7 +117,8 @@ std::optional<std::int64_t> date_nanos(std::string_view text) {
     if (text.size() != 10 || text[4] != '-' || text[7] != '-') return std::nullopt;
     for (std::size_t i : {0u, 1u, 2u, 3u, 5u, 6u, 8u, 9u})
         if (!is_digit(text[i])) return std::nullopt;
-    int year = (text[0] - '0') * 1000 + (text[1] - '0') * 100 + (text[2] - '0') * 10 + (text[3] - '0');
+    int year =
+        (text[0] - '0') * 1000 + (text[1] - '0') * 100 + (text[2] - '0') * 10 + (text[3] - '0');
     unsigned month = static_cast<unsigned>((text[5] - '0') * 10 + (text[6] - '0'));
     unsigned day = static_cast<unsigned>((text[8] - '0') * 10 + (text[9] - '0'));
     if (month < 1 || month > 12 || day < 1 || day > 31) return std::nullopt;
@@ -163,7 +167,8 @@ HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& 
             continue;
         }
         std::size_t start = i;
-        while (i < tokens.size() && byte_token(tokens[i])) ++i;
+        while (i < tokens.size() && byte_token(tokens[i]))
+            ++i;
         if (i - start >= best_length) {
             best_start = start;
             best_length = i - start;
@@ -201,9 +206,10 @@ bool parse_hex_bytes(std::string_view text, std::vector<std::uint8_t>& bytes, st
         for (char c : body)
             if (c != ':' && c != '-') digits.push_back(c);
         if (digits.empty() || digits.size() % 2 != 0 || !all_hex(digits)) {
-            error = fmt::format("'{}' is not hex bytes (expected pairs of hex digits such as 68 or "
-                                "0x68 or 680707)",
-                                token);
+            error = fmt::format(
+                "'{}' is not hex bytes (expected pairs of hex digits such as 68 or "
+                "0x68 or 680707)",
+                token);
             return false;
         }
         append_hex_run(digits, bytes);

@@ -18,7 +18,7 @@
 namespace dpscope {
 
 struct HexLogLine {
-    std::size_t byte_count = 0;         // bytes appended by this line
+    std::size_t byte_count = 0;  // bytes appended by this line
     std::optional<std::int64_t> time_ns;
 };
 

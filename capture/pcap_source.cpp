@@ -18,7 +18,7 @@ constexpr std::uint64_t kPcapFileHeaderBytes = 24;
 constexpr std::uint64_t kPcapRecordHeaderBytes = 16;
 
 class PcapSource final : public TelegramSource {
-public:
+  public:
     PcapSource(pcap_t* handle, std::string name, bool classic_pcap)
         : TelegramSource(std::move(name)), handle_(handle), classic_pcap_(classic_pcap) {
         link_type_ = pcap_datalink(handle_);
@@ -45,21 +45,21 @@ public:
             record.original_length = header->len;
             if (header->caplen < header->len)
                 report(Severity::Warning,
-                       fmt::format("{}: {}: only {} of {} bytes captured (snapshot length)",
-                                   name(), where(number_), header->caplen, header->len));
+                       fmt::format("{}: {}: only {} of {} bytes captured (snapshot length)", name(),
+                                   where(number_), header->caplen, header->len));
             offset_ += kPcapRecordHeaderBytes + header->caplen;
             return true;
         }
         finished_ = true;
         if (rc == PCAP_ERROR_BREAK) return false;  // end of file
         set_status(InputStatus::Damaged);
-        report(Severity::Error, fmt::format("{}: {}: {}; decoding stopped after {} record(s)",
-                                            name(), where(number_ + 1), pcap_geterr(handle_),
-                                            number_));
+        report(Severity::Error,
+               fmt::format("{}: {}: {}; decoding stopped after {} record(s)", name(),
+                           where(number_ + 1), pcap_geterr(handle_), number_));
         return false;
     }
 
-private:
+  private:
     std::string where(std::uint64_t record) const {
         if (classic_pcap_) return fmt::format("record {} (byte offset {})", record, offset_);
         return fmt::format("record {}", record);
@@ -87,9 +87,10 @@ std::unique_ptr<TelegramSource> open_pcap_source(FILE* file, const std::string& 
     }
     int link_type = pcap_datalink(handle);
     if (link_type != kLinkTypeProfibusDl && link_type != kLinkTypeUser0) {
-        error = fmt::format("{}: unsupported link type {} ({}); dpscope reads 257 (PROFIBUS_DL) "
-                            "and 147 (USER0)",
-                            name, link_type, link_type_name(link_type));
+        error = fmt::format(
+            "{}: unsupported link type {} ({}); dpscope reads 257 (PROFIBUS_DL) "
+            "and 147 (USER0)",
+            name, link_type, link_type_name(link_type));
         pcap_close(handle);
         return nullptr;
     }

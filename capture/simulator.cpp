@@ -13,12 +13,23 @@ namespace dpscope {
 namespace {
 
 constexpr std::string_view kFaultNames[] = {
-    "fcs_error",         "garbage",           "malformed_telegram",
-    "stacked_request",   "orphan_response",   "mismatched_response",
-    "unexpected_response_type", "response_timeout", "request_rejected",
-    "no_authority",      "spontaneous_message", "spontaneous_unacknowledged",
-    "spm_violation",     "config_mismatch",   "unknown_code",
-    "fdl_retry",         "fdl_no_response",
+    "fcs_error",
+    "garbage",
+    "malformed_telegram",
+    "stacked_request",
+    "orphan_response",
+    "mismatched_response",
+    "unexpected_response_type",
+    "response_timeout",
+    "request_rejected",
+    "no_authority",
+    "spontaneous_message",
+    "spontaneous_unacknowledged",
+    "spm_violation",
+    "config_mismatch",
+    "unknown_code",
+    "fdl_retry",
+    "fdl_no_response",
 };
 static_assert(std::size(kFaultNames) == static_cast<std::size_t>(FaultKind::Count));
 
@@ -89,7 +100,8 @@ std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& er
     if (auto at = rest.find('@'); at != std::string_view::npos) {
         std::uint64_t cycle = 0;
         if (!parse_number(rest.substr(at + 1), cycle)) {
-            error = fmt::format("fault '{}': '{}' is not a cycle number", text, rest.substr(at + 1));
+            error =
+                fmt::format("fault '{}': '{}' is not a cycle number", text, rest.substr(at + 1));
             return std::nullopt;
         }
         spec.cycle = cycle;
@@ -108,7 +120,8 @@ std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& er
     auto kind = fault_kind_from_name(name);
     if (!kind) {
         std::string names;
-        for (std::string_view n : kFaultNames) names += fmt::format("{}{}", names.empty() ? "" : ", ", n);
+        for (std::string_view n : kFaultNames)
+            names += fmt::format("{}{}", names.empty() ? "" : ", ", n);
         error = fmt::format("fault '{}': unknown kind '{}' (known: {})", text, name, names);
         return std::nullopt;
     }
@@ -125,9 +138,8 @@ std::optional<SimulatedSlave> parse_slave_spec(std::string_view text, std::strin
     }
     unsigned address = 0, ppo = 0;
     auto second = text.find(':', first + 1);
-    std::string_view ppo_text = text.substr(first + 1, second == std::string_view::npos
-                                                           ? std::string_view::npos
-                                                           : second - first - 1);
+    std::string_view ppo_text = text.substr(
+        first + 1, second == std::string_view::npos ? std::string_view::npos : second - first - 1);
     if (!parse_number(text.substr(0, first), address) || address > 125) {
         error = fmt::format("slave '{}': address must be 0..125", text);
         return std::nullopt;
@@ -239,14 +251,17 @@ void Simulator::generate_start_up() {
         const std::uint8_t address = slave.config.address;
         auto request = [&](std::optional<std::uint8_t> dsap, std::vector<std::uint8_t> du,
                            FdlFunction function) {
-            TelegramSpec spec{address, master, request_fc(function, slave.fcb, true), dsap,
+            TelegramSpec spec{address,
+                              master,
+                              request_fc(function, slave.fcb, true),
+                              dsap,
                               dsap ? std::optional<std::uint8_t>(sap::kMaster) : std::nullopt,
                               Bytes(du)};
             emit(build_telegram(spec), 60 + random(40));
         };
         auto response = [&](std::uint8_t ssap, std::vector<std::uint8_t> du) {
-            TelegramSpec spec{master, address, response_fc(FdlStatus::DataLow), sap::kMaster, ssap,
-                              Bytes(du)};
+            TelegramSpec spec{master,       address, response_fc(FdlStatus::DataLow),
+                              sap::kMaster, ssap,    Bytes(du)};
             emit(build_telegram(spec), 30 + random(70));
             slave.fcb = !slave.fcb;
         };
@@ -287,7 +302,8 @@ void Simulator::generate_start_up() {
 void Simulator::generate_cycle() {
     const std::int64_t cycle_start = now_;
     arm_faults();
-    for (std::size_t i = 0; i < slaves_.size(); ++i) exchange(i);
+    for (std::size_t i = 0; i < slaves_.size(); ++i)
+        exchange(i);
     const std::uint8_t master = options_.master;
     if (cycle_ % 100 == 99) {
         // Gap maintenance: ask the next address whether a station appeared (nobody answers).
@@ -297,9 +313,8 @@ void Simulator::generate_cycle() {
         // The next address nobody uses (the master and the slaves are on the bus).
         auto in_use = [&](std::uint8_t address) {
             if (address == master) return true;
-            return std::any_of(slaves_.begin(), slaves_.end(), [&](const Slave& slave) {
-                return slave.config.address == address;
-            });
+            return std::any_of(slaves_.begin(), slaves_.end(),
+                               [&](const Slave& slave) { return slave.config.address == address; });
         };
         for (int tries = 0; tries < 126; ++tries) {
             gap_address_ = static_cast<std::uint8_t>(gap_address_ >= 125 ? 1 : gap_address_ + 1);
@@ -609,8 +624,12 @@ void Simulator::exchange(std::size_t index) {
         output.insert(output.end(), {0x00, 0x00});
     }
     std::vector<std::uint8_t> request_bytes =
-        build_telegram({address, master, request_fc(FdlFunction::SrdHigh, slave.fcb, true), {},
-                        {}, Bytes(output)});
+        build_telegram({address,
+                        master,
+                        request_fc(FdlFunction::SrdHigh, slave.fcb, true),
+                        {},
+                        {},
+                        Bytes(output)});
     emit(request_bytes, 40 + random(30));
 
     // Slave inputs: PCV, status word, main actual value, further PCD words.
@@ -624,8 +643,8 @@ void Simulator::exchange(std::size_t index) {
     append_u16_be(input, slave.actual);
     for (std::uint16_t extra = 240; input.size() < slave.layout.input_bytes; extra += 10)
         append_u16_be(input, extra);
-    std::vector<std::uint8_t> response_bytes = build_telegram(
-        {master, address, response_fc(FdlStatus::DataLow), {}, {}, Bytes(input)});
+    std::vector<std::uint8_t> response_bytes =
+        build_telegram({master, address, response_fc(FdlStatus::DataLow), {}, {}, Bytes(input)});
 
     // The slave now knows this cycle's master PCV (it acts on it in the next cycle).
     slave.seen = request;
@@ -684,10 +703,12 @@ void Simulator::exchange(std::size_t index) {
     slave.fcb = !slave.fcb;
 
     // Process data: the drive ramps toward the reference; the reference moves now and then.
-    if (slave.actual < slave.reference) slave.actual = static_cast<std::uint16_t>(
-        std::min<int>(slave.reference, slave.actual + 0x100));
-    if (slave.actual > slave.reference) slave.actual = static_cast<std::uint16_t>(
-        std::max<int>(slave.reference, slave.actual - 0x100));
+    if (slave.actual < slave.reference)
+        slave.actual =
+            static_cast<std::uint16_t>(std::min<int>(slave.reference, slave.actual + 0x100));
+    if (slave.actual > slave.reference)
+        slave.actual =
+            static_cast<std::uint16_t>(std::max<int>(slave.reference, slave.actual - 0x100));
     if (cycle_ % 400 == 399) {
         static constexpr std::uint16_t kReferences[] = {0x1000, 0x2000, 0x3000, 0x4000};
         slave.reference = kReferences[random(std::size(kReferences))];

@@ -67,13 +67,13 @@ struct SimulatorOptions {
     std::uint64_t seed = 1;
     std::uint32_t baud = 1'500'000;
     std::uint8_t master = 2;
-    std::vector<SimulatedSlave> slaves;        // empty: 3:PPO1, 4:PPO2, 5:PPO5
-    std::uint64_t cycles = 1000;               // Data_Exchange cycles after start-up
-    std::uint64_t max_telegrams = 0;           // stop after this many telegrams (0: no limit)
+    std::vector<SimulatedSlave> slaves;  // empty: 3:PPO1, 4:PPO2, 5:PPO5
+    std::uint64_t cycles = 1000;         // Data_Exchange cycles after start-up
+    std::uint64_t max_telegrams = 0;     // stop after this many telegrams (0: no limit)
     std::int64_t start_time_ns = 1'704'067'200'000'000'000;  // 2024-01-01T00:00:00Z
-    std::uint32_t cycle_us = 2000;             // target bus cycle time
-    std::uint32_t master_give_up_ms = 1500;    // the master abandons an unanswered request
-    bool record_start_up = true;               // false: the capture begins with the first cycle
+    std::uint32_t cycle_us = 2000;                           // target bus cycle time
+    std::uint32_t master_give_up_ms = 1500;  // the master abandons an unanswered request
+    bool record_start_up = true;             // false: the capture begins with the first cycle
     std::vector<FaultSpec> faults;
 };
 
@@ -86,7 +86,7 @@ struct Injection {
 };
 
 class Simulator {
-public:
+  public:
     explicit Simulator(SimulatorOptions options);
 
     // The next telegram (or garbage record) and its time; false when the session is over.
@@ -96,7 +96,7 @@ public:
     const std::vector<SimulatedSlave>& slaves() const noexcept { return options_.slaves; }
     std::uint64_t telegrams() const noexcept { return emitted_; }
 
-private:
+  private:
     struct Request {
         std::uint8_t rc = 0;
         std::uint16_t pnu = 0;
@@ -119,7 +119,7 @@ private:
         bool fcb = true;
         std::vector<Parameter> parameters;
         // Master side of the parameter channel.
-        bool master_busy = false;        // a request is out and not answered yet
+        bool master_busy = false;  // a request is out and not answered yet
         Request master_request;
         Request last_request;
         Request next_request;
@@ -136,7 +136,7 @@ private:
         bool seen_valid = false;
         Request seen;
         bool seen_spm = false;
-        bool working = false;            // has a request it has not answered yet
+        bool working = false;  // has a request it has not answered yet
         Request current;
         std::uint64_t ready_cycle = 0;
         Request answer;                  // what the slave's PCV says now

@@ -16,7 +16,7 @@ namespace {
 
 // Collects the framer's telegrams and hands them out one per next() call.
 class FramedSource : public TelegramSource, private StreamFramer::Sink {
-public:
+  public:
     using TelegramSource::TelegramSource;
 
     bool next(Record& record) override {
@@ -41,7 +41,7 @@ public:
 
     std::uint64_t bytes_skipped() const override { return framer_.bytes_skipped(); }
 
-protected:
+  protected:
     // Feeds more input to framer_ (through feed()); false when the input is exhausted.
     virtual bool fill() = 0;
     // The time of the telegram starting at `offset` in the byte stream.
@@ -53,7 +53,7 @@ protected:
 
     void feed(Bytes bytes) { framer_.feed(bytes, *this); }
 
-private:
+  private:
     struct Entry {
         std::size_t start;
         std::size_t length;
@@ -80,12 +80,12 @@ private:
 };
 
 class RawSource final : public FramedSource {
-public:
+  public:
     RawSource(FILE* file, std::string name) : FramedSource(std::move(name)), file_(file) {}
     ~RawSource() override { std::fclose(file_); }
     InputFormat format() const override { return InputFormat::Raw; }
 
-private:
+  private:
     bool fill() override {
         std::size_t got = std::fread(chunk_.data(), 1, chunk_.size(), file_);
         if (got > 0) {
@@ -107,7 +107,7 @@ private:
 };
 
 class HexSource final : public FramedSource {
-public:
+  public:
     HexSource(FILE* file, std::string name) : FramedSource(std::move(name)), file_(file) {}
     ~HexSource() override {
         std::free(line_);
@@ -115,10 +115,10 @@ public:
     }
     InputFormat format() const override { return InputFormat::Hex; }
 
-private:
+  private:
     struct Line {
-        std::uint64_t start;    // stream offset of the line's first byte
-        std::uint64_t number;   // 1-based line number in the file
+        std::uint64_t start;   // stream offset of the line's first byte
+        std::uint64_t number;  // 1-based line number in the file
         std::int64_t time_ns;
     };
 
@@ -159,7 +159,8 @@ private:
 
     std::int64_t time_at(std::uint64_t offset) override {
         // Telegrams come in stream order: lines wholly before this one are no longer needed.
-        while (lines_.size() > 1 && lines_[1].start <= offset) lines_.pop_front();
+        while (lines_.size() > 1 && lines_[1].start <= offset)
+            lines_.pop_front();
         const Line* line = line_of(offset);
         return line ? line->time_ns : kNoTime;
     }
@@ -180,12 +181,12 @@ private:
 };
 
 class MemorySource final : public FramedSource {
-public:
+  public:
     MemorySource(std::string name, Bytes bytes)
         : FramedSource(std::move(name)), bytes_(bytes.begin(), bytes.end()) {}
     InputFormat format() const override { return InputFormat::Hex; }
 
-private:
+  private:
     bool fill() override {
         if (done_) return false;
         done_ = true;

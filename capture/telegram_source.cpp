@@ -99,8 +99,8 @@ OpenResult open_source(const std::string& path, InputFormat format) {
         classic_pcap = detect_input_format(replay->head) == InputFormat::Pcap;
         if (format == InputFormat::Auto) format = detect_input_format(replay->head);
     }
-    FILE* stream = fopencookie(replay, "rb", cookie_io_functions_t{replay_read, nullptr, nullptr,
-                                                                    replay_close});
+    FILE* stream = fopencookie(replay, "rb",
+                               cookie_io_functions_t{replay_read, nullptr, nullptr, replay_close});
     if (!stream) {
         result.error = fmt::format("{}: cannot set up reading: {}", name, std::strerror(errno));
         replay_close(replay);

@@ -36,7 +36,7 @@ enum class InputStatus {
 };
 
 class TelegramSource {
-public:
+  public:
     using IssueHandler = std::function<void(const InputIssue&)>;
 
     explicit TelegramSource(std::string display_name) : name_(std::move(display_name)) {}
@@ -56,11 +56,11 @@ public:
     const std::string& name() const noexcept { return name_; }
     void on_issue(IssueHandler handler) { issue_handler_ = std::move(handler); }
 
-protected:
+  protected:
     void report(Severity severity, std::string message);
     void set_status(InputStatus status) noexcept { status_ = status; }
 
-private:
+  private:
     std::string name_;
     InputStatus status_ = InputStatus::Ok;
     IssueHandler issue_handler_;

@@ -1,12 +1,12 @@
 #include "cli/common_options.hpp"
 
-#include "cli/pipeline.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
+
+#include "cli/pipeline.hpp"
 
 namespace dpscope::cli {
 
@@ -77,22 +77,26 @@ bool parse_unsigned(std::string_view text, unsigned& value) {
 std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
                                                      std::string& error) {
     DecodeSettings settings;
-    settings.format = values.verbose ? OutputFormat::Verbose
-                                     : output_format_from_name(values.format).value_or(
-                                           OutputFormat::Text);
+    settings.format = values.verbose
+                          ? OutputFormat::Verbose
+                          : output_format_from_name(values.format).value_or(OutputFormat::Text);
     settings.quiet = values.quiet;
     settings.count = values.count;
     settings.tracker.timeout_ns = static_cast<std::int64_t>(values.timeout_ms) * 1'000'000;
     settings.tracker.strict = values.strict;
-    for (unsigned station : values.stations) settings.stations.push_back(static_cast<std::uint8_t>(station));
-    for (unsigned pnu : values.pnus) settings.pnus.push_back(static_cast<std::uint16_t>(pnu));
+    for (unsigned station : values.stations)
+        settings.stations.push_back(static_cast<std::uint8_t>(station));
+    for (unsigned pnu : values.pnus)
+        settings.pnus.push_back(static_cast<std::uint16_t>(pnu));
     for (const std::string& item : values.ppo) {
         auto eq = item.find('=');
         unsigned address = 0, type = 0;
-        if (eq == std::string::npos || !parse_unsigned(std::string_view(item).substr(0, eq), address) ||
+        if (eq == std::string::npos ||
+            !parse_unsigned(std::string_view(item).substr(0, eq), address) ||
             !parse_unsigned(std::string_view(item).substr(eq + 1), type) || address > 126 ||
             type < 1 || type > 5) {
-            error = fmt::format("--ppo {}: expected ADDR=TYPE with ADDR 0..126 and TYPE 1..5", item);
+            error =
+                fmt::format("--ppo {}: expected ADDR=TYPE with ADDR 0..126 and TYPE 1..5", item);
             return std::nullopt;
         }
         settings.decoder.station_ppo[address] = static_cast<std::uint8_t>(type);
@@ -103,7 +107,8 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
                                                         : std::string_view(item).substr(eq + 1);
         auto dialect = dialect_from_name(name);
         if (!dialect) {
-            error = fmt::format("--dialect {}: '{}' is not a dialect (vlt, profidrive)", item, name);
+            error =
+                fmt::format("--dialect {}: '{}' is not a dialect (vlt, profidrive)", item, name);
             return std::nullopt;
         }
         if (eq == std::string::npos) {
@@ -125,10 +130,11 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
 
 bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t) noexcept {
     if (!settings.stations.empty()) {
-        bool match = std::any_of(settings.stations.begin(), settings.stations.end(), [&](std::uint8_t a) {
-            return (t.fdl.has_addresses && (t.fdl.da == a || t.fdl.sa == a)) ||
-                   (t.has_roles && (t.master == a || t.slave == a));
-        });
+        bool match =
+            std::any_of(settings.stations.begin(), settings.stations.end(), [&](std::uint8_t a) {
+                return (t.fdl.has_addresses && (t.fdl.da == a || t.fdl.sa == a)) ||
+                       (t.has_roles && (t.master == a || t.slave == a));
+            });
         if (!match) return false;
     }
     if (!settings.pnus.empty()) {

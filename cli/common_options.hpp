@@ -3,7 +3,6 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -46,7 +45,8 @@ struct DecodeOptionValues {
 // How to decode and track: -c, --ppo, --dialect, --pcd-profile, --timeout-ms, --strict.
 void add_tracking_options(CLI::App& app, DecodeOptionValues& values);
 // What decode and hex print: -T, -V, -q, --station, --pnu.
-void add_display_options(CLI::App& app, DecodeOptionValues& values, std::string_view default_format);
+void add_display_options(CLI::App& app, DecodeOptionValues& values,
+                         std::string_view default_format);
 
 struct DecodeSettings {
     DecoderOptions decoder;

@@ -1,10 +1,10 @@
 // dpscope decode: a capture file (or standard input) to decoded telegrams.
 // dpscope hex:    telegrams typed as hex on the command line or piped in as a hex log.
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <memory>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "capture/hex_log.hpp"
@@ -72,8 +72,9 @@ void add_decode_command(CLI::App& app, int& exit_code) {
         "byte stream, or a hex text log. The input kind is detected from the content.");
     sub->add_option("file", command->file, "Capture file to read; - reads standard input")
         ->type_name("FILE");
-    sub->add_option("-r,--read", command->read_option, "Capture file to read (as tshark -r); - "
-                                                       "reads standard input")
+    sub->add_option("-r,--read", command->read_option,
+                    "Capture file to read (as tshark -r); - "
+                    "reads standard input")
         ->type_name("FILE");
     sub->add_option("--input-format", command->input_format,
                     "Input kind: auto (detect from the content), pcap, pcapng, raw (serial byte "
@@ -102,8 +103,8 @@ void add_decode_command(CLI::App& app, int& exit_code) {
             exit_code = kExitUsage;
             return;
         }
-        OpenResult opened =
-            open_source(path, input_format_from_name(command->input_format).value_or(InputFormat::Auto));
+        OpenResult opened = open_source(
+            path, input_format_from_name(command->input_format).value_or(InputFormat::Auto));
         if (!opened.source) {
             print_error(opened.error);
             exit_code = kExitUsage;

@@ -1,7 +1,7 @@
 // dpscope: a protocol analyzer for drive parameter channels on PROFIBUS DP.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <exception>
 #include <string>
 

@@ -11,7 +11,7 @@
 namespace dpscope::cli {
 
 class Pipeline {
-public:
+  public:
     explicit Pipeline(const DecodeSettings& settings)
         : decoder_(settings.decoder), tracker_(decoder_, settings.tracker) {}
 
@@ -34,7 +34,7 @@ public:
     const SessionTracker& tracker() const noexcept { return tracker_; }
     const Summary& summary() const noexcept { return summary_; }
 
-private:
+  private:
     BusDecoder decoder_;
     SessionTracker tracker_;
     Summary summary_;

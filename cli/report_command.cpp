@@ -39,8 +39,8 @@ int run_report(const ReportCommand& command) {
         print_error(error);
         return kExitUsage;
     }
-    OpenResult opened = open_source(
-        path, input_format_from_name(command.input_format).value_or(InputFormat::Auto));
+    OpenResult opened =
+        open_source(path, input_format_from_name(command.input_format).value_or(InputFormat::Auto));
     if (!opened.source) {
         print_error(opened.error);
         return kExitUsage;
@@ -81,8 +81,8 @@ int run_report(const ReportCommand& command) {
         for (unsigned station : command.stations)
             context.stations.push_back(static_cast<std::uint8_t>(station));
         context.version = kVersion;
-        render_report(report_format_from_name(command.format).value_or(ReportFormat::Text),
-                      context, out);
+        render_report(report_format_from_name(command.format).value_or(ReportFormat::Text), context,
+                      out);
         if (!log.error().empty()) print_error(fmt::format("warning: {}", log.error()));
         if (!out.flush()) {
             print_error(fmt::format("error: cannot write the report to {}",
@@ -139,8 +139,7 @@ void add_report_command(CLI::App& app, int& exit_code) {
         ->type_name("ADDR")
         ->allow_extra_args(false);
     add_tracking_options(*sub, command->options);
-    sub->footer(std::string(kExitCodeHelp) +
-                " For report, 1 takes precedence over 3.");
+    sub->footer(std::string(kExitCodeHelp) + " For report, 1 takes precedence over 3.");
     sub->callback([command, &exit_code] { exit_code = run_report(*command); });
 }
 

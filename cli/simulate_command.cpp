@@ -68,7 +68,8 @@ int run_simulate(const SimulateCommand& command) {
         print_error("simulate: --cycles 0 runs until -c N telegrams; give -c");
         return kExitUsage;
     }
-    CaptureFormat format = capture_format_from_name(command.output_format).value_or(CaptureFormat::Pcap);
+    CaptureFormat format =
+        capture_format_from_name(command.output_format).value_or(CaptureFormat::Pcap);
     int link_type = command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
     WriterResult opened = open_capture_writer(command.output, format, link_type);
     if (!opened.writer) {

@@ -87,8 +87,8 @@ void BusDecoder::decode_request(DecodedTelegram& t) {
     t.direction = Direction::Request;
     t.service = classify_request(t.fdl);
     if (pending_.valid) {
-        t.unanswered = UnansweredRequest{pending_.frame,  pending_.time_ns, pending_.master,
-                                         pending_.slave,  pending_.function, pending_.service};
+        t.unanswered = UnansweredRequest{pending_.frame, pending_.time_ns,  pending_.master,
+                                         pending_.slave, pending_.function, pending_.service};
         pending_.valid = false;
     }
     if (!t.fdl.has_addresses) return;
@@ -98,17 +98,16 @@ void BusDecoder::decode_request(DecodedTelegram& t) {
     if (t.fdl.type == FrameType::Sd4 || !t.fdl.has_fc) return;
     std::uint8_t function = t.fdl.fc.function();
     if (function_expects_reply(function) && t.fdl.da != kBroadcastAddress) {
-        pending_ = PendingRequest{true,     t.frame,  t.time_ns, t.master,
-                                  t.slave,  function, t.service};
+        pending_ = PendingRequest{true, t.frame, t.time_ns, t.master, t.slave, function, t.service};
     }
 }
 
 void BusDecoder::decode_response(DecodedTelegram& t) {
     t.direction = Direction::Response;
     bool answers_pending =
-        pending_.valid && (t.fdl.type == FrameType::ShortAck ||
-                           (t.fdl.has_addresses && t.fdl.da == pending_.master &&
-                            t.fdl.sa == pending_.slave));
+        pending_.valid &&
+        (t.fdl.type == FrameType::ShortAck ||
+         (t.fdl.has_addresses && t.fdl.da == pending_.master && t.fdl.sa == pending_.slave));
     if (answers_pending) {
         t.service = pending_.service;
         t.request_frame = pending_.frame;
@@ -181,7 +180,8 @@ void BusDecoder::decode_service_data(DecodedTelegram& t) {
 
 void BusDecoder::decode_data_exchange(DecodedTelegram& t) {
     Bytes du = t.fdl.du;
-    if (du.size() == 12 && t.direction == Direction::Request && !stations_[t.slave & 0x7F].ppo.known())
+    if (du.size() == 12 && t.direction == Direction::Request &&
+        !stations_[t.slave & 0x7F].ppo.known())
         learn_length12_type(t);
     t.ppo = layout_for(t.slave, du.size());
     ByteReader reader(du, t.fdl.du_offset);

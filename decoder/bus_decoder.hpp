@@ -41,11 +41,11 @@ std::string_view direction_name(Direction direction);  // "request", "response"
 
 // What the decoder knows about one slave.
 struct StationConfig {
-    PpoLayout ppo;                  // from Chk_Cfg or Get_Cfg (source None until one is seen)
-    std::uint64_t cfg_frame = 0;    // the frame that carried it
+    PpoLayout ppo;                // from Chk_Cfg or Get_Cfg (source None until one is seen)
+    std::uint64_t cfg_frame = 0;  // the frame that carried it
     bool has_ident = false;
-    std::uint16_t ident = 0;        // from Set_Prm
-    bool cfg_fault = false;         // from the last Slave_Diag
+    std::uint16_t ident = 0;  // from Set_Prm
+    bool cfg_fault = false;   // from the last Slave_Diag
     // Without a configuration, a 12-byte Data_Exchange is PPO 1 or PPO 4. The master's control
     // word has bit 10 set ("data valid" / "control by PLC"): in bytes 9-10 it points to PPO 1, in
     // bytes 1-2 (and not in 9-10) to PPO 4. The last request that told them apart decides.
@@ -63,10 +63,10 @@ struct UnansweredRequest {
 };
 
 struct DecodedTelegram {
-    std::uint64_t frame = 0;        // 1-based record number
-    std::int64_t time_ns = kNoTime; // nanoseconds since the epoch; kNoTime when unknown
-    Bytes bytes;                    // the record (valid until the next decode)
-    FdlTelegram fdl;                // layer 2, with every problem found at any layer
+    std::uint64_t frame = 0;         // 1-based record number
+    std::int64_t time_ns = kNoTime;  // nanoseconds since the epoch; kNoTime when unknown
+    Bytes bytes;                     // the record (valid until the next decode)
+    FdlTelegram fdl;                 // layer 2, with every problem found at any layer
     Service service = Service::Unknown;
     Direction direction = Direction::Request;
 
@@ -79,12 +79,12 @@ struct DecodedTelegram {
     std::optional<UnansweredRequest> unanswered;  // set on the telegram that ended the wait
 
     // Data_Exchange
-    PpoLayout ppo;                  // the layout used to split the data
+    PpoLayout ppo;  // the layout used to split the data
     Dialect dialect = Dialect::Vlt;
     PcdProfile pcd_profile = PcdProfile::Fc;
     bool has_pcv = false;
     Pcv pcv;
-    Bytes pcd;                      // process data words
+    Bytes pcd;  // process data words
     std::uint16_t pcd_offset = 0;
 
     const ProblemList& problems() const noexcept { return fdl.problems; }
@@ -95,7 +95,7 @@ struct DecodedTelegram {
 };
 
 class BusDecoder {
-public:
+  public:
     explicit BusDecoder(DecoderOptions options = {});
 
     // Decodes one telegram. The result refers to `bytes` and stays valid until the next call.
@@ -108,7 +108,7 @@ public:
     // The PPO layout the decoder uses for `slave`, for a data unit of `du_length` bytes.
     PpoLayout layout_for(std::uint8_t slave, std::size_t du_length) const noexcept;
 
-private:
+  private:
     struct PendingRequest {
         bool valid = false;
         std::uint64_t frame = 0;

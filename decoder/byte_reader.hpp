@@ -13,7 +13,7 @@ namespace dpscope {
 using Bytes = std::span<const std::uint8_t>;
 
 class ByteReader {
-public:
+  public:
     // base_offset: where data[0] sits in the enclosing telegram, so offset() can name the byte
     // position a person sees in a hex dump of the whole telegram.
     explicit ByteReader(Bytes data, std::size_t base_offset = 0) noexcept
@@ -44,10 +44,9 @@ public:
 
     std::optional<std::uint32_t> u32_be() noexcept {
         if (remaining() < 4) return std::nullopt;
-        std::uint32_t value = (std::uint32_t{data_[position_]} << 24) |
-                              (std::uint32_t{data_[position_ + 1]} << 16) |
-                              (std::uint32_t{data_[position_ + 2]} << 8) |
-                              std::uint32_t{data_[position_ + 3]};
+        std::uint32_t value =
+            (std::uint32_t{data_[position_]} << 24) | (std::uint32_t{data_[position_ + 1]} << 16) |
+            (std::uint32_t{data_[position_ + 2]} << 8) | std::uint32_t{data_[position_ + 3]};
         position_ += 4;
         return value;
     }
@@ -82,7 +81,7 @@ public:
         return true;
     }
 
-private:
+  private:
     Bytes data_;
     std::size_t base_offset_ = 0;
     std::size_t position_ = 0;

@@ -202,22 +202,22 @@ struct Pairing {
 constexpr std::uint16_t bit(int n) { return static_cast<std::uint16_t>(1u << n); }
 
 constexpr std::array<Pairing, 16> kPairings{{
-    {bit(0)},            // 0: no request -> no response
-    {bit(1) | bit(2)},   // 1: read -> word or double word
-    {bit(1)},            // 2
-    {bit(2)},            // 3
-    {bit(3)},            // 4
-    {bit(3)},            // 5
-    {bit(4) | bit(5)},   // 6
-    {bit(4)},            // 7
-    {bit(5)},            // 8
-    {bit(6)},            // 9
-    {0},                 // 10: reserved
-    {bit(5)},            // 11 (profidrive)
-    {bit(4)},            // 12 (profidrive)
-    {bit(2)},            // 13 (profidrive)
-    {bit(1)},            // 14 (profidrive)
-    {bit(15)},           // 15 (profidrive)
+    {bit(0)},           // 0: no request -> no response
+    {bit(1) | bit(2)},  // 1: read -> word or double word
+    {bit(1)},           // 2
+    {bit(2)},           // 3
+    {bit(3)},           // 4
+    {bit(3)},           // 5
+    {bit(4) | bit(5)},  // 6
+    {bit(4)},           // 7
+    {bit(5)},           // 8
+    {bit(6)},           // 9
+    {0},                // 10: reserved
+    {bit(5)},           // 11 (profidrive)
+    {bit(4)},           // 12 (profidrive)
+    {bit(2)},           // 13 (profidrive)
+    {bit(1)},           // 14 (profidrive)
+    {bit(15)},          // 15 (profidrive)
 }};
 
 }  // namespace

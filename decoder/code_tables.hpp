@@ -28,13 +28,13 @@ std::string_view dialect_name(Dialect dialect);  // "vlt", "profidrive"
 std::optional<Dialect> dialect_from_name(std::string_view name);
 
 struct Pcv {
-    std::uint16_t pca = 0;   // the whole first word
-    std::uint8_t rc = 0;     // request/response code (RC, AK)
-    bool spm = false;        // toggle bit for spontaneous messages
-    std::uint16_t pnu = 0;   // parameter number, 11 bits
-    std::uint8_t ind = 0;    // byte 3: subindex
+    std::uint16_t pca = 0;     // the whole first word
+    std::uint8_t rc = 0;       // request/response code (RC, AK)
+    bool spm = false;          // toggle bit for spontaneous messages
+    std::uint16_t pnu = 0;     // parameter number, 11 bits
+    std::uint8_t ind = 0;      // byte 3: subindex
     std::uint8_t ind_low = 0;  // byte 4
-    std::uint32_t pva = 0;   // bytes 5-8, as a 32-bit big-endian value
+    std::uint32_t pva = 0;     // bytes 5-8, as a 32-bit big-endian value
 };
 
 // Reads the 8 PCV bytes; nullopt when fewer than 8 remain.
@@ -78,10 +78,10 @@ std::string_view error_text(Dialect dialect, std::uint16_t number) noexcept;
 
 // How a response code answers a request code.
 enum class AnswerVerdict : std::uint8_t {
-    Positive,     // a listed positive answer
-    Negative,     // RC 7 (or RC 8 after a change request)
-    Unusual,      // RC 8 after a read: not listed, tolerated unless strict
-    Invalid,      // not a valid answer to this request
+    Positive,  // a listed positive answer
+    Negative,  // RC 7 (or RC 8 after a change request)
+    Unusual,   // RC 8 after a read: not listed, tolerated unless strict
+    Invalid,   // not a valid answer to this request
 };
 
 // Pairing table (MICROMASTER 440 / ABB FPBA-01 / PROFIdrive), applied to both dialects:

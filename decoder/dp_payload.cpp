@@ -5,9 +5,14 @@ namespace dpscope {
 namespace {
 
 constexpr FlagBit kStationStatus1[] = {
-    {0x01, "Station_Non_Existent"}, {0x02, "Station_Not_Ready"}, {0x04, "Cfg_Fault"},
-    {0x08, "Ext_Diag"},             {0x10, "Not_Supported"},     {0x20, "Invalid_Slave_Response"},
-    {0x40, "Prm_Fault"},            {0x80, "Master_Lock"},
+    {0x01, "Station_Non_Existent"},
+    {0x02, "Station_Not_Ready"},
+    {0x04, "Cfg_Fault"},
+    {0x08, "Ext_Diag"},
+    {0x10, "Not_Supported"},
+    {0x20, "Invalid_Slave_Response"},
+    {0x40, "Prm_Fault"},
+    {0x80, "Master_Lock"},
 };
 constexpr FlagBit kStationStatus2[] = {
     {0x01, "Prm_Req"},     {0x02, "Stat_Diag"}, {0x04, "always_1"}, {0x08, "WD_On"},
@@ -16,16 +21,22 @@ constexpr FlagBit kStationStatus2[] = {
 constexpr FlagBit kStationStatus3[] = {{0x80, "Ext_Diag_Overflow"}};
 
 constexpr FlagBit kSetPrmStation[] = {
-    {0x08, "WD_On"}, {0x10, "Freeze_Req"}, {0x20, "Sync_Req"}, {0x40, "Unlock_Req"},
-    {0x80, "Lock_Req"},
+    {0x08, "WD_On"},      {0x10, "Freeze_Req"}, {0x20, "Sync_Req"},
+    {0x40, "Unlock_Req"}, {0x80, "Lock_Req"},
 };
 constexpr FlagBit kDpv1Status1[] = {
-    {0x04, "WD_Base_1ms"}, {0x20, "Publisher_Enable"}, {0x40, "Fail_Safe"}, {0x80, "DPV1_Enable"},
+    {0x04, "WD_Base_1ms"},
+    {0x20, "Publisher_Enable"},
+    {0x40, "Fail_Safe"},
+    {0x80, "DPV1_Enable"},
 };
 constexpr FlagBit kDpv1Status2[] = {
-    {0x01, "Chk_Cfg_Mode"},         {0x04, "Enable_Update_Alarm"},
-    {0x08, "Enable_Status_Alarm"},  {0x10, "Enable_Manufacturer_Specific_Alarm"},
-    {0x20, "Enable_Diagnostic_Alarm"}, {0x40, "Enable_Process_Alarm"},
+    {0x01, "Chk_Cfg_Mode"},
+    {0x04, "Enable_Update_Alarm"},
+    {0x08, "Enable_Status_Alarm"},
+    {0x10, "Enable_Manufacturer_Specific_Alarm"},
+    {0x20, "Enable_Diagnostic_Alarm"},
+    {0x40, "Enable_Process_Alarm"},
     {0x80, "Enable_Pull_Plug_Alarm"},
 };
 constexpr FlagBit kDpv1Status3[] = {{0x08, "Prm_Structure"}, {0x10, "IsoM_Req"}};
@@ -41,8 +52,8 @@ constexpr std::uint8_t kDpv1Status3Reserved = 0x60;
 
 bool need(ByteReader& reader, std::size_t bytes, ProblemList& problems) {
     if (reader.remaining() >= bytes) return true;
-    problems.add(ProblemKind::ServiceDataShort, reader.offset(),
-                 static_cast<std::uint32_t>(bytes), static_cast<std::uint32_t>(reader.remaining()));
+    problems.add(ProblemKind::ServiceDataShort, reader.offset(), static_cast<std::uint32_t>(bytes),
+                 static_cast<std::uint32_t>(reader.remaining()));
     return false;
 }
 
@@ -248,8 +259,8 @@ bool parse_cfg(ByteReader reader, std::vector<CfgModule>& modules, ProblemList& 
         std::uint8_t which = id >> 6;
         module.manufacturer_bytes = id & 0x0F;
         if (id == 0x00) module.free_place = true;
-        std::size_t wanted = ((which & 0x02) ? 1u : 0u) + ((which & 0x01) ? 1u : 0u) +
-                             module.manufacturer_bytes;
+        std::size_t wanted =
+            ((which & 0x02) ? 1u : 0u) + ((which & 0x01) ? 1u : 0u) + module.manufacturer_bytes;
         if (reader.remaining() < wanted) {
             problems.add(ProblemKind::CfgIdentifierTruncated, module.offset,
                          static_cast<std::uint32_t>(wanted),

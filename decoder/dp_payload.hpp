@@ -22,12 +22,12 @@ struct FlagBit {
 
 // ---- Slave_Diag ------------------------------------------------------------------------------
 
-inline constexpr std::uint8_t kDiagCfgFault = 0x04;      // Station_Status_1
-inline constexpr std::uint8_t kDiagExtDiag = 0x08;       // Station_Status_1
-inline constexpr std::uint8_t kDiagPrmFault = 0x40;      // Station_Status_1
-inline constexpr std::uint8_t kDiagPrmReq = 0x01;        // Station_Status_2
-inline constexpr std::uint8_t kDiagAlwaysOne = 0x04;     // Station_Status_2
-inline constexpr std::uint8_t kDiagWatchdogOn = 0x08;    // Station_Status_2
+inline constexpr std::uint8_t kDiagCfgFault = 0x04;    // Station_Status_1
+inline constexpr std::uint8_t kDiagExtDiag = 0x08;     // Station_Status_1
+inline constexpr std::uint8_t kDiagPrmFault = 0x40;    // Station_Status_1
+inline constexpr std::uint8_t kDiagPrmReq = 0x01;      // Station_Status_2
+inline constexpr std::uint8_t kDiagAlwaysOne = 0x04;   // Station_Status_2
+inline constexpr std::uint8_t kDiagWatchdogOn = 0x08;  // Station_Status_2
 inline constexpr std::uint8_t kNoMasterAddress = 255;
 
 std::span<const FlagBit> station_status_1_flags();
@@ -42,10 +42,10 @@ struct DiagBlock {
     std::uint16_t offset = 0;  // header byte offset in the telegram
     Bytes data;                // the block without its header byte
     // Channel-related blocks:
-    std::uint8_t module = 0;         // identifier (slot) number
+    std::uint8_t module = 0;  // identifier (slot) number
     std::uint8_t channel = 0;
-    std::uint8_t io = 0;             // 1 input, 2 output, 3 input/output
-    std::uint8_t channel_type = 0;   // 1 bit, 2 2-bit, 3 4-bit, 4 byte, 5 word, 6 2 words
+    std::uint8_t io = 0;            // 1 input, 2 output, 3 input/output
+    std::uint8_t channel_type = 0;  // 1 bit, 2 2-bit, 3 4-bit, 4 byte, 5 word, 6 2 words
     std::uint8_t error_type = 0;
     // Revision blocks:
     std::uint8_t revision = 0;
@@ -57,7 +57,7 @@ struct SlaveDiag {
     std::uint8_t station_status_3 = 0;
     std::uint8_t master_address = kNoMasterAddress;
     std::uint16_t ident = 0;
-    Bytes extended;                  // extended diagnosis, after the six fixed bytes
+    Bytes extended;  // extended diagnosis, after the six fixed bytes
     std::uint16_t extended_offset = 0;
 };
 
@@ -83,9 +83,9 @@ struct SetPrm {
     std::uint8_t min_tsdr = 0;
     std::uint16_t ident = 0;
     std::uint8_t group_ident = 0;
-    bool has_dpv1_status = false;           // the first three user bytes fit the DP-V1 layout
+    bool has_dpv1_status = false;  // the first three user bytes fit the DP-V1 layout
     std::array<std::uint8_t, 3> dpv1_status{};
-    Bytes user_prm;                         // User_Prm_Data after the DP-V1 status bytes
+    Bytes user_prm;  // User_Prm_Data after the DP-V1 status bytes
     std::uint16_t user_prm_offset = 0;
 
     bool watchdog_on() const noexcept { return (station_status & 0x08) != 0; }
@@ -101,12 +101,12 @@ enum class CfgDirection : std::uint8_t { None, Input, Output, InputOutput };
 std::string_view cfg_direction_name(CfgDirection direction);  // "-", "in", "out", "in/out"
 
 struct CfgModule {
-    std::uint16_t offset = 0;       // identifier byte offset in the telegram
+    std::uint16_t offset = 0;  // identifier byte offset in the telegram
     std::uint8_t identifier = 0;
-    bool special = false;           // special identifier format (bits 5..4 = 00)
-    bool free_place = false;        // 0x00
+    bool special = false;     // special identifier format (bits 5..4 = 00)
+    bool free_place = false;  // 0x00
     CfgDirection direction = CfgDirection::None;
-    std::uint8_t input_units = 0;   // length in units (bytes or words)
+    std::uint8_t input_units = 0;  // length in units (bytes or words)
     std::uint8_t output_units = 0;
     bool input_words = false;
     bool output_words = false;

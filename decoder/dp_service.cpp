@@ -83,8 +83,8 @@ Service classify_request(const FdlTelegram& t) noexcept {
     if (!t.has_fc) return Service::Unknown;
     // SAP bytes announced but none could be read: it is no Data_Exchange (an SRD without SAPs),
     // and which DP service it was cannot be told. (With the DSAP read, the service is known.)
-    bool saps_lost = !t.has_dsap && !t.has_ssap &&
-                     t.problems.contains(ProblemKind::AddressExtensionShort);
+    bool saps_lost =
+        !t.has_dsap && !t.has_ssap && t.problems.contains(ProblemKind::AddressExtensionShort);
     if (saps_lost) return Service::Unknown;
     std::uint8_t function = t.fc.function();
     if (function == static_cast<std::uint8_t>(FdlFunction::FdlStatus)) return Service::FdlStatus;

@@ -36,7 +36,7 @@ std::string_view service_name(Service service);
 
 // Service access points of DP (slave side unless noted).
 namespace sap {
-inline constexpr std::uint8_t kChkCfg = 62;       // also the master's SSAP for DP services
+inline constexpr std::uint8_t kChkCfg = 62;  // also the master's SSAP for DP services
 inline constexpr std::uint8_t kSetPrm = 61;
 inline constexpr std::uint8_t kSlaveDiag = 60;
 inline constexpr std::uint8_t kGetCfg = 59;
@@ -46,11 +46,11 @@ inline constexpr std::uint8_t kRdInp = 56;
 inline constexpr std::uint8_t kSetSlaveAdd = 55;
 inline constexpr std::uint8_t kMasterMaster = 54;
 inline constexpr std::uint8_t kExtUserPrm = 53;
-inline constexpr std::uint8_t kMsacC1 = 51;       // DP-V1 class-1 read/write (slave and master)
-inline constexpr std::uint8_t kAlarm = 50;        // DP-V1 alarm acknowledge (slave side)
-inline constexpr std::uint8_t kMsacC2Master = 50; // DP-V1 class-2 master SSAP
+inline constexpr std::uint8_t kMsacC1 = 51;           // DP-V1 class-1 read/write (slave and master)
+inline constexpr std::uint8_t kAlarm = 50;            // DP-V1 alarm acknowledge (slave side)
+inline constexpr std::uint8_t kMsacC2Master = 50;     // DP-V1 class-2 master SSAP
 inline constexpr std::uint8_t kResourceManager = 49;  // DP-V1 class-2 Initiate
-inline constexpr std::uint8_t kMaster = 62;       // the DP master's SAP
+inline constexpr std::uint8_t kMaster = 62;           // the DP master's SAP
 }  // namespace sap
 
 // What a SAP number means: on the slave side the service ("Chk_Cfg", "Slave_Diag", ...), on the

@@ -114,7 +114,8 @@ std::uint8_t fcs_of(Bytes bytes) noexcept {
         lanes += (word & kLowBytes) + ((word >> 8) & kLowBytes);
     }
     unsigned sum = static_cast<unsigned>((lanes * 0x0001000100010001ULL) >> 48);
-    for (; i < bytes.size(); ++i) sum += bytes[i];
+    for (; i < bytes.size(); ++i)
+        sum += bytes[i];
     return static_cast<std::uint8_t>(sum);
 }
 
@@ -152,8 +153,7 @@ void parse_header_and_data(ByteReader reader, FdlTelegram& out) noexcept {
     out.fc.raw = *fc;
     if (*da & 0x80) {
         std::size_t at = reader.offset();
-        if (!read_extension(reader, out.has_dsap, out.dsap, out.has_dest_segment,
-                            out.dest_segment))
+        if (!read_extension(reader, out.has_dsap, out.dsap, out.has_dest_segment, out.dest_segment))
             out.problems.add(ProblemKind::AddressExtensionShort, at);
     }
     if (*sa & 0x80) {
@@ -232,10 +232,8 @@ void parse_fdl(Bytes bytes, FdlTelegram& out) noexcept {
         case kSd1:
             out.type = FrameType::Sd1;
             size = 6;
-            parse_header_and_data(ByteReader(bytes.first(bytes.size() < 4 ? bytes.size() : 4)
-                                                 .subspan(1),
-                                             1),
-                                  out);
+            parse_header_and_data(
+                ByteReader(bytes.first(bytes.size() < 4 ? bytes.size() : 4).subspan(1), 1), out);
             check_trailer(bytes, 1, 4, out);
             break;
         case kSd3:

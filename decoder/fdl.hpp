@@ -91,12 +91,12 @@ std::uint8_t fcs_of(Bytes bytes) noexcept;
 
 struct FdlTelegram {
     FrameType type = FrameType::Invalid;
-    std::uint16_t size = 0;          // bytes the telegram occupies, at most the record size
-    std::uint8_t length_field = 0;   // SD2: LE
-    bool has_addresses = false;      // SD1..SD4
-    std::uint8_t da = 0;             // 7-bit destination address
-    std::uint8_t sa = 0;             // 7-bit source address
-    bool has_fc = false;             // SD1..SD3
+    std::uint16_t size = 0;         // bytes the telegram occupies, at most the record size
+    std::uint8_t length_field = 0;  // SD2: LE
+    bool has_addresses = false;     // SD1..SD4
+    std::uint8_t da = 0;            // 7-bit destination address
+    std::uint8_t sa = 0;            // 7-bit source address
+    bool has_fc = false;            // SD1..SD3
     FrameControl fc{};
     bool has_dsap = false;
     bool has_ssap = false;
@@ -106,11 +106,11 @@ struct FdlTelegram {
     bool has_source_segment = false;
     std::uint8_t dest_segment = 0;
     std::uint8_t source_segment = 0;
-    Bytes du{};                      // data unit after the address-extension bytes
-    std::uint16_t du_offset = 0;     // where du starts in the telegram
-    bool has_fcs = false;            // SD1..SD3 that were long enough to carry one
+    Bytes du{};                   // data unit after the address-extension bytes
+    std::uint16_t du_offset = 0;  // where du starts in the telegram
+    bool has_fcs = false;         // SD1..SD3 that were long enough to carry one
     std::uint8_t fcs = 0;
-    bool fcs_ok = true;              // true when there is no FCS to check (SD4, SC)
+    bool fcs_ok = true;  // true when there is no FCS to check (SD4, SC)
     ProblemList problems;
 
     bool is_request() const noexcept {
@@ -128,9 +128,9 @@ enum class FrameStatus : std::uint8_t { Complete, NeedMore, Invalid };
 
 struct FrameCheck {
     FrameStatus status = FrameStatus::NeedMore;
-    std::uint16_t length = 0;                         // Complete: telegram size in bytes
+    std::uint16_t length = 0;                             // Complete: telegram size in bytes
     ProblemKind reason = ProblemKind::BadStartDelimiter;  // Invalid: which check failed
-    std::uint16_t reason_offset = 0;                  // Invalid: at which byte
+    std::uint16_t reason_offset = 0;                      // Invalid: at which byte
 };
 
 // Checks structure: start delimiter, LE = LEr, repeated SD, length range, end delimiter, FCS.

@@ -12,7 +12,7 @@
 namespace dpscope {
 
 class LogHistogram {
-public:
+  public:
     void add(std::uint64_t value) {
         std::size_t bucket = bucket_of(value);
         if (bucket >= counts_.size()) counts_.resize(bucket + 1, 0);
@@ -54,7 +54,8 @@ public:
         if (value < kExact) return static_cast<std::size_t>(value);
         int octave = 63 - std::countl_zero(value);  // >= 7
         std::uint64_t sub = (value >> (octave - kSubBits)) & (kSteps - 1);
-        return kExact + static_cast<std::size_t>(octave - 7) * kSteps + static_cast<std::size_t>(sub);
+        return kExact + static_cast<std::size_t>(octave - 7) * kSteps +
+               static_cast<std::size_t>(sub);
     }
     static std::uint64_t lower_of(std::size_t bucket) noexcept {
         if (bucket < kExact) return bucket;
@@ -68,7 +69,7 @@ public:
         return lower_of(bucket) + (std::uint64_t{1} << (octave - kSubBits)) - 1;
     }
 
-private:
+  private:
     static constexpr int kSubBits = 6;
     static constexpr std::uint64_t kSteps = 64;
     static constexpr std::uint64_t kExact = 128;

@@ -64,8 +64,7 @@ PpoLayout ppo_from_cfg(std::span<const CfgModule> modules, PpoSource source) {
     if (io_count == 0) return layout;
     // The PKW is 8 bytes each way: one in/out module, or an output and an input module.
     bool pkw_together = io[0]->output_bytes() == kPcvBytes && io[0]->input_bytes() == kPcvBytes;
-    bool pkw_split = io_count >= 2 &&
-                     io[0]->output_bytes() + io[1]->output_bytes() == kPcvBytes &&
+    bool pkw_split = io_count >= 2 && io[0]->output_bytes() + io[1]->output_bytes() == kPcvBytes &&
                      io[0]->input_bytes() + io[1]->input_bytes() == kPcvBytes &&
                      (io[0]->input_bytes() == 0 || io[0]->output_bytes() == 0);
     std::size_t pkw_modules = pkw_together ? 1 : (pkw_split ? 2 : 0);

@@ -42,9 +42,10 @@ std::string problem_message(const Problem& p) {
     switch (p.kind) {
         case ProblemKind::EmptyRecord: return "record holds no bytes";
         case ProblemKind::BadStartDelimiter:
-            return fmt::format("byte {}: 0x{:02X} is not a start delimiter (SD1 0x10, SD2 0x68, "
-                               "SD3 0xA2, SD4 0xDC, SC 0xE5)",
-                               p.offset, p.actual);
+            return fmt::format(
+                "byte {}: 0x{:02X} is not a start delimiter (SD1 0x10, SD2 0x68, "
+                "SD3 0xA2, SD4 0xDC, SC 0xE5)",
+                p.offset, p.actual);
         case ProblemKind::Truncated:
             return fmt::format("telegram truncated: needs {} bytes, has {}", p.expected, p.actual);
         case ProblemKind::LengthMismatch:

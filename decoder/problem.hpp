@@ -16,20 +16,20 @@ enum class Severity : std::uint8_t { Note, Warning, Error };
 std::string_view severity_name(Severity severity);
 
 enum class ProblemKind : std::uint8_t {
-    EmptyRecord,            // a capture record with no bytes at all
-    BadStartDelimiter,      // first byte is none of SD1, SD2, SD3, SD4, SC
-    Truncated,              // the telegram ends before its structure says it should
-    LengthMismatch,         // SD2: LE differs from LEr
-    LengthOutOfRange,       // SD2: LE outside 4..249
-    StartDelimiterRepeat,   // SD2: the repeated start delimiter is not 0x68
-    FcsMismatch,            // FDL checksum wrong
-    BadEndDelimiter,        // end delimiter is not 0x16
-    TrailingBytes,          // bytes after the end of the telegram in the same record
-    InvalidAddress,         // SD4: an address with bit 7 set (tokens carry no extension)
-    AddressExtensionShort,  // an address-extension bit announces a SAP byte that is not there
-    ServiceDataShort,       // a DP service's data unit is shorter than the service requires
-    CfgIdentifierTruncated, // a special-format identifier announces bytes that are not there
-    DiagBlockTruncated,     // an extended-diagnosis block runs past the end of the data
+    EmptyRecord,             // a capture record with no bytes at all
+    BadStartDelimiter,       // first byte is none of SD1, SD2, SD3, SD4, SC
+    Truncated,               // the telegram ends before its structure says it should
+    LengthMismatch,          // SD2: LE differs from LEr
+    LengthOutOfRange,        // SD2: LE outside 4..249
+    StartDelimiterRepeat,    // SD2: the repeated start delimiter is not 0x68
+    FcsMismatch,             // FDL checksum wrong
+    BadEndDelimiter,         // end delimiter is not 0x16
+    TrailingBytes,           // bytes after the end of the telegram in the same record
+    InvalidAddress,          // SD4: an address with bit 7 set (tokens carry no extension)
+    AddressExtensionShort,   // an address-extension bit announces a SAP byte that is not there
+    ServiceDataShort,        // a DP service's data unit is shorter than the service requires
+    CfgIdentifierTruncated,  // a special-format identifier announces bytes that are not there
+    DiagBlockTruncated,      // an extended-diagnosis block runs past the end of the data
     Count
 };
 
@@ -52,7 +52,7 @@ std::string problem_message(const Problem& problem);
 // A fixed-capacity list: a telegram rarely has more than two problems, and the decoder must not
 // allocate per telegram. Problems past the capacity are counted in dropped().
 class ProblemList {
-public:
+  public:
     static constexpr std::size_t kCapacity = 6;
 
     void add(ProblemKind kind, std::size_t offset, std::uint32_t expected = 0,
@@ -76,7 +76,7 @@ public:
         return false;
     }
 
-private:
+  private:
     std::array<Problem, kCapacity> items_;  // only the first count_ are meaningful
     std::uint8_t count_ = 0;
     std::uint8_t dropped_ = 0;

@@ -51,7 +51,8 @@ Timeline::Bin& Timeline::bin(std::int64_t time_ns) {
             bins_[i] = Bin{a.transactions + b.transactions, a.errors + b.errors,
                            a.warnings + b.warnings, a.notes + b.notes};
         }
-        for (std::size_t i = kBins / 2; i < kBins; ++i) bins_[i] = Bin{};
+        for (std::size_t i = kBins / 2; i < kBins; ++i)
+            bins_[i] = Bin{};
         width_ns_ *= 2;
     }
     return bins_[static_cast<std::size_t>(offset / width_ns_)];
@@ -93,7 +94,7 @@ struct SessionTracker::Channel {
         bool valid = false;
         PcvKey key;
         bool answered = false;
-        bool moved_on = false;          // the master has moved on from it
+        bool moved_on = false;  // the master has moved on from it
         std::uint64_t moved_on_cycle = 0;
         bool late_answer_seen = false;  // an abandoned request's late answer was already seen
     } previous;
@@ -148,7 +149,8 @@ std::vector<const ChannelStats*> SessionTracker::channels() const {
 
 std::uint64_t SessionTracker::transactions() const noexcept {
     std::uint64_t total = 0;
-    for (const auto& ch : channels_) total += ch->stats.transactions.total();
+    for (const auto& ch : channels_)
+        total += ch->stats.transactions.total();
     return total;
 }
 
@@ -190,14 +192,15 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
         check_deadlines(&t, now_ns_);
     }
     // A request answered by nothing before the master's next telegram.
-    if (t.unanswered && (function_is_srd(t.unanswered->function) ||
-                         function_is_sda(t.unanswered->function))) {
+    if (t.unanswered &&
+        (function_is_srd(t.unanswered->function) || function_is_sda(t.unanswered->function))) {
         const UnansweredRequest& u = *t.unanswered;
         Finding& f = add_for(FindingKind::FdlNoResponse, t.frame, t.time_ns, u.frame, true,
                              u.master, u.slave);
-        f.message = fmt::format("{} request to station {} ({}) got no reply before the master's "
-                                "next telegram",
-                                request_function_name(u.function), u.slave, service_name(u.service));
+        f.message = fmt::format(
+            "{} request to station {} ({}) got no reply before the master's "
+            "next telegram",
+            request_function_name(u.function), u.slave, service_name(u.service));
     }
     bool usable = true;
     check_link(t, usable);
@@ -285,11 +288,11 @@ void SessionTracker::check_config(Channel& ch, const DecodedTelegram& t) {
     if (state == actual + 1) return;  // already reported for this length
     state = actual + 1;
     const StationConfig& config = decoder_.station(t.slave);
-    add(FindingKind::ConfigMismatch, t, 0).message = fmt::format(
-        "Data_Exchange {} carries {} bytes; the {} in frame {} announced {}",
-        request ? "request" : "response", actual,
-        t.ppo.source == PpoSource::ChkCfg ? "Chk_Cfg" : "Get_Cfg response", config.cfg_frame,
-        expected);
+    add(FindingKind::ConfigMismatch, t, 0).message =
+        fmt::format("Data_Exchange {} carries {} bytes; the {} in frame {} announced {}",
+                    request ? "request" : "response", actual,
+                    t.ppo.source == PpoSource::ChkCfg ? "Chk_Cfg" : "Get_Cfg response",
+                    config.cfg_frame, expected);
 }
 
 void SessionTracker::master_pcv(Channel& ch, const DecodedTelegram& t) {
@@ -317,10 +320,10 @@ void SessionTracker::master_pcv(Channel& ch, const DecodedTelegram& t) {
             if (p.rc != 0) {
                 Finding& f = add(FindingKind::StackedRequest, t, ch.pending.frame);
                 f.pnu = ch.pending.key.pnu;
-                f.message = fmt::format(
-                    "new request {} while {} from frame {} was still unanswered",
-                    describe_request(t.dialect, key), describe_request(t.dialect, ch.pending.key),
-                    ch.pending.frame);
+                f.message =
+                    fmt::format("new request {} while {} from frame {} was still unanswered",
+                                describe_request(t.dialect, key),
+                                describe_request(t.dialect, ch.pending.key), ch.pending.frame);
             }
         }
         ch.previous = Channel::Previous{true, ch.pending.key, false, true, ch.stats.cycles, false};
@@ -386,11 +389,10 @@ void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
         // A repeat is ignored, except by a slave that does not clear its answer between
         // identical consecutive requests: the same answer, a cycle after the repeated request
         // was issued, answers it.
-        bool renewed = ch.pending.active && r.rc != 0 && ch.previous.valid &&
-                       ch.previous.answered && ch.previous.key == ch.pending.key &&
-                       concerns(dialect, ch.pending.key, r) &&
-                       ch.pending.cycle > ch.slave_change_cycle &&
-                       ch.stats.cycles > ch.pending.cycle;
+        bool renewed =
+            ch.pending.active && r.rc != 0 && ch.previous.valid && ch.previous.answered &&
+            ch.previous.key == ch.pending.key && concerns(dialect, ch.pending.key, r) &&
+            ch.pending.cycle > ch.slave_change_cycle && ch.stats.cycles > ch.pending.cycle;
         if (!renewed) return;
     }
     if (r.rc == 0) return;  // no response: idle, or still working
@@ -418,17 +420,17 @@ void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
     }
 
     const PcvKey& q = ch.pending.key;
-    const bool echo_required = code.kind != ResponseKind::Rejected &&
-                               code.kind != ResponseKind::NoAuthority;
+    const bool echo_required =
+        code.kind != ResponseKind::Rejected && code.kind != ResponseKind::NoAuthority;
     if (echo_required && !concerns(dialect, q, r)) {
         if (belongs_to_previous()) return;
         Finding& f = add(FindingKind::MismatchedResponse, t, ch.pending.frame);
         f.pnu = q.pnu;
-        f.message = fmt::format("answer RC {} for PNU {}{} to request {} from frame {}", r.rc,
-                                r.pnu, request_code(dialect, q.rc).is_array || code.is_array
-                                           ? fmt::format(" IND {}", r.ind)
-                                           : "",
-                                describe_request(dialect, q), ch.pending.frame);
+        f.message = fmt::format(
+            "answer RC {} for PNU {}{} to request {} from frame {}", r.rc, r.pnu,
+            request_code(dialect, q.rc).is_array || code.is_array ? fmt::format(" IND {}", r.ind)
+                                                                  : "",
+            describe_request(dialect, q), ch.pending.frame);
         ++ch.stats.transactions.mismatched;
         answered(ch, t);
         return;
@@ -467,7 +469,8 @@ void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
 void SessionTracker::answered(Channel& ch, const DecodedTelegram& t) {
     ChannelStats& stats = ch.stats;
     if (t.has_time() && ch.pending.time_ns != kNoTime) {
-        stats.latency_ns.add(static_cast<std::uint64_t>(std::max<std::int64_t>(0, t.time_ns - ch.pending.time_ns)));
+        stats.latency_ns.add(
+            static_cast<std::uint64_t>(std::max<std::int64_t>(0, t.time_ns - ch.pending.time_ns)));
         stats.timeline.add_transaction(t.time_ns);
     }
     stats.latency_cycles.add(stats.cycles - ch.pending.cycle);
@@ -490,9 +493,10 @@ void SessionTracker::check_deadlines(const DecodedTelegram* at, std::int64_t now
                 Finding& f = add_for(FindingKind::ResponseTimeout, frame, now_ns, p.frame, true,
                                      ch.stats.master, ch.stats.slave);
                 f.pnu = p.key.pnu;
-                f.message = fmt::format("no answer to request {} from frame {} within {} ms",
-                                        describe_request(decoder_.options().dialect_of(ch.stats.slave), p.key),
-                                        p.frame, options_.timeout_ns / 1'000'000);
+                f.message = fmt::format(
+                    "no answer to request {} from frame {} within {} ms",
+                    describe_request(decoder_.options().dialect_of(ch.stats.slave), p.key), p.frame,
+                    options_.timeout_ns / 1'000'000);
             } else {
                 next = std::min(next, deadline);
             }
@@ -505,9 +509,10 @@ void SessionTracker::check_deadlines(const DecodedTelegram* at, std::int64_t now
                 Finding& f = add_for(FindingKind::SpontaneousUnacknowledged, frame, now_ns, s.frame,
                                      true, ch.stats.master, ch.stats.slave);
                 f.pnu = s.pnu;
-                f.message = fmt::format("spontaneous message from frame {} (PNU {}) not "
-                                        "acknowledged within {} ms",
-                                        s.frame, s.pnu, options_.timeout_ns / 1'000'000);
+                f.message = fmt::format(
+                    "spontaneous message from frame {} (PNU {}) not "
+                    "acknowledged within {} ms",
+                    s.frame, s.pnu, options_.timeout_ns / 1'000'000);
             } else {
                 next = std::min(next, deadline);
             }

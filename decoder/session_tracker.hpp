@@ -44,7 +44,7 @@ struct TrackerOptions {
 // Events over time in a fixed number of bins whose width doubles as the capture grows, for the
 // timeline of the HTML report.
 class Timeline {
-public:
+  public:
     static constexpr std::size_t kBins = 240;
     struct Bin {
         std::uint32_t transactions = 0;
@@ -61,7 +61,7 @@ public:
     std::int64_t bin_width_ns() const noexcept { return width_ns_; }
     const std::array<Bin, kBins>& bins() const noexcept { return bins_; }
 
-private:
+  private:
     Bin& bin(std::int64_t time_ns);
 
     std::int64_t start_ns_ = kNoTime;
@@ -84,19 +84,19 @@ struct TransactionCounts {
 struct ChannelStats {
     std::uint8_t master = 0;
     std::uint8_t slave = 0;
-    PpoLayout ppo;                     // the layout of the last Data_Exchange telegram
+    PpoLayout ppo;  // the layout of the last Data_Exchange telegram
     Dialect dialect = Dialect::Vlt;
-    std::uint64_t data_exchange = 0;   // Data_Exchange telegrams, both directions
-    std::uint64_t cycles = 0;          // Data_Exchange requests (retries not counted)
-    std::uint64_t requests = 0;        // distinct parameter requests
+    std::uint64_t data_exchange = 0;  // Data_Exchange telegrams, both directions
+    std::uint64_t cycles = 0;         // Data_Exchange requests (retries not counted)
+    std::uint64_t requests = 0;       // distinct parameter requests
     TransactionCounts transactions;
     std::uint64_t timeouts = 0;
-    std::uint64_t abandoned = 0;       // dropped by the master before an answer
+    std::uint64_t abandoned = 0;  // dropped by the master before an answer
     std::uint64_t spontaneous = 0;
     LogHistogram latency_ns;
     LogHistogram latency_cycles;
-    std::map<std::uint16_t, std::uint64_t> pnu_requests;                 // PNU -> requests
-    std::map<std::uint16_t, std::uint64_t> rejection_errors;             // error number -> count
+    std::map<std::uint16_t, std::uint64_t> pnu_requests;      // PNU -> requests
+    std::map<std::uint16_t, std::uint64_t> rejection_errors;  // error number -> count
     std::map<std::pair<std::uint16_t, std::uint16_t>, std::uint64_t> rejections;  // (PNU, error)
     std::array<std::uint64_t, kFindingKindCount> findings{};
     Timeline timeline;
@@ -110,7 +110,7 @@ struct BusStats {
 };
 
 class SessionTracker {
-public:
+  public:
     // `decoder` is consulted for the slaves' configurations (Chk_Cfg lengths).
     SessionTracker(const BusDecoder& decoder, TrackerOptions options = {});
     ~SessionTracker();
@@ -132,7 +132,7 @@ public:
     std::uint64_t transactions() const noexcept;
     const TrackerOptions& options() const noexcept { return options_; }
 
-private:
+  private:
     struct Channel;
 
     Channel& channel(std::uint8_t master, std::uint8_t slave);

@@ -10,14 +10,19 @@ std::string describe_skip(const SkippedBytes& skipped) {
         case ProblemKind::BadStartDelimiter: what = "no start delimiter"; break;
         case ProblemKind::LengthOutOfRange: what = "LE outside 3..249"; break;
         case ProblemKind::LengthMismatch: what = "LEr differs from LE"; break;
-        case ProblemKind::StartDelimiterRepeat: what = "repeated start delimiter is not 0x68"; break;
-        case ProblemKind::BadEndDelimiter: what = "no end delimiter where the length puts it"; break;
+        case ProblemKind::StartDelimiterRepeat:
+            what = "repeated start delimiter is not 0x68";
+            break;
+        case ProblemKind::BadEndDelimiter:
+            what = "no end delimiter where the length puts it";
+            break;
         case ProblemKind::FcsMismatch: what = "FCS wrong and no telegram follows"; break;
         case ProblemKind::InvalidAddress: what = "token address with bit 7 set"; break;
         case ProblemKind::Truncated: what = "telegram cut off (gap or end of input)"; break;
         default: what = problem_kind_name(skipped.reason); break;
     }
-    if (skipped.reason == ProblemKind::BadStartDelimiter || skipped.reason == ProblemKind::Truncated)
+    if (skipped.reason == ProblemKind::BadStartDelimiter ||
+        skipped.reason == ProblemKind::Truncated)
         return fmt::format("skipped {} byte(s): {}", skipped.count, what);
     return fmt::format("skipped {} byte(s): {} (byte {} of the candidate telegram)", skipped.count,
                        what, skipped.reason_offset);
@@ -57,7 +62,8 @@ void StreamFramer::process(Sink& sink, bool input_ended) {
         }
         // Invalid: skip this byte and everything up to the next possible start delimiter.
         std::size_t next = 1;
-        while (next < rest.size() && !is_start_delimiter(rest[next])) ++next;
+        while (next < rest.size() && !is_start_delimiter(rest[next]))
+            ++next;
         skip(next, check.reason, check.reason_offset);
     }
 }

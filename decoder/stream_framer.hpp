@@ -24,9 +24,9 @@ struct SkippedBytes {
 std::string describe_skip(const SkippedBytes& skipped);
 
 class StreamFramer {
-public:
+  public:
     class Sink {
-    public:
+      public:
         virtual ~Sink() = default;
         // `telegram` is valid only during the call; `offset` is its stream offset.
         virtual void on_telegram(Bytes telegram, std::uint64_t offset) = 0;
@@ -45,19 +45,19 @@ public:
     std::uint64_t telegrams() const noexcept { return telegrams_; }
     std::size_t pending() const noexcept { return buffer_.size() - start_; }
 
-private:
+  private:
     void process(Sink& sink, bool input_ended);
     void skip(std::size_t count, ProblemKind reason, std::uint16_t reason_offset);
     void flush_skipped(Sink& sink);
     void compact();
 
     std::vector<std::uint8_t> buffer_;
-    std::size_t start_ = 0;             // first unconsumed byte in buffer_
-    std::uint64_t buffer_offset_ = 0;   // stream offset of buffer_[0]
+    std::size_t start_ = 0;            // first unconsumed byte in buffer_
+    std::uint64_t buffer_offset_ = 0;  // stream offset of buffer_[0]
     std::uint64_t bytes_fed_ = 0;
     std::uint64_t bytes_skipped_ = 0;
     std::uint64_t telegrams_ = 0;
-    SkippedBytes run_{};                // the current run of skipped bytes (count 0: none)
+    SkippedBytes run_{};  // the current run of skipped bytes (count 0: none)
 };
 
 }  // namespace dpscope

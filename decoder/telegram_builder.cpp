@@ -19,8 +19,8 @@ void append_u16_be(std::vector<std::uint8_t>& out, std::uint16_t value) {
 
 void append_pcv(std::vector<std::uint8_t>& out, std::uint8_t rc, bool spm, std::uint16_t pnu,
                 std::uint8_t ind, std::uint32_t pva) {
-    append_u16_be(out, static_cast<std::uint16_t>(((rc & 0x0F) << 12) | (spm ? 0x0800 : 0) |
-                                                  (pnu & 0x07FF)));
+    append_u16_be(
+        out, static_cast<std::uint16_t>(((rc & 0x0F) << 12) | (spm ? 0x0800 : 0) | (pnu & 0x07FF)));
     out.push_back(ind);
     out.push_back(0);
     append_u16_be(out, static_cast<std::uint16_t>(pva >> 16));
@@ -52,8 +52,8 @@ void append_telegram(std::vector<std::uint8_t>& out, const TelegramSpec& spec) {
 }
 
 void append_token(std::vector<std::uint8_t>& out, std::uint8_t da, std::uint8_t sa) {
-    out.insert(out.end(), {kSd4, static_cast<std::uint8_t>(da & 0x7F),
-                           static_cast<std::uint8_t>(sa & 0x7F)});
+    out.insert(out.end(),
+               {kSd4, static_cast<std::uint8_t>(da & 0x7F), static_cast<std::uint8_t>(sa & 0x7F)});
 }
 
 void append_short_ack(std::vector<std::uint8_t>& out) { out.push_back(kShortAck); }

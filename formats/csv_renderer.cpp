@@ -23,7 +23,7 @@ void quoted(TextBuffer& b, std::string_view text) {
 }
 
 class CsvRenderer final : public TelegramRenderer {
-public:
+  public:
     using TelegramRenderer::TelegramRenderer;
 
     void begin() override { append(out_.buffer(), kHeader); }

@@ -34,8 +34,8 @@ void append_iso_time(TextBuffer& out, std::int64_t time_ns) {
 
 void append_epoch_seconds(TextBuffer& out, std::int64_t time_ns) {
     // Sign and magnitude: -1.5 s is "-1.500000000", not "-2" and a positive fraction.
-    std::uint64_t magnitude = time_ns < 0 ? 0 - static_cast<std::uint64_t>(time_ns)
-                                          : static_cast<std::uint64_t>(time_ns);
+    std::uint64_t magnitude =
+        time_ns < 0 ? 0 - static_cast<std::uint64_t>(time_ns) : static_cast<std::uint64_t>(time_ns);
     fmt::format_to(std::back_inserter(out), "{}{}.{:09}", time_ns < 0 ? "-" : "",
                    magnitude / kNanos, magnitude % kNanos);
 }
@@ -207,7 +207,8 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
                 if (!first_any && !second_any) append(out, "OK");
                 append(out, "]");
                 if (!diag->extended.empty())
-                    fmt::format_to(std::back_inserter(out), " +{} ext bytes", diag->extended.size());
+                    fmt::format_to(std::back_inserter(out), " +{} ext bytes",
+                                   diag->extended.size());
                 return;
             }
             break;

@@ -38,7 +38,8 @@ void FindingLog::append(std::span<const Finding> findings) {
 void FindingLog::spill() {
     if (!spill_ && error_.empty()) {
         spill_ = std::tmpfile();
-        if (!spill_) error_ = std::string("cannot create a temporary file: ") + std::strerror(errno);
+        if (!spill_)
+            error_ = std::string("cannot create a temporary file: ") + std::strerror(errno);
     }
     if (!spill_) {
         // Keep what fits; the rest is counted but cannot be listed.
@@ -88,7 +89,8 @@ bool FindingLog::for_each(const std::function<void(const Finding&)>& f) const {
         }
         std::fseek(spill_, 0, SEEK_END);
     }
-    for (const Finding& finding : memory_) f(finding);
+    for (const Finding& finding : memory_)
+        f(finding);
     return true;
 }
 

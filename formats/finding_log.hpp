@@ -14,7 +14,7 @@
 namespace dpscope {
 
 class FindingLog {
-public:
+  public:
     FindingLog() = default;
     ~FindingLog();
     FindingLog(const FindingLog&) = delete;
@@ -28,7 +28,7 @@ public:
     // Set when spilling failed; the findings not spilled are lost and the report says so.
     const std::string& error() const noexcept { return error_; }
 
-private:
+  private:
     static constexpr std::size_t kKeepInMemory = 4096;
     void spill();
 

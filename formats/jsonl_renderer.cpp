@@ -45,7 +45,7 @@ void hex_string(TextBuffer& b, Bytes bytes) {
 }
 
 class JsonlRenderer final : public TelegramRenderer {
-public:
+  public:
     using TelegramRenderer::TelegramRenderer;
 
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
@@ -168,7 +168,8 @@ public:
         out_.end_record();
     }
 
-    // A last line for findings that belong to no telegram: {"end_of_capture":true,"findings":[...]}.
+    // A last line for findings that belong to no telegram:
+    // {"end_of_capture":true,"findings":[...]}.
     void render_end_findings(std::span<const Finding> findings) override {
         if (findings.empty()) return;
         TextBuffer& b = out_.buffer();
@@ -183,7 +184,7 @@ public:
         out_.end_record();
     }
 
-private:
+  private:
     static void render_pcv(TextBuffer& b, const DecodedTelegram& t) {
         const Pcv& pcv = t.pcv;
         const bool request = t.direction == Direction::Request;

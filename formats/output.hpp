@@ -10,7 +10,7 @@
 namespace dpscope {
 
 class Output {
-public:
+  public:
     explicit Output(FILE* file, bool flush_each_record = false)
         : file_(file), flush_each_record_(flush_each_record) {}
     ~Output() { flush(); }
@@ -28,7 +28,7 @@ public:
     bool failed() const noexcept { return failed_; }
     void set_flush_each_record(bool on) noexcept { flush_each_record_ = on; }
 
-private:
+  private:
     static constexpr std::size_t kFlushAt = 1 << 16;
     FILE* file_;
     fmt::memory_buffer buffer_;

@@ -19,7 +19,7 @@ std::string_view output_format_name(OutputFormat format);  // "text", "verbose",
 std::optional<OutputFormat> output_format_from_name(std::string_view name);
 
 class TelegramRenderer {
-public:
+  public:
     explicit TelegramRenderer(Output& out) : out_(out) {}
     virtual ~TelegramRenderer() = default;
     TelegramRenderer(const TelegramRenderer&) = delete;
@@ -32,7 +32,7 @@ public:
     virtual void render_end_findings(std::span<const Finding> /*findings*/) {}
     virtual void end() {}
 
-protected:
+  protected:
     Output& out_;
 };
 

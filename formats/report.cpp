@@ -55,7 +55,8 @@ namespace {
 constexpr std::size_t kHtmlFindingRows = 2000;
 constexpr std::array<FindingKind, kFindingKindCount> all_kinds() {
     std::array<FindingKind, kFindingKindCount> kinds{};
-    for (std::size_t i = 0; i < kFindingKindCount; ++i) kinds[i] = static_cast<FindingKind>(i);
+    for (std::size_t i = 0; i < kFindingKindCount; ++i)
+        kinds[i] = static_cast<FindingKind>(i);
     return kinds;
 }
 constexpr auto kAllKinds = all_kinds();
@@ -130,11 +131,15 @@ Model build_model(const ReportContext& c) {
     return m;
 }
 
-std::uint64_t errors(const Model& m) { return m.by_severity[static_cast<std::size_t>(Severity::Error)]; }
+std::uint64_t errors(const Model& m) {
+    return m.by_severity[static_cast<std::size_t>(Severity::Error)];
+}
 std::uint64_t warnings(const Model& m) {
     return m.by_severity[static_cast<std::size_t>(Severity::Warning)];
 }
-std::uint64_t notes(const Model& m) { return m.by_severity[static_cast<std::size_t>(Severity::Note)]; }
+std::uint64_t notes(const Model& m) {
+    return m.by_severity[static_cast<std::size_t>(Severity::Note)];
+}
 
 std::string verdict_text(const ReportContext& c, const Model& m) {
     return fmt::format("{}: {} errors, {} warnings, {} notes (fail on {})",
@@ -213,7 +218,8 @@ void render_text(const ReportContext& c, const Model& m, Output& out) {
         append_iso_time(b, c.summary->last_time_ns());
     }
     b.push_back('\n');
-    if (c.input.damaged) append(b, "         the input ended in damage; the report covers what was read\n");
+    if (c.input.damaged)
+        append(b, "         the input ended in damage; the report covers what was read\n");
     fmt::format_to(it, "Checks:  time-out {} ms; RC 8 after a read is {}\n",
                    options.timeout_ns / 1'000'000,
                    options.strict ? "an unexpected response (strict)" : "unusual, a warning");
@@ -225,10 +231,11 @@ void render_text(const ReportContext& c, const Model& m, Output& out) {
     fmt::format_to(it, "  telegrams      {}\n", c.summary->telegrams());
     fmt::format_to(it, "  FCS errors     {}\n", m.fcs_errors);
     std::uint64_t transactions = 0;
-    for (const StationView& v : m.stations) transactions += v.stats->transactions.total();
+    for (const StationView& v : m.stations)
+        transactions += v.stats->transactions.total();
     fmt::format_to(it, "  transactions   {}\n", transactions);
-    fmt::format_to(it, "  findings       {} errors, {} warnings, {} notes\n", errors(m), warnings(m),
-                   notes(m));
+    fmt::format_to(it, "  findings       {} errors, {} warnings, {} notes\n", errors(m),
+                   warnings(m), notes(m));
     for (const StationView& v : m.stations) {
         const ChannelStats& s = *v.stats;
         fmt::format_to(it, "\nSlave {} (master {})\n", s.slave, s.master);
@@ -239,12 +246,13 @@ void render_text(const ReportContext& c, const Model& m, Output& out) {
         fmt::format_to(it, "  requests       {}\n", s.requests);
         fmt::format_to(it, "  transactions   {}: {}\n", s.transactions.total(),
                        outcomes_text(s.transactions));
-        fmt::format_to(it, "  unanswered     {} timed out, {} abandoned by the master\n", s.timeouts,
-                       s.abandoned);
+        fmt::format_to(it, "  unanswered     {} timed out, {} abandoned by the master\n",
+                       s.timeouts, s.abandoned);
         fmt::format_to(it, "  spontaneous    {} messages\n", s.spontaneous);
         if (v.latency.any)
-            fmt::format_to(it, "  latency ms     min {:.3f}  median {:.3f}  p95 {:.3f}  max {:.3f}\n",
-                           v.latency.min_ms, v.latency.median_ms, v.latency.p95_ms, v.latency.max_ms);
+            fmt::format_to(
+                it, "  latency ms     min {:.3f}  median {:.3f}  p95 {:.3f}  max {:.3f}\n",
+                v.latency.min_ms, v.latency.median_ms, v.latency.p95_ms, v.latency.max_ms);
         if (v.latency.any_cycles)
             fmt::format_to(it, "  latency cycles min {}  median {}  p95 {}  max {}\n",
                            v.latency.min_cycles, v.latency.median_cycles, v.latency.p95_cycles,
@@ -309,26 +317,28 @@ void render_markdown(const ReportContext& c, const Model& m, Output& out) {
                        filter_text(c));
     fmt::format_to(it, "- dpscope {}\n\n", c.version);
     std::uint64_t transactions = 0;
-    for (const StationView& v : m.stations) transactions += v.stats->transactions.total();
-    append(b, "## Summary\n\n| telegrams | FCS errors | transactions | errors | warnings | notes |\n"
-              "|---:|---:|---:|---:|---:|---:|\n");
-    fmt::format_to(it, "| {} | {} | {} | {} | {} | {} |\n\n", c.summary->telegrams(),
-                   m.fcs_errors, transactions, errors(m),
-                   warnings(m), notes(m));
-    append(b, "## Slaves\n\n| slave | master | PPO | dialect | transactions | rejected | "
-              "time-outs | latency ms (min / median / p95 / max) | latency cycles | findings |\n"
-              "|---:|---:|---|---|---:|---:|---:|---|---|---|\n");
+    for (const StationView& v : m.stations)
+        transactions += v.stats->transactions.total();
+    append(b,
+           "## Summary\n\n| telegrams | FCS errors | transactions | errors | warnings | notes |\n"
+           "|---:|---:|---:|---:|---:|---:|\n");
+    fmt::format_to(it, "| {} | {} | {} | {} | {} | {} |\n\n", c.summary->telegrams(), m.fcs_errors,
+                   transactions, errors(m), warnings(m), notes(m));
+    append(b,
+           "## Slaves\n\n| slave | master | PPO | dialect | transactions | rejected | "
+           "time-outs | latency ms (min / median / p95 / max) | latency cycles | findings |\n"
+           "|---:|---:|---|---|---:|---:|---:|---|---|---|\n");
     for (const StationView& v : m.stations) {
         const ChannelStats& s = *v.stats;
-        std::string ms = v.latency.any ? fmt::format("{:.3f} / {:.3f} / {:.3f} / {:.3f}",
-                                                     v.latency.min_ms, v.latency.median_ms,
-                                                     v.latency.p95_ms, v.latency.max_ms)
-                                       : "-";
-        std::string cycles = v.latency.any_cycles
-                                 ? fmt::format("{} / {} / {} / {}", v.latency.min_cycles,
-                                               v.latency.median_cycles, v.latency.p95_cycles,
-                                               v.latency.max_cycles)
-                                 : "-";
+        std::string ms = v.latency.any
+                             ? fmt::format("{:.3f} / {:.3f} / {:.3f} / {:.3f}", v.latency.min_ms,
+                                           v.latency.median_ms, v.latency.p95_ms, v.latency.max_ms)
+                             : "-";
+        std::string cycles =
+            v.latency.any_cycles
+                ? fmt::format("{} / {} / {} / {}", v.latency.min_cycles, v.latency.median_cycles,
+                              v.latency.p95_cycles, v.latency.max_cycles)
+                : "-";
         fmt::format_to(it, "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", s.slave,
                        s.master, md_escape(ppo_type_label(s.ppo)), dialect_name(s.dialect),
                        s.transactions.total(), s.transactions.rejected, s.timeouts, ms, cycles,
@@ -354,8 +364,9 @@ void render_markdown(const ReportContext& c, const Model& m, Output& out) {
     }
     fmt::format_to(it, "\n## Findings ({})\n\n", m.shown);
     if (m.shown > 0)
-        append(b, "| frame | time (s) | severity | kind | master / slave | PNU | message |\n"
-                  "|---:|---:|---|---|---|---:|---|\n");
+        append(b,
+               "| frame | time (s) | severity | kind | master / slave | PNU | message |\n"
+               "|---:|---:|---|---|---|---:|---|\n");
     c.findings->for_each([&](const Finding& f) {
         if (!shows(c, f)) return;
         fmt::format_to(it, "| {} | {} | {} | {} | {} | {} | {} |\n", f.frame,
@@ -443,7 +454,8 @@ void render_json(const ReportContext& c, const Model& m, Output& out) {
     raw(b, "},\"result\":");
     string(b, m.fails ? "fail" : "pass");
     std::uint64_t transactions = 0;
-    for (const StationView& v : m.stations) transactions += v.stats->transactions.total();
+    for (const StationView& v : m.stations)
+        transactions += v.stats->transactions.total();
     raw(b, ",\"summary\":{\"telegrams\":");
     integer(b, static_cast<std::int64_t>(c.summary->telegrams()));
     raw(b, ",\"fcs_errors\":");
@@ -645,8 +657,8 @@ void svg_latency_histogram(TextBuffer& b, const ChannelStats& s) {
                    "<svg class=\"latency\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} {}\" "
                    "role=\"img\" aria-label=\"latency histogram of slave {}\">\n",
                    kWidth, kHeight, kWidth, kHeight, s.slave);
-    fmt::format_to(it, "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#8a93a6\"/>\n", kLeft,
-                   kHeight - kBottom, kWidth - 10, kHeight - kBottom);
+    fmt::format_to(it, "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#8a93a6\"/>\n",
+                   kLeft, kHeight - kBottom, kWidth - 10, kHeight - kBottom);
     for (int i = 0; i < kBars; ++i) {
         if (bars[static_cast<std::size_t>(i)] == 0) continue;
         double height = static_cast<double>(bars[static_cast<std::size_t>(i)]) /
@@ -656,9 +668,8 @@ void svg_latency_histogram(TextBuffer& b, const ChannelStats& s) {
                        "<rect class=\"bar\" x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" "
                        "height=\"{:.1f}\" fill=\"#4e79c5\"><title>{:.3f}-{:.3f} ms: {} "
                        "transactions</title></rect>\n",
-                       x + 1, kHeight - kBottom - height, bar_width - 2, height,
-                       max_ms * i / kBars, max_ms * (i + 1) / kBars,
-                       bars[static_cast<std::size_t>(i)]);
+                       x + 1, kHeight - kBottom - height, bar_width - 2, height, max_ms * i / kBars,
+                       max_ms * (i + 1) / kBars, bars[static_cast<std::size_t>(i)]);
     }
     fmt::format_to(it, "<text x=\"{}\" y=\"{}\">0 ms</text>\n", kLeft, kHeight - 10);
     fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:.3f} ms</text>\n",
@@ -700,8 +711,8 @@ void svg_timeline(TextBuffer& b, const ChannelStats& s, const ReportContext& c) 
                        14 + row * 16, rows[row]);
     fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">transactions</text>\n",
                    kLeft - 6, kBarsTop + kBarsHeight / 2);
-    fmt::format_to(it, "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#8a93a6\"/>\n", kLeft,
-                   kBarsTop + kBarsHeight, kWidth - kRight, kBarsTop + kBarsHeight);
+    fmt::format_to(it, "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#8a93a6\"/>\n",
+                   kLeft, kBarsTop + kBarsHeight, kWidth - kRight, kBarsTop + kBarsHeight);
     const std::int64_t width_ns = timeline.bin_width_ns();
     for (std::size_t i = 0; i < used; ++i) {
         const Timeline::Bin& bin = bins[i];
@@ -748,30 +759,35 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
     auto it = std::back_inserter(b);
     const TrackerOptions& options = c.tracker->options();
     std::uint64_t transactions = 0;
-    for (const StationView& v : m.stations) transactions += v.stats->transactions.total();
+    for (const StationView& v : m.stations)
+        transactions += v.stats->transactions.total();
     fmt::format_to(it,
                    "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
                    "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
                    "<title>dpscope report: {}</title>\n<style>{}</style>\n</head>\n<body>\n",
                    xml(c.input.name), kHtmlStyle);
     append(b, "<h1>dpscope conformance report</h1>\n");
-    fmt::format_to(it, "<p class=\"meta\">{} ({}) &middot; dpscope {} &middot; time-out {} ms "
-                       "&middot; RC 8 rule {}</p>\n",
+    fmt::format_to(it,
+                   "<p class=\"meta\">{} ({}) &middot; dpscope {} &middot; time-out {} ms "
+                   "&middot; RC 8 rule {}</p>\n",
                    xml(c.input.name), xml(c.input.format), xml(c.version),
                    options.timeout_ns / 1'000'000, options.strict ? "strict" : "lenient");
     if (!c.stations.empty())
-        fmt::format_to(it, "<p class=\"meta\">Filter: {} (telegram counts cover the whole "
-                           "capture)</p>\n",
+        fmt::format_to(it,
+                       "<p class=\"meta\">Filter: {} (telegram counts cover the whole "
+                       "capture)</p>\n",
                        xml(filter_text(c)));
     fmt::format_to(it, "<p class=\"verdict {}\" id=\"verdict\">{}</p>\n", m.fails ? "fail" : "pass",
                    xml(verdict_text(c, m)));
     if (c.input.damaged)
-        append(b, "<p class=\"error\">The input ended in damage; the report covers what was "
-                  "read.</p>\n");
+        append(b,
+               "<p class=\"error\">The input ended in damage; the report covers what was "
+               "read.</p>\n");
     append(b, "<section id=\"summary\">\n<h2>Summary</h2>\n<div class=\"cards\">\n");
     auto card = [&](std::string_view label, std::uint64_t n, std::string_view cls) {
-        fmt::format_to(it, "<div class=\"card {}\"><div class=\"n\">{}</div><div class=\"l\">{}</div>"
-                           "</div>\n",
+        fmt::format_to(it,
+                       "<div class=\"card {}\"><div class=\"n\">{}</div><div class=\"l\">{}</div>"
+                       "</div>\n",
                        cls, n, label);
     };
     card("telegrams", c.summary->telegrams(), "");
@@ -781,10 +797,12 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
     card("errors", errors(m), "error");
     card("warnings", warnings(m), "warning");
     card("notes", notes(m), "note");
-    append(b, "</div>\n<div class=\"scroll\"><table class=\"slaves\">\n<tr><th class=\"n\">slave</th><th class=\"n\">"
-              "master</th><th>PPO</th><th>dialect</th><th class=\"n\">transactions</th><th "
-              "class=\"n\">median ms</th><th class=\"n\">p95 ms</th><th class=\"n\">errors</th><th "
-              "class=\"n\">warnings</th><th class=\"n\">notes</th></tr>\n");
+    append(b,
+           "</div>\n<div class=\"scroll\"><table class=\"slaves\">\n<tr><th "
+           "class=\"n\">slave</th><th class=\"n\">"
+           "master</th><th>PPO</th><th>dialect</th><th class=\"n\">transactions</th><th "
+           "class=\"n\">median ms</th><th class=\"n\">p95 ms</th><th class=\"n\">errors</th><th "
+           "class=\"n\">warnings</th><th class=\"n\">notes</th></tr>\n");
     for (const StationView& v : m.stations) {
         const ChannelStats& s = *v.stats;
         std::array<std::uint64_t, 3> severities{};
@@ -799,20 +817,22 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
                        s.slave, s.master, s.slave, s.master, xml(ppo_type_label(s.ppo)),
                        dialect_name(s.dialect), s.transactions.total(),
                        v.latency.any ? fmt::format("{:.3f}", v.latency.median_ms) : "-",
-                       v.latency.any ? fmt::format("{:.3f}", v.latency.p95_ms) : "-",
-                       severities[2], severities[1], severities[0]);
+                       v.latency.any ? fmt::format("{:.3f}", v.latency.p95_ms) : "-", severities[2],
+                       severities[1], severities[0]);
     }
     append(b, "</table></div>\n</section>\n");
 
     for (const StationView& v : m.stations) {
         const ChannelStats& s = *v.stats;
-        fmt::format_to(it, "<section class=\"station\" id=\"slave-{}-{}\">\n<h2>Slave {} (master {})"
-                           "</h2>\n<table class=\"kv\">\n",
+        fmt::format_to(it,
+                       "<section class=\"station\" id=\"slave-{}-{}\">\n<h2>Slave {} (master {})"
+                       "</h2>\n<table class=\"kv\">\n",
                        s.slave, s.master, s.slave, s.master);
         html_kv(b, "Layout", ppo_text(s));
         html_kv(b, "Dialect", dialect_name(s.dialect));
         if (v.has_ident) html_kv(b, "Ident number", fmt::format("0x{:04X}", v.ident));
-        html_kv(b, "Data_Exchange", fmt::format("{} telegrams, {} cycles", s.data_exchange, s.cycles));
+        html_kv(b, "Data_Exchange",
+                fmt::format("{} telegrams, {} cycles", s.data_exchange, s.cycles));
         html_kv(b, "Parameter requests", fmt::format("{}", s.requests));
         html_kv(b, "Transactions",
                 fmt::format("{}: {}", s.transactions.total(), outcomes_text(s.transactions)));
@@ -821,60 +841,66 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
         html_kv(b, "Spontaneous messages", fmt::format("{}", s.spontaneous));
         html_kv(b, "Latency (ms)",
                 v.latency.any ? fmt::format("min {:.3f}, median {:.3f}, p95 {:.3f}, max {:.3f}",
-                                            v.latency.min_ms, v.latency.median_ms,
-                                            v.latency.p95_ms, v.latency.max_ms)
+                                            v.latency.min_ms, v.latency.median_ms, v.latency.p95_ms,
+                                            v.latency.max_ms)
                               : "-");
         html_kv(b, "Latency (cycles)",
-                v.latency.any_cycles
-                    ? fmt::format("min {}, median {}, p95 {}, max {}", v.latency.min_cycles,
-                                  v.latency.median_cycles, v.latency.p95_cycles,
-                                  v.latency.max_cycles)
-                    : "-");
+                v.latency.any_cycles ? fmt::format("min {}, median {}, p95 {}, max {}",
+                                                   v.latency.min_cycles, v.latency.median_cycles,
+                                                   v.latency.p95_cycles, v.latency.max_cycles)
+                                     : "-");
         append(b, "</table>\n<h3>Latency histogram</h3>\n");
         svg_latency_histogram(b, s);
-        append(b, "<h3>Timeline</h3>\n<div class=\"legend\"><span><i class=\"swatch\" "
-                  "style=\"background:#4e79c5\"></i>transactions</span><span><i class=\"swatch\" "
-                  "style=\"background:#d92d20\"></i>errors</span><span><i class=\"swatch\" "
-                  "style=\"background:#f79009\"></i>warnings</span><span><i class=\"swatch\" "
-                  "style=\"background:#2e90fa\"></i>notes</span></div>\n");
+        append(b,
+               "<h3>Timeline</h3>\n<div class=\"legend\"><span><i class=\"swatch\" "
+               "style=\"background:#4e79c5\"></i>transactions</span><span><i class=\"swatch\" "
+               "style=\"background:#d92d20\"></i>errors</span><span><i class=\"swatch\" "
+               "style=\"background:#f79009\"></i>warnings</span><span><i class=\"swatch\" "
+               "style=\"background:#2e90fa\"></i>notes</span></div>\n");
         svg_timeline(b, s, c);
         append(b, "<h3>Parameters accessed</h3>\n");
         if (s.pnu_requests.empty()) {
             append(b, "<p class=\"meta\">None.</p>\n");
         } else {
-            append(b, "<table class=\"parameters\"><tr><th class=\"n\">PNU</th><th "
-                      "class=\"n\">requests</th></tr>\n");
+            append(b,
+                   "<table class=\"parameters\"><tr><th class=\"n\">PNU</th><th "
+                   "class=\"n\">requests</th></tr>\n");
             for (const auto& [pnu, count] : s.pnu_requests)
                 fmt::format_to(it, "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td></tr>\n", pnu,
                                count);
             append(b, "</table>\n");
         }
         if (!s.rejections.empty()) {
-            append(b, "<h3>Rejected requests</h3>\n<table class=\"rejections\"><tr><th "
-                      "class=\"n\">PNU</th><th class=\"n\">error</th><th>meaning</th><th "
-                      "class=\"n\">count</th></tr>\n");
+            append(b,
+                   "<h3>Rejected requests</h3>\n<table class=\"rejections\"><tr><th "
+                   "class=\"n\">PNU</th><th class=\"n\">error</th><th>meaning</th><th "
+                   "class=\"n\">count</th></tr>\n");
             for (const auto& [key, count] : s.rejections) {
                 std::string_view text = error_text(s.dialect, key.second);
-                fmt::format_to(it, "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td>"
-                                   "<td class=\"n\">{}</td></tr>\n",
+                fmt::format_to(it,
+                               "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td>"
+                               "<td class=\"n\">{}</td></tr>\n",
                                key.first, key.second, xml(text.empty() ? "unknown" : text), count);
             }
             append(b, "</table>\n");
         }
         append(b, "<h3>Findings by kind</h3>\n");
         bool any = false;
-        for (FindingKind kind : kAllKinds) any |= s.findings[static_cast<std::size_t>(kind)] > 0;
+        for (FindingKind kind : kAllKinds)
+            any |= s.findings[static_cast<std::size_t>(kind)] > 0;
         if (!any) {
             append(b, "<p class=\"meta\">None.</p>\n");
         } else {
-            append(b, "<table class=\"kinds\"><tr><th>kind</th><th>severity</th><th "
-                      "class=\"n\">count</th></tr>\n");
+            append(b,
+                   "<table class=\"kinds\"><tr><th>kind</th><th>severity</th><th "
+                   "class=\"n\">count</th></tr>\n");
             for (FindingKind kind : kAllKinds) {
                 std::uint64_t n = s.findings[static_cast<std::size_t>(kind)];
                 if (!n) continue;
                 std::string_view severity = severity_name(default_severity(kind));
-                fmt::format_to(it, "<tr class=\"{}\"><td>{}</td><td class=\"{}\">{}</td><td "
-                                   "class=\"n\">{}</td></tr>\n",
+                fmt::format_to(it,
+                               "<tr class=\"{}\"><td>{}</td><td class=\"{}\">{}</td><td "
+                               "class=\"n\">{}</td></tr>\n",
                                severity, finding_kind_name(kind), severity, severity, n);
             }
             append(b, "</table>\n");
@@ -887,9 +913,11 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
     if (m.shown == 0) {
         append(b, "<p class=\"meta\">No findings.</p>\n");
     } else {
-        append(b, "<div class=\"scroll\"><table class=\"findings\">\n<tr><th class=\"n\">frame</th><th class=\"n\">time "
-                  "(s)</th><th>severity</th><th>kind</th><th>master / slave</th><th "
-                  "class=\"n\">PNU</th><th>message</th></tr>\n");
+        append(b,
+               "<div class=\"scroll\"><table class=\"findings\">\n<tr><th "
+               "class=\"n\">frame</th><th class=\"n\">time "
+               "(s)</th><th>severity</th><th>kind</th><th>master / slave</th><th "
+               "class=\"n\">PNU</th><th>message</th></tr>\n");
         std::size_t rows = 0;
         c.findings->for_each([&](const Finding& f) {
             if (!shows(c, f) || rows++ >= kHtmlFindingRows) return;
@@ -905,8 +933,9 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
         });
         append(b, "</table></div>\n");
         if (rows > kHtmlFindingRows)
-            fmt::format_to(it, "<p class=\"meta\">{} more findings are listed in the text and JSON "
-                               "reports.</p>\n",
+            fmt::format_to(it,
+                           "<p class=\"meta\">{} more findings are listed in the text and JSON "
+                           "reports.</p>\n",
                            rows - kHtmlFindingRows);
     }
     append(b, "</section>\n</body>\n</html>\n");
@@ -930,10 +959,14 @@ void render_junit(const ReportContext& c, const Model& m, Output& out) {
     // Findings at or above --fail-on (errors at least) become failures; gather them per suite.
     std::vector<Suite> suites;
     for (const StationView& v : m.stations)
-        suites.push_back(Suite{fmt::format("slave {} (master {})", v.stats->slave, v.stats->master),
-                               fmt::format("dpscope.master_{}.slave_{}", v.stats->master,
-                                           v.stats->slave),
-                               true, v.stats->master, v.stats->slave, {}, {}});
+        suites.push_back(
+            Suite{fmt::format("slave {} (master {})", v.stats->slave, v.stats->master),
+                  fmt::format("dpscope.master_{}.slave_{}", v.stats->master, v.stats->slave),
+                  true,
+                  v.stats->master,
+                  v.stats->slave,
+                  {},
+                  {}});
     if (m.has_bus_findings) suites.push_back(Suite{"bus", "dpscope.bus", false, 0, 0, {}, {}});
     auto suite_of = [&](const Finding& f) -> Suite* {
         for (Suite& s : suites)
@@ -956,15 +989,19 @@ void render_junit(const ReportContext& c, const Model& m, Output& out) {
     std::size_t total_tests = suites.size() * kFindingKindCount;
     std::size_t total_failed = 0;
     for (const Suite& s : suites)
-        for (const auto& failures : s.failures) total_failed += failures.empty() ? 0 : 1;
-    fmt::format_to(it, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-                       "<testsuites name=\"dpscope {}\" tests=\"{}\" failures=\"{}\" errors=\"0\">\n",
+        for (const auto& failures : s.failures)
+            total_failed += failures.empty() ? 0 : 1;
+    fmt::format_to(it,
+                   "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                   "<testsuites name=\"dpscope {}\" tests=\"{}\" failures=\"{}\" errors=\"0\">\n",
                    xml(c.input.name), total_tests, total_failed);
     for (const Suite& s : suites) {
         std::size_t failed = 0;
-        for (const auto& failures : s.failures) failed += failures.empty() ? 0 : 1;
-        fmt::format_to(it, "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" "
-                           "skipped=\"0\">\n",
+        for (const auto& failures : s.failures)
+            failed += failures.empty() ? 0 : 1;
+        fmt::format_to(it,
+                       "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" "
+                       "skipped=\"0\">\n",
                        xml(s.name), kFindingKindCount, failed);
         for (FindingKind kind : kAllKinds) {
             auto k = static_cast<std::size_t>(kind);
@@ -976,8 +1013,9 @@ void render_junit(const ReportContext& c, const Model& m, Output& out) {
             }
             append(b, ">\n");
             for (const Finding& f : s.failures[k]) {
-                fmt::format_to(it, "      <failure type=\"{}\" message=\"frame {}: {}\">{} {} frame "
-                                   "{}{}: {}</failure>\n",
+                fmt::format_to(it,
+                               "      <failure type=\"{}\" message=\"frame {}: {}\">{} {} frame "
+                               "{}{}: {}</failure>\n",
                                finding_kind_name(kind), f.frame, xml(f.message),
                                severity_name(f.severity), finding_kind_name(kind), f.frame,
                                f.request_frame ? fmt::format(" (request frame {})", f.request_frame)
@@ -985,8 +1023,9 @@ void render_junit(const ReportContext& c, const Model& m, Output& out) {
                                xml(f.message));
             }
             if (s.others[k] > 0)
-                fmt::format_to(it, "      <system-out>{} {} finding(s) below the failure threshold"
-                                   "</system-out>\n",
+                fmt::format_to(it,
+                               "      <system-out>{} {} finding(s) below the failure threshold"
+                               "</system-out>\n",
                                s.others[k], severity_name(default_severity(kind)));
             append(b, "    </testcase>\n");
         }

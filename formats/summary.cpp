@@ -44,11 +44,12 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
     fmt::format_to(it, "  telegrams with problems: {}\n", with_problems_);
     for (std::size_t k = 0; k < kProblemKindCount; ++k)
         if (problems_[k])
-            fmt::format_to(it, "    {:<26} {:>10}\n", problem_kind_name(static_cast<ProblemKind>(k)),
-                           problems_[k]);
+            fmt::format_to(it, "    {:<26} {:>10}\n",
+                           problem_kind_name(static_cast<ProblemKind>(k)), problems_[k]);
 
     std::uint64_t total_findings = 0;
-    for (std::uint64_t n : findings_) total_findings += n;
+    for (std::uint64_t n : findings_)
+        total_findings += n;
     fmt::format_to(it, "  findings: {}\n", total_findings);
     for (std::size_t k = 0; k < kFindingKindCount; ++k)
         if (findings_[k]) {
@@ -70,8 +71,8 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
             append_ppo_long(b, decoder.layout_for(static_cast<std::uint8_t>(a), 0));
         else
             append(b, "PPO guessed from each Data_Exchange length");
-        fmt::format_to(it, "; dialect {}", dialect_name(decoder.options().dialect_of(
-                                               static_cast<std::uint8_t>(a))));
+        fmt::format_to(it, "; dialect {}",
+                       dialect_name(decoder.options().dialect_of(static_cast<std::uint8_t>(a))));
         if (station.has_ident) fmt::format_to(it, "; ident 0x{:04X}", station.ident);
         fmt::format_to(it, "; {} Data_Exchange telegrams\n", data_exchange_[a]);
     }

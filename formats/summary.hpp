@@ -16,13 +16,13 @@ namespace dpscope {
 
 struct InputSummary {
     std::string name;
-    std::string format;             // "pcap", "pcapng", "raw", "hex"
+    std::string format;  // "pcap", "pcapng", "raw", "hex"
     std::uint64_t bytes_skipped = 0;
-    bool damaged = false;           // reading stopped early
+    bool damaged = false;  // reading stopped early
 };
 
 class Summary {
-public:
+  public:
     void add(const DecodedTelegram& t) noexcept {
         ++telegrams_;
         ++frame_types_[static_cast<std::size_t>(t.fdl.type)];
@@ -33,7 +33,8 @@ public:
             ++responses_[service];
         if (!t.problems().empty()) {
             ++with_problems_;
-            for (const Problem& p : t.problems()) ++problems_[static_cast<std::size_t>(p.kind)];
+            for (const Problem& p : t.problems())
+                ++problems_[static_cast<std::size_t>(p.kind)];
         }
         if (t.has_time()) {
             if (first_time_ == kNoTime) first_time_ = t.time_ns;
@@ -43,7 +44,8 @@ public:
     }
 
     void add_findings(std::span<const Finding> findings) noexcept {
-        for (const Finding& f : findings) ++findings_[static_cast<std::size_t>(f.kind)];
+        for (const Finding& f : findings)
+            ++findings_[static_cast<std::size_t>(f.kind)];
     }
 
     std::uint64_t telegrams() const noexcept { return telegrams_; }
@@ -54,7 +56,9 @@ public:
     std::uint64_t findings(FindingKind kind) const noexcept {
         return findings_[static_cast<std::size_t>(kind)];
     }
-    std::uint64_t requests(Service s) const noexcept { return requests_[static_cast<std::size_t>(s)]; }
+    std::uint64_t requests(Service s) const noexcept {
+        return requests_[static_cast<std::size_t>(s)];
+    }
     std::uint64_t responses(Service s) const noexcept {
         return responses_[static_cast<std::size_t>(s)];
     }
@@ -66,7 +70,7 @@ public:
 
     void render_text(Output& out, const InputSummary& input, const BusDecoder& decoder) const;
 
-private:
+  private:
     std::uint64_t telegrams_ = 0;
     std::uint64_t with_problems_ = 0;
     std::array<std::uint64_t, 6> frame_types_{};

@@ -11,7 +11,7 @@ namespace dpscope {
 namespace {
 
 class TextRenderer final : public TelegramRenderer {
-public:
+  public:
     using TelegramRenderer::TelegramRenderer;
 
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
@@ -22,8 +22,8 @@ public:
             if (first_time_ == kNoTime) first_time_ = t.time_ns;
             std::int64_t relative = t.time_ns - first_time_;
             bool negative = relative < 0;
-            std::uint64_t magnitude =
-                negative ? 0 - static_cast<std::uint64_t>(relative) : static_cast<std::uint64_t>(relative);
+            std::uint64_t magnitude = negative ? 0 - static_cast<std::uint64_t>(relative)
+                                               : static_cast<std::uint64_t>(relative);
             fmt::format_to(it, "{:>5}.{:06} ",
                            fmt::format("{}{}", negative ? "-" : "", magnitude / 1'000'000'000),
                            (magnitude % 1'000'000'000) / 1000);
@@ -39,8 +39,7 @@ public:
         }
         fmt::format_to(it, "{:<3} {:<14} {} ",
                        t.fdl.type == FrameType::Invalid ? "bad" : frame_type_name(t.fdl.type),
-                       service_name(t.service),
-                       t.direction == Direction::Request ? "req" : "rsp");
+                       service_name(t.service), t.direction == Direction::Request ? "req" : "rsp");
         if (t.fdl.type == FrameType::Invalid)
             append_hex(b, t.bytes.first(std::min<std::size_t>(t.bytes.size(), 16)));
         else
@@ -63,13 +62,12 @@ public:
 
     void render_end_findings(std::span<const Finding> findings) override {
         for (const Finding& f : findings)
-            fmt::format_to(std::back_inserter(out_.buffer()),
-                           "     - end of capture [{} {}] {}\n", severity_name(f.severity),
-                           finding_kind_name(f.kind), f.message);
+            fmt::format_to(std::back_inserter(out_.buffer()), "     - end of capture [{} {}] {}\n",
+                           severity_name(f.severity), finding_kind_name(f.kind), f.message);
         out_.end_record();
     }
 
-private:
+  private:
     std::int64_t first_time_ = kNoTime;
 };
 

@@ -11,7 +11,7 @@ namespace dpscope {
 namespace {
 
 class VerboseRenderer final : public TelegramRenderer {
-public:
+  public:
     using TelegramRenderer::TelegramRenderer;
 
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
@@ -57,10 +57,11 @@ public:
         out_.end_record();
     }
 
-private:
+  private:
     void line(int level, std::string_view text) {
         TextBuffer& b = out_.buffer();
-        for (int i = 0; i < level; ++i) append(b, "    ");
+        for (int i = 0; i < level; ++i)
+            append(b, "    ");
         append(b, text);
     }
 
@@ -108,12 +109,14 @@ private:
                            f.da == kBroadcastAddress ? " (broadcast)" : "");
             // The slave's SAP is the DSAP of a request and the SSAP of a response.
             bool request = f.has_fc && f.fc.is_request();
-            if (f.has_dsap) fmt::format_to(it, ", DSAP {} ({})", f.dsap, sap_label(f.dsap, request));
+            if (f.has_dsap)
+                fmt::format_to(it, ", DSAP {} ({})", f.dsap, sap_label(f.dsap, request));
             if (f.has_dest_segment) fmt::format_to(it, ", segment {}", f.dest_segment);
             b.push_back('\n');
             line(1, "");
             fmt::format_to(it, "Source address: {}", f.sa);
-            if (f.has_ssap) fmt::format_to(it, ", SSAP {} ({})", f.ssap, sap_label(f.ssap, !request));
+            if (f.has_ssap)
+                fmt::format_to(it, ", SSAP {} ({})", f.ssap, sap_label(f.ssap, !request));
             if (f.has_source_segment) fmt::format_to(it, ", segment {}", f.source_segment);
             b.push_back('\n');
         }
@@ -161,8 +164,7 @@ private:
                 break;
             case Service::ChkCfg:
             case Service::GetCfg:
-                if (!t.fdl.du.empty() && (request == (t.service == Service::ChkCfg)))
-                    render_cfg(t);
+                if (!t.fdl.du.empty() && (request == (t.service == Service::ChkCfg))) render_cfg(t);
                 break;
             case Service::GlobalControl:
                 if (auto gc = parse_global_control(du, ignored)) {
@@ -206,8 +208,9 @@ private:
             field(1, "PCV (parameter channel), bytes {}-{}", t.fdl.du_offset,
                   t.fdl.du_offset + kPcvBytes - 1);
             field(2, "PCA: 0x{:04X}", pcv.pca);
-            bool defined = request ? request_code(t.dialect, pcv.rc).defined
-                                   : response_code(t.dialect, pcv.rc).kind != ResponseKind::Undefined;
+            bool defined = request
+                               ? request_code(t.dialect, pcv.rc).defined
+                               : response_code(t.dialect, pcv.rc).kind != ResponseKind::Undefined;
             field(3, "RC: {} = {}{}", pcv.rc, t.pcv_meaning(),
                   defined ? "" : " (not defined by the dialect)");
             field(3, "SPM: {}", pcv.spm ? 1 : 0);
@@ -215,7 +218,8 @@ private:
             field(2, "IND: {} (byte 4: 0x{:02X})", pcv.ind, pcv.ind_low);
             ValueWidth width = request ? request_code(t.dialect, pcv.rc).width
                                        : response_code(t.dialect, pcv.rc).width;
-            bool rejected = !request && response_code(t.dialect, pcv.rc).kind == ResponseKind::Rejected;
+            bool rejected =
+                !request && response_code(t.dialect, pcv.rc).kind == ResponseKind::Rejected;
             if (rejected) {
                 auto error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
                 std::string_view text = error_text(t.dialect, error);
@@ -233,8 +237,8 @@ private:
         ByteReader reader(t.pcd, t.pcd_offset);
         if (reader.empty()) return;
         field(1, "PCD ({} words)", reader.remaining() / 2);
-        const WordBits& bits = request ? control_word_bits(t.pcd_profile)
-                                       : status_word_bits(t.pcd_profile);
+        const WordBits& bits =
+            request ? control_word_bits(t.pcd_profile) : status_word_bits(t.pcd_profile);
         for (std::size_t index = 0;; ++index) {
             auto word = reader.u16_be();
             if (!word) break;
@@ -275,13 +279,13 @@ private:
                 case DiagBlockType::Channel:
                     field(2, "channel-related: module {}, channel {}, {}, {}: error {} ({})",
                           block.module, block.channel,
-                          block.io == 1 ? "input" : block.io == 2 ? "output" : "input/output",
+                          block.io == 1   ? "input"
+                          : block.io == 2 ? "output"
+                                          : "input/output",
                           channel_type_text(block.channel_type), block.error_type,
                           channel_error_text(block.error_type));
                     break;
-                case DiagBlockType::Revision:
-                    field(2, "revision number {}", block.revision);
-                    break;
+                case DiagBlockType::Revision: field(2, "revision number {}", block.revision); break;
                 case DiagBlockType::Identifier: {
                     line(2, "identifier-related: modules with diagnosis:");
                     bool any = false;
@@ -309,8 +313,9 @@ private:
 
     void render_prm(const SetPrm& prm) {
         flags_field(1, "Station status", prm.station_status, set_prm_station_flags());
-        field(1, "Watchdog: factors {} x {}{}", prm.wd_fact_1, prm.wd_fact_2,
-              prm.watchdog_on() ? fmt::format(" = {} ms", prm.watchdog_ms()) : std::string(" (off)"));
+        field(
+            1, "Watchdog: factors {} x {}{}", prm.wd_fact_1, prm.wd_fact_2,
+            prm.watchdog_on() ? fmt::format(" = {} ms", prm.watchdog_ms()) : std::string(" (off)"));
         field(1, "min TSDR: {} bit times", prm.min_tsdr);
         field(1, "Ident number: 0x{:04X}", prm.ident);
         field(1, "Group ident: 0x{:02X}", prm.group_ident);
@@ -341,21 +346,23 @@ private:
             }
             std::string lengths;
             if (m.output_units)
-                lengths += fmt::format(" out {} {}{}", m.output_units,
-                                       m.output_words ? "words" : "bytes",
-                                       m.output_consistent ? " consistent" : "");
+                lengths +=
+                    fmt::format(" out {} {}{}", m.output_units, m.output_words ? "words" : "bytes",
+                                m.output_consistent ? " consistent" : "");
             if (m.input_units)
-                lengths += fmt::format(" in {} {}{}", m.input_units, m.input_words ? "words" : "bytes",
-                                       m.input_consistent ? " consistent" : "");
+                lengths +=
+                    fmt::format(" in {} {}{}", m.input_units, m.input_words ? "words" : "bytes",
+                                m.input_consistent ? " consistent" : "");
             field(2, "module {}: 0x{:02X} {}{}{}{}", number++, m.identifier,
                   m.special ? "special format," : "", cfg_direction_name(m.direction), lengths,
-                  m.manufacturer_bytes ? fmt::format(", {} manufacturer bytes", m.manufacturer_bytes)
-                                       : std::string());
+                  m.manufacturer_bytes
+                      ? fmt::format(", {} manufacturer bytes", m.manufacturer_bytes)
+                      : std::string());
         }
         line(1, "Layout: ");
-        append_ppo_long(out_.buffer(), ppo_from_cfg(modules, t.service == Service::ChkCfg
-                                                                 ? PpoSource::ChkCfg
-                                                                 : PpoSource::GetCfg));
+        append_ppo_long(out_.buffer(),
+                        ppo_from_cfg(modules, t.service == Service::ChkCfg ? PpoSource::ChkCfg
+                                                                           : PpoSource::GetCfg));
         out_.buffer().push_back('\n');
     }
 };

@@ -19,7 +19,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::string error;
     dpscope::parse_hex_bytes(text, bytes, error);
     std::size_t space = text.find(' ');
-    dpscope::parse_timestamp(text.substr(0, space),
-                             space == std::string_view::npos ? std::string_view{} : text.substr(space + 1));
+    dpscope::parse_timestamp(text.substr(0, space), space == std::string_view::npos
+                                                        ? std::string_view{}
+                                                        : text.substr(space + 1));
     return 0;
 }

@@ -1,6 +1,8 @@
 // BusDecoder: responses named after their request, unpaired responses, unanswered requests, PPO
 // layout from configuration / option / length, dialects and profiles per station, PCV/PCD split,
 // station configuration and problems in the service data.
+#include "decoder/bus_decoder.hpp"
+
 #include <gtest/gtest.h>
 
 #include <deque>
@@ -8,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "decoder/bus_decoder.hpp"
 #include "decoder/telegram_builder.hpp"
 #include "tests/test_support.hpp"
 
@@ -21,7 +22,7 @@ constexpr std::uint8_t kMasterAddress = 2;
 
 // Owns the telegram bytes so a DecodedTelegram's spans stay valid while a test looks at it.
 class Bus {
-public:
+  public:
     explicit Bus(DecoderOptions options = {}) : decoder(options) {}
 
     const DecodedTelegram& decode(std::vector<std::uint8_t> bytes, std::int64_t time_ns = kNoTime) {
@@ -32,7 +33,7 @@ public:
 
     BusDecoder decoder;
 
-private:
+  private:
     std::deque<std::vector<std::uint8_t>> frames_;
 };
 
@@ -61,8 +62,7 @@ std::vector<std::uint8_t> service_request(std::uint8_t slave, std::uint8_t dsap,
 // Slave -> master DP service response with SAPs.
 std::vector<std::uint8_t> service_response(std::uint8_t slave, std::uint8_t ssap,
                                            const std::vector<std::uint8_t>& du) {
-    return telegram(kMasterAddress, slave, response_fc(FdlStatus::DataLow), sap::kMaster, ssap,
-                    du);
+    return telegram(kMasterAddress, slave, response_fc(FdlStatus::DataLow), sap::kMaster, ssap, du);
 }
 
 std::vector<std::uint8_t> exchange_request(std::uint8_t slave,
@@ -120,8 +120,8 @@ TEST(BusDecoderTest, ShortAckAfterChkCfgIsNamedChkCfg) {
 TEST(BusDecoderTest, ResponsesAreNamedAfterTheRequestTheyAnswer) {
     Bus bus;
     bus.decode(service_request(3, sap::kSlaveDiag));
-    const DecodedTelegram& diag = bus.decode(service_response(3, sap::kSlaveDiag,
-                                                              hex("02 05 00 FF 04 02")));
+    const DecodedTelegram& diag =
+        bus.decode(service_response(3, sap::kSlaveDiag, hex("02 05 00 FF 04 02")));
     EXPECT_EQ(diag.fdl.type, FrameType::Sd3);
     EXPECT_EQ(diag.service, Service::SlaveDiag);
     EXPECT_EQ(diag.request_frame, 1u);
@@ -138,8 +138,8 @@ TEST(BusDecoderTest, ResponsesAreNamedAfterTheRequestTheyAnswer) {
     EXPECT_EQ(inputs.direction, Direction::Response);
 
     bus.decode(telegram(3, 2, request_fc(FdlFunction::FdlStatus), std::nullopt, std::nullopt, {}));
-    const DecodedTelegram& status = bus.decode(
-        telegram(2, 3, response_fc(FdlStatus::Ok), std::nullopt, std::nullopt, {}));
+    const DecodedTelegram& status =
+        bus.decode(telegram(2, 3, response_fc(FdlStatus::Ok), std::nullopt, std::nullopt, {}));
     EXPECT_EQ(status.fdl.type, FrameType::Sd1);
     EXPECT_EQ(status.service, Service::FdlStatus);
     EXPECT_EQ(status.request_frame, 7u);
@@ -185,9 +185,8 @@ TEST(BusDecoderTest, ResponseFromAnotherStationDoesNotAnswerThePendingRequest) {
 TEST(BusDecoderTest, ResponseToAnotherMasterDoesNotAnswerThePendingRequest) {
     Bus bus;
     bus.decode(exchange_request(3, hex("04 7F 20 00")));
-    const DecodedTelegram& other =
-        bus.decode(telegram(1, 3, response_fc(FdlStatus::DataLow), std::nullopt, std::nullopt,
-                            hex("0F 07 20 00")));
+    const DecodedTelegram& other = bus.decode(telegram(
+        1, 3, response_fc(FdlStatus::DataLow), std::nullopt, std::nullopt, hex("0F 07 20 00")));
     EXPECT_EQ(other.request_frame, 0u);
     EXPECT_EQ(other.master, 1);
 }
@@ -236,9 +235,8 @@ TEST(BusDecoderTest, UnansweredSdaIsReported) {
 TEST(BusDecoderTest, NoReplyExpectedAfterSdnOrBroadcast) {
     Bus bus;
     // Global_Control: SDN to the broadcast address.
-    const DecodedTelegram& gc =
-        bus.decode(service_request(kBroadcastAddress, sap::kGlobalControl, hex("08 00"),
-                                   FdlFunction::SdnHigh));
+    const DecodedTelegram& gc = bus.decode(service_request(kBroadcastAddress, sap::kGlobalControl,
+                                                           hex("08 00"), FdlFunction::SdnHigh));
     EXPECT_EQ(gc.service, Service::GlobalControl);
     EXPECT_FALSE(bus.decode(token()).unanswered);
     // SDN to a single slave.
@@ -712,22 +710,22 @@ TEST(BusDecoderTest, ShortSlaveDiagIsAProblem) {
 
 TEST(BusDecoderTest, ShortGlobalControlAndSetSlaveAddAreProblems) {
     Bus bus;
-    const DecodedTelegram& gc = bus.decode(service_request(
-        kBroadcastAddress, sap::kGlobalControl, hex("08"), FdlFunction::SdnHigh));
+    const DecodedTelegram& gc = bus.decode(
+        service_request(kBroadcastAddress, sap::kGlobalControl, hex("08"), FdlFunction::SdnHigh));
     ASSERT_EQ(gc.problems().size(), 1u);
     EXPECT_EQ(gc.problems()[0].kind, ProblemKind::ServiceDataShort);
     EXPECT_EQ(gc.problems()[0].expected, 2u);
 
-    const DecodedTelegram& ssa = bus.decode(service_request(126, sap::kSetSlaveAdd,
-                                                            hex("05 04 02")));
+    const DecodedTelegram& ssa =
+        bus.decode(service_request(126, sap::kSetSlaveAdd, hex("05 04 02")));
     EXPECT_EQ(ssa.service, Service::SetSlaveAdd);
     ASSERT_EQ(ssa.problems().size(), 1u);
     EXPECT_EQ(ssa.problems()[0].kind, ProblemKind::ServiceDataShort);
     EXPECT_EQ(ssa.problems()[0].expected, 4u);
     EXPECT_EQ(ssa.problems()[0].actual, 3u);
 
-    const DecodedTelegram& ok = bus.decode(service_request(126, sap::kSetSlaveAdd,
-                                                           hex("05 04 02 00")));
+    const DecodedTelegram& ok =
+        bus.decode(service_request(126, sap::kSetSlaveAdd, hex("05 04 02 00")));
     EXPECT_TRUE(ok.problems().empty());
 }
 

@@ -1,8 +1,9 @@
 // ByteReader: big-endian reads, bounds checks that leave the cursor alone, offsets and
 // sub-readers.
+#include "decoder/byte_reader.hpp"
+
 #include <gtest/gtest.h>
 
-#include "decoder/byte_reader.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

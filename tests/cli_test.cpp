@@ -53,9 +53,7 @@ std::size_t records_in(const std::string& path) {
     return n;
 }
 
-std::string sample(const std::string& relative) {
-    return test::source_dir() + "/" + relative;
-}
+std::string sample(const std::string& relative) { return test::source_dir() + "/" + relative; }
 
 void expect_mentions(const std::string& help, const std::vector<std::string>& options) {
     for (const std::string& option : options)

@@ -1,13 +1,14 @@
 // The parameter channel: reading the 8 PCV bytes, the request/response code tables of both
 // dialects (seed 000 VLT 5000, seed 002 GE AF-600, protocol.md §3.3-3.5 and §4.2-4.5), RC 7 error
 // numbers, the pairing rules of §3.6 and the worked examples of §3.7 and §3.8.
+#include "decoder/code_tables.hpp"
+
 #include <gtest/gtest.h>
 
 #include <set>
 #include <string>
 #include <vector>
 
-#include "decoder/code_tables.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -91,8 +92,7 @@ TEST(CodeTablesTest, WorkedExampleReadMotorCurrent) {
     const ResponseCode& code = response_code(Dialect::Vlt, response.rc);
     EXPECT_EQ(code.width, ValueWidth::Word);
     EXPECT_EQ(pcv_value(response, code.width), 240u);
-    EXPECT_EQ(judge_answer(Dialect::Vlt, request.rc, response.rc, false),
-              AnswerVerdict::Positive);
+    EXPECT_EQ(judge_answer(Dialect::Vlt, request.rc, response.rc, false), AnswerVerdict::Positive);
 }
 
 // §3.7: the printed spontaneous-message example contradicts the bit layout; it is decoded per
@@ -182,8 +182,7 @@ void check_requests(Dialect dialect, const std::vector<RequestRow>& rows) {
 void check_responses(Dialect dialect, const std::vector<ResponseRow>& rows) {
     ASSERT_EQ(rows.size(), 16u);
     for (const ResponseRow& row : rows) {
-        SCOPED_TRACE(std::string(dialect_name(dialect)) + " response RC " +
-                     std::to_string(row.rc));
+        SCOPED_TRACE(std::string(dialect_name(dialect)) + " response RC " + std::to_string(row.rc));
         const ResponseCode& code = response_code(dialect, row.rc);
         EXPECT_EQ(code.meaning, row.meaning);
         EXPECT_EQ(code.width, row.width);
@@ -194,27 +193,26 @@ void check_responses(Dialect dialect, const std::vector<ResponseRow>& rows) {
 
 // Seed 000 "RC content / Request" (seed 002 gives the same list, "long word" for double word).
 TEST(CodeTablesTest, VltRequestCodes) {
-    check_requests(Dialect::Vlt,
-                   {
-                       {0, "No request", W::None, true, false, false},
-                       {1, "Request parameter value", W::None, true, false, false},
-                       {2, "Change parameter value (word)", W::Word, true, true, false},
-                       {3, "Change parameter value (double word)", W::DoubleWord, true, true,
-                        false},
-                       {4, "Request description element", W::None, true, false, false},
-                       {5, "Change description element", W::DoubleWord, true, true, false},
-                       {6, "Request parameter value (array)", W::None, true, false, true},
-                       {7, "Change parameter value (array word)", W::Word, true, true, true},
-                       {8, "Change parameter value (array double word)", W::DoubleWord, true,
-                        true, true},
-                       {9, "Request number of array elements", W::None, true, false, false},
-                       {10, "Not assigned", W::None, false, false, false},
-                       {11, "Not assigned", W::None, false, false, false},
-                       {12, "Not assigned", W::None, false, false, false},
-                       {13, "Not assigned", W::None, false, false, false},
-                       {14, "Not assigned", W::None, false, false, false},
-                       {15, "Not assigned", W::None, false, false, false},
-                   });
+    check_requests(
+        Dialect::Vlt,
+        {
+            {0, "No request", W::None, true, false, false},
+            {1, "Request parameter value", W::None, true, false, false},
+            {2, "Change parameter value (word)", W::Word, true, true, false},
+            {3, "Change parameter value (double word)", W::DoubleWord, true, true, false},
+            {4, "Request description element", W::None, true, false, false},
+            {5, "Change description element", W::DoubleWord, true, true, false},
+            {6, "Request parameter value (array)", W::None, true, false, true},
+            {7, "Change parameter value (array word)", W::Word, true, true, true},
+            {8, "Change parameter value (array double word)", W::DoubleWord, true, true, true},
+            {9, "Request number of array elements", W::None, true, false, false},
+            {10, "Not assigned", W::None, false, false, false},
+            {11, "Not assigned", W::None, false, false, false},
+            {12, "Not assigned", W::None, false, false, false},
+            {13, "Not assigned", W::None, false, false, false},
+            {14, "Not assigned", W::None, false, false, false},
+            {15, "Not assigned", W::None, false, false, false},
+        });
 }
 
 // Seed 000 "Response"; seed 002 marks 9-12 "not used" but the vlt dialect supports them (§9 #2).
@@ -413,8 +411,8 @@ TEST(CodeTablesTest, ErrorNumbersDependOnTheDialect) {
 // The pairing table of protocol.md §3.6 written out independently of the implementation.
 AnswerVerdict expected_verdict(Dialect dialect, int request, int response, bool strict) {
     bool profidrive = dialect == Dialect::Profidrive;
-    bool request_defined = (request >= 0 && request <= 9) ||
-                           (profidrive && request >= 11 && request <= 15);
+    bool request_defined =
+        (request >= 0 && request <= 9) || (profidrive && request >= 11 && request <= 15);
     bool response_defined = (response >= 0 && response <= 12) || (profidrive && response == 15);
     if (!request_defined || !response_defined) return AnswerVerdict::Invalid;
     const std::vector<std::set<int>> positive = {

@@ -1,11 +1,12 @@
 // DP management payloads: Slave_Diag with extended diagnosis, Set_Prm (DP-V0 and DP-V1),
 // Chk_Cfg identifiers (compact and special format), Global_Control and Set_Slave_Add.
+#include "decoder/dp_payload.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "decoder/dp_payload.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -57,8 +58,7 @@ TEST(DpPayloadTest, SlaveDiagWithExtendedDiagnosis) {
     EXPECT_EQ(diag->extended_offset, 15);
     EXPECT_EQ(copy(diag->extended), hex("03 AA BB 42 01 81 42 A6 C5"));
 
-    auto blocks =
-        parse_extended_diag(ByteReader(diag->extended, diag->extended_offset), problems);
+    auto blocks = parse_extended_diag(ByteReader(diag->extended, diag->extended_offset), problems);
     EXPECT_TRUE(problems.empty());
     ASSERT_EQ(blocks.size(), 4u);
 
@@ -73,7 +73,7 @@ TEST(DpPayloadTest, SlaveDiagWithExtendedDiagnosis) {
     EXPECT_EQ(blocks[2].type, DiagBlockType::Channel);
     EXPECT_EQ(blocks[2].offset, 20);
     EXPECT_EQ(blocks[2].module, 1);
-    EXPECT_EQ(blocks[2].io, 1);            // input
+    EXPECT_EQ(blocks[2].io, 1);  // input
     EXPECT_EQ(blocks[2].channel, 2);
     EXPECT_EQ(blocks[2].channel_type, 5);  // word
     EXPECT_EQ(blocks[2].error_type, 6);    // line break

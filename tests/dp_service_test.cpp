@@ -1,12 +1,13 @@
 // DP services: requests classified from the telegram, responses without their request classified
 // from their SAPs, and the SAP and service names.
+#include "decoder/dp_service.hpp"
+
 #include <gtest/gtest.h>
 
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "decoder/dp_service.hpp"
 #include "decoder/telegram_builder.hpp"
 #include "tests/test_support.hpp"
 
@@ -67,7 +68,8 @@ TEST(DpServiceTest, ServiceNamesAreStable) {
         {Service::ShortAck, "Short_Ack"},
     };
     ASSERT_EQ(names.size(), kServiceCount);
-    for (const auto& [service, name] : names) EXPECT_EQ(service_name(service), name);
+    for (const auto& [service, name] : names)
+        EXPECT_EQ(service_name(service), name);
 }
 
 TEST(DpServiceTest, SapConstantsMatchTheProtocol) {
@@ -84,9 +86,9 @@ TEST(DpServiceTest, SapConstantsMatchTheProtocol) {
 
 TEST(DpServiceTest, RequestClassifiedByEveryDpSap) {
     const std::vector<std::pair<std::uint8_t, Service>> cases = {
-        {62, Service::ChkCfg},       {61, Service::SetPrm},  {60, Service::SlaveDiag},
-        {59, Service::GetCfg},       {58, Service::GlobalControl}, {57, Service::RdOutp},
-        {56, Service::RdInp},        {55, Service::SetSlaveAdd},
+        {62, Service::ChkCfg}, {61, Service::SetPrm},        {60, Service::SlaveDiag},
+        {59, Service::GetCfg}, {58, Service::GlobalControl}, {57, Service::RdOutp},
+        {56, Service::RdInp},  {55, Service::SetSlaveAdd},
     };
     for (const auto& [dsap, service] : cases) {
         SCOPED_TRACE("DSAP " + std::to_string(dsap));
@@ -178,9 +180,9 @@ TEST(DpServiceTest, MsacC2Requests) {
 
 TEST(DpServiceTest, UnpairedResponseClassifiedBySourceSap) {
     const std::vector<std::pair<std::uint8_t, Service>> cases = {
-        {62, Service::ChkCfg},       {61, Service::SetPrm},  {60, Service::SlaveDiag},
-        {59, Service::GetCfg},       {58, Service::GlobalControl}, {57, Service::RdOutp},
-        {56, Service::RdInp},        {55, Service::SetSlaveAdd},
+        {62, Service::ChkCfg}, {61, Service::SetPrm},        {60, Service::SlaveDiag},
+        {59, Service::GetCfg}, {58, Service::GlobalControl}, {57, Service::RdOutp},
+        {56, Service::RdInp},  {55, Service::SetSlaveAdd},
     };
     for (const auto& [ssap, service] : cases) {
         SCOPED_TRACE("SSAP " + std::to_string(ssap));

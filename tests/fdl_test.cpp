@@ -1,7 +1,8 @@
 // FDL layer: every frame type valid, truncated and corrupted; frame control; address extension.
+#include "decoder/fdl.hpp"
+
 #include <gtest/gtest.h>
 
-#include "decoder/fdl.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -214,9 +215,16 @@ TEST(FdlTest, FrameControlNames) {
     EXPECT_EQ(request_function_name(0x05), "SDA high");
     EXPECT_EQ(request_function_name(0x09), "FDL status");
     EXPECT_EQ(request_function_name(0x08), "reserved");
-    for (auto [code, name] : std::vector<std::pair<int, std::string>>{
-             {0, "OK"}, {1, "UE"}, {2, "RR"}, {3, "RS"}, {8, "DL"}, {9, "NR"}, {10, "DH"},
-             {12, "RDL"}, {13, "RDH"}, {5, "reserved"}})
+    for (auto [code, name] : std::vector<std::pair<int, std::string>>{{0, "OK"},
+                                                                      {1, "UE"},
+                                                                      {2, "RR"},
+                                                                      {3, "RS"},
+                                                                      {8, "DL"},
+                                                                      {9, "NR"},
+                                                                      {10, "DH"},
+                                                                      {12, "RDL"},
+                                                                      {13, "RDH"},
+                                                                      {5, "reserved"}})
         EXPECT_EQ(response_status_name(static_cast<std::uint8_t>(code)), name);
     EXPECT_EQ(station_type_name(0), "slave");
     EXPECT_EQ(station_type_name(3), "master in the token ring");

@@ -99,9 +99,7 @@ TEST(InputFormatTest, NonPrintableByteMakesItRaw) {
     EXPECT_EQ(detect_text("68 07 \xE5"), InputFormat::Raw);
 }
 
-TEST(InputFormatTest, EmptyHeadIsRaw) {
-    EXPECT_EQ(detect({}), InputFormat::Raw);
-}
+TEST(InputFormatTest, EmptyHeadIsRaw) { EXPECT_EQ(detect({}), InputFormat::Raw); }
 
 }  // namespace
 }  // namespace dpscope

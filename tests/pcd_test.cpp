@@ -1,11 +1,11 @@
 // Process data words: the Danfoss control and status word bit tables for the PROFIdrive profile
 // (protocol.md §8.3) and the FC profile (§8.4), and reference scaling (§8.5).
+#include "decoder/pcd.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
-
-#include "decoder/pcd.hpp"
 
 namespace dpscope {
 namespace {

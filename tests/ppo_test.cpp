@@ -1,11 +1,12 @@
 // PPO types from configuration identifiers (protocol.md §2.4), from the Data_Exchange length
 // (§2.5) and by number.
+#include "decoder/ppo.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "decoder/ppo.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -171,9 +172,9 @@ TEST(PpoTest, LengthTable) {
         bool has_pcv;
     };
     const std::vector<LengthCase> cases = {
-        {4, 3, 0, false},  {12, 1, 4, true}, {20, 2, 0, true}, {28, 5, 0, true},
-        {8, 0, 0, false},  {16, 0, 0, false}, {24, 0, 0, false}, {32, 0, 0, false},
-        {0, 0, 0, false},  {2, 0, 0, false},  {13, 0, 0, false},
+        {4, 3, 0, false}, {12, 1, 4, true},  {20, 2, 0, true},  {28, 5, 0, true},
+        {8, 0, 0, false}, {16, 0, 0, false}, {24, 0, 0, false}, {32, 0, 0, false},
+        {0, 0, 0, false}, {2, 0, 0, false},  {13, 0, 0, false},
     };
     for (const LengthCase& c : cases) {
         SCOPED_TRACE("length " + std::to_string(c.length));

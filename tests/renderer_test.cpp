@@ -104,10 +104,8 @@ class JsonParser {
         if (depth > 64) return fail("nesting too deep");
         Json out;
         switch (peek()) {
-            case '{':
-                return object(depth);
-            case '[':
-                return array(depth);
+            case '{': return object(depth);
+            case '[': return array(depth);
             case '"': {
                 auto s = string();
                 if (!s) return std::nullopt;
@@ -124,8 +122,7 @@ class JsonParser {
             case 'n':
                 if (!literal("null")) return fail("bad literal");
                 return out;
-            default:
-                return number();
+            default: return number();
         }
     }
 
@@ -215,30 +212,14 @@ class JsonParser {
             }
             char e = at_end() ? '\0' : text_[pos_++];
             switch (e) {
-                case '"':
-                    out.push_back('"');
-                    break;
-                case '\\':
-                    out.push_back('\\');
-                    break;
-                case '/':
-                    out.push_back('/');
-                    break;
-                case 'b':
-                    out.push_back('\b');
-                    break;
-                case 'f':
-                    out.push_back('\f');
-                    break;
-                case 'n':
-                    out.push_back('\n');
-                    break;
-                case 'r':
-                    out.push_back('\r');
-                    break;
-                case 't':
-                    out.push_back('\t');
-                    break;
+                case '"': out.push_back('"'); break;
+                case '\\': out.push_back('\\'); break;
+                case '/': out.push_back('/'); break;
+                case 'b': out.push_back('\b'); break;
+                case 'f': out.push_back('\f'); break;
+                case 'n': out.push_back('\n'); break;
+                case 'r': out.push_back('\r'); break;
+                case 't': out.push_back('\t'); break;
                 case 'u': {
                     auto code = hex4();
                     if (!code || (*code >= 0xD800 && *code < 0xE000)) {
@@ -248,9 +229,7 @@ class JsonParser {
                     append_utf8(out, *code);
                     break;
                 }
-                default:
-                    fail("bad escape");
-                    return std::nullopt;
+                default: fail("bad escape"); return std::nullopt;
             }
         }
     }

@@ -119,10 +119,8 @@ class JsonParser {
         if (depth > 64) return fail("nesting too deep");
         Json out;
         switch (peek()) {
-            case '{':
-                return object(depth);
-            case '[':
-                return array(depth);
+            case '{': return object(depth);
+            case '[': return array(depth);
             case '"': {
                 auto s = string();
                 if (!s) return std::nullopt;
@@ -139,8 +137,7 @@ class JsonParser {
             case 'n':
                 if (!literal("null")) return fail("bad literal");
                 return out;
-            default:
-                return number();
+            default: return number();
         }
     }
 
@@ -230,30 +227,14 @@ class JsonParser {
             }
             char e = at_end() ? '\0' : text_[pos_++];
             switch (e) {
-                case '"':
-                    out.push_back('"');
-                    break;
-                case '\\':
-                    out.push_back('\\');
-                    break;
-                case '/':
-                    out.push_back('/');
-                    break;
-                case 'b':
-                    out.push_back('\b');
-                    break;
-                case 'f':
-                    out.push_back('\f');
-                    break;
-                case 'n':
-                    out.push_back('\n');
-                    break;
-                case 'r':
-                    out.push_back('\r');
-                    break;
-                case 't':
-                    out.push_back('\t');
-                    break;
+                case '"': out.push_back('"'); break;
+                case '\\': out.push_back('\\'); break;
+                case '/': out.push_back('/'); break;
+                case 'b': out.push_back('\b'); break;
+                case 'f': out.push_back('\f'); break;
+                case 'n': out.push_back('\n'); break;
+                case 'r': out.push_back('\r'); break;
+                case 't': out.push_back('\t'); break;
                 case 'u': {
                     auto code = hex4();
                     if (!code || (*code >= 0xD800 && *code < 0xE000)) {
@@ -263,9 +244,7 @@ class JsonParser {
                     append_utf8(out, *code);
                     break;
                 }
-                default:
-                    fail("bad escape");
-                    return std::nullopt;
+                default: fail("bad escape"); return std::nullopt;
             }
         }
     }
@@ -1158,8 +1137,8 @@ TEST(ReportTest, JunitOneSuitePerSlavePlusBusWithSixteenCasesEach) {
     EXPECT_EQ(root->attribute("failures"), "7");
     EXPECT_EQ(root->attribute("errors"), "0");
     const std::vector<std::string> kinds = all_kind_names();
-    const char* classnames[] = {"dpscope.master_2.slave_3", "dpscope.master_2.slave_4", "dpscope.master_2.slave_5",
-                                "dpscope.bus"};
+    const char* classnames[] = {"dpscope.master_2.slave_3", "dpscope.master_2.slave_4",
+                                "dpscope.master_2.slave_5", "dpscope.bus"};
     const char* failures[] = {"2", "1", "3", "1"};
     for (std::size_t s = 0; s < suites.size(); ++s) {
         const XmlNode& suite = *suites[s];
@@ -1952,13 +1931,9 @@ std::vector<Finding> random_findings(std::size_t n, std::uint64_t seed) {
         f.master = static_cast<std::uint8_t>(random());
         f.slave = static_cast<std::uint8_t>(random());
         switch (random() % 3) {
-            case 0:
-                break;
-            case 1:
-                f.pnu = 0;
-                break;  // present and zero is not absent
-            default:
-                f.pnu = static_cast<std::uint16_t>(random());
+            case 0: break;
+            case 1: f.pnu = 0; break;  // present and zero is not absent
+            default: f.pnu = static_cast<std::uint16_t>(random());
         }
         std::size_t length = random() % 4 == 0 ? 0 : random() % 300;
         for (std::size_t c = 0; c < length; ++c)

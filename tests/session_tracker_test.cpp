@@ -2,6 +2,8 @@
 // multi-slave session with none, and hand-built telegram sequences for the cyclic rules: the
 // one-cycle lag, stale repeats, RC 7 with PNU 0, identical consecutive requests, spontaneous
 // messages, time-outs and latency.
+#include "decoder/session_tracker.hpp"
+
 #include <gtest/gtest.h>
 
 #include <map>
@@ -10,7 +12,6 @@
 
 #include "capture/simulator.hpp"
 #include "decoder/bus_decoder.hpp"
-#include "decoder/session_tracker.hpp"
 #include "decoder/telegram_builder.hpp"
 
 namespace dpscope {
@@ -20,7 +21,8 @@ using Counts = std::map<std::string, int>;
 
 Counts count_kinds(const std::vector<Finding>& findings) {
     Counts counts;
-    for (const Finding& f : findings) ++counts[std::string(finding_kind_name(f.kind))];
+    for (const Finding& f : findings)
+        ++counts[std::string(finding_kind_name(f.kind))];
     return counts;
 }
 
@@ -44,11 +46,14 @@ SimulatedRun simulate(SimulatorOptions options, DecoderOptions decoder_options =
     std::uint64_t frame = 0;
     while (simulator.next(bytes, time)) {
         const DecodedTelegram& t = decoder.decode(Bytes(bytes.data(), bytes.size()), time, ++frame);
-        for (const Finding& f : tracker.track(t)) run.findings.push_back(f);
+        for (const Finding& f : tracker.track(t))
+            run.findings.push_back(f);
     }
-    for (const Finding& f : tracker.finish()) run.findings.push_back(f);
+    for (const Finding& f : tracker.finish())
+        run.findings.push_back(f);
     run.injections = simulator.injections();
-    for (const ChannelStats* stats : tracker.channels()) run.channels.push_back(*stats);
+    for (const ChannelStats* stats : tracker.channels())
+        run.channels.push_back(*stats);
     run.transactions = tracker.transactions();
     return run;
 }
@@ -66,9 +71,9 @@ TEST(SessionTrackerTest, CleanMultiSlaveSessionHasNoFindings) {
     options.seed = 7;
     options.cycles = 3000;
     options.cycle_us = 5000;  // seven slaves need more than the default 2 ms
-    options.slaves = {{3, 1, Dialect::Vlt},        {4, 2, Dialect::Vlt}, {5, 5, Dialect::Vlt},
-                      {6, 3, Dialect::Vlt},        {7, 4, Dialect::Vlt},
-                      {8, 1, Dialect::Profidrive}, {9, 5, Dialect::Profidrive}};
+    options.slaves = {{3, 1, Dialect::Vlt},       {4, 2, Dialect::Vlt}, {5, 5, Dialect::Vlt},
+                      {6, 3, Dialect::Vlt},       {7, 4, Dialect::Vlt}, {8, 1, Dialect::Profidrive},
+                      {9, 5, Dialect::Profidrive}};
     DecoderOptions decoder;
     decoder.station_dialect[8] = Dialect::Profidrive;
     decoder.station_dialect[9] = Dialect::Profidrive;
@@ -135,7 +140,8 @@ INSTANTIATE_TEST_SUITE_P(
         FaultScenario{"request_rejected", 120, {{"request_rejected", 1}}},
         FaultScenario{"no_authority", 300, {{"no_authority", 1}}},
         FaultScenario{"spontaneous_message", 120, {{"spontaneous_message", 1}}},
-        FaultScenario{"spontaneous_unacknowledged", 1200,
+        FaultScenario{"spontaneous_unacknowledged",
+                      1200,
                       {{"spontaneous_message", 1}, {"spontaneous_unacknowledged", 1}}},
         FaultScenario{"spm_violation", 120, {{"spm_violation", 1}}},
         FaultScenario{"config_mismatch", 120, {{"config_mismatch", 1}}},
@@ -150,11 +156,11 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(SessionTrackerTest, EveryKindIsCoveredByAScenario) {
     // The scenario table above names every finding kind at least once.
     std::set<std::string> covered;
-    for (const char* kind : {"fcs_error", "malformed_telegram", "fdl_retry", "stacked_request",
-                             "orphan_response", "mismatched_response", "unexpected_response_type",
-                             "response_timeout", "request_rejected", "no_authority",
-                             "spontaneous_message", "spontaneous_unacknowledged", "spm_violation",
-                             "config_mismatch", "unknown_code", "fdl_no_response"})
+    for (const char* kind :
+         {"fcs_error", "malformed_telegram", "fdl_retry", "stacked_request", "orphan_response",
+          "mismatched_response", "unexpected_response_type", "response_timeout", "request_rejected",
+          "no_authority", "spontaneous_message", "spontaneous_unacknowledged", "spm_violation",
+          "config_mismatch", "unknown_code", "fdl_no_response"})
         covered.insert(kind);
     for (std::size_t i = 0; i < kFindingKindCount; ++i)
         EXPECT_TRUE(covered.count(std::string(finding_kind_name(static_cast<FindingKind>(i)))))
@@ -179,7 +185,8 @@ TEST(SessionTrackerTest, TimeoutFindingNamesTheRequestAndItsDeadline) {
     SimulatedRun long_wait = simulate(options, {}, patient);
     EXPECT_TRUE(long_wait.findings.empty());
     std::uint64_t abandoned = 0;
-    for (const ChannelStats& s : long_wait.channels) abandoned += s.abandoned;
+    for (const ChannelStats& s : long_wait.channels)
+        abandoned += s.abandoned;
     EXPECT_EQ(abandoned, 1u);
 }
 
@@ -215,7 +222,8 @@ TEST(SessionTrackerTest, FaultsAtARateAreAllFoundAndNothingElse) {
             int injected = static_cast<int>(run.injections.size());
             ASSERT_GT(injected, 5) << fault_kind_name(expected.kind);
             Counts want;
-            for (const auto& [kind, n] : expected.per_injection) want[kind] = n * injected;
+            for (const auto& [kind, n] : expected.per_injection)
+                want[kind] = n * injected;
             EXPECT_EQ(count_kinds(run.findings), want)
                 << fault_kind_name(expected.kind) << ", seed " << seed;
         }
@@ -234,7 +242,7 @@ struct Word {
 
 // Master 2 and slave 3 (PPO 1) exchanging Data_Exchange telegrams, 2 ms per cycle.
 class Channel {
-public:
+  public:
     explicit Channel(TrackerOptions tracker_options = {}, Dialect dialect = Dialect::Vlt)
         : decoder_(options(dialect)), tracker_(decoder_, tracker_options) {}
 
@@ -255,7 +263,8 @@ public:
         feed(bytes);
     }
     void finish() {
-        for (const Finding& f : tracker_.finish()) findings.push_back(f);
+        for (const Finding& f : tracker_.finish())
+            findings.push_back(f);
     }
     const ChannelStats& stats() const { return *tracker_.channels().at(0); }
     void advance_ms(std::int64_t ms) { now_ += ms * 1'000'000; }
@@ -263,7 +272,7 @@ public:
 
     std::vector<Finding> findings;
 
-private:
+  private:
     static DecoderOptions options(Dialect dialect) {
         DecoderOptions o;
         o.station_ppo[3] = 1;
@@ -279,8 +288,10 @@ private:
         return build_telegram({da, sa, fc, {}, {}, Bytes(du)});
     }
     void feed(const std::vector<std::uint8_t>& bytes) {
-        const DecodedTelegram& t = decoder_.decode(Bytes(bytes.data(), bytes.size()), now_, ++frame_);
-        for (const Finding& f : tracker_.track(t)) findings.push_back(f);
+        const DecodedTelegram& t =
+            decoder_.decode(Bytes(bytes.data(), bytes.size()), now_, ++frame_);
+        for (const Finding& f : tracker_.track(t))
+            findings.push_back(f);
     }
 
     BusDecoder decoder_;
@@ -298,9 +309,9 @@ const Word kValue518{1, 518, 0, 500};
 
 TEST(SessionTrackerTest, OneCycleLagIsNoOrphan) {
     Channel ch;
-    ch.cycle(kRead520, kIdle);       // the slave sees the request a cycle late
-    ch.cycle(kRead520, kValue520);   // answered
-    ch.cycle(kIdle, kValue520);      // the master moved on; the answer still arrives
+    ch.cycle(kRead520, kIdle);      // the slave sees the request a cycle late
+    ch.cycle(kRead520, kValue520);  // answered
+    ch.cycle(kIdle, kValue520);     // the master moved on; the answer still arrives
     ch.cycle(kIdle, kIdle);
     EXPECT_TRUE(ch.findings.empty());
     EXPECT_EQ(ch.stats().transactions.positive, 1u);
@@ -344,9 +355,11 @@ TEST(SessionTrackerTest, StaleRepeatsWhileTheNextRequestIsWorkedOn) {
 
 TEST(SessionTrackerTest, RepeatedIdenticalRequestCountsOnce) {
     Channel ch;
-    for (int i = 0; i < 5; ++i) ch.cycle(kRead520, kIdle);
+    for (int i = 0; i < 5; ++i)
+        ch.cycle(kRead520, kIdle);
     ch.cycle(kRead520, kValue520);
-    for (int i = 0; i < 5; ++i) ch.cycle(kRead520, kValue520);
+    for (int i = 0; i < 5; ++i)
+        ch.cycle(kRead520, kValue520);
     EXPECT_TRUE(ch.findings.empty());
     EXPECT_EQ(ch.stats().requests, 1u);
     EXPECT_EQ(ch.stats().transactions.total(), 1u);
@@ -462,7 +475,8 @@ TEST(SessionTrackerTest, StackedRequestIsReportedOnceAndItsLateAnswerIsNoMismatc
 TEST(SessionTrackerTest, TimedOutRequestIsNotAlsoStacked) {
     Channel ch;
     ch.cycle(kRead520, kIdle);
-    for (int i = 0; i < 600; ++i) ch.cycle(kRead520, kIdle);  // 1.2 s without an answer
+    for (int i = 0; i < 600; ++i)
+        ch.cycle(kRead520, kIdle);  // 1.2 s without an answer
     ch.cycle(kRead518, kIdle);
     ch.cycle(kRead518, kValue518);
     ASSERT_EQ(ch.findings.size(), 1u);
@@ -488,7 +502,8 @@ TEST(SessionTrackerTest, TimeoutIsConfigurable) {
     TrackerOptions quick;
     quick.timeout_ns = 5'000'000;
     Channel ch(quick);
-    for (int i = 0; i < 4; ++i) ch.cycle(kRead520, kIdle);  // 8 ms
+    for (int i = 0; i < 4; ++i)
+        ch.cycle(kRead520, kIdle);  // 8 ms
     ch.cycle(kRead520, kValue520);
     ASSERT_EQ(ch.findings.size(), 1u);
     EXPECT_EQ(ch.findings[0].kind, FindingKind::ResponseTimeout);
@@ -516,7 +531,8 @@ TEST(SessionTrackerTest, UnacknowledgedSpontaneousMessage) {
     Channel ch;
     const Word message{9, 538, 0, 1, true};
     ch.cycle(kIdle, message);
-    for (int i = 0; i < 550; ++i) ch.cycle(kIdle, message);  // 1.1 s, no SPM toggle
+    for (int i = 0; i < 550; ++i)
+        ch.cycle(kIdle, message);  // 1.1 s, no SPM toggle
     EXPECT_EQ(count_kinds(ch.findings),
               (Counts{{"spontaneous_message", 1}, {"spontaneous_unacknowledged", 1}}));
     ch.cycle(Word{0, 0, 0, 0, true}, message);  // a late acknowledgement is no violation
@@ -582,7 +598,8 @@ TEST(SessionTrackerTest, LatencyStatistics) {
         Word request{1, static_cast<std::uint16_t>(500 + delay)};
         Word answer{1, request.pnu, 0, 1};
         ch.cycle(request, kIdle);
-        for (int i = 1; i < delay; ++i) ch.cycle(request, kIdle);
+        for (int i = 1; i < delay; ++i)
+            ch.cycle(request, kIdle);
         ch.cycle(request, answer);
         ch.cycle(kIdle, answer);
         ch.cycle(kIdle, kIdle);
@@ -618,7 +635,8 @@ TEST(SessionTrackerTest, ConfigMismatchReportedOncePerLength) {
     bool fcb = false;
     auto exchange = [&](std::size_t length) {
         std::vector<std::uint8_t> du(length, 0);
-        feed(build_telegram({3, 2, request_fc(FdlFunction::SrdHigh, fcb, true), {}, {}, Bytes(du)}));
+        feed(
+            build_telegram({3, 2, request_fc(FdlFunction::SrdHigh, fcb, true), {}, {}, Bytes(du)}));
         fcb = !fcb;
         std::vector<std::uint8_t> in(12, 0);
         feed(build_telegram({2, 3, response_fc(FdlStatus::DataLow), {}, {}, Bytes(in)}));

@@ -247,8 +247,8 @@ TEST(SimulatorTest, GapPollsNeverAddressAStationOnTheBus) {
     EXPECT_EQ(polled[1], 1);
     for (int address : polled) {
         EXPECT_TRUE(address != 2 && address != 3 && address != 4 && address != 124)
-            << "gap poll sent to station " << address << ", which is on the bus (polled: "
-            << ::testing::PrintToString(polled) << ")";
+            << "gap poll sent to station " << address
+            << ", which is on the bus (polled: " << ::testing::PrintToString(polled) << ")";
     }
     EXPECT_EQ(polled[2], 5);
 }

@@ -1,11 +1,12 @@
 // StreamFramer: chunked input of every size, resynchronisation after garbage, the FCS rules for
 // SD1/SD2/SD3, gaps, the end of input and the counters.
+#include "decoder/stream_framer.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "decoder/stream_framer.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -21,7 +22,7 @@ struct Event {
 };
 
 class RecordingSink : public StreamFramer::Sink {
-public:
+  public:
     void on_telegram(Bytes telegram, std::uint64_t offset) override {
         events.push_back(Event{true, {telegram.begin(), telegram.end()}, offset, {}});
     }
@@ -49,7 +50,8 @@ Bytes span_of(const std::vector<std::uint8_t>& bytes) { return Bytes(bytes.data(
 
 std::vector<std::uint8_t> concat(std::initializer_list<std::vector<std::uint8_t>> parts) {
     std::vector<std::uint8_t> out;
-    for (const auto& part : parts) out.insert(out.end(), part.begin(), part.end());
+    for (const auto& part : parts)
+        out.insert(out.end(), part.begin(), part.end());
     return out;
 }
 

@@ -1,11 +1,12 @@
 // Telegram builder: frame type chosen by data length, FCS, round trips through parse_fdl and
 // check_frame, and the PCV byte layout.
+#include "decoder/telegram_builder.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "decoder/telegram_builder.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -63,9 +64,8 @@ TEST(TelegramBuilderTest, EightOctetsIncludingSapsGiveSd3) {
 
 TEST(TelegramBuilderTest, EightOctetsWithoutSapsGiveSd3) {
     auto du = hex("01 02 03 04 05 06 07 08");
-    auto bytes =
-        build_telegram(spec_of(3, 2, request_fc(FdlFunction::SrdHigh), std::nullopt, std::nullopt,
-                               du));
+    auto bytes = build_telegram(
+        spec_of(3, 2, request_fc(FdlFunction::SrdHigh), std::nullopt, std::nullopt, du));
     ASSERT_EQ(bytes.size(), 14u);
     EXPECT_EQ(bytes[0], kSd3);
     EXPECT_EQ(bytes[1], 0x03);
@@ -78,8 +78,8 @@ TEST(TelegramBuilderTest, EightOctetsWithoutSapsGiveSd3) {
 
 TEST(TelegramBuilderTest, OtherLengthsGiveSd2) {
     auto du = hex("F3 F1");
-    auto bytes = build_telegram(
-        spec_of(3, 2, request_fc(FdlFunction::SrdHigh, true, true), 62, 62, du));
+    auto bytes =
+        build_telegram(spec_of(3, 2, request_fc(FdlFunction::SrdHigh, true, true), 62, 62, du));
     EXPECT_EQ(bytes, hex("68 07 07 68 83 82 7D 3E 3E F3 F1 E2 16"));
     // 7 and 9 octets: SD2 with LE = octets + 3.
     for (std::size_t n : {7u, 9u, 1u}) {
@@ -117,7 +117,8 @@ TEST(TelegramBuilderTest, RoundTripThroughParseFdl) {
             if (octets + 3 > 249) continue;
             SCOPED_TRACE("data " + std::to_string(n) + " saps " + std::to_string(saps));
             std::vector<std::uint8_t> data(n);
-            for (std::size_t i = 0; i < n; ++i) data[i] = static_cast<std::uint8_t>(i * 7 + 1);
+            for (std::size_t i = 0; i < n; ++i)
+                data[i] = static_cast<std::uint8_t>(i * 7 + 1);
             std::optional<std::uint8_t> dsap, ssap;
             if (saps >= 1) dsap = 61;
             if (saps >= 2) ssap = 62;
@@ -125,7 +126,7 @@ TEST(TelegramBuilderTest, RoundTripThroughParseFdl) {
                 9, 1, request_fc(FdlFunction::SrdHigh, n % 2 == 0, true), dsap, ssap, data));
             FdlTelegram t = parse(bytes);
             ASSERT_TRUE(t.problems.empty()) << problem_message(t.problems[0]);
-            FrameType want = octets == 0 ? FrameType::Sd1
+            FrameType want = octets == 0   ? FrameType::Sd1
                              : octets == 8 ? FrameType::Sd3
                                            : FrameType::Sd2;
             EXPECT_EQ(t.type, want);

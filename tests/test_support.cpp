@@ -36,7 +36,8 @@ std::string temp_path(std::string_view name) {
 
 void write_file(const std::string& path, const std::vector<std::uint8_t>& bytes) {
     std::ofstream out(path, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    out.write(reinterpret_cast<const char*>(bytes.data()),
+              static_cast<std::streamsize>(bytes.size()));
     ASSERT_TRUE(out.good()) << "cannot write " << path;
 }
 
@@ -85,7 +86,8 @@ CommandResult run_dpscope(const std::vector<std::string>& args, const std::strin
     std::string command = "cd ";
     command.append(shell_quote(source_dir())).append(" && TZ=UTC LANG=C LC_ALL=C ");
     command.append(shell_quote(dpscope_executable()));
-    for (const std::string& arg : args) command.append(" ").append(shell_quote(arg));
+    for (const std::string& arg : args)
+        command.append(" ").append(shell_quote(arg));
     command.append(" < ").append(shell_quote(in_path));
     command.append(" > ").append(shell_quote(out_path));
     command.append(" 2> ").append(shell_quote(err_path));
