@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 #include <pcap/pcap.h>
+#include <stdio_ext.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -32,6 +35,20 @@ std::optional<CaptureFormat> capture_format_from_name(std::string_view name) {
 namespace {
 
 constexpr std::int64_t kNanosPerSecond = 1'000'000'000;
+
+std::string file_name(const std::string& path, unsigned index) {
+    std::size_t slash = path.rfind('/');
+    std::size_t dot = path.rfind('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash) ||
+        dot == (slash == std::string::npos ? 0 : slash + 1))
+        return fmt::format("{}-{:05}", path, index);
+    return fmt::format("{}-{:05}{}", path.substr(0, dot), index, path.substr(dot));
+}
+
+bool is_regular(FILE* file) {
+    struct stat info {};
+    return fstat(fileno(file), &info) == 0 && S_ISREG(info.st_mode);
+}
 
 std::int64_t time_or_zero(std::int64_t time_ns) { return time_ns == kNoTime ? 0 : time_ns; }
 
@@ -163,30 +180,41 @@ class PcapngWriter final : public StdioWriter {
 class PcapWriter final : public CaptureWriter {
   public:
     PcapWriter(pcap_t* dead, pcap_dumper_t* dumper, std::string name)
-        : dead_(dead), dumper_(dumper), name_(std::move(name)) {}
+        : dead_(dead), dumper_(dumper), name_(std::move(name)) {
+        if (std::fflush(pcap_dump_file(dumper_)) != 0 || !is_regular(pcap_dump_file(dumper_)))
+            committed_ = -1;
+    }
     ~PcapWriter() override {
         close();
         pcap_close(dead_);
     }
 
     bool write(Bytes telegram, std::int64_t time_ns) override {
-        if (!dumper_) return false;
+        if (!dumper_ || !error_.empty()) return false;
         std::int64_t t = time_or_zero(time_ns);
         pcap_pkthdr header{};
         header.ts.tv_sec = static_cast<time_t>(t / kNanosPerSecond);
         header.ts.tv_usec = static_cast<suseconds_t>(t % kNanosPerSecond);  // nanoseconds here
         header.caplen = header.len = static_cast<bpf_u_int32>(telegram.size());
         pcap_dump(reinterpret_cast<u_char*>(dumper_), &header, telegram.data());
+        if (committed_ >= 0) {
+            position_ += static_cast<long>(16 + telegram.size());
+            boundaries_.push_back(position_);
+        }
         return check();
     }
     bool flush() override {
         if (!dumper_) return false;
         if (pcap_dump_flush(dumper_) != 0) return fail();
-        return check();
+        if (!check()) return false;
+        // Everything up to here is on disk as whole records.
+        if (committed_ >= 0) committed_ = position_;
+        boundaries_.clear();
+        return true;
     }
     bool close() override {
         if (!dumper_) return error_.empty();
-        bool ok = flush();
+        bool ok = error_.empty() && flush();
         FILE* file = pcap_dump_file(dumper_);
         if (file == stdout) {
             // pcap_dump_close would close standard output; it is flushed, the process owns it.
@@ -203,18 +231,129 @@ class PcapWriter final : public CaptureWriter {
         if (std::ferror(pcap_dump_file(dumper_))) return fail();
         return true;
     }
+    // A write failed (disk full, file size limit): keep the file a valid capture by dropping
+    // what stdio still holds and cutting the file back to the last flushed record boundary.
     bool fail() {
-        if (error_.empty())
-            error_ = fmt::format("{}: write failed: {}", name_, std::strerror(errno));
+        if (!error_.empty()) return false;
+        error_ = fmt::format("{}: write failed: {}", name_, std::strerror(errno));
+        FILE* file = pcap_dump_file(dumper_);
+        __fpurge(file);
+        if (committed_ < 0) return false;
+        // Keep every record that reached the file whole: the last record boundary at or below
+        // what the file holds.
+        long keep = committed_;
+        struct stat info {};
+        if (fstat(fileno(file), &info) == 0)
+            for (long boundary : boundaries_)
+                if (boundary <= info.st_size) keep = boundary;
+        if (::ftruncate(fileno(file), keep) == 0)
+            error_ +=
+                fmt::format("; the file keeps the {} bytes of whole records written before", keep);
         return false;
     }
 
     pcap_t* dead_;
+    long committed_ = 24;  // bytes flushed as whole records; -1 for pipes (cannot be cut back)
+    long position_ = 24;   // where the next record starts
+    std::vector<long> boundaries_;  // record ends since the last flush
     pcap_dumper_t* dumper_;
     std::string name_;
 };
 
+// Rotation: FILE becomes stem-00001.ext, stem-00002.ext, ...; a new file is started before a
+// telegram that would exceed the size, or that comes after the time span; no telegram is split or
+// lost at the seam.
+class RotatingWriter final : public CaptureWriter {
+  public:
+    RotatingWriter(std::string path, CaptureFormat format, int link_type, RotationOptions rotation)
+        : path_(std::move(path)), format_(format), link_type_(link_type), rotation_(rotation) {}
+
+    bool open_next() {
+        if (current_ && !current_->close()) {
+            error_ = current_->error();
+            return false;
+        }
+        ++index_;
+        std::string name = file_name(path_, index_);
+        WriterResult opened = open_capture_writer(name, format_, link_type_);
+        if (!opened.writer) {
+            error_ = opened.error;
+            return false;
+        }
+        current_ = std::move(opened.writer);
+        bytes_ = format_ == CaptureFormat::Pcap ? 24 : format_ == CaptureFormat::Pcapng ? 60 : 0;
+        file_start_ns_ = kNoTime;
+        records_ = 0;
+        files_.push_back(name);
+        return true;
+    }
+
+    bool write(Bytes telegram, std::int64_t time_ns) override {
+        if (!current_) return false;
+        std::uint64_t record_bytes = telegram.size() + 16;
+        bool full =
+            rotation_.max_bytes > 0 && records_ > 0 && bytes_ + record_bytes > rotation_.max_bytes;
+        bool old = rotation_.max_ns > 0 && records_ > 0 && time_ns != kNoTime &&
+                   time_ns - file_start_ns_ >= rotation_.max_ns;
+        if ((full || old) && !open_next()) return false;
+        if (file_start_ns_ == kNoTime) file_start_ns_ = time_ns;
+        bytes_ += record_bytes;
+        ++records_;
+        if (!current_->write(telegram, time_ns)) {
+            error_ = current_->error();
+            return false;
+        }
+        return true;
+    }
+    bool flush() override {
+        if (!current_ || current_->flush()) return current_ != nullptr;
+        error_ = current_->error();
+        return false;
+    }
+    bool close() override {
+        if (!current_) return error_.empty();
+        bool ok = current_->close();
+        if (!ok) error_ = current_->error();
+        current_.reset();
+        return ok && error_.empty();
+    }
+
+  private:
+    std::string path_;
+    CaptureFormat format_;
+    int link_type_;
+    RotationOptions rotation_;
+    std::unique_ptr<CaptureWriter> current_;
+    std::uint64_t bytes_ = 0;
+    std::uint64_t records_ = 0;
+    std::int64_t file_start_ns_ = kNoTime;
+    unsigned index_ = 0;
+    std::vector<std::string> files_;
+};
+
 }  // namespace
+
+std::string rotated_file_name(const std::string& path, unsigned index) {
+    return file_name(path, index);
+}
+
+WriterResult open_rotating_writer(const std::string& path, CaptureFormat format, int link_type,
+                                  RotationOptions rotation) {
+    if (rotation.max_bytes == 0 && rotation.max_ns == 0)
+        return open_capture_writer(path, format, link_type);
+    WriterResult result;
+    if (path == "-") {
+        result.error = "cannot rotate standard output: give -w a file name";
+        return result;
+    }
+    auto writer = std::make_unique<RotatingWriter>(path, format, link_type, rotation);
+    if (!writer->open_next()) {
+        result.error = writer->error();
+        return result;
+    }
+    result.writer = std::move(writer);
+    return result;
+}
 
 WriterResult open_capture_writer(const std::string& path, CaptureFormat format, int link_type) {
     WriterResult result;

@@ -35,7 +35,20 @@ struct WriterResult {
     std::string error;
 };
 
-// `path` "-" writes to standard output. `link_type` is used by pcap and pcapng.
+// `path` "-" writes to standard output. `link_type` is used by pcap and pcapng. A pcap writer
+// whose write fails (disk full) cuts the file back to the last flushed record, so it stays a
+// valid capture of what came before.
 WriterResult open_capture_writer(const std::string& path, CaptureFormat format, int link_type);
+
+struct RotationOptions {
+    std::uint64_t max_bytes = 0;  // start a new file before one grows past this (0: no limit)
+    std::int64_t max_ns = 0;      // ... or once its first telegram is this old (0: no limit)
+};
+
+// With rotation, FILE is written as stem-00001.ext, stem-00002.ext, ... (see
+// rotated_file_name); without, this is open_capture_writer.
+WriterResult open_rotating_writer(const std::string& path, CaptureFormat format, int link_type,
+                                  RotationOptions rotation);
+std::string rotated_file_name(const std::string& path, unsigned index);
 
 }  // namespace dpscope

@@ -11,13 +11,14 @@ std::string_view input_format_name(InputFormat format) {
         case InputFormat::Pcapng: return "pcapng";
         case InputFormat::Raw: return "raw";
         case InputFormat::Hex: return "hex";
+        case InputFormat::Serial: return "serial";
     }
     return "auto";
 }
 
 std::optional<InputFormat> input_format_from_name(std::string_view name) {
     for (InputFormat format : {InputFormat::Auto, InputFormat::Pcap, InputFormat::Pcapng,
-                               InputFormat::Raw, InputFormat::Hex})
+                               InputFormat::Raw, InputFormat::Hex, InputFormat::Serial})
         if (input_format_name(format) == name) return format;
     return std::nullopt;
 }

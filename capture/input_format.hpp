@@ -8,9 +8,10 @@
 
 namespace dpscope {
 
-enum class InputFormat { Auto, Pcap, Pcapng, Raw, Hex };
+// Serial: a live serial port (dpscope sniff); never detected from a file's content.
+enum class InputFormat { Auto, Pcap, Pcapng, Raw, Hex, Serial };
 
-// "auto", "pcap", "pcapng", "raw", "hex".
+// "auto", "pcap", "pcapng", "raw", "hex", "serial".
 std::string_view input_format_name(InputFormat format);
 std::optional<InputFormat> input_format_from_name(std::string_view name);
 

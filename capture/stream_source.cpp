@@ -7,77 +7,60 @@
 #include <deque>
 #include <vector>
 
+#include "capture/framed_source.hpp"
 #include "capture/hex_log.hpp"
 #include "decoder/stream_framer.hpp"
 
 namespace dpscope {
 
-namespace {
+namespace {}  // namespace
 
-// Collects the framer's telegrams and hands them out one per next() call.
-class FramedSource : public TelegramSource, private StreamFramer::Sink {
-  public:
-    using TelegramSource::TelegramSource;
+bool FramedSource::next(Record& record) {
+    for (;;) {
+        Poll result = poll(record);
+        if (result == Poll::Telegram) return true;
+        if (result == Poll::End) return false;
+    }
+}
 
-    bool next(Record& record) override {
-        while (cursor_ == entries_.size()) {
-            entries_.clear();
-            arena_.clear();
-            cursor_ = 0;
-            if (finished_) return false;
-            if (!fill()) {
-                framer_.finish(*this);
-                finished_ = true;
-            }
+FramedSource::Poll FramedSource::poll(Record& record) {
+    while (cursor_ == entries_.size()) {
+        entries_.clear();
+        arena_.clear();
+        cursor_ = 0;
+        if (finished_) return Poll::End;
+        Fill fill_result = fill();
+        if (fill_result == Fill::End) {
+            framer_.finish(*this);
+            finished_ = true;
+        } else if (fill_result == Fill::Idle && cursor_ == entries_.size()) {
+            return Poll::Idle;
         }
-        const Entry& entry = entries_[cursor_++];
-        record.bytes = Bytes(arena_.data() + entry.start, entry.length);
-        record.time_ns = entry.time_ns;
-        record.number = ++number_;
-        record.offset = entry.offset;
-        record.original_length = static_cast<std::uint32_t>(entry.length);
-        return true;
     }
+    const Entry& entry = entries_[cursor_++];
+    record.bytes = Bytes(arena_.data() + entry.start, entry.length);
+    record.time_ns = entry.time_ns;
+    record.number = ++number_;
+    record.offset = entry.offset;
+    record.original_length = static_cast<std::uint32_t>(entry.length);
+    return Poll::Telegram;
+}
 
-    std::uint64_t bytes_skipped() const override { return framer_.bytes_skipped(); }
+std::string FramedSource::where(std::uint64_t offset) const {
+    return fmt::format("byte offset {}", offset);
+}
 
-  protected:
-    // Feeds more input to framer_ (through feed()); false when the input is exhausted.
-    virtual bool fill() = 0;
-    // The time of the telegram starting at `offset` in the byte stream.
-    virtual std::int64_t time_at(std::uint64_t /*offset*/) { return kNoTime; }
-    // Where `offset` is, in words a person can find in the input.
-    virtual std::string where(std::uint64_t offset) const {
-        return fmt::format("byte offset {}", offset);
-    }
+void FramedSource::on_telegram(Bytes telegram, std::uint64_t offset) {
+    entries_.push_back(Entry{arena_.size(), telegram.size(), offset, time_at(offset)});
+    arena_.insert(arena_.end(), telegram.begin(), telegram.end());
+}
 
-    void feed(Bytes bytes) { framer_.feed(bytes, *this); }
+void FramedSource::on_skipped(const SkippedBytes& skipped) {
+    report(Severity::Warning,
+           fmt::format("{}: {}: {}", name(), where(skipped.offset), describe_skip(skipped)));
+}
 
-  private:
-    struct Entry {
-        std::size_t start;
-        std::size_t length;
-        std::uint64_t offset;
-        std::int64_t time_ns;
-    };
-
-    void on_telegram(Bytes telegram, std::uint64_t offset) override {
-        entries_.push_back(Entry{arena_.size(), telegram.size(), offset, time_at(offset)});
-        arena_.insert(arena_.end(), telegram.begin(), telegram.end());
-    }
-
-    void on_skipped(const SkippedBytes& skipped) override {
-        report(Severity::Warning,
-               fmt::format("{}: {}: {}", name(), where(skipped.offset), describe_skip(skipped)));
-    }
-
-    StreamFramer framer_;
-    std::vector<std::uint8_t> arena_;
-    std::vector<Entry> entries_;
-    std::size_t cursor_ = 0;
-    bool finished_ = false;
-    std::uint64_t number_ = 0;
-};
+namespace {
 
 class RawSource final : public FramedSource {
   public:
@@ -86,19 +69,19 @@ class RawSource final : public FramedSource {
     InputFormat format() const override { return InputFormat::Raw; }
 
   private:
-    bool fill() override {
+    Fill fill() override {
         std::size_t got = std::fread(chunk_.data(), 1, chunk_.size(), file_);
         if (got > 0) {
             feed(Bytes(chunk_.data(), got));
             offset_ += got;
-            return true;
+            return Fill::Fed;
         }
         if (std::ferror(file_)) {
             set_status(InputStatus::Damaged);
             report(Severity::Error, fmt::format("{}: byte offset {}: read error: {}", name(),
                                                 offset_, std::strerror(errno)));
         }
-        return false;
+        return Fill::End;
     }
 
     FILE* file_;
@@ -123,7 +106,7 @@ class HexSource final : public FramedSource {
     };
 
     // One line per call, so typed input is decoded as soon as a telegram is complete.
-    bool fill() override {
+    Fill fill() override {
         for (;;) {
             ssize_t length = getline(&line_, &capacity_, file_);
             if (length < 0) {
@@ -132,7 +115,7 @@ class HexSource final : public FramedSource {
                     report(Severity::Error, fmt::format("{}: line {}: read error: {}", name(),
                                                         line_number_ + 1, std::strerror(errno)));
                 }
-                return false;
+                return Fill::End;
             }
             ++line_number_;
             std::string_view text(line_, static_cast<std::size_t>(length));
@@ -144,7 +127,7 @@ class HexSource final : public FramedSource {
             lines_.push_back(Line{stream_offset_, line_number_, parsed.time_ns.value_or(kNoTime)});
             feed(Bytes(bytes_.data(), bytes_.size()));
             stream_offset_ += bytes_.size();
-            return true;
+            return Fill::Fed;
         }
     }
 
@@ -187,11 +170,11 @@ class MemorySource final : public FramedSource {
     InputFormat format() const override { return InputFormat::Hex; }
 
   private:
-    bool fill() override {
-        if (done_) return false;
+    Fill fill() override {
+        if (done_) return Fill::End;
         done_ = true;
         feed(Bytes(bytes_.data(), bytes_.size()));
-        return true;
+        return Fill::Fed;
     }
     std::string where(std::uint64_t offset) const override {
         return fmt::format("byte {}", offset);

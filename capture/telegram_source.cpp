@@ -114,6 +114,7 @@ OpenResult open_source(const std::string& path, InputFormat format) {
             break;
         case InputFormat::Hex: result.source = make_hex_source(stream, name); break;
         case InputFormat::Raw:
+        case InputFormat::Serial:
         case InputFormat::Auto: result.source = make_raw_source(stream, name); break;
     }
     return result;

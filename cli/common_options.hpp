@@ -20,12 +20,13 @@ inline constexpr int kExitFindings = 1;      // report: findings at or above --f
 inline constexpr int kExitUsage = 2;         // bad command line, or input unusable from the start
 inline constexpr int kExitDamagedInput = 3;  // input stopped early; what came before was decoded
 inline constexpr int kExitOutputError = 4;   // output could not be written
+inline constexpr int kExitDeviceError = 5;   // sniff: the capture device failed
 
 inline constexpr std::string_view kExitCodeHelp =
     "Exit codes: 0 success; 1 report found something at or above --fail-on; 2 bad usage or "
     "unusable input (cannot open, unknown format, unsupported link type); 3 the input ended in "
     "damage (truncated record, read error) after what was decoded; 4 output could not be "
-    "written.";
+    "written (disk full); 5 the capture device failed (sniff).";
 
 // What the command line says, before validation.
 struct DecodeOptionValues {

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <exception>
 #include <string>
 
@@ -18,11 +19,14 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     app.footer(std::string(kExitCodeHelp) +
                "\nRun 'dpscope SUBCOMMAND --help' for the options of each subcommand.");
+    // A file-size limit (ulimit -f) then fails a write like a full disk instead of killing us.
+    std::signal(SIGXFSZ, SIG_IGN);
     int exit_code = kExitOk;
     add_decode_command(app, exit_code);
     add_hex_command(app, exit_code);
     add_report_command(app, exit_code);
     add_simulate_command(app, exit_code);
+    add_sniff_command(app, exit_code);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -1,6 +1,8 @@
 // dpscope simulate: write a simulated bus session as a capture.
 #include <fmt/format.h>
+#include <signal.h>
 
+#include <atomic>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -8,7 +10,10 @@
 
 #include "capture/capture_writer.hpp"
 #include "capture/pcap_source.hpp"
+#include "capture/serial_port.hpp"
 #include "capture/simulator.hpp"
+#include "capture/telegram_source.hpp"
+#include "capture/tty_player.hpp"
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
 
@@ -31,7 +36,66 @@ struct SimulateCommand {
     std::vector<std::string> faults;
     bool list_injections = false;
     bool no_start_up = false;
+    std::string device;
+    std::string replay;
+    bool as_fast_as_possible = false;
 };
+
+std::atomic<bool> g_stop_playing{false};
+extern "C" void stop_playing(int) { g_stop_playing.store(true); }
+
+// Plays the simulated session (or a capture, with --replay) onto a tty.
+int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
+    std::string error;
+    auto port = SerialPort::open({command.device, command.baud, false, true}, error);
+    if (!port) {
+        print_error(error);
+        return kExitUsage;
+    }
+    std::unique_ptr<TelegramSource> replay;
+    if (!command.replay.empty()) {
+        OpenResult opened = open_source(command.replay, InputFormat::Auto);
+        if (!opened.source) {
+            print_error(opened.error);
+            return kExitUsage;
+        }
+        replay = std::move(opened.source);
+        replay->on_issue([](const InputIssue& issue) {
+            print_error(fmt::format("{}: {}", severity_name(issue.severity), issue.message));
+        });
+    }
+    TelegramGenerator next = [&](std::vector<std::uint8_t>& bytes, std::int64_t& time) {
+        if (!replay) return simulator->next(bytes, time);
+        Record record;
+        if (!replay->next(record)) return false;
+        bytes.assign(record.bytes.begin(), record.bytes.end());
+        time = record.time_ns;
+        return true;
+    };
+    struct sigaction action {};
+    action.sa_handler = stop_playing;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESETHAND;
+    sigaction(SIGINT, &action, nullptr);
+    sigaction(SIGTERM, &action, nullptr);
+    PlayStats stats;
+    if (!play_telegrams(port->fd(), next, command.as_fast_as_possible, &g_stop_playing, stats,
+                        error)) {
+        print_error(fmt::format("{}: {}", command.device, error));
+        return kExitOutputError;
+    }
+    if (command.list_injections) {
+        if (simulator)
+            for (const Injection& injection : simulator->injections())
+                fmt::print(stderr, "injected {} on slave {} in cycle {} at telegram {}\n",
+                           fault_kind_name(injection.kind), injection.slave, injection.cycle,
+                           injection.telegram);
+        fmt::print(stderr, "played {} telegrams ({} bytes) in {:.3f} s (scheduled {:.3f} s)\n",
+                   stats.telegrams, stats.bytes, static_cast<double>(stats.wall_ns) / 1e9,
+                   static_cast<double>(stats.scheduled_ns) / 1e9);
+    }
+    return kExitOk;
+}
 
 int run_simulate(const SimulateCommand& command) {
     SimulatorOptions options;
@@ -67,6 +131,19 @@ int run_simulate(const SimulateCommand& command) {
     if (command.cycles == 0 && command.count == 0) {
         print_error("simulate: --cycles 0 runs until -c N telegrams; give -c");
         return kExitUsage;
+    }
+    if (command.output.empty() == command.device.empty()) {
+        print_error("simulate: give either -w FILE or --device PATH");
+        return kExitUsage;
+    }
+    if (!command.replay.empty() && command.device.empty()) {
+        print_error("simulate: --replay plays a capture onto --device PATH");
+        return kExitUsage;
+    }
+    if (!command.device.empty()) {
+        if (!command.replay.empty()) return play_onto_device(command, nullptr);
+        Simulator simulator(options);
+        return play_onto_device(command, &simulator);
     }
     CaptureFormat format =
         capture_format_from_name(command.output_format).value_or(CaptureFormat::Pcap);
@@ -107,8 +184,18 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         "responses, token passing, gap polls and Global_Control, timed at the baud rate. The same "
         "options and seed give the same bytes.");
     sub->add_option("-w,--write", command->output, "Output file; - writes to standard output")
-        ->required()
         ->type_name("FILE");
+    sub->add_option("--device", command->device,
+                    "Play the session onto a tty instead (a serial adapter or one end of a "
+                    "pseudo-terminal), 8E1 at --baud, at the pace of the baud rate")
+        ->type_name("PATH");
+    sub->add_option("--replay", command->replay,
+                    "With --device: play this capture (any input format dpscope reads) with its "
+                    "recorded timing instead of a simulated session")
+        ->type_name("FILE");
+    sub->add_flag("--as-fast-as-possible", command->as_fast_as_possible,
+                  "With --device: do not wait for the telegrams' times, write as fast as the "
+                  "device takes them");
     sub->add_option("-F,--output-format", command->output_format,
                     "pcap (nanosecond timestamps), pcapng, raw (bytes as on the wire) or hex "
                     "(one line a telegram with its timestamp)")

@@ -1,0 +1,142 @@
+// Sniffer throughput over a pseudo-terminal: plays a simulated 12 Mbit/s session into one end
+// while `dpscope sniff` captures on the other, writing pcap and printing -T text (to /dev/null).
+// Reports bytes/s at full speed and when paced at the bus rate, lost telegrams, and the sniffer's
+// CPU time per second of bus traffic.
+// Usage: dpscope_sniff_bench DPSCOPE [TELEGRAMS]
+#include <fcntl.h>
+#include <pty.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "capture/simulator.hpp"
+#include "capture/telegram_source.hpp"
+#include "capture/tty_player.hpp"
+
+namespace {
+
+constexpr std::uint32_t kBaud = 12'000'000;
+
+struct Result {
+    double seconds = 0;
+    std::uint64_t bytes = 0;
+    std::uint64_t sent = 0;
+    std::uint64_t captured = 0;
+    double cpu_seconds = 0;
+};
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// How the telegrams are played: as fast as the pty takes them, at the simulated bus timing
+// (12 Mbit/s with the protocol's idle gaps), or back to back at a fixed byte rate.
+enum class Pace { FullSpeed, BusTiming, ByteRate };
+
+Result run(const std::string& dpscope, std::uint64_t telegrams, Pace pace) {
+    int master = -1, slave_fd = -1;
+    char name[128] = {};
+    if (openpty(&master, &slave_fd, name, nullptr, nullptr) != 0) std::exit(1);
+    fcntl(master, F_SETFD, FD_CLOEXEC);
+    close(slave_fd);
+    const std::string pcap = "/tmp/dpscope-sniff-bench.pcap";
+    const std::string err = "/tmp/dpscope-sniff-bench.err";
+    pid_t pid = fork();
+    if (pid == 0) {
+        int null = open("/dev/null", O_WRONLY);
+        int errfd = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        dup2(null, STDOUT_FILENO);
+        dup2(errfd, STDERR_FILENO);
+        execl(dpscope.c_str(), dpscope.c_str(), "sniff", "-i", name, "--baud", "12000000", "-w",
+              pcap.c_str(), "-T", "text", static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    for (int i = 0; i < 500 && slurp(err).find("capturing on") == std::string::npos; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+
+    dpscope::SimulatorOptions options;
+    options.baud = kBaud;
+    options.cycle_us = 0;  // back to back: the bus is as busy as the protocol lets it be
+    options.cycles = 0;
+    options.max_telegrams = telegrams;
+    options.slaves = {{3, 1, dpscope::Dialect::Vlt},
+                      {4, 2, dpscope::Dialect::Vlt},
+                      {5, 5, dpscope::Dialect::Vlt},
+                      {6, 3, dpscope::Dialect::Vlt}};
+    dpscope::Simulator simulator(options);
+    dpscope::PlayStats stats;
+    std::string error;
+    auto start = std::chrono::steady_clock::now();
+    std::uint64_t played_bytes = 0;
+    auto next = [&](std::vector<std::uint8_t>& b, std::int64_t& t) {
+        if (!simulator.next(b, t)) return false;
+        if (pace == Pace::ByteRate) {  // 1.1 MB/s, no idle time at all
+            t = static_cast<std::int64_t>(static_cast<double>(played_bytes) / 1.1e6 * 1e9);
+            played_bytes += b.size();
+        }
+        return true;
+    };
+    if (!dpscope::play_telegrams(master, next, pace == Pace::FullSpeed, nullptr, stats, error)) {
+        std::fprintf(stderr, "%s\n", error.c_str());
+        std::exit(1);
+    }
+    // Wait until the sniffer has taken everything the pty holds.
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - 0.3;
+    kill(pid, SIGINT);
+    int status = 0;
+    rusage usage{};
+    wait4(pid, &status, 0, &usage);
+    close(master);
+    Result r;
+    r.seconds = seconds;
+    r.bytes = stats.bytes;
+    r.sent = stats.telegrams;
+    r.cpu_seconds = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                    static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1e6;
+    dpscope::OpenResult opened = dpscope::open_source(pcap, dpscope::InputFormat::Auto);
+    dpscope::Record record;
+    while (opened.source && opened.source->next(record))
+        ++r.captured;
+    std::remove(pcap.c_str());
+    std::remove(err.c_str());
+    return r;
+}
+
+void print(const char* label, const Result& r) {
+    double bus_seconds = static_cast<double>(r.bytes) * 11.0 / kBaud;
+    std::printf("| %s | %llu | %.2f MB/s | %llu | %.3f s per bus second |\n", label,
+                static_cast<unsigned long long>(r.sent),
+                static_cast<double>(r.bytes) / r.seconds / 1e6,
+                static_cast<unsigned long long>(r.sent - r.captured), r.cpu_seconds / bus_seconds);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: dpscope_sniff_bench DPSCOPE [TELEGRAMS]\n");
+        return 2;
+    }
+    std::uint64_t telegrams = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 500'000;
+    std::printf(
+        "| playback | telegrams | throughput | lost | sniffer CPU |\n|---|---:|---:|---:|---:|\n");
+    print("as fast as the pty takes it", run(argv[1], telegrams, Pace::FullSpeed));
+    print("paced at 1.1 MB/s, no idle time", run(argv[1], telegrams, Pace::ByteRate));
+    print("paced at the simulated 12 Mbit/s bus timing", run(argv[1], telegrams, Pace::BusTiming));
+    return 0;
+}

@@ -1,0 +1,183 @@
+#include "capture/tty_source.hpp"
+
+#include <fmt/format.h>
+#include <poll.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <ctime>
+
+namespace dpscope {
+
+namespace {
+
+constexpr std::size_t kReadSize = 1 << 16;
+constexpr std::uint64_t kParityReportsShown = 20;
+
+}  // namespace
+
+std::int64_t wall_clock_ns() {
+    timespec now{};
+    clock_gettime(CLOCK_REALTIME, &now);
+    return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
+}
+
+TtySource::TtySource(std::unique_ptr<SerialPort> port, int fd, std::string name,
+                     TtySourceOptions options)
+    : FramedSource(std::move(name)),
+      port_(std::move(port)),
+      fd_(fd),
+      options_(options),
+      character_ns_(character_ns(options.baud)),
+      raw_(kReadSize) {}
+
+FramedSource::Fill TtySource::fill() {
+    if (stop_requested_) {
+        // Take what the driver still holds, then end.
+        bool hangup = false;
+        for (int i = 0; i < 64 && read_available(hangup); ++i) {
+        }
+        return Fill::End;
+    }
+    pollfd descriptor{fd_, POLLIN, 0};
+    int ready = ::poll(&descriptor, 1, options_.poll_ms);
+    if (ready < 0) {
+        if (errno == EINTR) return Fill::Idle;
+        set_status(InputStatus::Damaged);
+        report(Severity::Error, fmt::format("{}: poll failed: {}", name(), std::strerror(errno)));
+        return Fill::End;
+    }
+    if (ready == 0) {
+        std::int64_t now = wall_clock_ns();
+        if (options_.idle_gap_ns > 0 && !gap_marked_ &&
+            now - last_data_ns_ >= options_.idle_gap_ns) {
+            gap_marked_ = true;
+            if (pending_bytes() > 0) {
+                ++idle_gaps_;
+                mark_gap();
+            }
+        }
+        return Fill::Idle;
+    }
+    bool hangup = false;
+    bool got = false;
+    if (descriptor.revents & POLLIN) got = read_available(hangup);
+    if (hangup || (!got && (descriptor.revents & (POLLHUP | POLLERR | POLLNVAL)))) {
+        if (status() != InputStatus::Damaged) {
+            set_status(InputStatus::Damaged);
+            report(Severity::Error,
+                   fmt::format("{}: the device went away (hang-up; unplugged?) after {} bytes",
+                               name(), bytes_read_));
+        }
+        return Fill::End;
+    }
+    return got ? Fill::Fed : Fill::Idle;
+}
+
+// One non-blocking read. True if bytes came; `hangup` when the device is gone.
+bool TtySource::read_available(bool& hangup) {
+    ssize_t n = ::read(fd_, raw_.data(), raw_.size());
+    if (n > 0) {
+        std::int64_t arrival = wall_clock_ns();
+        ++reads_;
+        bytes_read_ += static_cast<std::uint64_t>(n);
+        unescape_and_feed(raw_.data(), static_cast<std::size_t>(n), arrival);
+        last_data_ns_ = arrival;
+        gap_marked_ = false;
+        return true;
+    }
+    if (n == 0) {
+        hangup = true;  // a tty read returns 0 only after a hang-up
+        return false;
+    }
+    if (errno == EAGAIN || errno == EINTR) return false;
+    if (errno == EIO || errno == ENXIO || errno == ENODEV) {
+        hangup = true;
+        return false;
+    }
+    if (status() != InputStatus::Damaged) {
+        set_status(InputStatus::Damaged);
+        report(Severity::Error, fmt::format("{}: read error after {} bytes: {}", name(),
+                                            bytes_read_, std::strerror(errno)));
+    }
+    hangup = true;
+    return false;
+}
+
+void TtySource::unescape_and_feed(const std::uint8_t* data, std::size_t size,
+                                  std::int64_t arrival_ns) {
+    clean_.clear();
+    for (std::size_t i = 0; i < size; ++i) {
+        std::uint8_t byte = data[i];
+        if (!options_.parity_marked) {
+            clean_.push_back(byte);
+            continue;
+        }
+        // PARMRK: FF FF is a real FF; FF 00 X is X received with a parity or framing error.
+        switch (escape_) {
+            case Escape::None:
+                if (byte == 0xFF)
+                    escape_ = Escape::SawFF;
+                else
+                    clean_.push_back(byte);
+                break;
+            case Escape::SawFF:
+                if (byte == 0x00) {
+                    escape_ = Escape::SawFF00;
+                } else {
+                    clean_.push_back(0xFF);
+                    if (byte != 0xFF) clean_.push_back(byte);
+                    escape_ = Escape::None;
+                }
+                break;
+            case Escape::SawFF00:
+                ++parity_errors_;
+                if (parity_errors_ <= kParityReportsShown)
+                    report(Severity::Warning,
+                           fmt::format("{}: {}: parity or framing error (byte 0x{:02X}){}", name(),
+                                       where(stream_offset_ + clean_.size()), byte,
+                                       parity_errors_ == kParityReportsShown
+                                           ? "; further ones are only counted"
+                                           : ""));
+                clean_.push_back(byte);
+                escape_ = Escape::None;
+                break;
+        }
+    }
+    if (clean_.empty()) return;
+    chunks_.push_back(Chunk{stream_offset_, clean_.size(), arrival_ns});
+    stream_offset_ += clean_.size();
+    feed(Bytes(clean_.data(), clean_.size()));
+    drop_old_chunks();
+}
+
+void TtySource::drop_old_chunks() {
+    // Keep the chunks that hold bytes the framer has not decided on yet.
+    std::uint64_t first_pending = stream_offset_ - pending_bytes();
+    while (chunks_.size() > 1 && chunks_.front().start + chunks_.front().length <= first_pending)
+        chunks_.pop_front();
+}
+
+std::int64_t TtySource::time_at(std::uint64_t offset) {
+    std::int64_t time = wall_clock_ns();
+    for (auto it = chunks_.rbegin(); it != chunks_.rend(); ++it) {
+        if (offset >= it->start) {
+            std::uint64_t last = it->start + it->length - 1;
+            std::uint64_t behind = last > offset ? last - offset : 0;
+            time = it->arrival_ns - static_cast<std::int64_t>(behind) * character_ns_;
+            break;
+        }
+    }
+    // Never the same time twice, never backwards.
+    if (last_time_ns_ != kNoTime && time <= last_time_ns_) time = last_time_ns_ + 1;
+    last_time_ns_ = time;
+    return time;
+}
+
+std::string TtySource::where(std::uint64_t offset) const {
+    return fmt::format("byte offset {} of the stream", offset);
+}
+
+}  // namespace dpscope

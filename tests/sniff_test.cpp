@@ -1,0 +1,468 @@
+// dpscope sniff end to end: a simulated session (with faults and garbage) played into one end of
+// a pseudo-terminal, the dpscope executable capturing on the other end.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <pty.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include "capture/capture_writer.hpp"
+#include "capture/simulator.hpp"
+#include "capture/telegram_source.hpp"
+#include "capture/tty_player.hpp"
+#include "decoder/bus_decoder.hpp"
+#include "decoder/session_tracker.hpp"
+#include "tests/test_support.hpp"
+
+namespace dpscope {
+namespace {
+
+using Telegrams = std::vector<std::vector<std::uint8_t>>;
+
+struct PseudoTerminal {
+    int master = -1;
+    std::string slave;
+    PseudoTerminal() {
+        int slave_fd = -1;
+        char name[128] = {};
+        EXPECT_EQ(openpty(&master, &slave_fd, name, nullptr, nullptr), 0);
+        // The sniffer must not inherit the master, or closing it here would not hang it up.
+        fcntl(master, F_SETFD, FD_CLOEXEC);
+        slave = name;
+        close(slave_fd);
+    }
+    ~PseudoTerminal() { close_master(); }
+    void close_master() {
+        if (master >= 0) close(master);
+        master = -1;
+    }
+    void write(const std::vector<std::uint8_t>& bytes) const {
+        ASSERT_EQ(::write(master, bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
+    }
+};
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// dpscope running as a child process, standard output and error in files.
+class Sniffer {
+  public:
+    explicit Sniffer(std::vector<std::string> args, rlim_t file_size_limit = RLIM_INFINITY)
+        : out_(test::temp_path("out")), err_(test::temp_path("err")) {
+        pid_ = fork();
+        if (pid_ == 0) {
+            int out = open(out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            int err = open(err_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            dup2(out, STDOUT_FILENO);
+            dup2(err, STDERR_FILENO);
+            if (file_size_limit != RLIM_INFINITY) {
+                rlimit limit{file_size_limit, file_size_limit};
+                setrlimit(RLIMIT_FSIZE, &limit);
+            }
+            std::vector<std::string> argv = {test::dpscope_executable()};
+            argv.insert(argv.end(), args.begin(), args.end());
+            std::vector<char*> pointers;
+            for (std::string& a : argv)
+                pointers.push_back(a.data());
+            pointers.push_back(nullptr);
+            setenv("TZ", "UTC", 1);
+            execv(pointers[0], pointers.data());
+            _exit(127);
+        }
+    }
+    ~Sniffer() {
+        if (pid_ > 0 && !reaped_) {
+            kill(pid_, SIGKILL);
+            waitpid(pid_, nullptr, 0);
+        }
+        std::remove(out_.c_str());
+        std::remove(err_.c_str());
+    }
+    // Waits until the sniffer says it is capturing.
+    bool ready() const {
+        for (int i = 0; i < 500; ++i) {
+            if (slurp(err_).find("capturing on") != std::string::npos) return true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        return false;
+    }
+    void signal(int number) const { kill(pid_, number); }
+    // The exit code, or -1 if it does not end within the time.
+    int wait(int seconds = 20) {
+        for (int i = 0; i < seconds * 100; ++i) {
+            int status = 0;
+            if (waitpid(pid_, &status, WNOHANG) == pid_) {
+                reaped_ = true;
+                return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        return -1;
+    }
+    std::string out() const { return slurp(out_); }
+    std::string err() const { return slurp(err_); }
+
+  private:
+    std::string out_;
+    std::string err_;
+    pid_t pid_ = -1;
+    bool reaped_ = false;
+};
+
+struct Session {
+    Telegrams played;    // every record the simulator produced, garbage included
+    Telegrams expected;  // the telegrams a sniffer must capture (garbage is no telegram)
+    std::vector<std::int64_t> times;
+};
+
+Session simulate(SimulatorOptions options) {
+    Simulator simulator(options);
+    Session s;
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time = 0;
+    while (simulator.next(bytes, time)) {
+        s.played.push_back(bytes);
+        s.times.push_back(time);
+    }
+    std::vector<std::uint64_t> garbage;
+    for (const Injection& i : simulator.injections())
+        if (i.kind == FaultKind::Garbage) garbage.push_back(i.telegram);
+    for (std::size_t i = 0; i < s.played.size(); ++i)
+        if (std::find(garbage.begin(), garbage.end(), i + 1) == garbage.end())
+            s.expected.push_back(s.played[i]);
+    return s;
+}
+
+void play(const PseudoTerminal& pty, const Session& s, bool as_fast_as_possible,
+          std::size_t count = SIZE_MAX) {
+    std::size_t next = 0;
+    TelegramGenerator generator = [&](std::vector<std::uint8_t>& bytes, std::int64_t& time) {
+        if (next >= s.played.size() || next >= count) return false;
+        bytes = s.played[next];
+        time = s.times[next];
+        ++next;
+        return true;
+    };
+    PlayStats stats;
+    std::string error;
+    ASSERT_TRUE(play_telegrams(pty.master, generator, as_fast_as_possible, nullptr, stats, error))
+        << error;
+}
+
+struct Capture {
+    Telegrams telegrams;
+    std::vector<std::int64_t> times;
+    InputStatus status = InputStatus::Unusable;
+    int link_type = 0;
+};
+
+Capture read_capture(const std::string& path) {
+    Capture c;
+    OpenResult opened = open_source(path, InputFormat::Auto);
+    EXPECT_TRUE(opened.source) << opened.error;
+    if (!opened.source) return c;
+    Record record;
+    while (opened.source->next(record)) {
+        c.telegrams.emplace_back(record.bytes.begin(), record.bytes.end());
+        c.times.push_back(record.time_ns);
+    }
+    c.status = opened.source->status();
+    c.link_type = opened.source->link_type();
+    return c;
+}
+
+// Finding kinds with counts in the jsonl output of dpscope.
+std::map<std::string, int> jsonl_finding_kinds(const std::string& jsonl) {
+    std::map<std::string, int> kinds;
+    std::size_t at = 0;
+    const std::string key = "{\"kind\":\"";
+    while ((at = jsonl.find(key, at)) != std::string::npos) {
+        at += key.size();
+        std::string kind = jsonl.substr(at, jsonl.find('"', at) - at);
+        // Problem objects have the same key; findings are the ones with a "request_frame".
+        std::size_t end = jsonl.find('}', at);
+        if (jsonl.substr(at, end - at).find("\"request_frame\"") != std::string::npos)
+            ++kinds[kind];
+    }
+    return kinds;
+}
+
+std::map<std::string, int> reference_finding_kinds(const Telegrams& telegrams) {
+    BusDecoder decoder;
+    SessionTracker tracker(decoder);
+    std::map<std::string, int> kinds;
+    std::uint64_t frame = 0;
+    for (const auto& t : telegrams)
+        for (const Finding& f :
+             tracker.track(decoder.decode(Bytes(t.data(), t.size()), kNoTime, ++frame)))
+            ++kinds[std::string(finding_kind_name(f.kind))];
+    return kinds;
+}
+
+SimulatorOptions faulty_session() {
+    SimulatorOptions options;
+    options.seed = 9;
+    options.cycles = 300;
+    options.slaves = {{3, 1, Dialect::Vlt}, {4, 2, Dialect::Vlt}, {5, 5, Dialect::Vlt}};
+    for (const char* fault :
+         {"garbage@20:3", "garbage@50:4", "fcs_error@30:5", "stacked_request@40:3",
+          "request_rejected@60:4", "spm_violation@80:5", "orphan_response@100:3",
+          "unknown_code@120:4", "spontaneous_message@140:5", "config_mismatch@160:3"}) {
+        std::string error;
+        options.faults.push_back(*parse_fault_spec(fault, error));
+    }
+    return options;
+}
+
+TEST(SniffTest, EveryTelegramArrivesIntactAndInOrderAndTheFindingsMatch) {
+    PseudoTerminal pty;
+    std::string pcap = test::temp_path("capture.pcap");
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-T", "jsonl"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    Session session = simulate(faulty_session());
+    play(pty, session, true);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    sniffer.signal(SIGINT);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+
+    Capture capture = read_capture(pcap);
+    EXPECT_EQ(capture.status, InputStatus::Ok);
+    EXPECT_EQ(capture.link_type, 257);
+    ASSERT_EQ(capture.telegrams.size(), session.expected.size());
+    for (std::size_t i = 0; i < capture.telegrams.size(); ++i)
+        ASSERT_EQ(capture.telegrams[i], session.expected[i]) << "telegram " << i + 1;
+    for (std::size_t i = 1; i < capture.times.size(); ++i)
+        EXPECT_GT(capture.times[i], capture.times[i - 1]) << i;
+
+    std::map<std::string, int> reference = reference_finding_kinds(session.expected);
+    EXPECT_EQ(jsonl_finding_kinds(sniffer.out()), reference);
+    EXPECT_EQ(reference["stacked_request"], 1);
+    EXPECT_EQ(reference["fcs_error"], 1);
+    EXPECT_EQ(reference["request_rejected"], 1);
+    // The garbage was skipped and said so, not taken for telegrams.
+    EXPECT_NE(sniffer.err().find("no start delimiter"), std::string::npos) << sniffer.err();
+    EXPECT_NE(sniffer.err().find(std::to_string(capture.telegrams.size()) + " telegrams"),
+              std::string::npos)
+        << sniffer.err();
+    std::remove(pcap.c_str());
+}
+
+TEST(SniffTest, PacedAt12MbitNothingIsLost) {
+    PseudoTerminal pty;
+    std::string pcap = test::temp_path("paced.pcap");
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "12000000", "-w", pcap, "-q"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options;
+    options.seed = 4;
+    options.baud = 12'000'000;
+    options.cycle_us = 300;
+    options.cycles = 1000;
+    Session session = simulate(options);
+    auto start = std::chrono::steady_clock::now();
+    play(pty, session, false);
+    auto played = std::chrono::steady_clock::now() - start;
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    sniffer.signal(SIGTERM);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    Capture capture = read_capture(pcap);
+    ASSERT_EQ(capture.telegrams, session.expected);
+    // Played at the pace of the timestamps: about 0.3 s.
+    double scheduled = static_cast<double>(session.times.back() - session.times.front()) / 1e9;
+    double seconds = std::chrono::duration<double>(played).count();
+    EXPECT_GE(seconds, scheduled * 0.95);
+    EXPECT_LT(seconds, scheduled + 2.0);
+    // The summary (-q) counts the same telegrams.
+    EXPECT_NE(sniffer.out().find("telegrams: " + std::to_string(session.expected.size())),
+              std::string::npos)
+        << sniffer.out();
+    std::remove(pcap.c_str());
+}
+
+TEST(SniffTest, SigintInTheMiddleOfATelegramKeepsAValidCompleteFile) {
+    PseudoTerminal pty;
+    std::string pcap = test::temp_path("interrupted.pcap");
+    Sniffer sniffer(
+        {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q", "--idle-gap-ms", "0"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options;
+    options.cycles = 50;
+    Session session = simulate(options);
+    const std::size_t whole = 120;
+    play(pty, session, true, whole);
+    const std::vector<std::uint8_t>& next = session.played[whole];
+    ASSERT_GT(next.size(), 4u);
+    pty.write(std::vector<std::uint8_t>(next.begin(), next.begin() + 4));  // half a telegram
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    sniffer.signal(SIGINT);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    Capture capture = read_capture(pcap);
+    EXPECT_EQ(capture.status, InputStatus::Ok);
+    ASSERT_EQ(capture.telegrams.size(), whole);
+    for (std::size_t i = 0; i < whole; ++i)
+        EXPECT_EQ(capture.telegrams[i], session.expected[i]);
+    EXPECT_NE(sniffer.err().find("skipped 4 byte(s): telegram cut off"), std::string::npos)
+        << sniffer.err();
+    std::remove(pcap.c_str());
+}
+
+TEST(SniffTest, DeviceVanishingEndsWithExitCode5AndAValidFile) {
+    PseudoTerminal pty;
+    std::string pcap = test::temp_path("vanished.pcap");
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options;
+    options.cycles = 20;
+    Session session = simulate(options);
+    play(pty, session, true);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    pty.close_master();  // the adapter is unplugged
+    EXPECT_EQ(sniffer.wait(), 5) << sniffer.err();
+    EXPECT_NE(sniffer.err().find("the device went away"), std::string::npos) << sniffer.err();
+    Capture capture = read_capture(pcap);
+    EXPECT_EQ(capture.status, InputStatus::Ok);
+    EXPECT_EQ(capture.telegrams, session.expected);
+    std::remove(pcap.c_str());
+}
+
+TEST(SniffTest, StopsAfterCountAndAfterDuration) {
+    {
+        PseudoTerminal pty;
+        Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-c", "10"});
+        ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+        SimulatorOptions options;
+        options.cycles = 20;
+        play(pty, simulate(options), true);
+        ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+        std::string out = sniffer.out();
+        EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 10) << out;
+    }
+    {
+        PseudoTerminal pty;
+        auto start = std::chrono::steady_clock::now();
+        Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "--duration", "0.5"});
+        ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+        double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        EXPECT_GE(seconds, 0.5);
+        EXPECT_LT(seconds, 5.0);
+    }
+}
+
+TEST(SniffTest, RotationLosesNothingAtTheSeams) {
+    PseudoTerminal pty;
+    std::string pcap = test::temp_path("rotated.pcap");
+    Sniffer sniffer(
+        {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q", "--rotate-size", "2000"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options;
+    options.cycles = 40;
+    Session session = simulate(options);
+    play(pty, session, true);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    sniffer.signal(SIGINT);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    Telegrams all;
+    unsigned files = 0;
+    for (unsigned index = 1;; ++index) {
+        std::string name = rotated_file_name(pcap, index);
+        if (access(name.c_str(), F_OK) != 0) break;
+        ++files;
+        EXPECT_LE(test::read_file(name).size(), 2000u) << name;
+        Capture part = read_capture(name);
+        EXPECT_EQ(part.status, InputStatus::Ok);
+        EXPECT_FALSE(part.telegrams.empty()) << name;
+        all.insert(all.end(), part.telegrams.begin(), part.telegrams.end());
+        std::remove(name.c_str());
+    }
+    EXPECT_GT(files, 3u);
+    EXPECT_EQ(all, session.expected);
+}
+
+TEST(SniffTest, PcapToStandardOutputWithUser0LinkType) {
+    PseudoTerminal pty;
+    Sniffer sniffer(
+        {"sniff", "-i", pty.slave, "--baud", "500000", "-w", "-", "--linktype", "user0"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options;
+    options.cycles = 10;
+    Session session = simulate(options);
+    play(pty, session, true);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    sniffer.signal(SIGINT);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    std::string path = test::temp_path("stdout.pcap");
+    test::write_text_file(path, sniffer.out());
+    Capture capture = read_capture(path);
+    EXPECT_EQ(capture.link_type, 147);
+    EXPECT_EQ(capture.telegrams, session.expected);
+    // The decoded lines went to standard error instead.
+    EXPECT_NE(sniffer.err().find("Data_Exchange"), std::string::npos);
+    std::remove(path.c_str());
+}
+
+TEST(SniffTest, FullDiskStopsWithExitCode4AndAValidFile) {
+    PseudoTerminal pty;
+    std::string pcap = test::temp_path("full.pcap");
+    // A file size limit makes writes fail as on a full disk.
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q"}, 3000);
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options;
+    options.cycles = 30;  // about 7 KB: more than the limit, less than the pty buffers hold
+    Session session = simulate(options);
+    play(pty, session, false);
+    EXPECT_EQ(sniffer.wait(), 4) << sniffer.err();
+    EXPECT_NE(sniffer.err().find("write failed"), std::string::npos) << sniffer.err();
+    Capture capture = read_capture(pcap);
+    EXPECT_EQ(capture.status, InputStatus::Ok);  // whole records only
+    EXPECT_GT(capture.telegrams.size(), 10u);
+    EXPECT_LE(test::read_file(pcap).size(), 3000u);
+    for (std::size_t i = 0; i < capture.telegrams.size(); ++i)
+        EXPECT_EQ(capture.telegrams[i], session.expected[i]);
+    std::remove(pcap.c_str());
+}
+
+TEST(SniffTest, ReportAtTheEnd) {
+    PseudoTerminal pty;
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "--report",
+                     "--report-format", "json"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options = faulty_session();
+    options.cycles = 200;
+    play(pty, simulate(options), true);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    sniffer.signal(SIGINT);
+    EXPECT_EQ(sniffer.wait(), 1) << sniffer.err();  // errors found, --fail-on error
+    std::string out = sniffer.out();
+    EXPECT_NE(out.find("\"result\":\"fail\""), std::string::npos) << out;
+    EXPECT_NE(out.find("\"format\":\"serial\""), std::string::npos) << out;
+}
+
+TEST(SniffTest, UsageErrorsNameTheProblem) {
+    auto result = test::run_dpscope({"sniff", "-i", "/dev/null", "--baud", "1500000"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("/dev/null: not a serial port"), std::string::npos) << result.err;
+    result = test::run_dpscope({"sniff", "-i", "/dev/ttyS-missing", "--baud", "1500000"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("cannot open"), std::string::npos);
+    PseudoTerminal pty;
+    result = test::run_dpscope(
+        {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", "-", "--rotate-size", "1000"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("cannot rotate standard output"), std::string::npos) << result.err;
+}
+
+}  // namespace
+}  // namespace dpscope
