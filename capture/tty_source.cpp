@@ -41,8 +41,16 @@ FramedSource::Fill TtySource::fill() {
         }
         return Fill::End;
     }
+    // While a telegram is incomplete, wake up exactly when the line has been idle for the gap,
+    // so a pause just over it is caught (and a busy moment of ours is never taken for one).
+    int timeout_ms = options_.poll_ms;
+    if (options_.idle_gap_ns > 0 && !gap_marked_ && pending_bytes() > 0) {
+        std::int64_t left = options_.idle_gap_ns - (wall_clock_ns() - last_data_ns_);
+        timeout_ms = static_cast<int>(
+            std::clamp<std::int64_t>((left + 999'999) / 1'000'000, 0, options_.poll_ms));
+    }
     pollfd descriptor{fd_, POLLIN, 0};
-    int ready = ::poll(&descriptor, 1, options_.poll_ms);
+    int ready = ::poll(&descriptor, 1, timeout_ms);
     if (ready < 0) {
         if (errno == EINTR) return Fill::Idle;
         set_status(InputStatus::Damaged);

@@ -5,7 +5,10 @@
 
 #include "capture/telegram_source.hpp"
 #include "cli/common_options.hpp"
+#include "cli/version.hpp"
 #include "decoder/session_tracker.hpp"
+#include "formats/finding_log.hpp"
+#include "formats/report.hpp"
 #include "formats/summary.hpp"
 
 namespace dpscope::cli {
@@ -44,6 +47,20 @@ class Pipeline {
 inline InputSummary describe_input(const TelegramSource& source) {
     return InputSummary{source.name(), std::string(input_format_name(source.format())),
                         source.bytes_skipped(), source.status() == InputStatus::Damaged};
+}
+
+// The conformance report over what `pipeline` decoded from `source`, findings from `log`.
+inline ReportContext report_context(const Pipeline& pipeline, const TelegramSource& source,
+                                    const FindingLog& log, FailOn fail_on) {
+    ReportContext context;
+    context.input = describe_input(source);
+    context.summary = &pipeline.summary();
+    context.decoder = &pipeline.decoder();
+    context.tracker = &pipeline.tracker();
+    context.findings = &log;
+    context.fail_on = fail_on;
+    context.version = kVersion;
+    return context;
 }
 
 // Reports input problems on standard error (after flushing `out`, so messages and output keep

@@ -71,16 +71,10 @@ int run_report(const ReportCommand& command) {
             if (!findings.empty()) log.append(findings);
         }
         log.append(pipeline.finish());
-        ReportContext context;
-        context.input = describe_input(source);
-        context.summary = &pipeline.summary();
-        context.decoder = &pipeline.decoder();
-        context.tracker = &pipeline.tracker();
-        context.findings = &log;
-        context.fail_on = fail_on_from_name(command.fail_on).value_or(FailOn::Error);
+        ReportContext context = report_context(
+            pipeline, source, log, fail_on_from_name(command.fail_on).value_or(FailOn::Error));
         for (unsigned station : command.stations)
             context.stations.push_back(static_cast<std::uint8_t>(station));
-        context.version = kVersion;
         render_report(report_format_from_name(command.format).value_or(ReportFormat::Text), context,
                       out);
         if (!log.error().empty()) print_error(fmt::format("warning: {}", log.error()));

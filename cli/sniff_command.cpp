@@ -177,14 +177,8 @@ int run_sniff(const SniffCommand& command) {
         pipeline.summary().render_text(out, describe_input(source), pipeline.decoder());
     int exit_code = kExitOk;
     if (command.report) {
-        ReportContext context;
-        context.input = describe_input(source);
-        context.summary = &pipeline.summary();
-        context.decoder = &pipeline.decoder();
-        context.tracker = &pipeline.tracker();
-        context.findings = &log;
-        context.fail_on = fail_on_from_name(command.fail_on).value_or(FailOn::Error);
-        context.version = kVersion;
+        ReportContext context = report_context(
+            pipeline, source, log, fail_on_from_name(command.fail_on).value_or(FailOn::Error));
         render_report(report_format_from_name(command.report_format).value_or(ReportFormat::Text),
                       context, out);
         if (report_fails(context)) exit_code = kExitFindings;

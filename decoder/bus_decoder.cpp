@@ -97,7 +97,8 @@ void BusDecoder::decode_request(DecodedTelegram& t) {
     t.slave = t.fdl.da;
     if (t.fdl.type == FrameType::Sd4 || !t.fdl.has_fc) return;
     std::uint8_t function = t.fdl.fc.function();
-    if (function_expects_reply(function) && t.fdl.da != kBroadcastAddress) {
+    // A request with a bad FCS is dropped by the station it is for: no reply is due.
+    if (function_expects_reply(function) && t.fdl.da != kBroadcastAddress && t.fdl.fcs_ok) {
         pending_ = PendingRequest{true, t.frame, t.time_ns, t.master, t.slave, function, t.service};
     }
 }

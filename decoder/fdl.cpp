@@ -170,7 +170,7 @@ void parse_header_and_data(ByteReader reader, FdlTelegram& out) noexcept {
 // checksummed bytes are bytes[sum_from, fcs_at).
 void check_trailer(Bytes bytes, std::size_t sum_from, std::size_t fcs_at, FdlTelegram& out) {
     ByteReader reader(bytes);
-    reader.skip(sum_from);
+    if (!reader.skip(sum_from)) return;  // cut off before the data: reported by the caller
     auto summed = reader.bytes(fcs_at - sum_from);
     if (!summed) return;  // truncated before the FCS: reported by the caller
     auto fcs = reader.u8();

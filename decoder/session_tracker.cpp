@@ -82,6 +82,7 @@ struct SessionTracker::Channel {
     PcvKey master_key;
     bool master_spm_valid = false;
     bool master_spm = false;
+    bool master_toggled = false;  // the master's SPM has changed since the capture began
     struct Pending {
         bool active = false;
         PcvKey key;
@@ -89,6 +90,7 @@ struct SessionTracker::Channel {
         std::int64_t time_ns = kNoTime;
         std::uint64_t cycle = 0;
         bool timed_out = false;
+        bool undefined = false;  // a code the dialect does not define: any answer closes it
     } pending;
     struct Previous {
         bool valid = false;
@@ -204,7 +206,18 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
     }
     bool usable = true;
     check_link(t, usable);
-    if (!usable || !t.has_roles) return current_;
+    if (!t.has_roles) return current_;
+    if (!usable) {
+        // The slave drops a damaged request, so the master repeats it: its FCB still counts.
+        if (!t.fdl.fcs_ok && t.direction == Direction::Request && t.fdl.has_fc && t.fdl.fc.fcv() &&
+            t.fdl.da != kBroadcastAddress &&
+            (function_is_srd(t.fdl.fc.function()) || function_is_sda(t.fdl.fc.function()))) {
+            Channel& ch = channel(t.master, t.slave);
+            ch.last_fcb = t.fdl.fc.fcb();
+            ch.fcb_valid = true;
+        }
+        return current_;
+    }
     Channel& ch = channel(t.master, t.slave);
     bool retry = false;
     check_frame_count(ch, t, retry);
@@ -278,8 +291,11 @@ void SessionTracker::check_frame_count(Channel& ch, const DecodedTelegram& t, bo
 void SessionTracker::check_config(Channel& ch, const DecodedTelegram& t) {
     if (t.ppo.source != PpoSource::ChkCfg && t.ppo.source != PpoSource::GetCfg) return;
     const bool request = t.direction == Direction::Request;
-    std::size_t expected = request ? t.ppo.output_bytes : t.ppo.input_bytes;
     std::size_t actual = t.fdl.du.size();
+    // A response without data (SC, or a status such as RS after a restart) carries no inputs to
+    // measure.
+    if (!request && actual == 0) return;
+    std::size_t expected = request ? t.ppo.output_bytes : t.ppo.input_bytes;
     std::size_t& state = request ? ch.output_mismatch : ch.input_mismatch;
     if (actual == expected) {
         state = 0;
@@ -298,6 +314,7 @@ void SessionTracker::check_config(Channel& ch, const DecodedTelegram& t) {
 void SessionTracker::master_pcv(Channel& ch, const DecodedTelegram& t) {
     const Pcv& p = t.pcv;
     if (ch.master_spm_valid && p.spm != ch.master_spm) {
+        ch.master_toggled = true;
         if (ch.spontaneous.pending) {
             ch.spontaneous.pending = false;  // acknowledged
         } else {
@@ -316,7 +333,7 @@ void SessionTracker::master_pcv(Channel& ch, const DecodedTelegram& t) {
     // The master moved on.
     if (ch.pending.active) {
         if (!ch.pending.timed_out) {
-            ++ch.stats.abandoned;
+            if (p.rc == 0) ++ch.stats.abandoned;
             if (p.rc != 0) {
                 Finding& f = add(FindingKind::StackedRequest, t, ch.pending.frame);
                 f.pnu = ch.pending.key.pnu;
@@ -333,14 +350,14 @@ void SessionTracker::master_pcv(Channel& ch, const DecodedTelegram& t) {
         ch.previous.moved_on_cycle = ch.stats.cycles;
     }
     if (p.rc == 0) return;
-    if (!request_code(t.dialect, p.rc).defined) {
+    const bool undefined = !request_code(t.dialect, p.rc).defined;
+    if (undefined) {
         Finding& f = add(FindingKind::UnknownCode, t, 0);
         f.pnu = p.pnu;
         f.message = fmt::format("request code RC {} is not defined in the {} dialect", p.rc,
                                 dialect_name(t.dialect));
-        return;
     }
-    ch.pending = Channel::Pending{true, key, t.frame, t.time_ns, ch.stats.cycles, false};
+    ch.pending = Channel::Pending{true, key, t.frame, t.time_ns, ch.stats.cycles, false, undefined};
     if (t.has_time())
         next_deadline_ns_ = std::min(next_deadline_ns_, t.time_ns + options_.timeout_ns);
     ++ch.stats.requests;
@@ -358,12 +375,19 @@ void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
     if (code.kind == ResponseKind::Spontaneous) {
         // A new message toggles SPM; the same SPM again is the message repeated.
         if (ch.spontaneous.seen && r.spm == ch.spontaneous.spm) return;
-        ch.spontaneous = Channel::Spontaneous{true, true, r.spm, t.frame, t.time_ns, r.pnu, false};
+        // A capture that begins after the master acknowledged: the first message seen already
+        // has the master's SPM, and the master has not toggled since.
+        const bool acknowledged = !ch.spontaneous.seen && ch.master_spm_valid &&
+                                  !ch.master_toggled && ch.master_spm == r.spm;
+        ch.spontaneous =
+            Channel::Spontaneous{true, !acknowledged, r.spm, t.frame, t.time_ns, r.pnu, false};
         ++ch.stats.spontaneous;
         Finding& f = add(FindingKind::SpontaneousMessage, t, 0);
         f.pnu = r.pnu;
-        f.message = fmt::format("spontaneous message RC {} ({}) PNU {} value {} with SPM {}", r.rc,
-                                code.meaning, r.pnu, pcv_value(r, code.width), r.spm ? 1 : 0);
+        f.message = fmt::format("spontaneous message RC {} ({}) PNU {} value {} with SPM {}{}",
+                                r.rc, code.meaning, r.pnu, pcv_value(r, code.width), r.spm ? 1 : 0,
+                                acknowledged ? " (already acknowledged)" : "");
+        if (acknowledged) return;
         if (t.has_time())
             next_deadline_ns_ = std::min(next_deadline_ns_, t.time_ns + options_.timeout_ns);
         return;
@@ -380,25 +404,35 @@ void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
     }
     ch.unknown_valid = false;
 
+    // The response in the cycle in which a request first appears shows what the slave made of
+    // the master's data before it (the slave lags one cycle): it cannot answer that request.
+    const bool before_pending = ch.pending.active && ch.stats.cycles == ch.pending.cycle;
+    // Does `r` answer the pending request? Its parameter, and a valid code for it.
+    auto answers_pending = [&] {
+        const PcvKey& q = ch.pending.key;
+        if (!concerns(dialect, q, r)) return false;
+        return ch.pending.undefined ||
+               judge_answer(dialect, q.rc, r.rc, options_.strict) != AnswerVerdict::Invalid;
+    };
     bool fresh = !(ch.slave_valid && key == ch.slave_key);
     if (fresh) {
         ch.slave_valid = true;
         ch.slave_key = key;
         ch.slave_change_cycle = ch.stats.cycles;
     } else {
-        // A repeat is ignored, except by a slave that does not clear its answer between
-        // identical consecutive requests: the same answer, a cycle after the repeated request
-        // was issued, answers it.
-        bool renewed =
-            ch.pending.active && r.rc != 0 && ch.previous.valid && ch.previous.answered &&
-            ch.previous.key == ch.pending.key && concerns(dialect, ch.pending.key, r) &&
-            ch.pending.cycle > ch.slave_change_cycle && ch.stats.cycles > ch.pending.cycle;
+        // A repeat is ignored, except when it answers a request issued after it first appeared
+        // (in the same cycle counts: a response is made before its cycle's request arrives) -
+        // a slave that does not clear its answer, a read-back returning the value just written:
+        // the same bytes are then that request's answer, a cycle after it was sent.
+        bool renewed = ch.pending.active && !before_pending && r.rc != 0 &&
+                       ch.pending.cycle >= ch.slave_change_cycle && answers_pending();
         if (!renewed) return;
     }
     if (r.rc == 0) return;  // no response: idle, or still working
 
-    // Answers to the request before the pending one are no orphans and no mismatches: the
-    // lagging repeat in the cycle the master moved on, and the late answer to an abandoned one.
+    // Answers to the request before the pending one are no orphans and no mismatches: repeats
+    // (perhaps with a refreshed value) while the master still holds that request, the lagging
+    // one in the cycle the master moved on, and the late answer to an abandoned request.
     auto belongs_to_previous = [&] {
         Channel::Previous& prev = ch.previous;
         if (!prev.valid || !concerns(dialect, prev.key, r)) return false;
@@ -407,11 +441,24 @@ void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
             prev.late_answer_seen = true;
             return true;
         }
-        return prev.moved_on && ch.stats.cycles == prev.moved_on_cycle;
+        return !prev.moved_on || ch.stats.cycles == prev.moved_on_cycle;
     };
 
-    if (!ch.pending.active) {
+    if (!ch.pending.active || before_pending) {
+        if (before_pending && !ch.previous.valid && answers_pending()) {
+            // The capture began while this request stood answered: it was issued before the
+            // first captured cycle, so it is neither a transaction nor a time-out.
+            auto requests = ch.stats.pnu_requests.find(ch.pending.key.pnu);
+            if (requests != ch.stats.pnu_requests.end() && --requests->second == 0)
+                ch.stats.pnu_requests.erase(requests);
+            --ch.stats.requests;
+            ch.previous = Channel::Previous{true, ch.pending.key, true, false, 0, false};
+            ch.pending.active = false;
+            return;
+        }
         if (belongs_to_previous()) return;
+        // The first cycles of a capture: the request this answers was not captured.
+        if (!ch.previous.valid && (before_pending || ch.stats.cycles <= 1)) return;
         Finding& f = add(FindingKind::OrphanResponse, t, 0);
         f.pnu = r.pnu;
         f.message = fmt::format("slave {} answered RC {} ({}) PNU {} but no request was pending",
@@ -420,9 +467,12 @@ void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
     }
 
     const PcvKey& q = ch.pending.key;
-    const bool echo_required =
-        code.kind != ResponseKind::Rejected && code.kind != ResponseKind::NoAuthority;
-    if (echo_required && !concerns(dialect, q, r)) {
+    // RC 7 and RC 8 may leave the PNU out (a Danfoss rejection reads PCA 70 00); with a PNU it
+    // must be the request's.
+    const bool no_echo =
+        (code.kind == ResponseKind::Rejected || code.kind == ResponseKind::NoAuthority) &&
+        r.pnu == 0;
+    if (!no_echo && !concerns(dialect, q, r)) {
         if (belongs_to_previous()) return;
         Finding& f = add(FindingKind::MismatchedResponse, t, ch.pending.frame);
         f.pnu = q.pnu;
@@ -432,6 +482,23 @@ void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
                                                                   : "",
             describe_request(dialect, q), ch.pending.frame);
         ++ch.stats.transactions.mismatched;
+        answered(ch, t);
+        return;
+    }
+
+    if (ch.pending.undefined) {
+        // Nothing to judge against; an RC 7 is still a rejection worth naming.
+        if (code.kind == ResponseKind::Rejected) {
+            auto error = static_cast<std::uint16_t>(r.pva & 0xFFFF);
+            std::string_view text = error_text(dialect, error);
+            Finding& f = add(FindingKind::RequestRejected, t, ch.pending.frame);
+            f.pnu = q.pnu;
+            f.message = fmt::format("RC {} PNU {} rejected with error {} ({})", q.rc, q.pnu, error,
+                                    text.empty() ? "not known to the dialect" : text);
+            ++ch.stats.transactions.rejected;
+        } else {
+            ++ch.stats.transactions.positive;
+        }
         answered(ch, t);
         return;
     }

@@ -177,6 +177,12 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
     switch (t.service) {
         case Service::Token: append(out, "token"); return;
         case Service::DataExchange:
+            if (f.du.empty() && f.has_fc && !f.fc.is_request()) {  // RS, RR, ...: no inputs
+                fmt::format_to(std::back_inserter(out), "no data: {} ({})",
+                               response_status_name(f.fc.function()),
+                               response_status_text(f.fc.function()));
+                return;
+            }
             append_ppo_short(out, t.ppo);
             out.push_back(' ');
             if (t.has_pcv) {

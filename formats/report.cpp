@@ -53,6 +53,8 @@ bool severity_fails(Severity severity, FailOn fail_on) noexcept {
 namespace {
 
 constexpr std::size_t kHtmlFindingRows = 2000;
+// A JUnit test case lists at most this many failures; the rest are counted in <system-out>.
+constexpr std::size_t kJunitFailuresPerCase = 10'000;
 constexpr std::array<FindingKind, kFindingKindCount> all_kinds() {
     std::array<FindingKind, kFindingKindCount> kinds{};
     for (std::size_t i = 0; i < kFindingKindCount; ++i)
@@ -954,7 +956,9 @@ void render_junit(const ReportContext& c, const Model& m, Output& out) {
         std::uint8_t master;
         std::uint8_t slave;
         std::array<std::vector<Finding>, kFindingKindCount> failures;
-        std::array<std::uint64_t, kFindingKindCount> others{};
+        std::array<std::uint64_t, kFindingKindCount> others{};  // below the threshold
+        std::array<Severity, kFindingKindCount> other_severity{};
+        std::array<std::uint64_t, kFindingKindCount> unlisted{};  // failing, past the cap
     };
     // Findings at or above --fail-on (errors at least) become failures; gather them per suite.
     std::vector<Suite> suites;
@@ -966,8 +970,11 @@ void render_junit(const ReportContext& c, const Model& m, Output& out) {
                   v.stats->master,
                   v.stats->slave,
                   {},
+                  {},
+                  {},
                   {}});
-    if (m.has_bus_findings) suites.push_back(Suite{"bus", "dpscope.bus", false, 0, 0, {}, {}});
+    if (m.has_bus_findings)
+        suites.push_back(Suite{"bus", "dpscope.bus", false, 0, 0, {}, {}, {}, {}});
     auto suite_of = [&](const Finding& f) -> Suite* {
         for (Suite& s : suites)
             if (s.has_stations == f.has_stations &&
@@ -981,10 +988,13 @@ void render_junit(const ReportContext& c, const Model& m, Output& out) {
         if (!s) return;
         auto kind = static_cast<std::size_t>(f.kind);
         bool fails = f.severity == Severity::Error || severity_fails(f.severity, c.fail_on);
-        if (fails && s->failures[kind].size() < 10'000)
+        if (!fails) {
+            ++s->others[kind];
+            s->other_severity[kind] = f.severity;
+        } else if (s->failures[kind].size() < kJunitFailuresPerCase)
             s->failures[kind].push_back(f);
         else
-            ++s->others[kind];
+            ++s->unlisted[kind];
     });
     std::size_t total_tests = suites.size() * kFindingKindCount;
     std::size_t total_failed = 0;
@@ -1022,11 +1032,19 @@ void render_junit(const ReportContext& c, const Model& m, Output& out) {
                                                : std::string(),
                                xml(f.message));
             }
-            if (s.others[k] > 0)
-                fmt::format_to(it,
-                               "      <system-out>{} {} finding(s) below the failure threshold"
-                               "</system-out>\n",
-                               s.others[k], severity_name(default_severity(kind)));
+            if (s.unlisted[k] > 0 || s.others[k] > 0) {
+                append(b, "      <system-out>");
+                if (s.unlisted[k] > 0)
+                    fmt::format_to(it,
+                                   "{} more failing finding(s) not listed here (at most {} per "
+                                   "rule; the JSON report lists them all)",
+                                   s.unlisted[k], kJunitFailuresPerCase);
+                if (s.unlisted[k] > 0 && s.others[k] > 0) append(b, "; ");
+                if (s.others[k] > 0)
+                    fmt::format_to(it, "{} {} finding(s) below the failure threshold", s.others[k],
+                                   severity_name(s.other_severity[k]));
+                append(b, "</system-out>\n");
+            }
             append(b, "    </testcase>\n");
         }
         append(b, "  </testsuite>\n");

@@ -252,9 +252,13 @@ class Channel {
         response(slave);
         now_ += 2'000'000 - 200'000;
     }
-    void request(Word w) {
-        feed(build(3, 2, request_fc(FdlFunction::SrdHigh, fcb_, true), w, 0x047F));
-        fcb_ = !fcb_;
+    // A damaged request (bad FCS) gets no reply; the master sends it again with the same FCB.
+    void request(Word w, bool bad_fcs = false) {
+        std::vector<std::uint8_t> bytes =
+            build(3, 2, request_fc(FdlFunction::SrdHigh, fcb_, true), w, 0x047F);
+        if (bad_fcs) bytes[bytes.size() - 2] ^= 0x01;
+        feed(bytes);
+        if (!bad_fcs) fcb_ = !fcb_;
         now_ += 200'000;
     }
     void response(Word w, bool bad_fcs = false) {
@@ -343,6 +347,7 @@ TEST(SessionTrackerTest, AnswerTwoCyclesAfterTheMasterMovedOnIsAnOrphan) {
 
 TEST(SessionTrackerTest, StaleRepeatsWhileTheNextRequestIsWorkedOn) {
     Channel ch;
+    ch.cycle(kRead520, kIdle);
     ch.cycle(kRead520, kValue520);
     ch.cycle(kRead518, kValue520);  // the master goes straight to the next request
     ch.cycle(kRead518, kValue520);  // the slave still shows the old answer
@@ -368,6 +373,7 @@ TEST(SessionTrackerTest, RepeatedIdenticalRequestCountsOnce) {
 
 TEST(SessionTrackerTest, IdenticalConsecutiveRequestsSeparatedByRc0) {
     Channel ch;
+    ch.cycle(kRead520, kIdle);
     ch.cycle(kRead520, kValue520);
     ch.cycle(kIdle, kValue520);
     ch.cycle(kRead520, kIdle);  // the same request again after one RC 0 cycle
@@ -381,6 +387,7 @@ TEST(SessionTrackerTest, IdenticalConsecutiveRequestsSeparatedByRc0) {
 
 TEST(SessionTrackerTest, IdenticalRequestsAnsweredByASlaveThatNeverClears) {
     Channel ch;
+    ch.cycle(kRead520, kIdle);
     ch.cycle(kRead520, kValue520);
     ch.cycle(kIdle, kValue520);
     ch.cycle(kRead520, kValue520);  // lags: still the old answer
@@ -388,6 +395,107 @@ TEST(SessionTrackerTest, IdenticalRequestsAnsweredByASlaveThatNeverClears) {
     ch.cycle(kIdle, kValue520);
     EXPECT_TRUE(ch.findings.empty()) << ch.findings[0].message;
     EXPECT_EQ(ch.stats().transactions.positive, 2u);
+}
+
+TEST(SessionTrackerTest, ReadBackOfTheValueJustWrittenIsAnswered) {
+    Channel ch;
+    const Word write{2, 100, 0, 50};
+    const Word written{1, 100, 0, 50};
+    const Word read{1, 100};
+    ch.cycle(write, kIdle);
+    ch.cycle(write, written);
+    ch.cycle(read, written);  // lag: still the write's answer
+    ch.cycle(read, written);  // the same bytes, now answering the read
+    ch.cycle(Word{1, 200}, written);
+    ch.cycle(Word{1, 200}, Word{1, 200, 0, 7});
+    ch.cycle(kIdle, Word{1, 200, 0, 7});
+    ch.cycle(kIdle, kIdle);
+    EXPECT_TRUE(ch.findings.empty()) << ch.findings[0].message;
+    EXPECT_EQ(ch.stats().requests, 3u);
+    EXPECT_EQ(ch.stats().transactions.positive, 3u);
+    EXPECT_EQ(ch.stats().latency_cycles.max(), 1u);
+}
+
+TEST(SessionTrackerTest, RefreshedAnswerWhileTheRequestStandsIsNoOrphan) {
+    Channel ch;
+    ch.cycle(kRead520, kIdle);
+    ch.cycle(kRead520, kValue520);
+    ch.cycle(kRead520, Word{1, 520, 0, 241});  // the master still asks; the value moves on
+    ch.cycle(kRead520, Word{1, 520, 0, 242});
+    ch.cycle(kIdle, Word{1, 520, 0, 242});
+    ch.cycle(kIdle, kIdle);
+    EXPECT_TRUE(ch.findings.empty()) << ch.findings[0].message;
+    EXPECT_EQ(ch.stats().transactions.positive, 1u);
+}
+
+TEST(SessionTrackerTest, ResponseInTheRequestsFirstCycleDoesNotAnswerIt) {
+    // The slave answers from the data it had before this exchange: a response in the cycle a
+    // request first appears cannot be its answer.
+    Channel ch;
+    ch.cycle(kRead520, kIdle);
+    ch.cycle(kRead520, kValue520);
+    ch.cycle(kIdle, kValue520);
+    ch.cycle(kRead518, Word{1, 518, 0, 500});  // a stale answer for 518 from nowhere
+    ch.cycle(kRead518, Word{1, 518, 0, 500});
+    EXPECT_EQ(count_kinds(ch.findings), (Counts{{"orphan_response", 1}}));
+    EXPECT_EQ(ch.findings[0].frame, 8u);
+    // The repeat a cycle later answers the request.
+    EXPECT_EQ(ch.stats().transactions.positive, 2u);
+}
+
+TEST(SessionTrackerTest, CaptureStartingInTheLagCycleHasNoOrphan) {
+    Channel moved_on;  // the master just moved on to PNU 200; the slave still shows PNU 100
+    moved_on.cycle(Word{1, 200}, Word{1, 100, 0, 55});
+    moved_on.cycle(Word{1, 200}, Word{1, 200, 0, 7});
+    moved_on.cycle(kIdle, Word{1, 200, 0, 7});
+    moved_on.cycle(kIdle, kIdle);
+    EXPECT_TRUE(moved_on.findings.empty()) << moved_on.findings[0].message;
+    EXPECT_EQ(moved_on.stats().transactions.positive, 1u);
+
+    Channel idle;  // the master went back to RC 0; the slave still shows its answer
+    idle.cycle(kIdle, Word{1, 100, 0, 55});
+    idle.cycle(kIdle, kIdle);
+    EXPECT_TRUE(idle.findings.empty()) << idle.findings[0].message;
+}
+
+TEST(SessionTrackerTest, CaptureStartingAfterTheAnswerHasNoTimeout) {
+    // The request was issued and answered before the capture began; it stands for 1.4 s.
+    Channel ch;
+    for (int i = 0; i < 700; ++i)
+        ch.cycle(kRead520, kValue520);
+    ch.cycle(kIdle, kValue520);
+    ch.cycle(kIdle, kIdle);
+    ch.finish();
+    EXPECT_TRUE(ch.findings.empty()) << ch.findings[0].message;
+    EXPECT_EQ(ch.stats().requests, 0u);  // not captured from its start: no transaction
+    EXPECT_EQ(ch.stats().transactions.total(), 0u);
+    EXPECT_EQ(ch.stats().abandoned, 0u);
+    EXPECT_EQ(ch.stats().timeouts, 0u);
+    EXPECT_TRUE(ch.stats().pnu_requests.empty());
+}
+
+TEST(SessionTrackerTest, LateRejectionOfAnAbandonedRequestIsNoMismatch) {
+    Channel ch;
+    ch.cycle(Word{2, 100, 0, 9999}, kIdle);
+    ch.cycle(kIdle, kIdle);  // the master gives up on the write
+    ch.cycle(Word{1, 200}, kIdle);
+    ch.cycle(Word{1, 200}, Word{7, 100, 0, 2});  // the write's rejection, late
+    ch.cycle(Word{1, 200}, Word{1, 200, 0, 7});
+    ch.cycle(kIdle, Word{1, 200, 0, 7});
+    EXPECT_TRUE(ch.findings.empty()) << ch.findings[0].message;
+    EXPECT_EQ(ch.stats().abandoned, 1u);
+    EXPECT_EQ(ch.stats().transactions.positive, 1u);
+}
+
+TEST(SessionTrackerTest, RejectionNamingAnotherPnuIsMismatched) {
+    Channel ch;
+    ch.cycle(Word{1, 200}, kIdle);
+    ch.cycle(Word{1, 200}, Word{7, 300, 0, 2});  // only PNU 0 may stand for the request's
+    ch.cycle(kIdle, Word{7, 300, 0, 2});
+    ASSERT_EQ(count_kinds(ch.findings), (Counts{{"mismatched_response", 1}}));
+    EXPECT_NE(ch.findings[0].message.find("answer RC 7 for PNU 300"), std::string::npos)
+        << ch.findings[0].message;
+    EXPECT_EQ(ch.stats().transactions.mismatched, 1u);
 }
 
 TEST(SessionTrackerTest, RejectionWithPnu0IsARejectionNotAMismatch) {
@@ -468,7 +576,7 @@ TEST(SessionTrackerTest, StackedRequestIsReportedOnceAndItsLateAnswerIsNoMismatc
     EXPECT_EQ(ch.findings[0].request_frame, 1u);
     EXPECT_EQ(ch.findings[0].frame, 3u);
     EXPECT_EQ(ch.findings[0].pnu, 520);
-    EXPECT_EQ(ch.stats().abandoned, 1u);
+    EXPECT_EQ(ch.stats().abandoned, 0u);  // a stacked request is a finding, not "abandoned"
     EXPECT_EQ(ch.stats().transactions.positive, 1u);
 }
 
@@ -540,6 +648,27 @@ TEST(SessionTrackerTest, UnacknowledgedSpontaneousMessage) {
     EXPECT_EQ(ch.findings.size(), 2u);
 }
 
+TEST(SessionTrackerTest, MessageAcknowledgedBeforeTheCaptureIsNotPending) {
+    // The capture begins after the master acknowledged: its SPM already equals the slave's.
+    Channel ch;
+    const Word read{1, 520, 0, 0, true};
+    ch.cycle(read, Word{10, 538, 0, 0x0A, true});
+    for (int i = 0; i < 700; ++i)
+        ch.cycle(read, Word{1, 520, 0, 240, true});
+    ch.cycle(Word{0, 0, 0, 0, true}, Word{1, 520, 0, 240, true});
+    ch.finish();
+    ASSERT_EQ(count_kinds(ch.findings), (Counts{{"spontaneous_message", 1}}));
+    EXPECT_NE(ch.findings[0].message.find("(already acknowledged)"), std::string::npos)
+        << ch.findings[0].message;
+    EXPECT_EQ(ch.stats().transactions.positive, 1u);
+
+    Channel waiting;  // the same start, but the master's SPM differs: pending
+    waiting.cycle(kRead520, Word{10, 538, 0, 0x0A, true});
+    waiting.cycle(Word{1, 520, 0, 0, true}, Word{10, 538, 0, 0x0A, true});
+    ASSERT_EQ(count_kinds(waiting.findings), (Counts{{"spontaneous_message", 1}}));
+    EXPECT_EQ(waiting.findings[0].message.find("already"), std::string::npos);
+}
+
 TEST(SessionTrackerTest, SecondMessageTogglesSpmAgain) {
     Channel ch;
     ch.cycle(kIdle, Word{9, 538, 0, 1, true});
@@ -562,13 +691,37 @@ TEST(SessionTrackerTest, UndefinedCodesAreUnknownAndDoNotAnswer) {
     Channel ch;
     ch.cycle(Word{11, 520}, kIdle);  // RC 11 is no vlt request code
     EXPECT_EQ(count_kinds(ch.findings), (Counts{{"unknown_code", 1}}));
+    ch.cycle(Word{11, 520}, Word{1, 520, 0, 5});  // any answer with its PNU closes it
+    ch.cycle(kIdle, Word{1, 520, 0, 5});
+    EXPECT_EQ(ch.findings.size(), 1u);
+    EXPECT_EQ(ch.stats().transactions.positive, 1u);
     ch.findings.clear();
     ch.cycle(kRead520, kIdle);
     ch.cycle(kRead520, Word{14, 520});  // RC 14 is no vlt response code
     ch.cycle(kRead520, Word{14, 520});  // repeated: reported once
     ch.cycle(kRead520, kValue520);
     EXPECT_EQ(count_kinds(ch.findings), (Counts{{"unknown_code", 1}}));
-    EXPECT_EQ(ch.stats().transactions.positive, 1u);
+    EXPECT_EQ(ch.stats().transactions.positive, 2u);
+}
+
+TEST(SessionTrackerTest, UndefinedRequestIsTrackedUntilAnswered) {
+    Channel rejected;
+    rejected.cycle(Word{13, 100}, kIdle);  // RC 13 is no vlt request code
+    rejected.cycle(Word{13, 100}, Word{7, 100, 0, 18});
+    rejected.cycle(kIdle, Word{7, 100, 0, 18});
+    ASSERT_EQ(count_kinds(rejected.findings),
+              (Counts{{"unknown_code", 1}, {"request_rejected", 1}}));
+    EXPECT_EQ(rejected.findings[1].request_frame, 1u);
+    EXPECT_NE(rejected.findings[1].message.find("RC 13 PNU 100 rejected with error 18"),
+              std::string::npos)
+        << rejected.findings[1].message;
+    EXPECT_EQ(rejected.stats().transactions.rejected, 1u);
+
+    Channel replaced;  // left unanswered for another request: stacked, as any request
+    replaced.cycle(Word{13, 100}, kIdle);
+    replaced.cycle(kRead520, kIdle);
+    EXPECT_EQ(count_kinds(replaced.findings),
+              (Counts{{"unknown_code", 1}, {"stacked_request", 1}}));
 }
 
 TEST(SessionTrackerTest, ProfidriveCodesAreKnownInTheProfidriveDialect) {
@@ -690,6 +843,37 @@ TEST(SessionTrackerTest, FdlRetryAndMissingReply) {
     feed(build_telegram({127, 2, request_fc(FdlFunction::SdnHigh), 58, 62, Bytes(operate)}));
     feed(build_telegram({3, 2, request_fc(FdlFunction::FdlStatus), {}, {}, {}}));
     EXPECT_TRUE(findings.empty());
+}
+
+TEST(SessionTrackerTest, DamagedRequestGetsNoReplyAndItsRetryIsCounted) {
+    Channel ch;
+    ch.cycle(kRead520, kIdle);
+    ch.request(kRead520, true);  // damaged on the line: the slave stays silent, rightly
+    ch.cycle(kRead520, kIdle);   // the master sends it again with the same FCB
+    ch.cycle(kRead520, kValue520);
+    EXPECT_EQ(count_kinds(ch.findings), (Counts{{"fcs_error", 1}, {"fdl_retry", 1}}));
+    EXPECT_EQ(ch.stats().transactions.positive, 1u);
+}
+
+TEST(SessionTrackerTest, StatusResponseWithoutDataIsNoConfigMismatch) {
+    BusDecoder decoder;
+    SessionTracker tracker(decoder);
+    std::vector<Finding> findings;
+    std::uint64_t frame = 0;
+    auto feed = [&](const std::vector<std::uint8_t>& bytes) {
+        for (const Finding& f :
+             tracker.track(decoder.decode(Bytes(bytes.data(), bytes.size()), kNoTime, ++frame)))
+            findings.push_back(f);
+    };
+    std::vector<std::uint8_t> cfg = {0xF3, 0xF1};
+    feed(build_telegram({3, 2, request_fc(FdlFunction::SrdHigh, true, true), 62, 62, Bytes(cfg)}));
+    feed({kShortAck});
+    std::vector<std::uint8_t> outputs(12, 0);
+    feed(build_telegram(
+        {3, 2, request_fc(FdlFunction::SrdHigh, false, true), {}, {}, Bytes(outputs)}));
+    // The slave restarted: RS (SAP not activated), an SD1 without data.
+    feed(build_telegram({2, 3, response_fc(FdlStatus::NoService), {}, {}, {}}));
+    EXPECT_TRUE(findings.empty()) << findings[0].message;
 }
 
 TEST(SessionTrackerTest, MalformedTelegramWithoutStationsCountsForTheBus) {

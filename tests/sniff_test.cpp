@@ -391,6 +391,88 @@ TEST(SniffTest, RotationLosesNothingAtTheSeams) {
     EXPECT_EQ(all, session.expected);
 }
 
+TEST(SniffTest, RotationByTimeSpan) {
+    PseudoTerminal pty;
+    std::string pcap = test::temp_path("timed.pcap");
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q",
+                     "--rotate-seconds", "0.25"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options;
+    options.cycles = 500;  // 1 s of bus time, played at its pace
+    Session session = simulate(options);
+    play(pty, session, false);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    sniffer.signal(SIGINT);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    Telegrams all;
+    unsigned files = 0;
+    for (unsigned index = 1;; ++index) {
+        std::string name = rotated_file_name(pcap, index);
+        if (access(name.c_str(), F_OK) != 0) break;
+        ++files;
+        Capture part = read_capture(name);
+        EXPECT_EQ(part.status, InputStatus::Ok);
+        ASSERT_FALSE(part.times.empty()) << name;
+        EXPECT_LT(part.times.back() - part.times.front(), 250'000'000) << name;
+        all.insert(all.end(), part.telegrams.begin(), part.telegrams.end());
+        std::remove(name.c_str());
+    }
+    EXPECT_GE(files, 4u);
+    EXPECT_LE(files, 8u);
+    EXPECT_EQ(all, session.expected);
+}
+
+// `simulate --device` writes into a tty: here the slave side of a pty, read on the master.
+std::vector<std::uint8_t> read_until_quiet(int fd) {
+    std::vector<std::uint8_t> got;
+    fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
+    for (int quiet = 0; quiet < 50;) {
+        std::uint8_t buffer[4096];
+        ssize_t n = read(fd, buffer, sizeof buffer);
+        if (n > 0) {
+            got.insert(got.end(), buffer, buffer + n);
+            quiet = 0;
+        } else {
+            ++quiet;
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+    }
+    return got;
+}
+
+TEST(SniffTest, SimulatePlaysOntoADeviceAndReplaysACapture) {
+    {
+        PseudoTerminal pty;
+        auto played = test::run_dpscope({"simulate", "--device", pty.slave, "--baud", "1500000",
+                                         "--cycles", "20", "--as-fast-as-possible", "-v"});
+        ASSERT_EQ(played.exit_code, 0) << played.err;
+        auto raw = test::run_dpscope({"simulate", "-w", "-", "-F", "raw", "--cycles", "20"});
+        std::vector<std::uint8_t> expected(raw.out.begin(), raw.out.end());
+        EXPECT_EQ(read_until_quiet(pty.master), expected);
+        EXPECT_NE(played.err.find("played "), std::string::npos) << played.err;
+    }
+    {
+        PseudoTerminal pty;
+        auto start = std::chrono::steady_clock::now();
+        auto played = test::run_dpscope({"simulate", "--device", pty.slave, "--baud", "1500000",
+                                         "--replay", "samples/faults.pcap"});
+        double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        ASSERT_EQ(played.exit_code, 0) << played.err;
+        Capture capture = read_capture(test::source_dir() + "/samples/faults.pcap");
+        std::vector<std::uint8_t> expected;
+        for (const auto& t : capture.telegrams)
+            expected.insert(expected.end(), t.begin(), t.end());
+        EXPECT_EQ(read_until_quiet(pty.master), expected);
+        // Replayed at the pace of its timestamps (123 ms), not at once.
+        double span = static_cast<double>(capture.times.back() - capture.times.front()) / 1e9;
+        EXPECT_GE(seconds, span);
+    }
+    auto neither = test::run_dpscope({"simulate", "--cycles", "5"});
+    EXPECT_EQ(neither.exit_code, 2);
+    EXPECT_NE(neither.err.find("give either -w FILE or --device PATH"), std::string::npos);
+}
+
 TEST(SniffTest, PcapToStandardOutputWithUser0LinkType) {
     PseudoTerminal pty;
     Sniffer sniffer(
