@@ -21,12 +21,25 @@ struct PcvKey {
 
 PcvKey key_of(const Pcv& pcv) { return PcvKey{pcv.rc, pcv.pnu, pcv.ind, pcv.pva}; }
 
+// The same code for the same parameter, whatever the value.
+bool same_parameter(const PcvKey& a, const PcvKey& b) {
+    return a.rc == b.rc && a.pnu == b.pnu && a.ind == b.ind;
+}
+
 // Does response `r` concern the parameter of request `q`? PNU must match, and IND too when
 // either code is an array code.
 bool concerns(Dialect dialect, const PcvKey& q, const Pcv& r) {
     if (q.pnu != r.pnu) return false;
     bool array = request_code(dialect, q.rc).is_array || response_code(dialect, r.rc).is_array;
     return !array || q.ind == r.ind;
+}
+
+// Do two PVAs carry the same value? Compared in the narrower of the two codes' widths.
+bool same_value(ValueWidth request_width, ValueWidth response_width, std::uint32_t request_pva,
+                std::uint32_t response_pva) {
+    const bool word = request_width == ValueWidth::Word || response_width == ValueWidth::Word;
+    const std::uint32_t mask = word ? 0xFFFFu : 0xFFFF'FFFFu;
+    return (request_pva & mask) == (response_pva & mask);
 }
 
 std::string describe_request(Dialect dialect, const PcvKey& q) {
@@ -99,7 +112,10 @@ struct SessionTracker::Channel {
         bool moved_on = false;  // the master has moved on from it
         std::uint64_t moved_on_cycle = 0;
         bool late_answer_seen = false;  // an abandoned request's late answer was already seen
+        std::uint8_t answer_rc = 0;     // the code it was answered with
     } previous;
+    // A damaged request (bad FCS) was dropped by the slave: its retry is the cycle.
+    bool damaged_request = false;
     // Slave side.
     bool slave_valid = false;
     PcvKey slave_key;
@@ -108,6 +124,8 @@ struct SessionTracker::Channel {
     bool slave_spm = false;
     bool unknown_valid = false;
     PcvKey unknown_key;
+    bool orphan_valid = false;  // the last orphan reported, not repeated while only refreshed
+    PcvKey orphan_key;
     struct Spontaneous {
         bool seen = false;
         bool pending = false;
@@ -116,6 +134,8 @@ struct SessionTracker::Channel {
         std::int64_t time_ns = kNoTime;
         std::uint16_t pnu = 0;
         bool reported_late = false;
+        bool assumed_acknowledged = false;  // first seen with the master's SPM: see slave_pcv
+        std::uint64_t cycle = 0;
     } spontaneous;
 };
 
@@ -215,6 +235,7 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
             Channel& ch = channel(t.master, t.slave);
             ch.last_fcb = t.fdl.fc.fcb();
             ch.fcb_valid = true;
+            ch.damaged_request = true;
         }
         return current_;
     }
@@ -232,7 +253,10 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
         stats.last_time_ns = t.time_ns;
     }
     const bool request = t.direction == Direction::Request;
-    if (request && !retry) ++stats.cycles;
+    if (request) {
+        if (!retry || ch.damaged_request) ++stats.cycles;
+        ch.damaged_request = false;
+    }
     check_config(ch, t);
     if (!t.has_pcv) return current_;
     if (request)
@@ -343,7 +367,8 @@ void SessionTracker::master_pcv(Channel& ch, const DecodedTelegram& t) {
                                 describe_request(t.dialect, ch.pending.key), ch.pending.frame);
             }
         }
-        ch.previous = Channel::Previous{true, ch.pending.key, false, true, ch.stats.cycles, false};
+        ch.previous =
+            Channel::Previous{true, ch.pending.key, false, true, ch.stats.cycles, false, 0};
         ch.pending.active = false;
     } else if (ch.previous.valid && !ch.previous.moved_on) {
         ch.previous.moved_on = true;
@@ -358,6 +383,7 @@ void SessionTracker::master_pcv(Channel& ch, const DecodedTelegram& t) {
                                 dialect_name(t.dialect));
     }
     ch.pending = Channel::Pending{true, key, t.frame, t.time_ns, ch.stats.cycles, false, undefined};
+    ch.orphan_valid = false;
     if (t.has_time())
         next_deadline_ns_ = std::min(next_deadline_ns_, t.time_ns + options_.timeout_ns);
     ++ch.stats.requests;
@@ -373,14 +399,27 @@ void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
     PcvKey key = key_of(r);
 
     if (code.kind == ResponseKind::Spontaneous) {
+        Channel::Spontaneous& message = ch.spontaneous;
         // A new message toggles SPM; the same SPM again is the message repeated.
-        if (ch.spontaneous.seen && r.spm == ch.spontaneous.spm) return;
+        if (message.seen && r.spm == message.spm) {
+            // Taken as acknowledged before the capture, yet still shown after the one cycle the
+            // slave lags: it was not acknowledged, it is pending since it was first seen.
+            if (message.assumed_acknowledged && ch.stats.cycles > message.cycle + 1) {
+                message.assumed_acknowledged = false;
+                message.pending = true;
+                if (message.time_ns != kNoTime)
+                    next_deadline_ns_ =
+                        std::min(next_deadline_ns_, message.time_ns + options_.timeout_ns);
+            }
+            return;
+        }
         // A capture that begins after the master acknowledged: the first message seen already
         // has the master's SPM, and the master has not toggled since.
-        const bool acknowledged = !ch.spontaneous.seen && ch.master_spm_valid &&
-                                  !ch.master_toggled && ch.master_spm == r.spm;
-        ch.spontaneous =
-            Channel::Spontaneous{true, !acknowledged, r.spm, t.frame, t.time_ns, r.pnu, false};
+        const bool acknowledged =
+            !message.seen && ch.master_spm_valid && !ch.master_toggled && ch.master_spm == r.spm;
+        message =
+            Channel::Spontaneous{true,  !acknowledged, r.spm,        t.frame,        t.time_ns,
+                                 r.pnu, false,         acknowledged, ch.stats.cycles};
         ++ch.stats.spontaneous;
         Finding& f = add(FindingKind::SpontaneousMessage, t, 0);
         f.pnu = r.pnu;
@@ -404,35 +443,49 @@ void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
     }
     ch.unknown_valid = false;
 
+    // RC 7 and RC 8 may leave the PNU out (a Danfoss rejection reads PCA 70 00); with a PNU it
+    // must be the request's.
+    const bool negative =
+        code.kind == ResponseKind::Rejected || code.kind == ResponseKind::NoAuthority;
+    const bool no_echo = negative && r.pnu == 0;
     // The response in the cycle in which a request first appears shows what the slave made of
     // the master's data before it (the slave lags one cycle): it cannot answer that request.
     const bool before_pending = ch.pending.active && ch.stats.cycles == ch.pending.cycle;
-    // Does `r` answer the pending request? Its parameter, and a valid code for it.
+    // Could `r` be the slave's answer to the pending request? Its parameter, a valid code for
+    // it, and for a change request answered positively, the value written.
     auto answers_pending = [&] {
         const PcvKey& q = ch.pending.key;
-        if (!concerns(dialect, q, r)) return false;
-        return ch.pending.undefined ||
-               judge_answer(dialect, q.rc, r.rc, options_.strict) != AnswerVerdict::Invalid;
+        if (!no_echo && !concerns(dialect, q, r)) return false;
+        if (ch.pending.undefined) return true;
+        if (judge_answer(dialect, q.rc, r.rc, options_.strict) == AnswerVerdict::Invalid)
+            return false;
+        const RequestCode& request = request_code(dialect, q.rc);
+        if (code.kind == ResponseKind::Value && request.is_change)
+            return same_value(request.width, code.width, q.pva, r.pva);
+        return true;
     };
     bool fresh = !(ch.slave_valid && key == ch.slave_key);
     if (fresh) {
         ch.slave_valid = true;
         ch.slave_key = key;
         ch.slave_change_cycle = ch.stats.cycles;
+        if (ch.orphan_valid && !same_parameter(ch.orphan_key, key)) ch.orphan_valid = false;
     } else {
         // A repeat is ignored, except when it answers a request issued after it first appeared
         // (in the same cycle counts: a response is made before its cycle's request arrives) -
         // a slave that does not clear its answer, a read-back returning the value just written:
-        // the same bytes are then that request's answer, a cycle after it was sent.
+        // the same bytes are then that request's answer, a cycle after it was sent. A rejection
+        // is taken again only for the same request asked again.
         bool renewed = ch.pending.active && !before_pending && r.rc != 0 &&
-                       ch.pending.cycle >= ch.slave_change_cycle && answers_pending();
+                       ch.pending.cycle >= ch.slave_change_cycle && answers_pending() &&
+                       (!negative || (ch.previous.valid && ch.previous.key == ch.pending.key));
         if (!renewed) return;
     }
     if (r.rc == 0) return;  // no response: idle, or still working
 
     // Answers to the request before the pending one are no orphans and no mismatches: repeats
-    // (perhaps with a refreshed value) while the master still holds that request, the lagging
-    // one in the cycle the master moved on, and the late answer to an abandoned request.
+    // with a refreshed value while the master still holds that request, the lagging one in the
+    // cycle the master moved on, and the late answer to an abandoned request.
     auto belongs_to_previous = [&] {
         Channel::Previous& prev = ch.previous;
         if (!prev.valid || !concerns(dialect, prev.key, r)) return false;
@@ -441,24 +494,28 @@ void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
             prev.late_answer_seen = true;
             return true;
         }
-        return !prev.moved_on || ch.stats.cycles == prev.moved_on_cycle;
+        return r.rc == prev.answer_rc && (!prev.moved_on || ch.stats.cycles == prev.moved_on_cycle);
     };
 
     if (!ch.pending.active || before_pending) {
-        if (before_pending && !ch.previous.valid && answers_pending()) {
+        if (before_pending && !ch.previous.valid && ch.pending.cycle <= 1 && answers_pending()) {
             // The capture began while this request stood answered: it was issued before the
             // first captured cycle, so it is neither a transaction nor a time-out.
             auto requests = ch.stats.pnu_requests.find(ch.pending.key.pnu);
             if (requests != ch.stats.pnu_requests.end() && --requests->second == 0)
                 ch.stats.pnu_requests.erase(requests);
             --ch.stats.requests;
-            ch.previous = Channel::Previous{true, ch.pending.key, true, false, 0, false};
+            ch.previous = Channel::Previous{true, ch.pending.key, true, false, 0, false, r.rc};
             ch.pending.active = false;
             return;
         }
         if (belongs_to_previous()) return;
-        // The first cycles of a capture: the request this answers was not captured.
-        if (!ch.previous.valid && (before_pending || ch.stats.cycles <= 1)) return;
+        // The first cycle of a capture: the request this answers was not captured.
+        if (!ch.previous.valid && ch.stats.cycles <= 1) return;
+        // A slave that keeps refreshing the same orphan answer is reported once.
+        if (ch.orphan_valid) return;
+        ch.orphan_valid = true;
+        ch.orphan_key = key;
         Finding& f = add(FindingKind::OrphanResponse, t, 0);
         f.pnu = r.pnu;
         f.message = fmt::format("slave {} answered RC {} ({}) PNU {} but no request was pending",
@@ -467,11 +524,6 @@ void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
     }
 
     const PcvKey& q = ch.pending.key;
-    // RC 7 and RC 8 may leave the PNU out (a Danfoss rejection reads PCA 70 00); with a PNU it
-    // must be the request's.
-    const bool no_echo =
-        (code.kind == ResponseKind::Rejected || code.kind == ResponseKind::NoAuthority) &&
-        r.pnu == 0;
     if (!no_echo && !concerns(dialect, q, r)) {
         if (belongs_to_previous()) return;
         Finding& f = add(FindingKind::MismatchedResponse, t, ch.pending.frame);
@@ -486,24 +538,10 @@ void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
         return;
     }
 
-    if (ch.pending.undefined) {
-        // Nothing to judge against; an RC 7 is still a rejection worth naming.
-        if (code.kind == ResponseKind::Rejected) {
-            auto error = static_cast<std::uint16_t>(r.pva & 0xFFFF);
-            std::string_view text = error_text(dialect, error);
-            Finding& f = add(FindingKind::RequestRejected, t, ch.pending.frame);
-            f.pnu = q.pnu;
-            f.message = fmt::format("RC {} PNU {} rejected with error {} ({})", q.rc, q.pnu, error,
-                                    text.empty() ? "not known to the dialect" : text);
-            ++ch.stats.transactions.rejected;
-        } else {
-            ++ch.stats.transactions.positive;
-        }
-        answered(ch, t);
-        return;
-    }
-
-    AnswerVerdict verdict = judge_answer(dialect, q.rc, r.rc, options_.strict);
+    // An undefined request code cannot be judged: any answer is taken for what it says.
+    AnswerVerdict verdict = ch.pending.undefined
+                                ? (negative ? AnswerVerdict::Negative : AnswerVerdict::Positive)
+                                : judge_answer(dialect, q.rc, r.rc, options_.strict);
     if (verdict == AnswerVerdict::Invalid) {
         Finding& f = add(FindingKind::UnexpectedResponseType, t, ch.pending.frame);
         f.pnu = q.pnu;
@@ -541,7 +579,7 @@ void SessionTracker::answered(Channel& ch, const DecodedTelegram& t) {
         stats.timeline.add_transaction(t.time_ns);
     }
     stats.latency_cycles.add(stats.cycles - ch.pending.cycle);
-    ch.previous = Channel::Previous{true, ch.pending.key, true, false, 0, false};
+    ch.previous = Channel::Previous{true, ch.pending.key, true, false, 0, false, t.pcv.rc};
     ch.pending.active = false;
 }
 

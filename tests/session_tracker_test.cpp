@@ -472,6 +472,19 @@ TEST(SessionTrackerTest, CaptureStartingAfterTheAnswerHasNoTimeout) {
     EXPECT_EQ(ch.stats().abandoned, 0u);
     EXPECT_EQ(ch.stats().timeouts, 0u);
     EXPECT_TRUE(ch.stats().pnu_requests.empty());
+
+    // Only a request standing when the capture began: later, the same bytes shown since before
+    // are a slave that does not clear its answer, and the repeat a cycle on answers.
+    Channel later;
+    for (int i = 0; i < 5; ++i)
+        later.cycle(kIdle, kValue520);
+    later.cycle(kRead520, kValue520);
+    later.cycle(kRead520, kValue520);
+    later.cycle(kIdle, kValue520);
+    EXPECT_TRUE(later.findings.empty()) << later.findings[0].message;
+    EXPECT_EQ(later.stats().requests, 1u);
+    EXPECT_EQ(later.stats().transactions.positive, 1u);
+    EXPECT_EQ(later.stats().latency_cycles.max(), 1u);
 }
 
 TEST(SessionTrackerTest, LateRejectionOfAnAbandonedRequestIsNoMismatch) {
@@ -496,6 +509,106 @@ TEST(SessionTrackerTest, RejectionNamingAnotherPnuIsMismatched) {
     EXPECT_NE(ch.findings[0].message.find("answer RC 7 for PNU 300"), std::string::npos)
         << ch.findings[0].message;
     EXPECT_EQ(ch.stats().transactions.mismatched, 1u);
+}
+
+TEST(SessionTrackerTest, StaleValueIsNoAnswerToAChangeRequestForAnotherValue) {
+    const Word write9{2, 100, 0, 9};
+    const Word rejected{7, 100, 0, 2};
+    Channel after_read;
+    after_read.cycle(Word{1, 100}, kIdle);
+    after_read.cycle(Word{1, 100}, Word{1, 100, 0, 5});
+    after_read.cycle(write9, Word{1, 100, 0, 5});
+    after_read.cycle(write9, Word{1, 100, 0, 5});  // value 5 is not the 9 written
+    after_read.cycle(write9, rejected);
+    after_read.cycle(kIdle, rejected);
+    EXPECT_EQ(count_kinds(after_read.findings), (Counts{{"request_rejected", 1}}));
+    EXPECT_EQ(after_read.stats().transactions.positive, 1u);
+    EXPECT_EQ(after_read.stats().transactions.rejected, 1u);
+
+    Channel after_rejection;  // a rejection is no answer to another write
+    after_rejection.cycle(Word{2, 100, 0, 9999}, kIdle);
+    after_rejection.cycle(Word{2, 100, 0, 9999}, rejected);
+    after_rejection.cycle(Word{2, 100, 0, 50}, rejected);
+    after_rejection.cycle(Word{2, 100, 0, 50}, rejected);
+    after_rejection.cycle(Word{2, 100, 0, 50}, Word{1, 100, 0, 50});
+    after_rejection.cycle(kIdle, Word{1, 100, 0, 50});
+    EXPECT_EQ(count_kinds(after_rejection.findings), (Counts{{"request_rejected", 1}}));
+    EXPECT_EQ(after_rejection.stats().transactions.positive, 1u);
+    EXPECT_EQ(after_rejection.stats().latency_cycles.max(), 2u);
+
+    Channel capture_start;  // the value shown at the start is not the 9 being written
+    capture_start.cycle(write9, Word{1, 100, 0, 5});
+    capture_start.cycle(write9, rejected);
+    capture_start.cycle(kIdle, rejected);
+    EXPECT_EQ(count_kinds(capture_start.findings), (Counts{{"request_rejected", 1}}));
+}
+
+TEST(SessionTrackerTest, StackedRequestDoesNotTakeItsPredecessorsRejection) {
+    Channel ch;
+    ch.cycle(Word{2, 100, 0, 9999}, kIdle);
+    ch.cycle(Word{1, 100}, Word{7, 100, 0, 2});  // stacked; the write's rejection, late
+    ch.cycle(Word{1, 100}, Word{7, 100, 0, 2});
+    ch.cycle(Word{1, 100}, Word{1, 100, 0, 5});
+    ch.cycle(kIdle, Word{1, 100, 0, 5});
+    EXPECT_EQ(count_kinds(ch.findings), (Counts{{"stacked_request", 1}}));
+    EXPECT_EQ(ch.stats().transactions.positive, 1u);
+    EXPECT_EQ(ch.stats().transactions.rejected, 0u);
+}
+
+TEST(SessionTrackerTest, RejectionWithPnu0CanBeARepeatOrStandAtTheCaptureStart) {
+    const Word write{2, 100, 0, 9999};
+    const Word rejected{7, 0, 0, 2};  // PCA 70 00
+    Channel start;
+    for (int i = 0; i < 700; ++i)
+        start.cycle(write, rejected);
+    start.finish();
+    EXPECT_TRUE(start.findings.empty()) << start.findings[0].message;
+    EXPECT_EQ(start.stats().requests, 0u);
+
+    Channel again;  // a slave that does not clear its answer; the same write after RC 0
+    again.cycle(write, kIdle);
+    again.cycle(write, rejected);
+    again.cycle(kIdle, rejected);
+    again.cycle(kIdle, rejected);
+    for (int i = 0; i < 600; ++i)
+        again.cycle(write, rejected);
+    again.finish();
+    EXPECT_EQ(count_kinds(again.findings), (Counts{{"request_rejected", 2}}));
+    EXPECT_EQ(again.stats().transactions.rejected, 2u);
+}
+
+TEST(SessionTrackerTest, OtherCodesWhileTheMasterHoldsAnAnsweredRequestAreOrphans) {
+    Channel ch;
+    ch.cycle(Word{1, 100}, kIdle);
+    ch.cycle(Word{1, 100}, Word{1, 100, 0, 5});
+    ch.cycle(Word{1, 100}, Word{7, 100, 0, 17});  // only a refreshed value is no orphan
+    ch.cycle(Word{1, 100}, Word{3, 100, 0, 1});
+    ch.cycle(kIdle, kIdle);
+    EXPECT_EQ(count_kinds(ch.findings), (Counts{{"orphan_response", 2}}));
+}
+
+TEST(SessionTrackerTest, OrphanBeyondTheFirstCycleIsReported) {
+    Channel ch;
+    for (int i = 0; i < 5; ++i)
+        ch.cycle(kIdle, kIdle);
+    ch.cycle(Word{1, 100}, Word{1, 300, 0, 9});  // PNU 300 answers nothing
+    ch.cycle(Word{1, 100}, kIdle);
+    ch.cycle(Word{1, 100}, Word{1, 100, 0, 5});
+    EXPECT_EQ(count_kinds(ch.findings), (Counts{{"orphan_response", 1}}));
+    EXPECT_EQ(ch.findings[0].pnu, 300);
+}
+
+TEST(SessionTrackerTest, RefreshedOrphanIsReportedOnce) {
+    Channel ch;
+    ch.cycle(Word{1, 100}, kIdle);
+    ch.cycle(Word{1, 100}, Word{1, 100, 0, 5});
+    ch.cycle(kIdle, Word{1, 100, 0, 5});
+    ch.cycle(kIdle, Word{1, 100, 0, 5});
+    ch.cycle(kIdle, Word{1, 100, 0, 6});  // the slave keeps refreshing after RC 0
+    ch.cycle(kIdle, Word{1, 100, 0, 7});
+    ch.cycle(kIdle, kIdle);
+    ch.cycle(kIdle, Word{1, 100, 0, 8});  // again after it showed something else
+    EXPECT_EQ(count_kinds(ch.findings), (Counts{{"orphan_response", 2}}));
 }
 
 TEST(SessionTrackerTest, RejectionWithPnu0IsARejectionNotAMismatch) {
@@ -669,6 +782,19 @@ TEST(SessionTrackerTest, MessageAcknowledgedBeforeTheCaptureIsNotPending) {
     EXPECT_EQ(waiting.findings[0].message.find("already"), std::string::npos);
 }
 
+TEST(SessionTrackerTest, MessageStillShownIsNotAcknowledgedAfterAll) {
+    // First seen with the master's SPM, but still repeated long after: never acknowledged.
+    Channel ch;
+    const Word message{9, 538, 0, 1, false};
+    for (int i = 0; i < 700; ++i)
+        ch.cycle(kIdle, message);
+    EXPECT_EQ(count_kinds(ch.findings),
+              (Counts{{"spontaneous_message", 1}, {"spontaneous_unacknowledged", 1}}));
+    ch.cycle(Word{0, 0, 0, 0, true}, message);  // the acknowledgement, late: no violation
+    ch.cycle(Word{0, 0, 0, 0, true}, Word{0, 0, 0, 0, false});
+    EXPECT_EQ(ch.findings.size(), 2u);
+}
+
 TEST(SessionTrackerTest, SecondMessageTogglesSpmAgain) {
     Channel ch;
     ch.cycle(kIdle, Word{9, 538, 0, 1, true});
@@ -712,8 +838,9 @@ TEST(SessionTrackerTest, UndefinedRequestIsTrackedUntilAnswered) {
     ASSERT_EQ(count_kinds(rejected.findings),
               (Counts{{"unknown_code", 1}, {"request_rejected", 1}}));
     EXPECT_EQ(rejected.findings[1].request_frame, 1u);
-    EXPECT_NE(rejected.findings[1].message.find("RC 13 PNU 100 rejected with error 18"),
-              std::string::npos)
+    EXPECT_NE(
+        rejected.findings[1].message.find("RC 13 (Not assigned) PNU 100 rejected with error 18"),
+        std::string::npos)
         << rejected.findings[1].message;
     EXPECT_EQ(rejected.stats().transactions.rejected, 1u);
 
@@ -722,6 +849,23 @@ TEST(SessionTrackerTest, UndefinedRequestIsTrackedUntilAnswered) {
     replaced.cycle(kRead520, kIdle);
     EXPECT_EQ(count_kinds(replaced.findings),
               (Counts{{"unknown_code", 1}, {"stacked_request", 1}}));
+}
+
+TEST(SessionTrackerTest, UndefinedRequestAnsweredNegativelyIsCountedAsSuch) {
+    Channel authority;
+    authority.cycle(Word{12, 100}, kIdle);
+    authority.cycle(Word{12, 100}, Word{8, 100});
+    authority.cycle(kIdle, Word{8, 100});
+    EXPECT_EQ(count_kinds(authority.findings), (Counts{{"unknown_code", 1}, {"no_authority", 1}}));
+    EXPECT_EQ(authority.stats().transactions.no_authority, 1u);
+    EXPECT_EQ(authority.stats().transactions.positive, 0u);
+
+    Channel rejected;
+    rejected.cycle(Word{12, 100}, kIdle);
+    rejected.cycle(Word{12, 100}, Word{7, 100, 0, 2});
+    EXPECT_EQ(rejected.stats().transactions.rejected, 1u);
+    EXPECT_EQ(rejected.stats().rejection_errors.at(2), 1u);
+    EXPECT_EQ(rejected.stats().rejections.at({100, 2}), 1u);
 }
 
 TEST(SessionTrackerTest, ProfidriveCodesAreKnownInTheProfidriveDialect) {
@@ -853,6 +997,20 @@ TEST(SessionTrackerTest, DamagedRequestGetsNoReplyAndItsRetryIsCounted) {
     ch.cycle(kRead520, kValue520);
     EXPECT_EQ(count_kinds(ch.findings), (Counts{{"fcs_error", 1}, {"fdl_retry", 1}}));
     EXPECT_EQ(ch.stats().transactions.positive, 1u);
+}
+
+TEST(SessionTrackerTest, RetryOfADamagedRequestIsTheCycle) {
+    Channel ch;
+    ch.cycle(Word{1, 200}, kIdle);
+    ch.cycle(Word{1, 200}, Word{1, 200, 0, 7});
+    ch.cycle(Word{1, 100}, Word{1, 200, 0, 7});
+    ch.request(Word{1, 100}, true);              // dropped by the slave
+    ch.cycle(Word{1, 100}, Word{1, 100, 0, 5});  // the retry: the request's second cycle
+    ch.cycle(Word{1, 100}, Word{1, 100, 0, 5});
+    ch.cycle(kIdle, kIdle);
+    EXPECT_EQ(count_kinds(ch.findings), (Counts{{"fcs_error", 1}, {"fdl_retry", 1}}));
+    EXPECT_EQ(ch.stats().cycles, 6u);
+    EXPECT_EQ(ch.stats().transactions.positive, 2u);
 }
 
 TEST(SessionTrackerTest, StatusResponseWithoutDataIsNoConfigMismatch) {
