@@ -63,6 +63,44 @@ std::vector<std::string_view> split_whitespace(std::string_view line) {
     return tokens;
 }
 
+// The tokens of a log line: separated by white space, commas and semicolons; a label glued to
+// data ("TX:0x10", "RX:680707") is split off after its colon. A label starts with a letter, holds
+// letters, digits and '_', and has a letter that is no hex digit, so times (12:00:01,
+// 2024-01-02T12:00) and hex bytes stay whole.
+std::vector<std::string_view> split_log_tokens(std::string_view line) {
+    std::vector<std::string_view> tokens;
+    auto separator = [](char c) {
+        return c == ' ' || c == '\t' || c == '\r' || c == ',' || c == ';';
+    };
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && separator(line[i]))
+            ++i;
+        std::size_t start = i;
+        while (i < line.size() && !separator(line[i]))
+            ++i;
+        if (i == start) continue;
+        std::string_view token = line.substr(start, i - start);
+        std::size_t colon = token.find(':');
+        if (colon != std::string_view::npos && colon + 1 < token.size()) {
+            std::string_view label = token.substr(0, colon);
+            auto letter = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
+            bool is_label = letter(label[0]);
+            bool beyond_hex = false;
+            for (char c : label) {
+                if (!letter(c) && !is_digit(c) && c != '_') is_label = false;
+                if (letter(c) && !is_hex(c)) beyond_hex = true;
+            }
+            if (is_label && beyond_hex) {
+                tokens.push_back(token.substr(0, colon + 1));
+                token.remove_prefix(colon + 1);
+            }
+        }
+        tokens.push_back(token);
+    }
+    return tokens;
+}
+
 // Parses "[digits][.digits]" into nanoseconds; `digits_before` bounds the integer part.
 std::optional<std::int64_t> seconds_with_fraction(std::string_view text) {
     std::int64_t seconds = 0;
@@ -158,7 +196,7 @@ HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& 
         std::size_t open = line.rfind('|', line.size() - 2);
         if (open != std::string_view::npos) line = line.substr(0, open);
     }
-    std::vector<std::string_view> tokens = split_whitespace(line);
+    std::vector<std::string_view> tokens = split_log_tokens(line);
     // The longest run of byte tokens; the later one wins a tie.
     std::size_t best_start = 0, best_length = 0;
     for (std::size_t i = 0; i < tokens.size();) {

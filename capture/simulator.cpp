@@ -39,8 +39,9 @@ bool parse_number(std::string_view text, T& value) {
     return ec == std::errc() && end == text.data() + text.size();
 }
 
-// Faults that act on the parameter channel need a slave with a PCV.
-bool needs_pcv(FaultKind kind) {
+}  // namespace
+
+bool fault_needs_parameter_channel(FaultKind kind) noexcept {
     switch (kind) {
         case FaultKind::FcsError:
         case FaultKind::Garbage:
@@ -51,6 +52,10 @@ bool needs_pcv(FaultKind kind) {
         default: return true;
     }
 }
+
+namespace {
+
+bool needs_pcv(FaultKind kind) { return fault_needs_parameter_channel(kind); }
 
 constexpr std::uint8_t kRead = 1, kWriteWord = 2, kWriteDword = 3, kReadDescription = 4,
                        kReadArray = 6, kReadCount = 9;
@@ -161,9 +166,82 @@ std::optional<SimulatedSlave> parse_slave_spec(std::string_view text, std::strin
     return slave;
 }
 
+namespace {
+
+std::vector<SimulatedSlave> slaves_or_default(const SimulatorOptions& options) {
+    if (!options.slaves.empty()) return options.slaves;
+    return {{3, 1, Dialect::Vlt}, {4, 2, Dialect::Vlt}, {5, 5, Dialect::Vlt}};
+}
+
+bool has_parameter_channel(const SimulatedSlave& slave) {
+    return ppo_layout_of_type(slave.ppo_type, PpoSource::Option).has_pcv;
+}
+
+std::string describe_fault(const FaultSpec& spec) {
+    std::string text(fault_kind_name(spec.kind));
+    if (spec.rate > 0) text += fmt::format("={}", spec.rate);
+    if (spec.cycle) text += fmt::format("@{}", *spec.cycle);
+    if (spec.slave) text += fmt::format(":{}", *spec.slave);
+    return text;
+}
+
+}  // namespace
+
+std::string check_simulator_faults(const SimulatorOptions& options) {
+    const std::vector<SimulatedSlave> slaves = slaves_or_default(options);
+    for (const FaultSpec& spec : options.faults) {
+        const bool needs_pcv = fault_needs_parameter_channel(spec.kind);
+        bool target = false;
+        for (const SimulatedSlave& slave : slaves) {
+            if (spec.slave && slave.address != *spec.slave) continue;
+            if (!needs_pcv || has_parameter_channel(slave)) target = true;
+        }
+        if (!target) {
+            if (spec.slave) {
+                bool simulated = false;
+                for (const SimulatedSlave& slave : slaves)
+                    simulated = simulated || slave.address == *spec.slave;
+                if (!simulated)
+                    return fmt::format("fault {}: slave {} is not simulated", describe_fault(spec),
+                                       *spec.slave);
+                return fmt::format(
+                    "fault {}: slave {} has no parameter channel (PPO 3 and 4 carry no PCV)",
+                    describe_fault(spec), *spec.slave);
+            }
+            return fmt::format(
+                "fault {}: no simulated slave has a parameter channel (PPO 1, 2 "
+                "or 5)",
+                describe_fault(spec));
+        }
+        if (spec.cycle && options.cycles != 0 && *spec.cycle >= options.cycles)
+            return fmt::format("fault {}: cycle {} is past the session's {} cycles (0..{})",
+                               describe_fault(spec), *spec.cycle, options.cycles,
+                               options.cycles - 1);
+    }
+    return {};
+}
+
+std::vector<std::string> faults_not_injected(const SimulatorOptions& options,
+                                             const std::vector<Injection>& injections) {
+    std::vector<std::string> missing;
+    std::vector<bool> used(injections.size(), false);
+    for (const FaultSpec& spec : options.faults) {
+        if (spec.rate > 0) continue;
+        bool found = false;
+        for (std::size_t i = 0; i < injections.size() && !found; ++i) {
+            const Injection& injection = injections[i];
+            if (used[i] || injection.kind != spec.kind) continue;
+            if (spec.slave && injection.slave != *spec.slave) continue;
+            if (spec.cycle && injection.cycle < *spec.cycle) continue;
+            used[i] = found = true;
+        }
+        if (!found) missing.push_back(describe_fault(spec));
+    }
+    return missing;
+}
+
 Simulator::Simulator(SimulatorOptions options) : options_(std::move(options)) {
-    if (options_.slaves.empty())
-        options_.slaves = {{3, 1, Dialect::Vlt}, {4, 2, Dialect::Vlt}, {5, 5, Dialect::Vlt}};
+    options_.slaves = slaves_or_default(options_);
     if (options_.baud == 0) options_.baud = 1'500'000;
     rng_state_ = options_.seed * 0x9E3779B97F4A7C15ULL + 0x2545F4914F6CDD1DULL;
     now_ = options_.start_time_ns;
@@ -232,7 +310,7 @@ bool Simulator::next(std::vector<std::uint8_t>& bytes, std::int64_t& time_ns) {
             recording_ = options_.record_start_up;
             generate_start_up();
             recording_ = true;
-        } else if (options_.cycles == 0 || cycle_ < options_.cycles) {
+        } else if (options_.cycles == 0 || cycle_ < options_.cycles || now_ < hold_open_until_) {
             generate_cycle();
         } else {
             return false;
@@ -368,6 +446,11 @@ bool Simulator::take_fault(FaultKind kind, std::size_t slave) {
 
 void Simulator::record_injection(FaultKind kind, std::size_t slave) {
     injections_.push_back({kind, cycle_, slaves_[slave].config.address, queued_ + 1});
+    if (kind == FaultKind::ResponseTimeout || kind == FaultKind::SpontaneousUnacknowledged) {
+        const std::int64_t give_up = std::int64_t{options_.master_give_up_ms} * 1'000'000;
+        hold_open_until_ =
+            std::max(hold_open_until_, now_ + give_up + std::int64_t{options_.cycle_us} * 10'000);
+    }
 }
 
 Simulator::Parameter* Simulator::find_parameter(Slave& slave, std::uint16_t pnu) {

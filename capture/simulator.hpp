@@ -60,6 +60,9 @@ struct SimulatedSlave {
     Dialect dialect = Dialect::Vlt;
 };
 
+// Faults that act on the parameter channel need a slave with a PCV (PPO 1, 2 or 5).
+bool fault_needs_parameter_channel(FaultKind kind) noexcept;
+
 // "ADDR:PPO" or "ADDR:PPO:DIALECT", e.g. "5:2" or "7:1:profidrive".
 std::optional<SimulatedSlave> parse_slave_spec(std::string_view text, std::string& error);
 
@@ -84,6 +87,14 @@ struct Injection {
     std::uint8_t slave;
     std::uint64_t telegram;  // 1-based number of the telegram it affected (first of them)
 };
+
+// Why `options` cannot inject one of its faults (a slave that is not simulated, a parameter-
+// channel fault on a slave without a PCV, a cycle past the end), or "" when each can be.
+std::string check_simulator_faults(const SimulatorOptions& options);
+
+// The faults given once (no rate) that were not injected, described for the user.
+std::vector<std::string> faults_not_injected(const SimulatorOptions& options,
+                                             const std::vector<Injection>& injections);
 
 class Simulator {
   public:
@@ -181,6 +192,9 @@ class Simulator {
     std::deque<std::pair<std::vector<std::uint8_t>, std::int64_t>> queue_;
     std::vector<ArmedFault> armed_;
     std::vector<bool> scheduled_done_;
+    // A time-out fault was injected: the session runs on past its cycles until then, so the
+    // master's give-up (and the time-out a tracker judges) is in the capture.
+    std::int64_t hold_open_until_ = 0;
     std::vector<Injection> injections_;
     std::uint64_t rng_state_;
     std::int64_t now_;

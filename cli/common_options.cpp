@@ -37,8 +37,7 @@ void add_display_options(CLI::App& app, DecodeOptionValues& values,
 }
 
 void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
-    app.add_option("-c,--count", values.count, "Stop after reading N telegrams")
-        ->check(CLI::PositiveNumber);
+    app.add_option("-c,--count", values.count, "Stop after reading N telegrams")->check(kPositive);
     app.add_option("--ppo", values.ppo,
                    "ADDR=TYPE: decode slave ADDR as PPO TYPE (1..5) instead of inferring the type "
                    "from Chk_Cfg, Get_Cfg or the Data_Exchange length; repeatable")
@@ -77,6 +76,11 @@ bool parse_unsigned(std::string_view text, unsigned& value) {
 std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
                                                      std::string& error) {
     DecodeSettings settings;
+    if (values.verbose && values.format != "text" && values.format != "verbose") {
+        error = fmt::format("-V is the same as -T verbose; it cannot be combined with -T {}",
+                            values.format);
+        return std::nullopt;
+    }
     settings.format = values.verbose
                           ? OutputFormat::Verbose
                           : output_format_from_name(values.format).value_or(OutputFormat::Text);
@@ -150,6 +154,24 @@ void report_input_issues(TelegramSource& source, Output& out) {
         out.flush();
         print_error(fmt::format("{}: {}", severity_name(issue.severity), issue.message));
     });
+}
+
+std::string nothing_found_error(const TelegramSource& source, std::uint64_t telegrams) {
+    if (telegrams > 0 || source.status() == InputStatus::Damaged) return {};
+    const std::uint64_t skipped = source.bytes_skipped();
+    switch (source.format()) {
+        case InputFormat::Raw:
+            if (skipped == 0) return fmt::format("{}: the input is empty", source.name());
+            return fmt::format(
+                "{}: no PROFIBUS telegram in its {} bytes read as a raw byte stream; is it a "
+                "capture?",
+                source.name(), skipped);
+        case InputFormat::Hex:
+            if (skipped == 0) return fmt::format("{}: no hex bytes in the text", source.name());
+            return fmt::format("{}: no PROFIBUS telegram in its {} hex bytes", source.name(),
+                               skipped);
+        default: return {};
+    }
 }
 
 void print_error(std::string_view message) {

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <cstdlib>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -19,14 +20,24 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitFindings = 1;      // report: findings at or above --fail-on
 inline constexpr int kExitUsage = 2;         // bad command line, or input unusable from the start
 inline constexpr int kExitDamagedInput = 3;  // input stopped early; what came before was decoded
-inline constexpr int kExitOutputError = 4;   // output could not be written
+inline constexpr int kExitOutputError = 4;   // output could not be opened or written
 inline constexpr int kExitDeviceError = 5;   // sniff: the capture device failed
 
 inline constexpr std::string_view kExitCodeHelp =
     "Exit codes: 0 success; 1 report found something at or above --fail-on; 2 bad usage or "
     "unusable input (cannot open, unknown format, unsupported link type); 3 the input ended in "
     "damage (truncated record, read error) after what was decoded; 4 output could not be "
-    "written (disk full); 5 the capture device failed (sniff).";
+    "opened or written (no such directory, disk full); 5 the capture device failed (sniff).";
+
+// A number greater than 0 (CLI11's PositiveNumber names its range as 0 to 1.8e308).
+inline const CLI::Validator kPositive(
+    [](std::string& text) -> std::string {
+        char* end = nullptr;
+        double value = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0') return "'" + text + "' is not a number";
+        return value > 0 ? std::string() : "must be greater than 0, not " + text;
+    },
+    "> 0", "positive");
 
 // What the command line says, before validation.
 struct DecodeOptionValues {
@@ -65,6 +76,15 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
 
 // --station and --pnu: does the telegram pass?
 bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t) noexcept;
+
+// Renders `t` when it passes the filters; otherwise lets `renderer` pass over it.
+inline void show(TelegramRenderer& renderer, const DecodeSettings& settings,
+                 const DecodedTelegram& t, std::span<const Finding> findings) {
+    if (passes_filter(settings, t))
+        renderer.render(t, findings);
+    else
+        renderer.pass_over(t);
+}
 
 // "dpscope: <message>" on standard error.
 void print_error(std::string_view message);

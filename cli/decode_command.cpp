@@ -34,12 +34,17 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings) {
     while ((settings.count == 0 || read < settings.count) && source.next(record)) {
         ++read;
         const DecodedTelegram& t = pipeline.feed(record, findings);
-        if (renderer && passes_filter(settings, t)) renderer->render(t, findings);
+        if (renderer) show(*renderer, settings, t, findings);
     }
     std::span<const Finding> open_at_end = pipeline.finish();
     if (renderer) {
         renderer->render_end_findings(open_at_end);
         renderer->end();
+    }
+    if (std::string nothing = nothing_found_error(source, read); !nothing.empty()) {
+        out.flush();
+        print_error(fmt::format("error: {}", nothing));
+        return kExitUsage;
     }
     if (settings.quiet)
         pipeline.summary().render_text(out, describe_input(source), pipeline.decoder());

@@ -27,8 +27,9 @@ class Pipeline {
         return t;
     }
     // The end of the input: findings still open past the time-out.
-    std::span<const Finding> finish() {
-        std::span<const Finding> findings = tracker_.finish();
+    // `end_ns`: when the capture ended, if later than its last telegram (a live capture's stop).
+    std::span<const Finding> finish(std::int64_t end_ns = kNoTime) {
+        std::span<const Finding> findings = tracker_.finish(end_ns);
         summary_.add_findings(findings);
         return findings;
     }
@@ -66,5 +67,10 @@ inline ReportContext report_context(const Pipeline& pipeline, const TelegramSour
 // Reports input problems on standard error (after flushing `out`, so messages and output keep
 // their order on a terminal).
 void report_input_issues(TelegramSource& source, Output& out);
+
+// A byte stream (raw or hex) in which no telegram was found is no capture dpscope reads: the
+// error message for it, or "" when `telegrams` were found or the input is a pcap/pcapng file
+// (which may rightly hold none).
+std::string nothing_found_error(const TelegramSource& source, std::uint64_t telegrams);
 
 }  // namespace dpscope::cli

@@ -1,6 +1,7 @@
 // dpscope report: the protocol-conformance report of a capture.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -27,6 +28,33 @@ struct ReportCommand {
     std::vector<unsigned> stations;
 };
 
+// Renders the report of what `pipeline` read from `source` and returns the exit code.
+int write_report(const ReportCommand& command, const Pipeline& pipeline,
+                 const TelegramSource& source, const FindingLog& log, Output& out) {
+    ReportContext context = report_context(
+        pipeline, source, log, fail_on_from_name(command.fail_on).value_or(FailOn::Error));
+    const std::vector<const ChannelStats*> channels = pipeline.tracker().channels();
+    for (unsigned station : command.stations) {
+        context.stations.push_back(static_cast<std::uint8_t>(station));
+        bool seen = std::any_of(channels.begin(), channels.end(),
+                                [&](const ChannelStats* s) { return s->slave == station; });
+        if (!seen)
+            print_error(
+                fmt::format("warning: --station {}: no slave {} in the capture", station, station));
+    }
+    render_report(report_format_from_name(command.format).value_or(ReportFormat::Text), context,
+                  out);
+    if (!log.error().empty()) print_error(fmt::format("warning: {}", log.error()));
+    if (!out.flush()) {
+        print_error(fmt::format("error: cannot write the report to {}",
+                                command.output == "-" ? "standard output" : command.output));
+        return kExitOutputError;
+    }
+    if (report_fails(context)) return kExitFindings;
+    if (source.status() == InputStatus::Damaged) return kExitDamagedInput;
+    return kExitOk;
+}
+
 int run_report(const ReportCommand& command) {
     std::string path = !command.read_option.empty() ? command.read_option : command.file;
     if (path.empty()) {
@@ -51,7 +79,7 @@ int run_report(const ReportCommand& command) {
         if (!file) {
             print_error(fmt::format("{}: cannot open for writing: {}", command.output,
                                     std::strerror(errno)));
-            return kExitUsage;
+            return kExitOutputError;
         }
     }
     TelegramSource& source = *opened.source;
@@ -71,21 +99,11 @@ int run_report(const ReportCommand& command) {
             if (!findings.empty()) log.append(findings);
         }
         log.append(pipeline.finish());
-        ReportContext context = report_context(
-            pipeline, source, log, fail_on_from_name(command.fail_on).value_or(FailOn::Error));
-        for (unsigned station : command.stations)
-            context.stations.push_back(static_cast<std::uint8_t>(station));
-        render_report(report_format_from_name(command.format).value_or(ReportFormat::Text), context,
-                      out);
-        if (!log.error().empty()) print_error(fmt::format("warning: {}", log.error()));
-        if (!out.flush()) {
-            print_error(fmt::format("error: cannot write the report to {}",
-                                    command.output == "-" ? "standard output" : command.output));
-            exit_code = kExitOutputError;
-        } else if (report_fails(context)) {
-            exit_code = kExitFindings;
-        } else if (source.status() == InputStatus::Damaged) {
-            exit_code = kExitDamagedInput;
+        if (std::string nothing = nothing_found_error(source, read); !nothing.empty()) {
+            print_error(fmt::format("error: {}", nothing));
+            exit_code = kExitUsage;
+        } else {
+            exit_code = write_report(command, pipeline, source, log, out);
         }
     }
     if (file != stdout && std::fclose(file) != 0 && exit_code == kExitOk) {

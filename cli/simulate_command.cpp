@@ -44,8 +44,27 @@ struct SimulateCommand {
 std::atomic<bool> g_stop_playing{false};
 extern "C" void stop_playing(int) { g_stop_playing.store(true); }
 
+// Lists the injected faults (with -v) and names each fault given once that the session ended
+// before; returns the exit code.
+int report_injections(const SimulateCommand& command, const SimulatorOptions& options,
+                      const Simulator& simulator) {
+    if (command.list_injections)
+        for (const Injection& injection : simulator.injections())
+            fmt::print(stderr, "injected {} on slave {} in cycle {} at telegram {}\n",
+                       fault_kind_name(injection.kind), injection.slave, injection.cycle,
+                       injection.telegram);
+    std::vector<std::string> missing = faults_not_injected(options, simulator.injections());
+    for (const std::string& fault : missing)
+        print_error(fmt::format(
+            "error: --fault {} was not injected: the session ended before it had a chance "
+            "(give an earlier @CYCLE, more --cycles or a larger -c)",
+            fault));
+    return missing.empty() ? kExitOk : kExitUsage;
+}
+
 // Plays the simulated session (or a capture, with --replay) onto a tty.
-int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
+int play_onto_device(const SimulateCommand& command, const SimulatorOptions& options,
+                     Simulator* simulator) {
     std::string error;
     auto port = SerialPort::open({command.device, command.baud, false, true}, error);
     if (!port) {
@@ -84,17 +103,15 @@ int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
         print_error(fmt::format("{}: {}", command.device, error));
         return kExitOutputError;
     }
-    if (command.list_injections) {
-        if (simulator)
-            for (const Injection& injection : simulator->injections())
-                fmt::print(stderr, "injected {} on slave {} in cycle {} at telegram {}\n",
-                           fault_kind_name(injection.kind), injection.slave, injection.cycle,
-                           injection.telegram);
+    int exit_code = kExitOk;
+    // Stopped by a signal, the session is cut short on purpose: nothing to say of its faults.
+    if (simulator && !g_stop_playing.load())
+        exit_code = report_injections(command, options, *simulator);
+    if (command.list_injections)
         fmt::print(stderr, "played {} telegrams ({} bytes) in {:.3f} s (scheduled {:.3f} s)\n",
                    stats.telegrams, stats.bytes, static_cast<double>(stats.wall_ns) / 1e9,
                    static_cast<double>(stats.scheduled_ns) / 1e9);
-    }
-    return kExitOk;
+    return exit_code;
 }
 
 int run_simulate(const SimulateCommand& command) {
@@ -128,6 +145,10 @@ int run_simulate(const SimulateCommand& command) {
         }
         options.faults.push_back(*fault);
     }
+    if (std::string unusable = check_simulator_faults(options); !unusable.empty()) {
+        print_error(fmt::format("--{}", unusable));
+        return kExitUsage;
+    }
     if (command.cycles == 0 && command.count == 0) {
         print_error("simulate: --cycles 0 runs until -c N telegrams; give -c");
         return kExitUsage;
@@ -141,9 +162,9 @@ int run_simulate(const SimulateCommand& command) {
         return kExitUsage;
     }
     if (!command.device.empty()) {
-        if (!command.replay.empty()) return play_onto_device(command, nullptr);
+        if (!command.replay.empty()) return play_onto_device(command, options, nullptr);
         Simulator simulator(options);
-        return play_onto_device(command, &simulator);
+        return play_onto_device(command, options, &simulator);
     }
     CaptureFormat format =
         capture_format_from_name(command.output_format).value_or(CaptureFormat::Pcap);
@@ -151,7 +172,7 @@ int run_simulate(const SimulateCommand& command) {
     WriterResult opened = open_capture_writer(command.output, format, link_type);
     if (!opened.writer) {
         print_error(opened.error);
-        return kExitUsage;
+        return kExitOutputError;
     }
     Simulator simulator(options);
     std::vector<std::uint8_t> bytes;
@@ -163,14 +184,9 @@ int run_simulate(const SimulateCommand& command) {
         print_error(opened.writer->error());
         return kExitOutputError;
     }
-    if (command.list_injections) {
-        for (const Injection& injection : simulator.injections())
-            fmt::print(stderr, "injected {} on slave {} in cycle {} at telegram {}\n",
-                       fault_kind_name(injection.kind), injection.slave, injection.cycle,
-                       injection.telegram);
-        fmt::print(stderr, "wrote {} telegrams\n", simulator.telegrams());
-    }
-    return kExitOk;
+    int exit_code = report_injections(command, options, simulator);
+    if (command.list_injections) fmt::print(stderr, "wrote {} telegrams\n", simulator.telegrams());
+    return exit_code;
 }
 
 }  // namespace

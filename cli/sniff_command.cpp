@@ -69,6 +69,10 @@ int run_sniff(const SniffCommand& command) {
         print_error(error);
         return kExitUsage;
     }
+    if (command.output == "-" && (command.rotate_size > 0 || command.rotate_seconds > 0)) {
+        print_error("-w -: cannot rotate standard output; give a file name to rotate");
+        return kExitUsage;
+    }
     auto port =
         SerialPort::open({command.device, command.baud, !command.no_low_latency, false}, error);
     if (!port) {
@@ -85,7 +89,7 @@ int run_sniff(const SniffCommand& command) {
             open_rotating_writer(command.output, CaptureFormat::Pcap, link_type, rotation);
         if (!opened.writer) {
             print_error(opened.error);
-            return kExitUsage;
+            return kExitOutputError;
         }
         writer = std::move(opened.writer);
     }
@@ -138,7 +142,7 @@ int run_sniff(const SniffCommand& command) {
             }
             const DecodedTelegram& t = pipeline.feed(record, findings);
             if (command.report && !findings.empty()) log.append(findings);
-            if (renderer && passes_filter(*settings, t)) renderer->render(t, findings);
+            if (renderer) show(*renderer, *settings, t, findings);
             // -c N: exactly N telegrams, not what else the driver still holds.
             if (settings->count != 0 && telegrams >= settings->count) break;
         }
@@ -153,7 +157,8 @@ int run_sniff(const SniffCommand& command) {
             last_flush = now;
         }
     }
-    std::span<const Finding> open_at_end = pipeline.finish();
+    // Judged at the stop: a request left unanswered past the time-out before it is reported.
+    std::span<const Finding> open_at_end = pipeline.finish(wall_clock_ns());
     if (command.report) log.append(open_at_end);
     if (renderer) {
         renderer->render_end_findings(open_at_end);
@@ -223,10 +228,10 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
         ->type_name("SIZE");
     sub->add_option("--rotate-seconds", command->rotate_seconds,
                     "Start a new file once the current one holds SECONDS of capture")
-        ->check(CLI::PositiveNumber)
+        ->check(kPositive)
         ->type_name("SECONDS");
     sub->add_option("--duration", command->duration, "Stop after SECONDS")
-        ->check(CLI::PositiveNumber)
+        ->check(kPositive)
         ->type_name("SECONDS");
     sub->add_flag("--report", command->report,
                   "At the end, print the conformance report of the capture");

@@ -266,8 +266,9 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
     return current_;
 }
 
-std::span<const Finding> SessionTracker::finish() {
+std::span<const Finding> SessionTracker::finish(std::int64_t end_ns) {
     current_.clear();
+    if (end_ns != kNoTime && (now_ns_ == kNoTime || end_ns > now_ns_)) now_ns_ = end_ns;
     if (now_ns_ != kNoTime) check_deadlines(nullptr, now_ns_);
     return current_;
 }

@@ -120,8 +120,9 @@ class SessionTracker {
     // Feeds the next telegram in capture order. Returns the findings discovered at it (some may
     // concern earlier telegrams: their request_frame says which); valid until the next call.
     std::span<const Finding> track(const DecodedTelegram& t);
-    // The end of the capture: what is still open past the time-out is reported.
-    std::span<const Finding> finish();
+    // The end of the capture at `end_ns` (a live capture's stop time; default: the last
+    // telegram's time): what is still open past the time-out then is reported.
+    std::span<const Finding> finish(std::int64_t end_ns = kNoTime);
 
     // Channels ordered by slave, then master.
     std::vector<const ChannelStats*> channels() const;

@@ -32,6 +32,14 @@ void append_iso_time(TextBuffer& out, std::int64_t time_ns) {
                    nanos);
 }
 
+std::string relative_seconds_text(std::int64_t relative_ns) {
+    const bool negative = relative_ns < 0;
+    const std::uint64_t magnitude = negative ? 0 - static_cast<std::uint64_t>(relative_ns)
+                                             : static_cast<std::uint64_t>(relative_ns);
+    return fmt::format("{}{}.{:06}", negative ? "-" : "", magnitude / 1'000'000'000,
+                       (magnitude % 1'000'000'000) / 1000);
+}
+
 void append_epoch_seconds(TextBuffer& out, std::int64_t time_ns) {
     // Sign and magnitude: -1.5 s is "-1.500000000", not "-2" and a positive fraction.
     std::uint64_t magnitude =

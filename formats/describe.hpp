@@ -22,6 +22,9 @@ inline void append(TextBuffer& out, std::string_view text) {
 void append_iso_time(TextBuffer& out, std::int64_t time_ns);
 // Seconds with nanoseconds, e.g. 1704067200.000123000; "-" style handled by callers.
 void append_epoch_seconds(TextBuffer& out, std::int64_t time_ns);
+// Seconds with six decimals, cut (not rounded) to the microsecond, as tshark shows relative
+// times: "0.027865", "-2.500000".
+std::string relative_seconds_text(std::int64_t relative_ns);
 // Names of the set bits, separated by spaces; `none` when no bit is set. True if any was named.
 bool append_flags(TextBuffer& out, std::uint8_t value, std::span<const FlagBit> flags,
                   std::string_view none = "none", std::uint8_t ignore_mask = 0);

@@ -28,6 +28,8 @@ class TelegramRenderer {
     virtual void begin() {}
     // `findings`: what the session tracker found on this telegram (may be empty).
     virtual void render(const DecodedTelegram& telegram, std::span<const Finding> findings) = 0;
+    // A telegram filtered out: not shown, but times stay relative to the capture's first.
+    virtual void pass_over(const DecodedTelegram& /*telegram*/) {}
     // Findings only known at the end of the capture (time-outs still open then).
     virtual void render_end_findings(std::span<const Finding> /*findings*/) {}
     virtual void end() {}

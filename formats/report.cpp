@@ -176,7 +176,7 @@ std::string ppo_type_label(const PpoLayout& layout) {
 std::string relative_seconds(const ReportContext& c, std::int64_t time_ns) {
     std::int64_t first = c.summary->first_time_ns();
     if (time_ns == kNoTime || first == kNoTime) return "-";
-    return fmt::format("{:.6f}", static_cast<double>(time_ns - first) / 1e9);
+    return relative_seconds_text(time_ns - first);
 }
 
 std::string outcomes_text(const TransactionCounts& t) {
@@ -363,7 +363,11 @@ void render_markdown(const ReportContext& c, const Model& m, Output& out) {
             fmt::format_to(it, "- Rejected: PNU {} error {} ({}), {}x\n", key.first, key.second,
                            md_escape(text.empty() ? "unknown" : text), count);
         }
+        fmt::format_to(it, "- Findings: {}\n", md_escape(findings_by_kind_text(s.findings)));
     }
+    if (m.has_bus_findings)
+        fmt::format_to(it, "\n### Bus (telegrams no station can be named for)\n\n- Findings: {}\n",
+                       md_escape(findings_by_kind_text(c.tracker->bus().findings)));
     fmt::format_to(it, "\n## Findings ({})\n\n", m.shown);
     if (m.shown > 0)
         append(b,
@@ -617,7 +621,7 @@ th, td { border: 1px solid #d8dde6; padding: 4px 8px; text-align: left; vertical
 th { background: #eef1f6; font-weight: 600; }
 td.n, th.n { text-align: right; font-variant-numeric: tabular-nums; }
 table.kv th { width: 190px; }
-section.station { background: #fff; border: 1px solid #d8dde6; border-radius: 8px;
+section.station, section.bus { background: #fff; border: 1px solid #d8dde6; border-radius: 8px;
                   padding: 4px 18px 14px; margin: 18px 0; }
 td.error, .card.error, p.error { color: #b42318; }
 td.warning, .card.warning { color: #a15c07; }
@@ -628,7 +632,7 @@ tr.note td:first-child { border-left: 4px solid #2e90fa; }
 svg { background: #fff; display: block; max-width: 100%; height: auto; }
 .scroll { overflow-x: auto; max-width: 100%; }
 table.findings td:last-child { overflow-wrap: anywhere; }
-section.station h2 { margin-top: 14px; }
+section.station h2, section.bus h2 { margin-top: 14px; }
 svg text { font: 11px system-ui, sans-serif; fill: #394150; }
 .legend span { display: inline-block; margin-right: 14px; font-size: 12px; }
 .swatch { display: inline-block; width: 10px; height: 10px; margin-right: 4px; vertical-align: -1px; }
@@ -754,6 +758,32 @@ void html_kv(TextBuffer& b, std::string_view key, std::string_view value) {
     append(b, "</th><td>");
     escape_xml(b, value);
     append(b, "</td></tr>\n");
+}
+
+// "Findings by kind": a table of the kinds found, or "None."
+void html_findings_by_kind(TextBuffer& b,
+                           const std::array<std::uint64_t, kFindingKindCount>& findings) {
+    append(b, "<h3>Findings by kind</h3>\n");
+    bool any = false;
+    for (FindingKind kind : kAllKinds)
+        any |= findings[static_cast<std::size_t>(kind)] > 0;
+    if (!any) {
+        append(b, "<p class=\"meta\">None.</p>\n");
+        return;
+    }
+    append(b,
+           "<table class=\"kinds\"><tr><th>kind</th><th>severity</th><th "
+           "class=\"n\">count</th></tr>\n");
+    for (FindingKind kind : kAllKinds) {
+        std::uint64_t n = findings[static_cast<std::size_t>(kind)];
+        if (!n) continue;
+        std::string_view severity = severity_name(default_severity(kind));
+        fmt::format_to(std::back_inserter(b),
+                       "<tr class=\"{}\"><td>{}</td><td class=\"{}\">{}</td><td "
+                       "class=\"n\">{}</td></tr>\n",
+                       severity, finding_kind_name(kind), severity, severity, n);
+    }
+    append(b, "</table>\n");
 }
 
 void render_html(const ReportContext& c, const Model& m, Output& out) {
@@ -886,27 +916,15 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
             }
             append(b, "</table>\n");
         }
-        append(b, "<h3>Findings by kind</h3>\n");
-        bool any = false;
-        for (FindingKind kind : kAllKinds)
-            any |= s.findings[static_cast<std::size_t>(kind)] > 0;
-        if (!any) {
-            append(b, "<p class=\"meta\">None.</p>\n");
-        } else {
-            append(b,
-                   "<table class=\"kinds\"><tr><th>kind</th><th>severity</th><th "
-                   "class=\"n\">count</th></tr>\n");
-            for (FindingKind kind : kAllKinds) {
-                std::uint64_t n = s.findings[static_cast<std::size_t>(kind)];
-                if (!n) continue;
-                std::string_view severity = severity_name(default_severity(kind));
-                fmt::format_to(it,
-                               "<tr class=\"{}\"><td>{}</td><td class=\"{}\">{}</td><td "
-                               "class=\"n\">{}</td></tr>\n",
-                               severity, finding_kind_name(kind), severity, severity, n);
-            }
-            append(b, "</table>\n");
-        }
+        html_findings_by_kind(b, s.findings);
+        append(b, "</section>\n");
+        out.end_record();
+    }
+    if (m.has_bus_findings) {
+        append(b,
+               "<section class=\"bus\" id=\"bus\">\n<h2>Bus (telegrams no station can be "
+               "named for)</h2>\n");
+        html_findings_by_kind(b, c.tracker->bus().findings);
         append(b, "</section>\n");
         out.end_record();
     }

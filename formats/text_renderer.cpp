@@ -14,19 +14,17 @@ class TextRenderer final : public TelegramRenderer {
   public:
     using TelegramRenderer::TelegramRenderer;
 
+    void pass_over(const DecodedTelegram& t) override {
+        if (first_time_ == kNoTime && t.has_time()) first_time_ = t.time_ns;
+    }
+
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
         TextBuffer& b = out_.buffer();
         auto it = std::back_inserter(b);
         fmt::format_to(it, "{:>6} ", t.frame);
         if (t.has_time()) {
             if (first_time_ == kNoTime) first_time_ = t.time_ns;
-            std::int64_t relative = t.time_ns - first_time_;
-            bool negative = relative < 0;
-            std::uint64_t magnitude = negative ? 0 - static_cast<std::uint64_t>(relative)
-                                               : static_cast<std::uint64_t>(relative);
-            fmt::format_to(it, "{:>5}.{:06} ",
-                           fmt::format("{}{}", negative ? "-" : "", magnitude / 1'000'000'000),
-                           (magnitude % 1'000'000'000) / 1000);
+            fmt::format_to(it, "{:>12} ", relative_seconds_text(t.time_ns - first_time_));
         } else {
             append(b, "           - ");
         }

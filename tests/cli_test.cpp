@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -110,6 +111,11 @@ TEST(CliTest, MissingSubcommandIsUsageError) {
     CommandResult r = run_dpscope({});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(r.out.empty());
+    CommandResult unknown = run_dpscope({"frob", kPpo1});
+    EXPECT_EQ(unknown.exit_code, 2);
+    EXPECT_EQ(unknown.err,
+              "dpscope: unknown subcommand 'frob'; one of decode, hex, report, simulate, sniff "
+              "(see --help)\n");
 }
 
 // ---- decode ----------------------------------------------------------------------------------
@@ -191,6 +197,39 @@ TEST(CliTest, ForcedPcapOnTextIsUsageError) {
     EXPECT_EQ(detected.out, "     1            -   2 → 3   SD1 FDL_Status     req FDL status\n");
 }
 
+TEST(CliTest, InputWithoutAnyTelegramIsUsageError) {
+    TempFile empty("empty.raw");
+    test::write_file(empty.path, {});
+    for (const char* command : {"decode", "report"}) {
+        CommandResult r = run_dpscope({command, empty.path});
+        EXPECT_EQ(r.exit_code, 2) << command;
+        EXPECT_TRUE(r.out.empty()) << command;
+        EXPECT_EQ(r.err, "dpscope: error: " + empty.path + ": the input is empty\n") << command;
+    }
+    TempFile prose("notes.raw");
+    test::write_file(prose.path, {0xE2, 0x86, 0x92, 'n', 'o', ' ', 'b', 'u', 's'});
+    CommandResult r = run_dpscope({"decode", prose.path});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find(prose.path + ": no PROFIBUS telegram in its 9 bytes read as a raw byte "
+                                      "stream"),
+              std::string::npos)
+        << r.err;
+    CommandResult forced = run_dpscope({"decode", "--input-format", "hex", kPpo1});
+    EXPECT_EQ(forced.exit_code, 2);
+    EXPECT_NE(forced.err.find("no hex bytes in the text"), std::string::npos) << forced.err;
+    // A pcap may rightly hold no telegram: an empty capture is no error.
+    TempFile no_records("none.pcap");
+    std::vector<std::uint8_t> header;
+    {
+        CommandResult first = run_dpscope({"simulate", "-w", "-", "-c", "1"});
+        ASSERT_GT(first.out.size(), 24u);
+        header.assign(first.out.begin(), first.out.begin() + 24);  // the file header alone
+    }
+    test::write_file(no_records.path, header);
+    CommandResult pcap = run_dpscope({"decode", no_records.path});
+    EXPECT_EQ(pcap.exit_code, 0) << pcap.err;
+}
+
 TEST(CliTest, BadOptionValuesAreUsageErrors) {
     CommandResult ppo = run_dpscope({"decode", "--ppo", "3=9", kPpo1});
     EXPECT_EQ(ppo.exit_code, 2);
@@ -201,6 +240,17 @@ TEST(CliTest, BadOptionValuesAreUsageErrors) {
     EXPECT_EQ(dialect.exit_code, 2);
     EXPECT_TRUE(dialect.out.empty());
     EXPECT_EQ(dialect.err, "dpscope: --dialect foo: 'foo' is not a dialect (vlt, profidrive)\n");
+
+    CommandResult count = run_dpscope({"decode", "-c", "0", kPpo1});
+    EXPECT_EQ(count.exit_code, 2);
+    EXPECT_NE(count.err.find("--count: must be greater than 0, not 0"), std::string::npos)
+        << count.err;
+
+    CommandResult verbose_jsonl = run_dpscope({"decode", "-V", "-T", "jsonl", kPpo1});
+    EXPECT_EQ(verbose_jsonl.exit_code, 2);
+    EXPECT_TRUE(verbose_jsonl.out.empty());
+    EXPECT_EQ(verbose_jsonl.err,
+              "dpscope: -V is the same as -T verbose; it cannot be combined with -T jsonl\n");
 
     CommandResult station_dialect = run_dpscope({"decode", "--dialect", "200=vlt", kPpo1});
     EXPECT_EQ(station_dialect.exit_code, 2);
@@ -282,6 +332,33 @@ TEST(CliTest, StationFilter) {
         if (source == "4" || destination == "4") ++fours;
     }
     EXPECT_GT(fours, 0u);
+}
+
+TEST(CliTest, FilteredTimesStayRelativeToTheCapturesFirstTelegram) {
+    // "frame time" of each line, as in the unfiltered output.
+    auto frame_and_time = [](const std::string& line) { return line.substr(0, 19); };
+    std::set<std::string> all;
+    for (const std::string& line : lines_of(run_dpscope({"decode", "samples/faults.pcap"}).out))
+        all.insert(frame_and_time(line));
+    for (std::vector<std::string> filter :
+         {std::vector<std::string>{"--station", "4"}, std::vector<std::string>{"--pnu", "207"}}) {
+        filter.insert(filter.begin(), "decode");
+        filter.push_back("samples/faults.pcap");
+        std::vector<std::string> lines = lines_of(run_dpscope(filter).out);
+        ASSERT_FALSE(lines.empty());
+        EXPECT_NE(lines[0].substr(6, 13), "     0.000000") << lines[0];
+        for (const std::string& line : lines)
+            EXPECT_TRUE(all.count(frame_and_time(line))) << line;
+    }
+}
+
+TEST(CliTest, ReportWarnsOfAStationNotInTheCapture) {
+    CommandResult r = run_dpscope({"report", "--station", "9", "samples/ppo2.pcap"});
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_NE(r.err.find("warning: --station 9: no slave 9 in the capture"), std::string::npos)
+        << r.err;
+    CommandResult present = run_dpscope({"report", "--station", "4", "samples/faults.pcap"});
+    EXPECT_EQ(present.err.find("warning"), std::string::npos) << present.err;
 }
 
 TEST(CliTest, PnuFilter) {
@@ -468,6 +545,15 @@ TEST(CliTest, SimulateUsageErrors) {
     EXPECT_EQ(no_output.exit_code, 2);
     CommandResult format = run_dpscope({"simulate", "-w", "-", "-F", "json"});
     EXPECT_EQ(format.exit_code, 2);
+    CommandResult nobody = run_dpscope({"simulate", "-w", "-", "--fault", "stacked_request:9"});
+    EXPECT_EQ(nobody.exit_code, 2);
+    EXPECT_TRUE(nobody.out.empty());
+    EXPECT_EQ(nobody.err, "dpscope: --fault stacked_request:9: slave 9 is not simulated\n");
+    CommandResult late = run_dpscope({"simulate", "-w", "-", "--fault", "stacked_request@999"});
+    EXPECT_EQ(late.exit_code, 2);
+    EXPECT_FALSE(late.out.empty());  // the session is written all the same
+    EXPECT_NE(late.err.find("--fault stacked_request@999 was not injected"), std::string::npos)
+        << late.err;
 }
 
 TEST(CliTest, SimulateUnwritableOutputNamesIt) {
@@ -475,9 +561,13 @@ TEST(CliTest, SimulateUnwritableOutputNamesIt) {
     test::write_file(blocker.path, {0x00});
     const std::string path = blocker.path + "/out.pcap";
     CommandResult r = run_dpscope({"simulate", "-w", path, "--cycles", "1"});
-    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.exit_code, 4);
     EXPECT_NE(r.err.find("dpscope: " + path + ": cannot open for writing"), std::string::npos)
         << r.err;
+    CommandResult report = run_dpscope({"report", "-w", path, "samples/ppo2.pcap"});
+    EXPECT_EQ(report.exit_code, 4);
+    EXPECT_NE(report.err.find("dpscope: " + path + ": cannot open for writing"), std::string::npos)
+        << report.err;
 }
 
 TEST(CliTest, SimulateWriteErrorExitsFour) {

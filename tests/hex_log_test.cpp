@@ -160,6 +160,25 @@ TEST(HexLogTest, EpochSecondsWithNanosecondsAndPrefix) {
     EXPECT_EQ(*p.line.time_ns, 1'704'067'200'000'066'666);
 }
 
+TEST(HexLogTest, CommaSeparatedAndGluedLabels) {
+    for (const char* line :
+         {"RX: 10,03,02,49,4E,16", "TX: 0x10,0x03,0x02,0x49,0x4E,0x16", "TX:100302494E16",
+          "TX:0x10 0x03 0x02 0x49 0x4E 0x16", "COM3:10 03 02 49 4E 16", "rx;10;03;02;49;4E;16"}) {
+        Parsed p = parse(line);
+        EXPECT_EQ(p.bytes, kSd1) << line;
+        EXPECT_FALSE(p.line.time_ns.has_value()) << line;
+    }
+    // A time with a glued label keeps its time; a label of hex letters only is data.
+    Parsed timed = parse("12:00:01.5 RX:10 03 02 49 4E 16");
+    EXPECT_EQ(timed.bytes, kSd1);
+    ASSERT_TRUE(timed.line.time_ns.has_value());
+    EXPECT_EQ(*timed.line.time_ns, kNoonAndABit);
+    Parsed iso = parse("2024-01-02T12:00:01.5Z,10,03,02,49,4E,16");
+    EXPECT_EQ(iso.bytes, kSd1);
+    ASSERT_TRUE(iso.line.time_ns.has_value());
+    EXPECT_EQ(*iso.line.time_ns, kJan2 + kNoonAndABit);
+}
+
 TEST(HexLogTest, TimeOfDayTimestamp) {
     Parsed p = parse("12:00:01.5 10 03 02 49 4E 16");
     EXPECT_EQ(p.bytes, kSd1);

@@ -70,7 +70,7 @@ struct Input {
 };
 
 std::string render(OutputFormat format, const std::vector<Input>& inputs,
-                   DecoderOptions options = {}) {
+                   DecoderOptions options = {}, std::span<const Finding> end_findings = {}) {
     char* data = nullptr;
     std::size_t size = 0;
     FILE* file = open_memstream(&data, &size);
@@ -86,6 +86,7 @@ std::string render(OutputFormat format, const std::vector<Input>& inputs,
                 decoder.decode(Bytes(input.bytes.data(), input.bytes.size()), input.time_ns, i + 1);
             renderer->render(t, input.findings);
         }
+        renderer->render_end_findings(end_findings);
         renderer->end();
         EXPECT_TRUE(out.flush());
     }
@@ -433,6 +434,36 @@ TEST(RendererTest, JsonlFindingsAndStringEscaping) {
     EXPECT_EQ(f["time"].text, "1704067200.000000005");
     EXPECT_EQ(f["pnu"].integer(), 215);
     EXPECT_EQ(f["message"].string(), finding.message);
+}
+
+TEST(RendererTest, FindingsOpenAtTheEndGetALastLine) {
+    Finding timeout;
+    timeout.kind = FindingKind::ResponseTimeout;
+    timeout.severity = Severity::Error;
+    timeout.frame = 1;
+    timeout.request_frame = 1;
+    timeout.time_ns = kT0 + 1'500'000'000;
+    timeout.master = 2;
+    timeout.slave = 3;
+    timeout.pnu = 520;
+    timeout.message = "no answer to request RC 1 PNU 520 from frame 1 within 1000 ms";
+    std::vector<Input> in = {{hex("DC 02 02"), kT0, {}}};
+    std::vector<Finding> open = {timeout};
+    std::vector<std::string> lines = split_lines(render(OutputFormat::Jsonl, in, {}, open));
+    ASSERT_EQ(lines.size(), 2u);
+    auto last = parse_json(lines[1]);
+    ASSERT_TRUE(last);
+    EXPECT_EQ(last->keys(), (std::vector<std::string>{"end_of_capture", "findings"}));
+    EXPECT_EQ((*last)["end_of_capture"].type, Json::Type::Bool);
+    EXPECT_TRUE((*last)["end_of_capture"].boolean);
+    ASSERT_EQ((*last)["findings"].items.size(), 1u);
+    EXPECT_EQ((*last)["findings"][0]["kind"].string(), "response_timeout");
+    EXPECT_EQ((*last)["findings"][0]["request_frame"].integer(), 1);
+    std::vector<std::string> text = split_lines(render(OutputFormat::Text, in, {}, open));
+    ASSERT_EQ(text.size(), 2u);
+    EXPECT_EQ(text[1], "     - end of capture [error response_timeout] " + timeout.message);
+    // Nothing open: no last line.
+    EXPECT_EQ(split_lines(render(OutputFormat::Jsonl, in)).size(), 1u);
 }
 
 TEST(RendererTest, JsonStringHelperEscapesControlCharacters) {

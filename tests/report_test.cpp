@@ -1464,6 +1464,32 @@ TEST(ReportTest, HtmlStationFilterHidesOtherSlavesAndTheirFindings) {
     }
 }
 
+TEST(ReportTest, BusFindingsHaveTheirOwnSectionInEveryFormat) {
+    std::string text = render(ReportFormat::Text, context_of(faults()));
+    EXPECT_NE(text.find("\nBus (telegrams no station can be named for)\n  findings       "
+                        "malformed_telegram 1\n"),
+              std::string::npos)
+        << text;
+    std::string markdown = render(ReportFormat::Markdown, context_of(faults()));
+    EXPECT_NE(markdown.find("\n### Bus (telegrams no station can be named for)\n\n- Findings: "
+                            "malformed\\_telegram 1\n"),
+              std::string::npos)
+        << markdown;
+    auto html = parse_xml(render(ReportFormat::Html, context_of(faults())), true);
+    ASSERT_TRUE(html);
+    const XmlNode* bus = find_id(*html, "section", "bus");
+    ASSERT_NE(bus, nullptr);
+    auto rows = bus->all("tr");
+    ASSERT_EQ(rows.size(), 2u);  // header and malformed_telegram
+    EXPECT_EQ(rows[1]->elements("td")[0]->text, "malformed_telegram");
+    // A capture without bus findings has no such section.
+    auto clean_html = parse_xml(render(ReportFormat::Html, context_of(clean())), true);
+    ASSERT_TRUE(clean_html);
+    EXPECT_EQ(find_id(*clean_html, "section", "bus"), nullptr);
+    EXPECT_EQ(render(ReportFormat::Markdown, context_of(clean())).find("### Bus"),
+              std::string::npos);
+}
+
 TEST(ReportTest, HtmlEscapesMessagesAndTheInputName) {
     auto analysis = analyse_file("samples/ppo2.pcap");
     const std::string message = "<script>alert(\"x\")</script> & 'q' <b>";

@@ -266,8 +266,9 @@ class Channel {
         if (bad_fcs) bytes[bytes.size() - 2] ^= 0x01;
         feed(bytes);
     }
-    void finish() {
-        for (const Finding& f : tracker_.finish())
+    // The end of the capture, `later_ms` after the last telegram (a live capture's stop).
+    void finish(std::int64_t later_ms = 0) {
+        for (const Finding& f : tracker_.finish(later_ms ? now_ + later_ms * 1'000'000 : kNoTime))
             findings.push_back(f);
     }
     const ChannelStats& stats() const { return *tracker_.channels().at(0); }
@@ -717,6 +718,18 @@ TEST(SessionTrackerTest, OpenRequestsAtTheEndAreJudgedByTheirAge) {
     old.advance_ms(1500);
     old.cycle(kIdle, kIdle);  // a later telegram moves the clock; the master gave up silently
     EXPECT_EQ(count_kinds(old.findings), (Counts{{"response_timeout", 1}}));
+
+    // A live capture stopped 1.5 s after the last telegram: judged at the stop.
+    Channel stopped;
+    stopped.cycle(kRead520, kIdle);
+    stopped.finish(1500);
+    ASSERT_EQ(count_kinds(stopped.findings), (Counts{{"response_timeout", 1}}));
+    EXPECT_EQ(stopped.findings[0].request_frame, 1u);
+    EXPECT_EQ(stopped.findings[0].frame, 2u);  // the last telegram read
+    Channel soon;
+    soon.cycle(kRead520, kIdle);
+    soon.finish(500);
+    EXPECT_TRUE(soon.findings.empty());
 }
 
 TEST(SessionTrackerTest, TimeoutIsConfigurable) {

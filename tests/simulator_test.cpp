@@ -464,6 +464,54 @@ TEST(SimulatorTest, FaultOnASlaveWithoutPcvIsNotInjected) {
     EXPECT_EQ(simulator.injections()[0].kind, FaultKind::ConfigMismatch);
 }
 
+TEST(SimulatorTest, FaultsThatCannotBeInjectedAreNamedBeforehand) {
+    SimulatorOptions options = small_session(9, 100);
+    EXPECT_EQ(check_simulator_faults(options), "");
+    options.faults = {FaultSpec{FaultKind::StackedRequest, 0, 10, 9}};
+    EXPECT_EQ(check_simulator_faults(options),
+              "fault stacked_request@10:9: slave 9 is not simulated");
+    options.slaves = {{3, 3, Dialect::Vlt}, {4, 4, Dialect::Vlt}};
+    options.faults = {FaultSpec{FaultKind::StackedRequest, 0, std::nullopt, 3}};
+    EXPECT_EQ(check_simulator_faults(options),
+              "fault stacked_request:3: slave 3 has no parameter channel (PPO 3 and 4 carry no "
+              "PCV)");
+    options.faults = {FaultSpec{FaultKind::RequestRejected, 0.5, std::nullopt, std::nullopt}};
+    EXPECT_EQ(check_simulator_faults(options),
+              "fault request_rejected=0.5: no simulated slave has a parameter channel (PPO 1, 2 "
+              "or 5)");
+    options.faults = {FaultSpec{FaultKind::FcsError, 0, std::nullopt, 3}};  // no PCV needed
+    EXPECT_EQ(check_simulator_faults(options), "");
+    options = small_session(9, 100);
+    options.faults = {FaultSpec{FaultKind::OrphanResponse, 0, 100, std::nullopt}};
+    EXPECT_EQ(check_simulator_faults(options),
+              "fault orphan_response@100: cycle 100 is past the session's 100 cycles (0..99)");
+    options.cycles = 0;  // until -c: any cycle may come
+    EXPECT_EQ(check_simulator_faults(options), "");
+}
+
+TEST(SimulatorTest, FaultsTheSessionEndedBeforeAreNamed) {
+    SimulatorOptions options = small_session(9, 100);
+    options.faults = {FaultSpec{FaultKind::StackedRequest, 0, 99, std::nullopt},
+                      FaultSpec{FaultKind::FcsError, 0, 10, std::nullopt},
+                      FaultSpec{FaultKind::Garbage, 1.0, std::nullopt, std::nullopt}};
+    Simulator simulator(options);
+    run(simulator);
+    EXPECT_EQ(faults_not_injected(options, simulator.injections()),
+              std::vector<std::string>{"stacked_request@99"});
+}
+
+TEST(SimulatorTest, TimeoutFaultKeepsTheSessionOpenUntilTheMasterGivesUp) {
+    SimulatorOptions options = small_session(9, 100);
+    options.faults = {FaultSpec{FaultKind::ResponseTimeout, 0, 95, std::nullopt}};
+    Simulator simulator(options);
+    std::vector<Telegram> telegrams = run(simulator);
+    ASSERT_EQ(simulator.injections().size(), 1u);
+    // 100 cycles of 2 ms would end 0.2 s in; the session runs past the 1.5 s give-up.
+    std::int64_t span = telegrams.back().time_ns - options.start_time_ns;
+    EXPECT_GT(span, 1'700'000'000);
+    EXPECT_LT(span, 2'000'000'000);
+}
+
 TEST(SimulatorTest, FcsErrorProducesABadFcs) {
     SimulatorOptions options = small_session(9, 20);
     options.faults = {FaultSpec{FaultKind::FcsError, 0, 5, 3}};
