@@ -23,17 +23,22 @@ std::string_view DecodedTelegram::pcv_meaning() const noexcept {
 
 BusDecoder::BusDecoder(DecoderOptions options) : options_(options) {}
 
-PpoLayout BusDecoder::layout_for(std::uint8_t slave, std::size_t du_length) const noexcept {
-    if (std::uint8_t type = options_.station_ppo[slave & 0x7F]; type != 0)
-        return ppo_layout_of_type(type, PpoSource::Option);
+void BusDecoder::layout_for(std::uint8_t slave, std::size_t du_length,
+                            PpoLayout& layout) const noexcept {
+    if (std::uint8_t type = options_.station_ppo[slave & 0x7F]; type != 0) {
+        layout = ppo_layout_of_type(type, PpoSource::Option);
+        return;
+    }
     const StationConfig& config = stations_[slave & 0x7F];
-    if (config.ppo.known()) return config.ppo;
-    PpoLayout layout = ppo_from_length(du_length);
+    if (config.ppo.known()) {
+        layout = config.ppo;
+        return;
+    }
+    layout = ppo_from_length(du_length);
     if (du_length == 12 && config.length12_type == 4) {
         layout = ppo_layout_of_type(4, PpoSource::Length);
         layout.alternative = 1;
     }
-    return layout;
 }
 
 void BusDecoder::learn_length12_type(const DecodedTelegram& t) {
@@ -128,6 +133,10 @@ void BusDecoder::decode_response(DecodedTelegram& t) {
 
 void BusDecoder::decode_service_data(DecodedTelegram& t) {
     if (!t.has_roles) return;
+    if (t.service == Service::DataExchange) {  // the hot path: nothing else to set up
+        decode_data_exchange(t);
+        return;
+    }
     StationConfig& station = stations_[t.slave & 0x7F];
     ByteReader du(t.fdl.du, t.fdl.du_offset);
     ProblemList& problems = t.fdl.problems;
@@ -135,7 +144,6 @@ void BusDecoder::decode_service_data(DecodedTelegram& t) {
     // Only data-carrying responses have service data (not SC, not an SD1 acknowledgement).
     bool has_data = t.fdl.type == FrameType::Sd2 || t.fdl.type == FrameType::Sd3;
     switch (t.service) {
-        case Service::DataExchange: decode_data_exchange(t); break;
         case Service::ChkCfg:
             if (request) {
                 std::vector<CfgModule> modules;
@@ -184,14 +192,10 @@ void BusDecoder::decode_data_exchange(DecodedTelegram& t) {
     if (du.size() == 12 && t.direction == Direction::Request &&
         !stations_[t.slave & 0x7F].ppo.known())
         learn_length12_type(t);
-    t.ppo = layout_for(t.slave, du.size());
+    // Written in place: small structs returned by value cost store-forwarding stalls here.
+    layout_for(t.slave, du.size(), t.ppo);
     ByteReader reader(du, t.fdl.du_offset);
-    if (t.ppo.has_pcv) {
-        if (auto pcv = read_pcv(reader)) {
-            t.has_pcv = true;
-            t.pcv = *pcv;
-        }
-    }
+    if (t.ppo.has_pcv) t.has_pcv = read_pcv(reader, t.pcv);
     t.pcd_offset = static_cast<std::uint16_t>(reader.offset());
     t.pcd = reader.rest();
 }

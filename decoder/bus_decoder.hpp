@@ -106,7 +106,13 @@ class BusDecoder {
     }
     const DecoderOptions& options() const noexcept { return options_; }
     // The PPO layout the decoder uses for `slave`, for a data unit of `du_length` bytes.
-    PpoLayout layout_for(std::uint8_t slave, std::size_t du_length) const noexcept;
+    PpoLayout layout_for(std::uint8_t slave, std::size_t du_length) const noexcept {
+        PpoLayout layout;
+        layout_for(slave, du_length, layout);
+        return layout;
+    }
+    // The same, written into `layout` (the hot path returns no struct by value).
+    void layout_for(std::uint8_t slave, std::size_t du_length, PpoLayout& layout) const noexcept;
 
   private:
     struct PendingRequest {

@@ -14,9 +14,8 @@ std::optional<Dialect> dialect_from_name(std::string_view name) {
     return std::nullopt;
 }
 
-std::optional<Pcv> read_pcv(ByteReader& reader) noexcept {
-    if (reader.remaining() < 8) return std::nullopt;
-    Pcv pcv;
+bool read_pcv(ByteReader& reader, Pcv& pcv) noexcept {
+    if (reader.remaining() < 8) return false;
     pcv.pca = *reader.u16_be();
     pcv.rc = static_cast<std::uint8_t>(pcv.pca >> 12);
     pcv.spm = (pcv.pca & 0x0800) != 0;
@@ -24,7 +23,7 @@ std::optional<Pcv> read_pcv(ByteReader& reader) noexcept {
     pcv.ind = *reader.u8();
     pcv.ind_low = *reader.u8();
     pcv.pva = *reader.u32_be();
-    return pcv;
+    return true;
 }
 
 std::uint32_t pcv_value(const Pcv& pcv, ValueWidth width) noexcept {

@@ -37,8 +37,8 @@ struct Pcv {
     std::uint32_t pva = 0;     // bytes 5-8, as a 32-bit big-endian value
 };
 
-// Reads the 8 PCV bytes; nullopt when fewer than 8 remain.
-std::optional<Pcv> read_pcv(ByteReader& reader) noexcept;
+// Reads the 8 PCV bytes into `pcv`; false (and `pcv` untouched) when fewer than 8 remain.
+bool read_pcv(ByteReader& reader, Pcv& pcv) noexcept;
 
 enum class ValueWidth : std::uint8_t { None, Word, DoubleWord };
 

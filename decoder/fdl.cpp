@@ -140,7 +140,8 @@ bool read_extension(ByteReader& reader, bool& has_sap, std::uint8_t& sap, bool& 
 }
 
 // DA SA FC [extensions] DU from a reader positioned on DA, for SD1/SD2/SD3.
-void parse_header_and_data(ByteReader reader, FdlTelegram& out) noexcept {
+// `reader` by reference: a copy made on the call path costs a store-forwarding stall.
+void parse_header_and_data(ByteReader&& reader, FdlTelegram& out) noexcept {
     auto da = reader.u8();
     auto sa = reader.u8();
     if (!da || !sa) return;

@@ -38,7 +38,10 @@ void append_telegram(std::vector<std::uint8_t>& out, const TelegramSpec& spec) {
         out.push_back(kSd3);
     } else {
         auto le = static_cast<std::uint8_t>(data_length + 3);
-        out.insert(out.end(), {kSd2, le, le, kSd2});
+        // One byte at a time: GCC 12 with LTO warns falsely (-Wstringop-overflow) about
+        // inserting the four as a list.
+        for (std::uint8_t byte : {kSd2, le, le, kSd2})
+            out.push_back(byte);
     }
     sum_from = out.size();
     out.push_back(da);

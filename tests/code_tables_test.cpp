@@ -19,10 +19,10 @@ using test::hex;
 Pcv pcv_of(const std::string& text) {
     auto bytes = hex(text);
     ByteReader reader(Bytes(bytes.data(), bytes.size()));
-    auto pcv = read_pcv(reader);
-    EXPECT_TRUE(pcv) << text;
+    Pcv pcv;
+    EXPECT_TRUE(read_pcv(reader, pcv)) << text;
     EXPECT_TRUE(reader.empty());
-    return pcv.value_or(Pcv{});
+    return pcv;
 }
 
 // ---- read_pcv and pcv_value ------------------------------------------------------------------
@@ -52,17 +52,20 @@ TEST(CodeTablesTest, ReadPcvSpmAndFullPnuRange) {
 TEST(CodeTablesTest, ReadPcvTruncatedLeavesReaderAlone) {
     auto bytes = hex("12 08 00 00 00 00 00");
     ByteReader reader(Bytes(bytes.data(), bytes.size()));
-    EXPECT_FALSE(read_pcv(reader));
+    Pcv pcv;
+    pcv.pnu = 99;
+    EXPECT_FALSE(read_pcv(reader, pcv));
     EXPECT_EQ(reader.position(), 0u);
+    EXPECT_EQ(pcv.pnu, 99);  // untouched
     ByteReader empty(Bytes{});
-    EXPECT_FALSE(read_pcv(empty));
+    EXPECT_FALSE(read_pcv(empty, pcv));
 }
 
 TEST(CodeTablesTest, ReadPcvReadsOnlyEightBytes) {
     auto bytes = hex("12 08 00 00 00 00 00 F0 0F 07 20 00");
     ByteReader reader(Bytes(bytes.data(), bytes.size()), 7);
-    auto pcv = read_pcv(reader);
-    ASSERT_TRUE(pcv);
+    Pcv pcv;
+    ASSERT_TRUE(read_pcv(reader, pcv));
     EXPECT_EQ(reader.position(), 8u);
     EXPECT_EQ(reader.offset(), 15u);
     EXPECT_EQ(reader.u16_be(), std::optional<std::uint16_t>(0x0F07));
