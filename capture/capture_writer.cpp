@@ -11,6 +11,7 @@
 #include <cstring>
 #include <vector>
 
+#include "capture/pcap_source.hpp"
 #include "decoder/bus_decoder.hpp"
 
 namespace dpscope {
@@ -35,15 +36,6 @@ std::optional<CaptureFormat> capture_format_from_name(std::string_view name) {
 namespace {
 
 constexpr std::int64_t kNanosPerSecond = 1'000'000'000;
-
-std::string file_name(const std::string& path, unsigned index) {
-    std::size_t slash = path.rfind('/');
-    std::size_t dot = path.rfind('.');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash) ||
-        dot == (slash == std::string::npos ? 0 : slash + 1))
-        return fmt::format("{}-{:05}", path, index);
-    return fmt::format("{}-{:05}{}", path.substr(0, dot), index, path.substr(dot));
-}
 
 bool is_regular(FILE* file) {
     struct stat info {};
@@ -198,7 +190,7 @@ class PcapWriter final : public CaptureWriter {
         header.caplen = header.len = static_cast<bpf_u_int32>(telegram.size());
         pcap_dump(reinterpret_cast<u_char*>(dumper_), &header, telegram.data());
         if (committed_ >= 0) {
-            position_ += static_cast<long>(16 + telegram.size());
+            position_ += static_cast<long>(kPcapRecordHeaderBytes + telegram.size());
             boundaries_.push_back(position_);
         }
         return check();
@@ -253,9 +245,10 @@ class PcapWriter final : public CaptureWriter {
     }
 
     pcap_t* dead_;
-    long committed_ = 24;  // bytes flushed as whole records; -1 for pipes (cannot be cut back)
-    long position_ = 24;   // where the next record starts
-    std::vector<long> boundaries_;  // record ends since the last flush
+    // Bytes flushed as whole records; -1 for pipes (cannot be cut back).
+    long committed_ = static_cast<long>(kPcapFileHeaderBytes);
+    long position_ = static_cast<long>(kPcapFileHeaderBytes);  // where the next record starts
+    std::vector<long> boundaries_;                             // record ends since the last flush
     pcap_dumper_t* dumper_;
     std::string name_;
 };
@@ -274,23 +267,24 @@ class RotatingWriter final : public CaptureWriter {
             return false;
         }
         ++index_;
-        std::string name = file_name(path_, index_);
+        std::string name = rotated_file_name(path_, index_);
         WriterResult opened = open_capture_writer(name, format_, link_type_);
         if (!opened.writer) {
             error_ = opened.error;
             return false;
         }
         current_ = std::move(opened.writer);
-        bytes_ = format_ == CaptureFormat::Pcap ? 24 : format_ == CaptureFormat::Pcapng ? 60 : 0;
+        bytes_ = format_ == CaptureFormat::Pcap     ? kPcapFileHeaderBytes
+                 : format_ == CaptureFormat::Pcapng ? 60  // section and interface blocks
+                                                    : 0;
         file_start_ns_ = kNoTime;
         records_ = 0;
-        files_.push_back(name);
         return true;
     }
 
     bool write(Bytes telegram, std::int64_t time_ns) override {
         if (!current_) return false;
-        std::uint64_t record_bytes = telegram.size() + 16;
+        std::uint64_t record_bytes = telegram.size() + kPcapRecordHeaderBytes;
         bool full =
             rotation_.max_bytes > 0 && records_ > 0 && bytes_ + record_bytes > rotation_.max_bytes;
         bool old = rotation_.max_ns > 0 && records_ > 0 && time_ns != kNoTime &&
@@ -328,13 +322,17 @@ class RotatingWriter final : public CaptureWriter {
     std::uint64_t records_ = 0;
     std::int64_t file_start_ns_ = kNoTime;
     unsigned index_ = 0;
-    std::vector<std::string> files_;
 };
 
 }  // namespace
 
 std::string rotated_file_name(const std::string& path, unsigned index) {
-    return file_name(path, index);
+    std::size_t slash = path.rfind('/');
+    std::size_t dot = path.rfind('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash) ||
+        dot == (slash == std::string::npos ? 0 : slash + 1))
+        return fmt::format("{}-{:05}", path, index);
+    return fmt::format("{}-{:05}{}", path.substr(0, dot), index, path.substr(dot));
 }
 
 WriterResult open_rotating_writer(const std::string& path, CaptureFormat format, int link_type,

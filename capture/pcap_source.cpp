@@ -14,9 +14,6 @@ std::string link_type_name(int link_type) {
 
 namespace {
 
-constexpr std::uint64_t kPcapFileHeaderBytes = 24;
-constexpr std::uint64_t kPcapRecordHeaderBytes = 16;
-
 class PcapSource final : public TelegramSource {
   public:
     PcapSource(pcap_t* handle, std::string name, bool classic_pcap)

@@ -2,6 +2,7 @@
 // telegram per record from start to end delimiter) and 147 (USER0, the same records).
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -12,6 +13,9 @@ namespace dpscope {
 
 inline constexpr int kLinkTypeProfibusDl = 257;
 inline constexpr int kLinkTypeUser0 = 147;
+// The classic pcap file format: a 24-byte file header, then a 16-byte header per record.
+inline constexpr std::uint64_t kPcapFileHeaderBytes = 24;
+inline constexpr std::uint64_t kPcapRecordHeaderBytes = 16;
 
 // Takes ownership of `file`. Returns null and sets `error` when libpcap cannot read the file or
 // the link type is not one dpscope decodes. `classic_pcap`: the file starts with a pcap (not

@@ -55,8 +55,6 @@ bool fault_needs_parameter_channel(FaultKind kind) noexcept {
 
 namespace {
 
-bool needs_pcv(FaultKind kind) { return fault_needs_parameter_channel(kind); }
-
 constexpr std::uint8_t kRead = 1, kWriteWord = 2, kWriteDword = 3, kReadDescription = 4,
                        kReadArray = 6, kReadCount = 9;
 constexpr std::uint8_t kRejected = 7, kNoAuthority = 8, kSpontaneousWord = 9;
@@ -417,7 +415,7 @@ void Simulator::arm_faults() {
         const FaultSpec& spec = options_.faults[j];
         auto eligible = [&](std::size_t i) {
             if (spec.slave && slaves_[i].config.address != *spec.slave) return false;
-            return !needs_pcv(spec.kind) || slaves_[i].layout.has_pcv;
+            return !fault_needs_parameter_channel(spec.kind) || slaves_[i].layout.has_pcv;
         };
         if (spec.rate > 0) {
             for (std::size_t i = 0; i < slaves_.size(); ++i)

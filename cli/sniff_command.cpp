@@ -69,7 +69,8 @@ int run_sniff(const SniffCommand& command) {
         print_error(error);
         return kExitUsage;
     }
-    if (command.output == "-" && (command.rotate_size > 0 || command.rotate_seconds > 0)) {
+    const bool pcap_to_stdout = command.output == "-";
+    if (pcap_to_stdout && (command.rotate_size > 0 || command.rotate_seconds > 0)) {
         print_error("-w -: cannot rotate standard output; give a file name to rotate");
         return kExitUsage;
     }
@@ -79,7 +80,6 @@ int run_sniff(const SniffCommand& command) {
         print_error(error);
         return kExitUsage;
     }
-    const bool pcap_to_stdout = command.output == "-";
     std::unique_ptr<CaptureWriter> writer;
     if (!command.output.empty()) {
         RotationOptions rotation{command.rotate_size,
@@ -121,6 +121,13 @@ int run_sniff(const SniffCommand& command) {
     std::uint64_t telegrams = 0;
     bool output_failed = false;
     bool stopping = false;
+    // A failed write or flush (disk full) ends the capture; the file stays valid.
+    auto stop_on_write_error = [&] {
+        print_error(fmt::format("error: {}; stopping the capture", writer->error()));
+        output_failed = true;
+        stopping = true;
+        source.request_stop();
+    };
     Record record;
     std::span<const Finding> findings;
     for (;;) {
@@ -134,12 +141,8 @@ int run_sniff(const SniffCommand& command) {
         if (polled == FramedSource::Poll::End) break;
         if (polled == FramedSource::Poll::Telegram) {
             ++telegrams;
-            if (writer && !output_failed && !writer->write(record.bytes, record.time_ns)) {
-                print_error(fmt::format("error: {}; stopping the capture", writer->error()));
-                output_failed = true;
-                stopping = true;
-                source.request_stop();
-            }
+            if (writer && !output_failed && !writer->write(record.bytes, record.time_ns))
+                stop_on_write_error();
             const DecodedTelegram& t = pipeline.feed(record, findings);
             if (command.report && !findings.empty()) log.append(findings);
             if (renderer) show(*renderer, *settings, t, findings);
@@ -147,12 +150,7 @@ int run_sniff(const SniffCommand& command) {
             if (settings->count != 0 && telegrams >= settings->count) break;
         }
         if (now - last_flush >= kFlushEveryNs || polled == FramedSource::Poll::Idle) {
-            if (writer && !output_failed && !writer->flush()) {
-                print_error(fmt::format("error: {}; stopping the capture", writer->error()));
-                output_failed = true;
-                stopping = true;
-                source.request_stop();
-            }
+            if (writer && !output_failed && !writer->flush()) stop_on_write_error();
             out.flush();
             last_flush = now;
         }

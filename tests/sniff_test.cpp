@@ -2,7 +2,6 @@
 // a pseudo-terminal, the dpscope executable capturing on the other end.
 #include <fcntl.h>
 #include <gtest/gtest.h>
-#include <pty.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -28,27 +27,7 @@ namespace {
 
 using Telegrams = std::vector<std::vector<std::uint8_t>>;
 
-struct PseudoTerminal {
-    int master = -1;
-    std::string slave;
-    PseudoTerminal() {
-        int slave_fd = -1;
-        char name[128] = {};
-        EXPECT_EQ(openpty(&master, &slave_fd, name, nullptr, nullptr), 0);
-        // The sniffer must not inherit the master, or closing it here would not hang it up.
-        fcntl(master, F_SETFD, FD_CLOEXEC);
-        slave = name;
-        close(slave_fd);
-    }
-    ~PseudoTerminal() { close_master(); }
-    void close_master() {
-        if (master >= 0) close(master);
-        master = -1;
-    }
-    void write(const std::vector<std::uint8_t>& bytes) const {
-        ASSERT_EQ(::write(master, bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
-    }
-};
+using test::PseudoTerminal;
 
 std::string slurp(const std::string& path) {
     std::ifstream in(path, std::ios::binary);

@@ -1,6 +1,8 @@
 #include "tests/test_support.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <pty.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -100,6 +102,24 @@ CommandResult run_dpscope(const std::vector<std::string>& args, const std::strin
     std::remove(err_path.c_str());
     if (in_path != "/dev/null") std::remove(in_path.c_str());
     return result;
+}
+
+PseudoTerminal::PseudoTerminal() {
+    int slave_fd = -1;
+    char name[128] = {};
+    EXPECT_EQ(openpty(&master, &slave_fd, name, nullptr, nullptr), 0);
+    fcntl(master, F_SETFD, FD_CLOEXEC);
+    slave = name;
+    close(slave_fd);
+}
+
+void PseudoTerminal::close_master() {
+    if (master >= 0) close(master);
+    master = -1;
+}
+
+void PseudoTerminal::write(const std::vector<std::uint8_t>& bytes) const {
+    ASSERT_EQ(::write(master, bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
 }
 
 }  // namespace dpscope::test

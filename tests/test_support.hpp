@@ -33,4 +33,18 @@ struct CommandResult {
 // /dev/null when empty), in the source directory, with TZ=UTC LANG=C.
 CommandResult run_dpscope(const std::vector<std::string>& args, const std::string& input = {});
 
+// A pseudo-terminal pair: tests write into `master`; the code under test opens `slave` (a path)
+// as its serial port. The master is close-on-exec, so a child process (dpscope sniff) does not
+// inherit it and closing it here hangs the line up.
+struct PseudoTerminal {
+    int master = -1;
+    std::string slave;
+    PseudoTerminal();
+    ~PseudoTerminal() { close_master(); }
+    PseudoTerminal(const PseudoTerminal&) = delete;
+    PseudoTerminal& operator=(const PseudoTerminal&) = delete;
+    void close_master();
+    void write(const std::vector<std::uint8_t>& bytes) const;  // all of them, or the test fails
+};
+
 }  // namespace dpscope::test

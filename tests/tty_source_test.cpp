@@ -4,7 +4,6 @@
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
-#include <pty.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -221,18 +220,7 @@ TEST(TtySourceTest, StopRequestReadsWhatIsBufferedThenEnds) {
 
 // ---- serial port --------------------------------------------------------------------------------
 
-struct PseudoTerminal {
-    int master = -1;
-    std::string slave;
-    PseudoTerminal() {
-        int slave_fd = -1;
-        char name[128] = {};
-        EXPECT_EQ(openpty(&master, &slave_fd, name, nullptr, nullptr), 0);
-        slave = name;
-        close(slave_fd);
-    }
-    ~PseudoTerminal() { close(master); }
-};
+using test::PseudoTerminal;
 
 TEST(SerialPortTest, EveryProfibusBaudRateIsSetAndReadBack) {
     PseudoTerminal pty;
