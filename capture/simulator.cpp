@@ -92,7 +92,7 @@ std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& er
     if (auto colon = rest.rfind(':'); colon != std::string_view::npos) {
         unsigned address = 0;
         if (!parse_number(rest.substr(colon + 1), address) || address > 126) {
-            error = fmt::format("fault '{}': '{}' is not a station address 0..126", text,
+            error = fmt::format("{}: '{}' is not a station address 0..126", text,
                                 rest.substr(colon + 1));
             return std::nullopt;
         }
@@ -104,7 +104,7 @@ std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& er
         std::uint64_t cycle = 0;
         if (!parse_number(rest.substr(at + 1), cycle)) {
             error =
-                fmt::format("fault '{}': '{}' is not a cycle number", text, rest.substr(at + 1));
+                fmt::format("{}: '{}' is not a cycle number", text, rest.substr(at + 1));
             return std::nullopt;
         }
         spec.cycle = cycle;
@@ -114,7 +114,7 @@ std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& er
         char* end = nullptr;
         double rate = std::strtod(number.c_str(), &end);
         if (number.empty() || *end != '\0' || !(rate > 0) || rate > 1) {
-            error = fmt::format("fault '{}': rate '{}' must be a number in (0, 1]", text, number);
+            error = fmt::format("{}: rate '{}' must be a number in (0, 1]", text, number);
             return std::nullopt;
         }
         spec.rate = rate;
@@ -125,7 +125,7 @@ std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& er
         std::string names;
         for (std::string_view n : kFaultNames)
             names += fmt::format("{}{}", names.empty() ? "" : ", ", n);
-        error = fmt::format("fault '{}': unknown kind '{}' (known: {})", text, name, names);
+        error = fmt::format("{}: unknown kind '{}' (known: {})", text, name, names);
         return std::nullopt;
     }
     spec.kind = *kind;
@@ -136,7 +136,7 @@ std::optional<SimulatedSlave> parse_slave_spec(std::string_view text, std::strin
     SimulatedSlave slave;
     auto first = text.find(':');
     if (first == std::string_view::npos) {
-        error = fmt::format("slave '{}': expected ADDR:PPO or ADDR:PPO:DIALECT", text);
+        error = fmt::format("{}: expected ADDR:PPO or ADDR:PPO:DIALECT", text);
         return std::nullopt;
     }
     unsigned address = 0, ppo = 0;
@@ -144,11 +144,11 @@ std::optional<SimulatedSlave> parse_slave_spec(std::string_view text, std::strin
     std::string_view ppo_text = text.substr(
         first + 1, second == std::string_view::npos ? std::string_view::npos : second - first - 1);
     if (!parse_number(text.substr(0, first), address) || address > 125) {
-        error = fmt::format("slave '{}': address must be 0..125", text);
+        error = fmt::format("{}: address must be 0..125", text);
         return std::nullopt;
     }
     if (!parse_number(ppo_text, ppo) || ppo < 1 || ppo > 5) {
-        error = fmt::format("slave '{}': PPO type must be 1..5", text);
+        error = fmt::format("{}: PPO type must be 1..5", text);
         return std::nullopt;
     }
     slave.address = static_cast<std::uint8_t>(address);
@@ -156,7 +156,7 @@ std::optional<SimulatedSlave> parse_slave_spec(std::string_view text, std::strin
     if (second != std::string_view::npos) {
         auto dialect = dialect_from_name(text.substr(second + 1));
         if (!dialect) {
-            error = fmt::format("slave '{}': dialect must be vlt or profidrive", text);
+            error = fmt::format("{}: dialect must be vlt or profidrive", text);
             return std::nullopt;
         }
         slave.dialect = *dialect;

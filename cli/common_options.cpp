@@ -152,7 +152,7 @@ bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t) noe
 void report_input_issues(TelegramSource& source, Output& out) {
     source.on_issue([&out](const InputIssue& issue) {
         out.flush();
-        print_error(fmt::format("{}: {}", severity_name(issue.severity), issue.message));
+        print_diagnostic(issue.severity, issue.message);
     });
 }
 
@@ -174,9 +174,13 @@ std::string nothing_found_error(const TelegramSource& source, std::uint64_t tele
     }
 }
 
-void print_error(std::string_view message) {
+void print_diagnostic(Severity severity, std::string_view message) {
     std::fflush(stdout);
-    fmt::print(stderr, "dpscope: {}\n", message);
+    fmt::print(stderr, "dpscope: {}: {}\n", severity_name(severity), message);
 }
+
+void print_error(std::string_view message) { print_diagnostic(Severity::Error, message); }
+
+void print_warning(std::string_view message) { print_diagnostic(Severity::Warning, message); }
 
 }  // namespace dpscope::cli

@@ -86,7 +86,12 @@ inline void show(TelegramRenderer& renderer, const DecodeSettings& settings,
         renderer.pass_over(t);
 }
 
-// "dpscope: <message>" on standard error.
+// Messages on standard error, one style for every subcommand: "dpscope: error: <message>",
+// "dpscope: warning: <message>", or "dpscope: <severity>: <message>" for input issues.
+// Messages name the file, record or byte offset and the option where they apply; callers
+// never add the severity themselves.
 void print_error(std::string_view message);
+void print_warning(std::string_view message);
+void print_diagnostic(Severity severity, std::string_view message);
 
 }  // namespace dpscope::cli

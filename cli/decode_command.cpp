@@ -43,13 +43,13 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings) {
     }
     if (std::string nothing = nothing_found_error(source, read); !nothing.empty()) {
         out.flush();
-        print_error(fmt::format("error: {}", nothing));
+        print_error(nothing);
         return kExitUsage;
     }
     if (settings.quiet)
         pipeline.summary().render_text(out, describe_input(source), pipeline.decoder());
     if (!out.flush()) {
-        print_error("error: cannot write the output");
+        print_error("cannot write the output");
         return kExitOutputError;
     }
     return source.status() == InputStatus::Damaged ? kExitDamagedInput : kExitOk;

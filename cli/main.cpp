@@ -14,9 +14,16 @@ int main(int argc, char** argv) {
     using namespace dpscope::cli;
     CLI::App app{
         "dpscope: decode PROFIBUS DP captures down to the drive parameter channel (PPO "
-        "PCV/PKW: RC/AK, SPM, PNU, IND, PVA, PCD words)."};
+        "PCV/PKW: RC/AK, SPM, PNU, IND, PVA, PCD words).",
+        "dpscope"};
     app.set_version_flag("--version", std::string("dpscope ") + dpscope::kVersion);
     app.require_subcommand(1);
+    // Command-line errors in dpscope's one error style; "Usage: dpscope ..." whatever argv[0].
+    app.failure_message([](const CLI::App*, const CLI::Error& e) {
+        return fmt::format("dpscope: error: {}\nRun 'dpscope --help' or 'dpscope SUBCOMMAND "
+                           "--help' for the options.\n",
+                           e.what());
+    });
     app.footer(std::string(kExitCodeHelp) +
                "\nRun 'dpscope SUBCOMMAND --help' for the options of each subcommand.");
     // A file-size limit (ulimit -f) then fails a write like a full disk instead of killing us.
@@ -46,7 +53,7 @@ int main(int argc, char** argv) {
         int rc = app.exit(e);
         return rc == 0 ? kExitOk : kExitUsage;
     } catch (const std::exception& e) {
-        print_error(fmt::format("error: {}", e.what()));
+        print_error(e.what());
         return kExitUsage;
     }
     return exit_code;

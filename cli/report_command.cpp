@@ -39,14 +39,13 @@ int write_report(const ReportCommand& command, const Pipeline& pipeline,
         bool seen = std::any_of(channels.begin(), channels.end(),
                                 [&](const ChannelStats* s) { return s->slave == station; });
         if (!seen)
-            print_error(
-                fmt::format("warning: --station {}: no slave {} in the capture", station, station));
+            print_warning(fmt::format("--station {}: no slave {} in the capture", station, station));
     }
     render_report(report_format_from_name(command.format).value_or(ReportFormat::Text), context,
                   out);
-    if (!log.error().empty()) print_error(fmt::format("warning: {}", log.error()));
+    if (!log.error().empty()) print_warning(fmt::format("{}", log.error()));
     if (!out.flush()) {
-        print_error(fmt::format("error: cannot write the report to {}",
+        print_error(fmt::format("cannot write the report to {}",
                                 command.output == "-" ? "standard output" : command.output));
         return kExitOutputError;
     }
@@ -100,14 +99,14 @@ int run_report(const ReportCommand& command) {
         }
         log.append(pipeline.finish());
         if (std::string nothing = nothing_found_error(source, read); !nothing.empty()) {
-            print_error(fmt::format("error: {}", nothing));
+            print_error(nothing);
             exit_code = kExitUsage;
         } else {
             exit_code = write_report(command, pipeline, source, log, out);
         }
     }
     if (file != stdout && std::fclose(file) != 0 && exit_code == kExitOk) {
-        print_error(fmt::format("error: cannot write the report to {}", command.output));
+        print_error(fmt::format("cannot write the report to {}", command.output));
         exit_code = kExitOutputError;
     }
     return exit_code;

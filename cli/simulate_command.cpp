@@ -56,7 +56,7 @@ int report_injections(const SimulateCommand& command, const SimulatorOptions& op
     std::vector<std::string> missing = faults_not_injected(options, simulator.injections());
     for (const std::string& fault : missing)
         print_error(fmt::format(
-            "error: --fault {} was not injected: the session ended before it had a chance "
+            "--fault {} was not injected: the session ended before it had a chance "
             "(give an earlier @CYCLE, more --cycles or a larger -c)",
             fault));
     return missing.empty() ? kExitOk : kExitUsage;
@@ -80,7 +80,7 @@ int play_onto_device(const SimulateCommand& command, const SimulatorOptions& opt
         }
         replay = std::move(opened.source);
         replay->on_issue([](const InputIssue& issue) {
-            print_error(fmt::format("{}: {}", severity_name(issue.severity), issue.message));
+            print_diagnostic(issue.severity, issue.message);
         });
     }
     TelegramGenerator next = [&](std::vector<std::uint8_t>& bytes, std::int64_t& time) {

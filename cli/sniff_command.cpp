@@ -94,7 +94,7 @@ int run_sniff(const SniffCommand& command) {
         writer = std::move(opened.writer);
     }
     FILE* text_stream = pcap_to_stdout ? stderr : stdout;
-    if (!port->note().empty()) print_error(fmt::format("warning: {}", port->note()));
+    if (!port->note().empty()) print_warning(fmt::format("{}", port->note()));
     std::fprintf(stderr, "dpscope: capturing on %s at %u baud 8E1%s; Ctrl-C stops\n",
                  command.device.c_str(), port->baud(), port->low_latency() ? ", low latency" : "");
     const int fd = port->fd();
@@ -123,7 +123,7 @@ int run_sniff(const SniffCommand& command) {
     bool stopping = false;
     // A failed write or flush (disk full) ends the capture; the file stays valid.
     auto stop_on_write_error = [&] {
-        print_error(fmt::format("error: {}; stopping the capture", writer->error()));
+        print_error(fmt::format("{}; stopping the capture", writer->error()));
         output_failed = true;
         stopping = true;
         source.request_stop();
@@ -163,7 +163,7 @@ int run_sniff(const SniffCommand& command) {
         renderer->end();
     }
     if (writer && !writer->close() && !output_failed) {
-        print_error(fmt::format("error: {}", writer->error()));
+        print_error(writer->error());
         output_failed = true;
     }
     double seconds = static_cast<double>(monotonic_ns() - start) / 1e9;

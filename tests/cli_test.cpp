@@ -114,7 +114,7 @@ TEST(CliTest, MissingSubcommandIsUsageError) {
     CommandResult unknown = run_dpscope({"frob", kPpo1});
     EXPECT_EQ(unknown.exit_code, 2);
     EXPECT_EQ(unknown.err,
-              "dpscope: unknown subcommand 'frob'; one of decode, hex, report, simulate, sniff "
+              "dpscope: error: unknown subcommand 'frob'; one of decode, hex, report, simulate, sniff "
               "(see --help)\n");
 }
 
@@ -160,7 +160,7 @@ TEST(CliTest, MissingFileIsUsageErrorNamingIt) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(r.out.empty());
     EXPECT_EQ(r.err,
-              "dpscope: samples/does-not-exist.pcap: cannot open: No such file or directory\n");
+              "dpscope: error: samples/does-not-exist.pcap: cannot open: No such file or directory\n");
 }
 
 TEST(CliTest, UnsupportedLinkTypeIsUsageErrorNamingFileAndLinkType) {
@@ -179,7 +179,7 @@ TEST(CliTest, UnsupportedLinkTypeIsUsageErrorNamingFileAndLinkType) {
     CommandResult r = run_dpscope({"decode", file.path});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(r.out.empty());
-    EXPECT_NE(r.err.find("dpscope: " + file.path + ": unsupported link type 1 (EN10MB)"),
+    EXPECT_NE(r.err.find("dpscope: error: " + file.path + ": unsupported link type 1 (EN10MB)"),
               std::string::npos)
         << r.err;
 }
@@ -234,12 +234,12 @@ TEST(CliTest, BadOptionValuesAreUsageErrors) {
     CommandResult ppo = run_dpscope({"decode", "--ppo", "3=9", kPpo1});
     EXPECT_EQ(ppo.exit_code, 2);
     EXPECT_TRUE(ppo.out.empty());
-    EXPECT_EQ(ppo.err, "dpscope: --ppo 3=9: expected ADDR=TYPE with ADDR 0..126 and TYPE 1..5\n");
+    EXPECT_EQ(ppo.err, "dpscope: error: --ppo 3=9: expected ADDR=TYPE with ADDR 0..126 and TYPE 1..5\n");
 
     CommandResult dialect = run_dpscope({"decode", "--dialect", "foo", kPpo1});
     EXPECT_EQ(dialect.exit_code, 2);
     EXPECT_TRUE(dialect.out.empty());
-    EXPECT_EQ(dialect.err, "dpscope: --dialect foo: 'foo' is not a dialect (vlt, profidrive)\n");
+    EXPECT_EQ(dialect.err, "dpscope: error: --dialect foo: 'foo' is not a dialect (vlt, profidrive)\n");
 
     CommandResult count = run_dpscope({"decode", "-c", "0", kPpo1});
     EXPECT_EQ(count.exit_code, 2);
@@ -250,7 +250,7 @@ TEST(CliTest, BadOptionValuesAreUsageErrors) {
     EXPECT_EQ(verbose_jsonl.exit_code, 2);
     EXPECT_TRUE(verbose_jsonl.out.empty());
     EXPECT_EQ(verbose_jsonl.err,
-              "dpscope: -V is the same as -T verbose; it cannot be combined with -T jsonl\n");
+              "dpscope: error: -V is the same as -T verbose; it cannot be combined with -T jsonl\n");
 
     CommandResult station_dialect = run_dpscope({"decode", "--dialect", "200=vlt", kPpo1});
     EXPECT_EQ(station_dialect.exit_code, 2);
@@ -446,7 +446,7 @@ TEST(CliTest, BadHexArgumentIsUsageErrorNamingIt) {
     CommandResult r = run_dpscope({"hex", "10", "zz", "02"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(r.out.empty());
-    EXPECT_EQ(r.err.rfind("dpscope: hex: argument 2: 'zz' is not hex bytes", 0), 0u) << r.err;
+    EXPECT_EQ(r.err.rfind("dpscope: error: hex: argument 2: 'zz' is not hex bytes", 0), 0u) << r.err;
     CommandResult odd = run_dpscope({"hex", "680"});
     EXPECT_EQ(odd.exit_code, 2);
     EXPECT_NE(odd.err.find("argument 1: '680'"), std::string::npos) << odd.err;
@@ -529,13 +529,13 @@ TEST(CliTest, SimulateUsageErrors) {
     CommandResult slave = run_dpscope({"simulate", "-w", "-", "--slave", "3"});
     EXPECT_EQ(slave.exit_code, 2);
     EXPECT_TRUE(slave.out.empty());
-    EXPECT_EQ(slave.err, "dpscope: --slave slave '3': expected ADDR:PPO or ADDR:PPO:DIALECT\n");
+    EXPECT_EQ(slave.err, "dpscope: error: --slave 3: expected ADDR:PPO or ADDR:PPO:DIALECT\n");
     CommandResult master = run_dpscope({"simulate", "-w", "-", "--slave", "2:1"});
     EXPECT_EQ(master.exit_code, 2);
     EXPECT_NE(master.err.find("the master has address 2"), std::string::npos) << master.err;
     CommandResult fault = run_dpscope({"simulate", "-w", "-", "--fault", "nonsense"});
     EXPECT_EQ(fault.exit_code, 2);
-    EXPECT_NE(fault.err.find("dpscope: --fault fault 'nonsense': unknown kind 'nonsense'"),
+    EXPECT_NE(fault.err.find("dpscope: error: --fault nonsense: unknown kind 'nonsense'"),
               std::string::npos)
         << fault.err;
     CommandResult endless = run_dpscope({"simulate", "-w", "-", "--cycles", "0"});
@@ -548,7 +548,7 @@ TEST(CliTest, SimulateUsageErrors) {
     CommandResult nobody = run_dpscope({"simulate", "-w", "-", "--fault", "stacked_request:9"});
     EXPECT_EQ(nobody.exit_code, 2);
     EXPECT_TRUE(nobody.out.empty());
-    EXPECT_EQ(nobody.err, "dpscope: --fault stacked_request:9: slave 9 is not simulated\n");
+    EXPECT_EQ(nobody.err, "dpscope: error: --fault stacked_request:9: slave 9 is not simulated\n");
     CommandResult late = run_dpscope({"simulate", "-w", "-", "--fault", "stacked_request@999"});
     EXPECT_EQ(late.exit_code, 2);
     EXPECT_FALSE(late.out.empty());  // the session is written all the same
@@ -562,18 +562,18 @@ TEST(CliTest, SimulateUnwritableOutputNamesIt) {
     const std::string path = blocker.path + "/out.pcap";
     CommandResult r = run_dpscope({"simulate", "-w", path, "--cycles", "1"});
     EXPECT_EQ(r.exit_code, 4);
-    EXPECT_NE(r.err.find("dpscope: " + path + ": cannot open for writing"), std::string::npos)
+    EXPECT_NE(r.err.find("dpscope: error: " + path + ": cannot open for writing"), std::string::npos)
         << r.err;
     CommandResult report = run_dpscope({"report", "-w", path, "samples/ppo2.pcap"});
     EXPECT_EQ(report.exit_code, 4);
-    EXPECT_NE(report.err.find("dpscope: " + path + ": cannot open for writing"), std::string::npos)
+    EXPECT_NE(report.err.find("dpscope: error: " + path + ": cannot open for writing"), std::string::npos)
         << report.err;
 }
 
 TEST(CliTest, SimulateWriteErrorExitsFour) {
     CommandResult r = run_dpscope({"simulate", "-w", "/dev/full", "--cycles", "5"});
     EXPECT_EQ(r.exit_code, 4);
-    EXPECT_NE(r.err.find("dpscope: /dev/full: write failed"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("dpscope: error: /dev/full: write failed"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -338,26 +338,26 @@ TEST(SimulatorTest, ParseFaultSpecValid) {
 
 TEST(SimulatorTest, ParseFaultSpecInvalid) {
     std::string unknown = fault_error("nonsense@3");
-    EXPECT_EQ(unknown.rfind("fault 'nonsense@3': unknown kind 'nonsense' (known: fcs_error, "
+    EXPECT_EQ(unknown.rfind("nonsense@3: unknown kind 'nonsense' (known: fcs_error, "
                             "garbage, ",
                             0),
               0u)
         << unknown;
     EXPECT_NE(unknown.find("fdl_no_response)"), std::string::npos) << unknown;
-    EXPECT_EQ(fault_error("garbage@x"), "fault 'garbage@x': 'x' is not a cycle number");
-    EXPECT_EQ(fault_error("garbage@-1"), "fault 'garbage@-1': '-1' is not a cycle number");
-    EXPECT_EQ(fault_error("garbage@"), "fault 'garbage@': '' is not a cycle number");
-    EXPECT_EQ(fault_error("garbage=0"), "fault 'garbage=0': rate '0' must be a number in (0, 1]");
+    EXPECT_EQ(fault_error("garbage@x"), "garbage@x: 'x' is not a cycle number");
+    EXPECT_EQ(fault_error("garbage@-1"), "garbage@-1: '-1' is not a cycle number");
+    EXPECT_EQ(fault_error("garbage@"), "garbage@: '' is not a cycle number");
+    EXPECT_EQ(fault_error("garbage=0"), "garbage=0: rate '0' must be a number in (0, 1]");
     EXPECT_EQ(fault_error("garbage=1.5"),
-              "fault 'garbage=1.5': rate '1.5' must be a number in (0, 1]");
+              "garbage=1.5: rate '1.5' must be a number in (0, 1]");
     EXPECT_EQ(fault_error("garbage=abc"),
-              "fault 'garbage=abc': rate 'abc' must be a number in (0, 1]");
-    EXPECT_EQ(fault_error("garbage="), "fault 'garbage=': rate '' must be a number in (0, 1]");
+              "garbage=abc: rate 'abc' must be a number in (0, 1]");
+    EXPECT_EQ(fault_error("garbage="), "garbage=: rate '' must be a number in (0, 1]");
     EXPECT_EQ(fault_error("garbage:127"),
-              "fault 'garbage:127': '127' is not a station address 0..126");
+              "garbage:127: '127' is not a station address 0..126");
     EXPECT_EQ(fault_error("garbage@3:x"),
-              "fault 'garbage@3:x': 'x' is not a station address 0..126");
-    EXPECT_EQ(fault_error("garbage:"), "fault 'garbage:': '' is not a station address 0..126");
+              "garbage@3:x: 'x' is not a station address 0..126");
+    EXPECT_EQ(fault_error("garbage:"), "garbage:: '' is not a station address 0..126");
     EXPECT_NE(fault_error("").find("unknown kind ''"), std::string::npos);
 }
 
@@ -391,16 +391,16 @@ TEST(SimulatorTest, ParseSlaveSpecValid) {
 }
 
 TEST(SimulatorTest, ParseSlaveSpecInvalid) {
-    EXPECT_EQ(slave_error("5"), "slave '5': expected ADDR:PPO or ADDR:PPO:DIALECT");
-    EXPECT_EQ(slave_error("126:1"), "slave '126:1': address must be 0..125");
-    EXPECT_EQ(slave_error("x:1"), "slave 'x:1': address must be 0..125");
-    EXPECT_EQ(slave_error(":1"), "slave ':1': address must be 0..125");
-    EXPECT_EQ(slave_error("5:0"), "slave '5:0': PPO type must be 1..5");
-    EXPECT_EQ(slave_error("5:6"), "slave '5:6': PPO type must be 1..5");
-    EXPECT_EQ(slave_error("5:"), "slave '5:': PPO type must be 1..5");
-    EXPECT_EQ(slave_error("5:1:foo"), "slave '5:1:foo': dialect must be vlt or profidrive");
-    EXPECT_EQ(slave_error("5:1:"), "slave '5:1:': dialect must be vlt or profidrive");
-    EXPECT_EQ(slave_error("5:1:vlt:x"), "slave '5:1:vlt:x': dialect must be vlt or profidrive");
+    EXPECT_EQ(slave_error("5"), "5: expected ADDR:PPO or ADDR:PPO:DIALECT");
+    EXPECT_EQ(slave_error("126:1"), "126:1: address must be 0..125");
+    EXPECT_EQ(slave_error("x:1"), "x:1: address must be 0..125");
+    EXPECT_EQ(slave_error(":1"), ":1: address must be 0..125");
+    EXPECT_EQ(slave_error("5:0"), "5:0: PPO type must be 1..5");
+    EXPECT_EQ(slave_error("5:6"), "5:6: PPO type must be 1..5");
+    EXPECT_EQ(slave_error("5:"), "5:: PPO type must be 1..5");
+    EXPECT_EQ(slave_error("5:1:foo"), "5:1:foo: dialect must be vlt or profidrive");
+    EXPECT_EQ(slave_error("5:1:"), "5:1:: dialect must be vlt or profidrive");
+    EXPECT_EQ(slave_error("5:1:vlt:x"), "5:1:vlt:x: dialect must be vlt or profidrive");
 }
 
 // ---- fault injection -------------------------------------------------------------------------
