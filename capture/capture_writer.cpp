@@ -134,9 +134,17 @@ class PcapngWriter final : public StdioWriter {
     }
 
     bool write(Bytes telegram, std::int64_t time_ns) override {
+        return write(telegram, time_ns, std::string_view());
+    }
+    // An enhanced packet block; a comment becomes its opt_comment option (UTF-8, at most
+    // 65535 bytes).
+    bool write(Bytes telegram, std::int64_t time_ns, std::string_view comment) override {
         auto ts = static_cast<std::uint64_t>(time_or_zero(time_ns));
         std::size_t padded = (telegram.size() + 3) & ~std::size_t{3};
-        auto total = static_cast<std::uint32_t>(32 + padded);
+        if (comment.size() > 0xFFFF) comment = comment.substr(0, 0xFFFF);
+        std::size_t comment_padded = (comment.size() + 3) & ~std::size_t{3};
+        std::size_t options = comment.empty() ? 0 : 4 + comment_padded + 4;
+        auto total = static_cast<std::uint32_t>(32 + padded + options);
         block_.clear();
         u32(6);  // enhanced packet block
         u32(total);
@@ -147,6 +155,13 @@ class PcapngWriter final : public StdioWriter {
         u32(static_cast<std::uint32_t>(telegram.size()));
         block_.insert(block_.end(), telegram.begin(), telegram.end());
         block_.resize(block_.size() + (padded - telegram.size()), 0);
+        if (!comment.empty()) {
+            u16(1);  // opt_comment
+            u16(static_cast<std::uint16_t>(comment.size()));
+            block_.insert(block_.end(), comment.begin(), comment.end());
+            block_.resize(block_.size() + (comment_padded - comment.size()), 0);
+            u32(0);  // opt_endofopt
+        }
         u32(total);
         return put(block_.data(), block_.size());
     }
@@ -354,38 +369,43 @@ WriterResult open_rotating_writer(const std::string& path, CaptureFormat format,
 }
 
 WriterResult open_capture_writer(const std::string& path, CaptureFormat format, int link_type) {
-    WriterResult result;
-    bool to_stdout = path == "-";
-    std::string name = to_stdout ? std::string("<stdout>") : path;
-    if (format == CaptureFormat::Pcap) {
-        pcap_t* dead =
-            pcap_open_dead_with_tstamp_precision(link_type, 65535, PCAP_TSTAMP_PRECISION_NANO);
-        if (!dead) {
-            result.error = fmt::format("{}: libpcap cannot create a writer", name);
-            return result;
-        }
-        pcap_dumper_t* dumper =
-            to_stdout ? pcap_dump_fopen(dead, stdout) : pcap_dump_open(dead, path.c_str());
-        if (!dumper) {
-            result.error = fmt::format("{}: cannot open for writing: {}", name, pcap_geterr(dead));
-            pcap_close(dead);
-            return result;
-        }
-        result.writer = std::make_unique<PcapWriter>(dead, dumper, name);
-        return result;
-    }
-    FILE* file = to_stdout ? stdout : std::fopen(path.c_str(), "wb");
+    if (path == "-") return open_capture_writer(stdout, "<stdout>", format, link_type);
+    FILE* file = std::fopen(path.c_str(), "wb");
     if (!file) {
-        result.error = fmt::format("{}: cannot open for writing: {}", name, std::strerror(errno));
+        WriterResult result;
+        result.error = fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno));
         return result;
     }
+    return open_capture_writer(file, path, format, link_type);
+}
+
+WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format,
+                                 int link_type) {
+    WriterResult result;
     switch (format) {
-        case CaptureFormat::Pcapng:
-            result.writer = std::make_unique<PcapngWriter>(file, name, link_type);
+        case CaptureFormat::Pcap: {
+            pcap_t* dead =
+                pcap_open_dead_with_tstamp_precision(link_type, 65535, PCAP_TSTAMP_PRECISION_NANO);
+            pcap_dumper_t* dumper = dead ? pcap_dump_fopen(dead, file) : nullptr;
+            if (!dumper) {
+                result.error = fmt::format("{}: cannot write a pcap file: {}", name,
+                                           dead ? pcap_geterr(dead) : "libpcap has no writer");
+                if (dead) pcap_close(dead);
+                if (file != stdout) std::fclose(file);
+                return result;
+            }
+            result.writer = std::make_unique<PcapWriter>(dead, dumper, std::move(name));
             break;
-        case CaptureFormat::Raw: result.writer = std::make_unique<RawWriter>(file, name); break;
-        case CaptureFormat::Hex: result.writer = std::make_unique<HexWriter>(file, name); break;
-        case CaptureFormat::Pcap: break;
+        }
+        case CaptureFormat::Pcapng:
+            result.writer = std::make_unique<PcapngWriter>(file, std::move(name), link_type);
+            break;
+        case CaptureFormat::Raw:
+            result.writer = std::make_unique<RawWriter>(file, std::move(name));
+            break;
+        case CaptureFormat::Hex:
+            result.writer = std::make_unique<HexWriter>(file, std::move(name));
+            break;
     }
     return result;
 }

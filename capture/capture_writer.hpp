@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,6 +23,12 @@ class CaptureWriter {
     virtual ~CaptureWriter() = default;
     // Each returns false after a write error; error() says what happened.
     virtual bool write(Bytes telegram, std::int64_t time_ns) = 0;
+    // The same with a comment on the record where the format has them (pcapng: opt_comment);
+    // other formats drop the comment.
+    virtual bool write(Bytes telegram, std::int64_t time_ns, std::string_view comment) {
+        (void)comment;
+        return write(telegram, time_ns);
+    }
     virtual bool flush() = 0;
     virtual bool close() = 0;
     const std::string& error() const noexcept { return error_; }
@@ -39,6 +46,10 @@ struct WriterResult {
 // whose write fails (disk full) cuts the file back to the last flushed record, so it stays a
 // valid capture of what came before.
 WriterResult open_capture_writer(const std::string& path, CaptureFormat format, int link_type);
+// The same into an open stream, which the writer then owns and closes (standard output is
+// flushed, not closed). `name` is what messages call it.
+WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format,
+                                 int link_type);
 
 struct RotationOptions {
     std::uint64_t max_bytes = 0;  // start a new file before one grows past this (0: no limit)

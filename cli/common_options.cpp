@@ -4,11 +4,41 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 
 #include "cli/pipeline.hpp"
 
 namespace dpscope::cli {
+
+CLI::Validator whole_number(std::uint64_t min, std::uint64_t max) {
+    std::string range = fmt::format("{}..{}", min, max);
+    return CLI::Validator(
+        [min, max, range](std::string& text) -> std::string {
+            std::uint64_t value = 0;
+            auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+            bool digits = !text.empty() && end == text.data() + text.size();
+            if (ec == std::errc() && digits && value >= min && value <= max) return {};
+            return fmt::format("'{}' is not a whole number in {}", text, range);
+        },
+        range, "whole number in " + range);
+}
+
+CLI::Validator finite_number(double min, double max, bool min_exclusive) {
+    std::string range = fmt::format("{}{}, {}]", min_exclusive ? "(" : "[", min, max);
+    return CLI::Validator(
+        [min, max, min_exclusive, range](std::string& text) -> std::string {
+            char* end = nullptr;
+            double value = std::strtod(text.c_str(), &end);
+            bool parsed = !text.empty() && end == text.c_str() + text.size() &&
+                          text.find_first_of("xXnN") == std::string::npos;  // no hex, nan, inf
+            bool in_range = parsed && std::isfinite(value) &&
+                            (min_exclusive ? value > min : value >= min) && value <= max;
+            if (in_range) return {};
+            return fmt::format("'{}' is not a number in {}", text, range);
+        },
+        range, "number in " + range);
+}
 
 void add_display_options(CLI::App& app, DecodeOptionValues& values,
                          std::string_view default_format) {
@@ -21,23 +51,53 @@ void add_display_options(CLI::App& app, DecodeOptionValues& values,
     app.add_flag("-V,--verbose", values.verbose, "Same as -T verbose: the whole field tree");
     app.add_flag("-q,--quiet", values.quiet,
                  "Decode everything but print only a summary: telegrams by frame type and "
-                 "service, problems and findings by kind, and the PPO layout of each slave");
+                 "service, problems and findings by kind, and the PPO layout of each slave "
+                 "(with --station/--pnu: of the telegrams those select). Not with -T/-V");
+    app.add_flag("-l,--line-buffered", values.line_buffered,
+                 "Write each telegram's output as soon as it is decoded, also into a pipe (as "
+                 "tcpdump -l); on a terminal that is always done");
     app.add_option("--station", values.stations,
-                   "Show only telegrams to or from station ADDR (0..127); repeat for more "
-                   "stations. All telegrams are still decoded and tracked.")
-        ->check(CLI::Range(0, 127))
+                   "Show only telegrams to or from station ADDR (0..127), and those carrying a "
+                   "finding about it; repeat for more stations. All telegrams are still decoded "
+                   "and tracked.")
+        ->check(whole_number(0, 127))
         ->type_name("ADDR")
         ->allow_extra_args(false);
     app.add_option("--pnu", values.pnus,
-                   "Show only Data_Exchange telegrams whose parameter channel carries parameter "
-                   "number N; repeat for more")
-        ->check(CLI::Range(0, 2047))
+                   "Show only Data_Exchange telegrams whose parameter channel is about parameter "
+                   "number N (a request for N and its answer, also a rejection that leaves the "
+                   "PNU out), and those carrying a finding about N; repeat for more")
+        ->check(whole_number(0, 2047))
         ->type_name("N")
         ->allow_extra_args(false);
 }
 
+void add_write_options(CLI::App& app, DecodeOptionValues& values) {
+    app.add_option("-w,--write", values.write,
+                   "Write the telegrams shown (after -c, --station, --pnu) to FILE as a capture "
+                   "instead of printing them (- is standard output); with pcapng, telegrams with "
+                   "findings carry them as packet comments. FILE is replaced only when the run "
+                   "succeeds, and never when it is the input")
+        ->type_name("FILE");
+    app.add_option("-F,--write-format", values.write_format,
+                   "Capture format for -w: pcap (default), pcapng, raw (bytes only), hex (a hex "
+                   "log with timestamps)")
+        ->check(CLI::IsMember({"pcap", "pcapng", "raw", "hex"}))
+        ->type_name("FORMAT");
+    app.add_option("--linktype", values.link_type,
+                   "Link type for -w pcap/pcapng: profibus (257, PROFIBUS_DL, the default) or "
+                   "user0 (147, for tools that cannot open 257); 257 and 147 are accepted too")
+        ->check(CLI::IsMember({"profibus", "user0", "257", "147"}))
+        ->type_name("TYPE")
+        ->default_str("profibus");
+    app.add_flag("-P,--print", values.print,
+                 "With -w FILE: print the decode on standard output as well (as tshark -P)");
+}
+
 void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
-    app.add_option("-c,--count", values.count, "Stop after reading N telegrams")->check(kPositive);
+    app.add_option("-c,--count", values.count, "Stop after reading N telegrams")
+        ->check(whole_number(1, kMaxCount))
+        ->type_name("N");
     app.add_option("--ppo", values.ppo,
                    "ADDR=TYPE: decode slave ADDR as PPO TYPE (1..5) instead of inferring the type "
                    "from Chk_Cfg, Get_Cfg or the Data_Exchange length; repeatable")
@@ -57,7 +117,8 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_option("--timeout-ms", values.timeout_ms,
                    "Session tracker: a parameter request unanswered (or a spontaneous message "
                    "unacknowledged) for longer than this is a finding")
-        ->check(CLI::Range(1u, 3'600'000u))
+        ->check(whole_number(1, 3'600'000))
+        ->type_name("MS")
         ->default_str("1000");
     app.add_flag("--strict", values.strict,
                  "Session tracker: RC 8 (no operating authority) after a read request is an "
@@ -74,6 +135,7 @@ bool parse_unsigned(std::string_view text, unsigned& value) {
 }  // namespace
 
 std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
+                                                     std::string_view default_format,
                                                      std::string& error) {
     DecodeSettings settings;
     if (values.verbose && values.format != "text" && values.format != "verbose") {
@@ -84,7 +146,14 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
     settings.format = values.verbose
                           ? OutputFormat::Verbose
                           : output_format_from_name(values.format).value_or(OutputFormat::Text);
+    if (values.quiet && (values.verbose || values.format != default_format)) {
+        error = fmt::format(
+            "-q prints only the text summary; it cannot be combined with {} (drop one of them)",
+            values.verbose ? std::string("-V") : "-T " + values.format);
+        return std::nullopt;
+    }
     settings.quiet = values.quiet;
+    settings.line_buffered = values.line_buffered;
     settings.count = values.count;
     settings.tracker.timeout_ns = static_cast<std::int64_t>(values.timeout_ms) * 1'000'000;
     settings.tracker.strict = values.strict;
@@ -103,8 +172,15 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
                 fmt::format("--ppo {}: expected ADDR=TYPE with ADDR 0..126 and TYPE 1..5", item);
             return std::nullopt;
         }
-        settings.decoder.station_ppo[address] = static_cast<std::uint8_t>(type);
+        std::uint8_t& ppo = settings.decoder.station_ppo[address];
+        if (ppo != 0 && ppo != type) {
+            error = fmt::format("--ppo {}: slave {} was already given PPO {}; give one type a slave",
+                                item, address, ppo);
+            return std::nullopt;
+        }
+        ppo = static_cast<std::uint8_t>(type);
     }
+    bool dialect_for_all = false;
     for (const std::string& item : values.dialects) {
         auto eq = item.find('=');
         std::string_view name = eq == std::string::npos ? std::string_view(item)
@@ -116,6 +192,13 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
             return std::nullopt;
         }
         if (eq == std::string::npos) {
+            if (dialect_for_all && settings.decoder.dialect != *dialect) {
+                error = fmt::format("--dialect {}: the dialect for every slave was already given "
+                                    "as {}; give it once (ADDR=NAME sets one slave)",
+                                    item, dialect_name(settings.decoder.dialect));
+                return std::nullopt;
+            }
+            dialect_for_all = true;
             settings.decoder.dialect = *dialect;
             continue;
         }
@@ -125,26 +208,64 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
                                 item.substr(0, eq));
             return std::nullopt;
         }
-        settings.decoder.station_dialect[address] = *dialect;
+        std::optional<Dialect>& station = settings.decoder.station_dialect[address];
+        if (station && *station != *dialect) {
+            error = fmt::format("--dialect {}: slave {} was already given the {} dialect; give "
+                                "one dialect a slave",
+                                item, address, dialect_name(*station));
+            return std::nullopt;
+        }
+        station = *dialect;
     }
     if (!values.pcd_profile.empty())
         settings.decoder.pcd_profile = pcd_profile_from_name(values.pcd_profile);
+    settings.write = values.write;
+    settings.write_format =
+        capture_format_from_name(values.write_format).value_or(CaptureFormat::Pcap);
+    settings.link_type = values.link_type == "user0" || values.link_type == "147"
+                             ? kLinkTypeUser0
+                             : kLinkTypeProfibusDl;
+    settings.print = values.write.empty() || values.print;
+    if (values.write.empty()) {
+        if (!values.write_format.empty() || values.print) {
+            error = fmt::format("{} goes with -w FILE, which is not given",
+                                values.print ? "-P" : "-F");
+            return std::nullopt;
+        }
+    } else if (values.print && values.write == "-") {
+        error = "-P prints the decode on standard output, where -w - writes the capture; write "
+                "the capture to a file";
+        return std::nullopt;
+    } else if (values.quiet && values.write == "-") {
+        error = "-q prints its summary on standard output, where -w - writes the capture; write "
+                "the capture to a file";
+        return std::nullopt;
+    }
     return settings;
 }
 
-bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t) noexcept {
+bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
+                   std::span<const Finding> findings, std::int32_t subject_pnu) noexcept {
     if (!settings.stations.empty()) {
         bool match =
             std::any_of(settings.stations.begin(), settings.stations.end(), [&](std::uint8_t a) {
                 return (t.fdl.has_addresses && (t.fdl.da == a || t.fdl.sa == a)) ||
-                       (t.has_roles && (t.master == a || t.slave == a));
+                       (t.has_roles && (t.master == a || t.slave == a)) ||
+                       std::any_of(findings.begin(), findings.end(), [&](const Finding& f) {
+                           return f.has_stations && (f.master == a || f.slave == a);
+                       });
             });
         if (!match) return false;
     }
     if (!settings.pnus.empty()) {
-        if (!t.has_pcv) return false;
-        if (std::find(settings.pnus.begin(), settings.pnus.end(), t.pcv.pnu) == settings.pnus.end())
-            return false;
+        bool match =
+            std::any_of(settings.pnus.begin(), settings.pnus.end(), [&](std::uint16_t pnu) {
+                return (t.has_pcv && subject_pnu == pnu) ||
+                       std::any_of(findings.begin(), findings.end(), [&](const Finding& f) {
+                           return f.pnu && *f.pnu == pnu;
+                       });
+            });
+        if (!match) return false;
     }
     return true;
 }
@@ -154,6 +275,26 @@ void report_input_issues(TelegramSource& source, Output& out) {
         out.flush();
         print_diagnostic(issue.severity, issue.message);
     });
+}
+
+void warn_ppo_overrides(const BusDecoder& decoder) {
+    for (unsigned address = 0; address < kStationCount; ++address) {
+        const StationConfig& station = decoder.station(static_cast<std::uint8_t>(address));
+        if (station.overridden_cfg_frame == 0) continue;
+        const PpoLayout& announced = station.overridden_ppo;
+        std::string layout =
+            announced.type != 0
+                ? fmt::format("PPO {}", announced.type)
+                : fmt::format("a layout of {} output and {} input bytes", announced.output_bytes,
+                              announced.input_bytes);
+        unsigned forced = decoder.options().station_ppo[address];
+        print_warning(fmt::format(
+            "--ppo {}={}: the {} in frame {} announces {} for slave {}; decoded as PPO {}, as the "
+            "option says",
+            address, forced,
+            announced.source == PpoSource::GetCfg ? "Get_Cfg response" : "Chk_Cfg", 
+            station.overridden_cfg_frame, layout, address, forced));
+    }
 }
 
 std::string nothing_found_error(const TelegramSource& source, std::uint64_t telegrams) {

@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "capture/capture_writer.hpp"
+#include "capture/pcap_source.hpp"
 #include "decoder/bus_decoder.hpp"
 #include "decoder/session_tracker.hpp"
 #include "formats/renderer.hpp"
@@ -29,15 +31,14 @@ inline constexpr std::string_view kExitCodeHelp =
     "damage (truncated record, read error) after what was decoded; 4 output could not be "
     "opened or written (no such directory, disk full); 5 the capture device failed (sniff).";
 
-// A number greater than 0 (CLI11's PositiveNumber names its range as 0 to 1.8e308).
-inline const CLI::Validator kPositive(
-    [](std::string& text) -> std::string {
-        char* end = nullptr;
-        double value = std::strtod(text.c_str(), &end);
-        if (end == text.c_str() || *end != '\0') return "'" + text + "' is not a number";
-        return value > 0 ? std::string() : "must be greater than 0, not " + text;
-    },
-    "> 0", "positive");
+// A whole number from `min` to `max` written in decimal digits; the error names the range.
+CLI::Validator whole_number(std::uint64_t min, std::uint64_t max);
+// A finite number from `min` to `max` (decimal, optionally with a fraction or exponent); the
+// error names the range. `min_exclusive`: greater than `min`, not equal to it.
+CLI::Validator finite_number(double min, double max, bool min_exclusive = false);
+
+// -c N: one telegram up to 2^63 - 1 (more than any capture holds).
+inline constexpr std::uint64_t kMaxCount = 9'223'372'036'854'775'807ULL;
 
 // What the command line says, before validation.
 struct DecodeOptionValues {
@@ -52,38 +53,66 @@ struct DecodeOptionValues {
     std::string pcd_profile;
     std::uint32_t timeout_ms = 1000;
     bool strict = false;
+    bool line_buffered = false;
+    // decode/hex -w: the telegrams shown, as a capture.
+    std::string write;
+    std::string write_format;  // -F; "" = pcap
+    std::string link_type = "profibus";
+    bool print = false;  // -P: print the decode as well when writing a capture
 };
 
 // How to decode and track: -c, --ppo, --dialect, --pcd-profile, --timeout-ms, --strict.
 void add_tracking_options(CLI::App& app, DecodeOptionValues& values);
-// What decode and hex print: -T, -V, -q, --station, --pnu.
+// What decode, hex and sniff print: -T, -V, -q, -l, --station, --pnu.
 void add_display_options(CLI::App& app, DecodeOptionValues& values,
                          std::string_view default_format);
+// decode and hex: -w FILE, -F, --linktype, -P.
+void add_write_options(CLI::App& app, DecodeOptionValues& values);
 
 struct DecodeSettings {
     DecoderOptions decoder;
     TrackerOptions tracker;
     OutputFormat format = OutputFormat::Text;
     bool quiet = false;
-    std::uint64_t count = 0;  // 0: no limit
+    bool line_buffered = false;  // -l: flush the output after every telegram
+    std::uint64_t count = 0;     // 0: no limit
     std::vector<std::uint8_t> stations;
     std::vector<std::uint16_t> pnus;
+    // -w: where the telegrams shown go as a capture ("" none), its format and link type.
+    std::string write;
+    CaptureFormat write_format = CaptureFormat::Pcap;
+    int link_type = kLinkTypeProfibusDl;
+    bool print = true;  // render the decode (false with -w unless -P)
+
+    bool filtering() const noexcept { return !stations.empty() || !pnus.empty(); }
 };
 
 // Validates the values; nullopt with `error` naming the bad option otherwise.
+// `default_format`: the -T default of the subcommand (-q conflicts with any other).
 std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
+                                                     std::string_view default_format,
                                                      std::string& error);
 
-// --station and --pnu: does the telegram pass?
-bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t) noexcept;
+// --station and --pnu: does the telegram pass? A telegram passes --station when it is to or
+// from one of the stations (by address or DP role) or a finding at it concerns one; --pnu when
+// its parameter channel is about one of the parameters (`subject_pnu`, from the tracker: a
+// rejection without PNU is about the request it answers) or a finding at it concerns one.
+bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
+                   std::span<const Finding> findings, std::int32_t subject_pnu) noexcept;
 
-// Renders `t` when it passes the filters; otherwise lets `renderer` pass over it.
-inline void show(TelegramRenderer& renderer, const DecodeSettings& settings,
-                 const DecodedTelegram& t, std::span<const Finding> findings) {
-    if (passes_filter(settings, t))
-        renderer.render(t, findings);
-    else
-        renderer.pass_over(t);
+// Renders `t` when it passes the filters; otherwise lets `renderer` pass over it. Returns
+// whether it passed.
+inline bool show(TelegramRenderer* renderer, const DecodeSettings& settings,
+                 const DecodedTelegram& t, std::span<const Finding> findings,
+                 std::int32_t subject_pnu) {
+    bool shown = passes_filter(settings, t, findings, subject_pnu);
+    if (renderer) {
+        if (shown)
+            renderer->render(t, findings);
+        else
+            renderer->pass_over(t);
+    }
+    return shown;
 }
 
 // Messages on standard error, one style for every subcommand: "dpscope: error: <message>",

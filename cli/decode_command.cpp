@@ -3,11 +3,17 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "capture/capture_writer.hpp"
 #include "capture/hex_log.hpp"
+#include "capture/output_file.hpp"
 #include "capture/telegram_source.hpp"
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
@@ -17,26 +23,84 @@ namespace dpscope::cli {
 
 namespace {
 
-// Decodes every telegram of `source`, renders those that pass the filters, and returns the exit
-// code. Input problems are reported on standard error as they are met.
-int run_decoding(TelegramSource& source, const DecodeSettings& settings) {
-    Output out(stdout, isatty(STDOUT_FILENO) != 0);
+// The pcapng comment for a telegram's findings: "severity kind: message", one per line.
+std::string findings_comment(std::span<const Finding> findings) {
+    std::string comment;
+    for (const Finding& f : findings) {
+        if (!comment.empty()) comment.push_back('\n');
+        fmt::format_to(std::back_inserter(comment), "{} {}: {}", severity_name(f.severity),
+                       finding_kind_name(f.kind), f.message);
+    }
+    return comment;
+}
+
+// Decodes every telegram of `source`, renders those that pass the filters (and with -w writes
+// them as a capture), and returns the exit code. Input problems are reported on standard error
+// as they are met. `input_path` is the input as the user named it ("" for command-line bytes),
+// so that -w never overwrites it.
+int run_decoding(TelegramSource& source, const DecodeSettings& settings,
+                 const std::string& input_path) {
+    std::unique_ptr<PendingOutputFile> capture_file;
+    std::unique_ptr<CaptureWriter> writer;
+    if (!settings.write.empty()) {
+        if (std::string same = same_file_error({input_path}, settings.write, "-w");
+            !same.empty()) {
+            print_error(same);
+            return kExitUsage;
+        }
+        std::string error;
+        capture_file = PendingOutputFile::open(settings.write, error);
+        if (!capture_file) {
+            print_error(error);
+            return kExitOutputError;
+        }
+        WriterResult opened = open_capture_writer(capture_file->file(), capture_file->name(),
+                                                  settings.write_format, settings.link_type);
+        capture_file->release_file();  // the writer closes it
+        if (!opened.writer) {
+            print_error(opened.error);
+            return kExitOutputError;
+        }
+        writer = std::move(opened.writer);
+    }
+    // With -w -, the capture owns standard output; text goes to standard error.
+    FILE* text_stream = settings.write == "-" ? stderr : stdout;
+    Output out(text_stream, settings.line_buffered || isatty(fileno(text_stream)) != 0);
     report_input_issues(source, out);
     Pipeline pipeline(settings);
     std::unique_ptr<TelegramRenderer> renderer;
-    if (!settings.quiet) {
+    if (!settings.quiet && settings.print) {
         renderer = make_renderer(settings.format, out);
         renderer->begin();
     }
+    // -q with --station/--pnu summarises the telegrams those select.
+    Summary shown_summary;
+    const bool with_comments = settings.write_format == CaptureFormat::Pcapng;
+    bool write_failed = false;
     Record record;
     std::uint64_t read = 0;
     std::span<const Finding> findings;
     while ((settings.count == 0 || read < settings.count) && source.next(record)) {
         ++read;
         const DecodedTelegram& t = pipeline.feed(record, findings);
-        if (renderer) show(*renderer, settings, t, findings);
+        if (!show(renderer.get(), settings, t, findings, pipeline.tracker().subject_pnu()))
+            continue;
+        if (settings.filtering()) {
+            shown_summary.add(t);
+            shown_summary.add_findings(findings);
+        }
+        if (writer && !write_failed) {
+            bool ok = with_comments && !findings.empty()
+                          ? writer->write(record.bytes, record.time_ns, findings_comment(findings))
+                          : writer->write(record.bytes, record.time_ns);
+            if (!ok) {
+                print_error(fmt::format("{}; the output file is left as it was", writer->error()));
+                write_failed = true;
+            }
+        }
     }
     std::span<const Finding> open_at_end = pipeline.finish();
+    warn_ppo_overrides(pipeline.decoder());
     if (renderer) {
         renderer->render_end_findings(open_at_end);
         renderer->end();
@@ -44,12 +108,38 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings) {
     if (std::string nothing = nothing_found_error(source, read); !nothing.empty()) {
         out.flush();
         print_error(nothing);
-        return kExitUsage;
+        return kExitUsage;  // an existing -w file stays as it was
     }
-    if (settings.quiet)
-        pipeline.summary().render_text(out, describe_input(source), pipeline.decoder());
+    if (settings.quiet) {
+        if (settings.filtering()) {
+            shown_summary.add_findings(open_at_end);
+            InputSummary input = describe_input(source);
+            input.name += settings.stations.empty() ? "" : ", telegrams of the --station list";
+            input.name += settings.pnus.empty() ? "" : ", telegrams about the --pnu list";
+            shown_summary.render_text(out, input, pipeline.decoder());
+        } else {
+            pipeline.summary().render_text(out, describe_input(source), pipeline.decoder());
+        }
+    }
+    if (writer) {
+        if (!writer->close() && !write_failed) {
+            print_error(fmt::format("{}; the output file is left as it was", writer->error()));
+            write_failed = true;
+        }
+        std::string error;
+        if (write_failed) {
+            capture_file->discard();
+            return kExitOutputError;
+        }
+        if (!capture_file->commit(error)) {
+            print_error(error);
+            return kExitOutputError;
+        }
+    }
     if (!out.flush()) {
-        print_error("cannot write the output");
+        print_error(fmt::format("cannot write the output to {}: {}",
+                                text_stream == stdout ? "standard output" : "standard error",
+                                std::strerror(errno)));
         return kExitOutputError;
     }
     return source.status() == InputStatus::Damaged ? kExitDamagedInput : kExitOk;
@@ -87,6 +177,7 @@ void add_decode_command(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "hex"}))
         ->default_str("auto");
     add_display_options(*sub, command->options, "text");
+    add_write_options(*sub, command->options);
     add_tracking_options(*sub, command->options);
     sub->footer(std::string(kExitCodeHelp));
     sub->callback([command, &exit_code] {
@@ -102,7 +193,7 @@ void add_decode_command(CLI::App& app, int& exit_code) {
             return;
         }
         std::string error;
-        auto settings = resolve_decode_options(command->options, error);
+        auto settings = resolve_decode_options(command->options, "text", error);
         if (!settings) {
             print_error(error);
             exit_code = kExitUsage;
@@ -115,7 +206,7 @@ void add_decode_command(CLI::App& app, int& exit_code) {
             exit_code = kExitUsage;
             return;
         }
-        exit_code = run_decoding(*opened.source, *settings);
+        exit_code = run_decoding(*opened.source, *settings, path);
     });
 }
 
@@ -130,24 +221,30 @@ void add_hex_command(CLI::App& app, int& exit_code) {
                     "Hex bytes: 68 or 0x68 or 680707 or 68:07:07, in one or more arguments")
         ->type_name("BYTES");
     add_display_options(*sub, command->options, "verbose");
+    add_write_options(*sub, command->options);
     add_tracking_options(*sub, command->options);
     sub->footer(std::string(kExitCodeHelp));
     sub->callback([command, &exit_code] {
         std::string error;
-        auto settings = resolve_decode_options(command->options, error);
+        auto settings = resolve_decode_options(command->options, "verbose", error);
         if (!settings) {
             print_error(error);
             exit_code = kExitUsage;
             return;
         }
         if (command->bytes.empty()) {
+            // Typed at a terminal, nothing would happen until the user types: say so.
+            if (isatty(STDIN_FILENO))
+                std::fprintf(stderr,
+                             "dpscope hex: reading a hex log from the terminal, one telegram or "
+                             "more a line; end with Ctrl-D (or give BYTES as arguments)\n");
             OpenResult opened = open_source("-", InputFormat::Hex);
             if (!opened.source) {
                 print_error(opened.error);
                 exit_code = kExitUsage;
                 return;
             }
-            exit_code = run_decoding(*opened.source, *settings);
+            exit_code = run_decoding(*opened.source, *settings, "-");
             return;
         }
         std::vector<std::uint8_t> bytes;
@@ -159,7 +256,7 @@ void add_hex_command(CLI::App& app, int& exit_code) {
             }
         }
         auto source = memory_source("<command line>", Bytes(bytes.data(), bytes.size()));
-        exit_code = run_decoding(*source, *settings);
+        exit_code = run_decoding(*source, *settings, "");
     });
 }
 

@@ -68,6 +68,10 @@ inline ReportContext report_context(const Pipeline& pipeline, const TelegramSour
 // their order on a terminal).
 void report_input_issues(TelegramSource& source, Output& out);
 
+// A warning for each slave whose --ppo contradicts the configuration (Chk_Cfg or Get_Cfg) in the
+// capture: the option wins, the warning says so.
+void warn_ppo_overrides(const BusDecoder& decoder);
+
 // A byte stream (raw or hex) in which no telegram was found is no capture dpscope reads: the
 // error message for it, or "" when `telegrams` were found or the input is a pcap/pcapng file
 // (which may rightly hold none).

@@ -2,10 +2,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <string>
 
+#include "capture/output_file.hpp"
 #include "capture/telegram_source.hpp"
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
@@ -45,8 +48,9 @@ int write_report(const ReportCommand& command, const Pipeline& pipeline,
                   out);
     if (!log.error().empty()) print_warning(fmt::format("{}", log.error()));
     if (!out.flush()) {
-        print_error(fmt::format("cannot write the report to {}",
-                                command.output == "-" ? "standard output" : command.output));
+        print_error(fmt::format("cannot write the report to {}: {}",
+                                command.output == "-" ? "standard output" : command.output,
+                                std::strerror(errno)));
         return kExitOutputError;
     }
     if (report_fails(context)) return kExitFindings;
@@ -61,7 +65,7 @@ int run_report(const ReportCommand& command) {
         return kExitUsage;
     }
     std::string error;
-    auto settings = resolve_decode_options(command.options, error);
+    auto settings = resolve_decode_options(command.options, "text", error);
     if (!settings) {
         print_error(error);
         return kExitUsage;
@@ -72,19 +76,21 @@ int run_report(const ReportCommand& command) {
         print_error(opened.error);
         return kExitUsage;
     }
-    FILE* file = stdout;
-    if (command.output != "-") {
-        file = std::fopen(command.output.c_str(), "wb");
-        if (!file) {
-            print_error(fmt::format("{}: cannot open for writing: {}", command.output,
-                                    std::strerror(errno)));
-            return kExitOutputError;
-        }
+    if (std::string same = same_file_error({path}, command.output, "-w"); !same.empty()) {
+        print_error(same);
+        return kExitUsage;
+    }
+    // Written beside OUT and moved into place only once the report is complete: an unusable
+    // input or a write error leaves an existing OUT as it was.
+    auto report_file = PendingOutputFile::open(command.output, error);
+    if (!report_file) {
+        print_error(error);
+        return kExitOutputError;
     }
     TelegramSource& source = *opened.source;
     int exit_code = kExitOk;
     {
-        Output out(file);
+        Output out(report_file->file());
         Output diagnostics(stderr);
         report_input_issues(source, diagnostics);
         Pipeline pipeline(*settings);
@@ -98,6 +104,7 @@ int run_report(const ReportCommand& command) {
             if (!findings.empty()) log.append(findings);
         }
         log.append(pipeline.finish());
+        warn_ppo_overrides(pipeline.decoder());
         if (std::string nothing = nothing_found_error(source, read); !nothing.empty()) {
             print_error(nothing);
             exit_code = kExitUsage;
@@ -105,9 +112,13 @@ int run_report(const ReportCommand& command) {
             exit_code = write_report(command, pipeline, source, log, out);
         }
     }
-    if (file != stdout && std::fclose(file) != 0 && exit_code == kExitOk) {
-        print_error(fmt::format("cannot write the report to {}", command.output));
-        exit_code = kExitOutputError;
+    if (exit_code == kExitUsage || exit_code == kExitOutputError) {
+        report_file->discard();
+        return exit_code;
+    }
+    if (!report_file->commit(error)) {
+        print_error(error);
+        return kExitOutputError;
     }
     return exit_code;
 }

@@ -64,7 +64,7 @@ struct SniffCommand {
 
 int run_sniff(const SniffCommand& command) {
     std::string error;
-    auto settings = resolve_decode_options(command.options, error);
+    auto settings = resolve_decode_options(command.options, "text", error);
     if (!settings) {
         print_error(error);
         return kExitUsage;
@@ -104,7 +104,7 @@ int run_sniff(const SniffCommand& command) {
     tty_options.idle_gap_ns = static_cast<std::int64_t>(command.idle_gap_ms) * 1'000'000;
     TtySource source(std::move(port), fd, command.device, tty_options);
 
-    Output out(text_stream, isatty(fileno(text_stream)) != 0);
+    Output out(text_stream, settings->line_buffered || isatty(fileno(text_stream)) != 0);
     report_input_issues(source, out);
     Pipeline pipeline(*settings);
     std::unique_ptr<TelegramRenderer> renderer;
@@ -145,7 +145,7 @@ int run_sniff(const SniffCommand& command) {
                 stop_on_write_error();
             const DecodedTelegram& t = pipeline.feed(record, findings);
             if (command.report && !findings.empty()) log.append(findings);
-            if (renderer) show(*renderer, *settings, t, findings);
+            show(renderer.get(), *settings, t, findings, pipeline.tracker().subject_pnu());
             // -c N: exactly N telegrams, not what else the driver still holds.
             if (settings->count != 0 && telegrams >= settings->count) break;
         }
@@ -157,6 +157,7 @@ int run_sniff(const SniffCommand& command) {
     }
     // Judged at the stop: a request left unanswered past the time-out before it is reported.
     std::span<const Finding> open_at_end = pipeline.finish(wall_clock_ns());
+    warn_ppo_overrides(pipeline.decoder());
     if (command.report) log.append(open_at_end);
     if (renderer) {
         renderer->render_end_findings(open_at_end);
@@ -226,10 +227,10 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
         ->type_name("SIZE");
     sub->add_option("--rotate-seconds", command->rotate_seconds,
                     "Start a new file once the current one holds SECONDS of capture")
-        ->check(kPositive)
+        ->check(finite_number(0, 31'536'000, true))
         ->type_name("SECONDS");
     sub->add_option("--duration", command->duration, "Stop after SECONDS")
-        ->check(kPositive)
+        ->check(finite_number(0, 31'536'000, true))
         ->type_name("SECONDS");
     sub->add_flag("--report", command->report,
                   "At the end, print the conformance report of the capture");

@@ -41,6 +41,19 @@ void BusDecoder::layout_for(std::uint8_t slave, std::size_t du_length,
     }
 }
 
+void BusDecoder::note_ppo_override(StationConfig& station, std::uint8_t slave,
+                                   std::uint64_t frame) const noexcept {
+    std::uint8_t type = options_.station_ppo[slave & 0x7F];
+    if (type == 0 || station.overridden_cfg_frame != 0) return;
+    PpoLayout forced = ppo_layout_of_type(type, PpoSource::Option);
+    const PpoLayout& announced = station.ppo;
+    if (announced.type != forced.type || announced.output_bytes != forced.output_bytes ||
+        announced.input_bytes != forced.input_bytes || announced.has_pcv != forced.has_pcv) {
+        station.overridden_cfg_frame = frame;
+        station.overridden_ppo = announced;
+    }
+}
+
 void BusDecoder::learn_length12_type(const DecodedTelegram& t) {
     constexpr std::uint16_t kControlValid = 0x0400;
     ByteReader reader(t.fdl.du);
@@ -150,6 +163,7 @@ void BusDecoder::decode_service_data(DecodedTelegram& t) {
                 parse_cfg(du, modules, problems);
                 station.ppo = ppo_from_cfg(modules, PpoSource::ChkCfg);
                 station.cfg_frame = t.frame;
+                note_ppo_override(station, t.slave, t.frame);
             }
             break;
         case Service::GetCfg:
@@ -158,6 +172,7 @@ void BusDecoder::decode_service_data(DecodedTelegram& t) {
                 parse_cfg(du, modules, problems);
                 station.ppo = ppo_from_cfg(modules, PpoSource::GetCfg);
                 station.cfg_frame = t.frame;
+                note_ppo_override(station, t.slave, t.frame);
             }
             break;
         case Service::SetPrm:

@@ -43,6 +43,9 @@ std::string_view direction_name(Direction direction);  // "request", "response"
 struct StationConfig {
     PpoLayout ppo;                // from Chk_Cfg or Get_Cfg (source None until one is seen)
     std::uint64_t cfg_frame = 0;  // the frame that carried it
+    // The first configuration that announced another layout than --ppo gives (0: none did).
+    std::uint64_t overridden_cfg_frame = 0;
+    PpoLayout overridden_ppo;
     bool has_ident = false;
     std::uint16_t ident = 0;  // from Set_Prm
     bool cfg_fault = false;   // from the last Slave_Diag
@@ -130,6 +133,9 @@ class BusDecoder {
     void decode_service_data(DecodedTelegram& t);
     void decode_data_exchange(DecodedTelegram& t);
     void learn_length12_type(const DecodedTelegram& t);
+    // --ppo for this slave contradicts the configuration just learnt: remember the first time.
+    void note_ppo_override(StationConfig& station, std::uint8_t slave,
+                           std::uint64_t frame) const noexcept;
 
     DecoderOptions options_;
     std::array<StationConfig, kStationCount> stations_{};

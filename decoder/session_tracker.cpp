@@ -209,6 +209,7 @@ Finding& SessionTracker::add(FindingKind kind, const DecodedTelegram& t,
 std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
     current_.clear();
     last_frame_ = t.frame;
+    subject_pnu_ = t.has_pcv ? t.pcv.pnu : -1;
     if (t.has_time()) {
         now_ns_ = t.time_ns;
         check_deadlines(&t, now_ns_);
@@ -452,6 +453,13 @@ void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
     // The response in the cycle in which a request first appears shows what the slave made of
     // the master's data before it (the slave lags one cycle): it cannot answer that request.
     const bool before_pending = ch.pending.active && ch.stats.cycles == ch.pending.cycle;
+    // A rejection without its PNU is about the request it answers (or repeats the answer to).
+    if (no_echo) {
+        if (ch.pending.active && !before_pending)
+            subject_pnu_ = ch.pending.key.pnu;
+        else if (ch.previous.valid)
+            subject_pnu_ = ch.previous.key.pnu;
+    }
     // Could `r` be the slave's answer to the pending request? Its parameter, a valid code for
     // it, and for a change request answered positively, the value written.
     auto answers_pending = [&] {

@@ -132,6 +132,10 @@ class SessionTracker {
     }
     std::uint64_t transactions() const noexcept;
     const TrackerOptions& options() const noexcept { return options_; }
+    // The parameter number the last tracked telegram's parameter channel is about, -1 when it
+    // carries none: the PCV's own PNU, except for a rejection (RC 7) or "no authority" (RC 8)
+    // that leaves the PNU out (PNU 0): that one is about the request it answers.
+    std::int32_t subject_pnu() const noexcept { return subject_pnu_; }
 
   private:
     struct Channel;
@@ -159,6 +163,7 @@ class SessionTracker {
     std::int64_t now_ns_ = kNoTime;
     std::int64_t next_deadline_ns_ = std::numeric_limits<std::int64_t>::max();
     std::uint64_t last_frame_ = 0;
+    std::int32_t subject_pnu_ = -1;
 };
 
 }  // namespace dpscope

@@ -61,7 +61,8 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
     bool header = false;
     for (std::size_t a = 0; a < kStationCount; ++a) {
         const StationConfig& station = decoder.station(static_cast<std::uint8_t>(a));
-        if (data_exchange_[a] == 0 && !station.ppo.known()) continue;
+        // Slaves of the telegrams summarised (with --station, only those).
+        if (!slave_seen_[a] || (data_exchange_[a] == 0 && !station.ppo.known())) continue;
         if (!header) {
             append(b, "  slaves:\n");
             header = true;

@@ -40,6 +40,7 @@ class Summary {
             if (first_time_ == kNoTime) first_time_ = t.time_ns;
             last_time_ = t.time_ns;
         }
+        if (t.has_roles) slave_seen_[t.slave & 0x7F] = true;
         if (t.service == Service::DataExchange && t.has_roles) ++data_exchange_[t.slave & 0x7F];
     }
 
@@ -79,6 +80,7 @@ class Summary {
     std::array<std::uint64_t, kProblemKindCount> problems_{};
     std::array<std::uint64_t, kFindingKindCount> findings_{};
     std::array<std::uint64_t, kStationCount> data_exchange_{};
+    std::array<bool, kStationCount> slave_seen_{};  // a telegram to or from it was added
     std::int64_t first_time_ = kNoTime;
     std::int64_t last_time_ = kNoTime;
 };

@@ -1,0 +1,153 @@
+#include "capture/output_file.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <climits>
+#include <cstdlib>
+#include <cstring>
+
+namespace dpscope {
+
+namespace {
+
+// The directory part of `path` ("." when it has none).
+std::string directory_of(const std::string& path) {
+    std::size_t slash = path.rfind('/');
+    if (slash == std::string::npos) return ".";
+    if (slash == 0) return "/";
+    return path.substr(0, slash);
+}
+
+std::string base_name_of(const std::string& path) {
+    std::size_t slash = path.rfind('/');
+    return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+mode_t creation_mode() {
+    mode_t mask = umask(0);
+    umask(mask);
+    return static_cast<mode_t>(0666 & ~mask);
+}
+
+}  // namespace
+
+std::unique_ptr<PendingOutputFile> PendingOutputFile::open(const std::string& path,
+                                                           std::string& error) {
+    std::unique_ptr<PendingOutputFile> out(new PendingOutputFile());
+    if (path == "-") {
+        out->file_ = stdout;
+        out->name_ = "<stdout>";
+        out->to_stdout_ = true;
+        return out;
+    }
+    out->name_ = path;
+    // A symbolic link is followed: the file it names is replaced, the link stays.
+    std::string target = path;
+    struct stat info {};
+    bool exists = ::stat(path.c_str(), &info) == 0;
+    if (exists) {
+        if (char* real = ::realpath(path.c_str(), nullptr)) {
+            target = real;
+            std::free(real);
+        }
+    }
+    if (exists && !S_ISREG(info.st_mode)) {
+        // A device, FIFO or terminal: write to it as it is.
+        out->file_ = std::fopen(path.c_str(), "wb");
+        if (!out->file_) {
+            error = fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno));
+            return nullptr;
+        }
+        return out;
+    }
+    if (exists && ::access(target.c_str(), W_OK) != 0) {
+        error = fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno));
+        return nullptr;
+    }
+    std::string pattern = directory_of(target) + "/." + base_name_of(target) + ".dpscope-XXXXXX";
+    int fd = ::mkstemp(pattern.data());
+    if (fd < 0) {
+        error = fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno));
+        return nullptr;
+    }
+    // mkstemp makes the file private; give it the mode the target has, or a new file's mode.
+    ::fchmod(fd, exists ? (info.st_mode & 07777) : creation_mode());
+    out->file_ = ::fdopen(fd, "wb");
+    if (!out->file_) {
+        error = fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno));
+        ::close(fd);
+        ::unlink(pattern.c_str());
+        return nullptr;
+    }
+    out->target_ = target;
+    out->temporary_ = pattern;
+    return out;
+}
+
+PendingOutputFile::~PendingOutputFile() {
+    if (!done_) discard();
+}
+
+bool PendingOutputFile::commit(std::string& error) {
+    done_ = true;
+    bool ok = true;
+    if (file_) {
+        if (to_stdout_) {
+            ok = std::fflush(file_) == 0;
+        } else {
+            ok = std::fclose(file_) == 0;
+        }
+        if (!ok) error = fmt::format("{}: write failed: {}", name_, std::strerror(errno));
+        file_ = nullptr;
+    }
+    if (temporary_.empty()) return ok;
+    if (!ok) {
+        ::unlink(temporary_.c_str());
+        return false;
+    }
+    if (::rename(temporary_.c_str(), target_.c_str()) != 0) {
+        error = fmt::format("{}: cannot replace the file: {}", name_, std::strerror(errno));
+        ::unlink(temporary_.c_str());
+        return false;
+    }
+    return true;
+}
+
+void PendingOutputFile::discard() noexcept {
+    done_ = true;
+    if (file_ && !to_stdout_) std::fclose(file_);
+    file_ = nullptr;
+    if (!temporary_.empty()) ::unlink(temporary_.c_str());
+}
+
+std::string same_file_error(const std::vector<std::string>& inputs, const std::string& output,
+                            std::string_view output_option) {
+    struct stat out_info {};
+    bool out_known = output == "-" ? ::fstat(STDOUT_FILENO, &out_info) == 0
+                                   : ::stat(output.c_str(), &out_info) == 0;
+    // Only a file can be destroyed by writing to it; two opens of one device are no loss.
+    if (!out_known || !S_ISREG(out_info.st_mode)) return {};
+    for (const std::string& input : inputs) {
+        if (input.empty()) continue;
+        struct stat in_info {};
+        bool in_known = input == "-" ? ::fstat(STDIN_FILENO, &in_info) == 0
+                                     : ::stat(input.c_str(), &in_info) == 0;
+        if (!in_known || in_info.st_dev != out_info.st_dev || in_info.st_ino != out_info.st_ino)
+            continue;
+        std::string out_name = output == "-" ? std::string("standard output") : output;
+        std::string in_name = input == "-" ? std::string("standard input") : input;
+        if (out_name == in_name)
+            return fmt::format("{} {}: that is the input; writing it would destroy the capture",
+                               output_option, out_name);
+        return fmt::format(
+            "{} {}: that is the same file as the input {}; writing it would destroy the capture",
+            output_option, out_name, in_name);
+    }
+    return {};
+}
+
+}  // namespace dpscope

@@ -1,0 +1,58 @@
+// File outputs that never destroy what the user has.
+//
+// PendingOutputFile writes to a temporary file beside its target and renames it into place only
+// when the command commits, so a run that fails (unusable input, write error) leaves an existing
+// file as it was. Targets that are not regular files (/dev/null, a FIFO, a terminal) are written
+// directly: they cannot be replaced by a rename and hold nothing to lose. "-" is standard output.
+//
+// same_file_error() refuses an output that is one of the inputs (compared by device and inode,
+// so symbolic and hard links are seen through).
+#pragma once
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dpscope {
+
+class PendingOutputFile {
+  public:
+    // Opens `path` for writing ("-": standard output). On failure `error` names the file and
+    // the reason, and the result is null.
+    static std::unique_ptr<PendingOutputFile> open(const std::string& path, std::string& error);
+    ~PendingOutputFile();
+    PendingOutputFile(const PendingOutputFile&) = delete;
+    PendingOutputFile& operator=(const PendingOutputFile&) = delete;
+
+    // The stream to write. Whoever closes it (a capture writer does) calls release_file() first.
+    FILE* file() const noexcept { return file_; }
+    void release_file() noexcept { file_ = nullptr; }
+    // "<stdout>" or the path as the user gave it.
+    const std::string& name() const noexcept { return name_; }
+    bool is_stdout() const noexcept { return to_stdout_; }
+
+    // Closes the stream (unless released) and moves the temporary file into place. False with
+    // `error` when the close or the rename failed; the target is then as it was.
+    bool commit(std::string& error);
+    // Closes and removes the temporary file; the target stays as it was. The destructor does
+    // this when commit() was not called.
+    void discard() noexcept;
+
+  private:
+    PendingOutputFile() = default;
+    FILE* file_ = nullptr;
+    std::string name_;
+    std::string target_;     // where commit() renames to ("" when written directly)
+    std::string temporary_;  // the temporary file ("" when written directly)
+    bool to_stdout_ = false;
+    bool done_ = false;
+};
+
+// "" when `output` is none of `inputs`; otherwise the error message for it. "-" as an input is
+// standard input and as the output standard output; a path that does not exist yet is no input.
+std::string same_file_error(const std::vector<std::string>& inputs, const std::string& output,
+                            std::string_view output_option);
+
+}  // namespace dpscope
