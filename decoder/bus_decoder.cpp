@@ -2,8 +2,6 @@
 
 #include <vector>
 
-#include "decoder/dp_payload.hpp"
-
 namespace dpscope {
 
 std::string_view direction_name(Direction direction) {
@@ -84,6 +82,7 @@ const DecodedTelegram& BusDecoder::decode(Bytes bytes, std::int64_t time_ns, std
     t.pcv = Pcv{};
     t.pcd = {};
     t.pcd_offset = 0;
+    t.slave_dpv1 = SlaveDpv1::Unknown;
 
     if (t.fdl.type == FrameType::Invalid) {
         t.direction = Direction::Request;
@@ -115,8 +114,10 @@ void BusDecoder::decode_request(DecodedTelegram& t) {
     t.slave = t.fdl.da;
     if (t.fdl.type == FrameType::Sd4 || !t.fdl.has_fc) return;
     std::uint8_t function = t.fdl.fc.function();
-    // A request with a bad FCS is dropped by the station it is for: no reply is due.
-    if (function_expects_reply(function) && t.fdl.da != kBroadcastAddress && t.fdl.fcs_ok) {
+    // A request with a bad FCS or a reserved frame control byte is dropped by the station it is
+    // for: no reply is due.
+    if (function_expects_reply(function) && t.fdl.da != kBroadcastAddress && t.fdl.fcs_ok &&
+        !t.fdl.fc.is_reserved()) {
         pending_ = PendingRequest{true, t.frame, t.time_ns, t.master, t.slave, function, t.service};
     }
 }
@@ -180,6 +181,10 @@ void BusDecoder::decode_service_data(DecodedTelegram& t) {
                 if (auto prm = parse_set_prm(du, problems)) {
                     station.has_ident = true;
                     station.ident = prm->ident;
+                    // A damaged Set_Prm is dropped by the slave: its DP-V1 mode stays as it was.
+                    if (t.fdl.fcs_ok)
+                        station.dpv1 =
+                            prm->dpv1_enabled() ? SlaveDpv1::Enabled : SlaveDpv1::Disabled;
                 }
             }
             break;
@@ -200,6 +205,7 @@ void BusDecoder::decode_service_data(DecodedTelegram& t) {
             break;
         default: break;
     }
+    t.slave_dpv1 = station.dpv1;
 }
 
 void BusDecoder::decode_data_exchange(DecodedTelegram& t) {

@@ -1,6 +1,7 @@
 // Decodes a capture telegram by telegram, in capture order. Keeps the little state a bus
 // decoder needs and nothing per telegram: the request waiting for its reply (so a response is
-// named after the request it answers) and, per slave, the PPO layout its configuration announced.
+// named after the request it answers) and, per slave, the PPO layout its configuration announced
+// and the DP-V1 mode its Set_Prm set.
 #pragma once
 
 #include <array>
@@ -9,6 +10,7 @@
 #include <optional>
 
 #include "decoder/code_tables.hpp"
+#include "decoder/dp_payload.hpp"
 #include "decoder/dp_service.hpp"
 #include "decoder/fdl.hpp"
 #include "decoder/pcd.hpp"
@@ -47,8 +49,9 @@ struct StationConfig {
     std::uint64_t overridden_cfg_frame = 0;
     PpoLayout overridden_ppo;
     bool has_ident = false;
-    std::uint16_t ident = 0;  // from Set_Prm
-    bool cfg_fault = false;   // from the last Slave_Diag
+    std::uint16_t ident = 0;              // from Set_Prm
+    SlaveDpv1 dpv1 = SlaveDpv1::Unknown;  // from the last intact Set_Prm (DPV1_Enable)
+    bool cfg_fault = false;               // from the last Slave_Diag
     // Without a configuration, a 12-byte Data_Exchange is PPO 1 or PPO 4. The master's control
     // word has bit 10 set ("data valid" / "control by PLC"): in bytes 9-10 it points to PPO 1, in
     // bytes 1-2 (and not in 9-10) to PPO 4. The last request that told them apart decides.
@@ -90,11 +93,21 @@ struct DecodedTelegram {
     Bytes pcd;  // process data words
     std::uint16_t pcd_offset = 0;
 
+    // Services other than Data_Exchange: the slave's DP-V1 mode as its Set_Prm said (how its
+    // device-related diagnosis reads).
+    SlaveDpv1 slave_dpv1 = SlaveDpv1::Unknown;
+
     const ProblemList& problems() const noexcept { return fdl.problems; }
     bool has_time() const noexcept { return time_ns != kNoTime; }
     // The parameter value as the code says (word / double word) and the code's meaning.
     std::uint32_t pcv_value() const noexcept;
     std::string_view pcv_meaning() const noexcept;
+    // Whether PCD 1 follows a Danfoss profile: the FC profile, or the PROFIdrive profile of a
+    // Danfoss drive (the vlt dialect), whose bits 11..15 are Danfoss-defined. A profidrive-dialect
+    // slave in the PROFIdrive profile gets the generic words (bits 11..15 device-specific).
+    bool danfoss_pcd() const noexcept {
+        return pcd_profile == PcdProfile::Fc || dialect == Dialect::Vlt;
+    }
 };
 
 class BusDecoder {

@@ -125,7 +125,7 @@ struct ErrorEntry {
 constexpr ErrorEntry kVltErrors[] = {
     {0, "Improper PNU"},
     {1, "Parameter value not changeable"},
-    {2, "Upper or lower limit passed"},
+    {2, "Upper or lower value passed"},
     {3, "Faulty subindex"},
     {4, "No array"},
     {5, "Wrong data type"},

@@ -39,7 +39,7 @@ constexpr FlagBit kDpv1Status2[] = {
     {0x40, "Enable_Process_Alarm"},
     {0x80, "Enable_Pull_Plug_Alarm"},
 };
-constexpr FlagBit kDpv1Status3[] = {{0x08, "Prm_Structure"}, {0x10, "IsoM_Req"}};
+constexpr FlagBit kDpv1Status3[] = {{0x08, "Prm_Structure"}, {0x10, "IsoM_Req"}, {0x80, "PrmCmd"}};
 
 constexpr FlagBit kGlobalControl[] = {
     {0x02, "Clear_Data"}, {0x04, "Unfreeze"}, {0x08, "Freeze"}, {0x10, "Unsync"}, {0x20, "Sync"},
@@ -105,13 +105,26 @@ std::string_view channel_type_text(std::uint8_t channel_type) {
     }
 }
 
+std::string_view channel_io_text(std::uint8_t io) {
+    switch (io) {
+        case 1: return "input";
+        case 2: return "output";
+        case 3: return "input/output";
+        default: return "reserved I/O type";
+    }
+}
+
 std::string_view dpv1_alarm_or_status_text(std::uint8_t type_byte) {
     std::uint8_t code = type_byte & 0x7F;
+    bool manufacturer = code >= 32 && code <= 126;
     if (type_byte & 0x80) {
         switch (code) {
             case 1: return "status message";
             case 2: return "module status";
-            default: return code >= 32 ? "manufacturer-specific status" : "reserved status";
+            case 3: return "DXB_Link_Status";
+            case 30: return "PrmCmdAck";
+            case 31: return "Red_State";
+            default: return manufacturer ? "manufacturer-specific status" : "reserved status";
         }
     }
     switch (code) {
@@ -121,8 +134,16 @@ std::string_view dpv1_alarm_or_status_text(std::uint8_t type_byte) {
         case 4: return "plug alarm";
         case 5: return "status alarm";
         case 6: return "update alarm";
-        default: return code >= 32 ? "manufacturer-specific alarm" : "reserved alarm";
+        default: return manufacturer ? "manufacturer-specific alarm" : "reserved alarm";
     }
+}
+
+std::string_view dpv1_alarm_mode_text(std::uint8_t status_3) {
+    static constexpr std::string_view kModes[] = {
+        "1 alarm of each type", "2 alarms in total",  "4 alarms in total",  "8 alarms in total",
+        "12 alarms in total",   "16 alarms in total", "24 alarms in total", "32 alarms in total",
+    };
+    return kModes[status_3 & 0x07];
 }
 
 std::optional<SlaveDiag> parse_slave_diag(ByteReader reader, ProblemList& problems) {

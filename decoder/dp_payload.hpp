@@ -44,7 +44,7 @@ struct DiagBlock {
     // Channel-related blocks:
     std::uint8_t module = 0;  // identifier (slot) number
     std::uint8_t channel = 0;
-    std::uint8_t io = 0;            // 1 input, 2 output, 3 input/output
+    std::uint8_t io = 0;            // 0 reserved, 1 input, 2 output, 3 input/output
     std::uint8_t channel_type = 0;  // 1 bit, 2 2-bit, 3 4-bit, 4 byte, 5 word, 6 2 words
     std::uint8_t error_type = 0;
     // Revision blocks:
@@ -66,15 +66,27 @@ std::optional<SlaveDiag> parse_slave_diag(ByteReader reader, ProblemList& proble
 std::vector<DiagBlock> parse_extended_diag(ByteReader reader, ProblemList& problems);
 std::string_view channel_error_text(std::uint8_t error_type);
 std::string_view channel_type_text(std::uint8_t channel_type);
+// The I/O type of a channel-related block (bits 7..6 of its second byte): 01 "input",
+// 10 "output", 11 "input/output"; 00 is "reserved I/O type".
+std::string_view channel_io_text(std::uint8_t io);
 // DP-V1 device-related blocks: byte 1 names an alarm (bit 7 clear) or a status (bit 7 set).
+// Alarms 1..6, statuses 1..3, 30, 31; 32..126 manufacturer-specific; 0, 127 and the gaps reserved.
 std::string_view dpv1_alarm_or_status_text(std::uint8_t type_byte);
+
+// Whether a slave runs in DP-V1 mode, as its last Set_Prm said (DPV1_Status_1 bit 7,
+// DPV1_Enable). A device-related diagnosis block is a DP-V1 alarm or status only in DP-V1 mode;
+// otherwise it is manufacturer-specific data. Unknown: no Set_Prm to the slave in the capture.
+enum class SlaveDpv1 : std::uint8_t { Unknown, Enabled, Disabled };
 
 // ---- Set_Prm ---------------------------------------------------------------------------------
 
 std::span<const FlagBit> set_prm_station_flags();
 std::span<const FlagBit> dpv1_status_1_flags();
 std::span<const FlagBit> dpv1_status_2_flags();
-std::span<const FlagBit> dpv1_status_3_flags();
+std::span<const FlagBit> dpv1_status_3_flags();  // bit 7 PrmCmd; Alarm_Mode is bits 2..0
+// DPV1_Status_3 bits 2..0: "1 alarm of each type" (0), else "N alarms in total" (2, 4, 8, 12,
+// 16, 24, 32).
+std::string_view dpv1_alarm_mode_text(std::uint8_t status_3);
 
 struct SetPrm {
     std::uint8_t station_status = 0;
@@ -89,8 +101,19 @@ struct SetPrm {
     std::uint16_t user_prm_offset = 0;
 
     bool watchdog_on() const noexcept { return (station_status & 0x08) != 0; }
+    // DPV1_Enable in DPV1_Status_1 (the first three user bytes read as DP-V1 status).
+    bool dpv1_enabled() const noexcept { return has_dpv1_status && (dpv1_status[0] & 0x80); }
     // WD_Fact_1 x WD_Fact_2 x 10 ms (x 1 ms with the DP-V1 WD_Base_1ms bit).
     std::uint32_t watchdog_ms() const noexcept;
+    // True when the watchdog has two readings: the bytes read as DPV1_Status_1..3 set
+    // WD_Base_1ms, but a DP-V0 slave's User_Prm_Data can look the same, so the base may as well
+    // be 10 ms. watchdog_ms() is then the 1 ms reading and watchdog_ms_10ms_base() the other.
+    bool watchdog_base_uncertain() const noexcept {
+        return has_dpv1_status && (dpv1_status[0] & 0x04);
+    }
+    std::uint32_t watchdog_ms_10ms_base() const noexcept {
+        return std::uint32_t{10} * wd_fact_1 * wd_fact_2;
+    }
 };
 
 std::optional<SetPrm> parse_set_prm(ByteReader reader, ProblemList& problems);

@@ -39,6 +39,12 @@ std::string_view request_function_name(std::uint8_t function) {
     return "reserved";
 }
 
+std::string_view request_function_name(FrameControl fc) {
+    if (fc.is_clock_value()) return "clock value";
+    if (fc.is_reserved()) return "reserved";
+    return request_function_name(fc.function());
+}
+
 std::string_view response_status_name(std::uint8_t status) {
     switch (static_cast<FdlStatus>(status)) {
         case FdlStatus::Ok: return "OK";
@@ -148,10 +154,12 @@ void parse_header_and_data(ByteReader&& reader, FdlTelegram& out) noexcept {
     out.has_addresses = true;
     out.da = *da & 0x7F;
     out.sa = *sa & 0x7F;
+    std::size_t fc_at = reader.offset();
     auto fc = reader.u8();
     if (!fc) return;
     out.has_fc = true;
     out.fc.raw = *fc;
+    if (out.fc.is_reserved()) out.problems.add(ProblemKind::ReservedFrameControl, fc_at, 0, *fc);
     if (*da & 0x80) {
         std::size_t at = reader.offset();
         if (!read_extension(reader, out.has_dsap, out.dsap, out.has_dest_segment, out.dest_segment))

@@ -34,7 +34,8 @@ enum class FrameType : std::uint8_t { Sd1, Sd2, Sd3, Sd4, ShortAck, Invalid };
 std::string_view frame_type_name(FrameType type);
 bool is_start_delimiter(std::uint8_t byte) noexcept;
 
-// Request function codes (FC bit 6 set, low nibble).
+// Request function codes (FC bit 6 set, low nibble). FC bit 7 is reserved (0) except in the
+// clock value request 0xC0 (function 0 with bit 7 set); function 0 without it is a time event.
 enum class FdlFunction : std::uint8_t {
     TimeEvent = 0x0,
     SdaLow = 0x3,
@@ -72,10 +73,17 @@ struct FrameControl {
     bool fcv() const noexcept { return (raw & 0x10) != 0; }
     std::uint8_t function() const noexcept { return raw & 0x0F; }
     std::uint8_t station_type() const noexcept { return (raw >> 4) & 0x03; }
+    // A clock value request: bit 7 and bit 6 set, function 0 (0xC0, with FCB/FCV as sent).
+    bool is_clock_value() const noexcept { return (raw & 0xCF) == 0xC0; }
+    // Bit 7 set in any other frame control byte: a reserved code (a ReservedFrameControl problem).
+    bool is_reserved() const noexcept { return (raw & 0x80) != 0 && !is_clock_value(); }
 };
 
 // "SRD high", "SDN low", "FDL status", ... ; "reserved" for unassigned codes.
 std::string_view request_function_name(std::uint8_t function);
+// The function of a request's whole frame control byte: "clock value" for 0xC0, "reserved" when
+// bit 7 is set otherwise, else request_function_name() of the low nibble.
+std::string_view request_function_name(FrameControl fc);
 // "OK", "UE", "RR", "RS", "DL", "NR", "DH", "RDL", "RDH"; "reserved" otherwise.
 std::string_view response_status_name(std::uint8_t status);
 // The longer wording, e.g. "data low", "no resources".

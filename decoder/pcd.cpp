@@ -15,7 +15,7 @@ std::optional<PcdProfile> pcd_profile_from_name(std::string_view name) {
 namespace {
 
 // Danfoss control word, PROFIdrive profile (FC 361 DG, MCA 120, GE AF-650).
-constexpr WordBits kProfidriveControl{{
+constexpr WordBits kDanfossProfidriveControl{{
     {"OFF 1", "ON 1"},
     {"OFF 2", "ON 2"},
     {"OFF 3", "ON 3"},
@@ -35,7 +35,7 @@ constexpr WordBits kProfidriveControl{{
 }};
 
 // Danfoss status word, PROFIdrive profile (FC 301 DG, FC 300 DG).
-constexpr WordBits kProfidriveStatus{{
+constexpr WordBits kDanfossProfidriveStatus{{
     {"control not ready", "control ready"},
     {"drive not ready", "drive ready"},
     {"coasting", "enable"},
@@ -53,6 +53,19 @@ constexpr WordBits kProfidriveStatus{{
     {"torque OK", "torque exceeded"},
     {"timer OK", "timer exceeded"},
 }};
+
+// Generic PROFIdrive STW1/ZSW1: bits 0..10 as the Danfoss PROFIdrive profile words (which
+// follow the standard there), bits 11..15 device-specific (protocol.md 8.1, 8.2).
+constexpr WordBits with_device_specific_high_bits(WordBits bits) {
+    bits[11] = {"device-specific bit 11", "device-specific bit 11"};
+    bits[12] = {"device-specific bit 12", "device-specific bit 12"};
+    bits[13] = {"device-specific bit 13", "device-specific bit 13"};
+    bits[14] = {"device-specific bit 14", "device-specific bit 14"};
+    bits[15] = {"device-specific bit 15", "device-specific bit 15"};
+    return bits;
+}
+constexpr WordBits kProfidriveControl = with_device_specific_high_bits(kDanfossProfidriveControl);
+constexpr WordBits kProfidriveStatus = with_device_specific_high_bits(kDanfossProfidriveStatus);
 
 // Danfoss control word, FC profile (FC 102 DS, FC 300 PB). Bit 12 names a relay that differs
 // between models.
@@ -97,12 +110,14 @@ constexpr WordBits kFcStatus{{
 
 }  // namespace
 
-const WordBits& control_word_bits(PcdProfile profile) {
-    return profile == PcdProfile::Fc ? kFcControl : kProfidriveControl;
+const WordBits& control_word_bits(PcdProfile profile, bool danfoss) {
+    if (profile == PcdProfile::Fc) return kFcControl;
+    return danfoss ? kDanfossProfidriveControl : kProfidriveControl;
 }
 
-const WordBits& status_word_bits(PcdProfile profile) {
-    return profile == PcdProfile::Fc ? kFcStatus : kProfidriveStatus;
+const WordBits& status_word_bits(PcdProfile profile, bool danfoss) {
+    if (profile == PcdProfile::Fc) return kFcStatus;
+    return danfoss ? kDanfossProfidriveStatus : kProfidriveStatus;
 }
 
 double reference_percent(std::uint16_t word) noexcept {

@@ -9,7 +9,8 @@
 
 namespace dpscope {
 
-// profidrive: Danfoss "PROFIdrive profile" (par. 8-10), bits 0..10 as the PROFIdrive STW1/ZSW1.
+// profidrive: PROFIdrive STW1/ZSW1 (bits 0..10 standard, 11..15 device-specific); on a Danfoss
+//             drive its "PROFIdrive profile" (par. 8-10), which names bits 11..15 too.
 // fc:         Danfoss "FC profile" (VLT 5000 par. 512, FC series par. 8-10).
 enum class PcdProfile : std::uint8_t { Profidrive, Fc };
 
@@ -23,8 +24,10 @@ struct WordBit {
 
 using WordBits = std::array<WordBit, 16>;
 
-const WordBits& control_word_bits(PcdProfile profile);
-const WordBits& status_word_bits(PcdProfile profile);
+// The bit meanings of PCD 1. `danfoss` selects the Danfoss names of bits 11..15 in the
+// profidrive profile (generic PROFIdrive: "device-specific bit N"); the fc profile is Danfoss's.
+const WordBits& control_word_bits(PcdProfile profile, bool danfoss);
+const WordBits& status_word_bits(PcdProfile profile, bool danfoss);
 
 // A 16-bit reference or actual value as a percentage: signed, 0x4000 = 100 %, 0xC000 = -100 %.
 double reference_percent(std::uint16_t word) noexcept;

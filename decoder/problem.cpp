@@ -29,6 +29,7 @@ std::string_view problem_kind_name(ProblemKind kind) {
         case ProblemKind::ServiceDataShort: return "service_data_short";
         case ProblemKind::CfgIdentifierTruncated: return "cfg_identifier_truncated";
         case ProblemKind::DiagBlockTruncated: return "diag_block_truncated";
+        case ProblemKind::ReservedFrameControl: return "reserved_frame_control";
         case ProblemKind::Count: break;
     }
     return "unknown";
@@ -80,6 +81,11 @@ std::string problem_message(const Problem& p) {
         case ProblemKind::DiagBlockTruncated:
             return fmt::format("byte {}: diagnosis block of {} bytes, only {} present", p.offset,
                                p.expected, p.actual);
+        case ProblemKind::ReservedFrameControl:
+            return fmt::format(
+                "byte {}: frame control 0x{:02X} has the reserved bit 7 set (only the clock value "
+                "request 0xC0 sets it)",
+                p.offset, p.actual);
         case ProblemKind::Count: break;
     }
     return "unknown problem";

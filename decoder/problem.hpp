@@ -30,6 +30,7 @@ enum class ProblemKind : std::uint8_t {
     ServiceDataShort,        // a DP service's data unit is shorter than the service requires
     CfgIdentifierTruncated,  // a special-format identifier announces bytes that are not there
     DiagBlockTruncated,      // an extended-diagnosis block runs past the end of the data
+    ReservedFrameControl,    // FC bit 7 set in anything but the clock value request 0xC0
     Count
 };
 

@@ -73,7 +73,7 @@ void append_hex(TextBuffer& out, Bytes bytes, std::string_view separator) {
 void append_frame_control(TextBuffer& out, FrameControl fc) {
     if (fc.is_request()) {
         fmt::format_to(std::back_inserter(out), "request, FCB {}, FCV {}, {}", fc.fcb() ? 1 : 0,
-                       fc.fcv() ? 1 : 0, request_function_name(fc.function()));
+                       fc.fcv() ? 1 : 0, request_function_name(fc));
     } else {
         fmt::format_to(std::back_inserter(out), "response, {}, {} ({})",
                        station_type_name(fc.station_type()), response_status_name(fc.function()),
@@ -230,7 +230,11 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
             if (!request) break;
             if (auto prm = parse_set_prm(du, ignored)) {
                 fmt::format_to(std::back_inserter(out), "ident 0x{:04X} ", prm->ident);
-                if (prm->watchdog_on())
+                if (prm->watchdog_on() && prm->watchdog_base_uncertain())
+                    fmt::format_to(std::back_inserter(out),
+                                   "WD {} ms (1 ms base) or {} ms (10 ms base) ",
+                                   prm->watchdog_ms(), prm->watchdog_ms_10ms_base());
+                else if (prm->watchdog_on())
                     fmt::format_to(std::back_inserter(out), "WD {} ms ", prm->watchdog_ms());
                 append(out, "[");
                 append_flags(out, prm->station_status, set_prm_station_flags());
@@ -283,7 +287,7 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
     // Generic: the FDL function or status, and the data when there is any.
     if (f.has_fc) {
         if (f.fc.is_request())
-            append(out, request_function_name(f.fc.function()));
+            append(out, request_function_name(f.fc));
         else
             fmt::format_to(std::back_inserter(out), "{} {}", response_status_name(f.fc.function()),
                            station_type_name(f.fc.station_type()));

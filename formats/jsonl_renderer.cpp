@@ -82,7 +82,7 @@ class JsonlRenderer final : public TelegramRenderer {
                 raw(b, ",\"fcv\":");
                 boolean(b, f.fc.fcv());
                 raw(b, ",\"function\":");
-                string(b, request_function_name(f.fc.function()));
+                string(b, request_function_name(f.fc));
             } else {
                 raw(b, ",\"request\":false,\"station\":");
                 string(b, station_type_name(f.fc.station_type()));
@@ -284,6 +284,11 @@ class JsonlRenderer final : public TelegramRenderer {
                 null(b);
             else
                 hex_string(b, diag->extended);
+            raw(b, ",\"dpv1\":");
+            if (t.slave_dpv1 == SlaveDpv1::Unknown)
+                null(b);
+            else
+                boolean(b, t.slave_dpv1 == SlaveDpv1::Enabled);
             b.push_back('}');
         } else {
             null(b);
@@ -305,6 +310,9 @@ class JsonlRenderer final : public TelegramRenderer {
             integer(b, prm->wd_fact_2);
             raw(b, ",\"watchdog_ms\":");
             optional_int(b, prm->watchdog_on(), prm->watchdog_ms());
+            raw(b, ",\"watchdog_ms_alt\":");
+            optional_int(b, prm->watchdog_on() && prm->watchdog_base_uncertain(),
+                         prm->watchdog_ms_10ms_base());
             raw(b, ",\"min_tsdr\":");
             integer(b, prm->min_tsdr);
             raw(b, ",\"group\":");

@@ -156,7 +156,7 @@ class VerboseRenderer final : public TelegramRenderer {
             case Service::DataExchange: render_data_exchange(t); break;
             case Service::SlaveDiag:
                 if (!request && !t.fdl.du.empty())
-                    if (auto diag = parse_slave_diag(du, ignored)) render_diag(*diag);
+                    if (auto diag = parse_slave_diag(du, ignored)) render_diag(*diag, t.slave_dpv1);
                 break;
             case Service::SetPrm:
                 if (request)
@@ -200,8 +200,9 @@ class VerboseRenderer final : public TelegramRenderer {
         line(1, "PPO: ");
         append_ppo_long(b, t.ppo);
         b.push_back('\n');
-        field(1, "Dialect: {}; control/status word profile: {}", dialect_name(t.dialect),
-              pcd_profile_name(t.pcd_profile));
+        field(1, "Dialect: {}; control/status word profile: {}{}", dialect_name(t.dialect),
+              pcd_profile_name(t.pcd_profile),
+              t.pcd_profile == PcdProfile::Profidrive && t.danfoss_pcd() ? " (Danfoss)" : "");
         bool request = t.direction == Direction::Request;
         if (t.has_pcv) {
             const Pcv& pcv = t.pcv;
@@ -237,8 +238,8 @@ class VerboseRenderer final : public TelegramRenderer {
         ByteReader reader(t.pcd, t.pcd_offset);
         if (reader.empty()) return;
         field(1, "PCD ({} words)", reader.remaining() / 2);
-        const WordBits& bits =
-            request ? control_word_bits(t.pcd_profile) : status_word_bits(t.pcd_profile);
+        const WordBits& bits = request ? control_word_bits(t.pcd_profile, t.danfoss_pcd())
+                                       : status_word_bits(t.pcd_profile, t.danfoss_pcd());
         for (std::size_t index = 0;; ++index) {
             auto word = reader.u16_be();
             if (!word) break;
@@ -260,7 +261,7 @@ class VerboseRenderer final : public TelegramRenderer {
         if (!reader.empty()) field(2, "odd trailing byte: 0x{:02X}", *reader.u8());
     }
 
-    void render_diag(const SlaveDiag& diag) {
+    void render_diag(const SlaveDiag& diag, SlaveDpv1 dpv1) {
         flags_field(1, "Station status 1", diag.station_status_1, station_status_1_flags());
         flags_field(1, "Station status 2", diag.station_status_2, station_status_2_flags());
         flags_field(1, "Station status 3", diag.station_status_3, station_status_3_flags());
@@ -278,10 +279,7 @@ class VerboseRenderer final : public TelegramRenderer {
             switch (block.type) {
                 case DiagBlockType::Channel:
                     field(2, "channel-related: module {}, channel {}, {}, {}: error {} ({})",
-                          block.module, block.channel,
-                          block.io == 1   ? "input"
-                          : block.io == 2 ? "output"
-                                          : "input/output",
+                          block.module, block.channel, channel_io_text(block.io),
                           channel_type_text(block.channel_type), block.error_type,
                           channel_error_text(block.error_type));
                     break;
@@ -302,27 +300,67 @@ class VerboseRenderer final : public TelegramRenderer {
                 case DiagBlockType::Device:
                     line(2, "device-related: ");
                     append_hex(b, block.data);
-                    if (block.data.size() >= 3)
-                        fmt::format_to(std::back_inserter(b), " (DP-V1: {}, slot {})",
-                                       dpv1_alarm_or_status_text(block.data[0]), block.data[1]);
+                    render_device_block(block, dpv1);
                     b.push_back('\n');
                     break;
             }
         }
     }
 
+    // A device-related block is a DP-V1 alarm or status (type, slot, specifier) only when the
+    // slave's Set_Prm enabled DP-V1; otherwise its bytes are manufacturer-specific.
+    void render_device_block(const DiagBlock& block, SlaveDpv1 dpv1) {
+        auto it = std::back_inserter(out_.buffer());
+        bool fits = block.data.size() >= 3;
+        switch (dpv1) {
+            case SlaveDpv1::Disabled:
+                append(out_.buffer(), " (manufacturer-specific: Set_Prm did not enable DP-V1)");
+                return;
+            case SlaveDpv1::Enabled:
+                if (fits)
+                    fmt::format_to(it, " (DP-V1: {}, slot {})",
+                                   dpv1_alarm_or_status_text(block.data[0]), block.data[1]);
+                else
+                    fmt::format_to(it, " (DP-V1, but {} bytes: too short for an alarm or status)",
+                                   block.data.size());
+                return;
+            case SlaveDpv1::Unknown:
+                append(out_.buffer(), " (DP-V1 or manufacturer-specific: no Set_Prm seen");
+                if (fits)
+                    fmt::format_to(it, "; as DP-V1: {}, slot {}",
+                                   dpv1_alarm_or_status_text(block.data[0]), block.data[1]);
+                out_.buffer().push_back(')');
+                return;
+        }
+    }
+
     void render_prm(const SetPrm& prm) {
         flags_field(1, "Station status", prm.station_status, set_prm_station_flags());
-        field(
-            1, "Watchdog: factors {} x {}{}", prm.wd_fact_1, prm.wd_fact_2,
-            prm.watchdog_on() ? fmt::format(" = {} ms", prm.watchdog_ms()) : std::string(" (off)"));
+        std::string watchdog = " (off)";
+        if (prm.watchdog_on() && prm.watchdog_base_uncertain())
+            watchdog = fmt::format(
+                " = {} ms with WD_Base_1ms, or {} ms if the bytes read as DPV1_Status are "
+                "User_Prm_Data (10 ms base)",
+                prm.watchdog_ms(), prm.watchdog_ms_10ms_base());
+        else if (prm.watchdog_on())
+            watchdog = fmt::format(" = {} ms", prm.watchdog_ms());
+        field(1, "Watchdog: factors {} x {}{}", prm.wd_fact_1, prm.wd_fact_2, watchdog);
         field(1, "min TSDR: {} bit times", prm.min_tsdr);
         field(1, "Ident number: 0x{:04X}", prm.ident);
         field(1, "Group ident: 0x{:02X}", prm.group_ident);
         if (prm.has_dpv1_status) {
             flags_field(1, "DPV1_Status_1", prm.dpv1_status[0], dpv1_status_1_flags());
             flags_field(1, "DPV1_Status_2", prm.dpv1_status[1], dpv1_status_2_flags());
-            flags_field(1, "DPV1_Status_3", prm.dpv1_status[2], dpv1_status_3_flags());
+            line(1, "");
+            fmt::format_to(std::back_inserter(out_.buffer()),
+                           "DPV1_Status_3: 0x{:02X} (Alarm_Mode {} = {}", prm.dpv1_status[2],
+                           prm.dpv1_status[2] & 0x07, dpv1_alarm_mode_text(prm.dpv1_status[2]));
+            TextBuffer flags;
+            if (append_flags(flags, prm.dpv1_status[2], dpv1_status_3_flags(), "")) {
+                append(out_.buffer(), "; ");
+                out_.buffer().append(flags.data(), flags.data() + flags.size());
+            }
+            append(out_.buffer(), ")\n");
         }
         if (!prm.user_prm.empty()) {
             line(1, "User_Prm_Data: ");

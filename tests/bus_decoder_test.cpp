@@ -751,6 +751,94 @@ TEST(BusDecoderTest, TruncatedDiagBlockIsAProblem) {
     EXPECT_EQ(t.problems()[0].actual, 2u);
 }
 
+// A device-related diagnosis block reads as DP-V1 alarm/status only for a slave whose Set_Prm
+// enabled DP-V1; the decoder keeps that per slave.
+TEST(BusDecoderTest, SetPrmDecidesTheSlavesDpv1Mode) {
+    Bus bus;
+    const auto diag = hex("08 0C 00 02 04 02 05 81 01 00 00");
+    auto diag_of = [&](std::uint8_t slave) -> const DecodedTelegram& {
+        bus.decode(service_request(slave, sap::kSlaveDiag));
+        return bus.decode(service_response(slave, sap::kSlaveDiag, diag));
+    };
+    EXPECT_EQ(diag_of(3).slave_dpv1, SlaveDpv1::Unknown);  // no Set_Prm seen yet
+
+    bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00 80 00 00")));
+    EXPECT_EQ(bus.decoder.station(3).dpv1, SlaveDpv1::Enabled);
+    EXPECT_EQ(diag_of(3).slave_dpv1, SlaveDpv1::Enabled);
+    EXPECT_EQ(diag_of(4).slave_dpv1, SlaveDpv1::Unknown);  // another slave
+
+    // DP-V1 status bytes without DPV1_Enable, and DP-V0 User_Prm_Data (a reserved bit set).
+    bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00 00 00 00")));
+    EXPECT_EQ(diag_of(3).slave_dpv1, SlaveDpv1::Disabled);
+    bus.decode(service_request(4, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00 81 00 00")));
+    EXPECT_EQ(diag_of(4).slave_dpv1, SlaveDpv1::Disabled);
+    bus.decode(service_request(5, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00")));
+    EXPECT_EQ(diag_of(5).slave_dpv1, SlaveDpv1::Disabled);
+
+    // A Set_Prm with a bad FCS is dropped by the slave: the mode stays.
+    auto damaged = service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00 80 00 00"));
+    damaged[damaged.size() - 2] ^= 0xFF;
+    EXPECT_FALSE(bus.decode(damaged).fdl.fcs_ok);
+    EXPECT_EQ(diag_of(3).slave_dpv1, SlaveDpv1::Disabled);
+    // A Set_Prm too short for its fixed part says nothing either.
+    bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A")));
+    EXPECT_EQ(bus.decoder.station(3).dpv1, SlaveDpv1::Disabled);
+    // Data_Exchange carries no DP-V1 mode.
+    EXPECT_EQ(bus.decode(exchange_request(3, hex("04 7F 20 00"))).slave_dpv1, SlaveDpv1::Unknown);
+}
+
+TEST(BusDecoderTest, ReservedFrameControlIsAProblemAndExpectsNoReply) {
+    Bus bus;
+    // 0xCD: bit 7 with SRD high. SD2 with SAPs: FC at byte 6.
+    const DecodedTelegram& bad =
+        bus.decode(telegram(3, kMasterAddress, 0xCD, sap::kSlaveDiag, sap::kMaster, {}));
+    ASSERT_EQ(bad.problems().size(), 1u);
+    EXPECT_EQ(bad.problems()[0].kind, ProblemKind::ReservedFrameControl);
+    EXPECT_EQ(bad.problems()[0].offset, 6);
+    EXPECT_EQ(bad.problems()[0].actual, 0xCDu);
+    EXPECT_FALSE(bus.decode(service_request(4, sap::kSlaveDiag)).unanswered.has_value());
+
+    // 0xC0 to the broadcast address: a clock value request, no problem.
+    const DecodedTelegram& clock = bus.decode(
+        telegram(127, kMasterAddress, 0xC0, std::nullopt, std::nullopt, hex("01 02 03 04")));
+    EXPECT_TRUE(clock.problems().empty());
+    EXPECT_TRUE(clock.fdl.fc.is_clock_value());
+
+    // A response with bit 7 set (0x88: DL) is reserved too; SD1: FC at byte 3.
+    const DecodedTelegram& response = bus.decode(hex("10 02 03 88 8D 16"));
+    ASSERT_EQ(response.problems().size(), 1u);
+    EXPECT_EQ(response.problems()[0].kind, ProblemKind::ReservedFrameControl);
+    EXPECT_EQ(response.problems()[0].offset, 3);
+}
+
+TEST(BusDecoderTest, DanfossPcdNamesOnlyForDanfossSlaves) {
+    DecoderOptions options;
+    options.station_dialect[3] = Dialect::Profidrive;
+    options.station_ppo[3] = 3;
+    options.station_ppo[4] = 3;
+    {
+        Bus bus(options);
+        // Generic PROFIdrive slave, PROFIdrive profile: bits 11..15 are device-specific.
+        EXPECT_FALSE(bus.decode(exchange_request(3, hex("04 7F 20 00"))).danfoss_pcd());
+        // vlt slave, FC profile by default.
+        EXPECT_TRUE(bus.decode(exchange_request(4, hex("04 7F 20 00"))).danfoss_pcd());
+    }
+    options.pcd_profile = PcdProfile::Profidrive;
+    {
+        Bus bus(options);
+        EXPECT_FALSE(bus.decode(exchange_request(3, hex("04 7F 20 00"))).danfoss_pcd());
+        // A Danfoss drive (vlt) in its PROFIdrive profile keeps the Danfoss names.
+        const DecodedTelegram& danfoss = bus.decode(exchange_request(4, hex("04 7F 20 00")));
+        EXPECT_EQ(danfoss.pcd_profile, PcdProfile::Profidrive);
+        EXPECT_TRUE(danfoss.danfoss_pcd());
+    }
+    options.pcd_profile = PcdProfile::Fc;
+    {
+        Bus bus(options);
+        EXPECT_TRUE(bus.decode(exchange_request(3, hex("04 7F 20 00"))).danfoss_pcd());
+    }
+}
+
 TEST(BusDecoderTest, DirectionNames) {
     EXPECT_EQ(direction_name(Direction::Request), "request");
     EXPECT_EQ(direction_name(Direction::Response), "response");

@@ -143,7 +143,7 @@ TEST(CodeTablesTest, WorkedExamplesChangeRampTime) {
     const ResponseCode& reject = response_code(Dialect::Vlt, rejected.rc);
     EXPECT_EQ(reject.kind, ResponseKind::Rejected);
     EXPECT_EQ(pcv_value(rejected, reject.width), 2u);
-    EXPECT_EQ(error_text(Dialect::Vlt, 2), "Upper or lower limit passed");
+    EXPECT_EQ(error_text(Dialect::Vlt, 2), "Upper or lower value passed");
     EXPECT_EQ(judge_answer(Dialect::Vlt, 3, 7, true), AnswerVerdict::Negative);
 }
 
@@ -310,12 +310,12 @@ TEST(CodeTablesTest, CorruptedPcvWithUndefinedCode) {
 
 // ---- Error numbers ---------------------------------------------------------------------------
 
-// Seed 000 (0..19) and seed 002 (130, 131).
+// Seed 000 (0..19, wording verbatim: "2 Upper or lower value passed") and seed 002 (130, 131).
 TEST(CodeTablesTest, VltErrorNumbers) {
     const std::vector<std::pair<int, std::string>> errors = {
         {0, "Improper PNU"},
         {1, "Parameter value not changeable"},
-        {2, "Upper or lower limit passed"},
+        {2, "Upper or lower value passed"},
         {3, "Faulty subindex"},
         {4, "No array"},
         {5, "Wrong data type"},

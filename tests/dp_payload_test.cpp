@@ -171,9 +171,63 @@ TEST(DpPayloadTest, DiagTextTables) {
     EXPECT_EQ(dpv1_alarm_or_status_text(0x81), "status message");
     EXPECT_EQ(dpv1_alarm_or_status_text(0x82), "module status");
     EXPECT_EQ(dpv1_alarm_or_status_text(0xA0), "manufacturer-specific status");
-    EXPECT_EQ(dpv1_alarm_or_status_text(0x83), "reserved status");
+    EXPECT_EQ(dpv1_alarm_or_status_text(0x83), "DXB_Link_Status");  // was "reserved status"
+    EXPECT_EQ(diag_block_type_name(DiagBlockType::Device), "device-related");
     EXPECT_EQ(diag_block_type_name(DiagBlockType::Channel), "channel-related");
     EXPECT_EQ(diag_block_type_name(DiagBlockType::Identifier), "identifier-related");
+}
+
+// Channel-related I/O type, bits 7..6 of the channel byte: 00 is reserved, not input/output.
+TEST(DpPayloadTest, ChannelIoTypes) {
+    EXPECT_EQ(channel_io_text(0), "reserved I/O type");
+    EXPECT_EQ(channel_io_text(1), "input");
+    EXPECT_EQ(channel_io_text(2), "output");
+    EXPECT_EQ(channel_io_text(3), "input/output");
+    auto du = hex("81 02 A6  81 C2 A6");  // module 1, channel 2, I/O type 00 then 11
+    ProblemList problems;
+    auto blocks = parse_extended_diag(reader_of(du, 15), problems);
+    EXPECT_TRUE(problems.empty());
+    ASSERT_EQ(blocks.size(), 2u);
+    EXPECT_EQ(blocks[0].io, 0);
+    EXPECT_EQ(channel_io_text(blocks[0].io), "reserved I/O type");
+    EXPECT_EQ(blocks[0].channel, 2);
+    EXPECT_EQ(blocks[1].io, 3);
+    EXPECT_EQ(channel_io_text(blocks[1].io), "input/output");
+}
+
+// DP-V1 alarm types (bit 7 clear) and status types (bit 7 set).
+TEST(DpPayloadTest, Dpv1AlarmAndStatusTypes) {
+    const std::vector<std::pair<int, std::string>> alarms = {
+        {0, "reserved alarm"},
+        {1, "diagnostic alarm"},
+        {2, "process alarm"},
+        {3, "pull alarm"},
+        {4, "plug alarm"},
+        {5, "status alarm"},
+        {6, "update alarm"},
+        {7, "reserved alarm"},
+        {31, "reserved alarm"},
+        {32, "manufacturer-specific alarm"},
+        {126, "manufacturer-specific alarm"},
+        {127, "reserved alarm"},
+    };
+    for (const auto& [code, text] : alarms)
+        EXPECT_EQ(dpv1_alarm_or_status_text(static_cast<std::uint8_t>(code)), text) << code;
+    const std::vector<std::pair<int, std::string>> statuses = {
+        {0, "reserved status"},
+        {1, "status message"},
+        {2, "module status"},
+        {3, "DXB_Link_Status"},
+        {4, "reserved status"},
+        {29, "reserved status"},
+        {30, "PrmCmdAck"},
+        {31, "Red_State"},
+        {32, "manufacturer-specific status"},
+        {126, "manufacturer-specific status"},
+        {127, "reserved status"},
+    };
+    for (const auto& [code, text] : statuses)
+        EXPECT_EQ(dpv1_alarm_or_status_text(static_cast<std::uint8_t>(0x80 | code)), text) << code;
 }
 
 TEST(DpPayloadTest, StationStatusFlagTables) {
@@ -236,6 +290,61 @@ TEST(DpPayloadTest, SetPrmWatchdogBase1ms) {
     ASSERT_TRUE(prm);
     ASSERT_TRUE(prm->has_dpv1_status);
     EXPECT_EQ(prm->watchdog_ms(), 100u);  // 5 x 20 x 1 ms
+    // The same bytes may be a DP-V0 slave's User_Prm_Data: the 10 ms reading is kept too.
+    EXPECT_TRUE(prm->watchdog_base_uncertain());
+    EXPECT_EQ(prm->watchdog_ms_10ms_base(), 1000u);
+    EXPECT_TRUE(prm->dpv1_enabled());  // 0x84: DPV1_Enable and WD_Base_1ms
+}
+
+TEST(DpPayloadTest, SetPrmWatchdogHasOneReadingWithoutWdBase1ms) {
+    for (const char* du : {"88 05 14 0B 04 02 00 80 00 00",  // DP-V1 status, 10 ms base
+                           "88 05 14 0B 04 02 00 85 00 00",  // reserved bit: User_Prm_Data
+                           "88 05 14 0B 04 02 00 84 00",     // too few user bytes
+                           "88 05 14 0B 04 02 00"}) {
+        SCOPED_TRACE(du);
+        ProblemList problems;
+        auto prm = parse_set_prm(reader_of(hex(du)), problems);
+        ASSERT_TRUE(prm);
+        EXPECT_FALSE(prm->watchdog_base_uncertain());
+        EXPECT_EQ(prm->watchdog_ms(), 1000u);
+        EXPECT_EQ(prm->watchdog_ms_10ms_base(), 1000u);
+    }
+}
+
+TEST(DpPayloadTest, SetPrmDpv1Enable) {
+    ProblemList problems;
+    EXPECT_TRUE(
+        parse_set_prm(reader_of(hex("88 05 14 0B 04 02 00 80 00 00")), problems)->dpv1_enabled());
+    EXPECT_FALSE(
+        parse_set_prm(reader_of(hex("88 05 14 0B 04 02 00 00 00 00")), problems)->dpv1_enabled());
+    EXPECT_FALSE(parse_set_prm(reader_of(hex("88 05 14 0B 04 02 00 81 00 00")), problems)
+                     ->dpv1_enabled());  // reserved bit: not DP-V1 status bytes
+    EXPECT_FALSE(parse_set_prm(reader_of(hex("88 05 14 0B 04 02 00 80")), problems)
+                     ->dpv1_enabled());  // too short
+    EXPECT_TRUE(problems.empty());
+}
+
+// DPV1_Status_3: Alarm_Mode in bits 2..0, Prm_Structure, IsoM_Req, PrmCmd (bit 7).
+TEST(DpPayloadTest, Dpv1Status3AlarmModeAndPrmCmd) {
+    const char* modes[] = {"1 alarm of each type", "2 alarms in total",  "4 alarms in total",
+                           "8 alarms in total",    "12 alarms in total", "16 alarms in total",
+                           "24 alarms in total",   "32 alarms in total"};
+    for (std::uint8_t mode = 0; mode < 8; ++mode)
+        EXPECT_EQ(dpv1_alarm_mode_text(static_cast<std::uint8_t>(0x98 | mode)), modes[mode]);
+    auto flags = dpv1_status_3_flags();
+    ASSERT_EQ(flags.size(), 3u);
+    EXPECT_EQ(flags[0].mask, 0x08);
+    EXPECT_EQ(flags[0].name, "Prm_Structure");
+    EXPECT_EQ(flags[1].mask, 0x10);
+    EXPECT_EQ(flags[1].name, "IsoM_Req");
+    EXPECT_EQ(flags[2].mask, 0x80);
+    EXPECT_EQ(flags[2].name, "PrmCmd");
+    // PrmCmd and an Alarm_Mode are no reserved bits: the bytes still read as DP-V1 status.
+    ProblemList problems;
+    auto prm = parse_set_prm(reader_of(hex("88 05 14 0B 04 02 00 80 00 87")), problems);
+    ASSERT_TRUE(prm);
+    EXPECT_TRUE(prm->has_dpv1_status);
+    EXPECT_EQ(prm->dpv1_status[2], 0x87);
 }
 
 TEST(DpPayloadTest, SetPrmWithReservedBitsIsNotDpV1) {
@@ -301,8 +410,9 @@ TEST(DpPayloadTest, SetPrmFlagTables) {
     EXPECT_EQ(s2[0].mask, 0x01);
     EXPECT_EQ(s2[0].name, "Chk_Cfg_Mode");
     auto s3 = dpv1_status_3_flags();
-    ASSERT_EQ(s3.size(), 2u);
+    ASSERT_EQ(s3.size(), 3u);  // Alarm_Mode (bits 2..0) is a number: dpv1_alarm_mode_text
     EXPECT_EQ(s3[0].name, "Prm_Structure");
+    EXPECT_EQ(s3[2].name, "PrmCmd");
 }
 
 // ---- Chk_Cfg / Get_Cfg -----------------------------------------------------------------------

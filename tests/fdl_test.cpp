@@ -208,6 +208,47 @@ TEST(FdlTest, SegmentAddressExtension) {
     EXPECT_TRUE(t.problems.empty());
 }
 
+// FC bit 7: only the clock value request 0xC0 sets it; anything else is a reserved code.
+TEST(FdlTest, FrameControlBit7) {
+    FdlTelegram clock = parse(hex("10 7F 02 C0 41 16"));
+    EXPECT_TRUE(clock.problems.empty());
+    EXPECT_TRUE(clock.fc.is_clock_value());
+    EXPECT_FALSE(clock.fc.is_reserved());
+    EXPECT_EQ(request_function_name(clock.fc), "clock value");
+    FdlTelegram time_event = parse(hex("10 7F 02 40 C1 16"));
+    EXPECT_TRUE(time_event.problems.empty());
+    EXPECT_EQ(request_function_name(time_event.fc), "time event");
+    EXPECT_EQ(request_function_name(FrameControl{0x7D}), "SRD high");
+
+    // Bit 7 with SRD high (request), and with DL (response): reserved, a problem at the FC byte.
+    for (std::uint8_t fc : {std::uint8_t{0xCD}, std::uint8_t{0x88}, std::uint8_t{0xF0}}) {
+        SCOPED_TRACE(fc);
+        std::vector<std::uint8_t> bytes = {0x10, 0x03, 0x02, fc, 0x00, 0x16};
+        bytes[4] = fcs_of(Bytes(bytes.data() + 1, 3));
+        FdlTelegram t = parse(bytes);
+        bool clock_with_fcb = (fc & 0xCF) == 0xC0;
+        if (clock_with_fcb) {
+            EXPECT_TRUE(t.problems.empty());
+            continue;
+        }
+        ASSERT_EQ(t.problems.size(), 1u);
+        EXPECT_EQ(t.problems[0].kind, ProblemKind::ReservedFrameControl);
+        EXPECT_EQ(t.problems[0].offset, 3);
+        EXPECT_EQ(t.problems[0].actual, fc);
+        EXPECT_TRUE(t.fc.is_reserved());
+        if (t.fc.is_request()) {
+            EXPECT_EQ(request_function_name(t.fc), "reserved");
+        }
+        EXPECT_EQ(problem_kind_name(t.problems[0].kind), "reserved_frame_control");
+        EXPECT_EQ(problem_severity(t.problems[0].kind), Severity::Error);
+    }
+    // SD2 with SAPs: FC at byte 6; a truncated telegram cut right after it still reports it.
+    FdlTelegram cut = parse(hex("68 05 05 68 83 02 CD"));
+    EXPECT_TRUE(cut.problems.contains(ProblemKind::ReservedFrameControl));
+    EXPECT_EQ(cut.problems[0].offset, 6);
+    EXPECT_TRUE(cut.problems.contains(ProblemKind::Truncated));
+}
+
 TEST(FdlTest, FrameControlNames) {
     EXPECT_EQ(request_function_name(0x0C), "SRD low");
     EXPECT_EQ(request_function_name(0x0D), "SRD high");

@@ -19,8 +19,8 @@ void check_bits(const WordBits& bits, const std::vector<WordBit>& expected) {
     }
 }
 
-TEST(PcdTest, ProfidriveProfileControlWord) {
-    check_bits(control_word_bits(PcdProfile::Profidrive),
+TEST(PcdTest, DanfossProfidriveProfileControlWord) {
+    check_bits(control_word_bits(PcdProfile::Profidrive, true),
                {
                    {"OFF 1", "ON 1"},
                    {"OFF 2", "ON 2"},
@@ -41,8 +41,8 @@ TEST(PcdTest, ProfidriveProfileControlWord) {
                });
 }
 
-TEST(PcdTest, ProfidriveProfileStatusWord) {
-    check_bits(status_word_bits(PcdProfile::Profidrive),
+TEST(PcdTest, DanfossProfidriveProfileStatusWord) {
+    check_bits(status_word_bits(PcdProfile::Profidrive, true),
                {
                    {"control not ready", "control ready"},
                    {"drive not ready", "drive ready"},
@@ -64,7 +64,7 @@ TEST(PcdTest, ProfidriveProfileStatusWord) {
 }
 
 TEST(PcdTest, FcProfileControlWord) {
-    check_bits(control_word_bits(PcdProfile::Fc),
+    check_bits(control_word_bits(PcdProfile::Fc, true),
                {
                    {"reference select lsb 0", "reference select lsb 1"},
                    {"reference select msb 0", "reference select msb 1"},
@@ -87,7 +87,7 @@ TEST(PcdTest, FcProfileControlWord) {
 }
 
 TEST(PcdTest, FcProfileStatusWord) {
-    check_bits(status_word_bits(PcdProfile::Fc),
+    check_bits(status_word_bits(PcdProfile::Fc, true),
                {
                    {"control not ready", "control ready"},
                    {"drive not ready", "drive ready"},
@@ -110,14 +110,44 @@ TEST(PcdTest, FcProfileStatusWord) {
 
 TEST(PcdTest, ProfilesDifferWhereTheManualsDiffer) {
     // Bit 0 of the control word: ON 1 (PROFIdrive) vs reference select (FC).
-    EXPECT_NE(control_word_bits(PcdProfile::Profidrive)[0].when_1,
-              control_word_bits(PcdProfile::Fc)[0].when_1);
+    EXPECT_NE(control_word_bits(PcdProfile::Profidrive, true)[0].when_1,
+              control_word_bits(PcdProfile::Fc, true)[0].when_1);
     // Bit 4 of the status word: ON 2 (PROFIdrive) vs error without trip (FC).
-    EXPECT_EQ(status_word_bits(PcdProfile::Profidrive)[4].when_1, "ON 2");
-    EXPECT_EQ(status_word_bits(PcdProfile::Fc)[4].when_1, "error (no trip)");
+    EXPECT_EQ(status_word_bits(PcdProfile::Profidrive, true)[4].when_1, "ON 2");
+    EXPECT_EQ(status_word_bits(PcdProfile::Fc, true)[4].when_1, "error (no trip)");
     // Bit 10 "data valid" is common to both control words.
-    EXPECT_EQ(control_word_bits(PcdProfile::Profidrive)[10].when_1, "data valid");
-    EXPECT_EQ(control_word_bits(PcdProfile::Fc)[10].when_1, "data valid");
+    EXPECT_EQ(control_word_bits(PcdProfile::Profidrive, true)[10].when_1, "data valid");
+    EXPECT_EQ(control_word_bits(PcdProfile::Fc, true)[10].when_1, "data valid");
+}
+
+// Generic PROFIdrive (protocol.md 8.1, 8.2): bits 0..10 are the profile's, bits 11..15 of STW1
+// and ZSW1 are device-specific and get no Danfoss names.
+TEST(PcdTest, GenericProfidriveHighBitsAreDeviceSpecific) {
+    for (const WordBits* bits : {&control_word_bits(PcdProfile::Profidrive, false),
+                                 &status_word_bits(PcdProfile::Profidrive, false)}) {
+        for (std::size_t bit = 11; bit < 16; ++bit) {
+            SCOPED_TRACE("bit " + std::to_string(bit));
+            std::string expected = "device-specific bit " + std::to_string(bit);
+            EXPECT_EQ((*bits)[bit].when_0, expected);
+            EXPECT_EQ((*bits)[bit].when_1, expected);
+        }
+    }
+    // Bits 0..10 are the same as in the Danfoss PROFIdrive profile.
+    for (std::size_t bit = 0; bit < 11; ++bit) {
+        SCOPED_TRACE("bit " + std::to_string(bit));
+        EXPECT_EQ(control_word_bits(PcdProfile::Profidrive, false)[bit].when_1,
+                  control_word_bits(PcdProfile::Profidrive, true)[bit].when_1);
+        EXPECT_EQ(status_word_bits(PcdProfile::Profidrive, false)[bit].when_0,
+                  status_word_bits(PcdProfile::Profidrive, true)[bit].when_0);
+    }
+    EXPECT_EQ(control_word_bits(PcdProfile::Profidrive, false)[10].when_1, "data valid");
+    EXPECT_EQ(control_word_bits(PcdProfile::Profidrive, true)[11].when_1, "slow down");
+    EXPECT_EQ(status_word_bits(PcdProfile::Profidrive, true)[15].when_1, "timer exceeded");
+}
+
+TEST(PcdTest, FcProfileIsDanfossWhateverTheFlag) {
+    EXPECT_EQ(&control_word_bits(PcdProfile::Fc, false), &control_word_bits(PcdProfile::Fc, true));
+    EXPECT_EQ(&status_word_bits(PcdProfile::Fc, false), &status_word_bits(PcdProfile::Fc, true));
 }
 
 TEST(PcdTest, ReferencePercentScaling) {

@@ -689,8 +689,9 @@ TEST(RendererTest, CsvProblemsAndFindings) {
 
 // ---- verbose ---------------------------------------------------------------------------------
 
-std::vector<std::string> verbose_block(const std::vector<Input>& inputs, std::size_t frame) {
-    std::vector<std::string> lines = split_lines(render(OutputFormat::Verbose, inputs));
+std::vector<std::string> verbose_block(const std::vector<Input>& inputs, std::size_t frame,
+                                       DecoderOptions options = {}) {
+    std::vector<std::string> lines = split_lines(render(OutputFormat::Verbose, inputs, options));
     std::vector<std::string> block;
     bool inside = false;
     std::string start = "Frame " + std::to_string(frame) + ":";
@@ -784,6 +785,186 @@ TEST(RendererTest, VerboseMalformedTelegram) {
                          "the data is 0x4E"));
     std::vector<std::string> junk = verbose_block(in, 2);
     EXPECT_TRUE(contains(junk, "    Start delimiter: 0x2A (not a start delimiter)"));
+}
+
+// ---- fields checked against the sources (issue #7) --------------------------------------------
+
+std::vector<Input> diag_exchange(std::vector<std::uint8_t> ext,
+                                 std::optional<std::vector<std::uint8_t>> set_prm = std::nullopt) {
+    std::vector<Input> in;
+    if (set_prm) in.push_back({request(61, *set_prm), kNoTime, {}});
+    std::vector<std::uint8_t> du = {0x08, 0x0C, 0x00, 0x02, 0x04, 0x02};
+    du.insert(du.end(), ext.begin(), ext.end());
+    in.push_back({request(60, {}), kNoTime, {}});
+    in.push_back({response(60, du), kNoTime, {}});
+    return in;
+}
+
+TEST(RendererTest, VerboseChannelIoTypeZeroIsReserved) {
+    // Module 1; channel byte 0x02 (I/O type 00), 0xC2 (11); type byte 0xA6: word, line break.
+    std::vector<std::string> reserved = verbose_block(diag_exchange(hex("81 02 A6")), 2);
+    EXPECT_TRUE(contains(reserved,
+                         "        channel-related: module 1, channel 2, reserved I/O type, word: "
+                         "error 6 (line break)"));
+    std::vector<std::string> both = verbose_block(diag_exchange(hex("81 C2 A6")), 2);
+    EXPECT_TRUE(contains(both,
+                         "        channel-related: module 1, channel 2, input/output, word: "
+                         "error 6 (line break)"));
+    // Cut after the channel byte: a problem, and no block is shown.
+    std::vector<std::string> cut = verbose_block(diag_exchange(hex("81 02")), 2);
+    EXPECT_TRUE(std::none_of(cut.begin(), cut.end(), [](const std::string& line) {
+        return line.find("channel-related") != std::string::npos;
+    }));
+    EXPECT_TRUE(std::any_of(cut.begin(), cut.end(), [](const std::string& line) {
+        return line.rfind("    diag_block_truncated (error): ", 0) == 0;
+    }));
+}
+
+TEST(RendererTest, DeviceDiagnosisReadsAsTheSlavesSetPrmSays) {
+    // Device-related block of 5 bytes: 0x81 (status message), slot 1, specifier 0, one data byte.
+    const auto ext = hex("05 81 01 00 7F");
+    const auto dpv1 = hex("88 0A 0A 0B 04 02 00 80 00 00");
+    const auto dpv0 = hex("88 0A 0A 0B 04 02 00 81 00 00");  // reserved bit: not DP-V1 status
+    std::vector<std::string> unknown = verbose_block(diag_exchange(ext), 2);
+    EXPECT_TRUE(contains(unknown,
+                         "        device-related: 81 01 00 7F (DP-V1 or manufacturer-specific: "
+                         "no Set_Prm seen; as DP-V1: status message, slot 1)"));
+    std::vector<std::string> enabled = verbose_block(diag_exchange(ext, dpv1), 3);
+    EXPECT_TRUE(
+        contains(enabled, "        device-related: 81 01 00 7F (DP-V1: status message, slot 1)"));
+    std::vector<std::string> disabled = verbose_block(diag_exchange(ext, dpv0), 3);
+    EXPECT_TRUE(contains(disabled,
+                         "        device-related: 81 01 00 7F (manufacturer-specific: Set_Prm did "
+                         "not enable DP-V1)"));
+    // Too short for a DP-V1 alarm or status header.
+    std::vector<std::string> short_block = verbose_block(diag_exchange(hex("03 81 01"), dpv1), 3);
+    EXPECT_TRUE(contains(short_block,
+                         "        device-related: 81 01 (DP-V1, but 2 bytes: too short for an "
+                         "alarm or status)"));
+    std::vector<std::string> short_unknown = verbose_block(diag_exchange(hex("03 81 01")), 2);
+    EXPECT_TRUE(contains(short_unknown,
+                         "        device-related: 81 01 (DP-V1 or manufacturer-specific: no "
+                         "Set_Prm seen)"));
+
+    EXPECT_TRUE(jsonl(diag_exchange(ext))[1]["diag"]["dpv1"].is_null());
+    const Json on = jsonl(diag_exchange(ext, dpv1))[2]["diag"]["dpv1"];
+    EXPECT_EQ(on.type, Json::Type::Bool);
+    EXPECT_TRUE(on.boolean);
+    const Json off = jsonl(diag_exchange(ext, dpv0))[2]["diag"]["dpv1"];
+    EXPECT_EQ(off.type, Json::Type::Bool);
+    EXPECT_FALSE(off.boolean);
+}
+
+TEST(RendererTest, VerboseDpv1Status3ShowsAlarmModeAndPrmCmd) {
+    // DPV1_Status_3 0x9B: PrmCmd, IsoM_Req, Prm_Structure, Alarm_Mode 3.
+    std::vector<std::string> prm =
+        verbose_block({{request(61, hex("88 0A 0A 0B 04 02 00 80 00 9B")), kNoTime, {}}}, 1);
+    EXPECT_TRUE(contains(prm,
+                         "    DPV1_Status_3: 0x9B (Alarm_Mode 3 = 8 alarms in total; Prm_Structure "
+                         "IsoM_Req PrmCmd)"));
+    std::vector<std::string> zero =
+        verbose_block({{request(61, hex("88 0A 0A 0B 04 02 00 80 00 00")), kNoTime, {}}}, 1);
+    EXPECT_TRUE(contains(zero, "    DPV1_Status_3: 0x00 (Alarm_Mode 0 = 1 alarm of each type)"));
+    // Reserved bits 5..6 set: the bytes are User_Prm_Data, no DPV1_Status lines.
+    std::vector<std::string> reserved =
+        verbose_block({{request(61, hex("88 0A 0A 0B 04 02 00 80 00 60")), kNoTime, {}}}, 1);
+    EXPECT_TRUE(std::none_of(reserved.begin(), reserved.end(), [](const std::string& line) {
+        return line.find("DPV1_Status") != std::string::npos;
+    }));
+    EXPECT_TRUE(contains(reserved, "    User_Prm_Data: 80 00 60"));
+}
+
+TEST(RendererTest, ClockValueAndReservedFrameControl) {
+    std::vector<Input> in = {
+        {build_telegram({127, kMaster, 0xC0, std::nullopt, std::nullopt, Bytes(hex("01 02"))}),
+         kNoTime,
+         {}},
+        {build_telegram({kSlave, kMaster, 0xCD, 60, 62, Bytes()}), kNoTime, {}},
+    };
+    std::vector<std::string> clock = verbose_block(in, 1);
+    EXPECT_TRUE(contains(clock, "    Frame control: 0xC0 (request, FCB 0, FCV 0, clock value)"));
+    EXPECT_TRUE(std::none_of(clock.begin(), clock.end(),
+                             [](const std::string& line) { return line == "Problems"; }));
+    std::vector<std::string> reserved = verbose_block(in, 2);
+    EXPECT_TRUE(contains(reserved, "    Frame control: 0xCD (request, FCB 0, FCV 0, reserved)"));
+    EXPECT_TRUE(contains(reserved,
+                         "    reserved_frame_control (error): byte 6: frame control 0xCD has the "
+                         "reserved bit 7 set (only the clock value request 0xC0 sets it)"));
+    std::vector<Json> lines = jsonl(in);
+    ASSERT_EQ(lines.size(), 2u);
+    EXPECT_EQ(lines[0]["fc"]["function"].string(), "clock value");
+    EXPECT_EQ(lines[0]["problems"].items.size(), 0u);
+    EXPECT_EQ(lines[1]["fc"]["function"].string(), "reserved");
+    ASSERT_EQ(lines[1]["problems"].items.size(), 1u);
+    EXPECT_EQ(lines[1]["problems"][0]["kind"].string(), "reserved_frame_control");
+    EXPECT_EQ(lines[1]["problems"][0]["offset"].integer(), 6);
+    std::vector<std::vector<std::string>> rows = parse_csv(render(OutputFormat::Csv, in));
+    ASSERT_EQ(rows.size(), 3u);
+    EXPECT_EQ(rows[1][25], "clock value data 01 02");
+    EXPECT_EQ(rows[2][26], "reserved_frame_control@6");
+}
+
+TEST(RendererTest, WatchdogWithPossibleDpv1StatusShowsBothReadings) {
+    // WD_Base_1ms set in bytes that fit the DP-V1 status layout: 5 x 20 = 100 ms or 1000 ms.
+    std::vector<Input> ambiguous = {
+        {request(61, hex("88 05 14 0B 04 02 00 84 00 00")), kNoTime, {}}};
+    EXPECT_TRUE(contains(verbose_block(ambiguous, 1),
+                         "    Watchdog: factors 5 x 20 = 100 ms with WD_Base_1ms, or 1000 ms if "
+                         "the bytes read as DPV1_Status are User_Prm_Data (10 ms base)"));
+    const Json prm = jsonl(ambiguous)[0]["prm"];
+    EXPECT_EQ(prm["watchdog_ms"].integer(), 100);
+    EXPECT_EQ(prm["watchdog_ms_alt"].integer(), 1000);
+    std::vector<std::vector<std::string>> rows = parse_csv(render(OutputFormat::Csv, ambiguous));
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[1][25],
+              "ident 0x0402 WD 100 ms (1 ms base) or 1000 ms (10 ms base) [WD_On Lock_Req] "
+              "group 0x00 DP-V1");
+    std::string text = render(OutputFormat::Text, ambiguous);
+    EXPECT_NE(text.find("WD 100 ms (1 ms base) or 1000 ms (10 ms base)"), std::string::npos)
+        << text;
+
+    // One reading: no WD_Base_1ms, reserved bits set (not DP-V1 status), too few user bytes.
+    for (const char* du : {"88 05 14 0B 04 02 00 80 00 00", "88 05 14 0B 04 02 00 85 00 00",
+                           "88 05 14 0B 04 02 00 84 00"}) {
+        SCOPED_TRACE(du);
+        std::vector<Input> single = {{request(61, hex(du)), kNoTime, {}}};
+        EXPECT_TRUE(contains(verbose_block(single, 1), "    Watchdog: factors 5 x 20 = 1000 ms"));
+        const Json one = jsonl(single)[0]["prm"];
+        EXPECT_EQ(one["watchdog_ms"].integer(), 1000);
+        EXPECT_TRUE(one["watchdog_ms_alt"].is_null());
+    }
+    // Watchdog off: neither reading.
+    const Json off =
+        jsonl({{request(61, hex("80 05 14 0B 04 02 00 84 00 00")), kNoTime, {}}})[0]["prm"];
+    EXPECT_TRUE(off["watchdog_ms"].is_null());
+    EXPECT_TRUE(off["watchdog_ms_alt"].is_null());
+}
+
+TEST(RendererTest, ProfidriveHighBitsAreDeviceSpecificUnlessDanfoss) {
+    // PPO 3 (two PCD words); control word with bits 10, 11 and 15 set.
+    std::vector<Input> in = {{request(std::nullopt, hex("8C 7F 20 00")), kNoTime, {}}};
+    DecoderOptions generic;
+    generic.dialect = Dialect::Profidrive;
+    std::vector<std::string> block = verbose_block(in, 1, generic);
+    EXPECT_TRUE(
+        contains(block, "    Dialect: profidrive; control/status word profile: profidrive"));
+    EXPECT_TRUE(contains(block, "            bit 10 = 1: data valid"));
+    EXPECT_TRUE(contains(block, "            bit 11 = 1: device-specific bit 11"));
+    EXPECT_TRUE(contains(block, "            bit 15 = 1: device-specific bit 15"));
+
+    DecoderOptions danfoss;  // vlt slave in the Danfoss PROFIdrive profile
+    danfoss.pcd_profile = PcdProfile::Profidrive;
+    block = verbose_block(in, 1, danfoss);
+    EXPECT_TRUE(
+        contains(block, "    Dialect: vlt; control/status word profile: profidrive (Danfoss)"));
+    EXPECT_TRUE(contains(block, "            bit 11 = 1: slow down"));
+    EXPECT_TRUE(contains(block, "            bit 15 = 1: reverse"));
+
+    DecoderOptions fc;  // profidrive dialect, FC profile
+    fc.dialect = Dialect::Profidrive;
+    fc.pcd_profile = PcdProfile::Fc;
+    block = verbose_block(in, 1, fc);
+    EXPECT_TRUE(contains(block, "            bit 11 = 1: relay 01 active"));
 }
 
 TEST(RendererTest, OutputFormatNames) {

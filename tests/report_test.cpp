@@ -637,7 +637,7 @@ TEST(ReportTest, JsonValuesOfTheFaultsSample) {
     ASSERT_EQ(stations[1]["rejections"].items.size(), 1u);
     EXPECT_EQ(stations[1]["rejections"][0]["pnu"].integer(), 207);
     EXPECT_EQ(stations[1]["rejections"][0]["error"].integer(), 2);
-    EXPECT_EQ(stations[1]["rejections"][0]["error_text"].string(), "Upper or lower limit passed");
+    EXPECT_EQ(stations[1]["rejections"][0]["error_text"].string(), "Upper or lower value passed");
     EXPECT_EQ(stations[1]["rejections"][0]["count"].integer(), 1);
     EXPECT_EQ(stations[2]["outcomes"]["mismatched"].integer(), 1);
     EXPECT_EQ(stations[2]["outcomes"]["unexpected"].integer(), 1);
@@ -1019,7 +1019,7 @@ TEST(ReportTest, TextHasTheSectionsAndOneLinePerFinding) {
           "Slave 4 (master 2)", "Slave 5 (master 2)",
           "  latency ms     min 2.182  median 4.227  p95 8.202  max 8.202",
           "  latency cycles min 1  median 2  p95 4  max 4",
-          "  rejections     PNU 207 error 2 (Upper or lower limit passed) 1x;",
+          "  rejections     PNU 207 error 2 (Upper or lower value passed) 1x;",
           "Bus (telegrams no station can be named for)", "  findings       malformed_telegram 1",
           "Findings (20, in capture order)"})
         EXPECT_EQ(std::count(lines.begin(), lines.end(), std::string(line)), 1) << line;
@@ -1128,7 +1128,7 @@ TEST(ReportTest, MarkdownHasTheSectionsAndOneRowPerFinding) {
           "- Input: `samples/faults.pcap` (pcap), 458 telegrams", "## Summary",
           "| 458 | 1 | 35 | 7 | 7 | 6 |", "## Slaves", "### Slave 3 (master 2)",
           "### Slave 4 (master 2)", "### Slave 5 (master 2)", "## Findings (20)",
-          "- Rejected: PNU 207 error 2 (Upper or lower limit passed), 1x", "- dpscope 7.8.9-test"})
+          "- Rejected: PNU 207 error 2 (Upper or lower value passed), 1x", "- dpscope 7.8.9-test"})
         EXPECT_EQ(std::count(lines.begin(), lines.end(), std::string(line)), 1) << line;
     // One row per slave in the slaves table, ten cells each.
     std::vector<std::string> slaves = lines_after(lines, "## Slaves");

@@ -624,7 +624,7 @@ TEST(SessionTrackerTest, RejectionWithPnu0IsARejectionNotAMismatch) {
     EXPECT_EQ(f.severity, Severity::Note);
     EXPECT_EQ(f.pnu, 215);
     EXPECT_EQ(f.request_frame, 1u);
-    EXPECT_NE(f.message.find("error 2 (Upper or lower limit passed)"), std::string::npos)
+    EXPECT_NE(f.message.find("error 2 (Upper or lower value passed)"), std::string::npos)
         << f.message;
     EXPECT_EQ(ch.stats().transactions.rejected, 1u);
     EXPECT_EQ(ch.stats().rejection_errors.at(2), 1u);
