@@ -42,6 +42,7 @@ golden_case(ppo1_verbose samples/expected/ppo1.verbose.txt decode -V -c 60 sampl
 golden_case(ppo2_csv samples/expected/ppo2.csv decode -T csv samples/ppo2.pcap)
 golden_case(faults_station_filter samples/expected/faults.station4.txt decode --station 4 samples/faults.pcap)
 golden_case(ppo1_pnu_filter samples/expected/ppo1.pnu207.txt decode --pnu 207 -T jsonl samples/ppo1.pcap)
+golden_case(faults_pnu_filter samples/expected/faults.pnu207.txt decode --pnu 207 samples/faults.pcap)
 golden_case(truncated_capture samples/expected/truncated.txt EXIT 3 decode samples/truncated.pcap)
 
 # Conformance reports: a capture with every fault kind (exit 1: errors found) and a clean one.

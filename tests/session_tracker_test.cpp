@@ -274,6 +274,8 @@ class Channel {
     const ChannelStats& stats() const { return *tracker_.channels().at(0); }
     void advance_ms(std::int64_t ms) { now_ += ms * 1'000'000; }
     std::uint64_t frame() const { return frame_; }
+    // The PNU the last telegram fed is about (SessionTracker::subject_pnu).
+    std::int32_t subject_pnu() const { return tracker_.subject_pnu(); }
 
     std::vector<Finding> findings;
 
@@ -629,6 +631,28 @@ TEST(SessionTrackerTest, RejectionWithPnu0IsARejectionNotAMismatch) {
     EXPECT_EQ(ch.stats().transactions.rejected, 1u);
     EXPECT_EQ(ch.stats().rejection_errors.at(2), 1u);
     EXPECT_EQ(ch.stats().rejections.at({215, 2}), 1u);
+}
+
+TEST(SessionTrackerTest, RejectionWithPnu0IsAboutTheRequestItAnswers) {
+    Channel ch;
+    const Word write{2, 215, 0, 999};
+    ch.request(write);
+    EXPECT_EQ(ch.subject_pnu(), 215);
+    ch.response(kIdle);  // the cycle the request appears in: the slave has not seen it
+    EXPECT_EQ(ch.subject_pnu(), 0);
+    ch.request(write);
+    ch.response(Word{7, 0, 0, 2});  // the rejection leaves the PNU out
+    EXPECT_EQ(ch.subject_pnu(), 215);
+    ch.request(kIdle);
+    ch.response(Word{7, 0, 0, 2});  // repeated while the master moves on: still about 215
+    EXPECT_EQ(ch.subject_pnu(), 215);
+    ch.request(kRead520);
+    EXPECT_EQ(ch.subject_pnu(), 520);
+    ch.response(Word{7, 0, 0, 2});  // lagging one cycle behind the new request: still 215
+    EXPECT_EQ(ch.subject_pnu(), 215);
+    ch.request(kRead520);
+    ch.response(Word{2, 520, 0, 5});  // an answer naming its PNU is about that PNU
+    EXPECT_EQ(ch.subject_pnu(), 520);
 }
 
 TEST(SessionTrackerTest, ArrayAnswerForAnotherIndexIsMismatched) {
