@@ -95,7 +95,8 @@ std::string process_name(pid_t pid) {
     ssize_t n = ::read(fd, text, sizeof text - 1);
     ::close(fd);
     std::string name(text, n > 0 ? static_cast<std::size_t>(n) : 0);
-    while (!name.empty() && (name.back() == '\n' || name.back() == '\0')) name.pop_back();
+    while (!name.empty() && (name.back() == '\n' || name.back() == '\0'))
+        name.pop_back();
     return name;
 }
 
@@ -104,8 +105,7 @@ std::string process_name(pid_t pid) {
 std::unique_ptr<SerialPort> SerialPort::claim(const SerialSettings& settings, std::string& error) {
     char resolved[PATH_MAX] = {};
     struct stat info {};
-    if (realpath(settings.device.c_str(), resolved) == nullptr ||
-        stat(resolved, &info) != 0) {
+    if (realpath(settings.device.c_str(), resolved) == nullptr || stat(resolved, &info) != 0) {
         error = fmt::format("{}: cannot open: {}", settings.device, std::strerror(errno));
         return nullptr;
     }
@@ -140,8 +140,8 @@ bool SerialPort::take_lock_file(const std::string& name, std::string& error) {
     int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) return true;
     std::string content = fmt::format("{:>10}\n", getpid());
-    bool written = ::write(fd, content.data(), content.size()) ==
-                   static_cast<ssize_t>(content.size());
+    bool written =
+        ::write(fd, content.data(), content.size()) == static_cast<ssize_t>(content.size());
     ::close(fd);
     for (int attempt = 0; written && attempt < 3; ++attempt) {
         if (link(temp.c_str(), path.c_str()) == 0) {
@@ -196,7 +196,7 @@ bool SerialPort::configure(std::string& error) {
         return false;
     }
     slot.original = tio;
-    slot.fd = fd;  // from here on the destructor (or a signal) puts the settings back
+    slot.fd = fd;         // from here on the destructor (or a signal) puts the settings back
     ioctl(fd, TIOCEXCL);  // others (but root) cannot open it while we have it
     // Raw mode.
     tio.c_iflag &= ~static_cast<tcflag_t>(IGNBRK | BRKINT | ISTRIP | INLCR | IGNCR | ICRNL | IXON |

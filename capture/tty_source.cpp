@@ -184,8 +184,8 @@ std::int64_t TtySource::time_at(std::uint64_t offset) {
     if (last_time_ns_ != kNoTime) {
         std::uint64_t between = offset > last_offset_ ? offset - last_offset_ : 0;
         std::int64_t earliest =
-            last_time_ns_ + std::max<std::int64_t>(
-                                1, static_cast<std::int64_t>(between) * character_ns_);
+            last_time_ns_ +
+            std::max<std::int64_t>(1, static_cast<std::int64_t>(between) * character_ns_);
         time = std::max(time, earliest);
     }
     last_time_ns_ = time;

@@ -33,7 +33,8 @@ struct TtySourceOptions {
     std::int64_t idle_gap_ns = 50'000'000;  // 0: do not use line idle time
     int poll_ms = 20;                       // how long poll() waits before reporting Idle
     bool parity_marked = true;              // the port marks parity errors (PARMRK)
-    std::int64_t (*clock)() = wall_clock_ns;  // when a read returned (tests give their own)
+    // When a read returned (tests give their own).
+    std::int64_t (*clock)() = wall_clock_ns;
 };
 
 class TtySource final : public FramedSource {
@@ -75,9 +76,9 @@ class TtySource final : public FramedSource {
     std::vector<std::uint8_t> raw_;
     std::vector<std::uint8_t> clean_;
     std::deque<Chunk> chunks_;
-    std::uint64_t stream_offset_ = 0;  // bytes fed to the framer so far
-    std::int64_t last_time_ns_ = kNoTime;  // the previous telegram's time ...
-    std::uint64_t last_offset_ = 0;         // ... and stream offset
+    std::uint64_t stream_offset_ = 0;      // bytes fed to the framer so far
+    std::int64_t last_time_ns_ = kNoTime;  // the previous telegram's time
+    std::uint64_t last_offset_ = 0;        // and stream offset
     std::int64_t last_data_ns_ = 0;
     bool gap_marked_ = true;
     bool stop_requested_ = false;

@@ -16,6 +16,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "capture/capture_writer.hpp"
 #include "capture/pcap_source.hpp"
@@ -67,8 +68,8 @@ std::int64_t monotonic_ns() {
 constexpr std::int64_t kFlushEveryNs = 50'000'000;  // at most 100 ms in buffers, with margin
 
 // Accepted ranges of the numeric options (named in their error messages).
-constexpr double kMaxSeconds = 315'360'000;  // ten years
-constexpr std::uint64_t kMinRotateSize = 512;  // the pcap header and the longest record fit
+constexpr double kMaxSeconds = 315'360'000;           // ten years
+constexpr std::uint64_t kMinRotateSize = 512;         // the pcap header and the longest record fit
 constexpr std::uint64_t kMaxRotateSize = 1ULL << 44;  // 16T
 constexpr std::uint32_t kMaxIdleGapMs = 60'000;
 
@@ -112,7 +113,8 @@ CLI::Validator rotate_size_range() {
     return CLI::Validator(
         [](std::string& text) -> std::string {
             std::size_t digits = 0;
-            while (digits < text.size() && text[digits] >= '0' && text[digits] <= '9') ++digits;
+            while (digits < text.size() && text[digits] >= '0' && text[digits] <= '9')
+                ++digits;
             std::uint64_t number = 0;
             bool ok = parse_whole(std::string_view(text).substr(0, digits), number);
             std::string unit;
@@ -139,7 +141,8 @@ CLI::Validator rotate_size_range() {
 
 // Do `a` and `b` name the same file (after links; by device and inode when both exist)?
 bool same_file(const std::string& a, const std::string& b) {
-    struct stat info_a {}, info_b {};
+    struct stat info_a {};
+    struct stat info_b {};
     if (::stat(a.c_str(), &info_a) == 0 && ::stat(b.c_str(), &info_b) == 0)
         return info_a.st_dev == info_b.st_dev && info_a.st_ino == info_b.st_ino;
     std::error_code error_a, error_b;
@@ -157,7 +160,8 @@ bool is_capture_file(const std::string& path, const std::string& output, bool ro
     std::size_t dash = path.rfind('-');
     if (dash == std::string::npos || (slash != std::string::npos && dash < slash)) return false;
     std::size_t digits = dash + 1;
-    while (digits < path.size() && path[digits] >= '0' && path[digits] <= '9') ++digits;
+    while (digits < path.size() && path[digits] >= '0' && path[digits] <= '9')
+        ++digits;
     std::uint64_t index = 0;
     if (!parse_whole(std::string_view(path).substr(dash + 1, digits - dash - 1), index) ||
         index == 0 || index > 0xFFFF'FFFFu)
@@ -229,8 +233,16 @@ int run_sniff(const SniffCommand& command) {
         print_error(error);
         return kExitUsage;
     }
+    // Output files this run creates: removed again if the port cannot be set up.
+    std::vector<std::string> created;
+    auto note_if_new = [&created](const std::string& path) {
+        if (::access(path.c_str(), F_OK) != 0) created.push_back(path);
+    };
     std::unique_ptr<CaptureWriter> writer;
     if (!command.output.empty()) {
+        const bool rotating = command.rotate_size > 0 || command.rotate_seconds > 0;
+        if (!pcap_to_stdout)
+            note_if_new(rotating ? rotated_file_name(command.output, 1) : command.output);
         RotationOptions rotation{command.rotate_size,
                                  static_cast<std::int64_t>(command.rotate_seconds * 1e9)};
         int link_type = command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
@@ -244,6 +256,7 @@ int run_sniff(const SniffCommand& command) {
     }
     std::unique_ptr<FILE, int (*)(FILE*)> report_file(nullptr, std::fclose);
     if (!command.report_file.empty() && !report_to_stdout) {
+        note_if_new(command.report_file);
         report_file.reset(std::fopen(command.report_file.c_str(), "wb"));
         if (!report_file) {
             print_error(fmt::format("--report-file {}: cannot open for writing: {}",
@@ -254,6 +267,10 @@ int run_sniff(const SniffCommand& command) {
     install_stop_handlers();  // from here on, a signal never leaves the port in raw mode
     if (!port->configure(error)) {
         print_error(error);
+        writer.reset();
+        report_file.reset();
+        for (const std::string& path : created)
+            std::remove(path.c_str());
         return kExitUsage;
     }
     FILE* text_stream = pcap_to_stdout || report_to_stdout ? stderr : stdout;

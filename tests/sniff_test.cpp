@@ -537,8 +537,7 @@ int sniff_faulty_session(std::vector<std::string> args, std::string& out, std::s
 TEST(SniffTest, ReportFileHoldsTheReportAndStandardOutputTheLiveDecode) {
     std::string path = test::temp_path("report.json");
     std::string out, err;
-    EXPECT_EQ(sniff_faulty_session({"--report-file", path, "--report-format", "json"}, out, err),
-              1)
+    EXPECT_EQ(sniff_faulty_session({"--report-file", path, "--report-format", "json"}, out, err), 1)
         << err;
     auto report = test::read_file(path);
     auto json = test::parse_json(std::string(report.begin(), report.end()));
@@ -567,8 +566,9 @@ TEST(SniffTest, ReportOptionsThatCannotWorkAreUsageErrors) {
         std::string message;
     };
     const std::vector<Case> cases = {
-        {{"--report", "--report-format", "json"}, "--report-format json: the report would be "
-                                                  "mixed into the live output"},
+        {{"--report", "--report-format", "json"},
+         "--report-format json: the report would be "
+         "mixed into the live output"},
         {{"--report-format", "html"}, "give --report-file FILE"},
         {{"-w", "-", "--report-file", "-"}, "standard output already carries the pcap of -w -"},
         {{"-w", pcap, "--report-file", link},
@@ -625,9 +625,11 @@ TEST(SniffTest, NumericOptionsAreCheckedAgainstTheirRange) {
         {{"-w", "x.pcap", "--rotate-size", "1e30"}, "--rotate-size: " + size + "1e30"},
         {{"-w", "x.pcap", "--rotate-size", "17T"}, "--rotate-size: " + size + "17T"},
         {{"-w", "x.pcap", "--rotate-size", "5X"}, "--rotate-size: " + size + "5X"},
-        {{"--idle-gap-ms", "-1"}, "--idle-gap-ms: must be a whole number from 0 to 60000 ms, not -1"},
+        {{"--idle-gap-ms", "-1"},
+         "--idle-gap-ms: must be a whole number from 0 to 60000 ms, not -1"},
         {{"--idle-gap-ms", "1e30"}, "--idle-gap-ms: must be a whole number from 0 to 60000 ms"},
-        {{"-c", "1e30"}, "--count: must be a whole number from 1 to 18446744073709551615 telegrams"},
+        {{"-c", "1e30"},
+         "--count: must be a whole number from 1 to 18446744073709551615 telegrams"},
         {{"-c", "1.5"}, "--count: must be a whole number from 1 to"},
         {{"-c", "0"}, "--count: must be greater than 0, not 0"},
         {{"--timeout-ms", "nan"}, "--timeout-ms: Value nan not in range 1 to 3600000"},
@@ -637,8 +639,7 @@ TEST(SniffTest, NumericOptionsAreCheckedAgainstTheirRange) {
         args.insert(args.end(), c.args.begin(), c.args.end());
         auto result = test::run_dpscope(args);
         EXPECT_EQ(result.exit_code, 2) << c.message;
-        EXPECT_NE(result.err.find("dpscope: error: " + c.message), std::string::npos)
-            << result.err;
+        EXPECT_NE(result.err.find("dpscope: error: " + c.message), std::string::npos) << result.err;
     }
     for (const char* baud : {"0", "299", "16000001", "1e30", "-9600", "nan"}) {
         auto result = test::run_dpscope({"sniff", "-i", pty.slave, "--baud", baud});
@@ -724,8 +725,8 @@ TEST(SniffTest, ThePortIsLeftAsItWasFoundOnEveryWayOut) {
     EXPECT_TRUE(same_settings(settings_of(pty.slave), before));
 
     // simulate --device uses the same port set-up and puts it back too.
-    result = test::run_dpscope({"simulate", "--device", pty.slave, "--baud", "187500",
-                                "--cycles", "5", "--as-fast-as-possible"});
+    result = test::run_dpscope({"simulate", "--device", pty.slave, "--baud", "187500", "--cycles",
+                                "5", "--as-fast-as-possible"});
     EXPECT_EQ(result.exit_code, 0) << result.err;
     EXPECT_TRUE(same_settings(settings_of(pty.slave), before));
 }
@@ -757,9 +758,15 @@ TEST(SniffTest, ASecondSnifferOnThePortIsRefusedAndTheFirstCapturesOn) {
 }
 
 TEST(SniffTest, UsageErrorsNameTheProblem) {
-    auto result = test::run_dpscope({"sniff", "-i", "/dev/null", "--baud", "1500000"});
+    // A device that cannot be set up leaves no empty output files behind.
+    const std::string pcap = test::temp_path("never.pcap");
+    const std::string json = test::temp_path("never.json");
+    auto result = test::run_dpscope({"sniff", "-i", "/dev/null", "--baud", "1500000", "-w", pcap,
+                                     "--report-file", json, "--report-format", "json"});
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("/dev/null: not a serial port"), std::string::npos) << result.err;
+    EXPECT_FALSE(std::filesystem::exists(pcap));
+    EXPECT_FALSE(std::filesystem::exists(json));
     result = test::run_dpscope({"sniff", "-i", "/dev/ttyS-missing", "--baud", "1500000"});
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("cannot open"), std::string::npos);
