@@ -6,86 +6,276 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <linux/serial.h>
+#include <signal.h>
+#include <sys/file.h>
 #include <sys/ioctl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
+#include <climits>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 
 namespace dpscope {
 
-std::unique_ptr<SerialPort> SerialPort::open(const SerialSettings& settings, std::string& error) {
-    int fd = ::open(settings.device.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0) {
+namespace {
+
+// What a configured port is to be put back to, kept where a signal handler can reach it without
+// allocating or locking.
+struct Slot {
+    std::atomic<bool> used{false};
+    std::atomic<int> fd{-1};  // set once `original` holds the settings found; -1: nothing to do
+    struct termios2 original {};
+    struct serial_struct original_serial {};
+    std::atomic<bool> serial_changed{false};
+    std::atomic<bool> lock_held{false};
+    char lock_path[PATH_MAX] = {};
+};
+
+constexpr int kSlots = 8;
+Slot g_slots[kSlots];
+
+int take_slot() {
+    for (int i = 0; i < kSlots; ++i) {
+        bool expected = false;
+        if (g_slots[i].used.compare_exchange_strong(expected, true)) return i;
+    }
+    return -1;
+}
+
+// Async-signal-safe: system calls only.
+void restore_settings(Slot& slot, bool drain) noexcept {
+    int fd = slot.fd.exchange(-1);
+    if (fd < 0) return;
+    if (drain) ioctl(fd, TCSBRK, 1);  // tcdrain: what was written goes out at the rate set
+    ioctl(fd, TCSETS2, &slot.original);
+    if (slot.serial_changed.exchange(false)) ioctl(fd, TIOCSSERIAL, &slot.original_serial);
+    ioctl(fd, TIOCNXCL);
+}
+
+void release_lock_file(Slot& slot) noexcept {
+    if (slot.lock_held.exchange(false)) unlink(slot.lock_path);
+}
+
+bool process_alive(pid_t pid) { return kill(pid, 0) == 0 || errno == EPERM; }
+
+// The process holding the UUCP lock file at `path`: its PID; 0 when the lock is stale (the
+// process is gone, or the file is unreadable and older than a few seconds); -1 when the file is
+// fresh but holds no PID yet (another program is writing it).
+pid_t lock_owner(const std::string& path) {
+    int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return 0;
+    char text[64] = {};
+    ssize_t n = ::read(fd, text, sizeof text - 1);
+    struct stat info {};
+    bool fresh = fstat(fd, &info) == 0 && std::time(nullptr) - info.st_mtime < 5;
+    ::close(fd);
+    pid_t pid = 0;
+    if (n == static_cast<ssize_t>(sizeof(int))) {  // the old binary format
+        int binary = 0;
+        std::memcpy(&binary, text, sizeof binary);
+        pid = binary;
+    } else if (n > 0) {
+        // HDB format: the PID in ASCII, right-aligned in 10 characters, and a newline.
+        char* end = nullptr;
+        long value = std::strtol(text, &end, 10);
+        if (end != text && value > 0 && value <= INT_MAX) pid = static_cast<pid_t>(value);
+    }
+    if (pid <= 0) return fresh ? -1 : 0;
+    return process_alive(pid) ? pid : 0;
+}
+
+std::string process_name(pid_t pid) {
+    int fd = ::open(fmt::format("/proc/{}/comm", pid).c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return {};
+    char text[64] = {};
+    ssize_t n = ::read(fd, text, sizeof text - 1);
+    ::close(fd);
+    std::string name(text, n > 0 ? static_cast<std::size_t>(n) : 0);
+    while (!name.empty() && (name.back() == '\n' || name.back() == '\0'))
+        name.pop_back();
+    return name;
+}
+
+}  // namespace
+
+std::unique_ptr<SerialPort> SerialPort::claim(const SerialSettings& settings, std::string& error) {
+    char resolved[PATH_MAX] = {};
+    struct stat info {};
+    if (realpath(settings.device.c_str(), resolved) == nullptr || stat(resolved, &info) != 0) {
         error = fmt::format("{}: cannot open: {}", settings.device, std::strerror(errno));
         return nullptr;
     }
-    std::unique_ptr<SerialPort> port(new SerialPort);
-    port->fd_ = fd;
-    port->device_ = settings.device;
-    struct termios2 tio {};
-    if (ioctl(fd, TCGETS2, &tio) != 0) {
-        error = fmt::format("{}: not a serial port: {}", settings.device, std::strerror(errno));
+    if (!S_ISCHR(info.st_mode)) {
+        error = fmt::format("{}: not a serial port: not a character device", settings.device);
         return nullptr;
     }
+    std::unique_ptr<SerialPort> port(new SerialPort);
+    port->settings_ = settings;
+    port->device_ = settings.device;
+    port->slot_ = take_slot();
+    if (port->slot_ < 0) {
+        error = fmt::format("{}: too many serial ports open", settings.device);
+        return nullptr;
+    }
+    const char* base = std::strrchr(resolved, '/');
+    if (!port->take_lock_file(base ? base + 1 : resolved, error)) return nullptr;
+    return port;
+}
+
+// The UUCP lock file (HDB format) that serial programs (minicom, picocom, cu, ModemManager)
+// look for: `lock_dir`/LCK..NAME holding the owner's PID. A stale one (its process is gone) is
+// removed. A lock directory that is missing or not writable is passed over.
+bool SerialPort::take_lock_file(const std::string& name, std::string& error) {
+    const std::string& dir = settings_.lock_dir;
+    if (dir.empty()) return true;
+    std::string path = fmt::format("{}/LCK..{}", dir, name);
+    Slot& slot = g_slots[slot_];
+    if (path.size() >= sizeof slot.lock_path) return true;
+    // Written whole under a temporary name, then linked into place: no one sees half a lock.
+    std::string temp = fmt::format("{}/LTMP.{}", dir, getpid());
+    int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) return true;
+    std::string content = fmt::format("{:>10}\n", getpid());
+    bool written =
+        ::write(fd, content.data(), content.size()) == static_cast<ssize_t>(content.size());
+    ::close(fd);
+    for (int attempt = 0; written && attempt < 3; ++attempt) {
+        if (link(temp.c_str(), path.c_str()) == 0) {
+            unlink(temp.c_str());
+            std::memcpy(slot.lock_path, path.c_str(), path.size() + 1);
+            slot.lock_held = true;
+            lock_file_ = path;
+            return true;
+        }
+        if (errno != EEXIST) break;  // a file system without hard links: no lock file
+        pid_t owner = lock_owner(path);
+        if (owner != 0) {
+            unlink(temp.c_str());
+            if (owner < 0) {
+                error = fmt::format("{} is in use: another program is taking the lock file {}",
+                                    device_, path);
+            } else {
+                std::string owner_name = process_name(owner);
+                error = fmt::format("{} is in use by process {}{}: lock file {}", device_, owner,
+                                    owner_name.empty() ? "" : " (" + owner_name + ")", path);
+            }
+            return false;
+        }
+        unlink(path.c_str());  // stale: its process is gone
+    }
+    unlink(temp.c_str());
+    return true;
+}
+
+bool SerialPort::configure(std::string& error) {
+    const std::string& device = settings_.device;
+    if (fd_ >= 0) {
+        error = fmt::format("{}: already open", device);
+        return false;
+    }
+    int fd = ::open(device.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        error = fmt::format("{}: cannot open: {}{}", device, std::strerror(errno),
+                            errno == EBUSY ? " (another program has it open exclusively)" : "");
+        return false;
+    }
+    fd_ = fd;
+    // Programs that take no lock file (or a lock directory we cannot write) still meet here.
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK) {
+        error = fmt::format("{} is in use: another process holds a lock on the device", device);
+        return false;
+    }
+    Slot& slot = g_slots[slot_];
+    struct termios2 tio {};
+    if (ioctl(fd, TCGETS2, &tio) != 0) {
+        error = fmt::format("{}: not a serial port: {}", device, std::strerror(errno));
+        return false;
+    }
+    slot.original = tio;
+    slot.fd = fd;         // from here on the destructor (or a signal) puts the settings back
+    ioctl(fd, TIOCEXCL);  // others (but root) cannot open it while we have it
     // Raw mode.
     tio.c_iflag &= ~static_cast<tcflag_t>(IGNBRK | BRKINT | ISTRIP | INLCR | IGNCR | ICRNL | IXON |
                                           IXOFF | IXANY | IGNPAR | PARMRK | INPCK);
-    if (!settings.for_writing) tio.c_iflag |= INPCK | PARMRK;  // mark parity errors
+    if (!settings_.for_writing) tio.c_iflag |= INPCK | PARMRK;  // mark parity errors
     tio.c_oflag &= ~static_cast<tcflag_t>(OPOST);
     tio.c_lflag &= ~static_cast<tcflag_t>(ECHO | ECHONL | ICANON | ISIG | IEXTEN);
     // 8E1 at an arbitrary rate.
     tio.c_cflag &= ~static_cast<tcflag_t>(CSIZE | PARODD | CBAUD | CSTOPB | CRTSCTS);
     tio.c_cflag |= CS8 | PARENB | CREAD | CLOCAL | BOTHER;
     tio.c_cflag &= ~static_cast<tcflag_t>(CIBAUD);
-    tio.c_ispeed = tio.c_ospeed = settings.baud;
+    tio.c_ispeed = tio.c_ospeed = settings_.baud;
     tio.c_cc[VMIN] = 0;
     tio.c_cc[VTIME] = 0;
     if (ioctl(fd, TCSETS2, &tio) != 0) {
-        error = fmt::format("{}: cannot set {} baud 8E1: {}", settings.device, settings.baud,
+        error = fmt::format("{}: cannot set {} baud 8E1: {}", device, settings_.baud,
                             std::strerror(errno));
-        return nullptr;
+        return false;
     }
     struct termios2 back {};
     if (ioctl(fd, TCGETS2, &back) != 0) {
-        error = fmt::format("{}: cannot read the settings back: {}", settings.device,
-                            std::strerror(errno));
-        return nullptr;
+        error = fmt::format("{}: cannot read the settings back: {}", device, std::strerror(errno));
+        return false;
     }
-    port->baud_ = back.c_ospeed;
-    long long difference = static_cast<long long>(back.c_ospeed) - settings.baud;
-    if (std::llabs(difference) * 100 > settings.baud) {
-        error = fmt::format("{}: the port did not take {} baud: it is set to {} baud",
-                            settings.device, settings.baud, back.c_ospeed);
-        return nullptr;
+    baud_ = back.c_ospeed;
+    long long difference = static_cast<long long>(back.c_ospeed) - settings_.baud;
+    if (std::llabs(difference) * 100 > settings_.baud) {
+        error = fmt::format("{}: the port did not take {} baud: it is set to {} baud", device,
+                            settings_.baud, back.c_ospeed);
+        return false;
     }
     if ((back.c_cflag & CSIZE) != CS8) {
-        error = fmt::format("{}: the port did not take 8 data bits", settings.device);
-        return nullptr;
+        error = fmt::format("{}: the port did not take 8 data bits", device);
+        return false;
     }
     // Pseudo-terminals have no parity (the kernel clears PARENB): capture still works, but
     // parity errors cannot be seen. Say so rather than refuse.
-    port->parity_checked_ = (back.c_cflag & PARENB) && !(back.c_cflag & PARODD);
-    port->parity_marked_ = (back.c_iflag & PARMRK) != 0;
-    if (!port->parity_checked_)
-        port->note_ = fmt::format(
+    parity_checked_ = (back.c_cflag & PARENB) && !(back.c_cflag & PARODD);
+    parity_marked_ = (back.c_iflag & PARMRK) != 0;
+    if (!parity_checked_)
+        note_ = fmt::format(
             "{}: the port does not check even parity (a pseudo-terminal?); "
             "parity errors will not be seen",
-            settings.device);
-    if (settings.low_latency) {
+            device);
+    if (settings_.low_latency) {
         struct serial_struct serial {};
-        if (ioctl(fd, TIOCGSERIAL, &serial) == 0) {
+        if (ioctl(fd, TIOCGSERIAL, &serial) == 0 && !(serial.flags & ASYNC_LOW_LATENCY)) {
+            slot.original_serial = serial;
             serial.flags |= ASYNC_LOW_LATENCY;
-            port->low_latency_ = ioctl(fd, TIOCSSERIAL, &serial) == 0;
+            low_latency_ = ioctl(fd, TIOCSSERIAL, &serial) == 0;
+            slot.serial_changed = low_latency_;
+        } else {
+            low_latency_ = (serial.flags & ASYNC_LOW_LATENCY) != 0;
         }
     }
     ioctl(fd, TCFLSH, TCIFLUSH);  // what arrived before the settings held is not trusted
+    return true;
+}
+
+std::unique_ptr<SerialPort> SerialPort::open(const SerialSettings& settings, std::string& error) {
+    auto port = claim(settings, error);
+    if (!port || !port->configure(error)) return nullptr;
     return port;
 }
 
 SerialPort::~SerialPort() {
-    if (fd_ >= 0) ::close(fd_);
+    if (slot_ >= 0) restore_settings(g_slots[slot_], settings_.for_writing);
+    if (fd_ >= 0) ::close(fd_);  // also releases flock()
+    if (slot_ >= 0) {
+        release_lock_file(g_slots[slot_]);
+        g_slots[slot_].used = false;
+    }
+}
+
+void SerialPort::restore_all_after_signal() noexcept {
+    for (Slot& slot : g_slots) {
+        restore_settings(slot, false);
+        release_lock_file(slot);
+    }
 }
 
 }  // namespace dpscope

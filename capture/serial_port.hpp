@@ -2,6 +2,11 @@
 // stop bit, any baud rate the driver accepts (termios2 with BOTHER), parity errors marked in the
 // data (PARMRK: an erroneous byte X arrives as FF 00 X, a real FF as FF FF), and the driver's
 // low-latency flag where it offers one.
+//
+// The port is the user's: it is taken exclusively while dpscope uses it (a UUCP lock file
+// LCK..NAME in the lock directory, flock() on the device, TIOCEXCL), and the settings found when
+// it was opened (termios2 and the serial flags) are put back when it is closed, also from a
+// signal handler that ends the process (restore_all_after_signal).
 #pragma once
 
 #include <cstdint>
@@ -15,21 +20,36 @@ struct SerialSettings {
     std::uint32_t baud = 1'500'000;
     bool low_latency = true;
     bool for_writing = false;  // the simulator plays onto the port: no parity marking needed
+    // Where the UUCP lock file goes; "" takes none (flock and TIOCEXCL still apply). A directory
+    // that does not exist or cannot be written is passed over, as other serial programs do.
+    std::string lock_dir = "/run/lock";
 };
 
 class SerialPort {
   public:
-    // Opens and configures the port, then reads the settings back. Null with `error` naming the
-    // device and the problem: cannot open, not a tty, or a baud rate the port did not take (the
-    // message names the rate it got). A rate within 1 % of the request is taken: UARTs divide
-    // their clock and tolerate that much.
+    // Claims the device without opening it: resolves links, checks that it is a character
+    // device and takes the lock file. Null with `error` naming the device and the problem
+    // (cannot open, not a serial port, in use by process N).
+    static std::unique_ptr<SerialPort> claim(const SerialSettings& settings, std::string& error);
+    // Opens and configures a claimed port, then reads the settings back. False with `error`
+    // naming the device and the problem: cannot open, in use by another process, not a tty, or
+    // a baud rate the port did not take (the message names the rate it got). A rate within 1 %
+    // of the request is taken: UARTs divide their clock and tolerate that much.
+    bool configure(std::string& error);
+    // claim() and configure() in one.
     static std::unique_ptr<SerialPort> open(const SerialSettings& settings, std::string& error);
+    // Restores the settings found, releases the port and the lock file.
     ~SerialPort();
     SerialPort(const SerialPort&) = delete;
     SerialPort& operator=(const SerialPort&) = delete;
 
+    // For a handler of a signal that ends the process: puts every port this process has
+    // configured back as it was found and removes the lock files. Async-signal-safe.
+    static void restore_all_after_signal() noexcept;
+
     int fd() const noexcept { return fd_; }
     const std::string& device() const noexcept { return device_; }
+    const std::string& lock_file() const noexcept { return lock_file_; }  // "" when none taken
     std::uint32_t baud() const noexcept { return baud_; }       // as read back from the driver
     bool low_latency() const noexcept { return low_latency_; }  // the driver took the flag
     bool parity_checked() const noexcept { return parity_checked_; }  // even parity is on
@@ -39,8 +59,13 @@ class SerialPort {
 
   private:
     SerialPort() = default;
+    bool take_lock_file(const std::string& name, std::string& error);
+
+    SerialSettings settings_;
+    int slot_ = -1;  // where the settings to restore are kept (see serial_port.cpp)
     int fd_ = -1;
     std::string device_;
+    std::string lock_file_;
     std::uint32_t baud_ = 0;
     bool low_latency_ = false;
     bool parity_checked_ = false;

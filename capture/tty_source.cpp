@@ -45,7 +45,7 @@ FramedSource::Fill TtySource::fill() {
     // so a pause just over it is caught (and a busy moment of ours is never taken for one).
     int timeout_ms = options_.poll_ms;
     if (options_.idle_gap_ns > 0 && !gap_marked_ && pending_bytes() > 0) {
-        std::int64_t left = options_.idle_gap_ns - (wall_clock_ns() - last_data_ns_);
+        std::int64_t left = options_.idle_gap_ns - (options_.clock() - last_data_ns_);
         timeout_ms = static_cast<int>(
             std::clamp<std::int64_t>((left + 999'999) / 1'000'000, 0, options_.poll_ms));
     }
@@ -58,7 +58,7 @@ FramedSource::Fill TtySource::fill() {
         return Fill::End;
     }
     if (ready == 0) {
-        std::int64_t now = wall_clock_ns();
+        std::int64_t now = options_.clock();
         if (options_.idle_gap_ns > 0 && !gap_marked_ &&
             now - last_data_ns_ >= options_.idle_gap_ns) {
             gap_marked_ = true;
@@ -88,7 +88,7 @@ FramedSource::Fill TtySource::fill() {
 bool TtySource::read_available(bool& hangup) {
     ssize_t n = ::read(fd_, raw_.data(), raw_.size());
     if (n > 0) {
-        std::int64_t arrival = wall_clock_ns();
+        std::int64_t arrival = options_.clock();
         ++reads_;
         bytes_read_ += static_cast<std::uint64_t>(n);
         unescape_and_feed(raw_.data(), static_cast<std::size_t>(n), arrival);
@@ -169,7 +169,7 @@ void TtySource::drop_old_chunks() {
 }
 
 std::int64_t TtySource::time_at(std::uint64_t offset) {
-    std::int64_t time = wall_clock_ns();
+    std::int64_t time = options_.clock();
     for (auto it = chunks_.rbegin(); it != chunks_.rend(); ++it) {
         if (offset >= it->start) {
             std::uint64_t last = it->start + it->length - 1;
@@ -178,9 +178,18 @@ std::int64_t TtySource::time_at(std::uint64_t offset) {
             break;
         }
     }
-    // Never the same time twice, never backwards.
-    if (last_time_ns_ != kNoTime && time <= last_time_ns_) time = last_time_ns_ + 1;
+    // The bytes since the previous telegram's start (it and any skipped bytes) were on the wire
+    // before this one started: a read that returned late for the earlier bytes, early for these,
+    // or a clock set back, never puts two telegrams closer together than that.
+    if (last_time_ns_ != kNoTime) {
+        std::uint64_t between = offset > last_offset_ ? offset - last_offset_ : 0;
+        std::int64_t earliest =
+            last_time_ns_ +
+            std::max<std::int64_t>(1, static_cast<std::int64_t>(between) * character_ns_);
+        time = std::max(time, earliest);
+    }
     last_time_ns_ = time;
+    last_offset_ = offset;
     return time;
 }
 

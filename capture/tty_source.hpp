@@ -3,8 +3,10 @@
 //
 // Times: a read returns the bytes that arrived since the last one; the last of them arrived
 // about when read() returned, each earlier byte one character time (11 bits at the configured
-// baud) before it. A telegram gets the time of its first byte, so telegrams that came in one read
-// get different times, spaced by their length on the wire; times never go backwards.
+// baud) before it. A telegram gets the time of its first byte, but never earlier than the previous
+// telegram's time plus the time the bytes between their starts (that telegram and any skipped
+// bytes) took on the wire: telegrams get distinct times spaced at least by their length on the
+// wire, within one read and across reads, whenever read() returns and whatever the clock does.
 //
 // Line idle time: telegram characters follow each other without a pause, so when no byte comes
 // for `idle_gap_ns` while a telegram is incomplete, it is cut off (reported as skipped bytes) and
@@ -23,11 +25,16 @@
 
 namespace dpscope {
 
+// Wall-clock time in nanoseconds since the epoch (CLOCK_REALTIME).
+std::int64_t wall_clock_ns();
+
 struct TtySourceOptions {
     std::uint32_t baud = 1'500'000;         // for character times
     std::int64_t idle_gap_ns = 50'000'000;  // 0: do not use line idle time
     int poll_ms = 20;                       // how long poll() waits before reporting Idle
     bool parity_marked = true;              // the port marks parity errors (PARMRK)
+    // When a read returned (tests give their own).
+    std::int64_t (*clock)() = wall_clock_ns;
 };
 
 class TtySource final : public FramedSource {
@@ -69,8 +76,9 @@ class TtySource final : public FramedSource {
     std::vector<std::uint8_t> raw_;
     std::vector<std::uint8_t> clean_;
     std::deque<Chunk> chunks_;
-    std::uint64_t stream_offset_ = 0;  // bytes fed to the framer so far
-    std::int64_t last_time_ns_ = kNoTime;
+    std::uint64_t stream_offset_ = 0;      // bytes fed to the framer so far
+    std::int64_t last_time_ns_ = kNoTime;  // the previous telegram's time
+    std::uint64_t last_offset_ = 0;        // and stream offset
     std::int64_t last_data_ns_ = 0;
     bool gap_marked_ = true;
     bool stop_requested_ = false;
@@ -80,8 +88,5 @@ class TtySource final : public FramedSource {
     std::uint64_t parity_errors_ = 0;
     std::uint64_t idle_gaps_ = 0;
 };
-
-// Wall-clock time in nanoseconds since the epoch (CLOCK_REALTIME).
-std::int64_t wall_clock_ns();
 
 }  // namespace dpscope

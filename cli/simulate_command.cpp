@@ -42,7 +42,15 @@ struct SimulateCommand {
 };
 
 std::atomic<bool> g_stop_playing{false};
-extern "C" void stop_playing(int) { g_stop_playing.store(true); }
+// The first signal stops playing cleanly; a second one ends the process at once, with the port
+// put back as it was found.
+extern "C" void stop_playing(int signal_number) {
+    if (g_stop_playing.exchange(true)) {
+        SerialPort::restore_all_after_signal();
+        ::signal(signal_number, SIG_DFL);
+        ::raise(signal_number);
+    }
+}
 
 // Lists the injected faults (with -v) and names each fault given once that the session ended
 // before; returns the exit code.
@@ -94,7 +102,7 @@ int play_onto_device(const SimulateCommand& command, const SimulatorOptions& opt
     struct sigaction action {};
     action.sa_handler = stop_playing;
     sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESETHAND;
+    action.sa_flags = 0;
     sigaction(SIGINT, &action, nullptr);
     sigaction(SIGTERM, &action, nullptr);
     PlayStats stats;

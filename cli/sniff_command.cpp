@@ -1,13 +1,22 @@
 // dpscope sniff: live capture from an RS-485 adapter (or any tty) at a PROFIBUS baud rate.
 #include <fmt/format.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
+#include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "capture/capture_writer.hpp"
 #include "capture/pcap_source.hpp"
@@ -25,17 +34,29 @@ namespace {
 
 std::atomic<bool> g_stop_requested{false};
 
-extern "C" void request_stop(int) { g_stop_requested.store(true); }
+// The first signal ends the capture cleanly; a second one ends the process at once, with the
+// serial port put back as it was found.
+extern "C" void request_stop(int signal_number) {
+    if (g_stop_requested.exchange(true)) {
+        SerialPort::restore_all_after_signal();
+        ::signal(signal_number, SIG_DFL);
+        ::raise(signal_number);
+    }
+}
 
-// SIGINT and SIGTERM end the capture cleanly; a second SIGINT (handler reset) ends at once.
+// SIGINT, SIGTERM and SIGHUP (the terminal went away) end the capture cleanly. A closed pipe on
+// standard output is a write error that ends it (exit code 4), not a SIGPIPE that would leave
+// the port in raw mode.
 void install_stop_handlers() {
     g_stop_requested.store(false);
     struct sigaction action {};
     action.sa_handler = request_stop;
     sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESETHAND;  // no SA_RESTART: poll() returns at once
+    action.sa_flags = 0;  // no SA_RESTART: poll() returns at once
     sigaction(SIGINT, &action, nullptr);
     sigaction(SIGTERM, &action, nullptr);
+    sigaction(SIGHUP, &action, nullptr);
+    ::signal(SIGPIPE, SIG_IGN);
 }
 
 std::int64_t monotonic_ns() {
@@ -45,6 +66,108 @@ std::int64_t monotonic_ns() {
 }
 
 constexpr std::int64_t kFlushEveryNs = 50'000'000;  // at most 100 ms in buffers, with margin
+
+// Accepted ranges of the numeric options (named in their error messages).
+constexpr double kMaxSeconds = 315'360'000;           // ten years
+constexpr std::uint64_t kMinRotateSize = 512;         // the pcap header and the longest record fit
+constexpr std::uint64_t kMaxRotateSize = 1ULL << 44;  // 16T
+constexpr std::uint32_t kMaxIdleGapMs = 60'000;
+
+// A finite number from `low` to `high`.
+CLI::Validator number_from(double low, double high, std::string_view unit) {
+    std::string range = fmt::format("{} to {}{}", low, high, unit);
+    return CLI::Validator(
+        [=](std::string& text) -> std::string {
+            char* end = nullptr;
+            double value = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != '\0' || !std::isfinite(value) || value < low ||
+                value > high)
+                return fmt::format("must be a number from {}, not {}", range, text);
+            return {};
+        },
+        range, "number");
+}
+
+// Digits only (no sign, no fraction, no exponent); false when it does not fit.
+bool parse_whole(std::string_view text, std::uint64_t& value) {
+    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    return !text.empty() && ec == std::errc() && end == text.data() + text.size();
+}
+
+// A whole number from `low` to `high`.
+CLI::Validator whole_number_from(std::uint64_t low, std::uint64_t high, std::string_view unit) {
+    std::string range = fmt::format("{} to {}{}", low, high, unit);
+    return CLI::Validator(
+        [=](std::string& text) -> std::string {
+            std::uint64_t value = 0;
+            if (!parse_whole(text, value) || value < low || value > high)
+                return fmt::format("must be a whole number from {}, not {}", range, text);
+            return {};
+        },
+        range, "whole number");
+}
+
+// A size: a whole number of bytes with an optional unit k, M, G, T (powers of 1024, as
+// CLI::AsSizeValue reads them, also written kb, KiB, ...), from kMinRotateSize to kMaxRotateSize.
+CLI::Validator rotate_size_range() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            std::size_t digits = 0;
+            while (digits < text.size() && text[digits] >= '0' && text[digits] <= '9')
+                ++digits;
+            std::uint64_t number = 0;
+            bool ok = parse_whole(std::string_view(text).substr(0, digits), number);
+            std::string unit;
+            for (char c : text.substr(digits))
+                unit += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+            if (!unit.empty() && unit != "b" && unit.back() == 'b') unit.pop_back();
+            if (unit.size() == 2 && unit[1] == 'i') unit.pop_back();
+            int shift = unit.empty() || unit == "b" ? 0
+                        : unit == "k"               ? 10
+                        : unit == "m"               ? 20
+                        : unit == "g"               ? 30
+                        : unit == "t"               ? 40
+                                                    : -1;
+            if (!ok || shift < 0 || number > (kMaxRotateSize >> shift) ||
+                (number << shift) < kMinRotateSize)
+                return fmt::format(
+                    "must be a size from {} bytes to 16T (a whole number of bytes, or with k, M, "
+                    "G or T), not {}",
+                    kMinRotateSize, text);
+            return {};
+        },
+        "512 to 16T", "size");
+}
+
+// Do `a` and `b` name the same file (after links; by device and inode when both exist)?
+bool same_file(const std::string& a, const std::string& b) {
+    struct stat info_a {};
+    struct stat info_b {};
+    if (::stat(a.c_str(), &info_a) == 0 && ::stat(b.c_str(), &info_b) == 0)
+        return info_a.st_dev == info_b.st_dev && info_a.st_ino == info_b.st_ino;
+    std::error_code error_a, error_b;
+    auto canonical_a = std::filesystem::weakly_canonical(a, error_a);
+    auto canonical_b = std::filesystem::weakly_canonical(b, error_b);
+    if (error_a || error_b) return a == b;
+    return canonical_a == canonical_b;
+}
+
+// Is `path` one of the files -w `output` writes (stem-NNNNN.ext when rotating)?
+bool is_capture_file(const std::string& path, const std::string& output, bool rotating) {
+    if (!rotating) return same_file(path, output);
+    // The index in stem-NNNNN.ext: the digits after the last '-' of the name.
+    std::size_t slash = path.rfind('/');
+    std::size_t dash = path.rfind('-');
+    if (dash == std::string::npos || (slash != std::string::npos && dash < slash)) return false;
+    std::size_t digits = dash + 1;
+    while (digits < path.size() && path[digits] >= '0' && path[digits] <= '9')
+        ++digits;
+    std::uint64_t index = 0;
+    if (!parse_whole(std::string_view(path).substr(dash + 1, digits - dash - 1), index) ||
+        index == 0 || index > 0xFFFF'FFFFu)
+        return false;
+    return same_file(path, rotated_file_name(output, static_cast<unsigned>(index)));
+}
 
 struct SniffCommand {
     DecodeOptionValues options;
@@ -57,10 +180,31 @@ struct SniffCommand {
     double duration = 0;
     bool report = false;
     std::string report_format = "text";
+    std::string report_file;
     std::string fail_on = "error";
     std::uint32_t idle_gap_ms = 50;
     bool no_low_latency = false;
 };
+
+// Checks --report, --report-format and --report-file against each other and -w; "" when fine.
+std::string report_usage_error(const SniffCommand& command) {
+    const std::string& file = command.report_file;
+    if (command.report_format != "text" && file.empty())
+        return fmt::format(
+            "--report-format {}: the report would be mixed into the live output on standard "
+            "output; give --report-file FILE (- for standard output, the live output then goes "
+            "to standard error)",
+            command.report_format);
+    if (file == "-" && command.output == "-")
+        return "--report-file -: standard output already carries the pcap of -w -; give the "
+               "report a file name";
+    if (!file.empty() && file != "-" && !command.output.empty() && command.output != "-" &&
+        is_capture_file(file, command.output,
+                        command.rotate_size > 0 || command.rotate_seconds > 0))
+        return fmt::format("--report-file {}: it is the capture file of -w {}; give another name",
+                           file, command.output);
+    return {};
+}
 
 int run_sniff(const SniffCommand& command) {
     std::string error;
@@ -74,14 +218,31 @@ int run_sniff(const SniffCommand& command) {
         print_error("-w -: cannot rotate standard output; give a file name to rotate");
         return kExitUsage;
     }
-    auto port =
-        SerialPort::open({command.device, command.baud, !command.no_low_latency, false}, error);
+    if (std::string usage = report_usage_error(command); !usage.empty()) {
+        print_error(usage);
+        return kExitUsage;
+    }
+    const bool report = command.report || !command.report_file.empty();
+    const bool report_to_stdout = command.report_file == "-";
+    // The port is claimed first (its lock file: a port in use is no reason to truncate the -w
+    // file), then the outputs are opened, and only then is the port opened and set up: a bad
+    // output path leaves it untouched.
+    SerialSettings serial{command.device, command.baud, !command.no_low_latency, false};
+    auto port = SerialPort::claim(serial, error);
     if (!port) {
         print_error(error);
         return kExitUsage;
     }
+    // Output files this run creates: removed again if the port cannot be set up.
+    std::vector<std::string> created;
+    auto note_if_new = [&created](const std::string& path) {
+        if (::access(path.c_str(), F_OK) != 0) created.push_back(path);
+    };
     std::unique_ptr<CaptureWriter> writer;
     if (!command.output.empty()) {
+        const bool rotating = command.rotate_size > 0 || command.rotate_seconds > 0;
+        if (!pcap_to_stdout)
+            note_if_new(rotating ? rotated_file_name(command.output, 1) : command.output);
         RotationOptions rotation{command.rotate_size,
                                  static_cast<std::int64_t>(command.rotate_seconds * 1e9)};
         int link_type = command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
@@ -93,7 +254,26 @@ int run_sniff(const SniffCommand& command) {
         }
         writer = std::move(opened.writer);
     }
-    FILE* text_stream = pcap_to_stdout ? stderr : stdout;
+    std::unique_ptr<FILE, int (*)(FILE*)> report_file(nullptr, std::fclose);
+    if (!command.report_file.empty() && !report_to_stdout) {
+        note_if_new(command.report_file);
+        report_file.reset(std::fopen(command.report_file.c_str(), "wb"));
+        if (!report_file) {
+            print_error(fmt::format("--report-file {}: cannot open for writing: {}",
+                                    command.report_file, std::strerror(errno)));
+            return kExitOutputError;
+        }
+    }
+    install_stop_handlers();  // from here on, a signal never leaves the port in raw mode
+    if (!port->configure(error)) {
+        print_error(error);
+        writer.reset();
+        report_file.reset();
+        for (const std::string& path : created)
+            std::remove(path.c_str());
+        return kExitUsage;
+    }
+    FILE* text_stream = pcap_to_stdout || report_to_stdout ? stderr : stdout;
     if (!port->note().empty()) print_warning(fmt::format("{}", port->note()));
     std::fprintf(stderr, "dpscope: capturing on %s at %u baud 8E1%s; Ctrl-C stops\n",
                  command.device.c_str(), port->baud(), port->low_latency() ? ", low latency" : "");
@@ -105,6 +285,7 @@ int run_sniff(const SniffCommand& command) {
     TtySource source(std::move(port), fd, command.device, tty_options);
 
     Output out(text_stream, settings->line_buffered || isatty(fileno(text_stream)) != 0);
+    const char* text_stream_name = text_stream == stdout ? "standard output" : "standard error";
     report_input_issues(source, out);
     Pipeline pipeline(*settings);
     std::unique_ptr<TelegramRenderer> renderer;
@@ -113,17 +294,16 @@ int run_sniff(const SniffCommand& command) {
         renderer->begin();
     }
     FindingLog log;
-    install_stop_handlers();
 
     const std::int64_t start = monotonic_ns();
-    const std::int64_t duration_ns = static_cast<std::int64_t>(command.duration * 1e9);
+    const std::int64_t duration_ns = std::llround(command.duration * 1e9);
     std::int64_t last_flush = start;
     std::uint64_t telegrams = 0;
     bool output_failed = false;
     bool stopping = false;
-    // A failed write or flush (disk full) ends the capture; the file stays valid.
-    auto stop_on_write_error = [&] {
-        print_error(fmt::format("{}; stopping the capture", writer->error()));
+    // A failed write or flush (disk full, a closed pipe) ends the capture; the file stays valid.
+    auto stop_on_write_error = [&](const std::string& message) {
+        if (!output_failed) print_error(fmt::format("{}; stopping the capture", message));
         output_failed = true;
         stopping = true;
         source.request_stop();
@@ -142,23 +322,25 @@ int run_sniff(const SniffCommand& command) {
         if (polled == FramedSource::Poll::Telegram) {
             ++telegrams;
             if (writer && !output_failed && !writer->write(record.bytes, record.time_ns))
-                stop_on_write_error();
+                stop_on_write_error(writer->error());
             const DecodedTelegram& t = pipeline.feed(record, findings);
-            if (command.report && !findings.empty()) log.append(findings);
+            if (report && !findings.empty()) log.append(findings);
             show(renderer.get(), *settings, t, findings, pipeline.tracker().subject_pnu());
             // -c N: exactly N telegrams, not what else the driver still holds.
             if (settings->count != 0 && telegrams >= settings->count) break;
         }
         if (now - last_flush >= kFlushEveryNs || polled == FramedSource::Poll::Idle) {
-            if (writer && !output_failed && !writer->flush()) stop_on_write_error();
-            out.flush();
+            if (writer && !output_failed && !writer->flush()) stop_on_write_error(writer->error());
+            if (!out.flush() && !output_failed)
+                stop_on_write_error(
+                    fmt::format("{}: write failed: {}", text_stream_name, std::strerror(errno)));
             last_flush = now;
         }
     }
     // Judged at the stop: a request left unanswered past the time-out before it is reported.
     std::span<const Finding> open_at_end = pipeline.finish(wall_clock_ns());
     warn_ppo_overrides(pipeline.decoder());
-    if (command.report) log.append(open_at_end);
+    if (report) log.append(open_at_end);
     if (renderer) {
         renderer->render_end_findings(open_at_end);
         renderer->end();
@@ -180,11 +362,25 @@ int run_sniff(const SniffCommand& command) {
     if (settings->quiet)
         pipeline.summary().render_text(out, describe_input(source), pipeline.decoder());
     int exit_code = kExitOk;
-    if (command.report) {
+    if (report) {
         ReportContext context = report_context(
             pipeline, source, log, fail_on_from_name(command.fail_on).value_or(FailOn::Error));
-        render_report(report_format_from_name(command.report_format).value_or(ReportFormat::Text),
-                      context, out);
+        const ReportFormat format =
+            report_format_from_name(command.report_format).value_or(ReportFormat::Text);
+        if (command.report_file.empty()) {
+            render_report(format, context, out);
+        } else {
+            Output report_out(report_file ? report_file.get() : stdout);
+            render_report(format, context, report_out);
+            bool written = report_out.flush();
+            if (report_file) written = std::fclose(report_file.release()) == 0 && written;
+            if (!written) {
+                print_error(fmt::format("--report-file {}: cannot write the report: {}",
+                                        command.report_file, std::strerror(errno)));
+                output_failed = true;
+            }
+        }
+        if (!log.error().empty()) print_warning(fmt::format("{}", log.error()));
         if (report_fails(context)) exit_code = kExitFindings;
     }
     if (!out.flush()) output_failed = true;
@@ -201,8 +397,9 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
         "sniff",
         "Capture live from an RS-485 bus tap (a serial adapter, 8 data bits, even parity, 1 stop "
         "bit, any baud rate the driver accepts), decode and track as telegrams arrive, optionally "
-        "write pcap. Stops on -c, --duration, Ctrl-C (SIGINT) or SIGTERM with the capture file "
-        "complete.");
+        "write pcap. Stops on -c, --duration, Ctrl-C (SIGINT), SIGTERM or SIGHUP with the "
+        "capture file complete. The port is taken exclusively (lock file /run/lock/LCK..NAME, "
+        "flock, TIOCEXCL) and its settings are put back as they were found when sniff ends.");
     sub->add_option("-i,--interface", command->device, "Serial device, e.g. /dev/ttyUSB0")
         ->required()
         ->type_name("DEVICE");
@@ -210,7 +407,7 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
                     "Bus baud rate (9600, 19200, 45450, 93750, 187500, 500000, 1500000, 3000000, "
                     "6000000, 12000000 or any rate the driver takes; read back and checked)")
         ->required()
-        ->check(CLI::Range(300u, 16'000'000u));
+        ->check(whole_number_from(300, 16'000'000, " baud"));
     sub->add_option("-w,--write", command->output,
                     "Write the telegrams to FILE as pcap, flushed at least every 100 ms; - writes "
                     "pcap to standard output (the decoded output then goes to standard error)")
@@ -224,18 +421,26 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
                     "Start a new file before one would exceed SIZE (e.g. 100M); files are named "
                     "stem-00001.pcap, stem-00002.pcap, ...; no telegram is split or lost")
         ->transform(CLI::AsSizeValue(false))
+        ->transform(rotate_size_range())  // transforms run last-added first: before AsSizeValue
         ->type_name("SIZE");
     sub->add_option("--rotate-seconds", command->rotate_seconds,
                     "Start a new file once the current one holds SECONDS of capture")
-        ->check(finite_number(0, 31'536'000, true))
+        ->check(number_from(0.001, kMaxSeconds, " seconds"))
         ->type_name("SECONDS");
     sub->add_option("--duration", command->duration, "Stop after SECONDS")
-        ->check(finite_number(0, 31'536'000, true))
+        ->check(number_from(0.001, kMaxSeconds, " seconds"))
         ->type_name("SECONDS");
     sub->add_flag("--report", command->report,
-                  "At the end, print the conformance report of the capture");
+                  "At the end, print the conformance report of the capture (after the live "
+                  "output, on standard output; see --report-file)");
+    sub->add_option("--report-file", command->report_file,
+                    "Write the report to FILE instead (implies --report); - puts it alone on "
+                    "standard output and moves the live output to standard error (not with -w "
+                    "-). Not the -w file")
+        ->type_name("FILE");
     sub->add_option("--report-format", command->report_format,
-                    "Format of --report: text, json, markdown, html, junit")
+                    "Format of the report: text, json, markdown, html, junit; all but text need "
+                    "--report-file")
         ->check(CLI::IsMember({"text", "json", "markdown", "html", "junit"}))
         ->default_str("text");
     sub->add_option("--fail-on", command->fail_on,
@@ -246,11 +451,14 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
     sub->add_option("--idle-gap-ms", command->idle_gap_ms,
                     "Line idle time that ends an incomplete telegram (0: do not use idle time). "
                     "Keep it above a USB adapter's latency timer")
+        ->check(whole_number_from(0, kMaxIdleGapMs, " ms"))
         ->default_str("50");
     sub->add_flag("--no-low-latency", command->no_low_latency,
                   "Do not ask the driver for low-latency mode (ASYNC_LOW_LATENCY)");
     add_display_options(*sub, command->options, "text");
     add_tracking_options(*sub, command->options);
+    sub->get_option("--count")->check(
+        whole_number_from(1, std::numeric_limits<std::uint64_t>::max(), " telegrams"));
     sub->footer(std::string(kExitCodeHelp) +
                 " For sniff: on 4 and 5 what was captured before is written and the file is a "
                 "valid pcap; with --report, 1 when a finding reaches --fail-on.");

@@ -5,9 +5,12 @@
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -20,6 +23,7 @@
 #include "capture/tty_player.hpp"
 #include "decoder/bus_decoder.hpp"
 #include "decoder/session_tracker.hpp"
+#include "tests/json_parser.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -223,8 +227,11 @@ TEST(SniffTest, EveryTelegramArrivesIntactAndInOrderAndTheFindingsMatch) {
     ASSERT_EQ(capture.telegrams.size(), session.expected.size());
     for (std::size_t i = 0; i < capture.telegrams.size(); ++i)
         ASSERT_EQ(capture.telegrams[i], session.expected[i]) << "telegram " << i + 1;
+    // A telegram starts no earlier than the one before it has been sent (11 bits a byte).
     for (std::size_t i = 1; i < capture.times.size(); ++i)
-        EXPECT_GT(capture.times[i], capture.times[i - 1]) << i;
+        EXPECT_GE(capture.times[i] - capture.times[i - 1],
+                  static_cast<std::int64_t>(capture.telegrams[i - 1].size()) * 7333)
+            << i;
 
     std::map<std::string, int> reference = reference_finding_kinds(session.expected);
     EXPECT_EQ(jsonl_finding_kinds(sniffer.out()), reference);
@@ -497,8 +504,7 @@ TEST(SniffTest, FullDiskStopsWithExitCode4AndAValidFile) {
 
 TEST(SniffTest, ReportAtTheEnd) {
     PseudoTerminal pty;
-    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "--report",
-                     "--report-format", "json"});
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "--report"});
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options = faulty_session();
     options.cycles = 200;
@@ -507,14 +513,260 @@ TEST(SniffTest, ReportAtTheEnd) {
     sniffer.signal(SIGINT);
     EXPECT_EQ(sniffer.wait(), 1) << sniffer.err();  // errors found, --fail-on error
     std::string out = sniffer.out();
-    EXPECT_NE(out.find("\"result\":\"fail\""), std::string::npos) << out;
-    EXPECT_NE(out.find("\"format\":\"serial\""), std::string::npos) << out;
+    EXPECT_NE(out.find("telegrams: "), std::string::npos) << out;  // the summary (-q) ...
+    EXPECT_NE(out.find("FAIL"), std::string::npos) << out;         // ... and the text report
+}
+
+// Plays a faulty session into a sniffer started with `args` (after -i and --baud) and stops it.
+int sniff_faulty_session(std::vector<std::string> args, std::string& out, std::string& err) {
+    PseudoTerminal pty;
+    args.insert(args.begin(), {"sniff", "-i", pty.slave, "--baud", "1500000"});
+    Sniffer sniffer(args);
+    EXPECT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options = faulty_session();
+    options.cycles = 100;
+    play(pty, simulate(options), true);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    sniffer.signal(SIGINT);
+    int exit_code = sniffer.wait();
+    out = sniffer.out();
+    err = sniffer.err();
+    return exit_code;
+}
+
+TEST(SniffTest, ReportFileHoldsTheReportAndStandardOutputTheLiveDecode) {
+    std::string path = test::temp_path("report.json");
+    std::string out, err;
+    EXPECT_EQ(sniff_faulty_session({"--report-file", path, "--report-format", "json"}, out, err), 1)
+        << err;
+    auto report = test::read_file(path);
+    auto json = test::parse_json(std::string(report.begin(), report.end()));
+    ASSERT_TRUE(json);
+    EXPECT_EQ((*json)["result"].text, "fail");
+    EXPECT_EQ((*json)["input"]["format"].text, "serial");
+    EXPECT_NE(out.find("Data_Exchange"), std::string::npos) << out;  // the live lines
+    EXPECT_EQ(out.find("\"result\""), std::string::npos) << out;
+    std::remove(path.c_str());
+
+    // - : the report alone on standard output, the live decode on standard error.
+    EXPECT_EQ(sniff_faulty_session({"--report-file", "-", "--report-format", "json"}, out, err), 1)
+        << err;
+    EXPECT_TRUE(test::parse_json(out)) << out;
+    EXPECT_NE(err.find("Data_Exchange"), std::string::npos) << err;
+}
+
+TEST(SniffTest, ReportOptionsThatCannotWorkAreUsageErrors) {
+    PseudoTerminal pty;
+    const std::string pcap = test::temp_path("same.pcap");
+    const std::string link = test::temp_path("link.json");
+    test::write_text_file(pcap, "precious");
+    std::filesystem::create_symlink(pcap, link);
+    struct Case {
+        std::vector<std::string> args;
+        std::string message;
+    };
+    const std::vector<Case> cases = {
+        {{"--report", "--report-format", "json"},
+         "--report-format json: the report would be "
+         "mixed into the live output"},
+        {{"--report-format", "html"}, "give --report-file FILE"},
+        {{"-w", "-", "--report-file", "-"}, "standard output already carries the pcap of -w -"},
+        {{"-w", pcap, "--report-file", link},
+         "--report-file " + link + ": it is the capture file of -w " + pcap},
+        {{"-w", pcap, "--report-file", pcap}, "it is the capture file"},
+    };
+    const termios before = [&] {
+        termios tio;
+        std::memset(&tio, 0, sizeof tio);
+        int fd = open(pty.slave.c_str(), O_RDWR | O_NOCTTY);
+        tcgetattr(fd, &tio);
+        close(fd);
+        return tio;
+    }();
+    for (const Case& c : cases) {
+        std::vector<std::string> args = {"sniff", "-i", pty.slave, "--baud", "1500000"};
+        args.insert(args.end(), c.args.begin(), c.args.end());
+        auto result = test::run_dpscope(args);
+        EXPECT_EQ(result.exit_code, 2) << c.message;
+        EXPECT_EQ(result.err.rfind("dpscope: error: --report", 0), 0u) << result.err;
+        EXPECT_NE(result.err.find(c.message), std::string::npos) << result.err;
+    }
+    EXPECT_EQ(test::read_file(pcap).size(), 8u);  // nothing overwritten
+    termios after;
+    std::memset(&after, 0, sizeof after);
+    int fd = open(pty.slave.c_str(), O_RDWR | O_NOCTTY);
+    tcgetattr(fd, &after);
+    close(fd);
+    EXPECT_EQ(std::memcmp(&before, &after, sizeof before), 0);
+    std::remove(link.c_str());
+    std::remove(pcap.c_str());
+}
+
+TEST(SniffTest, NumericOptionsAreCheckedAgainstTheirRange) {
+    PseudoTerminal pty;
+    struct Case {
+        std::vector<std::string> args;
+        std::string message;
+    };
+    const std::string seconds = "must be a number from 0.001 to 315360000 seconds, not ";
+    const std::string size =
+        "must be a size from 512 bytes to 16T (a whole number of bytes, or with k, M, G or T), "
+        "not ";
+    const std::vector<Case> cases = {
+        {{"--duration", "nan"}, "--duration: " + seconds + "nan"},
+        {{"--duration", "-1"}, "--duration: " + seconds + "-1"},
+        {{"--duration", "1e300"}, "--duration: " + seconds + "1e300"},
+        {{"--duration", "1e-300"}, "--duration: " + seconds + "1e-300"},
+        {{"--duration", "inf"}, "--duration: " + seconds + "inf"},
+        {{"-w", "x.pcap", "--rotate-seconds", "inf"}, "--rotate-seconds: " + seconds + "inf"},
+        {{"-w", "x.pcap", "--rotate-seconds", "0"}, "--rotate-seconds: " + seconds + "0"},
+        {{"-w", "x.pcap", "--rotate-size", "0"}, "--rotate-size: " + size + "0"},
+        {{"-w", "x.pcap", "--rotate-size", "-5"}, "--rotate-size: " + size + "-5"},
+        {{"-w", "x.pcap", "--rotate-size", "1e30"}, "--rotate-size: " + size + "1e30"},
+        {{"-w", "x.pcap", "--rotate-size", "17T"}, "--rotate-size: " + size + "17T"},
+        {{"-w", "x.pcap", "--rotate-size", "5X"}, "--rotate-size: " + size + "5X"},
+        {{"--idle-gap-ms", "-1"},
+         "--idle-gap-ms: must be a whole number from 0 to 60000 ms, not -1"},
+        {{"--idle-gap-ms", "1e30"}, "--idle-gap-ms: must be a whole number from 0 to 60000 ms"},
+        {{"-c", "1e30"},
+         "--count: must be a whole number from 1 to 18446744073709551615 telegrams"},
+        {{"-c", "1.5"}, "--count: must be a whole number from 1 to"},
+        {{"-c", "0"}, "--count: must be greater than 0, not 0"},
+        {{"--timeout-ms", "nan"}, "--timeout-ms: Value nan not in range 1 to 3600000"},
+    };
+    for (const Case& c : cases) {
+        std::vector<std::string> args = {"sniff", "-i", pty.slave, "--baud", "1500000"};
+        args.insert(args.end(), c.args.begin(), c.args.end());
+        auto result = test::run_dpscope(args);
+        EXPECT_EQ(result.exit_code, 2) << c.message;
+        EXPECT_NE(result.err.find("dpscope: error: " + c.message), std::string::npos) << result.err;
+    }
+    for (const char* baud : {"0", "299", "16000001", "1e30", "-9600", "nan"}) {
+        auto result = test::run_dpscope({"sniff", "-i", pty.slave, "--baud", baud});
+        EXPECT_EQ(result.exit_code, 2) << baud;
+        EXPECT_NE(result.err.find("--baud: must be a whole number from 300 to 16000000 baud, not " +
+                                  std::string(baud)),
+                  std::string::npos)
+            << result.err;
+    }
+    EXPECT_FALSE(std::filesystem::exists(test::source_dir() + "/x.pcap"));
+}
+
+// The terminal settings of `path` as another program sees them.
+termios settings_of(const std::string& path) {
+    termios tio;
+    std::memset(&tio, 0, sizeof tio);
+    int fd = open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
+    EXPECT_GE(fd, 0) << path;
+    EXPECT_EQ(tcgetattr(fd, &tio), 0);
+    close(fd);
+    return tio;
+}
+
+bool same_settings(const termios& a, const termios& b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+TEST(SniffTest, ThePortIsLeftAsItWasFoundOnEveryWayOut) {
+    SimulatorOptions options;
+    options.cycles = 30;
+    Session session = simulate(options);
+    const std::string pcap = test::temp_path("restore.pcap");
+    // How each run ends: by a signal, by itself (-c, --duration), by a write error.
+    struct Way {
+        std::string name;
+        std::vector<std::string> args;
+        int signal_number;  // 0: none
+        rlim_t file_size_limit;
+        int exit_code;
+    };
+    const std::vector<Way> ways = {
+        {"SIGINT", {"-q"}, SIGINT, RLIM_INFINITY, 0},
+        {"SIGTERM", {"-q"}, SIGTERM, RLIM_INFINITY, 0},
+        {"SIGHUP", {"-q"}, SIGHUP, RLIM_INFINITY, 0},
+        {"-c", {"-c", "5"}, 0, RLIM_INFINITY, 0},
+        {"--duration", {"--duration", "0.4"}, 0, RLIM_INFINITY, 0},
+        {"write error", {"-q", "-w", pcap}, 0, 2000, 4},
+    };
+    for (const Way& way : ways) {
+        PseudoTerminal pty;
+        const termios before = settings_of(pty.slave);
+        std::vector<std::string> args = {"sniff", "-i", pty.slave, "--baud", "187500"};
+        args.insert(args.end(), way.args.begin(), way.args.end());
+        Sniffer sniffer(args, way.file_size_limit);
+        ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+        EXPECT_FALSE(same_settings(settings_of(pty.slave), before)) << way.name;
+        play(pty, session, true);
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        if (way.signal_number != 0) sniffer.signal(way.signal_number);
+        EXPECT_EQ(sniffer.wait(), way.exit_code) << way.name << ": " << sniffer.err();
+        EXPECT_TRUE(same_settings(settings_of(pty.slave), before)) << way.name;
+    }
+    std::remove(pcap.c_str());
+
+    // A second signal ends at once, and still puts the port back.
+    PseudoTerminal pty;
+    const termios before = settings_of(pty.slave);
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "187500", "-q"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    sniffer.signal(SIGSTOP);  // both signals arrive together
+    sniffer.signal(SIGTERM);
+    sniffer.signal(SIGINT);
+    sniffer.signal(SIGCONT);
+    int exit_code = sniffer.wait();
+    EXPECT_TRUE(exit_code == 128 + SIGINT || exit_code == 128 + SIGTERM) << exit_code;
+    EXPECT_TRUE(same_settings(settings_of(pty.slave), before));
+
+    // An output that cannot be opened: the port is not even set up.
+    auto result = test::run_dpscope(
+        {"sniff", "-i", pty.slave, "--baud", "187500", "-w", "/no-such-directory/x.pcap"});
+    EXPECT_EQ(result.exit_code, 4) << result.err;
+    EXPECT_EQ(result.err.find("capturing on"), std::string::npos) << result.err;
+    EXPECT_TRUE(same_settings(settings_of(pty.slave), before));
+
+    // simulate --device uses the same port set-up and puts it back too.
+    result = test::run_dpscope({"simulate", "--device", pty.slave, "--baud", "187500", "--cycles",
+                                "5", "--as-fast-as-possible"});
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_TRUE(same_settings(settings_of(pty.slave), before));
+}
+
+TEST(SniffTest, ASecondSnifferOnThePortIsRefusedAndTheFirstCapturesOn) {
+    PseudoTerminal pty;
+    const std::string pcap = test::temp_path("first.pcap");
+    Sniffer first({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "-w", pcap});
+    ASSERT_TRUE(first.ready()) << first.err();
+    // Even with the same -w file: refused before that file is touched.
+    auto second =
+        test::run_dpscope({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "-w", pcap});
+    EXPECT_EQ(second.exit_code, 2) << second.err;
+    EXPECT_NE(second.err.find("dpscope: error: " + pty.slave + " is in use"), std::string::npos)
+        << second.err;
+    auto simulator = test::run_dpscope(
+        {"simulate", "--device", pty.slave, "--baud", "1500000", "--cycles", "5"});
+    EXPECT_EQ(simulator.exit_code, 2) << simulator.err;
+    EXPECT_NE(simulator.err.find(pty.slave + " is in use"), std::string::npos) << simulator.err;
+    SimulatorOptions options;
+    options.cycles = 30;
+    Session session = simulate(options);
+    play(pty, session, true);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    first.signal(SIGINT);
+    ASSERT_EQ(first.wait(), 0) << first.err();
+    EXPECT_EQ(read_capture(pcap).telegrams, session.expected);
+    std::remove(pcap.c_str());
 }
 
 TEST(SniffTest, UsageErrorsNameTheProblem) {
-    auto result = test::run_dpscope({"sniff", "-i", "/dev/null", "--baud", "1500000"});
+    // A device that cannot be set up leaves no empty output files behind.
+    const std::string pcap = test::temp_path("never.pcap");
+    const std::string json = test::temp_path("never.json");
+    auto result = test::run_dpscope({"sniff", "-i", "/dev/null", "--baud", "1500000", "-w", pcap,
+                                     "--report-file", json, "--report-format", "json"});
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("/dev/null: not a serial port"), std::string::npos) << result.err;
+    EXPECT_FALSE(std::filesystem::exists(pcap));
+    EXPECT_FALSE(std::filesystem::exists(json));
     result = test::run_dpscope({"sniff", "-i", "/dev/ttyS-missing", "--baud", "1500000"});
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("cannot open"), std::string::npos);

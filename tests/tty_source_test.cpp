@@ -4,9 +4,13 @@
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cstring>
+#include <filesystem>
 #include <thread>
 #include <vector>
 
@@ -108,6 +112,56 @@ TEST(TtySourceTest, TimesNeverRepeatOrGoBackwards) {
     for (std::size_t i = 1; i < c.times.size(); ++i)
         EXPECT_GT(c.times[i], c.times[i - 1]);
     EXPECT_GT(c.times[0], 1'700'000'000'000'000'000);  // wall-clock time
+}
+
+// A clock the test sets: the time each read() "returned".
+std::int64_t g_fake_now = 0;
+std::int64_t fake_clock() { return g_fake_now; }
+
+// Writes `bytes` as one read whose return time is `now`, and collects what it completes.
+void read_at(Pipe& pipe, TtySource& source, Collected& c, const std::vector<std::uint8_t>& bytes,
+             std::int64_t now) {
+    g_fake_now = now;
+    pipe.write(bytes);
+    drain(source, c, 2);
+}
+
+TEST(TtySourceTest, TelegramsAreNeverCloserThanTheirTimeOnTheWire) {
+    Pipe pipe;
+    Collected c;
+    TtySourceOptions o = options(true, 0);
+    o.clock = fake_clock;
+    TtySource source(nullptr, pipe.read_end, "pipe", o);
+    const std::int64_t character = 7333;  // 11 bits at 1.5 Mbit/s
+    const std::vector<std::uint8_t> request = hex("68 05 05 68 83 82 7D 3A 3E 40 16");
+    const std::vector<std::uint8_t> response = hex("68 05 05 68 82 83 08 3A 3E 45 16");
+    const std::int64_t t0 = 1'700'000'000'000'000'000;
+    // A request and the first bytes of its response in one read, the rest of the response in a
+    // read that returned (by the clock) at the same moment: the response's first byte cannot
+    // have arrived before the request's 11 bytes were sent.
+    std::vector<std::uint8_t> first = request;
+    first.insert(first.end(), response.begin(), response.begin() + 4);
+    read_at(pipe, source, c, first, t0);
+    read_at(pipe, source, c, std::vector<std::uint8_t>(response.begin() + 4, response.end()), t0);
+    // A read returning earlier than the previous one (the clock was set back), ...
+    read_at(pipe, source, c, kSd1, t0 - 1'000'000'000);
+    // ... several reads returning at one moment, ...
+    for (int i = 0; i < 5; ++i)
+        read_at(pipe, source, c, kToken, t0);
+    // ... and a telegram split byte by byte over reads that all returned at once.
+    for (std::uint8_t byte : kSd1)
+        read_at(pipe, source, c, {byte}, t0 + 10'000);
+    ASSERT_EQ(c.telegrams.size(), 9u);
+    // The first telegram keeps the time its read gives it: its first byte, 15 characters before
+    // the read returned.
+    EXPECT_EQ(c.times[0], t0 - 14 * character);
+    for (std::size_t i = 1; i < c.times.size(); ++i)
+        EXPECT_GE(c.times[i] - c.times[i - 1],
+                  static_cast<std::int64_t>(c.telegrams[i - 1].size()) * character)
+            << "telegram " << i + 1;
+    // A read that returned when it should does not move its telegram.
+    read_at(pipe, source, c, kToken, t0 + 1'000'000'000);
+    EXPECT_EQ(c.times.back(), t0 + 1'000'000'000 - 2 * character);
 }
 
 TEST(TtySourceTest, ParityMarksAreCountedAndRemoved) {
@@ -265,6 +319,114 @@ TEST(SerialPortTest, ErrorsNameTheDevice) {
     EXPECT_NE(error.find("/dev/does-not-exist: cannot open"), std::string::npos) << error;
     EXPECT_FALSE(SerialPort::open({"/dev/null", 1'500'000, true, false}, error));
     EXPECT_NE(error.find("/dev/null: not a serial port"), std::string::npos) << error;
+}
+
+// The terminal settings of `path` as another program sees them.
+termios settings_of(const std::string& path) {
+    termios tio;
+    std::memset(&tio, 0, sizeof tio);
+    int fd = open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
+    EXPECT_GE(fd, 0) << path;
+    EXPECT_EQ(tcgetattr(fd, &tio), 0);
+    close(fd);
+    return tio;
+}
+
+bool same_settings(const termios& a, const termios& b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+TEST(SerialPortTest, ClosingPutsTheSettingsBackAsFound) {
+    PseudoTerminal pty;
+    const termios before = settings_of(pty.slave);
+    ASSERT_NE(before.c_lflag & ICANON, 0u);  // a fresh pty is a cooked terminal
+    for (bool for_writing : {false, true}) {
+        std::string error;
+        auto port = SerialPort::open({pty.slave, 187'500, true, for_writing, ""}, error);
+        ASSERT_TRUE(port) << error;
+        EXPECT_FALSE(same_settings(settings_of(pty.slave), before));  // raw while open
+        port.reset();
+        EXPECT_TRUE(same_settings(settings_of(pty.slave), before)) << for_writing;
+    }
+    // From a signal handler too (the process then ends without destructors).
+    std::string error;
+    auto port = SerialPort::open({pty.slave, 500'000, true, false, ""}, error);
+    ASSERT_TRUE(port) << error;
+    SerialPort::restore_all_after_signal();
+    EXPECT_TRUE(same_settings(settings_of(pty.slave), before));
+}
+
+std::string make_lock_dir() {
+    std::string dir = test::temp_path("lock");
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+std::string lock_path(const std::string& dir, const std::string& device) {
+    return dir + "/LCK.." + device.substr(device.rfind('/') + 1);
+}
+
+TEST(SerialPortTest, TheLockFileKeepsASecondUserOut) {
+    PseudoTerminal pty;
+    const std::string dir = make_lock_dir();
+    const std::string lock = lock_path(dir, pty.slave);
+    std::string error;
+    auto port = SerialPort::open({pty.slave, 1'500'000, true, false, dir}, error);
+    ASSERT_TRUE(port) << error;
+    EXPECT_EQ(port->lock_file(), lock);
+    char expected[32];
+    std::snprintf(expected, sizeof expected, "%10d\n", static_cast<int>(getpid()));
+    auto content = test::read_file(lock);
+    EXPECT_EQ(std::string(content.begin(), content.end()), expected);  // UUCP (HDB) format
+    const termios during = settings_of(pty.slave);
+    EXPECT_FALSE(SerialPort::open({pty.slave, 9600, true, false, dir}, error));
+    EXPECT_NE(error.find(pty.slave + " is in use by process " + std::to_string(getpid())),
+              std::string::npos)
+        << error;
+    EXPECT_NE(error.find("lock file " + lock), std::string::npos) << error;
+    // The refused open changed nothing.
+    EXPECT_TRUE(same_settings(settings_of(pty.slave), during));
+    port.reset();
+    EXPECT_FALSE(std::filesystem::exists(lock));
+    std::filesystem::remove_all(dir);
+}
+
+TEST(SerialPortTest, WithoutALockFileTheDeviceLockKeepsASecondUserOut) {
+    PseudoTerminal pty;
+    std::string error;
+    auto port = SerialPort::open({pty.slave, 1'500'000, true, false, ""}, error);
+    ASSERT_TRUE(port) << error;
+    EXPECT_FALSE(SerialPort::open({pty.slave, 1'500'000, true, false, ""}, error));
+    EXPECT_NE(error.find(pty.slave + " is in use: another process holds a lock on the device"),
+              std::string::npos)
+        << error;
+    port.reset();
+    EXPECT_TRUE(SerialPort::open({pty.slave, 1'500'000, true, false, ""}, error)) << error;
+}
+
+TEST(SerialPortTest, AStaleLockFileIsReplacedAndALiveOneIsNot) {
+    PseudoTerminal pty;
+    const std::string dir = make_lock_dir();
+    const std::string lock = lock_path(dir, pty.slave);
+    // A process that has ended.
+    pid_t gone = fork();
+    if (gone == 0) _exit(0);
+    waitpid(gone, nullptr, 0);
+    test::write_text_file(lock, std::to_string(gone) + "\n");
+    std::string error;
+    {
+        auto port = SerialPort::open({pty.slave, 1'500'000, true, false, dir}, error);
+        ASSERT_TRUE(port) << error;
+        auto content = test::read_file(lock);
+        EXPECT_EQ(std::stoi(std::string(content.begin(), content.end())), getpid());
+    }
+    // A process that is running (our parent): the port is not taken, the lock stays.
+    std::string live = std::to_string(getppid());
+    test::write_text_file(lock, std::string(10 - live.size(), ' ') + live + "\n");
+    EXPECT_FALSE(SerialPort::open({pty.slave, 1'500'000, true, false, dir}, error));
+    EXPECT_NE(error.find("is in use by process " + live), std::string::npos) << error;
+    EXPECT_TRUE(std::filesystem::exists(lock));
+    std::filesystem::remove_all(dir);
 }
 
 TEST(SerialPortTest, CharacterTimeIsElevenBits) {
