@@ -111,6 +111,27 @@ BENCHMARK(BM_Render)
     ->Arg(static_cast<int>(dpscope::OutputFormat::Jsonl))
     ->Arg(static_cast<int>(dpscope::OutputFormat::Csv));
 
+// The simulator itself, clean and with faults armed faster than they can be taken (orphan
+// responses need an idle channel): the time per telegram must not grow with the session.
+void BM_Simulator(benchmark::State& state) {
+    dpscope::SimulatorOptions options;
+    options.cycles = 0;
+    options.max_telegrams = static_cast<std::uint64_t>(state.range(0));
+    if (state.range(1) != 0)
+        options.faults = {
+            dpscope::FaultSpec{dpscope::FaultKind::OrphanResponse, 0.3, std::nullopt, std::nullopt},
+            dpscope::FaultSpec{dpscope::FaultKind::FcsError, 0.01, std::nullopt, std::nullopt}};
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time = 0;
+    for (auto _ : state) {
+        dpscope::Simulator simulator(options);
+        while (simulator.next(bytes, time))
+            benchmark::DoNotOptimize(bytes.data());
+    }
+    state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(BM_Simulator)->Args({100'000, 0})->Args({100'000, 1})->Args({1'000'000, 1});
+
 }  // namespace
 
 BENCHMARK_MAIN();

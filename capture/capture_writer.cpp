@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -185,6 +186,11 @@ class PcapngWriter final : public StdioWriter {
 
 // pcap through libpcap's dump API, nanosecond magic.
 class PcapWriter final : public CaptureWriter {
+    // The record's seconds field has 32 bits, which libpcap (and so tcpdump and dpscope) reads
+    // as signed: 2038-01-19T03:14:07Z is the last second every reader dates right.
+    static constexpr std::int64_t kLastPcapSecond = 0x7FFF'FFFF;
+    static constexpr std::size_t kMaxUnflushedRecords = 4096;
+
   public:
     PcapWriter(pcap_t* dead, pcap_dumper_t* dumper, std::string name)
         : dead_(dead), dumper_(dumper), name_(std::move(name)) {
@@ -199,6 +205,17 @@ class PcapWriter final : public CaptureWriter {
     bool write(Bytes telegram, std::int64_t time_ns) override {
         if (!dumper_ || !error_.empty()) return false;
         std::int64_t t = time_or_zero(time_ns);
+        if (t < 0 || t / kNanosPerSecond > kLastPcapSecond) {
+            error_ = fmt::format(
+                "{}: telegram time {}{}.{:09} s is outside what a pcap file holds (0 to {} s "
+                "since the epoch, until 2038-01-19T03:14:07Z)",
+                name_, t < 0 ? "-" : "", std::abs(t / kNanosPerSecond),
+                std::abs(t % kNanosPerSecond), kLastPcapSecond);
+            return false;
+        }
+        // Bounded memory in long writes without flushes: flush (and forget the boundaries)
+        // every kMaxUnflushedRecords records.
+        if (boundaries_.size() >= kMaxUnflushedRecords && !flush()) return false;
         pcap_pkthdr header{};
         header.ts.tv_sec = static_cast<time_t>(t / kNanosPerSecond);
         header.ts.tv_usec = static_cast<suseconds_t>(t % kNanosPerSecond);  // nanoseconds here

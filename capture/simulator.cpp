@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <limits>
 
 #include "decoder/dp_service.hpp"
 #include "decoder/telegram_builder.hpp"
@@ -219,30 +221,71 @@ std::string check_simulator_faults(const SimulatorOptions& options) {
     return {};
 }
 
-std::vector<std::string> faults_not_injected(const SimulatorOptions& options,
-                                             const std::vector<Injection>& injections) {
-    std::vector<std::string> missing;
-    std::vector<bool> used(injections.size(), false);
-    for (const FaultSpec& spec : options.faults) {
-        if (spec.rate > 0) continue;
-        bool found = false;
-        for (std::size_t i = 0; i < injections.size() && !found; ++i) {
-            const Injection& injection = injections[i];
-            if (used[i] || injection.kind != spec.kind) continue;
-            if (spec.slave && injection.slave != *spec.slave) continue;
-            if (spec.cycle && injection.cycle < *spec.cycle) continue;
-            used[i] = found = true;
-        }
-        if (!found) missing.push_back(describe_fault(spec));
+std::int64_t session_span_bound_ns(const SimulatorOptions& options) {
+    const double slaves = static_cast<double>(slaves_or_default(options).size());
+    const double baud = options.baud == 0 ? 1'500'000.0 : static_cast<double>(options.baud);
+    // A telegram (or garbage record) is at most 64 bytes of 11 bits, after a gap of at most
+    // 100 bits; a slot time that expires is 100 bits.
+    constexpr double kTelegramBits = 64 * 11 + 100;
+    // Start-up: twelve telegrams per slave, then Global_Control and the token.
+    const double start_up_bits = (slaves * 12 + 2) * kTelegramBits;
+    // A cycle: per slave garbage, request, response and their repeats and two slot times; then a
+    // gap poll and its slot time, Global_Control and the token. At least --cycle-us.
+    const double cycle_bits = slaves * (5 * kTelegramBits + 200) + 3 * kTelegramBits + 100;
+    const double cycle_ns =
+        std::max(static_cast<double>(options.cycle_us) * 1e3, cycle_bits * 1e9 / baud);
+    // Every cycle writes one telegram at least (the token).
+    double cycles = static_cast<double>(options.cycles);
+    if (options.max_telegrams != 0 &&
+        (options.cycles == 0 || options.max_telegrams < options.cycles))
+        cycles = static_cast<double>(options.max_telegrams);
+    // After a time-out fault the session runs on until the master has given up, plus ten cycles.
+    const double tail_ns = static_cast<double>(options.master_give_up_ms) * 1e6 +
+                           static_cast<double>(options.cycle_us) * 1e4 + cycle_ns;
+    const double span = start_up_bits * 1e9 / baud + cycles * cycle_ns + tail_ns;
+    constexpr double kLargest = 9.2e18;  // below the largest int64 (9.22e18)
+    return span >= kLargest ? std::numeric_limits<std::int64_t>::max()
+                            : static_cast<std::int64_t>(std::ceil(span));
+}
+
+OnceFaultCheck::OnceFaultCheck(const std::vector<FaultSpec>& faults) {
+    for (const FaultSpec& spec : faults)
+        if (spec.rate == 0) once_.push_back(spec);
+    found_.assign(once_.size(), false);
+}
+
+void OnceFaultCheck::record(const Injection& injection) {
+    for (std::size_t i = 0; i < once_.size(); ++i) {
+        const FaultSpec& spec = once_[i];
+        if (found_[i] || injection.kind != spec.kind) continue;
+        if (spec.slave && injection.slave != *spec.slave) continue;
+        if (spec.cycle && injection.cycle < *spec.cycle) continue;
+        found_[i] = true;
+        return;
     }
+}
+
+std::vector<std::string> OnceFaultCheck::missing() const {
+    std::vector<std::string> missing;
+    for (std::size_t i = 0; i < once_.size(); ++i)
+        if (!found_[i]) missing.push_back(describe_fault(once_[i]));
     return missing;
 }
 
-Simulator::Simulator(SimulatorOptions options) : options_(std::move(options)) {
+std::vector<std::string> faults_not_injected(const SimulatorOptions& options,
+                                             const std::vector<Injection>& injections) {
+    OnceFaultCheck check(options.faults);
+    for (const Injection& injection : injections)
+        check.record(injection);
+    return check.missing();
+}
+
+Simulator::Simulator(SimulatorOptions options)
+    : options_(std::move(options)), once_faults_(options_.faults) {
     options_.slaves = slaves_or_default(options_);
     if (options_.baud == 0) options_.baud = 1'500'000;
     rng_state_ = options_.seed * 0x9E3779B97F4A7C15ULL + 0x2545F4914F6CDD1DULL;
-    now_ = options_.start_time_ns;
+    now_ = std::max<std::int64_t>(0, options_.start_time_ns);
     std::uint8_t highest = options_.master;
     for (const SimulatedSlave& config : options_.slaves) {
         Slave slave;
@@ -267,6 +310,7 @@ Simulator::Simulator(SimulatorOptions options) : options_(std::move(options)) {
         }
     }
     scheduled_done_.assign(options_.faults.size(), false);
+    armed_.assign(static_cast<std::size_t>(FaultKind::Count) * slaves_.size(), 0);
 }
 
 std::uint64_t Simulator::random(std::uint64_t bound) {
@@ -286,15 +330,27 @@ std::int64_t Simulator::bit_ns(std::uint64_t bits) const {
     return static_cast<std::int64_t>(bits * 1'000'000'000ULL / options_.baud);
 }
 
+namespace {
+
+// time + ns (both >= 0), stopping at the largest int64 instead of wrapping.
+std::int64_t later(std::int64_t time, std::int64_t ns) {
+    constexpr std::int64_t kLast = std::numeric_limits<std::int64_t>::max();
+    return ns > kLast - time ? kLast : time + ns;
+}
+
+}  // namespace
+
+void Simulator::advance(std::int64_t ns) { now_ = later(now_, ns); }
+
 void Simulator::emit(std::vector<std::uint8_t> bytes, std::uint64_t gap_bits) {
     if (options_.max_telegrams != 0 && queued_ >= options_.max_telegrams) return;
-    now_ += bit_ns(gap_bits);
+    advance(bit_ns(gap_bits));
     if (!recording_) {
-        now_ += bit_ns(bytes.size() * 11);
+        advance(bit_ns(bytes.size() * 11));
         return;
     }
     std::int64_t at = now_;
-    now_ += bit_ns(bytes.size() * 11);
+    advance(bit_ns(bytes.size() * 11));
     queue_.emplace_back(std::move(bytes), at);
     ++queued_;
 }
@@ -308,7 +364,8 @@ bool Simulator::next(std::vector<std::uint8_t>& bytes, std::int64_t& time_ns) {
             recording_ = options_.record_start_up;
             generate_start_up();
             recording_ = true;
-        } else if (options_.cycles == 0 || cycle_ < options_.cycles || now_ < hold_open_until_) {
+        } else if (options_.cycles == 0 ? options_.max_telegrams != 0
+                                        : cycle_ < options_.cycles || now_ < hold_open_until_) {
             generate_cycle();
         } else {
             return false;
@@ -385,7 +442,7 @@ void Simulator::generate_cycle() {
         // Gap maintenance: ask the next address whether a station appeared (nobody answers).
         emit(build_telegram({gap_address_, master, request_fc(FdlFunction::FdlStatus), {}, {}, {}}),
              60);
-        now_ += bit_ns(100);  // slot time expires
+        advance(bit_ns(100));  // slot time expires
         // The next address nobody uses (the master and the slaves are on the bus).
         auto in_use = [&](std::uint8_t address) {
             if (address == master) return true;
@@ -406,11 +463,19 @@ void Simulator::generate_cycle() {
     std::vector<std::uint8_t> token;
     append_token(token, master, master);
     emit(std::move(token), 40);
-    now_ = std::max(now_, cycle_start + static_cast<std::int64_t>(options_.cycle_us) * 1000);
+    const std::int64_t cycle_ns = static_cast<std::int64_t>(options_.cycle_us) * 1000;
+    if (now_ - cycle_start < cycle_ns) advance(cycle_ns - (now_ - cycle_start));
     ++cycle_;
 }
 
 void Simulator::arm_faults() {
+    // Past its cycles the session only runs on for a time-out to show: nothing new happens (a
+    // time-out injected there would keep it open again), and what was armed is dropped.
+    if (options_.cycles != 0 && cycle_ >= options_.cycles) {
+        std::fill(armed_.begin(), armed_.end(), 0);
+        return;
+    }
+    const std::size_t count = slaves_.size();
     for (std::size_t j = 0; j < options_.faults.size(); ++j) {
         const FaultSpec& spec = options_.faults[j];
         auto eligible = [&](std::size_t i) {
@@ -419,7 +484,8 @@ void Simulator::arm_faults() {
         };
         if (spec.rate > 0) {
             for (std::size_t i = 0; i < slaves_.size(); ++i)
-                if (eligible(i) && chance(spec.rate)) armed_.push_back({spec.kind, i});
+                if (eligible(i) && chance(spec.rate))
+                    ++armed_[static_cast<std::size_t>(spec.kind) * count + i];
             continue;
         }
         if (scheduled_done_[j] || cycle_ < *spec.cycle) continue;
@@ -428,26 +494,28 @@ void Simulator::arm_faults() {
         for (std::size_t i = 0; i < slaves_.size(); ++i)
             if (eligible(i)) candidates.push_back(i);
         if (!candidates.empty())
-            armed_.push_back({spec.kind, candidates[random(candidates.size())]});
+            ++armed_[static_cast<std::size_t>(spec.kind) * count +
+                     candidates[random(candidates.size())]];
     }
 }
 
 bool Simulator::take_fault(FaultKind kind, std::size_t slave) {
-    for (auto it = armed_.begin(); it != armed_.end(); ++it) {
-        if (it->kind == kind && it->slave == slave) {
-            armed_.erase(it);
-            return true;
-        }
-    }
-    return false;
+    std::uint64_t& armed = armed_[static_cast<std::size_t>(kind) * slaves_.size() + slave];
+    if (armed == 0) return false;
+    --armed;
+    return true;
 }
 
 void Simulator::record_injection(FaultKind kind, std::size_t slave) {
-    injections_.push_back({kind, cycle_, slaves_[slave].config.address, queued_ + 1});
+    const Injection injection{kind, cycle_, slaves_[slave].config.address, queued_ + 1};
+    ++injection_count_;
+    if (injections_.size() < kKeptInjections) injections_.push_back(injection);
+    once_faults_.record(injection);
+    if (on_injection_) on_injection_(injection);
     if (kind == FaultKind::ResponseTimeout || kind == FaultKind::SpontaneousUnacknowledged) {
         const std::int64_t give_up = std::int64_t{options_.master_give_up_ms} * 1'000'000;
-        hold_open_until_ =
-            std::max(hold_open_until_, now_ + give_up + std::int64_t{options_.cycle_us} * 10'000);
+        hold_open_until_ = std::max(
+            hold_open_until_, later(now_, give_up + std::int64_t{options_.cycle_us} * 10'000));
     }
 }
 
@@ -754,7 +822,7 @@ void Simulator::exchange(std::size_t index) {
     bool delivered = true;
     switch (first) {
         case Fate::Delivered: emit(response_bytes, 30 + random(70)); break;
-        case Fate::Lost: now_ += bit_ns(100); break;  // slot time expires
+        case Fate::Lost: advance(bit_ns(100)); break;  // slot time expires
         case Fate::BadFcs: {
             std::vector<std::uint8_t> bad = response_bytes;
             bad[bad.size() - 2] ^= 0x5A;
@@ -770,7 +838,7 @@ void Simulator::exchange(std::size_t index) {
     if (first != Fate::Delivered) {
         emit(request_bytes, 40 + random(30));  // retry: same telegram, same FCB
         if (retry_lost) {
-            now_ += bit_ns(100);
+            advance(bit_ns(100));
             delivered = false;
         } else {
             emit(response_bytes, 30 + random(70));

@@ -9,6 +9,8 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -71,8 +73,13 @@ struct SimulatorOptions {
     std::uint32_t baud = 1'500'000;
     std::uint8_t master = 2;
     std::vector<SimulatedSlave> slaves;  // empty: 3:PPO1, 4:PPO2, 5:PPO5
-    std::uint64_t cycles = 1000;         // Data_Exchange cycles after start-up
-    std::uint64_t max_telegrams = 0;     // stop after this many telegrams (0: no limit)
+    // Data_Exchange cycles after start-up; 0: until max_telegrams (with neither, the session is
+    // the start-up alone: it always ends).
+    std::uint64_t cycles = 1000;
+    std::uint64_t max_telegrams = 0;  // stop after this many telegrams (0: no limit)
+    // Time of the first telegram. Before 1970 counts as 1970 (no capture format holds it);
+    // times stop at the largest int64 (2262) rather than wrap: session_span_bound_ns tells
+    // whether a session fits.
     std::int64_t start_time_ns = 1'704'067'200'000'000'000;  // 2024-01-01T00:00:00Z
     std::uint32_t cycle_us = 2000;                           // target bus cycle time
     std::uint32_t master_give_up_ms = 1500;  // the master abandons an unanswered request
@@ -92,6 +99,26 @@ struct Injection {
 // channel fault on a slave without a PCV, a cycle past the end), or "" when each can be.
 std::string check_simulator_faults(const SimulatorOptions& options);
 
+// At least the time from the first telegram to the last of the session `options` describes
+// (whatever the seed and faults), saturated at the largest int64: the CLI checks with it that the
+// session's end fits the capture's timestamps.
+std::int64_t session_span_bound_ns(const SimulatorOptions& options);
+
+// Matches injections, as they happen, to the faults given once (no rate): each fault given once
+// needs an injection of its own, of its kind, on its slave, from its cycle on. Keeps nothing per
+// injection.
+class OnceFaultCheck {
+  public:
+    explicit OnceFaultCheck(const std::vector<FaultSpec>& faults);
+    void record(const Injection& injection);
+    // The faults given once that no injection matched, described for the user.
+    std::vector<std::string> missing() const;
+
+  private:
+    std::vector<FaultSpec> once_;
+    std::vector<bool> found_;
+};
+
 // The faults given once (no rate) that were not injected, described for the user.
 std::vector<std::string> faults_not_injected(const SimulatorOptions& options,
                                              const std::vector<Injection>& injections);
@@ -103,7 +130,17 @@ class Simulator {
     // The next telegram (or garbage record) and its time; false when the session is over.
     bool next(std::vector<std::uint8_t>& bytes, std::int64_t& time_ns);
 
+    // The first kKeptInjections injections (all of them in a session of ordinary length), so
+    // that memory stays flat however long the session; on_injection sees every one as it
+    // happens, injection_count counts them all.
+    static constexpr std::size_t kKeptInjections = 10'000;
     const std::vector<Injection>& injections() const noexcept { return injections_; }
+    std::uint64_t injection_count() const noexcept { return injection_count_; }
+    void on_injection(std::function<void(const Injection&)> callback) {
+        on_injection_ = std::move(callback);
+    }
+    // The faults given once (no rate) that were not injected (so far), described for the user.
+    std::vector<std::string> faults_not_injected() const { return once_faults_.missing(); }
     const std::vector<SimulatedSlave>& slaves() const noexcept { return options_.slaves; }
     std::uint64_t telegrams() const noexcept { return emitted_; }
 
@@ -164,15 +201,11 @@ class Simulator {
         std::uint16_t actual = 0;
     };
 
-    struct ArmedFault {
-        FaultKind kind;
-        std::size_t slave;  // index into slaves_
-    };
-
     std::uint64_t random(std::uint64_t bound);  // 0 <= r < bound
     bool chance(double p);
     std::int64_t bit_ns(std::uint64_t bits) const;
 
+    void advance(std::int64_t ns);  // now_ += ns, stopping at the largest int64
     void emit(std::vector<std::uint8_t> bytes, std::uint64_t gap_bits);
     void generate_start_up();
     void generate_cycle();
@@ -190,12 +223,17 @@ class Simulator {
     SimulatorOptions options_;
     std::vector<Slave> slaves_;
     std::deque<std::pair<std::vector<std::uint8_t>, std::int64_t>> queue_;
-    std::vector<ArmedFault> armed_;
+    // Faults armed and not taken yet, per kind and slave: armed_[kind * slaves + slave].
+    std::vector<std::uint64_t> armed_;
     std::vector<bool> scheduled_done_;
     // A time-out fault was injected: the session runs on past its cycles until then, so the
-    // master's give-up (and the time-out a tracker judges) is in the capture.
-    std::int64_t hold_open_until_ = 0;
+    // master's give-up (and the time-out a tracker judges) is in the capture. No faults are armed
+    // in that tail, so it ends.
+    std::int64_t hold_open_until_ = std::numeric_limits<std::int64_t>::min();
     std::vector<Injection> injections_;
+    std::uint64_t injection_count_ = 0;
+    std::function<void(const Injection&)> on_injection_;
+    OnceFaultCheck once_faults_;
     std::uint64_t rng_state_;
     std::int64_t now_;
     std::uint64_t cycle_ = 0;

@@ -3,9 +3,14 @@
 #include <signal.h>
 
 #include <atomic>
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "capture/capture_writer.hpp"
@@ -32,7 +37,7 @@ struct SimulateCommand {
     std::uint64_t cycles = 1000;
     std::uint64_t count = 0;
     std::uint32_t cycle_us = 2000;
-    double start = 1'704'067'200.0;
+    std::string start = "1704067200";
     std::vector<std::string> faults;
     bool list_injections = false;
     bool no_start_up = false;
@@ -40,6 +45,24 @@ struct SimulateCommand {
     std::string replay;
     bool as_fast_as_possible = false;
 };
+
+// A whole number from `min` to `max`, checked on the text: CLI11 would take "-1" as the largest
+// unsigned value and a number too large as that value too.
+CLI::Validator whole_number(std::uint64_t min, std::uint64_t max) {
+    return CLI::Validator(
+        [min, max](std::string& text) -> std::string {
+            std::uint64_t value = 0;
+            auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+            if (text.empty() || ec != std::errc() || end != text.data() + text.size() ||
+                value < min || value > max)
+                return fmt::format("must be a whole number from {} to {}, not '{}'", min, max,
+                                   text);
+            return {};
+        },
+        fmt::format("{}..{}", min, max), "whole number");
+}
+
+constexpr std::uint64_t kLargest = std::numeric_limits<std::uint64_t>::max();
 
 std::atomic<bool> g_stop_playing{false};
 // The first signal stops playing cleanly; a second one ends the process at once, with the port
@@ -52,16 +75,19 @@ extern "C" void stop_playing(int signal_number) {
     }
 }
 
-// Lists the injected faults (with -v) and names each fault given once that the session ended
-// before; returns the exit code.
-int report_injections(const SimulateCommand& command, const SimulatorOptions& options,
-                      const Simulator& simulator) {
-    if (command.list_injections)
-        for (const Injection& injection : simulator.injections())
-            fmt::print(stderr, "injected {} on slave {} in cycle {} at telegram {}\n",
-                       fault_kind_name(injection.kind), injection.slave, injection.cycle,
-                       injection.telegram);
-    std::vector<std::string> missing = faults_not_injected(options, simulator.injections());
+// With -v, lists each injected fault as it happens (nothing is kept per injection).
+void list_injections(const SimulateCommand& command, Simulator& simulator) {
+    if (!command.list_injections) return;
+    simulator.on_injection([](const Injection& injection) {
+        fmt::print(stderr, "injected {} on slave {} in cycle {} at telegram {}\n",
+                   fault_kind_name(injection.kind), injection.slave, injection.cycle,
+                   injection.telegram);
+    });
+}
+
+// Names each fault given once that the session ended before; returns the exit code.
+int report_injections(const Simulator& simulator) {
+    std::vector<std::string> missing = simulator.faults_not_injected();
     for (const std::string& fault : missing)
         print_error(fmt::format(
             "--fault {} was not injected: the session ended before it had a chance "
@@ -71,8 +97,7 @@ int report_injections(const SimulateCommand& command, const SimulatorOptions& op
 }
 
 // Plays the simulated session (or a capture, with --replay) onto a tty.
-int play_onto_device(const SimulateCommand& command, const SimulatorOptions& options,
-                     Simulator* simulator) {
+int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
     std::string error;
     auto port = SerialPort::open({command.device, command.baud, false, true}, error);
     if (!port) {
@@ -113,8 +138,7 @@ int play_onto_device(const SimulateCommand& command, const SimulatorOptions& opt
     }
     int exit_code = kExitOk;
     // Stopped by a signal, the session is cut short on purpose: nothing to say of its faults.
-    if (simulator && !g_stop_playing.load())
-        exit_code = report_injections(command, options, *simulator);
+    if (simulator && !g_stop_playing.load()) exit_code = report_injections(*simulator);
     if (command.list_injections)
         fmt::print(stderr, "played {} telegrams ({} bytes) in {:.3f} s (scheduled {:.3f} s)\n",
                    stats.telegrams, stats.bytes, static_cast<double>(stats.wall_ns) / 1e9,
@@ -122,7 +146,59 @@ int play_onto_device(const SimulateCommand& command, const SimulatorOptions& opt
     return exit_code;
 }
 
+// The last second a capture's timestamps hold: a pcap record's seconds field has 32 bits, which
+// libpcap (and so tcpdump and dpscope) reads as signed. One limit for every -F, so that the same
+// options give the same session in each.
+constexpr std::int64_t kLastSecond = 2'147'483'647;
+constexpr std::string_view kLastTime = "2038-01-19T03:14:07Z";
+constexpr std::int64_t kNanosPerSecond = 1'000'000'000;
+
+// --start: seconds since the epoch, finite, from 0 to kLastSecond.
+std::optional<std::int64_t> parse_start(const std::string& text) {
+    char* end = nullptr;
+    double seconds = std::strtod(text.c_str(), &end);
+    if (text.empty() || end == text.c_str() || *end != '\0' || !std::isfinite(seconds) ||
+        seconds < 0 || seconds > static_cast<double>(kLastSecond)) {
+        print_error(fmt::format(
+            "--start {}: must be seconds since the epoch from 0 to {} (1970-01-01T00:00:00Z to "
+            "{}, the last time a capture's timestamps hold)",
+            text, kLastSecond, kLastTime));
+        return std::nullopt;
+    }
+    return static_cast<std::int64_t>(std::llround(seconds * 1e9));
+}
+
+// The session must end by kLastTime: a capture cannot date a telegram later (libpcap would read
+// it as 1901). Names the option to change.
+bool session_fits(const SimulateCommand& command, const SimulatorOptions& options) {
+    constexpr std::int64_t kLast = kLastSecond * kNanosPerSecond + (kNanosPerSecond - 1);
+    const std::int64_t span = session_span_bound_ns(options);
+    const auto seconds = [](std::int64_t ns) {
+        return ns / kNanosPerSecond + (ns % kNanosPerSecond != 0 ? 1 : 0);
+    };
+    if (span > kLast) {
+        const bool by_count =
+            command.count != 0 && (command.cycles == 0 || command.count < command.cycles);
+        print_error(fmt::format(
+            "{} {}: the session could last longer than the {} s a capture's timestamps span "
+            "(1970-01-01T00:00:00Z to {}); give {}",
+            by_count ? "-c" : "--cycles", by_count ? command.count : command.cycles, kLastSecond,
+            kLastTime, by_count ? "a smaller -c" : "fewer --cycles"));
+        return false;
+    }
+    if (options.start_time_ns > kLast - span) {
+        print_error(fmt::format(
+            "--start {}: the session lasts up to {} s and would end after {}, the last time a "
+            "capture's timestamps hold; give --start from 0 to {}",
+            command.start, seconds(span), kLastTime, (kLast - span) / kNanosPerSecond));
+        return false;
+    }
+    return true;
+}
+
 int run_simulate(const SimulateCommand& command) {
+    std::optional<std::int64_t> start_ns = parse_start(command.start);
+    if (!start_ns) return kExitUsage;
     SimulatorOptions options;
     options.seed = command.seed;
     options.baud = command.baud;
@@ -130,7 +206,7 @@ int run_simulate(const SimulateCommand& command) {
     options.cycles = command.cycles;
     options.max_telegrams = command.count;
     options.cycle_us = command.cycle_us;
-    options.start_time_ns = static_cast<std::int64_t>(std::llround(command.start * 1e9));
+    options.start_time_ns = *start_ns;
     options.record_start_up = !command.no_start_up;
     std::string error;
     for (const std::string& text : command.slaves) {
@@ -142,6 +218,15 @@ int run_simulate(const SimulateCommand& command) {
         if (slave->address == options.master) {
             print_error(fmt::format("--slave {}: the master has address {}", text, command.master));
             return kExitUsage;
+        }
+        for (std::size_t i = 0; i < options.slaves.size(); ++i) {
+            if (options.slaves[i].address == slave->address) {
+                print_error(
+                    fmt::format("--slave {} and --slave {} both give address {}: one slave per "
+                                "address",
+                                command.slaves[i], text, slave->address));
+                return kExitUsage;
+            }
         }
         options.slaves.push_back(*slave);
     }
@@ -161,6 +246,7 @@ int run_simulate(const SimulateCommand& command) {
         print_error("simulate: --cycles 0 runs until -c N telegrams; give -c");
         return kExitUsage;
     }
+    if (!session_fits(command, options)) return kExitUsage;
     if (command.output.empty() == command.device.empty()) {
         print_error("simulate: give either -w FILE or --device PATH");
         return kExitUsage;
@@ -170,9 +256,10 @@ int run_simulate(const SimulateCommand& command) {
         return kExitUsage;
     }
     if (!command.device.empty()) {
-        if (!command.replay.empty()) return play_onto_device(command, options, nullptr);
+        if (!command.replay.empty()) return play_onto_device(command, nullptr);
         Simulator simulator(options);
-        return play_onto_device(command, options, &simulator);
+        list_injections(command, simulator);
+        return play_onto_device(command, &simulator);
     }
     CaptureFormat format =
         capture_format_from_name(command.output_format).value_or(CaptureFormat::Pcap);
@@ -183,6 +270,7 @@ int run_simulate(const SimulateCommand& command) {
         return kExitOutputError;
     }
     Simulator simulator(options);
+    list_injections(command, simulator);
     std::vector<std::uint8_t> bytes;
     std::int64_t time_ns = 0;
     while (simulator.next(bytes, time_ns)) {
@@ -192,7 +280,7 @@ int run_simulate(const SimulateCommand& command) {
         print_error(opened.writer->error());
         return kExitOutputError;
     }
-    int exit_code = report_injections(command, options, simulator);
+    int exit_code = report_injections(simulator);
     if (command.list_injections) fmt::print(stderr, "wrote {} telegrams\n", simulator.telegrams());
     return exit_code;
 }
@@ -231,12 +319,13 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember({"profibus", "user0"}))
         ->default_str("profibus");
     sub->add_option("--seed", command->seed, "Random seed; the same seed gives the same session")
+        ->check(whole_number(0, kLargest))
         ->default_str("1");
     sub->add_option("--baud", command->baud, "Bus baud rate used for the timing")
-        ->check(CLI::Range(9600u, 12'000'000u))
+        ->check(whole_number(9600, 12'000'000))
         ->default_str("1500000");
     sub->add_option("--master", command->master, "Address of the DP master")
-        ->check(CLI::Range(0, 126))
+        ->check(whole_number(0, 126))
         ->default_str("2");
     sub->add_option("--slave", command->slaves,
                     "ADDR:PPO[:DIALECT] adds a slave, e.g. 5:1 or 7:2:profidrive; repeatable. "
@@ -245,13 +334,18 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->allow_extra_args(false);
     sub->add_option("--cycles", command->cycles,
                     "Data_Exchange cycles after start-up; 0 runs until -c telegrams")
+        ->check(whole_number(0, kLargest))
         ->default_str("1000");
-    sub->add_option("-c,--count", command->count, "Stop after writing N telegrams");
+    sub->add_option("-c,--count", command->count, "Stop after writing N telegrams")
+        ->check(whole_number(0, kLargest));
     sub->add_option("--cycle-us", command->cycle_us, "Target bus cycle time in microseconds")
-        ->check(CLI::Range(100u, 1'000'000u))
+        ->check(whole_number(100, 1'000'000))
         ->default_str("2000");
     sub->add_option("--start", command->start,
-                    "Time of the first telegram, seconds since the epoch (UTC)")
+                    "Time of the first telegram, seconds since the epoch (UTC), 0 to 2147483647; "
+                    "the session must end by 2038-01-19T03:14:07Z, the last time pcap readers "
+                    "date right")
+        ->type_name("SECONDS")
         ->default_str("1704067200 (2024-01-01T00:00:00Z)");
     sub->add_option("--fault", command->faults,
                     "Inject a fault: KIND (once, at a cycle the seed picks), KIND@CYCLE (once, at "

@@ -234,6 +234,52 @@ TEST(CaptureWriterTest, SimulatedSessionRoundTripsInEveryFormat) {
     }
 }
 
+TEST(CaptureWriterTest, PcapRefusesTimesItCannotHold) {
+    // Regression: the record's 32-bit seconds field wrapped 5e9 s (2128) round to 1992. libpcap
+    // (and so tcpdump and dpscope) reads the field as signed: 2^31 s reads back as 1901.
+    for (std::int64_t time : {std::int64_t{5'000'000'000'000'000'000},
+                              std::int64_t{2'147'483'648'000'000'000}, std::int64_t{-1}}) {
+        SCOPED_TRACE(time);
+        TempFile file("late.pcap");
+        WriterResult opened =
+            open_capture_writer(file.path, CaptureFormat::Pcap, kLinkTypeProfibusDl);
+        ASSERT_TRUE(opened.writer) << opened.error;
+        const Telegram& first = kTelegrams[0];
+        ASSERT_TRUE(opened.writer->write(Bytes(first.bytes.data(), first.bytes.size()), kT0));
+        EXPECT_FALSE(opened.writer->write(Bytes(first.bytes.data(), first.bytes.size()), time));
+        EXPECT_NE(opened.writer->error().find(file.path + ": telegram time "), std::string::npos)
+            << opened.writer->error();
+        EXPECT_NE(opened.writer->error().find("outside what a pcap file holds (0 to 2147483647 s"),
+                  std::string::npos)
+            << opened.writer->error();
+        EXPECT_FALSE(opened.writer->close());
+        ReadBack r = read_back(file.path);  // what came before is kept
+        expect_same(r.telegrams, {{first.bytes, kT0}}, true);
+    }
+    // The last second it holds is written (libpcap reads the field as signed: 2038).
+    constexpr std::int64_t kLast = 2'147'483'647LL * 1'000'000'000 + 999'999'999;
+    TempFile file("last.pcap");
+    write_all(file.path, CaptureFormat::Pcap, kLinkTypeProfibusDl, {{hex("E5"), kLast}});
+    expect_same(read_back(file.path).telegrams, {{hex("E5"), kLast}}, true);
+}
+
+TEST(CaptureWriterTest, LongPcapWritesAreFlushedEvery4096Records) {
+    // Regression: without flushes, the writer kept every record's end (8 bytes a telegram) for
+    // cutting the file back after a failed write. It now flushes every 4096 records (and
+    // forgets them): then the file on disk ends with the last record before.
+    TempFile file("long.pcap");
+    WriterResult opened = open_capture_writer(file.path, CaptureFormat::Pcap, kLinkTypeProfibusDl);
+    ASSERT_TRUE(opened.writer) << opened.error;
+    // 23 bytes a record: 4096 of them do not fill whole stdio buffers by chance.
+    const std::vector<std::uint8_t> telegram = hex("10 03 02 49 4E 16 E5");
+    const std::uint64_t record = kPcapRecordHeaderBytes + telegram.size();
+    for (std::int64_t i = 0; i < 4097; ++i)
+        ASSERT_TRUE(opened.writer->write(Bytes(telegram.data(), telegram.size()), kT0 + i));
+    EXPECT_EQ(test::read_file(file.path).size(), kPcapFileHeaderBytes + 4096 * record);
+    EXPECT_TRUE(opened.writer->close());
+    EXPECT_EQ(read_back(file.path).telegrams.size(), 4097u);
+}
+
 TEST(CaptureWriterTest, UnwritablePathFailsNamingIt) {
     TempFile blocker("plain-file");
     test::write_file(blocker.path, {0x00});

@@ -575,6 +575,94 @@ TEST(CliTest, SimulateUsageErrors) {
         << late.err;
 }
 
+TEST(CliTest, SimulateNumbersOutOfRangeAreUsageErrors) {
+    // Regression: --start in milliseconds, 1e18, nan or inf wrote until the disk was full;
+    // --start 5e9 dated the capture 1992; --start -5 wrote 5 s of traffic instead of 2.
+    const std::string start_range =
+        "must be seconds since the epoch from 0 to 2147483647 (1970-01-01T00:00:00Z to "
+        "2038-01-19T03:14:07Z, the last time a capture's timestamps hold)\n";
+    for (std::string start :
+         {"1704067200000", "1e18", "nan", "inf", "-inf", "5e9", "-5", "2147483648", "abc", ""}) {
+        SCOPED_TRACE(start);
+        CommandResult r = run_dpscope({"simulate", "-w", "-", "--start", start});
+        EXPECT_EQ(r.exit_code, 2);
+        EXPECT_TRUE(r.out.empty());
+        EXPECT_EQ(r.err, "dpscope: error: --start " + start + ": " + start_range);
+    }
+    struct Case {
+        std::vector<std::string> args;
+        std::string message;
+    };
+    const std::string whole = "must be a whole number from ";
+    const std::vector<Case> cases = {
+        {{"--cycles", "-1"}, "--cycles: " + whole + "0 to 18446744073709551615, not '-1'"},
+        {{"--cycles", "99999999999999999999999"},
+         "--cycles: " + whole + "0 to 18446744073709551615, not '99999999999999999999999'"},
+        {{"-c", "1.5"}, "--count: " + whole + "0 to 18446744073709551615, not '1.5'"},
+        {{"--seed", "-1"}, "--seed: " + whole + "0 to 18446744073709551615, not '-1'"},
+        {{"--baud", "-5"}, "--baud: " + whole + "9600 to 12000000, not '-5'"},
+        {{"--baud", "12000001"}, "--baud: " + whole + "9600 to 12000000, not '12000001'"},
+        {{"--master", "127"}, "--master: " + whole + "0 to 126, not '127'"},
+        {{"--cycle-us", "99"}, "--cycle-us: " + whole + "100 to 1000000, not '99'"},
+        {{"--fault", "garbage=nan"}, "--fault garbage=nan: rate 'nan' must be a number in (0, 1]"},
+        {{"--fault", "garbage=inf"}, "--fault garbage=inf: rate 'inf' must be a number in (0, 1]"},
+        {{"--fault", "garbage@-1"}, "--fault garbage@-1: '-1' is not a cycle number"},
+        // The session's end must fit as well as its start.
+        {{"--cycles", "100000000000000"},
+         "--cycles 100000000000000: the session could last longer than the 2147483647 s a "
+         "capture's timestamps span (1970-01-01T00:00:00Z to 2038-01-19T03:14:07Z); give fewer "
+         "--cycles"},
+        {{"--cycles", "0", "-c", "1000000000000000"},
+         "-c 1000000000000000: the session could last longer than the 2147483647 s a capture's "
+         "timestamps span (1970-01-01T00:00:00Z to 2038-01-19T03:14:07Z); give a smaller -c"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.args[1]);
+        std::vector<std::string> args = {"simulate", "-w", "-"};
+        args.insert(args.end(), c.args.begin(), c.args.end());
+        CommandResult r = run_dpscope(args);
+        EXPECT_EQ(r.exit_code, 2);
+        EXPECT_TRUE(r.out.empty());
+        EXPECT_EQ(r.err.rfind("dpscope: error: " + c.message + "\n", 0), 0u) << r.err;
+    }
+    // A start so late that the session would end past 2038: the latest start is named.
+    CommandResult late = run_dpscope({"simulate", "-w", "-", "--start", "2147483640"});
+    EXPECT_EQ(late.exit_code, 2);
+    EXPECT_TRUE(late.out.empty());
+    std::smatch latest;
+    ASSERT_TRUE(std::regex_search(
+        late.err, latest,
+        std::regex("^dpscope: error: --start 2147483640: the session lasts up to ([0-9]+) s and "
+                   "would end after 2038-01-19T03:14:07Z, the last time a capture's timestamps "
+                   "hold; give --start from 0 to ([0-9]+)\n$")))
+        << late.err;
+    CommandResult fits = run_dpscope({"simulate", "-w", "-", "--start", latest[2].str()});
+    EXPECT_EQ(fits.exit_code, 0) << fits.err;
+}
+
+TEST(CliTest, SimulateStartDatesTheCapture) {
+    TempFile file("start.pcap");
+    CommandResult r =
+        run_dpscope({"simulate", "-w", file.path, "--start", "2000000000.5", "--cycles", "5"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    OpenResult opened = open_source(file.path, InputFormat::Auto);
+    ASSERT_TRUE(opened.source) << opened.error;
+    Record record;
+    ASSERT_TRUE(opened.source->next(record));
+    EXPECT_GE(record.time_ns, 2'000'000'000'500'000'000);
+    EXPECT_LT(record.time_ns, 2'000'000'001'000'000'000);
+}
+
+TEST(CliTest, SimulateTwoSlavesAtOneAddressIsAUsageError) {
+    CommandResult r =
+        run_dpscope({"simulate", "-w", "-", "--slave", "3:1", "--slave", "4:2", "--slave", "3:2"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(r.out.empty());
+    EXPECT_EQ(r.err,
+              "dpscope: error: --slave 3:1 and --slave 3:2 both give address 3: one slave per "
+              "address\n");
+}
+
 TEST(CliTest, SimulateUnwritableOutputNamesIt) {
     TempFile blocker("plain-file");
     test::write_file(blocker.path, {0x00});

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -119,6 +120,93 @@ TEST(SimulatorTest, MaxTelegramsIsHonoured) {
     options.cycles = 0;
     options.max_telegrams = 500;
     EXPECT_EQ(run(options).size(), 500u);
+}
+
+// Runs at most `limit` telegrams, so that a session that would not end fails instead of hanging.
+std::vector<Telegram> run_at_most(Simulator& simulator, std::size_t limit) {
+    std::vector<Telegram> out;
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns = 0;
+    while (out.size() < limit && simulator.next(bytes, time_ns))
+        out.push_back({bytes, time_ns});
+    return out;
+}
+
+TEST(SimulatorTest, EndsAfterItsCyclesWhateverTheStartTime) {
+    // Regression: a start time before 1970 ran on until 1970 (5 s of traffic for --start -5, 292
+    // years for NaN), and one near the end of int64 wrapped round and never ended.
+    constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
+    const std::size_t expected = run(small_session(3, 100)).size();
+    for (std::int64_t start :
+         {std::int64_t{0}, std::int64_t{-5'000'000'000}, std::numeric_limits<std::int64_t>::min(),
+          std::int64_t{1'000'000'000'000'000'000}, kMax - 1'000'000, kMax}) {
+        SCOPED_TRACE(start);
+        SimulatorOptions options = small_session(3, 100);
+        options.start_time_ns = start;
+        Simulator simulator(options);
+        std::vector<Telegram> telegrams = run_at_most(simulator, 10 * expected);
+        EXPECT_EQ(telegrams.size(), expected);
+        ASSERT_FALSE(telegrams.empty());
+        EXPECT_GE(telegrams[0].time_ns, std::max<std::int64_t>(0, start));
+        for (std::size_t i = 1; i < telegrams.size(); ++i)
+            ASSERT_GE(telegrams[i].time_ns, telegrams[i - 1].time_ns) << i;  // never wraps
+        if (start == kMax) {
+            EXPECT_EQ(telegrams.back().time_ns, kMax);
+        }
+    }
+}
+
+TEST(SimulatorTest, WithoutCyclesOrCountTheSessionIsTheStartUp) {
+    SimulatorOptions options = small_session(3, 0);
+    Simulator simulator(options);
+    // Three slaves: ten telegrams each, then Global_Control and the token.
+    EXPECT_EQ(run_at_most(simulator, 10'000).size(), 3u * 10 + 2);
+}
+
+TEST(SimulatorTest, TimeOutFaultsAtARateStillEnd) {
+    // Regression: each time-out injected while the session ran on for the previous one kept it
+    // open again, for ever.
+    SimulatorOptions options = small_session(3, 100);
+    options.faults = {
+        FaultSpec{FaultKind::ResponseTimeout, 1.0, std::nullopt, std::nullopt},
+        FaultSpec{FaultKind::SpontaneousUnacknowledged, 1.0, std::nullopt, std::nullopt}};
+    Simulator simulator(options);
+    std::vector<Telegram> telegrams = run_at_most(simulator, 100'000);
+    ASSERT_LT(telegrams.size(), 100'000u);
+    for (const Injection& injection : simulator.injections())
+        EXPECT_LT(injection.cycle, 100u);  // nothing is injected past the session's cycles
+    // It ran on until the master gave up (1.5 s), not much longer.
+    std::int64_t span = telegrams.back().time_ns - options.start_time_ns;
+    EXPECT_GT(span, 1'500'000'000);
+    EXPECT_LT(span, 2'000'000'000);
+}
+
+TEST(SimulatorTest, SessionSpanBoundHoldsWithEveryFault) {
+    std::vector<FaultSpec> faults;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(FaultKind::Count); ++i)
+        faults.push_back(FaultSpec{static_cast<FaultKind>(i), 0.05, std::nullopt, std::nullopt});
+    struct Case {
+        std::uint32_t baud;
+        std::uint32_t cycle_us;
+        std::uint64_t cycles;
+        std::uint64_t max_telegrams;
+    };
+    for (const Case& c : {Case{9600, 100, 200, 0}, Case{1'500'000, 2000, 300, 0},
+                          Case{12'000'000, 100, 0, 5000}, Case{19'200, 1000, 1000, 700}}) {
+        SCOPED_TRACE(c.baud);
+        SimulatorOptions options = small_session(5, c.cycles);
+        options.baud = c.baud;
+        options.cycle_us = c.cycle_us;
+        options.max_telegrams = c.max_telegrams;
+        options.faults = faults;
+        options.slaves = {{3, 1, Dialect::Vlt}, {4, 5, Dialect::Vlt}, {6, 2, Dialect::Profidrive}};
+        std::vector<Telegram> telegrams = run(options);
+        ASSERT_FALSE(telegrams.empty());
+        EXPECT_LE(telegrams.back().time_ns - options.start_time_ns, session_span_bound_ns(options));
+    }
+    SimulatorOptions endless = small_session(1, 0);
+    endless.max_telegrams = std::numeric_limits<std::uint64_t>::max();
+    EXPECT_EQ(session_span_bound_ns(endless), std::numeric_limits<std::int64_t>::max());
 }
 
 TEST(SimulatorTest, DefaultSlaves) {
@@ -498,6 +586,42 @@ TEST(SimulatorTest, FaultsTheSessionEndedBeforeAreNamed) {
     run(simulator);
     EXPECT_EQ(faults_not_injected(options, simulator.injections()),
               std::vector<std::string>{"stacked_request@99"});
+}
+
+TEST(SimulatorTest, FaultsNotInjectedAreKnownWithoutTheInjectionList) {
+    SimulatorOptions options = small_session(9, 100);
+    options.faults = {FaultSpec{FaultKind::StackedRequest, 0, 99, std::nullopt},
+                      FaultSpec{FaultKind::Garbage, 0, std::nullopt, std::nullopt},
+                      FaultSpec{FaultKind::Garbage, 0, 10, 4},
+                      FaultSpec{FaultKind::FcsError, 0.5, std::nullopt, std::nullopt}};
+    Simulator simulator(options);
+    std::vector<Injection> seen;
+    simulator.on_injection([&](const Injection& injection) { seen.push_back(injection); });
+    run(simulator);
+    EXPECT_EQ(simulator.faults_not_injected(), std::vector<std::string>{"stacked_request@99"});
+    EXPECT_EQ(faults_not_injected(options, seen), simulator.faults_not_injected());
+    EXPECT_EQ(seen.size(), simulator.injection_count());
+}
+
+TEST(SimulatorTest, InjectionsKeptAreBoundedAndAllAreSeen) {
+    // Regression: every injection was kept, so memory grew with the session.
+    SimulatorOptions options = small_session(9, 4000);
+    options.faults = {FaultSpec{FaultKind::Garbage, 1.0, std::nullopt, std::nullopt},
+                      FaultSpec{FaultKind::StackedRequest, 0, 3990, 3}};
+    Simulator simulator(options);
+    std::uint64_t seen = 0;
+    std::uint64_t last_telegram = 0;
+    simulator.on_injection([&](const Injection& injection) {
+        ++seen;
+        EXPECT_GT(injection.telegram, last_telegram);
+        last_telegram = injection.telegram;
+    });
+    run(simulator);
+    EXPECT_EQ(simulator.injections().size(), Simulator::kKeptInjections);
+    EXPECT_EQ(simulator.injection_count(), seen);
+    EXPECT_GE(seen, 3u * 4000);
+    // The check of faults given once does not depend on the kept list.
+    EXPECT_TRUE(simulator.faults_not_injected().empty());
 }
 
 TEST(SimulatorTest, TimeoutFaultKeepsTheSessionOpenUntilTheMasterGivesUp) {
