@@ -228,6 +228,17 @@ TEST(CliTest, InputWithoutAnyTelegramIsUsageError) {
     test::write_file(no_records.path, header);
     CommandResult pcap = run_dpscope({"decode", no_records.path});
     EXPECT_EQ(pcap.exit_code, 0) << pcap.err;
+    // ... but the report of it is no pass: nothing was checked (exit 1), unless --allow-empty.
+    CommandResult report = run_dpscope({"report", no_records.path});
+    EXPECT_EQ(report.exit_code, 1) << report.err;
+    EXPECT_NE(report.out.find("Result:  FAIL: nothing checked (no telegrams); 0 errors"),
+              std::string::npos)
+        << report.out;
+    CommandResult allowed = run_dpscope({"report", "--allow-empty", "-T", "json", no_records.path});
+    EXPECT_EQ(allowed.exit_code, 0) << allowed.err;
+    EXPECT_NE(allowed.out.find("\"result\":\"pass\",\"nothing_checked\":true"), std::string::npos)
+        << allowed.out;
+    EXPECT_NE(run_dpscope({"report", "--help"}).out.find("--allow-empty"), std::string::npos);
 }
 
 TEST(CliTest, BadOptionValuesAreUsageErrors) {
@@ -354,7 +365,7 @@ TEST(CliTest, FilteredTimesStayRelativeToTheCapturesFirstTelegram) {
 
 TEST(CliTest, ReportWarnsOfAStationNotInTheCapture) {
     CommandResult r = run_dpscope({"report", "--station", "9", "samples/ppo2.pcap"});
-    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_EQ(r.exit_code, 1) << "nothing checked";
     EXPECT_NE(r.err.find("warning: --station 9: no slave 9 in the capture"), std::string::npos)
         << r.err;
     CommandResult present = run_dpscope({"report", "--station", "4", "samples/faults.pcap"});
