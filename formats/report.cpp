@@ -242,13 +242,13 @@ std::string station_label(const Finding& f) {
     return f.has_stations ? fmt::format("{} / {}", f.master, f.slave) : std::string("-");
 }
 
-// "1200 more stacked_request findings not listed (at most 1000 per kind; the JSON report lists
-// them all)", for the kinds the text and Markdown reports cut short.
+// "1200 more stacked_request findings not listed: at most 1000 per kind, the JSON report lists
+// them all", for the kinds the text and Markdown reports cut short.
 std::string unlisted_text(FindingKind kind,
                           const std::array<std::uint64_t, kFindingKindCount>& listed) {
     std::uint64_t more = listed[static_cast<std::size_t>(kind)] - kListedPerKind;
     return fmt::format(
-        "{} more {} {} not listed (at most {} per kind; the JSON report lists them all)", more,
+        "{} more {} {} not listed: at most {} per kind, the JSON report lists them all", more,
         finding_kind_name(kind), more == 1 ? "finding" : "findings", kListedPerKind);
 }
 

@@ -2072,8 +2072,8 @@ TEST(ReportTest, TextAndMarkdownListAtMostAThousandFindingsPerKind) {
                                 return row.find(" fdl_retry ") != std::string::npos;
                             }),
               5);
-    EXPECT_NE(text.find("  (201 more stacked_request findings not listed (at most 1000 per kind; "
-                        "the JSON report lists them all))\n"),
+    EXPECT_NE(text.find("  (201 more stacked_request findings not listed: at most 1000 per kind, "
+                        "the JSON report lists them all)\n"),
               std::string::npos);
     EXPECT_EQ(text.find("more fdl_retry"), std::string::npos);
     // The first 1000 in capture order: frame 1999 is the last listed, 2000 is not.
@@ -2088,8 +2088,8 @@ TEST(ReportTest, TextAndMarkdownListAtMostAThousandFindingsPerKind) {
                             }),
               1000);
     EXPECT_EQ(std::count(lines.begin(), lines.end(),
-                         "- 201 more stacked\\_request findings not listed (at most 1000 per kind; "
-                         "the JSON report lists them all)"),
+                         "- 201 more stacked\\_request findings not listed: at most 1000 per kind, "
+                         "the JSON report lists them all"),
               1);
 
     auto report = json_report(context);
