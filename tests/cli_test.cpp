@@ -363,6 +363,27 @@ TEST(CliTest, FilteredTimesStayRelativeToTheCapturesFirstTelegram) {
     }
 }
 
+TEST(CliTest, ProfidriveSlaveDecodedAsVltGetsADialectHintInSummaryAndReport) {
+    TempFile capture("profidrive-slave.pcap");
+    CommandResult made = run_dpscope(
+        {"simulate", "-w", capture.path, "--slave", "3:1:profidrive", "--cycles", "2000"});
+    ASSERT_EQ(made.exit_code, 0) << made.err;
+    const std::string option = "decode with --dialect 3=profidrive";
+    CommandResult summary = run_dpscope({"decode", "-q", capture.path});
+    EXPECT_NE(summary.out.find("         hint: its parameter-channel codes fit the profidrive "
+                               "dialect ("),
+              std::string::npos)
+        << summary.out;
+    EXPECT_NE(summary.out.find(option), std::string::npos);
+    CommandResult report = run_dpscope({"report", capture.path});
+    EXPECT_NE(report.out.find("  dialect hint   its parameter-channel codes fit the profidrive"),
+              std::string::npos)
+        << report.out;
+    // Decoded as profidrive: no unknown codes, no hint.
+    CommandResult right = run_dpscope({"decode", "-q", "--dialect", "3=profidrive", capture.path});
+    EXPECT_EQ(right.out.find("hint"), std::string::npos) << right.out;
+}
+
 TEST(CliTest, ReportWarnsOfAStationNotInTheCapture) {
     CommandResult r = run_dpscope({"report", "--station", "9", "samples/ppo2.pcap"});
     EXPECT_EQ(r.exit_code, 1) << "nothing checked";

@@ -404,8 +404,9 @@ std::unique_ptr<Analysis> analyse_file(const std::string& relative) {
     return analysis;
 }
 
-std::unique_ptr<Analysis> analyse_simulation(const SimulatorOptions& options) {
-    auto analysis = std::make_unique<Analysis>();
+std::unique_ptr<Analysis> analyse_simulation(const SimulatorOptions& options,
+                                             DecoderOptions decoder_options = {}) {
+    auto analysis = std::make_unique<Analysis>(TrackerOptions{}, decoder_options);
     Simulator simulator(options);
     std::vector<std::uint8_t> bytes;
     std::int64_t time_ns = 0;
@@ -1552,14 +1553,22 @@ TEST(ReportTest, HtmlListsAtMostTwoThousandFindings) {
     EXPECT_EQ((*report)["findings"].items.size(), 2345u);
 }
 
-TEST(ReportTest, JunitListsAtMostTenThousandFailuresPerRuleAndCountsTheRest) {
+// samples/ppo2.pcap with `stacked` stacked_request findings of slave 4 from frame 1000 on, then
+// `retries` fdl_retry findings from frame `retry_frame` on.
+std::unique_ptr<Analysis> ppo2_with_findings(std::uint64_t stacked, std::uint64_t retries,
+                                             std::uint64_t retry_frame) {
     auto analysis = analyse_file("samples/ppo2.pcap");
     std::vector<Finding> many;
-    for (std::uint64_t i = 0; i < 10'003; ++i)
+    for (std::uint64_t i = 0; i < stacked; ++i)
         many.push_back(make_finding(FindingKind::StackedRequest, 1000 + i, 4, "stacked"));
-    for (std::uint64_t i = 0; i < 2; ++i)
-        many.push_back(make_finding(FindingKind::FdlRetry, 20'000 + i, 4, "retry"));
+    for (std::uint64_t i = 0; i < retries; ++i)
+        many.push_back(make_finding(FindingKind::FdlRetry, retry_frame + i, 4, "retry"));
     analysis->log.append(many);
+    return analysis;
+}
+
+TEST(ReportTest, JunitListsAtMostTenThousandFailuresPerRuleAndCountsTheRest) {
+    auto analysis = ppo2_with_findings(10'003, 2, 20'000);
     auto root = junit_report(context_of(*analysis));
     ASSERT_TRUE(root);
     const XmlNode* slave4 = nullptr;
@@ -2049,13 +2058,7 @@ TEST(ReportTest, TrackerTimelineCoversALongSession) {
 // ---- long lists, nothing checked, dialect hints -------------------------------------------------
 
 TEST(ReportTest, TextAndMarkdownListAtMostAThousandFindingsPerKind) {
-    auto analysis = analyse_file("samples/ppo2.pcap");
-    std::vector<Finding> many;
-    for (std::uint64_t i = 0; i < 1'201; ++i)
-        many.push_back(make_finding(FindingKind::StackedRequest, 1000 + i, 4, "stacked"));
-    for (std::uint64_t i = 0; i < 5; ++i)
-        many.push_back(make_finding(FindingKind::FdlRetry, 5000 + i, 4, "retry"));
-    analysis->log.append(many);
+    auto analysis = ppo2_with_findings(1'201, 5, 5000);
     const ReportContext context = context_of(*analysis);
 
     std::string text = render(ReportFormat::Text, context);
@@ -2264,16 +2267,7 @@ TEST(ReportTest, NoDialectHintForTheRightDialectOrForCodesNoDialectDefines) {
     // The same slave decoded as profidrive.
     DecoderOptions options;
     options.station_dialect[3] = Dialect::Profidrive;
-    auto right = std::make_unique<Analysis>(TrackerOptions{}, options);
-    {
-        Simulator simulator(profidrive_slave(2000));
-        std::vector<std::uint8_t> bytes;
-        std::int64_t time_ns = 0;
-        std::uint64_t number = 0;
-        while (simulator.next(bytes, time_ns))
-            right->feed(Bytes(bytes.data(), bytes.size()), time_ns, ++number);
-        right->finish();
-    }
+    auto right = analyse_simulation(profidrive_slave(2000), options);
     auto report = json_report(context_of(*right));
     ASSERT_TRUE(report);
     EXPECT_EQ((*report)["stations"][0]["dialect"].string(), "profidrive");
