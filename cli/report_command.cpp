@@ -29,6 +29,7 @@ struct ReportCommand {
     std::string output = "-";
     std::string fail_on = "error";
     std::vector<unsigned> stations;
+    bool allow_empty = false;
 };
 
 // Renders the report of what `pipeline` read from `source` and returns the exit code.
@@ -36,6 +37,7 @@ int write_report(const ReportCommand& command, const Pipeline& pipeline,
                  const TelegramSource& source, const FindingLog& log, Output& out) {
     ReportContext context = report_context(
         pipeline, source, log, fail_on_from_name(command.fail_on).value_or(FailOn::Error));
+    context.allow_empty = command.allow_empty;
     const std::vector<const ChannelStats*> channels = pipeline.tracker().channels();
     for (unsigned station : command.stations) {
         context.stations.push_back(static_cast<std::uint8_t>(station));
@@ -131,7 +133,8 @@ void add_report_command(CLI::App& app, int& exit_code) {
         "report",
         "Protocol-conformance report of a capture: pairs every parameter request with its "
         "response and lists, per slave, transactions, latency, parameters, rejections and "
-        "handshake findings; exit code 1 when a finding reaches --fail-on.");
+        "handshake findings; exit code 1 when a finding reaches --fail-on, or when nothing was "
+        "checked (no Data_Exchange telegram with a parameter channel) without --allow-empty.");
     sub->add_option("file", command->file, "Capture file to read; - reads standard input")
         ->type_name("FILE");
     sub->add_option("-r,--read", command->read_option,
@@ -160,6 +163,10 @@ void add_report_command(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(0, 127))
         ->type_name("ADDR")
         ->allow_extra_args(false);
+    sub->add_flag("--allow-empty", command->allow_empty,
+                  "Pass a capture in which nothing was checked (no telegrams, or no Data_Exchange "
+                  "telegram with a parameter channel from the slaves reported); by default the "
+                  "report says \"nothing checked\" and exits 1");
     add_tracking_options(*sub, command->options);
     sub->footer(std::string(kExitCodeHelp) + " For report, 1 takes precedence over 3.");
     sub->callback([command, &exit_code] { exit_code = run_report(*command); });

@@ -80,6 +80,28 @@ void Timeline::add_finding(std::int64_t time_ns, Severity severity) {
     }
 }
 
+// ---- DialectEvidence ---------------------------------------------------------------------------
+
+void DialectEvidence::add(const DecodedTelegram& t) noexcept {
+    if (t.service != Service::DataExchange || !t.has_pcv || !t.fdl.fcs_ok) return;
+    const bool request = t.direction == Direction::Request;
+    auto defines = [&](Dialect dialect) {
+        return request ? request_code(dialect, t.pcv.rc).defined
+                       : response_code(dialect, t.pcv.rc).kind != ResponseKind::Undefined;
+    };
+    if (defines(t.dialect)) return;
+    if (decoded_ != t.dialect) *this = DialectEvidence{};  // the dialect changed: start again
+    decoded_ = t.dialect;
+    ++undefined_;
+    const Dialect other = t.dialect == Dialect::Vlt ? Dialect::Profidrive : Dialect::Vlt;
+    if (defines(other)) ++other_defines_;
+}
+
+std::optional<Dialect> DialectEvidence::hint() const noexcept {
+    if (undefined_ < kMinimum || other_defines_ != undefined_) return std::nullopt;
+    return decoded_ == Dialect::Vlt ? Dialect::Profidrive : Dialect::Vlt;
+}
+
 // ---- Channel state ------------------------------------------------------------------------------
 
 struct SessionTracker::Channel {
@@ -260,6 +282,7 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
     }
     check_config(ch, t);
     if (!t.has_pcv) return current_;
+    ++stats.parameter_telegrams;
     if (request)
         master_pcv(ch, t);
     else

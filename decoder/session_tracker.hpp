@@ -26,6 +26,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -81,6 +82,27 @@ struct TransactionCounts {
     }
 };
 
+// What the parameter-channel codes of one slave say about its dialect: a slave decoded with
+// the wrong code tables (a PROFIdrive drive decoded as vlt) shows codes its dialect does not
+// define but the other one does. The rule (docs/decisions.md): at least kMinimum telegrams with
+// a code the decoded dialect does not define, every one of them a code the other dialect
+// defines. Only intact Data_Exchange telegrams with a parameter channel count.
+class DialectEvidence {
+  public:
+    static constexpr std::uint64_t kMinimum = 10;
+
+    void add(const DecodedTelegram& t) noexcept;
+    // Telegrams whose code the decoded dialect does not define.
+    std::uint64_t undefined() const noexcept { return undefined_; }
+    // The dialect to decode the slave with instead, or nullopt.
+    std::optional<Dialect> hint() const noexcept;
+
+  private:
+    Dialect decoded_ = Dialect::Vlt;
+    std::uint64_t undefined_ = 0;
+    std::uint64_t other_defines_ = 0;  // of those, codes the other dialect defines
+};
+
 struct ChannelStats {
     std::uint8_t master = 0;
     std::uint8_t slave = 0;
@@ -89,6 +111,8 @@ struct ChannelStats {
     std::uint64_t data_exchange = 0;  // Data_Exchange telegrams, both directions
     std::uint64_t cycles = 0;         // Data_Exchange requests (retries not counted)
     std::uint64_t requests = 0;       // distinct parameter requests
+    // Data_Exchange telegrams with a parameter channel (PCV): none means nothing was checked.
+    std::uint64_t parameter_telegrams = 0;
     TransactionCounts transactions;
     std::uint64_t timeouts = 0;
     std::uint64_t abandoned = 0;  // dropped by the master before an answer

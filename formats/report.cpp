@@ -53,6 +53,8 @@ bool severity_fails(Severity severity, FailOn fail_on) noexcept {
 namespace {
 
 constexpr std::size_t kHtmlFindingRows = 2000;
+// The text and Markdown reports list at most this many findings of each kind.
+constexpr std::uint64_t kListedPerKind = 1000;
 // A JUnit test case lists at most this many failures; the rest are counted in <system-out>.
 constexpr std::size_t kJunitFailuresPerCase = 10'000;
 constexpr std::array<FindingKind, kFindingKindCount> all_kinds() {
@@ -74,6 +76,8 @@ struct StationView {
     const ChannelStats* stats = nullptr;
     bool has_ident = false;
     std::uint16_t ident = 0;
+    bool timed = false;        // its telegrams carry timestamps: time-outs and ms latency judged
+    std::string dialect_hint;  // "" or the hint that its codes fit another dialect
     Latency latency;
 };
 
@@ -84,6 +88,8 @@ struct Model {
     std::uint64_t shown = 0;
     bool fails = false;
     bool has_bus_findings = false;
+    bool timed = false;            // the capture carries timestamps (or is empty)
+    bool nothing_checked = false;  // no Data_Exchange telegram with a parameter channel shown
 };
 
 bool shows(const ReportContext& c, const Finding& f) {
@@ -104,6 +110,9 @@ Model build_model(const ReportContext& c) {
         const StationConfig& config = c.decoder->station(stats->slave);
         view.has_ident = config.has_ident;
         view.ident = config.ident;
+        view.timed = stats->first_time_ns != kNoTime;
+        view.dialect_hint = dialect_hint_text(stats->slave, stats->dialect,
+                                              c.summary->dialect_evidence(stats->slave));
         const LogHistogram& ns = stats->latency_ns;
         if (ns.count() > 0) {
             view.latency.any = true;
@@ -122,6 +131,11 @@ Model build_model(const ReportContext& c) {
         }
         m.stations.push_back(view);
     }
+    m.timed = c.summary->first_time_ns() != kNoTime || c.summary->telegrams() == 0;
+    m.nothing_checked =
+        std::none_of(m.stations.begin(), m.stations.end(),
+                     [](const StationView& v) { return v.stats->parameter_telegrams > 0; });
+    if (m.nothing_checked && !c.allow_empty) m.fails = true;
     c.findings->for_each([&](const Finding& f) {
         if (!shows(c, f)) return;
         ++m.shown;
@@ -143,10 +157,34 @@ std::uint64_t notes(const Model& m) {
     return m.by_severity[static_cast<std::size_t>(Severity::Note)];
 }
 
+std::string findings_text(const Model& m) {
+    return fmt::format("{}, {}, {}", counted(errors(m), "error", "errors"),
+                       counted(warnings(m), "warning", "warnings"),
+                       counted(notes(m), "note", "notes"));
+}
+
+// Why nothing was checked: "no telegrams", "no Data_Exchange telegram with a parameter channel".
+std::string nothing_checked_reason(const ReportContext& c) {
+    if (c.summary->telegrams() == 0) return "no telegrams";
+    return c.stations.empty()
+               ? "no Data_Exchange telegram with a parameter channel"
+               : "no Data_Exchange telegram with a parameter channel from the selected slaves";
+}
+
 std::string verdict_text(const ReportContext& c, const Model& m) {
-    return fmt::format("{}: {} errors, {} warnings, {} notes (fail on {})",
-                       m.fails ? "FAIL" : "PASS", errors(m), warnings(m), notes(m),
-                       fail_on_name(c.fail_on));
+    return fmt::format("{}: {}{} (fail on {}{})", m.fails ? "FAIL" : "PASS",
+                       m.nothing_checked
+                           ? fmt::format("nothing checked ({}); ", nothing_checked_reason(c))
+                           : std::string(),
+                       findings_text(m), fail_on_name(c.fail_on),
+                       m.nothing_checked && c.allow_empty ? ", empty allowed" : "");
+}
+
+constexpr std::string_view kNoTimestamps = "time-outs not judged (no timestamps)";
+
+// "2 timed out" or "time-outs not judged (no timestamps)".
+std::string timeouts_text(const StationView& v) {
+    return v.timed ? fmt::format("{} timed out", v.stats->timeouts) : std::string(kNoTimestamps);
 }
 
 // "" without a station filter, else "slaves 3, 5".
@@ -204,6 +242,16 @@ std::string station_label(const Finding& f) {
     return f.has_stations ? fmt::format("{} / {}", f.master, f.slave) : std::string("-");
 }
 
+// "1200 more stacked_request findings not listed: at most 1000 per kind, the JSON report lists
+// them all", for the kinds the text and Markdown reports cut short.
+std::string unlisted_text(FindingKind kind,
+                          const std::array<std::uint64_t, kFindingKindCount>& listed) {
+    std::uint64_t more = listed[static_cast<std::size_t>(kind)] - kListedPerKind;
+    return fmt::format(
+        "{} more {} {} not listed: at most {} per kind, the JSON report lists them all", more,
+        finding_kind_name(kind), more == 1 ? "finding" : "findings", kListedPerKind);
+}
+
 // ---- text ---------------------------------------------------------------------------------------
 
 void render_text(const ReportContext& c, const Model& m, Output& out) {
@@ -211,8 +259,8 @@ void render_text(const ReportContext& c, const Model& m, Output& out) {
     auto it = std::back_inserter(b);
     const TrackerOptions& options = c.tracker->options();
     fmt::format_to(it, "dpscope {} conformance report\n", c.version);
-    fmt::format_to(it, "Input:   {} ({}), {} telegrams", c.input.name, c.input.format,
-                   c.summary->telegrams());
+    fmt::format_to(it, "Input:   {} ({}), {}", c.input.name, c.input.format,
+                   counted(c.summary->telegrams(), "telegram", "telegrams"));
     if (c.summary->first_time_ns() != kNoTime) {
         append(b, ", ");
         append_iso_time(b, c.summary->first_time_ns());
@@ -222,8 +270,9 @@ void render_text(const ReportContext& c, const Model& m, Output& out) {
     b.push_back('\n');
     if (c.input.damaged)
         append(b, "         the input ended in damage; the report covers what was read\n");
-    fmt::format_to(it, "Checks:  time-out {} ms; RC 8 after a read is {}\n",
-                   options.timeout_ns / 1'000'000,
+    fmt::format_to(it, "Checks:  {}; RC 8 after a read is {}\n",
+                   m.timed ? fmt::format("time-out {} ms", options.timeout_ns / 1'000'000)
+                           : std::string(kNoTimestamps),
                    options.strict ? "an unexpected response (strict)" : "unusual, a warning");
     if (!c.stations.empty())
         fmt::format_to(it, "Filter:  {} (telegram counts cover the whole capture)\n",
@@ -231,27 +280,32 @@ void render_text(const ReportContext& c, const Model& m, Output& out) {
     fmt::format_to(it, "Result:  {}\n\n", verdict_text(c, m));
     append(b, "Summary\n");
     fmt::format_to(it, "  telegrams      {}\n", c.summary->telegrams());
+    fmt::format_to(it, "  bytes skipped  {}\n", c.input.bytes_skipped);
     fmt::format_to(it, "  FCS errors     {}\n", m.fcs_errors);
     std::uint64_t transactions = 0;
     for (const StationView& v : m.stations)
         transactions += v.stats->transactions.total();
     fmt::format_to(it, "  transactions   {}\n", transactions);
-    fmt::format_to(it, "  findings       {} errors, {} warnings, {} notes\n", errors(m),
-                   warnings(m), notes(m));
+    fmt::format_to(it, "  findings       {}\n", findings_text(m));
     for (const StationView& v : m.stations) {
         const ChannelStats& s = *v.stats;
         fmt::format_to(it, "\nSlave {} (master {})\n", s.slave, s.master);
         fmt::format_to(it, "  layout         {}; dialect {}", ppo_text(s), dialect_name(s.dialect));
         if (v.has_ident) fmt::format_to(it, "; ident 0x{:04X}", v.ident);
         b.push_back('\n');
-        fmt::format_to(it, "  Data_Exchange  {} telegrams, {} cycles\n", s.data_exchange, s.cycles);
+        if (!v.dialect_hint.empty()) fmt::format_to(it, "  dialect hint   {}\n", v.dialect_hint);
+        fmt::format_to(it, "  Data_Exchange  {}, {}\n",
+                       counted(s.data_exchange, "telegram", "telegrams"),
+                       counted(s.cycles, "cycle", "cycles"));
         fmt::format_to(it, "  requests       {}\n", s.requests);
         fmt::format_to(it, "  transactions   {}: {}\n", s.transactions.total(),
                        outcomes_text(s.transactions));
-        fmt::format_to(it, "  unanswered     {} timed out, {} abandoned by the master\n",
-                       s.timeouts, s.abandoned);
-        fmt::format_to(it, "  spontaneous    {} messages\n", s.spontaneous);
-        if (v.latency.any)
+        fmt::format_to(it, "  unanswered     {}, {} abandoned by the master\n", timeouts_text(v),
+                       s.abandoned);
+        fmt::format_to(it, "  spontaneous    {}\n", counted(s.spontaneous, "message", "messages"));
+        if (!v.timed)
+            append(b, "  latency ms     not measured (no timestamps)\n");
+        else if (v.latency.any)
             fmt::format_to(
                 it, "  latency ms     min {:.3f}  median {:.3f}  p95 {:.3f}  max {:.3f}\n",
                 v.latency.min_ms, v.latency.median_ms, v.latency.p95_ms, v.latency.max_ms);
@@ -278,14 +332,18 @@ void render_text(const ReportContext& c, const Model& m, Output& out) {
     if (m.shown > 0)
         fmt::format_to(it, "  {:>8}  {:>12}  {:<8} {:<27} {:<9} {:>5}  {}\n", "frame", "time (s)",
                        "severity", "kind", "master/slave", "pnu", "message");
+    std::array<std::uint64_t, kFindingKindCount> listed{};
     c.findings->for_each([&](const Finding& f) {
-        if (!shows(c, f)) return;
+        if (!shows(c, f) || listed[static_cast<std::size_t>(f.kind)]++ >= kListedPerKind) return;
         fmt::format_to(it, "  {:>8}  {:>12}  {:<8} {:<27} {:<12} {:>5}  {}\n", f.frame,
                        relative_seconds(c, f.time_ns), severity_name(f.severity),
                        finding_kind_name(f.kind), station_label(f),
                        f.pnu ? fmt::format("{}", *f.pnu) : std::string("-"), f.message);
         out.end_record();
     });
+    for (FindingKind kind : kAllKinds)
+        if (listed[static_cast<std::size_t>(kind)] > kListedPerKind)
+            fmt::format_to(it, "  ({})\n", unlisted_text(kind, listed));
     if (!c.findings->error().empty())
         fmt::format_to(it, "  (some findings could not be listed: {})\n", c.findings->error());
     out.end_record();
@@ -310,10 +368,13 @@ void render_markdown(const ReportContext& c, const Model& m, Output& out) {
     const TrackerOptions& options = c.tracker->options();
     fmt::format_to(it, "# dpscope conformance report\n\n");
     fmt::format_to(it, "**{}**\n\n", verdict_text(c, m));
-    fmt::format_to(it, "- Input: `{}` ({}), {} telegrams{}\n", c.input.name, c.input.format,
-                   c.summary->telegrams(), c.input.damaged ? " (ended in damage)" : "");
-    fmt::format_to(it, "- Checks: time-out {} ms; RC 8 after a read: {}\n",
-                   options.timeout_ns / 1'000'000, options.strict ? "strict" : "lenient");
+    fmt::format_to(it, "- Input: `{}` ({}), {}{}\n", c.input.name, c.input.format,
+                   counted(c.summary->telegrams(), "telegram", "telegrams"),
+                   c.input.damaged ? " (ended in damage)" : "");
+    fmt::format_to(it, "- Checks: {}; RC 8 after a read: {}\n",
+                   m.timed ? fmt::format("time-out {} ms", options.timeout_ns / 1'000'000)
+                           : std::string(kNoTimestamps),
+                   options.strict ? "strict" : "lenient");
     if (!c.stations.empty())
         fmt::format_to(it, "- Filter: {} (telegram counts cover the whole capture)\n",
                        filter_text(c));
@@ -322,17 +383,20 @@ void render_markdown(const ReportContext& c, const Model& m, Output& out) {
     for (const StationView& v : m.stations)
         transactions += v.stats->transactions.total();
     append(b,
-           "## Summary\n\n| telegrams | FCS errors | transactions | errors | warnings | notes |\n"
-           "|---:|---:|---:|---:|---:|---:|\n");
-    fmt::format_to(it, "| {} | {} | {} | {} | {} | {} |\n\n", c.summary->telegrams(), m.fcs_errors,
-                   transactions, errors(m), warnings(m), notes(m));
+           "## Summary\n\n| telegrams | bytes skipped | FCS errors | transactions | errors | "
+           "warnings | notes |\n"
+           "|---:|---:|---:|---:|---:|---:|---:|\n");
+    fmt::format_to(it, "| {} | {} | {} | {} | {} | {} | {} |\n\n", c.summary->telegrams(),
+                   c.input.bytes_skipped, m.fcs_errors, transactions, errors(m), warnings(m),
+                   notes(m));
     append(b,
            "## Slaves\n\n| slave | master | PPO | dialect | transactions | rejected | "
            "time-outs | latency ms (min / median / p95 / max) | latency cycles | findings |\n"
            "|---:|---:|---|---|---:|---:|---:|---|---|---|\n");
     for (const StationView& v : m.stations) {
         const ChannelStats& s = *v.stats;
-        std::string ms = v.latency.any
+        std::string ms = !v.timed ? "no timestamps"
+                         : v.latency.any
                              ? fmt::format("{:.3f} / {:.3f} / {:.3f} / {:.3f}", v.latency.min_ms,
                                            v.latency.median_ms, v.latency.p95_ms, v.latency.max_ms)
                              : "-";
@@ -343,7 +407,8 @@ void render_markdown(const ReportContext& c, const Model& m, Output& out) {
                 : "-";
         fmt::format_to(it, "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", s.slave,
                        s.master, md_escape(ppo_type_label(s.ppo)), dialect_name(s.dialect),
-                       s.transactions.total(), s.transactions.rejected, s.timeouts, ms, cycles,
+                       s.transactions.total(), s.transactions.rejected,
+                       v.timed ? fmt::format("{}", s.timeouts) : "not judged", ms, cycles,
                        md_escape(findings_by_kind_text(s.findings)));
     }
     for (const StationView& v : m.stations) {
@@ -351,12 +416,15 @@ void render_markdown(const ReportContext& c, const Model& m, Output& out) {
         fmt::format_to(it, "\n### Slave {} (master {})\n\n", s.slave, s.master);
         fmt::format_to(it, "- Layout: {}\n", md_escape(ppo_text(s)));
         if (v.has_ident) fmt::format_to(it, "- Ident number: 0x{:04X}\n", v.ident);
-        fmt::format_to(it, "- Data_Exchange: {} telegrams, {} cycles; {} requests\n",
-                       s.data_exchange, s.cycles, s.requests);
+        if (!v.dialect_hint.empty())
+            fmt::format_to(it, "- Dialect hint: {}\n", md_escape(v.dialect_hint));
+        fmt::format_to(
+            it, "- Data_Exchange: {}, {}; {}\n", counted(s.data_exchange, "telegram", "telegrams"),
+            counted(s.cycles, "cycle", "cycles"), counted(s.requests, "request", "requests"));
         fmt::format_to(it, "- Transactions: {} ({})\n", s.transactions.total(),
                        outcomes_text(s.transactions));
-        fmt::format_to(it, "- Unanswered: {} timed out, {} abandoned; spontaneous messages: {}\n",
-                       s.timeouts, s.abandoned, s.spontaneous);
+        fmt::format_to(it, "- Unanswered: {}, {} abandoned; spontaneous messages: {}\n",
+                       timeouts_text(v), s.abandoned, s.spontaneous);
         fmt::format_to(it, "- Parameters: {}\n", parameters_text(s));
         for (const auto& [key, count] : s.rejections) {
             std::string_view text = error_text(s.dialect, key.second);
@@ -373,14 +441,25 @@ void render_markdown(const ReportContext& c, const Model& m, Output& out) {
         append(b,
                "| frame | time (s) | severity | kind | master / slave | PNU | message |\n"
                "|---:|---:|---|---|---|---:|---|\n");
+    std::array<std::uint64_t, kFindingKindCount> listed{};
     c.findings->for_each([&](const Finding& f) {
-        if (!shows(c, f)) return;
+        if (!shows(c, f) || listed[static_cast<std::size_t>(f.kind)]++ >= kListedPerKind) return;
         fmt::format_to(it, "| {} | {} | {} | {} | {} | {} | {} |\n", f.frame,
                        relative_seconds(c, f.time_ns), severity_name(f.severity),
                        md_escape(finding_kind_name(f.kind)), station_label(f),
                        f.pnu ? fmt::format("{}", *f.pnu) : std::string("-"), md_escape(f.message));
         out.end_record();
     });
+    bool first_unlisted = true;
+    for (FindingKind kind : kAllKinds)
+        if (listed[static_cast<std::size_t>(kind)] > kListedPerKind) {
+            fmt::format_to(it, "{}- {}\n", first_unlisted ? "\n" : "",
+                           md_escape(unlisted_text(kind, listed)));
+            first_unlisted = false;
+        }
+    if (!c.findings->error().empty())
+        fmt::format_to(it, "\nSome findings could not be listed: {}\n",
+                       md_escape(c.findings->error()));
     out.end_record();
 }
 
@@ -446,6 +525,8 @@ void render_json(const ReportContext& c, const Model& m, Output& out) {
     json::boolean(b, options.strict);
     raw(b, ",\"fail_on\":");
     string(b, fail_on_name(c.fail_on));
+    raw(b, ",\"allow_empty\":");
+    json::boolean(b, c.allow_empty);
     raw(b, ",\"stations\":");
     if (c.stations.empty()) {
         json::null(b);
@@ -459,6 +540,8 @@ void render_json(const ReportContext& c, const Model& m, Output& out) {
     }
     raw(b, "},\"result\":");
     string(b, m.fails ? "fail" : "pass");
+    raw(b, ",\"nothing_checked\":");
+    json::boolean(b, m.nothing_checked);
     std::uint64_t transactions = 0;
     for (const StationView& v : m.stations)
         transactions += v.stats->transactions.total();
@@ -493,6 +576,11 @@ void render_json(const ReportContext& c, const Model& m, Output& out) {
         string(b, ppo_source_name(s.ppo.source));
         raw(b, ",\"dialect\":");
         string(b, dialect_name(s.dialect));
+        raw(b, ",\"dialect_hint\":");
+        if (std::optional<Dialect> hint = c.summary->dialect_evidence(s.slave).hint())
+            string(b, dialect_name(*hint));
+        else
+            json::null(b);
         raw(b, ",\"ident\":");
         if (v.has_ident)
             integer(b, v.ident);
@@ -517,7 +605,10 @@ void render_json(const ReportContext& c, const Model& m, Output& out) {
         raw(b, ",\"unexpected\":");
         integer(b, static_cast<std::int64_t>(s.transactions.unexpected));
         raw(b, "},\"timeouts\":");
-        integer(b, static_cast<std::int64_t>(s.timeouts));
+        if (v.timed)
+            integer(b, static_cast<std::int64_t>(s.timeouts));
+        else
+            json::null(b);
         raw(b, ",\"abandoned\":");
         integer(b, static_cast<std::int64_t>(s.abandoned));
         raw(b, ",\"spontaneous\":");
@@ -672,10 +763,11 @@ void svg_latency_histogram(TextBuffer& b, const ChannelStats& s) {
         double x = kLeft + i * bar_width;
         fmt::format_to(it,
                        "<rect class=\"bar\" x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" "
-                       "height=\"{:.1f}\" fill=\"#4e79c5\"><title>{:.3f}-{:.3f} ms: {} "
-                       "transactions</title></rect>\n",
+                       "height=\"{:.1f}\" fill=\"#4e79c5\"><title>{:.3f}-{:.3f} ms: {}"
+                       "</title></rect>\n",
                        x + 1, kHeight - kBottom - height, bar_width - 2, height, max_ms * i / kBars,
-                       max_ms * (i + 1) / kBars, bars[static_cast<std::size_t>(i)]);
+                       max_ms * (i + 1) / kBars,
+                       counted(bars[static_cast<std::size_t>(i)], "transaction", "transactions"));
     }
     fmt::format_to(it, "<text x=\"{}\" y=\"{}\">0 ms</text>\n", kLeft, kHeight - 10);
     fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:.3f} ms</text>\n",
@@ -711,6 +803,7 @@ void svg_timeline(TextBuffer& b, const ChannelStats& s, const ReportContext& c) 
                    "role=\"img\" aria-label=\"timeline of slave {}\">\n",
                    kWidth, kHeight, kWidth, kHeight, s.slave);
     const char* rows[] = {"errors", "warnings", "notes"};
+    const char* singular[] = {"error", "warning", "note"};
     const char* colours[] = {"#d92d20", "#f79009", "#2e90fa"};
     for (int row = 0; row < 3; ++row)
         fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", kLeft - 6,
@@ -729,19 +822,19 @@ void svg_timeline(TextBuffer& b, const ChannelStats& s, const ReportContext& c) 
             double height = static_cast<double>(bin.transactions) / tallest * kBarsHeight;
             fmt::format_to(it,
                            "<rect class=\"tx\" x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" "
-                           "height=\"{:.2f}\" fill=\"#4e79c5\"><title>from {} s: {} "
-                           "transactions</title></rect>\n",
+                           "height=\"{:.2f}\" fill=\"#4e79c5\"><title>from {} s: {}"
+                           "</title></rect>\n",
                            x, kBarsTop + kBarsHeight - height, std::max(step - 0.5, 0.8), height,
-                           when, bin.transactions);
+                           when, counted(bin.transactions, "transaction", "transactions"));
         }
         const std::uint32_t counts[] = {bin.errors, bin.warnings, bin.notes};
         for (int row = 0; row < 3; ++row) {
             if (!counts[row]) continue;
             fmt::format_to(it,
                            "<rect class=\"mark {}\" x=\"{:.2f}\" y=\"{}\" width=\"{:.2f}\" "
-                           "height=\"10\" fill=\"{}\"><title>from {} s: {} {}</title></rect>\n",
+                           "height=\"10\" fill=\"{}\"><title>from {} s: {}</title></rect>\n",
                            rows[row], x, 5 + row * 16, std::max(step, 3.0), colours[row], when,
-                           counts[row], rows[row]);
+                           counted(counts[row], singular[row], rows[row]));
         }
     }
     std::int64_t end_ns = timeline.start_ns() + static_cast<std::int64_t>(used) * width_ns;
@@ -800,10 +893,12 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
                    xml(c.input.name), kHtmlStyle);
     append(b, "<h1>dpscope conformance report</h1>\n");
     fmt::format_to(it,
-                   "<p class=\"meta\">{} ({}) &middot; dpscope {} &middot; time-out {} ms "
+                   "<p class=\"meta\">{} ({}) &middot; dpscope {} &middot; {} "
                    "&middot; RC 8 rule {}</p>\n",
                    xml(c.input.name), xml(c.input.format), xml(c.version),
-                   options.timeout_ns / 1'000'000, options.strict ? "strict" : "lenient");
+                   m.timed ? fmt::format("time-out {} ms", options.timeout_ns / 1'000'000)
+                           : std::string(kNoTimestamps),
+                   options.strict ? "strict" : "lenient");
     if (!c.stations.empty())
         fmt::format_to(it,
                        "<p class=\"meta\">Filter: {} (telegram counts cover the whole "
@@ -823,6 +918,7 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
                        cls, n, label);
     };
     card("telegrams", c.summary->telegrams(), "");
+    card("bytes skipped", c.input.bytes_skipped, "");
     card("FCS errors", m.fcs_errors, "");
     card("transactions", transactions, "");
     card("slaves", m.stations.size(), "");
@@ -862,20 +958,23 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
                        s.slave, s.master, s.slave, s.master);
         html_kv(b, "Layout", ppo_text(s));
         html_kv(b, "Dialect", dialect_name(s.dialect));
+        if (!v.dialect_hint.empty()) html_kv(b, "Dialect hint", v.dialect_hint);
         if (v.has_ident) html_kv(b, "Ident number", fmt::format("0x{:04X}", v.ident));
         html_kv(b, "Data_Exchange",
-                fmt::format("{} telegrams, {} cycles", s.data_exchange, s.cycles));
+                fmt::format("{}, {}", counted(s.data_exchange, "telegram", "telegrams"),
+                            counted(s.cycles, "cycle", "cycles")));
         html_kv(b, "Parameter requests", fmt::format("{}", s.requests));
         html_kv(b, "Transactions",
                 fmt::format("{}: {}", s.transactions.total(), outcomes_text(s.transactions)));
         html_kv(b, "Unanswered",
-                fmt::format("{} timed out, {} abandoned by the master", s.timeouts, s.abandoned));
+                fmt::format("{}, {} abandoned by the master", timeouts_text(v), s.abandoned));
         html_kv(b, "Spontaneous messages", fmt::format("{}", s.spontaneous));
         html_kv(b, "Latency (ms)",
-                v.latency.any ? fmt::format("min {:.3f}, median {:.3f}, p95 {:.3f}, max {:.3f}",
-                                            v.latency.min_ms, v.latency.median_ms, v.latency.p95_ms,
-                                            v.latency.max_ms)
-                              : "-");
+                !v.timed        ? std::string("not measured (no timestamps)")
+                : v.latency.any ? fmt::format("min {:.3f}, median {:.3f}, p95 {:.3f}, max {:.3f}",
+                                              v.latency.min_ms, v.latency.median_ms,
+                                              v.latency.p95_ms, v.latency.max_ms)
+                                : "-");
         html_kv(b, "Latency (cycles)",
                 v.latency.any_cycles ? fmt::format("min {}, median {}, p95 {}, max {}",
                                                    v.latency.min_cycles, v.latency.median_cycles,
@@ -954,9 +1053,10 @@ void render_html(const ReportContext& c, const Model& m, Output& out) {
         append(b, "</table></div>\n");
         if (rows > kHtmlFindingRows)
             fmt::format_to(it,
-                           "<p class=\"meta\">{} more findings are listed in the text and JSON "
-                           "reports.</p>\n",
-                           rows - kHtmlFindingRows);
+                           "<p class=\"meta\">{} not listed here (at most {}; the JSON report "
+                           "lists them all).</p>\n",
+                           counted(rows - kHtmlFindingRows, "more finding", "more findings"),
+                           kHtmlFindingRows);
     }
     append(b, "</section>\n</body>\n</html>\n");
     out.end_record();
@@ -973,12 +1073,14 @@ void render_junit(const ReportContext& c, const Model& m, Output& out) {
         bool has_stations;
         std::uint8_t master;
         std::uint8_t slave;
-        std::array<std::vector<Finding>, kFindingKindCount> failures;
-        std::array<std::uint64_t, kFindingKindCount> others{};  // below the threshold
+        std::string dialect_hint;
+        std::array<std::uint64_t, kFindingKindCount> failing{};  // at or above the threshold
+        std::array<std::uint64_t, kFindingKindCount> others{};   // below the threshold
         std::array<Severity, kFindingKindCount> other_severity{};
-        std::array<std::uint64_t, kFindingKindCount> unlisted{};  // failing, past the cap
     };
-    // Findings at or above --fail-on (errors at least) become failures; gather them per suite.
+    // Findings at or above --fail-on (errors at least) become failures. They are counted here
+    // and written from the finding log one test case at a time, so memory stays flat however
+    // many there are.
     std::vector<Suite> suites;
     for (const StationView& v : m.stations)
         suites.push_back(
@@ -987,80 +1089,119 @@ void render_junit(const ReportContext& c, const Model& m, Output& out) {
                   true,
                   v.stats->master,
                   v.stats->slave,
-                  {},
+                  v.dialect_hint,
                   {},
                   {},
                   {}});
     if (m.has_bus_findings)
         suites.push_back(Suite{"bus", "dpscope.bus", false, 0, 0, {}, {}, {}, {}});
-    auto suite_of = [&](const Finding& f) -> Suite* {
-        for (Suite& s : suites)
-            if (s.has_stations == f.has_stations &&
-                (!f.has_stations || (s.master == f.master && s.slave == f.slave)))
-                return &s;
-        return nullptr;
+    auto in_suite = [](const Suite& s, const Finding& f) {
+        return s.has_stations == f.has_stations &&
+               (!f.has_stations || (s.master == f.master && s.slave == f.slave));
+    };
+    auto fails = [&](const Finding& f) {
+        return f.severity == Severity::Error || severity_fails(f.severity, c.fail_on);
     };
     c.findings->for_each([&](const Finding& f) {
         if (!shows(c, f)) return;
-        Suite* s = suite_of(f);
-        if (!s) return;
+        auto s = std::find_if(suites.begin(), suites.end(),
+                              [&](const Suite& suite) { return in_suite(suite, f); });
+        if (s == suites.end()) return;
         auto kind = static_cast<std::size_t>(f.kind);
-        bool fails = f.severity == Severity::Error || severity_fails(f.severity, c.fail_on);
-        if (!fails) {
+        if (fails(f)) {
+            ++s->failing[kind];
+        } else {
             ++s->others[kind];
             s->other_severity[kind] = f.severity;
-        } else if (s->failures[kind].size() < kJunitFailuresPerCase)
-            s->failures[kind].push_back(f);
-        else
-            ++s->unlisted[kind];
+        }
     });
+    auto failed_cases = [](const Suite& s) {
+        return static_cast<std::size_t>(
+            std::count_if(s.failing.begin(), s.failing.end(), [](std::uint64_t n) { return n; }));
+    };
     std::size_t total_tests = suites.size() * kFindingKindCount;
     std::size_t total_failed = 0;
     for (const Suite& s : suites)
-        for (const auto& failures : s.failures)
-            total_failed += failures.empty() ? 0 : 1;
+        total_failed += failed_cases(s);
+    // Nothing checked is no pass: one test case says so, a failure unless --allow-empty.
+    if (m.nothing_checked) {
+        ++total_tests;
+        if (!c.allow_empty) ++total_failed;
+    }
     fmt::format_to(it,
                    "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
                    "<testsuites name=\"dpscope {}\" tests=\"{}\" failures=\"{}\" errors=\"0\">\n",
                    xml(c.input.name), total_tests, total_failed);
+    if (m.nothing_checked) {
+        std::string reason = "nothing checked: " + nothing_checked_reason(c);
+        fmt::format_to(it,
+                       "  <testsuite name=\"capture\" tests=\"1\" failures=\"{}\" errors=\"0\" "
+                       "skipped=\"{}\">\n"
+                       "    <testcase classname=\"dpscope.capture\" name=\"parameter channel: the "
+                       "capture holds Data_Exchange telegrams with a parameter channel\">\n",
+                       c.allow_empty ? 0 : 1, c.allow_empty ? 1 : 0);
+        if (c.allow_empty)
+            fmt::format_to(it, "      <skipped message=\"{} (--allow-empty)\"/>\n", xml(reason));
+        else
+            fmt::format_to(it,
+                           "      <failure type=\"nothing_checked\" message=\"{}\">{}</failure>\n",
+                           xml(reason), xml(reason));
+        append(b, "    </testcase>\n  </testsuite>\n");
+        out.end_record();
+    }
     for (const Suite& s : suites) {
-        std::size_t failed = 0;
-        for (const auto& failures : s.failures)
-            failed += failures.empty() ? 0 : 1;
         fmt::format_to(it,
                        "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" "
                        "skipped=\"0\">\n",
-                       xml(s.name), kFindingKindCount, failed);
+                       xml(s.name), kFindingKindCount, failed_cases(s));
         for (FindingKind kind : kAllKinds) {
             auto k = static_cast<std::size_t>(kind);
+            const bool hint = kind == FindingKind::UnknownCode && !s.dialect_hint.empty();
             fmt::format_to(it, "    <testcase classname=\"{}\" name=\"{}: {}\"", s.classname,
                            finding_kind_name(kind), xml(finding_rule_text(kind)));
-            if (s.failures[k].empty() && s.others[k] == 0) {
+            if (s.failing[k] == 0 && s.others[k] == 0 && !hint) {
                 append(b, "/>\n");
                 continue;
             }
             append(b, ">\n");
-            for (const Finding& f : s.failures[k]) {
-                fmt::format_to(it,
-                               "      <failure type=\"{}\" message=\"frame {}: {}\">{} {} frame "
-                               "{}{}: {}</failure>\n",
-                               finding_kind_name(kind), f.frame, xml(f.message),
-                               severity_name(f.severity), finding_kind_name(kind), f.frame,
-                               f.request_frame ? fmt::format(" (request frame {})", f.request_frame)
-                                               : std::string(),
-                               xml(f.message));
+            if (s.failing[k] > 0) {
+                std::uint64_t listed = 0;
+                c.findings->for_each([&](const Finding& f) {
+                    if (f.kind != kind || listed >= kJunitFailuresPerCase || !shows(c, f) ||
+                        !in_suite(s, f) || !fails(f))
+                        return;
+                    ++listed;
+                    fmt::format_to(
+                        it,
+                        "      <failure type=\"{}\" message=\"frame {}: {}\">{} {} frame "
+                        "{}{}: {}</failure>\n",
+                        finding_kind_name(kind), f.frame, xml(f.message), severity_name(f.severity),
+                        finding_kind_name(kind), f.frame,
+                        f.request_frame ? fmt::format(" (request frame {})", f.request_frame)
+                                        : std::string(),
+                        xml(f.message));
+                    out.end_record();
+                });
             }
-            if (s.unlisted[k] > 0 || s.others[k] > 0) {
-                append(b, "      <system-out>");
-                if (s.unlisted[k] > 0)
-                    fmt::format_to(it,
-                                   "{} more failing finding(s) not listed here (at most {} per "
-                                   "rule; the JSON report lists them all)",
-                                   s.unlisted[k], kJunitFailuresPerCase);
-                if (s.unlisted[k] > 0 && s.others[k] > 0) append(b, "; ");
+            const std::uint64_t unlisted =
+                s.failing[k] > kJunitFailuresPerCase ? s.failing[k] - kJunitFailuresPerCase : 0;
+            if (unlisted > 0 || s.others[k] > 0 || hint) {
+                std::vector<std::string> notes;
+                if (unlisted > 0)
+                    notes.push_back(fmt::format(
+                        "{} not listed here (at most {} per rule; the JSON report lists them all)",
+                        counted(unlisted, "more failing finding", "more failing findings"),
+                        kJunitFailuresPerCase));
                 if (s.others[k] > 0)
-                    fmt::format_to(it, "{} {} finding(s) below the failure threshold", s.others[k],
-                                   severity_name(s.other_severity[k]));
+                    notes.push_back(fmt::format("{} {} {} below the failure threshold", s.others[k],
+                                                severity_name(s.other_severity[k]),
+                                                s.others[k] == 1 ? "finding" : "findings"));
+                if (hint) notes.push_back("dialect hint: " + s.dialect_hint);
+                append(b, "      <system-out>");
+                for (std::size_t i = 0; i < notes.size(); ++i) {
+                    if (i) append(b, "; ");
+                    escape_xml(b, notes[i]);
+                }
                 append(b, "</system-out>\n");
             }
             append(b, "    </testcase>\n");

@@ -1,5 +1,7 @@
-// The protocol-conformance report: per slave the PPO layout, dialect, transactions, latency,
-// parameters accessed, rejections and findings by kind; then every finding in capture order.
+// The protocol-conformance report: per slave the PPO layout, dialect (and a hint when the
+// slave's codes fit another dialect), transactions, latency, parameters accessed, rejections and
+// findings by kind; then the findings in capture order (text and Markdown: the first 1000 of each
+// kind; HTML: the first 2000; JSON: all).
 // Formats: text, json (schema in README.md, stable), markdown, html (one self-contained file
 // with inline SVG) and junit (one test suite per slave, one test case per rule).
 #pragma once
@@ -34,11 +36,15 @@ struct ReportContext {
     const SessionTracker* tracker = nullptr;
     const FindingLog* findings = nullptr;
     FailOn fail_on = FailOn::Error;
+    // --allow-empty: a capture in which nothing could be checked (no Data_Exchange telegram with
+    // a parameter channel from the slaves reported) passes; by default it fails.
+    bool allow_empty = false;
     std::vector<std::uint8_t> stations;  // report only these slaves (empty: all)
     std::string version;                 // dpscope's version, named in the report
 };
 
-// Findings at or above --fail-on among those the report shows.
+// Findings at or above --fail-on among those the report shows, or nothing checked without
+// allow_empty.
 bool report_fails(const ReportContext& context);
 
 void render_report(ReportFormat format, const ReportContext& context, Output& out);

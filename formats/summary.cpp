@@ -1,10 +1,23 @@
 #include "formats/summary.hpp"
 
 #include <iterator>
+#include <optional>
+#include <string>
 
 #include "formats/describe.hpp"
 
 namespace dpscope {
+
+std::string dialect_hint_text(std::uint8_t slave, Dialect decoded,
+                              const DialectEvidence& evidence) {
+    std::optional<Dialect> hint = evidence.hint();
+    if (!hint) return {};
+    return fmt::format(
+        "its parameter-channel codes fit the {} dialect ({} carry codes {} does not define); "
+        "decode with --dialect {}={}",
+        dialect_name(*hint), counted(evidence.undefined(), "telegram", "telegrams"),
+        dialect_name(decoded), slave, dialect_name(*hint));
+}
 
 void Summary::render_text(Output& out, const InputSummary& input, const BusDecoder& decoder) const {
     TextBuffer& b = out.buffer();
@@ -37,8 +50,9 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
     for (std::size_t s = 0; s < kServiceCount; ++s) {
         std::uint64_t total = requests_[s] + responses_[s];
         if (total == 0) continue;
-        fmt::format_to(it, "    {:<16} {:>10}  ({} requests, {} responses)\n",
-                       service_name(static_cast<Service>(s)), total, requests_[s], responses_[s]);
+        fmt::format_to(it, "    {:<16} {:>10}  ({}, {})\n", service_name(static_cast<Service>(s)),
+                       total, counted(requests_[s], "request", "requests"),
+                       counted(responses_[s], "response", "responses"));
     }
 
     fmt::format_to(it, "  telegrams with problems: {}\n", with_problems_);
@@ -72,10 +86,14 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
             append_ppo_long(b, decoder.layout_for(static_cast<std::uint8_t>(a), 0));
         else
             append(b, "PPO guessed from each Data_Exchange length");
-        fmt::format_to(it, "; dialect {}",
-                       dialect_name(decoder.options().dialect_of(static_cast<std::uint8_t>(a))));
+        const Dialect dialect = decoder.options().dialect_of(static_cast<std::uint8_t>(a));
+        fmt::format_to(it, "; dialect {}", dialect_name(dialect));
         if (station.has_ident) fmt::format_to(it, "; ident 0x{:04X}", station.ident);
-        fmt::format_to(it, "; {} Data_Exchange telegrams\n", data_exchange_[a]);
+        fmt::format_to(
+            it, "; {}\n",
+            counted(data_exchange_[a], "Data_Exchange telegram", "Data_Exchange telegrams"));
+        std::string hint = dialect_hint_text(static_cast<std::uint8_t>(a), dialect, dialects_[a]);
+        if (!hint.empty()) fmt::format_to(it, "         hint: {}\n", hint);
     }
     out.end_record();
 }

@@ -10,6 +10,7 @@
 
 #include "decoder/bus_decoder.hpp"
 #include "decoder/finding.hpp"
+#include "decoder/session_tracker.hpp"
 #include "formats/output.hpp"
 
 namespace dpscope {
@@ -20,6 +21,11 @@ struct InputSummary {
     std::uint64_t bytes_skipped = 0;
     bool damaged = false;  // reading stopped early
 };
+
+// The hint for a slave whose parameter-channel codes fit another dialect than the one it was
+// decoded with ("" when there is none): "its parameter-channel codes fit the profidrive dialect
+// (2041 telegrams carry codes vlt does not define); decode with --dialect 3=profidrive".
+std::string dialect_hint_text(std::uint8_t slave, Dialect decoded, const DialectEvidence& evidence);
 
 class Summary {
   public:
@@ -41,7 +47,10 @@ class Summary {
             last_time_ = t.time_ns;
         }
         if (t.has_roles) slave_seen_[t.slave & 0x7F] = true;
-        if (t.service == Service::DataExchange && t.has_roles) ++data_exchange_[t.slave & 0x7F];
+        if (t.service == Service::DataExchange && t.has_roles) {
+            ++data_exchange_[t.slave & 0x7F];
+            dialects_[t.slave & 0x7F].add(t);
+        }
     }
 
     void add_findings(std::span<const Finding> findings) noexcept {
@@ -68,6 +77,9 @@ class Summary {
     std::uint64_t data_exchange(std::uint8_t slave) const noexcept {
         return data_exchange_[slave & 0x7F];
     }
+    const DialectEvidence& dialect_evidence(std::uint8_t slave) const noexcept {
+        return dialects_[slave & 0x7F];
+    }
 
     void render_text(Output& out, const InputSummary& input, const BusDecoder& decoder) const;
 
@@ -81,6 +93,7 @@ class Summary {
     std::array<std::uint64_t, kFindingKindCount> findings_{};
     std::array<std::uint64_t, kStationCount> data_exchange_{};
     std::array<bool, kStationCount> slave_seen_{};  // a telegram to or from it was added
+    std::array<DialectEvidence, kStationCount> dialects_{};
     std::int64_t first_time_ = kNoTime;
     std::int64_t last_time_ = kNoTime;
 };

@@ -228,6 +228,17 @@ TEST(CliTest, InputWithoutAnyTelegramIsUsageError) {
     test::write_file(no_records.path, header);
     CommandResult pcap = run_dpscope({"decode", no_records.path});
     EXPECT_EQ(pcap.exit_code, 0) << pcap.err;
+    // ... but the report of it is no pass: nothing was checked (exit 1), unless --allow-empty.
+    CommandResult report = run_dpscope({"report", no_records.path});
+    EXPECT_EQ(report.exit_code, 1) << report.err;
+    EXPECT_NE(report.out.find("Result:  FAIL: nothing checked (no telegrams); 0 errors"),
+              std::string::npos)
+        << report.out;
+    CommandResult allowed = run_dpscope({"report", "--allow-empty", "-T", "json", no_records.path});
+    EXPECT_EQ(allowed.exit_code, 0) << allowed.err;
+    EXPECT_NE(allowed.out.find("\"result\":\"pass\",\"nothing_checked\":true"), std::string::npos)
+        << allowed.out;
+    EXPECT_NE(run_dpscope({"report", "--help"}).out.find("--allow-empty"), std::string::npos);
 }
 
 TEST(CliTest, BadOptionValuesAreUsageErrors) {
@@ -371,9 +382,30 @@ TEST(CliTest, FilteredTimesStayRelativeToTheCapturesFirstTelegram) {
     }
 }
 
+TEST(CliTest, ProfidriveSlaveDecodedAsVltGetsADialectHintInSummaryAndReport) {
+    TempFile capture("profidrive-slave.pcap");
+    CommandResult made = run_dpscope(
+        {"simulate", "-w", capture.path, "--slave", "3:1:profidrive", "--cycles", "2000"});
+    ASSERT_EQ(made.exit_code, 0) << made.err;
+    const std::string option = "decode with --dialect 3=profidrive";
+    CommandResult summary = run_dpscope({"decode", "-q", capture.path});
+    EXPECT_NE(summary.out.find("         hint: its parameter-channel codes fit the profidrive "
+                               "dialect ("),
+              std::string::npos)
+        << summary.out;
+    EXPECT_NE(summary.out.find(option), std::string::npos);
+    CommandResult report = run_dpscope({"report", capture.path});
+    EXPECT_NE(report.out.find("  dialect hint   its parameter-channel codes fit the profidrive"),
+              std::string::npos)
+        << report.out;
+    // Decoded as profidrive: no unknown codes, no hint.
+    CommandResult right = run_dpscope({"decode", "-q", "--dialect", "3=profidrive", capture.path});
+    EXPECT_EQ(right.out.find("hint"), std::string::npos) << right.out;
+}
+
 TEST(CliTest, ReportWarnsOfAStationNotInTheCapture) {
     CommandResult r = run_dpscope({"report", "--station", "9", "samples/ppo2.pcap"});
-    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_EQ(r.exit_code, 1) << "nothing checked";
     EXPECT_NE(r.err.find("warning: --station 9: no slave 9 in the capture"), std::string::npos)
         << r.err;
     CommandResult present = run_dpscope({"report", "--station", "4", "samples/faults.pcap"});

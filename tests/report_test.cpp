@@ -8,6 +8,7 @@
 
 #include <dirent.h>
 #include <gtest/gtest.h>
+#include <malloc.h>
 
 #include <algorithm>
 #include <cmath>
@@ -357,7 +358,8 @@ TEST(ReportTest, CheckersAcceptValidAndRejectBrokenDocuments) {
 
 // What `dpscope report` builds before rendering (cli/report_command.cpp).
 struct Analysis {
-    explicit Analysis(TrackerOptions options = {}) : tracker(decoder, options) {}
+    explicit Analysis(TrackerOptions options = {}, DecoderOptions decoder_options = {})
+        : decoder(decoder_options), tracker(decoder, options) {}
 
     void feed(Bytes bytes, std::int64_t time_ns, std::uint64_t number) {
         const DecodedTelegram& t = decoder.decode(bytes, time_ns, number);
@@ -402,8 +404,9 @@ std::unique_ptr<Analysis> analyse_file(const std::string& relative) {
     return analysis;
 }
 
-std::unique_ptr<Analysis> analyse_simulation(const SimulatorOptions& options) {
-    auto analysis = std::make_unique<Analysis>();
+std::unique_ptr<Analysis> analyse_simulation(const SimulatorOptions& options,
+                                             DecoderOptions decoder_options = {}) {
+    auto analysis = std::make_unique<Analysis>(TrackerOptions{}, decoder_options);
     Simulator simulator(options);
     std::vector<std::uint8_t> bytes;
     std::int64_t time_ns = 0;
@@ -558,10 +561,10 @@ std::optional<Json> json_report(const ReportContext& context) {
 }
 
 const std::vector<std::string> kStationKeys = {
-    "master",         "slave",         "ppo_type",   "ppo_source",  "dialect",
-    "ident",          "data_exchange", "cycles",     "requests",    "transactions",
-    "outcomes",       "timeouts",      "abandoned",  "spontaneous", "latency_ms",
-    "latency_cycles", "parameters",    "rejections", "findings"};
+    "master",       "slave",          "ppo_type",      "ppo_source", "dialect",
+    "dialect_hint", "ident",          "data_exchange", "cycles",     "requests",
+    "transactions", "outcomes",       "timeouts",      "abandoned",  "spontaneous",
+    "latency_ms",   "latency_cycles", "parameters",    "rejections", "findings"};
 
 const std::vector<std::string> kFindingKeys = {
     "kind", "severity", "frame", "request_frame", "time", "master", "slave", "pnu", "message"};
@@ -569,8 +572,9 @@ const std::vector<std::string> kFindingKeys = {
 TEST(ReportTest, JsonHasTheDocumentedTopLevelSummaryAndStationKeys) {
     auto report = json_report(context_of(faults()));
     ASSERT_TRUE(report);
-    EXPECT_EQ(report->keys(), (std::vector<std::string>{"dpscope", "input", "options", "result",
-                                                        "summary", "stations", "bus", "findings"}));
+    EXPECT_EQ(report->keys(),
+              (std::vector<std::string>{"dpscope", "input", "options", "result", "nothing_checked",
+                                        "summary", "stations", "bus", "findings"}));
     EXPECT_EQ((*report)["dpscope"].string(), "7.8.9-test");
     EXPECT_EQ((*report)["input"].keys(),
               (std::vector<std::string>{"file", "format", "damaged", "bytes_skipped", "first_time",
@@ -579,8 +583,9 @@ TEST(ReportTest, JsonHasTheDocumentedTopLevelSummaryAndStationKeys) {
     EXPECT_EQ((*report)["input"]["format"].string(), "pcap");
     EXPECT_EQ((*report)["input"]["first_time"].text, "1704067200.000066666");
     EXPECT_EQ((*report)["input"]["last_time"].text, "1704067200.123415968");
-    EXPECT_EQ((*report)["options"].keys(),
-              (std::vector<std::string>{"timeout_ms", "strict", "fail_on", "stations"}));
+    EXPECT_EQ(
+        (*report)["options"].keys(),
+        (std::vector<std::string>{"timeout_ms", "strict", "fail_on", "allow_empty", "stations"}));
     EXPECT_EQ((*report)["options"]["timeout_ms"].integer(), 1000);
     EXPECT_EQ((*report)["options"]["fail_on"].string(), "error");
     const Json& summary = (*report)["summary"];
@@ -715,7 +720,11 @@ TEST(ReportTest, JsonCountsAgreeWithTheListedFindings) {
                         << "slave " << station["slave"].integer() << " " << kind;
             }
             EXPECT_EQ((*report)["summary"]["transactions"].integer(), transactions);
-            EXPECT_EQ((*report)["result"].string(), failing > 0 ? "fail" : "pass");
+            // Slave 9 is not in the capture: nothing checked, which fails too.
+            const bool nothing_checked = stations == std::vector<std::uint8_t>{9};
+            EXPECT_EQ((*report)["nothing_checked"].boolean, nothing_checked);
+            EXPECT_EQ((*report)["result"].string(),
+                      failing > 0 || nothing_checked ? "fail" : "pass");
             EXPECT_EQ((*report)["options"]["fail_on"].string(), fail_on_name(fail_on));
         }
     }
@@ -778,7 +787,15 @@ TEST(ReportTest, JsonLatencyIsNullForAStationWithoutTransactions) {
     EXPECT_EQ(station["transactions"].integer(), 0);
     EXPECT_TRUE(station["latency_ms"].is_null());
     EXPECT_TRUE(station["latency_cycles"].is_null());
-    EXPECT_EQ((*report)["result"].string(), "pass");
+    // PPO 3 has no parameter channel: nothing checked, a failure unless empty is allowed.
+    EXPECT_TRUE((*report)["nothing_checked"].boolean);
+    EXPECT_EQ((*report)["result"].string(), "fail");
+    ReportContext allowed = context_of(*analysis);
+    allowed.allow_empty = true;
+    auto passed = json_report(allowed);
+    ASSERT_TRUE(passed);
+    EXPECT_EQ((*passed)["result"].string(), "pass");
+    EXPECT_TRUE((*passed)["options"]["allow_empty"].boolean);
 }
 
 TEST(ReportTest, JsonStationFilterKeepsTheSlaveAndTheBusFindings) {
@@ -905,8 +922,7 @@ TEST(ReportTest, JunitOneFailurePerErrorFinding) {
     const XmlNode& retry = *slave3[static_cast<std::size_t>(FindingKind::FdlRetry)];
     EXPECT_TRUE(retry.elements("failure").empty());
     ASSERT_EQ(retry.elements("system-out").size(), 1u);
-    EXPECT_EQ(retry.elements("system-out")[0]->text,
-              "2 note finding(s) below the failure threshold");
+    EXPECT_EQ(retry.elements("system-out")[0]->text, "2 note findings below the failure threshold");
     const XmlNode& bus_malformed =
         *suites[3]->elements("testcase")[static_cast<std::size_t>(FindingKind::MalformedTelegram)];
     ASSERT_EQ(bus_malformed.elements("failure").size(), 1u);
@@ -1065,7 +1081,7 @@ TEST(ReportTest, TextStationFilterHidesOtherSlavesAndTheirFindings) {
     EXPECT_EQ(text.find("Slave 5"), std::string::npos);
     EXPECT_EQ(text.find("2 / 3"), std::string::npos);
     EXPECT_EQ(text.find("2 / 5"), std::string::npos);
-    EXPECT_NE(text.find("Result:  FAIL: 2 errors, 2 warnings, 1 notes (fail on warning)\n"),
+    EXPECT_NE(text.find("Result:  FAIL: 2 errors, 2 warnings, 1 note (fail on warning)\n"),
               std::string::npos);
     std::vector<std::string> rows = lines_after(lines_of(text), "Findings (5, in capture order)");
     ASSERT_EQ(rows.size(), 6u);
@@ -1076,7 +1092,9 @@ TEST(ReportTest, TextWithStationsNotInTheCaptureShowsOnlyBusFindings) {
     std::string text = render(ReportFormat::Text, context_of(faults(), FailOn::Error, {9}));
     EXPECT_EQ(text.find("Slave "), std::string::npos);
     EXPECT_NE(text.find("Findings (1, in capture order)"), std::string::npos);
-    EXPECT_NE(text.find("Result:  FAIL: 1 errors, 0 warnings, 0 notes (fail on error)"),
+    EXPECT_NE(text.find("Result:  FAIL: nothing checked (no Data_Exchange telegram with a "
+                        "parameter channel from the selected slaves); 1 error, 0 warnings, 0 "
+                        "notes (fail on error)"),
               std::string::npos);
 }
 
@@ -1126,7 +1144,7 @@ TEST(ReportTest, MarkdownHasTheSectionsAndOneRowPerFinding) {
     for (std::string_view line :
          {"**FAIL: 7 errors, 7 warnings, 6 notes (fail on error)**",
           "- Input: `samples/faults.pcap` (pcap), 458 telegrams", "## Summary",
-          "| 458 | 1 | 35 | 7 | 7 | 6 |", "## Slaves", "### Slave 3 (master 2)",
+          "| 458 | 0 | 1 | 35 | 7 | 7 | 6 |", "## Slaves", "### Slave 3 (master 2)",
           "### Slave 4 (master 2)", "### Slave 5 (master 2)", "## Findings (20)",
           "- Rejected: PNU 207 error 2 (Upper or lower value passed), 1x", "- dpscope 7.8.9-test"})
         EXPECT_EQ(std::count(lines.begin(), lines.end(), std::string(line)), 1) << line;
@@ -1258,7 +1276,7 @@ TEST(ReportTest, ReportFailsOnFindingsAtOrAboveTheThreshold) {
     EXPECT_FALSE(report_fails(context_of(*noted, FailOn::Error)));
     EXPECT_FALSE(report_fails(context_of(*noted, FailOn::Warning)));
     EXPECT_NE(render(ReportFormat::Text, context_of(*noted, FailOn::Warning))
-                  .find("\nResult:  PASS: 0 errors, 0 warnings, 1 notes (fail on warning)\n"),
+                  .find("\nResult:  PASS: 0 errors, 0 warnings, 1 note (fail on warning)\n"),
               std::string::npos);
 }
 
@@ -1388,11 +1406,11 @@ TEST(ReportTest, HtmlVerdictSummaryAndFindingsTable) {
     EXPECT_TRUE(verdict->has_class("fail"));
     EXPECT_EQ(verdict->text, "FAIL: 7 errors, 7 warnings, 6 notes (fail on error)");
     auto cards = html->all("div", "card");
-    ASSERT_EQ(cards.size(), 7u);
+    ASSERT_EQ(cards.size(), 8u);
     std::vector<std::string> numbers;
     for (const XmlNode* card : cards)
         numbers.push_back(card->all("div", "n")[0]->text);
-    EXPECT_EQ(numbers, (std::vector<std::string>{"458", "1", "35", "3", "7", "7", "6"}));
+    EXPECT_EQ(numbers, (std::vector<std::string>{"458", "0", "1", "35", "3", "7", "7", "6"}));
     auto slave_rows = html->all("table", "slaves")[0]->elements("tr");
     ASSERT_EQ(slave_rows.size(), 4u);
     auto cells = slave_rows[1]->elements("td");
@@ -1525,8 +1543,8 @@ TEST(ReportTest, HtmlListsAtMostTwoThousandFindings) {
     ASSERT_EQ(rows.size(), 2000u);
     EXPECT_EQ(rows.front()->elements("td")[0]->text, "1000");
     EXPECT_EQ(rows.back()->elements("td")[0]->text, "2999");
-    EXPECT_NE(text.find("<p class=\"meta\">345 more findings are listed in the text and JSON "
-                        "reports.</p>"),
+    EXPECT_NE(text.find("<p class=\"meta\">345 more findings not listed here (at most 2000; the "
+                        "JSON report lists them all).</p>"),
               std::string::npos);
     EXPECT_EQ(find_id(*html, "section", "findings")->elements("h2")[0]->text, "Findings (2345)");
     // The other formats list them all.
@@ -1535,14 +1553,22 @@ TEST(ReportTest, HtmlListsAtMostTwoThousandFindings) {
     EXPECT_EQ((*report)["findings"].items.size(), 2345u);
 }
 
-TEST(ReportTest, JunitListsAtMostTenThousandFailuresPerRuleAndCountsTheRest) {
+// samples/ppo2.pcap with `stacked` stacked_request findings of slave 4 from frame 1000 on, then
+// `retries` fdl_retry findings from frame `retry_frame` on.
+std::unique_ptr<Analysis> ppo2_with_findings(std::uint64_t stacked, std::uint64_t retries,
+                                             std::uint64_t retry_frame) {
     auto analysis = analyse_file("samples/ppo2.pcap");
     std::vector<Finding> many;
-    for (std::uint64_t i = 0; i < 10'003; ++i)
+    for (std::uint64_t i = 0; i < stacked; ++i)
         many.push_back(make_finding(FindingKind::StackedRequest, 1000 + i, 4, "stacked"));
-    for (std::uint64_t i = 0; i < 2; ++i)
-        many.push_back(make_finding(FindingKind::FdlRetry, 20'000 + i, 4, "retry"));
+    for (std::uint64_t i = 0; i < retries; ++i)
+        many.push_back(make_finding(FindingKind::FdlRetry, retry_frame + i, 4, "retry"));
     analysis->log.append(many);
+    return analysis;
+}
+
+TEST(ReportTest, JunitListsAtMostTenThousandFailuresPerRuleAndCountsTheRest) {
+    auto analysis = ppo2_with_findings(10'003, 2, 20'000);
     auto root = junit_report(context_of(*analysis));
     ASSERT_TRUE(root);
     const XmlNode* slave4 = nullptr;
@@ -1557,12 +1583,11 @@ TEST(ReportTest, JunitListsAtMostTenThousandFailuresPerRuleAndCountsTheRest) {
     EXPECT_TRUE(starts_with(failures.back()->attribute("message"), "frame 10999: "));
     ASSERT_EQ(stacked.elements("system-out").size(), 1u);
     EXPECT_EQ(stacked.elements("system-out")[0]->text,
-              "3 more failing finding(s) not listed here (at most 10000 per rule; the JSON report "
+              "3 more failing findings not listed here (at most 10000 per rule; the JSON report "
               "lists them all)");
     const XmlNode& retry = *cases[static_cast<std::size_t>(FindingKind::FdlRetry)];
     EXPECT_TRUE(retry.elements("failure").empty());
-    EXPECT_EQ(retry.elements("system-out")[0]->text,
-              "2 note finding(s) below the failure threshold");
+    EXPECT_EQ(retry.elements("system-out")[0]->text, "2 note findings below the failure threshold");
 }
 
 // ---- inputs without times, damaged inputs, several masters -------------------------------------
@@ -1577,6 +1602,7 @@ TEST(ReportTest, UntimedCaptureHasCycleLatencyButNoTimes) {
     EXPECT_EQ((*report)["summary"]["transactions"].integer(), 6);
     for (const Json& station : (*report)["stations"].items) {
         EXPECT_EQ(station["transactions"].integer(), 3);
+        EXPECT_TRUE(station["timeouts"].is_null()) << "not judged, not 0";
         EXPECT_TRUE(station["latency_ms"].is_null());
         EXPECT_FALSE(station["latency_cycles"].is_null());
     }
@@ -1584,7 +1610,12 @@ TEST(ReportTest, UntimedCaptureHasCycleLatencyButNoTimes) {
         EXPECT_TRUE(finding["time"].is_null());
     std::string text = render(ReportFormat::Text, context_of(*analysis));
     EXPECT_NE(text.find("Input:   samples/serial.raw (raw), 99 telegrams\n"), std::string::npos);
-    EXPECT_EQ(text.find("latency ms"), std::string::npos);
+    EXPECT_NE(text.find("Checks:  time-outs not judged (no timestamps); "), std::string::npos);
+    EXPECT_NE(text.find("  bytes skipped  6\n"), std::string::npos);
+    EXPECT_NE(text.find("  unanswered     time-outs not judged (no timestamps), 0 abandoned by "
+                        "the master\n"),
+              std::string::npos);
+    EXPECT_NE(text.find("  latency ms     not measured (no timestamps)\n"), std::string::npos);
     EXPECT_NE(text.find("  latency cycles min 1  median 2  p95 3  max 3\n"), std::string::npos);
     std::vector<std::string> rows = lines_after(lines_of(text), "Findings (2, in capture order)");
     ASSERT_EQ(rows.size(), 3u);
@@ -2022,6 +2053,241 @@ TEST(ReportTest, TrackerTimelineCoversALongSession) {
     EXPECT_EQ(stats.latency_ns.count(), stats.transactions.total());
     const std::int64_t span = stats.last_time_ns - stats.timeline.start_ns();
     EXPECT_GE(span / (stats.timeline.bin_width_ns() / 2), 240 / 2);
+}
+
+// ---- long lists, nothing checked, dialect hints -------------------------------------------------
+
+TEST(ReportTest, TextAndMarkdownListAtMostAThousandFindingsPerKind) {
+    auto analysis = ppo2_with_findings(1'201, 5, 5000);
+    const ReportContext context = context_of(*analysis);
+
+    std::string text = render(ReportFormat::Text, context);
+    std::vector<std::string> rows =
+        lines_after(lines_of(text), "Findings (1206, in capture order)");
+    EXPECT_EQ(std::count_if(rows.begin(), rows.end(),
+                            [](const std::string& row) {
+                                return row.find(" stacked_request ") != std::string::npos &&
+                                       row.find("more") == std::string::npos;
+                            }),
+              1000);
+    EXPECT_EQ(std::count_if(rows.begin(), rows.end(),
+                            [](const std::string& row) {
+                                return row.find(" fdl_retry ") != std::string::npos;
+                            }),
+              5);
+    EXPECT_NE(text.find("  (201 more stacked_request findings not listed: at most 1000 per kind, "
+                        "the JSON report lists them all)\n"),
+              std::string::npos);
+    EXPECT_EQ(text.find("more fdl_retry"), std::string::npos);
+    // The first 1000 in capture order: frame 1999 is the last listed, 2000 is not.
+    EXPECT_NE(text.find("      1999  "), std::string::npos);
+    EXPECT_EQ(text.find("      2000  "), std::string::npos);
+
+    std::string markdown = render(ReportFormat::Markdown, context);
+    std::vector<std::string> lines = lines_of(markdown);
+    EXPECT_EQ(std::count_if(lines.begin(), lines.end(),
+                            [](const std::string& line) {
+                                return line.find("| stacked\\_request |") != std::string::npos;
+                            }),
+              1000);
+    EXPECT_EQ(std::count(lines.begin(), lines.end(),
+                         "- 201 more stacked\\_request findings not listed: at most 1000 per kind, "
+                         "the JSON report lists them all"),
+              1);
+
+    auto report = json_report(context);
+    ASSERT_TRUE(report);
+    EXPECT_EQ((*report)["findings"].items.size(), 1206u);
+}
+
+// fopencookie sink that records the most heap in use whenever the report writes.
+struct HeapWatch {
+    std::size_t peak = 0;
+};
+
+ssize_t heap_watch_write(void* cookie, const char*, std::size_t size) {
+    auto* watch = static_cast<HeapWatch*>(cookie);
+    watch->peak = std::max(watch->peak, mallinfo2().uordblks);
+    return static_cast<ssize_t>(size);
+}
+
+TEST(ReportTest, JunitStreamsFailuresFromTheLogInsteadOfGatheringThem) {
+    auto analysis = analyse_file("samples/ppo2.pcap");
+    const std::string message(200, 'm');
+    std::vector<Finding> many;
+    for (FindingKind kind : {FindingKind::StackedRequest, FindingKind::MismatchedResponse,
+                             FindingKind::ResponseTimeout, FindingKind::FcsError})
+        for (std::uint64_t i = 0; i < 10'000; ++i)
+            many.push_back(make_finding(kind, 1000 + many.size(), 4, message));
+    analysis->log.append(many);
+    many.clear();
+    many.shrink_to_fit();
+    const ReportContext context = context_of(*analysis);
+
+    HeapWatch watch;
+    cookie_io_functions_t functions{nullptr, heap_watch_write, nullptr, nullptr};
+    FILE* file = fopencookie(&watch, "w", functions);
+    ASSERT_NE(file, nullptr);
+    const std::size_t before = mallinfo2().uordblks;
+    {
+        Output out(file);
+        render_report(ReportFormat::Junit, context, out);
+        EXPECT_TRUE(out.flush());
+    }
+    std::fclose(file);
+    // 40,000 failures of 200-byte messages are over 10 MB; what is written at once stays small.
+    ASSERT_GT(watch.peak, 0u);
+    EXPECT_LT(watch.peak - std::min(watch.peak, before), std::size_t{2} << 20)
+        << "heap in use grew by " << (watch.peak - before) << " bytes";
+    // And every failure is there, in capture order per test case.
+    auto root = junit_report(context);
+    ASSERT_TRUE(root);
+    EXPECT_EQ(root->all("failure").size(), 40'000u);
+}
+
+std::unique_ptr<Analysis> empty_analysis() {
+    auto analysis = std::make_unique<Analysis>();
+    analysis->finish();
+    analysis->input = InputSummary{"empty.pcap", "pcap", 0, false};
+    return analysis;
+}
+
+TEST(ReportTest, EmptyCaptureIsNothingCheckedAndFailsInEveryFormat) {
+    auto analysis = empty_analysis();
+    const ReportContext context = context_of(*analysis);
+    EXPECT_TRUE(report_fails(context));
+    const std::string verdict =
+        "FAIL: nothing checked (no telegrams); 0 errors, 0 warnings, 0 notes (fail on error)";
+    EXPECT_NE(render(ReportFormat::Text, context).find("Result:  " + verdict + "\n"),
+              std::string::npos);
+    EXPECT_NE(render(ReportFormat::Markdown, context).find("**" + verdict + "**"),
+              std::string::npos);
+    auto html = parse_xml(render(ReportFormat::Html, context), true);
+    ASSERT_TRUE(html);
+    const XmlNode* shown = find_id(*html, "p", "verdict");
+    ASSERT_TRUE(shown);
+    EXPECT_TRUE(shown->has_class("fail"));
+    EXPECT_EQ(shown->text, verdict);
+    auto report = json_report(context);
+    ASSERT_TRUE(report);
+    EXPECT_EQ((*report)["result"].string(), "fail");
+    EXPECT_TRUE((*report)["nothing_checked"].boolean);
+    EXPECT_FALSE((*report)["options"]["allow_empty"].boolean);
+    // JUnit: no passing suite; one test case that fails and says why.
+    auto root = junit_report(context);
+    ASSERT_TRUE(root);
+    EXPECT_EQ(root->attribute("tests"), "1");
+    EXPECT_EQ(root->attribute("failures"), "1");
+    auto suites = root->elements("testsuite");
+    ASSERT_EQ(suites.size(), 1u);
+    EXPECT_EQ(suites[0]->attribute("name"), "capture");
+    auto failures = suites[0]->all("failure");
+    ASSERT_EQ(failures.size(), 1u);
+    EXPECT_EQ(failures[0]->attribute("message"), "nothing checked: no telegrams");
+}
+
+TEST(ReportTest, AllowEmptyPassesAnEmptyCaptureButStillSaysNothingWasChecked) {
+    auto analysis = empty_analysis();
+    ReportContext context = context_of(*analysis);
+    context.allow_empty = true;
+    EXPECT_FALSE(report_fails(context));
+    EXPECT_NE(render(ReportFormat::Text, context)
+                  .find("Result:  PASS: nothing checked (no telegrams); 0 errors, 0 warnings, 0 "
+                        "notes (fail on error, empty allowed)\n"),
+              std::string::npos);
+    auto report = json_report(context);
+    ASSERT_TRUE(report);
+    EXPECT_EQ((*report)["result"].string(), "pass");
+    EXPECT_TRUE((*report)["nothing_checked"].boolean);
+    auto root = junit_report(context);
+    ASSERT_TRUE(root);
+    EXPECT_EQ(root->attribute("failures"), "0");
+    auto suites = root->elements("testsuite");
+    ASSERT_EQ(suites.size(), 1u);
+    EXPECT_EQ(suites[0]->attribute("skipped"), "1");
+    EXPECT_TRUE(suites[0]->all("failure").empty());
+    ASSERT_EQ(suites[0]->all("skipped").size(), 1u);
+}
+
+TEST(ReportTest, TelegramsWithoutAParameterChannelAreNothingChecked) {
+    // A PPO 3 slave: Data_Exchange, but no PCV (docs/decisions.md, "Reports").
+    auto analysis = analyse_simulation(one_slave(6, 3, 50));
+    ASSERT_GT(analysis->summary.telegrams(), 100u);
+    const ReportContext context = context_of(*analysis);
+    EXPECT_TRUE(report_fails(context));
+    EXPECT_NE(render(ReportFormat::Text, context)
+                  .find("Result:  FAIL: nothing checked (no Data_Exchange telegram with a "
+                        "parameter channel); 0 errors, 0 warnings, 0 notes (fail on error)\n"),
+              std::string::npos);
+    // A slave with a parameter channel is checked, even without a single request.
+    auto ppo1 = analyse_simulation(one_slave(6, 1, 3));
+    EXPECT_FALSE(report_fails(context_of(*ppo1)));
+}
+
+SimulatorOptions profidrive_slave(std::uint64_t cycles) {
+    SimulatorOptions options;
+    options.seed = 1;
+    options.cycles = cycles;
+    options.slaves = {SimulatedSlave{3, 1, Dialect::Profidrive}};
+    return options;
+}
+
+TEST(ReportTest, ProfidriveSlaveDecodedAsVltGetsOneDialectHintInEveryFormat) {
+    auto analysis = analyse_simulation(profidrive_slave(2000));  // decoded as vlt (the default)
+    ASSERT_GT(analysis->station(3).findings[static_cast<std::size_t>(FindingKind::UnknownCode)],
+              0u);
+    const ReportContext context = context_of(*analysis);
+    const std::string hint_start = "its parameter-channel codes fit the profidrive dialect (";
+    const std::string option = "decode with --dialect 3=profidrive";
+
+    std::string text = render(ReportFormat::Text, context);
+    EXPECT_NE(text.find("  dialect hint   " + hint_start), std::string::npos) << text;
+    EXPECT_EQ(count_of(text, option), 1u);
+    std::string markdown = render(ReportFormat::Markdown, context);
+    EXPECT_NE(markdown.find("- Dialect hint: " + hint_start), std::string::npos);
+    EXPECT_EQ(count_of(markdown, option), 1u);
+    std::string html = render(ReportFormat::Html, context);
+    EXPECT_NE(html.find("<tr><th>Dialect hint</th><td>" + hint_start), std::string::npos);
+    EXPECT_EQ(count_of(html, option), 1u);
+    auto report = json_report(context);
+    ASSERT_TRUE(report);
+    EXPECT_EQ((*report)["stations"][0]["dialect"].string(), "vlt");
+    EXPECT_EQ((*report)["stations"][0]["dialect_hint"].string(), "profidrive");
+    auto root = junit_report(context);
+    ASSERT_TRUE(root);
+    auto cases = root->elements("testsuite")[0]->elements("testcase");
+    const XmlNode& unknown = *cases[static_cast<std::size_t>(FindingKind::UnknownCode)];
+    ASSERT_EQ(unknown.elements("system-out").size(), 1u);
+    EXPECT_NE(unknown.elements("system-out")[0]->text.find("dialect hint: " + hint_start),
+              std::string::npos);
+    EXPECT_EQ(count_of(render(ReportFormat::Junit, context), option), 1u);
+}
+
+TEST(ReportTest, NoDialectHintForTheRightDialectOrForCodesNoDialectDefines) {
+    // The same slave decoded as profidrive.
+    DecoderOptions options;
+    options.station_dialect[3] = Dialect::Profidrive;
+    auto right = analyse_simulation(profidrive_slave(2000), options);
+    auto report = json_report(context_of(*right));
+    ASSERT_TRUE(report);
+    EXPECT_EQ((*report)["stations"][0]["dialect"].string(), "profidrive");
+    EXPECT_TRUE((*report)["stations"][0]["dialect_hint"].is_null());
+
+    // A vlt slave answering with RC 13, which neither dialect defines: warnings, no hint.
+    SimulatorOptions faulty = one_slave(3, 1, 2000);
+    faulty.faults = {FaultSpec{FaultKind::UnknownCode, 0.05, std::nullopt, std::nullopt}};
+    auto unknown = analyse_simulation(faulty);
+    ASSERT_GE(unknown->station(3).findings[static_cast<std::size_t>(FindingKind::UnknownCode)],
+              DialectEvidence::kMinimum);
+    ASSERT_GE(unknown->summary.dialect_evidence(3).undefined(), DialectEvidence::kMinimum);
+    const ReportContext context = context_of(*unknown);
+    for (ReportFormat format :
+         {ReportFormat::Text, ReportFormat::Markdown, ReportFormat::Html, ReportFormat::Junit})
+        EXPECT_EQ(render(format, context).find("--dialect"), std::string::npos)
+            << report_format_name(format);
+    auto vlt = json_report(context);
+    ASSERT_TRUE(vlt);
+    EXPECT_TRUE((*vlt)["stations"][0]["dialect_hint"].is_null());
 }
 
 }  // namespace

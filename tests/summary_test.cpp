@@ -165,12 +165,12 @@ TEST(SummaryTest, RenderText) {
               "2024-01-01T00:00:00.009000000Z (0.009000000 s)\n"
               "  by frame type: SD1 1 SD2 6 SD4 1 SC 2 invalid 1\n"
               "  by service:\n"
-              "    Unknown                   1  (1 requests, 0 responses)\n"
-              "    FDL_Status                1  (1 requests, 0 responses)\n"
-              "    Set_Prm                   2  (1 requests, 1 responses)\n"
-              "    Chk_Cfg                   2  (1 requests, 1 responses)\n"
+              "    Unknown                   1  (1 request, 0 responses)\n"
+              "    FDL_Status                1  (1 request, 0 responses)\n"
+              "    Set_Prm                   2  (1 request, 1 response)\n"
+              "    Chk_Cfg                   2  (1 request, 1 response)\n"
               "    Data_Exchange             4  (2 requests, 2 responses)\n"
-              "    Token                     1  (1 requests, 0 responses)\n"
+              "    Token                     1  (1 request, 0 responses)\n"
               "  telegrams with problems: 3\n"
               "    bad_start_delimiter                 1\n"
               "    truncated                           1\n"
@@ -197,7 +197,7 @@ TEST(SummaryTest, RenderTextNotesDamageAndSkippedBytes) {
               "  bytes skipped between telegrams: 17\n"
               "  by frame type: SC 1\n"
               "  by service:\n"
-              "    Short_Ack                 1  (0 requests, 1 responses)\n"
+              "    Short_Ack                 1  (0 requests, 1 response)\n"
               "  telegrams with problems: 0\n"
               "  findings: 0\n");
 }
@@ -222,9 +222,61 @@ TEST(SummaryTest, SlaveLayoutGivenByOption) {
     count(c, {{data_exchange(6, 2, true, std::vector<std::uint8_t>(12, 0)), kT0}});
     std::string text = render_text(c, InputSummary{"x", "pcap", 0, false});
     EXPECT_NE(text.find("      6: PPO 4 (6 PCD words, 12 bytes each way) given by --ppo; dialect "
-                        "profidrive; 1 Data_Exchange telegrams\n"),
+                        "profidrive; 1 Data_Exchange telegram\n"),
               std::string::npos)
         << text;
+}
+
+// Data_Exchange between master 2 and slave 3 (PPO 1 by option) with RC `rc` and PNU 207.
+std::vector<std::uint8_t> pcv_telegram(bool request, std::uint8_t rc) {
+    std::vector<std::uint8_t> du(12, 0);
+    du[0] = static_cast<std::uint8_t>(rc << 4);
+    du[1] = 207;
+    return request ? data_exchange(3, 2, true, du) : data_exchange(2, 3, false, du);
+}
+
+TEST(SummaryTest, DialectHintAfterTenCodesAllDefinedByTheOtherDialect) {
+    DecoderOptions options;
+    options.station_ppo[3] = 1;
+    Counted c{Summary{}, BusDecoder(options)};
+    // AK 14 (change and store in EEPROM) is PROFIdrive; vlt leaves RC 14 unassigned.
+    for (int i = 0; i < 9; ++i)
+        count(c, {{pcv_telegram(true, 14), kT0 + i * kMs}});
+    EXPECT_FALSE(c.summary.dialect_evidence(3).hint());
+    EXPECT_EQ(render_text(c, InputSummary{"x", "pcap", 0, false}).find("hint"), std::string::npos);
+    count(c, {{pcv_telegram(false, 15), kT0 + 9 * kMs}});  // AK 15: transfer text
+    ASSERT_EQ(c.summary.dialect_evidence(3).hint(), Dialect::Profidrive);
+    EXPECT_NE(render_text(c, InputSummary{"x", "pcap", 0, false})
+                  .find("         hint: its parameter-channel codes fit the profidrive dialect (10 "
+                        "telegrams carry codes vlt does not define); decode with --dialect "
+                        "3=profidrive\n"),
+              std::string::npos);
+    // A code neither dialect defines (response 13) takes the hint back.
+    count(c, {{pcv_telegram(false, 13), kT0 + 10 * kMs}});
+    EXPECT_EQ(c.summary.dialect_evidence(3).undefined(), 11u);
+    EXPECT_FALSE(c.summary.dialect_evidence(3).hint());
+}
+
+TEST(SummaryTest, NoDialectHintForDefinedCodesOrDamagedTelegrams) {
+    DecoderOptions options;
+    options.station_ppo[3] = 1;
+    options.station_dialect[3] = Dialect::Profidrive;
+    Counted c{Summary{}, BusDecoder(options)};
+    // Decoded as profidrive, AK 14 is defined: nothing to hint.
+    for (int i = 0; i < 20; ++i)
+        count(c, {{pcv_telegram(true, 14), kT0 + i * kMs}});
+    EXPECT_EQ(c.summary.dialect_evidence(3).undefined(), 0u);
+    EXPECT_FALSE(c.summary.dialect_evidence(3).hint());
+    // A telegram with a bad FCS says nothing about the dialect.
+    DecoderOptions vlt;
+    vlt.station_ppo[3] = 1;
+    Counted damaged{Summary{}, BusDecoder(vlt)};
+    for (int i = 0; i < 20; ++i) {
+        std::vector<std::uint8_t> bytes = pcv_telegram(true, 14);
+        bytes[bytes.size() - 2] ^= 0xFF;  // the FCS
+        count(damaged, {{bytes, kT0 + i * kMs}});
+    }
+    EXPECT_EQ(damaged.summary.dialect_evidence(3).undefined(), 0u);
 }
 
 TEST(SummaryTest, SimulatedSessionTotalsAddUp) {
