@@ -32,6 +32,8 @@ class PendingOutputFile {
     // "<stdout>" or the path as the user gave it.
     const std::string& name() const noexcept { return name_; }
     bool is_stdout() const noexcept { return to_stdout_; }
+    // Written to a temporary file that commit() renames (false for stdout and devices).
+    bool is_staged() const noexcept { return !temporary_.empty(); }
 
     // Closes the stream (unless released) and moves the temporary file into place. False with
     // `error` when the close or the rename failed; the target is then as it was.

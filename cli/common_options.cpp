@@ -11,33 +11,31 @@
 
 namespace dpscope::cli {
 
-CLI::Validator whole_number(std::uint64_t min, std::uint64_t max) {
-    std::string range = fmt::format("{}..{}", min, max);
+CLI::Validator whole_number(std::uint64_t min, std::uint64_t max, std::string_view unit) {
+    std::string range = fmt::format("{} to {}{}", min, max, unit);
     return CLI::Validator(
         [min, max, range](std::string& text) -> std::string {
             std::uint64_t value = 0;
             auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
             bool digits = !text.empty() && end == text.data() + text.size();
             if (ec == std::errc() && digits && value >= min && value <= max) return {};
-            return fmt::format("'{}' is not a whole number in {}", text, range);
+            return fmt::format("must be a whole number from {}, not '{}'", range, text);
         },
-        range, "whole number in " + range);
+        range, "whole number");
 }
 
-CLI::Validator finite_number(double min, double max, bool min_exclusive) {
-    std::string range = fmt::format("{}{}, {}]", min_exclusive ? "(" : "[", min, max);
+CLI::Validator finite_number(double min, double max, std::string_view unit) {
+    std::string range = fmt::format("{} to {}{}", min, max, unit);
     return CLI::Validator(
-        [min, max, min_exclusive, range](std::string& text) -> std::string {
+        [min, max, range](std::string& text) -> std::string {
             char* end = nullptr;
             double value = std::strtod(text.c_str(), &end);
             bool parsed = !text.empty() && end == text.c_str() + text.size() &&
                           text.find_first_of("xXnN") == std::string::npos;  // no hex, nan, inf
-            bool in_range = parsed && std::isfinite(value) &&
-                            (min_exclusive ? value > min : value >= min) && value <= max;
-            if (in_range) return {};
-            return fmt::format("'{}' is not a number in {}", text, range);
+            if (parsed && std::isfinite(value) && value >= min && value <= max) return {};
+            return fmt::format("must be a number from {}, not '{}'", range, text);
         },
-        range, "number in " + range);
+        range, "number");
 }
 
 void add_display_options(CLI::App& app, DecodeOptionValues& values,
@@ -96,7 +94,7 @@ void add_write_options(CLI::App& app, DecodeOptionValues& values) {
 
 void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_option("-c,--count", values.count, "Stop after reading N telegrams")
-        ->check(whole_number(1, kMaxCount))
+        ->check(whole_number(1, kMaxCount, " telegrams"))
         ->type_name("N");
     app.add_option("--ppo", values.ppo,
                    "ADDR=TYPE: decode slave ADDR as PPO TYPE (1..5) instead of inferring the type "
@@ -117,7 +115,7 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_option("--timeout-ms", values.timeout_ms,
                    "Session tracker: a parameter request unanswered (or a spontaneous message "
                    "unacknowledged) for longer than this is a finding")
-        ->check(whole_number(1, 3'600'000))
+        ->check(whole_number(1, 3'600'000, " ms"))
         ->type_name("MS")
         ->default_str("1000");
     app.add_flag("--strict", values.strict,

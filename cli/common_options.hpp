@@ -31,11 +31,14 @@ inline constexpr std::string_view kExitCodeHelp =
     "damage (truncated record, read error) after what was decoded; 4 output could not be "
     "opened or written (no such directory, disk full); 5 the capture device failed (sniff).";
 
-// A whole number from `min` to `max` written in decimal digits; the error names the range.
-CLI::Validator whole_number(std::uint64_t min, std::uint64_t max);
-// A finite number from `min` to `max` (decimal, optionally with a fraction or exponent); the
-// error names the range. `min_exclusive`: greater than `min`, not equal to it.
-CLI::Validator finite_number(double min, double max, bool min_exclusive = false);
+// Every numeric option is checked on its text with one of these, and the error names the range:
+// "--count: must be a whole number from 1 to 9223372036854775807, not '0'". CLI11's own
+// conversions would take "-1" as the largest unsigned value and clamp a number too large.
+// A whole number from `min` to `max` in decimal digits (no sign, fraction or exponent);
+// `unit` (" ms", " baud") follows the range in the message.
+CLI::Validator whole_number(std::uint64_t min, std::uint64_t max, std::string_view unit = "");
+// A finite number from `min` to `max` (decimal, with a fraction or exponent; not hex, nan, inf).
+CLI::Validator finite_number(double min, double max, std::string_view unit = "");
 
 // -c N: one telegram up to 2^63 - 1 (more than any capture holds).
 inline constexpr std::uint64_t kMaxCount = 9'223'372'036'854'775'807ULL;

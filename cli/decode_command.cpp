@@ -94,7 +94,9 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
                           ? writer->write(record.bytes, record.time_ns, findings_comment(findings))
                           : writer->write(record.bytes, record.time_ns);
             if (!ok) {
-                print_error(fmt::format("{}; the output file is left as it was", writer->error()));
+                print_error(fmt::format(
+                    "{}{}", writer->error(),
+                    capture_file->is_staged() ? "; the output file is left as it was" : ""));
                 write_failed = true;
             }
         }
@@ -123,7 +125,9 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     }
     if (writer) {
         if (!writer->close() && !write_failed) {
-            print_error(fmt::format("{}; the output file is left as it was", writer->error()));
+            print_error(fmt::format(
+                "{}{}", writer->error(),
+                capture_file->is_staged() ? "; the output file is left as it was" : ""));
             write_failed = true;
         }
         std::string error;

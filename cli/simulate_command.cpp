@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "capture/capture_writer.hpp"
+#include "capture/output_file.hpp"
 #include "capture/pcap_source.hpp"
 #include "capture/serial_port.hpp"
 #include "capture/simulator.hpp"
@@ -45,22 +46,6 @@ struct SimulateCommand {
     std::string replay;
     bool as_fast_as_possible = false;
 };
-
-// A whole number from `min` to `max`, checked on the text: CLI11 would take "-1" as the largest
-// unsigned value and a number too large as that value too.
-CLI::Validator whole_number(std::uint64_t min, std::uint64_t max) {
-    return CLI::Validator(
-        [min, max](std::string& text) -> std::string {
-            std::uint64_t value = 0;
-            auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-            if (text.empty() || ec != std::errc() || end != text.data() + text.size() ||
-                value < min || value > max)
-                return fmt::format("must be a whole number from {} to {}, not '{}'", min, max,
-                                   text);
-            return {};
-        },
-        fmt::format("{}..{}", min, max), "whole number");
-}
 
 constexpr std::uint64_t kLargest = std::numeric_limits<std::uint64_t>::max();
 
@@ -264,7 +249,16 @@ int run_simulate(const SimulateCommand& command) {
     CaptureFormat format =
         capture_format_from_name(command.output_format).value_or(CaptureFormat::Pcap);
     int link_type = command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
-    WriterResult opened = open_capture_writer(command.output, format, link_type);
+    // Written beside the file and moved into place once complete: a write error (disk full)
+    // leaves an existing file as it was.
+    std::string error;
+    auto file = PendingOutputFile::open(command.output, error);
+    if (!file) {
+        print_error(error);
+        return kExitOutputError;
+    }
+    WriterResult opened = open_capture_writer(file->file(), file->name(), format, link_type);
+    file->release_file();  // the writer closes it
     if (!opened.writer) {
         print_error(opened.error);
         return kExitOutputError;
@@ -277,7 +271,13 @@ int run_simulate(const SimulateCommand& command) {
         if (!opened.writer->write(Bytes(bytes.data(), bytes.size()), time_ns)) break;
     }
     if (!opened.writer->close()) {
-        print_error(opened.writer->error());
+        print_error(fmt::format("{}{}", opened.writer->error(),
+                                file->is_staged() ? "; the output file is left as it was" : ""));
+        file->discard();
+        return kExitOutputError;
+    }
+    if (!file->commit(error)) {
+        print_error(error);
         return kExitOutputError;
     }
     int exit_code = report_injections(simulator);

@@ -73,38 +73,10 @@ constexpr std::uint64_t kMinRotateSize = 512;         // the pcap header and the
 constexpr std::uint64_t kMaxRotateSize = 1ULL << 44;  // 16T
 constexpr std::uint32_t kMaxIdleGapMs = 60'000;
 
-// A finite number from `low` to `high`.
-CLI::Validator number_from(double low, double high, std::string_view unit) {
-    std::string range = fmt::format("{} to {}{}", low, high, unit);
-    return CLI::Validator(
-        [=](std::string& text) -> std::string {
-            char* end = nullptr;
-            double value = std::strtod(text.c_str(), &end);
-            if (end == text.c_str() || *end != '\0' || !std::isfinite(value) || value < low ||
-                value > high)
-                return fmt::format("must be a number from {}, not {}", range, text);
-            return {};
-        },
-        range, "number");
-}
-
 // Digits only (no sign, no fraction, no exponent); false when it does not fit.
 bool parse_whole(std::string_view text, std::uint64_t& value) {
     auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
     return !text.empty() && ec == std::errc() && end == text.data() + text.size();
-}
-
-// A whole number from `low` to `high`.
-CLI::Validator whole_number_from(std::uint64_t low, std::uint64_t high, std::string_view unit) {
-    std::string range = fmt::format("{} to {}{}", low, high, unit);
-    return CLI::Validator(
-        [=](std::string& text) -> std::string {
-            std::uint64_t value = 0;
-            if (!parse_whole(text, value) || value < low || value > high)
-                return fmt::format("must be a whole number from {}, not {}", range, text);
-            return {};
-        },
-        range, "whole number");
 }
 
 // A size: a whole number of bytes with an optional unit k, M, G, T (powers of 1024, as
@@ -182,6 +154,7 @@ struct SniffCommand {
     std::string report_format = "text";
     std::string report_file;
     std::string fail_on = "error";
+    bool allow_empty = false;
     std::uint32_t idle_gap_ms = 50;
     bool no_low_latency = false;
 };
@@ -365,6 +338,7 @@ int run_sniff(const SniffCommand& command) {
     if (report) {
         ReportContext context = report_context(
             pipeline, source, log, fail_on_from_name(command.fail_on).value_or(FailOn::Error));
+        context.allow_empty = command.allow_empty;
         const ReportFormat format =
             report_format_from_name(command.report_format).value_or(ReportFormat::Text);
         if (command.report_file.empty()) {
@@ -407,7 +381,7 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
                     "Bus baud rate (9600, 19200, 45450, 93750, 187500, 500000, 1500000, 3000000, "
                     "6000000, 12000000 or any rate the driver takes; read back and checked)")
         ->required()
-        ->check(whole_number_from(300, 16'000'000, " baud"));
+        ->check(whole_number(300, 16'000'000, " baud"));
     sub->add_option("-w,--write", command->output,
                     "Write the telegrams to FILE as pcap, flushed at least every 100 ms; - writes "
                     "pcap to standard output (the decoded output then goes to standard error)")
@@ -425,10 +399,10 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
         ->type_name("SIZE");
     sub->add_option("--rotate-seconds", command->rotate_seconds,
                     "Start a new file once the current one holds SECONDS of capture")
-        ->check(number_from(0.001, kMaxSeconds, " seconds"))
+        ->check(finite_number(0.001, kMaxSeconds, " seconds"))
         ->type_name("SECONDS");
     sub->add_option("--duration", command->duration, "Stop after SECONDS")
-        ->check(number_from(0.001, kMaxSeconds, " seconds"))
+        ->check(finite_number(0.001, kMaxSeconds, " seconds"))
         ->type_name("SECONDS");
     sub->add_flag("--report", command->report,
                   "At the end, print the conformance report of the capture (after the live "
@@ -448,17 +422,18 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
                     "found: error, warning, never")
         ->check(CLI::IsMember({"error", "warning", "never"}))
         ->default_str("error");
+    sub->add_flag("--allow-empty", command->allow_empty,
+                  "With --report: a capture in which nothing could be checked (no Data_Exchange "
+                  "telegram with a parameter channel) passes instead of exiting 1");
     sub->add_option("--idle-gap-ms", command->idle_gap_ms,
                     "Line idle time that ends an incomplete telegram (0: do not use idle time). "
                     "Keep it above a USB adapter's latency timer")
-        ->check(whole_number_from(0, kMaxIdleGapMs, " ms"))
+        ->check(whole_number(0, kMaxIdleGapMs, " ms"))
         ->default_str("50");
     sub->add_flag("--no-low-latency", command->no_low_latency,
                   "Do not ask the driver for low-latency mode (ASYNC_LOW_LATENCY)");
     add_display_options(*sub, command->options, "text");
     add_tracking_options(*sub, command->options);
-    sub->get_option("--count")->check(
-        whole_number_from(1, std::numeric_limits<std::uint64_t>::max(), " telegrams"));
     sub->footer(std::string(kExitCodeHelp) +
                 " For sniff: on 4 and 5 what was captured before is written and the file is a "
                 "valid pcap; with --report, 1 when a finding reaches --fail-on.");

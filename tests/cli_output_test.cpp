@@ -331,15 +331,17 @@ TEST(CliOutputTest, NumericOptionsNameTheirRange) {
     for (std::string value : {"1e18", "18446744073709551616", "nan", "-3", "0x10", "5.5"}) {
         CommandResult r = run_dpscope({"decode", "-c", value, kFaults});
         EXPECT_EQ(r.exit_code, 2) << value;
-        EXPECT_NE(r.err.find("--count: '" + value +
-                             "' is not a whole number in 1..9223372036854775807"),
+        EXPECT_NE(r.err.find("--count: must be a whole number from 1 to 9223372036854775807 "
+                             "telegrams, not '" +
+                             value + "'"),
                   std::string::npos)
             << r.err;
         EXPECT_TRUE(r.out.empty());
     }
     CommandResult timeout = run_dpscope({"report", "--timeout-ms", "inf", kFaults});
     EXPECT_EQ(timeout.exit_code, 2);
-    EXPECT_NE(timeout.err.find("'inf' is not a whole number in 1..3600000"), std::string::npos)
+    EXPECT_NE(timeout.err.find("must be a whole number from 1 to 3600000 ms, not 'inf'"),
+              std::string::npos)
         << timeout.err;
     EXPECT_EQ(run_dpscope({"decode", "--station", "128", kFaults}).exit_code, 2);
     EXPECT_EQ(run_dpscope({"decode", "--pnu", "2048", kFaults}).exit_code, 2);

@@ -254,7 +254,8 @@ TEST(CliTest, BadOptionValuesAreUsageErrors) {
 
     CommandResult count = run_dpscope({"decode", "-c", "0", kPpo1});
     EXPECT_EQ(count.exit_code, 2);
-    EXPECT_NE(count.err.find("--count: '0' is not a whole number in 1..9223372036854775807"),
+    EXPECT_NE(count.err.find("--count: must be a whole number from 1 to 9223372036854775807 "
+                             "telegrams, not '0'"),
               std::string::npos)
         << count.err;
 
