@@ -157,6 +157,7 @@ void report_input_issues(TelegramSource& source, Output& out) {
 }
 
 std::string nothing_found_error(const TelegramSource& source, std::uint64_t telegrams) {
+    if (source.status() == InputStatus::Unusable) return source.unusable_reason();
     if (telegrams > 0 || source.status() == InputStatus::Damaged) return {};
     const std::uint64_t skipped = source.bytes_skipped();
     switch (source.format()) {
