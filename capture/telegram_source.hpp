@@ -82,6 +82,10 @@ class TelegramSource {
     const std::string& unusable_reason() const noexcept { return unusable_reason_; }
     const std::string& name() const noexcept { return name_; }
     void on_issue(IssueHandler handler) { issue_handler_ = std::move(handler); }
+    // Issues of a repeating kind met so far, shown or only counted.
+    std::uint64_t issue_count(IssueKind kind) const noexcept {
+        return counted_[static_cast<std::size_t>(kind)].issues;
+    }
 
   protected:
     // The next telegram from the input itself.

@@ -394,6 +394,10 @@ TEST(CliTest, HexLogTypoNamesLineAndColumn) {
                            "odd number of hex digits: 11)"),
               std::string::npos)
         << odd.err;
+    EXPECT_NE(odd.err.find("dpscope: error: <stdin>: no readable hex bytes in the text (1 line "
+                           "with tokens that are no hex bytes, named above)"),
+              std::string::npos)
+        << odd.err;
 }
 
 // Source and destination of a text line: "frame time SRC → DST ...".
