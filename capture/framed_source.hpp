@@ -1,6 +1,12 @@
 // A telegram source over a byte stream split by the StreamFramer: raw dumps, hex logs, bytes in
 // memory and serial ports share it. Subclasses feed bytes (fill); this class hands the framed
-// telegrams out one by one with their stream offsets and times, and reports skipped bytes.
+// telegrams out one by one with their stream offsets and times, and reports skipped bytes in
+// stream order with them (so nothing is reported about bytes after the last telegram handed out).
+//
+// A source that judges its input (judge_input) holds its telegrams back until it has decided
+// `window` bytes of the stream, or the whole of a shorter input: when more than half of at least
+// kMinJudgedBytes of them form no telegram, the input is no PROFIBUS stream and the source is
+// Unusable, without handing anything out.
 #pragma once
 
 #include <cstdint>
@@ -16,16 +22,28 @@ class FramedSource : public TelegramSource, private StreamFramer::Sink {
   public:
     using TelegramSource::TelegramSource;
 
-    // Blocks until a telegram is framed or the input ends.
-    bool next(Record& record) override;
-
     enum class Poll { Telegram, Idle, End };
     // Like next(), but returns Idle when the input has nothing for now (live sources).
     Poll poll(Record& record);
 
-    std::uint64_t bytes_skipped() const override { return framer_.bytes_skipped(); }
+    // Skipped bytes reported so far (those before the last telegram handed out, or all at the end).
+    std::uint64_t bytes_skipped() const override { return skipped_reported_; }
+
+    // A judged input needs at least this many bytes for a verdict.
+    static constexpr std::uint64_t kMinJudgedBytes = 512;
+    // Judge the input over its first `window` bytes; `what` names it in the verdict ("byte
+    // stream"), `forced` the option that reads it anyway ("--input-format raw").
+    void judge_input(std::uint64_t window, std::string what, std::string forced) {
+        judge_window_ = window;
+        judged_ = window == 0;
+        judged_what_ = std::move(what);
+        judged_forced_ = std::move(forced);
+    }
 
   protected:
+    // Blocks until a telegram is framed or the input ends.
+    bool read_next(Record& record) override;
+
     enum class Fill { Fed, Idle, End };
     // Feeds more input through feed(): Fed, Idle (nothing yet, a live source), End.
     virtual Fill fill() = 0;
@@ -35,27 +53,45 @@ class FramedSource : public TelegramSource, private StreamFramer::Sink {
     virtual std::string where(std::uint64_t offset) const;
 
     void feed(Bytes bytes) { framer_.feed(bytes, *this); }
+    // An issue reported in stream order with the telegrams framed so far.
+    void defer_report(Severity severity, IssueKind kind, std::string message);
     // The line was idle: a telegram cannot continue across the gap.
     void mark_gap() { framer_.mark_gap(*this); }
     std::size_t pending_bytes() const noexcept { return framer_.pending(); }
 
   private:
+    struct Issue {
+        Severity severity;
+        IssueKind kind;
+        std::uint64_t bytes;  // skipped bytes
+        std::string message;
+    };
+    // A telegram (arena_[start, start + length)) or, when `issue` is set, issues_[start].
     struct Entry {
         std::size_t start;
         std::size_t length;
         std::uint64_t offset;
         std::int64_t time_ns;
+        bool issue;
     };
 
     void on_telegram(Bytes telegram, std::uint64_t offset) override;
     void on_skipped(const SkippedBytes& skipped) override;
+    // The verdict on a judged input once enough of it is decided; false: not a PROFIBUS stream.
+    bool judge();
 
     StreamFramer framer_;
     std::vector<std::uint8_t> arena_;
+    std::vector<Issue> issues_;
     std::vector<Entry> entries_;
     std::size_t cursor_ = 0;
     bool finished_ = false;
     std::uint64_t number_ = 0;
+    std::uint64_t skipped_reported_ = 0;
+    std::uint64_t judge_window_ = 0;
+    bool judged_ = true;
+    std::string judged_what_;
+    std::string judged_forced_;
 };
 
 }  // namespace dpscope

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <string>
+
 namespace dpscope {
 
 namespace {
@@ -189,47 +191,207 @@ std::optional<std::int64_t> parse_timestamp(std::string_view first, std::string_
     return std::nullopt;
 }
 
+namespace {
+
+bool is_alnum(char c) {
+    return is_digit(c) || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+}
+
+std::size_t column_of(std::string_view line, std::string_view token) {
+    return static_cast<std::size_t>(token.data() - line.data()) + 1;
+}
+
+// Why `body` (a token without 0x and trailing punctuation) is no run of hex bytes; "" if it is.
+std::string hex_run_problem(std::string_view body) {
+    for (char c : body)
+        if (!is_hex(c)) return fmt::format("'{}' is no hex digit", c);
+    if (body.size() % 2 != 0) return fmt::format("an odd number of hex digits: {}", body.size());
+    return {};
+}
+
+void add_error(HexLogLine& result, std::string_view line, std::string_view token,
+               std::string what, std::size_t bytes_before) {
+    if (result.breaks.empty() || result.breaks.back() != bytes_before)
+        result.breaks.push_back(bytes_before);
+    ++result.bad_tokens;
+    if (!result.error)
+        result.error = HexLogError{column_of(line, token), std::string(token), std::move(what)};
+}
+
+std::optional<std::uint64_t> hex_number(std::string_view text) {
+    if (text.empty() || text.size() > 16 || !all_hex(text)) return std::nullopt;
+    std::uint64_t value = 0;
+    for (char c : text)
+        value = value << 4 | hex_value(c);
+    return value;
+}
+
+// The bytes of a dump's hex area: groups of hex digit pairs separated by spaces (xxd groups
+// 2 bytes by default, hexdump -C shows single bytes).
+void dump_bytes(std::string_view line, std::string_view area, HexLogLine& result,
+                std::vector<std::uint8_t>& bytes, std::size_t before) {
+    for (std::string_view group : split_whitespace(area)) {
+        std::string problem = hex_run_problem(group);
+        if (problem.empty())
+            append_hex_run(group, bytes);
+        else
+            add_error(result, line, group, fmt::format("is not hex bytes ({})", problem),
+                      bytes.size() - before);
+    }
+}
+
+// xxd ("00000010: 8382 7d3c  ..}<") and hexdump -C ("00000010  83 82 7d 3c  |..}<|") lines.
+bool parse_dump_line(std::string_view line, HexLogLine& result, std::vector<std::uint8_t>& bytes) {
+    std::size_t digits = 0;
+    while (digits < line.size() && is_hex(line[digits]))
+        ++digits;
+    if (digits < 7 || digits > 16) return false;
+    std::optional<std::uint64_t> offset = hex_number(line.substr(0, digits));
+    if (!offset) return false;
+    const std::size_t before = bytes.size();
+    std::string_view rest = line.substr(digits);
+    std::string_view area;
+    if (rest.size() >= 2 && rest[0] == ':' && rest[1] == ' ') {  // xxd
+        area = rest.substr(2);
+        std::size_t ascii = area.find("  ");
+        if (ascii != std::string_view::npos) area = area.substr(0, ascii);
+    } else if (rest.size() >= 3 && rest[0] == ' ' && rest[1] == ' ' && is_hex(rest[2])) {
+        area = rest.substr(2);  // hexdump -C
+        std::size_t ascii = area.find("  |");
+        if (ascii != std::string_view::npos) area = area.substr(0, ascii);
+    } else if (rest.empty() && (digits == 7 || digits == 8)) {
+        // hexdump's closing line: the length of the input.
+        result.dump_offset = offset;
+        return true;
+    } else {
+        return false;
+    }
+    result.dump_offset = offset;
+    dump_bytes(line, area, result, bytes, before);
+    result.byte_count = bytes.size() - before;
+    return true;
+}
+
+enum class TokenKind { Byte, Suspect, Other };
+
+// A token meant as a hex byte that is none: letters and digits only, at most 4 of them, with a
+// hex digit among them ("0G", "680", "7", "0x6").
+bool suspect_token(std::string_view token) {
+    std::string_view body = strip_prefix_0x(strip_punctuation(token));
+    if (body.empty() || body.size() > 4) return false;
+    bool hex_digit = false;
+    for (char c : body) {
+        if (!is_alnum(c)) return false;
+        if (is_hex(c)) hex_digit = true;
+    }
+    return hex_digit;
+}
+
+// At the edges of the run only what is most likely a typo counts: two characters, a decimal digit
+// and a letter that is no hex digit ("0G", "O7"), or (after the run) a single hex digit.
+bool typo_token(std::string_view token, bool after_run) {
+    std::string_view body = strip_prefix_0x(strip_punctuation(token));
+    if (after_run && body.size() == 1 && is_hex(body[0])) return true;
+    if (body.size() != 2) return false;
+    bool digit = is_digit(body[0]) || is_digit(body[1]);
+    bool beyond_hex = (is_alnum(body[0]) && !is_hex(body[0])) ||
+                      (is_alnum(body[1]) && !is_hex(body[1]));
+    return digit && beyond_hex && is_alnum(body[0]) && is_alnum(body[1]);
+}
+
+std::string token_problem(std::string_view token) {
+    std::string problem = hex_run_problem(strip_prefix_0x(strip_punctuation(token)));
+    return fmt::format("is not a hex byte ({})",
+                       problem.empty() ? "one byte is two hex digits" : problem);
+}
+
+}  // namespace
+
 HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& bytes) {
     HexLogLine result;
-    // A hexdump -C ASCII column: "|....|" at the end of the line.
-    if (!line.empty() && line.back() == '|') {
-        std::size_t open = line.rfind('|', line.size() - 2);
-        if (open != std::string_view::npos) line = line.substr(0, open);
+    std::size_t first = 0;
+    while (first < line.size() && (line[first] == ' ' || line[first] == '\t'))
+        ++first;
+    std::string_view trimmed = line.substr(first);
+    while (!trimmed.empty() && (trimmed.back() == ' ' || trimmed.back() == '\t' ||
+                                trimmed.back() == '\r'))
+        trimmed.remove_suffix(1);
+    if (trimmed == "*") {
+        result.repeat_marker = true;
+        return result;
     }
+    if (first == 0 && parse_dump_line(line, result, bytes)) return result;
     std::vector<std::string_view> tokens = split_log_tokens(line);
-    // The longest run of byte tokens; the later one wins a tie.
-    std::size_t best_start = 0, best_length = 0;
+    std::vector<TokenKind> kinds;
+    kinds.reserve(tokens.size());
+    for (std::string_view token : tokens)
+        kinds.push_back(byte_token(token)   ? TokenKind::Byte
+                        : suspect_token(token) ? TokenKind::Suspect
+                                               : TokenKind::Other);
+    // The longest span of byte tokens, across suspect tokens between them; the later one wins a
+    // tie.
+    std::size_t best_start = 0, best_end = 0, best_bytes = 0;
     for (std::size_t i = 0; i < tokens.size();) {
-        if (!byte_token(tokens[i])) {
+        if (kinds[i] != TokenKind::Byte) {
             ++i;
             continue;
         }
-        std::size_t start = i;
-        while (i < tokens.size() && byte_token(tokens[i]))
-            ++i;
-        if (i - start >= best_length) {
+        std::size_t start = i, end = i, count = 0;
+        while (i < tokens.size()) {
+            if (kinds[i] == TokenKind::Byte) {
+                ++count;
+                end = ++i;
+                continue;
+            }
+            std::size_t j = i;
+            while (j < tokens.size() && kinds[j] == TokenKind::Suspect)
+                ++j;
+            if (j == i || j == tokens.size() || kinds[j] != TokenKind::Byte) break;
+            i = j;
+        }
+        if (count >= best_bytes) {
             best_start = start;
-            best_length = i - start;
+            best_end = end;
+            best_bytes = count;
         }
     }
     std::size_t before = bytes.size();
     std::size_t first_data_token = tokens.size();
-    if (best_length > 0) {
-        for (std::size_t i = best_start; i < best_start + best_length; ++i)
-            bytes.push_back(*byte_token(tokens[i]));
+    if (best_bytes > 0) {
+        if (best_start > 0 && typo_token(tokens[best_start - 1], false)) --best_start;
+        if (best_end < tokens.size() && kinds[best_end] == TokenKind::Suspect &&
+            typo_token(tokens[best_end], true))
+            ++best_end;
+        for (std::size_t i = best_start; i < best_end; ++i) {
+            if (kinds[i] == TokenKind::Byte)
+                bytes.push_back(*byte_token(tokens[i]));
+            else
+                add_error(result, line, tokens[i], token_problem(tokens[i]),
+                          bytes.size() - before);
+        }
         first_data_token = best_start;
     } else if (!tokens.empty()) {
         std::string_view run = strip_prefix_0x(strip_punctuation(tokens.back()));
         // A line holding nothing but 7 or 8 hex digits is the closing offset line of hexdump,
         // not data.
         bool hexdump_offset = tokens.size() == 1 && (run.size() == 7 || run.size() == 8);
-        if (!hexdump_offset && run.size() >= 2 && run.size() % 2 == 0 && all_hex(run)) {
+        std::size_t beyond_hex = 0;
+        bool alnum = true;
+        for (char c : run) {
+            if (!is_hex(c)) ++beyond_hex;
+            if (!is_alnum(c)) alnum = false;
+        }
+        if (!hexdump_offset && run.size() >= 2 && run.size() % 2 == 0 && beyond_hex == 0) {
             append_hex_run(run, bytes);
+            first_data_token = tokens.size() - 1;
+        } else if (!hexdump_offset && run.size() >= 6 && alnum && beyond_hex <= 1) {
+            add_error(result, line, tokens.back(),
+                      fmt::format("is no run of hex bytes ({})", hex_run_problem(run)), 0);
             first_data_token = tokens.size() - 1;
         }
     }
     result.byte_count = bytes.size() - before;
-    if (first_data_token > 0 && !tokens.empty())
+    if (first_data_token > 0 && first_data_token < tokens.size())
         result.time_ns = parse_timestamp(tokens[0], first_data_token > 1 ? tokens[1] : "");
     return result;
 }

@@ -2,8 +2,16 @@
 //
 // A log line carries its bytes as the longest run of two-digit hex tokens ("68", "0x68", "68,"),
 // or, when it has none, as one compact hex string ("6807076805..."). Whatever else is on the line
-// (a timestamp, "TX"/"RX", a prompt, a hexdump offset or ASCII column) is tolerated; a line of
-// only 7 or 8 hex digits is taken for hexdump's closing offset line, not for data. A leading
+// (a timestamp, "TX"/"RX", a prompt) is tolerated. Inside the run, a token that is meant as a
+// byte but is none ("0G", "680", "7") is an error named by its column, and so is such a token
+// right after the run (or a "0G"-like one right before it); the bytes on either side of it are
+// kept but do not belong to one telegram (`breaks`). A compact string of 6 or more characters
+// with an odd digit count or one non-hex character is an error too.
+//
+// Dumps: `xxd` lines ("00000010: 8382 7d3c ...  ..}<") and `hexdump -C` lines ("00000010  83 82
+// ...  |..}<|") are read by their layout: the offset column and the ASCII column are not data; a
+// line of only 7 or 8 hex digits is the closing offset line of hexdump; a "*" line stands for
+// lines equal to the one before it, up to the next line's offset (`dump_offset`). A leading
 // timestamp gives the line's time: epoch seconds ("1700000000.000125"), a time of day
 // ("12:00:01.5"), or an ISO date and time ("2024-01-02T12:00:01.5Z" or "2024-01-02 12:00:01.5"),
 // optionally in brackets; all UTC.
@@ -17,9 +25,22 @@
 
 namespace dpscope {
 
+// A token that should be a hex byte but is none.
+struct HexLogError {
+    std::size_t column = 0;  // 1-based, in the line as given
+    std::string token;
+    std::string what;  // "is not a hex byte", ...
+};
+
 struct HexLogLine {
     std::size_t byte_count = 0;  // bytes appended by this line
     std::optional<std::int64_t> time_ns;
+    // Where bad tokens interrupt the line's bytes: counts of the line's bytes before each.
+    std::vector<std::size_t> breaks;
+    std::optional<HexLogError> error;  // the first bad token
+    std::size_t bad_tokens = 0;
+    std::optional<std::uint64_t> dump_offset;  // xxd or hexdump -C: the line's offset column
+    bool repeat_marker = false;                // a "*" line of hexdump -C or xxd -a
 };
 
 // Appends the line's bytes to `bytes`.

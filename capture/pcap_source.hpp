@@ -1,5 +1,7 @@
-// pcap and pcapng captures read through libpcap. Accepted link types: 257 (PROFIBUS_DL, one
-// telegram per record from start to end delimiter) and 147 (USER0, the same records).
+// pcap captures read through libpcap, pcapng captures by dpscope's own block reader (any number
+// of interfaces and link types; packets of interfaces with other link types are skipped with a
+// warning). Decoded link types: 257 (PROFIBUS_DL, one telegram per record from start to end
+// delimiter) and 147 (USER0, the same records).
 #pragma once
 
 #include <cstdint>
@@ -22,6 +24,12 @@ inline constexpr std::uint64_t kPcapRecordHeaderBytes = 16;
 // pcapng) header, so record byte offsets can be counted and named in messages.
 std::unique_ptr<TelegramSource> open_pcap_source(FILE* file, const std::string& name,
                                                  bool classic_pcap, std::string& error);
+
+// Takes ownership of `file`, positioned at the start of a pcapng file. Returns null and sets
+// `error` when it is no pcapng file or none of its interfaces has a link type dpscope decodes.
+// Records carry the byte offset of their block.
+std::unique_ptr<TelegramSource> open_pcapng_source(FILE* file, const std::string& name,
+                                                   std::string& error);
 
 // "PROFIBUS_DL", "USER0", or libpcap's name for other link types.
 std::string link_type_name(int link_type);

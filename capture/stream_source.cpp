@@ -15,7 +15,7 @@ namespace dpscope {
 
 namespace {}  // namespace
 
-bool FramedSource::next(Record& record) {
+bool FramedSource::read_next(Record& record) {
     for (;;) {
         Poll result = poll(record);
         if (result == Poll::Telegram) return true;
@@ -24,40 +24,82 @@ bool FramedSource::next(Record& record) {
 }
 
 FramedSource::Poll FramedSource::poll(Record& record) {
-    while (cursor_ == entries_.size()) {
-        entries_.clear();
-        arena_.clear();
-        cursor_ = 0;
-        if (finished_) return Poll::End;
-        Fill fill_result = fill();
-        if (fill_result == Fill::End) {
-            framer_.finish(*this);
-            finished_ = true;
-        } else if (fill_result == Fill::Idle && cursor_ == entries_.size()) {
-            return Poll::Idle;
+    for (;;) {
+        while (cursor_ == entries_.size() || !judged_) {
+            if (cursor_ == entries_.size()) {
+                entries_.clear();
+                arena_.clear();
+                issues_.clear();
+                cursor_ = 0;
+                if (finished_) {
+                    finish_reporting();
+                    return Poll::End;
+                }
+            }
+            Fill fill_result = fill();
+            if (fill_result == Fill::End) {
+                framer_.finish(*this);
+                finished_ = true;
+            }
+            if (!judged_ && (finished_ || framer_.bytes_fed() >= judge_window_)) {
+                judged_ = true;
+                if (!judge()) {
+                    entries_.clear();
+                    cursor_ = 0;
+                    finished_ = true;
+                    return Poll::End;
+                }
+            }
+            if (fill_result == Fill::Idle && (cursor_ == entries_.size() || !judged_))
+                return Poll::Idle;
         }
+        const Entry& entry = entries_[cursor_++];
+        if (entry.issue) {
+            Issue& issue = issues_[entry.start];
+            if (issue.kind == IssueKind::SkippedBytes) skipped_reported_ += issue.bytes;
+            report(issue.severity, std::move(issue.message), issue.kind, issue.bytes);
+            continue;
+        }
+        record.bytes = Bytes(arena_.data() + entry.start, entry.length);
+        record.time_ns = entry.time_ns;
+        record.number = ++number_;
+        record.offset = entry.offset;
+        record.original_length = static_cast<std::uint32_t>(entry.length);
+        return Poll::Telegram;
     }
-    const Entry& entry = entries_[cursor_++];
-    record.bytes = Bytes(arena_.data() + entry.start, entry.length);
-    record.time_ns = entry.time_ns;
-    record.number = ++number_;
-    record.offset = entry.offset;
-    record.original_length = static_cast<std::uint32_t>(entry.length);
-    return Poll::Telegram;
+}
+
+bool FramedSource::judge() {
+    const std::uint64_t decided = framer_.bytes_fed() - framer_.pending();
+    const std::uint64_t skipped = framer_.bytes_skipped();
+    if (decided < kMinJudgedBytes || skipped * 2 <= decided) return true;
+    set_unusable(fmt::format(
+        "{}: not a PROFIBUS {}: {} of {} {} bytes ({:.1f} %) form no telegram; {} decodes it "
+        "anyway",
+        name(), judged_what_, skipped, finished_ ? "its" : "its first", decided,
+        100.0 * static_cast<double>(skipped) / static_cast<double>(decided), judged_forced_));
+    return false;
 }
 
 std::string FramedSource::where(std::uint64_t offset) const {
     return fmt::format("byte offset {}", offset);
 }
 
+void FramedSource::defer_report(Severity severity, IssueKind kind, std::string message) {
+    entries_.push_back(Entry{issues_.size(), 0, 0, kNoTime, true});
+    issues_.push_back(Issue{severity, kind, 0, std::move(message)});
+}
+
 void FramedSource::on_telegram(Bytes telegram, std::uint64_t offset) {
-    entries_.push_back(Entry{arena_.size(), telegram.size(), offset, time_at(offset)});
+    entries_.push_back(Entry{arena_.size(), telegram.size(), offset, time_at(offset), false});
     arena_.insert(arena_.end(), telegram.begin(), telegram.end());
 }
 
 void FramedSource::on_skipped(const SkippedBytes& skipped) {
-    report(Severity::Warning,
-           fmt::format("{}: {}: {}", name(), where(skipped.offset), describe_skip(skipped)));
+    entries_.push_back(Entry{issues_.size(), 0, skipped.offset, kNoTime, true});
+    issues_.push_back(
+        Issue{Severity::Warning, IssueKind::SkippedBytes, skipped.count,
+              fmt::format("{}: {}: {}", name(), where(skipped.offset), describe_skip(skipped))});
 }
 
 namespace {
@@ -123,12 +165,79 @@ class HexSource final : public FramedSource {
                 text.remove_suffix(1);
             bytes_.clear();
             HexLogLine parsed = parse_hex_log_line(text, bytes_);
-            if (parsed.byte_count == 0) continue;
+            if (parsed.repeat_marker) {
+                repeat_pending_ = true;
+                continue;
+            }
+            if (parsed.dump_offset) expand_repeat(*parsed.dump_offset);
+            if (parsed.byte_count == 0 && !parsed.error) continue;
             lines_.push_back(Line{stream_offset_, line_number_, parsed.time_ns.value_or(kNoTime)});
-            feed(Bytes(bytes_.data(), bytes_.size()));
-            stream_offset_ += bytes_.size();
+            // Bytes on either side of a bad token do not belong to one telegram.
+            std::size_t from = 0;
+            for (std::size_t at : parsed.breaks) {
+                feed_line_bytes(from, at);
+                from = at;
+                if (at == parsed.breaks.front() && parsed.error) report_bad_line(parsed);
+                mark_gap();
+            }
+            feed_line_bytes(from, bytes_.size());
+            if (parsed.dump_offset) {
+                last_dump_bytes_.assign(bytes_.begin(), bytes_.end());
+                dump_next_ = *parsed.dump_offset + bytes_.size();
+                have_dump_ = true;
+            }
             return Fill::Fed;
         }
+    }
+
+    void feed_line_bytes(std::size_t from, std::size_t to) {
+        if (to <= from) return;
+        feed(Bytes(bytes_.data() + from, to - from));
+        stream_offset_ += to - from;
+    }
+
+    void report_bad_line(const HexLogLine& parsed) {
+        std::string more;
+        if (parsed.bad_tokens > 1)
+            more = fmt::format("; {} more bad {} on the line", parsed.bad_tokens - 1,
+                               parsed.bad_tokens == 2 ? "token" : "tokens");
+        defer_report(Severity::Warning, IssueKind::HexSyntax,
+                     fmt::format("{}: line {}, column {}: '{}' {}{}; the bytes before and after "
+                                 "it are framed apart",
+                                 name(), line_number_, parsed.error->column, parsed.error->token,
+                                 parsed.error->what, more));
+    }
+
+    // A dump line after "*": the lines left out repeat the one before the "*" up to this offset.
+    void expand_repeat(std::uint64_t offset) {
+        const bool repeat = repeat_pending_;
+        repeat_pending_ = false;
+        if (!have_dump_ || offset == dump_next_) return;
+        if (!repeat || last_dump_bytes_.empty() || offset < dump_next_ ||
+            offset - dump_next_ > kMaxRepeatedBytes) {
+            defer_report(Severity::Warning, IssueKind::HexSyntax,
+                         fmt::format("{}: line {}: the dump's offset is 0x{:x}, but 0x{:x} bytes "
+                                     "came before it{}; lines are missing or out of order",
+                                     name(), line_number_, offset, dump_next_,
+                                     repeat ? " (counting the lines \"*\" stands for)" : ""));
+            mark_gap();
+            return;
+        }
+        std::vector<std::uint8_t> repeated;
+        for (std::uint64_t left = offset - dump_next_; left > 0;) {
+            repeated.clear();
+            while (left > 0 && repeated.size() < (1u << 16)) {
+                std::size_t n = static_cast<std::size_t>(
+                    std::min<std::uint64_t>(left, last_dump_bytes_.size()));
+                repeated.insert(repeated.end(), last_dump_bytes_.begin(),
+                                last_dump_bytes_.begin() + static_cast<std::ptrdiff_t>(n));
+                left -= n;
+            }
+            lines_.push_back(Line{stream_offset_, line_number_ - 1, kNoTime});
+            feed(Bytes(repeated.data(), repeated.size()));
+            stream_offset_ += repeated.size();
+        }
+        dump_next_ = offset;
     }
 
     const Line* line_of(std::uint64_t offset) const {
@@ -161,6 +270,12 @@ class HexSource final : public FramedSource {
     std::uint64_t stream_offset_ = 0;
     std::vector<std::uint8_t> bytes_;
     std::deque<Line> lines_;
+    // xxd and hexdump -C dumps: the last line's bytes, the offset expected next, a pending "*".
+    static constexpr std::uint64_t kMaxRepeatedBytes = 64 * 1024 * 1024;
+    std::vector<std::uint8_t> last_dump_bytes_;
+    std::uint64_t dump_next_ = 0;
+    bool have_dump_ = false;
+    bool repeat_pending_ = false;
 };
 
 class MemorySource final : public FramedSource {
@@ -186,12 +301,16 @@ class MemorySource final : public FramedSource {
 
 }  // namespace
 
-std::unique_ptr<TelegramSource> make_raw_source(FILE* file, std::string name) {
-    return std::make_unique<RawSource>(file, std::move(name));
+std::unique_ptr<TelegramSource> make_raw_source(FILE* file, std::string name, bool judged) {
+    auto source = std::make_unique<RawSource>(file, std::move(name));
+    if (judged) source->judge_input(kJudgedRawBytes, "byte stream", "--input-format raw");
+    return source;
 }
 
-std::unique_ptr<TelegramSource> make_hex_source(FILE* file, std::string name) {
-    return std::make_unique<HexSource>(file, std::move(name));
+std::unique_ptr<TelegramSource> make_hex_source(FILE* file, std::string name, bool judged) {
+    auto source = std::make_unique<HexSource>(file, std::move(name));
+    if (judged) source->judge_input(kJudgedHexBytes, "hex log", "--input-format hex");
+    return source;
 }
 
 std::unique_ptr<TelegramSource> make_memory_source(std::string name, Bytes bytes) {

@@ -2,6 +2,7 @@
 // already in memory.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -10,9 +11,16 @@
 
 namespace dpscope {
 
-// Each takes ownership of `file`.
-std::unique_ptr<TelegramSource> make_raw_source(FILE* file, std::string name);
-std::unique_ptr<TelegramSource> make_hex_source(FILE* file, std::string name);
+// The input a detected raw or hex source judges before it hands out anything (see FramedSource):
+// the first 64 KiB of a raw stream (one read), the first 4 KiB of bytes in a hex log (a hundred
+// lines or so, so that a log piped in as it is written is not held back for long).
+inline constexpr std::uint64_t kJudgedRawBytes = 64 * 1024;
+inline constexpr std::uint64_t kJudgedHexBytes = 4 * 1024;
+
+// Each takes ownership of `file`. `judged`: the kind was detected, not forced, so an input that
+// is mostly no telegrams is refused (Unusable) instead of decoded.
+std::unique_ptr<TelegramSource> make_raw_source(FILE* file, std::string name, bool judged);
+std::unique_ptr<TelegramSource> make_hex_source(FILE* file, std::string name, bool judged);
 std::unique_ptr<TelegramSource> make_memory_source(std::string name, Bytes bytes);
 
 }  // namespace dpscope

@@ -13,8 +13,120 @@
 
 namespace dpscope {
 
-void TelegramSource::report(Severity severity, std::string message) {
-    if (issue_handler_) issue_handler_(InputIssue{severity, std::move(message)});
+namespace {
+
+// Time kinds are reported once: the first says what the problem is, the rest are counted.
+std::uint64_t issues_shown(IssueKind kind) {
+    return kind == IssueKind::TimeBackwards || kind == IssueKind::TimeJump ? 1 : kMaxIssuesShown;
+}
+
+std::string plural(std::uint64_t n, std::string_view one, std::string_view many) {
+    return fmt::format("{} {}", n, n == 1 ? one : many);
+}
+
+// "2.500 s" for a time difference.
+std::string seconds_text(std::uint64_t ns) {
+    return fmt::format("{}.{:03} s", ns / 1'000'000'000, ns % 1'000'000'000 / 1'000'000);
+}
+
+}  // namespace
+
+void TelegramSource::report(Severity severity, std::string message, IssueKind kind,
+                            std::uint64_t bytes) {
+    if (kind != IssueKind::Other) {
+        Counted& counted = counted_[static_cast<std::size_t>(kind)];
+        if (++counted.issues > issues_shown(kind)) {
+            ++counted.hidden;
+            counted.hidden_bytes += bytes;
+            return;
+        }
+    }
+    if (issue_handler_) issue_handler_(InputIssue{severity, std::move(message), kind});
+}
+
+void TelegramSource::finish_reporting() {
+    if (reporting_finished_) return;
+    reporting_finished_ = true;
+    for (std::size_t i = 0; i < kIssueKinds; ++i) {
+        const Counted& c = counted_[i];
+        if (c.hidden == 0) continue;
+        std::string what;
+        switch (static_cast<IssueKind>(i)) {
+            case IssueKind::SkippedBytes:
+                what = fmt::format("{} of skipped bytes not shown ({})",
+                                   plural(c.hidden, "more run", "more runs"),
+                                   plural(c.hidden_bytes, "byte", "bytes"));
+                break;
+            case IssueKind::Snapshot:
+                what = fmt::format("{} cut short by the snapshot length not shown",
+                                   plural(c.hidden, "more record", "more records"));
+                break;
+            case IssueKind::HexSyntax:
+                what = fmt::format("{} with tokens that are no hex bytes not shown",
+                                   plural(c.hidden, "more line", "more lines"));
+                break;
+            case IssueKind::TimeBackwards:
+                what = fmt::format("time went backwards {}", plural(c.hidden, "more time", "more times"));
+                break;
+            case IssueKind::TimeJump:
+                what = fmt::format("time jumped forward by more than a minute {}",
+                                   plural(c.hidden, "more time", "more times"));
+                break;
+            case IssueKind::Interface:
+                what = fmt::format("{} about interfaces not shown",
+                                   plural(c.hidden, "more warning", "more warnings"));
+                break;
+            case IssueKind::BadTime:
+                what = fmt::format("{} with unusable timestamps not shown",
+                                   plural(c.hidden, "more packet", "more packets"));
+                break;
+            case IssueKind::Other: continue;
+        }
+        if (issue_handler_)
+            issue_handler_(InputIssue{Severity::Warning, fmt::format("{}: {}", name_, what),
+                                      IssueKind::Other});
+    }
+}
+
+bool TelegramSource::next(Record& record) {
+    if ((limit_ != 0 && handed_out_ >= limit_) || !read_next(record)) {
+        finish_reporting();
+        return false;
+    }
+    ++handed_out_;
+    check_time(record);
+    return true;
+}
+
+void TelegramSource::check_time(const Record& record) {
+    if (record.time_ns == kNoTime) return;
+    if (last_time_ns_ != kNoTime) {
+        if (record.time_ns < last_time_ns_) {
+            report(Severity::Warning,
+                   fmt::format("{}: frame {}: time goes backwards by {} from frame {}; a capture "
+                               "problem (merged or re-stamped capture?): latencies and time-outs "
+                               "around it are unreliable",
+                               name_, record.number,
+                               seconds_text(static_cast<std::uint64_t>(last_time_ns_) -
+                                            static_cast<std::uint64_t>(record.time_ns)),
+                               last_number_),
+                   IssueKind::TimeBackwards);
+        } else if (static_cast<std::uint64_t>(record.time_ns) -
+                       static_cast<std::uint64_t>(last_time_ns_) >
+                   static_cast<std::uint64_t>(kTimeJumpNs)) {
+            report(Severity::Warning,
+                   fmt::format("{}: frame {}: time jumps forward by {} from frame {} (more than "
+                               "a minute); a capture problem (a gap in the recording or a clock "
+                               "step): latencies and time-outs across it are unreliable",
+                               name_, record.number,
+                               seconds_text(static_cast<std::uint64_t>(record.time_ns) -
+                                            static_cast<std::uint64_t>(last_time_ns_)),
+                               last_number_),
+                   IssueKind::TimeJump);
+        }
+    }
+    last_time_ns_ = record.time_ns;
+    last_number_ = record.number;
 }
 
 namespace {
@@ -85,10 +197,12 @@ OpenResult open_source(const std::string& path, InputFormat format) {
         result.error = fmt::format("{}: is a directory, not a capture file", name);
         return result;
     }
+    const bool detected = format == InputFormat::Auto;
     auto* replay = new ReplayCookie;
     replay->rest = file;
     // A forced format needs no look at the content (and a typed hex log must not wait for 4 KiB).
     bool classic_pcap = false;
+    bool pcapng = false;
     if (format == InputFormat::Auto || format == InputFormat::Pcap ||
         format == InputFormat::Pcapng) {
         if (!read_head(fileno(file), replay->head)) {
@@ -97,6 +211,7 @@ OpenResult open_source(const std::string& path, InputFormat format) {
             return result;
         }
         classic_pcap = detect_input_format(replay->head) == InputFormat::Pcap;
+        pcapng = detect_input_format(replay->head) == InputFormat::Pcapng;
         if (format == InputFormat::Auto) format = detect_input_format(replay->head);
     }
     // A regular file goes back to its start and is read as it is: glibc reads a plain file's
@@ -118,12 +233,13 @@ OpenResult open_source(const std::string& path, InputFormat format) {
     switch (format) {
         case InputFormat::Pcap:
         case InputFormat::Pcapng:
-            result.source = open_pcap_source(stream, name, classic_pcap, result.error);
+            result.source = pcapng ? open_pcapng_source(stream, name, result.error)
+                                   : open_pcap_source(stream, name, classic_pcap, result.error);
             break;
-        case InputFormat::Hex: result.source = make_hex_source(stream, name); break;
+        case InputFormat::Hex: result.source = make_hex_source(stream, name, detected); break;
         case InputFormat::Raw:
         case InputFormat::Serial:
-        case InputFormat::Auto: result.source = make_raw_source(stream, name); break;
+        case InputFormat::Auto: result.source = make_raw_source(stream, name, detected); break;
     }
     return result;
 }

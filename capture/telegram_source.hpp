@@ -24,9 +24,28 @@ struct Record {
     std::uint32_t original_length = 0;  // pcap: the length on the wire (> bytes.size() if cut)
 };
 
+// Kinds of input issue that can repeat: the first few of each are reported, the rest counted and
+// summed up in one message when the reading ends (kMaxIssuesShown).
+enum class IssueKind : std::uint8_t {
+    Other,          // never capped (errors, one-off notes)
+    SkippedBytes,   // a run of bytes that forms no telegram
+    Snapshot,       // a record cut short by the snapshot length
+    HexSyntax,      // a hex-log line with a token that is no hex byte
+    TimeBackwards,  // a telegram earlier than the one before
+    TimeJump,       // a telegram more than kTimeJumpNs after the one before
+    Interface,      // pcapng: a packet of an interface dpscope does not decode, or a bad one
+    BadTime,        // pcapng: a timestamp outside what dpscope can represent
+};
+inline constexpr std::size_t kIssueKinds = 8;
+// Repeated issues of one kind reported before the rest are only counted.
+inline constexpr std::uint64_t kMaxIssuesShown = 10;
+// Times that step forward by more than this are a capture problem (a gap or a clock step).
+inline constexpr std::int64_t kTimeJumpNs = 60'000'000'000;
+
 struct InputIssue {
     Severity severity = Severity::Warning;
     std::string message;  // names the input and the record or byte offset
+    IssueKind kind = IssueKind::Other;
 };
 
 enum class InputStatus {
@@ -44,8 +63,13 @@ class TelegramSource {
     TelegramSource(const TelegramSource&) = delete;
     TelegramSource& operator=(const TelegramSource&) = delete;
 
-    // The next telegram; false at the end of the input or when damage stops the reading.
-    virtual bool next(Record& record) = 0;
+    // The next telegram; false at the end of the input, when damage stops the reading, or after
+    // the number of telegrams set by stop_after(). When it returns false the first time, the
+    // issues that were only counted are summed up.
+    bool next(Record& record);
+    // Hand out at most `telegrams` telegrams (0: no limit): the input after the last of them is
+    // not read further, and nothing is reported about it.
+    void stop_after(std::uint64_t telegrams) noexcept { limit_ = telegrams; }
     virtual InputFormat format() const = 0;
     // The pcap link type, 0 for inputs without one.
     virtual int link_type() const { return 0; }
@@ -53,17 +77,50 @@ class TelegramSource {
     virtual std::uint64_t bytes_skipped() const { return 0; }
 
     InputStatus status() const noexcept { return status_; }
+    // Why the input is Unusable when that was found out while reading (e.g. a byte stream that is
+    // no PROFIBUS stream); "" otherwise.
+    const std::string& unusable_reason() const noexcept { return unusable_reason_; }
     const std::string& name() const noexcept { return name_; }
     void on_issue(IssueHandler handler) { issue_handler_ = std::move(handler); }
+    // Issues of a repeating kind met so far, shown or only counted.
+    std::uint64_t issue_count(IssueKind kind) const noexcept {
+        return counted_[static_cast<std::size_t>(kind)].issues;
+    }
 
   protected:
-    void report(Severity severity, std::string message);
+    // The next telegram from the input itself.
+    virtual bool read_next(Record& record) = 0;
+
+    // Reports an issue; issues of a repeating kind beyond kMaxIssuesShown (one for the time
+    // kinds) are counted, with `bytes` summed, and summed up by finish_reporting().
+    void report(Severity severity, std::string message, IssueKind kind = IssueKind::Other,
+                std::uint64_t bytes = 0);
+    // The counted issues, one message per kind; once.
+    void finish_reporting();
     void set_status(InputStatus status) noexcept { status_ = status; }
+    void set_unusable(std::string reason) {
+        status_ = InputStatus::Unusable;
+        unusable_reason_ = std::move(reason);
+    }
 
   private:
+    struct Counted {
+        std::uint64_t issues = 0;
+        std::uint64_t hidden = 0;
+        std::uint64_t hidden_bytes = 0;
+    };
+    void check_time(const Record& record);
+
     std::string name_;
     InputStatus status_ = InputStatus::Ok;
+    std::string unusable_reason_;
     IssueHandler issue_handler_;
+    std::uint64_t limit_ = 0;
+    std::uint64_t handed_out_ = 0;
+    std::int64_t last_time_ns_ = kNoTime;
+    std::uint64_t last_number_ = 0;
+    Counted counted_[kIssueKinds];
+    bool reporting_finished_ = false;
 };
 
 struct OpenResult {

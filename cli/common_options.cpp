@@ -296,6 +296,7 @@ void warn_ppo_overrides(const BusDecoder& decoder) {
 }
 
 std::string nothing_found_error(const TelegramSource& source, std::uint64_t telegrams) {
+    if (source.status() == InputStatus::Unusable) return source.unusable_reason();
     if (telegrams > 0 || source.status() == InputStatus::Damaged) return {};
     const std::uint64_t skipped = source.bytes_skipped();
     switch (source.format()) {
@@ -306,6 +307,14 @@ std::string nothing_found_error(const TelegramSource& source, std::uint64_t tele
                 "capture?",
                 source.name(), skipped);
         case InputFormat::Hex:
+            if (skipped == 0 && source.issue_count(IssueKind::HexSyntax) > 0)
+                return fmt::format("{}: no readable hex bytes in the text ({} with tokens that "
+                                   "are no hex bytes, named above)",
+                                   source.name(),
+                                   source.issue_count(IssueKind::HexSyntax) == 1
+                                       ? std::string("1 line")
+                                       : fmt::format("{} lines",
+                                                     source.issue_count(IssueKind::HexSyntax)));
             if (skipped == 0) return fmt::format("{}: no hex bytes in the text", source.name());
             return fmt::format("{}: no PROFIBUS telegram in its {} hex bytes", source.name(),
                                skipped);

@@ -80,7 +80,8 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     Record record;
     std::uint64_t read = 0;
     std::span<const Finding> findings;
-    while ((settings.count == 0 || read < settings.count) && source.next(record)) {
+    source.stop_after(settings.count);
+    while (source.next(record)) {
         ++read;
         const DecodedTelegram& t = pipeline.feed(record, findings);
         if (!show(renderer.get(), settings, t, findings, pipeline.tracker().subject_pnu()))

@@ -100,7 +100,8 @@ int run_report(const ReportCommand& command) {
         Record record;
         std::uint64_t read = 0;
         std::span<const Finding> findings;
-        while ((settings->count == 0 || read < settings->count) && source.next(record)) {
+        source.stop_after(settings->count);
+        while (source.next(record)) {
             ++read;
             pipeline.feed(record, findings);
             if (!findings.empty()) log.append(findings);

@@ -251,7 +251,7 @@ int run_simulate(const SimulateCommand& command) {
     int link_type = command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
     // Written beside the file and moved into place once complete: a write error (disk full)
     // leaves an existing file as it was.
-    std::string error;
+    error.clear();
     auto file = PendingOutputFile::open(command.output, error);
     if (!file) {
         print_error(error);

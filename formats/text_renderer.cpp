@@ -1,6 +1,7 @@
 // One line a telegram:
 //   frame  time(s, relative to the first)  source → destination  frame type  service  req|rsp
 //   detail  [problem kinds] [severity finding-kind ...]
+#include <algorithm>
 #include <iterator>
 
 #include "formats/describe.hpp"
@@ -9,6 +10,34 @@
 namespace dpscope {
 
 namespace {
+
+constexpr int kTimeColumn = 12;
+
+// Seconds since the first telegram in at most 12 characters: microseconds up to 99,999 s (and
+// down to -9,999 s), then one decimal fewer for each further digit of the seconds, so the
+// columns after it stay aligned however long the capture.
+void append_relative_time(TextBuffer& b, std::int64_t relative_ns) {
+    const bool negative = relative_ns < 0;
+    const std::uint64_t magnitude = negative ? 0 - static_cast<std::uint64_t>(relative_ns)
+                                             : static_cast<std::uint64_t>(relative_ns);
+    const std::uint64_t seconds = magnitude / 1'000'000'000;
+    int integer_digits = negative ? 2 : 1;
+    for (std::uint64_t rest = seconds; rest >= 10; rest /= 10)
+        ++integer_digits;
+    const int decimals = std::clamp(kTimeColumn - 1 - integer_digits, 0, 6);
+    auto it = std::back_inserter(b);
+    if (decimals == 0) {
+        fmt::format_to(it, "{:>{}} ", fmt::format("{}{}", negative ? "-" : "", seconds),
+                       kTimeColumn);
+        return;
+    }
+    std::uint64_t fraction = magnitude % 1'000'000'000;
+    for (int i = decimals; i < 9; ++i)
+        fraction /= 10;
+    fmt::format_to(it, "{:>{}} ",
+                   fmt::format("{}{}.{:0{}}", negative ? "-" : "", seconds, fraction, decimals),
+                   kTimeColumn);
+}
 
 class TextRenderer final : public TelegramRenderer {
   public:
@@ -24,7 +53,7 @@ class TextRenderer final : public TelegramRenderer {
         fmt::format_to(it, "{:>6} ", t.frame);
         if (t.has_time()) {
             if (first_time_ == kNoTime) first_time_ = t.time_ns;
-            fmt::format_to(it, "{:>12} ", relative_seconds_text(t.time_ns - first_time_));
+            append_relative_time(b, t.time_ns - first_time_);
         } else {
             append(b, "           - ");
         }

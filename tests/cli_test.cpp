@@ -4,6 +4,7 @@
 #include <pcap/pcap.h>
 
 #include <cstdio>
+#include <random>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -312,6 +313,104 @@ TEST(CliTest, CountStopsAfterNTelegrams) {
     EXPECT_EQ(lines[4].rfind("     5 ", 0), 0u);
     CommandResult jsonl = run_dpscope({"decode", "--count", "3", "-T", "jsonl", kPpo1});
     EXPECT_EQ(lines_of(jsonl.out).size(), 3u);
+}
+
+std::vector<std::uint8_t> random_bytes(std::size_t n) {
+    std::mt19937 generator(11);
+    std::vector<std::uint8_t> bytes(n);
+    for (std::uint8_t& b : bytes)
+        b = static_cast<std::uint8_t>(generator());
+    return bytes;
+}
+
+TEST(CliTest, RandomBytesAreNoProfibusStreamUnlessRawIsForced) {
+    TempFile file("random.bin");
+    test::write_file(file.path, random_bytes(1'000'000));
+    for (const char* command : {"decode", "report"}) {
+        CommandResult r = run_dpscope({command, file.path});
+        EXPECT_EQ(r.exit_code, 2) << command;
+        EXPECT_TRUE(r.out.empty()) << command << r.out.substr(0, 200);
+        // One line: the verdict with the share skipped, and how to decode it anyway.
+        EXPECT_EQ(lines_of(r.err).size(), 1u) << r.err.substr(0, 2000);
+        EXPECT_NE(r.err.find("dpscope: error: " + file.path +
+                             ": not a PROFIBUS byte stream: "),
+                  std::string::npos)
+            << r.err;
+        EXPECT_NE(r.err.find("of its first 65536 bytes (99."), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("--input-format raw decodes it anyway"), std::string::npos) << r.err;
+    }
+    // Forced: decoded, and the warnings about skipped bytes are capped, also with -q.
+    for (bool quiet : {false, true}) {
+        std::vector<std::string> args = {"decode", "--input-format", "raw", file.path};
+        if (quiet) args.push_back("-q");
+        CommandResult r = run_dpscope(args);
+        EXPECT_EQ(r.exit_code, 0) << quiet;
+        std::vector<std::string> warnings = lines_of(r.err);
+        ASSERT_EQ(warnings.size(), kMaxIssuesShown + 1) << r.err.substr(0, 2000);
+        EXPECT_TRUE(std::regex_search(warnings.back(),
+                                      std::regex(": [0-9]+ more runs of skipped bytes not shown "
+                                                 "\\([0-9]+ bytes\\)$")))
+            << warnings.back();
+    }
+}
+
+TEST(CliTest, CountStopsReadingRawInputAtTheLastTelegram) {
+    // Two telegrams, then garbage: -c 2 says nothing about the garbage.
+    TempFile file("count.raw");
+    std::vector<std::uint8_t> bytes = test::hex("10 03 02 49 4E 16 DC 02 02");
+    std::vector<std::uint8_t> garbage = random_bytes(5000);
+    for (std::uint8_t& b : garbage)
+        b &= 0x0F;  // no start delimiter
+    bytes.insert(bytes.end(), garbage.begin(), garbage.end());
+    bytes.push_back(0xE5);
+    test::write_file(file.path, bytes);
+    for (const char* command : {"decode", "report"}) {
+        CommandResult r = run_dpscope({command, "--input-format", "raw", "-c", "2", file.path});
+        EXPECT_EQ(r.exit_code, 0) << command << r.err;
+        EXPECT_EQ(r.err, "") << command;
+    }
+    CommandResult all = run_dpscope({"decode", "--input-format", "raw", file.path});
+    EXPECT_NE(all.err.find("skipped 5000 byte"), std::string::npos) << all.err;
+}
+
+TEST(CliTest, MergedPcapngWithTwoLinkTypesIsDecoded) {
+    // mergecap of a 257 and a 147 capture: two interfaces with different link types.
+    TempFile file("merged.pcapng");
+    test::PcapngBuilder b;
+    b.interface(257).interface(147).interface(1);
+    const std::uint64_t t0 = 1'704'067'200'000'000;
+    b.packet(0, t0, test::hex("10 03 02 49 4E 16")).packet(1, t0 + 100, test::hex("E5"));
+    b.packet(2, t0 + 150, std::vector<std::uint8_t>(60, 0xFF));
+    b.packet(1, t0 + 200, test::hex("DC 02 02"));
+    test::write_file(file.path, b.bytes());
+    CommandResult r = run_dpscope({"decode", file.path});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::vector<std::string> lines = lines_of(r.out);
+    ASSERT_EQ(lines.size(), 3u) << r.out;
+    EXPECT_EQ(lines[2].rfind("     4     0.000200 ", 0), 0u) << lines[2];
+    EXPECT_EQ(r.err, "dpscope: warning: " + file.path +
+                         ": byte offset 76: interface 2 has link type 1 (EN10MB), which dpscope "
+                         "does not decode (it reads 257 PROFIBUS_DL and 147 USER0); its packets "
+                         "are skipped\n");
+}
+
+TEST(CliTest, HexLogTypoNamesLineAndColumn) {
+    CommandResult r = run_dpscope({"decode", "-"}, "10 03 02 49 4E 16\n10 03 02 49 0G 16\n");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(lines_of(r.out).size(), 1u);
+    EXPECT_NE(r.err.find("dpscope: warning: <stdin>: line 2, column 13: '0G' is not a hex byte"),
+              std::string::npos)
+        << r.err;
+    CommandResult odd = run_dpscope({"decode", "-"}, "100302494E1\n");
+    EXPECT_EQ(odd.exit_code, 2);
+    EXPECT_NE(odd.err.find("<stdin>: line 1, column 1: '100302494E1' is no run of hex bytes (an "
+                           "odd number of hex digits: 11)"),
+              std::string::npos)
+        << odd.err;
+    EXPECT_NE(odd.err.find("dpscope: error: <stdin>: no readable hex bytes in the text (1 line "
+                           "with tokens that are no hex bytes, named above)"),
+              std::string::npos)
+        << odd.err;
 }
 
 // Source and destination of a text line: "frame time SRC → DST ...".

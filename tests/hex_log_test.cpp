@@ -112,13 +112,24 @@ TEST(HexLogTest, CompactHexRun) {
     EXPECT_EQ(*timed.line.time_ns, kNoonAndABit);
 }
 
-TEST(HexLogTest, CompactRunWithOddDigitCountIsNotBytes) {
+TEST(HexLogTest, CompactRunWithOddDigitCountIsNotBytesAndNamed) {
     // Truncated compact run: an odd number of digits.
-    Parsed p = parse("100302494E1");
+    Parsed p = parse("RX: 100302494E1");
     EXPECT_EQ(p.line.byte_count, 0u);
     EXPECT_TRUE(p.bytes.empty());
+    ASSERT_TRUE(p.line.error);
+    EXPECT_EQ(p.line.error->column, 5u);
+    EXPECT_EQ(p.line.error->token, "100302494E1");
+    EXPECT_EQ(p.line.error->what, "is no run of hex bytes (an odd number of hex digits: 11)");
+    EXPECT_EQ(p.line.breaks, std::vector<std::size_t>{0});
     // Corrupted: a non-hex digit inside.
-    EXPECT_EQ(parse("100302494G16").line.byte_count, 0u);
+    Parsed typo = parse("100302494G16");
+    EXPECT_EQ(typo.line.byte_count, 0u);
+    ASSERT_TRUE(typo.line.error);
+    EXPECT_EQ(typo.line.error->what, "is no run of hex bytes ('G' is no hex digit)");
+    // Words are no compact runs.
+    EXPECT_FALSE(parse("12:00:01 capture started").line.error);
+    EXPECT_FALSE(parse("decade5").line.error);  // two letters beyond hex
 }
 
 TEST(HexLogTest, LongestRunWinsAndLaterRunWinsATie) {
@@ -137,10 +148,79 @@ TEST(HexLogTest, LinesWithoutBytes) {
     }
 }
 
-TEST(HexLogTest, CorruptedTokensAreNotBytes) {
-    // Three-digit and one-digit tokens are not byte tokens; the run around them is split.
+TEST(HexLogTest, CorruptedTokensAreNamedAndBreakTheBytes) {
+    // Three-digit and one-digit tokens are not byte tokens: the bytes around them are kept, with
+    // a break where each was, and the first is named by its column.
     Parsed p = parse("10 03 123 02 4 49 4E 16");
-    EXPECT_EQ(p.bytes, hex("49 4E 16"));
+    EXPECT_EQ(p.bytes, hex("10 03 02 49 4E 16"));
+    EXPECT_EQ(p.line.breaks, (std::vector<std::size_t>{2, 3}));
+    EXPECT_EQ(p.line.bad_tokens, 2u);
+    ASSERT_TRUE(p.line.error);
+    EXPECT_EQ(p.line.error->column, 7u);
+    EXPECT_EQ(p.line.error->token, "123");
+    EXPECT_EQ(p.line.error->what, "is not a hex byte (an odd number of hex digits: 3)");
+}
+
+TEST(HexLogTest, TypoInsideOrAtTheEdgeOfTheBytes) {
+    Parsed inside = parse("1704067200.5 RX: 68 07 07 68 83 0G 7D 3E 3E F3 F1 E2 16");
+    EXPECT_EQ(inside.line.byte_count, 12u);
+    EXPECT_EQ(inside.line.breaks, std::vector<std::size_t>{5});
+    ASSERT_TRUE(inside.line.error);
+    EXPECT_EQ(inside.line.error->column, 33u);
+    EXPECT_EQ(inside.line.error->what, "is not a hex byte ('G' is no hex digit)");
+    EXPECT_TRUE(inside.line.time_ns.has_value());  // the timestamp still counts
+    // Before the bytes: a digit and a letter beyond hex; after them also a lone digit.
+    Parsed first = parse("TX: 0G 03 02 49 4E 16");
+    ASSERT_TRUE(first.line.error);
+    EXPECT_EQ(first.line.error->column, 5u);
+    EXPECT_EQ(first.line.breaks, std::vector<std::size_t>{0});
+    Parsed last = parse("10 03 02 49 4E 6");
+    ASSERT_TRUE(last.line.error);
+    EXPECT_EQ(last.line.error->column, 16u);
+    EXPECT_EQ(last.line.breaks, std::vector<std::size_t>{5});
+    // Labels around the bytes are no typos.
+    for (std::string_view text :
+         {"RX 10 03 02 49 4E 16 OK", "ID 10 03 02 49 4E 16", "CH 1 10 03 02 49 4E 16 done"}) {
+        Parsed p = parse(text);
+        EXPECT_FALSE(p.line.error) << text << ": " << p.line.error->token;
+        EXPECT_EQ(p.bytes, kSd1) << text;
+    }
+}
+
+// ---- xxd and hexdump -C ----------------------------------------------------------------------
+
+TEST(HexLogTest, XxdLine) {
+    Parsed p = parse("00000010: 6807 0768 8382 7d3e 3ef3 f1e2 16   h..h..}>>....");
+    EXPECT_EQ(p.bytes, kSd2);
+    ASSERT_TRUE(p.line.dump_offset);
+    EXPECT_EQ(*p.line.dump_offset, 0x10u);
+    EXPECT_FALSE(p.line.time_ns);
+    // The ASCII column may hold anything, also what looks like hex.
+    Parsed ascii = parse("00000000: 4142 2043 4420 45                             AB CD E");
+    EXPECT_EQ(ascii.bytes, hex("41 42 20 43 44 20 45"));
+    // xxd -g1 and -g4.
+    EXPECT_EQ(parse("00000000: 10 03 02 49 4e 16                                ...IN.").bytes,
+              kSd1);
+    EXPECT_EQ(parse("00000000: 10030249 4e16                        ...IN.").bytes, kSd1);
+}
+
+TEST(HexLogTest, XxdLineWithTypoNamesTheColumn) {
+    Parsed p = parse("00000000: 1003 0249 4g16 1002  ...IN...");
+    EXPECT_EQ(p.bytes, hex("10 03 02 49 10 02"));
+    ASSERT_TRUE(p.line.error);
+    EXPECT_EQ(p.line.error->column, 21u);
+    EXPECT_EQ(p.line.error->token, "4g16");
+    EXPECT_EQ(p.line.error->what, "is not hex bytes ('g' is no hex digit)");
+}
+
+TEST(HexLogTest, RepeatMarker) {
+    EXPECT_TRUE(parse("*").line.repeat_marker);
+    EXPECT_TRUE(parse("*  ").line.repeat_marker);
+    EXPECT_FALSE(parse("* 10 03").line.repeat_marker);
+    Parsed end = parse("00000717");
+    EXPECT_EQ(end.line.byte_count, 0u);
+    ASSERT_TRUE(end.line.dump_offset);
+    EXPECT_EQ(*end.line.dump_offset, 0x717u);
 }
 
 // ---- parse_hex_log_line: timestamps ----------------------------------------------------------

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <pcap/pcap.h>
+#include <fmt/format.h>
 #include <sys/stat.h>
 
 #include <cstdio>
@@ -191,14 +192,184 @@ TEST(PcapSourceTest, ReadsPcapngWithLinkTypeUser0) {
     expect_telegrams(r, kTelegrams);
 }
 
-TEST(PcapSourceTest, PcapngRecordOffsetsAreUnknown) {
+TEST(PcapSourceTest, PcapngRecordOffsetsAreBlockOffsets) {
     TempFile file("offsets.pcapng");
     write_capture(file.path, CaptureFormat::Pcapng, kLinkTypeProfibusDl);
     ReadResult r = read_all(file.path);
     ASSERT_EQ(r.records.size(), 3u);
-    // libpcap does not tell where a pcapng block starts: the offset is documented as 0.
-    for (const Record& record : r.records)
-        EXPECT_EQ(record.offset, 0u);
+    // Each record's offset is where its enhanced packet block starts: type 6, then its length.
+    std::vector<std::uint8_t> bytes = test::read_file(file.path);
+    std::uint64_t previous = 0;
+    for (const Record& record : r.records) {
+        ASSERT_LT(record.offset + 8, bytes.size());
+        EXPECT_GT(record.offset, previous);
+        EXPECT_EQ(bytes[record.offset], 6);
+        EXPECT_EQ(bytes[record.offset + 1] | bytes[record.offset + 2] | bytes[record.offset + 3],
+                  0);
+        previous = record.offset;
+    }
+}
+
+// ---- pcapng built block by block -------------------------------------------------------------
+
+using test::PcapngBuilder;
+
+constexpr std::uint64_t kT0Us = 1'704'067'200'000'000;  // kT0 in microseconds
+
+TEST(PcapSourceTest, PcapngWithInterfacesOfBothLinkTypesAsMergecapMakesThem) {
+    // libpcap refuses a second interface whose link type differs from the first one's.
+    TempFile file("merged.pcapng");
+    PcapngBuilder b;
+    b.interface(257).interface(147);
+    b.packet(0, kT0Us, kSd1).packet(1, kT0Us + 100, kSd2).packet(0, kT0Us + 200, kToken);
+    test::write_file(file.path, b.bytes());
+    ReadResult r = read_all(file.path);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    EXPECT_TRUE(r.issues.empty());
+    EXPECT_EQ(r.format, InputFormat::Pcapng);
+    EXPECT_EQ(r.link_type, 257);
+    expect_telegrams(r, {{kSd1, kT0}, {kSd2, kT0 + 100'000}, {kToken, kT0 + 200'000}});
+}
+
+TEST(PcapSourceTest, PcapngSkipsPacketsOfAnInterfaceWithAnotherLinkTypeWithOneWarning) {
+    TempFile file("ethernet-too.pcapng");
+    PcapngBuilder b;
+    b.interface(257).interface(1);
+    std::vector<std::uint8_t> frame(60, 0xFF);
+    b.packet(1, kT0Us, frame).packet(0, kT0Us + 1, kSd1).packet(1, kT0Us + 2, frame);
+    b.packet(1, kT0Us + 3, frame).packet(0, kT0Us + 4, kToken);
+    test::write_file(file.path, b.bytes());
+    ReadResult r = read_all(file.path);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    ASSERT_EQ(r.records.size(), 2u);
+    EXPECT_EQ(r.data[0], kSd1);
+    EXPECT_EQ(r.data[1], kToken);
+    // Frame numbers count every packet, as Wireshark does.
+    EXPECT_EQ(r.records[0].number, 2u);
+    EXPECT_EQ(r.records[1].number, 5u);
+    ASSERT_EQ(r.issues.size(), 1u);
+    const std::string& message = r.issues[0].message;
+    EXPECT_EQ(r.issues[0].severity, Severity::Warning);
+    EXPECT_NE(message.find(file.path + ": byte offset 52: interface 1 has link type 1 (EN10MB)"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("its packets are skipped"), std::string::npos) << message;
+}
+
+TEST(PcapSourceTest, PcapngWithNoInterfaceDpscopeDecodesIsUnusable) {
+    TempFile file("ethernet.pcapng");
+    PcapngBuilder b;
+    b.interface(1).packet(0, kT0Us, std::vector<std::uint8_t>(60, 0xFF));
+    test::write_file(file.path, b.bytes());
+    std::string error = open_error(file.path);
+    EXPECT_NE(error.find(file.path + ": unsupported link type 1 (EN10MB); dpscope reads 257"),
+              std::string::npos)
+        << error;
+}
+
+TEST(PcapSourceTest, PcapngWithoutInterfacesIsAnEmptyCapture) {
+    TempFile file("no-interfaces.pcapng");
+    test::write_file(file.path, PcapngBuilder().bytes());
+    ReadResult r = read_all(file.path);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    EXPECT_TRUE(r.records.empty());
+    EXPECT_TRUE(r.issues.empty());
+}
+
+TEST(PcapSourceTest, PcapngBigEndianWithResolutionAndOffset) {
+    TempFile file("big-endian.pcapng");
+    PcapngBuilder b(true);
+    // Interface 0: nanoseconds; interface 1: 2^-10 s units, 100 s offset.
+    b.interface(257, 9).interface(147, 0x80 | 10, 100);
+    b.packet(0, 1'704'067'200'000'000'007ULL, kSd1);
+    b.packet(1, (1'704'067'100ULL << 10) | 512, kSd2);  // + 100 s, + 0.5 s
+    test::write_file(file.path, b.bytes());
+    ReadResult r = read_all(file.path);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    EXPECT_TRUE(r.issues.empty());
+    expect_telegrams(r, {{kSd1, kT0 + 7}, {kSd2, kT0 + 500'000'000}});
+}
+
+TEST(PcapSourceTest, PcapngSimplePacketsAndSecondSectionWithOtherInterfaces) {
+    TempFile file("sections.pcapng");
+    PcapngBuilder b;
+    b.interface(1).interface(257).packet(1, kT0Us, kSd1);
+    b.block(4, {0, 0, 0, 0});  // a name resolution block: passed over
+    // A new section numbers its interfaces from 0 again.
+    b.section().interface(147).simple_packet(kToken);
+    test::write_file(file.path, b.bytes());
+    ReadResult r = read_all(file.path);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    ASSERT_EQ(r.records.size(), 2u);
+    EXPECT_EQ(r.data[0], kSd1);
+    EXPECT_EQ(r.data[1], kToken);
+    EXPECT_EQ(r.records[1].time_ns, kNoTime);  // simple packet blocks carry no time
+    ASSERT_EQ(r.issues.size(), 1u);            // interface 0 of the first section
+}
+
+TEST(PcapSourceTest, PcapngBlockLengthsAreChecked) {
+    PcapngBuilder good;
+    good.interface(257).packet(0, kT0Us, kSd1).packet(0, kT0Us + 1, kSd2);
+    const std::vector<std::uint8_t> whole = good.bytes();
+    const std::size_t second = whole.size() - 48;  // the second packet block (48 bytes)
+    struct Case {
+        const char* what;
+        std::size_t at;  // byte to change
+        std::uint8_t value;
+        const char* message;
+    };
+    for (const Case& c : std::vector<Case>{
+             {"length not a multiple of 4", second + 4, 47, "gives its length as 47 bytes"},
+             {"length below the minimum", second + 4, 8, "gives its length as 8 bytes"},
+             {"length past the end", second + 4, 52, "cut off: the file ends after 48 of its"},
+             {"trailing length differs", whole.size() - 4, 44, "at its start and 44 at its end"},
+             {"captured length past the block", second + 20, 40, "captured length 40 runs past"},
+         }) {
+        SCOPED_TRACE(c.what);
+        TempFile file("bad-length.pcapng");
+        std::vector<std::uint8_t> bytes = whole;
+        bytes[c.at] = c.value;
+        test::write_file(file.path, bytes);
+        ReadResult r = read_all(file.path);
+        EXPECT_EQ(r.status, InputStatus::Damaged);
+        ASSERT_EQ(r.records.size(), 1u);
+        ASSERT_EQ(r.issues.size(), 1u);
+        const std::string& message = r.issues[0].message;
+        EXPECT_EQ(r.issues[0].severity, Severity::Error);
+        EXPECT_NE(message.find(fmt::format("{}: record 2 (byte offset {}): ", file.path, second)),
+                  std::string::npos)
+            << message;
+        EXPECT_NE(message.find(c.message), std::string::npos) << message;
+        EXPECT_NE(message.find("decoding stopped after 1 record"), std::string::npos) << message;
+    }
+}
+
+TEST(PcapSourceTest, PcapngCutInsideABlockHeaderOrWithBadByteOrderMagic) {
+    PcapngBuilder good;
+    good.interface(257).packet(0, kT0Us, kSd1);
+    {
+        TempFile file("cut-header.pcapng");
+        std::vector<std::uint8_t> bytes = good.bytes();
+        bytes.insert(bytes.end(), {6, 0, 0, 0, 32});
+        test::write_file(file.path, bytes);
+        ReadResult r = read_all(file.path);
+        EXPECT_EQ(r.status, InputStatus::Damaged);
+        EXPECT_EQ(r.records.size(), 1u);
+        ASSERT_EQ(r.issues.size(), 1u);
+        EXPECT_NE(r.issues[0].message.find("the file ends inside a block header (5 of 8 bytes)"),
+                  std::string::npos)
+            << r.issues[0].message;
+    }
+    {
+        TempFile file("bad-magic.pcapng");
+        std::vector<std::uint8_t> bytes = good.bytes();
+        bytes[8] = 0x99;
+        test::write_file(file.path, bytes);
+        std::string error = open_error(file.path);
+        EXPECT_NE(error.find("byte offset 0: section header block with byte-order magic"),
+                  std::string::npos)
+            << error;
+    }
 }
 
 TEST(PcapSourceTest, MicrosecondLittleEndianPcapTimesInNanoseconds) {
@@ -381,7 +552,7 @@ TEST(PcapSourceTest, TruncatedPcapngNamesRecord) {
     expect_telegrams(r, {kTelegrams[0], kTelegrams[1]});
     EXPECT_EQ(r.status, InputStatus::Damaged);
     ASSERT_EQ(r.issues.size(), 1u);
-    EXPECT_NE(r.issues[0].message.find(file.path + ": record 3: "), std::string::npos)
+    EXPECT_NE(r.issues[0].message.find(file.path + ": record 3 (byte offset "), std::string::npos)
         << r.issues[0].message;
 }
 

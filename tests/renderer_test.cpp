@@ -544,6 +544,26 @@ TEST(RendererTest, TextWithoutTimeProblemsAndFindings) {
     EXPECT_EQ(lines[2], "     3    -2.500000   2 → 2   SD4 Token          req token");
 }
 
+TEST(RendererTest, TextTimeColumnStaysAlignedPastNinetyNineThousandSeconds) {
+    const std::int64_t second = 1'000'000'000;
+    std::vector<Input> in = {{hex("DC 02 02"), kT0, {}},
+                             {hex("DC 02 02"), kT0 + 99'999 * second + 999'999'999, {}},
+                             {hex("DC 02 02"), kT0 + 100'000 * second + 500'000'000, {}},
+                             {hex("DC 02 02"), kT0 + 12'345'678'901 * (second / 10), {}},
+                             {hex("DC 02 02"), kT0 - 10'000 * second - 250'000'000, {}},
+                             {hex("DC 02 02"), kT0 + 7'000'000'000 * second, {}},
+                             {hex("DC 02 02"), kT0 - 7'000'000'000 * second, {}}};
+    std::vector<std::string> lines = split_lines(render(OutputFormat::Text, in));
+    ASSERT_EQ(lines.size(), 7u);
+    EXPECT_EQ(lines[0], "     1     0.000000   2 → 2   SD4 Token          req token");
+    EXPECT_EQ(lines[1], "     2 99999.999999   2 → 2   SD4 Token          req token");
+    EXPECT_EQ(lines[2], "     3 100000.50000   2 → 2   SD4 Token          req token");
+    EXPECT_EQ(lines[3], "     4 1234567890.1   2 → 2   SD4 Token          req token");
+    EXPECT_EQ(lines[4], "     5 -10000.25000   2 → 2   SD4 Token          req token");
+    EXPECT_EQ(lines[5], "     6 7000000000.0   2 → 2   SD4 Token          req token");
+    EXPECT_EQ(lines[6], "     7  -7000000000   2 → 2   SD4 Token          req token");
+}
+
 TEST(RendererTest, TextDataExchangeResponseWithoutDataNamesItsStatus) {
     // A slave that restarted answers Data_Exchange with RS (SAP not activated) and no inputs.
     std::vector<Input> in = {

@@ -6,10 +6,13 @@
 #include <chrono>
 #include <cstdio>
 #include <future>
+#include <random>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "capture/framed_source.hpp"
+#include "capture/stream_source.hpp"
 #include "capture/telegram_source.hpp"
 #include "tests/test_support.hpp"
 
@@ -66,6 +69,14 @@ ReadResult read_all(const std::string& path, InputFormat format) {
     EXPECT_TRUE(opened.source) << opened.error;
     if (!opened.source) return {};
     return drain(*opened.source);
+}
+
+std::vector<std::uint8_t> random_bytes(std::size_t n, std::uint32_t seed = 7) {
+    std::mt19937 generator(seed);
+    std::vector<std::uint8_t> bytes(n);
+    for (std::uint8_t& b : bytes)
+        b = static_cast<std::uint8_t>(generator());
+    return bytes;
 }
 
 // ---- raw -------------------------------------------------------------------------------------
@@ -274,6 +285,91 @@ TEST(StreamSourceTest, HexCorruptedLinesAreIgnored) {
     EXPECT_TRUE(r.issues.empty());
 }
 
+TEST(StreamSourceTest, HexTypoIsNamedAndTheRestStillDecodes) {
+    TempFile file("typo.txt");
+    test::write_text_file(file.path,
+                          "10 03 02 49 4E 16\n"
+                          "68 07 07 68 83 0G 7D 3E 3E F3 F1 E2 16\n"
+                          "DC 02 02\n");
+    ReadResult r = read_all(file.path, InputFormat::Auto);
+    ASSERT_EQ(r.records.size(), 2u);
+    EXPECT_EQ(r.data[0], kSd1);
+    EXPECT_EQ(r.data[1], kToken);
+    ASSERT_GE(r.issues.size(), 1u);
+    EXPECT_EQ(r.issues[0].kind, IssueKind::HexSyntax);
+    EXPECT_EQ(r.issues[0].message,
+              file.path + ": line 2, column 16: '0G' is not a hex byte ('G' is no hex digit); "
+                          "the bytes before and after it are framed apart");
+    // Then the pieces of the telegram that could not be framed.
+    for (std::size_t i = 1; i < r.issues.size(); ++i)
+        EXPECT_EQ(r.issues[i].kind, IssueKind::SkippedBytes) << r.issues[i].message;
+}
+
+TEST(StreamSourceTest, HexBadLinesAreCapped) {
+    TempFile file("typos.txt");
+    std::string text;
+    for (int i = 0; i < 25; ++i)
+        text += "10 03 02 49 4E 16\n10 0G\n";
+    test::write_text_file(file.path, text);
+    ReadResult r = read_all(file.path, InputFormat::Hex);
+    EXPECT_EQ(r.records.size(), 25u);
+    std::size_t hex_syntax = 0;
+    for (const InputIssue& issue : r.issues)
+        if (issue.kind == IssueKind::HexSyntax) ++hex_syntax;
+    EXPECT_EQ(hex_syntax, kMaxIssuesShown);
+    bool summed_up = false;
+    for (const InputIssue& issue : r.issues)
+        if (issue.message == file.path + ": 15 more lines with tokens that are no hex bytes not "
+                                         "shown")
+            summed_up = true;
+    EXPECT_TRUE(summed_up);
+}
+
+// The dumps of samples/serial.raw made with `xxd` and `hexdump -C` (samples/serial.xxd,
+// samples/serial.hexdump) decode to the same telegrams as the raw file.
+TEST(StreamSourceTest, XxdAndHexdumpOfTheSerialSampleEqualTheRawFile) {
+    ReadResult raw = read_all(test::source_dir() + "/samples/serial.raw", InputFormat::Auto);
+    ASSERT_GT(raw.records.size(), 10u);
+    for (const char* dump : {"/samples/serial.xxd", "/samples/serial.hexdump"}) {
+        SCOPED_TRACE(dump);
+        ReadResult r = read_all(test::source_dir() + dump, InputFormat::Auto);
+        EXPECT_EQ(r.format, InputFormat::Hex);
+        EXPECT_EQ(r.status, InputStatus::Ok);
+        EXPECT_EQ(r.data, raw.data);
+        ASSERT_EQ(r.records.size(), raw.records.size());
+        for (std::size_t i = 0; i < r.records.size(); ++i)
+            EXPECT_EQ(r.records[i].offset, raw.records[i].offset);
+        EXPECT_EQ(r.skipped, raw.skipped);
+    }
+}
+
+TEST(StreamSourceTest, DumpRepeatMarkerStandsForTheLeftOutLines) {
+    // hexdump -C of kSd1, 40 zero bytes, kSd1: the zero lines are shown once, then "*".
+    std::vector<std::uint8_t> raw = concat({kSd1, std::vector<std::uint8_t>(42, 0), kSd1});
+    TempFile file("repeat.hd");
+    test::write_text_file(file.path,
+                          "00000000  10 03 02 49 4e 16 00 00  00 00 00 00 00 00 00 00  |...IN...........|\n"
+                          "00000010  00 00 00 00 00 00 00 00  00 00 00 00 00 00 00 00  |................|\n"
+                          "*\n"
+                          "00000030  10 03 02 49 4e 16                                 |...IN.|\n"
+                          "00000036\n");
+    ReadResult r = read_all(file.path, InputFormat::Hex);
+    ASSERT_EQ(r.records.size(), 2u);
+    EXPECT_EQ(r.records[1].offset, 48u);
+    EXPECT_EQ(r.skipped, 42u);
+    // Without the "*", the offset jump is named.
+    test::write_text_file(file.path,
+                          "00000000  10 03 02 49 4e 16 00 00  00 00 00 00 00 00 00 00  |...IN...........|\n"
+                          "00000030  10 03 02 49 4e 16                                 |...IN.|\n");
+    r = read_all(file.path, InputFormat::Hex);
+    ASSERT_EQ(r.records.size(), 2u);
+    bool named = false;
+    for (const InputIssue& issue : r.issues)
+        named |= issue.message.find(": line 2: the dump's offset is 0x30, but 0x10 bytes came "
+                                    "before it; lines are missing") != std::string::npos;
+    EXPECT_TRUE(named);
+}
+
 TEST(StreamSourceTest, EmptyHexFile) {
     TempFile file("empty.txt");
     test::write_text_file(file.path, "# nothing captured\n");
@@ -385,6 +481,157 @@ TEST(StreamSourceTest, MemorySourceTruncatedAndEmpty) {
     ReadResult empty = drain(*memory_source("mem", Bytes()));
     EXPECT_TRUE(empty.records.empty());
     EXPECT_TRUE(empty.issues.empty());
+}
+
+// ---- judging detected inputs, capped warnings, stopping at a count, times --------------------
+
+TEST(StreamSourceTest, RandomBytesDetectedAsRawAreNoProfibusStream) {
+    TempFile file("random.bin");
+    test::write_file(file.path, random_bytes(200'000));
+    ReadResult r = read_all(file.path, InputFormat::Auto);
+    EXPECT_EQ(r.format, InputFormat::Raw);
+    EXPECT_EQ(r.status, InputStatus::Unusable);
+    // Decided over the first 64 KiB, before anything is handed out or warned about.
+    EXPECT_TRUE(r.records.empty());
+    EXPECT_TRUE(r.issues.empty());
+    OpenResult opened = open_source(file.path, InputFormat::Auto);
+    ASSERT_TRUE(opened.source);
+    Record record;
+    EXPECT_FALSE(opened.source->next(record));
+    const std::string& reason = opened.source->unusable_reason();
+    EXPECT_NE(reason.find(file.path + ": not a PROFIBUS byte stream: "), std::string::npos)
+        << reason;
+    EXPECT_NE(reason.find("of its first 65536 bytes (9"), std::string::npos) << reason;
+    EXPECT_NE(reason.find(" %) form no telegram; --input-format raw decodes it anyway"),
+              std::string::npos)
+        << reason;
+}
+
+TEST(StreamSourceTest, RandomBytesForcedRawAreDecodedWithCappedWarnings) {
+    TempFile file("random.raw");
+    test::write_file(file.path, random_bytes(200'000));
+    ReadResult r = read_all(file.path, InputFormat::Raw);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    EXPECT_GT(r.records.size(), 100u);
+    // The first kMaxIssuesShown runs of skipped bytes, then one message for the rest.
+    ASSERT_EQ(r.issues.size(), kMaxIssuesShown + 1);
+    std::uint64_t shown = 0;
+    for (std::size_t i = 0; i < kMaxIssuesShown; ++i) {
+        EXPECT_EQ(r.issues[i].kind, IssueKind::SkippedBytes);
+        std::size_t at = r.issues[i].message.find("skipped ");
+        ASSERT_NE(at, std::string::npos);
+        shown += std::stoull(r.issues[i].message.substr(at + 8));
+    }
+    const std::string& last = r.issues.back().message;
+    EXPECT_NE(last.find(file.path + ": "), std::string::npos) << last;
+    EXPECT_NE(last.find(" more runs of skipped bytes not shown (" +
+                        std::to_string(r.skipped - shown) + " bytes)"),
+              std::string::npos)
+        << last;
+    EXPECT_GT(r.skipped, 190'000u);
+}
+
+TEST(StreamSourceTest, DumpWithSomeGarbageIsStillAProfibusStream) {
+    // 40 % of the bytes are garbage between telegrams: decoded, with warnings.
+    std::vector<std::uint8_t> bytes;
+    std::vector<std::uint8_t> noise = random_bytes(100'000, 3);
+    std::size_t used = 0;
+    while (bytes.size() < 100'000) {
+        bytes.insert(bytes.end(), kSd2.begin(), kSd2.end());
+        bytes.insert(bytes.end(), kSd1.begin(), kSd1.end());
+        for (int i = 0; i < 12; ++i, ++used)
+            bytes.push_back(static_cast<std::uint8_t>(noise[used] & 0x0F));  // no start delimiter
+    }
+    TempFile file("noisy.raw");
+    test::write_file(file.path, bytes);
+    ReadResult r = read_all(file.path, InputFormat::Auto);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    EXPECT_GT(r.records.size(), 5000u);
+}
+
+TEST(StreamSourceTest, ShortInputIsJudgedWholeFromMinimumSize) {
+    // 600 bytes, 2 telegrams: judged over all of it.
+    std::vector<std::uint8_t> noise(600 - kSd1.size() - kSd2.size(), 0x01);
+    TempFile file("short.raw");
+    test::write_file(file.path, concat({kSd1, noise, kSd2}));
+    OpenResult opened = open_source(file.path, InputFormat::Auto);
+    ASSERT_TRUE(opened.source);
+    ReadResult r = drain(*opened.source);
+    EXPECT_EQ(r.status, InputStatus::Unusable);
+    EXPECT_NE(opened.source->unusable_reason().find("581 of its 600 bytes (96.8 %)"),
+              std::string::npos)
+        << opened.source->unusable_reason();
+    // Below kMinJudgedBytes there is no verdict.
+    noise.resize(FramedSource::kMinJudgedBytes - 1 - kSd1.size() - kSd2.size());
+    test::write_file(file.path, concat({kSd1, noise, kSd2}));
+    r = read_all(file.path, InputFormat::Auto);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    EXPECT_EQ(r.records.size(), 2u);
+}
+
+TEST(StreamSourceTest, HexLogMostlySkippedIsNoProfibusLogUnlessForced) {
+    std::string text;
+    for (int i = 0; i < 200; ++i)
+        text += "12 34 56 78 9A BC DE F0 11 22 33 44\n";
+    text += "10 03 02 49 4E 16\n";
+    TempFile file("numbers.txt");
+    test::write_text_file(file.path, text);
+    OpenResult opened = open_source(file.path, InputFormat::Auto);
+    ASSERT_TRUE(opened.source);
+    ReadResult r = drain(*opened.source);
+    EXPECT_EQ(r.status, InputStatus::Unusable);
+    EXPECT_NE(opened.source->unusable_reason().find(": not a PROFIBUS hex log: "),
+              std::string::npos);
+    EXPECT_NE(opened.source->unusable_reason().find("--input-format hex decodes it anyway"),
+              std::string::npos);
+    r = read_all(file.path, InputFormat::Hex);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    EXPECT_EQ(r.records.size(), 1u);
+}
+
+TEST(StreamSourceTest, StopAfterReportsNothingPastTheLastTelegram) {
+    TempFile file("count.raw");
+    test::write_file(file.path, concat({kSd1, hex("01 02"), kSd2, hex("03 04 05"), kToken,
+                                        hex("06"), kAck}));
+    OpenResult opened = open_source(file.path, InputFormat::Raw);
+    ASSERT_TRUE(opened.source);
+    opened.source->stop_after(2);
+    ReadResult r = drain(*opened.source);
+    ASSERT_EQ(r.records.size(), 2u);
+    EXPECT_EQ(r.data[1], kSd2);
+    ASSERT_EQ(r.issues.size(), 1u);  // the two bytes before the second telegram only
+    EXPECT_NE(r.issues[0].message.find("byte offset 6: skipped 2 byte(s)"), std::string::npos)
+        << r.issues[0].message;
+    EXPECT_EQ(r.skipped, 2u);
+    Record record;
+    EXPECT_FALSE(opened.source->next(record));  // and stays stopped
+}
+
+TEST(StreamSourceTest, TimesGoingBackwardsOrJumpingAreReportedOncePerKind) {
+    TempFile file("times.txt");
+    test::write_text_file(file.path,
+                          "1704067200.0 10 03 02 49 4E 16\n"
+                          "1704067199.5 E5\n"      // 0.5 s back
+                          "1704067199.0 E5\n"      // back again: counted
+                          "1704067300.0 E5\n"      // 101 s forward
+                          "1704067301.0 E5\n"      // 1 s: fine
+                          "1704068000.0 E5\n");    // 699 s forward: counted
+    ReadResult r = read_all(file.path, InputFormat::Hex);
+    ASSERT_EQ(r.records.size(), 6u);
+    ASSERT_EQ(r.issues.size(), 4u);
+    EXPECT_EQ(r.issues[0].kind, IssueKind::TimeBackwards);
+    EXPECT_NE(r.issues[0].message.find(
+                  file.path + ": frame 2: time goes backwards by 0.500 s from frame 1;"),
+              std::string::npos)
+        << r.issues[0].message;
+    EXPECT_EQ(r.issues[1].kind, IssueKind::TimeJump);
+    EXPECT_NE(r.issues[1].message.find(
+                  file.path + ": frame 4: time jumps forward by 101.000 s from frame 3"),
+              std::string::npos)
+        << r.issues[1].message;
+    EXPECT_EQ(r.issues[2].message, file.path + ": time went backwards 1 more time");
+    EXPECT_EQ(r.issues[3].message,
+              file.path + ": time jumped forward by more than a minute 1 more time");
 }
 
 }  // namespace

@@ -47,4 +47,91 @@ struct PseudoTerminal {
     void write(const std::vector<std::uint8_t>& bytes) const;  // all of them, or the test fails
 };
 
+// A pcapng file built block by block, in either byte order.
+class PcapngBuilder {
+  public:
+    explicit PcapngBuilder(bool big_endian = false) : big_endian_(big_endian) { section(); }
+
+    PcapngBuilder& section() {
+        std::vector<std::uint8_t> body;
+        put32(body, 0x1A2B3C4D);
+        put16(body, 1);
+        put16(body, 0);
+        put32(body, 0xFFFFFFFF);  // section length -1: not given
+        put32(body, 0xFFFFFFFF);
+        return block(0x0A0D0D0A, body);
+    }
+    // `resolution`: the if_tsresol byte (0: none, microseconds); `offset_s`: if_tsoffset.
+    PcapngBuilder& interface(std::uint16_t link_type, std::uint8_t resolution = 0,
+                             std::int64_t offset_s = 0) {
+        std::vector<std::uint8_t> body;
+        put16(body, link_type);
+        put16(body, 0);
+        put32(body, 0);
+        if (resolution != 0) {
+            put16(body, 9);
+            put16(body, 1);
+            body.insert(body.end(), {resolution, 0, 0, 0});
+        }
+        if (offset_s != 0) {
+            put16(body, 14);
+            put16(body, 8);
+            put32(body, static_cast<std::uint32_t>(static_cast<std::uint64_t>(offset_s) >>
+                                                   (big_endian_ ? 32 : 0)));
+            put32(body, static_cast<std::uint32_t>(static_cast<std::uint64_t>(offset_s) >>
+                                                   (big_endian_ ? 0 : 32)));
+        }
+        put32(body, 0);  // opt_endofopt
+        return block(1, body);
+    }
+    PcapngBuilder& packet(std::uint32_t interface, std::uint64_t units,
+                          const std::vector<std::uint8_t>& data) {
+        std::vector<std::uint8_t> body;
+        put32(body, interface);
+        put32(body, static_cast<std::uint32_t>(units >> 32));
+        put32(body, static_cast<std::uint32_t>(units));
+        put32(body, static_cast<std::uint32_t>(data.size()));
+        put32(body, static_cast<std::uint32_t>(data.size()));
+        body.insert(body.end(), data.begin(), data.end());
+        return block(6, body);
+    }
+    PcapngBuilder& simple_packet(const std::vector<std::uint8_t>& data) {
+        std::vector<std::uint8_t> body;
+        put32(body, static_cast<std::uint32_t>(data.size()));
+        body.insert(body.end(), data.begin(), data.end());
+        return block(3, body);
+    }
+    PcapngBuilder& block(std::uint32_t type, std::vector<std::uint8_t> body) {
+        while (body.size() % 4 != 0)
+            body.push_back(0);
+        std::uint32_t length = static_cast<std::uint32_t>(body.size() + 12);
+        put32(bytes_, type);
+        put32(bytes_, length);
+        bytes_.insert(bytes_.end(), body.begin(), body.end());
+        put32(bytes_, length);
+        return *this;
+    }
+    std::vector<std::uint8_t>& bytes() { return bytes_; }
+
+  private:
+    void put16(std::vector<std::uint8_t>& out, std::uint16_t v) const {
+        if (big_endian_)
+            out.insert(out.end(), {static_cast<std::uint8_t>(v >> 8), static_cast<std::uint8_t>(v)});
+        else
+            out.insert(out.end(), {static_cast<std::uint8_t>(v), static_cast<std::uint8_t>(v >> 8)});
+    }
+    void put32(std::vector<std::uint8_t>& out, std::uint32_t v) const {
+        if (big_endian_) {
+            put16(out, static_cast<std::uint16_t>(v >> 16));
+            put16(out, static_cast<std::uint16_t>(v));
+        } else {
+            put16(out, static_cast<std::uint16_t>(v));
+            put16(out, static_cast<std::uint16_t>(v >> 16));
+        }
+    }
+
+    bool big_endian_;
+    std::vector<std::uint8_t> bytes_;
+};
+
 }  // namespace dpscope::test
