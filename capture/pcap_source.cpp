@@ -59,8 +59,9 @@ class PcapSource final : public TelegramSource {
         if (rc == PCAP_ERROR_BREAK) return false;  // end of file
         set_status(InputStatus::Damaged);
         report(Severity::Error,
-               fmt::format("{}: {}: {}; decoding stopped after {} record(s)", name(),
-                           where(number_ + 1), pcap_geterr(handle_), number_));
+               fmt::format("{}: {}: {}; decoding stopped after {} {}", name(),
+                           where(number_ + 1), pcap_geterr(handle_), number_,
+                           number_ == 1 ? "record" : "records"));
         return false;
     }
 

@@ -23,9 +23,10 @@ std::string describe_skip(const SkippedBytes& skipped) {
     }
     if (skipped.reason == ProblemKind::BadStartDelimiter ||
         skipped.reason == ProblemKind::Truncated)
-        return fmt::format("skipped {} byte(s): {}", skipped.count, what);
-    return fmt::format("skipped {} byte(s): {} (byte {} of the candidate telegram)", skipped.count,
-                       what, skipped.reason_offset);
+        return fmt::format("skipped {} {}: {}", skipped.count, skipped.count == 1 ? "byte" : "bytes",
+                           what);
+    return fmt::format("skipped {} {}: {} (byte {} of the candidate telegram)", skipped.count,
+                       skipped.count == 1 ? "byte" : "bytes", what, skipped.reason_offset);
 }
 
 void StreamFramer::feed(Bytes chunk, Sink& sink) {

@@ -591,7 +591,7 @@ TEST(CliTest, HexSkippedBytesAreReported) {
     CommandResult r = run_dpscope({"hex", "-T", "text", "01 02", "E5"});
     EXPECT_EQ(r.exit_code, 0);
     EXPECT_EQ(lines_of(r.out).size(), 1u);
-    EXPECT_NE(r.err.find("<command line>: byte 0: skipped 2 byte(s): no start delimiter"),
+    EXPECT_NE(r.err.find("<command line>: byte 0: skipped 2 bytes: no start delimiter"),
               std::string::npos)
         << r.err;
 }

@@ -133,7 +133,11 @@ TEST(FdlTest, Sd2TrailingBytes) {
     EXPECT_EQ(t.problems[0].kind, ProblemKind::TrailingBytes);
     EXPECT_EQ(t.problems[0].offset, 13);
     EXPECT_EQ(t.problems[0].actual, 2u);
+    EXPECT_EQ(problem_message(t.problems[0]), "byte 13: 2 bytes after the end of the telegram");
     EXPECT_EQ(problem_severity(ProblemKind::TrailingBytes), Severity::Warning);
+    bytes.pop_back();
+    EXPECT_EQ(problem_message(parse(bytes).problems[0]),
+              "byte 13: 1 byte after the end of the telegram");
 }
 
 TEST(FdlTest, Sd3Valid) {

@@ -507,7 +507,7 @@ TEST(PcapSourceTest, TruncatedRecordDataStopsWithDamage) {
     EXPECT_EQ(r.issues[0].severity, Severity::Error);
     const std::string& message = r.issues[0].message;
     EXPECT_EQ(message.rfind(file.path + ": record 3 (byte offset 75): ", 0), 0u) << message;
-    EXPECT_NE(message.find("decoding stopped after 2 record(s)"), std::string::npos) << message;
+    EXPECT_NE(message.find("decoding stopped after 2 records"), std::string::npos) << message;
 }
 
 TEST(PcapSourceTest, TruncatedRecordHeaderStopsWithDamage) {

@@ -299,7 +299,7 @@ TEST(SniffTest, SigintInTheMiddleOfATelegramKeepsAValidCompleteFile) {
     ASSERT_EQ(capture.telegrams.size(), whole);
     for (std::size_t i = 0; i < whole; ++i)
         EXPECT_EQ(capture.telegrams[i], session.expected[i]);
-    EXPECT_NE(sniffer.err().find("skipped 4 byte(s): telegram cut off"), std::string::npos)
+    EXPECT_NE(sniffer.err().find("skipped 4 bytes: telegram cut off"), std::string::npos)
         << sniffer.err();
     std::remove(pcap.c_str());
 }

@@ -167,7 +167,10 @@ TEST(StreamFramerTest, ResyncsAfterGarbageAndReportsTheRunOnce) {
     EXPECT_EQ(skipped.count, 3u);
     EXPECT_EQ(skipped.reason, ProblemKind::BadStartDelimiter);
     EXPECT_EQ(skipped.reason_offset, 0);
-    EXPECT_EQ(describe_skip(skipped), "skipped 3 byte(s): no start delimiter");
+    EXPECT_EQ(describe_skip(skipped), "skipped 3 bytes: no start delimiter");
+    SkippedBytes one = skipped;
+    one.count = 1;
+    EXPECT_EQ(describe_skip(one), "skipped 1 byte: no start delimiter");
     ASSERT_TRUE(sink.events[1].telegram);
     EXPECT_EQ(sink.events[1].offset, 3u);
     EXPECT_EQ(sink.events[1].bytes, kSd1);
@@ -202,7 +205,7 @@ TEST(StreamFramerTest, SkippedRunSpanningFeedsIsReportedOnceWithFirstReason) {
     EXPECT_EQ(skipped.reason, ProblemKind::LengthOutOfRange);
     EXPECT_EQ(skipped.reason_offset, 1);
     EXPECT_EQ(describe_skip(skipped),
-              "skipped 4 byte(s): LE outside 3..249 (byte 1 of the candidate telegram)");
+              "skipped 4 bytes: LE outside 3..249 (byte 1 of the candidate telegram)");
     EXPECT_EQ(sink.events[1].offset, 4u);
 }
 
@@ -235,7 +238,7 @@ TEST(StreamFramerTest, Sd2WithBadEndDelimiterIsSkipped) {
     EXPECT_EQ(skips[0].reason, ProblemKind::BadEndDelimiter);
     EXPECT_EQ(skips[0].reason_offset, 12);
     EXPECT_EQ(describe_skip(skips[0]),
-              "skipped 13 byte(s): no end delimiter where the length puts it (byte 12 of the "
+              "skipped 13 bytes: no end delimiter where the length puts it (byte 12 of the "
               "candidate telegram)");
     ASSERT_EQ(sink.telegrams().size(), 1u);
     EXPECT_EQ(sink.telegrams()[0].offset, 13u);
@@ -292,7 +295,7 @@ TEST(StreamFramerTest, Sd1BadFcsRejectedWhenGarbageFollows) {
     EXPECT_EQ(skips[0].reason, ProblemKind::FcsMismatch);
     EXPECT_EQ(skips[0].reason_offset, 4);
     EXPECT_EQ(describe_skip(skips[0]),
-              "skipped 7 byte(s): FCS wrong and no telegram follows (byte 4 of the candidate "
+              "skipped 7 bytes: FCS wrong and no telegram follows (byte 4 of the candidate "
               "telegram)");
     auto telegrams = sink.telegrams();
     ASSERT_EQ(telegrams.size(), 1u);
@@ -375,7 +378,7 @@ TEST(StreamFramerTest, MarkGapDecidesACutOffTelegram) {
     EXPECT_EQ(skips[0].offset, 0u);
     EXPECT_EQ(skips[0].count, 7u);
     EXPECT_EQ(skips[0].reason, ProblemKind::Truncated);
-    EXPECT_EQ(describe_skip(skips[0]), "skipped 7 byte(s): telegram cut off (gap or end of input)");
+    EXPECT_EQ(describe_skip(skips[0]), "skipped 7 bytes: telegram cut off (gap or end of input)");
     EXPECT_TRUE(sink.telegrams().empty());
 
     // The rest of the telegram after the gap cannot complete it.

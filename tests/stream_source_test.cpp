@@ -119,7 +119,7 @@ TEST(StreamSourceTest, RawSkippedBytesNameTheOffset) {
     ASSERT_EQ(r.issues.size(), 1u);
     EXPECT_EQ(r.issues[0].severity, Severity::Warning);
     EXPECT_EQ(r.issues[0].message,
-              file.path + ": byte offset 6: skipped 3 byte(s): no start delimiter");
+              file.path + ": byte offset 6: skipped 3 bytes: no start delimiter");
 }
 
 TEST(StreamSourceTest, RawTruncatedTelegramAtTheEnd) {
@@ -134,7 +134,7 @@ TEST(StreamSourceTest, RawTruncatedTelegramAtTheEnd) {
     ASSERT_EQ(r.issues.size(), 1u);
     EXPECT_EQ(r.issues[0].message,
               file.path +
-                  ": byte offset 6: skipped 10 byte(s): telegram cut off (gap or end of "
+                  ": byte offset 6: skipped 10 bytes: telegram cut off (gap or end of "
                   "input)");
 }
 
@@ -156,7 +156,7 @@ TEST(StreamSourceTest, RawCorruptedTelegrams) {
     ASSERT_EQ(r.issues.size(), 1u);
     EXPECT_EQ(r.issues[0].message,
               file.path +
-                  ": byte offset 13: skipped 13 byte(s): LEr differs from LE (byte 2 of "
+                  ": byte offset 13: skipped 13 bytes: LEr differs from LE (byte 2 of "
                   "the candidate telegram)");
 }
 
@@ -260,7 +260,7 @@ TEST(StreamSourceTest, HexSkippedBytesNameTheLine) {
     EXPECT_EQ(r.issues[0].severity, Severity::Warning);
     EXPECT_EQ(r.issues[0].message, file.path +
                                        ": line 3 (byte 6 of the decoded stream): skipped 3 "
-                                       "byte(s): no start delimiter");
+                                       "bytes: no start delimiter");
 }
 
 TEST(StreamSourceTest, HexTruncatedTelegramAtTheEnd) {
@@ -272,7 +272,7 @@ TEST(StreamSourceTest, HexTruncatedTelegramAtTheEnd) {
     ASSERT_EQ(r.issues.size(), 1u);
     EXPECT_EQ(r.issues[0].message, file.path +
                                        ": line 2 (byte 6 of the decoded stream): skipped 6 "
-                                       "byte(s): telegram cut off (gap or end of input)");
+                                       "bytes: telegram cut off (gap or end of input)");
 }
 
 TEST(StreamSourceTest, HexCorruptedLinesAreIgnored) {
@@ -458,7 +458,7 @@ TEST(StreamSourceTest, MemorySourceFramesBytes) {
     EXPECT_EQ(r.records[1].number, 2u);
     EXPECT_EQ(r.records[0].time_ns, kNoTime);
     ASSERT_EQ(r.issues.size(), 1u);
-    EXPECT_EQ(r.issues[0].message, "<command line>: byte 6: skipped 2 byte(s): no start delimiter");
+    EXPECT_EQ(r.issues[0].message, "<command line>: byte 6: skipped 2 bytes: no start delimiter");
 }
 
 TEST(StreamSourceTest, MemorySourceCopiesItsBytes) {
@@ -477,7 +477,7 @@ TEST(StreamSourceTest, MemorySourceTruncatedAndEmpty) {
     EXPECT_EQ(r.skipped, 5u);
     ASSERT_EQ(r.issues.size(), 1u);
     EXPECT_EQ(r.issues[0].message,
-              "mem: byte 0: skipped 5 byte(s): telegram cut off (gap or end of input)");
+              "mem: byte 0: skipped 5 bytes: telegram cut off (gap or end of input)");
     ReadResult empty = drain(*memory_source("mem", Bytes()));
     EXPECT_TRUE(empty.records.empty());
     EXPECT_TRUE(empty.issues.empty());
@@ -600,7 +600,7 @@ TEST(StreamSourceTest, StopAfterReportsNothingPastTheLastTelegram) {
     ASSERT_EQ(r.records.size(), 2u);
     EXPECT_EQ(r.data[1], kSd2);
     ASSERT_EQ(r.issues.size(), 1u);  // the two bytes before the second telegram only
-    EXPECT_NE(r.issues[0].message.find("byte offset 6: skipped 2 byte(s)"), std::string::npos)
+    EXPECT_NE(r.issues[0].message.find("byte offset 6: skipped 2 bytes"), std::string::npos)
         << r.issues[0].message;
     EXPECT_EQ(r.skipped, 2u);
     Record record;

@@ -224,7 +224,7 @@ TEST(TtySourceTest, IdleGapCutsOffAnIncompleteTelegram) {
     EXPECT_EQ(source.idle_gaps(), 1u);
     EXPECT_EQ(source.bytes_skipped(), 6u);
     ASSERT_EQ(c.issues.size(), 1u);
-    EXPECT_NE(c.issues[0].message.find("skipped 6 byte(s): telegram cut off"), std::string::npos)
+    EXPECT_NE(c.issues[0].message.find("skipped 6 bytes: telegram cut off"), std::string::npos)
         << c.issues[0].message;
 }
 
