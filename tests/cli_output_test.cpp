@@ -23,6 +23,7 @@ namespace dpscope {
 namespace {
 
 using test::CommandResult;
+using test::lines_of;
 using test::run_dpscope;
 
 const std::string kFaults = "samples/faults.pcap";
@@ -32,14 +33,6 @@ std::string sample(const std::string& relative) { return test::source_dir() + "/
 std::string content(const std::string& path) {
     std::vector<std::uint8_t> bytes = test::read_file(path);
     return std::string(bytes.begin(), bytes.end());
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);)
-        lines.push_back(line);
-    return lines;
 }
 
 // A copy of a sample in the test's temporary directory.

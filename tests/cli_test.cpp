@@ -19,6 +19,7 @@ namespace dpscope {
 namespace {
 
 using test::CommandResult;
+using test::lines_of;
 using test::run_dpscope;
 
 const std::string kPpo1 = "samples/ppo1.pcap";
@@ -29,14 +30,6 @@ struct TempFile {
     ~TempFile() { std::remove(path.c_str()); }
     std::string path;
 };
-
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);)
-        lines.push_back(line);
-    return lines;
-}
 
 // The whole file as a string, for standard input (binary safe).
 std::string file_content(const std::string& path) {

@@ -29,6 +29,9 @@
 namespace dpscope {
 namespace {
 
+using test::same_settings;
+using test::settings_of;
+
 using Telegrams = std::vector<std::vector<std::uint8_t>>;
 
 using test::PseudoTerminal;
@@ -652,21 +655,6 @@ TEST(SniffTest, NumericOptionsAreCheckedAgainstTheirRange) {
             << result.err;
     }
     EXPECT_FALSE(std::filesystem::exists(test::source_dir() + "/x.pcap"));
-}
-
-// The terminal settings of `path` as another program sees them.
-termios settings_of(const std::string& path) {
-    termios tio;
-    std::memset(&tio, 0, sizeof tio);
-    int fd = open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
-    EXPECT_GE(fd, 0) << path;
-    EXPECT_EQ(tcgetattr(fd, &tio), 0);
-    close(fd);
-    return tio;
-}
-
-bool same_settings(const termios& a, const termios& b) {
-    return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
 TEST(SniffTest, ThePortIsLeftAsItWasFoundOnEveryWayOut) {

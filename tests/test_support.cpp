@@ -8,6 +8,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -102,6 +103,28 @@ CommandResult run_dpscope(const std::vector<std::string>& args, const std::strin
     std::remove(err_path.c_str());
     if (in_path != "/dev/null") std::remove(in_path.c_str());
     return result;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+        lines.push_back(line);
+    return lines;
+}
+
+termios settings_of(const std::string& path) {
+    termios tio;
+    std::memset(&tio, 0, sizeof tio);
+    int fd = open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
+    EXPECT_GE(fd, 0) << path;
+    EXPECT_EQ(tcgetattr(fd, &tio), 0);
+    close(fd);
+    return tio;
+}
+
+bool same_settings(const termios& a, const termios& b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
 PseudoTerminal::PseudoTerminal() {

@@ -1,6 +1,8 @@
 // Helpers shared by the test files.
 #pragma once
 
+#include <termios.h>
+
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -32,6 +34,13 @@ struct CommandResult {
 // Runs dpscope with `args` (each element one argument), standard input from `input` (or
 // /dev/null when empty), in the source directory, with TZ=UTC LANG=C.
 CommandResult run_dpscope(const std::vector<std::string>& args, const std::string& input = {});
+
+// The lines of `text`, without their line ends.
+std::vector<std::string> lines_of(const std::string& text);
+
+// The terminal settings of `path` as another program sees them (opened afresh, non-blocking).
+termios settings_of(const std::string& path);
+bool same_settings(const termios& a, const termios& b);
 
 // A pseudo-terminal pair: tests write into `master`; the code under test opens `slave` (a path)
 // as its serial port. The master is close-on-exec, so a child process (dpscope sniff) does not

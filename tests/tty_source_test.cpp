@@ -20,6 +20,9 @@
 namespace dpscope {
 namespace {
 
+using test::same_settings;
+using test::settings_of;
+
 using test::hex;
 
 struct Pipe {
@@ -319,21 +322,6 @@ TEST(SerialPortTest, ErrorsNameTheDevice) {
     EXPECT_NE(error.find("/dev/does-not-exist: cannot open"), std::string::npos) << error;
     EXPECT_FALSE(SerialPort::open({"/dev/null", 1'500'000, true, false}, error));
     EXPECT_NE(error.find("/dev/null: not a serial port"), std::string::npos) << error;
-}
-
-// The terminal settings of `path` as another program sees them.
-termios settings_of(const std::string& path) {
-    termios tio;
-    std::memset(&tio, 0, sizeof tio);
-    int fd = open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
-    EXPECT_GE(fd, 0) << path;
-    EXPECT_EQ(tcgetattr(fd, &tio), 0);
-    close(fd);
-    return tio;
-}
-
-bool same_settings(const termios& a, const termios& b) {
-    return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
 TEST(SerialPortTest, ClosingPutsTheSettingsBackAsFound) {
