@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <limits>
 #include <string>
 
 namespace dpscope {
@@ -103,13 +104,17 @@ std::vector<std::string_view> split_log_tokens(std::string_view line) {
     return tokens;
 }
 
-// Parses "[digits][.digits]" into nanoseconds; `digits_before` bounds the integer part.
+// The most seconds before or after the epoch that nanoseconds in an int64 hold, with room for
+// the fraction (about 1677-09-21 to 2262-04-11).
+constexpr std::int64_t kMaxSeconds = std::numeric_limits<std::int64_t>::max() / 1'000'000'000 - 1;
+
+// Parses "[digits][.digits]" into nanoseconds; nullopt beyond kMaxSeconds.
 std::optional<std::int64_t> seconds_with_fraction(std::string_view text) {
     std::int64_t seconds = 0;
     std::size_t i = 0;
     while (i < text.size() && is_digit(text[i])) {
-        if (seconds > 9'000'000'000LL) return std::nullopt;
         seconds = seconds * 10 + (text[i] - '0');
+        if (seconds > kMaxSeconds) return std::nullopt;
         ++i;
     }
     if (i == 0) return std::nullopt;
@@ -162,7 +167,16 @@ std::optional<std::int64_t> date_nanos(std::string_view text) {
     unsigned month = static_cast<unsigned>((text[5] - '0') * 10 + (text[6] - '0'));
     unsigned day = static_cast<unsigned>((text[8] - '0') * 10 + (text[9] - '0'));
     if (month < 1 || month > 12 || day < 1 || day > 31) return std::nullopt;
-    return days_from_civil(year, month, day) * 86'400LL * 1'000'000'000LL;
+    const std::int64_t days = days_from_civil(year, month, day);
+    if (days > kMaxSeconds / 86'400 || days < -kMaxSeconds / 86'400) return std::nullopt;
+    return days * 86'400LL * 1'000'000'000LL;
+}
+
+// A date plus a time of day; nullopt when the sum leaves the int64 nanoseconds.
+std::optional<std::int64_t> date_and_time(std::int64_t date, std::int64_t time) {
+    std::int64_t sum = 0;
+    if (__builtin_add_overflow(date, time, &sum)) return std::nullopt;
+    return sum;
 }
 
 std::string_view unwrap(std::string_view token) {
@@ -179,11 +193,11 @@ std::optional<std::int64_t> parse_timestamp(std::string_view first, std::string_
     if (first.size() > 10 && (first[10] == 'T' || first[10] == 't')) {
         auto date = date_nanos(first.substr(0, 10));
         auto time = time_of_day(first.substr(11));
-        if (date && time) return *date + *time;
+        if (date && time) return date_and_time(*date, *time);
         return std::nullopt;
     }
     if (auto date = date_nanos(first)) {
-        if (auto time = time_of_day(unwrap(next))) return *date + *time;
+        if (auto time = time_of_day(unwrap(next))) return date_and_time(*date, *time);
         return *date;
     }
     if (auto time = time_of_day(first)) return time;

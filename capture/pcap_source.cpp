@@ -387,8 +387,11 @@ std::optional<std::int64_t> PcapngSource::time_of(const Interface& interface,
     constexpr std::int64_t kMaxSeconds =
         std::numeric_limits<std::int64_t>::max() / 1'000'000'000 - 1;
     if (seconds > static_cast<std::uint64_t>(kMaxSeconds)) return std::nullopt;
-    const std::int64_t total = static_cast<std::int64_t>(seconds) + interface.offset_s;
-    if (total > kMaxSeconds || total < -kMaxSeconds) return std::nullopt;
+    // if_tsoffset is any int64: the sum is checked, not assumed to fit.
+    std::int64_t total = 0;
+    if (__builtin_add_overflow(static_cast<std::int64_t>(seconds), interface.offset_s, &total) ||
+        total > kMaxSeconds || total < -kMaxSeconds)
+        return std::nullopt;
     return total * 1'000'000'000 + static_cast<std::int64_t>(nanos);
 }
 
@@ -446,7 +449,8 @@ bool PcapngSource::take_packet(Record& record) {
             record.time_ns = *time;
         } else if (interface.resolution_usable) {
             issue(Severity::Warning, IssueKind::BadTime,
-                  fmt::format("{}: {}: timestamp beyond the year 2262; the record has no time",
+                  fmt::format("{}: {}: timestamp outside 1677-09-21 to 2262-04-11; the record has "
+                              "no time",
                               name(), where));
         }
     }

@@ -413,6 +413,28 @@ TEST(HexLogTest, ParseTimestampRejectsCorruptedTokens) {
     }
 }
 
+// Times that nanoseconds since the epoch in an int64 cannot hold (before 1677-09-21 or after
+// 2262-04-11) are no timestamps, not a signed overflow. fuzz_hex_log found
+// "17004067200.000136666" (a typo'd epoch time) overflowing seconds * 10^9.
+TEST(HexLogTest, ParseTimestampRejectsTimesBeyondTheNanosecondRange) {
+    for (std::string_view text :
+         {"17004067200.000136666", "9223372036.854775807", "99999999999999999999.5",
+          "9999-12-31T00:00:00Z", "0000-01-01T00:00:00Z", "1677-01-01T00:00:00Z",
+          "2262-04-12T00:00:00Z", "2262-04-11T23:59:59.999999999Z"}) {
+        EXPECT_FALSE(parse_timestamp(text).has_value()) << text;
+    }
+    EXPECT_FALSE(parse_timestamp("9999-12-31").has_value());
+    EXPECT_FALSE(parse_timestamp("2262-04-11", "23:59:59").has_value());
+    // The edges that still fit.
+    EXPECT_EQ(parse_timestamp("9223372035.999999999"), 9'223'372'035'999'999'999);
+    EXPECT_EQ(parse_timestamp("2262-04-10T00:00:00Z"), 106'750LL * 86'400 * kSecond);
+    EXPECT_EQ(parse_timestamp("1677-09-22T00:00:00Z"), -106'751LL * 86'400 * kSecond);
+    // In a line: the bytes are still read, the line has no time.
+    Parsed p = parse("17004067200.000136666 RX: 10 03 02 49 4E 16");
+    EXPECT_EQ(p.bytes, kSd1);
+    EXPECT_FALSE(p.line.time_ns.has_value());
+}
+
 TEST(HexLogTest, ParseTimestampRejectsTruncatedTokens) {
     for (std::string_view text :
          {"12:00", "12:00:0", "2024-01-0", "2024-01-02T", "2024-01-02T12:00"})

@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -288,6 +289,36 @@ TEST(PcapSourceTest, PcapngBigEndianWithResolutionAndOffset) {
     EXPECT_EQ(r.status, InputStatus::Ok);
     EXPECT_TRUE(r.issues.empty());
     expect_telegrams(r, {{kSd1, kT0 + 7}, {kSd2, kT0 + 500'000'000}});
+}
+
+// if_tsoffset is any signed 64-bit number: one that puts the time past what nanoseconds since
+// the epoch hold leaves the packet without a time, with a warning, and is no signed overflow
+// (the offset was added to the seconds before the range check). A wrapped sum lands out of range
+// too, so without the check this test fails only under UBSan (the asan preset), as
+// fuzz_capture_file does on fuzz/corpus-fuzz_capture_file/tsoffset-overflow.pcapng.
+TEST(PcapSourceTest, PcapngTimestampOffsetBeyondTheRangeLeavesThePacketUntimed) {
+    TempFile file("huge-offset.pcapng");
+    PcapngBuilder b;
+    b.interface(257, 0, std::numeric_limits<std::int64_t>::max())
+        .interface(147, 0, std::numeric_limits<std::int64_t>::min())
+        .interface(257, 0, -1'704'067'200)  // far back, but in range: 0 s after the epoch
+        .packet(0, kT0Us, kSd1)
+        .packet(1, kT0Us, kSd2)
+        .packet(2, kT0Us + 5, kToken);
+    test::write_file(file.path, b.bytes());
+    ReadResult r = read_all(file.path);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    ASSERT_EQ(r.records.size(), 3u);
+    EXPECT_EQ(r.records[0].time_ns, kNoTime);
+    EXPECT_EQ(r.records[1].time_ns, kNoTime);
+    EXPECT_EQ(r.records[2].time_ns, 5'000);
+    ASSERT_EQ(r.issues.size(), 2u);
+    for (const InputIssue& issue : r.issues) {
+        EXPECT_EQ(issue.kind, IssueKind::BadTime);
+        EXPECT_NE(issue.message.find("timestamp outside 1677-09-21 to 2262-04-11"),
+                  std::string::npos)
+            << issue.message;
+    }
 }
 
 TEST(PcapSourceTest, PcapngSimplePacketsAndSecondSectionWithOtherInterfaces) {
