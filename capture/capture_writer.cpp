@@ -194,8 +194,14 @@ class PcapWriter final : public CaptureWriter {
   public:
     PcapWriter(pcap_t* dead, pcap_dumper_t* dumper, std::string name)
         : dead_(dead), dumper_(dumper), name_(std::move(name)) {
-        if (std::fflush(pcap_dump_file(dumper_)) != 0 || !is_regular(pcap_dump_file(dumper_)))
+        // The file header is written at once, so that a full disk is named with its reason now
+        // (errno is gone by the time a later record finds the stream's error flag set).
+        if (std::fflush(pcap_dump_file(dumper_)) != 0) {
+            error_ = fmt::format("{}: write failed: {}", name_, std::strerror(errno));
             committed_ = -1;
+        } else if (!is_regular(pcap_dump_file(dumper_))) {
+            committed_ = -1;
+        }
     }
     ~PcapWriter() override {
         close();

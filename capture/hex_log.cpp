@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <limits>
 #include <string>
 
@@ -302,10 +303,13 @@ bool suspect_token(std::string_view token) {
 }
 
 // At the edges of the run only what is most likely a typo counts: two characters, a decimal digit
-// and a letter that is no hex digit ("0G", "O7"), or (after the run) a single hex digit.
+// and a letter that is no hex digit ("0G", "O7"), or (after the run) one hex digit too few or too
+// many ("6", "160"). Before the run three digits are more likely a line number than a typo.
 bool typo_token(std::string_view token, bool after_run) {
     std::string_view body = strip_prefix_0x(strip_punctuation(token));
-    if (after_run && body.size() == 1 && is_hex(body[0])) return true;
+    if (after_run && (body.size() == 1 || body.size() == 3) &&
+        std::all_of(body.begin(), body.end(), [](char c) { return is_hex(c); }))
+        return true;
     if (body.size() != 2) return false;
     bool digit = is_digit(body[0]) || is_digit(body[1]);
     bool beyond_hex = (is_alnum(body[0]) && !is_hex(body[0])) ||

@@ -44,6 +44,9 @@ class PcapSource final : public TelegramSource {
             record.bytes = Bytes(data, header->caplen);
             record.time_ns = static_cast<std::int64_t>(header->ts.tv_sec) * 1'000'000'000 +
                              static_cast<std::int64_t>(header->ts.tv_usec);
+            // Exactly 0 (1970-01-01T00:00:00Z) is how captures of untimed input (a raw dump
+            // written with decode -w) say "no time".
+            if (record.time_ns == 0) record.time_ns = kNoTime;
             record.number = number_;
             record.offset = classic_pcap_ ? offset_ : 0;
             record.original_length = header->len;
@@ -446,7 +449,7 @@ bool PcapngSource::take_packet(Record& record) {
     record.time_ns = kNoTime;
     if (timed) {
         if (auto time = time_of(interface, units)) {
-            record.time_ns = *time;
+            record.time_ns = *time == 0 ? kNoTime : *time;  // 0: untimed, as in classic pcap
         } else if (interface.resolution_usable) {
             issue(Severity::Warning, IssueKind::BadTime,
                   fmt::format("{}: {}: timestamp outside 1677-09-21 to 2262-04-11; the record has "

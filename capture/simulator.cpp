@@ -94,7 +94,7 @@ std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& er
     if (auto colon = rest.rfind(':'); colon != std::string_view::npos) {
         unsigned address = 0;
         if (!parse_number(rest.substr(colon + 1), address) || address > 126) {
-            error = fmt::format("{}: '{}' is not a station address 0..126", text,
+            error = fmt::format("{}: '{}' is not a station address from 0 to 126", text,
                                 rest.substr(colon + 1));
             return std::nullopt;
         }
@@ -146,11 +146,11 @@ std::optional<SimulatedSlave> parse_slave_spec(std::string_view text, std::strin
     std::string_view ppo_text = text.substr(
         first + 1, second == std::string_view::npos ? std::string_view::npos : second - first - 1);
     if (!parse_number(text.substr(0, first), address) || address > 125) {
-        error = fmt::format("{}: address must be 0..125", text);
+        error = fmt::format("{}: the address must be from 0 to 125", text);
         return std::nullopt;
     }
     if (!parse_number(ppo_text, ppo) || ppo < 1 || ppo > 5) {
-        error = fmt::format("{}: PPO type must be 1..5", text);
+        error = fmt::format("{}: the PPO type must be from 1 to 5", text);
         return std::nullopt;
     }
     slave.address = static_cast<std::uint8_t>(address);

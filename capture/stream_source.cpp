@@ -1,7 +1,10 @@
 #include "capture/stream_source.hpp"
 
+#include <sys/stat.h>
+
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <deque>
@@ -104,15 +107,30 @@ void FramedSource::on_skipped(const SkippedBytes& skipped) {
 
 namespace {
 
+// Reads what has arrived, at least one byte unless the input ended: a pipe or terminal is decoded
+// as it is written (fread would wait until the whole buffer is full). One getc() waits for
+// data; what the stream's buffer then holds is taken without waiting again.
+std::size_t read_available(FILE* file, std::uint8_t* data, std::size_t size) {
+    int c = std::getc(file);
+    if (c == EOF || size == 0) return 0;
+    data[0] = static_cast<std::uint8_t>(c);
+    auto held = static_cast<std::size_t>(file->_IO_read_end - file->_IO_read_ptr);  // glibc
+    return 1 + std::fread(data + 1, 1, std::min(size - 1, held), file);
+}
+
 class RawSource final : public FramedSource {
   public:
-    RawSource(FILE* file, std::string name) : FramedSource(std::move(name)), file_(file) {}
+    RawSource(FILE* file, std::string name) : FramedSource(std::move(name)), file_(file) {
+        struct stat info {};
+        regular_ = fileno(file) >= 0 && ::fstat(fileno(file), &info) == 0 && S_ISREG(info.st_mode);
+    }
     ~RawSource() override { std::fclose(file_); }
     InputFormat format() const override { return InputFormat::Raw; }
 
   private:
     Fill fill() override {
-        std::size_t got = std::fread(chunk_.data(), 1, chunk_.size(), file_);
+        std::size_t got = regular_ ? std::fread(chunk_.data(), 1, chunk_.size(), file_)
+                                   : read_available(file_, chunk_.data(), chunk_.size());
         if (got > 0) {
             feed(Bytes(chunk_.data(), got));
             offset_ += got;
@@ -127,6 +145,7 @@ class RawSource final : public FramedSource {
     }
 
     FILE* file_;
+    bool regular_ = false;  // a plain file: read whole chunks
     std::vector<std::uint8_t> chunk_ = std::vector<std::uint8_t>(1 << 16);
     std::uint64_t offset_ = 0;
 };

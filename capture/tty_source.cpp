@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cerrno>
 #include <cstring>
 #include <ctime>
@@ -183,9 +184,12 @@ std::int64_t TtySource::time_at(std::uint64_t offset) {
     // or a clock set back, never puts two telegrams closer together than that.
     if (last_time_ns_ != kNoTime) {
         std::uint64_t between = offset > last_offset_ ? offset - last_offset_ : 0;
+        // Rounded up, so that no rounding puts them closer than the exact wire time (11 bits a
+        // byte at options_.baud).
+        const double wire_ns =
+            std::ceil(static_cast<double>(between) * 11e9 / static_cast<double>(options_.baud));
         std::int64_t earliest =
-            last_time_ns_ +
-            std::max<std::int64_t>(1, static_cast<std::int64_t>(between) * character_ns_);
+            last_time_ns_ + std::max<std::int64_t>(1, static_cast<std::int64_t>(wire_ns));
         time = std::max(time, earliest);
     }
     last_time_ns_ = time;

@@ -38,9 +38,18 @@ CLI::Validator finite_number(double min, double max, std::string_view unit) {
         range, "number");
 }
 
+CLI::Validator output_file_name() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            return text.empty() ? "must be a file name, or - for standard output, not ''"
+                                : std::string();
+        },
+        "FILE", "file name");
+}
+
 void add_display_options(CLI::App& app, DecodeOptionValues& values,
                          std::string_view default_format) {
-    values.format = std::string(default_format);
+    values.format.clear();  // "" until -T is given: the subcommand's default
     app.add_option("-T,--format", values.format,
                    "Output format: text (one line a telegram), verbose (every field), jsonl (one "
                    "JSON object a telegram), csv")
@@ -55,7 +64,7 @@ void add_display_options(CLI::App& app, DecodeOptionValues& values,
                  "Write each telegram's output as soon as it is decoded, also into a pipe (as "
                  "tcpdump -l); on a terminal that is always done");
     app.add_option("--station", values.stations,
-                   "Show only telegrams to or from station ADDR (0..127), and those carrying a "
+                   "Show only telegrams to or from station ADDR (0 to 127), and those carrying a "
                    "finding about it; repeat for more stations. All telegrams are still decoded "
                    "and tracked.")
         ->check(whole_number(0, 127))
@@ -74,8 +83,10 @@ void add_write_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_option("-w,--write", values.write,
                    "Write the telegrams shown (after -c, --station, --pnu) to FILE as a capture "
                    "instead of printing them (- is standard output); with pcapng, telegrams with "
-                   "findings carry them as packet comments. FILE is replaced only when the run "
-                   "succeeds, and never when it is the input")
+                   "findings carry them as packet comments. An existing FILE is replaced only "
+                   "when the input could be read (an unusable input or a write error leaves it "
+                   "as it was), and never when it is the input")
+        ->check(output_file_name())
         ->type_name("FILE");
     app.add_option("-F,--write-format", values.write_format,
                    "Capture format for -w: pcap (default), pcapng, raw (bytes only), hex (a hex "
@@ -97,7 +108,7 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
         ->check(whole_number(1, kMaxCount, " telegrams"))
         ->type_name("N");
     app.add_option("--ppo", values.ppo,
-                   "ADDR=TYPE: decode slave ADDR as PPO TYPE (1..5) instead of inferring the type "
+                   "ADDR=TYPE: decode slave ADDR (0 to 126) as PPO TYPE (1 to 5) instead of inferring the type "
                    "from Chk_Cfg, Get_Cfg or the Data_Exchange length; repeatable")
         ->type_name("ADDR=TYPE")
         ->allow_extra_args(false);
@@ -136,18 +147,20 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
                                                      std::string_view default_format,
                                                      std::string& error) {
     DecodeSettings settings;
-    if (values.verbose && values.format != "text" && values.format != "verbose") {
+    const bool format_given = !values.format.empty();
+    const std::string format = format_given ? values.format : std::string(default_format);
+    if (values.verbose && format != "text" && format != "verbose") {
         error = fmt::format("-V is the same as -T verbose; it cannot be combined with -T {}",
-                            values.format);
+                            format);
         return std::nullopt;
     }
     settings.format = values.verbose
                           ? OutputFormat::Verbose
-                          : output_format_from_name(values.format).value_or(OutputFormat::Text);
-    if (values.quiet && (values.verbose || values.format != default_format)) {
+                          : output_format_from_name(format).value_or(OutputFormat::Text);
+    if (values.quiet && (values.verbose || format_given)) {
         error = fmt::format(
             "-q prints only the text summary; it cannot be combined with {} (drop one of them)",
-            values.verbose ? std::string("-V") : "-T " + values.format);
+            values.verbose ? std::string("-V") : "-T " + format);
         return std::nullopt;
     }
     settings.quiet = values.quiet;
@@ -167,7 +180,7 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
             !parse_unsigned(std::string_view(item).substr(eq + 1), type) || address > 126 ||
             type < 1 || type > 5) {
             error =
-                fmt::format("--ppo {}: expected ADDR=TYPE with ADDR 0..126 and TYPE 1..5", item);
+                fmt::format("--ppo {}: expected ADDR=TYPE with ADDR from 0 to 126 and TYPE from 1 to 5", item);
             return std::nullopt;
         }
         std::uint8_t& ppo = settings.decoder.station_ppo[address];
@@ -202,7 +215,7 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
         }
         unsigned address = 0;
         if (!parse_unsigned(std::string_view(item).substr(0, eq), address) || address > 126) {
-            error = fmt::format("--dialect {}: '{}' is not a station address 0..126", item,
+            error = fmt::format("--dialect {}: '{}' is not a station address from 0 to 126", item,
                                 item.substr(0, eq));
             return std::nullopt;
         }
@@ -225,11 +238,18 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
                              : kLinkTypeProfibusDl;
     settings.print = values.write.empty() || values.print;
     if (values.write.empty()) {
-        if (!values.write_format.empty() || values.print) {
-            error = fmt::format("{} goes with -w FILE, which is not given",
-                                values.print ? "-P" : "-F");
+        const char* unused = values.print                   ? "-P"
+                             : !values.write_format.empty() ? "-F"
+                             : !values.link_type.empty()    ? "--linktype"
+                                                            : nullptr;
+        if (unused) {
+            error = fmt::format("{} goes with -w FILE, which is not given", unused);
             return std::nullopt;
         }
+    } else if ((format_given || values.verbose) && !values.print) {
+        error = fmt::format("{}: with -w the decode is not printed; add -P to print it as well",
+                            values.verbose ? std::string("-V") : "-T " + format);
+        return std::nullopt;
     } else if (values.print && values.write == "-") {
         error = "-P prints the decode on standard output, where -w - writes the capture; write "
                 "the capture to a file";

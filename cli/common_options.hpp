@@ -40,6 +40,9 @@ CLI::Validator whole_number(std::uint64_t min, std::uint64_t max, std::string_vi
 // A finite number from `min` to `max` (decimal, with a fraction or exponent; not hex, nan, inf).
 CLI::Validator finite_number(double min, double max, std::string_view unit = "");
 
+// A file name for an output (-w, --report-file): not empty ("-" is standard output).
+CLI::Validator output_file_name();
+
 // -c N: one telegram up to 2^63 - 1 (more than any capture holds).
 inline constexpr std::uint64_t kMaxCount = 9'223'372'036'854'775'807ULL;
 
@@ -60,7 +63,7 @@ struct DecodeOptionValues {
     // decode/hex -w: the telegrams shown, as a capture.
     std::string write;
     std::string write_format;  // -F; "" = pcap
-    std::string link_type = "profibus";
+    std::string link_type;  // "" = profibus
     bool print = false;  // -P: print the decode as well when writing a capture
 };
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <bitset>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -77,6 +78,9 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     Summary shown_summary;
     const bool with_comments = settings.write_format == CaptureFormat::Pcapng;
     bool write_failed = false;
+    // What the capture holds of the --station and --pnu lists, to name filters that match nothing.
+    std::bitset<kStationCount> stations_seen;
+    std::bitset<2048> pnus_seen;
     Record record;
     std::uint64_t read = 0;
     std::span<const Finding> findings;
@@ -84,8 +88,14 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     while (source.next(record)) {
         ++read;
         const DecodedTelegram& t = pipeline.feed(record, findings);
-        if (!show(renderer.get(), settings, t, findings, pipeline.tracker().subject_pnu()))
-            continue;
+        const std::int32_t subject_pnu = pipeline.tracker().subject_pnu();
+        if (settings.filtering()) {
+            if (t.fdl.has_addresses) stations_seen.set(t.fdl.da & 0x7F).set(t.fdl.sa & 0x7F);
+            if (t.has_roles) stations_seen.set(t.master & 0x7F).set(t.slave & 0x7F);
+            if (t.has_pcv && subject_pnu >= 0)
+                pnus_seen.set(static_cast<std::size_t>(subject_pnu));
+        }
+        if (!show(renderer.get(), settings, t, findings, subject_pnu)) continue;
         if (settings.filtering()) {
             shown_summary.add(t);
             shown_summary.add_findings(findings);
@@ -113,6 +123,16 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         print_error(nothing);
         return kExitUsage;  // an existing -w file stays as it was
     }
+    out.flush();
+    for (std::uint8_t station : settings.stations)
+        if (!stations_seen.test(station))
+            print_warning(fmt::format("--station {}: no telegram to or from station {} in {}",
+                                      station, station, source.name()));
+    for (std::uint16_t pnu : settings.pnus)
+        if (!pnus_seen.test(pnu))
+            print_warning(fmt::format(
+                "--pnu {}: no parameter request or answer about PNU {} in {}", pnu, pnu,
+                source.name()));
     if (settings.quiet) {
         if (settings.filtering()) {
             shown_summary.add_findings(open_at_end);

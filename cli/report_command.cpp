@@ -150,7 +150,11 @@ void add_report_command(CLI::App& app, int& exit_code) {
                     "self-contained page with SVG charts), junit (JUnit XML for CI servers)")
         ->check(CLI::IsMember({"text", "json", "markdown", "html", "junit"}))
         ->default_str("text");
-    sub->add_option("-w,--write", command->output, "Write the report to FILE; - is standard output")
+    sub->add_option("-w,--write", command->output,
+                    "Write the report to FILE; - is standard output. An existing FILE is "
+                    "replaced only once the report is complete (an unusable input or a write "
+                    "error leaves it as it was), and never when it is the input")
+        ->check(output_file_name())
         ->type_name("FILE")
         ->default_str("-");
     sub->add_option("--fail-on", command->fail_on,
@@ -161,7 +165,7 @@ void add_report_command(CLI::App& app, int& exit_code) {
     sub->add_option("--station", command->stations,
                     "Report only slave ADDR (repeatable); telegrams of other stations are still "
                     "decoded")
-        ->check(CLI::Range(0, 127))
+        ->check(whole_number(0, 127))
         ->type_name("ADDR")
         ->allow_extra_args(false);
     sub->add_flag("--allow-empty", command->allow_empty,

@@ -143,6 +143,7 @@ std::optional<std::int64_t> parse_start(const std::string& text) {
     char* end = nullptr;
     double seconds = std::strtod(text.c_str(), &end);
     if (text.empty() || end == text.c_str() || *end != '\0' || !std::isfinite(seconds) ||
+        text.find_first_of("xX") != std::string::npos ||  // strtod reads hex floats too
         seconds < 0 || seconds > static_cast<double>(kLastSecond)) {
         print_error(fmt::format(
             "--start {}: must be seconds since the epoch from 0 to {} (1970-01-01T00:00:00Z to "
@@ -295,7 +296,10 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         "Set_Prm, Chk_Cfg, Slave_Diag), then cyclic Data_Exchange with parameter requests and "
         "responses, token passing, gap polls and Global_Control, timed at the baud rate. The same "
         "options and seed give the same bytes.");
-    sub->add_option("-w,--write", command->output, "Output file; - writes to standard output")
+    sub->add_option("-w,--write", command->output,
+                    "Output file; - writes to standard output. An existing file is replaced only "
+                    "once the session is written whole")
+        ->check(output_file_name())
         ->type_name("FILE");
     sub->add_option("--device", command->device,
                     "Play the session onto a tty instead (a serial adapter or one end of a "

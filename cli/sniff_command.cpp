@@ -146,7 +146,7 @@ struct SniffCommand {
     std::string device;
     std::uint32_t baud = 0;
     std::string output;
-    std::string link_type = "profibus";
+    std::string link_type;  // "" = profibus
     std::uint64_t rotate_size = 0;
     double rotate_seconds = 0;
     double duration = 0;
@@ -194,6 +194,29 @@ int run_sniff(const SniffCommand& command) {
     if (std::string usage = report_usage_error(command); !usage.empty()) {
         print_error(usage);
         return kExitUsage;
+    }
+    // Options about the -w file mean nothing without one.
+    if (command.output.empty()) {
+        const char* unused = command.rotate_size > 0      ? "--rotate-size"
+                             : command.rotate_seconds > 0 ? "--rotate-seconds"
+                             : !command.link_type.empty() ? "--linktype"
+                                                          : nullptr;
+        if (unused) {
+            print_error(fmt::format("{} is about the capture file of -w FILE, which is not given",
+                                    unused));
+            return kExitUsage;
+        }
+    }
+    // Written onto the port, the capture or the report would go out onto the bus.
+    for (const auto& [option, path] :
+         {std::pair<const char*, const std::string&>{"-w", command.output},
+          std::pair<const char*, const std::string&>{"--report-file", command.report_file}}) {
+        if (!path.empty() && path != "-" && same_file(path, command.device)) {
+            print_error(fmt::format("{} {}: that is the capture device -i {}; writing to it would "
+                                    "send the bytes onto the bus",
+                                    option, path, command.device));
+            return kExitUsage;
+        }
     }
     const bool report = command.report || !command.report_file.empty();
     const bool report_to_stdout = command.report_file == "-";
@@ -385,6 +408,7 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
     sub->add_option("-w,--write", command->output,
                     "Write the telegrams to FILE as pcap, flushed at least every 100 ms; - writes "
                     "pcap to standard output (the decoded output then goes to standard error)")
+        ->check(output_file_name())
         ->type_name("FILE");
     sub->add_option("--linktype", command->link_type,
                     "pcap link type: profibus (257, PROFIBUS_DL) or user0 (147) for tools that "
@@ -411,6 +435,7 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
                     "Write the report to FILE instead (implies --report); - puts it alone on "
                     "standard output and moves the live output to standard error (not with -w "
                     "-). Not the -w file")
+        ->check(output_file_name())
         ->type_name("FILE");
     sub->add_option("--report-format", command->report_format,
                     "Format of the report: text, json, markdown, html, junit; all but text need "

@@ -239,7 +239,8 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
                 append(out, "[");
                 append_flags(out, prm->station_status, set_prm_station_flags());
                 fmt::format_to(std::back_inserter(out), "] group 0x{:02X}", prm->group_ident);
-                if (prm->has_dpv1_status) append(out, " DP-V1");
+                // "DP-V1" only when DPV1_Enable is set; status bytes without it are DP-V0 mode.
+                if (prm->dpv1_enabled()) append(out, " DP-V1");
                 if (!prm->user_prm.empty())
                     fmt::format_to(std::back_inserter(out), " user {} bytes", prm->user_prm.size());
                 return;

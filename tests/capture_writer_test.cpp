@@ -192,12 +192,24 @@ TEST(CaptureWriterTest, HexLineFormat) {
     EXPECT_EQ(r.telegrams[2].time_ns, kT0 + 61'000'000'007);
 }
 
-TEST(CaptureWriterTest, UnknownTimeIsZeroInPcap) {
-    TempFile file("notime.pcap");
-    write_all(file.path, CaptureFormat::Pcap, kLinkTypeProfibusDl, {{hex("E5"), kNoTime}});
-    ReadBack r = read_back(file.path);
-    ASSERT_EQ(r.telegrams.size(), 1u);
-    EXPECT_EQ(r.telegrams[0].time_ns, 0);
+TEST(CaptureWriterTest, UnknownTimeIsZeroInPcapAndReadsBackUnknown) {
+    for (CaptureFormat format : {CaptureFormat::Pcap, CaptureFormat::Pcapng}) {
+        SCOPED_TRACE(capture_format_name(format));
+        TempFile file("notime.cap");
+        write_all(file.path, format, kLinkTypeProfibusDl,
+                  {{hex("E5"), kNoTime}, {hex("E5"), kT0}});
+        std::vector<std::uint8_t> bytes = test::read_file(file.path);
+        if (format == CaptureFormat::Pcap) {
+            // The first record header's seconds and fraction are 0.
+            ASSERT_GE(bytes.size(), 32u);
+            EXPECT_EQ(std::vector<std::uint8_t>(bytes.begin() + 24, bytes.begin() + 32),
+                      std::vector<std::uint8_t>(8, 0));
+        }
+        ReadBack r = read_back(file.path);
+        ASSERT_EQ(r.telegrams.size(), 2u);
+        EXPECT_EQ(r.telegrams[0].time_ns, kNoTime);
+        EXPECT_EQ(r.telegrams[1].time_ns, kT0);
+    }
 }
 
 TEST(CaptureWriterTest, EmptyCapturesReadBackEmpty) {

@@ -156,7 +156,8 @@ TEST(CliOutputTest, DecodeWriteIntoADeviceWritesDirectly) {
     EXPECT_TRUE(r.out.empty());
     CommandResult full = run_dpscope({"decode", kFaults, "-w", "/dev/full"});
     EXPECT_EQ(full.exit_code, 4);
-    EXPECT_NE(full.err.find("dpscope: error: /dev/full: write failed"), std::string::npos)
+    EXPECT_NE(full.err.find("dpscope: error: /dev/full: write failed: No space left on device"),
+              std::string::npos)
         << full.err;
 }
 
@@ -420,6 +421,118 @@ TEST(CliOutputTest, HexOnATerminalSaysItWaitsForInput) {
     std::string err = Child::read_for(child.err, 10'000, "Ctrl-D");
     EXPECT_NE(err.find("dpscope hex: reading a hex log from the terminal"), std::string::npos)
         << err;
+}
+
+TEST(CliOutputTest, LineBufferedRawInputOnAPipeIsDecodedAsItArrives) {
+    int in[2];
+    ASSERT_EQ(::pipe(in), 0);
+    Child child({"decode", "-l", "--input-format", "raw", "-"}, in[0]);
+    ::close(in[0]);
+    const std::vector<std::uint8_t> bytes = test::hex("10 03 02 49 4E 16 10 03 02 49 4E 16");
+    ASSERT_EQ(::write(in[1], bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
+    // 12 bytes, not the 64 KiB a whole read buffer holds: they are decoded at once.
+    std::string out = Child::read_for(child.out, 10'000, "\n");
+    EXPECT_NE(out.find("SD1 FDL_Status"), std::string::npos) << out;
+    ::close(in[1]);
+}
+
+// ---- from the new-user review -------------------------------------------------------------------
+
+TEST(CliOutputTest, SniffRefusesToWriteOntoTheCaptureDevice) {
+    test::PseudoTerminal pty;
+    CommandResult w = run_dpscope({"sniff", "-i", pty.slave, "--baud", "9600", "-w", pty.slave});
+    EXPECT_EQ(w.exit_code, 2);
+    EXPECT_EQ(w.err, "dpscope: error: -w " + pty.slave + ": that is the capture device -i " +
+                         pty.slave + "; writing to it would send the bytes onto the bus\n");
+    CommandResult report = run_dpscope(
+        {"sniff", "-i", pty.slave, "--baud", "9600", "--report-file", pty.slave});
+    EXPECT_EQ(report.exit_code, 2);
+    EXPECT_NE(report.err.find("--report-file " + pty.slave + ": that is the capture device"),
+              std::string::npos)
+        << report.err;
+}
+
+TEST(CliOutputTest, OptionsThatWouldDoNothingAreUsageErrors) {
+    CommandResult link = run_dpscope({"decode", kFaults, "--linktype", "user0"});
+    EXPECT_EQ(link.exit_code, 2);
+    EXPECT_EQ(link.err, "dpscope: error: --linktype goes with -w FILE, which is not given\n");
+    CommandResult format = run_dpscope({"decode", kFaults, "-w", "/dev/null", "-T", "jsonl"});
+    EXPECT_EQ(format.exit_code, 2);
+    EXPECT_EQ(format.err,
+              "dpscope: error: -T jsonl: with -w the decode is not printed; add -P to print it "
+              "as well\n");
+    EXPECT_EQ(run_dpscope({"decode", kFaults, "-w", "/dev/null", "-T", "jsonl", "-P"}).exit_code,
+              0);
+    test::PseudoTerminal pty;
+    for (std::vector<std::string> extra :
+         {std::vector<std::string>{"--rotate-size", "1M"}, {"--rotate-seconds", "60"},
+          {"--linktype", "user0"}}) {
+        std::vector<std::string> args = {"sniff", "-i", pty.slave, "--baud", "9600"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        CommandResult r = run_dpscope(args);
+        EXPECT_EQ(r.exit_code, 2) << extra[0];
+        EXPECT_EQ(r.err, "dpscope: error: " + extra[0] +
+                             " is about the capture file of -w FILE, which is not given\n");
+    }
+    for (std::string command : {"decode", "report", "simulate"}) {
+        CommandResult empty = run_dpscope({command, "-w", "", kFaults});
+        EXPECT_EQ(empty.exit_code, 2) << command;
+        EXPECT_NE(empty.err.find("--write: must be a file name, or - for standard output, not ''"),
+                  std::string::npos)
+            << empty.err;
+    }
+}
+
+TEST(CliOutputTest, FiltersThatMatchNothingAreNamed) {
+    CommandResult station = run_dpscope({"decode", "--station", "9", kFaults});
+    EXPECT_EQ(station.exit_code, 0);
+    EXPECT_TRUE(station.out.empty());
+    EXPECT_EQ(station.err,
+              "dpscope: warning: --station 9: no telegram to or from station 9 in " + kFaults +
+                  "\n");
+    CommandResult pnu = run_dpscope({"decode", "--pnu", "999", "--pnu", "207", kFaults});
+    EXPECT_FALSE(pnu.out.empty());
+    EXPECT_EQ(pnu.err, "dpscope: warning: --pnu 999: no parameter request or answer about PNU "
+                       "999 in " + kFaults + "\n");
+    CommandResult report = run_dpscope({"report", "--station", "128", kFaults});
+    EXPECT_EQ(report.exit_code, 2);
+    EXPECT_NE(report.err.find("--station: must be a whole number from 0 to 127, not '128'"),
+              std::string::npos)
+        << report.err;
+}
+
+TEST(CliOutputTest, AConvertedRawDumpStaysUntimed) {
+    std::string pcap = test::temp_path("untimed.pcap");
+    ASSERT_EQ(run_dpscope({"decode", "samples/serial.raw", "-w", pcap}).exit_code, 0);
+    CommandResult report = run_dpscope({"report", pcap});
+    EXPECT_NE(report.out.find("time-outs not judged (no timestamps)"), std::string::npos)
+        << report.out;
+    EXPECT_EQ(report.out.find("1970-01-01"), std::string::npos) << report.out;
+    CommandResult jsonl = run_dpscope({"decode", "-c", "1", "-T", "jsonl", pcap});
+    EXPECT_NE(jsonl.out.find("\"time\":null"), std::string::npos) << jsonl.out;
+}
+
+TEST(CliOutputTest, JunitSkipsTheTimeOutRulesWithoutTimestamps) {
+    CommandResult r = run_dpscope({"report", "-T", "junit", "samples/serial.raw"});
+    std::size_t skipped = 0;
+    for (const std::string& line : lines_of(r.out))
+        if (line.find("<skipped message=\"not judged: the capture carries no timestamps\"/>") !=
+            std::string::npos)
+            ++skipped;
+    EXPECT_GE(skipped, 2u) << r.out;
+    EXPECT_EQ(r.out.find("name=\"response_timeout: every request is answered within the "
+                         "time-out\"/>"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("skipped=\"2\""), std::string::npos);
+    CommandResult timed = run_dpscope({"report", "-T", "junit", kFaults});
+    EXPECT_EQ(timed.out.find("<skipped"), std::string::npos);
+}
+
+TEST(CliOutputTest, SimulateStartIsDecimal) {
+    CommandResult r = run_dpscope({"simulate", "-w", "-", "--start", "0x10"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(r.out.empty());
 }
 
 }  // namespace

@@ -239,7 +239,7 @@ TEST(CliTest, BadOptionValuesAreUsageErrors) {
     CommandResult ppo = run_dpscope({"decode", "--ppo", "3=9", kPpo1});
     EXPECT_EQ(ppo.exit_code, 2);
     EXPECT_TRUE(ppo.out.empty());
-    EXPECT_EQ(ppo.err, "dpscope: error: --ppo 3=9: expected ADDR=TYPE with ADDR 0..126 and TYPE 1..5\n");
+    EXPECT_EQ(ppo.err, "dpscope: error: --ppo 3=9: expected ADDR=TYPE with ADDR from 0 to 126 and TYPE from 1 to 5\n");
 
     CommandResult dialect = run_dpscope({"decode", "--dialect", "foo", kPpo1});
     EXPECT_EQ(dialect.exit_code, 2);

@@ -178,6 +178,14 @@ TEST(HexLogTest, TypoInsideOrAtTheEdgeOfTheBytes) {
     ASSERT_TRUE(last.line.error);
     EXPECT_EQ(last.line.error->column, 16u);
     EXPECT_EQ(last.line.breaks, std::vector<std::size_t>{5});
+    // After them, three hex digits are one too many; before them, a line number.
+    Parsed long_last = parse("10 03 02 49 4E 160");
+    ASSERT_TRUE(long_last.line.error);
+    EXPECT_EQ(long_last.line.error->column, 16u);
+    EXPECT_EQ(long_last.line.error->token, "160");
+    Parsed numbered = parse("001 10 03 02 49 4E 16");
+    EXPECT_FALSE(numbered.line.error);
+    EXPECT_EQ(numbered.bytes, kSd1);
     // Labels around the bytes are no typos.
     for (std::string_view text :
          {"RX 10 03 02 49 4E 16 OK", "ID 10 03 02 49 4E 16", "CH 1 10 03 02 49 4E 16 done"}) {

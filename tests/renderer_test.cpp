@@ -942,6 +942,12 @@ TEST(RendererTest, WatchdogWithPossibleDpv1StatusShowsBothReadings) {
     std::string text = render(OutputFormat::Text, ambiguous);
     EXPECT_NE(text.find("WD 100 ms (1 ms base) or 1000 ms (10 ms base)"), std::string::npos)
         << text;
+    // DP-V1 status bytes without DPV1_Enable: the slave runs in DP-V0 mode, no "DP-V1" mark.
+    std::vector<Input> dpv0 = {
+        {request(61, hex("88 05 14 0B 04 02 00 04 00 00")), kNoTime, {}}};
+    std::string dpv0_text = render(OutputFormat::Text, dpv0);
+    EXPECT_NE(dpv0_text.find("group 0x00"), std::string::npos) << dpv0_text;
+    EXPECT_EQ(dpv0_text.find("DP-V1"), std::string::npos) << dpv0_text;
 
     // One reading: no WD_Base_1ms, reserved bits set (not DP-V1 status), too few user bytes.
     for (const char* du : {"88 05 14 0B 04 02 00 80 00 00", "88 05 14 0B 04 02 00 85 00 00",

@@ -442,10 +442,10 @@ TEST(SimulatorTest, ParseFaultSpecInvalid) {
               "garbage=abc: rate 'abc' must be a number in (0, 1]");
     EXPECT_EQ(fault_error("garbage="), "garbage=: rate '' must be a number in (0, 1]");
     EXPECT_EQ(fault_error("garbage:127"),
-              "garbage:127: '127' is not a station address 0..126");
+              "garbage:127: '127' is not a station address from 0 to 126");
     EXPECT_EQ(fault_error("garbage@3:x"),
-              "garbage@3:x: 'x' is not a station address 0..126");
-    EXPECT_EQ(fault_error("garbage:"), "garbage:: '' is not a station address 0..126");
+              "garbage@3:x: 'x' is not a station address from 0 to 126");
+    EXPECT_EQ(fault_error("garbage:"), "garbage:: '' is not a station address from 0 to 126");
     EXPECT_NE(fault_error("").find("unknown kind ''"), std::string::npos);
 }
 
@@ -480,12 +480,12 @@ TEST(SimulatorTest, ParseSlaveSpecValid) {
 
 TEST(SimulatorTest, ParseSlaveSpecInvalid) {
     EXPECT_EQ(slave_error("5"), "5: expected ADDR:PPO or ADDR:PPO:DIALECT");
-    EXPECT_EQ(slave_error("126:1"), "126:1: address must be 0..125");
-    EXPECT_EQ(slave_error("x:1"), "x:1: address must be 0..125");
-    EXPECT_EQ(slave_error(":1"), ":1: address must be 0..125");
-    EXPECT_EQ(slave_error("5:0"), "5:0: PPO type must be 1..5");
-    EXPECT_EQ(slave_error("5:6"), "5:6: PPO type must be 1..5");
-    EXPECT_EQ(slave_error("5:"), "5:: PPO type must be 1..5");
+    EXPECT_EQ(slave_error("126:1"), "126:1: the address must be from 0 to 125");
+    EXPECT_EQ(slave_error("x:1"), "x:1: the address must be from 0 to 125");
+    EXPECT_EQ(slave_error(":1"), ":1: the address must be from 0 to 125");
+    EXPECT_EQ(slave_error("5:0"), "5:0: the PPO type must be from 1 to 5");
+    EXPECT_EQ(slave_error("5:6"), "5:6: the PPO type must be from 1 to 5");
+    EXPECT_EQ(slave_error("5:"), "5:: the PPO type must be from 1 to 5");
     EXPECT_EQ(slave_error("5:1:foo"), "5:1:foo: dialect must be vlt or profidrive");
     EXPECT_EQ(slave_error("5:1:"), "5:1:: dialect must be vlt or profidrive");
     EXPECT_EQ(slave_error("5:1:vlt:x"), "5:1:vlt:x: dialect must be vlt or profidrive");

@@ -96,9 +96,9 @@ TEST(TtySourceTest, TelegramsInOneReadGetTimesSpacedByTheirLength) {
     ASSERT_EQ(c.telegrams.size(), 3u);
     EXPECT_EQ(c.telegrams[0], kSd1);
     EXPECT_EQ(c.telegrams[1], kToken);
-    // One character is 11 bits: 7333 ns at 1.5 Mbit/s.
-    EXPECT_EQ(c.times[1] - c.times[0], 6 * 7333);
-    EXPECT_EQ(c.times[2] - c.times[1], 3 * 7333);
+    // One character is 11 bits: 7333.3 ns at 1.5 Mbit/s; 6 characters 44 us, 3 characters 22 us.
+    EXPECT_EQ(c.times[1] - c.times[0], 44'000);
+    EXPECT_EQ(c.times[2] - c.times[1], 22'000);
     EXPECT_EQ(source.reads(), 1u);
     EXPECT_EQ(source.bytes_read(), 15u);
     EXPECT_TRUE(c.issues.empty());
