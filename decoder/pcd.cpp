@@ -55,7 +55,7 @@ constexpr WordBits kDanfossProfidriveStatus{{
 }};
 
 // Generic PROFIdrive STW1/ZSW1: bits 0..10 as the Danfoss PROFIdrive profile words (which
-// follow the standard there), bits 11..15 device-specific (protocol.md 8.1, 8.2).
+// follow the standard there), bits 11..15 device-specific (docs/protocol/process-data.md).
 constexpr WordBits with_device_specific_high_bits(WordBits bits) {
     bits[11] = {"device-specific bit 11", "device-specific bit 11"};
     bits[12] = {"device-specific bit 12", "device-specific bit 12"};

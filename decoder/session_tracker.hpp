@@ -1,7 +1,7 @@
 // The session tracker: follows the cyclic parameter channel of every (master, slave) pair
 // telegram by telegram, pairs each parameter request with its response and reports where the
-// handshake was broken (protocol.md §3.6-3.7, §4). No I/O; memory is bounded per channel and
-// nothing is kept per telegram.
+// handshake was broken (docs/protocol/parameter-channel.md). No I/O; memory is bounded per
+// channel and nothing is kept per telegram.
 //
 // How the channel is read:
 //  - The master repeats its PCV in every Data_Exchange cycle until it is answered; a new request

@@ -1,6 +1,7 @@
 // The parameter channel: reading the 8 PCV bytes, the request/response code tables of both
-// dialects (seed 000 VLT 5000, seed 002 GE AF-600, protocol.md §3.3-3.5 and §4.2-4.5), RC 7 error
-// numbers, the pairing rules of §3.6 and the worked examples of §3.7 and §3.8.
+// dialects (seed 000 VLT 5000, seed 002 GE AF-600, docs/protocol/parameter-channel.md), RC 7 error
+// numbers, the pairing rules and the worked examples (same file, "Pairing requests with
+// responses", "Worked examples").
 #include "decoder/code_tables.hpp"
 
 #include <gtest/gtest.h>
@@ -80,7 +81,7 @@ TEST(CodeTablesTest, PcvValueByWidth) {
 
 // ---- Worked examples -------------------------------------------------------------------------
 
-// §3.7: read motor current (PNU 520) and the answer 2.4 A = 240.
+// docs/protocol/parameter-channel.md, worked examples: read motor current (PNU 520), 2.4 A = 240.
 TEST(CodeTablesTest, WorkedExampleReadMotorCurrent) {
     Pcv request = pcv_of("12 08 00 00 00 00 00 00");
     EXPECT_EQ(request.rc, 1);
@@ -98,8 +99,9 @@ TEST(CodeTablesTest, WorkedExampleReadMotorCurrent) {
     EXPECT_EQ(judge_answer(Dialect::Vlt, request.rc, response.rc, false), AnswerVerdict::Positive);
 }
 
-// §3.7: the printed spontaneous-message example contradicts the bit layout; it is decoded per
-// the bit layout (§3.1), not per the manual's intent.
+// docs/protocol/contradictions.md #3: the printed spontaneous-message example contradicts the bit
+// layout; it is decoded per the bit layout (parameter-channel.md, "PCA / PKE word"), not per the
+// manual's intent.
 TEST(CodeTablesTest, WorkedExampleSpontaneousAnomalyFollowsTheBitLayout) {
     Pcv spontaneous = pcv_of("AC 1A 00 00 00 00 00 0A");
     EXPECT_EQ(spontaneous.rc, 10);
@@ -120,7 +122,8 @@ TEST(CodeTablesTest, WorkedExampleSpontaneousAnomalyFollowsTheBitLayout) {
     EXPECT_EQ(intended.pnu, 538);
 }
 
-// §3.8: change ramp time (PNU 207) to 1000, the answer, and a rejection with PNU 0.
+// parameter-channel.md, worked examples: change ramp time (PNU 207) to 1000, the answer, and a
+// rejection with PNU 0.
 TEST(CodeTablesTest, WorkedExamplesChangeRampTime) {
     Pcv request = pcv_of("30 CF 00 00 00 00 03 E8");
     EXPECT_EQ(request.rc, 3);
@@ -218,7 +221,8 @@ TEST(CodeTablesTest, VltRequestCodes) {
         });
 }
 
-// Seed 000 "Response"; seed 002 marks 9-12 "not used" but the vlt dialect supports them (§9 #2).
+// Seed 000 "Response"; seed 002 marks 9-12 "not used" but the vlt dialect supports them
+// (docs/protocol/contradictions.md #2).
 TEST(CodeTablesTest, VltResponseCodes) {
     check_responses(
         Dialect::Vlt,
@@ -242,7 +246,7 @@ TEST(CodeTablesTest, VltResponseCodes) {
         });
 }
 
-// protocol.md §4.2.
+// docs/protocol/parameter-channel.md, "Task identifiers".
 TEST(CodeTablesTest, ProfidriveRequestCodes) {
     check_requests(
         Dialect::Profidrive,
@@ -269,7 +273,7 @@ TEST(CodeTablesTest, ProfidriveRequestCodes) {
         });
 }
 
-// protocol.md §4.3.
+// docs/protocol/parameter-channel.md, "Reply identifiers".
 TEST(CodeTablesTest, ProfidriveResponseCodes) {
     check_responses(
         Dialect::Profidrive,
@@ -350,7 +354,8 @@ TEST(CodeTablesTest, VltErrorNumbers) {
     EXPECT_EQ(error_text(Dialect::Vlt, 0xFFFF), "");
 }
 
-// protocol.md §4.5: 0..24 and the manufacturer numbers 101..107, 200, 201, 204.
+// docs/protocol/parameter-channel.md, "Error numbers (PWE 2 with AK 7)": 0..24 and the
+// manufacturer numbers 101..107, 200, 201, 204.
 TEST(CodeTablesTest, ProfidriveErrorNumbers) {
     const std::vector<std::pair<int, std::string>> errors = {
         {0, "Illegal parameter number"},
@@ -409,9 +414,10 @@ TEST(CodeTablesTest, ErrorNumbersDependOnTheDialect) {
     EXPECT_EQ(error_text(Dialect::Vlt, 101), "");
 }
 
-// ---- Pairing (§3.6) --------------------------------------------------------------------------
+// ---- Pairing (docs/protocol/parameter-channel.md) ----------------------------------------------
 
-// The pairing table of protocol.md §3.6 written out independently of the implementation.
+// The pairing table of docs/protocol/parameter-channel.md written out independently of the
+// implementation.
 AnswerVerdict expected_verdict(Dialect dialect, int request, int response, bool strict) {
     bool profidrive = dialect == Dialect::Profidrive;
     bool request_defined =

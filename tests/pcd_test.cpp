@@ -1,5 +1,5 @@
 // Process data words: the Danfoss control and status word bit tables for the PROFIdrive profile
-// (protocol.md §8.3) and the FC profile (§8.4), and reference scaling (§8.5).
+// and the FC profile, and reference scaling (docs/protocol/process-data.md).
 #include "decoder/pcd.hpp"
 
 #include <gtest/gtest.h>
@@ -78,7 +78,7 @@ TEST(PcdTest, FcProfileControlWord) {
                    {"ramp 1", "ramp 2"},
                    {"data invalid", "data valid"},
                    {"no function", "relay 01 active"},
-                   // §9 #16: relay 02 or relay 04 depending on the model.
+                   // contradictions.md #16: relay 02 or relay 04 depending on the model.
                    {"no function", "relay active (model-dependent)"},
                    {"set-up select lsb 0", "set-up select lsb 1"},
                    {"set-up select msb 0", "set-up select msb 1"},
@@ -120,8 +120,8 @@ TEST(PcdTest, ProfilesDifferWhereTheManualsDiffer) {
     EXPECT_EQ(control_word_bits(PcdProfile::Fc, true)[10].when_1, "data valid");
 }
 
-// Generic PROFIdrive (protocol.md 8.1, 8.2): bits 0..10 are the profile's, bits 11..15 of STW1
-// and ZSW1 are device-specific and get no Danfoss names.
+// Generic PROFIdrive (docs/protocol/process-data.md): bits 0..10 are the profile's, bits 11..15
+// of STW1 and ZSW1 are device-specific and get no Danfoss names.
 TEST(PcdTest, GenericProfidriveHighBitsAreDeviceSpecific) {
     for (const WordBits* bits : {&control_word_bits(PcdProfile::Profidrive, false),
                                  &status_word_bits(PcdProfile::Profidrive, false)}) {

@@ -1,5 +1,5 @@
-// PPO types from configuration identifiers (protocol.md §2.4), from the Data_Exchange length
-// (§2.5) and by number.
+// PPO types from configuration identifiers, from the Data_Exchange length and by number
+// (docs/protocol/ppo.md, "Identifier bytes per PPO", "Inferring the PPO type").
 #include "decoder/ppo.hpp"
 
 #include <gtest/gtest.h>
@@ -30,7 +30,8 @@ struct CfgCase {
     std::uint16_t bytes;
 };
 
-// Every row of protocol.md §2.4 (standard PPOs) and the other legal encodings listed there.
+// Every row of docs/protocol/ppo.md's identifier table (standard PPOs) and the other legal
+// encodings listed there.
 TEST(PpoTest, IdentifierTableRows) {
     const std::vector<CfgCase> cases = {
         // Module-consistent PCD (Danfoss GSD, ABB).
@@ -113,7 +114,7 @@ TEST(PpoTest, NonStandardConfigurationsHaveNoType) {
     EXPECT_FALSE(abb6.has_pcv);
     EXPECT_EQ(abb6.output_bytes, 20);
 
-    // One module of 28 bytes: not a PPO (§2.5).
+    // One module of 28 bytes: not a PPO (docs/protocol/ppo.md).
     PpoLayout one28 = from_cfg("C0 4D 4D");
     EXPECT_EQ(one28.type, 0);
     EXPECT_FALSE(one28.has_pcv);

@@ -207,7 +207,7 @@ TEST(TelegramBuilderTest, AppendPcvLayout) {
     EXPECT_EQ(out, hex("30 CF 00 00 00 00 03 E8"));
 
     out.clear();
-    append_pcv(out, 10, true, 538, 0, 0x0A);  // §3.7 as the bit layout wants it
+    append_pcv(out, 10, true, 538, 0, 0x0A);  // as the bit layout wants it (contradictions.md #3)
     EXPECT_EQ(out, hex("AA 1A 00 00 00 00 00 0A"));
 
     out.clear();
