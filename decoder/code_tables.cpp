@@ -143,8 +143,8 @@ constexpr ErrorEntry kVltErrors[] = {
     {17, "Request temporarily unexecutable"},
     {18, "Other error"},
     {19, "Data not readable in cyclical traffic"},
-    {130, "No bus access to this parameter"},
-    {131, "Change not possible: factory set-up selected"},
+    {130, "There is no network access to the parameter called"},
+    {131, "Data change is not possible because factory setup has been selected"},
 };
 
 // PROFIdrive V2 0..19, continuation 20..24 (MASTERDRIVES), and manufacturer numbers seen in

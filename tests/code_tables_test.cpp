@@ -337,8 +337,8 @@ TEST(CodeTablesTest, VltErrorNumbers) {
         {17, "Request temporarily unexecutable"},
         {18, "Other error"},
         {19, "Data not readable in cyclical traffic"},
-        {130, "No bus access to this parameter"},
-        {131, "Change not possible: factory set-up selected"},
+        {130, "There is no network access to the parameter called"},  // seed 002, word for word
+        {131, "Data change is not possible because factory setup has been selected"},
     };
     std::set<int> defined;
     for (const auto& [number, text] : errors) {
