@@ -48,8 +48,7 @@ struct WriterResult {
 WriterResult open_capture_writer(const std::string& path, CaptureFormat format, int link_type);
 // The same into an open stream, which the writer then owns and closes (standard output is
 // flushed, not closed). `name` is what messages call it.
-WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format,
-                                 int link_type);
+WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format, int link_type);
 
 struct RotationOptions {
     std::uint64_t max_bytes = 0;  // start a new file before one grows past this (0: no limit)

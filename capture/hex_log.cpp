@@ -208,9 +208,7 @@ std::optional<std::int64_t> parse_timestamp(std::string_view first, std::string_
 
 namespace {
 
-bool is_alnum(char c) {
-    return is_digit(c) || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
-}
+bool is_alnum(char c) { return is_digit(c) || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
 
 std::size_t column_of(std::string_view line, std::string_view token) {
     return static_cast<std::size_t>(token.data() - line.data()) + 1;
@@ -224,8 +222,8 @@ std::string hex_run_problem(std::string_view body) {
     return {};
 }
 
-void add_error(HexLogLine& result, std::string_view line, std::string_view token,
-               std::string what, std::size_t bytes_before) {
+void add_error(HexLogLine& result, std::string_view line, std::string_view token, std::string what,
+               std::size_t bytes_before) {
     if (result.breaks.empty() || result.breaks.back() != bytes_before)
         result.breaks.push_back(bytes_before);
     ++result.bad_tokens;
@@ -312,8 +310,8 @@ bool typo_token(std::string_view token, bool after_run) {
         return true;
     if (body.size() != 2) return false;
     bool digit = is_digit(body[0]) || is_digit(body[1]);
-    bool beyond_hex = (is_alnum(body[0]) && !is_hex(body[0])) ||
-                      (is_alnum(body[1]) && !is_hex(body[1]));
+    bool beyond_hex =
+        (is_alnum(body[0]) && !is_hex(body[0])) || (is_alnum(body[1]) && !is_hex(body[1]));
     return digit && beyond_hex && is_alnum(body[0]) && is_alnum(body[1]);
 }
 
@@ -331,8 +329,8 @@ HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& 
     while (first < line.size() && (line[first] == ' ' || line[first] == '\t'))
         ++first;
     std::string_view trimmed = line.substr(first);
-    while (!trimmed.empty() && (trimmed.back() == ' ' || trimmed.back() == '\t' ||
-                                trimmed.back() == '\r'))
+    while (!trimmed.empty() &&
+           (trimmed.back() == ' ' || trimmed.back() == '\t' || trimmed.back() == '\r'))
         trimmed.remove_suffix(1);
     if (trimmed == "*") {
         result.repeat_marker = true;
@@ -343,7 +341,7 @@ HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& 
     std::vector<TokenKind> kinds;
     kinds.reserve(tokens.size());
     for (std::string_view token : tokens)
-        kinds.push_back(byte_token(token)   ? TokenKind::Byte
+        kinds.push_back(byte_token(token)      ? TokenKind::Byte
                         : suspect_token(token) ? TokenKind::Suspect
                                                : TokenKind::Other);
     // The longest span of byte tokens, across suspect tokens between them; the later one wins a
@@ -384,8 +382,7 @@ HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& 
             if (kinds[i] == TokenKind::Byte)
                 bytes.push_back(*byte_token(tokens[i]));
             else
-                add_error(result, line, tokens[i], token_problem(tokens[i]),
-                          bytes.size() - before);
+                add_error(result, line, tokens[i], token_problem(tokens[i]), bytes.size() - before);
         }
         first_data_token = best_start;
     } else if (!tokens.empty()) {

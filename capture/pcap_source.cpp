@@ -62,9 +62,8 @@ class PcapSource final : public TelegramSource {
         if (rc == PCAP_ERROR_BREAK) return false;  // end of file
         set_status(InputStatus::Damaged);
         report(Severity::Error,
-               fmt::format("{}: {}: {}; decoding stopped after {} {}", name(),
-                           where(number_ + 1), pcap_geterr(handle_), number_,
-                           number_ == 1 ? "record" : "records"));
+               fmt::format("{}: {}: {}; decoding stopped after {} {}", name(), where(number_ + 1),
+                           pcap_geterr(handle_), number_, number_ == 1 ? "record" : "records"));
         return false;
     }
 
@@ -169,8 +168,8 @@ class PcapngSource final : public TelegramSource {
     }
     // "byte offset 1234", or "record 5 (byte offset 1234)" for a packet block.
     std::string at_block() const {
-        if (packet_block()) return fmt::format("record {} (byte offset {})", packets_ + 1,
-                                               block_offset_);
+        if (packet_block())
+            return fmt::format("record {} (byte offset {})", packets_ + 1, block_offset_);
         return fmt::format("byte offset {}", block_offset_);
     }
 
@@ -243,9 +242,10 @@ PcapngSource::Read PcapngSource::read_block() {
         } else if (magic == 0x4D3C2B1A) {
             swap_ = true;
         } else {
-            damaged(fmt::format("{}: section header block with byte-order magic 0x{:08X}, not "
-                                "0x1A2B3C4D",
-                                at_block(), magic));
+            damaged(
+                fmt::format("{}: section header block with byte-order magic 0x{:08X}, not "
+                            "0x1A2B3C4D",
+                            at_block(), magic));
             return Read::Damaged;
         }
         header = 12;
@@ -257,9 +257,10 @@ PcapngSource::Read PcapngSource::read_block() {
     const std::uint32_t length = u32(4);
     const std::uint32_t minimum = block_type_ == kSectionHeader ? 28 : 12;
     if (length < minimum || length % 4 != 0 || length > kMaxBlockBytes) {
-        damaged(fmt::format("{}: block of type 0x{:08X} gives its length as {} bytes, not a "
-                            "multiple of 4 from {} to {}",
-                            at_block(), block_type_, length, minimum, kMaxBlockBytes));
+        damaged(
+            fmt::format("{}: block of type 0x{:08X} gives its length as {} bytes, not a "
+                        "multiple of 4 from {} to {}",
+                        at_block(), block_type_, length, minimum, kMaxBlockBytes));
         return Read::Damaged;
     }
     block_.resize(length);
@@ -274,9 +275,10 @@ PcapngSource::Read PcapngSource::read_block() {
         return Read::Damaged;
     }
     if (u32(length - 4) != length) {
-        damaged(fmt::format("{}: block of type 0x{:08X} gives its length as {} bytes at its "
-                            "start and {} at its end",
-                            at_block(), block_type_, length, u32(length - 4)));
+        damaged(
+            fmt::format("{}: block of type 0x{:08X} gives its length as {} bytes at its "
+                        "start and {} at its end",
+                        at_block(), block_type_, length, u32(length - 4)));
         return Read::Damaged;
     }
     return Read::Block;
@@ -285,9 +287,10 @@ PcapngSource::Read PcapngSource::read_block() {
 bool PcapngSource::take_section_header() {
     const std::uint16_t major = u16(12);
     if (major != 1) {
-        damaged(fmt::format("{}: section header block of pcapng version {}.{}; dpscope reads "
-                            "version 1",
-                            at_block(), major, u16(14)));
+        damaged(
+            fmt::format("{}: section header block of pcapng version {}.{}; dpscope reads "
+                        "version 1",
+                        at_block(), major, u16(14)));
         return false;
     }
     in_section_ = true;
@@ -431,9 +434,10 @@ bool PcapngSource::take_packet(Record& record) {
             captured = std::min(captured, interfaces_[0].snap_length);
     }
     if (captured > body_end - data_at) {
-        damaged(fmt::format("{}: captured length {} runs past the end of its block ({} bytes "
-                            "of data)",
-                            where, captured, body_end - data_at));
+        damaged(
+            fmt::format("{}: captured length {} runs past the end of its block ({} bytes "
+                        "of data)",
+                        where, captured, body_end - data_at));
         return false;
     }
     ++packets_;

@@ -105,8 +105,7 @@ std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& er
     if (auto at = rest.find('@'); at != std::string_view::npos) {
         std::uint64_t cycle = 0;
         if (!parse_number(rest.substr(at + 1), cycle)) {
-            error =
-                fmt::format("{}: '{}' is not a cycle number", text, rest.substr(at + 1));
+            error = fmt::format("{}: '{}' is not a cycle number", text, rest.substr(at + 1));
             return std::nullopt;
         }
         spec.cycle = cycle;

@@ -66,7 +66,8 @@ void TelegramSource::finish_reporting() {
                                    plural(c.hidden, "more line", "more lines"));
                 break;
             case IssueKind::TimeBackwards:
-                what = fmt::format("time went backwards {}", plural(c.hidden, "more time", "more times"));
+                what = fmt::format("time went backwards {}",
+                                   plural(c.hidden, "more time", "more times"));
                 break;
             case IssueKind::TimeJump:
                 what = fmt::format("time jumped forward by more than a minute {}",

@@ -108,7 +108,8 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
         ->check(whole_number(1, kMaxCount, " telegrams"))
         ->type_name("N");
     app.add_option("--ppo", values.ppo,
-                   "ADDR=TYPE: decode slave ADDR (0 to 126) as PPO TYPE (1 to 5) instead of inferring the type "
+                   "ADDR=TYPE: decode slave ADDR (0 to 126) as PPO TYPE (1 to 5) instead of "
+                   "inferring the type "
                    "from Chk_Cfg, Get_Cfg or the Data_Exchange length; repeatable")
         ->type_name("ADDR=TYPE")
         ->allow_extra_args(false);
@@ -150,13 +151,12 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
     const bool format_given = !values.format.empty();
     const std::string format = format_given ? values.format : std::string(default_format);
     if (values.verbose && format != "text" && format != "verbose") {
-        error = fmt::format("-V is the same as -T verbose; it cannot be combined with -T {}",
-                            format);
+        error =
+            fmt::format("-V is the same as -T verbose; it cannot be combined with -T {}", format);
         return std::nullopt;
     }
-    settings.format = values.verbose
-                          ? OutputFormat::Verbose
-                          : output_format_from_name(format).value_or(OutputFormat::Text);
+    settings.format = values.verbose ? OutputFormat::Verbose
+                                     : output_format_from_name(format).value_or(OutputFormat::Text);
     if (values.quiet && (values.verbose || format_given)) {
         error = fmt::format(
             "-q prints only the text summary; it cannot be combined with {} (drop one of them)",
@@ -179,14 +179,15 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
             !parse_unsigned(std::string_view(item).substr(0, eq), address) ||
             !parse_unsigned(std::string_view(item).substr(eq + 1), type) || address > 126 ||
             type < 1 || type > 5) {
-            error =
-                fmt::format("--ppo {}: expected ADDR=TYPE with ADDR from 0 to 126 and TYPE from 1 to 5", item);
+            error = fmt::format(
+                "--ppo {}: expected ADDR=TYPE with ADDR from 0 to 126 and TYPE from 1 to 5", item);
             return std::nullopt;
         }
         std::uint8_t& ppo = settings.decoder.station_ppo[address];
         if (ppo != 0 && ppo != type) {
-            error = fmt::format("--ppo {}: slave {} was already given PPO {}; give one type a slave",
-                                item, address, ppo);
+            error =
+                fmt::format("--ppo {}: slave {} was already given PPO {}; give one type a slave",
+                            item, address, ppo);
             return std::nullopt;
         }
         ppo = static_cast<std::uint8_t>(type);
@@ -204,9 +205,10 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
         }
         if (eq == std::string::npos) {
             if (dialect_for_all && settings.decoder.dialect != *dialect) {
-                error = fmt::format("--dialect {}: the dialect for every slave was already given "
-                                    "as {}; give it once (ADDR=NAME sets one slave)",
-                                    item, dialect_name(settings.decoder.dialect));
+                error = fmt::format(
+                    "--dialect {}: the dialect for every slave was already given "
+                    "as {}; give it once (ADDR=NAME sets one slave)",
+                    item, dialect_name(settings.decoder.dialect));
                 return std::nullopt;
             }
             dialect_for_all = true;
@@ -221,9 +223,10 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
         }
         std::optional<Dialect>& station = settings.decoder.station_dialect[address];
         if (station && *station != *dialect) {
-            error = fmt::format("--dialect {}: slave {} was already given the {} dialect; give "
-                                "one dialect a slave",
-                                item, address, dialect_name(*station));
+            error = fmt::format(
+                "--dialect {}: slave {} was already given the {} dialect; give "
+                "one dialect a slave",
+                item, address, dialect_name(*station));
             return std::nullopt;
         }
         station = *dialect;
@@ -251,12 +254,14 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
                             values.verbose ? std::string("-V") : "-T " + format);
         return std::nullopt;
     } else if (values.print && values.write == "-") {
-        error = "-P prints the decode on standard output, where -w - writes the capture; write "
-                "the capture to a file";
+        error =
+            "-P prints the decode on standard output, where -w - writes the capture; write "
+            "the capture to a file";
         return std::nullopt;
     } else if (values.quiet && values.write == "-") {
-        error = "-q prints its summary on standard output, where -w - writes the capture; write "
-                "the capture to a file";
+        error =
+            "-q prints its summary on standard output, where -w - writes the capture; write "
+            "the capture to a file";
         return std::nullopt;
     }
     return settings;
@@ -279,9 +284,8 @@ bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
         bool match =
             std::any_of(settings.pnus.begin(), settings.pnus.end(), [&](std::uint16_t pnu) {
                 return (t.has_pcv && subject_pnu == pnu) ||
-                       std::any_of(findings.begin(), findings.end(), [&](const Finding& f) {
-                           return f.pnu && *f.pnu == pnu;
-                       });
+                       std::any_of(findings.begin(), findings.end(),
+                                   [&](const Finding& f) { return f.pnu && *f.pnu == pnu; });
             });
         if (!match) return false;
     }
@@ -300,17 +304,15 @@ void warn_ppo_overrides(const BusDecoder& decoder) {
         const StationConfig& station = decoder.station(static_cast<std::uint8_t>(address));
         if (station.overridden_cfg_frame == 0) continue;
         const PpoLayout& announced = station.overridden_ppo;
-        std::string layout =
-            announced.type != 0
-                ? fmt::format("PPO {}", announced.type)
-                : fmt::format("a layout of {} output and {} input bytes", announced.output_bytes,
-                              announced.input_bytes);
+        std::string layout = announced.type != 0
+                                 ? fmt::format("PPO {}", announced.type)
+                                 : fmt::format("a layout of {} output and {} input bytes",
+                                               announced.output_bytes, announced.input_bytes);
         unsigned forced = decoder.options().station_ppo[address];
         print_warning(fmt::format(
             "--ppo {}={}: the {} in frame {} announces {} for slave {}; decoded as PPO {}, as the "
             "option says",
-            address, forced,
-            announced.source == PpoSource::GetCfg ? "Get_Cfg response" : "Chk_Cfg", 
+            address, forced, announced.source == PpoSource::GetCfg ? "Get_Cfg response" : "Chk_Cfg",
             station.overridden_cfg_frame, layout, address, forced));
     }
 }
@@ -328,13 +330,13 @@ std::string nothing_found_error(const TelegramSource& source, std::uint64_t tele
                 source.name(), skipped);
         case InputFormat::Hex:
             if (skipped == 0 && source.issue_count(IssueKind::HexSyntax) > 0)
-                return fmt::format("{}: no readable hex bytes in the text ({} with tokens that "
-                                   "are no hex bytes, named above)",
-                                   source.name(),
-                                   source.issue_count(IssueKind::HexSyntax) == 1
-                                       ? std::string("1 line")
-                                       : fmt::format("{} lines",
-                                                     source.issue_count(IssueKind::HexSyntax)));
+                return fmt::format(
+                    "{}: no readable hex bytes in the text ({} with tokens that "
+                    "are no hex bytes, named above)",
+                    source.name(),
+                    source.issue_count(IssueKind::HexSyntax) == 1
+                        ? std::string("1 line")
+                        : fmt::format("{} lines", source.issue_count(IssueKind::HexSyntax)));
             if (skipped == 0) return fmt::format("{}: no hex bytes in the text", source.name());
             return fmt::format("{}: no PROFIBUS telegram in its {} hex bytes", source.name(),
                                skipped);

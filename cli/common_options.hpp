@@ -63,8 +63,8 @@ struct DecodeOptionValues {
     // decode/hex -w: the telegrams shown, as a capture.
     std::string write;
     std::string write_format;  // -F; "" = pcap
-    std::string link_type;  // "" = profibus
-    bool print = false;  // -P: print the decode as well when writing a capture
+    std::string link_type;     // "" = profibus
+    bool print = false;        // -P: print the decode as well when writing a capture
 };
 
 // How to decode and track: -c, --ppo, --dialect, --pcd-profile, --timeout-ms, --strict.

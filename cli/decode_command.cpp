@@ -44,8 +44,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     std::unique_ptr<PendingOutputFile> capture_file;
     std::unique_ptr<CaptureWriter> writer;
     if (!settings.write.empty()) {
-        if (std::string same = same_file_error({input_path}, settings.write, "-w");
-            !same.empty()) {
+        if (std::string same = same_file_error({input_path}, settings.write, "-w"); !same.empty()) {
             print_error(same);
             return kExitUsage;
         }
@@ -92,8 +91,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         if (settings.filtering()) {
             if (t.fdl.has_addresses) stations_seen.set(t.fdl.da & 0x7F).set(t.fdl.sa & 0x7F);
             if (t.has_roles) stations_seen.set(t.master & 0x7F).set(t.slave & 0x7F);
-            if (t.has_pcv && subject_pnu >= 0)
-                pnus_seen.set(static_cast<std::size_t>(subject_pnu));
+            if (t.has_pcv && subject_pnu >= 0) pnus_seen.set(static_cast<std::size_t>(subject_pnu));
         }
         if (!show(renderer.get(), settings, t, findings, subject_pnu)) continue;
         if (settings.filtering()) {
@@ -130,9 +128,8 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
                                       station, station, source.name()));
     for (std::uint16_t pnu : settings.pnus)
         if (!pnus_seen.test(pnu))
-            print_warning(fmt::format(
-                "--pnu {}: no parameter request or answer about PNU {} in {}", pnu, pnu,
-                source.name()));
+            print_warning(fmt::format("--pnu {}: no parameter request or answer about PNU {} in {}",
+                                      pnu, pnu, source.name()));
     if (settings.quiet) {
         if (settings.filtering()) {
             shown_summary.add_findings(open_at_end);

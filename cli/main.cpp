@@ -20,9 +20,10 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     // Command-line errors in dpscope's one error style; "Usage: dpscope ..." whatever argv[0].
     app.failure_message([](const CLI::App*, const CLI::Error& e) {
-        return fmt::format("dpscope: error: {}\nRun 'dpscope --help' or 'dpscope SUBCOMMAND "
-                           "--help' for the options.\n",
-                           e.what());
+        return fmt::format(
+            "dpscope: error: {}\nRun 'dpscope --help' or 'dpscope SUBCOMMAND "
+            "--help' for the options.\n",
+            e.what());
     });
     app.footer(std::string(kExitCodeHelp) +
                "\nRun 'dpscope SUBCOMMAND --help' for the options of each subcommand.");

@@ -44,7 +44,8 @@ int write_report(const ReportCommand& command, const Pipeline& pipeline,
         bool seen = std::any_of(channels.begin(), channels.end(),
                                 [&](const ChannelStats* s) { return s->slave == station; });
         if (!seen)
-            print_warning(fmt::format("--station {}: no slave {} in the capture", station, station));
+            print_warning(
+                fmt::format("--station {}: no slave {} in the capture", station, station));
     }
     render_report(report_format_from_name(command.format).value_or(ReportFormat::Text), context,
                   out);

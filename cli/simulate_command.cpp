@@ -74,10 +74,10 @@ void list_injections(const SimulateCommand& command, Simulator& simulator) {
 int report_injections(const Simulator& simulator) {
     std::vector<std::string> missing = simulator.faults_not_injected();
     for (const std::string& fault : missing)
-        print_error(fmt::format(
-            "--fault {} was not injected: the session ended before it had a chance "
-            "(give an earlier @CYCLE, more --cycles or a larger -c)",
-            fault));
+        print_error(
+            fmt::format("--fault {} was not injected: the session ended before it had a chance "
+                        "(give an earlier @CYCLE, more --cycles or a larger -c)",
+                        fault));
     return missing.empty() ? kExitOk : kExitUsage;
 }
 
@@ -97,9 +97,8 @@ int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
             return kExitUsage;
         }
         replay = std::move(opened.source);
-        replay->on_issue([](const InputIssue& issue) {
-            print_diagnostic(issue.severity, issue.message);
-        });
+        replay->on_issue(
+            [](const InputIssue& issue) { print_diagnostic(issue.severity, issue.message); });
     }
     TelegramGenerator next = [&](std::vector<std::uint8_t>& bytes, std::int64_t& time) {
         if (!replay) return simulator->next(bytes, time);

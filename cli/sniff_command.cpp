@@ -202,8 +202,8 @@ int run_sniff(const SniffCommand& command) {
                              : !command.link_type.empty() ? "--linktype"
                                                           : nullptr;
         if (unused) {
-            print_error(fmt::format("{} is about the capture file of -w FILE, which is not given",
-                                    unused));
+            print_error(
+                fmt::format("{} is about the capture file of -w FILE, which is not given", unused));
             return kExitUsage;
         }
     }
@@ -212,9 +212,10 @@ int run_sniff(const SniffCommand& command) {
          {std::pair<const char*, const std::string&>{"-w", command.output},
           std::pair<const char*, const std::string&>{"--report-file", command.report_file}}) {
         if (!path.empty() && path != "-" && same_file(path, command.device)) {
-            print_error(fmt::format("{} {}: that is the capture device -i {}; writing to it would "
-                                    "send the bytes onto the bus",
-                                    option, path, command.device));
+            print_error(
+                fmt::format("{} {}: that is the capture device -i {}; writing to it would "
+                            "send the bytes onto the bus",
+                            option, path, command.device));
             return kExitUsage;
         }
     }

@@ -23,8 +23,8 @@ std::string describe_skip(const SkippedBytes& skipped) {
     }
     if (skipped.reason == ProblemKind::BadStartDelimiter ||
         skipped.reason == ProblemKind::Truncated)
-        return fmt::format("skipped {} {}: {}", skipped.count, skipped.count == 1 ? "byte" : "bytes",
-                           what);
+        return fmt::format("skipped {} {}: {}", skipped.count,
+                           skipped.count == 1 ? "byte" : "bytes", what);
     return fmt::format("skipped {} {}: {} (byte {} of the candidate telegram)", skipped.count,
                        skipped.count == 1 ? "byte" : "bytes", what, skipped.reason_offset);
 }

@@ -196,8 +196,7 @@ TEST(CaptureWriterTest, UnknownTimeIsZeroInPcapAndReadsBackUnknown) {
     for (CaptureFormat format : {CaptureFormat::Pcap, CaptureFormat::Pcapng}) {
         SCOPED_TRACE(capture_format_name(format));
         TempFile file("notime.cap");
-        write_all(file.path, format, kLinkTypeProfibusDl,
-                  {{hex("E5"), kNoTime}, {hex("E5"), kT0}});
+        write_all(file.path, format, kLinkTypeProfibusDl, {{hex("E5"), kNoTime}, {hex("E5"), kT0}});
         std::vector<std::uint8_t> bytes = test::read_file(file.path);
         if (format == CaptureFormat::Pcap) {
             // The first record header's seconds and fraction are 0.

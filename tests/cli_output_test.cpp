@@ -80,8 +80,7 @@ TEST(CliOutputTest, ReportRefusesToWriteOverItsInput) {
     ASSERT_EQ(::symlink(capture.c_str(), symlink.c_str()), 0);
     CommandResult linked = run_dpscope({"report", "-T", "html", "-w", symlink, capture});
     EXPECT_EQ(linked.exit_code, 2);
-    EXPECT_NE(linked.err.find("that is the same file as the input " + capture),
-              std::string::npos)
+    EXPECT_NE(linked.err.find("that is the same file as the input " + capture), std::string::npos)
         << linked.err;
     std::string hardlink = test::temp_path("hardlink.pcap");
     ASSERT_EQ(::link(capture.c_str(), hardlink.c_str()), 0);
@@ -100,15 +99,15 @@ TEST(CliOutputTest, DecodeRefusesToWriteOverItsInput) {
     EXPECT_EQ(content(capture), before);
 
     // Standard input redirected from the file that -w names.
-    std::string command = "'" + test::dpscope_executable() + "' decode -w '" + capture +
-                          "' - < '" + capture + "' 2>/dev/null";
+    std::string command = "'" + test::dpscope_executable() + "' decode -w '" + capture + "' - < '" +
+                          capture + "' 2>/dev/null";
     int status = std::system(command.c_str());
     ASSERT_TRUE(WIFEXITED(status));
     EXPECT_EQ(WEXITSTATUS(status), 2);
     EXPECT_EQ(content(capture), before);
     // Standard output appended to the input while reading it.
-    command = "'" + test::dpscope_executable() + "' decode -w - '" + capture + "' >> '" +
-              capture + "' 2>/dev/null";
+    command = "'" + test::dpscope_executable() + "' decode -w - '" + capture + "' >> '" + capture +
+              "' 2>/dev/null";
     status = std::system(command.c_str());
     ASSERT_TRUE(WIFEXITED(status));
     EXPECT_EQ(WEXITSTATUS(status), 2);
@@ -290,10 +289,9 @@ TEST(CliOutputTest, ConflictingOptionsAreUsageErrors) {
     EXPECT_EQ(ppo.err,
               "dpscope: error: --ppo 3=2: slave 3 was already given PPO 1; give one type a "
               "slave\n");
-    EXPECT_EQ(run_dpscope({"decode", "-q", "--ppo", "3=1", "--ppo", "3=1", kFaults}).exit_code,
-              0);
-    CommandResult all = run_dpscope({"decode", "--dialect", "vlt", "--dialect", "profidrive",
-                                     kFaults});
+    EXPECT_EQ(run_dpscope({"decode", "-q", "--ppo", "3=1", "--ppo", "3=1", kFaults}).exit_code, 0);
+    CommandResult all =
+        run_dpscope({"decode", "--dialect", "vlt", "--dialect", "profidrive", kFaults});
     EXPECT_EQ(all.exit_code, 2);
     EXPECT_NE(all.err.find("the dialect for every slave was already given as vlt"),
               std::string::npos);
@@ -317,8 +315,7 @@ TEST(CliOutputTest, PpoOptionContradictingTheConfigurationIsAWarning) {
     CommandResult agrees = run_dpscope({"decode", "-q", "--ppo", "3=1", kFaults});
     EXPECT_TRUE(agrees.err.empty()) << agrees.err;
     CommandResult report = run_dpscope({"report", "--ppo", "4=5", kFaults});
-    EXPECT_NE(report.err.find("--ppo 4=5: the Chk_Cfg in frame"), std::string::npos)
-        << report.err;
+    EXPECT_NE(report.err.find("--ppo 4=5: the Chk_Cfg in frame"), std::string::npos) << report.err;
 }
 
 TEST(CliOutputTest, NumericOptionsNameTheirRange) {
@@ -444,8 +441,8 @@ TEST(CliOutputTest, SniffRefusesToWriteOntoTheCaptureDevice) {
     EXPECT_EQ(w.exit_code, 2);
     EXPECT_EQ(w.err, "dpscope: error: -w " + pty.slave + ": that is the capture device -i " +
                          pty.slave + "; writing to it would send the bytes onto the bus\n");
-    CommandResult report = run_dpscope(
-        {"sniff", "-i", pty.slave, "--baud", "9600", "--report-file", pty.slave});
+    CommandResult report =
+        run_dpscope({"sniff", "-i", pty.slave, "--baud", "9600", "--report-file", pty.slave});
     EXPECT_EQ(report.exit_code, 2);
     EXPECT_NE(report.err.find("--report-file " + pty.slave + ": that is the capture device"),
               std::string::npos)
@@ -464,9 +461,9 @@ TEST(CliOutputTest, OptionsThatWouldDoNothingAreUsageErrors) {
     EXPECT_EQ(run_dpscope({"decode", kFaults, "-w", "/dev/null", "-T", "jsonl", "-P"}).exit_code,
               0);
     test::PseudoTerminal pty;
-    for (std::vector<std::string> extra :
-         {std::vector<std::string>{"--rotate-size", "1M"}, {"--rotate-seconds", "60"},
-          {"--linktype", "user0"}}) {
+    for (std::vector<std::string> extra : {std::vector<std::string>{"--rotate-size", "1M"},
+                                           {"--rotate-seconds", "60"},
+                                           {"--linktype", "user0"}}) {
         std::vector<std::string> args = {"sniff", "-i", pty.slave, "--baud", "9600"};
         args.insert(args.end(), extra.begin(), extra.end());
         CommandResult r = run_dpscope(args);
@@ -487,13 +484,14 @@ TEST(CliOutputTest, FiltersThatMatchNothingAreNamed) {
     CommandResult station = run_dpscope({"decode", "--station", "9", kFaults});
     EXPECT_EQ(station.exit_code, 0);
     EXPECT_TRUE(station.out.empty());
-    EXPECT_EQ(station.err,
-              "dpscope: warning: --station 9: no telegram to or from station 9 in " + kFaults +
-                  "\n");
+    EXPECT_EQ(station.err, "dpscope: warning: --station 9: no telegram to or from station 9 in " +
+                               kFaults + "\n");
     CommandResult pnu = run_dpscope({"decode", "--pnu", "999", "--pnu", "207", kFaults});
     EXPECT_FALSE(pnu.out.empty());
-    EXPECT_EQ(pnu.err, "dpscope: warning: --pnu 999: no parameter request or answer about PNU "
-                       "999 in " + kFaults + "\n");
+    EXPECT_EQ(pnu.err,
+              "dpscope: warning: --pnu 999: no parameter request or answer about PNU "
+              "999 in " +
+                  kFaults + "\n");
     CommandResult report = run_dpscope({"report", "--station", "128", kFaults});
     EXPECT_EQ(report.exit_code, 2);
     EXPECT_NE(report.err.find("--station: must be a whole number from 0 to 127, not '128'"),

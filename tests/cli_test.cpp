@@ -107,9 +107,10 @@ TEST(CliTest, MissingSubcommandIsUsageError) {
     EXPECT_TRUE(r.out.empty());
     CommandResult unknown = run_dpscope({"frob", kPpo1});
     EXPECT_EQ(unknown.exit_code, 2);
-    EXPECT_EQ(unknown.err,
-              "dpscope: error: unknown subcommand 'frob'; one of decode, hex, report, simulate, sniff "
-              "(see --help)\n");
+    EXPECT_EQ(
+        unknown.err,
+        "dpscope: error: unknown subcommand 'frob'; one of decode, hex, report, simulate, sniff "
+        "(see --help)\n");
 }
 
 // ---- decode ----------------------------------------------------------------------------------
@@ -153,8 +154,9 @@ TEST(CliTest, MissingFileIsUsageErrorNamingIt) {
     CommandResult r = run_dpscope({"decode", "samples/does-not-exist.pcap"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(r.out.empty());
-    EXPECT_EQ(r.err,
-              "dpscope: error: samples/does-not-exist.pcap: cannot open: No such file or directory\n");
+    EXPECT_EQ(
+        r.err,
+        "dpscope: error: samples/does-not-exist.pcap: cannot open: No such file or directory\n");
 }
 
 TEST(CliTest, UnsupportedLinkTypeIsUsageErrorNamingFileAndLinkType) {
@@ -239,12 +241,15 @@ TEST(CliTest, BadOptionValuesAreUsageErrors) {
     CommandResult ppo = run_dpscope({"decode", "--ppo", "3=9", kPpo1});
     EXPECT_EQ(ppo.exit_code, 2);
     EXPECT_TRUE(ppo.out.empty());
-    EXPECT_EQ(ppo.err, "dpscope: error: --ppo 3=9: expected ADDR=TYPE with ADDR from 0 to 126 and TYPE from 1 to 5\n");
+    EXPECT_EQ(ppo.err,
+              "dpscope: error: --ppo 3=9: expected ADDR=TYPE with ADDR from 0 to 126 and TYPE from "
+              "1 to 5\n");
 
     CommandResult dialect = run_dpscope({"decode", "--dialect", "foo", kPpo1});
     EXPECT_EQ(dialect.exit_code, 2);
     EXPECT_TRUE(dialect.out.empty());
-    EXPECT_EQ(dialect.err, "dpscope: error: --dialect foo: 'foo' is not a dialect (vlt, profidrive)\n");
+    EXPECT_EQ(dialect.err,
+              "dpscope: error: --dialect foo: 'foo' is not a dialect (vlt, profidrive)\n");
 
     CommandResult count = run_dpscope({"decode", "-c", "0", kPpo1});
     EXPECT_EQ(count.exit_code, 2);
@@ -256,8 +261,9 @@ TEST(CliTest, BadOptionValuesAreUsageErrors) {
     CommandResult verbose_jsonl = run_dpscope({"decode", "-V", "-T", "jsonl", kPpo1});
     EXPECT_EQ(verbose_jsonl.exit_code, 2);
     EXPECT_TRUE(verbose_jsonl.out.empty());
-    EXPECT_EQ(verbose_jsonl.err,
-              "dpscope: error: -V is the same as -T verbose; it cannot be combined with -T jsonl\n");
+    EXPECT_EQ(
+        verbose_jsonl.err,
+        "dpscope: error: -V is the same as -T verbose; it cannot be combined with -T jsonl\n");
 
     CommandResult station_dialect = run_dpscope({"decode", "--dialect", "200=vlt", kPpo1});
     EXPECT_EQ(station_dialect.exit_code, 2);
@@ -325,8 +331,7 @@ TEST(CliTest, RandomBytesAreNoProfibusStreamUnlessRawIsForced) {
         EXPECT_TRUE(r.out.empty()) << command << r.out.substr(0, 200);
         // One line: the verdict with the share skipped, and how to decode it anyway.
         EXPECT_EQ(lines_of(r.err).size(), 1u) << r.err.substr(0, 2000);
-        EXPECT_NE(r.err.find("dpscope: error: " + file.path +
-                             ": not a PROFIBUS byte stream: "),
+        EXPECT_NE(r.err.find("dpscope: error: " + file.path + ": not a PROFIBUS byte stream: "),
                   std::string::npos)
             << r.err;
         EXPECT_NE(r.err.find("of its first 65536 bytes (99."), std::string::npos) << r.err;
@@ -593,7 +598,8 @@ TEST(CliTest, BadHexArgumentIsUsageErrorNamingIt) {
     CommandResult r = run_dpscope({"hex", "10", "zz", "02"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(r.out.empty());
-    EXPECT_EQ(r.err.rfind("dpscope: error: hex: argument 2: 'zz' is not hex bytes", 0), 0u) << r.err;
+    EXPECT_EQ(r.err.rfind("dpscope: error: hex: argument 2: 'zz' is not hex bytes", 0), 0u)
+        << r.err;
     CommandResult odd = run_dpscope({"hex", "680"});
     EXPECT_EQ(odd.exit_code, 2);
     EXPECT_NE(odd.err.find("argument 1: '680'"), std::string::npos) << odd.err;
@@ -797,11 +803,13 @@ TEST(CliTest, SimulateUnwritableOutputNamesIt) {
     const std::string path = blocker.path + "/out.pcap";
     CommandResult r = run_dpscope({"simulate", "-w", path, "--cycles", "1"});
     EXPECT_EQ(r.exit_code, 4);
-    EXPECT_NE(r.err.find("dpscope: error: " + path + ": cannot open for writing"), std::string::npos)
+    EXPECT_NE(r.err.find("dpscope: error: " + path + ": cannot open for writing"),
+              std::string::npos)
         << r.err;
     CommandResult report = run_dpscope({"report", "-w", path, "samples/ppo2.pcap"});
     EXPECT_EQ(report.exit_code, 4);
-    EXPECT_NE(report.err.find("dpscope: error: " + path + ": cannot open for writing"), std::string::npos)
+    EXPECT_NE(report.err.find("dpscope: error: " + path + ": cannot open for writing"),
+              std::string::npos)
         << report.err;
 }
 

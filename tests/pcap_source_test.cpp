@@ -2,9 +2,9 @@
 // record numbering, and every way a capture file can be unusable or damaged.
 #include "capture/pcap_source.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <pcap/pcap.h>
-#include <fmt/format.h>
 #include <sys/stat.h>
 
 #include <cstdio>

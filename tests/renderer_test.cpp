@@ -943,8 +943,7 @@ TEST(RendererTest, WatchdogWithPossibleDpv1StatusShowsBothReadings) {
     EXPECT_NE(text.find("WD 100 ms (1 ms base) or 1000 ms (10 ms base)"), std::string::npos)
         << text;
     // DP-V1 status bytes without DPV1_Enable: the slave runs in DP-V0 mode, no "DP-V1" mark.
-    std::vector<Input> dpv0 = {
-        {request(61, hex("88 05 14 0B 04 02 00 04 00 00")), kNoTime, {}}};
+    std::vector<Input> dpv0 = {{request(61, hex("88 05 14 0B 04 02 00 04 00 00")), kNoTime, {}}};
     std::string dpv0_text = render(OutputFormat::Text, dpv0);
     EXPECT_NE(dpv0_text.find("group 0x00"), std::string::npos) << dpv0_text;
     EXPECT_EQ(dpv0_text.find("DP-V1"), std::string::npos) << dpv0_text;

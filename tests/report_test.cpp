@@ -2113,7 +2113,8 @@ ssize_t heap_watch_write(void* cookie, const char*, std::size_t size) {
 
 TEST(ReportTest, JunitStreamsFailuresFromTheLogInsteadOfGatheringThem) {
 #if defined(__SANITIZE_ADDRESS__)
-    GTEST_SKIP() << "mallinfo2() does not see AddressSanitizer's allocator; the release tree runs this";
+    GTEST_SKIP()
+        << "mallinfo2() does not see AddressSanitizer's allocator; the release tree runs this";
 #endif
     auto analysis = analyse_file("samples/ppo2.pcap");
     const std::string message(200, 'm');

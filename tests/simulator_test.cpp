@@ -436,10 +436,8 @@ TEST(SimulatorTest, ParseFaultSpecInvalid) {
     EXPECT_EQ(fault_error("garbage@-1"), "garbage@-1: '-1' is not a cycle number");
     EXPECT_EQ(fault_error("garbage@"), "garbage@: '' is not a cycle number");
     EXPECT_EQ(fault_error("garbage=0"), "garbage=0: rate '0' must be a number in (0, 1]");
-    EXPECT_EQ(fault_error("garbage=1.5"),
-              "garbage=1.5: rate '1.5' must be a number in (0, 1]");
-    EXPECT_EQ(fault_error("garbage=abc"),
-              "garbage=abc: rate 'abc' must be a number in (0, 1]");
+    EXPECT_EQ(fault_error("garbage=1.5"), "garbage=1.5: rate '1.5' must be a number in (0, 1]");
+    EXPECT_EQ(fault_error("garbage=abc"), "garbage=abc: rate 'abc' must be a number in (0, 1]");
     EXPECT_EQ(fault_error("garbage="), "garbage=: rate '' must be a number in (0, 1]");
     EXPECT_EQ(fault_error("garbage:127"),
               "garbage:127: '127' is not a station address from 0 to 126");

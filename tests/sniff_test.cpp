@@ -631,8 +631,7 @@ TEST(SniffTest, NumericOptionsAreCheckedAgainstTheirRange) {
         {{"--idle-gap-ms", "-1"},
          "--idle-gap-ms: must be a whole number from 0 to 60000 ms, not '-1'"},
         {{"--idle-gap-ms", "1e30"}, "--idle-gap-ms: must be a whole number from 0 to 60000 ms"},
-        {{"-c", "1e30"},
-         "--count: must be a whole number from 1 to 9223372036854775807 telegrams"},
+        {{"-c", "1e30"}, "--count: must be a whole number from 1 to 9223372036854775807 telegrams"},
         {{"-c", "1.5"}, "--count: must be a whole number from 1 to"},
         {{"-c", "0"},
          "--count: must be a whole number from 1 to 9223372036854775807 telegrams, not '0'"},
@@ -649,9 +648,10 @@ TEST(SniffTest, NumericOptionsAreCheckedAgainstTheirRange) {
     for (const char* baud : {"0", "299", "16000001", "1e30", "-9600", "nan"}) {
         auto result = test::run_dpscope({"sniff", "-i", pty.slave, "--baud", baud});
         EXPECT_EQ(result.exit_code, 2) << baud;
-        EXPECT_NE(result.err.find("--baud: must be a whole number from 300 to 16000000 baud, not '" +
-                                  std::string(baud) + "'"),
-                  std::string::npos)
+        EXPECT_NE(
+            result.err.find("--baud: must be a whole number from 300 to 16000000 baud, not '" +
+                            std::string(baud) + "'"),
+            std::string::npos)
             << result.err;
     }
     EXPECT_FALSE(std::filesystem::exists(test::source_dir() + "/x.pcap"));

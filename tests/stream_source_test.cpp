@@ -1,5 +1,7 @@
 // Byte-stream sources: raw serial dumps and hex text logs through open_source, and bytes in
 // memory. Telegrams are framed from the stream; skipped bytes are reported with their place.
+#include "capture/stream_source.hpp"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -12,7 +14,6 @@
 #include <vector>
 
 #include "capture/framed_source.hpp"
-#include "capture/stream_source.hpp"
 #include "capture/telegram_source.hpp"
 #include "tests/test_support.hpp"
 
@@ -298,8 +299,9 @@ TEST(StreamSourceTest, HexTypoIsNamedAndTheRestStillDecodes) {
     ASSERT_GE(r.issues.size(), 1u);
     EXPECT_EQ(r.issues[0].kind, IssueKind::HexSyntax);
     EXPECT_EQ(r.issues[0].message,
-              file.path + ": line 2, column 16: '0G' is not a hex byte ('G' is no hex digit); "
-                          "the bytes before and after it are framed apart");
+              file.path +
+                  ": line 2, column 16: '0G' is not a hex byte ('G' is no hex digit); "
+                  "the bytes before and after it are framed apart");
     // Then the pieces of the telegram that could not be framed.
     for (std::size_t i = 1; i < r.issues.size(); ++i)
         EXPECT_EQ(r.issues[i].kind, IssueKind::SkippedBytes) << r.issues[i].message;
@@ -319,8 +321,9 @@ TEST(StreamSourceTest, HexBadLinesAreCapped) {
     EXPECT_EQ(hex_syntax, kMaxIssuesShown);
     bool summed_up = false;
     for (const InputIssue& issue : r.issues)
-        if (issue.message == file.path + ": 15 more lines with tokens that are no hex bytes not "
-                                         "shown")
+        if (issue.message == file.path +
+                                 ": 15 more lines with tokens that are no hex bytes not "
+                                 "shown")
             summed_up = true;
     EXPECT_TRUE(summed_up);
 }
@@ -347,26 +350,29 @@ TEST(StreamSourceTest, DumpRepeatMarkerStandsForTheLeftOutLines) {
     // hexdump -C of kSd1, 40 zero bytes, kSd1: the zero lines are shown once, then "*".
     std::vector<std::uint8_t> raw = concat({kSd1, std::vector<std::uint8_t>(42, 0), kSd1});
     TempFile file("repeat.hd");
-    test::write_text_file(file.path,
-                          "00000000  10 03 02 49 4e 16 00 00  00 00 00 00 00 00 00 00  |...IN...........|\n"
-                          "00000010  00 00 00 00 00 00 00 00  00 00 00 00 00 00 00 00  |................|\n"
-                          "*\n"
-                          "00000030  10 03 02 49 4e 16                                 |...IN.|\n"
-                          "00000036\n");
+    test::write_text_file(
+        file.path,
+        "00000000  10 03 02 49 4e 16 00 00  00 00 00 00 00 00 00 00  |...IN...........|\n"
+        "00000010  00 00 00 00 00 00 00 00  00 00 00 00 00 00 00 00  |................|\n"
+        "*\n"
+        "00000030  10 03 02 49 4e 16                                 |...IN.|\n"
+        "00000036\n");
     ReadResult r = read_all(file.path, InputFormat::Hex);
     ASSERT_EQ(r.records.size(), 2u);
     EXPECT_EQ(r.records[1].offset, 48u);
     EXPECT_EQ(r.skipped, 42u);
     // Without the "*", the offset jump is named.
-    test::write_text_file(file.path,
-                          "00000000  10 03 02 49 4e 16 00 00  00 00 00 00 00 00 00 00  |...IN...........|\n"
-                          "00000030  10 03 02 49 4e 16                                 |...IN.|\n");
+    test::write_text_file(
+        file.path,
+        "00000000  10 03 02 49 4e 16 00 00  00 00 00 00 00 00 00 00  |...IN...........|\n"
+        "00000030  10 03 02 49 4e 16                                 |...IN.|\n");
     r = read_all(file.path, InputFormat::Hex);
     ASSERT_EQ(r.records.size(), 2u);
     bool named = false;
     for (const InputIssue& issue : r.issues)
-        named |= issue.message.find(": line 2: the dump's offset is 0x30, but 0x10 bytes came "
-                                    "before it; lines are missing") != std::string::npos;
+        named |= issue.message.find(
+                     ": line 2: the dump's offset is 0x30, but 0x10 bytes came "
+                     "before it; lines are missing") != std::string::npos;
     EXPECT_TRUE(named);
 }
 
@@ -591,8 +597,8 @@ TEST(StreamSourceTest, HexLogMostlySkippedIsNoProfibusLogUnlessForced) {
 
 TEST(StreamSourceTest, StopAfterReportsNothingPastTheLastTelegram) {
     TempFile file("count.raw");
-    test::write_file(file.path, concat({kSd1, hex("01 02"), kSd2, hex("03 04 05"), kToken,
-                                        hex("06"), kAck}));
+    test::write_file(file.path,
+                     concat({kSd1, hex("01 02"), kSd2, hex("03 04 05"), kToken, hex("06"), kAck}));
     OpenResult opened = open_source(file.path, InputFormat::Raw);
     ASSERT_TRUE(opened.source);
     opened.source->stop_after(2);
@@ -611,22 +617,22 @@ TEST(StreamSourceTest, TimesGoingBackwardsOrJumpingAreReportedOncePerKind) {
     TempFile file("times.txt");
     test::write_text_file(file.path,
                           "1704067200.0 10 03 02 49 4E 16\n"
-                          "1704067199.5 E5\n"      // 0.5 s back
-                          "1704067199.0 E5\n"      // back again: counted
-                          "1704067300.0 E5\n"      // 101 s forward
-                          "1704067301.0 E5\n"      // 1 s: fine
-                          "1704068000.0 E5\n");    // 699 s forward: counted
+                          "1704067199.5 E5\n"    // 0.5 s back
+                          "1704067199.0 E5\n"    // back again: counted
+                          "1704067300.0 E5\n"    // 101 s forward
+                          "1704067301.0 E5\n"    // 1 s: fine
+                          "1704068000.0 E5\n");  // 699 s forward: counted
     ReadResult r = read_all(file.path, InputFormat::Hex);
     ASSERT_EQ(r.records.size(), 6u);
     ASSERT_EQ(r.issues.size(), 4u);
     EXPECT_EQ(r.issues[0].kind, IssueKind::TimeBackwards);
-    EXPECT_NE(r.issues[0].message.find(
-                  file.path + ": frame 2: time goes backwards by 0.500 s from frame 1;"),
+    EXPECT_NE(r.issues[0].message.find(file.path +
+                                       ": frame 2: time goes backwards by 0.500 s from frame 1;"),
               std::string::npos)
         << r.issues[0].message;
     EXPECT_EQ(r.issues[1].kind, IssueKind::TimeJump);
-    EXPECT_NE(r.issues[1].message.find(
-                  file.path + ": frame 4: time jumps forward by 101.000 s from frame 3"),
+    EXPECT_NE(r.issues[1].message.find(file.path +
+                                       ": frame 4: time jumps forward by 101.000 s from frame 3"),
               std::string::npos)
         << r.issues[1].message;
     EXPECT_EQ(r.issues[2].message, file.path + ": time went backwards 1 more time");

@@ -125,9 +125,11 @@ class PcapngBuilder {
   private:
     void put16(std::vector<std::uint8_t>& out, std::uint16_t v) const {
         if (big_endian_)
-            out.insert(out.end(), {static_cast<std::uint8_t>(v >> 8), static_cast<std::uint8_t>(v)});
+            out.insert(out.end(),
+                       {static_cast<std::uint8_t>(v >> 8), static_cast<std::uint8_t>(v)});
         else
-            out.insert(out.end(), {static_cast<std::uint8_t>(v), static_cast<std::uint8_t>(v >> 8)});
+            out.insert(out.end(),
+                       {static_cast<std::uint8_t>(v), static_cast<std::uint8_t>(v >> 8)});
     }
     void put32(std::vector<std::uint8_t>& out, std::uint32_t v) const {
         if (big_endian_) {
