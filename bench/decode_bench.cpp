@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <vector>
 
-#include "capture/simulator.hpp"
 #include "decoder/bus_decoder.hpp"
 #include "decoder/stream_framer.hpp"
 #include "formats/output.hpp"
 #include "formats/renderer.hpp"
+#include "simulator/simulator.hpp"
 
 namespace {
 

@@ -19,9 +19,9 @@
 #include <thread>
 #include <vector>
 
-#include "capture/simulator.hpp"
 #include "capture/telegram_source.hpp"
 #include "capture/tty_player.hpp"
+#include "simulator/simulator.hpp"
 
 namespace {
 

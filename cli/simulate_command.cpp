@@ -17,11 +17,11 @@
 #include "capture/output_file.hpp"
 #include "capture/pcap_source.hpp"
 #include "capture/serial_port.hpp"
-#include "capture/simulator.hpp"
 #include "capture/telegram_source.hpp"
 #include "capture/tty_player.hpp"
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
+#include "simulator/simulator.hpp"
 
 namespace dpscope::cli {
 

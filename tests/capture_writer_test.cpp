@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "capture/pcap_source.hpp"
-#include "capture/simulator.hpp"
 #include "capture/telegram_source.hpp"
+#include "simulator/simulator.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

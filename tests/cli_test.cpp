@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "capture/simulator.hpp"
 #include "capture/telegram_source.hpp"
+#include "simulator/simulator.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

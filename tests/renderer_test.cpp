@@ -12,10 +12,10 @@
 #include <string_view>
 #include <vector>
 
-#include "capture/simulator.hpp"
 #include "decoder/bus_decoder.hpp"
 #include "decoder/telegram_builder.hpp"
 #include "formats/json.hpp"
+#include "simulator/simulator.hpp"
 #include "tests/json_parser.hpp"
 #include "tests/test_support.hpp"
 

@@ -25,7 +25,6 @@
 #include <vector>
 
 #include "capture/input_format.hpp"
-#include "capture/simulator.hpp"
 #include "capture/telegram_source.hpp"
 #include "decoder/bus_decoder.hpp"
 #include "decoder/finding.hpp"
@@ -34,6 +33,7 @@
 #include "decoder/telegram_builder.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/summary.hpp"
+#include "simulator/simulator.hpp"
 #include "tests/json_parser.hpp"
 #include "tests/test_support.hpp"
 

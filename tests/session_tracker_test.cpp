@@ -10,9 +10,9 @@
 #include <set>
 #include <vector>
 
-#include "capture/simulator.hpp"
 #include "decoder/bus_decoder.hpp"
 #include "decoder/telegram_builder.hpp"
+#include "simulator/simulator.hpp"
 
 namespace dpscope {
 namespace {

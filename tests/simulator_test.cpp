@@ -1,6 +1,6 @@
 // The bus simulator: reproducible sessions, the start-up sequence of each slave, clean cyclic
 // traffic, fault injection, and the fault and slave specifications of the command line.
-#include "capture/simulator.hpp"
+#include "simulator/simulator.hpp"
 
 #include <gtest/gtest.h>
 

@@ -18,11 +18,11 @@
 #include <vector>
 
 #include "capture/capture_writer.hpp"
-#include "capture/simulator.hpp"
 #include "capture/telegram_source.hpp"
 #include "capture/tty_player.hpp"
 #include "decoder/bus_decoder.hpp"
 #include "decoder/session_tracker.hpp"
+#include "simulator/simulator.hpp"
 #include "tests/json_parser.hpp"
 #include "tests/test_support.hpp"
 

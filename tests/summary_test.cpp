@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "capture/simulator.hpp"
 #include "decoder/bus_decoder.hpp"
 #include "decoder/telegram_builder.hpp"
+#include "simulator/simulator.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

@@ -1,4 +1,4 @@
-#include "capture/simulator.hpp"
+#include "simulator/simulator.hpp"
 
 #include <fmt/format.h>
 
