@@ -1,9 +1,6 @@
 #include "simulator/simulator.hpp"
 
-#include <fmt/format.h>
-
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <limits>
 
@@ -13,55 +10,6 @@
 namespace dpscope {
 
 namespace {
-
-constexpr std::string_view kFaultNames[] = {
-    "fcs_error",
-    "garbage",
-    "malformed_telegram",
-    "stacked_request",
-    "orphan_response",
-    "mismatched_response",
-    "unexpected_response_type",
-    "response_timeout",
-    "request_rejected",
-    "no_authority",
-    "spontaneous_message",
-    "spontaneous_unacknowledged",
-    "spm_violation",
-    "config_mismatch",
-    "unknown_code",
-    "fdl_retry",
-    "fdl_no_response",
-};
-static_assert(std::size(kFaultNames) == static_cast<std::size_t>(FaultKind::Count));
-
-template <typename T>
-bool parse_number(std::string_view text, T& value) {
-    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    return ec == std::errc() && end == text.data() + text.size();
-}
-
-}  // namespace
-
-bool fault_needs_parameter_channel(FaultKind kind) noexcept {
-    switch (kind) {
-        case FaultKind::FcsError:
-        case FaultKind::Garbage:
-        case FaultKind::MalformedTelegram:
-        case FaultKind::ConfigMismatch:
-        case FaultKind::FdlRetry:
-        case FaultKind::FdlNoResponse: return false;
-        default: return true;
-    }
-}
-
-namespace {
-
-constexpr std::uint8_t kRead = 1, kWriteWord = 2, kWriteDword = 3, kReadDescription = 4,
-                       kReadArray = 6, kReadCount = 9;
-constexpr std::uint8_t kRejected = 7, kNoAuthority = 8, kSpontaneousWord = 9;
-constexpr std::uint8_t kUndefinedCode = 13;
-constexpr std::uint16_t kAlarmWordPnu = 538;
 
 // Configuration identifiers as in the Danfoss GSD (module-consistent PCD).
 std::vector<std::uint8_t> cfg_bytes_of(std::uint8_t ppo_type) {
@@ -74,150 +22,15 @@ std::vector<std::uint8_t> cfg_bytes_of(std::uint8_t ppo_type) {
     }
 }
 
-}  // namespace
-
-std::string_view fault_kind_name(FaultKind kind) {
-    auto index = static_cast<std::size_t>(kind);
-    return index < std::size(kFaultNames) ? kFaultNames[index] : "unknown";
-}
-
-std::optional<FaultKind> fault_kind_from_name(std::string_view name) {
-    if (name == "bad_fcs") return FaultKind::FcsError;
-    for (std::size_t i = 0; i < std::size(kFaultNames); ++i)
-        if (kFaultNames[i] == name) return static_cast<FaultKind>(i);
-    return std::nullopt;
-}
-
-std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& error) {
-    FaultSpec spec;
-    std::string_view rest = text;
-    if (auto colon = rest.rfind(':'); colon != std::string_view::npos) {
-        unsigned address = 0;
-        if (!parse_number(rest.substr(colon + 1), address) || address > 126) {
-            error = fmt::format("{}: '{}' is not a station address from 0 to 126", text,
-                                rest.substr(colon + 1));
-            return std::nullopt;
-        }
-        spec.slave = static_cast<std::uint8_t>(address);
-        rest = rest.substr(0, colon);
-    }
-    std::string_view name = rest;
-    if (auto at = rest.find('@'); at != std::string_view::npos) {
-        std::uint64_t cycle = 0;
-        if (!parse_number(rest.substr(at + 1), cycle)) {
-            error = fmt::format("{}: '{}' is not a cycle number", text, rest.substr(at + 1));
-            return std::nullopt;
-        }
-        spec.cycle = cycle;
-        name = rest.substr(0, at);
-    } else if (auto eq = rest.find('='); eq != std::string_view::npos) {
-        std::string number(rest.substr(eq + 1));
-        char* end = nullptr;
-        double rate = std::strtod(number.c_str(), &end);
-        if (number.empty() || *end != '\0' || !(rate > 0) || rate > 1) {
-            error = fmt::format("{}: rate '{}' must be a number in (0, 1]", text, number);
-            return std::nullopt;
-        }
-        spec.rate = rate;
-        name = rest.substr(0, eq);
-    }
-    auto kind = fault_kind_from_name(name);
-    if (!kind) {
-        std::string names;
-        for (std::string_view n : kFaultNames)
-            names += fmt::format("{}{}", names.empty() ? "" : ", ", n);
-        error = fmt::format("{}: unknown kind '{}' (known: {})", text, name, names);
-        return std::nullopt;
-    }
-    spec.kind = *kind;
-    return spec;
-}
-
-std::optional<SimulatedSlave> parse_slave_spec(std::string_view text, std::string& error) {
-    SimulatedSlave slave;
-    auto first = text.find(':');
-    if (first == std::string_view::npos) {
-        error = fmt::format("{}: expected ADDR:PPO or ADDR:PPO:DIALECT", text);
-        return std::nullopt;
-    }
-    unsigned address = 0, ppo = 0;
-    auto second = text.find(':', first + 1);
-    std::string_view ppo_text = text.substr(
-        first + 1, second == std::string_view::npos ? std::string_view::npos : second - first - 1);
-    if (!parse_number(text.substr(0, first), address) || address > 125) {
-        error = fmt::format("{}: the address must be from 0 to 125", text);
-        return std::nullopt;
-    }
-    if (!parse_number(ppo_text, ppo) || ppo < 1 || ppo > 5) {
-        error = fmt::format("{}: the PPO type must be from 1 to 5", text);
-        return std::nullopt;
-    }
-    slave.address = static_cast<std::uint8_t>(address);
-    slave.ppo_type = static_cast<std::uint8_t>(ppo);
-    if (second != std::string_view::npos) {
-        auto dialect = dialect_from_name(text.substr(second + 1));
-        if (!dialect) {
-            error = fmt::format("{}: dialect must be vlt or profidrive", text);
-            return std::nullopt;
-        }
-        slave.dialect = *dialect;
-    }
-    return slave;
-}
-
-namespace {
-
 std::vector<SimulatedSlave> slaves_or_default(const SimulatorOptions& options) {
     if (!options.slaves.empty()) return options.slaves;
     return {{3, 1, Dialect::Vlt}, {4, 2, Dialect::Vlt}, {5, 5, Dialect::Vlt}};
 }
 
-bool has_parameter_channel(const SimulatedSlave& slave) {
-    return ppo_layout_of_type(slave.ppo_type, PpoSource::Option).has_pcv;
-}
-
-std::string describe_fault(const FaultSpec& spec) {
-    std::string text(fault_kind_name(spec.kind));
-    if (spec.rate > 0) text += fmt::format("={}", spec.rate);
-    if (spec.cycle) text += fmt::format("@{}", *spec.cycle);
-    if (spec.slave) text += fmt::format(":{}", *spec.slave);
-    return text;
-}
-
 }  // namespace
 
 std::string check_simulator_faults(const SimulatorOptions& options) {
-    const std::vector<SimulatedSlave> slaves = slaves_or_default(options);
-    for (const FaultSpec& spec : options.faults) {
-        const bool needs_pcv = fault_needs_parameter_channel(spec.kind);
-        bool target = false;
-        for (const SimulatedSlave& slave : slaves) {
-            if (spec.slave && slave.address != *spec.slave) continue;
-            if (!needs_pcv || has_parameter_channel(slave)) target = true;
-        }
-        if (!target) {
-            if (spec.slave) {
-                bool simulated = false;
-                for (const SimulatedSlave& slave : slaves)
-                    simulated = simulated || slave.address == *spec.slave;
-                if (!simulated)
-                    return fmt::format("fault {}: slave {} is not simulated", describe_fault(spec),
-                                       *spec.slave);
-                return fmt::format(
-                    "fault {}: slave {} has no parameter channel (PPO 3 and 4 carry no PCV)",
-                    describe_fault(spec), *spec.slave);
-            }
-            return fmt::format(
-                "fault {}: no simulated slave has a parameter channel (PPO 1, 2 "
-                "or 5)",
-                describe_fault(spec));
-        }
-        if (spec.cycle && options.cycles != 0 && *spec.cycle >= options.cycles)
-            return fmt::format("fault {}: cycle {} is past the session's {} cycles (0..{})",
-                               describe_fault(spec), *spec.cycle, options.cycles,
-                               options.cycles - 1);
-    }
-    return {};
+    return check_faults(options.faults, slaves_or_default(options), options.cycles);
 }
 
 std::int64_t session_span_bound_ns(const SimulatorOptions& options) {
@@ -247,30 +60,6 @@ std::int64_t session_span_bound_ns(const SimulatorOptions& options) {
                             : static_cast<std::int64_t>(std::ceil(span));
 }
 
-OnceFaultCheck::OnceFaultCheck(const std::vector<FaultSpec>& faults) {
-    for (const FaultSpec& spec : faults)
-        if (spec.rate == 0) once_.push_back(spec);
-    found_.assign(once_.size(), false);
-}
-
-void OnceFaultCheck::record(const Injection& injection) {
-    for (std::size_t i = 0; i < once_.size(); ++i) {
-        const FaultSpec& spec = once_[i];
-        if (found_[i] || injection.kind != spec.kind) continue;
-        if (spec.slave && injection.slave != *spec.slave) continue;
-        if (spec.cycle && injection.cycle < *spec.cycle) continue;
-        found_[i] = true;
-        return;
-    }
-}
-
-std::vector<std::string> OnceFaultCheck::missing() const {
-    std::vector<std::string> missing;
-    for (std::size_t i = 0; i < once_.size(); ++i)
-        if (!found_[i]) missing.push_back(describe_fault(once_[i]));
-    return missing;
-}
-
 std::vector<std::string> faults_not_injected(const SimulatorOptions& options,
                                              const std::vector<Injection>& injections) {
     OnceFaultCheck check(options.faults);
@@ -291,11 +80,9 @@ Simulator::Simulator(SimulatorOptions options)
         slave.config = config;
         slave.layout = ppo_layout_of_type(config.ppo_type, PpoSource::Option);
         slave.ident = config.dialect == Dialect::Vlt ? 0x0402 : 0x6001;
-        slave.parameters = {
-            {520, false, 240, false}, {518, false, 500, false}, {516, true, 5000, false},
-            {207, true, 1000, false}, {208, true, 1000, false}, {215, false, 10, false},
-            {615, false, 0, true},
-        };
+        if (slave.layout.has_pcv)
+            slave.channel.emplace(config.dialect,
+                                  std::int64_t{options_.master_give_up_ms} * 1'000'000);
         slave.actual = 0;
         slaves_.push_back(std::move(slave));
         highest = std::max(highest, config.address);
@@ -518,230 +305,25 @@ void Simulator::record_injection(FaultKind kind, std::size_t slave) {
     }
 }
 
-Simulator::Parameter* Simulator::find_parameter(Slave& slave, std::uint16_t pnu) {
-    for (Parameter& p : slave.parameters)
-        if (p.pnu == pnu) return &p;
-    return nullptr;
-}
+// A slave's parameter-channel model draws on the session's random sequence, on the faults armed
+// for that slave, and on the bus clock.
+class Simulator::SlaveEnvironment final : public ChannelEnvironment {
+  public:
+    SlaveEnvironment(Simulator& simulator, std::size_t index)
+        : simulator_(simulator), index_(index) {}
+    std::uint64_t random(std::uint64_t bound) override { return simulator_.random(bound); }
+    bool inject(FaultKind kind) override {
+        if (!simulator_.take_fault(kind, index_)) return false;
+        simulator_.record_injection(kind, index_);
+        return true;
+    }
+    std::int64_t now() const override { return simulator_.now_; }
+    std::uint64_t cycle() const override { return simulator_.cycle_; }
 
-Simulator::Request Simulator::choose_request(Slave& slave) {
-    bool profidrive = slave.config.dialect == Dialect::Profidrive;
-    std::uint64_t pick = random(100);
-    if (pick < 10 && slave.last_request.rc == kRead) return slave.last_request;  // poll again
-    if (pick < 55) {
-        static constexpr std::uint16_t kReadable[] = {520, 518, 516, 207, 208, 215};
-        return {kRead, kReadable[random(std::size(kReadable))], 0, 0};
-    }
-    if (pick < 67) {
-        std::uint16_t pnu = random(2) ? 207 : 208;
-        auto value = static_cast<std::uint32_t>(500 + 100 * random(20));
-        std::uint8_t rc = profidrive && random(2) ? 13 : kWriteDword;  // 13: RAM + EEPROM
-        return {rc, pnu, 0, value};
-    }
-    if (pick < 77) {
-        std::uint8_t rc = profidrive && random(2) ? 14 : kWriteWord;
-        return {rc, 215, 0, static_cast<std::uint32_t>(5 + random(20))};
-    }
-    if (pick < 87) return {kReadArray, 615, static_cast<std::uint8_t>(1 + random(10)), 0};
-    if (pick < 94) return {kReadCount, 615, 0, 0};
-    return {kReadDescription, 207, static_cast<std::uint8_t>(1 + random(4)), 0};
-}
-
-void Simulator::master_step(Slave& slave) {
-    if (!slave.layout.has_pcv) return;
-    const std::size_t index = static_cast<std::size_t>(&slave - slaves_.data());
-    const std::int64_t give_up = static_cast<std::int64_t>(options_.master_give_up_ms) * 1'000'000;
-    const Request& seen = slave.master_seen_answer;
-    const bool saw = slave.master_saw_response;
-    const bool spontaneous_seen = saw && seen.rc >= kSpontaneousWord && seen.rc <= 12;
-    // The master reacts to the response of the previous cycle (cycle_ - 1). The slave lags one
-    // cycle, so only a response from a cycle after the request was first sent can answer it.
-    const bool fresh = cycle_ >= slave.request_cycle + 2;
-    if (spontaneous_seen) {
-        if (slave.master_seen_spm != slave.master_acked_slave_spm) {  // a new message
-            bool hold_back = slave.spontaneous_late_ack && now_ - slave.spontaneous_time < give_up;
-            if (!hold_back) {
-                slave.master_spm = !slave.master_spm;  // acknowledge
-                slave.master_acked_slave_spm = slave.master_seen_spm;
-            }
-        }
-    } else if (saw && fresh && slave.master_busy && seen.rc != 0 &&
-               response_code(slave.config.dialect, seen.rc).kind != ResponseKind::Undefined &&
-               (seen.pnu == slave.master_request.pnu || seen.rc == kRejected ||
-                seen.rc == kNoAuthority || slave.answer_mismatched)) {
-        // An answer to this request (a late answer to an abandoned request names another PNU).
-        // RC 7 and 8 need not echo the PNU. An injected wrong-PNU answer ends the request too.
-        // A code the dialect does not define is no answer: the master keeps waiting.
-        slave.master_busy = false;
-        slave.answer_mismatched = false;  // consumed: its repeats answer nothing else
-        slave.last_request = slave.master_request;
-        slave.next_request = choose_request(slave);
-        slave.has_next = true;
-        bool positive = seen.rc != kRejected && seen.rc != kNoAuthority;
-        // Straight on to the next request (no RC 0 cycle) only for another parameter than the
-        // one the slave's answer shows, or its stale repeats would pass for the new answer.
-        bool direct = positive && slave.next_request.pnu != slave.last_request.pnu &&
-                      slave.next_request.pnu != seen.pnu && random(3) == 0;
-        slave.idle_cycles = direct ? 0 : static_cast<std::uint32_t>(1 + random(4));
-    }
-    if (slave.master_busy && now_ - slave.request_time > give_up) {
-        slave.master_busy = false;  // give up on it
-        slave.last_request = slave.master_request;
-        slave.has_next = false;
-        slave.idle_cycles = static_cast<std::uint32_t>(1 + random(3));
-    }
-    if (slave.master_busy && take_fault(FaultKind::StackedRequest, index)) {
-        record_injection(FaultKind::StackedRequest, index);
-        // Another parameter than the pending one and than the last one answered: the slave's
-        // register may still hold that answer, and a real master could not tell it from a new one.
-        Request other = choose_request(slave);
-        for (std::uint16_t pnu : {std::uint16_t{520}, std::uint16_t{518}, std::uint16_t{516}}) {
-            if (other.pnu != slave.master_request.pnu && other.pnu != slave.last_request.pnu &&
-                other.pnu != slave.master_seen_answer.pnu)
-                break;
-            other = {kRead, pnu, 0, 0};
-        }
-        slave.master_request = other;
-        slave.request_time = now_;
-        slave.request_cycle = cycle_;
-    }
-    const bool message_pending =
-        spontaneous_seen && slave.master_seen_spm != slave.master_acked_slave_spm;
-    if (!message_pending && !slave.spontaneous_active &&
-        take_fault(FaultKind::SpmViolation, index)) {
-        record_injection(FaultKind::SpmViolation, index);
-        slave.master_spm = !slave.master_spm;
-    }
-    if (!slave.master_busy) {
-        if (slave.idle_cycles > 0) {
-            --slave.idle_cycles;
-        } else if (!message_pending) {
-            slave.master_busy = true;
-            slave.master_request = slave.has_next ? slave.next_request : choose_request(slave);
-            slave.has_next = false;
-            slave.request_time = now_;
-            slave.request_cycle = cycle_;
-        }
-    }
-}
-
-Simulator::Request Simulator::compute_answer(Slave& slave, std::size_t index) {
-    const Request& r = slave.current;
-    if (take_fault(FaultKind::RequestRejected, index)) {
-        record_injection(FaultKind::RequestRejected, index);
-        // Half the time as in the Danfoss FCM 300 example: PCA 70 00, no PNU echo.
-        if (random(2) == 0) return {kRejected, 0, 0, 2};
-        return {kRejected, r.pnu, r.ind, 2};
-    }
-    if (request_code(slave.config.dialect, r.rc).is_change &&
-        take_fault(FaultKind::NoAuthority, index)) {
-        record_injection(FaultKind::NoAuthority, index);
-        return {kNoAuthority, r.pnu, r.ind, 0};
-    }
-    Parameter* p = find_parameter(slave, r.pnu);
-    Request answer;
-    switch (r.rc) {
-        case kRead:
-            answer = {static_cast<std::uint8_t>(p && p->dword ? 2 : 1), r.pnu, r.ind,
-                      p ? p->value : 0};
-            break;
-        case kWriteWord:
-        case 14:
-            if (p) p->value = r.pva & 0xFFFF;
-            answer = {1, r.pnu, r.ind, r.pva & 0xFFFF};
-            break;
-        case kWriteDword:
-        case 13:
-            if (p) p->value = r.pva;
-            answer = {2, r.pnu, r.ind, r.pva};
-            break;
-        case kReadDescription: answer = {3, r.pnu, r.ind, 0x0405u + r.ind}; break;
-        case kReadArray: answer = {4, r.pnu, r.ind, 0x0100u + r.ind}; break;
-        case kReadCount: answer = {6, r.pnu, 0, 10}; break;
-        default: answer = {kRejected, r.pnu, r.ind, 18}; break;
-    }
-    slave.answer_mismatched = false;
-    if (take_fault(FaultKind::MismatchedResponse, index)) {
-        record_injection(FaultKind::MismatchedResponse, index);
-        answer.pnu = static_cast<std::uint16_t>(r.pnu + 1);
-        slave.answer_mismatched = true;
-    } else if (take_fault(FaultKind::UnexpectedResponseType, index)) {
-        record_injection(FaultKind::UnexpectedResponseType, index);
-        answer.rc = r.rc == kReadCount ? 1 : 6;
-    }
-    return answer;
-}
-
-void Simulator::slave_step(Slave& slave, std::size_t index) {
-    if (!slave.layout.has_pcv) return;
-    bool override_active = false;
-    Request override_answer;
-    if (!slave.seen_valid) {
-        slave.answer = {};
-    } else {
-        // The master acknowledges a spontaneous message by toggling its SPM.
-        if (slave.spontaneous_active && slave.seen_spm != slave.spontaneous_master_spm)
-            slave.spontaneous_active = false;
-        if (slave.seen.rc == 0) {
-            slave.working = false;
-            slave.current = {};
-            slave.answer = {};
-        } else if (slave.seen != slave.current) {
-            slave.current = slave.seen;
-            slave.working = true;
-            slave.ready_cycle = cycle_ + random(3);
-        }
-        if (!slave.spontaneous_active) {
-            bool start = false;
-            bool late = false;
-            if (slave.working && take_fault(FaultKind::SpontaneousMessage, index)) {
-                record_injection(FaultKind::SpontaneousMessage, index);
-                start = true;
-            } else if (!slave.working && !slave.master_busy && slave.seen.rc == 0 &&
-                       take_fault(FaultKind::SpontaneousUnacknowledged, index)) {
-                record_injection(FaultKind::SpontaneousUnacknowledged, index);
-                start = late = true;
-            }
-            if (start) {
-                slave.slave_spm = !slave.slave_spm;
-                slave.spontaneous_active = true;
-                slave.spontaneous_late_ack = late;
-                slave.spontaneous_master_spm = slave.seen_spm;
-                slave.spontaneous_time = now_;
-                slave.spontaneous = {kSpontaneousWord, kAlarmWordPnu, 0, 0x000A};
-            }
-        }
-        if (slave.working && cycle_ >= slave.ready_cycle && !slave.spontaneous_active) {
-            if (take_fault(FaultKind::UnknownCode, index)) {
-                record_injection(FaultKind::UnknownCode, index);
-                override_active = true;  // the real answer follows in the next cycle
-                override_answer = {kUndefinedCode, slave.current.pnu, slave.current.ind, 0};
-            } else if (take_fault(FaultKind::ResponseTimeout, index)) {
-                record_injection(FaultKind::ResponseTimeout, index);
-                slave.working = false;  // never answers
-            } else {
-                slave.answer = compute_answer(slave, index);
-                slave.working = false;
-            }
-        }
-        // An orphan: an answer out of nothing, on a channel idle on both sides (the slave's last
-        // output was RC 0 too, so it cannot pass for the previous answer repeated).
-        if (!override_active && !slave.working && !slave.master_busy && slave.seen.rc == 0 &&
-            slave.answer.rc == 0 && slave.out.rc == 0 && !slave.spontaneous_active &&
-            take_fault(FaultKind::OrphanResponse, index)) {
-            record_injection(FaultKind::OrphanResponse, index);
-            override_active = true;
-            override_answer = {1, 520, 0, 240};
-        }
-    }
-    if (override_active) {
-        slave.out = override_answer;
-    } else if (slave.spontaneous_active) {
-        slave.out = slave.spontaneous;
-    } else {
-        slave.out = slave.answer;
-    }
-}
+  private:
+    Simulator& simulator_;
+    std::size_t index_;
+};
 
 void Simulator::exchange(std::size_t index) {
     Slave& slave = slaves_[index];
@@ -756,14 +338,16 @@ void Simulator::exchange(std::size_t index) {
         }
         emit(std::move(junk), 20);
     }
-    master_step(slave);
+    SlaveEnvironment environment(*this, index);
+    if (slave.channel) slave.channel->master_step(environment);
 
     // Master outputs: PCV, control word, main reference, further PCD words.
     std::vector<std::uint8_t> output;
-    const Request idle{};
-    const Request& request = slave.master_busy ? slave.master_request : idle;
-    if (slave.layout.has_pcv)
-        append_pcv(output, request.rc, slave.master_spm, request.pnu, request.ind, request.pva);
+    if (slave.channel) {
+        const SimulatedPcv request = slave.channel->master_pcv();
+        append_pcv(output, request.rc, slave.channel->master_spm(), request.pnu, request.ind,
+                   request.pva);
+    }
     append_u16_be(output, 0x047F);
     append_u16_be(output, slave.reference);
     output.resize(slave.layout.output_bytes, 0);
@@ -781,11 +365,13 @@ void Simulator::exchange(std::size_t index) {
     emit(request_bytes, 40 + random(30));
 
     // Slave inputs: PCV, status word, main actual value, further PCD words.
-    slave_step(slave, index);
+    if (slave.channel) slave.channel->slave_step(environment);
     std::vector<std::uint8_t> input;
-    if (slave.layout.has_pcv)
-        append_pcv(input, slave.out.rc, slave.slave_spm, slave.out.pnu, slave.out.ind,
-                   slave.out.pva);
+    if (slave.channel) {
+        const SimulatedPcv answer = slave.channel->slave_pcv();
+        append_pcv(input, answer.rc, slave.channel->slave_spm(), answer.pnu, answer.ind,
+                   answer.pva);
+    }
     bool at_reference = slave.actual == slave.reference;
     append_u16_be(input, at_reference ? 0x0F07 : 0x0E07);
     append_u16_be(input, slave.actual);
@@ -795,9 +381,7 @@ void Simulator::exchange(std::size_t index) {
         build_telegram({master, address, response_fc(FdlStatus::DataLow), {}, {}, Bytes(input)});
 
     // The slave now knows this cycle's master PCV (it acts on it in the next cycle).
-    slave.seen = request;
-    slave.seen_spm = slave.master_spm;
-    slave.seen_valid = true;
+    if (slave.channel) slave.channel->slave_sees_request();
 
     // Link faults. The master retries once (with the same FCB) when a response is lost or
     // damaged; after that it moves on.
@@ -843,11 +427,7 @@ void Simulator::exchange(std::size_t index) {
             emit(response_bytes, 30 + random(70));
         }
     }
-    slave.master_saw_response = delivered;
-    if (delivered) {
-        slave.master_seen_answer = slave.out;
-        slave.master_seen_spm = slave.slave_spm;
-    }
+    if (slave.channel) slave.channel->master_sees_response(delivered);
     slave.fcb = !slave.fcb;
 
     // Process data: the drive ramps toward the reference; the reference moves now and then.

@@ -5,6 +5,11 @@
 //
 // Faults can be injected: link-level (bad FCS, garbage bytes, a truncated telegram, a missing
 // response, a retry) and every handshake fault the session tracker detects.
+//
+// The parts: simulator/fault_kind.hpp (the fault catalogue), simulator/fault_spec.hpp (what the
+// user asks for: `--slave`, `--fault`), simulator/parameter_channel_model.hpp (the PCV of each
+// slave, both ends), and here the DP bus model that runs them: timing at the baud rate, FDL
+// telegrams, start-up, the cycle, token and gap polls, process data, and the link faults.
 #pragma once
 
 #include <cstdint>
@@ -13,60 +18,13 @@
 #include <limits>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
-#include "decoder/code_tables.hpp"
 #include "decoder/ppo.hpp"
+#include "simulator/fault_spec.hpp"
+#include "simulator/parameter_channel_model.hpp"
 
 namespace dpscope {
-
-enum class FaultKind : std::uint8_t {
-    FcsError,                   // one telegram's FCS is wrong
-    Garbage,                    // junk bytes between telegrams
-    MalformedTelegram,          // one telegram cut short
-    StackedRequest,             // the master changes its request before the answer
-    OrphanResponse,             // the slave answers although nothing was asked
-    MismatchedResponse,         // the answer carries another PNU
-    UnexpectedResponseType,     // the answer's code does not fit the request
-    ResponseTimeout,            // the slave never answers; the master gives up later
-    RequestRejected,            // RC 7 with an error number
-    NoAuthority,                // RC 8 to a change request
-    SpontaneousMessage,         // RC 9/10 with an SPM toggle, acknowledged by the master
-    SpontaneousUnacknowledged,  // the same, acknowledged only after the time-out
-    SpmViolation,               // the master toggles SPM with nothing pending
-    ConfigMismatch,             // one Data_Exchange telegram longer than configured
-    UnknownCode,                // one response with a code the dialect does not define
-    FdlRetry,                   // a response lost and the request repeated with the same FCB
-    FdlNoResponse,              // a response lost, no retry
-    Count
-};
-
-std::string_view fault_kind_name(FaultKind kind);
-std::optional<FaultKind> fault_kind_from_name(std::string_view name);
-
-struct FaultSpec {
-    FaultKind kind = FaultKind::FcsError;
-    double rate = 0;                     // > 0: chance per cycle and slave, any number of times
-    std::optional<std::uint64_t> cycle;  // once, at the first chance from this cycle on
-    std::optional<std::uint8_t> slave;   // only this slave (default: one chosen by the seed)
-};
-
-// "KIND" (once, at a cycle chosen by the seed), "KIND@CYCLE", "KIND=RATE", each optionally
-// followed by ":ADDR". KIND is one of the names of fault_kind_name ("bad_fcs" = "fcs_error").
-std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& error);
-
-struct SimulatedSlave {
-    std::uint8_t address = 0;
-    std::uint8_t ppo_type = 1;
-    Dialect dialect = Dialect::Vlt;
-};
-
-// Faults that act on the parameter channel need a slave with a PCV (PPO 1, 2 or 5).
-bool fault_needs_parameter_channel(FaultKind kind) noexcept;
-
-// "ADDR:PPO" or "ADDR:PPO:DIALECT", e.g. "5:2" or "7:1:profidrive".
-std::optional<SimulatedSlave> parse_slave_spec(std::string_view text, std::string& error);
 
 struct SimulatorOptions {
     std::uint64_t seed = 1;
@@ -87,14 +45,6 @@ struct SimulatorOptions {
     std::vector<FaultSpec> faults;
 };
 
-// What the simulator injected, for tests and for the user (`simulate -v`).
-struct Injection {
-    FaultKind kind;
-    std::uint64_t cycle;
-    std::uint8_t slave;
-    std::uint64_t telegram;  // 1-based number of the telegram it affected (first of them)
-};
-
 // Why `options` cannot inject one of its faults (a slave that is not simulated, a parameter-
 // channel fault on a slave without a PCV, a cycle past the end), or "" when each can be.
 std::string check_simulator_faults(const SimulatorOptions& options);
@@ -103,21 +53,6 @@ std::string check_simulator_faults(const SimulatorOptions& options);
 // (whatever the seed and faults), saturated at the largest int64: the CLI checks with it that the
 // session's end fits the capture's timestamps.
 std::int64_t session_span_bound_ns(const SimulatorOptions& options);
-
-// Matches injections, as they happen, to the faults given once (no rate): each fault given once
-// needs an injection of its own, of its kind, on its slave, from its cycle on. Keeps nothing per
-// injection.
-class OnceFaultCheck {
-  public:
-    explicit OnceFaultCheck(const std::vector<FaultSpec>& faults);
-    void record(const Injection& injection);
-    // The faults given once that no injection matched, described for the user.
-    std::vector<std::string> missing() const;
-
-  private:
-    std::vector<FaultSpec> once_;
-    std::vector<bool> found_;
-};
 
 // The faults given once (no rate) that were not injected, described for the user.
 std::vector<std::string> faults_not_injected(const SimulatorOptions& options,
@@ -145,61 +80,17 @@ class Simulator {
     std::uint64_t telegrams() const noexcept { return emitted_; }
 
   private:
-    struct Request {
-        std::uint8_t rc = 0;
-        std::uint16_t pnu = 0;
-        std::uint8_t ind = 0;
-        std::uint32_t pva = 0;
-        bool operator==(const Request&) const = default;
-    };
-
-    struct Parameter {
-        std::uint16_t pnu;
-        bool dword;
-        std::uint32_t value;
-        bool array;
-    };
-
     struct Slave {
         SimulatedSlave config;
         PpoLayout layout;
         std::uint16_t ident = 0;
         bool fcb = true;
-        std::vector<Parameter> parameters;
-        // Master side of the parameter channel.
-        bool master_busy = false;  // a request is out and not answered yet
-        Request master_request;
-        Request last_request;
-        Request next_request;
-        bool has_next = false;
-        std::int64_t request_time = 0;
-        std::uint32_t idle_cycles = 0;
-        bool master_spm = false;
-        bool master_acked_slave_spm = false;  // the slave SPM of the last message acknowledged
-        std::uint64_t request_cycle = 0;      // the cycle the current request was first sent
-        bool master_saw_response = false;     // the master's view of the last response
-        Request master_seen_answer;
-        bool master_seen_spm = false;
-        // Slave side: it sees the master's PCV one cycle late.
-        bool seen_valid = false;
-        Request seen;
-        bool seen_spm = false;
-        bool working = false;  // has a request it has not answered yet
-        Request current;
-        std::uint64_t ready_cycle = 0;
-        Request answer;                  // what the slave's PCV says now
-        bool answer_mismatched = false;  // `answer` is an injected wrong-PNU answer
-        Request out;                     // what it sends this cycle
-        bool slave_spm = false;
-        bool spontaneous_active = false;
-        bool spontaneous_late_ack = false;
-        bool spontaneous_master_spm = false;  // the master's SPM when the message started
-        std::int64_t spontaneous_time = 0;
-        Request spontaneous;
+        std::optional<ParameterChannelModel> channel;  // PPO 1, 2 and 5 (those with a PCV)
         // Process data.
         std::uint16_t reference = 0x2000;
         std::uint16_t actual = 0;
     };
+    class SlaveEnvironment;  // a slave's ChannelEnvironment: the session's random numbers etc.
 
     std::uint64_t random(std::uint64_t bound);  // 0 <= r < bound
     bool chance(double p);
@@ -213,12 +104,6 @@ class Simulator {
     void arm_faults();
     bool take_fault(FaultKind kind, std::size_t slave);
     void record_injection(FaultKind kind, std::size_t slave);
-
-    void master_step(Slave& slave);
-    Request choose_request(Slave& slave);
-    void slave_step(Slave& slave, std::size_t index);
-    Request compute_answer(Slave& slave, std::size_t index);
-    Parameter* find_parameter(Slave& slave, std::uint16_t pnu);
 
     SimulatorOptions options_;
     std::vector<Slave> slaves_;

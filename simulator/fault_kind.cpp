@@ -1,0 +1,87 @@
+#include "simulator/fault_kind.hpp"
+
+#include <iterator>
+
+namespace dpscope {
+
+namespace {
+
+struct FaultInfo {
+    FaultKind kind;
+    std::optional<FindingKind> finding;  // the finding kind it is named after
+    std::string_view own_name;           // set only for a fault no finding kind is named after
+    bool needs_parameter_channel;
+};
+
+constexpr FaultInfo kFaults[] = {
+    {FaultKind::FcsError, FindingKind::FcsError, {}, false},
+    {FaultKind::Garbage, std::nullopt, "garbage", false},
+    {FaultKind::MalformedTelegram, FindingKind::MalformedTelegram, {}, false},
+    {FaultKind::StackedRequest, FindingKind::StackedRequest, {}, true},
+    {FaultKind::OrphanResponse, FindingKind::OrphanResponse, {}, true},
+    {FaultKind::MismatchedResponse, FindingKind::MismatchedResponse, {}, true},
+    {FaultKind::UnexpectedResponseType, FindingKind::UnexpectedResponseType, {}, true},
+    {FaultKind::ResponseTimeout, FindingKind::ResponseTimeout, {}, true},
+    {FaultKind::RequestRejected, FindingKind::RequestRejected, {}, true},
+    {FaultKind::NoAuthority, FindingKind::NoAuthority, {}, true},
+    {FaultKind::SpontaneousMessage, FindingKind::SpontaneousMessage, {}, true},
+    {FaultKind::SpontaneousUnacknowledged, FindingKind::SpontaneousUnacknowledged, {}, true},
+    {FaultKind::SpmViolation, FindingKind::SpmViolation, {}, true},
+    {FaultKind::ConfigMismatch, FindingKind::ConfigMismatch, {}, false},
+    {FaultKind::UnknownCode, FindingKind::UnknownCode, {}, true},
+    {FaultKind::FdlRetry, FindingKind::FdlRetry, {}, false},
+    {FaultKind::FdlNoResponse, FindingKind::FdlNoResponse, {}, false},
+};
+
+// One entry per fault kind, in enum order; a name either from the finding catalogue or its own.
+constexpr bool faults_in_enum_order() {
+    if (std::size(kFaults) != kFaultKindCount) return false;
+    for (std::size_t i = 0; i < std::size(kFaults); ++i) {
+        if (static_cast<std::size_t>(kFaults[i].kind) != i) return false;
+        if (kFaults[i].finding.has_value() == !kFaults[i].own_name.empty()) return false;
+    }
+    return true;
+}
+
+// Every finding kind is named by exactly one fault: a new finding kind needs a fault here (and a
+// scenario in tests/session_tracker_test.cpp) before the simulator builds.
+constexpr bool every_finding_kind_once() {
+    for (std::size_t k = 0; k < kFindingKindCount; ++k) {
+        int named = 0;
+        for (const FaultInfo& fault : kFaults)
+            if (fault.finding && static_cast<std::size_t>(*fault.finding) == k) ++named;
+        if (named != 1) return false;
+    }
+    return true;
+}
+
+static_assert(faults_in_enum_order(), "kFaults: one entry per FaultKind, in enum order");
+static_assert(every_finding_kind_once(), "kFaults: every FindingKind needs exactly one fault");
+
+}  // namespace
+
+std::optional<FindingKind> fault_finding_kind(FaultKind kind) {
+    auto index = static_cast<std::size_t>(kind);
+    return index < std::size(kFaults) ? kFaults[index].finding : std::nullopt;
+}
+
+std::string_view fault_kind_name(FaultKind kind) {
+    auto index = static_cast<std::size_t>(kind);
+    if (index >= std::size(kFaults)) return "unknown";
+    const FaultInfo& fault = kFaults[index];
+    return fault.finding ? finding_kind_name(*fault.finding) : fault.own_name;
+}
+
+std::optional<FaultKind> fault_kind_from_name(std::string_view name) {
+    if (name == "bad_fcs") return FaultKind::FcsError;
+    for (const FaultInfo& fault : kFaults)
+        if (fault_kind_name(fault.kind) == name) return fault.kind;
+    return std::nullopt;
+}
+
+bool fault_needs_parameter_channel(FaultKind kind) noexcept {
+    auto index = static_cast<std::size_t>(kind);
+    return index >= std::size(kFaults) || kFaults[index].needs_parameter_channel;
+}
+
+}  // namespace dpscope

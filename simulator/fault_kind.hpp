@@ -1,0 +1,49 @@
+// The simulator's fault catalogue: every fault `dpscope simulate --fault` can inject. A fault that
+// provokes one finding kind is named after it (finding_kind_name): the finding catalogue is the one
+// list of those names, and the catalogue here fails to compile when a finding kind has no fault.
+// The simulator's own faults (garbage between telegrams) have names of their own.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "decoder/finding.hpp"
+
+namespace dpscope {
+
+// In the order the names are listed to the user (parse_fault_spec's error message).
+enum class FaultKind : std::uint8_t {
+    FcsError,                   // one telegram's FCS is wrong
+    Garbage,                    // junk bytes between telegrams
+    MalformedTelegram,          // one telegram cut short
+    StackedRequest,             // the master changes its request before the answer
+    OrphanResponse,             // the slave answers although nothing was asked
+    MismatchedResponse,         // the answer carries another PNU
+    UnexpectedResponseType,     // the answer's code does not fit the request
+    ResponseTimeout,            // the slave never answers; the master gives up later
+    RequestRejected,            // RC 7 with an error number
+    NoAuthority,                // RC 8 to a change request
+    SpontaneousMessage,         // RC 9/10 with an SPM toggle, acknowledged by the master
+    SpontaneousUnacknowledged,  // the same, acknowledged only after the time-out
+    SpmViolation,               // the master toggles SPM with nothing pending
+    ConfigMismatch,             // one Data_Exchange telegram longer than configured
+    UnknownCode,                // one response with a code the dialect does not define
+    FdlRetry,                   // a response lost and the request repeated with the same FCB
+    FdlNoResponse,              // a response lost, no retry
+    Count
+};
+
+constexpr std::size_t kFaultKindCount = static_cast<std::size_t>(FaultKind::Count);
+
+// The finding kind this fault is named after, or nothing for the simulator's own faults.
+std::optional<FindingKind> fault_finding_kind(FaultKind kind);
+// finding_kind_name of fault_finding_kind, or the fault's own name ("garbage").
+std::string_view fault_kind_name(FaultKind kind);
+// Also takes "bad_fcs" for "fcs_error".
+std::optional<FaultKind> fault_kind_from_name(std::string_view name);
+
+// Faults that act on the parameter channel need a slave with a PCV (PPO 1, 2 or 5).
+bool fault_needs_parameter_channel(FaultKind kind) noexcept;
+
+}  // namespace dpscope
