@@ -125,46 +125,60 @@ TEST_P(FaultScenarioTest, ExactlyTheExpectedFindings) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    SessionTrackerTest, FaultScenarioTest,
-    ::testing::Values(
-        // The simulated master retries once (same FCB) after a damaged or missing response.
-        FaultScenario{"fcs_error", 120, {{"fcs_error", 1}, {"fdl_retry", 1}}},
-        FaultScenario{"garbage", 120, {{"malformed_telegram", 1}}},
-        FaultScenario{"malformed_telegram", 120, {{"malformed_telegram", 1}, {"fdl_retry", 1}}},
-        FaultScenario{"stacked_request", 120, {{"stacked_request", 1}}},
-        FaultScenario{"orphan_response", 120, {{"orphan_response", 1}}},
-        FaultScenario{"mismatched_response", 120, {{"mismatched_response", 1}}},
-        FaultScenario{"unexpected_response_type", 120, {{"unexpected_response_type", 1}}},
-        FaultScenario{"response_timeout", 1200, {{"response_timeout", 1}}},
-        FaultScenario{"request_rejected", 120, {{"request_rejected", 1}}},
-        FaultScenario{"no_authority", 300, {{"no_authority", 1}}},
-        FaultScenario{"spontaneous_message", 120, {{"spontaneous_message", 1}}},
-        FaultScenario{"spontaneous_unacknowledged",
-                      1200,
-                      {{"spontaneous_message", 1}, {"spontaneous_unacknowledged", 1}}},
-        FaultScenario{"spm_violation", 120, {{"spm_violation", 1}}},
-        FaultScenario{"config_mismatch", 120, {{"config_mismatch", 1}}},
-        FaultScenario{"unknown_code", 120, {{"unknown_code", 1}}},
-        FaultScenario{"fdl_retry", 120, {{"fdl_no_response", 1}, {"fdl_retry", 1}}},
-        // No reply to the request nor to its retry; the next telegram also finds one missing.
-        FaultScenario{"fdl_no_response", 120, {{"fdl_no_response", 2}, {"fdl_retry", 1}}}),
-    [](const ::testing::TestParamInfo<FaultScenario>& param) {
-        return std::string(param.param.fault);
-    });
+// One scenario per simulator fault: the fault injected once, on slave 4 at cycle 40, and the
+// findings it must yield. The coverage tests below read this table.
+const FaultScenario kFaultScenarios[] = {
+    // The simulated master retries once (same FCB) after a damaged or missing response.
+    FaultScenario{"fcs_error", 120, {{"fcs_error", 1}, {"fdl_retry", 1}}},
+    FaultScenario{"garbage", 120, {{"malformed_telegram", 1}}},
+    FaultScenario{"malformed_telegram", 120, {{"malformed_telegram", 1}, {"fdl_retry", 1}}},
+    FaultScenario{"stacked_request", 120, {{"stacked_request", 1}}},
+    FaultScenario{"orphan_response", 120, {{"orphan_response", 1}}},
+    FaultScenario{"mismatched_response", 120, {{"mismatched_response", 1}}},
+    FaultScenario{"unexpected_response_type", 120, {{"unexpected_response_type", 1}}},
+    FaultScenario{"response_timeout", 1200, {{"response_timeout", 1}}},
+    FaultScenario{"request_rejected", 120, {{"request_rejected", 1}}},
+    FaultScenario{"no_authority", 300, {{"no_authority", 1}}},
+    FaultScenario{"spontaneous_message", 120, {{"spontaneous_message", 1}}},
+    FaultScenario{"spontaneous_unacknowledged",
+                  1200,
+                  {{"spontaneous_message", 1}, {"spontaneous_unacknowledged", 1}}},
+    FaultScenario{"spm_violation", 120, {{"spm_violation", 1}}},
+    FaultScenario{"config_mismatch", 120, {{"config_mismatch", 1}}},
+    FaultScenario{"unknown_code", 120, {{"unknown_code", 1}}},
+    FaultScenario{"fdl_retry", 120, {{"fdl_no_response", 1}, {"fdl_retry", 1}}},
+    // No reply to the request nor to its retry; the next telegram also finds one missing.
+    FaultScenario{"fdl_no_response", 120, {{"fdl_no_response", 2}, {"fdl_retry", 1}}},
+};
+
+INSTANTIATE_TEST_SUITE_P(SessionTrackerTest, FaultScenarioTest,
+                         ::testing::ValuesIn(kFaultScenarios),
+                         [](const ::testing::TestParamInfo<FaultScenario>& param) {
+                             return std::string(param.param.fault);
+                         });
 
 TEST(SessionTrackerTest, EveryKindIsCoveredByAScenario) {
-    // The scenario table above names every finding kind at least once.
+    // Some scenario of kFaultScenarios expects each finding kind.
     std::set<std::string> covered;
-    for (const char* kind :
-         {"fcs_error", "malformed_telegram", "fdl_retry", "stacked_request", "orphan_response",
-          "mismatched_response", "unexpected_response_type", "response_timeout", "request_rejected",
-          "no_authority", "spontaneous_message", "spontaneous_unacknowledged", "spm_violation",
-          "config_mismatch", "unknown_code", "fdl_no_response"})
-        covered.insert(kind);
+    for (const FaultScenario& scenario : kFaultScenarios)
+        for (const auto& [kind, count] : scenario.expected)
+            covered.insert(kind);
     for (std::size_t i = 0; i < kFindingKindCount; ++i)
         EXPECT_TRUE(covered.count(std::string(finding_kind_name(static_cast<FindingKind>(i)))))
             << finding_kind_name(static_cast<FindingKind>(i));
+    // ... and names only finding kinds.
+    for (const std::string& kind : covered)
+        EXPECT_TRUE(finding_kind_from_name(kind).has_value()) << kind;
+}
+
+TEST(SessionTrackerTest, EverySimulatorFaultHasAScenario) {
+    std::set<std::string> faults;
+    for (const FaultScenario& scenario : kFaultScenarios)
+        faults.insert(scenario.fault);
+    for (std::size_t i = 0; i < kFaultKindCount; ++i)
+        EXPECT_TRUE(faults.count(std::string(fault_kind_name(static_cast<FaultKind>(i)))))
+            << fault_kind_name(static_cast<FaultKind>(i));
+    EXPECT_EQ(faults.size(), std::size(kFaultScenarios)) << "a fault with two scenarios";
 }
 
 TEST(SessionTrackerTest, TimeoutFindingNamesTheRequestAndItsDeadline) {

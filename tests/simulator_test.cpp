@@ -381,6 +381,30 @@ TEST(SimulatorTest, FaultKindNamesRoundTrip) {
     EXPECT_FALSE(fault_kind_from_name("").has_value());
 }
 
+TEST(SimulatorTest, FaultNamesAreTheFindingNamesAndTheSimulatorsOwn) {
+    // Every finding kind is a fault of the same name (the name comes from the finding catalogue).
+    for (std::size_t i = 0; i < kFindingKindCount; ++i) {
+        auto finding = static_cast<FindingKind>(i);
+        auto kind = fault_kind_from_name(finding_kind_name(finding));
+        ASSERT_TRUE(kind.has_value()) << finding_kind_name(finding);
+        EXPECT_EQ(fault_finding_kind(*kind), finding) << finding_kind_name(finding);
+    }
+    // The simulator's own faults are named after no finding kind.
+    std::size_t own = 0;
+    for (std::size_t i = 0; i < kFaultKindCount; ++i) {
+        auto kind = static_cast<FaultKind>(i);
+        if (auto finding = fault_finding_kind(kind)) {
+            EXPECT_EQ(fault_kind_name(kind), finding_kind_name(*finding));
+        } else {
+            ++own;
+            EXPECT_FALSE(finding_kind_from_name(fault_kind_name(kind)).has_value())
+                << fault_kind_name(kind);
+        }
+    }
+    EXPECT_EQ(kFaultKindCount, kFindingKindCount + own);
+    EXPECT_FALSE(fault_finding_kind(FaultKind::Garbage).has_value());
+}
+
 FaultSpec fault(std::string_view text) {
     std::string error;
     auto spec = parse_fault_spec(text, error);
