@@ -4,6 +4,7 @@
 // The simulator's own faults (garbage between telegrams) have names of their own.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string_view>

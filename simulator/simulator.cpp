@@ -285,14 +285,10 @@ void Simulator::arm_faults() {
     }
 }
 
-bool Simulator::take_fault(FaultKind kind, std::size_t slave) {
+bool Simulator::inject(FaultKind kind, std::size_t slave) {
     std::uint64_t& armed = armed_[static_cast<std::size_t>(kind) * slaves_.size() + slave];
     if (armed == 0) return false;
     --armed;
-    return true;
-}
-
-void Simulator::record_injection(FaultKind kind, std::size_t slave) {
     const Injection injection{kind, cycle_, slaves_[slave].config.address, queued_ + 1};
     ++injection_count_;
     if (injections_.size() < kKeptInjections) injections_.push_back(injection);
@@ -303,6 +299,7 @@ void Simulator::record_injection(FaultKind kind, std::size_t slave) {
         hold_open_until_ = std::max(
             hold_open_until_, later(now_, give_up + std::int64_t{options_.cycle_us} * 10'000));
     }
+    return true;
 }
 
 // A slave's parameter-channel model draws on the session's random sequence, on the faults armed
@@ -312,11 +309,7 @@ class Simulator::SlaveEnvironment final : public ChannelEnvironment {
     SlaveEnvironment(Simulator& simulator, std::size_t index)
         : simulator_(simulator), index_(index) {}
     std::uint64_t random(std::uint64_t bound) override { return simulator_.random(bound); }
-    bool inject(FaultKind kind) override {
-        if (!simulator_.take_fault(kind, index_)) return false;
-        simulator_.record_injection(kind, index_);
-        return true;
-    }
+    bool inject(FaultKind kind) override { return simulator_.inject(kind, index_); }
     std::int64_t now() const override { return simulator_.now_; }
     std::uint64_t cycle() const override { return simulator_.cycle_; }
 
@@ -329,8 +322,7 @@ void Simulator::exchange(std::size_t index) {
     Slave& slave = slaves_[index];
     const std::uint8_t master = options_.master;
     const std::uint8_t address = slave.config.address;
-    if (take_fault(FaultKind::Garbage, index)) {
-        record_injection(FaultKind::Garbage, index);
+    if (inject(FaultKind::Garbage, index)) {
         std::vector<std::uint8_t> junk(3 + random(10));
         for (std::uint8_t& b : junk) {
             b = static_cast<std::uint8_t>(random(256));
@@ -351,8 +343,7 @@ void Simulator::exchange(std::size_t index) {
     append_u16_be(output, 0x047F);
     append_u16_be(output, slave.reference);
     output.resize(slave.layout.output_bytes, 0);
-    if (take_fault(FaultKind::ConfigMismatch, index)) {
-        record_injection(FaultKind::ConfigMismatch, index);
+    if (inject(FaultKind::ConfigMismatch, index)) {
         output.insert(output.end(), {0x00, 0x00});
     }
     std::vector<std::uint8_t> request_bytes =
@@ -388,18 +379,14 @@ void Simulator::exchange(std::size_t index) {
     enum class Fate { Delivered, Lost, BadFcs, Truncated };
     Fate first = Fate::Delivered;
     bool retry_lost = false;
-    if (take_fault(FaultKind::FdlRetry, index)) {
-        record_injection(FaultKind::FdlRetry, index);
+    if (inject(FaultKind::FdlRetry, index)) {
         first = Fate::Lost;
-    } else if (take_fault(FaultKind::FdlNoResponse, index)) {
-        record_injection(FaultKind::FdlNoResponse, index);
+    } else if (inject(FaultKind::FdlNoResponse, index)) {
         first = Fate::Lost;
         retry_lost = true;
-    } else if (take_fault(FaultKind::FcsError, index)) {
-        record_injection(FaultKind::FcsError, index);
+    } else if (inject(FaultKind::FcsError, index)) {
         first = Fate::BadFcs;
-    } else if (take_fault(FaultKind::MalformedTelegram, index)) {
-        record_injection(FaultKind::MalformedTelegram, index);
+    } else if (inject(FaultKind::MalformedTelegram, index)) {
         first = Fate::Truncated;
     }
     bool delivered = true;

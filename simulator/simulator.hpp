@@ -102,8 +102,9 @@ class Simulator {
     void generate_cycle();
     void exchange(std::size_t index);
     void arm_faults();
-    bool take_fault(FaultKind kind, std::size_t slave);
-    void record_injection(FaultKind kind, std::size_t slave);
+    // Takes a fault of this kind armed for this slave and records its injection; false when
+    // none is armed.
+    bool inject(FaultKind kind, std::size_t slave);
 
     SimulatorOptions options_;
     std::vector<Slave> slaves_;
