@@ -465,209 +465,169 @@ void render_markdown(const ReportContext& c, const Model& m, Output& out) {
 
 // ---- json ---------------------------------------------------------------------------------------
 
-void json_latency(TextBuffer& b, bool any, double min, double median, double p95, double max,
+// {"min":..,"median":..,"p95":..,"max":..} with six decimals (or integers), or null.
+void json_latency(JsonWriter& w, bool any, double min, double median, double p95, double max,
                   bool integers) {
     if (!any) {
-        json::null(b);
+        w.null();
         return;
     }
     auto value = [&](double v) {
-        if (integers)
-            json::integer(b, static_cast<std::int64_t>(v));
-        else
-            fmt::format_to(std::back_inserter(b), "{:.6f}", v);
+        if (integers) {
+            w.integer(static_cast<std::int64_t>(v));
+        } else {
+            char text[64];
+            auto end = fmt::format_to_n(text, sizeof text, "{:.6f}", v).out;
+            w.number_text(std::string_view(text, static_cast<std::size_t>(end - text)));
+        }
     };
-    json::raw(b, "{\"min\":");
+    w.begin_object();
+    w.key("min");
     value(min);
-    json::raw(b, ",\"median\":");
+    w.key("median");
     value(median);
-    json::raw(b, ",\"p95\":");
+    w.key("p95");
     value(p95);
-    json::raw(b, ",\"max\":");
+    w.key("max");
     value(max);
-    b.push_back('}');
+    w.end_object();
 }
 
-void json_kind_counts(TextBuffer& b, const std::array<std::uint64_t, kFindingKindCount>& counts) {
-    b.push_back('{');
-    for (std::size_t i = 0; i < kFindingKindCount; ++i) {
-        if (i) b.push_back(',');
-        json::string(b, finding_kind_name(static_cast<FindingKind>(i)));
-        b.push_back(':');
-        json::integer(b, static_cast<std::int64_t>(counts[i]));
-    }
-    b.push_back('}');
+void json_kind_counts(JsonWriter& w, const std::array<std::uint64_t, kFindingKindCount>& counts) {
+    w.begin_object();
+    for (std::size_t i = 0; i < kFindingKindCount; ++i)
+        w.key(finding_kind_name(static_cast<FindingKind>(i)))
+            .integer(static_cast<std::int64_t>(counts[i]));
+    w.end_object();
 }
 
 void render_json(const ReportContext& c, const Model& m, Output& out) {
-    TextBuffer& b = out.buffer();
-    using json::integer;
-    using json::raw;
-    using json::string;
+    JsonWriter w(out.buffer());
+    auto count = [&w](std::string_view key, std::uint64_t n) {
+        w.key(key).integer(static_cast<std::int64_t>(n));
+    };
     const TrackerOptions& options = c.tracker->options();
-    raw(b, "{\"dpscope\":");
-    string(b, c.version);
-    raw(b, ",\"input\":{\"file\":");
-    string(b, c.input.name);
-    raw(b, ",\"format\":");
-    string(b, c.input.format);
-    raw(b, ",\"damaged\":");
-    json::boolean(b, c.input.damaged);
-    raw(b, ",\"bytes_skipped\":");
-    integer(b, static_cast<std::int64_t>(c.input.bytes_skipped));
-    raw(b, ",\"first_time\":");
-    json::time(b, c.summary->first_time_ns());
-    raw(b, ",\"last_time\":");
-    json::time(b, c.summary->last_time_ns());
-    raw(b, "},\"options\":{\"timeout_ms\":");
-    integer(b, options.timeout_ns / 1'000'000);
-    raw(b, ",\"strict\":");
-    json::boolean(b, options.strict);
-    raw(b, ",\"fail_on\":");
-    string(b, fail_on_name(c.fail_on));
-    raw(b, ",\"allow_empty\":");
-    json::boolean(b, c.allow_empty);
-    raw(b, ",\"stations\":");
+    w.begin_object();
+    w.key("dpscope").string(c.version);
+    w.key("input").begin_object();
+    w.key("file").string(c.input.name);
+    w.key("format").string(c.input.format);
+    w.key("damaged").boolean(c.input.damaged);
+    count("bytes_skipped", c.input.bytes_skipped);
+    w.key("first_time");
+    json::time(w, c.summary->first_time_ns());
+    w.key("last_time");
+    json::time(w, c.summary->last_time_ns());
+    w.end_object();
+    w.key("options").begin_object();
+    w.key("timeout_ms").integer(options.timeout_ns / 1'000'000);
+    w.key("strict").boolean(options.strict);
+    w.key("fail_on").string(fail_on_name(c.fail_on));
+    w.key("allow_empty").boolean(c.allow_empty);
+    w.key("stations");
     if (c.stations.empty()) {
-        json::null(b);
+        w.null();
     } else {
-        b.push_back('[');
-        for (std::size_t i = 0; i < c.stations.size(); ++i) {
-            if (i) b.push_back(',');
-            integer(b, c.stations[i]);
-        }
-        b.push_back(']');
+        w.begin_array();
+        for (std::uint8_t station : c.stations)
+            w.integer(station);
+        w.end_array();
     }
-    raw(b, "},\"result\":");
-    string(b, m.fails ? "fail" : "pass");
-    raw(b, ",\"nothing_checked\":");
-    json::boolean(b, m.nothing_checked);
+    w.end_object();
+    w.key("result").string(m.fails ? "fail" : "pass");
+    w.key("nothing_checked").boolean(m.nothing_checked);
     std::uint64_t transactions = 0;
     for (const StationView& v : m.stations)
         transactions += v.stats->transactions.total();
-    raw(b, ",\"summary\":{\"telegrams\":");
-    integer(b, static_cast<std::int64_t>(c.summary->telegrams()));
-    raw(b, ",\"fcs_errors\":");
-    integer(b, static_cast<std::int64_t>(m.fcs_errors));
-    raw(b, ",\"transactions\":");
-    integer(b, static_cast<std::int64_t>(transactions));
-    raw(b, ",\"findings\":{\"error\":");
-    integer(b, static_cast<std::int64_t>(errors(m)));
-    raw(b, ",\"warning\":");
-    integer(b, static_cast<std::int64_t>(warnings(m)));
-    raw(b, ",\"note\":");
-    integer(b, static_cast<std::int64_t>(notes(m)));
-    raw(b, "}},\"stations\":[");
-    bool first = true;
+    w.key("summary").begin_object();
+    count("telegrams", c.summary->telegrams());
+    count("fcs_errors", m.fcs_errors);
+    count("transactions", transactions);
+    w.key("findings").begin_object();
+    count("error", errors(m));
+    count("warning", warnings(m));
+    count("note", notes(m));
+    w.end_object();
+    w.end_object();
+    w.key("stations").begin_array();
     for (const StationView& v : m.stations) {
         const ChannelStats& s = *v.stats;
-        if (!first) b.push_back(',');
-        first = false;
-        raw(b, "{\"master\":");
-        integer(b, s.master);
-        raw(b, ",\"slave\":");
-        integer(b, s.slave);
-        raw(b, ",\"ppo_type\":");
-        if (s.ppo.known() && s.ppo.type != 0)
-            integer(b, s.ppo.type);
-        else
-            json::null(b);
-        raw(b, ",\"ppo_source\":");
-        string(b, ppo_source_name(s.ppo.source));
-        raw(b, ",\"dialect\":");
-        string(b, dialect_name(s.dialect));
-        raw(b, ",\"dialect_hint\":");
+        w.begin_object();
+        w.key("master").integer(s.master);
+        w.key("slave").integer(s.slave);
+        w.key("ppo_type").optional_integer(s.ppo.known() && s.ppo.type != 0, s.ppo.type);
+        w.key("ppo_source").string(ppo_source_name(s.ppo.source));
+        w.key("dialect").string(dialect_name(s.dialect));
+        w.key("dialect_hint");
         if (std::optional<Dialect> hint = c.summary->dialect_evidence(s.slave).hint())
-            string(b, dialect_name(*hint));
+            w.string(dialect_name(*hint));
         else
-            json::null(b);
-        raw(b, ",\"ident\":");
-        if (v.has_ident)
-            integer(b, v.ident);
-        else
-            json::null(b);
-        raw(b, ",\"data_exchange\":");
-        integer(b, static_cast<std::int64_t>(s.data_exchange));
-        raw(b, ",\"cycles\":");
-        integer(b, static_cast<std::int64_t>(s.cycles));
-        raw(b, ",\"requests\":");
-        integer(b, static_cast<std::int64_t>(s.requests));
-        raw(b, ",\"transactions\":");
-        integer(b, static_cast<std::int64_t>(s.transactions.total()));
-        raw(b, ",\"outcomes\":{\"positive\":");
-        integer(b, static_cast<std::int64_t>(s.transactions.positive));
-        raw(b, ",\"rejected\":");
-        integer(b, static_cast<std::int64_t>(s.transactions.rejected));
-        raw(b, ",\"no_authority\":");
-        integer(b, static_cast<std::int64_t>(s.transactions.no_authority));
-        raw(b, ",\"mismatched\":");
-        integer(b, static_cast<std::int64_t>(s.transactions.mismatched));
-        raw(b, ",\"unexpected\":");
-        integer(b, static_cast<std::int64_t>(s.transactions.unexpected));
-        raw(b, "},\"timeouts\":");
-        if (v.timed)
-            integer(b, static_cast<std::int64_t>(s.timeouts));
-        else
-            json::null(b);
-        raw(b, ",\"abandoned\":");
-        integer(b, static_cast<std::int64_t>(s.abandoned));
-        raw(b, ",\"spontaneous\":");
-        integer(b, static_cast<std::int64_t>(s.spontaneous));
-        raw(b, ",\"latency_ms\":");
-        json_latency(b, v.latency.any, v.latency.min_ms, v.latency.median_ms, v.latency.p95_ms,
+            w.null();
+        w.key("ident").optional_integer(v.has_ident, v.ident);
+        count("data_exchange", s.data_exchange);
+        count("cycles", s.cycles);
+        count("requests", s.requests);
+        count("transactions", s.transactions.total());
+        w.key("outcomes").begin_object();
+        count("positive", s.transactions.positive);
+        count("rejected", s.transactions.rejected);
+        count("no_authority", s.transactions.no_authority);
+        count("mismatched", s.transactions.mismatched);
+        count("unexpected", s.transactions.unexpected);
+        w.end_object();
+        w.key("timeouts").optional_integer(v.timed, static_cast<std::int64_t>(s.timeouts));
+        count("abandoned", s.abandoned);
+        count("spontaneous", s.spontaneous);
+        w.key("latency_ms");
+        json_latency(w, v.latency.any, v.latency.min_ms, v.latency.median_ms, v.latency.p95_ms,
                      v.latency.max_ms, false);
-        raw(b, ",\"latency_cycles\":");
-        json_latency(b, v.latency.any_cycles, static_cast<double>(v.latency.min_cycles),
+        w.key("latency_cycles");
+        json_latency(w, v.latency.any_cycles, static_cast<double>(v.latency.min_cycles),
                      static_cast<double>(v.latency.median_cycles),
                      static_cast<double>(v.latency.p95_cycles),
                      static_cast<double>(v.latency.max_cycles), true);
-        raw(b, ",\"parameters\":[");
-        bool first_pnu = true;
-        for (const auto& [pnu, count] : s.pnu_requests) {
-            if (!first_pnu) b.push_back(',');
-            first_pnu = false;
-            raw(b, "{\"pnu\":");
-            integer(b, pnu);
-            raw(b, ",\"requests\":");
-            integer(b, static_cast<std::int64_t>(count));
-            b.push_back('}');
+        w.key("parameters").begin_array();
+        for (const auto& [pnu, n] : s.pnu_requests) {
+            w.begin_object();
+            w.key("pnu").integer(pnu);
+            count("requests", n);
+            w.end_object();
         }
-        raw(b, "],\"rejections\":[");
-        bool first_rejection = true;
-        for (const auto& [key, count] : s.rejections) {
-            if (!first_rejection) b.push_back(',');
-            first_rejection = false;
-            raw(b, "{\"pnu\":");
-            integer(b, key.first);
-            raw(b, ",\"error\":");
-            integer(b, key.second);
-            raw(b, ",\"error_text\":");
+        w.end_array();
+        w.key("rejections").begin_array();
+        for (const auto& [key, n] : s.rejections) {
+            w.begin_object();
+            w.key("pnu").integer(key.first);
+            w.key("error").integer(key.second);
+            w.key("error_text");
             std::string_view text = error_text(s.dialect, key.second);
             if (text.empty())
-                json::null(b);
+                w.null();
             else
-                string(b, text);
-            raw(b, ",\"count\":");
-            integer(b, static_cast<std::int64_t>(count));
-            b.push_back('}');
+                w.string(text);
+            count("count", n);
+            w.end_object();
         }
-        raw(b, "],\"findings\":");
-        json_kind_counts(b, s.findings);
-        b.push_back('}');
+        w.end_array();
+        w.key("findings");
+        json_kind_counts(w, s.findings);
+        w.end_object();
         out.end_record();
     }
-    raw(b, "],\"bus\":{\"findings\":");
-    json_kind_counts(b, c.tracker->bus().findings);
-    raw(b, "},\"findings\":[");
-    first = true;
+    w.end_array();
+    w.key("bus").begin_object();
+    w.key("findings");
+    json_kind_counts(w, c.tracker->bus().findings);
+    w.end_object();
+    w.key("findings").begin_array();
     c.findings->for_each([&](const Finding& f) {
         if (!shows(c, f)) return;
-        if (!first) b.push_back(',');
-        first = false;
-        json::finding(b, f);
+        json::finding(w, f);
         out.end_record();
     });
-    raw(b, "]}\n");
+    w.end_array();
+    w.end_object();
+    out.put('\n');
     out.end_record();
 }
 
