@@ -27,4 +27,13 @@ void finding(JsonWriter& w, const Finding& f) {
     w.end_object();
 }
 
+void finding_kind_counts(JsonWriter& w,
+                         const std::array<std::uint64_t, kFindingKindCount>& counts) {
+    w.begin_object();
+    for (std::size_t i = 0; i < kFindingKindCount; ++i)
+        w.key(finding_kind_name(static_cast<FindingKind>(i)))
+            .integer(static_cast<std::int64_t>(counts[i]));
+    w.end_object();
+}
+
 }  // namespace dpscope::json
