@@ -9,10 +9,11 @@
 //   w.key("pnu").null();
 //   w.end_object();                      // {"frame":12,"flags":["sync","freeze"],"pnu":null}
 //
-// Keys are written as given: they are the program's own names (plain ASCII, nothing to escape).
-// Strings are escaped as JSON requires ('"', '\\', control characters); bytes from 0x7F up are
-// copied as they are, so UTF-8 text stays UTF-8. Where the exact text of a number matters (six
-// decimals, seconds with nanoseconds) number_text() and raw_value() write it verbatim.
+// One writer writes one JSON text (a jsonl line takes a new one). Keys are written as given: they
+// are the program's own names (plain ASCII, nothing to escape). Strings are escaped as JSON
+// requires ('"', '\\', control characters); bytes from 0x7F up are copied as they are, so UTF-8
+// text stays UTF-8. Where the exact text of a number matters (six decimals, seconds with
+// nanoseconds) number_text() and raw_value() write it verbatim.
 #pragma once
 
 #include <fmt/format.h>
@@ -65,7 +66,7 @@ class JsonWriter {
     JsonWriter& key(std::string_view name) {
         const std::size_t at = out_.size();
         const std::size_t comma = need_comma_ ? 1 : 0;
-        out_.try_resize(at + comma + name.size() + 3);
+        out_.resize(at + comma + name.size() + 3);
         char* p = out_.data() + at;
         if (comma) *p++ = ',';
         *p++ = '"';

@@ -5,6 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include "tests/json_parser.hpp"
+
 namespace dpscope {
 namespace {
 
@@ -101,6 +103,18 @@ TEST(JsonWriterTest, AppendsToWhatTheBufferHolds) {
     JsonWriter w(buffer);
     w.begin_array().integer(1).end_array();
     EXPECT_EQ(text(buffer), "x [1]");
+}
+
+TEST(JsonWriterTest, StringsRoundTripThroughAStrictParser) {
+    constexpr char kText[] = "quote \" backslash \\ tab \t nul \0 bell \a \xC2\xB5s end";
+    const std::string original(kText, sizeof kText - 1);
+    fmt::memory_buffer buffer;
+    JsonWriter w(buffer);
+    w.begin_object().key("s").string(original).key("n").begin_array().end_array().end_object();
+    std::optional<test::Json> parsed = test::parse_json(text(buffer));
+    ASSERT_TRUE(parsed) << text(buffer);
+    EXPECT_EQ((*parsed)["s"].string(), original);
+    EXPECT_TRUE((*parsed)["n"].items.empty());
 }
 
 }  // namespace
