@@ -4,45 +4,36 @@
 
 namespace dpscope::json {
 
-void time(fmt::memory_buffer& out, std::int64_t time_ns) {
+void time(JsonWriter& w, std::int64_t time_ns) {
     if (time_ns == kNoTime)
-        null(out);
+        w.null();
     else
-        append_epoch_seconds(out, time_ns);
+        w.raw_value([time_ns](TextBuffer& b) { append_epoch_seconds(b, time_ns); });
 }
 
-void finding(fmt::memory_buffer& out, const Finding& f) {
-    raw(out, "{\"kind\":");
-    string(out, finding_kind_name(f.kind));
-    raw(out, ",\"severity\":");
-    string(out, severity_name(f.severity));
-    raw(out, ",\"frame\":");
-    integer(out, static_cast<std::int64_t>(f.frame));
-    raw(out, ",\"request_frame\":");
-    if (f.request_frame != 0)
-        integer(out, static_cast<std::int64_t>(f.request_frame));
-    else
-        null(out);
-    raw(out, ",\"time\":");
-    time(out, f.time_ns);
-    raw(out, ",\"master\":");
-    if (f.has_stations)
-        integer(out, f.master);
-    else
-        null(out);
-    raw(out, ",\"slave\":");
-    if (f.has_stations)
-        integer(out, f.slave);
-    else
-        null(out);
-    raw(out, ",\"pnu\":");
-    if (f.pnu)
-        integer(out, *f.pnu);
-    else
-        null(out);
-    raw(out, ",\"message\":");
-    string(out, f.message);
-    out.push_back('}');
+void finding(JsonWriter& w, const Finding& f) {
+    w.begin_object();
+    w.key("kind").string(finding_kind_name(f.kind));
+    w.key("severity").string(severity_name(f.severity));
+    w.key("frame").integer(static_cast<std::int64_t>(f.frame));
+    w.key("request_frame")
+        .optional_integer(f.request_frame != 0, static_cast<std::int64_t>(f.request_frame));
+    w.key("time");
+    time(w, f.time_ns);
+    w.key("master").optional_integer(f.has_stations, f.master);
+    w.key("slave").optional_integer(f.has_stations, f.slave);
+    w.key("pnu").optional_integer(f.pnu.has_value(), f.pnu.value_or(0));
+    w.key("message").string(f.message);
+    w.end_object();
+}
+
+void finding_kind_counts(JsonWriter& w,
+                         const std::array<std::uint64_t, kFindingKindCount>& counts) {
+    w.begin_object();
+    for (std::size_t i = 0; i < kFindingKindCount; ++i)
+        w.key(finding_kind_name(static_cast<FindingKind>(i)))
+            .integer(static_cast<std::int64_t>(counts[i]));
+    w.end_object();
 }
 
 }  // namespace dpscope::json

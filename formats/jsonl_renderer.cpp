@@ -12,36 +12,21 @@ namespace dpscope {
 
 namespace {
 
-using json::boolean;
-using json::integer;
-using json::null;
-using json::raw;
-using json::string;
-
-void optional_int(TextBuffer& b, bool present, std::int64_t value) {
-    if (present)
-        integer(b, value);
-    else
-        null(b);
+// Names of the set bits as an array of strings.
+void flag_array(JsonWriter& w, std::uint8_t value, std::span<const FlagBit> flags) {
+    w.begin_array();
+    for (const FlagBit& flag : flags)
+        if (value & flag.mask) w.string(flag.name);
+    w.end_array();
 }
 
-void flag_array(TextBuffer& b, std::uint8_t value, std::span<const FlagBit> flags,
-                std::uint8_t ignore = 0) {
-    b.push_back('[');
-    bool first = true;
-    for (const FlagBit& flag : flags) {
-        if (!(value & flag.mask) || (flag.mask & ignore)) continue;
-        if (!first) b.push_back(',');
-        string(b, flag.name);
-        first = false;
-    }
-    b.push_back(']');
-}
-
-void hex_string(TextBuffer& b, Bytes bytes) {
-    b.push_back('"');
-    append_hex(b, bytes, "");
-    b.push_back('"');
+// The bytes as one string of hex digits ("0a1b").
+void hex_string(JsonWriter& w, Bytes bytes) {
+    w.raw_value([bytes](TextBuffer& b) {
+        b.push_back('"');
+        append_hex(b, bytes, "");
+        b.push_back('"');
+    });
 }
 
 class JsonlRenderer final : public TelegramRenderer {
@@ -49,122 +34,97 @@ class JsonlRenderer final : public TelegramRenderer {
     using TelegramRenderer::TelegramRenderer;
 
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
-        TextBuffer& b = out_.buffer();
+        JsonWriter w(out_.buffer());
         const FdlTelegram& f = t.fdl;
         const bool valid = f.type != FrameType::Invalid;
         const bool data_exchange = t.service == Service::DataExchange;
-        raw(b, "{\"frame\":");
-        integer(b, static_cast<std::int64_t>(t.frame));
-        raw(b, ",\"time\":");
-        json::time(b, t.time_ns);
-        raw(b, ",\"len\":");
-        integer(b, static_cast<std::int64_t>(t.bytes.size()));
-        raw(b, ",\"sd\":");
+        w.begin_object();
+        w.key("frame").integer(static_cast<std::int64_t>(t.frame));
+        w.key("time");
+        json::time(w, t.time_ns);
+        w.key("len").integer(static_cast<std::int64_t>(t.bytes.size()));
+        w.key("sd");
         if (valid)
-            string(b, frame_type_name(f.type));
+            w.string(frame_type_name(f.type));
         else
-            null(b);
-        raw(b, ",\"da\":");
-        optional_int(b, f.has_addresses, f.da);
-        raw(b, ",\"sa\":");
-        optional_int(b, f.has_addresses, f.sa);
-        raw(b, ",\"dsap\":");
-        optional_int(b, f.has_dsap, f.dsap);
-        raw(b, ",\"ssap\":");
-        optional_int(b, f.has_ssap, f.ssap);
-        raw(b, ",\"fc\":");
+            w.null();
+        w.key("da").optional_integer(f.has_addresses, f.da);
+        w.key("sa").optional_integer(f.has_addresses, f.sa);
+        w.key("dsap").optional_integer(f.has_dsap, f.dsap);
+        w.key("ssap").optional_integer(f.has_ssap, f.ssap);
+        w.key("fc");
         if (f.has_fc) {
-            raw(b, "{\"raw\":");
-            integer(b, f.fc.raw);
+            w.begin_object();
+            w.key("raw").integer(f.fc.raw);
             if (f.fc.is_request()) {
-                raw(b, ",\"request\":true,\"fcb\":");
-                boolean(b, f.fc.fcb());
-                raw(b, ",\"fcv\":");
-                boolean(b, f.fc.fcv());
-                raw(b, ",\"function\":");
-                string(b, request_function_name(f.fc));
+                w.key("request").boolean(true);
+                w.key("fcb").boolean(f.fc.fcb());
+                w.key("fcv").boolean(f.fc.fcv());
+                w.key("function").string(request_function_name(f.fc));
             } else {
-                raw(b, ",\"request\":false,\"station\":");
-                string(b, station_type_name(f.fc.station_type()));
-                raw(b, ",\"status\":");
-                string(b, response_status_name(f.fc.function()));
+                w.key("request").boolean(false);
+                w.key("station").string(station_type_name(f.fc.station_type()));
+                w.key("status").string(response_status_name(f.fc.function()));
             }
-            b.push_back('}');
+            w.end_object();
         } else {
-            null(b);
+            w.null();
         }
-        raw(b, ",\"fcs_ok\":");
-        boolean(b, f.fcs_ok);
-        raw(b, ",\"service\":");
-        string(b, service_name(t.service));
-        raw(b, ",\"direction\":");
-        string(b, direction_name(t.direction));
-        raw(b, ",\"master\":");
-        optional_int(b, t.has_roles, t.master);
-        raw(b, ",\"slave\":");
-        optional_int(b, t.has_roles, t.slave);
-        raw(b, ",\"request_frame\":");
-        optional_int(b, t.request_frame != 0, static_cast<std::int64_t>(t.request_frame));
-        raw(b, ",\"ppo\":");
-        optional_int(b, data_exchange && t.ppo.type != 0, t.ppo.type);
-        raw(b, ",\"ppo_source\":");
+        w.key("fcs_ok").boolean(f.fcs_ok);
+        w.key("service").string(service_name(t.service));
+        w.key("direction").string(direction_name(t.direction));
+        w.key("master").optional_integer(t.has_roles, t.master);
+        w.key("slave").optional_integer(t.has_roles, t.slave);
+        w.key("request_frame")
+            .optional_integer(t.request_frame != 0, static_cast<std::int64_t>(t.request_frame));
+        w.key("ppo").optional_integer(data_exchange && t.ppo.type != 0, t.ppo.type);
+        w.key("ppo_source");
         if (data_exchange)
-            string(b, ppo_source_name(t.ppo.source));
+            w.string(ppo_source_name(t.ppo.source));
         else
-            null(b);
-        raw(b, ",\"dialect\":");
+            w.null();
+        w.key("dialect");
         if (data_exchange)
-            string(b, dialect_name(t.dialect));
+            w.string(dialect_name(t.dialect));
         else
-            null(b);
-        raw(b, ",\"pcv\":");
+            w.null();
+        w.key("pcv");
         if (t.has_pcv)
-            render_pcv(b, t);
+            render_pcv(w, t);
         else
-            null(b);
-        raw(b, ",\"pcd\":");
+            w.null();
+        w.key("pcd");
         if (data_exchange) {
-            b.push_back('[');
+            w.begin_array();
             ByteReader reader(t.pcd);
-            bool first = true;
-            while (auto word = reader.u16_be()) {
-                if (!first) b.push_back(',');
-                integer(b, *word);
-                first = false;
-            }
-            b.push_back(']');
+            while (auto word = reader.u16_be())
+                w.integer(*word);
+            w.end_array();
         } else {
-            null(b);
+            w.null();
         }
-        render_service_objects(b, t);
-        raw(b, ",\"data\":");
+        render_service_objects(w, t);
+        w.key("data");
         if (!f.du.empty())
-            hex_string(b, f.du);
+            hex_string(w, f.du);
         else
-            null(b);
-        raw(b, ",\"problems\":[");
-        bool first = true;
+            w.null();
+        w.key("problems").begin_array();
         for (const Problem& p : t.problems()) {
-            if (!first) b.push_back(',');
-            first = false;
-            raw(b, "{\"kind\":");
-            string(b, problem_kind_name(p.kind));
-            raw(b, ",\"severity\":");
-            string(b, severity_name(problem_severity(p.kind)));
-            raw(b, ",\"offset\":");
-            integer(b, p.offset);
-            raw(b, ",\"message\":");
-            string(b, problem_message(p));
-            b.push_back('}');
+            w.begin_object();
+            w.key("kind").string(problem_kind_name(p.kind));
+            w.key("severity").string(severity_name(problem_severity(p.kind)));
+            w.key("offset").integer(p.offset);
+            w.key("message").string(problem_message(p));
+            w.end_object();
         }
-        raw(b, "],\"findings\":[");
-        first = true;
-        for (const Finding& finding : findings) {
-            if (!first) b.push_back(',');
-            first = false;
-            json::finding(b, finding);
-        }
-        raw(b, "]}\n");
+        w.end_array();
+        w.key("findings").begin_array();
+        for (const Finding& finding : findings)
+            json::finding(w, finding);
+        w.end_array();
+        w.end_object();
+        out_.put('\n');
         out_.end_record();
     }
 
@@ -172,20 +132,20 @@ class JsonlRenderer final : public TelegramRenderer {
     // {"end_of_capture":true,"findings":[...]}.
     void render_end_findings(std::span<const Finding> findings) override {
         if (findings.empty()) return;
-        TextBuffer& b = out_.buffer();
-        raw(b, "{\"end_of_capture\":true,\"findings\":[");
-        bool first = true;
-        for (const Finding& f : findings) {
-            if (!first) b.push_back(',');
-            first = false;
-            json::finding(b, f);
-        }
-        raw(b, "]}\n");
+        JsonWriter w(out_.buffer());
+        w.begin_object();
+        w.key("end_of_capture").boolean(true);
+        w.key("findings").begin_array();
+        for (const Finding& f : findings)
+            json::finding(w, f);
+        w.end_array();
+        w.end_object();
+        out_.put('\n');
         out_.end_record();
     }
 
   private:
-    static void render_pcv(TextBuffer& b, const DecodedTelegram& t) {
+    static void render_pcv(JsonWriter& w, const DecodedTelegram& t) {
         const Pcv& pcv = t.pcv;
         const bool request = t.direction == Direction::Request;
         ValueWidth width;
@@ -201,197 +161,165 @@ class JsonlRenderer final : public TelegramRenderer {
             known = code.kind != ResponseKind::Undefined;
             rejected = code.kind == ResponseKind::Rejected;
         }
-        raw(b, "{\"pca\":");
-        integer(b, pcv.pca);
-        raw(b, ",\"rc\":");
-        integer(b, pcv.rc);
-        raw(b, ",\"spm\":");
-        integer(b, pcv.spm ? 1 : 0);
-        raw(b, ",\"pnu\":");
-        integer(b, pcv.pnu);
-        raw(b, ",\"ind\":");
-        integer(b, pcv.ind);
-        raw(b, ",\"ind_low\":");
-        integer(b, pcv.ind_low);
-        raw(b, ",\"pva\":");
-        integer(b, pcv_value(pcv, width));
-        raw(b, ",\"pva_raw\":");
-        integer(b, pcv.pva);
-        raw(b, ",\"width\":");
+        w.begin_object();
+        w.key("pca").integer(pcv.pca);
+        w.key("rc").integer(pcv.rc);
+        w.key("spm").integer(pcv.spm ? 1 : 0);
+        w.key("pnu").integer(pcv.pnu);
+        w.key("ind").integer(pcv.ind);
+        w.key("ind_low").integer(pcv.ind_low);
+        w.key("pva").integer(pcv_value(pcv, width));
+        w.key("pva_raw").integer(pcv.pva);
+        w.key("width");
         if (width == ValueWidth::Word)
-            string(b, "word");
+            w.string("word");
         else if (width == ValueWidth::DoubleWord)
-            string(b, "dword");
+            w.string("dword");
         else
-            null(b);
-        raw(b, ",\"meaning\":");
-        string(b, t.pcv_meaning());
-        raw(b, ",\"code_known\":");
-        boolean(b, known);
-        raw(b, ",\"error\":");
+            w.null();
+        w.key("meaning").string(t.pcv_meaning());
+        w.key("code_known").boolean(known);
+        w.key("error");
         if (rejected) {
             auto error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
-            integer(b, error);
-            raw(b, ",\"error_text\":");
+            w.integer(error);
+            w.key("error_text");
             std::string_view text = error_text(t.dialect, error);
             if (text.empty())
-                null(b);
+                w.null();
             else
-                string(b, text);
+                w.string(text);
         } else {
-            raw(b, "null,\"error_text\":null");
+            w.null();
+            w.key("error_text").null();
         }
-        b.push_back('}');
+        w.end_object();
     }
 
-    static void render_service_objects(TextBuffer& b, const DecodedTelegram& t) {
+    static void render_service_objects(JsonWriter& w, const DecodedTelegram& t) {
         const bool request = t.direction == Direction::Request;
         const bool has_data = !t.fdl.du.empty();
         ByteReader du(t.fdl.du, t.fdl.du_offset);
         ProblemList ignored;
 
-        raw(b, ",\"diag\":");
+        w.key("diag");
         std::optional<SlaveDiag> diag;
         if (t.service == Service::SlaveDiag && !request && has_data)
             diag = parse_slave_diag(du, ignored);
         if (diag) {
-            raw(b, "{\"ident\":");
-            integer(b, diag->ident);
-            raw(b, ",\"master\":");
-            optional_int(b, diag->master_address != kNoMasterAddress, diag->master_address);
-            raw(b, ",\"station_status\":[");
-            integer(b, diag->station_status_1);
-            b.push_back(',');
-            integer(b, diag->station_status_2);
-            b.push_back(',');
-            integer(b, diag->station_status_3);
-            raw(b, "],\"flags\":");
-            std::vector<std::string_view> all;
+            w.begin_object();
+            w.key("ident").integer(diag->ident);
+            w.key("master").optional_integer(diag->master_address != kNoMasterAddress,
+                                             diag->master_address);
+            w.key("station_status").begin_array();
+            w.integer(diag->station_status_1);
+            w.integer(diag->station_status_2);
+            w.integer(diag->station_status_3);
+            w.end_array();
+            w.key("flags").begin_array();
             for (const FlagBit& flag : station_status_1_flags())
-                if (diag->station_status_1 & flag.mask) all.push_back(flag.name);
+                if (diag->station_status_1 & flag.mask) w.string(flag.name);
             for (const FlagBit& flag : station_status_2_flags())
                 if ((diag->station_status_2 & flag.mask) && flag.mask != kDiagAlwaysOne)
-                    all.push_back(flag.name);
+                    w.string(flag.name);
             for (const FlagBit& flag : station_status_3_flags())
-                if (diag->station_status_3 & flag.mask) all.push_back(flag.name);
-            b.push_back('[');
-            for (std::size_t i = 0; i < all.size(); ++i) {
-                if (i) b.push_back(',');
-                string(b, all[i]);
-            }
-            raw(b, "],\"ext\":");
+                if (diag->station_status_3 & flag.mask) w.string(flag.name);
+            w.end_array();
+            w.key("ext");
             if (diag->extended.empty())
-                null(b);
+                w.null();
             else
-                hex_string(b, diag->extended);
-            raw(b, ",\"dpv1\":");
+                hex_string(w, diag->extended);
+            w.key("dpv1");
             if (t.slave_dpv1 == SlaveDpv1::Unknown)
-                null(b);
+                w.null();
             else
-                boolean(b, t.slave_dpv1 == SlaveDpv1::Enabled);
-            b.push_back('}');
+                w.boolean(t.slave_dpv1 == SlaveDpv1::Enabled);
+            w.end_object();
         } else {
-            null(b);
+            w.null();
         }
 
-        raw(b, ",\"prm\":");
+        w.key("prm");
         std::optional<SetPrm> prm;
         if (t.service == Service::SetPrm && request) prm = parse_set_prm(du, ignored);
         if (prm) {
-            raw(b, "{\"ident\":");
-            integer(b, prm->ident);
-            raw(b, ",\"station_status\":");
-            integer(b, prm->station_status);
-            raw(b, ",\"flags\":");
-            flag_array(b, prm->station_status, set_prm_station_flags());
-            raw(b, ",\"wd_fact_1\":");
-            integer(b, prm->wd_fact_1);
-            raw(b, ",\"wd_fact_2\":");
-            integer(b, prm->wd_fact_2);
-            raw(b, ",\"watchdog_ms\":");
-            optional_int(b, prm->watchdog_on(), prm->watchdog_ms());
-            raw(b, ",\"watchdog_ms_alt\":");
-            optional_int(b, prm->watchdog_on() && prm->watchdog_base_uncertain(),
-                         prm->watchdog_ms_10ms_base());
-            raw(b, ",\"min_tsdr\":");
-            integer(b, prm->min_tsdr);
-            raw(b, ",\"group\":");
-            integer(b, prm->group_ident);
-            raw(b, ",\"dpv1_status\":");
+            w.begin_object();
+            w.key("ident").integer(prm->ident);
+            w.key("station_status").integer(prm->station_status);
+            w.key("flags");
+            flag_array(w, prm->station_status, set_prm_station_flags());
+            w.key("wd_fact_1").integer(prm->wd_fact_1);
+            w.key("wd_fact_2").integer(prm->wd_fact_2);
+            w.key("watchdog_ms").optional_integer(prm->watchdog_on(), prm->watchdog_ms());
+            w.key("watchdog_ms_alt")
+                .optional_integer(prm->watchdog_on() && prm->watchdog_base_uncertain(),
+                                  prm->watchdog_ms_10ms_base());
+            w.key("min_tsdr").integer(prm->min_tsdr);
+            w.key("group").integer(prm->group_ident);
+            w.key("dpv1_status");
             if (prm->has_dpv1_status) {
-                b.push_back('[');
-                for (std::size_t i = 0; i < 3; ++i) {
-                    if (i) b.push_back(',');
-                    integer(b, prm->dpv1_status[i]);
-                }
-                b.push_back(']');
+                w.begin_array();
+                for (std::size_t i = 0; i < 3; ++i)
+                    w.integer(prm->dpv1_status[i]);
+                w.end_array();
             } else {
-                null(b);
+                w.null();
             }
-            raw(b, ",\"user_prm\":");
-            hex_string(b, prm->user_prm);
-            b.push_back('}');
+            w.key("user_prm");
+            hex_string(w, prm->user_prm);
+            w.end_object();
         } else {
-            null(b);
+            w.null();
         }
 
-        raw(b, ",\"cfg\":");
+        w.key("cfg");
         bool cfg = has_data && ((t.service == Service::ChkCfg && request) ||
                                 (t.service == Service::GetCfg && !request));
         if (cfg) {
             std::vector<CfgModule> modules;
             parse_cfg(du, modules, ignored);
-            raw(b, "{\"bytes\":[");
-            for (std::size_t i = 0; i < t.fdl.du.size(); ++i) {
-                if (i) b.push_back(',');
-                integer(b, t.fdl.du[i]);
-            }
-            raw(b, "],\"modules\":[");
-            for (std::size_t i = 0; i < modules.size(); ++i) {
-                const CfgModule& m = modules[i];
-                if (i) b.push_back(',');
+            w.begin_object();
+            w.key("bytes").begin_array();
+            for (std::uint8_t byte : t.fdl.du)
+                w.integer(byte);
+            w.end_array();
+            w.key("modules").begin_array();
+            for (const CfgModule& m : modules) {
                 bool use_output = m.output_units != 0;
-                raw(b, "{\"identifier\":");
-                integer(b, m.identifier);
-                raw(b, ",\"special\":");
-                boolean(b, m.special);
-                raw(b, ",\"dir\":");
-                string(b, cfg_direction_name(m.direction));
-                raw(b, ",\"out_bytes\":");
-                integer(b, m.output_bytes());
-                raw(b, ",\"in_bytes\":");
-                integer(b, m.input_bytes());
-                raw(b, ",\"unit\":");
-                string(b, (use_output ? m.output_words : m.input_words) ? "word" : "byte");
-                raw(b, ",\"consistent\":");
-                boolean(b, use_output ? m.output_consistent : m.input_consistent);
-                raw(b, ",\"manufacturer_bytes\":");
-                integer(b, m.manufacturer_bytes);
-                b.push_back('}');
+                w.begin_object();
+                w.key("identifier").integer(m.identifier);
+                w.key("special").boolean(m.special);
+                w.key("dir").string(cfg_direction_name(m.direction));
+                w.key("out_bytes").integer(m.output_bytes());
+                w.key("in_bytes").integer(m.input_bytes());
+                w.key("unit").string((use_output ? m.output_words : m.input_words) ? "word"
+                                                                                   : "byte");
+                w.key("consistent").boolean(use_output ? m.output_consistent : m.input_consistent);
+                w.key("manufacturer_bytes").integer(m.manufacturer_bytes);
+                w.end_object();
             }
+            w.end_array();
             PpoLayout layout = ppo_from_cfg(modules, PpoSource::ChkCfg);
-            raw(b, "],\"ppo\":");
-            optional_int(b, layout.type != 0, layout.type);
-            raw(b, ",\"has_pcv\":");
-            boolean(b, layout.has_pcv);
-            b.push_back('}');
+            w.key("ppo").optional_integer(layout.type != 0, layout.type);
+            w.key("has_pcv").boolean(layout.has_pcv);
+            w.end_object();
         } else {
-            null(b);
+            w.null();
         }
 
-        raw(b, ",\"global_control\":");
+        w.key("global_control");
         std::optional<GlobalControl> gc;
         if (t.service == Service::GlobalControl && request) gc = parse_global_control(du, ignored);
         if (gc) {
-            raw(b, "{\"command\":");
-            integer(b, gc->command);
-            raw(b, ",\"flags\":");
-            flag_array(b, gc->command, global_control_flags());
-            raw(b, ",\"group\":");
-            integer(b, gc->group_select);
-            b.push_back('}');
+            w.begin_object();
+            w.key("command").integer(gc->command);
+            w.key("flags");
+            flag_array(w, gc->command, global_control_flags());
+            w.key("group").integer(gc->group_select);
+            w.end_object();
         } else {
-            null(b);
+            w.null();
         }
     }
 };

@@ -4,6 +4,8 @@
 // kind; HTML: the first 2000; JSON: all).
 // Formats: text, json (schema in README.md, stable), markdown, html (one self-contained file
 // with inline SVG) and junit (one test suite per slave, one test case per rule).
+// How the report is built (the model, one writer per format, one section class per channel
+// kind): formats/report_model.hpp.
 #pragma once
 
 #include <optional>

@@ -1,0 +1,142 @@
+// A small streaming JSON writer. It appends straight into a caller's fmt::memory_buffer (the
+// buffer of Output, so the hot path allocates nothing), puts the commas between members and
+// array items itself and escapes strings: callers never write a comma or a quote.
+//
+//   JsonWriter w(out.buffer());
+//   w.begin_object();
+//   w.key("frame").integer(12);
+//   w.key("flags").begin_array().string("sync").string("freeze").end_array();
+//   w.key("pnu").null();
+//   w.end_object();                      // {"frame":12,"flags":["sync","freeze"],"pnu":null}
+//
+// One writer writes one JSON text (a jsonl line takes a new one). Keys are written as given: they
+// are the program's own names (plain ASCII, nothing to escape). Strings are escaped as JSON
+// requires ('"', '\\', control characters); bytes from 0x7F up are copied as they are, so UTF-8
+// text stays UTF-8. Where the exact text of a number matters (six decimals, seconds with
+// nanoseconds) number_text() and raw_value() write it verbatim.
+#pragma once
+
+#include <fmt/format.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <string_view>
+
+namespace dpscope {
+
+namespace json {
+
+// A JSON string with the required escapes, appended to `out`.
+void string(fmt::memory_buffer& out, std::string_view text);
+
+inline void integer(fmt::memory_buffer& out, std::int64_t value) {
+    fmt::format_int digits(value);
+    out.append(digits.data(), digits.data() + digits.size());
+}
+
+}  // namespace json
+
+class JsonWriter {
+  public:
+    explicit JsonWriter(fmt::memory_buffer& out) noexcept : out_(out) {}
+    JsonWriter(const JsonWriter&) = delete;
+    JsonWriter& operator=(const JsonWriter&) = delete;
+
+    JsonWriter& begin_object() {
+        separate();
+        out_.push_back('{');
+        return opened();
+    }
+    JsonWriter& end_object() {
+        out_.push_back('}');
+        return closed();
+    }
+    JsonWriter& begin_array() {
+        separate();
+        out_.push_back('[');
+        return opened();
+    }
+    JsonWriter& end_array() {
+        out_.push_back(']');
+        return closed();
+    }
+
+    // "name": — the next call writes its value.
+    JsonWriter& key(std::string_view name) {
+        const std::size_t at = out_.size();
+        const std::size_t comma = need_comma_ ? 1 : 0;
+        out_.resize(at + comma + name.size() + 3);
+        char* p = out_.data() + at;
+        if (comma) *p++ = ',';
+        *p++ = '"';
+        std::memcpy(p, name.data(), name.size());
+        p += name.size();
+        *p++ = '"';
+        *p = ':';
+        need_comma_ = false;
+        return *this;
+    }
+
+    JsonWriter& integer(std::int64_t value) {
+        separate();
+        json::integer(out_, value);
+        return wrote();
+    }
+    JsonWriter& boolean(bool value) { return literal(value ? "true" : "false"); }
+    JsonWriter& null() { return literal("null"); }
+    JsonWriter& string(std::string_view text) {
+        separate();
+        json::string(out_, text);
+        return wrote();
+    }
+    // An integer, or null when it is not present.
+    JsonWriter& optional_integer(bool present, std::int64_t value) {
+        return present ? integer(value) : null();
+    }
+    // A number whose text the caller formatted ("0.125000"); written verbatim.
+    JsonWriter& number_text(std::string_view text) { return literal(text); }
+    // A value whose text `write(buffer)` appends itself, verbatim (it must be valid JSON: a
+    // number, or a string that needs no escapes, quotes included).
+    template <typename Write>
+    JsonWriter& raw_value(Write&& write) {
+        separate();
+        write(out_);
+        return wrote();
+    }
+
+    // Nesting depth: 0 once every object and array begun has ended.
+    std::size_t depth() const noexcept { return depth_; }
+    fmt::memory_buffer& buffer() noexcept { return out_; }
+
+  private:
+    void separate() {
+        if (need_comma_) out_.push_back(',');
+    }
+    JsonWriter& opened() {
+        ++depth_;
+        need_comma_ = false;
+        return *this;
+    }
+    JsonWriter& wrote() {
+        need_comma_ = true;
+        return *this;
+    }
+    JsonWriter& closed() {
+        --depth_;
+        return wrote();
+    }
+    JsonWriter& literal(std::string_view text) {
+        separate();
+        out_.append(text.data(), text.data() + text.size());
+        return wrote();
+    }
+
+    fmt::memory_buffer& out_;
+    std::size_t depth_ = 0;
+    // A value was written at this level: the next key or item is preceded by a comma. One flag
+    // is enough: begin_*() and key() clear it, every value and end_*() sets it.
+    bool need_comma_ = false;
+};
+
+}  // namespace dpscope

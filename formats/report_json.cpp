@@ -1,0 +1,74 @@
+// The JSON report (schema in README.md, stable): one object, the findings all listed.
+#include "formats/json.hpp"
+#include "formats/report_model.hpp"
+
+namespace dpscope::report {
+
+void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
+    JsonWriter w(out.buffer());
+    auto count = [&w](std::string_view key, std::uint64_t n) {
+        w.key(key).integer(static_cast<std::int64_t>(n));
+    };
+    const TrackerOptions& options = c.tracker->options();
+    w.begin_object();
+    w.key("dpscope").string(c.version);
+    w.key("input").begin_object();
+    w.key("file").string(c.input.name);
+    w.key("format").string(c.input.format);
+    w.key("damaged").boolean(c.input.damaged);
+    count("bytes_skipped", c.input.bytes_skipped);
+    w.key("first_time");
+    json::time(w, c.summary->first_time_ns());
+    w.key("last_time");
+    json::time(w, c.summary->last_time_ns());
+    w.end_object();
+    w.key("options").begin_object();
+    w.key("timeout_ms").integer(options.timeout_ns / 1'000'000);
+    w.key("strict").boolean(options.strict);
+    w.key("fail_on").string(fail_on_name(c.fail_on));
+    w.key("allow_empty").boolean(c.allow_empty);
+    w.key("stations");
+    if (c.stations.empty()) {
+        w.null();
+    } else {
+        w.begin_array();
+        for (std::uint8_t station : c.stations)
+            w.integer(station);
+        w.end_array();
+    }
+    w.end_object();
+    w.key("result").string(m.fails ? "fail" : "pass");
+    w.key("nothing_checked").boolean(m.nothing_checked);
+    w.key("summary").begin_object();
+    count("telegrams", c.summary->telegrams());
+    count("fcs_errors", m.fcs_errors);
+    count("transactions", m.transactions);
+    w.key("findings").begin_object();
+    count("error", m.errors());
+    count("warning", m.warnings());
+    count("note", m.notes());
+    w.end_object();
+    w.end_object();
+    w.key("stations").begin_array();
+    for (const auto& section : m.stations) {
+        section->write_json(c, w);
+        out.end_record();
+    }
+    w.end_array();
+    w.key("bus").begin_object();
+    w.key("findings");
+    json::finding_kind_counts(w, c.tracker->bus().findings);
+    w.end_object();
+    w.key("findings").begin_array();
+    c.findings->for_each([&](const Finding& f) {
+        if (!shows(c, f)) return;
+        json::finding(w, f);
+        out.end_record();
+    });
+    w.end_array();
+    w.end_object();
+    out.put('\n');
+    out.end_record();
+}
+
+}  // namespace dpscope::report

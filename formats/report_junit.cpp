@@ -1,0 +1,176 @@
+// The JUnit report: one test suite per station (and one for the bus), one test case per rule.
+#include <algorithm>
+#include <iterator>
+
+#include "formats/report_markup.hpp"
+#include "formats/report_model.hpp"
+
+namespace dpscope::report {
+
+namespace {
+
+// A test case lists at most this many failures; the rest are counted in <system-out>.
+constexpr std::size_t kJunitFailuresPerCase = 10'000;
+
+}  // namespace
+
+void write_junit(const ReportContext& c, const ReportModel& m, Output& out) {
+    TextBuffer& b = out.buffer();
+    auto it = std::back_inserter(b);
+    struct Suite {
+        std::string name;
+        std::string classname;
+        bool has_stations;
+        std::uint8_t master;
+        std::uint8_t slave;
+        const StationSection* section;                           // null for the bus
+        std::array<std::uint64_t, kFindingKindCount> failing{};  // at or above the threshold
+        std::array<std::uint64_t, kFindingKindCount> others{};   // below the threshold
+        std::array<Severity, kFindingKindCount> other_severity{};
+    };
+    // Findings at or above --fail-on (errors at least) become failures. They are counted here
+    // and written from the finding log one test case at a time, so memory stays flat however
+    // many there are.
+    std::vector<Suite> suites;
+    for (const auto& section : m.stations)
+        suites.push_back(Suite{section->junit_suite_name(),
+                               section->junit_classname(),
+                               true,
+                               section->master(),
+                               section->slave(),
+                               section.get(),
+                               {},
+                               {},
+                               {}});
+    if (m.has_bus_findings)
+        suites.push_back(Suite{"bus", "dpscope.bus", false, 0, 0, nullptr, {}, {}, {}});
+    auto in_suite = [](const Suite& s, const Finding& f) {
+        return s.has_stations == f.has_stations &&
+               (!f.has_stations || (s.master == f.master && s.slave == f.slave));
+    };
+    auto fails = [&](const Finding& f) {
+        return f.severity == Severity::Error || severity_fails(f.severity, c.fail_on);
+    };
+    c.findings->for_each([&](const Finding& f) {
+        if (!shows(c, f)) return;
+        auto s = std::find_if(suites.begin(), suites.end(),
+                              [&](const Suite& suite) { return in_suite(suite, f); });
+        if (s == suites.end()) return;
+        auto kind = static_cast<std::size_t>(f.kind);
+        if (fails(f)) {
+            ++s->failing[kind];
+        } else {
+            ++s->others[kind];
+            s->other_severity[kind] = f.severity;
+        }
+    });
+    auto failed_cases = [](const Suite& s) {
+        return static_cast<std::size_t>(
+            std::count_if(s.failing.begin(), s.failing.end(), [](std::uint64_t n) { return n; }));
+    };
+    std::size_t total_tests = suites.size() * kFindingKindCount;
+    std::size_t total_failed = 0;
+    for (const Suite& s : suites)
+        total_failed += failed_cases(s);
+    // Nothing checked is no pass: one test case says so, a failure unless --allow-empty.
+    if (m.nothing_checked) {
+        ++total_tests;
+        if (!c.allow_empty) ++total_failed;
+    }
+    fmt::format_to(it,
+                   "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                   "<testsuites name=\"dpscope {}\" tests=\"{}\" failures=\"{}\" errors=\"0\">\n",
+                   xml(c.input.name), total_tests, total_failed);
+    if (m.nothing_checked) {
+        std::string reason = "nothing checked: " + nothing_checked_reason(c);
+        fmt::format_to(it,
+                       "  <testsuite name=\"capture\" tests=\"1\" failures=\"{}\" errors=\"0\" "
+                       "skipped=\"{}\">\n"
+                       "    <testcase classname=\"dpscope.capture\" name=\"parameter channel: the "
+                       "capture holds Data_Exchange telegrams with a parameter channel\">\n",
+                       c.allow_empty ? 0 : 1, c.allow_empty ? 1 : 0);
+        if (c.allow_empty)
+            fmt::format_to(it, "      <skipped message=\"{} (--allow-empty)\"/>\n", xml(reason));
+        else
+            fmt::format_to(it,
+                           "      <failure type=\"nothing_checked\" message=\"{}\">{}</failure>\n",
+                           xml(reason), xml(reason));
+        append(b, "    </testcase>\n  </testsuite>\n");
+        out.end_record();
+    }
+    // Without timestamps the time-out rules cannot be judged: those cases are skipped.
+    auto judged = [&](FindingKind kind) {
+        return m.timed || (kind != FindingKind::ResponseTimeout &&
+                           kind != FindingKind::SpontaneousUnacknowledged);
+    };
+    for (const Suite& s : suites) {
+        fmt::format_to(it,
+                       "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" "
+                       "skipped=\"{}\">\n",
+                       xml(s.name), kFindingKindCount, failed_cases(s), m.timed ? 0 : 2);
+        for (FindingKind kind : kAllKinds) {
+            auto k = static_cast<std::size_t>(kind);
+            const std::string note = s.section ? s.section->junit_note(kind) : std::string();
+            fmt::format_to(it, "    <testcase classname=\"{}\" name=\"{}: {}\"", s.classname,
+                           finding_kind_name(kind), xml(finding_rule_text(kind)));
+            if (!judged(kind)) {
+                append(b,
+                       ">\n      <skipped message=\"not judged: the capture carries no "
+                       "timestamps\"/>\n    </testcase>\n");
+                continue;
+            }
+            if (s.failing[k] == 0 && s.others[k] == 0 && note.empty()) {
+                append(b, "/>\n");
+                continue;
+            }
+            append(b, ">\n");
+            if (s.failing[k] > 0) {
+                std::uint64_t listed = 0;
+                c.findings->for_each([&](const Finding& f) {
+                    if (f.kind != kind || listed >= kJunitFailuresPerCase || !shows(c, f) ||
+                        !in_suite(s, f) || !fails(f))
+                        return;
+                    ++listed;
+                    fmt::format_to(
+                        it,
+                        "      <failure type=\"{}\" message=\"frame {}: {}\">{} {} frame "
+                        "{}{}: {}</failure>\n",
+                        finding_kind_name(kind), f.frame, xml(f.message), severity_name(f.severity),
+                        finding_kind_name(kind), f.frame,
+                        f.request_frame ? fmt::format(" (request frame {})", f.request_frame)
+                                        : std::string(),
+                        xml(f.message));
+                    out.end_record();
+                });
+            }
+            const std::uint64_t unlisted =
+                s.failing[k] > kJunitFailuresPerCase ? s.failing[k] - kJunitFailuresPerCase : 0;
+            if (unlisted > 0 || s.others[k] > 0 || !note.empty()) {
+                std::vector<std::string> notes;
+                if (unlisted > 0)
+                    notes.push_back(fmt::format(
+                        "{} not listed here (at most {} per rule; the JSON report lists them all)",
+                        counted(unlisted, "more failing finding", "more failing findings"),
+                        kJunitFailuresPerCase));
+                if (s.others[k] > 0)
+                    notes.push_back(fmt::format("{} {} {} below the failure threshold", s.others[k],
+                                                severity_name(s.other_severity[k]),
+                                                s.others[k] == 1 ? "finding" : "findings"));
+                if (!note.empty()) notes.push_back(note);
+                append(b, "      <system-out>");
+                for (std::size_t i = 0; i < notes.size(); ++i) {
+                    if (i) append(b, "; ");
+                    escape_xml(b, notes[i]);
+                }
+                append(b, "</system-out>\n");
+            }
+            append(b, "    </testcase>\n");
+        }
+        append(b, "  </testsuite>\n");
+        out.end_record();
+    }
+    append(b, "</testsuites>\n");
+    out.end_record();
+}
+
+}  // namespace dpscope::report

@@ -1,0 +1,21 @@
+// Escaping and small building blocks for the Markdown, HTML and JUnit (XML) reports.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "formats/report_model.hpp"
+
+namespace dpscope::report {
+
+// Markdown text with \ | * _ ` < > escaped.
+std::string md_escape(std::string_view text);
+// XML/HTML text with & < > " ' escaped.
+void escape_xml(TextBuffer& b, std::string_view text);
+std::string xml(std::string_view text);
+// An HTML table row <tr><th>key</th><td>value</td></tr>, both escaped.
+void html_kv(TextBuffer& b, std::string_view key, std::string_view value);
+// HTML "Findings by kind": a table of the kinds found, or "None."
+void html_findings_by_kind(TextBuffer& b, const FindingCounts& findings);
+
+}  // namespace dpscope::report

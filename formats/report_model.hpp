@@ -1,0 +1,137 @@
+// The conformance report: one model, computed once, written in five formats.
+//
+// How it is put together:
+// - render_report() (report.cpp) builds a ReportModel from the ReportContext once and hands it to
+//   the writer of the format asked for, one file each: report_text.cpp, report_json.cpp,
+//   report_markdown.cpp, report_html.cpp, report_junit.cpp. A writer lays out the document:
+//   header and verdict, summary, one section per station, the bus section, then the findings in
+//   capture order.
+// - The per-station sections are StationSection objects, one class per channel kind. Today there
+//   is one kind: PcvSection (report_pcv_section.cpp), the cyclic parameter channel (PCV) of a DP
+//   slave. Every format asks the section for its own part (write_text(), write_json(), ...), so
+//   a new channel kind (DP-V1 acyclic, FC protocol) is one new StationSection class plus the
+//   line in build_report_model() that makes its sections; the five writers stay as they are.
+// - Wording used by more than one writer lives here (verdict, filter, relative times, findings
+//   by kind); escaping for Markdown, HTML and XML in report_markup.hpp.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "formats/describe.hpp"
+#include "formats/json_writer.hpp"
+#include "formats/report.hpp"
+
+namespace dpscope::report {
+
+using FindingCounts = std::array<std::uint64_t, kFindingKindCount>;
+
+// The text and Markdown reports list at most this many findings of each kind.
+inline constexpr std::uint64_t kListedPerKind = 1000;
+inline constexpr std::string_view kNoTimestamps = "time-outs not judged (no timestamps)";
+
+constexpr std::array<FindingKind, kFindingKindCount> all_finding_kinds() {
+    std::array<FindingKind, kFindingKindCount> kinds{};
+    for (std::size_t i = 0; i < kFindingKindCount; ++i)
+        kinds[i] = static_cast<FindingKind>(i);
+    return kinds;
+}
+inline constexpr auto kAllKinds = all_finding_kinds();
+
+// One station's section of the report, for one channel kind. Each format asks it for its part;
+// the writers never look inside a section.
+class StationSection {
+  public:
+    virtual ~StationSection() = default;
+
+    // The findings naming this master and slave belong to the section.
+    virtual std::uint8_t master() const = 0;
+    virtual std::uint8_t slave() const = 0;
+    // Something was checked here; a report in which no section was checked says "nothing
+    // checked".
+    virtual bool checked() const = 0;
+    // Transactions, counted in the summary.
+    virtual std::uint64_t transactions() const = 0;
+    // The station's findings by kind.
+    virtual const FindingCounts& findings() const = 0;
+
+    // Text: the station's block, from its leading empty line.
+    virtual void write_text(const ReportContext& c, TextBuffer& b) const = 0;
+    // Markdown: the station's row in the "Slaves" table, and its "###" block.
+    virtual void write_markdown_row(const ReportContext& c, TextBuffer& b) const = 0;
+    virtual void write_markdown(const ReportContext& c, TextBuffer& b) const = 0;
+    // JSON: the station's object in "stations" (schema in README.md).
+    virtual void write_json(const ReportContext& c, JsonWriter& w) const = 0;
+    // HTML: the station's row in the summary table, and its <section>.
+    virtual void write_html_row(const ReportContext& c, TextBuffer& b) const = 0;
+    virtual void write_html(const ReportContext& c, TextBuffer& b) const = 0;
+    // JUnit: the test suite's name and class name, and a note for the test case of a rule ("" for
+    // none), e.g. the dialect hint beside unknown_code.
+    virtual std::string junit_suite_name() const = 0;
+    virtual std::string junit_classname() const = 0;
+    virtual std::string junit_note(FindingKind kind) const = 0;
+};
+
+// The cyclic parameter channel (PCV) of a DP slave, as the session tracker counted it.
+std::unique_ptr<StationSection> make_pcv_section(const ReportContext& c, const ChannelStats& stats);
+
+struct ReportModel {
+    std::vector<std::unique_ptr<StationSection>> stations;  // the stations reported, in order
+    std::array<std::uint64_t, 3> by_severity{};             // findings shown, by severity
+    std::uint64_t fcs_errors = 0;    // fcs_error findings shown (every bad FCS is one)
+    std::uint64_t shown = 0;         // findings shown
+    std::uint64_t transactions = 0;  // of every station reported
+    bool fails = false;
+    bool has_bus_findings = false;
+    bool timed = false;            // the capture carries timestamps (or is empty)
+    bool nothing_checked = false;  // no section checked anything
+
+    std::uint64_t errors() const { return by_severity[static_cast<std::size_t>(Severity::Error)]; }
+    std::uint64_t warnings() const {
+        return by_severity[static_cast<std::size_t>(Severity::Warning)];
+    }
+    std::uint64_t notes() const { return by_severity[static_cast<std::size_t>(Severity::Note)]; }
+};
+
+ReportModel build_report_model(const ReportContext& c);
+
+// The finding is shown: no station filter, a bus finding, or its slave is selected.
+bool shows(const ReportContext& c, const Finding& f);
+// The slave is reported: no station filter, or it is selected.
+bool shows_slave(const ReportContext& c, std::uint8_t slave);
+
+// The writers, one file each.
+void write_text(const ReportContext& c, const ReportModel& m, Output& out);
+void write_json(const ReportContext& c, const ReportModel& m, Output& out);
+void write_markdown(const ReportContext& c, const ReportModel& m, Output& out);
+void write_html(const ReportContext& c, const ReportModel& m, Output& out);
+void write_junit(const ReportContext& c, const ReportModel& m, Output& out);
+
+// ---- wording shared by the writers and the sections ---------------------------------------------
+
+double to_ms(std::uint64_t ns);
+// "1 error, 0 warnings, 2 notes".
+std::string findings_text(const ReportModel& m);
+// Why nothing was checked: "no telegrams", "no Data_Exchange telegram with a parameter channel".
+std::string nothing_checked_reason(const ReportContext& c);
+// "FAIL: 1 error, 0 warnings, 0 notes (fail on error)".
+std::string verdict_text(const ReportContext& c, const ReportModel& m);
+// "time-out 1000 ms", or kNoTimestamps without timestamps.
+std::string timeout_rule_text(const ReportContext& c, const ReportModel& m);
+// "" without a station filter, else "slaves 3, 5".
+std::string filter_text(const ReportContext& c);
+// Seconds since the capture's first telegram ("0.027865"), or "-".
+std::string relative_seconds(const ReportContext& c, std::int64_t time_ns);
+// "stacked_request 2, response_timeout 1", or "none".
+std::string findings_by_kind_text(const FindingCounts& counts);
+// "2 / 3", or "-" for a bus finding.
+std::string station_label(const Finding& f);
+// "1200 more stacked_request findings not listed: at most 1000 per kind, the JSON report lists
+// them all", for the kinds the text and Markdown reports cut short.
+std::string unlisted_text(FindingKind kind, const FindingCounts& listed);
+
+}  // namespace dpscope::report

@@ -1,0 +1,495 @@
+// The report's section for the cyclic parameter channel (PCV) of a DP slave: PPO layout,
+// dialect, transactions, latency, parameters accessed, rejections and findings by kind, in
+// every format.
+#include <algorithm>
+#include <iterator>
+
+#include "formats/json.hpp"
+#include "formats/report_markup.hpp"
+#include "formats/report_model.hpp"
+
+namespace dpscope::report {
+
+namespace {
+
+struct Latency {
+    bool any = false;
+    double min_ms = 0, median_ms = 0, p95_ms = 0, max_ms = 0;
+    std::uint64_t min_cycles = 0, median_cycles = 0, p95_cycles = 0, max_cycles = 0;
+    bool any_cycles = false;
+};
+
+std::string ppo_text(const ChannelStats& s) {
+    TextBuffer b;
+    if (s.ppo.known())
+        append_ppo_long(b, s.ppo);
+    else
+        append(b, "PPO unknown");
+    return fmt::to_string(b);
+}
+
+std::string ppo_type_label(const PpoLayout& layout) {
+    if (!layout.known()) return "unknown";
+    TextBuffer b;
+    append_ppo_short(b, layout);
+    return fmt::to_string(b);
+}
+
+std::string outcomes_text(const TransactionCounts& t) {
+    return fmt::format("{} positive, {} rejected, {} no authority, {} mismatched, {} unexpected",
+                       t.positive, t.rejected, t.no_authority, t.mismatched, t.unexpected);
+}
+
+std::string parameters_text(const ChannelStats& s) {
+    std::string text;
+    for (const auto& [pnu, count] : s.pnu_requests)
+        text += fmt::format("{}{} ({}x)", text.empty() ? "" : ", ", pnu, count);
+    return text.empty() ? "none" : text;
+}
+
+// {"min":..,"median":..,"p95":..,"max":..} with six decimals (or integers), or null.
+void json_latency(JsonWriter& w, bool any, double min, double median, double p95, double max,
+                  bool integers) {
+    if (!any) {
+        w.null();
+        return;
+    }
+    auto value = [&](double v) {
+        if (integers) {
+            w.integer(static_cast<std::int64_t>(v));
+        } else {
+            char text[64];
+            auto end = fmt::format_to_n(text, sizeof text, "{:.6f}", v).out;
+            w.number_text(std::string_view(text, static_cast<std::size_t>(end - text)));
+        }
+    };
+    w.begin_object();
+    w.key("min");
+    value(min);
+    w.key("median");
+    value(median);
+    w.key("p95");
+    value(p95);
+    w.key("max");
+    value(max);
+    w.end_object();
+}
+
+void svg_latency_histogram(TextBuffer& b, const ChannelStats& s) {
+    const LogHistogram& h = s.latency_ns;
+    auto it = std::back_inserter(b);
+    if (h.count() == 0) {
+        append(b, s.transactions.total() == 0
+                      ? "<p class=\"meta\">No answered requests.</p>\n"
+                      : "<p class=\"meta\">The capture carries no timestamps: latency in cycles "
+                        "only (see above).</p>\n");
+        return;
+    }
+    constexpr int kBars = 30, kWidth = 720, kHeight = 170, kLeft = 48, kBottom = 28, kTop = 10;
+    const double max_ms = std::max(to_ms(h.max()), 0.001);
+    std::array<std::uint64_t, kBars> bars{};
+    h.for_each_bucket([&](std::uint64_t lower, std::uint64_t upper, std::uint64_t count) {
+        double middle = to_ms(lower + (upper - lower) / 2);
+        auto bar = static_cast<std::size_t>(std::min<double>(kBars - 1, middle / max_ms * kBars));
+        bars[bar] += count;
+    });
+    std::uint64_t tallest = *std::max_element(bars.begin(), bars.end());
+    const double bar_width = static_cast<double>(kWidth - kLeft - 10) / kBars;
+    const int plot_height = kHeight - kBottom - kTop;
+    fmt::format_to(it,
+                   "<svg class=\"latency\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} {}\" "
+                   "role=\"img\" aria-label=\"latency histogram of slave {}\">\n",
+                   kWidth, kHeight, kWidth, kHeight, s.slave);
+    fmt::format_to(it, "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#8a93a6\"/>\n",
+                   kLeft, kHeight - kBottom, kWidth - 10, kHeight - kBottom);
+    for (int i = 0; i < kBars; ++i) {
+        if (bars[static_cast<std::size_t>(i)] == 0) continue;
+        double height = static_cast<double>(bars[static_cast<std::size_t>(i)]) /
+                        static_cast<double>(tallest) * plot_height;
+        double x = kLeft + i * bar_width;
+        fmt::format_to(it,
+                       "<rect class=\"bar\" x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" "
+                       "height=\"{:.1f}\" fill=\"#4e79c5\"><title>{:.3f}-{:.3f} ms: {}"
+                       "</title></rect>\n",
+                       x + 1, kHeight - kBottom - height, bar_width - 2, height, max_ms * i / kBars,
+                       max_ms * (i + 1) / kBars,
+                       counted(bars[static_cast<std::size_t>(i)], "transaction", "transactions"));
+    }
+    fmt::format_to(it, "<text x=\"{}\" y=\"{}\">0 ms</text>\n", kLeft, kHeight - 10);
+    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:.3f} ms</text>\n",
+                   kWidth - 10, kHeight - 10, max_ms);
+    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", kLeft - 6,
+                   kTop + 10, tallest);
+    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">0</text>\n", kLeft - 6,
+                   kHeight - kBottom);
+    append(b, "</svg>\n");
+}
+
+void svg_timeline(TextBuffer& b, const ChannelStats& s, const ReportContext& c) {
+    const Timeline& timeline = s.timeline;
+    auto it = std::back_inserter(b);
+    if (timeline.empty()) {
+        append(b, "<p class=\"meta\">No timed transactions or findings.</p>\n");
+        return;
+    }
+    constexpr int kWidth = 720, kLeft = 84, kRight = 10;
+    constexpr int kBarsTop = 64, kBarsHeight = 80, kHeight = 178;
+    const auto& bins = timeline.bins();
+    std::size_t used = 0;
+    std::uint32_t tallest = 1;
+    for (std::size_t i = 0; i < bins.size(); ++i) {
+        const Timeline::Bin& bin = bins[i];
+        if (bin.transactions || bin.errors || bin.warnings || bin.notes) used = i + 1;
+        tallest = std::max(tallest, bin.transactions);
+    }
+    used = std::max<std::size_t>(used, 1);
+    const double step = static_cast<double>(kWidth - kLeft - kRight) / static_cast<double>(used);
+    fmt::format_to(it,
+                   "<svg class=\"timeline\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} {}\" "
+                   "role=\"img\" aria-label=\"timeline of slave {}\">\n",
+                   kWidth, kHeight, kWidth, kHeight, s.slave);
+    const char* rows[] = {"errors", "warnings", "notes"};
+    const char* singular[] = {"error", "warning", "note"};
+    const char* colours[] = {"#d92d20", "#f79009", "#2e90fa"};
+    for (int row = 0; row < 3; ++row)
+        fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", kLeft - 6,
+                       14 + row * 16, rows[row]);
+    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">transactions</text>\n",
+                   kLeft - 6, kBarsTop + kBarsHeight / 2);
+    fmt::format_to(it, "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#8a93a6\"/>\n",
+                   kLeft, kBarsTop + kBarsHeight, kWidth - kRight, kBarsTop + kBarsHeight);
+    const std::int64_t width_ns = timeline.bin_width_ns();
+    for (std::size_t i = 0; i < used; ++i) {
+        const Timeline::Bin& bin = bins[i];
+        const double x = kLeft + static_cast<double>(i) * step;
+        std::int64_t from = timeline.start_ns() + static_cast<std::int64_t>(i) * width_ns;
+        std::string when = relative_seconds(c, from);
+        if (bin.transactions) {
+            double height = static_cast<double>(bin.transactions) / tallest * kBarsHeight;
+            fmt::format_to(it,
+                           "<rect class=\"tx\" x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" "
+                           "height=\"{:.2f}\" fill=\"#4e79c5\"><title>from {} s: {}"
+                           "</title></rect>\n",
+                           x, kBarsTop + kBarsHeight - height, std::max(step - 0.5, 0.8), height,
+                           when, counted(bin.transactions, "transaction", "transactions"));
+        }
+        const std::uint32_t counts[] = {bin.errors, bin.warnings, bin.notes};
+        for (int row = 0; row < 3; ++row) {
+            if (!counts[row]) continue;
+            fmt::format_to(it,
+                           "<rect class=\"mark {}\" x=\"{:.2f}\" y=\"{}\" width=\"{:.2f}\" "
+                           "height=\"10\" fill=\"{}\"><title>from {} s: {}</title></rect>\n",
+                           rows[row], x, 5 + row * 16, std::max(step, 3.0), colours[row], when,
+                           counted(counts[row], singular[row], rows[row]));
+        }
+    }
+    std::int64_t end_ns = timeline.start_ns() + static_cast<std::int64_t>(used) * width_ns;
+    fmt::format_to(it, "<text x=\"{}\" y=\"{}\">{} s</text>\n", kLeft, kHeight - 8,
+                   relative_seconds(c, timeline.start_ns()));
+    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{} s</text>\n", kWidth - kRight,
+                   kHeight - 8, relative_seconds(c, end_ns));
+    append(b, "</svg>\n");
+}
+
+class PcvSection final : public StationSection {
+  public:
+    PcvSection(const ReportContext& c, const ChannelStats& stats) : s_(stats) {
+        const StationConfig& config = c.decoder->station(stats.slave);
+        has_ident_ = config.has_ident;
+        ident_ = config.ident;
+        timed_ = stats.first_time_ns != kNoTime;
+        dialect_hint_ =
+            dialect_hint_text(stats.slave, stats.dialect, c.summary->dialect_evidence(stats.slave));
+        const LogHistogram& ns = stats.latency_ns;
+        if (ns.count() > 0) {
+            latency_.any = true;
+            latency_.min_ms = to_ms(ns.min());
+            latency_.median_ms = to_ms(ns.percentile(50));
+            latency_.p95_ms = to_ms(ns.percentile(95));
+            latency_.max_ms = to_ms(ns.max());
+        }
+        const LogHistogram& cycles = stats.latency_cycles;
+        if (cycles.count() > 0) {
+            latency_.any_cycles = true;
+            latency_.min_cycles = cycles.min();
+            latency_.median_cycles = cycles.percentile(50);
+            latency_.p95_cycles = cycles.percentile(95);
+            latency_.max_cycles = cycles.max();
+        }
+    }
+
+    std::uint8_t master() const override { return s_.master; }
+    std::uint8_t slave() const override { return s_.slave; }
+    bool checked() const override { return s_.parameter_telegrams > 0; }
+    std::uint64_t transactions() const override { return s_.transactions.total(); }
+    const FindingCounts& findings() const override { return s_.findings; }
+
+    void write_text(const ReportContext& /*c*/, TextBuffer& b) const override {
+        const ChannelStats& s = s_;
+        const Latency& l = latency_;
+        auto it = std::back_inserter(b);
+        fmt::format_to(it, "\nSlave {} (master {})\n", s.slave, s.master);
+        fmt::format_to(it, "  layout         {}; dialect {}", ppo_text(s), dialect_name(s.dialect));
+        if (has_ident_) fmt::format_to(it, "; ident 0x{:04X}", ident_);
+        b.push_back('\n');
+        if (!dialect_hint_.empty()) fmt::format_to(it, "  dialect hint   {}\n", dialect_hint_);
+        fmt::format_to(it, "  Data_Exchange  {}, {}\n",
+                       counted(s.data_exchange, "telegram", "telegrams"),
+                       counted(s.cycles, "cycle", "cycles"));
+        fmt::format_to(it, "  requests       {}\n", s.requests);
+        fmt::format_to(it, "  transactions   {}: {}\n", s.transactions.total(),
+                       outcomes_text(s.transactions));
+        fmt::format_to(it, "  unanswered     {}, {} abandoned by the master\n", timeouts_text(),
+                       s.abandoned);
+        fmt::format_to(it, "  spontaneous    {}\n", counted(s.spontaneous, "message", "messages"));
+        if (!timed_)
+            append(b, "  latency ms     not measured (no timestamps)\n");
+        else if (l.any)
+            fmt::format_to(it,
+                           "  latency ms     min {:.3f}  median {:.3f}  p95 {:.3f}  max {:.3f}\n",
+                           l.min_ms, l.median_ms, l.p95_ms, l.max_ms);
+        if (l.any_cycles)
+            fmt::format_to(it, "  latency cycles min {}  median {}  p95 {}  max {}\n", l.min_cycles,
+                           l.median_cycles, l.p95_cycles, l.max_cycles);
+        fmt::format_to(it, "  parameters     {}\n", parameters_text(s));
+        if (!s.rejections.empty()) {
+            append(b, "  rejections    ");
+            for (const auto& [key, count] : s.rejections) {
+                std::string_view text = error_text(s.dialect, key.second);
+                fmt::format_to(it, " PNU {} error {} ({}) {}x;", key.first, key.second,
+                               text.empty() ? "unknown" : text, count);
+            }
+            b.push_back('\n');
+        }
+        fmt::format_to(it, "  findings       {}\n", findings_by_kind_text(s.findings));
+    }
+
+    void write_markdown_row(const ReportContext& /*c*/, TextBuffer& b) const override {
+        const ChannelStats& s = s_;
+        const Latency& l = latency_;
+        std::string ms = !timed_ ? "no timestamps"
+                         : l.any ? fmt::format("{:.3f} / {:.3f} / {:.3f} / {:.3f}", l.min_ms,
+                                               l.median_ms, l.p95_ms, l.max_ms)
+                                 : "-";
+        std::string cycles = l.any_cycles ? fmt::format("{} / {} / {} / {}", l.min_cycles,
+                                                        l.median_cycles, l.p95_cycles, l.max_cycles)
+                                          : "-";
+        fmt::format_to(std::back_inserter(b),
+                       "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", s.slave, s.master,
+                       md_escape(ppo_type_label(s.ppo)), dialect_name(s.dialect),
+                       s.transactions.total(), s.transactions.rejected,
+                       timed_ ? fmt::format("{}", s.timeouts) : "not judged", ms, cycles,
+                       md_escape(findings_by_kind_text(s.findings)));
+    }
+
+    void write_markdown(const ReportContext& /*c*/, TextBuffer& b) const override {
+        const ChannelStats& s = s_;
+        auto it = std::back_inserter(b);
+        fmt::format_to(it, "\n### Slave {} (master {})\n\n", s.slave, s.master);
+        fmt::format_to(it, "- Layout: {}\n", md_escape(ppo_text(s)));
+        if (has_ident_) fmt::format_to(it, "- Ident number: 0x{:04X}\n", ident_);
+        if (!dialect_hint_.empty())
+            fmt::format_to(it, "- Dialect hint: {}\n", md_escape(dialect_hint_));
+        fmt::format_to(
+            it, "- Data_Exchange: {}, {}; {}\n", counted(s.data_exchange, "telegram", "telegrams"),
+            counted(s.cycles, "cycle", "cycles"), counted(s.requests, "request", "requests"));
+        fmt::format_to(it, "- Transactions: {} ({})\n", s.transactions.total(),
+                       outcomes_text(s.transactions));
+        fmt::format_to(it, "- Unanswered: {}, {} abandoned; spontaneous messages: {}\n",
+                       timeouts_text(), s.abandoned, s.spontaneous);
+        fmt::format_to(it, "- Parameters: {}\n", parameters_text(s));
+        for (const auto& [key, count] : s.rejections) {
+            std::string_view text = error_text(s.dialect, key.second);
+            fmt::format_to(it, "- Rejected: PNU {} error {} ({}), {}x\n", key.first, key.second,
+                           md_escape(text.empty() ? "unknown" : text), count);
+        }
+        fmt::format_to(it, "- Findings: {}\n", md_escape(findings_by_kind_text(s.findings)));
+    }
+
+    void write_json(const ReportContext& c, JsonWriter& w) const override {
+        const ChannelStats& s = s_;
+        const Latency& l = latency_;
+        auto count = [&w](std::string_view key, std::uint64_t n) {
+            w.key(key).integer(static_cast<std::int64_t>(n));
+        };
+        w.begin_object();
+        w.key("master").integer(s.master);
+        w.key("slave").integer(s.slave);
+        w.key("ppo_type").optional_integer(s.ppo.known() && s.ppo.type != 0, s.ppo.type);
+        w.key("ppo_source").string(ppo_source_name(s.ppo.source));
+        w.key("dialect").string(dialect_name(s.dialect));
+        w.key("dialect_hint");
+        if (std::optional<Dialect> hint = c.summary->dialect_evidence(s.slave).hint())
+            w.string(dialect_name(*hint));
+        else
+            w.null();
+        w.key("ident").optional_integer(has_ident_, ident_);
+        count("data_exchange", s.data_exchange);
+        count("cycles", s.cycles);
+        count("requests", s.requests);
+        count("transactions", s.transactions.total());
+        w.key("outcomes").begin_object();
+        count("positive", s.transactions.positive);
+        count("rejected", s.transactions.rejected);
+        count("no_authority", s.transactions.no_authority);
+        count("mismatched", s.transactions.mismatched);
+        count("unexpected", s.transactions.unexpected);
+        w.end_object();
+        w.key("timeouts").optional_integer(timed_, static_cast<std::int64_t>(s.timeouts));
+        count("abandoned", s.abandoned);
+        count("spontaneous", s.spontaneous);
+        w.key("latency_ms");
+        json_latency(w, l.any, l.min_ms, l.median_ms, l.p95_ms, l.max_ms, false);
+        w.key("latency_cycles");
+        json_latency(w, l.any_cycles, static_cast<double>(l.min_cycles),
+                     static_cast<double>(l.median_cycles), static_cast<double>(l.p95_cycles),
+                     static_cast<double>(l.max_cycles), true);
+        w.key("parameters").begin_array();
+        for (const auto& [pnu, n] : s.pnu_requests) {
+            w.begin_object();
+            w.key("pnu").integer(pnu);
+            count("requests", n);
+            w.end_object();
+        }
+        w.end_array();
+        w.key("rejections").begin_array();
+        for (const auto& [key, n] : s.rejections) {
+            w.begin_object();
+            w.key("pnu").integer(key.first);
+            w.key("error").integer(key.second);
+            w.key("error_text");
+            std::string_view text = error_text(s.dialect, key.second);
+            if (text.empty())
+                w.null();
+            else
+                w.string(text);
+            count("count", n);
+            w.end_object();
+        }
+        w.end_array();
+        w.key("findings");
+        json::finding_kind_counts(w, s.findings);
+        w.end_object();
+    }
+
+    void write_html_row(const ReportContext& /*c*/, TextBuffer& b) const override {
+        const ChannelStats& s = s_;
+        const Latency& l = latency_;
+        std::array<std::uint64_t, 3> severities{};
+        for (FindingKind kind : kAllKinds)
+            severities[static_cast<std::size_t>(default_severity(kind))] +=
+                s.findings[static_cast<std::size_t>(kind)];
+        fmt::format_to(std::back_inserter(b),
+                       "<tr><td class=\"n\"><a href=\"#slave-{}-{}\">{}</a></td><td class=\"n\">{}"
+                       "</td><td>{}</td><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>"
+                       "<td class=\"n\">{}</td><td class=\"n error\">{}</td><td class=\"n "
+                       "warning\">{}</td><td class=\"n note\">{}</td></tr>\n",
+                       s.slave, s.master, s.slave, s.master, xml(ppo_type_label(s.ppo)),
+                       dialect_name(s.dialect), s.transactions.total(),
+                       l.any ? fmt::format("{:.3f}", l.median_ms) : "-",
+                       l.any ? fmt::format("{:.3f}", l.p95_ms) : "-", severities[2], severities[1],
+                       severities[0]);
+    }
+
+    void write_html(const ReportContext& c, TextBuffer& b) const override {
+        const ChannelStats& s = s_;
+        const Latency& l = latency_;
+        auto it = std::back_inserter(b);
+        fmt::format_to(it,
+                       "<section class=\"station\" id=\"slave-{}-{}\">\n<h2>Slave {} (master {})"
+                       "</h2>\n<table class=\"kv\">\n",
+                       s.slave, s.master, s.slave, s.master);
+        html_kv(b, "Layout", ppo_text(s));
+        html_kv(b, "Dialect", dialect_name(s.dialect));
+        if (!dialect_hint_.empty()) html_kv(b, "Dialect hint", dialect_hint_);
+        if (has_ident_) html_kv(b, "Ident number", fmt::format("0x{:04X}", ident_));
+        html_kv(b, "Data_Exchange",
+                fmt::format("{}, {}", counted(s.data_exchange, "telegram", "telegrams"),
+                            counted(s.cycles, "cycle", "cycles")));
+        html_kv(b, "Parameter requests", fmt::format("{}", s.requests));
+        html_kv(b, "Transactions",
+                fmt::format("{}: {}", s.transactions.total(), outcomes_text(s.transactions)));
+        html_kv(b, "Unanswered",
+                fmt::format("{}, {} abandoned by the master", timeouts_text(), s.abandoned));
+        html_kv(b, "Spontaneous messages", fmt::format("{}", s.spontaneous));
+        html_kv(b, "Latency (ms)",
+                !timed_ ? std::string("not measured (no timestamps)")
+                : l.any ? fmt::format("min {:.3f}, median {:.3f}, p95 {:.3f}, max {:.3f}", l.min_ms,
+                                      l.median_ms, l.p95_ms, l.max_ms)
+                        : "-");
+        html_kv(b, "Latency (cycles)",
+                l.any_cycles ? fmt::format("min {}, median {}, p95 {}, max {}", l.min_cycles,
+                                           l.median_cycles, l.p95_cycles, l.max_cycles)
+                             : "-");
+        append(b, "</table>\n<h3>Latency histogram</h3>\n");
+        svg_latency_histogram(b, s);
+        append(b,
+               "<h3>Timeline</h3>\n<div class=\"legend\"><span><i class=\"swatch\" "
+               "style=\"background:#4e79c5\"></i>transactions</span><span><i class=\"swatch\" "
+               "style=\"background:#d92d20\"></i>errors</span><span><i class=\"swatch\" "
+               "style=\"background:#f79009\"></i>warnings</span><span><i class=\"swatch\" "
+               "style=\"background:#2e90fa\"></i>notes</span></div>\n");
+        svg_timeline(b, s, c);
+        append(b, "<h3>Parameters accessed</h3>\n");
+        if (s.pnu_requests.empty()) {
+            append(b, "<p class=\"meta\">None.</p>\n");
+        } else {
+            append(b,
+                   "<table class=\"parameters\"><tr><th class=\"n\">PNU</th><th "
+                   "class=\"n\">requests</th></tr>\n");
+            for (const auto& [pnu, count] : s.pnu_requests)
+                fmt::format_to(it, "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td></tr>\n", pnu,
+                               count);
+            append(b, "</table>\n");
+        }
+        if (!s.rejections.empty()) {
+            append(b,
+                   "<h3>Rejected requests</h3>\n<table class=\"rejections\"><tr><th "
+                   "class=\"n\">PNU</th><th class=\"n\">error</th><th>meaning</th><th "
+                   "class=\"n\">count</th></tr>\n");
+            for (const auto& [key, count] : s.rejections) {
+                std::string_view text = error_text(s.dialect, key.second);
+                fmt::format_to(it,
+                               "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td>"
+                               "<td class=\"n\">{}</td></tr>\n",
+                               key.first, key.second, xml(text.empty() ? "unknown" : text), count);
+            }
+            append(b, "</table>\n");
+        }
+        html_findings_by_kind(b, s.findings);
+        append(b, "</section>\n");
+    }
+
+    std::string junit_suite_name() const override {
+        return fmt::format("slave {} (master {})", s_.slave, s_.master);
+    }
+    std::string junit_classname() const override {
+        return fmt::format("dpscope.master_{}.slave_{}", s_.master, s_.slave);
+    }
+    std::string junit_note(FindingKind kind) const override {
+        if (kind != FindingKind::UnknownCode || dialect_hint_.empty()) return {};
+        return "dialect hint: " + dialect_hint_;
+    }
+
+  private:
+    // "2 timed out" or "time-outs not judged (no timestamps)".
+    std::string timeouts_text() const {
+        return timed_ ? fmt::format("{} timed out", s_.timeouts) : std::string(kNoTimestamps);
+    }
+
+    const ChannelStats& s_;
+    bool has_ident_ = false;
+    std::uint16_t ident_ = 0;
+    bool timed_ = false;        // its telegrams carry timestamps: time-outs and ms latency judged
+    std::string dialect_hint_;  // "" or the hint that its codes fit another dialect
+    Latency latency_;
+};
+
+}  // namespace
+
+std::unique_ptr<StationSection> make_pcv_section(const ReportContext& c,
+                                                 const ChannelStats& stats) {
+    return std::make_unique<PcvSection>(c, stats);
+}
+
+}  // namespace dpscope::report

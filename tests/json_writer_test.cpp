@@ -1,0 +1,121 @@
+#include "formats/json_writer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <string_view>
+
+#include "tests/json_parser.hpp"
+
+namespace dpscope {
+namespace {
+
+std::string text(const fmt::memory_buffer& buffer) {
+    return std::string(buffer.data(), buffer.size());
+}
+
+TEST(JsonWriterTest, PutsCommasBetweenMembersAndItemsOfNestedContainers) {
+    fmt::memory_buffer buffer;
+    JsonWriter w(buffer);
+    w.begin_object();
+    w.key("a").integer(1);
+    w.key("b").begin_array();
+    w.integer(2);
+    w.begin_object().key("c").boolean(true).key("d").boolean(false).end_object();
+    w.begin_array().integer(3).integer(-4).end_array();
+    w.string("e");
+    w.end_array();
+    w.key("f").begin_object().key("g").begin_object().key("h").null().end_object().end_object();
+    w.key("i").integer(5);
+    w.end_object();
+    EXPECT_EQ(text(buffer),
+              R"({"a":1,"b":[2,{"c":true,"d":false},[3,-4],"e"],"f":{"g":{"h":null}},"i":5})");
+    EXPECT_EQ(w.depth(), 0u);
+}
+
+TEST(JsonWriterTest, WritesEmptyContainers) {
+    fmt::memory_buffer buffer;
+    JsonWriter w(buffer);
+    w.begin_object();
+    w.key("object").begin_object().end_object();
+    w.key("array").begin_array().end_array();
+    w.key("nested").begin_array().begin_array().end_array().begin_object().end_object().end_array();
+    w.end_object();
+    EXPECT_EQ(text(buffer), R"({"object":{},"array":[],"nested":[[],{}]})");
+}
+
+TEST(JsonWriterTest, WritesAnEmptyObjectAtTheTop) {
+    fmt::memory_buffer buffer;
+    JsonWriter w(buffer);
+    w.begin_object().end_object();
+    EXPECT_EQ(text(buffer), "{}");
+}
+
+TEST(JsonWriterTest, WritesNullAsAMemberAndAsAnItem) {
+    fmt::memory_buffer buffer;
+    JsonWriter w(buffer);
+    w.begin_object();
+    w.key("a").null();
+    w.key("b").begin_array().null().null().end_array();
+    w.key("c").optional_integer(false, 7);
+    w.key("d").optional_integer(true, 7);
+    w.end_object();
+    EXPECT_EQ(text(buffer), R"({"a":null,"b":[null,null],"c":null,"d":7})");
+}
+
+TEST(JsonWriterTest, EscapesQuotesBackslashesAndControlCharacters) {
+    fmt::memory_buffer buffer;
+    JsonWriter w(buffer);
+    w.begin_array();
+    w.string("say \"hi\"\\");
+    w.string(std::string_view("\n\r\t\b\f\x01\x1f\0", 8));
+    w.string("");
+    w.end_array();
+    EXPECT_EQ(text(buffer), R"(["say \"hi\"\\","\n\r\t\u0008\u000c\u0001\u001f\u0000",""])");
+}
+
+TEST(JsonWriterTest, CopiesNonAsciiBytesAsTheyAre) {
+    fmt::memory_buffer buffer;
+    JsonWriter w(buffer);
+    // UTF-8 "Grüße µs" and a DEL: nothing to escape.
+    w.string(
+        "Gr\xC3\xBC\xC3\x9F"
+        "e \xC2\xB5s\x7F");
+    EXPECT_EQ(text(buffer),
+              "\"Gr\xC3\xBC\xC3\x9F"
+              "e \xC2\xB5s\x7F\"");
+}
+
+TEST(JsonWriterTest, WritesNumberTextAndRawValuesVerbatim) {
+    fmt::memory_buffer buffer;
+    JsonWriter w(buffer);
+    w.begin_object();
+    w.key("ms").number_text("0.125000");
+    w.key("time").raw_value([](fmt::memory_buffer& b) { b.append(std::string_view("1.5")); });
+    w.key("list").begin_array().number_text("1.0").number_text("2.0").end_array();
+    w.end_object();
+    EXPECT_EQ(text(buffer), R"({"ms":0.125000,"time":1.5,"list":[1.0,2.0]})");
+}
+
+TEST(JsonWriterTest, AppendsToWhatTheBufferHolds) {
+    fmt::memory_buffer buffer;
+    buffer.append(std::string_view("x "));
+    JsonWriter w(buffer);
+    w.begin_array().integer(1).end_array();
+    EXPECT_EQ(text(buffer), "x [1]");
+}
+
+TEST(JsonWriterTest, StringsRoundTripThroughAStrictParser) {
+    constexpr char kText[] = "quote \" backslash \\ tab \t nul \0 bell \a \xC2\xB5s end";
+    const std::string original(kText, sizeof kText - 1);
+    fmt::memory_buffer buffer;
+    JsonWriter w(buffer);
+    w.begin_object().key("s").string(original).key("n").begin_array().end_array().end_object();
+    std::optional<test::Json> parsed = test::parse_json(text(buffer));
+    ASSERT_TRUE(parsed) << text(buffer);
+    EXPECT_EQ((*parsed)["s"].string(), original);
+    EXPECT_TRUE((*parsed)["n"].items.empty());
+}
+
+}  // namespace
+}  // namespace dpscope
