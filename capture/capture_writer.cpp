@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "capture/pcap_source.hpp"
-#include "decoder/bus_decoder.hpp"
+#include "decoder/time.hpp"
 
 namespace dpscope {
 

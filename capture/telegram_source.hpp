@@ -10,8 +10,9 @@
 #include <string>
 
 #include "capture/input_format.hpp"
-#include "decoder/bus_decoder.hpp"
+#include "decoder/byte_reader.hpp"
 #include "decoder/problem.hpp"
+#include "decoder/time.hpp"
 
 namespace dpscope {
 
