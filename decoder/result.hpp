@@ -27,12 +27,16 @@ struct Error {
 
 template <typename T>
 class [[nodiscard]] Result {
+    // What a value is made of: anything T can be constructed from, except an Error or a Result.
+    template <typename U>
+    static constexpr bool kMakesValue =
+        std::is_constructible_v<T, U&&> && !std::is_same_v<std::remove_cvref_t<U>, Error> &&
+        !std::is_same_v<std::remove_cvref_t<U>, Result>;
+
   public:
     // From anything a T can be made of (a T, a std::unique_ptr to a derived class, ...).
-    template <typename U = T>
-    requires(std::is_constructible_v<T, U&&> && !std::is_same_v<std::remove_cvref_t<U>, Error> &&
-             !std::is_same_v<std::remove_cvref_t<U>, Result>) Result(U&& value)
-        : value_(std::in_place, std::forward<U>(value)) {}
+    template <typename U = T, std::enable_if_t<kMakesValue<U>, int> = 0>
+    Result(U&& value) : value_(std::in_place, std::forward<U>(value)) {}
     Result(Error error) : error_(std::move(error.message)) {}
 
     bool has_value() const noexcept { return value_.has_value(); }
