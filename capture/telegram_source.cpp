@@ -227,21 +227,17 @@ OpenResult open_source(const std::string& path, InputFormat format) {
         return Error{std::move(error)};
     }
     std::setvbuf(stream, nullptr, _IOFBF, 1 << 16);
-    std::unique_ptr<TelegramSource> source;
-    std::string error;
     switch (format) {
         case InputFormat::Pcap:
         case InputFormat::Pcapng:
-            source = pcapng ? open_pcapng_source(stream, name, error)
-                            : open_pcap_source(stream, name, classic_pcap, error);
-            break;
-        case InputFormat::Hex: source = make_hex_source(stream, name, detected); break;
+            return pcapng ? open_pcapng_source(stream, name)
+                          : open_pcap_source(stream, name, classic_pcap);
+        case InputFormat::Hex: return make_hex_source(stream, name, detected);
         case InputFormat::Raw:
         case InputFormat::Serial:
-        case InputFormat::Auto: source = make_raw_source(stream, name, detected); break;
+        case InputFormat::Auto: break;
     }
-    if (!source) return Error{std::move(error)};
-    return source;
+    return make_raw_source(stream, name, detected);
 }
 
 std::unique_ptr<TelegramSource> memory_source(std::string display_name, Bytes bytes) {
