@@ -302,7 +302,8 @@ TEST(CaptureWriterTest, UnwritablePathFailsNamingIt) {
         SCOPED_TRACE(capture_format_name(format));
         WriterResult opened = open_capture_writer(path, format, kLinkTypeProfibusDl);
         EXPECT_FALSE(opened);
-        EXPECT_EQ(opened.error().rfind(path + ": cannot open for writing: ", 0), 0u) << opened.error();
+        EXPECT_EQ(opened.error().rfind(path + ": cannot open for writing: ", 0), 0u)
+            << opened.error();
     }
 }
 
