@@ -110,7 +110,7 @@ Result run(const std::string& dpscope, std::uint64_t telegrams, Pace pace) {
                     static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1e6;
     dpscope::OpenResult opened = dpscope::open_source(pcap, dpscope::InputFormat::Auto);
     dpscope::Record record;
-    while (opened.source && opened.source->next(record))
+    while (opened && opened.value()->next(record))
         ++r.captured;
     std::remove(pcap.c_str());
     std::remove(err.c_str());

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "capture/pcap_source.hpp"
-#include "decoder/bus_decoder.hpp"
+#include "decoder/time.hpp"
 
 namespace dpscope {
 
@@ -307,11 +307,11 @@ class RotatingWriter final : public CaptureWriter {
         ++index_;
         std::string name = rotated_file_name(path_, index_);
         WriterResult opened = open_capture_writer(name, format_, link_type_);
-        if (!opened.writer) {
-            error_ = opened.error;
+        if (!opened) {
+            error_ = opened.error();
             return false;
         }
-        current_ = std::move(opened.writer);
+        current_ = std::move(opened).value();
         bytes_ = format_ == CaptureFormat::Pcap     ? kPcapFileHeaderBytes
                  : format_ == CaptureFormat::Pcapng ? 60  // section and interface blocks
                                                     : 0;
@@ -377,60 +377,42 @@ WriterResult open_rotating_writer(const std::string& path, CaptureFormat format,
                                   RotationOptions rotation) {
     if (rotation.max_bytes == 0 && rotation.max_ns == 0)
         return open_capture_writer(path, format, link_type);
-    WriterResult result;
-    if (path == "-") {
-        result.error = "cannot rotate standard output: give -w a file name";
-        return result;
-    }
+    if (path == "-") return Error{"cannot rotate standard output: give -w a file name"};
     auto writer = std::make_unique<RotatingWriter>(path, format, link_type, rotation);
-    if (!writer->open_next()) {
-        result.error = writer->error();
-        return result;
-    }
-    result.writer = std::move(writer);
-    return result;
+    if (!writer->open_next()) return Error{writer->error()};
+    return writer;
 }
 
 WriterResult open_capture_writer(const std::string& path, CaptureFormat format, int link_type) {
     if (path == "-") return open_capture_writer(stdout, "<stdout>", format, link_type);
     FILE* file = std::fopen(path.c_str(), "wb");
-    if (!file) {
-        WriterResult result;
-        result.error = fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno));
-        return result;
-    }
+    if (!file)
+        return Error{fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno))};
     return open_capture_writer(file, path, format, link_type);
 }
 
 WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format,
                                  int link_type) {
-    WriterResult result;
     switch (format) {
         case CaptureFormat::Pcap: {
             pcap_t* dead =
                 pcap_open_dead_with_tstamp_precision(link_type, 65535, PCAP_TSTAMP_PRECISION_NANO);
             pcap_dumper_t* dumper = dead ? pcap_dump_fopen(dead, file) : nullptr;
             if (!dumper) {
-                result.error = fmt::format("{}: cannot write a pcap file: {}", name,
-                                           dead ? pcap_geterr(dead) : "libpcap has no writer");
+                std::string error = fmt::format("{}: cannot write a pcap file: {}", name,
+                                                dead ? pcap_geterr(dead) : "libpcap has no writer");
                 if (dead) pcap_close(dead);
                 if (file != stdout) std::fclose(file);
-                return result;
+                return Error{std::move(error)};
             }
-            result.writer = std::make_unique<PcapWriter>(dead, dumper, std::move(name));
-            break;
+            return std::make_unique<PcapWriter>(dead, dumper, std::move(name));
         }
         case CaptureFormat::Pcapng:
-            result.writer = std::make_unique<PcapngWriter>(file, std::move(name), link_type);
-            break;
-        case CaptureFormat::Raw:
-            result.writer = std::make_unique<RawWriter>(file, std::move(name));
-            break;
-        case CaptureFormat::Hex:
-            result.writer = std::make_unique<HexWriter>(file, std::move(name));
-            break;
+            return std::make_unique<PcapngWriter>(file, std::move(name), link_type);
+        case CaptureFormat::Raw: return std::make_unique<RawWriter>(file, std::move(name));
+        case CaptureFormat::Hex: return std::make_unique<HexWriter>(file, std::move(name));
     }
-    return result;
+    return Error{fmt::format("{}: no writer for this capture format", name)};
 }
 
 }  // namespace dpscope

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "decoder/byte_reader.hpp"
+#include "decoder/result.hpp"
 
 namespace dpscope {
 
@@ -37,10 +38,8 @@ class CaptureWriter {
     std::string error_;
 };
 
-struct WriterResult {
-    std::unique_ptr<CaptureWriter> writer;  // null on failure
-    std::string error;
-};
+// A writer, or why none could be opened (naming the file).
+using WriterResult = Result<std::unique_ptr<CaptureWriter>>;
 
 // `path` "-" writes to standard output. `link_type` is used by pcap and pcapng. A pcap writer
 // whose write fails (disk full) cuts the file back to the last flushed record, so it stays a

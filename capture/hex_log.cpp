@@ -411,7 +411,8 @@ HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& 
     return result;
 }
 
-bool parse_hex_bytes(std::string_view text, std::vector<std::uint8_t>& bytes, std::string& error) {
+Result<std::vector<std::uint8_t>> parse_hex_bytes(std::string_view text) {
+    std::vector<std::uint8_t> bytes;
     std::string cleaned(text);
     for (char& c : cleaned)
         if (c == ',' || c == '\n') c = ' ';
@@ -421,15 +422,14 @@ bool parse_hex_bytes(std::string_view text, std::vector<std::uint8_t>& bytes, st
         for (char c : body)
             if (c != ':' && c != '-') digits.push_back(c);
         if (digits.empty() || digits.size() % 2 != 0 || !all_hex(digits)) {
-            error = fmt::format(
-                "'{}' is not hex bytes (expected pairs of hex digits such as 68 or "
-                "0x68 or 680707)",
-                token);
-            return false;
+            return Error{
+                fmt::format("'{}' is not hex bytes (expected pairs of hex digits such as 68 or "
+                            "0x68 or 680707)",
+                            token)};
         }
         append_hex_run(digits, bytes);
     }
-    return true;
+    return bytes;
 }
 
 }  // namespace dpscope

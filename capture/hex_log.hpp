@@ -23,6 +23,8 @@
 #include <string_view>
 #include <vector>
 
+#include "decoder/result.hpp"
+
 namespace dpscope {
 
 // A token that should be a hex byte but is none.
@@ -47,8 +49,8 @@ struct HexLogLine {
 HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& bytes);
 
 // Strict: every token (separated by white space or commas) must be hex: "68", "0x68", "680707",
-// "68:07:07". On failure returns false and names the offending token in `error`.
-bool parse_hex_bytes(std::string_view text, std::vector<std::uint8_t>& bytes, std::string& error);
+// "68:07:07". On failure the error names the offending token.
+Result<std::vector<std::uint8_t>> parse_hex_bytes(std::string_view text);
 
 // A timestamp token as described above, in nanoseconds since the epoch (time of day: since
 // midnight of 1970-01-01).

@@ -548,28 +548,24 @@ bool PcapngSource::read_next(Record& record) {
 
 }  // namespace
 
-std::unique_ptr<TelegramSource> open_pcapng_source(FILE* file, const std::string& name,
-                                                   std::string& error) {
+OpenResult open_pcapng_source(FILE* file, const std::string& name) {
     auto source = std::make_unique<PcapngSource>(file, name);
-    if (!source->open(error)) return nullptr;
+    if (std::string error; !source->open(error)) return Error{std::move(error)};
     return source;
 }
 
-std::unique_ptr<TelegramSource> open_pcap_source(FILE* file, const std::string& name,
-                                                 bool classic_pcap, std::string& error) {
+OpenResult open_pcap_source(FILE* file, const std::string& name, bool classic_pcap) {
     char errbuf[PCAP_ERRBUF_SIZE] = {};
     pcap_t* handle =
         pcap_fopen_offline_with_tstamp_precision(file, PCAP_TSTAMP_PRECISION_NANO, errbuf);
     if (!handle) {
         std::fclose(file);
-        error = fmt::format("{}: not a readable pcap or pcapng file: {}", name, errbuf);
-        return nullptr;
+        return Error{fmt::format("{}: not a readable pcap or pcapng file: {}", name, errbuf)};
     }
     int link_type = pcap_datalink(handle);
     if (!decoded_link_type(link_type)) {
-        error = unsupported_link_type(name, link_type);
         pcap_close(handle);
-        return nullptr;
+        return Error{unsupported_link_type(name, link_type)};
     }
     return std::make_unique<PcapSource>(handle, name, classic_pcap);
 }

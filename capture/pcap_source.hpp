@@ -19,17 +19,15 @@ inline constexpr int kLinkTypeUser0 = 147;
 inline constexpr std::uint64_t kPcapFileHeaderBytes = 24;
 inline constexpr std::uint64_t kPcapRecordHeaderBytes = 16;
 
-// Takes ownership of `file`. Returns null and sets `error` when libpcap cannot read the file or
-// the link type is not one dpscope decodes. `classic_pcap`: the file starts with a pcap (not
-// pcapng) header, so record byte offsets can be counted and named in messages.
-std::unique_ptr<TelegramSource> open_pcap_source(FILE* file, const std::string& name,
-                                                 bool classic_pcap, std::string& error);
+// Takes ownership of `file`. An error when libpcap cannot read the file or the link type is not
+// one dpscope decodes. `classic_pcap`: the file starts with a pcap (not pcapng) header, so record
+// byte offsets can be counted and named in messages.
+OpenResult open_pcap_source(FILE* file, const std::string& name, bool classic_pcap);
 
-// Takes ownership of `file`, positioned at the start of a pcapng file. Returns null and sets
-// `error` when it is no pcapng file or none of its interfaces has a link type dpscope decodes.
-// Records carry the byte offset of their block.
-std::unique_ptr<TelegramSource> open_pcapng_source(FILE* file, const std::string& name,
-                                                   std::string& error);
+// Takes ownership of `file`, positioned at the start of a pcapng file. An error when it is no
+// pcapng file or none of its interfaces has a link type dpscope decodes. Records carry the byte
+// offset of their block.
+OpenResult open_pcapng_source(FILE* file, const std::string& name);
 
 // "PROFIBUS_DL", "USER0", or libpcap's name for other link types.
 std::string link_type_name(int link_type);

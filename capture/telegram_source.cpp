@@ -184,19 +184,14 @@ bool read_head(int fd, std::vector<std::uint8_t>& head) {
 }  // namespace
 
 OpenResult open_source(const std::string& path, InputFormat format) {
-    OpenResult result;
     bool from_stdin = path == "-";
     std::string name = from_stdin ? std::string("<stdin>") : path;
     FILE* file = from_stdin ? stdin : std::fopen(path.c_str(), "rb");
-    if (!file) {
-        result.error = fmt::format("{}: cannot open: {}", name, std::strerror(errno));
-        return result;
-    }
+    if (!file) return Error{fmt::format("{}: cannot open: {}", name, std::strerror(errno))};
     struct stat info {};
     if (fstat(fileno(file), &info) == 0 && S_ISDIR(info.st_mode)) {
         std::fclose(file);
-        result.error = fmt::format("{}: is a directory, not a capture file", name);
-        return result;
+        return Error{fmt::format("{}: is a directory, not a capture file", name)};
     }
     const bool detected = format == InputFormat::Auto;
     auto* replay = new ReplayCookie;
@@ -207,9 +202,9 @@ OpenResult open_source(const std::string& path, InputFormat format) {
     if (format == InputFormat::Auto || format == InputFormat::Pcap ||
         format == InputFormat::Pcapng) {
         if (!read_head(fileno(file), replay->head)) {
-            result.error = fmt::format("{}: cannot read: {}", name, std::strerror(errno));
+            std::string error = fmt::format("{}: cannot read: {}", name, std::strerror(errno));
             replay_close(replay);
-            return result;
+            return Error{std::move(error)};
         }
         classic_pcap = detect_input_format(replay->head) == InputFormat::Pcap;
         pcapng = detect_input_format(replay->head) == InputFormat::Pcapng;
@@ -226,23 +221,23 @@ OpenResult open_source(const std::string& path, InputFormat format) {
                              cookie_io_functions_t{replay_read, nullptr, nullptr, replay_close});
     }
     if (!stream) {
-        result.error = fmt::format("{}: cannot set up reading: {}", name, std::strerror(errno));
+        std::string error =
+            fmt::format("{}: cannot set up reading: {}", name, std::strerror(errno));
         replay_close(replay);
-        return result;
+        return Error{std::move(error)};
     }
     std::setvbuf(stream, nullptr, _IOFBF, 1 << 16);
     switch (format) {
         case InputFormat::Pcap:
         case InputFormat::Pcapng:
-            result.source = pcapng ? open_pcapng_source(stream, name, result.error)
-                                   : open_pcap_source(stream, name, classic_pcap, result.error);
-            break;
-        case InputFormat::Hex: result.source = make_hex_source(stream, name, detected); break;
+            return pcapng ? open_pcapng_source(stream, name)
+                          : open_pcap_source(stream, name, classic_pcap);
+        case InputFormat::Hex: return make_hex_source(stream, name, detected);
         case InputFormat::Raw:
         case InputFormat::Serial:
-        case InputFormat::Auto: result.source = make_raw_source(stream, name, detected); break;
+        case InputFormat::Auto: break;
     }
-    return result;
+    return make_raw_source(stream, name, detected);
 }
 
 std::unique_ptr<TelegramSource> memory_source(std::string display_name, Bytes bytes) {

@@ -10,8 +10,10 @@
 #include <string>
 
 #include "capture/input_format.hpp"
-#include "decoder/bus_decoder.hpp"
+#include "decoder/byte_reader.hpp"
 #include "decoder/problem.hpp"
+#include "decoder/result.hpp"
+#include "decoder/time.hpp"
 
 namespace dpscope {
 
@@ -123,10 +125,8 @@ class TelegramSource {
     bool reporting_finished_ = false;
 };
 
-struct OpenResult {
-    std::unique_ptr<TelegramSource> source;  // null when the input is unusable
-    std::string error;                       // why, naming the file
-};
+// A source, or why the input is unusable (naming the file).
+using OpenResult = Result<std::unique_ptr<TelegramSource>>;
 
 // Opens `path` ("-" for standard input), detecting the format from the content unless `format`
 // forces one.

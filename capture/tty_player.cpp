@@ -8,7 +8,7 @@
 #include <cstring>
 #include <ctime>
 
-#include "decoder/bus_decoder.hpp"
+#include "decoder/time.hpp"
 
 namespace dpscope {
 

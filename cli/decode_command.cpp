@@ -57,11 +57,11 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         WriterResult opened = open_capture_writer(capture_file->file(), capture_file->name(),
                                                   settings.write_format, settings.link_type);
         capture_file->release_file();  // the writer closes it
-        if (!opened.writer) {
-            print_error(opened.error);
+        if (!opened) {
+            print_error(opened.error());
             return kExitOutputError;
         }
-        writer = std::move(opened.writer);
+        writer = std::move(opened).value();
     }
     // With -w -, the capture owns standard output; text goes to standard error.
     FILE* text_stream = settings.write == "-" ? stderr : stdout;
@@ -223,12 +223,12 @@ void add_decode_command(CLI::App& app, int& exit_code) {
         }
         OpenResult opened = open_source(
             path, input_format_from_name(command->input_format).value_or(InputFormat::Auto));
-        if (!opened.source) {
-            print_error(opened.error);
+        if (!opened) {
+            print_error(opened.error());
             exit_code = kExitUsage;
             return;
         }
-        exit_code = run_decoding(*opened.source, *settings, path);
+        exit_code = run_decoding(*opened.value(), *settings, path);
     });
 }
 
@@ -261,21 +261,23 @@ void add_hex_command(CLI::App& app, int& exit_code) {
                              "dpscope hex: reading a hex log from the terminal, one telegram or "
                              "more a line; end with Ctrl-D (or give BYTES as arguments)\n");
             OpenResult opened = open_source("-", InputFormat::Hex);
-            if (!opened.source) {
-                print_error(opened.error);
+            if (!opened) {
+                print_error(opened.error());
                 exit_code = kExitUsage;
                 return;
             }
-            exit_code = run_decoding(*opened.source, *settings, "-");
+            exit_code = run_decoding(*opened.value(), *settings, "-");
             return;
         }
         std::vector<std::uint8_t> bytes;
         for (std::size_t i = 0; i < command->bytes.size(); ++i) {
-            if (!parse_hex_bytes(command->bytes[i], bytes, error)) {
-                print_error(fmt::format("hex: argument {}: {}", i + 1, error));
+            Result<std::vector<std::uint8_t>> parsed = parse_hex_bytes(command->bytes[i]);
+            if (!parsed) {
+                print_error(fmt::format("hex: argument {}: {}", i + 1, parsed.error()));
                 exit_code = kExitUsage;
                 return;
             }
+            bytes.insert(bytes.end(), parsed->begin(), parsed->end());
         }
         auto source = memory_source("<command line>", Bytes(bytes.data(), bytes.size()));
         exit_code = run_decoding(*source, *settings, "");

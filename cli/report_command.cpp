@@ -75,8 +75,8 @@ int run_report(const ReportCommand& command) {
     }
     OpenResult opened =
         open_source(path, input_format_from_name(command.input_format).value_or(InputFormat::Auto));
-    if (!opened.source) {
-        print_error(opened.error);
+    if (!opened) {
+        print_error(opened.error());
         return kExitUsage;
     }
     if (std::string same = same_file_error({path}, command.output, "-w"); !same.empty()) {
@@ -90,7 +90,7 @@ int run_report(const ReportCommand& command) {
         print_error(error);
         return kExitOutputError;
     }
-    TelegramSource& source = *opened.source;
+    TelegramSource& source = *opened.value();
     int exit_code = kExitOk;
     {
         Output out(report_file->file());

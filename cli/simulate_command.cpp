@@ -92,11 +92,11 @@ int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
     std::unique_ptr<TelegramSource> replay;
     if (!command.replay.empty()) {
         OpenResult opened = open_source(command.replay, InputFormat::Auto);
-        if (!opened.source) {
-            print_error(opened.error);
+        if (!opened) {
+            print_error(opened.error());
             return kExitUsage;
         }
-        replay = std::move(opened.source);
+        replay = std::move(opened).value();
         replay->on_issue(
             [](const InputIssue& issue) { print_diagnostic(issue.severity, issue.message); });
     }
@@ -259,8 +259,8 @@ int run_simulate(const SimulateCommand& command) {
     }
     WriterResult opened = open_capture_writer(file->file(), file->name(), format, link_type);
     file->release_file();  // the writer closes it
-    if (!opened.writer) {
-        print_error(opened.error);
+    if (!opened) {
+        print_error(opened.error());
         return kExitOutputError;
     }
     Simulator simulator(options);
@@ -268,10 +268,10 @@ int run_simulate(const SimulateCommand& command) {
     std::vector<std::uint8_t> bytes;
     std::int64_t time_ns = 0;
     while (simulator.next(bytes, time_ns)) {
-        if (!opened.writer->write(Bytes(bytes.data(), bytes.size()), time_ns)) break;
+        if (!opened.value()->write(Bytes(bytes.data(), bytes.size()), time_ns)) break;
     }
-    if (!opened.writer->close()) {
-        print_error(fmt::format("{}{}", opened.writer->error(),
+    if (!opened.value()->close()) {
+        print_error(fmt::format("{}{}", opened.value()->error(),
                                 file->is_staged() ? "; the output file is left as it was" : ""));
         file->discard();
         return kExitOutputError;

@@ -245,11 +245,11 @@ int run_sniff(const SniffCommand& command) {
         int link_type = command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
         WriterResult opened =
             open_rotating_writer(command.output, CaptureFormat::Pcap, link_type, rotation);
-        if (!opened.writer) {
-            print_error(opened.error);
+        if (!opened) {
+            print_error(opened.error());
             return kExitOutputError;
         }
-        writer = std::move(opened.writer);
+        writer = std::move(opened).value();
     }
     std::unique_ptr<FILE, int (*)(FILE*)> report_file(nullptr, std::fclose);
     if (!command.report_file.empty() && !report_to_stdout) {

@@ -6,7 +6,6 @@
 
 #include <array>
 #include <cstdint>
-#include <limits>
 #include <optional>
 
 #include "decoder/code_tables.hpp"
@@ -15,10 +14,10 @@
 #include "decoder/fdl.hpp"
 #include "decoder/pcd.hpp"
 #include "decoder/ppo.hpp"
+#include "decoder/time.hpp"
 
 namespace dpscope {
 
-inline constexpr std::int64_t kNoTime = std::numeric_limits<std::int64_t>::min();
 inline constexpr std::size_t kStationCount = 128;
 
 struct DecoderOptions {

@@ -65,11 +65,11 @@ const TempFile& temp_file() {
 
 void read_all(const std::string& path, dpscope::InputFormat format, std::size_t turn) {
     dpscope::OpenResult opened = dpscope::open_source(path, format);
-    if (!opened.source) {
-        (void)opened.error.size();
+    if (!opened) {
+        (void)opened.error().size();
         return;
     }
-    dpscope::TelegramSource& source = *opened.source;
+    dpscope::TelegramSource& source = *opened.value();
     std::size_t issue_bytes = 0;
     source.on_issue(
         [&issue_bytes](const dpscope::InputIssue& issue) { issue_bytes += issue.message.size(); });

@@ -16,8 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         dpscope::parse_hex_log_line(text.substr(start, end - start), bytes);
         start = end + 1;
     }
-    std::string error;
-    dpscope::parse_hex_bytes(text, bytes, error);
+    (void)dpscope::parse_hex_bytes(text);
     std::size_t space = text.find(' ');
     dpscope::parse_timestamp(text.substr(0, space), space == std::string_view::npos
                                                         ? std::string_view{}

@@ -42,13 +42,13 @@ struct TempFile {
 void write_all(const std::string& path, CaptureFormat format, int link_type,
                const std::vector<Telegram>& telegrams) {
     WriterResult opened = open_capture_writer(path, format, link_type);
-    ASSERT_TRUE(opened.writer) << opened.error;
-    EXPECT_TRUE(opened.error.empty());
+    ASSERT_TRUE(opened) << opened.error();
+    EXPECT_TRUE(opened.error().empty());
     for (const Telegram& t : telegrams)
-        ASSERT_TRUE(opened.writer->write(Bytes(t.bytes.data(), t.bytes.size()), t.time_ns));
-    ASSERT_TRUE(opened.writer->flush()) << opened.writer->error();
-    ASSERT_TRUE(opened.writer->close()) << opened.writer->error();
-    EXPECT_TRUE(opened.writer->error().empty());
+        ASSERT_TRUE(opened.value()->write(Bytes(t.bytes.data(), t.bytes.size()), t.time_ns));
+    ASSERT_TRUE(opened.value()->flush()) << opened.value()->error();
+    ASSERT_TRUE(opened.value()->close()) << opened.value()->error();
+    EXPECT_TRUE(opened.value()->error().empty());
 }
 
 struct ReadBack {
@@ -62,16 +62,16 @@ struct ReadBack {
 ReadBack read_back(const std::string& path) {
     ReadBack result;
     OpenResult opened = open_source(path, InputFormat::Auto);
-    EXPECT_TRUE(opened.source) << opened.error;
-    if (!opened.source) return result;
-    opened.source->on_issue([&](const InputIssue&) { ++result.issues; });
+    EXPECT_TRUE(opened) << opened.error();
+    if (!opened) return result;
+    opened.value()->on_issue([&](const InputIssue&) { ++result.issues; });
     Record record;
-    while (opened.source->next(record))
+    while (opened.value()->next(record))
         result.telegrams.push_back(
             {std::vector<std::uint8_t>(record.bytes.begin(), record.bytes.end()), record.time_ns});
-    result.format = opened.source->format();
-    result.link_type = opened.source->link_type();
-    result.status = opened.source->status();
+    result.format = opened.value()->format();
+    result.link_type = opened.value()->link_type();
+    result.status = opened.value()->status();
     return result;
 }
 
@@ -255,16 +255,16 @@ TEST(CaptureWriterTest, PcapRefusesTimesItCannotHold) {
         TempFile file("late.pcap");
         WriterResult opened =
             open_capture_writer(file.path, CaptureFormat::Pcap, kLinkTypeProfibusDl);
-        ASSERT_TRUE(opened.writer) << opened.error;
+        ASSERT_TRUE(opened) << opened.error();
         const Telegram& first = kTelegrams[0];
-        ASSERT_TRUE(opened.writer->write(Bytes(first.bytes.data(), first.bytes.size()), kT0));
-        EXPECT_FALSE(opened.writer->write(Bytes(first.bytes.data(), first.bytes.size()), time));
-        EXPECT_NE(opened.writer->error().find(file.path + ": telegram time "), std::string::npos)
-            << opened.writer->error();
-        EXPECT_NE(opened.writer->error().find("outside what a pcap file holds (0 to 2147483647 s"),
+        ASSERT_TRUE(opened.value()->write(Bytes(first.bytes.data(), first.bytes.size()), kT0));
+        EXPECT_FALSE(opened.value()->write(Bytes(first.bytes.data(), first.bytes.size()), time));
+        EXPECT_NE(opened.value()->error().find(file.path + ": telegram time "), std::string::npos)
+            << opened.value()->error();
+        EXPECT_NE(opened.value()->error().find("outside what a pcap file holds (0 to 2147483647 s"),
                   std::string::npos)
-            << opened.writer->error();
-        EXPECT_FALSE(opened.writer->close());
+            << opened.value()->error();
+        EXPECT_FALSE(opened.value()->close());
         ReadBack r = read_back(file.path);  // what came before is kept
         expect_same(r.telegrams, {{first.bytes, kT0}}, true);
     }
@@ -281,14 +281,14 @@ TEST(CaptureWriterTest, LongPcapWritesAreFlushedEvery4096Records) {
     // forgets them): then the file on disk ends with the last record before.
     TempFile file("long.pcap");
     WriterResult opened = open_capture_writer(file.path, CaptureFormat::Pcap, kLinkTypeProfibusDl);
-    ASSERT_TRUE(opened.writer) << opened.error;
+    ASSERT_TRUE(opened) << opened.error();
     // 23 bytes a record: 4096 of them do not fill whole stdio buffers by chance.
     const std::vector<std::uint8_t> telegram = hex("10 03 02 49 4E 16 E5");
     const std::uint64_t record = kPcapRecordHeaderBytes + telegram.size();
     for (std::int64_t i = 0; i < 4097; ++i)
-        ASSERT_TRUE(opened.writer->write(Bytes(telegram.data(), telegram.size()), kT0 + i));
+        ASSERT_TRUE(opened.value()->write(Bytes(telegram.data(), telegram.size()), kT0 + i));
     EXPECT_EQ(test::read_file(file.path).size(), kPcapFileHeaderBytes + 4096 * record);
-    EXPECT_TRUE(opened.writer->close());
+    EXPECT_TRUE(opened.value()->close());
     EXPECT_EQ(read_back(file.path).telegrams.size(), 4097u);
 }
 
@@ -301,8 +301,9 @@ TEST(CaptureWriterTest, UnwritablePathFailsNamingIt) {
          {CaptureFormat::Pcap, CaptureFormat::Pcapng, CaptureFormat::Raw, CaptureFormat::Hex}) {
         SCOPED_TRACE(capture_format_name(format));
         WriterResult opened = open_capture_writer(path, format, kLinkTypeProfibusDl);
-        EXPECT_FALSE(opened.writer);
-        EXPECT_EQ(opened.error.rfind(path + ": cannot open for writing: ", 0), 0u) << opened.error;
+        EXPECT_FALSE(opened);
+        EXPECT_EQ(opened.error().rfind(path + ": cannot open for writing: ", 0), 0u)
+            << opened.error();
     }
 }
 
@@ -312,12 +313,12 @@ TEST(CaptureWriterTest, WriteErrorIsReportedOnClose) {
          {CaptureFormat::Pcap, CaptureFormat::Pcapng, CaptureFormat::Raw, CaptureFormat::Hex}) {
         SCOPED_TRACE(capture_format_name(format));
         WriterResult opened = open_capture_writer("/dev/full", format, kLinkTypeProfibusDl);
-        ASSERT_TRUE(opened.writer) << opened.error;
+        ASSERT_TRUE(opened) << opened.error();
         for (const Telegram& t : kTelegrams)
-            opened.writer->write(Bytes(t.bytes.data(), t.bytes.size()), t.time_ns);
-        EXPECT_FALSE(opened.writer->close());
-        EXPECT_EQ(opened.writer->error().rfind("/dev/full: write failed: ", 0), 0u)
-            << opened.writer->error();
+            opened.value()->write(Bytes(t.bytes.data(), t.bytes.size()), t.time_ns);
+        EXPECT_FALSE(opened.value()->close());
+        EXPECT_EQ(opened.value()->error().rfind("/dev/full: write failed: ", 0), 0u)
+            << opened.value()->error();
     }
 }
 

@@ -39,11 +39,11 @@ std::string file_content(const std::string& path) {
 
 std::size_t records_in(const std::string& path) {
     OpenResult opened = open_source(path, InputFormat::Auto);
-    EXPECT_TRUE(opened.source) << opened.error;
-    if (!opened.source) return 0;
+    EXPECT_TRUE(opened) << opened.error();
+    if (!opened) return 0;
     Record record;
     std::size_t n = 0;
-    while (opened.source->next(record))
+    while (opened.value()->next(record))
         ++n;
     return n;
 }
@@ -623,18 +623,18 @@ TEST(CliTest, SimulateThenDecodeRoundTrip) {
     options.cycles = 30;
     Simulator simulator(options);
     OpenResult opened = open_source(file.path, InputFormat::Auto);
-    ASSERT_TRUE(opened.source) << opened.error;
+    ASSERT_TRUE(opened) << opened.error();
     Record record;
     std::vector<std::uint8_t> bytes;
     std::int64_t time_ns = 0;
     std::size_t n = 0;
     while (simulator.next(bytes, time_ns)) {
-        ASSERT_TRUE(opened.source->next(record)) << n;
+        ASSERT_TRUE(opened.value()->next(record)) << n;
         EXPECT_EQ(std::vector<std::uint8_t>(record.bytes.begin(), record.bytes.end()), bytes);
         EXPECT_EQ(record.time_ns, time_ns);
         ++n;
     }
-    EXPECT_FALSE(opened.source->next(record));
+    EXPECT_FALSE(opened.value()->next(record));
 }
 
 TEST(CliTest, SimulateToStandardOutputThenDecodeFromStandardInput) {
@@ -780,9 +780,9 @@ TEST(CliTest, SimulateStartDatesTheCapture) {
         run_dpscope({"simulate", "-w", file.path, "--start", "2000000000.5", "--cycles", "5"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     OpenResult opened = open_source(file.path, InputFormat::Auto);
-    ASSERT_TRUE(opened.source) << opened.error;
+    ASSERT_TRUE(opened) << opened.error();
     Record record;
-    ASSERT_TRUE(opened.source->next(record));
+    ASSERT_TRUE(opened.value()->next(record));
     EXPECT_GE(record.time_ns, 2'000'000'000'500'000'000);
     EXPECT_LT(record.time_ns, 2'000'000'001'000'000'000);
 }

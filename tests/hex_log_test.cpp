@@ -342,18 +342,16 @@ TEST(HexLogTest, TimestampOnlyAtTheStartOfTheLine) {
 // ---- parse_hex_bytes -------------------------------------------------------------------------
 
 std::vector<std::uint8_t> strict(std::string_view text) {
-    std::vector<std::uint8_t> bytes;
-    std::string error;
-    EXPECT_TRUE(parse_hex_bytes(text, bytes, error)) << error;
-    EXPECT_TRUE(error.empty());
-    return bytes;
+    Result<std::vector<std::uint8_t>> bytes = parse_hex_bytes(text);
+    EXPECT_TRUE(bytes) << bytes.error();
+    EXPECT_TRUE(bytes.error().empty());
+    return bytes ? std::move(bytes).value() : std::vector<std::uint8_t>{};
 }
 
 std::string strict_error(std::string_view text) {
-    std::vector<std::uint8_t> bytes;
-    std::string error;
-    EXPECT_FALSE(parse_hex_bytes(text, bytes, error)) << text;
-    return error;
+    Result<std::vector<std::uint8_t>> bytes = parse_hex_bytes(text);
+    EXPECT_FALSE(bytes) << text;
+    return bytes.error();
 }
 
 TEST(HexLogTest, StrictAcceptsEveryDocumentedSpelling) {
@@ -369,11 +367,10 @@ TEST(HexLogTest, StrictAcceptsEveryDocumentedSpelling) {
     EXPECT_TRUE(strict("  \n ").empty());
 }
 
-TEST(HexLogTest, StrictAppends) {
-    std::vector<std::uint8_t> bytes = {0x10};
-    std::string error;
-    ASSERT_TRUE(parse_hex_bytes("03 02", bytes, error));
-    EXPECT_EQ(bytes, hex("10 03 02"));
+TEST(HexLogTest, StrictGivesNoBytesWhenOneTokenIsBad) {
+    Result<std::vector<std::uint8_t>> bytes = parse_hex_bytes("10 03 zz 02");
+    EXPECT_FALSE(bytes);
+    EXPECT_NE(bytes.error().find("'zz'"), std::string::npos) << bytes.error();
 }
 
 TEST(HexLogTest, StrictRejectsCorruptedTokenAndNamesIt) {

@@ -48,10 +48,10 @@ struct TempFile {
 void write_capture(const std::string& path, CaptureFormat format, int link_type,
                    const std::vector<Telegram>& telegrams = kTelegrams) {
     WriterResult opened = open_capture_writer(path, format, link_type);
-    ASSERT_TRUE(opened.writer) << opened.error;
+    ASSERT_TRUE(opened) << opened.error();
     for (const Telegram& t : telegrams)
-        ASSERT_TRUE(opened.writer->write(Bytes(t.bytes.data(), t.bytes.size()), t.time_ns));
-    ASSERT_TRUE(opened.writer->close()) << opened.writer->error();
+        ASSERT_TRUE(opened.value()->write(Bytes(t.bytes.data(), t.bytes.size()), t.time_ns));
+    ASSERT_TRUE(opened.value()->close()) << opened.value()->error();
 }
 
 struct ReadResult {
@@ -66,25 +66,25 @@ struct ReadResult {
 ReadResult read_all(const std::string& path, InputFormat format = InputFormat::Auto) {
     ReadResult result;
     OpenResult opened = open_source(path, format);
-    EXPECT_TRUE(opened.source) << opened.error;
-    if (!opened.source) return result;
-    EXPECT_TRUE(opened.error.empty()) << opened.error;
-    opened.source->on_issue([&](const InputIssue& issue) { result.issues.push_back(issue); });
+    EXPECT_TRUE(opened) << opened.error();
+    if (!opened) return result;
+    EXPECT_TRUE(opened.error().empty()) << opened.error();
+    opened.value()->on_issue([&](const InputIssue& issue) { result.issues.push_back(issue); });
     Record record;
-    while (opened.source->next(record)) {
+    while (opened.value()->next(record)) {
         result.data.emplace_back(record.bytes.begin(), record.bytes.end());
         result.records.push_back(record);
     }
-    result.status = opened.source->status();
-    result.format = opened.source->format();
-    result.link_type = opened.source->link_type();
+    result.status = opened.value()->status();
+    result.format = opened.value()->format();
+    result.link_type = opened.value()->link_type();
     return result;
 }
 
 std::string open_error(const std::string& path, InputFormat format = InputFormat::Auto) {
     OpenResult opened = open_source(path, format);
-    EXPECT_FALSE(opened.source) << path;
-    return opened.error;
+    EXPECT_FALSE(opened) << path;
+    return opened.error();
 }
 
 // A classic pcap file built byte by byte.

@@ -392,9 +392,9 @@ struct Analysis {
 std::unique_ptr<Analysis> analyse_file(const std::string& relative) {
     auto analysis = std::make_unique<Analysis>();
     OpenResult opened = open_source(test::source_dir() + "/" + relative, InputFormat::Auto);
-    EXPECT_TRUE(opened.source) << opened.error;
-    if (!opened.source) return analysis;
-    TelegramSource& source = *opened.source;
+    EXPECT_TRUE(opened) << opened.error();
+    if (!opened) return analysis;
+    TelegramSource& source = *opened.value();
     Record record;
     while (source.next(record))
         analysis->feed(record.bytes, record.time_ns, record.number);

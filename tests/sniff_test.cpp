@@ -158,15 +158,15 @@ struct Capture {
 Capture read_capture(const std::string& path) {
     Capture c;
     OpenResult opened = open_source(path, InputFormat::Auto);
-    EXPECT_TRUE(opened.source) << opened.error;
-    if (!opened.source) return c;
+    EXPECT_TRUE(opened) << opened.error();
+    if (!opened) return c;
     Record record;
-    while (opened.source->next(record)) {
+    while (opened.value()->next(record)) {
         c.telegrams.emplace_back(record.bytes.begin(), record.bytes.end());
         c.times.push_back(record.time_ns);
     }
-    c.status = opened.source->status();
-    c.link_type = opened.source->link_type();
+    c.status = opened.value()->status();
+    c.link_type = opened.value()->link_type();
     return c;
 }
 

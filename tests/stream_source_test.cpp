@@ -67,9 +67,9 @@ ReadResult drain(TelegramSource& source) {
 
 ReadResult read_all(const std::string& path, InputFormat format) {
     OpenResult opened = open_source(path, format);
-    EXPECT_TRUE(opened.source) << opened.error;
-    if (!opened.source) return {};
-    return drain(*opened.source);
+    EXPECT_TRUE(opened) << opened.error();
+    if (!opened) return {};
+    return drain(*opened.value());
 }
 
 std::vector<std::uint8_t> random_bytes(std::size_t n, std::uint32_t seed = 7) {
@@ -431,10 +431,10 @@ TEST(StreamSourceTest, HexFromStandardInputIsDecodedLineByLine) {
         OpenResult opened = open_source("-", InputFormat::Hex);
         std::vector<std::uint8_t> bytes;
         Record record;
-        if (opened.source && opened.source->next(record))
+        if (opened && opened.value()->next(record))
             bytes.assign(record.bytes.begin(), record.bytes.end());
         first.set_value(bytes);
-        while (opened.source && opened.source->next(record)) {
+        while (opened && opened.value()->next(record)) {
         }
     });
     bool in_time = first_telegram.wait_for(std::chrono::seconds(2)) == std::future_status::ready;
@@ -501,10 +501,10 @@ TEST(StreamSourceTest, RandomBytesDetectedAsRawAreNoProfibusStream) {
     EXPECT_TRUE(r.records.empty());
     EXPECT_TRUE(r.issues.empty());
     OpenResult opened = open_source(file.path, InputFormat::Auto);
-    ASSERT_TRUE(opened.source);
+    ASSERT_TRUE(opened);
     Record record;
-    EXPECT_FALSE(opened.source->next(record));
-    const std::string& reason = opened.source->unusable_reason();
+    EXPECT_FALSE(opened.value()->next(record));
+    const std::string& reason = opened.value()->unusable_reason();
     EXPECT_NE(reason.find(file.path + ": not a PROFIBUS byte stream: "), std::string::npos)
         << reason;
     EXPECT_NE(reason.find("of its first 65536 bytes (9"), std::string::npos) << reason;
@@ -561,12 +561,12 @@ TEST(StreamSourceTest, ShortInputIsJudgedWholeFromMinimumSize) {
     TempFile file("short.raw");
     test::write_file(file.path, concat({kSd1, noise, kSd2}));
     OpenResult opened = open_source(file.path, InputFormat::Auto);
-    ASSERT_TRUE(opened.source);
-    ReadResult r = drain(*opened.source);
+    ASSERT_TRUE(opened);
+    ReadResult r = drain(*opened.value());
     EXPECT_EQ(r.status, InputStatus::Unusable);
-    EXPECT_NE(opened.source->unusable_reason().find("581 of its 600 bytes (96.8 %)"),
+    EXPECT_NE(opened.value()->unusable_reason().find("581 of its 600 bytes (96.8 %)"),
               std::string::npos)
-        << opened.source->unusable_reason();
+        << opened.value()->unusable_reason();
     // Below kMinJudgedBytes there is no verdict.
     noise.resize(FramedSource::kMinJudgedBytes - 1 - kSd1.size() - kSd2.size());
     test::write_file(file.path, concat({kSd1, noise, kSd2}));
@@ -583,12 +583,12 @@ TEST(StreamSourceTest, HexLogMostlySkippedIsNoProfibusLogUnlessForced) {
     TempFile file("numbers.txt");
     test::write_text_file(file.path, text);
     OpenResult opened = open_source(file.path, InputFormat::Auto);
-    ASSERT_TRUE(opened.source);
-    ReadResult r = drain(*opened.source);
+    ASSERT_TRUE(opened);
+    ReadResult r = drain(*opened.value());
     EXPECT_EQ(r.status, InputStatus::Unusable);
-    EXPECT_NE(opened.source->unusable_reason().find(": not a PROFIBUS hex log: "),
+    EXPECT_NE(opened.value()->unusable_reason().find(": not a PROFIBUS hex log: "),
               std::string::npos);
-    EXPECT_NE(opened.source->unusable_reason().find("--input-format hex decodes it anyway"),
+    EXPECT_NE(opened.value()->unusable_reason().find("--input-format hex decodes it anyway"),
               std::string::npos);
     r = read_all(file.path, InputFormat::Hex);
     EXPECT_EQ(r.status, InputStatus::Ok);
@@ -600,9 +600,9 @@ TEST(StreamSourceTest, StopAfterReportsNothingPastTheLastTelegram) {
     test::write_file(file.path,
                      concat({kSd1, hex("01 02"), kSd2, hex("03 04 05"), kToken, hex("06"), kAck}));
     OpenResult opened = open_source(file.path, InputFormat::Raw);
-    ASSERT_TRUE(opened.source);
-    opened.source->stop_after(2);
-    ReadResult r = drain(*opened.source);
+    ASSERT_TRUE(opened);
+    opened.value()->stop_after(2);
+    ReadResult r = drain(*opened.value());
     ASSERT_EQ(r.records.size(), 2u);
     EXPECT_EQ(r.data[1], kSd2);
     ASSERT_EQ(r.issues.size(), 1u);  // the two bytes before the second telegram only
@@ -610,7 +610,7 @@ TEST(StreamSourceTest, StopAfterReportsNothingPastTheLastTelegram) {
         << r.issues[0].message;
     EXPECT_EQ(r.skipped, 2u);
     Record record;
-    EXPECT_FALSE(opened.source->next(record));  // and stays stopped
+    EXPECT_FALSE(opened.value()->next(record));  // and stays stopped
 }
 
 TEST(StreamSourceTest, TimesGoingBackwardsOrJumpingAreReportedOncePerKind) {

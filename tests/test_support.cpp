@@ -18,10 +18,9 @@
 namespace dpscope::test {
 
 std::vector<std::uint8_t> hex(std::string_view text) {
-    std::vector<std::uint8_t> bytes;
-    std::string error;
-    EXPECT_TRUE(parse_hex_bytes(text, bytes, error)) << error;
-    return bytes;
+    Result<std::vector<std::uint8_t>> bytes = parse_hex_bytes(text);
+    EXPECT_TRUE(bytes) << bytes.error();
+    return bytes ? std::move(bytes).value() : std::vector<std::uint8_t>{};
 }
 
 std::string source_dir() { return DPSCOPE_SOURCE_DIR; }
