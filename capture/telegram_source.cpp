@@ -10,6 +10,7 @@
 
 #include "capture/pcap_source.hpp"
 #include "capture/stream_source.hpp"
+#include "decoder/fdl_framing_rules.hpp"
 
 namespace dpscope {
 
@@ -231,22 +232,28 @@ OpenResult open_source(const std::string& path, InputFormat format) {
         return result;
     }
     std::setvbuf(stream, nullptr, _IOFBF, 1 << 16);
+    // A byte stream is framed by its protocol's rules; PROFIBUS FDL is the only one today.
+    const FramingRules& rules = fdl_framing_rules();
     switch (format) {
         case InputFormat::Pcap:
         case InputFormat::Pcapng:
             result.source = pcapng ? open_pcapng_source(stream, name, result.error)
                                    : open_pcap_source(stream, name, classic_pcap, result.error);
             break;
-        case InputFormat::Hex: result.source = make_hex_source(stream, name, detected); break;
+        case InputFormat::Hex:
+            result.source = make_hex_source(stream, name, detected, rules);
+            break;
         case InputFormat::Raw:
         case InputFormat::Serial:
-        case InputFormat::Auto: result.source = make_raw_source(stream, name, detected); break;
+        case InputFormat::Auto:
+            result.source = make_raw_source(stream, name, detected, rules);
+            break;
     }
     return result;
 }
 
 std::unique_ptr<TelegramSource> memory_source(std::string display_name, Bytes bytes) {
-    return make_memory_source(std::move(display_name), bytes);
+    return make_memory_source(std::move(display_name), bytes, fdl_framing_rules());
 }
 
 }  // namespace dpscope
