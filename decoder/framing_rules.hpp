@@ -60,9 +60,9 @@ class FramingRules {
     // candidates that begin with one (a byte that may not is skipped as BadStartDelimiter).
     bool can_start(std::uint8_t byte) const noexcept { return starts_[byte]; }
 
-    // Judges the candidate telegram at the start of `candidate`: every byte received since a byte
-    // that can_start(), that one first (never empty). `at_end`: nothing follows these bytes (the
-    // input ended, or the line was idle). The answer:
+    // Judges the candidate telegram at the start of `candidate`: the undecided bytes received so
+    // far, the first of them one that can_start() (never empty). `at_end`: nothing follows them
+    // (the input ended, or the line was idle). The answer:
     //   need_more()                  the bytes so far may still become a telegram; at the end the
     //                                framer gives the candidate up as cut off (Truncated), one
     //                                byte at a time, so telegrams behind it are still found;
