@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "decoder/bus_decoder.hpp"
+#include "decoder/fdl_framing_rules.hpp"
 #include "decoder/stream_framer.hpp"
 #include "formats/output.hpp"
 #include "formats/renderer.hpp"
@@ -75,7 +76,7 @@ void BM_StreamFramer(benchmark::State& state) {
     const Session& s = session();
     const std::size_t chunk = static_cast<std::size_t>(state.range(0));
     for (auto _ : state) {
-        dpscope::StreamFramer framer;
+        dpscope::StreamFramer framer(dpscope::fdl_framing_rules());
         CountingSink sink;
         for (std::size_t at = 0; at < s.stream.size(); at += chunk)
             framer.feed(dpscope::Bytes(s.stream.data() + at, std::min(chunk, s.stream.size() - at)),

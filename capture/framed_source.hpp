@@ -1,12 +1,13 @@
-// A telegram source over a byte stream split by the StreamFramer: raw dumps, hex logs, bytes in
-// memory and serial ports share it. Subclasses feed bytes (fill); this class hands the framed
-// telegrams out one by one with their stream offsets and times, and reports skipped bytes in
-// stream order with them (so nothing is reported about bytes after the last telegram handed out).
+// A telegram source over a byte stream split by the StreamFramer with a protocol's framing rules
+// (decoder/framing_rules.hpp): raw dumps, hex logs, bytes in memory and serial ports share it.
+// Subclasses feed bytes (fill); this class hands the framed telegrams out one by one with their
+// stream offsets and times, and reports skipped bytes in stream order with them (so nothing is
+// reported about bytes after the last telegram handed out).
 //
 // A source that judges its input (judge_input) holds its telegrams back until it has decided
 // `window` bytes of the stream, or the whole of a shorter input: when more than half of at least
-// kMinJudgedBytes of them form no telegram, the input is no PROFIBUS stream and the source is
-// Unusable, without handing anything out.
+// kMinJudgedBytes of them form no telegram, the input is no stream of the rules' protocol and the
+// source is Unusable, without handing anything out.
 #pragma once
 
 #include <cstdint>
@@ -20,7 +21,9 @@ namespace dpscope {
 
 class FramedSource : public TelegramSource, private StreamFramer::Sink {
   public:
-    using TelegramSource::TelegramSource;
+    // `rules` must outlive the source (the protocols' rules are static: fdl_framing_rules()).
+    FramedSource(std::string display_name, const FramingRules& rules)
+        : TelegramSource(std::move(display_name)), framer_(rules) {}
 
     enum class Poll { Telegram, Idle, End };
     // Like next(), but returns Idle when the input has nothing for now (live sources).
@@ -77,7 +80,8 @@ class FramedSource : public TelegramSource, private StreamFramer::Sink {
 
     void on_telegram(Bytes telegram, std::uint64_t offset) override;
     void on_skipped(const SkippedBytes& skipped) override;
-    // The verdict on a judged input once enough of it is decided; false: not a PROFIBUS stream.
+    // The verdict on a judged input once enough of it is decided; false: not a stream of the
+    // protocol.
     bool judge();
 
     StreamFramer framer_;

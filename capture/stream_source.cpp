@@ -11,11 +11,8 @@
 
 #include "capture/framed_source.hpp"
 #include "capture/hex_log.hpp"
-#include "decoder/stream_framer.hpp"
 
 namespace dpscope {
-
-namespace {}  // namespace
 
 bool FramedSource::read_next(Record& record) {
     for (;;) {
@@ -76,9 +73,9 @@ bool FramedSource::judge() {
     const std::uint64_t skipped = framer_.bytes_skipped();
     if (decided < kMinJudgedBytes || skipped * 2 <= decided) return true;
     set_unusable(fmt::format(
-        "{}: not a PROFIBUS {}: {} of {} {} bytes ({:.1f} %) form no telegram; {} decodes it "
-        "anyway",
-        name(), judged_what_, skipped, finished_ ? "its" : "its first", decided,
+        "{}: not a {} {}: {} of {} {} bytes ({:.1f} %) form no telegram; {} decodes it anyway",
+        name(), framer_.rules().protocol_name(), judged_what_, skipped,
+        finished_ ? "its" : "its first", decided,
         100.0 * static_cast<double>(skipped) / static_cast<double>(decided), judged_forced_));
     return false;
 }
@@ -99,9 +96,9 @@ void FramedSource::on_telegram(Bytes telegram, std::uint64_t offset) {
 
 void FramedSource::on_skipped(const SkippedBytes& skipped) {
     entries_.push_back(Entry{issues_.size(), 0, skipped.offset, kNoTime, true});
-    issues_.push_back(
-        Issue{Severity::Warning, IssueKind::SkippedBytes, skipped.count,
-              fmt::format("{}: {}: {}", name(), where(skipped.offset), describe_skip(skipped))});
+    issues_.push_back(Issue{Severity::Warning, IssueKind::SkippedBytes, skipped.count,
+                            fmt::format("{}: {}: {}", name(), where(skipped.offset),
+                                        framer_.rules().describe_skip(skipped))});
 }
 
 namespace {
@@ -119,7 +116,8 @@ std::size_t read_available(FILE* file, std::uint8_t* data, std::size_t size) {
 
 class RawSource final : public FramedSource {
   public:
-    RawSource(FILE* file, std::string name) : FramedSource(std::move(name)), file_(file) {
+    RawSource(FILE* file, std::string name, const FramingRules& rules)
+        : FramedSource(std::move(name), rules), file_(file) {
         struct stat info {};
         regular_ = fileno(file) >= 0 && ::fstat(fileno(file), &info) == 0 && S_ISREG(info.st_mode);
     }
@@ -151,7 +149,8 @@ class RawSource final : public FramedSource {
 
 class HexSource final : public FramedSource {
   public:
-    HexSource(FILE* file, std::string name) : FramedSource(std::move(name)), file_(file) {}
+    HexSource(FILE* file, std::string name, const FramingRules& rules)
+        : FramedSource(std::move(name), rules), file_(file) {}
     ~HexSource() override {
         std::free(line_);
         std::fclose(file_);
@@ -298,8 +297,8 @@ class HexSource final : public FramedSource {
 
 class MemorySource final : public FramedSource {
   public:
-    MemorySource(std::string name, Bytes bytes)
-        : FramedSource(std::move(name)), bytes_(bytes.begin(), bytes.end()) {}
+    MemorySource(std::string name, Bytes bytes, const FramingRules& rules)
+        : FramedSource(std::move(name), rules), bytes_(bytes.begin(), bytes.end()) {}
     InputFormat format() const override { return InputFormat::Hex; }
 
   private:
@@ -319,20 +318,23 @@ class MemorySource final : public FramedSource {
 
 }  // namespace
 
-std::unique_ptr<TelegramSource> make_raw_source(FILE* file, std::string name, bool judged) {
-    auto source = std::make_unique<RawSource>(file, std::move(name));
+std::unique_ptr<TelegramSource> make_raw_source(FILE* file, std::string name, bool judged,
+                                                const FramingRules& rules) {
+    auto source = std::make_unique<RawSource>(file, std::move(name), rules);
     if (judged) source->judge_input(kJudgedRawBytes, "byte stream", "--input-format raw");
     return source;
 }
 
-std::unique_ptr<TelegramSource> make_hex_source(FILE* file, std::string name, bool judged) {
-    auto source = std::make_unique<HexSource>(file, std::move(name));
+std::unique_ptr<TelegramSource> make_hex_source(FILE* file, std::string name, bool judged,
+                                                const FramingRules& rules) {
+    auto source = std::make_unique<HexSource>(file, std::move(name), rules);
     if (judged) source->judge_input(kJudgedHexBytes, "hex log", "--input-format hex");
     return source;
 }
 
-std::unique_ptr<TelegramSource> make_memory_source(std::string name, Bytes bytes) {
-    return std::make_unique<MemorySource>(std::move(name), bytes);
+std::unique_ptr<TelegramSource> make_memory_source(std::string name, Bytes bytes,
+                                                   const FramingRules& rules) {
+    return std::make_unique<MemorySource>(std::move(name), bytes, rules);
 }
 
 }  // namespace dpscope

@@ -1,5 +1,5 @@
-// Byte-stream inputs framed by the StreamFramer: raw serial dumps, hex text logs, and bytes
-// already in memory.
+// Byte-stream inputs framed by the StreamFramer with a protocol's framing rules: raw serial dumps,
+// hex text logs, and bytes already in memory.
 #pragma once
 
 #include <cstdint>
@@ -8,6 +8,7 @@
 #include <string>
 
 #include "capture/telegram_source.hpp"
+#include "decoder/framing_rules.hpp"
 
 namespace dpscope {
 
@@ -18,9 +19,13 @@ inline constexpr std::uint64_t kJudgedRawBytes = 64 * 1024;
 inline constexpr std::uint64_t kJudgedHexBytes = 4 * 1024;
 
 // Each takes ownership of `file`. `judged`: the kind was detected, not forced, so an input that
-// is mostly no telegrams is refused (Unusable) instead of decoded.
-std::unique_ptr<TelegramSource> make_raw_source(FILE* file, std::string name, bool judged);
-std::unique_ptr<TelegramSource> make_hex_source(FILE* file, std::string name, bool judged);
-std::unique_ptr<TelegramSource> make_memory_source(std::string name, Bytes bytes);
+// is mostly no telegrams is refused (Unusable) instead of decoded. `rules` (the protocol's
+// framing) must outlive the source.
+std::unique_ptr<TelegramSource> make_raw_source(FILE* file, std::string name, bool judged,
+                                                const FramingRules& rules);
+std::unique_ptr<TelegramSource> make_hex_source(FILE* file, std::string name, bool judged,
+                                                const FramingRules& rules);
+std::unique_ptr<TelegramSource> make_memory_source(std::string name, Bytes bytes,
+                                                   const FramingRules& rules);
 
 }  // namespace dpscope

@@ -10,6 +10,7 @@
 
 #include "capture/pcap_source.hpp"
 #include "capture/stream_source.hpp"
+#include "decoder/fdl_framing_rules.hpp"
 
 namespace dpscope {
 
@@ -227,21 +228,23 @@ OpenResult open_source(const std::string& path, InputFormat format) {
         return Error{std::move(error)};
     }
     std::setvbuf(stream, nullptr, _IOFBF, 1 << 16);
+    // A byte stream is framed by its protocol's rules; PROFIBUS FDL is the only one today.
+    const FramingRules& rules = fdl_framing_rules();
     switch (format) {
         case InputFormat::Pcap:
         case InputFormat::Pcapng:
             return pcapng ? open_pcapng_source(stream, name)
                           : open_pcap_source(stream, name, classic_pcap);
-        case InputFormat::Hex: return make_hex_source(stream, name, detected);
+        case InputFormat::Hex: return make_hex_source(stream, name, detected, rules);
         case InputFormat::Raw:
         case InputFormat::Serial:
         case InputFormat::Auto: break;
     }
-    return make_raw_source(stream, name, detected);
+    return make_raw_source(stream, name, detected, rules);
 }
 
 std::unique_ptr<TelegramSource> memory_source(std::string display_name, Bytes bytes) {
-    return make_memory_source(std::move(display_name), bytes);
+    return make_memory_source(std::move(display_name), bytes, fdl_framing_rules());
 }
 
 }  // namespace dpscope

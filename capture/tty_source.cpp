@@ -26,8 +26,8 @@ std::int64_t wall_clock_ns() {
 }
 
 TtySource::TtySource(std::unique_ptr<SerialPort> port, int fd, std::string name,
-                     TtySourceOptions options)
-    : FramedSource(std::move(name)),
+                     TtySourceOptions options, const FramingRules& rules)
+    : FramedSource(std::move(name), rules),
       port_(std::move(port)),
       fd_(fd),
       options_(options),

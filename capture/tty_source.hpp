@@ -1,5 +1,5 @@
 // Telegrams read live from a serial port (or any tty, such as one end of a pseudo-terminal),
-// framed by the stream framer.
+// framed by the stream framer with the protocol's framing rules.
 //
 // Times: a read returns the bytes that arrived since the last one; the last of them arrived
 // about when read() returned, each earlier byte one character time (11 bits at the configured
@@ -40,7 +40,9 @@ struct TtySourceOptions {
 class TtySource final : public FramedSource {
   public:
     // `port` may be null when `fd` is an already configured descriptor the caller keeps open.
-    TtySource(std::unique_ptr<SerialPort> port, int fd, std::string name, TtySourceOptions options);
+    // `rules` (the protocol's framing, e.g. fdl_framing_rules()) must outlive the source.
+    TtySource(std::unique_ptr<SerialPort> port, int fd, std::string name, TtySourceOptions options,
+              const FramingRules& rules);
 
     InputFormat format() const override { return InputFormat::Serial; }
 

@@ -131,20 +131,4 @@ struct FdlTelegram {
 // reported as TrailingBytes.
 void parse_fdl(Bytes bytes, FdlTelegram& out) noexcept;
 
-// Framing decision for a byte stream: is there a whole telegram at the start of `buffer`?
-enum class FrameStatus : std::uint8_t { Complete, NeedMore, Invalid };
-
-struct FrameCheck {
-    FrameStatus status = FrameStatus::NeedMore;
-    std::uint16_t length = 0;                             // Complete: telegram size in bytes
-    ProblemKind reason = ProblemKind::BadStartDelimiter;  // Invalid: which check failed
-    std::uint16_t reason_offset = 0;                      // Invalid: at which byte
-};
-
-// Checks structure: start delimiter, LE = LEr, repeated SD, length range, end delimiter, FCS.
-// A telegram whose structure is intact but whose FCS is wrong is still Complete (the decoder
-// reports the FCS error): for SD2 the length redundancy makes that safe; for SD1/SD3 the byte
-// after the telegram must be a start delimiter too (or the input must have ended).
-FrameCheck check_frame(Bytes buffer, bool input_ended) noexcept;
-
 }  // namespace dpscope

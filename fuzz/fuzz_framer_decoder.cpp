@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "decoder/bus_decoder.hpp"
+#include "decoder/fdl_framing_rules.hpp"
 #include "decoder/stream_framer.hpp"
 #include "formats/output.hpp"
 #include "formats/renderer.hpp"
@@ -39,7 +40,7 @@ struct RenderAll final : dpscope::StreamFramer::Sink {
     }
     void on_telegram(dpscope::Bytes telegram, std::uint64_t) override { decode(telegram); }
     void on_skipped(const dpscope::SkippedBytes& skipped) override {
-        (void)dpscope::describe_skip(skipped);
+        (void)dpscope::fdl_framing_rules().describe_skip(skipped);
     }
 };
 
@@ -47,7 +48,7 @@ struct RenderAll final : dpscope::StreamFramer::Sink {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     RenderAll all;
-    dpscope::StreamFramer framer;
+    dpscope::StreamFramer framer(dpscope::fdl_framing_rules());
     std::size_t chunk = size > 0 ? (data[0] % 17) + 1 : 1;
     for (std::size_t at = 0; at < size; at += chunk) {
         std::size_t n = std::min(chunk, size - at);

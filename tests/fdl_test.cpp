@@ -283,37 +283,5 @@ TEST(FdlTest, FrameControlNames) {
     EXPECT_FALSE(function_expects_reply(0x06));
 }
 
-TEST(FdlTest, CheckFrameDecidesStreamBoundaries) {
-    auto check = [](const std::vector<std::uint8_t>& bytes, bool ended = false) {
-        return check_frame(Bytes(bytes.data(), bytes.size()), ended);
-    };
-    EXPECT_EQ(check(kSd1).status, FrameStatus::Complete);
-    EXPECT_EQ(check(kSd1).length, 6);
-    EXPECT_EQ(check(hex("10 03 02")).status, FrameStatus::NeedMore);
-    EXPECT_EQ(check(kSd2).length, 13);
-    EXPECT_EQ(check(hex("68 07 07 68 83")).status, FrameStatus::NeedMore);
-    FrameCheck bad_ler = check(hex("68 07 08 68"));
-    EXPECT_EQ(bad_ler.status, FrameStatus::Invalid);
-    EXPECT_EQ(bad_ler.reason, ProblemKind::LengthMismatch);
-    EXPECT_EQ(check(hex("42")).reason, ProblemKind::BadStartDelimiter);
-    EXPECT_EQ(check(hex("E5")).length, 1);
-    EXPECT_EQ(check(hex("DC 02 02")).length, 3);
-    // SD2 with a wrong FCS but intact structure is still a telegram.
-    auto bad_fcs = kSd2;
-    bad_fcs[11] ^= 1;
-    EXPECT_EQ(check(bad_fcs).status, FrameStatus::Complete);
-    // SD1 with a wrong FCS: believed only when a telegram follows or the input ended.
-    auto sd1_bad = hex("10 03 02 49 4F 16");
-    EXPECT_EQ(check(sd1_bad).status, FrameStatus::NeedMore);
-    EXPECT_EQ(check(sd1_bad, true).status, FrameStatus::Complete);
-    auto followed = sd1_bad;
-    followed.push_back(0xE5);
-    EXPECT_EQ(check(followed).status, FrameStatus::Complete);
-    auto garbage_after = sd1_bad;
-    garbage_after.push_back(0x42);
-    EXPECT_EQ(check(garbage_after).status, FrameStatus::Invalid);
-    EXPECT_EQ(check(garbage_after).reason, ProblemKind::FcsMismatch);
-}
-
 }  // namespace
 }  // namespace dpscope

@@ -1,5 +1,5 @@
 // StreamFramer: chunked input of every size, resynchronisation after garbage, the FCS rules for
-// SD1/SD2/SD3, gaps, the end of input and the counters.
+// SD1/SD2/SD3, gaps, the end of input and the counters; framing by another protocol's rules.
 #include "decoder/stream_framer.hpp"
 
 #include <gtest/gtest.h>
@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "decoder/fdl_framing_rules.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -73,7 +74,7 @@ void feed_all(StreamFramer& framer, const std::vector<std::uint8_t>& bytes, Reco
 
 TEST(StreamFramerTest, SplitsEveryFrameTypeInOneChunk) {
     auto stream = concat({kSd1, kSd2, kSd3, kToken, kShortAck});
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, stream, sink);
     framer.finish(sink);
@@ -101,7 +102,7 @@ TEST(StreamFramerTest, SplitsEveryFrameTypeInOneChunk) {
 TEST(StreamFramerTest, ChunkSizeDoesNotChangeTheResult) {
     auto stream = concat({hex("00 42"), kSd1, kSd2, kSd1BadFcs, kSd3, kToken, hex("68 FF 33"),
                           kShortAck, kSd2BadFcs, kSd3BadFcs, kSd1});
-    StreamFramer whole;
+    StreamFramer whole(fdl_framing_rules());
     RecordingSink expected;
     feed_all(whole, stream, expected);
     whole.finish(expected);
@@ -131,7 +132,7 @@ TEST(StreamFramerTest, ChunkSizeDoesNotChangeTheResult) {
 
     for (std::size_t chunk = 1; chunk <= stream.size(); ++chunk) {
         SCOPED_TRACE("chunk size " + std::to_string(chunk));
-        StreamFramer framer;
+        StreamFramer framer(fdl_framing_rules());
         RecordingSink sink;
         for (std::size_t at = 0; at < stream.size(); at += chunk) {
             std::size_t n = std::min(chunk, stream.size() - at);
@@ -157,7 +158,7 @@ TEST(StreamFramerTest, ChunkSizeDoesNotChangeTheResult) {
 }
 
 TEST(StreamFramerTest, ResyncsAfterGarbageAndReportsTheRunOnce) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, concat({hex("00 42 FF"), kSd1}), sink);
     ASSERT_EQ(sink.events.size(), 2u);
@@ -167,10 +168,10 @@ TEST(StreamFramerTest, ResyncsAfterGarbageAndReportsTheRunOnce) {
     EXPECT_EQ(skipped.count, 3u);
     EXPECT_EQ(skipped.reason, ProblemKind::BadStartDelimiter);
     EXPECT_EQ(skipped.reason_offset, 0);
-    EXPECT_EQ(describe_skip(skipped), "skipped 3 bytes: no start delimiter");
+    EXPECT_EQ(fdl_framing_rules().describe_skip(skipped), "skipped 3 bytes: no start delimiter");
     SkippedBytes one = skipped;
     one.count = 1;
-    EXPECT_EQ(describe_skip(one), "skipped 1 byte: no start delimiter");
+    EXPECT_EQ(fdl_framing_rules().describe_skip(one), "skipped 1 byte: no start delimiter");
     ASSERT_TRUE(sink.events[1].telegram);
     EXPECT_EQ(sink.events[1].offset, 3u);
     EXPECT_EQ(sink.events[1].bytes, kSd1);
@@ -178,7 +179,7 @@ TEST(StreamFramerTest, ResyncsAfterGarbageAndReportsTheRunOnce) {
 }
 
 TEST(StreamFramerTest, GarbageBetweenTelegramsIsSkippedAtItsOffset) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, concat({kSd1, hex("00 00"), kSd2}), sink);
     ASSERT_EQ(sink.events.size(), 3u);
@@ -191,7 +192,7 @@ TEST(StreamFramerTest, GarbageBetweenTelegramsIsSkippedAtItsOffset) {
 }
 
 TEST(StreamFramerTest, SkippedRunSpanningFeedsIsReportedOnceWithFirstReason) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, hex("68 FF"), sink);  // LE out of range at byte 1
     feed_all(framer, hex("42 43"), sink);
@@ -204,13 +205,13 @@ TEST(StreamFramerTest, SkippedRunSpanningFeedsIsReportedOnceWithFirstReason) {
     EXPECT_EQ(skipped.count, 4u);
     EXPECT_EQ(skipped.reason, ProblemKind::LengthOutOfRange);
     EXPECT_EQ(skipped.reason_offset, 1);
-    EXPECT_EQ(describe_skip(skipped),
+    EXPECT_EQ(fdl_framing_rules().describe_skip(skipped),
               "skipped 4 bytes: LE outside 3..249 (byte 1 of the candidate telegram)");
     EXPECT_EQ(sink.events[1].offset, 4u);
 }
 
 TEST(StreamFramerTest, LengthRepeatMismatchIsSkipped) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, concat({hex("68 07 08 68 83 82 7D 3E 3E F3 F1 E2 16"), kShortAck}), sink);
     auto skips = sink.skips();
@@ -228,7 +229,7 @@ TEST(StreamFramerTest, Sd2WithBadEndDelimiterIsSkipped) {
     auto bad = kSd2;
     bad.pop_back();  // replace the end delimiter
     bad.push_back(0x17);
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, concat({bad, kShortAck}), sink);
     auto skips = sink.skips();
@@ -237,7 +238,7 @@ TEST(StreamFramerTest, Sd2WithBadEndDelimiterIsSkipped) {
     EXPECT_EQ(skips[0].count, 13u);
     EXPECT_EQ(skips[0].reason, ProblemKind::BadEndDelimiter);
     EXPECT_EQ(skips[0].reason_offset, 12);
-    EXPECT_EQ(describe_skip(skips[0]),
+    EXPECT_EQ(fdl_framing_rules().describe_skip(skips[0]),
               "skipped 13 bytes: no end delimiter where the length puts it (byte 12 of the "
               "candidate telegram)");
     ASSERT_EQ(sink.telegrams().size(), 1u);
@@ -245,7 +246,7 @@ TEST(StreamFramerTest, Sd2WithBadEndDelimiterIsSkipped) {
 }
 
 TEST(StreamFramerTest, TokenWithBit7AddressIsSkipped) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, concat({hex("DC 82 02"), kShortAck}), sink);
     auto skips = sink.skips();
@@ -258,7 +259,7 @@ TEST(StreamFramerTest, TokenWithBit7AddressIsSkipped) {
 }
 
 TEST(StreamFramerTest, Sd1BadFcsAcceptedWhenAStartDelimiterFollows) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, concat({kSd1BadFcs, kShortAck}), sink);
     auto telegrams = sink.telegrams();
@@ -270,7 +271,7 @@ TEST(StreamFramerTest, Sd1BadFcsAcceptedWhenAStartDelimiterFollows) {
 }
 
 TEST(StreamFramerTest, Sd1BadFcsWaitsForTheNextByte) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, kSd1BadFcs, sink);
     EXPECT_TRUE(sink.events.empty());
@@ -285,7 +286,7 @@ TEST(StreamFramerTest, Sd1BadFcsWaitsForTheNextByte) {
 }
 
 TEST(StreamFramerTest, Sd1BadFcsRejectedWhenGarbageFollows) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, concat({kSd1BadFcs, hex("42"), kSd2}), sink);
     auto skips = sink.skips();
@@ -294,7 +295,7 @@ TEST(StreamFramerTest, Sd1BadFcsRejectedWhenGarbageFollows) {
     EXPECT_EQ(skips[0].count, 7u);
     EXPECT_EQ(skips[0].reason, ProblemKind::FcsMismatch);
     EXPECT_EQ(skips[0].reason_offset, 4);
-    EXPECT_EQ(describe_skip(skips[0]),
+    EXPECT_EQ(fdl_framing_rules().describe_skip(skips[0]),
               "skipped 7 bytes: FCS wrong and no telegram follows (byte 4 of the candidate "
               "telegram)");
     auto telegrams = sink.telegrams();
@@ -304,7 +305,7 @@ TEST(StreamFramerTest, Sd1BadFcsRejectedWhenGarbageFollows) {
 }
 
 TEST(StreamFramerTest, Sd1BadFcsAcceptedAtFinish) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, kSd1BadFcs, sink);
     EXPECT_TRUE(sink.events.empty());
@@ -319,7 +320,7 @@ TEST(StreamFramerTest, Sd1BadFcsAcceptedAtFinish) {
 
 TEST(StreamFramerTest, Sd3BadFcsAcceptedOnlyBeforeAStartDelimiterOrAtFinish) {
     {
-        StreamFramer framer;
+        StreamFramer framer(fdl_framing_rules());
         RecordingSink sink;
         feed_all(framer, concat({kSd3BadFcs, kToken}), sink);
         ASSERT_EQ(sink.telegrams().size(), 2u);
@@ -327,7 +328,7 @@ TEST(StreamFramerTest, Sd3BadFcsAcceptedOnlyBeforeAStartDelimiterOrAtFinish) {
         EXPECT_EQ(sink.telegrams()[1].offset, 14u);
     }
     {
-        StreamFramer framer;
+        StreamFramer framer(fdl_framing_rules());
         RecordingSink sink;
         feed_all(framer, concat({kSd3BadFcs, hex("00"), kShortAck}), sink);
         auto skips = sink.skips();
@@ -339,7 +340,7 @@ TEST(StreamFramerTest, Sd3BadFcsAcceptedOnlyBeforeAStartDelimiterOrAtFinish) {
         EXPECT_EQ(sink.telegrams()[0].offset, 15u);
     }
     {
-        StreamFramer framer;
+        StreamFramer framer(fdl_framing_rules());
         RecordingSink sink;
         feed_all(framer, kSd3BadFcs, sink);
         EXPECT_TRUE(sink.events.empty());
@@ -350,7 +351,7 @@ TEST(StreamFramerTest, Sd3BadFcsAcceptedOnlyBeforeAStartDelimiterOrAtFinish) {
 }
 
 TEST(StreamFramerTest, Sd2BadFcsAcceptedWhateverFollows) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, concat({kSd2BadFcs, hex("42")}), sink);
     auto telegrams = sink.telegrams();
@@ -366,7 +367,7 @@ TEST(StreamFramerTest, Sd2BadFcsAcceptedWhateverFollows) {
 }
 
 TEST(StreamFramerTest, MarkGapDecidesACutOffTelegram) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, std::vector<std::uint8_t>(kSd2.begin(), kSd2.begin() + 7), sink);
     EXPECT_TRUE(sink.events.empty());
@@ -378,7 +379,8 @@ TEST(StreamFramerTest, MarkGapDecidesACutOffTelegram) {
     EXPECT_EQ(skips[0].offset, 0u);
     EXPECT_EQ(skips[0].count, 7u);
     EXPECT_EQ(skips[0].reason, ProblemKind::Truncated);
-    EXPECT_EQ(describe_skip(skips[0]), "skipped 7 bytes: telegram cut off (gap or end of input)");
+    EXPECT_EQ(fdl_framing_rules().describe_skip(skips[0]),
+              "skipped 7 bytes: telegram cut off (gap or end of input)");
     EXPECT_TRUE(sink.telegrams().empty());
 
     // The rest of the telegram after the gap cannot complete it.
@@ -397,7 +399,7 @@ TEST(StreamFramerTest, MarkGapDecidesACutOffTelegram) {
 }
 
 TEST(StreamFramerTest, MarkGapDeliversACompleteTelegramWaitingForItsSuccessor) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, kSd1BadFcs, sink);
     framer.mark_gap(sink);
@@ -411,7 +413,7 @@ TEST(StreamFramerTest, MarkGapDeliversACompleteTelegramWaitingForItsSuccessor) {
 }
 
 TEST(StreamFramerTest, MarkGapWithNothingPendingDoesNothing) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     framer.mark_gap(sink);
     feed_all(framer, kToken, sink);
@@ -421,7 +423,7 @@ TEST(StreamFramerTest, MarkGapWithNothingPendingDoesNothing) {
 }
 
 TEST(StreamFramerTest, FinishReportsACutOffTelegramAfterAWholeOne) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, concat({kSd1, std::vector<std::uint8_t>(kSd2.begin(), kSd2.begin() + 9)}),
              sink);
@@ -441,7 +443,7 @@ TEST(StreamFramerTest, FinishReportsACutOffTelegramAfterAWholeOne) {
 
 TEST(StreamFramerTest, FinishRecoversWholeTelegramsBehindACutOffOne) {
     // An SD2 header that never completes, with a short acknowledge inside its length.
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     feed_all(framer, hex("68 07 07 68 83 E5"), sink);
     EXPECT_TRUE(sink.events.empty());
@@ -457,7 +459,7 @@ TEST(StreamFramerTest, FinishRecoversWholeTelegramsBehindACutOffOne) {
 }
 
 TEST(StreamFramerTest, CountersTrackFedSkippedAndPending) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     EXPECT_EQ(framer.bytes_fed(), 0u);
     EXPECT_EQ(framer.pending(), 0u);
@@ -479,13 +481,64 @@ TEST(StreamFramerTest, CountersTrackFedSkippedAndPending) {
 }
 
 TEST(StreamFramerTest, EmptyFeedAndFinishProduceNothing) {
-    StreamFramer framer;
+    StreamFramer framer(fdl_framing_rules());
     RecordingSink sink;
     framer.feed(Bytes{}, sink);
     framer.finish(sink);
     EXPECT_TRUE(sink.events.empty());
     EXPECT_EQ(framer.bytes_fed(), 0u);
     EXPECT_EQ(framer.telegrams(), 0u);
+}
+
+// A toy protocol: STX (0x02), a length byte (1..8), that many bytes. Nothing of FDL applies.
+bool toy_can_start(std::uint8_t byte) { return byte == 0x02; }
+
+class ToyRules final : public FramingRules {
+  public:
+    ToyRules() : FramingRules(toy_can_start) {}
+    FramingVerdict judge(Bytes candidate, bool) const noexcept override {
+        if (candidate.size() < 2) return FramingVerdict::need_more();
+        if (candidate[1] == 0 || candidate[1] > 8)
+            return FramingVerdict::invalid(ProblemKind::LengthOutOfRange, 1);
+        const std::size_t size = std::size_t{2} + candidate[1];
+        return candidate.size() < size ? FramingVerdict::need_more()
+                                       : FramingVerdict::telegram(size);
+    }
+    std::string_view protocol_name() const noexcept override { return "toy"; }
+
+  protected:
+    std::string_view reason_text(ProblemKind reason) const override {
+        return reason == ProblemKind::LengthOutOfRange ? "length outside 1..8"
+                                                       : FramingRules::reason_text(reason);
+    }
+};
+
+TEST(StreamFramerTest, FramesByAnotherProtocolsRules) {
+    const ToyRules rules;
+    StreamFramer framer(rules);
+    RecordingSink sink;
+    // 0x10 and 0x68 start FDL telegrams, not toy ones; 02 09 has a bad length; 02 01 is cut off.
+    feed_all(framer, hex("10 68 02 02 AA BB 02 09 E5 02 01 CC 02 01"), sink);
+    framer.finish(sink);
+    ASSERT_EQ(sink.events.size(), 5u);
+    EXPECT_FALSE(sink.events[0].telegram);
+    EXPECT_EQ(sink.events[0].skipped.count, 2u);
+    EXPECT_EQ(rules.describe_skip(sink.events[0].skipped), "skipped 2 bytes: no start delimiter");
+    EXPECT_TRUE(sink.events[1].telegram);
+    EXPECT_EQ(sink.events[1].bytes, hex("02 02 AA BB"));
+    EXPECT_EQ(sink.events[1].offset, 2u);
+    EXPECT_FALSE(sink.events[2].telegram);
+    EXPECT_EQ(sink.events[2].skipped.offset, 6u);
+    EXPECT_EQ(sink.events[2].skipped.count, 3u);
+    EXPECT_EQ(rules.describe_skip(sink.events[2].skipped),
+              "skipped 3 bytes: length outside 1..8 (byte 1 of the candidate telegram)");
+    EXPECT_TRUE(sink.events[3].telegram);
+    EXPECT_EQ(sink.events[3].bytes, hex("02 01 CC"));
+    EXPECT_FALSE(sink.events[4].telegram);
+    EXPECT_EQ(sink.events[4].skipped.reason, ProblemKind::Truncated);
+    EXPECT_EQ(sink.events[4].skipped.count, 2u);
+    EXPECT_EQ(framer.telegrams(), 2u);
+    EXPECT_EQ(framer.bytes_skipped(), 7u);
 }
 
 }  // namespace

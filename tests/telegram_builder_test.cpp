@@ -1,5 +1,5 @@
 // Telegram builder: frame type chosen by data length, FCS, round trips through parse_fdl and
-// check_frame, and the PCV byte layout.
+// the FDL framing rules, and the PCV byte layout.
 #include "decoder/telegram_builder.hpp"
 
 #include <gtest/gtest.h>
@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "decoder/fdl_framing_rules.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -146,8 +147,9 @@ TEST(TelegramBuilderTest, RoundTripThroughParseFdl) {
             EXPECT_TRUE(t.fcs_ok);
             ASSERT_EQ(t.du.size(), n);
             EXPECT_TRUE(std::equal(t.du.begin(), t.du.end(), data.begin()));
-            FrameCheck check = check_frame(Bytes(bytes.data(), bytes.size()), false);
-            EXPECT_EQ(check.status, FrameStatus::Complete);
+            FramingVerdict check =
+                fdl_framing_rules().judge(Bytes(bytes.data(), bytes.size()), false);
+            EXPECT_EQ(check.status, FramingStatus::Telegram);
             EXPECT_EQ(check.length, bytes.size());
         }
     }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "capture/serial_port.hpp"
+#include "decoder/fdl_framing_rules.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -86,7 +87,7 @@ const std::vector<std::uint8_t> kToken = hex("DC 02 02");
 TEST(TtySourceTest, TelegramsInOneReadGetTimesSpacedByTheirLength) {
     Pipe pipe;
     Collected c;
-    TtySource source(nullptr, pipe.read_end, "pipe", options());
+    TtySource source(nullptr, pipe.read_end, "pipe", options(), fdl_framing_rules());
     source.on_issue([&](const InputIssue& issue) { c.issues.push_back(issue); });
     std::vector<std::uint8_t> three = kSd1;
     three.insert(three.end(), kToken.begin(), kToken.end());
@@ -107,7 +108,7 @@ TEST(TtySourceTest, TelegramsInOneReadGetTimesSpacedByTheirLength) {
 TEST(TtySourceTest, TimesNeverRepeatOrGoBackwards) {
     Pipe pipe;
     Collected c;
-    TtySource source(nullptr, pipe.read_end, "pipe", options());
+    TtySource source(nullptr, pipe.read_end, "pipe", options(), fdl_framing_rules());
     for (int i = 0; i < 50; ++i)
         pipe.write(hex("E5"));
     drain(source, c);
@@ -134,7 +135,7 @@ TEST(TtySourceTest, TelegramsAreNeverCloserThanTheirTimeOnTheWire) {
     Collected c;
     TtySourceOptions o = options(true, 0);
     o.clock = fake_clock;
-    TtySource source(nullptr, pipe.read_end, "pipe", o);
+    TtySource source(nullptr, pipe.read_end, "pipe", o, fdl_framing_rules());
     const std::int64_t character = 7333;  // 11 bits at 1.5 Mbit/s
     const std::vector<std::uint8_t> request = hex("68 05 05 68 83 82 7D 3A 3E 40 16");
     const std::vector<std::uint8_t> response = hex("68 05 05 68 82 83 08 3A 3E 45 16");
@@ -170,7 +171,7 @@ TEST(TtySourceTest, TelegramsAreNeverCloserThanTheirTimeOnTheWire) {
 TEST(TtySourceTest, ParityMarksAreCountedAndRemoved) {
     Pipe pipe;
     Collected c;
-    TtySource source(nullptr, pipe.read_end, "pipe", options());
+    TtySource source(nullptr, pipe.read_end, "pipe", options(), fdl_framing_rules());
     source.on_issue([&](const InputIssue& issue) { c.issues.push_back(issue); });
     // 02 arrived with a parity error (FF 00 02); a real FF byte is escaped as FF FF.
     pipe.write(hex("10 03 FF 00 02 49 4E 16 FF FF E5"));
@@ -190,7 +191,7 @@ TEST(TtySourceTest, ParityMarksAreCountedAndRemoved) {
 TEST(TtySourceTest, ParityMarkSplitAcrossReads) {
     Pipe pipe;
     Collected c;
-    TtySource source(nullptr, pipe.read_end, "pipe", options(true, 0));
+    TtySource source(nullptr, pipe.read_end, "pipe", options(true, 0), fdl_framing_rules());
     pipe.write(hex("10 03 FF"));
     drain(source, c, 2);
     pipe.write(hex("00 02 49 4E 16"));
@@ -203,7 +204,7 @@ TEST(TtySourceTest, ParityMarkSplitAcrossReads) {
 TEST(TtySourceTest, WithoutParityMarkingBytesPassUnchanged) {
     Pipe pipe;
     Collected c;
-    TtySource source(nullptr, pipe.read_end, "pipe", options(false));
+    TtySource source(nullptr, pipe.read_end, "pipe", options(false), fdl_framing_rules());
     pipe.write(hex("E5 FF FF E5"));
     drain(source, c);
     EXPECT_EQ(c.telegrams.size(), 2u);
@@ -214,7 +215,7 @@ TEST(TtySourceTest, WithoutParityMarkingBytesPassUnchanged) {
 TEST(TtySourceTest, IdleGapCutsOffAnIncompleteTelegram) {
     Pipe pipe;
     Collected c;
-    TtySource source(nullptr, pipe.read_end, "pipe", options(true, 30));
+    TtySource source(nullptr, pipe.read_end, "pipe", options(true, 30), fdl_framing_rules());
     source.on_issue([&](const InputIssue& issue) { c.issues.push_back(issue); });
     pipe.write(hex("68 07 07 68 83 82"));  // half a telegram, then silence
     drain(source, c, 2);
@@ -234,7 +235,7 @@ TEST(TtySourceTest, IdleGapCutsOffAnIncompleteTelegram) {
 TEST(TtySourceTest, WithoutIdleGapATelegramMayPause) {
     Pipe pipe;
     Collected c;
-    TtySource source(nullptr, pipe.read_end, "pipe", options(true, 0));
+    TtySource source(nullptr, pipe.read_end, "pipe", options(true, 0), fdl_framing_rules());
     pipe.write(hex("10 03 02"));
     drain(source, c, 2);
     std::this_thread::sleep_for(std::chrono::milliseconds(40));
@@ -247,7 +248,7 @@ TEST(TtySourceTest, WithoutIdleGapATelegramMayPause) {
 TEST(TtySourceTest, HangUpEndsTheSourceAsDamagedAfterDeliveringWhatCame) {
     Pipe pipe;
     Collected c;
-    TtySource source(nullptr, pipe.read_end, "device", options());
+    TtySource source(nullptr, pipe.read_end, "device", options(), fdl_framing_rules());
     source.on_issue([&](const InputIssue& issue) { c.issues.push_back(issue); });
     pipe.write(kSd1);
     pipe.write(hex("68 07"));  // and then the device goes away mid-telegram
@@ -264,7 +265,7 @@ TEST(TtySourceTest, HangUpEndsTheSourceAsDamagedAfterDeliveringWhatCame) {
 TEST(TtySourceTest, StopRequestReadsWhatIsBufferedThenEnds) {
     Pipe pipe;
     Collected c;
-    TtySource source(nullptr, pipe.read_end, "pipe", options());
+    TtySource source(nullptr, pipe.read_end, "pipe", options(), fdl_framing_rules());
     pipe.write(kSd1);
     pipe.write(kToken);
     pipe.write(hex("10 03"));  // cut off by the stop

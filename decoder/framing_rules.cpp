@@ -1,0 +1,37 @@
+#include "decoder/framing_rules.hpp"
+
+#include <fmt/format.h>
+
+#include "decoder/stream_framer.hpp"
+
+namespace dpscope {
+
+FramingRules::FramingRules(bool (*can_start_telegram)(std::uint8_t)) noexcept {
+    for (std::size_t byte = 0; byte < starts_.size(); ++byte)
+        starts_[byte] = can_start_telegram(static_cast<std::uint8_t>(byte));
+}
+
+std::string_view FramingRules::reason_text(ProblemKind reason) const {
+    switch (reason) {
+        case ProblemKind::BadStartDelimiter: return "no start delimiter";
+        case ProblemKind::Truncated: return "telegram cut off (gap or end of input)";
+        default: return problem_kind_name(reason);
+    }
+}
+
+std::string FramingRules::describe_skip(const SkippedBytes& skipped) const {
+    const std::string_view what = reason_text(skipped.reason);
+    const std::string_view bytes = skipped.count == 1 ? "byte" : "bytes";
+    // The framer's own reasons concern no particular byte of a candidate.
+    if (skipped.reason == ProblemKind::BadStartDelimiter ||
+        skipped.reason == ProblemKind::Truncated)
+        return fmt::format("skipped {} {}: {}", skipped.count, bytes, what);
+    return fmt::format("skipped {} {}: {} (byte {} of the candidate telegram)", skipped.count,
+                       bytes, what, skipped.reason_offset);
+}
+
+std::unique_ptr<FramerCore> FramingRules::make_framer_core() const {
+    return std::make_unique<FramerFor<FramingRules>>(*this);
+}
+
+}  // namespace dpscope
