@@ -44,7 +44,7 @@ CLI::Validator output_file_name() {
             return text.empty() ? "must be a file name, or - for standard output, not ''"
                                 : std::string();
         },
-        "FILE", "file name");
+        "", "file name");  // no description: the help shows the option's type name alone
 }
 
 void add_display_options(CLI::App& app, DecodeOptionValues& values,
