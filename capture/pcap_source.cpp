@@ -9,6 +9,8 @@
 #include <optional>
 #include <vector>
 
+#include "decoder/counted.hpp"
+
 namespace dpscope {
 
 std::string link_type_name(int link_type) {
@@ -62,8 +64,8 @@ class PcapSource final : public TelegramSource {
         if (rc == PCAP_ERROR_BREAK) return false;  // end of file
         set_status(InputStatus::Damaged);
         report(Severity::Error,
-               fmt::format("{}: {}: {}; decoding stopped after {} {}", name(), where(number_ + 1),
-                           pcap_geterr(handle_), number_, number_ == 1 ? "record" : "records"));
+               fmt::format("{}: {}: {}; decoding stopped after {}", name(), where(number_ + 1),
+                           pcap_geterr(handle_), counted(number_, "record", "records")));
         return false;
     }
 
@@ -204,8 +206,8 @@ void PcapngSource::damaged(std::string message) {
     set_status(InputStatus::Damaged);
     damage_ = fmt::format("{}: {}", name(), message);
     issue(Severity::Error, IssueKind::Other,
-          fmt::format("{}; decoding stopped after {} {}", damage_, packets_,
-                      packets_ == 1 ? "record" : "records"));
+          fmt::format("{}; decoding stopped after {}", damage_,
+                      counted(packets_, "record", "records")));
 }
 
 PcapngSource::Read PcapngSource::read_block() {

@@ -10,6 +10,7 @@
 
 #include "capture/pcap_source.hpp"
 #include "capture/stream_source.hpp"
+#include "decoder/counted.hpp"
 #include "decoder/fdl_framing_rules.hpp"
 
 namespace dpscope {
@@ -19,10 +20,6 @@ namespace {
 // Time kinds are reported once: the first says what the problem is, the rest are counted.
 std::uint64_t issues_shown(IssueKind kind) {
     return kind == IssueKind::TimeBackwards || kind == IssueKind::TimeJump ? 1 : kMaxIssuesShown;
-}
-
-std::string plural(std::uint64_t n, std::string_view one, std::string_view many) {
-    return fmt::format("{} {}", n, n == 1 ? one : many);
 }
 
 // "2.500 s" for a time difference.
@@ -55,32 +52,32 @@ void TelegramSource::finish_reporting() {
         switch (static_cast<IssueKind>(i)) {
             case IssueKind::SkippedBytes:
                 what = fmt::format("{} of skipped bytes not shown ({})",
-                                   plural(c.hidden, "more run", "more runs"),
-                                   plural(c.hidden_bytes, "byte", "bytes"));
+                                   counted(c.hidden, "more run", "more runs"),
+                                   counted(c.hidden_bytes, "byte", "bytes"));
                 break;
             case IssueKind::Snapshot:
                 what = fmt::format("{} cut short by the snapshot length not shown",
-                                   plural(c.hidden, "more record", "more records"));
+                                   counted(c.hidden, "more record", "more records"));
                 break;
             case IssueKind::HexSyntax:
                 what = fmt::format("{} with tokens that are no hex bytes not shown",
-                                   plural(c.hidden, "more line", "more lines"));
+                                   counted(c.hidden, "more line", "more lines"));
                 break;
             case IssueKind::TimeBackwards:
                 what = fmt::format("time went backwards {}",
-                                   plural(c.hidden, "more time", "more times"));
+                                   counted(c.hidden, "more time", "more times"));
                 break;
             case IssueKind::TimeJump:
                 what = fmt::format("time jumped forward by more than a minute {}",
-                                   plural(c.hidden, "more time", "more times"));
+                                   counted(c.hidden, "more time", "more times"));
                 break;
             case IssueKind::Interface:
                 what = fmt::format("{} about interfaces not shown",
-                                   plural(c.hidden, "more warning", "more warnings"));
+                                   counted(c.hidden, "more warning", "more warnings"));
                 break;
             case IssueKind::BadTime:
                 what = fmt::format("{} with unusable timestamps not shown",
-                                   plural(c.hidden, "more packet", "more packets"));
+                                   counted(c.hidden, "more packet", "more packets"));
                 break;
             case IssueKind::Other: continue;
         }

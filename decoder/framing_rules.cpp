@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "decoder/counted.hpp"
 #include "decoder/stream_framer.hpp"
 
 namespace dpscope {
@@ -21,13 +22,13 @@ std::string_view FramingRules::reason_text(ProblemKind reason) const {
 
 std::string FramingRules::describe_skip(const SkippedBytes& skipped) const {
     const std::string_view what = reason_text(skipped.reason);
-    const std::string_view bytes = skipped.count == 1 ? "byte" : "bytes";
+    const std::string bytes = counted(skipped.count, "byte", "bytes");
     // The framer's own reasons concern no particular byte of a candidate.
     if (skipped.reason == ProblemKind::BadStartDelimiter ||
         skipped.reason == ProblemKind::Truncated)
-        return fmt::format("skipped {} {}: {}", skipped.count, bytes, what);
-    return fmt::format("skipped {} {}: {} (byte {} of the candidate telegram)", skipped.count,
-                       bytes, what, skipped.reason_offset);
+        return fmt::format("skipped {}: {}", bytes, what);
+    return fmt::format("skipped {}: {} (byte {} of the candidate telegram)", bytes, what,
+                       skipped.reason_offset);
 }
 
 std::unique_ptr<FramerCore> FramingRules::make_framer_core() const {

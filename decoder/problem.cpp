@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "decoder/counted.hpp"
+
 namespace dpscope {
 
 std::string_view severity_name(Severity severity) {
@@ -64,8 +66,8 @@ std::string problem_message(const Problem& p) {
             return fmt::format("byte {}: end delimiter is 0x{:02X}, expected 0x16", p.offset,
                                p.actual);
         case ProblemKind::TrailingBytes:
-            return fmt::format("byte {}: {} {} after the end of the telegram", p.offset, p.actual,
-                               p.actual == 1 ? "byte" : "bytes");
+            return fmt::format("byte {}: {} after the end of the telegram", p.offset,
+                               counted(p.actual, "byte", "bytes"));
         case ProblemKind::InvalidAddress:
             return fmt::format("byte {}: address 0x{:02X} has bit 7 set, not allowed in a token",
                                p.offset, p.actual);

@@ -306,8 +306,4 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
     }
 }
 
-std::string counted(std::uint64_t n, std::string_view singular, std::string_view plural) {
-    return fmt::format("{} {}", n, n == 1 ? singular : plural);
-}
-
 }  // namespace dpscope

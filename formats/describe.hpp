@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "decoder/bus_decoder.hpp"
+#include "decoder/counted.hpp"
 #include "decoder/dp_payload.hpp"
 
 namespace dpscope {
@@ -46,7 +47,5 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t);
 std::string_view pcd_word_name(Direction direction, std::size_t index);
 // Configuration identifiers of a Chk_Cfg / Get_Cfg data unit, e.g. "F3 F1 = PCV + 2 words".
 void append_cfg_summary(TextBuffer& out, const DecodedTelegram& t);
-// A count and its noun in the right number: "1 error", "2 errors", "0 messages".
-std::string counted(std::uint64_t n, std::string_view singular, std::string_view plural);
 
 }  // namespace dpscope
