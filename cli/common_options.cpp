@@ -16,9 +16,7 @@ CLI::Validator whole_number(std::uint64_t min, std::uint64_t max, std::string_vi
     return CLI::Validator(
         [min, max, range](std::string& text) -> std::string {
             std::uint64_t value = 0;
-            auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-            bool digits = !text.empty() && end == text.data() + text.size();
-            if (ec == std::errc() && digits && value >= min && value <= max) return {};
+            if (parse_whole_number(text, value) && value >= min && value <= max) return {};
             return fmt::format("must be a whole number from {}, not '{}'", range, text);
         },
         range, "whole number");
@@ -135,15 +133,6 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
                  "unexpected response type, not only unusual");
 }
 
-namespace {
-
-bool parse_unsigned(std::string_view text, unsigned& value) {
-    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    return ec == std::errc() && end == text.data() + text.size() && !text.empty();
-}
-
-}  // namespace
-
 std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
                                                      std::string_view default_format,
                                                      std::string& error) {
@@ -176,8 +165,8 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
         auto eq = item.find('=');
         unsigned address = 0, type = 0;
         if (eq == std::string::npos ||
-            !parse_unsigned(std::string_view(item).substr(0, eq), address) ||
-            !parse_unsigned(std::string_view(item).substr(eq + 1), type) || address > 126 ||
+            !parse_whole_number(std::string_view(item).substr(0, eq), address) ||
+            !parse_whole_number(std::string_view(item).substr(eq + 1), type) || address > 126 ||
             type < 1 || type > 5) {
             error = fmt::format(
                 "--ppo {}: expected ADDR=TYPE with ADDR from 0 to 126 and TYPE from 1 to 5", item);
@@ -216,7 +205,7 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
             continue;
         }
         unsigned address = 0;
-        if (!parse_unsigned(std::string_view(item).substr(0, eq), address) || address > 126) {
+        if (!parse_whole_number(std::string_view(item).substr(0, eq), address) || address > 126) {
             error = fmt::format("--dialect {}: '{}' is not a station address from 0 to 126", item,
                                 item.substr(0, eq));
             return std::nullopt;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <cstdint>
 #include <cstdlib>
 #include <optional>
@@ -30,6 +31,13 @@ inline constexpr std::string_view kExitCodeHelp =
     "unusable input (cannot open, unknown format, unsupported link type); 3 the input ended in "
     "damage (truncated record, read error) after what was decoded; 4 output could not be "
     "opened or written (no such directory, disk full); 5 the capture device failed (sniff).";
+
+// Decimal digits only (no sign, fraction, exponent or hex) that fit in T; false otherwise.
+template <typename T>
+bool parse_whole_number(std::string_view text, T& value) {
+    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    return !text.empty() && ec == std::errc() && end == text.data() + text.size();
+}
 
 // Every numeric option is checked on its text with one of these, and the error names the range:
 // "--count: must be a whole number from 1 to 9223372036854775807, not '0'". CLI11's own

@@ -74,12 +74,6 @@ constexpr std::uint64_t kMinRotateSize = 512;         // the pcap header and the
 constexpr std::uint64_t kMaxRotateSize = 1ULL << 44;  // 16T
 constexpr std::uint32_t kMaxIdleGapMs = 60'000;
 
-// Digits only (no sign, no fraction, no exponent); false when it does not fit.
-bool parse_whole(std::string_view text, std::uint64_t& value) {
-    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    return !text.empty() && ec == std::errc() && end == text.data() + text.size();
-}
-
 // A size: a whole number of bytes with an optional unit k, M, G, T (powers of 1024, as
 // CLI::AsSizeValue reads them, also written kb, KiB, ...), from kMinRotateSize to kMaxRotateSize.
 CLI::Validator rotate_size_range() {
@@ -89,7 +83,7 @@ CLI::Validator rotate_size_range() {
             while (digits < text.size() && text[digits] >= '0' && text[digits] <= '9')
                 ++digits;
             std::uint64_t number = 0;
-            bool ok = parse_whole(std::string_view(text).substr(0, digits), number);
+            bool ok = parse_whole_number(std::string_view(text).substr(0, digits), number);
             std::string unit;
             for (char c : text.substr(digits))
                 unit += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -136,7 +130,7 @@ bool is_capture_file(const std::string& path, const std::string& output, bool ro
     while (digits < path.size() && path[digits] >= '0' && path[digits] <= '9')
         ++digits;
     std::uint64_t index = 0;
-    if (!parse_whole(std::string_view(path).substr(dash + 1, digits - dash - 1), index) ||
+    if (!parse_whole_number(std::string_view(path).substr(dash + 1, digits - dash - 1), index) ||
         index == 0 || index > 0xFFFF'FFFFu)
         return false;
     return same_file(path, rotated_file_name(output, static_cast<unsigned>(index)));
