@@ -9,6 +9,8 @@
 #include <climits>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <system_error>
 
 namespace dpscope {
 
@@ -122,6 +124,18 @@ void PendingOutputFile::discard() noexcept {
     if (file_ && !to_stdout_) std::fclose(file_);
     file_ = nullptr;
     if (!temporary_.empty()) ::unlink(temporary_.c_str());
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+    struct stat info_a {};
+    struct stat info_b {};
+    if (::stat(a.c_str(), &info_a) == 0 && ::stat(b.c_str(), &info_b) == 0)
+        return info_a.st_dev == info_b.st_dev && info_a.st_ino == info_b.st_ino;
+    std::error_code error_a, error_b;
+    auto canonical_a = std::filesystem::weakly_canonical(a, error_a);
+    auto canonical_b = std::filesystem::weakly_canonical(b, error_b);
+    if (error_a || error_b) return a == b;
+    return canonical_a == canonical_b;
 }
 
 std::string same_file_error(const std::vector<std::string>& inputs, const std::string& output,

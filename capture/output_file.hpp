@@ -52,6 +52,10 @@ class PendingOutputFile {
     bool done_ = false;
 };
 
+// Do paths `a` and `b` name the same file? By device and inode when both exist (so links are
+// seen through, and devices compare too); otherwise by their canonical paths.
+bool same_file(const std::string& a, const std::string& b);
+
 // "" when `output` is none of `inputs`; otherwise the error message for it. "-" as an input is
 // standard input and as the output standard output; a path that does not exist yet is no input.
 std::string same_file_error(const std::vector<std::string>& inputs, const std::string& output,

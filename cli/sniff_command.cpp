@@ -12,13 +12,13 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
-#include <filesystem>
 #include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "capture/capture_writer.hpp"
+#include "capture/output_file.hpp"
 #include "capture/pcap_source.hpp"
 #include "capture/serial_port.hpp"
 #include "capture/tty_source.hpp"
@@ -104,19 +104,6 @@ CLI::Validator rotate_size_range() {
             return {};
         },
         "512 to 16T", "size");
-}
-
-// Do `a` and `b` name the same file (after links; by device and inode when both exist)?
-bool same_file(const std::string& a, const std::string& b) {
-    struct stat info_a {};
-    struct stat info_b {};
-    if (::stat(a.c_str(), &info_a) == 0 && ::stat(b.c_str(), &info_b) == 0)
-        return info_a.st_dev == info_b.st_dev && info_a.st_ino == info_b.st_ino;
-    std::error_code error_a, error_b;
-    auto canonical_a = std::filesystem::weakly_canonical(a, error_a);
-    auto canonical_b = std::filesystem::weakly_canonical(b, error_b);
-    if (error_a || error_b) return a == b;
-    return canonical_a == canonical_b;
 }
 
 // Is `path` one of the files -w `output` writes (stem-NNNNN.ext when rotating)?
@@ -225,16 +212,14 @@ int run_sniff(const SniffCommand& command) {
         print_error(error);
         return kExitUsage;
     }
-    // Output files this run creates: removed again if the port cannot be set up.
-    std::vector<std::string> created;
-    auto note_if_new = [&created](const std::string& path) {
-        if (::access(path.c_str(), F_OK) != 0) created.push_back(path);
-    };
+    // A -w file this run creates is removed again if the port cannot be set up (the capture file
+    // is not staged: it must be a valid pcap at every moment of the capture).
+    std::string created_capture;
     std::unique_ptr<CaptureWriter> writer;
     if (!command.output.empty()) {
         const bool rotating = command.rotate_size > 0 || command.rotate_seconds > 0;
-        if (!pcap_to_stdout)
-            note_if_new(rotating ? rotated_file_name(command.output, 1) : command.output);
+        const std::string first = rotating ? rotated_file_name(command.output, 1) : command.output;
+        if (!pcap_to_stdout && ::access(first.c_str(), F_OK) != 0) created_capture = first;
         RotationOptions rotation{command.rotate_size,
                                  static_cast<std::int64_t>(command.rotate_seconds * 1e9)};
         int link_type = command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
@@ -246,13 +231,13 @@ int run_sniff(const SniffCommand& command) {
         }
         writer = std::move(opened).value();
     }
-    std::unique_ptr<FILE, int (*)(FILE*)> report_file(nullptr, std::fclose);
-    if (!command.report_file.empty() && !report_to_stdout) {
-        note_if_new(command.report_file);
-        report_file.reset(std::fopen(command.report_file.c_str(), "wb"));
+    // The report is staged like every other file output: written beside FILE and moved into
+    // place only when it is complete, so a run that fails leaves an existing FILE as it was.
+    std::unique_ptr<PendingOutputFile> report_file;
+    if (!command.report_file.empty()) {
+        report_file = PendingOutputFile::open(command.report_file, error);
         if (!report_file) {
-            print_error(fmt::format("--report-file {}: cannot open for writing: {}",
-                                    command.report_file, std::strerror(errno)));
+            print_error(fmt::format("--report-file {}", error));
             return kExitOutputError;
         }
     }
@@ -260,9 +245,8 @@ int run_sniff(const SniffCommand& command) {
     if (!port->configure(error)) {
         print_error(error);
         writer.reset();
-        report_file.reset();
-        for (const std::string& path : created)
-            std::remove(path.c_str());
+        report_file.reset();  // discards the staged report: an existing file stays as it was
+        if (!created_capture.empty()) std::remove(created_capture.c_str());
         return kExitUsage;
     }
     FILE* text_stream = pcap_to_stdout || report_to_stdout ? stderr : stdout;
@@ -363,13 +347,15 @@ int run_sniff(const SniffCommand& command) {
         if (command.report_file.empty()) {
             render_report(format, context, out);
         } else {
-            Output report_out(report_file ? report_file.get() : stdout);
+            Output report_out(report_file->file());
             render_report(format, context, report_out);
-            bool written = report_out.flush();
-            if (report_file) written = std::fclose(report_file.release()) == 0 && written;
-            if (!written) {
+            if (!report_out.flush()) {
                 print_error(fmt::format("--report-file {}: cannot write the report: {}",
                                         command.report_file, std::strerror(errno)));
+                report_file->discard();
+                output_failed = true;
+            } else if (!report_file->commit(error)) {
+                print_error(fmt::format("--report-file {}", error));
                 output_failed = true;
             }
         }

@@ -757,6 +757,14 @@ TEST(SniffTest, UsageErrorsNameTheProblem) {
     EXPECT_NE(result.err.find("/dev/null: not a serial port"), std::string::npos) << result.err;
     EXPECT_FALSE(std::filesystem::exists(pcap));
     EXPECT_FALSE(std::filesystem::exists(json));
+    // ... and an existing report file as it was: the report is staged, not opened over it.
+    test::write_text_file(json, "the previous report\n");
+    result = test::run_dpscope({"sniff", "-i", "/dev/null", "--baud", "1500000", "--report-file",
+                                json, "--report-format", "json"});
+    EXPECT_EQ(result.exit_code, 2);
+    const std::vector<std::uint8_t> kept = test::read_file(json);
+    EXPECT_EQ(std::string(kept.begin(), kept.end()), "the previous report\n");
+    std::remove(json.c_str());
     result = test::run_dpscope({"sniff", "-i", "/dev/ttyS-missing", "--baud", "1500000"});
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("cannot open"), std::string::npos);
