@@ -47,8 +47,8 @@ int write_report(const ReportCommand& command, const Pipeline& pipeline,
             print_warning(
                 fmt::format("--station {}: no slave {} in the capture", station, station));
     }
-    render_report(report_format_from_name(command.format).value_or(ReportFormat::Text), context,
-                  out);
+    const bool fails = render_report(
+        report_format_from_name(command.format).value_or(ReportFormat::Text), context, out);
     if (!log.error().empty()) print_warning(fmt::format("{}", log.error()));
     if (!out.flush()) {
         print_error(fmt::format("cannot write the report to {}: {}",
@@ -56,7 +56,7 @@ int write_report(const ReportCommand& command, const Pipeline& pipeline,
                                 std::strerror(errno)));
         return kExitOutputError;
     }
-    if (report_fails(context)) return kExitFindings;
+    if (fails) return kExitFindings;
     if (source.status() == InputStatus::Damaged) return kExitDamagedInput;
     return kExitOk;
 }

@@ -344,11 +344,12 @@ int run_sniff(const SniffCommand& command) {
         context.allow_empty = command.allow_empty;
         const ReportFormat format =
             report_format_from_name(command.report_format).value_or(ReportFormat::Text);
+        bool fails = false;
         if (command.report_file.empty()) {
-            render_report(format, context, out);
+            fails = render_report(format, context, out);
         } else {
             Output report_out(report_file->file());
-            render_report(format, context, report_out);
+            fails = render_report(format, context, report_out);
             if (!report_out.flush()) {
                 print_error(fmt::format("--report-file {}: cannot write the report: {}",
                                         command.report_file, std::strerror(errno)));
@@ -360,7 +361,7 @@ int run_sniff(const SniffCommand& command) {
             }
         }
         if (!log.error().empty()) print_warning(fmt::format("{}", log.error()));
-        if (report_fails(context)) exit_code = kExitFindings;
+        if (fails) exit_code = kExitFindings;
     }
     if (!out.flush()) output_failed = true;
     if (output_failed) return kExitOutputError;

@@ -50,7 +50,7 @@ bool report_fails(const ReportContext& context) {
     return report::build_report_model(context).fails;
 }
 
-void render_report(ReportFormat format, const ReportContext& context, Output& out) {
+bool render_report(ReportFormat format, const ReportContext& context, Output& out) {
     const report::ReportModel model = report::build_report_model(context);
     switch (format) {
         case ReportFormat::Text: report::write_text(context, model, out); break;
@@ -59,6 +59,7 @@ void render_report(ReportFormat format, const ReportContext& context, Output& ou
         case ReportFormat::Html: report::write_html(context, model, out); break;
         case ReportFormat::Junit: report::write_junit(context, model, out); break;
     }
+    return model.fails;
 }
 
 }  // namespace dpscope

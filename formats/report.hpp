@@ -49,6 +49,8 @@ struct ReportContext {
 // allow_empty.
 bool report_fails(const ReportContext& context);
 
-void render_report(ReportFormat format, const ReportContext& context, Output& out);
+// Writes the report and returns its verdict (what report_fails() says), from the one model it
+// builds: the finding log is read once.
+bool render_report(ReportFormat format, const ReportContext& context, Output& out);
 
 }  // namespace dpscope

@@ -1256,6 +1256,26 @@ TEST(ReportTest, FormatAndFailOnNamesRoundTrip) {
         EXPECT_EQ(fail_on_from_name(fail_on_name(f)), f);
 }
 
+TEST(ReportTest, RenderReportReturnsTheVerdictOfReportFails) {
+    for (FailOn f : {FailOn::Error, FailOn::Warning, FailOn::Never}) {
+        for (ReportFormat format : {ReportFormat::Text, ReportFormat::Json, ReportFormat::Markdown,
+                                    ReportFormat::Html, ReportFormat::Junit}) {
+            SCOPED_TRACE(std::string(report_format_name(format)) + " " +
+                         std::string(fail_on_name(f)));
+            FILE* sink = std::fopen("/dev/null", "w");
+            ASSERT_NE(sink, nullptr);
+            {
+                Output out(sink);
+                const ReportContext failing = context_of(faults(), f);
+                EXPECT_EQ(render_report(format, failing, out), report_fails(failing));
+                const ReportContext passing = context_of(clean(), f);
+                EXPECT_FALSE(render_report(format, passing, out));
+            }
+            std::fclose(sink);
+        }
+    }
+}
+
 TEST(ReportTest, ReportFailsOnFindingsAtOrAboveTheThreshold) {
     EXPECT_TRUE(report_fails(context_of(faults(), FailOn::Error)));
     EXPECT_TRUE(report_fails(context_of(faults(), FailOn::Warning)));
