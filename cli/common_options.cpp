@@ -22,15 +22,21 @@ CLI::Validator whole_number(std::uint64_t min, std::uint64_t max, std::string_vi
         range, "whole number");
 }
 
+std::optional<double> parse_finite_number(const std::string& text) {
+    if (text.empty() || text.find_first_of("xX") != std::string::npos)  // strtod reads hex too
+        return std::nullopt;
+    char* end = nullptr;
+    double value = std::strtod(text.c_str(), &end);
+    if (end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
+    return value;
+}
+
 CLI::Validator finite_number(double min, double max, std::string_view unit) {
     std::string range = fmt::format("{} to {}{}", min, max, unit);
     return CLI::Validator(
         [min, max, range](std::string& text) -> std::string {
-            char* end = nullptr;
-            double value = std::strtod(text.c_str(), &end);
-            bool parsed = !text.empty() && end == text.c_str() + text.size() &&
-                          text.find_first_of("xXnN") == std::string::npos;  // no hex, nan, inf
-            if (parsed && std::isfinite(value) && value >= min && value <= max) return {};
+            std::optional<double> value = parse_finite_number(text);
+            if (value && *value >= min && *value <= max) return {};
             return fmt::format("must be a number from {}, not '{}'", range, text);
         },
         range, "number");

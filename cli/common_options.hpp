@@ -39,6 +39,10 @@ bool parse_whole_number(std::string_view text, T& value) {
     return !text.empty() && ec == std::errc() && end == text.data() + text.size();
 }
 
+// A finite decimal number (with a fraction or exponent; not hex, nan or inf) that is the whole
+// of `text`; nullopt otherwise.
+std::optional<double> parse_finite_number(const std::string& text);
+
 // Every numeric option is checked on its text with one of these, and the error names the range:
 // "--count: must be a whole number from 1 to 9223372036854775807, not '0'". CLI11's own
 // conversions would take "-1" as the largest unsigned value and clamp a number too large.

@@ -139,18 +139,15 @@ constexpr std::int64_t kNanosPerSecond = 1'000'000'000;
 
 // --start: seconds since the epoch, finite, from 0 to kLastSecond.
 std::optional<std::int64_t> parse_start(const std::string& text) {
-    char* end = nullptr;
-    double seconds = std::strtod(text.c_str(), &end);
-    if (text.empty() || end == text.c_str() || *end != '\0' || !std::isfinite(seconds) ||
-        text.find_first_of("xX") != std::string::npos ||  // strtod reads hex floats too
-        seconds < 0 || seconds > static_cast<double>(kLastSecond)) {
+    std::optional<double> seconds = parse_finite_number(text);
+    if (!seconds || *seconds < 0 || *seconds > static_cast<double>(kLastSecond)) {
         print_error(fmt::format(
             "--start {}: must be seconds since the epoch from 0 to {} (1970-01-01T00:00:00Z to "
             "{}, the last time a capture's timestamps hold)",
             text, kLastSecond, kLastTime));
         return std::nullopt;
     }
-    return static_cast<std::int64_t>(std::llround(seconds * 1e9));
+    return static_cast<std::int64_t>(std::llround(*seconds * 1e9));
 }
 
 // The session must end by kLastTime: a capture cannot date a telegram later (libpcap would read
