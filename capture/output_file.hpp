@@ -34,6 +34,10 @@ class PendingOutputFile {
     bool is_stdout() const noexcept { return to_stdout_; }
     // Written to a temporary file that commit() renames (false for stdout and devices).
     bool is_staged() const noexcept { return !temporary_.empty(); }
+    // What a failed write leaves: "; the output file is left as it was" when staged, else "".
+    std::string_view left_as_it_was() const noexcept {
+        return is_staged() ? "; the output file is left as it was" : "";
+    }
 
     // Closes the stream (unless released) and moves the temporary file into place. False with
     // `error` when the close or the rename failed; the target is then as it was.

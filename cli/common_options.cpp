@@ -262,13 +262,20 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
     return settings;
 }
 
+std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept {
+    std::bitset<kStationCount> stations;
+    if (t.fdl.has_addresses) stations.set(t.fdl.da & 0x7F).set(t.fdl.sa & 0x7F);
+    if (t.has_roles) stations.set(t.master & 0x7F).set(t.slave & 0x7F);
+    return stations;
+}
+
 bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
                    std::span<const Finding> findings, std::int32_t subject_pnu) noexcept {
     if (!settings.stations.empty()) {
+        const std::bitset<kStationCount> ends = stations_of(t);
         bool match =
             std::any_of(settings.stations.begin(), settings.stations.end(), [&](std::uint8_t a) {
-                return (t.fdl.has_addresses && (t.fdl.da == a || t.fdl.sa == a)) ||
-                       (t.has_roles && (t.master == a || t.slave == a)) ||
+                return ends.test(a & 0x7F) ||
                        std::any_of(findings.begin(), findings.end(), [&](const Finding& f) {
                            return f.has_stations && (f.master == a || f.slave == a);
                        });

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <bitset>
 #include <charconv>
 #include <cstdint>
 #include <cstdlib>
@@ -110,6 +111,10 @@ struct DecodeSettings {
 std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
                                                      std::string_view default_format,
                                                      std::string& error);
+
+// The stations a telegram is to or from: its FDL addresses and its DP roles (a short
+// acknowledge has no addresses, only the roles of the request it answers).
+std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept;
 
 // --station and --pnu: does the telegram pass? A telegram passes --station when it is to or
 // from one of the stations (by address or DP role) or a finding at it concerns one; --pnu when

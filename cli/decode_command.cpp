@@ -89,8 +89,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         const DecodedTelegram& t = pipeline.feed(record, findings);
         const std::int32_t subject_pnu = pipeline.tracker().subject_pnu();
         if (settings.filtering()) {
-            if (t.fdl.has_addresses) stations_seen.set(t.fdl.da & 0x7F).set(t.fdl.sa & 0x7F);
-            if (t.has_roles) stations_seen.set(t.master & 0x7F).set(t.slave & 0x7F);
+            stations_seen |= stations_of(t);
             if (t.has_pcv && subject_pnu >= 0) pnus_seen.set(static_cast<std::size_t>(subject_pnu));
         }
         if (!show(renderer.get(), settings, t, findings, subject_pnu)) continue;
@@ -103,9 +102,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
                           ? writer->write(record.bytes, record.time_ns, findings_comment(findings))
                           : writer->write(record.bytes, record.time_ns);
             if (!ok) {
-                print_error(fmt::format(
-                    "{}{}", writer->error(),
-                    capture_file->is_staged() ? "; the output file is left as it was" : ""));
+                print_error(fmt::format("{}{}", writer->error(), capture_file->left_as_it_was()));
                 write_failed = true;
             }
         }
@@ -143,9 +140,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     }
     if (writer) {
         if (!writer->close() && !write_failed) {
-            print_error(fmt::format(
-                "{}{}", writer->error(),
-                capture_file->is_staged() ? "; the output file is left as it was" : ""));
+            print_error(fmt::format("{}{}", writer->error(), capture_file->left_as_it_was()));
             write_failed = true;
         }
         std::string error;

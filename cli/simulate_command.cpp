@@ -268,8 +268,7 @@ int run_simulate(const SimulateCommand& command) {
         if (!opened.value()->write(Bytes(bytes.data(), bytes.size()), time_ns)) break;
     }
     if (!opened.value()->close()) {
-        print_error(fmt::format("{}{}", opened.value()->error(),
-                                file->is_staged() ? "; the output file is left as it was" : ""));
+        print_error(fmt::format("{}{}", opened.value()->error(), file->left_as_it_was()));
         file->discard();
         return kExitOutputError;
     }
