@@ -264,7 +264,7 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
 
 std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept {
     std::bitset<kStationCount> stations;
-    if (t.fdl.has_addresses) stations.set(t.fdl.da & 0x7F).set(t.fdl.sa & 0x7F);
+    if (t.dp.fdl.has_addresses) stations.set(t.dp.fdl.da & 0x7F).set(t.dp.fdl.sa & 0x7F);
     if (t.has_roles) stations.set(t.master & 0x7F).set(t.slave & 0x7F);
     return stations;
 }
@@ -285,7 +285,7 @@ bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
     if (!settings.pnus.empty()) {
         bool match =
             std::any_of(settings.pnus.begin(), settings.pnus.end(), [&](std::uint16_t pnu) {
-                return (t.has_pcv && subject_pnu == pnu) ||
+                return (t.dp.has_pcv && subject_pnu == pnu) ||
                        std::any_of(findings.begin(), findings.end(),
                                    [&](const Finding& f) { return f.pnu && *f.pnu == pnu; });
             });

@@ -90,7 +90,8 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         const std::int32_t subject_pnu = pipeline.tracker().subject_pnu();
         if (settings.filtering()) {
             stations_seen |= stations_of(t);
-            if (t.has_pcv && subject_pnu >= 0) pnus_seen.set(static_cast<std::size_t>(subject_pnu));
+            if (t.dp.has_pcv && subject_pnu >= 0)
+                pnus_seen.set(static_cast<std::size_t>(subject_pnu));
         }
         if (!show(renderer.get(), settings, t, findings, subject_pnu)) continue;
         if (settings.filtering()) {

@@ -8,13 +8,13 @@ std::string_view direction_name(Direction direction) {
     return direction == Direction::Request ? "request" : "response";
 }
 
-std::uint32_t DecodedTelegram::pcv_value() const noexcept {
+std::uint32_t DpTelegram::pcv_value(Direction direction) const noexcept {
     ValueWidth width = direction == Direction::Request ? request_code(dialect, pcv.rc).width
                                                        : response_code(dialect, pcv.rc).width;
     return dpscope::pcv_value(pcv, width);
 }
 
-std::string_view DecodedTelegram::pcv_meaning() const noexcept {
+std::string_view DpTelegram::pcv_meaning(Direction direction) const noexcept {
     return direction == Direction::Request ? request_code(dialect, pcv.rc).meaning
                                            : response_code(dialect, pcv.rc).meaning;
 }
@@ -54,7 +54,7 @@ void BusDecoder::note_ppo_override(StationConfig& station, std::uint8_t slave,
 
 void BusDecoder::learn_length12_type(const DecodedTelegram& t) {
     constexpr std::uint16_t kControlValid = 0x0400;
-    ByteReader reader(t.fdl.du);
+    ByteReader reader(t.dp.fdl.du);
     auto first = reader.u16_be();
     reader.skip(6);
     auto fifth = reader.u16_be();
@@ -68,68 +68,69 @@ void BusDecoder::learn_length12_type(const DecodedTelegram& t) {
 
 const DecodedTelegram& BusDecoder::decode(Bytes bytes, std::int64_t time_ns, std::uint64_t frame) {
     DecodedTelegram& t = current_;
-    parse_fdl(bytes, t.fdl);
+    parse_fdl(bytes, t.dp.fdl);
     t.frame = frame;
     t.time_ns = time_ns;
     t.bytes = bytes;
-    t.service = Service::Unknown;
+    t.dp.service = Service::Unknown;
     t.has_roles = false;
     t.master = t.slave = 0;
     t.request_frame = 0;
-    t.unanswered.reset();
-    t.ppo = PpoLayout{};
-    t.has_pcv = false;
-    t.pcv = Pcv{};
-    t.pcd = {};
-    t.pcd_offset = 0;
-    t.slave_dpv1 = SlaveDpv1::Unknown;
+    t.dp.unanswered.reset();
+    t.dp.ppo = PpoLayout{};
+    t.dp.has_pcv = false;
+    t.dp.pcv = Pcv{};
+    t.dp.pcd = {};
+    t.dp.pcd_offset = 0;
+    t.dp.slave_dpv1 = SlaveDpv1::Unknown;
 
-    if (t.fdl.type == FrameType::Invalid) {
+    if (t.dp.fdl.type == FrameType::Invalid) {
         t.direction = Direction::Request;
         return t;
     }
-    if (t.fdl.is_request()) {
+    if (t.dp.fdl.is_request()) {
         decode_request(t);
     } else {
         decode_response(t);
     }
     std::uint8_t slave = t.has_roles ? t.slave : 0;
-    t.dialect = options_.dialect_of(slave);
-    t.pcd_profile = options_.pcd_profile_of(slave);
+    t.dp.dialect = options_.dialect_of(slave);
+    t.dp.pcd_profile = options_.pcd_profile_of(slave);
     decode_service_data(t);
     return t;
 }
 
 void BusDecoder::decode_request(DecodedTelegram& t) {
     t.direction = Direction::Request;
-    t.service = classify_request(t.fdl);
+    t.dp.service = classify_request(t.dp.fdl);
     if (pending_.valid) {
-        t.unanswered = UnansweredRequest{pending_.frame, pending_.time_ns,  pending_.master,
-                                         pending_.slave, pending_.function, pending_.service};
+        t.dp.unanswered = UnansweredRequest{pending_.frame, pending_.time_ns,  pending_.master,
+                                            pending_.slave, pending_.function, pending_.service};
         pending_.valid = false;
     }
-    if (!t.fdl.has_addresses) return;
+    if (!t.dp.fdl.has_addresses) return;
     t.has_roles = true;
-    t.master = t.fdl.sa;
-    t.slave = t.fdl.da;
-    if (t.fdl.type == FrameType::Sd4 || !t.fdl.has_fc) return;
-    std::uint8_t function = t.fdl.fc.function();
+    t.master = t.dp.fdl.sa;
+    t.slave = t.dp.fdl.da;
+    if (t.dp.fdl.type == FrameType::Sd4 || !t.dp.fdl.has_fc) return;
+    std::uint8_t function = t.dp.fdl.fc.function();
     // A request with a bad FCS or a reserved frame control byte is dropped by the station it is
     // for: no reply is due.
-    if (function_expects_reply(function) && t.fdl.da != kBroadcastAddress && t.fdl.fcs_ok &&
-        !t.fdl.fc.is_reserved()) {
-        pending_ = PendingRequest{true, t.frame, t.time_ns, t.master, t.slave, function, t.service};
+    if (function_expects_reply(function) && t.dp.fdl.da != kBroadcastAddress && t.dp.fdl.fcs_ok &&
+        !t.dp.fdl.fc.is_reserved()) {
+        pending_ =
+            PendingRequest{true, t.frame, t.time_ns, t.master, t.slave, function, t.dp.service};
     }
 }
 
 void BusDecoder::decode_response(DecodedTelegram& t) {
     t.direction = Direction::Response;
     bool answers_pending =
-        pending_.valid &&
-        (t.fdl.type == FrameType::ShortAck ||
-         (t.fdl.has_addresses && t.fdl.da == pending_.master && t.fdl.sa == pending_.slave));
+        pending_.valid && (t.dp.fdl.type == FrameType::ShortAck ||
+                           (t.dp.fdl.has_addresses && t.dp.fdl.da == pending_.master &&
+                            t.dp.fdl.sa == pending_.slave));
     if (answers_pending) {
-        t.service = pending_.service;
+        t.dp.service = pending_.service;
         t.request_frame = pending_.frame;
         t.has_roles = true;
         t.master = pending_.master;
@@ -137,27 +138,27 @@ void BusDecoder::decode_response(DecodedTelegram& t) {
         pending_.valid = false;
         return;
     }
-    t.service = classify_unpaired_response(t.fdl);
-    if (t.fdl.has_addresses) {
+    t.dp.service = classify_unpaired_response(t.dp.fdl);
+    if (t.dp.fdl.has_addresses) {
         t.has_roles = true;
-        t.master = t.fdl.da;
-        t.slave = t.fdl.sa;
+        t.master = t.dp.fdl.da;
+        t.slave = t.dp.fdl.sa;
     }
 }
 
 void BusDecoder::decode_service_data(DecodedTelegram& t) {
     if (!t.has_roles) return;
-    if (t.service == Service::DataExchange) {  // the hot path: nothing else to set up
+    if (t.dp.service == Service::DataExchange) {  // the hot path: nothing else to set up
         decode_data_exchange(t);
         return;
     }
     StationConfig& station = stations_[t.slave & 0x7F];
-    ByteReader du(t.fdl.du, t.fdl.du_offset);
-    ProblemList& problems = t.fdl.problems;
+    ByteReader du(t.dp.fdl.du, t.dp.fdl.du_offset);
+    ProblemList& problems = t.dp.fdl.problems;
     bool request = t.direction == Direction::Request;
     // Only data-carrying responses have service data (not SC, not an SD1 acknowledgement).
-    bool has_data = t.fdl.type == FrameType::Sd2 || t.fdl.type == FrameType::Sd3;
-    switch (t.service) {
+    bool has_data = t.dp.fdl.type == FrameType::Sd2 || t.dp.fdl.type == FrameType::Sd3;
+    switch (t.dp.service) {
         case Service::ChkCfg:
             if (request) {
                 std::vector<CfgModule> modules;
@@ -182,7 +183,7 @@ void BusDecoder::decode_service_data(DecodedTelegram& t) {
                     station.has_ident = true;
                     station.ident = prm->ident;
                     // A damaged Set_Prm is dropped by the slave: its DP-V1 mode stays as it was.
-                    if (t.fdl.fcs_ok)
+                    if (t.dp.fdl.fcs_ok)
                         station.dpv1 =
                             prm->dpv1_enabled() ? SlaveDpv1::Enabled : SlaveDpv1::Disabled;
                 }
@@ -205,20 +206,20 @@ void BusDecoder::decode_service_data(DecodedTelegram& t) {
             break;
         default: break;
     }
-    t.slave_dpv1 = station.dpv1;
+    t.dp.slave_dpv1 = station.dpv1;
 }
 
 void BusDecoder::decode_data_exchange(DecodedTelegram& t) {
-    Bytes du = t.fdl.du;
+    Bytes du = t.dp.fdl.du;
     if (du.size() == 12 && t.direction == Direction::Request &&
         !stations_[t.slave & 0x7F].ppo.known())
         learn_length12_type(t);
     // Written in place: small structs returned by value cost store-forwarding stalls here.
-    layout_for(t.slave, du.size(), t.ppo);
-    ByteReader reader(du, t.fdl.du_offset);
-    if (t.ppo.has_pcv) t.has_pcv = read_pcv(reader, t.pcv);
-    t.pcd_offset = static_cast<std::uint16_t>(reader.offset());
-    t.pcd = reader.rest();
+    layout_for(t.slave, du.size(), t.dp.ppo);
+    ByteReader reader(du, t.dp.fdl.du_offset);
+    if (t.dp.ppo.has_pcv) t.dp.has_pcv = read_pcv(reader, t.dp.pcv);
+    t.dp.pcd_offset = static_cast<std::uint16_t>(reader.offset());
+    t.dp.pcd = reader.rest();
 }
 
 }  // namespace dpscope

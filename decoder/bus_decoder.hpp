@@ -14,6 +14,7 @@
 #include "decoder/fdl.hpp"
 #include "decoder/pcd.hpp"
 #include "decoder/ppo.hpp"
+#include "decoder/telegram.hpp"
 #include "decoder/time.hpp"
 
 namespace dpscope {
@@ -37,9 +38,6 @@ struct DecoderOptions {
     }
 };
 
-enum class Direction : std::uint8_t { Request, Response };
-std::string_view direction_name(Direction direction);  // "request", "response"
-
 // What the decoder knows about one slave.
 struct StationConfig {
     PpoLayout ppo;                // from Chk_Cfg or Get_Cfg (source None until one is seen)
@@ -55,58 +53,6 @@ struct StationConfig {
     // word has bit 10 set ("data valid" / "control by PLC"): in bytes 9-10 it points to PPO 1, in
     // bytes 1-2 (and not in 9-10) to PPO 4. The last request that told them apart decides.
     std::uint8_t length12_type = 0;  // 0: no evidence yet
-};
-
-// A request that expected a reply and got none before the next request or token.
-struct UnansweredRequest {
-    std::uint64_t frame = 0;
-    std::int64_t time_ns = kNoTime;
-    std::uint8_t master = 0;
-    std::uint8_t slave = 0;
-    std::uint8_t function = 0;
-    Service service = Service::Unknown;
-};
-
-struct DecodedTelegram {
-    std::uint64_t frame = 0;         // 1-based record number
-    std::int64_t time_ns = kNoTime;  // nanoseconds since the epoch; kNoTime when unknown
-    Bytes bytes;                     // the record (valid until the next decode)
-    FdlTelegram fdl;                 // layer 2, with every problem found at any layer
-    Service service = Service::Unknown;
-    Direction direction = Direction::Request;
-
-    // DP roles: requests go master -> slave, responses slave -> master. A short acknowledge has
-    // no addresses of its own; it takes them from the request it answers.
-    bool has_roles = false;
-    std::uint8_t master = 0;
-    std::uint8_t slave = 0;
-    std::uint64_t request_frame = 0;  // response: the request it answers (0: not in capture)
-    std::optional<UnansweredRequest> unanswered;  // set on the telegram that ended the wait
-
-    // Data_Exchange
-    PpoLayout ppo;  // the layout used to split the data
-    Dialect dialect = Dialect::Vlt;
-    PcdProfile pcd_profile = PcdProfile::Fc;
-    bool has_pcv = false;
-    Pcv pcv;
-    Bytes pcd;  // process data words
-    std::uint16_t pcd_offset = 0;
-
-    // Services other than Data_Exchange: the slave's DP-V1 mode as its Set_Prm said (how its
-    // device-related diagnosis reads).
-    SlaveDpv1 slave_dpv1 = SlaveDpv1::Unknown;
-
-    const ProblemList& problems() const noexcept { return fdl.problems; }
-    bool has_time() const noexcept { return time_ns != kNoTime; }
-    // The parameter value as the code says (word / double word) and the code's meaning.
-    std::uint32_t pcv_value() const noexcept;
-    std::string_view pcv_meaning() const noexcept;
-    // Whether PCD 1 follows a Danfoss profile: the FC profile, or the PROFIdrive profile of a
-    // Danfoss drive (the vlt dialect), whose bits 11..15 are Danfoss-defined. A profidrive-dialect
-    // slave in the PROFIdrive profile gets the generic words (bits 11..15 device-specific).
-    bool danfoss_pcd() const noexcept {
-        return pcd_profile == PcdProfile::Fc || dialect == Dialect::Vlt;
-    }
 };
 
 class BusDecoder {

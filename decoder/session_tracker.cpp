@@ -83,17 +83,17 @@ void Timeline::add_finding(std::int64_t time_ns, Severity severity) {
 // ---- DialectEvidence ---------------------------------------------------------------------------
 
 void DialectEvidence::add(const DecodedTelegram& t) noexcept {
-    if (t.service != Service::DataExchange || !t.has_pcv || !t.fdl.fcs_ok) return;
+    if (t.dp.service != Service::DataExchange || !t.dp.has_pcv || !t.dp.fdl.fcs_ok) return;
     const bool request = t.direction == Direction::Request;
     auto defines = [&](Dialect dialect) {
-        return request ? request_code(dialect, t.pcv.rc).defined
-                       : response_code(dialect, t.pcv.rc).kind != ResponseKind::Undefined;
+        return request ? request_code(dialect, t.dp.pcv.rc).defined
+                       : response_code(dialect, t.dp.pcv.rc).kind != ResponseKind::Undefined;
     };
-    if (defines(t.dialect)) return;
-    if (decoded_ != t.dialect) *this = DialectEvidence{};  // the dialect changed: start again
-    decoded_ = t.dialect;
+    if (defines(t.dp.dialect)) return;
+    if (decoded_ != t.dp.dialect) *this = DialectEvidence{};  // the dialect changed: start again
+    decoded_ = t.dp.dialect;
     ++undefined_;
-    const Dialect other = t.dialect == Dialect::Vlt ? Dialect::Profidrive : Dialect::Vlt;
+    const Dialect other = t.dp.dialect == Dialect::Vlt ? Dialect::Profidrive : Dialect::Vlt;
     if (defines(other)) ++other_defines_;
 }
 
@@ -231,15 +231,15 @@ Finding& SessionTracker::add(FindingKind kind, const DecodedTelegram& t,
 std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
     current_.clear();
     last_frame_ = t.frame;
-    subject_pnu_ = t.has_pcv ? t.pcv.pnu : -1;
+    subject_pnu_ = t.dp.has_pcv ? t.dp.pcv.pnu : -1;
     if (t.has_time()) {
         now_ns_ = t.time_ns;
         check_deadlines(&t, now_ns_);
     }
     // A request answered by nothing before the master's next telegram.
-    if (t.unanswered &&
-        (function_is_srd(t.unanswered->function) || function_is_sda(t.unanswered->function))) {
-        const UnansweredRequest& u = *t.unanswered;
+    if (t.dp.unanswered && (function_is_srd(t.dp.unanswered->function) ||
+                            function_is_sda(t.dp.unanswered->function))) {
+        const UnansweredRequest& u = *t.dp.unanswered;
         Finding& f = add_for(FindingKind::FdlNoResponse, t.frame, t.time_ns, u.frame, true,
                              u.master, u.slave);
         f.message = fmt::format(
@@ -252,11 +252,11 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
     if (!t.has_roles) return current_;
     if (!usable) {
         // The slave drops a damaged request, so the master repeats it: its FCB still counts.
-        if (!t.fdl.fcs_ok && t.direction == Direction::Request && t.fdl.has_fc && t.fdl.fc.fcv() &&
-            t.fdl.da != kBroadcastAddress &&
-            (function_is_srd(t.fdl.fc.function()) || function_is_sda(t.fdl.fc.function()))) {
+        if (!t.dp.fdl.fcs_ok && t.direction == Direction::Request && t.dp.fdl.has_fc &&
+            t.dp.fdl.fc.fcv() && t.dp.fdl.da != kBroadcastAddress &&
+            (function_is_srd(t.dp.fdl.fc.function()) || function_is_sda(t.dp.fdl.fc.function()))) {
             Channel& ch = channel(t.master, t.slave);
-            ch.last_fcb = t.fdl.fc.fcb();
+            ch.last_fcb = t.dp.fdl.fc.fcb();
             ch.fcb_valid = true;
             ch.damaged_request = true;
         }
@@ -265,12 +265,12 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
     Channel& ch = channel(t.master, t.slave);
     bool retry = false;
     check_frame_count(ch, t, retry);
-    if (t.service != Service::DataExchange) return current_;
+    if (t.dp.service != Service::DataExchange) return current_;
 
     ChannelStats& stats = ch.stats;
     ++stats.data_exchange;
-    stats.ppo = t.ppo;
-    stats.dialect = t.dialect;
+    stats.ppo = t.dp.ppo;
+    stats.dialect = t.dp.dialect;
     if (t.has_time()) {
         if (stats.first_time_ns == kNoTime) stats.first_time_ns = t.time_ns;
         stats.last_time_ns = t.time_ns;
@@ -281,7 +281,7 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
         ch.damaged_request = false;
     }
     check_config(ch, t);
-    if (!t.has_pcv) return current_;
+    if (!t.dp.has_pcv) return current_;
     ++stats.parameter_telegrams;
     if (request)
         master_pcv(ch, t);
@@ -298,7 +298,7 @@ std::span<const Finding> SessionTracker::finish(std::int64_t end_ns) {
 }
 
 void SessionTracker::check_link(const DecodedTelegram& t, bool& usable) {
-    if (!t.fdl.fcs_ok) {
+    if (!t.dp.fdl.fcs_ok) {
         usable = false;
         Finding& f = add(FindingKind::FcsError, t, 0);
         for (const Problem& p : t.problems())
@@ -315,18 +315,19 @@ void SessionTracker::check_link(const DecodedTelegram& t, bool& usable) {
 }
 
 void SessionTracker::check_frame_count(Channel& ch, const DecodedTelegram& t, bool& retry) {
-    if (t.direction != Direction::Request || !t.fdl.has_fc || t.fdl.da == kBroadcastAddress) return;
-    std::uint8_t function = t.fdl.fc.function();
+    if (t.direction != Direction::Request || !t.dp.fdl.has_fc || t.dp.fdl.da == kBroadcastAddress)
+        return;
+    std::uint8_t function = t.dp.fdl.fc.function();
     if (function == static_cast<std::uint8_t>(FdlFunction::FdlStatus)) {
         ch.fcb_valid = false;  // the frame count restarts after FDL_Status
         return;
     }
     if (!function_is_srd(function) && !function_is_sda(function)) return;
-    if (!t.fdl.fc.fcv()) {
+    if (!t.dp.fdl.fc.fcv()) {
         ch.fcb_valid = false;
         return;
     }
-    bool fcb = t.fdl.fc.fcb();
+    bool fcb = t.dp.fdl.fc.fcb();
     if (ch.fcb_valid && ch.last_fcb == fcb) {
         retry = true;
         add(FindingKind::FdlRetry, t, 0).message =
@@ -338,13 +339,13 @@ void SessionTracker::check_frame_count(Channel& ch, const DecodedTelegram& t, bo
 }
 
 void SessionTracker::check_config(Channel& ch, const DecodedTelegram& t) {
-    if (t.ppo.source != PpoSource::ChkCfg && t.ppo.source != PpoSource::GetCfg) return;
+    if (t.dp.ppo.source != PpoSource::ChkCfg && t.dp.ppo.source != PpoSource::GetCfg) return;
     const bool request = t.direction == Direction::Request;
-    std::size_t actual = t.fdl.du.size();
+    std::size_t actual = t.dp.fdl.du.size();
     // A response without data (SC, or a status such as RS after a restart) carries no inputs to
     // measure.
     if (!request && actual == 0) return;
-    std::size_t expected = request ? t.ppo.output_bytes : t.ppo.input_bytes;
+    std::size_t expected = request ? t.dp.ppo.output_bytes : t.dp.ppo.input_bytes;
     std::size_t& state = request ? ch.output_mismatch : ch.input_mismatch;
     if (actual == expected) {
         state = 0;
@@ -356,12 +357,12 @@ void SessionTracker::check_config(Channel& ch, const DecodedTelegram& t) {
     add(FindingKind::ConfigMismatch, t, 0).message =
         fmt::format("Data_Exchange {} carries {} bytes; the {} in frame {} announced {}",
                     request ? "request" : "response", actual,
-                    t.ppo.source == PpoSource::ChkCfg ? "Chk_Cfg" : "Get_Cfg response",
+                    t.dp.ppo.source == PpoSource::ChkCfg ? "Chk_Cfg" : "Get_Cfg response",
                     config.cfg_frame, expected);
 }
 
 void SessionTracker::master_pcv(Channel& ch, const DecodedTelegram& t) {
-    const Pcv& p = t.pcv;
+    const Pcv& p = t.dp.pcv;
     if (ch.master_spm_valid && p.spm != ch.master_spm) {
         ch.master_toggled = true;
         if (ch.spontaneous.pending) {
@@ -388,8 +389,8 @@ void SessionTracker::master_pcv(Channel& ch, const DecodedTelegram& t) {
                 f.pnu = ch.pending.key.pnu;
                 f.message =
                     fmt::format("new request {} while {} from frame {} was still unanswered",
-                                describe_request(t.dialect, key),
-                                describe_request(t.dialect, ch.pending.key), ch.pending.frame);
+                                describe_request(t.dp.dialect, key),
+                                describe_request(t.dp.dialect, ch.pending.key), ch.pending.frame);
             }
         }
         ch.previous =
@@ -400,12 +401,12 @@ void SessionTracker::master_pcv(Channel& ch, const DecodedTelegram& t) {
         ch.previous.moved_on_cycle = ch.stats.cycles;
     }
     if (p.rc == 0) return;
-    const bool undefined = !request_code(t.dialect, p.rc).defined;
+    const bool undefined = !request_code(t.dp.dialect, p.rc).defined;
     if (undefined) {
         Finding& f = add(FindingKind::UnknownCode, t, 0);
         f.pnu = p.pnu;
         f.message = fmt::format("request code RC {} is not defined in the {} dialect", p.rc,
-                                dialect_name(t.dialect));
+                                dialect_name(t.dp.dialect));
     }
     ch.pending = Channel::Pending{true, key, t.frame, t.time_ns, ch.stats.cycles, false, undefined};
     ch.orphan_valid = false;
@@ -416,8 +417,8 @@ void SessionTracker::master_pcv(Channel& ch, const DecodedTelegram& t) {
 }
 
 void SessionTracker::slave_pcv(Channel& ch, const DecodedTelegram& t) {
-    const Pcv& r = t.pcv;
-    const Dialect dialect = t.dialect;
+    const Pcv& r = t.dp.pcv;
+    const Dialect dialect = t.dp.dialect;
     const ResponseCode& code = response_code(dialect, r.rc);
     ch.slave_spm = r.spm;
     ch.slave_spm_valid = true;
@@ -611,7 +612,7 @@ void SessionTracker::answered(Channel& ch, const DecodedTelegram& t) {
         stats.timeline.add_transaction(t.time_ns);
     }
     stats.latency_cycles.add(stats.cycles - ch.pending.cycle);
-    ch.previous = Channel::Previous{true, ch.pending.key, true, false, 0, false, t.pcv.rc};
+    ch.previous = Channel::Previous{true, ch.pending.key, true, false, 0, false, t.dp.pcv.rc};
     ch.pending.active = false;
 }
 

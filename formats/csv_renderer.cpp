@@ -31,7 +31,7 @@ class CsvRenderer final : public TelegramRenderer {
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
         TextBuffer& b = out_.buffer();
         auto it = std::back_inserter(b);
-        const FdlTelegram& f = t.fdl;
+        const FdlTelegram& f = t.dp.fdl;
         auto opt = [&](bool present, unsigned value) {
             if (present) fmt::format_to(it, "{}", value);
             b.push_back(',');
@@ -45,23 +45,24 @@ class CsvRenderer final : public TelegramRenderer {
         opt(f.has_dsap, f.dsap);
         opt(f.has_ssap, f.ssap);
         if (f.has_fc) fmt::format_to(it, "0x{:02X}", f.fc.raw);
-        fmt::format_to(it, ",{},{},", service_name(t.service), direction_name(t.direction));
+        fmt::format_to(it, ",{},{},", service_name(t.dp.service), direction_name(t.direction));
         opt(t.has_roles, t.master);
         opt(t.has_roles, t.slave);
         opt(t.request_frame != 0, static_cast<unsigned>(t.request_frame));
         fmt::format_to(it, "{},", f.fcs_ok ? "true" : "false");
-        opt(t.service == Service::DataExchange && t.ppo.type != 0, t.ppo.type);
-        if (t.has_pcv) {
-            const bool rejected = t.direction == Direction::Response &&
-                                  response_code(t.dialect, t.pcv.rc).kind == ResponseKind::Rejected;
-            fmt::format_to(it, "{},{},{},{},{},", t.pcv.rc, t.pcv.spm ? 1 : 0, t.pcv.pnu, t.pcv.ind,
-                           t.pcv_value());
-            quoted(b, t.pcv_meaning());
+        opt(t.dp.service == Service::DataExchange && t.dp.ppo.type != 0, t.dp.ppo.type);
+        if (t.dp.has_pcv) {
+            const bool rejected =
+                t.direction == Direction::Response &&
+                response_code(t.dp.dialect, t.dp.pcv.rc).kind == ResponseKind::Rejected;
+            fmt::format_to(it, "{},{},{},{},{},", t.dp.pcv.rc, t.dp.pcv.spm ? 1 : 0, t.dp.pcv.pnu,
+                           t.dp.pcv.ind, t.dp.pcv_value(t.direction));
+            quoted(b, t.dp.pcv_meaning(t.direction));
             b.push_back(',');
             if (rejected) {
-                auto error = static_cast<std::uint16_t>(t.pcv.pva & 0xFFFF);
+                auto error = static_cast<std::uint16_t>(t.dp.pcv.pva & 0xFFFF);
                 fmt::format_to(it, "{},", error);
-                quoted(b, error_text(t.dialect, error));
+                quoted(b, error_text(t.dp.dialect, error));
             } else {
                 b.push_back(',');
             }
@@ -69,8 +70,8 @@ class CsvRenderer final : public TelegramRenderer {
             append(b, ",,,,,,,");
         }
         b.push_back(',');
-        if (t.service == Service::DataExchange) {
-            ByteReader reader(t.pcd);
+        if (t.dp.service == Service::DataExchange) {
+            ByteReader reader(t.dp.pcd);
             bool first = true;
             while (auto word = reader.u16_be()) {
                 if (!first) b.push_back(' ');

@@ -127,19 +127,19 @@ void append_ppo_long(TextBuffer& out, const PpoLayout& layout) {
 }
 
 void append_pcv_summary(TextBuffer& out, const DecodedTelegram& t) {
-    const Pcv& pcv = t.pcv;
+    const Pcv& pcv = t.dp.pcv;
     bool request = t.direction == Direction::Request;
-    fmt::format_to(std::back_inserter(out), "RC={} {}", pcv.rc, t.pcv_meaning());
+    fmt::format_to(std::back_inserter(out), "RC={} {}", pcv.rc, t.dp.pcv_meaning(t.direction));
     if (pcv.spm) append(out, " SPM=1");
     fmt::format_to(std::back_inserter(out), " PNU={} IND={}", pcv.pnu, pcv.ind);
-    if (!request && response_code(t.dialect, pcv.rc).kind == ResponseKind::Rejected) {
+    if (!request && response_code(t.dp.dialect, pcv.rc).kind == ResponseKind::Rejected) {
         std::uint16_t error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
-        std::string_view text = error_text(t.dialect, error);
+        std::string_view text = error_text(t.dp.dialect, error);
         fmt::format_to(std::back_inserter(out), " error {} ({})", error,
                        text.empty() ? "unknown error number" : text);
         return;
     }
-    fmt::format_to(std::back_inserter(out), " PVA={}", t.pcv_value());
+    fmt::format_to(std::back_inserter(out), " PVA={}", t.dp.pcv_value(t.direction));
 }
 
 std::string_view pcd_word_name(Direction direction, std::size_t index) {
@@ -149,7 +149,7 @@ std::string_view pcd_word_name(Direction direction, std::size_t index) {
 }
 
 void append_pcd_summary(TextBuffer& out, const DecodedTelegram& t) {
-    ByteReader reader(t.pcd);
+    ByteReader reader(t.dp.pcd);
     auto first = reader.u16_be();
     if (!first) {
         append(out, "no PCD");
@@ -164,17 +164,17 @@ void append_pcd_summary(TextBuffer& out, const DecodedTelegram& t) {
 }
 
 void append_cfg_summary(TextBuffer& out, const DecodedTelegram& t) {
-    append_hex(out, t.fdl.du);
+    append_hex(out, t.dp.fdl.du);
     std::vector<CfgModule> modules;
     ProblemList ignored;
-    parse_cfg(ByteReader(t.fdl.du, t.fdl.du_offset), modules, ignored);
+    parse_cfg(ByteReader(t.dp.fdl.du, t.dp.fdl.du_offset), modules, ignored);
     PpoLayout layout = ppo_from_cfg(modules, PpoSource::ChkCfg);
     append(out, " = ");
     append_ppo_short(out, layout);
 }
 
 void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
-    const FdlTelegram& f = t.fdl;
+    const FdlTelegram& f = t.dp.fdl;
     bool request = t.direction == Direction::Request;
     ByteReader du(f.du, f.du_offset);
     ProblemList ignored;
@@ -182,7 +182,7 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
         append(out, "short acknowledge");
         return;
     }
-    switch (t.service) {
+    switch (t.dp.service) {
         case Service::Token: append(out, "token"); return;
         case Service::DataExchange:
             if (f.du.empty() && f.has_fc && !f.fc.is_request()) {  // RS, RR, ...: no inputs
@@ -191,9 +191,9 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
                                response_status_text(f.fc.function()));
                 return;
             }
-            append_ppo_short(out, t.ppo);
+            append_ppo_short(out, t.dp.ppo);
             out.push_back(' ');
-            if (t.has_pcv) {
+            if (t.dp.has_pcv) {
                 append_pcv_summary(out, t);
                 append(out, " | ");
             }
@@ -265,7 +265,7 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
         case Service::RdInp:
         case Service::RdOutp:
             if (request) {
-                append(out, t.service == Service::RdInp ? "read inputs" : "read outputs");
+                append(out, t.dp.service == Service::RdInp ? "read inputs" : "read outputs");
                 return;
             }
             break;

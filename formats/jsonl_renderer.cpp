@@ -35,9 +35,9 @@ class JsonlRenderer final : public TelegramRenderer {
 
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
         JsonWriter w(out_.buffer());
-        const FdlTelegram& f = t.fdl;
+        const FdlTelegram& f = t.dp.fdl;
         const bool valid = f.type != FrameType::Invalid;
-        const bool data_exchange = t.service == Service::DataExchange;
+        const bool data_exchange = t.dp.service == Service::DataExchange;
         w.begin_object();
         w.key("frame").integer(static_cast<std::int64_t>(t.frame));
         w.key("time");
@@ -71,32 +71,32 @@ class JsonlRenderer final : public TelegramRenderer {
             w.null();
         }
         w.key("fcs_ok").boolean(f.fcs_ok);
-        w.key("service").string(service_name(t.service));
+        w.key("service").string(service_name(t.dp.service));
         w.key("direction").string(direction_name(t.direction));
         w.key("master").optional_integer(t.has_roles, t.master);
         w.key("slave").optional_integer(t.has_roles, t.slave);
         w.key("request_frame")
             .optional_integer(t.request_frame != 0, static_cast<std::int64_t>(t.request_frame));
-        w.key("ppo").optional_integer(data_exchange && t.ppo.type != 0, t.ppo.type);
+        w.key("ppo").optional_integer(data_exchange && t.dp.ppo.type != 0, t.dp.ppo.type);
         w.key("ppo_source");
         if (data_exchange)
-            w.string(ppo_source_name(t.ppo.source));
+            w.string(ppo_source_name(t.dp.ppo.source));
         else
             w.null();
         w.key("dialect");
         if (data_exchange)
-            w.string(dialect_name(t.dialect));
+            w.string(dialect_name(t.dp.dialect));
         else
             w.null();
         w.key("pcv");
-        if (t.has_pcv)
+        if (t.dp.has_pcv)
             render_pcv(w, t);
         else
             w.null();
         w.key("pcd");
         if (data_exchange) {
             w.begin_array();
-            ByteReader reader(t.pcd);
+            ByteReader reader(t.dp.pcd);
             while (auto word = reader.u16_be())
                 w.integer(*word);
             w.end_array();
@@ -146,17 +146,17 @@ class JsonlRenderer final : public TelegramRenderer {
 
   private:
     static void render_pcv(JsonWriter& w, const DecodedTelegram& t) {
-        const Pcv& pcv = t.pcv;
+        const Pcv& pcv = t.dp.pcv;
         const bool request = t.direction == Direction::Request;
         ValueWidth width;
         bool known;
         bool rejected = false;
         if (request) {
-            const RequestCode& code = request_code(t.dialect, pcv.rc);
+            const RequestCode& code = request_code(t.dp.dialect, pcv.rc);
             width = code.width;
             known = code.defined;
         } else {
-            const ResponseCode& code = response_code(t.dialect, pcv.rc);
+            const ResponseCode& code = response_code(t.dp.dialect, pcv.rc);
             width = code.width;
             known = code.kind != ResponseKind::Undefined;
             rejected = code.kind == ResponseKind::Rejected;
@@ -177,14 +177,14 @@ class JsonlRenderer final : public TelegramRenderer {
             w.string("dword");
         else
             w.null();
-        w.key("meaning").string(t.pcv_meaning());
+        w.key("meaning").string(t.dp.pcv_meaning(t.direction));
         w.key("code_known").boolean(known);
         w.key("error");
         if (rejected) {
             auto error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
             w.integer(error);
             w.key("error_text");
-            std::string_view text = error_text(t.dialect, error);
+            std::string_view text = error_text(t.dp.dialect, error);
             if (text.empty())
                 w.null();
             else
@@ -198,13 +198,13 @@ class JsonlRenderer final : public TelegramRenderer {
 
     static void render_service_objects(JsonWriter& w, const DecodedTelegram& t) {
         const bool request = t.direction == Direction::Request;
-        const bool has_data = !t.fdl.du.empty();
-        ByteReader du(t.fdl.du, t.fdl.du_offset);
+        const bool has_data = !t.dp.fdl.du.empty();
+        ByteReader du(t.dp.fdl.du, t.dp.fdl.du_offset);
         ProblemList ignored;
 
         w.key("diag");
         std::optional<SlaveDiag> diag;
-        if (t.service == Service::SlaveDiag && !request && has_data)
+        if (t.dp.service == Service::SlaveDiag && !request && has_data)
             diag = parse_slave_diag(du, ignored);
         if (diag) {
             w.begin_object();
@@ -231,10 +231,10 @@ class JsonlRenderer final : public TelegramRenderer {
             else
                 hex_string(w, diag->extended);
             w.key("dpv1");
-            if (t.slave_dpv1 == SlaveDpv1::Unknown)
+            if (t.dp.slave_dpv1 == SlaveDpv1::Unknown)
                 w.null();
             else
-                w.boolean(t.slave_dpv1 == SlaveDpv1::Enabled);
+                w.boolean(t.dp.slave_dpv1 == SlaveDpv1::Enabled);
             w.end_object();
         } else {
             w.null();
@@ -242,7 +242,7 @@ class JsonlRenderer final : public TelegramRenderer {
 
         w.key("prm");
         std::optional<SetPrm> prm;
-        if (t.service == Service::SetPrm && request) prm = parse_set_prm(du, ignored);
+        if (t.dp.service == Service::SetPrm && request) prm = parse_set_prm(du, ignored);
         if (prm) {
             w.begin_object();
             w.key("ident").integer(prm->ident);
@@ -274,14 +274,14 @@ class JsonlRenderer final : public TelegramRenderer {
         }
 
         w.key("cfg");
-        bool cfg = has_data && ((t.service == Service::ChkCfg && request) ||
-                                (t.service == Service::GetCfg && !request));
+        bool cfg = has_data && ((t.dp.service == Service::ChkCfg && request) ||
+                                (t.dp.service == Service::GetCfg && !request));
         if (cfg) {
             std::vector<CfgModule> modules;
             parse_cfg(du, modules, ignored);
             w.begin_object();
             w.key("bytes").begin_array();
-            for (std::uint8_t byte : t.fdl.du)
+            for (std::uint8_t byte : t.dp.fdl.du)
                 w.integer(byte);
             w.end_array();
             w.key("modules").begin_array();
@@ -310,7 +310,8 @@ class JsonlRenderer final : public TelegramRenderer {
 
         w.key("global_control");
         std::optional<GlobalControl> gc;
-        if (t.service == Service::GlobalControl && request) gc = parse_global_control(du, ignored);
+        if (t.dp.service == Service::GlobalControl && request)
+            gc = parse_global_control(du, ignored);
         if (gc) {
             w.begin_object();
             w.key("command").integer(gc->command);

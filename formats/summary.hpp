@@ -31,8 +31,8 @@ class Summary {
   public:
     void add(const DecodedTelegram& t) noexcept {
         ++telegrams_;
-        ++frame_types_[static_cast<std::size_t>(t.fdl.type)];
-        auto service = static_cast<std::size_t>(t.service);
+        ++frame_types_[static_cast<std::size_t>(t.dp.fdl.type)];
+        auto service = static_cast<std::size_t>(t.dp.service);
         if (t.direction == Direction::Request)
             ++requests_[service];
         else
@@ -47,7 +47,7 @@ class Summary {
             last_time_ = t.time_ns;
         }
         if (t.has_roles) slave_seen_[t.slave & 0x7F] = true;
-        if (t.service == Service::DataExchange && t.has_roles) {
+        if (t.dp.service == Service::DataExchange && t.has_roles) {
             ++data_exchange_[t.slave & 0x7F];
             dialects_[t.slave & 0x7F].add(t);
         }

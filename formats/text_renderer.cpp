@@ -57,17 +57,18 @@ class TextRenderer final : public TelegramRenderer {
         } else {
             append(b, "           - ");
         }
-        if (t.fdl.has_addresses) {
-            fmt::format_to(it, "{:>3} → {:<3} ", t.fdl.sa, t.fdl.da);
+        if (t.dp.fdl.has_addresses) {
+            fmt::format_to(it, "{:>3} → {:<3} ", t.dp.fdl.sa, t.dp.fdl.da);
         } else if (t.has_roles) {
             fmt::format_to(it, "{:>3} → {:<3} ", t.slave, t.master);
         } else {
             append(b, "  ? → ?   ");
         }
         fmt::format_to(it, "{:<3} {:<14} {} ",
-                       t.fdl.type == FrameType::Invalid ? "bad" : frame_type_name(t.fdl.type),
-                       service_name(t.service), t.direction == Direction::Request ? "req" : "rsp");
-        if (t.fdl.type == FrameType::Invalid)
+                       t.dp.fdl.type == FrameType::Invalid ? "bad" : frame_type_name(t.dp.fdl.type),
+                       service_name(t.dp.service),
+                       t.direction == Direction::Request ? "req" : "rsp");
+        if (t.dp.fdl.type == FrameType::Invalid)
             append_hex(b, t.bytes.first(std::min<std::size_t>(t.bytes.size(), 16)));
         else
             append_service_detail(b, t);

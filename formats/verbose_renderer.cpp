@@ -86,7 +86,7 @@ class VerboseRenderer final : public TelegramRenderer {
     }
 
     void render_fdl(const DecodedTelegram& t) {
-        const FdlTelegram& f = t.fdl;
+        const FdlTelegram& f = t.dp.fdl;
         TextBuffer& b = out_.buffer();
         auto it = std::back_inserter(b);
         append(b, "PROFIBUS FDL\n");
@@ -140,23 +140,24 @@ class VerboseRenderer final : public TelegramRenderer {
     }
 
     void render_dp(const DecodedTelegram& t) {
-        if (t.fdl.type == FrameType::Invalid) return;
+        if (t.dp.fdl.type == FrameType::Invalid) return;
         TextBuffer& b = out_.buffer();
         auto it = std::back_inserter(b);
-        fmt::format_to(it, "PROFIBUS DP: {} {}", service_name(t.service),
+        fmt::format_to(it, "PROFIBUS DP: {} {}", service_name(t.dp.service),
                        direction_name(t.direction));
-        if (t.has_roles && t.service != Service::Token)
+        if (t.has_roles && t.dp.service != Service::Token)
             fmt::format_to(it, ", master {} / slave {}", t.master, t.slave);
         if (t.request_frame != 0) fmt::format_to(it, ", answers frame {}", t.request_frame);
         b.push_back('\n');
-        ByteReader du(t.fdl.du, t.fdl.du_offset);
+        ByteReader du(t.dp.fdl.du, t.dp.fdl.du_offset);
         ProblemList ignored;
         bool request = t.direction == Direction::Request;
-        switch (t.service) {
+        switch (t.dp.service) {
             case Service::DataExchange: render_data_exchange(t); break;
             case Service::SlaveDiag:
-                if (!request && !t.fdl.du.empty())
-                    if (auto diag = parse_slave_diag(du, ignored)) render_diag(*diag, t.slave_dpv1);
+                if (!request && !t.dp.fdl.du.empty())
+                    if (auto diag = parse_slave_diag(du, ignored))
+                        render_diag(*diag, t.dp.slave_dpv1);
                 break;
             case Service::SetPrm:
                 if (request)
@@ -164,7 +165,8 @@ class VerboseRenderer final : public TelegramRenderer {
                 break;
             case Service::ChkCfg:
             case Service::GetCfg:
-                if (!t.fdl.du.empty() && (request == (t.service == Service::ChkCfg))) render_cfg(t);
+                if (!t.dp.fdl.du.empty() && (request == (t.dp.service == Service::ChkCfg)))
+                    render_cfg(t);
                 break;
             case Service::GlobalControl:
                 if (auto gc = parse_global_control(du, ignored)) {
@@ -186,9 +188,9 @@ class VerboseRenderer final : public TelegramRenderer {
                 }
                 break;
             default:
-                if (!t.fdl.du.empty()) {
+                if (!t.dp.fdl.du.empty()) {
                     line(1, "Data: ");
-                    append_hex(b, t.fdl.du);
+                    append_hex(b, t.dp.fdl.du);
                     b.push_back('\n');
                 }
                 break;
@@ -198,32 +200,32 @@ class VerboseRenderer final : public TelegramRenderer {
     void render_data_exchange(const DecodedTelegram& t) {
         TextBuffer& b = out_.buffer();
         line(1, "PPO: ");
-        append_ppo_long(b, t.ppo);
+        append_ppo_long(b, t.dp.ppo);
         b.push_back('\n');
-        field(1, "Dialect: {}; control/status word profile: {}{}", dialect_name(t.dialect),
-              pcd_profile_name(t.pcd_profile),
-              t.pcd_profile == PcdProfile::Profidrive && t.danfoss_pcd() ? " (Danfoss)" : "");
+        field(1, "Dialect: {}; control/status word profile: {}{}", dialect_name(t.dp.dialect),
+              pcd_profile_name(t.dp.pcd_profile),
+              t.dp.pcd_profile == PcdProfile::Profidrive && t.dp.danfoss_pcd() ? " (Danfoss)" : "");
         bool request = t.direction == Direction::Request;
-        if (t.has_pcv) {
-            const Pcv& pcv = t.pcv;
-            field(1, "PCV (parameter channel), bytes {}-{}", t.fdl.du_offset,
-                  t.fdl.du_offset + kPcvBytes - 1);
+        if (t.dp.has_pcv) {
+            const Pcv& pcv = t.dp.pcv;
+            field(1, "PCV (parameter channel), bytes {}-{}", t.dp.fdl.du_offset,
+                  t.dp.fdl.du_offset + kPcvBytes - 1);
             field(2, "PCA: 0x{:04X}", pcv.pca);
-            bool defined = request
-                               ? request_code(t.dialect, pcv.rc).defined
-                               : response_code(t.dialect, pcv.rc).kind != ResponseKind::Undefined;
-            field(3, "RC: {} = {}{}", pcv.rc, t.pcv_meaning(),
+            bool defined =
+                request ? request_code(t.dp.dialect, pcv.rc).defined
+                        : response_code(t.dp.dialect, pcv.rc).kind != ResponseKind::Undefined;
+            field(3, "RC: {} = {}{}", pcv.rc, t.dp.pcv_meaning(t.direction),
                   defined ? "" : " (not defined by the dialect)");
             field(3, "SPM: {}", pcv.spm ? 1 : 0);
             field(3, "PNU: {}", pcv.pnu);
             field(2, "IND: {} (byte 4: 0x{:02X})", pcv.ind, pcv.ind_low);
-            ValueWidth width = request ? request_code(t.dialect, pcv.rc).width
-                                       : response_code(t.dialect, pcv.rc).width;
+            ValueWidth width = request ? request_code(t.dp.dialect, pcv.rc).width
+                                       : response_code(t.dp.dialect, pcv.rc).width;
             bool rejected =
-                !request && response_code(t.dialect, pcv.rc).kind == ResponseKind::Rejected;
+                !request && response_code(t.dp.dialect, pcv.rc).kind == ResponseKind::Rejected;
             if (rejected) {
                 auto error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
-                std::string_view text = error_text(t.dialect, error);
+                std::string_view text = error_text(t.dp.dialect, error);
                 field(2, "PVA: 0x{:08X}", pcv.pva);
                 field(2, "Error number: {} = {}", error,
                       text.empty() ? "not known to the dialect" : text);
@@ -235,11 +237,11 @@ class VerboseRenderer final : public TelegramRenderer {
                 field(2, "PVA: 0x{:08X} (the code carries no value)", pcv.pva);
             }
         }
-        ByteReader reader(t.pcd, t.pcd_offset);
+        ByteReader reader(t.dp.pcd, t.dp.pcd_offset);
         if (reader.empty()) return;
         field(1, "PCD ({} words)", reader.remaining() / 2);
-        const WordBits& bits = request ? control_word_bits(t.pcd_profile, t.danfoss_pcd())
-                                       : status_word_bits(t.pcd_profile, t.danfoss_pcd());
+        const WordBits& bits = request ? control_word_bits(t.dp.pcd_profile, t.dp.danfoss_pcd())
+                                       : status_word_bits(t.dp.pcd_profile, t.dp.danfoss_pcd());
         for (std::size_t index = 0;; ++index) {
             auto word = reader.u16_be();
             if (!word) break;
@@ -372,9 +374,9 @@ class VerboseRenderer final : public TelegramRenderer {
     void render_cfg(const DecodedTelegram& t) {
         std::vector<CfgModule> modules;
         ProblemList ignored;
-        parse_cfg(ByteReader(t.fdl.du, t.fdl.du_offset), modules, ignored);
+        parse_cfg(ByteReader(t.dp.fdl.du, t.dp.fdl.du_offset), modules, ignored);
         line(1, "Identifier bytes: ");
-        append_hex(out_.buffer(), t.fdl.du);
+        append_hex(out_.buffer(), t.dp.fdl.du);
         out_.buffer().push_back('\n');
         std::size_t number = 1;
         for (const CfgModule& m : modules) {
@@ -399,8 +401,8 @@ class VerboseRenderer final : public TelegramRenderer {
         }
         line(1, "Layout: ");
         append_ppo_long(out_.buffer(),
-                        ppo_from_cfg(modules, t.service == Service::ChkCfg ? PpoSource::ChkCfg
-                                                                           : PpoSource::GetCfg));
+                        ppo_from_cfg(modules, t.dp.service == Service::ChkCfg ? PpoSource::ChkCfg
+                                                                              : PpoSource::GetCfg));
         out_.buffer().push_back('\n');
     }
 };

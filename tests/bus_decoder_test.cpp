@@ -94,19 +94,19 @@ TEST(BusDecoderTest, ShortAckAfterChkCfgIsNamedChkCfg) {
     Bus bus;
     const DecodedTelegram& request = bus.decode(service_request(3, sap::kChkCfg, hex("F3 F1")));
     EXPECT_EQ(request.frame, 1u);
-    EXPECT_EQ(request.service, Service::ChkCfg);
+    EXPECT_EQ(request.dp.service, Service::ChkCfg);
     EXPECT_EQ(request.direction, Direction::Request);
     EXPECT_TRUE(request.has_roles);
     EXPECT_EQ(request.master, 2);
     EXPECT_EQ(request.slave, 3);
     EXPECT_EQ(request.request_frame, 0u);
-    EXPECT_FALSE(request.unanswered);
+    EXPECT_FALSE(request.dp.unanswered);
     EXPECT_TRUE(request.problems().empty());
 
     const DecodedTelegram& ack = bus.decode(short_ack());
     EXPECT_EQ(ack.frame, 2u);
-    EXPECT_EQ(ack.fdl.type, FrameType::ShortAck);
-    EXPECT_EQ(ack.service, Service::ChkCfg);
+    EXPECT_EQ(ack.dp.fdl.type, FrameType::ShortAck);
+    EXPECT_EQ(ack.dp.service, Service::ChkCfg);
     EXPECT_EQ(ack.direction, Direction::Response);
     EXPECT_EQ(ack.request_frame, 1u);
     EXPECT_TRUE(ack.has_roles);
@@ -114,7 +114,7 @@ TEST(BusDecoderTest, ShortAckAfterChkCfgIsNamedChkCfg) {
     EXPECT_EQ(ack.slave, 3);
 
     const DecodedTelegram& next = bus.decode(token());
-    EXPECT_FALSE(next.unanswered);
+    EXPECT_FALSE(next.dp.unanswered);
 }
 
 TEST(BusDecoderTest, ResponsesAreNamedAfterTheRequestTheyAnswer) {
@@ -122,26 +122,26 @@ TEST(BusDecoderTest, ResponsesAreNamedAfterTheRequestTheyAnswer) {
     bus.decode(service_request(3, sap::kSlaveDiag));
     const DecodedTelegram& diag =
         bus.decode(service_response(3, sap::kSlaveDiag, hex("02 05 00 FF 04 02")));
-    EXPECT_EQ(diag.fdl.type, FrameType::Sd3);
-    EXPECT_EQ(diag.service, Service::SlaveDiag);
+    EXPECT_EQ(diag.dp.fdl.type, FrameType::Sd3);
+    EXPECT_EQ(diag.dp.service, Service::SlaveDiag);
     EXPECT_EQ(diag.request_frame, 1u);
 
     bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00")));
     const DecodedTelegram& prm_ack = bus.decode(short_ack());
-    EXPECT_EQ(prm_ack.service, Service::SetPrm);
+    EXPECT_EQ(prm_ack.dp.service, Service::SetPrm);
     EXPECT_EQ(prm_ack.request_frame, 3u);
 
     bus.decode(exchange_request(3, hex("04 7F 20 00")));
     const DecodedTelegram& inputs = bus.decode(exchange_response(3, hex("0F 07 20 00")));
-    EXPECT_EQ(inputs.service, Service::DataExchange);
+    EXPECT_EQ(inputs.dp.service, Service::DataExchange);
     EXPECT_EQ(inputs.request_frame, 5u);
     EXPECT_EQ(inputs.direction, Direction::Response);
 
     bus.decode(telegram(3, 2, request_fc(FdlFunction::FdlStatus), std::nullopt, std::nullopt, {}));
     const DecodedTelegram& status =
         bus.decode(telegram(2, 3, response_fc(FdlStatus::Ok), std::nullopt, std::nullopt, {}));
-    EXPECT_EQ(status.fdl.type, FrameType::Sd1);
-    EXPECT_EQ(status.service, Service::FdlStatus);
+    EXPECT_EQ(status.dp.fdl.type, FrameType::Sd1);
+    EXPECT_EQ(status.dp.service, Service::FdlStatus);
     EXPECT_EQ(status.request_frame, 7u);
 }
 
@@ -149,7 +149,7 @@ TEST(BusDecoderTest, UnpairedResponsesAreClassifiedBySourceSap) {
     Bus bus;
     const DecodedTelegram& diag =
         bus.decode(service_response(3, sap::kSlaveDiag, hex("02 05 00 FF 04 02")));
-    EXPECT_EQ(diag.service, Service::SlaveDiag);
+    EXPECT_EQ(diag.dp.service, Service::SlaveDiag);
     EXPECT_EQ(diag.direction, Direction::Response);
     EXPECT_EQ(diag.request_frame, 0u);
     EXPECT_TRUE(diag.has_roles);
@@ -157,15 +157,15 @@ TEST(BusDecoderTest, UnpairedResponsesAreClassifiedBySourceSap) {
     EXPECT_EQ(diag.slave, 3);
 
     const DecodedTelegram& cfg = bus.decode(service_response(4, sap::kGetCfg, hex("F1")));
-    EXPECT_EQ(cfg.service, Service::GetCfg);
+    EXPECT_EQ(cfg.dp.service, Service::GetCfg);
     EXPECT_EQ(cfg.slave, 4);
 
     const DecodedTelegram& inputs = bus.decode(exchange_response(5, hex("0F 07 20 00")));
-    EXPECT_EQ(inputs.service, Service::DataExchange);
+    EXPECT_EQ(inputs.dp.service, Service::DataExchange);
     EXPECT_EQ(inputs.request_frame, 0u);
 
     const DecodedTelegram& ack = bus.decode(short_ack());
-    EXPECT_EQ(ack.service, Service::ShortAck);
+    EXPECT_EQ(ack.dp.service, Service::ShortAck);
     EXPECT_EQ(ack.direction, Direction::Response);
     EXPECT_FALSE(ack.has_roles);
 }
@@ -177,9 +177,9 @@ TEST(BusDecoderTest, ResponseFromAnotherStationDoesNotAnswerThePendingRequest) {
     EXPECT_EQ(other.request_frame, 0u);
     EXPECT_EQ(other.slave, 4);
     const DecodedTelegram& next = bus.decode(token());
-    ASSERT_TRUE(next.unanswered);
-    EXPECT_EQ(next.unanswered->frame, 1u);
-    EXPECT_EQ(next.unanswered->slave, 3);
+    ASSERT_TRUE(next.dp.unanswered);
+    EXPECT_EQ(next.dp.unanswered->frame, 1u);
+    EXPECT_EQ(next.dp.unanswered->slave, 3);
 }
 
 TEST(BusDecoderTest, ResponseToAnotherMasterDoesNotAnswerThePendingRequest) {
@@ -197,39 +197,39 @@ TEST(BusDecoderTest, UnansweredSrdReportedOnTheNextRequest) {
     Bus bus;
     bus.decode(exchange_request(3, hex("04 7F 20 00")), 1000);
     const DecodedTelegram& next = bus.decode(exchange_request(4, hex("04 7F 20 00")), 2000);
-    ASSERT_TRUE(next.unanswered);
-    EXPECT_EQ(next.unanswered->frame, 1u);
-    EXPECT_EQ(next.unanswered->time_ns, 1000);
-    EXPECT_EQ(next.unanswered->master, 2);
-    EXPECT_EQ(next.unanswered->slave, 3);
-    EXPECT_EQ(next.unanswered->function, static_cast<std::uint8_t>(FdlFunction::SrdHigh));
-    EXPECT_EQ(next.unanswered->service, Service::DataExchange);
+    ASSERT_TRUE(next.dp.unanswered);
+    EXPECT_EQ(next.dp.unanswered->frame, 1u);
+    EXPECT_EQ(next.dp.unanswered->time_ns, 1000);
+    EXPECT_EQ(next.dp.unanswered->master, 2);
+    EXPECT_EQ(next.dp.unanswered->slave, 3);
+    EXPECT_EQ(next.dp.unanswered->function, static_cast<std::uint8_t>(FdlFunction::SrdHigh));
+    EXPECT_EQ(next.dp.unanswered->service, Service::DataExchange);
     EXPECT_EQ(next.time_ns, 2000);
     EXPECT_TRUE(next.has_time());
 
     // The second request is answered normally.
     const DecodedTelegram& answer = bus.decode(exchange_response(4, hex("0F 07 20 00")));
     EXPECT_EQ(answer.request_frame, 2u);
-    EXPECT_FALSE(bus.decode(token()).unanswered);
+    EXPECT_FALSE(bus.decode(token()).dp.unanswered);
 }
 
 TEST(BusDecoderTest, UnansweredRequestReportedOnTheTokenOnlyOnce) {
     Bus bus;
     bus.decode(service_request(3, sap::kSlaveDiag));
     const DecodedTelegram& first = bus.decode(token());
-    EXPECT_EQ(first.service, Service::Token);
-    ASSERT_TRUE(first.unanswered);
-    EXPECT_EQ(first.unanswered->service, Service::SlaveDiag);
-    EXPECT_EQ(first.unanswered->time_ns, kNoTime);
-    EXPECT_FALSE(bus.decode(token()).unanswered);
+    EXPECT_EQ(first.dp.service, Service::Token);
+    ASSERT_TRUE(first.dp.unanswered);
+    EXPECT_EQ(first.dp.unanswered->service, Service::SlaveDiag);
+    EXPECT_EQ(first.dp.unanswered->time_ns, kNoTime);
+    EXPECT_FALSE(bus.decode(token()).dp.unanswered);
 }
 
 TEST(BusDecoderTest, UnansweredSdaIsReported) {
     Bus bus;
     bus.decode(service_request(3, sap::kGlobalControl, hex("08 00"), FdlFunction::SdaHigh));
     const DecodedTelegram& next = bus.decode(token());
-    ASSERT_TRUE(next.unanswered);
-    EXPECT_EQ(next.unanswered->function, static_cast<std::uint8_t>(FdlFunction::SdaHigh));
+    ASSERT_TRUE(next.dp.unanswered);
+    EXPECT_EQ(next.dp.unanswered->function, static_cast<std::uint8_t>(FdlFunction::SdaHigh));
 }
 
 TEST(BusDecoderTest, NoReplyExpectedAfterSdnOrBroadcast) {
@@ -237,28 +237,28 @@ TEST(BusDecoderTest, NoReplyExpectedAfterSdnOrBroadcast) {
     // Global_Control: SDN to the broadcast address.
     const DecodedTelegram& gc = bus.decode(service_request(kBroadcastAddress, sap::kGlobalControl,
                                                            hex("08 00"), FdlFunction::SdnHigh));
-    EXPECT_EQ(gc.service, Service::GlobalControl);
-    EXPECT_FALSE(bus.decode(token()).unanswered);
+    EXPECT_EQ(gc.dp.service, Service::GlobalControl);
+    EXPECT_FALSE(bus.decode(token()).dp.unanswered);
     // SDN to a single slave.
     bus.decode(service_request(3, sap::kGlobalControl, hex("08 00"), FdlFunction::SdnLow));
-    EXPECT_FALSE(bus.decode(token()).unanswered);
+    EXPECT_FALSE(bus.decode(token()).dp.unanswered);
     // Even an SRD to the broadcast address waits for nobody.
     bus.decode(exchange_request(kBroadcastAddress, hex("00 00")));
-    EXPECT_FALSE(bus.decode(token()).unanswered);
+    EXPECT_FALSE(bus.decode(token()).dp.unanswered);
     // A token itself waits for nothing.
     bus.decode(token(3, 2));
-    EXPECT_FALSE(bus.decode(token()).unanswered);
+    EXPECT_FALSE(bus.decode(token()).dp.unanswered);
 }
 
 TEST(BusDecoderTest, InvalidTelegramKeepsTheRequestPending) {
     Bus bus;
     bus.decode(exchange_request(3, hex("04 7F 20 00")));
     const DecodedTelegram& garbage = bus.decode(hex("2A 3F 9F"));
-    EXPECT_EQ(garbage.fdl.type, FrameType::Invalid);
-    EXPECT_EQ(garbage.service, Service::Unknown);
+    EXPECT_EQ(garbage.dp.fdl.type, FrameType::Invalid);
+    EXPECT_EQ(garbage.dp.service, Service::Unknown);
     EXPECT_EQ(garbage.direction, Direction::Request);
     EXPECT_FALSE(garbage.has_roles);
-    EXPECT_FALSE(garbage.unanswered);
+    EXPECT_FALSE(garbage.dp.unanswered);
     EXPECT_TRUE(garbage.problems().contains(ProblemKind::BadStartDelimiter));
     const DecodedTelegram& answer = bus.decode(exchange_response(3, hex("0F 07 20 00")));
     EXPECT_EQ(answer.request_frame, 1u);
@@ -267,12 +267,12 @@ TEST(BusDecoderTest, InvalidTelegramKeepsTheRequestPending) {
 TEST(BusDecoderTest, TokenHasRolesFromItsAddresses) {
     Bus bus;
     const DecodedTelegram& t = bus.decode(token(5, 2));
-    EXPECT_EQ(t.service, Service::Token);
+    EXPECT_EQ(t.dp.service, Service::Token);
     EXPECT_EQ(t.direction, Direction::Request);
     EXPECT_TRUE(t.has_roles);
     EXPECT_EQ(t.master, 2);
     EXPECT_EQ(t.slave, 5);
-    EXPECT_FALSE(t.has_pcv);
+    EXPECT_FALSE(t.dp.has_pcv);
 }
 
 // ---- PPO layout ------------------------------------------------------------------------------
@@ -288,22 +288,22 @@ TEST(BusDecoderTest, PpoFromChkCfgSplitsDataExchange) {
 
     const DecodedTelegram& out =
         bus.decode(exchange_request(3, hex("10 01 00 00 00 00 00 00 04 7F 20 00")));
-    EXPECT_EQ(out.service, Service::DataExchange);
-    EXPECT_EQ(out.ppo.type, 1);
-    EXPECT_EQ(out.ppo.source, PpoSource::ChkCfg);
-    ASSERT_TRUE(out.has_pcv);
-    EXPECT_EQ(out.pcv.rc, 1);
-    EXPECT_EQ(out.pcv.pnu, 1);
-    EXPECT_EQ(out.pcd_offset, 15);
-    EXPECT_EQ(bytes_of(out.pcd), hex("04 7F 20 00"));
+    EXPECT_EQ(out.dp.service, Service::DataExchange);
+    EXPECT_EQ(out.dp.ppo.type, 1);
+    EXPECT_EQ(out.dp.ppo.source, PpoSource::ChkCfg);
+    ASSERT_TRUE(out.dp.has_pcv);
+    EXPECT_EQ(out.dp.pcv.rc, 1);
+    EXPECT_EQ(out.dp.pcv.pnu, 1);
+    EXPECT_EQ(out.dp.pcd_offset, 15);
+    EXPECT_EQ(bytes_of(out.dp.pcd), hex("04 7F 20 00"));
 }
 
 TEST(BusDecoderTest, PpoFromGetCfgResponse) {
     Bus bus;
     const DecodedTelegram& request = bus.decode(service_request(3, sap::kGetCfg));
-    EXPECT_EQ(request.service, Service::GetCfg);
+    EXPECT_EQ(request.dp.service, Service::GetCfg);
     const DecodedTelegram& response = bus.decode(service_response(3, sap::kGetCfg, hex("F5")));
-    EXPECT_EQ(response.service, Service::GetCfg);
+    EXPECT_EQ(response.dp.service, Service::GetCfg);
     EXPECT_EQ(response.request_frame, 1u);
     const StationConfig& config = bus.decoder.station(3);
     EXPECT_EQ(config.ppo.type, 4);
@@ -314,10 +314,10 @@ TEST(BusDecoderTest, PpoFromGetCfgResponse) {
     // 12 bytes are PPO 4 here, whatever the length heuristic would say.
     auto du = hex("10 01 00 00 00 00 00 00 04 7F 20 00");
     const DecodedTelegram& out = bus.decode(exchange_request(3, du));
-    EXPECT_EQ(out.ppo.type, 4);
-    EXPECT_FALSE(out.has_pcv);
-    EXPECT_EQ(out.pcd_offset, 7);
-    EXPECT_EQ(bytes_of(out.pcd), du);
+    EXPECT_EQ(out.dp.ppo.type, 4);
+    EXPECT_FALSE(out.dp.has_pcv);
+    EXPECT_EQ(out.dp.pcd_offset, 7);
+    EXPECT_EQ(bytes_of(out.dp.pcd), du);
 }
 
 TEST(BusDecoderTest, UnpairedGetCfgResponseAlsoConfigures) {
@@ -335,10 +335,10 @@ TEST(BusDecoderTest, PpoOptionOverridesConfiguration) {
     EXPECT_EQ(bus.decoder.station(3).ppo.type, 1);  // still recorded
     auto du = hex("10 01 00 00 00 00 00 00 04 7F 20 00");
     const DecodedTelegram& out = bus.decode(exchange_request(3, du));
-    EXPECT_EQ(out.ppo.type, 4);
-    EXPECT_EQ(out.ppo.source, PpoSource::Option);
-    EXPECT_FALSE(out.has_pcv);
-    EXPECT_EQ(bytes_of(out.pcd), du);
+    EXPECT_EQ(out.dp.ppo.type, 4);
+    EXPECT_EQ(out.dp.ppo.source, PpoSource::Option);
+    EXPECT_FALSE(out.dp.has_pcv);
+    EXPECT_EQ(bytes_of(out.dp.pcd), du);
 
     // Other stations are not affected.
     EXPECT_EQ(bus.decoder.layout_for(4, 12).source, PpoSource::Length);
@@ -351,11 +351,11 @@ TEST(BusDecoderTest, PpoOption3GivesPcdOnly) {
     options.station_ppo[3] = 3;
     Bus bus(options);
     const DecodedTelegram& out = bus.decode(exchange_request(3, hex("04 7F 20 00")));
-    EXPECT_EQ(out.ppo.type, 3);
-    EXPECT_EQ(out.ppo.source, PpoSource::Option);
-    EXPECT_FALSE(out.has_pcv);
-    EXPECT_EQ(out.pcd_offset, 7);
-    EXPECT_EQ(bytes_of(out.pcd), hex("04 7F 20 00"));
+    EXPECT_EQ(out.dp.ppo.type, 3);
+    EXPECT_EQ(out.dp.ppo.source, PpoSource::Option);
+    EXPECT_FALSE(out.dp.has_pcv);
+    EXPECT_EQ(out.dp.pcd_offset, 7);
+    EXPECT_EQ(bytes_of(out.dp.pcd), hex("04 7F 20 00"));
 }
 
 TEST(BusDecoderTest, PpoFromLength) {
@@ -371,10 +371,10 @@ TEST(BusDecoderTest, PpoFromLength) {
         SCOPED_TRACE("length " + std::to_string(c.length));
         std::vector<std::uint8_t> du(c.length, 0x00);
         const DecodedTelegram& t = bus.decode(exchange_request(3, du));
-        EXPECT_EQ(t.ppo.type, c.type);
-        EXPECT_EQ(t.ppo.source, PpoSource::Length);
-        EXPECT_EQ(t.has_pcv, c.has_pcv);
-        EXPECT_EQ(t.pcd.size(), c.pcd);
+        EXPECT_EQ(t.dp.ppo.type, c.type);
+        EXPECT_EQ(t.dp.ppo.source, PpoSource::Length);
+        EXPECT_EQ(t.dp.has_pcv, c.has_pcv);
+        EXPECT_EQ(t.dp.pcd.size(), c.pcd);
         bus.decode(exchange_response(3, du));
     }
 }
@@ -382,10 +382,10 @@ TEST(BusDecoderTest, PpoFromLength) {
 TEST(BusDecoderTest, TwelveBytesWithoutEvidenceArePpo1) {
     Bus bus;
     const DecodedTelegram& t = bus.decode(exchange_request(3, std::vector<std::uint8_t>(12, 0)));
-    EXPECT_EQ(t.ppo.type, 1);
-    EXPECT_EQ(t.ppo.alternative, 4);
-    EXPECT_TRUE(t.has_pcv);
-    EXPECT_EQ(t.pcd.size(), 4u);
+    EXPECT_EQ(t.dp.ppo.type, 1);
+    EXPECT_EQ(t.dp.ppo.alternative, 4);
+    EXPECT_TRUE(t.dp.has_pcv);
+    EXPECT_EQ(t.dp.pcd.size(), 4u);
     EXPECT_EQ(bus.decoder.station(3).length12_type, 0);
 }
 
@@ -394,17 +394,17 @@ TEST(BusDecoderTest, TwelveBytesWithControlWordFirstArePpo4) {
     auto du = hex("04 7F 20 00 00 00 00 00 00 00 00 00");
     const DecodedTelegram& out = bus.decode(exchange_request(3, du));
     EXPECT_EQ(bus.decoder.station(3).length12_type, 4);
-    EXPECT_EQ(out.ppo.type, 4);
-    EXPECT_EQ(out.ppo.alternative, 1);
-    EXPECT_EQ(out.ppo.source, PpoSource::Length);
-    EXPECT_FALSE(out.has_pcv);
-    EXPECT_EQ(bytes_of(out.pcd), du);
+    EXPECT_EQ(out.dp.ppo.type, 4);
+    EXPECT_EQ(out.dp.ppo.alternative, 1);
+    EXPECT_EQ(out.dp.ppo.source, PpoSource::Length);
+    EXPECT_FALSE(out.dp.has_pcv);
+    EXPECT_EQ(bytes_of(out.dp.pcd), du);
     // The slave's answer uses the same layout.
     const DecodedTelegram& in =
         bus.decode(exchange_response(3, hex("0F 07 20 00 00 00 00 00 00 00 00 00")));
-    EXPECT_EQ(in.ppo.type, 4);
-    EXPECT_FALSE(in.has_pcv);
-    EXPECT_EQ(in.pcd.size(), 12u);
+    EXPECT_EQ(in.dp.ppo.type, 4);
+    EXPECT_FALSE(in.dp.has_pcv);
+    EXPECT_EQ(in.dp.pcd.size(), 12u);
 }
 
 TEST(BusDecoderTest, TwelveBytesWithControlWordInBytes9And10ArePpo1) {
@@ -412,10 +412,10 @@ TEST(BusDecoderTest, TwelveBytesWithControlWordInBytes9And10ArePpo1) {
     const DecodedTelegram& out =
         bus.decode(exchange_request(3, hex("10 01 00 00 00 00 00 00 04 7F 20 00")));
     EXPECT_EQ(bus.decoder.station(3).length12_type, 1);
-    EXPECT_EQ(out.ppo.type, 1);
-    EXPECT_TRUE(out.has_pcv);
-    EXPECT_EQ(out.pcv.pnu, 1);
-    EXPECT_EQ(bytes_of(out.pcd), hex("04 7F 20 00"));
+    EXPECT_EQ(out.dp.ppo.type, 1);
+    EXPECT_TRUE(out.dp.has_pcv);
+    EXPECT_EQ(out.dp.pcv.pnu, 1);
+    EXPECT_EQ(bytes_of(out.dp.pcd), hex("04 7F 20 00"));
 }
 
 TEST(BusDecoderTest, TwelveBytesWithBit10InBothWordsArePpo1) {
@@ -423,8 +423,8 @@ TEST(BusDecoderTest, TwelveBytesWithBit10InBothWordsArePpo1) {
     Bus bus;
     const DecodedTelegram& out =
         bus.decode(exchange_request(3, hex("14 00 00 00 00 00 00 00 04 7F 20 00")));
-    EXPECT_EQ(out.ppo.type, 1);
-    EXPECT_EQ(out.pcv.pnu, 1024);
+    EXPECT_EQ(out.dp.ppo.type, 1);
+    EXPECT_EQ(out.dp.pcv.pnu, 1024);
 }
 
 TEST(BusDecoderTest, LastTwelveByteRequestWithEvidenceDecides) {
@@ -436,7 +436,7 @@ TEST(BusDecoderTest, LastTwelveByteRequestWithEvidenceDecides) {
     // No evidence: the last decision stays.
     const DecodedTelegram& t = bus.decode(exchange_request(3, std::vector<std::uint8_t>(12, 0)));
     EXPECT_EQ(bus.decoder.station(3).length12_type, 1);
-    EXPECT_EQ(t.ppo.type, 1);
+    EXPECT_EQ(t.dp.ppo.type, 1);
     // Evidence for another station does not leak.
     EXPECT_EQ(bus.decoder.station(4).length12_type, 0);
 }
@@ -452,8 +452,8 @@ TEST(BusDecoderTest, ConfiguredStationsDoNotUseTheHeuristic) {
     bus.decode(service_request(3, sap::kChkCfg, hex("F5")));
     const DecodedTelegram& out =
         bus.decode(exchange_request(3, hex("10 01 00 00 00 00 00 00 04 7F 20 00")));
-    EXPECT_EQ(out.ppo.type, 4);
-    EXPECT_EQ(out.ppo.source, PpoSource::ChkCfg);
+    EXPECT_EQ(out.dp.ppo.type, 4);
+    EXPECT_EQ(out.dp.ppo.source, PpoSource::ChkCfg);
     EXPECT_EQ(bus.decoder.station(3).length12_type, 0);
 }
 
@@ -490,19 +490,20 @@ TEST(BusDecoderTest, PerStationDialectAndProfile) {
     append_u16_be(du, 0x047F);
     append_u16_be(du, 0x2000);
     const DecodedTelegram& to3 = bus.decode(exchange_request(3, du));
-    EXPECT_EQ(to3.dialect, Dialect::Profidrive);
-    EXPECT_EQ(to3.pcd_profile, PcdProfile::Profidrive);
-    ASSERT_TRUE(to3.has_pcv);
-    EXPECT_EQ(to3.pcv_meaning(), "Change parameter value (word) and store in EEPROM");
-    EXPECT_EQ(to3.pcv_value(), 50u);
+    EXPECT_EQ(to3.dp.dialect, Dialect::Profidrive);
+    EXPECT_EQ(to3.dp.pcd_profile, PcdProfile::Profidrive);
+    ASSERT_TRUE(to3.dp.has_pcv);
+    EXPECT_EQ(to3.dp.pcv_meaning(to3.direction),
+              "Change parameter value (word) and store in EEPROM");
+    EXPECT_EQ(to3.dp.pcv_value(to3.direction), 50u);
     const DecodedTelegram& from3 = bus.decode(exchange_response(3, du));
-    EXPECT_EQ(from3.dialect, Dialect::Profidrive);
-    EXPECT_EQ(from3.pcd_profile, PcdProfile::Profidrive);
+    EXPECT_EQ(from3.dp.dialect, Dialect::Profidrive);
+    EXPECT_EQ(from3.dp.pcd_profile, PcdProfile::Profidrive);
 
     const DecodedTelegram& to4 = bus.decode(exchange_request(4, du));
-    EXPECT_EQ(to4.dialect, Dialect::Vlt);
-    EXPECT_EQ(to4.pcd_profile, PcdProfile::Fc);
-    EXPECT_EQ(to4.pcv_meaning(), "Not assigned");
+    EXPECT_EQ(to4.dp.dialect, Dialect::Vlt);
+    EXPECT_EQ(to4.dp.pcd_profile, PcdProfile::Fc);
+    EXPECT_EQ(to4.dp.pcv_meaning(to4.direction), "Not assigned");
 }
 
 TEST(BusDecoderTest, ExplicitPcdProfileAppliesToEveryStation) {
@@ -511,8 +512,8 @@ TEST(BusDecoderTest, ExplicitPcdProfileAppliesToEveryStation) {
     options.pcd_profile = PcdProfile::Fc;
     Bus bus(options);
     const DecodedTelegram& t = bus.decode(exchange_request(9, hex("04 7F 20 00")));
-    EXPECT_EQ(t.dialect, Dialect::Profidrive);
-    EXPECT_EQ(t.pcd_profile, PcdProfile::Fc);
+    EXPECT_EQ(t.dp.dialect, Dialect::Profidrive);
+    EXPECT_EQ(t.dp.pcd_profile, PcdProfile::Fc);
 }
 
 // ---- PCV and PCD -----------------------------------------------------------------------------
@@ -523,24 +524,24 @@ TEST(BusDecoderTest, Ppo2SplitsPcvAndPcd) {
     Bus bus(options);
     auto out_du = hex("30 CF 00 00 00 00 03 E8  04 7F 20 00 00 00 00 00 00 00 00 00");
     const DecodedTelegram& out = bus.decode(exchange_request(3, out_du));
-    EXPECT_EQ(out.ppo.type, 2);
-    ASSERT_TRUE(out.has_pcv);
-    EXPECT_EQ(out.pcv.rc, 3);
-    EXPECT_EQ(out.pcv.pnu, 207);
-    EXPECT_EQ(out.pcv_value(), 1000u);
-    EXPECT_EQ(out.pcv_meaning(), "Change parameter value (double word)");
-    EXPECT_EQ(out.pcd_offset, 15);
-    ASSERT_EQ(out.pcd.size(), 12u);
-    EXPECT_EQ(out.pcd[0], 0x04);
-    EXPECT_EQ(out.pcd[1], 0x7F);
+    EXPECT_EQ(out.dp.ppo.type, 2);
+    ASSERT_TRUE(out.dp.has_pcv);
+    EXPECT_EQ(out.dp.pcv.rc, 3);
+    EXPECT_EQ(out.dp.pcv.pnu, 207);
+    EXPECT_EQ(out.dp.pcv_value(out.direction), 1000u);
+    EXPECT_EQ(out.dp.pcv_meaning(out.direction), "Change parameter value (double word)");
+    EXPECT_EQ(out.dp.pcd_offset, 15);
+    ASSERT_EQ(out.dp.pcd.size(), 12u);
+    EXPECT_EQ(out.dp.pcd[0], 0x04);
+    EXPECT_EQ(out.dp.pcd[1], 0x7F);
 
     auto in_du = hex("20 CF 00 00 00 00 03 E8  0F 07 20 00 00 00 00 00 00 00 00 00");
     const DecodedTelegram& in = bus.decode(exchange_response(3, in_du));
-    ASSERT_TRUE(in.has_pcv);
-    EXPECT_EQ(in.pcv.rc, 2);
-    EXPECT_EQ(in.pcv_value(), 1000u);
-    EXPECT_EQ(in.pcv_meaning(), "Transmit parameter value (double word)");
-    EXPECT_EQ(bytes_of(in.pcd), hex("0F 07 20 00 00 00 00 00 00 00 00 00"));
+    ASSERT_TRUE(in.dp.has_pcv);
+    EXPECT_EQ(in.dp.pcv.rc, 2);
+    EXPECT_EQ(in.dp.pcv_value(in.direction), 1000u);
+    EXPECT_EQ(in.dp.pcv_meaning(in.direction), "Transmit parameter value (double word)");
+    EXPECT_EQ(bytes_of(in.dp.pcd), hex("0F 07 20 00 00 00 00 00 00 00 00 00"));
 }
 
 TEST(BusDecoderTest, PcvValueFollowsTheResponseWidth) {
@@ -549,15 +550,15 @@ TEST(BusDecoderTest, PcvValueFollowsTheResponseWidth) {
     Bus bus(options);
     const DecodedTelegram& in =
         bus.decode(exchange_response(3, hex("12 08 00 00 00 AB 00 F0 0F 07 20 00")));
-    ASSERT_TRUE(in.has_pcv);
-    EXPECT_EQ(in.pcv.pnu, 520);
-    EXPECT_EQ(in.pcv_value(), 0xF0u);  // word: bytes 7-8 only
-    EXPECT_EQ(in.pcv_meaning(), "Transmit parameter value (word)");
+    ASSERT_TRUE(in.dp.has_pcv);
+    EXPECT_EQ(in.dp.pcv.pnu, 520);
+    EXPECT_EQ(in.dp.pcv_value(in.direction), 0xF0u);  // word: bytes 7-8 only
+    EXPECT_EQ(in.dp.pcv_meaning(in.direction), "Transmit parameter value (word)");
     const DecodedTelegram& rejected =
         bus.decode(exchange_response(3, hex("70 00 00 00 00 00 00 02 0F 07 20 00")));
-    EXPECT_EQ(rejected.pcv.rc, 7);
-    EXPECT_EQ(rejected.pcv_value(), 2u);
-    EXPECT_EQ(rejected.pcv_meaning(), "Request not executable");
+    EXPECT_EQ(rejected.dp.pcv.rc, 7);
+    EXPECT_EQ(rejected.dp.pcv_value(rejected.direction), 2u);
+    EXPECT_EQ(rejected.dp.pcv_meaning(rejected.direction), "Request not executable");
 }
 
 TEST(BusDecoderTest, Ppo5SplitsPcvAndTenPcdWords) {
@@ -566,9 +567,9 @@ TEST(BusDecoderTest, Ppo5SplitsPcvAndTenPcdWords) {
     Bus bus(options);
     std::vector<std::uint8_t> du(28, 0x11);
     const DecodedTelegram& out = bus.decode(exchange_request(3, du));
-    EXPECT_TRUE(out.has_pcv);
-    EXPECT_EQ(out.pcd.size(), 20u);
-    EXPECT_EQ(out.pcd_offset, 15);
+    EXPECT_TRUE(out.dp.has_pcv);
+    EXPECT_EQ(out.dp.pcd.size(), 20u);
+    EXPECT_EQ(out.dp.pcd_offset, 15);
 }
 
 TEST(BusDecoderTest, Ppo1OptionWithShortDataHasNoPcv) {
@@ -576,10 +577,10 @@ TEST(BusDecoderTest, Ppo1OptionWithShortDataHasNoPcv) {
     options.station_ppo[3] = 1;
     Bus bus(options);
     const DecodedTelegram& out = bus.decode(exchange_request(3, hex("04 7F 20 00")));
-    EXPECT_EQ(out.ppo.type, 1);
-    EXPECT_FALSE(out.has_pcv);
-    EXPECT_EQ(bytes_of(out.pcd), hex("04 7F 20 00"));
-    EXPECT_EQ(out.pcd_offset, 7);
+    EXPECT_EQ(out.dp.ppo.type, 1);
+    EXPECT_FALSE(out.dp.has_pcv);
+    EXPECT_EQ(bytes_of(out.dp.pcd), hex("04 7F 20 00"));
+    EXPECT_EQ(out.dp.pcd_offset, 7);
 }
 
 TEST(BusDecoderTest, EightByteDataExchangeInSd3) {
@@ -587,12 +588,12 @@ TEST(BusDecoderTest, EightByteDataExchangeInSd3) {
     options.station_ppo[3] = 1;
     Bus bus(options);
     const DecodedTelegram& out = bus.decode(exchange_request(3, hex("12 08 00 00 00 00 00 00")));
-    EXPECT_EQ(out.fdl.type, FrameType::Sd3);
-    EXPECT_EQ(out.service, Service::DataExchange);
-    ASSERT_TRUE(out.has_pcv);
-    EXPECT_EQ(out.pcv.pnu, 520);
-    EXPECT_TRUE(out.pcd.empty());
-    EXPECT_EQ(out.pcd_offset, 12);
+    EXPECT_EQ(out.dp.fdl.type, FrameType::Sd3);
+    EXPECT_EQ(out.dp.service, Service::DataExchange);
+    ASSERT_TRUE(out.dp.has_pcv);
+    EXPECT_EQ(out.dp.pcv.pnu, 520);
+    EXPECT_TRUE(out.dp.pcd.empty());
+    EXPECT_EQ(out.dp.pcd_offset, 12);
 }
 
 TEST(BusDecoderTest, StateOfThePreviousTelegramIsCleared) {
@@ -601,10 +602,10 @@ TEST(BusDecoderTest, StateOfThePreviousTelegramIsCleared) {
     Bus bus(options);
     bus.decode(exchange_request(3, hex("12 08 00 00 00 00 00 00 04 7F 20 00")), 5);
     const DecodedTelegram& t = bus.decode(token());
-    EXPECT_FALSE(t.has_pcv);
-    EXPECT_TRUE(t.pcd.empty());
-    EXPECT_EQ(t.pcd_offset, 0);
-    EXPECT_FALSE(t.ppo.known());
+    EXPECT_FALSE(t.dp.has_pcv);
+    EXPECT_TRUE(t.dp.pcd.empty());
+    EXPECT_EQ(t.dp.pcd_offset, 0);
+    EXPECT_FALSE(t.dp.ppo.known());
     EXPECT_EQ(t.request_frame, 0u);
     EXPECT_FALSE(t.has_time());
 }
@@ -617,10 +618,10 @@ TEST(BusDecoderTest, CorruptedFcsStillDecodesThePcv) {
     bytes[bytes.size() - 2] ^= 0xFF;
     const DecodedTelegram& t = bus.decode(bytes);
     EXPECT_TRUE(t.problems().contains(ProblemKind::FcsMismatch));
-    EXPECT_FALSE(t.fdl.fcs_ok);
-    EXPECT_EQ(t.service, Service::DataExchange);
-    ASSERT_TRUE(t.has_pcv);
-    EXPECT_EQ(t.pcv.pnu, 520);
+    EXPECT_FALSE(t.dp.fdl.fcs_ok);
+    EXPECT_EQ(t.dp.service, Service::DataExchange);
+    ASSERT_TRUE(t.dp.has_pcv);
+    EXPECT_EQ(t.dp.pcv.pnu, 520);
 }
 
 TEST(BusDecoderTest, TruncatedDataExchangeKeepsWhatIsThere) {
@@ -631,9 +632,9 @@ TEST(BusDecoderTest, TruncatedDataExchangeKeepsWhatIsThere) {
     bytes.resize(12);  // header + 5 data bytes
     const DecodedTelegram& t = bus.decode(bytes);
     EXPECT_TRUE(t.problems().contains(ProblemKind::Truncated));
-    EXPECT_EQ(t.service, Service::DataExchange);
-    EXPECT_FALSE(t.has_pcv);
-    EXPECT_EQ(t.pcd.size(), 5u);
+    EXPECT_EQ(t.dp.service, Service::DataExchange);
+    EXPECT_FALSE(t.dp.has_pcv);
+    EXPECT_EQ(t.dp.pcd.size(), 5u);
 }
 
 // ---- Station configuration -------------------------------------------------------------------
@@ -643,7 +644,7 @@ TEST(BusDecoderTest, SetPrmRecordsTheIdentNumber) {
     EXPECT_FALSE(bus.decoder.station(3).has_ident);
     const DecodedTelegram& t =
         bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00")));
-    EXPECT_EQ(t.service, Service::SetPrm);
+    EXPECT_EQ(t.dp.service, Service::SetPrm);
     EXPECT_TRUE(t.problems().empty());
     EXPECT_TRUE(bus.decoder.station(3).has_ident);
     EXPECT_EQ(bus.decoder.station(3).ident, 0x0402);
@@ -699,7 +700,7 @@ TEST(BusDecoderTest, ShortSlaveDiagIsAProblem) {
     Bus bus;
     bus.decode(service_request(3, sap::kSlaveDiag));
     const DecodedTelegram& t = bus.decode(service_response(3, sap::kSlaveDiag, hex("04 05 00 02")));
-    EXPECT_EQ(t.service, Service::SlaveDiag);
+    EXPECT_EQ(t.dp.service, Service::SlaveDiag);
     ASSERT_EQ(t.problems().size(), 1u);
     EXPECT_EQ(t.problems()[0].kind, ProblemKind::ServiceDataShort);
     EXPECT_EQ(t.problems()[0].offset, 9);
@@ -718,7 +719,7 @@ TEST(BusDecoderTest, ShortGlobalControlAndSetSlaveAddAreProblems) {
 
     const DecodedTelegram& ssa =
         bus.decode(service_request(126, sap::kSetSlaveAdd, hex("05 04 02")));
-    EXPECT_EQ(ssa.service, Service::SetSlaveAdd);
+    EXPECT_EQ(ssa.dp.service, Service::SetSlaveAdd);
     ASSERT_EQ(ssa.problems().size(), 1u);
     EXPECT_EQ(ssa.problems()[0].kind, ProblemKind::ServiceDataShort);
     EXPECT_EQ(ssa.problems()[0].expected, 4u);
@@ -760,31 +761,32 @@ TEST(BusDecoderTest, SetPrmDecidesTheSlavesDpv1Mode) {
         bus.decode(service_request(slave, sap::kSlaveDiag));
         return bus.decode(service_response(slave, sap::kSlaveDiag, diag));
     };
-    EXPECT_EQ(diag_of(3).slave_dpv1, SlaveDpv1::Unknown);  // no Set_Prm seen yet
+    EXPECT_EQ(diag_of(3).dp.slave_dpv1, SlaveDpv1::Unknown);  // no Set_Prm seen yet
 
     bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00 80 00 00")));
     EXPECT_EQ(bus.decoder.station(3).dpv1, SlaveDpv1::Enabled);
-    EXPECT_EQ(diag_of(3).slave_dpv1, SlaveDpv1::Enabled);
-    EXPECT_EQ(diag_of(4).slave_dpv1, SlaveDpv1::Unknown);  // another slave
+    EXPECT_EQ(diag_of(3).dp.slave_dpv1, SlaveDpv1::Enabled);
+    EXPECT_EQ(diag_of(4).dp.slave_dpv1, SlaveDpv1::Unknown);  // another slave
 
     // DP-V1 status bytes without DPV1_Enable, and DP-V0 User_Prm_Data (a reserved bit set).
     bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00 00 00 00")));
-    EXPECT_EQ(diag_of(3).slave_dpv1, SlaveDpv1::Disabled);
+    EXPECT_EQ(diag_of(3).dp.slave_dpv1, SlaveDpv1::Disabled);
     bus.decode(service_request(4, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00 81 00 00")));
-    EXPECT_EQ(diag_of(4).slave_dpv1, SlaveDpv1::Disabled);
+    EXPECT_EQ(diag_of(4).dp.slave_dpv1, SlaveDpv1::Disabled);
     bus.decode(service_request(5, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00")));
-    EXPECT_EQ(diag_of(5).slave_dpv1, SlaveDpv1::Disabled);
+    EXPECT_EQ(diag_of(5).dp.slave_dpv1, SlaveDpv1::Disabled);
 
     // A Set_Prm with a bad FCS is dropped by the slave: the mode stays.
     auto damaged = service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00 80 00 00"));
     damaged[damaged.size() - 2] ^= 0xFF;
-    EXPECT_FALSE(bus.decode(damaged).fdl.fcs_ok);
-    EXPECT_EQ(diag_of(3).slave_dpv1, SlaveDpv1::Disabled);
+    EXPECT_FALSE(bus.decode(damaged).dp.fdl.fcs_ok);
+    EXPECT_EQ(diag_of(3).dp.slave_dpv1, SlaveDpv1::Disabled);
     // A Set_Prm too short for its fixed part says nothing either.
     bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A")));
     EXPECT_EQ(bus.decoder.station(3).dpv1, SlaveDpv1::Disabled);
     // Data_Exchange carries no DP-V1 mode.
-    EXPECT_EQ(bus.decode(exchange_request(3, hex("04 7F 20 00"))).slave_dpv1, SlaveDpv1::Unknown);
+    EXPECT_EQ(bus.decode(exchange_request(3, hex("04 7F 20 00"))).dp.slave_dpv1,
+              SlaveDpv1::Unknown);
 }
 
 TEST(BusDecoderTest, ReservedFrameControlIsAProblemAndExpectsNoReply) {
@@ -796,13 +798,13 @@ TEST(BusDecoderTest, ReservedFrameControlIsAProblemAndExpectsNoReply) {
     EXPECT_EQ(bad.problems()[0].kind, ProblemKind::ReservedFrameControl);
     EXPECT_EQ(bad.problems()[0].offset, 6);
     EXPECT_EQ(bad.problems()[0].actual, 0xCDu);
-    EXPECT_FALSE(bus.decode(service_request(4, sap::kSlaveDiag)).unanswered.has_value());
+    EXPECT_FALSE(bus.decode(service_request(4, sap::kSlaveDiag)).dp.unanswered.has_value());
 
     // 0xC0 to the broadcast address: a clock value request, no problem.
     const DecodedTelegram& clock = bus.decode(
         telegram(127, kMasterAddress, 0xC0, std::nullopt, std::nullopt, hex("01 02 03 04")));
     EXPECT_TRUE(clock.problems().empty());
-    EXPECT_TRUE(clock.fdl.fc.is_clock_value());
+    EXPECT_TRUE(clock.dp.fdl.fc.is_clock_value());
 
     // A response with bit 7 set (0x88: DL) is reserved too; SD1: FC at byte 3.
     const DecodedTelegram& response = bus.decode(hex("10 02 03 88 8D 16"));
@@ -819,23 +821,23 @@ TEST(BusDecoderTest, DanfossPcdNamesOnlyForDanfossSlaves) {
     {
         Bus bus(options);
         // Generic PROFIdrive slave, PROFIdrive profile: bits 11..15 are device-specific.
-        EXPECT_FALSE(bus.decode(exchange_request(3, hex("04 7F 20 00"))).danfoss_pcd());
+        EXPECT_FALSE(bus.decode(exchange_request(3, hex("04 7F 20 00"))).dp.danfoss_pcd());
         // vlt slave, FC profile by default.
-        EXPECT_TRUE(bus.decode(exchange_request(4, hex("04 7F 20 00"))).danfoss_pcd());
+        EXPECT_TRUE(bus.decode(exchange_request(4, hex("04 7F 20 00"))).dp.danfoss_pcd());
     }
     options.pcd_profile = PcdProfile::Profidrive;
     {
         Bus bus(options);
-        EXPECT_FALSE(bus.decode(exchange_request(3, hex("04 7F 20 00"))).danfoss_pcd());
+        EXPECT_FALSE(bus.decode(exchange_request(3, hex("04 7F 20 00"))).dp.danfoss_pcd());
         // A Danfoss drive (vlt) in its PROFIdrive profile keeps the Danfoss names.
         const DecodedTelegram& danfoss = bus.decode(exchange_request(4, hex("04 7F 20 00")));
-        EXPECT_EQ(danfoss.pcd_profile, PcdProfile::Profidrive);
-        EXPECT_TRUE(danfoss.danfoss_pcd());
+        EXPECT_EQ(danfoss.dp.pcd_profile, PcdProfile::Profidrive);
+        EXPECT_TRUE(danfoss.dp.danfoss_pcd());
     }
     options.pcd_profile = PcdProfile::Fc;
     {
         Bus bus(options);
-        EXPECT_TRUE(bus.decode(exchange_request(3, hex("04 7F 20 00"))).danfoss_pcd());
+        EXPECT_TRUE(bus.decode(exchange_request(3, hex("04 7F 20 00"))).dp.danfoss_pcd());
     }
 }
 

@@ -62,10 +62,11 @@ std::vector<Decoded> decode_all(const std::vector<Telegram>& telegrams, BusDecod
         const Telegram& t = telegrams[i];
         const DecodedTelegram& d =
             decoder.decode(Bytes(t.bytes.data(), t.bytes.size()), t.time_ns, i + 1);
-        Decoded copy{d.fdl.type,   d.service,
-                     d.direction,  d.master,
-                     d.slave,      std::vector<std::uint8_t>(d.fdl.du.begin(), d.fdl.du.end()),
-                     d.fdl.fcs_ok, {}};
+        Decoded copy{
+            d.dp.fdl.type,   d.dp.service,
+            d.direction,     d.master,
+            d.slave,         std::vector<std::uint8_t>(d.dp.fdl.du.begin(), d.dp.fdl.du.end()),
+            d.dp.fdl.fcs_ok, {}};
         for (const Problem& p : d.problems())
             copy.problems.push_back(p.kind);
         out.push_back(copy);

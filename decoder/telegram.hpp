@@ -1,0 +1,41 @@
+// The one telegram type every stage after the decoder consumes (trackers, renderers, summary,
+// report, fuzzers): what every protocol has (frame, time, bytes, direction, the stations where
+// known, problems) and the protocol's own payload. The protocol is chosen once per capture; the
+// decoder reuses one DecodedTelegram, so no payload is built or freed per telegram.
+#pragma once
+
+#include <cstdint>
+
+#include "decoder/byte_reader.hpp"
+#include "decoder/dp_telegram.hpp"
+#include "decoder/problem.hpp"
+#include "decoder/time.hpp"
+
+namespace dpscope {
+
+// The protocols dpscope decodes. One per capture.
+enum class Protocol : std::uint8_t { ProfibusDp };
+
+struct DecodedTelegram {
+    std::uint64_t frame = 0;         // 1-based record number
+    std::int64_t time_ns = kNoTime;  // nanoseconds since the epoch; kNoTime when unknown
+    Bytes bytes;                     // the record (valid until the next decode)
+    Direction direction = Direction::Request;
+
+    // The stations where known: requests go master -> slave, responses slave -> master. (In DP a
+    // short acknowledge has no addresses of its own; it takes them from the request it answers.)
+    bool has_roles = false;
+    std::uint8_t master = 0;
+    std::uint8_t slave = 0;
+    std::uint64_t request_frame = 0;  // response: the request it answers (0: not in capture)
+
+    // The payload: the member `protocol` names is the one that holds this telegram.
+    Protocol protocol = Protocol::ProfibusDp;
+    DpTelegram dp;
+
+    // Every problem found at any layer, with byte offsets.
+    const ProblemList& problems() const noexcept { return dp.fdl.problems; }
+    bool has_time() const noexcept { return time_ns != kNoTime; }
+};
+
+}  // namespace dpscope
