@@ -19,6 +19,27 @@ std::string_view DpTelegram::pcv_meaning(Direction direction) const noexcept {
                                            : response_code(dialect, pcv.rc).meaning;
 }
 
+namespace {
+
+// SD2 and SD3 carry a data unit; SD1, SD4 and the short acknowledgement SC do not.
+bool is_data_frame(FrameType type) noexcept {
+    return type == FrameType::Sd2 || type == FrameType::Sd3;
+}
+
+}  // namespace
+
+bool carries_service_data(Service service, Direction direction, FrameType type) noexcept {
+    switch (service) {
+        case Service::SetPrm:
+        case Service::ChkCfg:
+        case Service::GlobalControl:
+        case Service::SetSlaveAdd: return direction == Direction::Request;
+        case Service::SlaveDiag:
+        case Service::GetCfg: return direction == Direction::Response && is_data_frame(type);
+        default: return false;
+    }
+}
+
 BusDecoder::BusDecoder(DecoderOptions options) : options_(options) {}
 
 void BusDecoder::layout_for(std::uint8_t slave, std::size_t du_length,
@@ -82,6 +103,7 @@ const DecodedTelegram& BusDecoder::decode(Bytes bytes, std::int64_t time_ns, std
     t.dp.pcv = Pcv{};
     t.dp.pcd = {};
     t.dp.pcd_offset = 0;
+    t.dp.service_data.reset();
     t.dp.slave_dpv1 = SlaveDpv1::Unknown;
 
     if (t.dp.fdl.type == FrameType::Invalid) {
@@ -153,60 +175,66 @@ void BusDecoder::decode_service_data(DecodedTelegram& t) {
         return;
     }
     StationConfig& station = stations_[t.slave & 0x7F];
+    if (carries_service_data(t.dp.service, t.direction, t.dp.fdl.type))
+        read_service_data(t, station);
+    else if (t.direction == Direction::Response && is_data_frame(t.dp.fdl.type))
+        read_response_in_request_layout(t);
+    t.dp.slave_dpv1 = station.dpv1;
+}
+
+void BusDecoder::read_response_in_request_layout(DecodedTelegram& t) {
+    ByteReader du(t.dp.fdl.du, t.dp.fdl.du_offset);
+    ProblemList not_reported;  // the response owes no data, so data that does not fit is no fault
+    DpServiceData& data = t.dp.service_data;
+    if (t.dp.service == Service::GlobalControl) {
+        if (auto control = parse_global_control(du, not_reported))
+            data.store_global_control(*control);
+    } else if (t.dp.service == Service::SetSlaveAdd) {
+        if (auto add = parse_set_slave_add(du, not_reported)) data.store_set_slave_add(*add);
+    }
+}
+
+void BusDecoder::read_service_data(DecodedTelegram& t, StationConfig& station) {
     ByteReader du(t.dp.fdl.du, t.dp.fdl.du_offset);
     ProblemList& problems = t.dp.fdl.problems;
-    bool request = t.direction == Direction::Request;
-    // Only data-carrying responses have service data (not SC, not an SD1 acknowledgement).
-    bool has_data = t.dp.fdl.type == FrameType::Sd2 || t.dp.fdl.type == FrameType::Sd3;
+    DpServiceData& data = t.dp.service_data;
     switch (t.dp.service) {
         case Service::ChkCfg:
-            if (request) {
-                std::vector<CfgModule> modules;
-                parse_cfg(du, modules, problems);
-                station.ppo = ppo_from_cfg(modules, PpoSource::ChkCfg);
-                station.cfg_frame = t.frame;
-                note_ppo_override(station, t.slave, t.frame);
-            }
+        case Service::GetCfg: {
+            std::vector<CfgModule>& modules = data.store_cfg();
+            parse_cfg(du, modules, problems);
+            station.ppo = ppo_from_cfg(
+                modules, t.dp.service == Service::ChkCfg ? PpoSource::ChkCfg : PpoSource::GetCfg);
+            station.cfg_frame = t.frame;
+            note_ppo_override(station, t.slave, t.frame);
             break;
-        case Service::GetCfg:
-            if (!request && has_data) {
-                std::vector<CfgModule> modules;
-                parse_cfg(du, modules, problems);
-                station.ppo = ppo_from_cfg(modules, PpoSource::GetCfg);
-                station.cfg_frame = t.frame;
-                note_ppo_override(station, t.slave, t.frame);
-            }
-            break;
+        }
         case Service::SetPrm:
-            if (request) {
-                if (auto prm = parse_set_prm(du, problems)) {
-                    station.has_ident = true;
-                    station.ident = prm->ident;
-                    // A damaged Set_Prm is dropped by the slave: its DP-V1 mode stays as it was.
-                    if (t.dp.fdl.fcs_ok)
-                        station.dpv1 =
-                            prm->dpv1_enabled() ? SlaveDpv1::Enabled : SlaveDpv1::Disabled;
-                }
+            if (auto prm = parse_set_prm(du, problems)) {
+                data.store_set_prm(*prm);
+                station.has_ident = true;
+                station.ident = prm->ident;
+                // A damaged Set_Prm is dropped by the slave: its DP-V1 mode stays as it was.
+                if (t.dp.fdl.fcs_ok)
+                    station.dpv1 = prm->dpv1_enabled() ? SlaveDpv1::Enabled : SlaveDpv1::Disabled;
             }
             break;
         case Service::SlaveDiag:
-            if (!request && has_data) {
-                if (auto diag = parse_slave_diag(du, problems)) {
-                    station.cfg_fault = (diag->station_status_1 & kDiagCfgFault) != 0;
-                    parse_extended_diag(ByteReader(diag->extended, diag->extended_offset),
-                                        problems);
-                }
+            if (auto diag = parse_slave_diag(du, problems)) {
+                station.cfg_fault = (diag->station_status_1 & kDiagCfgFault) != 0;
+                parse_extended_diag(ByteReader(diag->extended, diag->extended_offset),
+                                    data.store_slave_diag(*diag), problems);
             }
             break;
         case Service::GlobalControl:
-            if (request) parse_global_control(du, problems);
+            if (auto control = parse_global_control(du, problems))
+                data.store_global_control(*control);
             break;
         case Service::SetSlaveAdd:
-            if (request) parse_set_slave_add(du, problems);
+            if (auto add = parse_set_slave_add(du, problems)) data.store_set_slave_add(*add);
             break;
         default: break;
     }
-    t.dp.slave_dpv1 = station.dpv1;
 }
 
 void BusDecoder::decode_data_exchange(DecodedTelegram& t) {

@@ -89,6 +89,12 @@ class BusDecoder {
     void decode_request(DecodedTelegram& t);
     void decode_response(DecodedTelegram& t);
     void decode_service_data(DecodedTelegram& t);
+    // Reads the data unit of a telegram that carries its service's data (carries_service_data),
+    // stores what it decoded to on the telegram, and learns the slave's configuration from it.
+    void read_service_data(DecodedTelegram& t, StationConfig& station);
+    // DP gives a response to Global_Control or Set_Slave_Add no data, but the text and verbose
+    // views show the data of one that has some in the request's layout; this reads it for them.
+    void read_response_in_request_layout(DecodedTelegram& t);
     void decode_data_exchange(DecodedTelegram& t);
     void learn_length12_type(const DecodedTelegram& t);
     // --ppo for this slave contradicts the configuration just learnt: remember the first time.

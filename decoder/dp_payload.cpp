@@ -159,8 +159,7 @@ std::optional<SlaveDiag> parse_slave_diag(ByteReader reader, ProblemList& proble
     return diag;
 }
 
-std::vector<DiagBlock> parse_extended_diag(ByteReader reader, ProblemList& problems) {
-    std::vector<DiagBlock> blocks;
+void parse_extended_diag(ByteReader reader, std::vector<DiagBlock>& blocks, ProblemList& problems) {
     while (!reader.empty()) {
         DiagBlock block;
         block.offset = static_cast<std::uint16_t>(reader.offset());
@@ -177,7 +176,7 @@ std::vector<DiagBlock> parse_extended_diag(ByteReader reader, ProblemList& probl
                                  static_cast<std::uint32_t>(reader.remaining() + 1));
                     block.data = reader.rest();
                     blocks.push_back(block);
-                    return blocks;
+                    return;
                 }
                 block.data = *reader.bytes(body);
                 break;
@@ -190,7 +189,7 @@ std::vector<DiagBlock> parse_extended_diag(ByteReader reader, ProblemList& probl
                 if (!channel || !type) {
                     problems.add(ProblemKind::DiagBlockTruncated, block.offset, 3,
                                  static_cast<std::uint32_t>(1 + (channel ? 1 : 0)));
-                    return blocks;
+                    return;
                 }
                 block.io = *channel >> 6;
                 block.channel = *channel & 0x3F;
@@ -205,7 +204,6 @@ std::vector<DiagBlock> parse_extended_diag(ByteReader reader, ProblemList& probl
         }
         blocks.push_back(block);
     }
-    return blocks;
 }
 
 std::uint32_t SetPrm::watchdog_ms() const noexcept {

@@ -63,7 +63,10 @@ struct SlaveDiag {
 
 // `reader` spans the data unit; its offsets are telegram offsets.
 std::optional<SlaveDiag> parse_slave_diag(ByteReader reader, ProblemList& problems);
-std::vector<DiagBlock> parse_extended_diag(ByteReader reader, ProblemList& problems);
+// Appends the blocks of an extended diagnosis to `blocks` (so a caller can reuse the vector). A
+// block that runs past the end is reported; a device- or identifier-related one is kept with the
+// bytes there are, a channel-related one is dropped.
+void parse_extended_diag(ByteReader reader, std::vector<DiagBlock>& blocks, ProblemList& problems);
 std::string_view channel_error_text(std::uint8_t error_type);
 std::string_view channel_type_text(std::uint8_t channel_type);
 // The I/O type of a channel-related block (bits 7..6 of its second byte): 01 "input",

@@ -275,8 +275,9 @@ class VerboseRenderer final : public TelegramRenderer {
         if (diag.extended.empty()) return;
         field(1, "Extended diagnosis: {} bytes", diag.extended.size());
         ProblemList ignored;
-        for (const DiagBlock& block :
-             parse_extended_diag(ByteReader(diag.extended, diag.extended_offset), ignored)) {
+        std::vector<DiagBlock> blocks;
+        parse_extended_diag(ByteReader(diag.extended, diag.extended_offset), blocks, ignored);
+        for (const DiagBlock& block : blocks) {
             TextBuffer& b = out_.buffer();
             switch (block.type) {
                 case DiagBlockType::Channel:

@@ -752,6 +752,184 @@ TEST(BusDecoderTest, TruncatedDiagBlockIsAProblem) {
     EXPECT_EQ(t.problems()[0].actual, 2u);
 }
 
+// ---- Service data stored on the telegram -----------------------------------------------------
+
+TEST(BusDecoderTest, CarriesServiceDataNamesTheTelegramWithTheServicesData) {
+    for (Service service :
+         {Service::SetPrm, Service::ChkCfg, Service::GlobalControl, Service::SetSlaveAdd}) {
+        EXPECT_TRUE(carries_service_data(service, Direction::Request, FrameType::Sd2));
+        EXPECT_FALSE(carries_service_data(service, Direction::Response, FrameType::Sd2));
+    }
+    for (Service service : {Service::SlaveDiag, Service::GetCfg}) {
+        EXPECT_FALSE(carries_service_data(service, Direction::Request, FrameType::Sd2));
+        EXPECT_TRUE(carries_service_data(service, Direction::Response, FrameType::Sd2));
+        EXPECT_TRUE(carries_service_data(service, Direction::Response, FrameType::Sd3));
+        EXPECT_FALSE(carries_service_data(service, Direction::Response, FrameType::Sd1));
+        EXPECT_FALSE(carries_service_data(service, Direction::Response, FrameType::ShortAck));
+    }
+    for (Service service :
+         {Service::DataExchange, Service::RdInp, Service::MsacC1, Service::Token, Service::Unknown})
+        for (Direction direction : {Direction::Request, Direction::Response})
+            EXPECT_FALSE(carries_service_data(service, direction, FrameType::Sd2));
+}
+
+TEST(BusDecoderTest, SlaveDiagAndItsExtendedDiagnosisAreStored) {
+    Bus bus;
+    const DecodedTelegram& request = bus.decode(service_request(3, sap::kSlaveDiag));
+    EXPECT_EQ(request.dp.service_data.kind(), DpServiceData::Kind::None);
+    // Device-related block (3 bytes), channel-related block, revision.
+    const DecodedTelegram& t = bus.decode(
+        service_response(3, sap::kSlaveDiag, hex("08 0C 00 02 04 02 03 AA BB 81 42 A6 C5")));
+    EXPECT_TRUE(t.problems().empty());
+    const DpServiceData& data = t.dp.service_data;
+    EXPECT_EQ(data.kind(), DpServiceData::Kind::SlaveDiag);
+    const SlaveDiag* diag = data.slave_diag();
+    ASSERT_NE(diag, nullptr);
+    EXPECT_EQ(diag->station_status_1, 0x08);
+    EXPECT_EQ(diag->station_status_2, 0x0C);
+    EXPECT_EQ(diag->master_address, 2);
+    EXPECT_EQ(diag->ident, 0x0402);
+    EXPECT_EQ(bytes_of(diag->extended), hex("03 AA BB 81 42 A6 C5"));
+    ASSERT_EQ(data.diag_blocks().size(), 3u);
+    EXPECT_EQ(data.diag_blocks()[0].type, DiagBlockType::Device);
+    EXPECT_EQ(bytes_of(data.diag_blocks()[0].data), hex("AA BB"));
+    EXPECT_EQ(data.diag_blocks()[1].type, DiagBlockType::Channel);
+    EXPECT_EQ(data.diag_blocks()[1].module, 1);
+    EXPECT_EQ(data.diag_blocks()[1].channel, 2);
+    EXPECT_EQ(data.diag_blocks()[2].type, DiagBlockType::Revision);
+    EXPECT_EQ(data.diag_blocks()[2].revision, 5);
+    EXPECT_EQ(data.set_prm(), nullptr);
+    EXPECT_EQ(data.cfg_modules(), nullptr);
+    EXPECT_EQ(data.global_control(), nullptr);
+    EXPECT_EQ(data.set_slave_add(), nullptr);
+
+    // The next diagnosis replaces the blocks rather than adding to them.
+    bus.decode(service_request(3, sap::kSlaveDiag));
+    const DecodedTelegram& next =
+        bus.decode(service_response(3, sap::kSlaveDiag, hex("08 0C 00 02 04 02 C1")));
+    ASSERT_EQ(next.dp.service_data.diag_blocks().size(), 1u);
+    EXPECT_EQ(next.dp.service_data.diag_blocks()[0].type, DiagBlockType::Revision);
+}
+
+TEST(BusDecoderTest, SetPrmIsStored) {
+    Bus bus;
+    const DecodedTelegram& t =
+        bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 12 34 00 80 00 00 AB")));
+    const SetPrm* prm = t.dp.service_data.set_prm();
+    ASSERT_NE(prm, nullptr);
+    EXPECT_EQ(prm->station_status, 0x88);
+    EXPECT_EQ(prm->ident, 0x1234);
+    EXPECT_TRUE(prm->dpv1_enabled());
+    EXPECT_EQ(bytes_of(prm->user_prm), hex("AB"));
+    EXPECT_EQ(t.dp.service_data.slave_diag(), nullptr);
+    // Its acknowledgement carries no data.
+    EXPECT_EQ(bus.decode(short_ack()).dp.service_data.kind(), DpServiceData::Kind::None);
+}
+
+TEST(BusDecoderTest, ChkCfgAndGetCfgModulesAreStored) {
+    Bus bus;
+    const DecodedTelegram& chk = bus.decode(service_request(3, sap::kChkCfg, hex("F3 F1")));
+    const std::vector<CfgModule>* modules = chk.dp.service_data.cfg_modules();
+    ASSERT_NE(modules, nullptr);
+    ASSERT_EQ(modules->size(), 2u);
+    EXPECT_EQ((*modules)[0].identifier, 0xF3);
+    EXPECT_EQ((*modules)[1].identifier, 0xF1);
+    // A Chk_Cfg response is no configuration, whatever it carries.
+    EXPECT_EQ(bus.decode(service_response(3, sap::kChkCfg, hex("F1"))).dp.service_data.kind(),
+              DpServiceData::Kind::None);
+
+    const DecodedTelegram& get = bus.decode(service_request(3, sap::kGetCfg));
+    EXPECT_EQ(get.dp.service_data.cfg_modules(), nullptr);
+    const DecodedTelegram& answer = bus.decode(service_response(3, sap::kGetCfg, hex("F1")));
+    ASSERT_NE(answer.dp.service_data.cfg_modules(), nullptr);
+    ASSERT_EQ(answer.dp.service_data.cfg_modules()->size(), 1u);
+    EXPECT_EQ((*answer.dp.service_data.cfg_modules())[0].identifier, 0xF1);
+}
+
+TEST(BusDecoderTest, GlobalControlAndSetSlaveAddAreStored) {
+    Bus bus;
+    const DecodedTelegram& gc = bus.decode(service_request(kBroadcastAddress, sap::kGlobalControl,
+                                                           hex("08 01"), FdlFunction::SdnHigh));
+    const GlobalControl* control = gc.dp.service_data.global_control();
+    ASSERT_NE(control, nullptr);
+    EXPECT_EQ(control->command, 0x08);
+    EXPECT_EQ(control->group_select, 0x01);
+
+    const DecodedTelegram& ssa =
+        bus.decode(service_request(126, sap::kSetSlaveAdd, hex("05 04 02 01 EE")));
+    const SetSlaveAdd* add = ssa.dp.service_data.set_slave_add();
+    ASSERT_NE(add, nullptr);
+    EXPECT_EQ(add->new_address, 5);
+    EXPECT_EQ(add->ident, 0x0402);
+    EXPECT_EQ(add->no_add_chg, 1);
+    EXPECT_EQ(bytes_of(add->rem_slave_data), hex("EE"));
+}
+
+// DP gives such a response no data; the text views show its bytes in the request's layout, but
+// data that does not fit them is no problem of the response.
+TEST(BusDecoderTest, ResponseToGlobalControlHoldsItsBytesWithoutProblems) {
+    Bus bus;
+    bus.decode(service_request(3, sap::kGlobalControl, hex("08 00")));
+    const DecodedTelegram& t = bus.decode(service_response(3, sap::kGlobalControl, hex("02 07")));
+    EXPECT_EQ(t.dp.service, Service::GlobalControl);
+    ASSERT_NE(t.dp.service_data.global_control(), nullptr);
+    EXPECT_EQ(t.dp.service_data.global_control()->command, 0x02);
+    EXPECT_TRUE(t.problems().empty());
+
+    bus.decode(service_request(3, sap::kSetSlaveAdd, hex("05 04 02 00")));
+    const DecodedTelegram& short_one =
+        bus.decode(service_response(3, sap::kSetSlaveAdd, hex("05")));
+    EXPECT_EQ(short_one.dp.service_data.kind(), DpServiceData::Kind::None);
+    EXPECT_TRUE(short_one.problems().empty());
+}
+
+TEST(BusDecoderTest, TruncatedServiceDataKeepsWhatWasRead) {
+    Bus bus;
+    // The diagnosis and the block before the cut channel-related block are kept.
+    bus.decode(service_request(3, sap::kSlaveDiag));
+    const DecodedTelegram& diag =
+        bus.decode(service_response(3, sap::kSlaveDiag, hex("08 0C 00 02 04 02 C1 81 42")));
+    ASSERT_EQ(diag.problems().size(), 1u);
+    EXPECT_EQ(diag.problems()[0].kind, ProblemKind::DiagBlockTruncated);
+    ASSERT_NE(diag.dp.service_data.slave_diag(), nullptr);
+    EXPECT_EQ(diag.dp.service_data.slave_diag()->ident, 0x0402);
+    ASSERT_EQ(diag.dp.service_data.diag_blocks().size(), 1u);
+    EXPECT_EQ(diag.dp.service_data.diag_blocks()[0].type, DiagBlockType::Revision);
+
+    // The module before the cut special identifier is kept.
+    const DecodedTelegram& cfg = bus.decode(service_request(3, sap::kChkCfg, hex("F3 C0 C3")));
+    ASSERT_EQ(cfg.problems().size(), 1u);
+    EXPECT_EQ(cfg.problems()[0].kind, ProblemKind::CfgIdentifierTruncated);
+    ASSERT_NE(cfg.dp.service_data.cfg_modules(), nullptr);
+    ASSERT_EQ(cfg.dp.service_data.cfg_modules()->size(), 1u);
+    EXPECT_EQ((*cfg.dp.service_data.cfg_modules())[0].identifier, 0xF3);
+
+    // Without the fixed part there is nothing to keep.
+    bus.decode(short_ack());
+    const DecodedTelegram& prm = bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A 0B")));
+    ASSERT_EQ(prm.problems().size(), 1u);
+    EXPECT_EQ(prm.problems()[0].kind, ProblemKind::ServiceDataShort);
+    EXPECT_EQ(prm.dp.service_data.kind(), DpServiceData::Kind::None);
+}
+
+TEST(BusDecoderTest, DataExchangeAfterSlaveDiagHoldsNoServiceData) {
+    Bus bus;
+    bus.decode(service_request(3, sap::kSlaveDiag));
+    const DecodedTelegram& diag =
+        bus.decode(service_response(3, sap::kSlaveDiag, hex("08 0C 00 02 04 02 C1")));
+    EXPECT_NE(diag.dp.service_data.slave_diag(), nullptr);
+    const DecodedTelegram& exchange = bus.decode(exchange_request(3, hex("04 7F 20 00")));
+    EXPECT_EQ(exchange.dp.service, Service::DataExchange);
+    EXPECT_EQ(exchange.dp.service_data.kind(), DpServiceData::Kind::None);
+    EXPECT_EQ(exchange.dp.service_data.slave_diag(), nullptr);
+    EXPECT_TRUE(exchange.dp.service_data.diag_blocks().empty());
+    // Nor does a token or a telegram that could not be read.
+    bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00")));
+    EXPECT_EQ(bus.decode(token()).dp.service_data.kind(), DpServiceData::Kind::None);
+    bus.decode(service_request(3, sap::kSetPrm, hex("88 0A 0A 0B 04 02 00")));
+    EXPECT_EQ(bus.decode(hex("FF 00")).dp.service_data.kind(), DpServiceData::Kind::None);
+}
+
 // A device-related diagnosis block reads as DP-V1 alarm/status only for a slave whose Set_Prm
 // enabled DP-V1; the decoder keeps that per slave.
 TEST(BusDecoderTest, SetPrmDecidesTheSlavesDpv1Mode) {

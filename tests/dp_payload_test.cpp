@@ -58,7 +58,8 @@ TEST(DpPayloadTest, SlaveDiagWithExtendedDiagnosis) {
     EXPECT_EQ(diag->extended_offset, 15);
     EXPECT_EQ(copy(diag->extended), hex("03 AA BB 42 01 81 42 A6 C5"));
 
-    auto blocks = parse_extended_diag(ByteReader(diag->extended, diag->extended_offset), problems);
+    std::vector<DiagBlock> blocks;
+    parse_extended_diag(ByteReader(diag->extended, diag->extended_offset), blocks, problems);
     EXPECT_TRUE(problems.empty());
     ASSERT_EQ(blocks.size(), 4u);
 
@@ -100,7 +101,8 @@ TEST(DpPayloadTest, ExtendedDiagBlockLongerThanDataIsTruncated) {
     // Device block announces 5 bytes (header included) but only 3 are there.
     auto ext = hex("42 01 05 AA BB");
     ProblemList problems;
-    auto blocks = parse_extended_diag(reader_of(ext, 15), problems);
+    std::vector<DiagBlock> blocks;
+    parse_extended_diag(reader_of(ext, 15), blocks, problems);
     ASSERT_EQ(blocks.size(), 2u);
     EXPECT_EQ(blocks[0].type, DiagBlockType::Identifier);
     EXPECT_EQ(blocks[1].type, DiagBlockType::Device);
@@ -115,7 +117,8 @@ TEST(DpPayloadTest, ExtendedDiagBlockLongerThanDataIsTruncated) {
 TEST(DpPayloadTest, ChannelBlockCutOffIsReportedAndDropped) {
     auto ext = hex("C1 83 05");
     ProblemList problems;
-    auto blocks = parse_extended_diag(reader_of(ext, 20), problems);
+    std::vector<DiagBlock> blocks;
+    parse_extended_diag(reader_of(ext, 20), blocks, problems);
     ASSERT_EQ(blocks.size(), 1u);
     EXPECT_EQ(blocks[0].type, DiagBlockType::Revision);
     EXPECT_EQ(blocks[0].revision, 1);
@@ -129,7 +132,8 @@ TEST(DpPayloadTest, ChannelBlockCutOffIsReportedAndDropped) {
 TEST(DpPayloadTest, ChannelBlockOutputAndInputOutput) {
     auto ext = hex("83 81 21  BF FF 3F");
     ProblemList problems;
-    auto blocks = parse_extended_diag(reader_of(ext), problems);
+    std::vector<DiagBlock> blocks;
+    parse_extended_diag(reader_of(ext), blocks, problems);
     EXPECT_TRUE(problems.empty());
     ASSERT_EQ(blocks.size(), 2u);
     EXPECT_EQ(blocks[0].module, 3);
@@ -185,7 +189,8 @@ TEST(DpPayloadTest, ChannelIoTypes) {
     EXPECT_EQ(channel_io_text(3), "input/output");
     auto du = hex("81 02 A6  81 C2 A6");  // module 1, channel 2, I/O type 00 then 11
     ProblemList problems;
-    auto blocks = parse_extended_diag(reader_of(du, 15), problems);
+    std::vector<DiagBlock> blocks;
+    parse_extended_diag(reader_of(du, 15), blocks, problems);
     EXPECT_TRUE(problems.empty());
     ASSERT_EQ(blocks.size(), 2u);
     EXPECT_EQ(blocks[0].io, 0);
