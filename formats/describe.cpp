@@ -163,21 +163,16 @@ void append_pcd_summary(TextBuffer& out, const DecodedTelegram& t) {
         fmt::format_to(std::back_inserter(out), " +{}w", more);
 }
 
-void append_cfg_summary(TextBuffer& out, const DecodedTelegram& t) {
-    append_hex(out, t.dp.fdl.du);
-    std::vector<CfgModule> modules;
-    ProblemList ignored;
-    parse_cfg(ByteReader(t.dp.fdl.du, t.dp.fdl.du_offset), modules, ignored);
-    PpoLayout layout = ppo_from_cfg(modules, PpoSource::ChkCfg);
+void append_cfg_summary(TextBuffer& out, Bytes identifiers, std::span<const CfgModule> modules) {
+    append_hex(out, identifiers);
     append(out, " = ");
-    append_ppo_short(out, layout);
+    append_ppo_short(out, ppo_from_cfg(modules, PpoSource::ChkCfg));
 }
 
 void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
     const FdlTelegram& f = t.dp.fdl;
+    const DpServiceData& data = t.dp.service_data;
     bool request = t.direction == Direction::Request;
-    ByteReader du(f.du, f.du_offset);
-    ProblemList ignored;
     if (f.type == FrameType::ShortAck) {
         append(out, "short acknowledge");
         return;
@@ -204,7 +199,7 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
                 append(out, "diagnosis request");
                 return;
             }
-            if (auto diag = parse_slave_diag(du, ignored)) {
+            if (const SlaveDiag* diag = data.slave_diag()) {
                 fmt::format_to(std::back_inserter(out), "ident 0x{:04X} master ", diag->ident);
                 if (diag->master_address == kNoMasterAddress)
                     append(out, "none");
@@ -227,8 +222,7 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
             }
             break;
         case Service::SetPrm:
-            if (!request) break;
-            if (auto prm = parse_set_prm(du, ignored)) {
+            if (const SetPrm* prm = data.set_prm()) {
                 fmt::format_to(std::back_inserter(out), "ident 0x{:04X} ", prm->ident);
                 if (prm->watchdog_on() && prm->watchdog_base_uncertain())
                     fmt::format_to(std::back_inserter(out),
@@ -247,8 +241,8 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
             }
             break;
         case Service::ChkCfg:
-            if (request) {
-                append_cfg_summary(out, t);
+            if (const std::vector<CfgModule>* modules = data.cfg_modules()) {
+                append_cfg_summary(out, f.du, *modules);
                 return;
             }
             break;
@@ -257,8 +251,10 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
                 append(out, "configuration request");
                 return;
             }
-            if (!f.du.empty()) {
-                append_cfg_summary(out, t);
+            // An empty Get_Cfg response reads as its FDL status, like any response without data.
+            if (const std::vector<CfgModule>* modules = data.cfg_modules();
+                modules && !f.du.empty()) {
+                append_cfg_summary(out, f.du, *modules);
                 return;
             }
             break;
@@ -270,14 +266,14 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
             }
             break;
         case Service::GlobalControl:
-            if (auto gc = parse_global_control(du, ignored)) {
+            if (const GlobalControl* gc = data.global_control()) {
                 append_flags(out, gc->command, global_control_flags(), "operate");
                 fmt::format_to(std::back_inserter(out), " group 0x{:02X}", gc->group_select);
                 return;
             }
             break;
         case Service::SetSlaveAdd:
-            if (auto ssa = parse_set_slave_add(du, ignored)) {
+            if (const SetSlaveAdd* ssa = data.set_slave_add()) {
                 fmt::format_to(std::back_inserter(out), "new address {} ident 0x{:04X}",
                                ssa->new_address, ssa->ident);
                 return;

@@ -45,7 +45,8 @@ void append_pcd_summary(TextBuffer& out, const DecodedTelegram& t);
 void append_service_detail(TextBuffer& out, const DecodedTelegram& t);
 // "CTW"/"MRV" for requests, "STW"/"MAV" for responses, "" for further words.
 std::string_view pcd_word_name(Direction direction, std::size_t index);
-// Configuration identifiers of a Chk_Cfg / Get_Cfg data unit, e.g. "F3 F1 = PCV + 2 words".
-void append_cfg_summary(TextBuffer& out, const DecodedTelegram& t);
+// Configuration identifiers of a Chk_Cfg / Get_Cfg data unit and the layout their modules make,
+// e.g. "F3 F1 = PPO1".
+void append_cfg_summary(TextBuffer& out, Bytes identifiers, std::span<const CfgModule> modules);
 
 }  // namespace dpscope

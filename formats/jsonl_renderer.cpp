@@ -197,16 +197,10 @@ class JsonlRenderer final : public TelegramRenderer {
     }
 
     static void render_service_objects(JsonWriter& w, const DecodedTelegram& t) {
-        const bool request = t.direction == Direction::Request;
-        const bool has_data = !t.dp.fdl.du.empty();
-        ByteReader du(t.dp.fdl.du, t.dp.fdl.du_offset);
-        ProblemList ignored;
+        const DpServiceData& data = t.dp.service_data;
 
         w.key("diag");
-        std::optional<SlaveDiag> diag;
-        if (t.dp.service == Service::SlaveDiag && !request && has_data)
-            diag = parse_slave_diag(du, ignored);
-        if (diag) {
+        if (const SlaveDiag* diag = data.slave_diag()) {
             w.begin_object();
             w.key("ident").integer(diag->ident);
             w.key("master").optional_integer(diag->master_address != kNoMasterAddress,
@@ -241,9 +235,7 @@ class JsonlRenderer final : public TelegramRenderer {
         }
 
         w.key("prm");
-        std::optional<SetPrm> prm;
-        if (t.dp.service == Service::SetPrm && request) prm = parse_set_prm(du, ignored);
-        if (prm) {
+        if (const SetPrm* prm = data.set_prm()) {
             w.begin_object();
             w.key("ident").integer(prm->ident);
             w.key("station_status").integer(prm->station_status);
@@ -274,18 +266,16 @@ class JsonlRenderer final : public TelegramRenderer {
         }
 
         w.key("cfg");
-        bool cfg = has_data && ((t.dp.service == Service::ChkCfg && request) ||
-                                (t.dp.service == Service::GetCfg && !request));
-        if (cfg) {
-            std::vector<CfgModule> modules;
-            parse_cfg(du, modules, ignored);
+        // An empty configuration is null, as when there is none.
+        const std::vector<CfgModule>* modules = data.cfg_modules();
+        if (modules && !t.dp.fdl.du.empty()) {
             w.begin_object();
             w.key("bytes").begin_array();
             for (std::uint8_t byte : t.dp.fdl.du)
                 w.integer(byte);
             w.end_array();
             w.key("modules").begin_array();
-            for (const CfgModule& m : modules) {
+            for (const CfgModule& m : *modules) {
                 bool use_output = m.output_units != 0;
                 w.begin_object();
                 w.key("identifier").integer(m.identifier);
@@ -300,7 +290,7 @@ class JsonlRenderer final : public TelegramRenderer {
                 w.end_object();
             }
             w.end_array();
-            PpoLayout layout = ppo_from_cfg(modules, PpoSource::ChkCfg);
+            PpoLayout layout = ppo_from_cfg(*modules, PpoSource::ChkCfg);
             w.key("ppo").optional_integer(layout.type != 0, layout.type);
             w.key("has_pcv").boolean(layout.has_pcv);
             w.end_object();
@@ -309,9 +299,9 @@ class JsonlRenderer final : public TelegramRenderer {
         }
 
         w.key("global_control");
-        std::optional<GlobalControl> gc;
-        if (t.dp.service == Service::GlobalControl && request)
-            gc = parse_global_control(du, ignored);
+        // Only a request's: a response's bytes in this layout (DpServiceData) are not shown here.
+        const GlobalControl* gc =
+            t.direction == Direction::Request ? data.global_control() : nullptr;
         if (gc) {
             w.begin_object();
             w.key("command").integer(gc->command);

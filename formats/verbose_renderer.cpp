@@ -1,5 +1,6 @@
 // The whole field tree of each telegram, like tshark -V.
 #include <iterator>
+#include <span>
 #include <vector>
 
 #include "decoder/dp_payload.hpp"
@@ -149,34 +150,31 @@ class VerboseRenderer final : public TelegramRenderer {
             fmt::format_to(it, ", master {} / slave {}", t.master, t.slave);
         if (t.request_frame != 0) fmt::format_to(it, ", answers frame {}", t.request_frame);
         b.push_back('\n');
-        ByteReader du(t.dp.fdl.du, t.dp.fdl.du_offset);
-        ProblemList ignored;
-        bool request = t.direction == Direction::Request;
+        const DpServiceData& data = t.dp.service_data;
         switch (t.dp.service) {
             case Service::DataExchange: render_data_exchange(t); break;
             case Service::SlaveDiag:
-                if (!request && !t.dp.fdl.du.empty())
-                    if (auto diag = parse_slave_diag(du, ignored))
-                        render_diag(*diag, t.dp.slave_dpv1);
+                if (const SlaveDiag* diag = data.slave_diag())
+                    render_diag(*diag, data.diag_blocks(), t.dp.slave_dpv1);
                 break;
             case Service::SetPrm:
-                if (request)
-                    if (auto prm = parse_set_prm(du, ignored)) render_prm(*prm);
+                if (const SetPrm* prm = data.set_prm()) render_prm(*prm);
                 break;
             case Service::ChkCfg:
             case Service::GetCfg:
-                if (!t.dp.fdl.du.empty() && (request == (t.dp.service == Service::ChkCfg)))
-                    render_cfg(t);
+                if (const std::vector<CfgModule>* modules = data.cfg_modules();
+                    modules && !t.dp.fdl.du.empty())
+                    render_cfg(t, *modules);
                 break;
             case Service::GlobalControl:
-                if (auto gc = parse_global_control(du, ignored)) {
+                if (const GlobalControl* gc = data.global_control()) {
                     flags_field(1, "Control command", gc->command, global_control_flags());
                     field(1, "Group select: 0x{:02X}{}", gc->group_select,
                           gc->group_select == 0 ? " (all slaves)" : "");
                 }
                 break;
             case Service::SetSlaveAdd:
-                if (auto ssa = parse_set_slave_add(du, ignored)) {
+                if (const SetSlaveAdd* ssa = data.set_slave_add()) {
                     field(1, "New slave address: {}", ssa->new_address);
                     field(1, "Ident number: 0x{:04X}", ssa->ident);
                     field(1, "No_Add_Chg: {}", ssa->no_add_chg);
@@ -263,7 +261,7 @@ class VerboseRenderer final : public TelegramRenderer {
         if (!reader.empty()) field(2, "odd trailing byte: 0x{:02X}", *reader.u8());
     }
 
-    void render_diag(const SlaveDiag& diag, SlaveDpv1 dpv1) {
+    void render_diag(const SlaveDiag& diag, std::span<const DiagBlock> blocks, SlaveDpv1 dpv1) {
         flags_field(1, "Station status 1", diag.station_status_1, station_status_1_flags());
         flags_field(1, "Station status 2", diag.station_status_2, station_status_2_flags());
         flags_field(1, "Station status 3", diag.station_status_3, station_status_3_flags());
@@ -274,9 +272,6 @@ class VerboseRenderer final : public TelegramRenderer {
         field(1, "Ident number: 0x{:04X}", diag.ident);
         if (diag.extended.empty()) return;
         field(1, "Extended diagnosis: {} bytes", diag.extended.size());
-        ProblemList ignored;
-        std::vector<DiagBlock> blocks;
-        parse_extended_diag(ByteReader(diag.extended, diag.extended_offset), blocks, ignored);
         for (const DiagBlock& block : blocks) {
             TextBuffer& b = out_.buffer();
             switch (block.type) {
@@ -372,10 +367,7 @@ class VerboseRenderer final : public TelegramRenderer {
         }
     }
 
-    void render_cfg(const DecodedTelegram& t) {
-        std::vector<CfgModule> modules;
-        ProblemList ignored;
-        parse_cfg(ByteReader(t.dp.fdl.du, t.dp.fdl.du_offset), modules, ignored);
+    void render_cfg(const DecodedTelegram& t, std::span<const CfgModule> modules) {
         line(1, "Identifier bytes: ");
         append_hex(out_.buffer(), t.dp.fdl.du);
         out_.buffer().push_back('\n');

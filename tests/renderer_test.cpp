@@ -792,6 +792,57 @@ TEST(RendererTest, VerboseRejectedResponseAndServices) {
     EXPECT_TRUE(contains(diag, "    Station status 2: 0x0C (always_1 WD_On)"));
 }
 
+// The service data the decoder stored, shown where each view has always shown it: a
+// data-carrying response to Global_Control or Set_Slave_Add in the request's layout in the text
+// and verbose views (not in JSONL); a Chk_Cfg request without data; the data of a Chk_Cfg or
+// Set_Prm response as plain data.
+std::vector<Input> service_data_corner_cases() {
+    return {
+        {request(58, {0x08, 0x00}), kNoTime, {}},                  // 1 Global_Control
+        {response(58, {0x02, 0x07}), kNoTime, {}},                 // 2 its response
+        {request(55, {5, 4, 2, 0}), kNoTime, {}},                  // 3 Set_Slave_Add
+        {response(55, {5, 4, 2, 1, 0xEE}), kNoTime, {}},           // 4 its response
+        {request(62, {}), kNoTime, {}},                            // 5 Chk_Cfg, no data
+        {response(62, {0xF1}), kNoTime, {}},                       // 6 its response
+        {request(61, {0x88, 10, 10, 11, 4, 2, 0}), kNoTime, {}},   // 7 Set_Prm
+        {response(61, {0x88, 10, 10, 11, 4, 2, 0}), kNoTime, {}},  // 8 its response
+    };
+}
+
+TEST(RendererTest, ServiceDataCornerCasesInEveryView) {
+    std::vector<std::string> lines =
+        split_lines(render(OutputFormat::Text, service_data_corner_cases()));
+    ASSERT_EQ(lines.size(), 8u);
+    EXPECT_EQ(lines[1],
+              "     2            -   3 → 2   SD2 Global_Control rsp Clear_Data group 0x07");
+    EXPECT_EQ(lines[3],
+              "     4            -   3 → 2   SD2 Set_Slave_Add  rsp new address 5 ident 0x0402");
+    EXPECT_EQ(lines[4], "     5            -   2 → 3   SD2 Chk_Cfg        req  = 0w");
+    EXPECT_EQ(lines[5],
+              "     6            -   3 → 2   SD2 Chk_Cfg        rsp DL slave SAP 62->62 data F1");
+    EXPECT_EQ(lines[7],
+              "     8            -   3 → 2   SD2 Set_Prm        rsp DL slave SAP 61->62 data 88 0A "
+              "0A 0B 04 02 00");
+
+    std::vector<std::string> gc = verbose_block(service_data_corner_cases(), 2);
+    EXPECT_TRUE(contains(gc, "    Control command: 0x02 (Clear_Data)"));
+    EXPECT_TRUE(contains(gc, "    Group select: 0x07"));
+    std::vector<std::string> ssa = verbose_block(service_data_corner_cases(), 4);
+    EXPECT_TRUE(contains(ssa, "    No_Add_Chg: 1"));
+    EXPECT_TRUE(contains(ssa, "    Rem_Slave_Data: EE"));
+
+    std::vector<Json> json = jsonl(service_data_corner_cases());
+    ASSERT_EQ(json.size(), 8u);
+    EXPECT_EQ(json[0]["global_control"]["command"].integer(), 8);
+    EXPECT_TRUE(json[1]["global_control"].is_null());
+    EXPECT_TRUE(json[4]["cfg"].is_null());
+    EXPECT_TRUE(json[5]["cfg"].is_null());
+    EXPECT_EQ(json[6]["prm"]["ident"].integer(), 0x0402);
+    EXPECT_TRUE(json[7]["prm"].is_null());
+    for (const Json& line : json)
+        EXPECT_TRUE(line["problems"].items.empty());
+}
+
 TEST(RendererTest, VerboseMalformedTelegram) {
     std::vector<Input> in = {{hex("10 03 02 49 4F 16"), kNoTime, {}}, {hex("2A"), kNoTime, {}}};
     std::vector<std::string> bad_fcs = verbose_block(in, 1);
