@@ -217,7 +217,7 @@ void BusDecoder::decode_data_exchange(DecodedTelegram& t) {
     // Written in place: small structs returned by value cost store-forwarding stalls here.
     layout_for(t.slave, du.size(), t.dp.ppo);
     ByteReader reader(du, t.dp.fdl.du_offset);
-    if (t.dp.ppo.has_pcv) t.dp.has_pcv = read_pcv(reader, t.dp.pcv);
+    if (t.dp.ppo.has_pcv) t.dp.has_pcv = read_pcv(reader, kPpoPkeLayout, t.dp.pcv);
     t.dp.pcd_offset = static_cast<std::uint16_t>(reader.offset());
     t.dp.pcd = reader.rest();
 }
