@@ -57,10 +57,10 @@ struct ParameterChannelSample {
     std::uint64_t frame = 0;
     std::int64_t time_ns = kNoTime;
     Direction direction = Direction::Request;  // request: the master's PCV; response: the slave's
-    std::uint8_t master = 0;
+    std::uint8_t master = 0;  // the channel (addresses 0..127); the same in both directions
     std::uint8_t slave = 0;
     Pcv pcv;
-    Dialect dialect = Dialect::Vlt;
+    Dialect dialect = Dialect::Vlt;  // the code tables the PCV is read with
     // The channel's cycles so far, counted by the carrier (this telegram's included): what
     // latency in cycles and the one-cycle lag are measured in.
     std::uint64_t cycle = 0;
@@ -128,7 +128,6 @@ class ParameterChannelEngine {
     // (RC 7) or "no authority" (RC 8) that leaves the PNU out (PNU 0): that one is about the
     // request it answers.
     std::int32_t subject_pnu() const noexcept { return subject_pnu_; }
-    const ParameterChannelPolicy& policy() const noexcept { return policy_; }
 
   private:
     struct Channel;
