@@ -9,6 +9,7 @@
 #include "decoder/session_tracker.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/report.hpp"
+#include "formats/report_timeline.hpp"
 #include "formats/summary.hpp"
 
 namespace dpscope::cli {
@@ -16,7 +17,7 @@ namespace dpscope::cli {
 class Pipeline {
   public:
     explicit Pipeline(const DecodeSettings& settings)
-        : decoder_(settings.decoder), tracker_(decoder_, settings.tracker) {}
+        : decoder_(settings.decoder), tracker_(settings.tracker) {}
 
     // Decodes and tracks one record; `findings` receives what the tracker found at it.
     const DecodedTelegram& feed(const Record& record, std::span<const Finding>& findings) {
@@ -24,6 +25,7 @@ class Pipeline {
         findings = tracker_.track(t);
         summary_.add(t);
         summary_.add_findings(findings);
+        timelines_.add(findings, tracker_.completed());
         return t;
     }
     // The end of the input: findings still open past the time-out.
@@ -31,17 +33,20 @@ class Pipeline {
     std::span<const Finding> finish(std::int64_t end_ns = kNoTime) {
         std::span<const Finding> findings = tracker_.finish(end_ns);
         summary_.add_findings(findings);
+        timelines_.add(findings, {});
         return findings;
     }
 
     const BusDecoder& decoder() const noexcept { return decoder_; }
     const SessionTracker& tracker() const noexcept { return tracker_; }
     const Summary& summary() const noexcept { return summary_; }
+    const ChannelTimelines& timelines() const noexcept { return timelines_; }
 
   private:
     BusDecoder decoder_;
     SessionTracker tracker_;
     Summary summary_;
+    ChannelTimelines timelines_;
 };
 
 // What the summary and the report say about the input itself.
@@ -58,6 +63,7 @@ inline ReportContext report_context(const Pipeline& pipeline, const TelegramSour
     context.summary = &pipeline.summary();
     context.decoder = &pipeline.decoder();
     context.tracker = &pipeline.tracker();
+    context.timelines = &pipeline.timelines();
     context.findings = &log;
     context.fail_on = fail_on;
     context.version = kVersion;

@@ -99,6 +99,7 @@ const DecodedTelegram& BusDecoder::decode(Bytes bytes, std::int64_t time_ns, std
     t.request_frame = 0;
     t.dp.unanswered.reset();
     t.dp.ppo = PpoLayout{};
+    t.dp.ppo_cfg_frame = 0;
     t.dp.has_pcv = false;
     t.dp.pcv = Pcv{};
     t.dp.pcd = {};
@@ -244,8 +245,10 @@ void BusDecoder::decode_data_exchange(DecodedTelegram& t) {
         learn_length12_type(t);
     // Written in place: small structs returned by value cost store-forwarding stalls here.
     layout_for(t.slave, du.size(), t.dp.ppo);
+    if (t.dp.ppo.source == PpoSource::ChkCfg || t.dp.ppo.source == PpoSource::GetCfg)
+        t.dp.ppo_cfg_frame = stations_[t.slave & 0x7F].cfg_frame;
     ByteReader reader(du, t.dp.fdl.du_offset);
-    if (t.dp.ppo.has_pcv) t.dp.has_pcv = read_pcv(reader, t.dp.pcv);
+    if (t.dp.ppo.has_pcv) t.dp.has_pcv = read_pcv(reader, kPpoPkeLayout, t.dp.pcv);
     t.dp.pcd_offset = static_cast<std::uint16_t>(reader.offset());
     t.dp.pcd = reader.rest();
 }

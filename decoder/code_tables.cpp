@@ -14,14 +14,15 @@ std::optional<Dialect> dialect_from_name(std::string_view name) {
     return std::nullopt;
 }
 
-bool read_pcv(ByteReader& reader, Pcv& pcv) noexcept {
+bool read_pcv(ByteReader& reader, const PkeLayout& layout, Pcv& pcv) noexcept {
     if (reader.remaining() < 8) return false;
     pcv.pca = *reader.u16_be();
     pcv.rc = static_cast<std::uint8_t>(pcv.pca >> 12);
-    pcv.spm = (pcv.pca & 0x0800) != 0;
-    pcv.pnu = pcv.pca & 0x07FF;
-    pcv.ind = *reader.u8();
+    pcv.spm = layout.spm_bit && ((pcv.pca >> *layout.spm_bit) & 1u) != 0;
+    pcv.pnu = static_cast<std::uint16_t>(pcv.pca & ((1u << layout.pnu_bits) - 1u));
+    const std::uint8_t ind_high = *reader.u8();
     pcv.ind_low = *reader.u8();
+    pcv.ind = layout.index_byte == IndexByte::High ? ind_high : pcv.ind_low;
     pcv.pva = *reader.u32_be();
     return true;
 }

@@ -3,6 +3,9 @@
 //   bytes 1-2  PCA/PKE: RC/AK (bits 15..12), SPM (bit 11), PNU (bits 10..0)
 //   byte 3     IND: array subindex (or description record subindex)
 //   byte 4     IND low byte (unused on Danfoss PROFIBUS)
+// That is the PKE layout of the PROFIBUS PPO (kPpoPkeLayout); other carriers of a parameter
+// channel split the PKE and IND otherwise (the Danfoss FC protocol: a 12-bit PNU, no SPM bit, the
+// index in IND's second byte; docs/protocol/fc-protocol.md), so read_pcv takes the layout.
 //   bytes 5-8  PVA/PWE: word values in bytes 7-8, double words in bytes 5-8; for RC 7 the
 //              error number in bytes 7-8
 //
@@ -27,18 +30,33 @@ enum class Dialect : std::uint8_t { Vlt, Profidrive };
 std::string_view dialect_name(Dialect dialect);  // "vlt", "profidrive"
 std::optional<Dialect> dialect_from_name(std::string_view name);
 
+// Which of the two IND bytes holds the subindex: the first on the wire or the second.
+enum class IndexByte : std::uint8_t { High, Low };
+
+// How the PKE word and the IND bytes of a parameter channel are split. The code is always in
+// bits 15..12; the PNU takes the `pnu_bits` below it.
+struct PkeLayout {
+    std::uint8_t pnu_bits = 11;
+    std::optional<std::uint8_t> spm_bit;  // the toggle bit for spontaneous messages, if any
+    IndexByte index_byte = IndexByte::High;
+};
+
+// The PROFIBUS PPO: PNU bits 10..0, SPM bit 11, the subindex in byte 3.
+inline constexpr PkeLayout kPpoPkeLayout{11, 11, IndexByte::High};
+
 struct Pcv {
     std::uint16_t pca = 0;     // the whole first word
     std::uint8_t rc = 0;       // request/response code (RC, AK)
-    bool spm = false;          // toggle bit for spontaneous messages
-    std::uint16_t pnu = 0;     // parameter number, 11 bits
-    std::uint8_t ind = 0;      // byte 3: subindex
-    std::uint8_t ind_low = 0;  // byte 4
+    bool spm = false;          // toggle bit for spontaneous messages (false without one)
+    std::uint16_t pnu = 0;     // parameter number, as wide as the layout says
+    std::uint8_t ind = 0;      // the subindex: the IND byte the layout names (PPO: byte 3)
+    std::uint8_t ind_low = 0;  // byte 4, IND's second byte
     std::uint32_t pva = 0;     // bytes 5-8, as a 32-bit big-endian value
 };
 
-// Reads the 8 PCV bytes into `pcv`; false (and `pcv` untouched) when fewer than 8 remain.
-bool read_pcv(ByteReader& reader, Pcv& pcv) noexcept;
+// Reads the 8 PCV bytes into `pcv` as `layout` splits them; false (and `pcv` untouched) when
+// fewer than 8 remain.
+bool read_pcv(ByteReader& reader, const PkeLayout& layout, Pcv& pcv) noexcept;
 
 enum class ValueWidth : std::uint8_t { None, Word, DoubleWord };
 

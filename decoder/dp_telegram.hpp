@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "decoder/code_tables.hpp"
+#include "decoder/direction.hpp"
 #include "decoder/dp_payload.hpp"
 #include "decoder/dp_service.hpp"
 #include "decoder/fdl.hpp"
@@ -16,9 +17,6 @@
 #include "decoder/time.hpp"
 
 namespace dpscope {
-
-enum class Direction : std::uint8_t { Request, Response };
-std::string_view direction_name(Direction direction);  // "request", "response"
 
 // A request that expected a reply and got none before the next request or token.
 struct UnansweredRequest {
@@ -114,6 +112,8 @@ struct DpTelegram {
 
     // Data_Exchange
     PpoLayout ppo;  // the layout used to split the data
+    // The Chk_Cfg request or Get_Cfg response that announced `ppo` (0 when it came from elsewhere).
+    std::uint64_t ppo_cfg_frame = 0;
     Dialect dialect = Dialect::Vlt;
     PcdProfile pcd_profile = PcdProfile::Fc;
     bool has_pcv = false;

@@ -1,85 +1,36 @@
-// The session tracker: follows the cyclic parameter channel of every (master, slave) pair
-// telegram by telegram, pairs each parameter request with its response and reports where the
-// handshake was broken (docs/protocol/parameter-channel.md). No I/O; memory is bounded per
-// channel and nothing is kept per telegram.
+// The session tracker: the PROFIBUS DP composition of the rules. It turns each decoded telegram
+// into the link checks (decoder/dp_link_rules.hpp: fcs_error, malformed_telegram, fdl_retry,
+// fdl_no_response), the configuration check (decoder/dp_config_rule.hpp: config_mismatch) and,
+// for a Data_Exchange telegram with a parameter channel, a sample for the parameter-channel
+// engine (decoder/parameter_channel_engine.hpp), which pairs requests with responses; it counts
+// every finding per channel and keeps the DP statistics beside the engine's. No I/O; memory is
+// bounded per channel and nothing is kept per telegram.
 //
-// How the channel is read:
-//  - The master repeats its PCV in every Data_Exchange cycle until it is answered; a new request
-//    is a change of the master's PCV (RC, PNU, IND, PVA; SPM is not part of the request). RC 0 is
-//    no request. Identical consecutive requests are told apart by the RC 0 cycle between them.
-//  - The slave keeps returning its answer while the request stands, one cycle late. A response
-//    equal to the previous one is a repeat and counts once. The previous response arriving in the
-//    cycle in which the master moved on is no orphan; neither is the late answer to a request
-//    the master abandoned.
-//  - An answer (any code but 0 and the spontaneous codes) ends the pending request: a
-//    transaction, positive, rejected (RC 7), without authority (RC 8), mismatched (other PNU, or
-//    other IND for array codes) or of an unexpected type. Latency runs from the first telegram
-//    carrying the request to the first carrying its answer, in ms and in cycles (master
-//    Data_Exchange requests to the slave).
-//  - RC 9..12 are spontaneous messages: the slave toggles SPM and repeats the message until the
-//    master toggles its own SPM; the pending request stays pending meanwhile.
+// What the DP carrier tells the engine:
+//  - A cycle is a Data_Exchange request from the master to the slave; an FDL retry (the same
+//    FCB again) is no new cycle, unless the slave dropped the request it repeats (bad FCS).
+//  - The slave's response lags one cycle, and the PKE has an SPM bit (the PPO's layout).
 //  - A telegram with a bad FCS, or malformed, is reported and otherwise ignored.
 #pragma once
 
 #include <array>
 #include <cstdint>
-#include <limits>
-#include <map>
 #include <memory>
 #include <optional>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include "decoder/bus_decoder.hpp"
+#include "decoder/dp_config_rule.hpp"
+#include "decoder/dp_link_rules.hpp"
 #include "decoder/finding.hpp"
-#include "decoder/log_histogram.hpp"
+#include "decoder/parameter_channel_engine.hpp"
 
 namespace dpscope {
 
 struct TrackerOptions {
     std::int64_t timeout_ns = 1'000'000'000;  // --timeout-ms
     bool strict = false;                      // RC 8 after a read is an unexpected answer
-};
-
-// Events over time in a fixed number of bins whose width doubles as the capture grows, for the
-// timeline of the HTML report.
-class Timeline {
-  public:
-    static constexpr std::size_t kBins = 240;
-    struct Bin {
-        std::uint32_t transactions = 0;
-        std::uint32_t errors = 0;
-        std::uint32_t warnings = 0;
-        std::uint32_t notes = 0;
-    };
-
-    void add_transaction(std::int64_t time_ns) { bin(time_ns).transactions++; }
-    void add_finding(std::int64_t time_ns, Severity severity);
-
-    bool empty() const noexcept { return start_ns_ == kNoTime; }
-    std::int64_t start_ns() const noexcept { return start_ns_; }
-    std::int64_t bin_width_ns() const noexcept { return width_ns_; }
-    const std::array<Bin, kBins>& bins() const noexcept { return bins_; }
-
-  private:
-    Bin& bin(std::int64_t time_ns);
-
-    std::int64_t start_ns_ = kNoTime;
-    std::int64_t width_ns_ = 10'000'000;  // 10 ms to begin with
-    std::array<Bin, kBins> bins_{};
-};
-
-struct TransactionCounts {
-    std::uint64_t positive = 0;
-    std::uint64_t rejected = 0;
-    std::uint64_t no_authority = 0;
-    std::uint64_t mismatched = 0;
-    std::uint64_t unexpected = 0;
-
-    std::uint64_t total() const noexcept {
-        return positive + rejected + no_authority + mismatched + unexpected;
-    }
 };
 
 // What the parameter-channel codes of one slave say about its dialect: a slave decoded with
@@ -103,27 +54,15 @@ class DialectEvidence {
     std::uint64_t other_defines_ = 0;  // of those, codes the other dialect defines
 };
 
-struct ChannelStats {
+// One channel: the engine's counts and the DP carrier's.
+struct ChannelStats : ParameterChannelStats {
     std::uint8_t master = 0;
     std::uint8_t slave = 0;
     PpoLayout ppo;  // the layout of the last Data_Exchange telegram
     Dialect dialect = Dialect::Vlt;
     std::uint64_t data_exchange = 0;  // Data_Exchange telegrams, both directions
     std::uint64_t cycles = 0;         // Data_Exchange requests (retries not counted)
-    std::uint64_t requests = 0;       // distinct parameter requests
-    // Data_Exchange telegrams with a parameter channel (PCV): none means nothing was checked.
-    std::uint64_t parameter_telegrams = 0;
-    TransactionCounts transactions;
-    std::uint64_t timeouts = 0;
-    std::uint64_t abandoned = 0;  // dropped by the master before an answer
-    std::uint64_t spontaneous = 0;
-    LogHistogram latency_ns;
-    LogHistogram latency_cycles;
-    std::map<std::uint16_t, std::uint64_t> pnu_requests;      // PNU -> requests
-    std::map<std::uint16_t, std::uint64_t> rejection_errors;  // error number -> count
-    std::map<std::pair<std::uint16_t, std::uint16_t>, std::uint64_t> rejections;  // (PNU, error)
-    std::array<std::uint64_t, kFindingKindCount> findings{};
-    Timeline timeline;
+    std::array<std::uint64_t, kFindingKindCount> findings{};  // every rule's
     std::int64_t first_time_ns = kNoTime;
     std::int64_t last_time_ns = kNoTime;
 };
@@ -135,8 +74,7 @@ struct BusStats {
 
 class SessionTracker {
   public:
-    // `decoder` is consulted for the slaves' configurations (Chk_Cfg lengths).
-    SessionTracker(const BusDecoder& decoder, TrackerOptions options = {});
+    explicit SessionTracker(TrackerOptions options = {});
     ~SessionTracker();
     SessionTracker(const SessionTracker&) = delete;
     SessionTracker& operator=(const SessionTracker&) = delete;
@@ -147,6 +85,8 @@ class SessionTracker {
     // The end of the capture at `end_ns` (a live capture's stop time; default: the last
     // telegram's time): what is still open past the time-out then is reported.
     std::span<const Finding> finish(std::int64_t end_ns = kNoTime);
+    // The transactions the last track() completed; valid until the next call.
+    std::span<const CompletedTransaction> completed() const noexcept { return completed_; }
 
     // Channels ordered by slave, then master.
     std::vector<const ChannelStats*> channels() const;
@@ -162,30 +102,29 @@ class SessionTracker {
     std::int32_t subject_pnu() const noexcept { return subject_pnu_; }
 
   private:
-    struct Channel;
+    struct Channel {
+        ChannelStats stats;
+        FrameCountState frame_count;
+        ConfigCheckState config;
+        // A damaged request (bad FCS) was dropped by the slave: its retry is the cycle.
+        bool damaged_request = false;
+    };
 
     Channel& channel(std::uint8_t master, std::uint8_t slave);
-    Finding& add(FindingKind kind, const DecodedTelegram& t, std::uint64_t request_frame);
-    Finding& add_for(FindingKind kind, std::uint64_t frame, std::int64_t time_ns,
-                     std::uint64_t request_frame, bool has_stations, std::uint8_t master,
-                     std::uint8_t slave);
-    void check_link(const DecodedTelegram& t, bool& usable);
-    void check_frame_count(Channel& ch, const DecodedTelegram& t, bool& retry);
-    void check_config(Channel& ch, const DecodedTelegram& t);
-    void master_pcv(Channel& ch, const DecodedTelegram& t);
-    void slave_pcv(Channel& ch, const DecodedTelegram& t);
-    void answered(Channel& ch, const DecodedTelegram& t);
-    void check_deadlines(const DecodedTelegram* at, std::int64_t now_ns);
+    // Counts the findings from current_[from] on, per severity and per channel (making the
+    // channel of each in the order found).
+    void count(std::size_t from);
+    void track_channel(Channel& ch, const DecodedTelegram& t, bool intact);
 
-    const BusDecoder& decoder_;
     TrackerOptions options_;
+    ParameterChannelEngine engine_;
     std::vector<std::int32_t> index_;  // master * 128 + slave -> position in channels_
     std::vector<std::unique_ptr<Channel>> channels_;
     std::vector<Finding> current_;
+    std::vector<CompletedTransaction> completed_;
     BusStats bus_;
     std::array<std::uint64_t, 3> by_severity_{};
     std::int64_t now_ns_ = kNoTime;
-    std::int64_t next_deadline_ns_ = std::numeric_limits<std::int64_t>::max();
     std::uint64_t last_frame_ = 0;
     std::int32_t subject_pnu_ = -1;
 };

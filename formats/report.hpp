@@ -16,6 +16,7 @@
 #include "decoder/session_tracker.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/output.hpp"
+#include "formats/report_timeline.hpp"
 #include "formats/summary.hpp"
 
 namespace dpscope {
@@ -36,6 +37,7 @@ struct ReportContext {
     const Summary* summary = nullptr;
     const BusDecoder* decoder = nullptr;
     const SessionTracker* tracker = nullptr;
+    const ChannelTimelines* timelines = nullptr;  // the HTML report's (none: empty timelines)
     const FindingLog* findings = nullptr;
     FailOn fail_on = FailOn::Error;
     // --allow-empty: a capture in which nothing could be checked (no Data_Exchange telegram with

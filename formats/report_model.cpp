@@ -16,8 +16,12 @@ bool shows(const ReportContext& c, const Finding& f) {
 ReportModel build_report_model(const ReportContext& c) {
     ReportModel m;
     // The sections, one per station and channel kind.
+    static const ChannelTimelines kNoTimelines;
+    const ChannelTimelines& timelines = c.timelines ? *c.timelines : kNoTimelines;
     for (const ChannelStats* stats : c.tracker->channels())
-        if (shows_slave(c, stats->slave)) m.stations.push_back(make_pcv_section(c, *stats));
+        if (shows_slave(c, stats->slave))
+            m.stations.push_back(
+                make_pcv_section(c, *stats, timelines.of(stats->master, stats->slave)));
 
     for (const auto& section : m.stations)
         m.transactions += section->transactions();

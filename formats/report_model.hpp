@@ -76,8 +76,10 @@ class StationSection {
     virtual std::string junit_note(FindingKind kind) const = 0;
 };
 
-// The cyclic parameter channel (PCV) of a DP slave, as the session tracker counted it.
-std::unique_ptr<StationSection> make_pcv_section(const ReportContext& c, const ChannelStats& stats);
+// The cyclic parameter channel (PCV) of a DP slave, as the session tracker counted it, with its
+// timeline.
+std::unique_ptr<StationSection> make_pcv_section(const ReportContext& c, const ChannelStats& stats,
+                                                 const Timeline& timeline);
 
 struct ReportModel {
     std::vector<std::unique_ptr<StationSection>> stations;  // the stations reported, in order

@@ -125,8 +125,8 @@ void svg_latency_histogram(TextBuffer& b, const ChannelStats& s) {
     append(b, "</svg>\n");
 }
 
-void svg_timeline(TextBuffer& b, const ChannelStats& s, const ReportContext& c) {
-    const Timeline& timeline = s.timeline;
+void svg_timeline(TextBuffer& b, const Timeline& timeline, const ChannelStats& s,
+                  const ReportContext& c) {
     auto it = std::back_inserter(b);
     if (timeline.empty()) {
         append(b, "<p class=\"meta\">No timed transactions or findings.</p>\n");
@@ -193,7 +193,8 @@ void svg_timeline(TextBuffer& b, const ChannelStats& s, const ReportContext& c) 
 
 class PcvSection final : public StationSection {
   public:
-    PcvSection(const ReportContext& c, const ChannelStats& stats) : s_(stats) {
+    PcvSection(const ReportContext& c, const ChannelStats& stats, const Timeline& timeline)
+        : s_(stats), timeline_(timeline) {
         const StationConfig& config = c.decoder->station(stats.slave);
         has_ident_ = config.has_ident;
         ident_ = config.ident;
@@ -429,7 +430,7 @@ class PcvSection final : public StationSection {
                "style=\"background:#d92d20\"></i>errors</span><span><i class=\"swatch\" "
                "style=\"background:#f79009\"></i>warnings</span><span><i class=\"swatch\" "
                "style=\"background:#2e90fa\"></i>notes</span></div>\n");
-        svg_timeline(b, s, c);
+        svg_timeline(b, timeline_, s, c);
         append(b, "<h3>Parameters accessed</h3>\n");
         if (s.pnu_requests.empty()) {
             append(b, "<p class=\"meta\">None.</p>\n");
@@ -478,6 +479,7 @@ class PcvSection final : public StationSection {
     }
 
     const ChannelStats& s_;
+    const Timeline& timeline_;
     bool has_ident_ = false;
     std::uint16_t ident_ = 0;
     bool timed_ = false;        // its telegrams carry timestamps: time-outs and ms latency judged
@@ -487,9 +489,9 @@ class PcvSection final : public StationSection {
 
 }  // namespace
 
-std::unique_ptr<StationSection> make_pcv_section(const ReportContext& c,
-                                                 const ChannelStats& stats) {
-    return std::make_unique<PcvSection>(c, stats);
+std::unique_ptr<StationSection> make_pcv_section(const ReportContext& c, const ChannelStats& stats,
+                                                 const Timeline& timeline) {
+    return std::make_unique<PcvSection>(c, stats, timeline);
 }
 
 }  // namespace dpscope::report

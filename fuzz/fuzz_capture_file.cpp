@@ -75,7 +75,7 @@ void read_all(const std::string& path, dpscope::InputFormat format, std::size_t 
         [&issue_bytes](const dpscope::InputIssue& issue) { issue_bytes += issue.message.size(); });
     dpscope::Output& out = output();
     dpscope::BusDecoder decoder;
-    dpscope::SessionTracker tracker(decoder);
+    dpscope::SessionTracker tracker;
     dpscope::Summary summary;
     std::vector<std::unique_ptr<dpscope::TelegramRenderer>> renderers;
     for (auto kind : {dpscope::OutputFormat::Text, dpscope::OutputFormat::Verbose,

@@ -21,7 +21,7 @@ Pcv pcv_of(const std::string& text) {
     auto bytes = hex(text);
     ByteReader reader(Bytes(bytes.data(), bytes.size()));
     Pcv pcv;
-    EXPECT_TRUE(read_pcv(reader, pcv)) << text;
+    EXPECT_TRUE(read_pcv(reader, kPpoPkeLayout, pcv)) << text;
     EXPECT_TRUE(reader.empty());
     return pcv;
 }
@@ -55,21 +55,45 @@ TEST(CodeTablesTest, ReadPcvTruncatedLeavesReaderAlone) {
     ByteReader reader(Bytes(bytes.data(), bytes.size()));
     Pcv pcv;
     pcv.pnu = 99;
-    EXPECT_FALSE(read_pcv(reader, pcv));
+    EXPECT_FALSE(read_pcv(reader, kPpoPkeLayout, pcv));
     EXPECT_EQ(reader.position(), 0u);
     EXPECT_EQ(pcv.pnu, 99);  // untouched
     ByteReader empty(Bytes{});
-    EXPECT_FALSE(read_pcv(empty, pcv));
+    EXPECT_FALSE(read_pcv(empty, kPpoPkeLayout, pcv));
 }
 
 TEST(CodeTablesTest, ReadPcvReadsOnlyEightBytes) {
     auto bytes = hex("12 08 00 00 00 00 00 F0 0F 07 20 00");
     ByteReader reader(Bytes(bytes.data(), bytes.size()), 7);
     Pcv pcv;
-    ASSERT_TRUE(read_pcv(reader, pcv));
+    ASSERT_TRUE(read_pcv(reader, kPpoPkeLayout, pcv));
     EXPECT_EQ(reader.position(), 8u);
     EXPECT_EQ(reader.offset(), 15u);
     EXPECT_EQ(reader.u16_be(), std::optional<std::uint16_t>(0x0F07));
+}
+
+TEST(CodeTablesTest, ReadPcvFollowsTheLayout) {
+    // The Danfoss FC protocol's parameter block (docs/protocol/fc-protocol.md): a 12-bit PNU, no
+    // SPM bit, the index in IND's second byte: reading parameter 30-00 (PNU 3000), index 1.
+    constexpr PkeLayout kFcStyle{12, std::nullopt, IndexByte::Low};
+    auto bytes = hex("1B B8 00 01 00 00 00 00");
+    ByteReader fc_reader(Bytes(bytes.data(), bytes.size()));
+    Pcv fc;
+    ASSERT_TRUE(read_pcv(fc_reader, kFcStyle, fc));
+    EXPECT_EQ(fc.rc, 1);
+    EXPECT_FALSE(fc.spm);  // bit 11 is part of the PNU
+    EXPECT_EQ(fc.pnu, 3000);
+    EXPECT_EQ(fc.ind, 1);
+    EXPECT_EQ(fc.ind_low, 1);
+    // The same bytes in the PPO layout: bit 11 is SPM, the PNU 11 bits, the index in byte 3.
+    ByteReader ppo_reader(Bytes(bytes.data(), bytes.size()));
+    Pcv ppo;
+    ASSERT_TRUE(read_pcv(ppo_reader, kPpoPkeLayout, ppo));
+    EXPECT_EQ(ppo.rc, 1);
+    EXPECT_TRUE(ppo.spm);
+    EXPECT_EQ(ppo.pnu, 952);  // 3000 without bit 11
+    EXPECT_EQ(ppo.ind, 0);
+    EXPECT_EQ(ppo.ind_low, 1);
 }
 
 TEST(CodeTablesTest, PcvValueByWidth) {

@@ -60,7 +60,7 @@ class FakeSection final : public StationSection {
 // An empty capture: a decoder, tracker, summary and finding log that saw nothing.
 struct EmptyCapture {
     BusDecoder decoder;
-    SessionTracker tracker{decoder};
+    SessionTracker tracker;
     Summary summary;
     FindingLog log;
 

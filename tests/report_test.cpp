@@ -32,6 +32,7 @@
 #include "decoder/session_tracker.hpp"
 #include "decoder/telegram_builder.hpp"
 #include "formats/finding_log.hpp"
+#include "formats/report_timeline.hpp"
 #include "formats/summary.hpp"
 #include "simulator/simulator.hpp"
 #include "tests/json_parser.hpp"
@@ -359,18 +360,20 @@ TEST(ReportTest, CheckersAcceptValidAndRejectBrokenDocuments) {
 // What `dpscope report` builds before rendering (cli/report_command.cpp).
 struct Analysis {
     explicit Analysis(TrackerOptions options = {}, DecoderOptions decoder_options = {})
-        : decoder(decoder_options), tracker(decoder, options) {}
+        : decoder(decoder_options), tracker(options) {}
 
     void feed(Bytes bytes, std::int64_t time_ns, std::uint64_t number) {
         const DecodedTelegram& t = decoder.decode(bytes, time_ns, number);
         std::span<const Finding> found = tracker.track(t);
         summary.add(t);
         summary.add_findings(found);
+        timelines.add(found, tracker.completed());
         if (!found.empty()) log.append(found);
     }
     void finish() {
         std::span<const Finding> found = tracker.finish();
         summary.add_findings(found);
+        timelines.add(found, {});
         log.append(found);
     }
     const ChannelStats& station(std::uint8_t slave) const {
@@ -384,6 +387,7 @@ struct Analysis {
     BusDecoder decoder;
     SessionTracker tracker;
     Summary summary;
+    ChannelTimelines timelines;
     FindingLog log;
     InputSummary input;
 };
@@ -433,6 +437,7 @@ ReportContext context_of(const Analysis& a, FailOn fail_on = FailOn::Error,
     context.summary = &a.summary;
     context.decoder = &a.decoder;
     context.tracker = &a.tracker;
+    context.timelines = &a.timelines;
     context.findings = &a.log;
     context.fail_on = fail_on;
     context.stations = std::move(stations);
@@ -2067,12 +2072,13 @@ TEST(ReportTest, TrackerTimelineCoversALongSession) {
     SimulatorOptions options = one_slave(3, 1, 3000);  // about 6 s at 2 ms cycles
     auto analysis = analyse_simulation(options);
     const ChannelStats& stats = analysis->station(3);
+    const Timeline& timeline = analysis->timelines.of(stats.master, 3);
     ASSERT_GT(stats.transactions.total(), 100u);
-    EXPECT_GT(stats.timeline.bin_width_ns(), 10 * kMs);
-    EXPECT_EQ(total_of(stats.timeline).transactions, stats.latency_ns.count());
+    EXPECT_GT(timeline.bin_width_ns(), 10 * kMs);
+    EXPECT_EQ(total_of(timeline).transactions, stats.latency_ns.count());
     EXPECT_EQ(stats.latency_ns.count(), stats.transactions.total());
-    const std::int64_t span = stats.last_time_ns - stats.timeline.start_ns();
-    EXPECT_GE(span / (stats.timeline.bin_width_ns() / 2), 240 / 2);
+    const std::int64_t span = stats.last_time_ns - timeline.start_ns();
+    EXPECT_GE(span / (timeline.bin_width_ns() / 2), 240 / 2);
 }
 
 // ---- long lists, nothing checked, dialect hints -------------------------------------------------

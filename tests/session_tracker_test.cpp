@@ -39,7 +39,7 @@ SimulatedRun simulate(SimulatorOptions options, DecoderOptions decoder_options =
                       TrackerOptions tracker_options = {}) {
     Simulator simulator(options);
     BusDecoder decoder(decoder_options);
-    SessionTracker tracker(decoder, tracker_options);
+    SessionTracker tracker(tracker_options);
     SimulatedRun run;
     std::vector<std::uint8_t> bytes;
     std::int64_t time = 0;
@@ -258,7 +258,7 @@ struct Word {
 class Channel {
   public:
     explicit Channel(TrackerOptions tracker_options = {}, Dialect dialect = Dialect::Vlt)
-        : decoder_(options(dialect)), tracker_(decoder_, tracker_options) {}
+        : decoder_(options(dialect)), tracker_(tracker_options) {}
 
     // One cycle: the master's request, then the slave's response.
     void cycle(Word master, Word slave) {
@@ -967,7 +967,7 @@ TEST(SessionTrackerTest, LatencyStatistics) {
 TEST(SessionTrackerTest, ConfigMismatchReportedOncePerLength) {
     // Slave 3 announced PPO 1 (12 bytes) in its Chk_Cfg; the master sends 14.
     BusDecoder decoder;
-    SessionTracker tracker(decoder);
+    SessionTracker tracker;
     std::vector<Finding> findings;
     std::uint64_t frame = 0;
     std::int64_t now = 1'000'000'000;
@@ -1002,7 +1002,7 @@ TEST(SessionTrackerTest, ConfigMismatchReportedOncePerLength) {
 
 TEST(SessionTrackerTest, FdlRetryAndMissingReply) {
     BusDecoder decoder;
-    SessionTracker tracker(decoder);
+    SessionTracker tracker;
     std::vector<Finding> findings;
     std::uint64_t frame = 0;
     auto feed = [&](const std::vector<std::uint8_t>& bytes) {
@@ -1066,7 +1066,7 @@ TEST(SessionTrackerTest, RetryOfADamagedRequestIsTheCycle) {
 
 TEST(SessionTrackerTest, StatusResponseWithoutDataIsNoConfigMismatch) {
     BusDecoder decoder;
-    SessionTracker tracker(decoder);
+    SessionTracker tracker;
     std::vector<Finding> findings;
     std::uint64_t frame = 0;
     auto feed = [&](const std::vector<std::uint8_t>& bytes) {
@@ -1087,7 +1087,7 @@ TEST(SessionTrackerTest, StatusResponseWithoutDataIsNoConfigMismatch) {
 
 TEST(SessionTrackerTest, MalformedTelegramWithoutStationsCountsForTheBus) {
     BusDecoder decoder;
-    SessionTracker tracker(decoder);
+    SessionTracker tracker;
     std::vector<std::uint8_t> junk = {0x2A, 0x3F, 0x9F};
     auto findings = tracker.track(decoder.decode(Bytes(junk.data(), junk.size()), kNoTime, 1));
     ASSERT_EQ(findings.size(), 1u);

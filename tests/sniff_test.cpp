@@ -188,7 +188,7 @@ std::map<std::string, int> jsonl_finding_kinds(const std::string& jsonl) {
 
 std::map<std::string, int> reference_finding_kinds(const Telegrams& telegrams) {
     BusDecoder decoder;
-    SessionTracker tracker(decoder);
+    SessionTracker tracker;
     std::map<std::string, int> kinds;
     std::uint64_t frame = 0;
     for (const auto& t : telegrams)
