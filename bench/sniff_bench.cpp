@@ -77,8 +77,6 @@ Result run(const std::string& dpscope, std::uint64_t telegrams, Pace pace) {
                       {5, 5, dpscope::Dialect::Vlt},
                       {6, 3, dpscope::Dialect::Vlt}};
     dpscope::Simulator simulator(options);
-    dpscope::PlayStats stats;
-    std::string error;
     auto start = std::chrono::steady_clock::now();
     std::uint64_t played_bytes = 0;
     auto next = [&](std::vector<std::uint8_t>& b, std::int64_t& t) {
@@ -89,8 +87,10 @@ Result run(const std::string& dpscope, std::uint64_t telegrams, Pace pace) {
         }
         return true;
     };
-    if (!dpscope::play_telegrams(master, next, pace == Pace::FullSpeed, nullptr, stats, error)) {
-        std::fprintf(stderr, "%s\n", error.c_str());
+    dpscope::Result<dpscope::PlayStats> played =
+        dpscope::play_telegrams(master, next, pace == Pace::FullSpeed, nullptr);
+    if (!played) {
+        std::fprintf(stderr, "%s\n", played.error().c_str());
         std::exit(1);
     }
     // Wait until the sniffer has taken everything the pty holds.
@@ -104,8 +104,8 @@ Result run(const std::string& dpscope, std::uint64_t telegrams, Pace pace) {
     close(master);
     Result r;
     r.seconds = seconds;
-    r.bytes = stats.bytes;
-    r.sent = stats.telegrams;
+    r.bytes = played->bytes;
+    r.sent = played->telegrams;
     r.cpu_seconds = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
                     static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1e6;
     dpscope::OpenResult opened = dpscope::open_source(pcap, dpscope::InputFormat::Auto);

@@ -37,8 +37,7 @@ mode_t creation_mode() {
 
 }  // namespace
 
-std::unique_ptr<PendingOutputFile> PendingOutputFile::open(const std::string& path,
-                                                           std::string& error) {
+Result<std::unique_ptr<PendingOutputFile>> PendingOutputFile::open(const std::string& path) {
     std::unique_ptr<PendingOutputFile> out(new PendingOutputFile());
     if (path == "-") {
         out->file_ = stdout;
@@ -61,29 +60,27 @@ std::unique_ptr<PendingOutputFile> PendingOutputFile::open(const std::string& pa
         // A device, FIFO or terminal: write to it as it is.
         out->file_ = std::fopen(path.c_str(), "wb");
         if (!out->file_) {
-            error = fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno));
-            return nullptr;
+            return Error{
+                fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno))};
         }
         return out;
     }
     if (exists && ::access(target.c_str(), W_OK) != 0) {
-        error = fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno));
-        return nullptr;
+        return Error{fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno))};
     }
     std::string pattern = directory_of(target) + "/." + base_name_of(target) + ".dpscope-XXXXXX";
     int fd = ::mkstemp(pattern.data());
     if (fd < 0) {
-        error = fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno));
-        return nullptr;
+        return Error{fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno))};
     }
     // mkstemp makes the file private; give it the mode the target has, or a new file's mode.
     ::fchmod(fd, exists ? (info.st_mode & 07777) : creation_mode());
     out->file_ = ::fdopen(fd, "wb");
     if (!out->file_) {
-        error = fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno));
+        Error error{fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno))};
         ::close(fd);
         ::unlink(pattern.c_str());
-        return nullptr;
+        return error;
     }
     out->target_ = target;
     out->temporary_ = pattern;
@@ -94,29 +91,24 @@ PendingOutputFile::~PendingOutputFile() {
     if (!done_) discard();
 }
 
-bool PendingOutputFile::commit(std::string& error) {
+Result<void> PendingOutputFile::commit() {
     done_ = true;
-    bool ok = true;
     if (file_) {
-        if (to_stdout_) {
-            ok = std::fflush(file_) == 0;
-        } else {
-            ok = std::fclose(file_) == 0;
-        }
-        if (!ok) error = fmt::format("{}: write failed: {}", name_, std::strerror(errno));
+        const bool closed = to_stdout_ ? std::fflush(file_) == 0 : std::fclose(file_) == 0;
         file_ = nullptr;
+        if (!closed) {
+            Error error{fmt::format("{}: write failed: {}", name_, std::strerror(errno))};
+            if (!temporary_.empty()) ::unlink(temporary_.c_str());
+            return error;
+        }
     }
-    if (temporary_.empty()) return ok;
-    if (!ok) {
-        ::unlink(temporary_.c_str());
-        return false;
-    }
+    if (temporary_.empty()) return {};
     if (::rename(temporary_.c_str(), target_.c_str()) != 0) {
-        error = fmt::format("{}: cannot replace the file: {}", name_, std::strerror(errno));
+        Error error{fmt::format("{}: cannot replace the file: {}", name_, std::strerror(errno))};
         ::unlink(temporary_.c_str());
-        return false;
+        return error;
     }
-    return true;
+    return {};
 }
 
 void PendingOutputFile::discard() noexcept {
@@ -138,8 +130,8 @@ bool same_file(const std::string& a, const std::string& b) {
     return canonical_a == canonical_b;
 }
 
-std::string same_file_error(const std::vector<std::string>& inputs, const std::string& output,
-                            std::string_view output_option) {
+Result<void> check_not_an_input(const std::vector<std::string>& inputs, const std::string& output,
+                                std::string_view output_option) {
     struct stat out_info {};
     bool out_known = output == "-" ? ::fstat(STDOUT_FILENO, &out_info) == 0
                                    : ::stat(output.c_str(), &out_info) == 0;
@@ -155,11 +147,12 @@ std::string same_file_error(const std::vector<std::string>& inputs, const std::s
         std::string out_name = output == "-" ? std::string("standard output") : output;
         std::string in_name = input == "-" ? std::string("standard input") : input;
         if (out_name == in_name)
-            return fmt::format("{} {}: that is the input; writing it would destroy the capture",
-                               output_option, out_name);
-        return fmt::format(
+            return Error{
+                fmt::format("{} {}: that is the input; writing it would destroy the capture",
+                            output_option, out_name)};
+        return Error{fmt::format(
             "{} {}: that is the same file as the input {}; writing it would destroy the capture",
-            output_option, out_name, in_name);
+            output_option, out_name, in_name)};
     }
     return {};
 }

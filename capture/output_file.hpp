@@ -5,7 +5,7 @@
 // file as it was. Targets that are not regular files (/dev/null, a FIFO, a terminal) are written
 // directly: they cannot be replaced by a rename and hold nothing to lose. "-" is standard output.
 //
-// same_file_error() refuses an output that is one of the inputs (compared by device and inode,
+// check_not_an_input() refuses an output that is one of the inputs (compared by device and inode,
 // so symbolic and hard links are seen through).
 #pragma once
 
@@ -15,13 +15,14 @@
 #include <string_view>
 #include <vector>
 
+#include "decoder/result.hpp"
+
 namespace dpscope {
 
 class PendingOutputFile {
   public:
-    // Opens `path` for writing ("-": standard output). On failure `error` names the file and
-    // the reason, and the result is null.
-    static std::unique_ptr<PendingOutputFile> open(const std::string& path, std::string& error);
+    // Opens `path` for writing ("-": standard output). The error names the file and the reason.
+    static Result<std::unique_ptr<PendingOutputFile>> open(const std::string& path);
     ~PendingOutputFile();
     PendingOutputFile(const PendingOutputFile&) = delete;
     PendingOutputFile& operator=(const PendingOutputFile&) = delete;
@@ -39,9 +40,9 @@ class PendingOutputFile {
         return is_staged() ? "; the output file is left as it was" : "";
     }
 
-    // Closes the stream (unless released) and moves the temporary file into place. False with
-    // `error` when the close or the rename failed; the target is then as it was.
-    bool commit(std::string& error);
+    // Closes the stream (unless released) and moves the temporary file into place. An error
+    // when the close or the rename failed; the target is then as it was.
+    Result<void> commit();
     // Closes and removes the temporary file; the target stays as it was. The destructor does
     // this when commit() was not called.
     void discard() noexcept;
@@ -60,9 +61,10 @@ class PendingOutputFile {
 // seen through, and devices compare too); otherwise by their canonical paths.
 bool same_file(const std::string& a, const std::string& b);
 
-// "" when `output` is none of `inputs`; otherwise the error message for it. "-" as an input is
-// standard input and as the output standard output; a path that does not exist yet is no input.
-std::string same_file_error(const std::vector<std::string>& inputs, const std::string& output,
-                            std::string_view output_option);
+// An error when `output` is one of `inputs` (naming `output_option`, the file and the input).
+// "-" as an input is standard input and as the output standard output; a path that does not
+// exist yet is no input.
+Result<void> check_not_an_input(const std::vector<std::string>& inputs, const std::string& output,
+                                std::string_view output_option);
 
 }  // namespace dpscope

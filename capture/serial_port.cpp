@@ -102,43 +102,41 @@ std::string process_name(pid_t pid) {
 
 }  // namespace
 
-std::unique_ptr<SerialPort> SerialPort::claim(const SerialSettings& settings, std::string& error) {
+Result<std::unique_ptr<SerialPort>> SerialPort::claim(const SerialSettings& settings) {
     char resolved[PATH_MAX] = {};
     struct stat info {};
     if (realpath(settings.device.c_str(), resolved) == nullptr || stat(resolved, &info) != 0) {
-        error = fmt::format("{}: cannot open: {}", settings.device, std::strerror(errno));
-        return nullptr;
+        return Error{fmt::format("{}: cannot open: {}", settings.device, std::strerror(errno))};
     }
     if (!S_ISCHR(info.st_mode)) {
-        error = fmt::format("{}: not a serial port: not a character device", settings.device);
-        return nullptr;
+        return Error{fmt::format("{}: not a serial port: not a character device", settings.device)};
     }
     std::unique_ptr<SerialPort> port(new SerialPort);
     port->settings_ = settings;
     port->device_ = settings.device;
     port->slot_ = take_slot();
     if (port->slot_ < 0) {
-        error = fmt::format("{}: too many serial ports open", settings.device);
-        return nullptr;
+        return Error{fmt::format("{}: too many serial ports open", settings.device)};
     }
     const char* base = std::strrchr(resolved, '/');
-    if (!port->take_lock_file(base ? base + 1 : resolved, error)) return nullptr;
+    if (Result<void> locked = port->take_lock_file(base ? base + 1 : resolved); !locked)
+        return Error{locked.error()};
     return port;
 }
 
 // The UUCP lock file (HDB format) that serial programs (minicom, picocom, cu, ModemManager)
 // look for: `lock_dir`/LCK..NAME holding the owner's PID. A stale one (its process is gone) is
 // removed. A lock directory that is missing or not writable is passed over.
-bool SerialPort::take_lock_file(const std::string& name, std::string& error) {
+Result<void> SerialPort::take_lock_file(const std::string& name) {
     const std::string& dir = settings_.lock_dir;
-    if (dir.empty()) return true;
+    if (dir.empty()) return {};
     std::string path = fmt::format("{}/LCK..{}", dir, name);
     Slot& slot = g_slots[slot_];
-    if (path.size() >= sizeof slot.lock_path) return true;
+    if (path.size() >= sizeof slot.lock_path) return {};
     // Written whole under a temporary name, then linked into place: no one sees half a lock.
     std::string temp = fmt::format("{}/LTMP.{}", dir, getpid());
     int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) return true;
+    if (fd < 0) return {};
     std::string content = fmt::format("{:>10}\n", getpid());
     bool written =
         ::write(fd, content.data(), content.size()) == static_cast<ssize_t>(content.size());
@@ -149,51 +147,46 @@ bool SerialPort::take_lock_file(const std::string& name, std::string& error) {
             std::memcpy(slot.lock_path, path.c_str(), path.size() + 1);
             slot.lock_held = true;
             lock_file_ = path;
-            return true;
+            return {};
         }
         if (errno != EEXIST) break;  // a file system without hard links: no lock file
         pid_t owner = lock_owner(path);
         if (owner != 0) {
             unlink(temp.c_str());
-            if (owner < 0) {
-                error = fmt::format("{} is in use: another program is taking the lock file {}",
-                                    device_, path);
-            } else {
-                std::string owner_name = process_name(owner);
-                error = fmt::format("{} is in use by process {}{}: lock file {}", device_, owner,
-                                    owner_name.empty() ? "" : " (" + owner_name + ")", path);
-            }
-            return false;
+            if (owner < 0)
+                return Error{fmt::format("{} is in use: another program is taking the lock file {}",
+                                         device_, path)};
+            std::string owner_name = process_name(owner);
+            return Error{fmt::format("{} is in use by process {}{}: lock file {}", device_, owner,
+                                     owner_name.empty() ? "" : " (" + owner_name + ")", path)};
         }
         unlink(path.c_str());  // stale: its process is gone
     }
     unlink(temp.c_str());
-    return true;
+    return {};
 }
 
-bool SerialPort::configure(std::string& error) {
+Result<void> SerialPort::configure() {
     const std::string& device = settings_.device;
     if (fd_ >= 0) {
-        error = fmt::format("{}: already open", device);
-        return false;
+        return Error{fmt::format("{}: already open", device)};
     }
     int fd = ::open(device.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
-        error = fmt::format("{}: cannot open: {}{}", device, std::strerror(errno),
-                            errno == EBUSY ? " (another program has it open exclusively)" : "");
-        return false;
+        return Error{
+            fmt::format("{}: cannot open: {}{}", device, std::strerror(errno),
+                        errno == EBUSY ? " (another program has it open exclusively)" : "")};
     }
     fd_ = fd;
     // Programs that take no lock file (or a lock directory we cannot write) still meet here.
     if (flock(fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK) {
-        error = fmt::format("{} is in use: another process holds a lock on the device", device);
-        return false;
+        return Error{
+            fmt::format("{} is in use: another process holds a lock on the device", device)};
     }
     Slot& slot = g_slots[slot_];
     struct termios2 tio {};
     if (ioctl(fd, TCGETS2, &tio) != 0) {
-        error = fmt::format("{}: not a serial port: {}", device, std::strerror(errno));
-        return false;
+        return Error{fmt::format("{}: not a serial port: {}", device, std::strerror(errno))};
     }
     slot.original = tio;
     slot.fd = fd;         // from here on the destructor (or a signal) puts the settings back
@@ -212,25 +205,22 @@ bool SerialPort::configure(std::string& error) {
     tio.c_cc[VMIN] = 0;
     tio.c_cc[VTIME] = 0;
     if (ioctl(fd, TCSETS2, &tio) != 0) {
-        error = fmt::format("{}: cannot set {} baud 8E1: {}", device, settings_.baud,
-                            std::strerror(errno));
-        return false;
+        return Error{fmt::format("{}: cannot set {} baud 8E1: {}", device, settings_.baud,
+                                 std::strerror(errno))};
     }
     struct termios2 back {};
     if (ioctl(fd, TCGETS2, &back) != 0) {
-        error = fmt::format("{}: cannot read the settings back: {}", device, std::strerror(errno));
-        return false;
+        return Error{
+            fmt::format("{}: cannot read the settings back: {}", device, std::strerror(errno))};
     }
     baud_ = back.c_ospeed;
     long long difference = static_cast<long long>(back.c_ospeed) - settings_.baud;
     if (std::llabs(difference) * 100 > settings_.baud) {
-        error = fmt::format("{}: the port did not take {} baud: it is set to {} baud", device,
-                            settings_.baud, back.c_ospeed);
-        return false;
+        return Error{fmt::format("{}: the port did not take {} baud: it is set to {} baud", device,
+                                 settings_.baud, back.c_ospeed)};
     }
     if ((back.c_cflag & CSIZE) != CS8) {
-        error = fmt::format("{}: the port did not take 8 data bits", device);
-        return false;
+        return Error{fmt::format("{}: the port did not take 8 data bits", device)};
     }
     // Pseudo-terminals have no parity (the kernel clears PARENB): capture still works, but
     // parity errors cannot be seen. Say so rather than refuse.
@@ -253,12 +243,14 @@ bool SerialPort::configure(std::string& error) {
         }
     }
     ioctl(fd, TCFLSH, TCIFLUSH);  // what arrived before the settings held is not trusted
-    return true;
+    return {};
 }
 
-std::unique_ptr<SerialPort> SerialPort::open(const SerialSettings& settings, std::string& error) {
-    auto port = claim(settings, error);
-    if (!port || !port->configure(error)) return nullptr;
+Result<std::unique_ptr<SerialPort>> SerialPort::open(const SerialSettings& settings) {
+    Result<std::unique_ptr<SerialPort>> port = claim(settings);
+    if (!port) return port;
+    if (Result<void> configured = (*port)->configure(); !configured)
+        return Error{configured.error()};
     return port;
 }
 

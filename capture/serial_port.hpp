@@ -13,6 +13,8 @@
 #include <memory>
 #include <string>
 
+#include "decoder/result.hpp"
+
 namespace dpscope {
 
 struct SerialSettings {
@@ -28,16 +30,16 @@ struct SerialSettings {
 class SerialPort {
   public:
     // Claims the device without opening it: resolves links, checks that it is a character
-    // device and takes the lock file. Null with `error` naming the device and the problem
-    // (cannot open, not a serial port, in use by process N).
-    static std::unique_ptr<SerialPort> claim(const SerialSettings& settings, std::string& error);
-    // Opens and configures a claimed port, then reads the settings back. False with `error`
-    // naming the device and the problem: cannot open, in use by another process, not a tty, or
+    // device and takes the lock file. The error names the device and the problem (cannot
+    // open, not a serial port, in use by process N).
+    static Result<std::unique_ptr<SerialPort>> claim(const SerialSettings& settings);
+    // Opens and configures a claimed port, then reads the settings back. The error names the
+    // device and the problem: cannot open, in use by another process, not a tty, or
     // a baud rate the port did not take (the message names the rate it got). A rate within 1 %
     // of the request is taken: UARTs divide their clock and tolerate that much.
-    bool configure(std::string& error);
+    Result<void> configure();
     // claim() and configure() in one.
-    static std::unique_ptr<SerialPort> open(const SerialSettings& settings, std::string& error);
+    static Result<std::unique_ptr<SerialPort>> open(const SerialSettings& settings);
     // Restores the settings found, releases the port and the lock file.
     ~SerialPort();
     SerialPort(const SerialPort&) = delete;
@@ -59,7 +61,7 @@ class SerialPort {
 
   private:
     SerialPort() = default;
-    bool take_lock_file(const std::string& name, std::string& error);
+    Result<void> take_lock_file(const std::string& name);
 
     SerialSettings settings_;
     int slot_ = -1;  // where the settings to restore are kept (see serial_port.cpp)

@@ -29,7 +29,7 @@ void sleep_until(std::int64_t deadline_ns) {
     }
 }
 
-bool write_all(int fd, const std::vector<std::uint8_t>& data, std::string& error) {
+Result<void> write_all(int fd, const std::vector<std::uint8_t>& data) {
     std::size_t done = 0;
     while (done < data.size()) {
         ssize_t n = ::write(fd, data.data() + done, data.size() - done);
@@ -43,19 +43,26 @@ bool write_all(int fd, const std::vector<std::uint8_t>& data, std::string& error
             ::poll(&descriptor, 1, 100);
             continue;
         }
-        error = fmt::format("write failed after {} bytes: {}", done,
-                            n < 0 ? std::strerror(errno) : "device closed");
-        return false;
+        return Error{fmt::format("write failed after {} bytes: {}", done,
+                                 n < 0 ? std::strerror(errno) : "device closed")};
     }
-    return true;
+    return {};
 }
 
 }  // namespace
 
-bool play_telegrams(int fd, const TelegramGenerator& next, bool as_fast_as_possible,
-                    const std::atomic<bool>* stop, PlayStats& stats, std::string& error) {
+Result<PlayStats> play_telegrams(int fd, const TelegramGenerator& next, bool as_fast_as_possible,
+                                 const std::atomic<bool>* stop) {
+    PlayStats stats;
     std::vector<std::uint8_t> telegram;
     std::vector<std::uint8_t> batch;
+    // Hands the batch to the device; an error ends playing.
+    auto hand_over = [&]() -> Result<void> {
+        if (batch.empty()) return {};
+        Result<void> written = write_all(fd, batch);
+        batch.clear();
+        return written;
+    };
     std::int64_t time = 0;
     std::int64_t first_time = kNoTime;
     const std::int64_t start = monotonic_ns();
@@ -65,8 +72,7 @@ bool play_telegrams(int fd, const TelegramGenerator& next, bool as_fast_as_possi
             std::int64_t due = start + (time - first_time);
             if (due > monotonic_ns()) {
                 // Hand over what is due before waiting for this one.
-                if (!batch.empty() && !write_all(fd, batch, error)) return false;
-                batch.clear();
+                if (Result<void> written = hand_over(); !written) return Error{written.error()};
                 sleep_until(due);
             }
             stats.scheduled_ns = time - first_time;
@@ -75,13 +81,12 @@ bool play_telegrams(int fd, const TelegramGenerator& next, bool as_fast_as_possi
         ++stats.telegrams;
         stats.bytes += telegram.size();
         if (batch.size() >= kBatchBytes) {
-            if (!write_all(fd, batch, error)) return false;
-            batch.clear();
+            if (Result<void> written = hand_over(); !written) return Error{written.error()};
         }
     }
-    if (!batch.empty() && !write_all(fd, batch, error)) return false;
+    if (Result<void> written = hand_over(); !written) return Error{written.error()};
     stats.wall_ns = monotonic_ns() - start;
-    return true;
+    return stats;
 }
 
 }  // namespace dpscope

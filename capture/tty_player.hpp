@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "decoder/result.hpp"
+
 namespace dpscope {
 
 // Yields the next telegram and its time; false at the end.
@@ -21,10 +23,10 @@ struct PlayStats {
     std::int64_t wall_ns = 0;       // how long playing took
 };
 
-// Writes every telegram to `fd` (blocking or not). Paced: each telegram goes out when its time,
-// relative to the first, has passed. Stops early when `stop` becomes true. False with `error` on
-// a write error.
-bool play_telegrams(int fd, const TelegramGenerator& next, bool as_fast_as_possible,
-                    const std::atomic<bool>* stop, PlayStats& stats, std::string& error);
+// Writes every telegram to `fd` (blocking or not) and says how many went out, how many bytes
+// and how long it took. Paced: each telegram goes out when its time, relative to the first, has
+// passed. Stops early when `stop` becomes true. An error says how far a failed write got.
+Result<PlayStats> play_telegrams(int fd, const TelegramGenerator& next, bool as_fast_as_possible,
+                                 const std::atomic<bool>* stop);
 
 }  // namespace dpscope

@@ -139,24 +139,21 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
                  "unexpected response type, not only unusual");
 }
 
-std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
-                                                     std::string_view default_format,
-                                                     std::string& error) {
+Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
+                                              std::string_view default_format) {
     DecodeSettings settings;
     const bool format_given = !values.format.empty();
     const std::string format = format_given ? values.format : std::string(default_format);
     if (values.verbose && format != "text" && format != "verbose") {
-        error =
-            fmt::format("-V is the same as -T verbose; it cannot be combined with -T {}", format);
-        return std::nullopt;
+        return Error{
+            fmt::format("-V is the same as -T verbose; it cannot be combined with -T {}", format)};
     }
     settings.format = values.verbose ? OutputFormat::Verbose
                                      : output_format_from_name(format).value_or(OutputFormat::Text);
     if (values.quiet && (values.verbose || format_given)) {
-        error = fmt::format(
+        return Error{fmt::format(
             "-q prints only the text summary; it cannot be combined with {} (drop one of them)",
-            values.verbose ? std::string("-V") : "-T " + format);
-        return std::nullopt;
+            values.verbose ? std::string("-V") : "-T " + format)};
     }
     settings.quiet = values.quiet;
     settings.line_buffered = values.line_buffered;
@@ -174,16 +171,14 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
             !parse_whole_number(std::string_view(item).substr(0, eq), address) ||
             !parse_whole_number(std::string_view(item).substr(eq + 1), type) || address > 126 ||
             type < 1 || type > 5) {
-            error = fmt::format(
-                "--ppo {}: expected ADDR=TYPE with ADDR from 0 to 126 and TYPE from 1 to 5", item);
-            return std::nullopt;
+            return Error{fmt::format(
+                "--ppo {}: expected ADDR=TYPE with ADDR from 0 to 126 and TYPE from 1 to 5", item)};
         }
         std::uint8_t& ppo = settings.decoder.station_ppo[address];
         if (ppo != 0 && ppo != type) {
-            error =
+            return Error{
                 fmt::format("--ppo {}: slave {} was already given PPO {}; give one type a slave",
-                            item, address, ppo);
-            return std::nullopt;
+                            item, address, ppo)};
         }
         ppo = static_cast<std::uint8_t>(type);
     }
@@ -194,17 +189,15 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
                                                         : std::string_view(item).substr(eq + 1);
         auto dialect = dialect_from_name(name);
         if (!dialect) {
-            error =
-                fmt::format("--dialect {}: '{}' is not a dialect (vlt, profidrive)", item, name);
-            return std::nullopt;
+            return Error{
+                fmt::format("--dialect {}: '{}' is not a dialect (vlt, profidrive)", item, name)};
         }
         if (eq == std::string::npos) {
             if (dialect_for_all && settings.decoder.dialect != *dialect) {
-                error = fmt::format(
-                    "--dialect {}: the dialect for every slave was already given "
-                    "as {}; give it once (ADDR=NAME sets one slave)",
-                    item, dialect_name(settings.decoder.dialect));
-                return std::nullopt;
+                return Error{
+                    fmt::format("--dialect {}: the dialect for every slave was already given "
+                                "as {}; give it once (ADDR=NAME sets one slave)",
+                                item, dialect_name(settings.decoder.dialect))};
             }
             dialect_for_all = true;
             settings.decoder.dialect = *dialect;
@@ -212,17 +205,15 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
         }
         unsigned address = 0;
         if (!parse_whole_number(std::string_view(item).substr(0, eq), address) || address > 126) {
-            error = fmt::format("--dialect {}: '{}' is not a station address from 0 to 126", item,
-                                item.substr(0, eq));
-            return std::nullopt;
+            return Error{fmt::format("--dialect {}: '{}' is not a station address from 0 to 126",
+                                     item, item.substr(0, eq))};
         }
         std::optional<Dialect>& station = settings.decoder.station_dialect[address];
         if (station && *station != *dialect) {
-            error = fmt::format(
-                "--dialect {}: slave {} was already given the {} dialect; give "
-                "one dialect a slave",
-                item, address, dialect_name(*station));
-            return std::nullopt;
+            return Error{
+                fmt::format("--dialect {}: slave {} was already given the {} dialect; give "
+                            "one dialect a slave",
+                            item, address, dialect_name(*station))};
         }
         station = *dialect;
     }
@@ -241,23 +232,20 @@ std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& v
                              : !values.link_type.empty()    ? "--linktype"
                                                             : nullptr;
         if (unused) {
-            error = fmt::format("{} goes with -w FILE, which is not given", unused);
-            return std::nullopt;
+            return Error{fmt::format("{} goes with -w FILE, which is not given", unused)};
         }
     } else if ((format_given || values.verbose) && !values.print) {
-        error = fmt::format("{}: with -w the decode is not printed; add -P to print it as well",
-                            values.verbose ? std::string("-V") : "-T " + format);
-        return std::nullopt;
+        return Error{
+            fmt::format("{}: with -w the decode is not printed; add -P to print it as well",
+                        values.verbose ? std::string("-V") : "-T " + format)};
     } else if (values.print && values.write == "-") {
-        error =
+        return Error{
             "-P prints the decode on standard output, where -w - writes the capture; write "
-            "the capture to a file";
-        return std::nullopt;
+            "the capture to a file"};
     } else if (values.quiet && values.write == "-") {
-        error =
+        return Error{
             "-q prints its summary on standard output, where -w - writes the capture; write "
-            "the capture to a file";
-        return std::nullopt;
+            "the capture to a file"};
     }
     return settings;
 }

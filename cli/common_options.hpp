@@ -15,6 +15,7 @@
 #include "capture/capture_writer.hpp"
 #include "capture/pcap_source.hpp"
 #include "decoder/bus_decoder.hpp"
+#include "decoder/result.hpp"
 #include "decoder/session_tracker.hpp"
 #include "formats/renderer.hpp"
 
@@ -106,11 +107,10 @@ struct DecodeSettings {
     bool filtering() const noexcept { return !stations.empty() || !pnus.empty(); }
 };
 
-// Validates the values; nullopt with `error` naming the bad option otherwise.
+// Validates the values; the error names the bad option.
 // `default_format`: the -T default of the subcommand (-q conflicts with any other).
-std::optional<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
-                                                     std::string_view default_format,
-                                                     std::string& error);
+Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
+                                              std::string_view default_format);
 
 // The stations a telegram is to or from: its FDL addresses and its DP roles (a short
 // acknowledge has no addresses, only the roles of the request it answers).

@@ -44,16 +44,17 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     std::unique_ptr<PendingOutputFile> capture_file;
     std::unique_ptr<CaptureWriter> writer;
     if (!settings.write.empty()) {
-        if (std::string same = same_file_error({input_path}, settings.write, "-w"); !same.empty()) {
-            print_error(same);
+        if (Result<void> distinct = check_not_an_input({input_path}, settings.write, "-w");
+            !distinct) {
+            print_error(distinct.error());
             return kExitUsage;
         }
-        std::string error;
-        capture_file = PendingOutputFile::open(settings.write, error);
-        if (!capture_file) {
-            print_error(error);
+        Result<std::unique_ptr<PendingOutputFile>> file = PendingOutputFile::open(settings.write);
+        if (!file) {
+            print_error(file.error());
             return kExitOutputError;
         }
+        capture_file = std::move(file).value();
         WriterResult opened = open_capture_writer(capture_file->file(), capture_file->name(),
                                                   settings.write_format, settings.link_type);
         capture_file->release_file();  // the writer closes it
@@ -144,13 +145,12 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             print_error(fmt::format("{}{}", writer->error(), capture_file->left_as_it_was()));
             write_failed = true;
         }
-        std::string error;
         if (write_failed) {
             capture_file->discard();
             return kExitOutputError;
         }
-        if (!capture_file->commit(error)) {
-            print_error(error);
+        if (Result<void> committed = capture_file->commit(); !committed) {
+            print_error(committed.error());
             return kExitOutputError;
         }
     }
@@ -210,10 +210,9 @@ void add_decode_command(CLI::App& app, int& exit_code) {
             exit_code = kExitUsage;
             return;
         }
-        std::string error;
-        auto settings = resolve_decode_options(command->options, "text", error);
+        Result<DecodeSettings> settings = resolve_decode_options(command->options, "text");
         if (!settings) {
-            print_error(error);
+            print_error(settings.error());
             exit_code = kExitUsage;
             return;
         }
@@ -243,10 +242,9 @@ void add_hex_command(CLI::App& app, int& exit_code) {
     add_tracking_options(*sub, command->options);
     sub->footer(std::string(kExitCodeHelp));
     sub->callback([command, &exit_code] {
-        std::string error;
-        auto settings = resolve_decode_options(command->options, "verbose", error);
+        Result<DecodeSettings> settings = resolve_decode_options(command->options, "verbose");
         if (!settings) {
-            print_error(error);
+            print_error(settings.error());
             exit_code = kExitUsage;
             return;
         }

@@ -67,10 +67,9 @@ int run_report(const ReportCommand& command) {
         print_error("report: no input; give a FILE or -r FILE (- for standard input)");
         return kExitUsage;
     }
-    std::string error;
-    auto settings = resolve_decode_options(command.options, "text", error);
+    Result<DecodeSettings> settings = resolve_decode_options(command.options, "text");
     if (!settings) {
-        print_error(error);
+        print_error(settings.error());
         return kExitUsage;
     }
     OpenResult opened =
@@ -79,17 +78,19 @@ int run_report(const ReportCommand& command) {
         print_error(opened.error());
         return kExitUsage;
     }
-    if (std::string same = same_file_error({path}, command.output, "-w"); !same.empty()) {
-        print_error(same);
+    if (Result<void> distinct = check_not_an_input({path}, command.output, "-w"); !distinct) {
+        print_error(distinct.error());
         return kExitUsage;
     }
     // Written beside OUT and moved into place only once the report is complete: an unusable
     // input or a write error leaves an existing OUT as it was.
-    auto report_file = PendingOutputFile::open(command.output, error);
-    if (!report_file) {
-        print_error(error);
+    Result<std::unique_ptr<PendingOutputFile>> opened_file =
+        PendingOutputFile::open(command.output);
+    if (!opened_file) {
+        print_error(opened_file.error());
         return kExitOutputError;
     }
+    std::unique_ptr<PendingOutputFile> report_file = std::move(opened_file).value();
     TelegramSource& source = *opened.value();
     int exit_code = kExitOk;
     {
@@ -120,8 +121,8 @@ int run_report(const ReportCommand& command) {
         report_file->discard();
         return exit_code;
     }
-    if (!report_file->commit(error)) {
-        print_error(error);
+    if (Result<void> committed = report_file->commit(); !committed) {
+        print_error(committed.error());
         return kExitOutputError;
     }
     return exit_code;

@@ -83,10 +83,10 @@ int report_injections(const Simulator& simulator) {
 
 // Plays the simulated session (or a capture, with --replay) onto a tty.
 int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
-    std::string error;
-    auto port = SerialPort::open({command.device, command.baud, false, true}, error);
+    Result<std::unique_ptr<SerialPort>> port =
+        SerialPort::open({command.device, command.baud, false, true});
     if (!port) {
-        print_error(error);
+        print_error(port.error());
         return kExitUsage;
     }
     std::unique_ptr<TelegramSource> replay;
@@ -114,12 +114,13 @@ int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
     action.sa_flags = 0;
     sigaction(SIGINT, &action, nullptr);
     sigaction(SIGTERM, &action, nullptr);
-    PlayStats stats;
-    if (!play_telegrams(port->fd(), next, command.as_fast_as_possible, &g_stop_playing, stats,
-                        error)) {
-        print_error(fmt::format("{}: {}", command.device, error));
+    Result<PlayStats> played =
+        play_telegrams((*port)->fd(), next, command.as_fast_as_possible, &g_stop_playing);
+    if (!played) {
+        print_error(fmt::format("{}: {}", command.device, played.error()));
         return kExitOutputError;
     }
+    const PlayStats& stats = *played;
     int exit_code = kExitOk;
     // Stopped by a signal, the session is cut short on purpose: nothing to say of its faults.
     if (simulator && !g_stop_playing.load()) exit_code = report_injections(*simulator);
@@ -248,12 +249,13 @@ int run_simulate(const SimulateCommand& command) {
     int link_type = command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
     // Written beside the file and moved into place once complete: a write error (disk full)
     // leaves an existing file as it was.
-    error.clear();
-    auto file = PendingOutputFile::open(command.output, error);
-    if (!file) {
-        print_error(error);
+    Result<std::unique_ptr<PendingOutputFile>> opened_file =
+        PendingOutputFile::open(command.output);
+    if (!opened_file) {
+        print_error(opened_file.error());
         return kExitOutputError;
     }
+    std::unique_ptr<PendingOutputFile> file = std::move(opened_file).value();
     WriterResult opened = open_capture_writer(file->file(), file->name(), format, link_type);
     file->release_file();  // the writer closes it
     if (!opened) {
@@ -272,8 +274,8 @@ int run_simulate(const SimulateCommand& command) {
         file->discard();
         return kExitOutputError;
     }
-    if (!file->commit(error)) {
-        print_error(error);
+    if (Result<void> committed = file->commit(); !committed) {
+        print_error(committed.error());
         return kExitOutputError;
     }
     int exit_code = report_injections(simulator);

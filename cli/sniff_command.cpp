@@ -141,31 +141,32 @@ struct SniffCommand {
     bool no_low_latency = false;
 };
 
-// Checks --report, --report-format and --report-file against each other and -w; "" when fine.
-std::string report_usage_error(const SniffCommand& command) {
+// Checks --report, --report-format and --report-file against each other and -w.
+Result<void> check_report_options(const SniffCommand& command) {
     const std::string& file = command.report_file;
     if (command.report_format != "text" && file.empty())
-        return fmt::format(
+        return Error{fmt::format(
             "--report-format {}: the report would be mixed into the live output on standard "
             "output; give --report-file FILE (- for standard output, the live output then goes "
             "to standard error)",
-            command.report_format);
+            command.report_format)};
     if (file == "-" && command.output == "-")
-        return "--report-file -: standard output already carries the pcap of -w -; give the "
-               "report a file name";
+        return Error{
+            "--report-file -: standard output already carries the pcap of -w -; give the "
+            "report a file name"};
     if (!file.empty() && file != "-" && !command.output.empty() && command.output != "-" &&
         is_capture_file(file, command.output,
                         command.rotate_size > 0 || command.rotate_seconds > 0))
-        return fmt::format("--report-file {}: it is the capture file of -w {}; give another name",
-                           file, command.output);
+        return Error{
+            fmt::format("--report-file {}: it is the capture file of -w {}; give another name",
+                        file, command.output)};
     return {};
 }
 
 int run_sniff(const SniffCommand& command) {
-    std::string error;
-    auto settings = resolve_decode_options(command.options, "text", error);
+    Result<DecodeSettings> settings = resolve_decode_options(command.options, "text");
     if (!settings) {
-        print_error(error);
+        print_error(settings.error());
         return kExitUsage;
     }
     const bool pcap_to_stdout = command.output == "-";
@@ -173,8 +174,8 @@ int run_sniff(const SniffCommand& command) {
         print_error("-w -: cannot rotate standard output; give a file name to rotate");
         return kExitUsage;
     }
-    if (std::string usage = report_usage_error(command); !usage.empty()) {
-        print_error(usage);
+    if (Result<void> usage = check_report_options(command); !usage) {
+        print_error(usage.error());
         return kExitUsage;
     }
     // Options about the -w file mean nothing without one.
@@ -207,11 +208,12 @@ int run_sniff(const SniffCommand& command) {
     // file), then the outputs are opened, and only then is the port opened and set up: a bad
     // output path leaves it untouched.
     SerialSettings serial{command.device, command.baud, !command.no_low_latency, false};
-    auto port = SerialPort::claim(serial, error);
-    if (!port) {
-        print_error(error);
+    Result<std::unique_ptr<SerialPort>> claimed = SerialPort::claim(serial);
+    if (!claimed) {
+        print_error(claimed.error());
         return kExitUsage;
     }
+    std::unique_ptr<SerialPort> port = std::move(claimed).value();
     // A -w file this run creates is removed again if the port cannot be set up (the capture file
     // is not staged: it must be a valid pcap at every moment of the capture).
     std::string created_capture;
@@ -235,15 +237,17 @@ int run_sniff(const SniffCommand& command) {
     // place only when it is complete, so a run that fails leaves an existing FILE as it was.
     std::unique_ptr<PendingOutputFile> report_file;
     if (!command.report_file.empty()) {
-        report_file = PendingOutputFile::open(command.report_file, error);
-        if (!report_file) {
-            print_error(fmt::format("--report-file {}", error));
+        Result<std::unique_ptr<PendingOutputFile>> opened =
+            PendingOutputFile::open(command.report_file);
+        if (!opened) {
+            print_error(fmt::format("--report-file {}", opened.error()));
             return kExitOutputError;
         }
+        report_file = std::move(opened).value();
     }
     install_stop_handlers();  // from here on, a signal never leaves the port in raw mode
-    if (!port->configure(error)) {
-        print_error(error);
+    if (Result<void> configured = port->configure(); !configured) {
+        print_error(configured.error());
         writer.reset();
         report_file.reset();  // discards the staged report: an existing file stays as it was
         if (!created_capture.empty()) std::remove(created_capture.c_str());
@@ -355,8 +359,8 @@ int run_sniff(const SniffCommand& command) {
                                         command.report_file, std::strerror(errno)));
                 report_file->discard();
                 output_failed = true;
-            } else if (!report_file->commit(error)) {
-                print_error(fmt::format("--report-file {}", error));
+            } else if (Result<void> committed = report_file->commit(); !committed) {
+                print_error(fmt::format("--report-file {}", committed.error()));
                 output_failed = true;
             }
         }

@@ -10,6 +10,8 @@
 //   use(*config);
 //
 // The message is for a person: it names what failed (the file, the token) and why.
+//
+// An action that gives nothing but can fail returns Result<void>: `return {};` on success.
 #pragma once
 
 #include <cassert>
@@ -67,6 +69,24 @@ class [[nodiscard]] Result {
   private:
     std::optional<T> value_;
     std::string error_;
+};
+
+// Success, or an Error: for an action that gives nothing back (commit a file, configure a port).
+template <>
+class [[nodiscard]] Result<void> {
+  public:
+    Result() = default;  // success
+    Result(Error error) : error_(std::move(error.message)), failed_(true) {}
+
+    bool has_value() const noexcept { return !failed_; }
+    explicit operator bool() const noexcept { return has_value(); }
+
+    // Why it failed; "" when it did not.
+    const std::string& error() const noexcept { return error_; }
+
+  private:
+    std::string error_;
+    bool failed_ = false;
 };
 
 }  // namespace dpscope

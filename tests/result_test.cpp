@@ -64,5 +64,28 @@ TEST(ResultTest, ValueIsModifiable) {
     EXPECT_EQ(*result, (std::vector<int>{1, 2, 3, 4}));
 }
 
+Result<void> require_even(int n) {
+    if (n % 2 != 0) return Error{"odd: " + std::to_string(n)};
+    return {};
+}
+
+TEST(ResultTest, VoidResultSucceedsWithoutAValue) {
+    Result<void> result = require_even(4);
+    EXPECT_TRUE(result.has_value());
+    EXPECT_TRUE(static_cast<bool>(result));
+    EXPECT_EQ(result.error(), "");
+}
+
+TEST(ResultTest, VoidResultHoldsAnErrorMessage) {
+    Result<void> result = require_even(3);
+    EXPECT_FALSE(result.has_value());
+    EXPECT_EQ(result.error(), "odd: 3");
+}
+
+TEST(ResultTest, VoidResultFailsEvenWithAnEmptyMessage) {
+    Result<void> result = Error{};
+    EXPECT_FALSE(result);
+}
+
 }  // namespace
 }  // namespace dpscope

@@ -142,10 +142,8 @@ void play(const PseudoTerminal& pty, const Session& s, bool as_fast_as_possible,
         ++next;
         return true;
     };
-    PlayStats stats;
-    std::string error;
-    ASSERT_TRUE(play_telegrams(pty.master, generator, as_fast_as_possible, nullptr, stats, error))
-        << error;
+    Result<PlayStats> played = play_telegrams(pty.master, generator, as_fast_as_possible, nullptr);
+    ASSERT_TRUE(played) << played.error();
 }
 
 struct Capture {

@@ -284,9 +284,9 @@ TEST(SerialPortTest, EveryProfibusBaudRateIsSetAndReadBack) {
     PseudoTerminal pty;
     for (std::uint32_t baud : {9600u, 19200u, 45450u, 93750u, 187500u, 500000u, 1500000u, 3000000u,
                                6000000u, 12000000u}) {
-        std::string error;
-        auto port = SerialPort::open({pty.slave, baud, true, false}, error);
-        ASSERT_TRUE(port) << error;
+        auto opened = SerialPort::open({pty.slave, baud, true, false});
+        ASSERT_TRUE(opened) << opened.error();
+        std::unique_ptr<SerialPort> port = std::move(opened).value();
         EXPECT_EQ(port->baud(), baud);
         // A pseudo-terminal takes no parity and has no low-latency flag; the port says so.
         EXPECT_FALSE(port->parity_checked());
@@ -298,9 +298,9 @@ TEST(SerialPortTest, EveryProfibusBaudRateIsSetAndReadBack) {
 
 TEST(SerialPortTest, RawModeCarriesEveryByteUnchanged) {
     PseudoTerminal pty;
-    std::string error;
-    auto port = SerialPort::open({pty.slave, 1'500'000, true, true}, error);
-    ASSERT_TRUE(port) << error;
+    auto opened = SerialPort::open({pty.slave, 1'500'000, true, true});
+    ASSERT_TRUE(opened) << opened.error();
+    std::unique_ptr<SerialPort> port = std::move(opened).value();
     std::vector<std::uint8_t> all(256);
     for (int i = 0; i < 256; ++i)
         all[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(i);
@@ -317,11 +317,13 @@ TEST(SerialPortTest, RawModeCarriesEveryByteUnchanged) {
     EXPECT_EQ(got, all);  // no CR/LF translation, no echo, no signals (for_writing: no PARMRK)
 }
 
+// Why opening the port was refused: "" when it was not (the port is then closed again).
+std::string refusal(const SerialSettings& settings) { return SerialPort::open(settings).error(); }
+
 TEST(SerialPortTest, ErrorsNameTheDevice) {
-    std::string error;
-    EXPECT_FALSE(SerialPort::open({"/dev/does-not-exist", 1'500'000, true, false}, error));
+    std::string error = refusal({"/dev/does-not-exist", 1'500'000, true, false});
     EXPECT_NE(error.find("/dev/does-not-exist: cannot open"), std::string::npos) << error;
-    EXPECT_FALSE(SerialPort::open({"/dev/null", 1'500'000, true, false}, error));
+    error = refusal({"/dev/null", 1'500'000, true, false});
     EXPECT_NE(error.find("/dev/null: not a serial port"), std::string::npos) << error;
 }
 
@@ -330,17 +332,17 @@ TEST(SerialPortTest, ClosingPutsTheSettingsBackAsFound) {
     const termios before = settings_of(pty.slave);
     ASSERT_NE(before.c_lflag & ICANON, 0u);  // a fresh pty is a cooked terminal
     for (bool for_writing : {false, true}) {
-        std::string error;
-        auto port = SerialPort::open({pty.slave, 187'500, true, for_writing, ""}, error);
-        ASSERT_TRUE(port) << error;
+        auto opened = SerialPort::open({pty.slave, 187'500, true, for_writing, ""});
+        ASSERT_TRUE(opened) << opened.error();
+        std::unique_ptr<SerialPort> port = std::move(opened).value();
         EXPECT_FALSE(same_settings(settings_of(pty.slave), before));  // raw while open
         port.reset();
         EXPECT_TRUE(same_settings(settings_of(pty.slave), before)) << for_writing;
     }
     // From a signal handler too (the process then ends without destructors).
-    std::string error;
-    auto port = SerialPort::open({pty.slave, 500'000, true, false, ""}, error);
-    ASSERT_TRUE(port) << error;
+    auto opened = SerialPort::open({pty.slave, 500'000, true, false, ""});
+    ASSERT_TRUE(opened) << opened.error();
+    std::unique_ptr<SerialPort> port = std::move(opened).value();
     SerialPort::restore_all_after_signal();
     EXPECT_TRUE(same_settings(settings_of(pty.slave), before));
 }
@@ -359,16 +361,16 @@ TEST(SerialPortTest, TheLockFileKeepsASecondUserOut) {
     PseudoTerminal pty;
     const std::string dir = make_lock_dir();
     const std::string lock = lock_path(dir, pty.slave);
-    std::string error;
-    auto port = SerialPort::open({pty.slave, 1'500'000, true, false, dir}, error);
-    ASSERT_TRUE(port) << error;
+    auto opened = SerialPort::open({pty.slave, 1'500'000, true, false, dir});
+    ASSERT_TRUE(opened) << opened.error();
+    std::unique_ptr<SerialPort> port = std::move(opened).value();
     EXPECT_EQ(port->lock_file(), lock);
     char expected[32];
     std::snprintf(expected, sizeof expected, "%10d\n", static_cast<int>(getpid()));
     auto content = test::read_file(lock);
     EXPECT_EQ(std::string(content.begin(), content.end()), expected);  // UUCP (HDB) format
     const termios during = settings_of(pty.slave);
-    EXPECT_FALSE(SerialPort::open({pty.slave, 9600, true, false, dir}, error));
+    std::string error = refusal({pty.slave, 9600, true, false, dir});
     EXPECT_NE(error.find(pty.slave + " is in use by process " + std::to_string(getpid())),
               std::string::npos)
         << error;
@@ -382,15 +384,16 @@ TEST(SerialPortTest, TheLockFileKeepsASecondUserOut) {
 
 TEST(SerialPortTest, WithoutALockFileTheDeviceLockKeepsASecondUserOut) {
     PseudoTerminal pty;
-    std::string error;
-    auto port = SerialPort::open({pty.slave, 1'500'000, true, false, ""}, error);
-    ASSERT_TRUE(port) << error;
-    EXPECT_FALSE(SerialPort::open({pty.slave, 1'500'000, true, false, ""}, error));
+    auto opened = SerialPort::open({pty.slave, 1'500'000, true, false, ""});
+    ASSERT_TRUE(opened) << opened.error();
+    std::unique_ptr<SerialPort> port = std::move(opened).value();
+    std::string error = refusal({pty.slave, 1'500'000, true, false, ""});
     EXPECT_NE(error.find(pty.slave + " is in use: another process holds a lock on the device"),
               std::string::npos)
         << error;
     port.reset();
-    EXPECT_TRUE(SerialPort::open({pty.slave, 1'500'000, true, false, ""}, error)) << error;
+    auto reopened = SerialPort::open({pty.slave, 1'500'000, true, false, ""});
+    EXPECT_TRUE(reopened) << reopened.error();
 }
 
 TEST(SerialPortTest, AStaleLockFileIsReplacedAndALiveOneIsNot) {
@@ -402,17 +405,17 @@ TEST(SerialPortTest, AStaleLockFileIsReplacedAndALiveOneIsNot) {
     if (gone == 0) _exit(0);
     waitpid(gone, nullptr, 0);
     test::write_text_file(lock, std::to_string(gone) + "\n");
-    std::string error;
     {
-        auto port = SerialPort::open({pty.slave, 1'500'000, true, false, dir}, error);
-        ASSERT_TRUE(port) << error;
+        auto opened = SerialPort::open({pty.slave, 1'500'000, true, false, dir});
+        ASSERT_TRUE(opened) << opened.error();
+        std::unique_ptr<SerialPort> port = std::move(opened).value();
         auto content = test::read_file(lock);
         EXPECT_EQ(std::stoi(std::string(content.begin(), content.end())), getpid());
     }
     // A process that is running (our parent): the port is not taken, the lock stays.
     std::string live = std::to_string(getppid());
     test::write_text_file(lock, std::string(10 - live.size(), ' ') + live + "\n");
-    EXPECT_FALSE(SerialPort::open({pty.slave, 1'500'000, true, false, dir}, error));
+    std::string error = refusal({pty.slave, 1'500'000, true, false, dir});
     EXPECT_NE(error.find("is in use by process " + live), std::string::npos) << error;
     EXPECT_TRUE(std::filesystem::exists(lock));
     std::filesystem::remove_all(dir);
