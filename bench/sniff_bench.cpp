@@ -108,7 +108,8 @@ Result run(const std::string& dpscope, std::uint64_t telegrams, Pace pace) {
     r.sent = played->telegrams;
     r.cpu_seconds = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
                     static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1e6;
-    dpscope::OpenResult opened = dpscope::open_source(pcap, dpscope::InputFormat::Auto);
+    dpscope::OpenResult opened =
+        dpscope::open_source(pcap, dpscope::InputFormat::Auto, dpscope::profibus_dp_protocol());
     dpscope::Record record;
     while (opened && opened.value()->next(record))
         ++r.captured;

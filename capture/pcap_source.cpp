@@ -14,8 +14,9 @@
 namespace dpscope {
 
 std::string link_type_name(int link_type) {
-    if (link_type == kLinkTypeProfibusDl) return "PROFIBUS_DL";
-    if (link_type == kLinkTypeUser0) return "USER0";
+    for (const CaptureProtocol* protocol : capture_protocols())
+        for (const PcapLinkType& type : protocol->link_types)
+            if (type.value == link_type) return std::string(type.name);
     const char* name = pcap_datalink_val_to_name(link_type);
     return name ? name : "unknown";
 }
@@ -83,14 +84,24 @@ class PcapSource final : public TelegramSource {
     std::uint64_t offset_ = kPcapFileHeaderBytes;
 };
 
-bool decoded_link_type(int link_type) {
-    return link_type == kLinkTypeProfibusDl || link_type == kLinkTypeUser0;
+// The protocol's link types as messages list them: "257 (PROFIBUS_DL) and 147 (USER0)", or
+// without the parentheses "257 PROFIBUS_DL and 147 USER0".
+std::string listed_link_types(const CaptureProtocol& protocol, bool name_in_parentheses) {
+    std::string list;
+    const std::size_t count = protocol.link_types.size();
+    for (std::size_t i = 0; i < count; ++i) {
+        const PcapLinkType& type = protocol.link_types[i];
+        if (i > 0) list += i + 1 == count ? " and " : ", ";
+        list += name_in_parentheses ? fmt::format("{} ({})", type.value, type.name)
+                                    : fmt::format("{} {}", type.value, type.name);
+    }
+    return list;
 }
 
-std::string unsupported_link_type(const std::string& name, int link_type) {
-    return fmt::format(
-        "{}: unsupported link type {} ({}); dpscope reads 257 (PROFIBUS_DL) and 147 (USER0)", name,
-        link_type, link_type_name(link_type));
+std::string unsupported_link_type(const std::string& name, int link_type,
+                                  const CaptureProtocol& protocol) {
+    return fmt::format("{}: unsupported link type {} ({}); dpscope reads {}", name, link_type,
+                       link_type_name(link_type), listed_link_types(protocol, true));
 }
 
 // pcapng (draft-ietf-opsawg-pcapng), read block by block without libpcap, whose reader refuses a
@@ -98,15 +109,16 @@ std::string unsupported_link_type(const std::string& name, int link_type) {
 // checked against the file and its copy at the block's end; messages name the byte offset.
 class PcapngSource final : public TelegramSource {
   public:
-    PcapngSource(FILE* file, std::string name) : TelegramSource(std::move(name)), file_(file) {}
+    PcapngSource(FILE* file, std::string name, const CaptureProtocol& protocol)
+        : TelegramSource(std::move(name)), protocol_(protocol), file_(file) {}
     ~PcapngSource() override { std::fclose(file_); }
 
     InputFormat format() const override { return InputFormat::Pcapng; }
     int link_type() const override { return link_type_; }
 
-    // Reads up to the first packet dpscope decodes. False with `error` when the file is no pcapng
-    // or none of its interfaces has a link type dpscope decodes.
-    bool open(std::string& error);
+    // Reads up to the first packet dpscope decodes. An error when the file is no pcapng or none
+    // of its interfaces has a link type of the protocol.
+    Result<void> open();
 
   protected:
     bool read_next(Record& record) override;
@@ -175,6 +187,7 @@ class PcapngSource final : public TelegramSource {
         return fmt::format("byte offset {}", block_offset_);
     }
 
+    const CaptureProtocol& protocol_;
     FILE* file_;
     std::vector<std::uint8_t> block_;  // the whole current block
     std::uint32_t block_type_ = 0;
@@ -183,7 +196,7 @@ class PcapngSource final : public TelegramSource {
     bool swap_ = false;              // the section's byte order is not the host's
     bool in_section_ = false;
     std::vector<Interface> interfaces_;
-    int link_type_ = 0;  // of the first interface dpscope decodes
+    int link_type_ = 0;  // of the first interface of the protocol
     bool decodable_seen_ = false;
     int first_link_type_ = -1;
     std::uint64_t packets_ = 0;  // packet blocks, of every interface (Wireshark's frame numbers)
@@ -341,16 +354,16 @@ void PcapngSource::take_interface() {
     const std::size_t id = interfaces_.size();
     interfaces_.push_back(interface);
     if (first_link_type_ < 0) first_link_type_ = interface.link_type;
-    if (decoded_link_type(interface.link_type)) {
+    if (protocol_.carried_by(interface.link_type)) {
         if (!decodable_seen_) link_type_ = interface.link_type;
         decodable_seen_ = true;
     } else {
-        issue(Severity::Warning, IssueKind::Interface,
-              fmt::format("{}: {}: interface {} has link type {} ({}), which dpscope does not "
-                          "decode (it reads 257 PROFIBUS_DL and 147 USER0); its packets are "
-                          "skipped",
-                          name(), at_block(), id, interface.link_type,
-                          link_type_name(interface.link_type)));
+        issue(
+            Severity::Warning, IssueKind::Interface,
+            fmt::format("{}: {}: interface {} has link type {} ({}), which dpscope does not "
+                        "decode (it reads {}); its packets are skipped",
+                        name(), at_block(), id, interface.link_type,
+                        link_type_name(interface.link_type), listed_link_types(protocol_, false)));
     }
     if (!interface.resolution_usable)
         issue(Severity::Warning, IssueKind::Interface,
@@ -450,7 +463,7 @@ bool PcapngSource::take_packet(Record& record) {
         return false;
     }
     const Interface& interface = interfaces_[interface_id];
-    if (!decoded_link_type(interface.link_type)) return false;  // named at its description
+    if (!protocol_.carried_by(interface.link_type)) return false;  // named at its description
     record.bytes = Bytes(block_.data() + data_at, captured);
     record.time_ns = kNoTime;
     if (timed) {
@@ -473,17 +486,12 @@ bool PcapngSource::take_packet(Record& record) {
     return true;
 }
 
-bool PcapngSource::open(std::string& error) {
+Result<void> PcapngSource::open() {
     opening_ = true;
     Read first = read_block();
-    if (first != Read::Block || block_type_ != kSectionHeader) {
-        error = damage_.empty() ? fmt::format("{}: not a pcapng file", name()) : damage_;
-        return false;
-    }
-    if (!take_section_header()) {
-        error = damage_;
-        return false;
-    }
+    if (first != Read::Block || block_type_ != kSectionHeader)
+        return Error{damage_.empty() ? fmt::format("{}: not a pcapng file", name()) : damage_};
+    if (!take_section_header()) return Error{damage_};
     // Up to the first packet dpscope decodes, so that a file with none is refused here.
     for (;;) {
         Read read = read_block();
@@ -511,12 +519,11 @@ bool PcapngSource::open(std::string& error) {
         }
     }
     opening_ = false;
-    if (!decodable_seen_ && first_link_type_ >= 0 && status() != InputStatus::Damaged) {
-        error = unsupported_link_type(name(), first_link_type_);
-        return false;
-    }
-    if (!decodable_seen_) link_type_ = kLinkTypeProfibusDl;  // no interface at all: empty
-    return true;
+    if (!decodable_seen_ && first_link_type_ >= 0 && status() != InputStatus::Damaged)
+        return Error{unsupported_link_type(name(), first_link_type_, protocol_)};
+    // No interface at all: an empty capture, of the protocol's first link type.
+    if (!decodable_seen_) link_type_ = protocol_.link_types.front().value;
+    return {};
 }
 
 bool PcapngSource::read_next(Record& record) {
@@ -550,13 +557,15 @@ bool PcapngSource::read_next(Record& record) {
 
 }  // namespace
 
-OpenResult open_pcapng_source(FILE* file, const std::string& name) {
-    auto source = std::make_unique<PcapngSource>(file, name);
-    if (std::string error; !source->open(error)) return Error{std::move(error)};
+OpenResult open_pcapng_source(FILE* file, const std::string& name,
+                              const CaptureProtocol& protocol) {
+    auto source = std::make_unique<PcapngSource>(file, name, protocol);
+    if (Result<void> opened = source->open(); !opened) return Error{opened.error()};
     return source;
 }
 
-OpenResult open_pcap_source(FILE* file, const std::string& name, bool classic_pcap) {
+OpenResult open_pcap_source(FILE* file, const std::string& name, bool classic_pcap,
+                            const CaptureProtocol& protocol) {
     char errbuf[PCAP_ERRBUF_SIZE] = {};
     pcap_t* handle =
         pcap_fopen_offline_with_tstamp_precision(file, PCAP_TSTAMP_PRECISION_NANO, errbuf);
@@ -565,9 +574,9 @@ OpenResult open_pcap_source(FILE* file, const std::string& name, bool classic_pc
         return Error{fmt::format("{}: not a readable pcap or pcapng file: {}", name, errbuf)};
     }
     int link_type = pcap_datalink(handle);
-    if (!decoded_link_type(link_type)) {
+    if (!protocol.carried_by(link_type)) {
         pcap_close(handle);
-        return Error{unsupported_link_type(name, link_type)};
+        return Error{unsupported_link_type(name, link_type, protocol)};
     }
     return std::make_unique<PcapSource>(handle, name, classic_pcap);
 }

@@ -11,7 +11,6 @@
 #include "capture/pcap_source.hpp"
 #include "capture/stream_source.hpp"
 #include "decoder/counted.hpp"
-#include "decoder/fdl_framing_rules.hpp"
 
 namespace dpscope {
 
@@ -181,7 +180,8 @@ bool read_head(int fd, std::vector<std::uint8_t>& head) {
 
 }  // namespace
 
-OpenResult open_source(const std::string& path, InputFormat format) {
+OpenResult open_source(const std::string& path, InputFormat format,
+                       const CaptureProtocol& protocol) {
     bool from_stdin = path == "-";
     std::string name = from_stdin ? std::string("<stdin>") : path;
     FILE* file = from_stdin ? stdin : std::fopen(path.c_str(), "rb");
@@ -225,13 +225,12 @@ OpenResult open_source(const std::string& path, InputFormat format) {
         return Error{std::move(error)};
     }
     std::setvbuf(stream, nullptr, _IOFBF, 1 << 16);
-    // A byte stream is framed by its protocol's rules; PROFIBUS FDL is the only one today.
-    const FramingRules& rules = fdl_framing_rules();
+    const FramingRules& rules = protocol.framing;
     switch (format) {
         case InputFormat::Pcap:
         case InputFormat::Pcapng:
-            return pcapng ? open_pcapng_source(stream, name)
-                          : open_pcap_source(stream, name, classic_pcap);
+            return pcapng ? open_pcapng_source(stream, name, protocol)
+                          : open_pcap_source(stream, name, classic_pcap, protocol);
         case InputFormat::Hex: return make_hex_source(stream, name, detected, rules);
         case InputFormat::Raw:
         case InputFormat::Serial:
@@ -240,8 +239,9 @@ OpenResult open_source(const std::string& path, InputFormat format) {
     return make_raw_source(stream, name, detected, rules);
 }
 
-std::unique_ptr<TelegramSource> memory_source(std::string display_name, Bytes bytes) {
-    return make_memory_source(std::move(display_name), bytes, fdl_framing_rules());
+std::unique_ptr<TelegramSource> memory_source(std::string display_name, Bytes bytes,
+                                              const CaptureProtocol& protocol) {
+    return make_memory_source(std::move(display_name), bytes, protocol.framing);
 }
 
 }  // namespace dpscope

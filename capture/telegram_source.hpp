@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "capture/capture_protocol.hpp"
 #include "capture/input_format.hpp"
 #include "decoder/byte_reader.hpp"
 #include "decoder/problem.hpp"
@@ -129,10 +130,14 @@ class TelegramSource {
 using OpenResult = Result<std::unique_ptr<TelegramSource>>;
 
 // Opens `path` ("-" for standard input), detecting the format from the content unless `format`
-// forces one.
-OpenResult open_source(const std::string& path, InputFormat format);
+// forces one. `protocol` is what the capture carries: a byte stream is framed by its rules, and
+// a pcap or pcapng file must have one of its link types.
+OpenResult open_source(const std::string& path, InputFormat format,
+                       const CaptureProtocol& protocol);
 
-// A source over bytes already in memory (e.g. `dpscope hex` arguments), framed as a raw stream.
-std::unique_ptr<TelegramSource> memory_source(std::string display_name, Bytes bytes);
+// A source over bytes already in memory (e.g. `dpscope hex` arguments), framed as a raw stream
+// of `protocol`.
+std::unique_ptr<TelegramSource> memory_source(std::string display_name, Bytes bytes,
+                                              const CaptureProtocol& protocol);
 
 }  // namespace dpscope

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "capture/capture_protocol.hpp"
 #include "capture/capture_writer.hpp"
 #include "capture/pcap_source.hpp"
 #include "decoder/bus_decoder.hpp"
@@ -90,6 +91,9 @@ void add_display_options(CLI::App& app, DecodeOptionValues& values,
 void add_write_options(CLI::App& app, DecodeOptionValues& values);
 
 struct DecodeSettings {
+    // What the capture carries; every source of the command is opened with it. Chosen here,
+    // once: PROFIBUS DP is the only protocol today, so no option names it.
+    const CaptureProtocol* protocol = &profibus_dp_protocol();
     DecoderOptions decoder;
     TrackerOptions tracker;
     OutputFormat format = OutputFormat::Text;

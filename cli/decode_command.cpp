@@ -217,7 +217,8 @@ void add_decode_command(CLI::App& app, int& exit_code) {
             return;
         }
         OpenResult opened = open_source(
-            path, input_format_from_name(command->input_format).value_or(InputFormat::Auto));
+            path, input_format_from_name(command->input_format).value_or(InputFormat::Auto),
+            *settings->protocol);
         if (!opened) {
             print_error(opened.error());
             exit_code = kExitUsage;
@@ -254,7 +255,7 @@ void add_hex_command(CLI::App& app, int& exit_code) {
                 std::fprintf(stderr,
                              "dpscope hex: reading a hex log from the terminal, one telegram or "
                              "more a line; end with Ctrl-D (or give BYTES as arguments)\n");
-            OpenResult opened = open_source("-", InputFormat::Hex);
+            OpenResult opened = open_source("-", InputFormat::Hex, *settings->protocol);
             if (!opened) {
                 print_error(opened.error());
                 exit_code = kExitUsage;
@@ -273,7 +274,8 @@ void add_hex_command(CLI::App& app, int& exit_code) {
             }
             bytes.insert(bytes.end(), parsed->begin(), parsed->end());
         }
-        auto source = memory_source("<command line>", Bytes(bytes.data(), bytes.size()));
+        auto source =
+            memory_source("<command line>", Bytes(bytes.data(), bytes.size()), *settings->protocol);
         exit_code = run_decoding(*source, *settings, "");
     });
 }

@@ -73,7 +73,8 @@ int run_report(const ReportCommand& command) {
         return kExitUsage;
     }
     OpenResult opened =
-        open_source(path, input_format_from_name(command.input_format).value_or(InputFormat::Auto));
+        open_source(path, input_format_from_name(command.input_format).value_or(InputFormat::Auto),
+                    *settings->protocol);
     if (!opened) {
         print_error(opened.error());
         return kExitUsage;

@@ -91,7 +91,8 @@ int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
     }
     std::unique_ptr<TelegramSource> replay;
     if (!command.replay.empty()) {
-        OpenResult opened = open_source(command.replay, InputFormat::Auto);
+        // The simulator makes PROFIBUS DP; a capture played in its place is one too.
+        OpenResult opened = open_source(command.replay, InputFormat::Auto, profibus_dp_protocol());
         if (!opened) {
             print_error(opened.error());
             return kExitUsage;

@@ -26,7 +26,6 @@
 #include "cli/common_options.hpp"
 #include "cli/pipeline.hpp"
 #include "cli/version.hpp"
-#include "decoder/fdl_framing_rules.hpp"
 #include "formats/report.hpp"
 
 namespace dpscope::cli {
@@ -262,7 +261,7 @@ int run_sniff(const SniffCommand& command) {
     tty_options.baud = port->baud();
     tty_options.parity_marked = port->parity_marked();
     tty_options.idle_gap_ns = static_cast<std::int64_t>(command.idle_gap_ms) * 1'000'000;
-    TtySource source(std::move(port), fd, command.device, tty_options, fdl_framing_rules());
+    TtySource source(std::move(port), fd, command.device, tty_options, settings->protocol->framing);
 
     Output out(text_stream, settings->line_buffered || isatty(fileno(text_stream)) != 0);
     const char* text_stream_name = text_stream == stdout ? "standard output" : "standard error";

@@ -64,7 +64,8 @@ const TempFile& temp_file() {
 }
 
 void read_all(const std::string& path, dpscope::InputFormat format, std::size_t turn) {
-    dpscope::OpenResult opened = dpscope::open_source(path, format);
+    dpscope::OpenResult opened =
+        dpscope::open_source(path, format, dpscope::profibus_dp_protocol());
     if (!opened) {
         (void)opened.error().size();
         return;

@@ -61,7 +61,7 @@ struct ReadBack {
 
 ReadBack read_back(const std::string& path) {
     ReadBack result;
-    OpenResult opened = open_source(path, InputFormat::Auto);
+    OpenResult opened = open_source(path, InputFormat::Auto, profibus_dp_protocol());
     EXPECT_TRUE(opened) << opened.error();
     if (!opened) return result;
     opened.value()->on_issue([&](const InputIssue&) { ++result.issues; });

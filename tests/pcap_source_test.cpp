@@ -14,6 +14,7 @@
 
 #include "capture/capture_writer.hpp"
 #include "capture/telegram_source.hpp"
+#include "decoder/fdl_framing_rules.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -65,7 +66,7 @@ struct ReadResult {
 
 ReadResult read_all(const std::string& path, InputFormat format = InputFormat::Auto) {
     ReadResult result;
-    OpenResult opened = open_source(path, format);
+    OpenResult opened = open_source(path, format, profibus_dp_protocol());
     EXPECT_TRUE(opened) << opened.error();
     if (!opened) return result;
     EXPECT_TRUE(opened.error().empty()) << opened.error();
@@ -82,7 +83,7 @@ ReadResult read_all(const std::string& path, InputFormat format = InputFormat::A
 }
 
 std::string open_error(const std::string& path, InputFormat format = InputFormat::Auto) {
-    OpenResult opened = open_source(path, format);
+    OpenResult opened = open_source(path, format, profibus_dp_protocol());
     EXPECT_FALSE(opened) << path;
     return opened.error();
 }
@@ -255,6 +256,10 @@ TEST(PcapSourceTest, PcapngSkipsPacketsOfAnInterfaceWithAnotherLinkTypeWithOneWa
               std::string::npos)
         << message;
     EXPECT_NE(message.find("its packets are skipped"), std::string::npos) << message;
+    EXPECT_EQ(message, file.path +
+                           ": byte offset 52: interface 1 has link type 1 (EN10MB), which dpscope "
+                           "does not decode (it reads 257 PROFIBUS_DL and 147 USER0); its packets "
+                           "are skipped");
 }
 
 TEST(PcapSourceTest, PcapngWithNoInterfaceDpscopeDecodesIsUnusable) {
@@ -263,9 +268,9 @@ TEST(PcapSourceTest, PcapngWithNoInterfaceDpscopeDecodesIsUnusable) {
     b.interface(1).packet(0, kT0Us, std::vector<std::uint8_t>(60, 0xFF));
     test::write_file(file.path, b.bytes());
     std::string error = open_error(file.path);
-    EXPECT_NE(error.find(file.path + ": unsupported link type 1 (EN10MB); dpscope reads 257"),
-              std::string::npos)
-        << error;
+    EXPECT_EQ(error, file.path +
+                         ": unsupported link type 1 (EN10MB); dpscope reads 257 (PROFIBUS_DL) and "
+                         "147 (USER0)");
 }
 
 TEST(PcapSourceTest, PcapngWithoutInterfacesIsAnEmptyCapture) {
@@ -474,6 +479,63 @@ TEST(PcapSourceTest, UnsupportedLinkTypeNamesFileNumberAndName) {
     // Forcing the format changes nothing.
     EXPECT_NE(open_error(file.path, InputFormat::Pcap).find("unsupported link type 1 "),
               std::string::npos);
+}
+
+// A protocol carried by Ethernet frames, for the tests below: the readers take the link types
+// from the protocol they are given, not from a list of their own.
+const PcapLinkType kEthernetOnly[] = {{1, "EN10MB"}};
+const CaptureProtocol kEthernetProtocol{Protocol::ProfibusDp, "test", fdl_framing_rules(),
+                                        kEthernetOnly};
+
+void write_ethernet_pcap(const std::string& path) {
+    pcap_t* dead = pcap_open_dead(DLT_EN10MB, 65535);
+    ASSERT_NE(dead, nullptr);
+    pcap_dumper_t* dumper = pcap_dump_open(dead, path.c_str());
+    ASSERT_NE(dumper, nullptr) << pcap_geterr(dead);
+    std::vector<std::uint8_t> frame(60, 0xFF);
+    pcap_pkthdr header{};
+    header.ts.tv_sec = 1'704'067'200;
+    header.caplen = header.len = static_cast<bpf_u_int32>(frame.size());
+    pcap_dump(reinterpret_cast<u_char*>(dumper), &header, frame.data());
+    pcap_dump_close(dumper);
+    pcap_close(dead);
+}
+
+TEST(PcapSourceTest, TheProtocolGivenChoosesTheLinkTypes) {
+    TempFile file("ethernet-for-test-protocol.pcap");
+    write_ethernet_pcap(file.path);
+    OpenResult opened = open_source(file.path, InputFormat::Auto, kEthernetProtocol);
+    ASSERT_TRUE(opened) << opened.error();
+    Record record;
+    ASSERT_TRUE(opened.value()->next(record));
+    EXPECT_EQ(record.bytes.size(), 60u);
+    EXPECT_EQ(opened.value()->link_type(), 1);
+
+    TempFile profibus("profibus-for-test-protocol.pcap");
+    write_capture(profibus.path, CaptureFormat::Pcap, kLinkTypeProfibusDl);
+    OpenResult refused = open_source(profibus.path, InputFormat::Auto, kEthernetProtocol);
+    ASSERT_FALSE(refused);
+    EXPECT_EQ(
+        refused.error(),
+        profibus.path + ": unsupported link type 257 (PROFIBUS_DL); dpscope reads 1 (EN10MB)");
+}
+
+TEST(PcapSourceTest, PcapngInterfacesAreJudgedByTheProtocolGiven) {
+    TempFile file("profibus-and-ethernet-for-test-protocol.pcapng");
+    PcapngBuilder b;
+    b.interface(257).interface(1);
+    b.packet(0, kT0Us, kSd1).packet(1, kT0Us + 1, std::vector<std::uint8_t>(60, 0xFF));
+    test::write_file(file.path, b.bytes());
+    OpenResult opened = open_source(file.path, InputFormat::Auto, kEthernetProtocol);
+    ASSERT_TRUE(opened) << opened.error();
+    std::vector<std::string> messages;
+    opened.value()->on_issue([&](const InputIssue& issue) { messages.push_back(issue.message); });
+    Record record;
+    ASSERT_TRUE(opened.value()->next(record));
+    EXPECT_EQ(record.number, 2u);
+    EXPECT_FALSE(opened.value()->next(record));
+    ASSERT_EQ(messages.size(), 1u);
+    EXPECT_NE(messages[0].find("(it reads 1 EN10MB)"), std::string::npos) << messages[0];
 }
 
 TEST(PcapSourceTest, BadMagicWithPcapForcedIsAnError) {

@@ -395,7 +395,8 @@ struct Analysis {
 // `relative` is a path under the source directory, e.g. "samples/faults.pcap".
 std::unique_ptr<Analysis> analyse_file(const std::string& relative) {
     auto analysis = std::make_unique<Analysis>();
-    OpenResult opened = open_source(test::source_dir() + "/" + relative, InputFormat::Auto);
+    OpenResult opened =
+        open_source(test::source_dir() + "/" + relative, InputFormat::Auto, profibus_dp_protocol());
     EXPECT_TRUE(opened) << opened.error();
     if (!opened) return analysis;
     TelegramSource& source = *opened.value();

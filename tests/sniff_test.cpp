@@ -155,7 +155,7 @@ struct Capture {
 
 Capture read_capture(const std::string& path) {
     Capture c;
-    OpenResult opened = open_source(path, InputFormat::Auto);
+    OpenResult opened = open_source(path, InputFormat::Auto, profibus_dp_protocol());
     EXPECT_TRUE(opened) << opened.error();
     if (!opened) return c;
     Record record;
