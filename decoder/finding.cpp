@@ -1,59 +1,106 @@
 #include "decoder/finding.hpp"
 
+#include <iterator>
+
 namespace dpscope {
 
 namespace {
 
-struct KindInfo {
-    std::string_view name;
-    Severity severity;
-    std::string_view rule;
+using enum FindingComponent;
+
+constexpr FindingKindInfo kCatalogue[] = {
+    {FindingKind::StackedRequest, "stacked_request", Severity::Error, ParameterChannel,
+     "the master waits for the answer before it sends a new request"},
+    {FindingKind::OrphanResponse, "orphan_response", Severity::Warning, ParameterChannel,
+     "every response answers a pending request"},
+    {FindingKind::MismatchedResponse, "mismatched_response", Severity::Error, ParameterChannel,
+     "the response carries the PNU (and IND for arrays) of the request"},
+    {FindingKind::UnexpectedResponseType, "unexpected_response_type", Severity::Error,
+     ParameterChannel, "the response code is a valid answer to the request code"},
+    {FindingKind::ResponseTimeout, "response_timeout", Severity::Error, ParameterChannel,
+     "every request is answered within the time-out"},
+    {FindingKind::RequestRejected, "request_rejected", Severity::Note, ParameterChannel,
+     "requests are executed (RC 7 rejections)"},
+    {FindingKind::NoAuthority, "no_authority", Severity::Warning, ParameterChannel,
+     "the master has operating authority (RC 8)"},
+    {FindingKind::SpontaneousMessage, "spontaneous_message", Severity::Note, ParameterChannel,
+     "spontaneous messages (RC 9-12 with SPM toggle)"},
+    {FindingKind::SpontaneousUnacknowledged, "spontaneous_unacknowledged", Severity::Warning,
+     ParameterChannel, "the master acknowledges spontaneous messages within the time-out"},
+    {FindingKind::SpmViolation, "spm_violation", Severity::Warning, ParameterChannel,
+     "the master toggles SPM only to acknowledge a spontaneous message"},
+    {FindingKind::FcsError, "fcs_error", Severity::Error, ProfibusLink,
+     "telegrams carry a correct FDL checksum"},
+    {FindingKind::MalformedTelegram, "malformed_telegram", Severity::Error, ProfibusLink,
+     "telegrams are well framed"},
+    {FindingKind::ConfigMismatch, "config_mismatch", Severity::Error, DpConfiguration,
+     "Data_Exchange lengths match the configuration sent in Chk_Cfg"},
+    {FindingKind::UnknownCode, "unknown_code", Severity::Warning, ParameterChannel,
+     "RC/AK values are defined by the dialect"},
+    {FindingKind::FdlRetry, "fdl_retry", Severity::Note, ProfibusLink,
+     "requests are not repeated with the same FCB"},
+    {FindingKind::FdlNoResponse, "fdl_no_response", Severity::Warning, ProfibusLink,
+     "SRD and SDA requests get a reply"},
 };
 
-constexpr KindInfo kKinds[] = {
-    {"stacked_request", Severity::Error,
-     "the master waits for the answer before it sends a new request"},
-    {"orphan_response", Severity::Warning, "every response answers a pending request"},
-    {"mismatched_response", Severity::Error,
-     "the response carries the PNU (and IND for arrays) of the request"},
-    {"unexpected_response_type", Severity::Error,
-     "the response code is a valid answer to the request code"},
-    {"response_timeout", Severity::Error, "every request is answered within the time-out"},
-    {"request_rejected", Severity::Note, "requests are executed (RC 7 rejections)"},
-    {"no_authority", Severity::Warning, "the master has operating authority (RC 8)"},
-    {"spontaneous_message", Severity::Note, "spontaneous messages (RC 9-12 with SPM toggle)"},
-    {"spontaneous_unacknowledged", Severity::Warning,
-     "the master acknowledges spontaneous messages within the time-out"},
-    {"spm_violation", Severity::Warning,
-     "the master toggles SPM only to acknowledge a spontaneous message"},
-    {"fcs_error", Severity::Error, "telegrams carry a correct FDL checksum"},
-    {"malformed_telegram", Severity::Error, "telegrams are well framed"},
-    {"config_mismatch", Severity::Error,
-     "Data_Exchange lengths match the configuration sent in Chk_Cfg"},
-    {"unknown_code", Severity::Warning, "RC/AK values are defined by the dialect"},
-    {"fdl_retry", Severity::Note, "requests are not repeated with the same FCB"},
-    {"fdl_no_response", Severity::Warning, "SRD and SDA requests get a reply"},
+// One row per kind, in enum order, so that a kind is its row's index.
+constexpr bool one_row_per_kind_in_order() {
+    if (std::size(kCatalogue) != kFindingKindCount) return false;
+    for (std::size_t i = 0; i < std::size(kCatalogue); ++i)
+        if (static_cast<std::size_t>(kCatalogue[i].kind) != i) return false;
+    return true;
+}
+static_assert(one_row_per_kind_in_order(), "kCatalogue: one row per FindingKind, in enum order");
+
+// Names leave the program (jsonl, reports, --fault): none may be empty or used twice.
+constexpr bool names_unique() {
+    for (std::size_t i = 0; i < std::size(kCatalogue); ++i) {
+        if (kCatalogue[i].name.empty()) return false;
+        for (std::size_t j = 0; j < i; ++j)
+            if (kCatalogue[i].name == kCatalogue[j].name) return false;
+    }
+    return true;
+}
+static_assert(names_unique(), "kCatalogue: every finding kind needs a name of its own");
+
+constexpr std::string_view kComponentNames[] = {
+    "parameter channel",
+    "PROFIBUS link",
+    "DP configuration",
 };
-static_assert(std::size(kKinds) == kFindingKindCount);
+static_assert(std::size(kComponentNames) == kFindingComponentCount);
 
 }  // namespace
 
-std::string_view finding_kind_name(FindingKind kind) {
-    return kKinds[static_cast<std::size_t>(kind)].name;
+std::span<const FindingKindInfo> finding_catalogue() noexcept { return kCatalogue; }
+
+const FindingKindInfo& finding_kind_info(FindingKind kind) noexcept {
+    return kCatalogue[static_cast<std::size_t>(kind)];
 }
 
+std::string_view finding_kind_name(FindingKind kind) { return finding_kind_info(kind).name; }
+
 std::optional<FindingKind> finding_kind_from_name(std::string_view name) {
-    for (std::size_t i = 0; i < kFindingKindCount; ++i)
-        if (kKinds[i].name == name) return static_cast<FindingKind>(i);
+    for (const FindingKindInfo& row : kCatalogue)
+        if (row.name == name) return row.kind;
     return std::nullopt;
 }
 
-Severity default_severity(FindingKind kind) {
-    return kKinds[static_cast<std::size_t>(kind)].severity;
+Severity default_severity(FindingKind kind) { return finding_kind_info(kind).severity; }
+
+std::string_view finding_rule_text(FindingKind kind) { return finding_kind_info(kind).rule; }
+
+FindingComponent finding_component(FindingKind kind) { return finding_kind_info(kind).component; }
+
+std::vector<FindingKind> finding_kinds_of(FindingComponent component) {
+    std::vector<FindingKind> kinds;
+    for (const FindingKindInfo& row : kCatalogue)
+        if (row.component == component) kinds.push_back(row.kind);
+    return kinds;
 }
 
-std::string_view finding_rule_text(FindingKind kind) {
-    return kKinds[static_cast<std::size_t>(kind)].rule;
+std::string_view finding_component_name(FindingComponent component) {
+    return kComponentNames[static_cast<std::size_t>(component)];
 }
 
 }  // namespace dpscope

@@ -1,12 +1,16 @@
 // Findings: what the session tracker reports about the conversation between a master and a
 // slave (handshake violations, time-outs, rejections, link-level trouble). Kind names and
-// default severities are fixed; they are part of every output format.
+// default severities are fixed; they are part of every output format. The finding catalogue
+// (finding.cpp) holds one row per kind: name, default severity, the component whose rule finds
+// it, and the rule in one sentence; a new kind is one enumerator and one row.
 #pragma once
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "decoder/problem.hpp"
 
@@ -34,11 +38,42 @@ enum class FindingKind : std::uint8_t {
 
 constexpr std::size_t kFindingKindCount = static_cast<std::size_t>(FindingKind::Count);
 
+// The rule set a finding kind belongs to. Each is a component of its own in the tracker, so a
+// protocol brings its components and their kinds; the parameter channel is the same whatever
+// carries it (the cyclic PCV of PROFIBUS DP today).
+enum class FindingComponent : std::uint8_t {
+    ParameterChannel,  // request/response pairing, rejections, spontaneous messages (any carrier)
+    ProfibusLink,      // PROFIBUS FDL: checksum, framing, FCB repeats, requests left unanswered
+    DpConfiguration,   // PROFIBUS DP: Data_Exchange lengths against the Chk_Cfg configuration
+    Count
+};
+
+constexpr std::size_t kFindingComponentCount = static_cast<std::size_t>(FindingComponent::Count);
+
+// One row of the finding catalogue (finding.cpp): everything fixed about a kind.
+struct FindingKindInfo {
+    FindingKind kind;
+    std::string_view name;  // in every output format: "stacked_request"
+    Severity severity;      // the default
+    FindingComponent component;
+    std::string_view rule;  // one sentence on what the rule checks (JUnit names, report legends)
+};
+
+// Every finding kind, one row each, in enum order (checked when finding.cpp compiles).
+std::span<const FindingKindInfo> finding_catalogue() noexcept;
+const FindingKindInfo& finding_kind_info(FindingKind kind) noexcept;
+
 std::string_view finding_kind_name(FindingKind kind);  // "stacked_request", ...
 std::optional<FindingKind> finding_kind_from_name(std::string_view name);
 Severity default_severity(FindingKind kind);
 // One sentence on what the rule checks (used for JUnit test case names and report legends).
 std::string_view finding_rule_text(FindingKind kind);
+FindingComponent finding_component(FindingKind kind);
+
+// The kinds of one component, in enum order (for reports and documentation).
+std::vector<FindingKind> finding_kinds_of(FindingComponent component);
+// "parameter channel", "PROFIBUS link", "DP configuration".
+std::string_view finding_component_name(FindingComponent component);
 
 struct Finding {
     FindingKind kind = FindingKind::StackedRequest;

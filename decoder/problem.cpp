@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <iterator>
+
 #include "decoder/counted.hpp"
 
 namespace dpscope {
@@ -15,30 +17,94 @@ std::string_view severity_name(Severity severity) {
     return "error";
 }
 
-std::string_view problem_kind_name(ProblemKind kind) {
-    switch (kind) {
-        case ProblemKind::EmptyRecord: return "empty_record";
-        case ProblemKind::BadStartDelimiter: return "bad_start_delimiter";
-        case ProblemKind::Truncated: return "truncated";
-        case ProblemKind::LengthMismatch: return "length_mismatch";
-        case ProblemKind::LengthOutOfRange: return "length_out_of_range";
-        case ProblemKind::StartDelimiterRepeat: return "start_delimiter_repeat";
-        case ProblemKind::FcsMismatch: return "fcs_mismatch";
-        case ProblemKind::BadEndDelimiter: return "bad_end_delimiter";
-        case ProblemKind::TrailingBytes: return "trailing_bytes";
-        case ProblemKind::InvalidAddress: return "invalid_address";
-        case ProblemKind::AddressExtensionShort: return "address_extension_short";
-        case ProblemKind::ServiceDataShort: return "service_data_short";
-        case ProblemKind::CfgIdentifierTruncated: return "cfg_identifier_truncated";
-        case ProblemKind::DiagBlockTruncated: return "diag_block_truncated";
-        case ProblemKind::ReservedFrameControl: return "reserved_frame_control";
-        case ProblemKind::Count: break;
+namespace {
+
+using enum ProblemComponent;
+
+constexpr ProblemKindInfo kCatalogue[] = {
+    {ProblemKind::EmptyRecord, "empty_record", Severity::Error, Framing,
+     "a capture record with no bytes at all"},
+    {ProblemKind::BadStartDelimiter, "bad_start_delimiter", Severity::Error, Framing,
+     "the first byte is none of SD1, SD2, SD3, SD4, SC"},
+    {ProblemKind::Truncated, "truncated", Severity::Error, Framing,
+     "the telegram ends before its structure says it should"},
+    {ProblemKind::LengthMismatch, "length_mismatch", Severity::Error, Framing,
+     "SD2: LE differs from LEr"},
+    {ProblemKind::LengthOutOfRange, "length_out_of_range", Severity::Error, Framing,
+     "SD2: LE outside 4..249"},
+    {ProblemKind::StartDelimiterRepeat, "start_delimiter_repeat", Severity::Error, Framing,
+     "SD2: the repeated start delimiter is not 0x68"},
+    {ProblemKind::FcsMismatch, "fcs_mismatch", Severity::Error, Fdl, "the FDL checksum is wrong"},
+    {ProblemKind::BadEndDelimiter, "bad_end_delimiter", Severity::Error, Framing,
+     "the end delimiter is not 0x16"},
+    {ProblemKind::TrailingBytes, "trailing_bytes", Severity::Warning, Framing,
+     "bytes after the end of the telegram in the same record"},
+    {ProblemKind::InvalidAddress, "invalid_address", Severity::Error, Fdl,
+     "SD4: an address with bit 7 set (tokens carry no extension)"},
+    {ProblemKind::AddressExtensionShort, "address_extension_short", Severity::Error, Fdl,
+     "an address-extension bit announces a SAP byte that is not there"},
+    {ProblemKind::ServiceDataShort, "service_data_short", Severity::Error, DpService,
+     "a DP service's data unit is shorter than the service requires"},
+    {ProblemKind::CfgIdentifierTruncated, "cfg_identifier_truncated", Severity::Error, DpService,
+     "a special-format identifier announces bytes that are not there"},
+    {ProblemKind::DiagBlockTruncated, "diag_block_truncated", Severity::Error, DpService,
+     "an extended-diagnosis block runs past the end of the data"},
+    {ProblemKind::ReservedFrameControl, "reserved_frame_control", Severity::Error, Fdl,
+     "FC bit 7 set in anything but the clock value request 0xC0"},
+};
+
+// One row per kind, in enum order, so that a kind is its row's index.
+constexpr bool one_row_per_kind_in_order() {
+    if (std::size(kCatalogue) != kProblemKindCount) return false;
+    for (std::size_t i = 0; i < std::size(kCatalogue); ++i)
+        if (static_cast<std::size_t>(kCatalogue[i].kind) != i) return false;
+    return true;
+}
+static_assert(one_row_per_kind_in_order(), "kCatalogue: one row per ProblemKind, in enum order");
+
+// Names leave the program (jsonl, csv, the summary): none may be empty or used twice.
+constexpr bool names_unique() {
+    for (std::size_t i = 0; i < std::size(kCatalogue); ++i) {
+        if (kCatalogue[i].name.empty()) return false;
+        for (std::size_t j = 0; j < i; ++j)
+            if (kCatalogue[i].name == kCatalogue[j].name) return false;
     }
-    return "unknown";
+    return true;
+}
+static_assert(names_unique(), "kCatalogue: every problem kind needs a name of its own");
+
+constexpr std::string_view kComponentNames[] = {"framing", "FDL", "DP service"};
+static_assert(std::size(kComponentNames) == kProblemComponentCount);
+
+}  // namespace
+
+std::span<const ProblemKindInfo> problem_catalogue() noexcept { return kCatalogue; }
+
+const ProblemKindInfo& problem_kind_info(ProblemKind kind) noexcept {
+    return kCatalogue[static_cast<std::size_t>(kind)];
+}
+
+std::string_view problem_kind_name(ProblemKind kind) {
+    const auto index = static_cast<std::size_t>(kind);
+    return index < kProblemKindCount ? kCatalogue[index].name : "unknown";
 }
 
 Severity problem_severity(ProblemKind kind) {
-    return kind == ProblemKind::TrailingBytes ? Severity::Warning : Severity::Error;
+    const auto index = static_cast<std::size_t>(kind);
+    return index < kProblemKindCount ? kCatalogue[index].severity : Severity::Error;
+}
+
+ProblemComponent problem_component(ProblemKind kind) { return problem_kind_info(kind).component; }
+
+std::vector<ProblemKind> problem_kinds_of(ProblemComponent component) {
+    std::vector<ProblemKind> kinds;
+    for (const ProblemKindInfo& row : kCatalogue)
+        if (row.component == component) kinds.push_back(row.kind);
+    return kinds;
+}
+
+std::string_view problem_component_name(ProblemComponent component) {
+    return kComponentNames[static_cast<std::size_t>(component)];
 }
 
 std::string problem_message(const Problem& p) {

@@ -6,8 +6,10 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace dpscope {
 
@@ -16,29 +18,58 @@ enum class Severity : std::uint8_t { Note, Warning, Error };
 std::string_view severity_name(Severity severity);
 
 enum class ProblemKind : std::uint8_t {
-    EmptyRecord,             // a capture record with no bytes at all
-    BadStartDelimiter,       // first byte is none of SD1, SD2, SD3, SD4, SC
-    Truncated,               // the telegram ends before its structure says it should
-    LengthMismatch,          // SD2: LE differs from LEr
-    LengthOutOfRange,        // SD2: LE outside 4..249
-    StartDelimiterRepeat,    // SD2: the repeated start delimiter is not 0x68
-    FcsMismatch,             // FDL checksum wrong
-    BadEndDelimiter,         // end delimiter is not 0x16
-    TrailingBytes,           // bytes after the end of the telegram in the same record
-    InvalidAddress,          // SD4: an address with bit 7 set (tokens carry no extension)
-    AddressExtensionShort,   // an address-extension bit announces a SAP byte that is not there
-    ServiceDataShort,        // a DP service's data unit is shorter than the service requires
-    CfgIdentifierTruncated,  // a special-format identifier announces bytes that are not there
-    DiagBlockTruncated,      // an extended-diagnosis block runs past the end of the data
-    ReservedFrameControl,    // FC bit 7 set in anything but the clock value request 0xC0
+    EmptyRecord,
+    BadStartDelimiter,
+    Truncated,
+    LengthMismatch,
+    LengthOutOfRange,
+    StartDelimiterRepeat,
+    FcsMismatch,
+    BadEndDelimiter,
+    TrailingBytes,
+    InvalidAddress,
+    AddressExtensionShort,
+    ServiceDataShort,
+    CfgIdentifierTruncated,
+    DiagBlockTruncated,
+    ReservedFrameControl,
     Count
 };
 
 constexpr std::size_t kProblemKindCount = static_cast<std::size_t>(ProblemKind::Count);
 
+// The layer of the decoder whose check a problem kind is.
+enum class ProblemComponent : std::uint8_t {
+    Framing,    // where the telegram starts and ends: delimiters, lengths, what is left over
+    Fdl,        // the FDL telegram's own fields: checksum, addresses, frame control
+    DpService,  // the data unit of a DP service
+    Count
+};
+
+constexpr std::size_t kProblemComponentCount = static_cast<std::size_t>(ProblemComponent::Count);
+
+// One row of the problem catalogue (problem.cpp): everything fixed about a kind.
+struct ProblemKindInfo {
+    ProblemKind kind;
+    std::string_view name;  // stable snake_case name used in jsonl, csv and the summary
+    Severity severity;
+    ProblemComponent component;
+    std::string_view check;  // what was wrong, in a few words (for documentation)
+};
+
+// Every problem kind, one row each, in enum order (checked when problem.cpp compiles).
+std::span<const ProblemKindInfo> problem_catalogue() noexcept;
+const ProblemKindInfo& problem_kind_info(ProblemKind kind) noexcept;
+
 // Stable snake_case name used in jsonl, csv and the summary.
 std::string_view problem_kind_name(ProblemKind kind);
 Severity problem_severity(ProblemKind kind);
+ProblemComponent problem_component(ProblemKind kind);
+
+// The kinds of one component, in enum order (for reports and documentation).
+std::vector<ProblemKind> problem_kinds_of(ProblemComponent component);
+// "framing", "FDL", "DP service".
+std::string_view problem_component_name(ProblemComponent component);
 
 struct Problem {
     ProblemKind kind = ProblemKind::Truncated;
