@@ -49,14 +49,15 @@ std::int64_t time_or_zero(std::int64_t time_ns) { return time_ns == kNoTime ? 0 
 class StdioWriter : public CaptureWriter {
   public:
     StdioWriter(FILE* file, std::string name) : file_(file), name_(std::move(name)) {}
-    ~StdioWriter() override { close(); }
+    ~StdioWriter() override { close_file(); }
 
-    bool flush() override {
+  protected:
+    bool flush_records() override {
         if (!file_) return false;
         if (std::fflush(file_) != 0) return fail();
         return check();
     }
-    bool close() override {
+    bool close_file() override {
         if (!file_) return error_.empty();
         bool ok = check();
         if (std::fflush(file_) != 0) ok = fail();
@@ -65,7 +66,6 @@ class StdioWriter : public CaptureWriter {
         return ok;
     }
 
-  protected:
     bool put(const void* data, std::size_t size) {
         if (!file_) return false;
         if (std::fwrite(data, 1, size, file_) != size) return fail();
@@ -85,7 +85,9 @@ class StdioWriter : public CaptureWriter {
 class RawWriter final : public StdioWriter {
   public:
     using StdioWriter::StdioWriter;
-    bool write(Bytes telegram, std::int64_t) override {
+
+  protected:
+    bool write_record(Bytes telegram, std::int64_t, std::string_view) override {
         return put(telegram.data(), telegram.size());
     }
 };
@@ -93,7 +95,9 @@ class RawWriter final : public StdioWriter {
 class HexWriter final : public StdioWriter {
   public:
     using StdioWriter::StdioWriter;
-    bool write(Bytes telegram, std::int64_t time_ns) override {
+
+  protected:
+    bool write_record(Bytes telegram, std::int64_t time_ns, std::string_view) override {
         line_.clear();
         if (time_ns != kNoTime) {
             fmt::format_to(std::back_inserter(line_), "{}.{:09} ", time_ns / kNanosPerSecond,
@@ -134,12 +138,10 @@ class PcapngWriter final : public StdioWriter {
         block_.clear();
     }
 
-    bool write(Bytes telegram, std::int64_t time_ns) override {
-        return write(telegram, time_ns, std::string_view());
-    }
+  protected:
     // An enhanced packet block; a comment becomes its opt_comment option (UTF-8, at most
     // 65535 bytes).
-    bool write(Bytes telegram, std::int64_t time_ns, std::string_view comment) override {
+    bool write_record(Bytes telegram, std::int64_t time_ns, std::string_view comment) override {
         auto ts = static_cast<std::uint64_t>(time_or_zero(time_ns));
         std::size_t padded = (telegram.size() + 3) & ~std::size_t{3};
         if (comment.size() > 0xFFFF) comment = comment.substr(0, 0xFFFF);
@@ -204,11 +206,12 @@ class PcapWriter final : public CaptureWriter {
         }
     }
     ~PcapWriter() override {
-        close();
+        close_file();
         pcap_close(dead_);
     }
 
-    bool write(Bytes telegram, std::int64_t time_ns) override {
+  protected:
+    bool write_record(Bytes telegram, std::int64_t time_ns, std::string_view) override {
         if (!dumper_ || !error_.empty()) return false;
         std::int64_t t = time_or_zero(time_ns);
         if (t < 0 || t / kNanosPerSecond > kLastPcapSecond) {
@@ -221,7 +224,7 @@ class PcapWriter final : public CaptureWriter {
         }
         // Bounded memory in long writes without flushes: flush (and forget the boundaries)
         // every kMaxUnflushedRecords records.
-        if (boundaries_.size() >= kMaxUnflushedRecords && !flush()) return false;
+        if (boundaries_.size() >= kMaxUnflushedRecords && !flush_records()) return false;
         pcap_pkthdr header{};
         header.ts.tv_sec = static_cast<time_t>(t / kNanosPerSecond);
         header.ts.tv_usec = static_cast<suseconds_t>(t % kNanosPerSecond);  // nanoseconds here
@@ -233,7 +236,7 @@ class PcapWriter final : public CaptureWriter {
         }
         return check();
     }
-    bool flush() override {
+    bool flush_records() override {
         if (!dumper_) return false;
         if (pcap_dump_flush(dumper_) != 0) return fail();
         if (!check()) return false;
@@ -242,9 +245,9 @@ class PcapWriter final : public CaptureWriter {
         boundaries_.clear();
         return true;
     }
-    bool close() override {
+    bool close_file() override {
         if (!dumper_) return error_.empty();
-        bool ok = error_.empty() && flush();
+        bool ok = error_.empty() && flush_records();
         FILE* file = pcap_dump_file(dumper_);
         if (file == stdout) {
             // pcap_dump_close would close standard output; it is flushed, the process owns it.
@@ -299,55 +302,62 @@ class RotatingWriter final : public CaptureWriter {
     RotatingWriter(std::string path, CaptureFormat format, int link_type, RotationOptions rotation)
         : path_(std::move(path)), format_(format), link_type_(link_type), rotation_(rotation) {}
 
-    bool open_next() {
-        if (current_ && !current_->close()) {
-            error_ = current_->error();
-            return false;
+    // Closes the current file (if any) and starts the next one.
+    Result<void> open_next() {
+        if (current_) {
+            if (Result<void> closed = current_->close(); !closed) return closed;
         }
         ++index_;
         std::string name = rotated_file_name(path_, index_);
         WriterResult opened = open_capture_writer(name, format_, link_type_);
-        if (!opened) {
-            error_ = opened.error();
-            return false;
-        }
+        if (!opened) return Error{opened.error()};
         current_ = std::move(opened).value();
         bytes_ = format_ == CaptureFormat::Pcap     ? kPcapFileHeaderBytes
                  : format_ == CaptureFormat::Pcapng ? 60  // section and interface blocks
                                                     : 0;
         file_start_ns_ = kNoTime;
         records_ = 0;
-        return true;
+        return {};
     }
 
-    bool write(Bytes telegram, std::int64_t time_ns) override {
+  protected:
+    // Comments are dropped: rotation writes pcap (sniff -w).
+    bool write_record(Bytes telegram, std::int64_t time_ns, std::string_view) override {
         if (!current_) return false;
         std::uint64_t record_bytes = telegram.size() + kPcapRecordHeaderBytes;
         bool full =
             rotation_.max_bytes > 0 && records_ > 0 && bytes_ + record_bytes > rotation_.max_bytes;
         bool old = rotation_.max_ns > 0 && records_ > 0 && time_ns != kNoTime &&
                    time_ns - file_start_ns_ >= rotation_.max_ns;
-        if ((full || old) && !open_next()) return false;
+        if (full || old) {
+            if (Result<void> next = open_next(); !next) {
+                error_ = next.error();
+                return false;
+            }
+        }
         if (file_start_ns_ == kNoTime) file_start_ns_ = time_ns;
         bytes_ += record_bytes;
         ++records_;
-        if (!current_->write(telegram, time_ns)) {
-            error_ = current_->error();
+        if (Result<void> written = current_->write(telegram, time_ns); !written) {
+            error_ = written.error();
             return false;
         }
         return true;
     }
-    bool flush() override {
-        if (!current_ || current_->flush()) return current_ != nullptr;
-        error_ = current_->error();
-        return false;
+    bool flush_records() override {
+        if (!current_) return false;
+        if (Result<void> flushed = current_->flush(); !flushed) {
+            error_ = flushed.error();
+            return false;
+        }
+        return true;
     }
-    bool close() override {
+    bool close_file() override {
         if (!current_) return error_.empty();
-        bool ok = current_->close();
-        if (!ok) error_ = current_->error();
+        Result<void> closed = current_->close();
+        if (!closed) error_ = closed.error();
         current_.reset();
-        return ok && error_.empty();
+        return closed && error_.empty();
     }
 
   private:
@@ -379,7 +389,7 @@ WriterResult open_rotating_writer(const std::string& path, CaptureFormat format,
         return open_capture_writer(path, format, link_type);
     if (path == "-") return Error{"cannot rotate standard output: give -w a file name"};
     auto writer = std::make_unique<RotatingWriter>(path, format, link_type, rotation);
-    if (!writer->open_next()) return Error{writer->error()};
+    if (Result<void> first = writer->open_next(); !first) return Error{first.error()};
     return writer;
 }
 

@@ -22,20 +22,32 @@ std::optional<CaptureFormat> capture_format_from_name(std::string_view name);
 class CaptureWriter {
   public:
     virtual ~CaptureWriter() = default;
-    // Each returns false after a write error; error() says what happened.
-    virtual bool write(Bytes telegram, std::int64_t time_ns) = 0;
+    // Each fails from the first write error on, saying what happened (naming the file).
+    Result<void> write(Bytes telegram, std::int64_t time_ns) {
+        return outcome(write_record(telegram, time_ns, {}));
+    }
     // The same with a comment on the record where the format has them (pcapng: opt_comment);
     // other formats drop the comment.
-    virtual bool write(Bytes telegram, std::int64_t time_ns, std::string_view comment) {
-        (void)comment;
-        return write(telegram, time_ns);
+    Result<void> write(Bytes telegram, std::int64_t time_ns, std::string_view comment) {
+        return outcome(write_record(telegram, time_ns, comment));
     }
-    virtual bool flush() = 0;
-    virtual bool close() = 0;
-    const std::string& error() const noexcept { return error_; }
+    Result<void> flush() { return outcome(flush_records()); }
+    Result<void> close() { return outcome(close_file()); }
 
   protected:
+    // What each format does; false after a write error, with error_ set.
+    virtual bool write_record(Bytes telegram, std::int64_t time_ns, std::string_view comment) = 0;
+    virtual bool flush_records() = 0;
+    virtual bool close_file() = 0;
+
+    // The first write error: it stays, and every later call fails with it.
     std::string error_;
+
+  private:
+    Result<void> outcome(bool ok) const {
+        if (ok) return {};
+        return Error{error_};
+    }
 };
 
 // A writer, or why none could be opened (naming the file).

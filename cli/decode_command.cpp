@@ -100,11 +100,12 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             shown_summary.add_findings(findings);
         }
         if (writer && !write_failed) {
-            bool ok = with_comments && !findings.empty()
-                          ? writer->write(record.bytes, record.time_ns, findings_comment(findings))
-                          : writer->write(record.bytes, record.time_ns);
-            if (!ok) {
-                print_error(fmt::format("{}{}", writer->error(), capture_file->left_as_it_was()));
+            Result<void> written =
+                with_comments && !findings.empty()
+                    ? writer->write(record.bytes, record.time_ns, findings_comment(findings))
+                    : writer->write(record.bytes, record.time_ns);
+            if (!written) {
+                print_error(fmt::format("{}{}", written.error(), capture_file->left_as_it_was()));
                 write_failed = true;
             }
         }
@@ -141,8 +142,8 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         }
     }
     if (writer) {
-        if (!writer->close() && !write_failed) {
-            print_error(fmt::format("{}{}", writer->error(), capture_file->left_as_it_was()));
+        if (Result<void> closed = writer->close(); !closed && !write_failed) {
+            print_error(fmt::format("{}{}", closed.error(), capture_file->left_as_it_was()));
             write_failed = true;
         }
         if (write_failed) {

@@ -270,8 +270,8 @@ int run_simulate(const SimulateCommand& command) {
     while (simulator.next(bytes, time_ns)) {
         if (!opened.value()->write(Bytes(bytes.data(), bytes.size()), time_ns)) break;
     }
-    if (!opened.value()->close()) {
-        print_error(fmt::format("{}{}", opened.value()->error(), file->left_as_it_was()));
+    if (Result<void> closed = opened.value()->close(); !closed) {
+        print_error(fmt::format("{}{}", closed.error(), file->left_as_it_was()));
         file->discard();
         return kExitOutputError;
     }

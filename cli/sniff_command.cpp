@@ -300,8 +300,10 @@ int run_sniff(const SniffCommand& command) {
         if (polled == FramedSource::Poll::End) break;
         if (polled == FramedSource::Poll::Telegram) {
             ++telegrams;
-            if (writer && !output_failed && !writer->write(record.bytes, record.time_ns))
-                stop_on_write_error(writer->error());
+            if (writer && !output_failed) {
+                if (Result<void> written = writer->write(record.bytes, record.time_ns); !written)
+                    stop_on_write_error(written.error());
+            }
             const DecodedTelegram& t = pipeline.feed(record, findings);
             if (report && !findings.empty()) log.append(findings);
             show(renderer.get(), *settings, t, findings, pipeline.tracker().subject_pnu());
@@ -309,7 +311,10 @@ int run_sniff(const SniffCommand& command) {
             if (settings->count != 0 && telegrams >= settings->count) break;
         }
         if (now - last_flush >= kFlushEveryNs || polled == FramedSource::Poll::Idle) {
-            if (writer && !output_failed && !writer->flush()) stop_on_write_error(writer->error());
+            if (writer && !output_failed) {
+                if (Result<void> flushed = writer->flush(); !flushed)
+                    stop_on_write_error(flushed.error());
+            }
             if (!out.flush() && !output_failed)
                 stop_on_write_error(
                     fmt::format("{}: write failed: {}", text_stream_name, std::strerror(errno)));
@@ -324,9 +329,12 @@ int run_sniff(const SniffCommand& command) {
         renderer->render_end_findings(open_at_end);
         renderer->end();
     }
-    if (writer && !writer->close() && !output_failed) {
-        print_error(writer->error());
-        output_failed = true;
+    if (writer) {
+        Result<void> closed = writer->close();
+        if (!closed && !output_failed) {
+            print_error(closed.error());
+            output_failed = true;
+        }
     }
     double seconds = static_cast<double>(monotonic_ns() - start) / 1e9;
     out.flush();

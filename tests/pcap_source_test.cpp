@@ -52,7 +52,8 @@ void write_capture(const std::string& path, CaptureFormat format, int link_type,
     ASSERT_TRUE(opened) << opened.error();
     for (const Telegram& t : telegrams)
         ASSERT_TRUE(opened.value()->write(Bytes(t.bytes.data(), t.bytes.size()), t.time_ns));
-    ASSERT_TRUE(opened.value()->close()) << opened.value()->error();
+    Result<void> closed = opened.value()->close();
+    ASSERT_TRUE(closed) << closed.error();
 }
 
 struct ReadResult {
