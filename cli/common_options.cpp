@@ -307,29 +307,31 @@ void warn_ppo_overrides(const BusDecoder& decoder) {
     }
 }
 
-std::string nothing_found_error(const TelegramSource& source, std::uint64_t telegrams) {
-    if (source.status() == InputStatus::Unusable) return source.unusable_reason();
+Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t telegrams,
+                                   const CaptureProtocol& protocol) {
+    if (source.status() == InputStatus::Unusable) return Error{source.unusable_reason()};
     if (telegrams > 0 || source.status() == InputStatus::Damaged) return {};
     const std::uint64_t skipped = source.bytes_skipped();
     switch (source.format()) {
         case InputFormat::Raw:
-            if (skipped == 0) return fmt::format("{}: the input is empty", source.name());
-            return fmt::format(
-                "{}: no PROFIBUS telegram in its {} bytes read as a raw byte stream; is it a "
-                "capture?",
-                source.name(), skipped);
+            if (skipped == 0) return Error{fmt::format("{}: the input is empty", source.name())};
+            return Error{
+                fmt::format("{}: no {} telegram in its {} bytes read as a raw byte stream; is it a "
+                            "capture?",
+                            source.name(), protocol.framing.protocol_name(), skipped)};
         case InputFormat::Hex:
             if (skipped == 0 && source.issue_count(IssueKind::HexSyntax) > 0)
-                return fmt::format(
+                return Error{fmt::format(
                     "{}: no readable hex bytes in the text ({} with tokens that "
                     "are no hex bytes, named above)",
                     source.name(),
                     source.issue_count(IssueKind::HexSyntax) == 1
                         ? std::string("1 line")
-                        : fmt::format("{} lines", source.issue_count(IssueKind::HexSyntax)));
-            if (skipped == 0) return fmt::format("{}: no hex bytes in the text", source.name());
-            return fmt::format("{}: no PROFIBUS telegram in its {} hex bytes", source.name(),
-                               skipped);
+                        : fmt::format("{} lines", source.issue_count(IssueKind::HexSyntax)))};
+            if (skipped == 0)
+                return Error{fmt::format("{}: no hex bytes in the text", source.name())};
+            return Error{fmt::format("{}: no {} telegram in its {} hex bytes", source.name(),
+                                     protocol.framing.protocol_name(), skipped)};
         default: return {};
     }
 }

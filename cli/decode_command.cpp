@@ -116,9 +116,9 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         renderer->render_end_findings(open_at_end);
         renderer->end();
     }
-    if (std::string nothing = nothing_found_error(source, read); !nothing.empty()) {
+    if (Result<void> found = check_telegrams_found(source, read, *settings.protocol); !found) {
         out.flush();
-        print_error(nothing);
+        print_error(found.error());
         return kExitUsage;  // an existing -w file stays as it was
     }
     out.flush();

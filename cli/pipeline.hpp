@@ -78,9 +78,10 @@ void report_input_issues(TelegramSource& source, Output& out);
 // capture: the option wins, the warning says so.
 void warn_ppo_overrides(const BusDecoder& decoder);
 
-// A byte stream (raw or hex) in which no telegram was found is no capture dpscope reads: the
-// error message for it, or "" when `telegrams` were found or the input is a pcap/pcapng file
-// (which may rightly hold none).
-std::string nothing_found_error(const TelegramSource& source, std::uint64_t telegrams);
+// A byte stream (raw or hex) in which no telegram of `protocol` was found is no capture dpscope
+// reads: an error saying so, unless `telegrams` were found or the input is a pcap/pcapng file
+// (which may rightly hold none). An unusable input gives its reason.
+Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t telegrams,
+                                   const CaptureProtocol& protocol);
 
 }  // namespace dpscope::cli

@@ -111,8 +111,8 @@ int run_report(const ReportCommand& command) {
         }
         log.append(pipeline.finish());
         warn_ppo_overrides(pipeline.decoder());
-        if (std::string nothing = nothing_found_error(source, read); !nothing.empty()) {
-            print_error(nothing);
+        if (Result<void> found = check_telegrams_found(source, read, *settings->protocol); !found) {
+            print_error(found.error());
             exit_code = kExitUsage;
         } else {
             exit_code = write_report(command, pipeline, source, log, out);
