@@ -163,19 +163,19 @@ int replay_close(void* cookie) {
 }
 
 // Reads the first bytes for format detection: at least a pcap magic's worth unless the input
-// ends first, without waiting for more than has arrived after that.
-bool read_head(int fd, std::vector<std::uint8_t>& head) {
-    head.resize(kDetectBytes);
+// ends first, without waiting for more than has arrived after that. `name` is for the error.
+Result<std::vector<std::uint8_t>> read_head(int fd, const std::string& name) {
+    std::vector<std::uint8_t> head(kDetectBytes);
     std::size_t got = 0;
     while (got < 4) {
         ssize_t n = ::read(fd, head.data() + got, kDetectBytes - got);
         if (n < 0 && errno == EINTR) continue;
-        if (n < 0) return false;
+        if (n < 0) return Error{fmt::format("{}: cannot read: {}", name, std::strerror(errno))};
         if (n == 0) break;
         got += static_cast<std::size_t>(n);
     }
     head.resize(got);
-    return true;
+    return head;
 }
 
 }  // namespace
@@ -199,11 +199,12 @@ OpenResult open_source(const std::string& path, InputFormat format,
     bool pcapng = false;
     if (format == InputFormat::Auto || format == InputFormat::Pcap ||
         format == InputFormat::Pcapng) {
-        if (!read_head(fileno(file), replay->head)) {
-            std::string error = fmt::format("{}: cannot read: {}", name, std::strerror(errno));
+        Result<std::vector<std::uint8_t>> head = read_head(fileno(file), name);
+        if (!head) {
             replay_close(replay);
-            return Error{std::move(error)};
+            return Error{head.error()};
         }
+        replay->head = std::move(head).value();
         classic_pcap = detect_input_format(replay->head) == InputFormat::Pcap;
         pcapng = detect_input_format(replay->head) == InputFormat::Pcapng;
         if (format == InputFormat::Auto) format = detect_input_format(replay->head);

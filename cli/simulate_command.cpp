@@ -140,21 +140,19 @@ constexpr std::string_view kLastTime = "2038-01-19T03:14:07Z";
 constexpr std::int64_t kNanosPerSecond = 1'000'000'000;
 
 // --start: seconds since the epoch, finite, from 0 to kLastSecond.
-std::optional<std::int64_t> parse_start(const std::string& text) {
+Result<std::int64_t> parse_start(const std::string& text) {
     std::optional<double> seconds = parse_finite_number(text);
-    if (!seconds || *seconds < 0 || *seconds > static_cast<double>(kLastSecond)) {
-        print_error(fmt::format(
+    if (!seconds || *seconds < 0 || *seconds > static_cast<double>(kLastSecond))
+        return Error{fmt::format(
             "--start {}: must be seconds since the epoch from 0 to {} (1970-01-01T00:00:00Z to "
             "{}, the last time a capture's timestamps hold)",
-            text, kLastSecond, kLastTime));
-        return std::nullopt;
-    }
+            text, kLastSecond, kLastTime)};
     return static_cast<std::int64_t>(std::llround(*seconds * 1e9));
 }
 
 // The session must end by kLastTime: a capture cannot date a telegram later (libpcap would read
-// it as 1901). Names the option to change.
-bool session_fits(const SimulateCommand& command, const SimulatorOptions& options) {
+// it as 1901). The error names the option to change.
+Result<void> check_session_fits(const SimulateCommand& command, const SimulatorOptions& options) {
     constexpr std::int64_t kLast = kLastSecond * kNanosPerSecond + (kNanosPerSecond - 1);
     const std::int64_t span = session_span_bound_ns(options);
     const auto seconds = [](std::int64_t ns) {
@@ -163,26 +161,26 @@ bool session_fits(const SimulateCommand& command, const SimulatorOptions& option
     if (span > kLast) {
         const bool by_count =
             command.count != 0 && (command.cycles == 0 || command.count < command.cycles);
-        print_error(fmt::format(
+        return Error{fmt::format(
             "{} {}: the session could last longer than the {} s a capture's timestamps span "
             "(1970-01-01T00:00:00Z to {}); give {}",
             by_count ? "-c" : "--cycles", by_count ? command.count : command.cycles, kLastSecond,
-            kLastTime, by_count ? "a smaller -c" : "fewer --cycles"));
-        return false;
+            kLastTime, by_count ? "a smaller -c" : "fewer --cycles")};
     }
-    if (options.start_time_ns > kLast - span) {
-        print_error(fmt::format(
+    if (options.start_time_ns > kLast - span)
+        return Error{fmt::format(
             "--start {}: the session lasts up to {} s and would end after {}, the last time a "
             "capture's timestamps hold; give --start from 0 to {}",
-            command.start, seconds(span), kLastTime, (kLast - span) / kNanosPerSecond));
-        return false;
-    }
-    return true;
+            command.start, seconds(span), kLastTime, (kLast - span) / kNanosPerSecond)};
+    return {};
 }
 
 int run_simulate(const SimulateCommand& command) {
-    std::optional<std::int64_t> start_ns = parse_start(command.start);
-    if (!start_ns) return kExitUsage;
+    Result<std::int64_t> start_ns = parse_start(command.start);
+    if (!start_ns) {
+        print_error(start_ns.error());
+        return kExitUsage;
+    }
     SimulatorOptions options;
     options.seed = command.seed;
     options.baud = command.baud;
@@ -230,7 +228,10 @@ int run_simulate(const SimulateCommand& command) {
         print_error("simulate: --cycles 0 runs until -c N telegrams; give -c");
         return kExitUsage;
     }
-    if (!session_fits(command, options)) return kExitUsage;
+    if (Result<void> fits = check_session_fits(command, options); !fits) {
+        print_error(fits.error());
+        return kExitUsage;
+    }
     if (command.output.empty() == command.device.empty()) {
         print_error("simulate: give either -w FILE or --device PATH");
         return kExitUsage;
