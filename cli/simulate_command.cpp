@@ -190,11 +190,10 @@ int run_simulate(const SimulateCommand& command) {
     options.cycle_us = command.cycle_us;
     options.start_time_ns = *start_ns;
     options.record_start_up = !command.no_start_up;
-    std::string error;
     for (const std::string& text : command.slaves) {
-        auto slave = parse_slave_spec(text, error);
+        Result<SimulatedSlave> slave = parse_slave_spec(text);
         if (!slave) {
-            print_error(fmt::format("--slave {}", error));
+            print_error(fmt::format("--slave {}", slave.error()));
             return kExitUsage;
         }
         if (slave->address == options.master) {
@@ -213,15 +212,15 @@ int run_simulate(const SimulateCommand& command) {
         options.slaves.push_back(*slave);
     }
     for (const std::string& text : command.faults) {
-        auto fault = parse_fault_spec(text, error);
+        Result<FaultSpec> fault = parse_fault_spec(text);
         if (!fault) {
-            print_error(fmt::format("--fault {}", error));
+            print_error(fmt::format("--fault {}", fault.error()));
             return kExitUsage;
         }
         options.faults.push_back(*fault);
     }
-    if (std::string unusable = check_simulator_faults(options); !unusable.empty()) {
-        print_error(fmt::format("--{}", unusable));
+    if (Result<void> injectable = check_simulator_faults(options); !injectable) {
+        print_error(fmt::format("--{}", injectable.error()));
         return kExitUsage;
     }
     if (command.cycles == 0 && command.count == 0) {

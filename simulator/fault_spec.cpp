@@ -19,15 +19,14 @@ bool parse_number(std::string_view text, T& value) {
 
 }  // namespace
 
-std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& error) {
+Result<FaultSpec> parse_fault_spec(std::string_view text) {
     FaultSpec spec;
     std::string_view rest = text;
     if (auto colon = rest.rfind(':'); colon != std::string_view::npos) {
         unsigned address = 0;
         if (!parse_number(rest.substr(colon + 1), address) || address > 126) {
-            error = fmt::format("{}: '{}' is not a station address from 0 to 126", text,
-                                rest.substr(colon + 1));
-            return std::nullopt;
+            return Error{fmt::format("{}: '{}' is not a station address from 0 to 126", text,
+                                     rest.substr(colon + 1))};
         }
         spec.slave = static_cast<std::uint8_t>(address);
         rest = rest.substr(0, colon);
@@ -36,8 +35,7 @@ std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& er
     if (auto at = rest.find('@'); at != std::string_view::npos) {
         std::uint64_t cycle = 0;
         if (!parse_number(rest.substr(at + 1), cycle)) {
-            error = fmt::format("{}: '{}' is not a cycle number", text, rest.substr(at + 1));
-            return std::nullopt;
+            return Error{fmt::format("{}: '{}' is not a cycle number", text, rest.substr(at + 1))};
         }
         spec.cycle = cycle;
         name = rest.substr(0, at);
@@ -46,8 +44,7 @@ std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& er
         char* end = nullptr;
         double rate = std::strtod(number.c_str(), &end);
         if (number.empty() || *end != '\0' || !(rate > 0) || rate > 1) {
-            error = fmt::format("{}: rate '{}' must be a number in (0, 1]", text, number);
-            return std::nullopt;
+            return Error{fmt::format("{}: rate '{}' must be a number in (0, 1]", text, number)};
         }
         spec.rate = rate;
         name = rest.substr(0, eq);
@@ -58,8 +55,7 @@ std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& er
         for (std::size_t i = 0; i < kFaultKindCount; ++i)
             names += fmt::format("{}{}", names.empty() ? "" : ", ",
                                  fault_kind_name(static_cast<FaultKind>(i)));
-        error = fmt::format("{}: unknown kind '{}' (known: {})", text, name, names);
-        return std::nullopt;
+        return Error{fmt::format("{}: unknown kind '{}' (known: {})", text, name, names)};
     }
     spec.kind = *kind;
     return spec;
@@ -73,32 +69,28 @@ std::string describe_fault(const FaultSpec& spec) {
     return text;
 }
 
-std::optional<SimulatedSlave> parse_slave_spec(std::string_view text, std::string& error) {
+Result<SimulatedSlave> parse_slave_spec(std::string_view text) {
     SimulatedSlave slave;
     auto first = text.find(':');
     if (first == std::string_view::npos) {
-        error = fmt::format("{}: expected ADDR:PPO or ADDR:PPO:DIALECT", text);
-        return std::nullopt;
+        return Error{fmt::format("{}: expected ADDR:PPO or ADDR:PPO:DIALECT", text)};
     }
     unsigned address = 0, ppo = 0;
     auto second = text.find(':', first + 1);
     std::string_view ppo_text = text.substr(
         first + 1, second == std::string_view::npos ? std::string_view::npos : second - first - 1);
     if (!parse_number(text.substr(0, first), address) || address > 125) {
-        error = fmt::format("{}: the address must be from 0 to 125", text);
-        return std::nullopt;
+        return Error{fmt::format("{}: the address must be from 0 to 125", text)};
     }
     if (!parse_number(ppo_text, ppo) || ppo < 1 || ppo > 5) {
-        error = fmt::format("{}: the PPO type must be from 1 to 5", text);
-        return std::nullopt;
+        return Error{fmt::format("{}: the PPO type must be from 1 to 5", text)};
     }
     slave.address = static_cast<std::uint8_t>(address);
     slave.ppo_type = static_cast<std::uint8_t>(ppo);
     if (second != std::string_view::npos) {
         auto dialect = dialect_from_name(text.substr(second + 1));
         if (!dialect) {
-            error = fmt::format("{}: dialect must be vlt or profidrive", text);
-            return std::nullopt;
+            return Error{fmt::format("{}: dialect must be vlt or profidrive", text)};
         }
         slave.dialect = *dialect;
     }
@@ -109,8 +101,8 @@ bool has_parameter_channel(const SimulatedSlave& slave) {
     return ppo_layout_of_type(slave.ppo_type, PpoSource::Option).has_pcv;
 }
 
-std::string check_faults(const std::vector<FaultSpec>& faults,
-                         const std::vector<SimulatedSlave>& slaves, std::uint64_t cycles) {
+Result<void> check_faults(const std::vector<FaultSpec>& faults,
+                          const std::vector<SimulatedSlave>& slaves, std::uint64_t cycles) {
     for (const FaultSpec& spec : faults) {
         const bool needs_pcv = fault_needs_parameter_channel(spec.kind);
         bool target = false;
@@ -124,20 +116,20 @@ std::string check_faults(const std::vector<FaultSpec>& faults,
                 for (const SimulatedSlave& slave : slaves)
                     simulated = simulated || slave.address == *spec.slave;
                 if (!simulated)
-                    return fmt::format("fault {}: slave {} is not simulated", describe_fault(spec),
-                                       *spec.slave);
-                return fmt::format(
+                    return Error{fmt::format("fault {}: slave {} is not simulated",
+                                             describe_fault(spec), *spec.slave)};
+                return Error{fmt::format(
                     "fault {}: slave {} has no parameter channel (PPO 3 and 4 carry no PCV)",
-                    describe_fault(spec), *spec.slave);
+                    describe_fault(spec), *spec.slave)};
             }
-            return fmt::format(
-                "fault {}: no simulated slave has a parameter channel (PPO 1, 2 "
-                "or 5)",
-                describe_fault(spec));
+            return Error{
+                fmt::format("fault {}: no simulated slave has a parameter channel (PPO 1, 2 "
+                            "or 5)",
+                            describe_fault(spec))};
         }
         if (spec.cycle && cycles != 0 && *spec.cycle >= cycles)
-            return fmt::format("fault {}: cycle {} is past the session's {} cycles (0..{})",
-                               describe_fault(spec), *spec.cycle, cycles, cycles - 1);
+            return Error{fmt::format("fault {}: cycle {} is past the session's {} cycles (0..{})",
+                                     describe_fault(spec), *spec.cycle, cycles, cycles - 1)};
     }
     return {};
 }

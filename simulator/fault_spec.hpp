@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "decoder/code_tables.hpp"
+#include "decoder/result.hpp"
 #include "simulator/fault_kind.hpp"
 
 namespace dpscope {
@@ -23,7 +24,8 @@ struct FaultSpec {
 
 // "KIND" (once, at a cycle chosen by the seed), "KIND@CYCLE", "KIND=RATE", each optionally
 // followed by ":ADDR". KIND is one of the names of fault_kind_name ("bad_fcs" = "fcs_error").
-std::optional<FaultSpec> parse_fault_spec(std::string_view text, std::string& error);
+// The error names the text and what is wrong with it.
+Result<FaultSpec> parse_fault_spec(std::string_view text);
 
 // The spec written back as parse_fault_spec reads it ("fcs_error@4:3").
 std::string describe_fault(const FaultSpec& spec);
@@ -35,16 +37,16 @@ struct SimulatedSlave {
 };
 
 // "ADDR:PPO" or "ADDR:PPO:DIALECT", e.g. "5:2" or "7:1:profidrive".
-std::optional<SimulatedSlave> parse_slave_spec(std::string_view text, std::string& error);
+Result<SimulatedSlave> parse_slave_spec(std::string_view text);
 
 // PPO 1, 2 and 5 carry a PCV; PPO 3 and 4 do not.
 bool has_parameter_channel(const SimulatedSlave& slave);
 
-// Why one of `faults` cannot be injected on `slaves` in a session of `cycles` cycles (0: no limit)
-// (a slave that is not simulated, a parameter-channel fault on a slave without a PCV, a cycle past
-// the end), or "" when each can be.
-std::string check_faults(const std::vector<FaultSpec>& faults,
-                         const std::vector<SimulatedSlave>& slaves, std::uint64_t cycles);
+// An error when one of `faults` cannot be injected on `slaves` in a session of `cycles` cycles
+// (0: no limit), saying why: a slave that is not simulated, a parameter-channel fault on a slave
+// without a PCV, a cycle past the end.
+Result<void> check_faults(const std::vector<FaultSpec>& faults,
+                          const std::vector<SimulatedSlave>& slaves, std::uint64_t cycles);
 
 // What the simulator injected, for tests and for the user (`simulate -v`).
 struct Injection {

@@ -29,7 +29,7 @@ std::vector<SimulatedSlave> slaves_or_default(const SimulatorOptions& options) {
 
 }  // namespace
 
-std::string check_simulator_faults(const SimulatorOptions& options) {
+Result<void> check_simulator_faults(const SimulatorOptions& options) {
     return check_faults(options.faults, slaves_or_default(options), options.cycles);
 }
 

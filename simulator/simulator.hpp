@@ -45,9 +45,9 @@ struct SimulatorOptions {
     std::vector<FaultSpec> faults;
 };
 
-// Why `options` cannot inject one of its faults (a slave that is not simulated, a parameter-
-// channel fault on a slave without a PCV, a cycle past the end), or "" when each can be.
-std::string check_simulator_faults(const SimulatorOptions& options);
+// An error when `options` cannot inject one of its faults, saying why (a slave that is not
+// simulated, a parameter-channel fault on a slave without a PCV, a cycle past the end).
+Result<void> check_simulator_faults(const SimulatorOptions& options);
 
 // At least the time from the first telegram to the last of the session `options` describes
 // (whatever the seed and faults), saturated at the largest int64: the CLI checks with it that the

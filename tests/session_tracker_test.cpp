@@ -106,9 +106,8 @@ class FaultScenarioTest : public ::testing::TestWithParam<FaultScenario> {};
 
 TEST_P(FaultScenarioTest, ExactlyTheExpectedFindings) {
     const FaultScenario& scenario = GetParam();
-    std::string error;
-    auto fault = parse_fault_spec(std::string(scenario.fault) + "@40:4", error);
-    ASSERT_TRUE(fault) << error;
+    Result<FaultSpec> fault = parse_fault_spec(std::string(scenario.fault) + "@40:4");
+    ASSERT_TRUE(fault) << fault.error();
     SimulatorOptions options = three_slaves(scenario.cycles);
     options.faults.push_back(*fault);
     SimulatedRun run = simulate(options);

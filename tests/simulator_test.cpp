@@ -407,16 +407,15 @@ TEST(SimulatorTest, FaultNamesAreTheFindingNamesAndTheSimulatorsOwn) {
 }
 
 FaultSpec fault(std::string_view text) {
-    std::string error;
-    auto spec = parse_fault_spec(text, error);
-    EXPECT_TRUE(spec.has_value()) << text << ": " << error;
-    return spec.value_or(FaultSpec{});
+    Result<FaultSpec> spec = parse_fault_spec(text);
+    EXPECT_TRUE(spec.has_value()) << text << ": " << spec.error();
+    return spec ? *spec : FaultSpec{};
 }
 
 std::string fault_error(std::string_view text) {
-    std::string error;
-    EXPECT_FALSE(parse_fault_spec(text, error).has_value()) << text;
-    return error;
+    Result<FaultSpec> spec = parse_fault_spec(text);
+    EXPECT_FALSE(spec.has_value()) << text;
+    return spec.error();
 }
 
 TEST(SimulatorTest, ParseFaultSpecValid) {
@@ -473,16 +472,15 @@ TEST(SimulatorTest, ParseFaultSpecInvalid) {
 }
 
 SimulatedSlave slave(std::string_view text) {
-    std::string error;
-    auto spec = parse_slave_spec(text, error);
-    EXPECT_TRUE(spec.has_value()) << text << ": " << error;
-    return spec.value_or(SimulatedSlave{});
+    Result<SimulatedSlave> spec = parse_slave_spec(text);
+    EXPECT_TRUE(spec.has_value()) << text << ": " << spec.error();
+    return spec ? *spec : SimulatedSlave{};
 }
 
 std::string slave_error(std::string_view text) {
-    std::string error;
-    EXPECT_FALSE(parse_slave_spec(text, error).has_value()) << text;
-    return error;
+    Result<SimulatedSlave> spec = parse_slave_spec(text);
+    EXPECT_FALSE(spec.has_value()) << text;
+    return spec.error();
 }
 
 TEST(SimulatorTest, ParseSlaveSpecValid) {
@@ -577,27 +575,27 @@ TEST(SimulatorTest, FaultOnASlaveWithoutPcvIsNotInjected) {
 
 TEST(SimulatorTest, FaultsThatCannotBeInjectedAreNamedBeforehand) {
     SimulatorOptions options = small_session(9, 100);
-    EXPECT_EQ(check_simulator_faults(options), "");
+    EXPECT_TRUE(check_simulator_faults(options));
     options.faults = {FaultSpec{FaultKind::StackedRequest, 0, 10, 9}};
-    EXPECT_EQ(check_simulator_faults(options),
+    EXPECT_EQ(check_simulator_faults(options).error(),
               "fault stacked_request@10:9: slave 9 is not simulated");
     options.slaves = {{3, 3, Dialect::Vlt}, {4, 4, Dialect::Vlt}};
     options.faults = {FaultSpec{FaultKind::StackedRequest, 0, std::nullopt, 3}};
-    EXPECT_EQ(check_simulator_faults(options),
+    EXPECT_EQ(check_simulator_faults(options).error(),
               "fault stacked_request:3: slave 3 has no parameter channel (PPO 3 and 4 carry no "
               "PCV)");
     options.faults = {FaultSpec{FaultKind::RequestRejected, 0.5, std::nullopt, std::nullopt}};
-    EXPECT_EQ(check_simulator_faults(options),
+    EXPECT_EQ(check_simulator_faults(options).error(),
               "fault request_rejected=0.5: no simulated slave has a parameter channel (PPO 1, 2 "
               "or 5)");
     options.faults = {FaultSpec{FaultKind::FcsError, 0, std::nullopt, 3}};  // no PCV needed
-    EXPECT_EQ(check_simulator_faults(options), "");
+    EXPECT_TRUE(check_simulator_faults(options));
     options = small_session(9, 100);
     options.faults = {FaultSpec{FaultKind::OrphanResponse, 0, 100, std::nullopt}};
-    EXPECT_EQ(check_simulator_faults(options),
+    EXPECT_EQ(check_simulator_faults(options).error(),
               "fault orphan_response@100: cycle 100 is past the session's 100 cycles (0..99)");
     options.cycles = 0;  // until -c: any cycle may come
-    EXPECT_EQ(check_simulator_faults(options), "");
+    EXPECT_TRUE(check_simulator_faults(options));
 }
 
 TEST(SimulatorTest, FaultsTheSessionEndedBeforeAreNamed) {

@@ -205,8 +205,7 @@ SimulatorOptions faulty_session() {
          {"garbage@20:3", "garbage@50:4", "fcs_error@30:5", "stacked_request@40:3",
           "request_rejected@60:4", "spm_violation@80:5", "orphan_response@100:3",
           "unknown_code@120:4", "spontaneous_message@140:5", "config_mismatch@160:3"}) {
-        std::string error;
-        options.faults.push_back(*parse_fault_spec(fault, error));
+        options.faults.push_back(*parse_fault_spec(fault));
     }
     return options;
 }
