@@ -49,7 +49,7 @@ int write_report(const ReportCommand& command, const Pipeline& pipeline,
     }
     const bool fails = render_report(
         report_format_from_name(command.format).value_or(ReportFormat::Text), context, out);
-    if (!log.error().empty()) print_warning(fmt::format("{}", log.error()));
+    if (!log.lost().empty()) print_warning(fmt::format("{}", log.lost()));
     if (!out.flush()) {
         print_error(fmt::format("cannot write the report to {}: {}",
                                 command.output == "-" ? "standard output" : command.output,

@@ -371,7 +371,7 @@ int run_sniff(const SniffCommand& command) {
                 output_failed = true;
             }
         }
-        if (!log.error().empty()) print_warning(fmt::format("{}", log.error()));
+        if (!log.lost().empty()) print_warning(fmt::format("{}", log.lost()));
         if (fails) exit_code = kExitFindings;
     }
     if (!out.flush()) output_failed = true;

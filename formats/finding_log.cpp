@@ -36,10 +36,9 @@ void FindingLog::append(std::span<const Finding> findings) {
 }
 
 void FindingLog::spill() {
-    if (!spill_ && error_.empty()) {
+    if (!spill_ && lost_.empty()) {
         spill_ = std::tmpfile();
-        if (!spill_)
-            error_ = std::string("cannot create a temporary file: ") + std::strerror(errno);
+        if (!spill_) lost_ = std::string("cannot create a temporary file: ") + std::strerror(errno);
     }
     if (!spill_) {
         // Keep what fits; the rest is counted but cannot be listed.
@@ -59,14 +58,14 @@ void FindingLog::spill() {
                          static_cast<std::uint8_t>((f.has_stations ? 1 : 0) | (f.pnu ? 2 : 0))};
         if (std::fwrite(&s, sizeof s, 1, spill_) != 1 ||
             std::fwrite(f.message.data(), 1, f.message.size(), spill_) != f.message.size()) {
-            error_ = std::string("cannot write the temporary file: ") + std::strerror(errno);
+            lost_ = std::string("cannot write the temporary file: ") + std::strerror(errno);
             break;
         }
     }
     memory_.clear();
 }
 
-bool FindingLog::for_each(const std::function<void(const Finding&)>& f) const {
+void FindingLog::for_each(const std::function<void(const Finding&)>& f) const {
     if (spill_) {
         std::fflush(spill_);
         std::rewind(spill_);
@@ -83,15 +82,18 @@ bool FindingLog::for_each(const std::function<void(const Finding&)>& f) const {
             finding.has_stations = (s.flags & 1) != 0;
             finding.pnu = (s.flags & 2) ? std::optional<std::uint16_t>(s.pnu) : std::nullopt;
             finding.message.resize(s.message_length);
-            if (std::fread(finding.message.data(), 1, s.message_length, spill_) != s.message_length)
-                return false;
+            if (std::fread(finding.message.data(), 1, s.message_length, spill_) !=
+                s.message_length) {
+                if (lost_.empty()) lost_ = "cannot read the temporary file of findings back";
+                std::fseek(spill_, 0, SEEK_END);
+                return;
+            }
             f(finding);
         }
         std::fseek(spill_, 0, SEEK_END);
     }
     for (const Finding& finding : memory_)
         f(finding);
-    return true;
 }
 
 }  // namespace dpscope

@@ -60,9 +60,9 @@ void write_markdown(const ReportContext& c, const ReportModel& m, Output& out) {
                            md_escape(unlisted_text(kind, listed)));
             first_unlisted = false;
         }
-    if (!c.findings->error().empty())
+    if (!c.findings->lost().empty())
         fmt::format_to(it, "\nSome findings could not be listed: {}\n",
-                       md_escape(c.findings->error()));
+                       md_escape(c.findings->lost()));
     out.end_record();
 }
 
