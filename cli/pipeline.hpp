@@ -16,8 +16,10 @@ namespace dpscope::cli {
 
 class Pipeline {
   public:
-    explicit Pipeline(const DecodeSettings& settings)
-        : decoder_(settings.decoder), tracker_(settings.tracker) {}
+    // `keep_timelines`: build the per-channel timelines (only the HTML report shows them; the
+    // hot path of every other command skips them).
+    explicit Pipeline(const DecodeSettings& settings, bool keep_timelines = false)
+        : decoder_(settings.decoder), tracker_(settings.tracker), keep_timelines_(keep_timelines) {}
 
     // Decodes and tracks one record; `findings` receives what the tracker found at it.
     const DecodedTelegram& feed(const Record& record, std::span<const Finding>& findings) {
@@ -25,7 +27,7 @@ class Pipeline {
         findings = tracker_.track(t);
         summary_.add(t);
         summary_.add_findings(findings);
-        timelines_.add(findings, tracker_.completed());
+        if (keep_timelines_) timelines_.add(findings, tracker_.completed());
         return t;
     }
     // The end of the input: findings still open past the time-out.
@@ -33,7 +35,7 @@ class Pipeline {
     std::span<const Finding> finish(std::int64_t end_ns = kNoTime) {
         std::span<const Finding> findings = tracker_.finish(end_ns);
         summary_.add_findings(findings);
-        timelines_.add(findings, {});
+        if (keep_timelines_) timelines_.add(findings, {});
         return findings;
     }
 
@@ -47,6 +49,7 @@ class Pipeline {
     SessionTracker tracker_;
     Summary summary_;
     ChannelTimelines timelines_;
+    bool keep_timelines_ = false;
 };
 
 // What the summary and the report say about the input itself.
@@ -63,7 +66,7 @@ inline ReportContext report_context(const Pipeline& pipeline, const TelegramSour
     context.summary = &pipeline.summary();
     context.decoder = &pipeline.decoder();
     context.tracker = &pipeline.tracker();
-    context.timelines = &pipeline.timelines();
+    context.timelines = &pipeline.timelines();  // empty unless the pipeline kept them
     context.findings = &log;
     context.fail_on = fail_on;
     context.version = kVersion;

@@ -98,7 +98,7 @@ int run_report(const ReportCommand& command) {
         Output out(report_file->file());
         Output diagnostics(stderr);
         report_input_issues(source, diagnostics);
-        Pipeline pipeline(*settings);
+        Pipeline pipeline(*settings, report_format_from_name(command.format) == ReportFormat::Html);
         FindingLog log;
         Record record;
         std::uint64_t read = 0;

@@ -266,7 +266,8 @@ int run_sniff(const SniffCommand& command) {
     Output out(text_stream, settings->line_buffered || isatty(fileno(text_stream)) != 0);
     const char* text_stream_name = text_stream == stdout ? "standard output" : "standard error";
     report_input_issues(source, out);
-    Pipeline pipeline(*settings);
+    Pipeline pipeline(
+        *settings, report && report_format_from_name(command.report_format) == ReportFormat::Html);
     std::unique_ptr<TelegramRenderer> renderer;
     if (!settings->quiet) {
         renderer = make_renderer(settings->format, out);

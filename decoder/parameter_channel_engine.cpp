@@ -428,9 +428,8 @@ CompletedTransaction ParameterChannelEngine::answered(Channel& ch,
     return CompletedTransaction{ch.master, ch.slave, s.frame, s.time_ns, timed};
 }
 
-void ParameterChannelEngine::advance(std::int64_t now_ns, std::uint64_t frame, FindingList& out) {
-    // Nothing can have passed its deadline before the earliest one.
-    if (now_ns < next_deadline_ns_) return;
+void ParameterChannelEngine::check_deadlines(std::int64_t now_ns, std::uint64_t frame,
+                                             FindingList& out) {
     std::int64_t next = kNever;
     for (auto& owned : channels_) {
         Channel& ch = *owned;

@@ -122,7 +122,10 @@ class ParameterChannelEngine {
                                               FindingList& out);
     // The time is now `now_ns` (at the telegram `frame`, or the end of the capture): appends to
     // `out` the requests and spontaneous messages left unanswered past the time-out.
-    void advance(std::int64_t now_ns, std::uint64_t frame, FindingList& out);
+    void advance(std::int64_t now_ns, std::uint64_t frame, FindingList& out) {
+        // Nothing can have passed its deadline before the earliest one (the per-telegram case).
+        if (now_ns >= next_deadline_ns_) check_deadlines(now_ns, frame, out);
+    }
 
     // The parameter number the last sample is about: the PCV's own PNU, except for a rejection
     // (RC 7) or "no authority" (RC 8) that leaves the PNU out (PNU 0): that one is about the
@@ -137,6 +140,7 @@ class ParameterChannelEngine {
                                                   FindingList& out);
     void spontaneous_message(Channel& ch, const ParameterChannelSample& s, FindingList& out);
     CompletedTransaction answered(Channel& ch, const ParameterChannelSample& s);
+    void check_deadlines(std::int64_t now_ns, std::uint64_t frame, FindingList& out);
 
     ParameterChannelPolicy policy_;
     std::vector<std::int32_t> index_;  // master * 128 + slave -> position in channels_

@@ -106,11 +106,11 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
     const bool intact = check_intact(t, current_);
     // Counted before the telegram's own channel is made: channels are made in the order their
     // first finding or telegram came, the order the engine checks them for time-outs in.
-    count(0);
+    if (!current_.empty()) count(0);  // most telegrams have no finding: no call then
     if (!t.has_roles) return current_;
     const std::size_t counted = current_.size();
     track_channel(channel(t.master, t.slave), t, intact);
-    count(counted);
+    if (current_.size() > counted) count(counted);
     return current_;
 }
 

@@ -33,6 +33,19 @@ TEST(JsonWriterTest, PutsCommasBetweenMembersAndItemsOfNestedContainers) {
     EXPECT_EQ(w.depth(), 0u);
 }
 
+TEST(JsonWriterTest, KeysFromLiteralsCharArraysAndStringViewsReadTheSame) {
+    fmt::memory_buffer buffer;
+    JsonWriter w(buffer);
+    char shorter[16] = "ab";  // an array longer than the name it holds
+    const std::string view = "cd";
+    w.begin_object();
+    w.key("literal").integer(1);
+    w.key(shorter).integer(2);
+    w.key(std::string_view(view)).integer(3);
+    w.end_object();
+    EXPECT_EQ(text(buffer), R"({"literal":1,"ab":2,"cd":3})");
+}
+
 TEST(JsonWriterTest, WritesEmptyContainers) {
     fmt::memory_buffer buffer;
     JsonWriter w(buffer);
