@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -26,14 +27,38 @@ std::vector<std::uint8_t> hex(std::string_view text) {
 std::string source_dir() { return DPSCOPE_SOURCE_DIR; }
 std::string dpscope_executable() { return DPSCOPE_EXECUTABLE; }
 
+namespace {
+
+// Every path temp_path() handed out, removed when the test process ends (set
+// DPSCOPE_KEEP_TEST_FILES to keep them for a look after a failure).
+struct TempPaths {
+    std::vector<std::string> paths;
+    ~TempPaths() {
+        if (std::getenv("DPSCOPE_KEEP_TEST_FILES")) return;
+        for (const std::string& path : paths) {
+            std::error_code ignored;
+            std::filesystem::remove_all(path, ignored);  // a symbolic link itself, not its target
+        }
+    }
+};
+
+TempPaths& temp_paths() {
+    static TempPaths paths;
+    return paths;
+}
+
+}  // namespace
+
 std::string temp_path(std::string_view name) {
     static int counter = 0;
     const char* base = std::getenv("TEST_TMPDIR");
     std::string dir = base ? base : "/tmp";
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::string test = info ? std::string(info->test_suite_name()) + "." + info->name() : "test";
-    return dir + "/dpscope-" + std::to_string(getpid()) + "-" + test + "-" +
-           std::to_string(counter++) + "-" + std::string(name);
+    std::string path = dir + "/dpscope-" + std::to_string(getpid()) + "-" + test + "-" +
+                       std::to_string(counter++) + "-" + std::string(name);
+    temp_paths().paths.push_back(path);
+    return path;
 }
 
 void write_file(const std::string& path, const std::vector<std::uint8_t>& bytes) {

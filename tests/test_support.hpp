@@ -19,7 +19,8 @@ std::vector<std::uint8_t> hex(std::string_view text);
 std::string source_dir();
 std::string dpscope_executable();
 
-// A fresh path under the test's temporary directory (the file does not exist yet).
+// A fresh path under the test's temporary directory (the file does not exist yet; whatever is
+// made there is removed when the test process ends, unless DPSCOPE_KEEP_TEST_FILES is set).
 std::string temp_path(std::string_view name);
 void write_file(const std::string& path, const std::vector<std::uint8_t>& bytes);
 void write_text_file(const std::string& path, std::string_view text);
