@@ -4,10 +4,6 @@
 
 namespace dpscope {
 
-std::string_view direction_name(Direction direction) {
-    return direction == Direction::Request ? "request" : "response";
-}
-
 std::uint32_t DpTelegram::pcv_value(Direction direction) const noexcept {
     ValueWidth width = direction == Direction::Request ? request_code(dialect, pcv.rc).width
                                                        : response_code(dialect, pcv.rc).width;

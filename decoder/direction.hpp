@@ -8,6 +8,9 @@
 namespace dpscope {
 
 enum class Direction : std::uint8_t { Request, Response };
-std::string_view direction_name(Direction direction);  // "request", "response"
+// "request", "response"
+constexpr std::string_view direction_name(Direction direction) noexcept {
+    return direction == Direction::Request ? "request" : "response";
+}
 
 }  // namespace dpscope

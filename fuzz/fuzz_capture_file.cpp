@@ -30,7 +30,9 @@ dpscope::Output& output() {
     return out;
 }
 
-// The temporary file every input is written to, removed when the process exits.
+// The temporary file every input is written to. It is unlinked at once and opened by its
+// /proc/self/fd name: libFuzzer ends some runs without running destructors, and no run may
+// leave a file behind.
 struct TempFile {
     std::string path;
     int fd = -1;
@@ -41,12 +43,10 @@ struct TempFile {
             std::perror("fuzz_capture_file: mkstemp");
             std::abort();
         }
-        path = name;
+        ::unlink(name);
+        path = "/proc/self/fd/" + std::to_string(fd);
     }
-    ~TempFile() {
-        ::close(fd);
-        ::unlink(path.c_str());
-    }
+    ~TempFile() { ::close(fd); }
     void write(const std::uint8_t* data, std::size_t size) const {
         if (::ftruncate(fd, 0) != 0) std::abort();
         std::size_t done = 0;
