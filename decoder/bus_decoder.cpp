@@ -122,10 +122,9 @@ const DecodedTelegram& BusDecoder::decode(Bytes bytes, std::int64_t time_ns, std
 void BusDecoder::decode_request(DecodedTelegram& t) {
     t.direction = Direction::Request;
     t.dp.service = classify_request(t.dp.fdl);
-    if (pending_.valid) {
-        t.dp.unanswered = UnansweredRequest{pending_.frame, pending_.time_ns,  pending_.master,
-                                            pending_.slave, pending_.function, pending_.service};
-        pending_.valid = false;
+    if (has_pending_) {
+        t.dp.unanswered = pending_;
+        has_pending_ = false;
     }
     if (!t.dp.fdl.has_addresses) return;
     t.has_roles = true;
@@ -137,24 +136,24 @@ void BusDecoder::decode_request(DecodedTelegram& t) {
     // for: no reply is due.
     if (function_expects_reply(function) && t.dp.fdl.da != kBroadcastAddress && t.dp.fdl.fcs_ok &&
         !t.dp.fdl.fc.is_reserved()) {
-        pending_ =
-            PendingRequest{true, t.frame, t.time_ns, t.master, t.slave, function, t.dp.service};
+        pending_ = UnansweredRequest{t.frame, t.time_ns, t.master, t.slave, function, t.dp.service};
+        has_pending_ = true;
     }
 }
 
 void BusDecoder::decode_response(DecodedTelegram& t) {
     t.direction = Direction::Response;
     bool answers_pending =
-        pending_.valid && (t.dp.fdl.type == FrameType::ShortAck ||
-                           (t.dp.fdl.has_addresses && t.dp.fdl.da == pending_.master &&
-                            t.dp.fdl.sa == pending_.slave));
+        has_pending_ && (t.dp.fdl.type == FrameType::ShortAck ||
+                         (t.dp.fdl.has_addresses && t.dp.fdl.da == pending_.master &&
+                          t.dp.fdl.sa == pending_.slave));
     if (answers_pending) {
         t.dp.service = pending_.service;
         t.request_frame = pending_.frame;
         t.has_roles = true;
         t.master = pending_.master;
         t.slave = pending_.slave;
-        pending_.valid = false;
+        has_pending_ = false;
         return;
     }
     t.dp.service = classify_unpaired_response(t.dp.fdl);

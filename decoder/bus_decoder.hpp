@@ -76,16 +76,6 @@ class BusDecoder {
     void layout_for(std::uint8_t slave, std::size_t du_length, PpoLayout& layout) const noexcept;
 
   private:
-    struct PendingRequest {
-        bool valid = false;
-        std::uint64_t frame = 0;
-        std::int64_t time_ns = kNoTime;
-        std::uint8_t master = 0;
-        std::uint8_t slave = 0;
-        std::uint8_t function = 0;
-        Service service = Service::Unknown;
-    };
-
     void decode_request(DecodedTelegram& t);
     void decode_response(DecodedTelegram& t);
     void decode_service_data(DecodedTelegram& t);
@@ -103,7 +93,10 @@ class BusDecoder {
 
     DecoderOptions options_;
     std::array<StationConfig, kStationCount> stations_{};
-    PendingRequest pending_;
+    // The request waiting for its reply (valid while has_pending_): a response is named after it,
+    // and the next request or token reports it as unanswered.
+    bool has_pending_ = false;
+    UnansweredRequest pending_;
     DecodedTelegram current_;
 };
 

@@ -2,6 +2,8 @@
 
 #include <iterator>
 
+#include "decoder/catalogue.hpp"
+
 namespace dpscope {
 
 namespace {
@@ -43,25 +45,11 @@ constexpr FindingKindInfo kCatalogue[] = {
      "SRD and SDA requests get a reply"},
 };
 
-// One row per kind, in enum order, so that a kind is its row's index.
-constexpr bool one_row_per_kind_in_order() {
-    if (std::size(kCatalogue) != kFindingKindCount) return false;
-    for (std::size_t i = 0; i < std::size(kCatalogue); ++i)
-        if (static_cast<std::size_t>(kCatalogue[i].kind) != i) return false;
-    return true;
-}
-static_assert(one_row_per_kind_in_order(), "kCatalogue: one row per FindingKind, in enum order");
-
-// Names leave the program (jsonl, reports, --fault): none may be empty or used twice.
-constexpr bool names_unique() {
-    for (std::size_t i = 0; i < std::size(kCatalogue); ++i) {
-        if (kCatalogue[i].name.empty()) return false;
-        for (std::size_t j = 0; j < i; ++j)
-            if (kCatalogue[i].name == kCatalogue[j].name) return false;
-    }
-    return true;
-}
-static_assert(names_unique(), "kCatalogue: every finding kind needs a name of its own");
+static_assert(catalogue::one_row_per_kind_in_order(std::span<const FindingKindInfo>(kCatalogue),
+                                                   kFindingKindCount),
+              "kCatalogue: one row per FindingKind, in enum order");
+static_assert(catalogue::names_unique(std::span<const FindingKindInfo>(kCatalogue)),
+              "kCatalogue: every finding kind needs a name of its own");
 
 constexpr std::string_view kComponentNames[] = {
     "parameter channel",

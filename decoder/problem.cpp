@@ -4,6 +4,7 @@
 
 #include <iterator>
 
+#include "decoder/catalogue.hpp"
 #include "decoder/counted.hpp"
 
 namespace dpscope {
@@ -53,25 +54,11 @@ constexpr ProblemKindInfo kCatalogue[] = {
      "FC bit 7 set in anything but the clock value request 0xC0"},
 };
 
-// One row per kind, in enum order, so that a kind is its row's index.
-constexpr bool one_row_per_kind_in_order() {
-    if (std::size(kCatalogue) != kProblemKindCount) return false;
-    for (std::size_t i = 0; i < std::size(kCatalogue); ++i)
-        if (static_cast<std::size_t>(kCatalogue[i].kind) != i) return false;
-    return true;
-}
-static_assert(one_row_per_kind_in_order(), "kCatalogue: one row per ProblemKind, in enum order");
-
-// Names leave the program (jsonl, csv, the summary): none may be empty or used twice.
-constexpr bool names_unique() {
-    for (std::size_t i = 0; i < std::size(kCatalogue); ++i) {
-        if (kCatalogue[i].name.empty()) return false;
-        for (std::size_t j = 0; j < i; ++j)
-            if (kCatalogue[i].name == kCatalogue[j].name) return false;
-    }
-    return true;
-}
-static_assert(names_unique(), "kCatalogue: every problem kind needs a name of its own");
+static_assert(catalogue::one_row_per_kind_in_order(std::span<const ProblemKindInfo>(kCatalogue),
+                                                   kProblemKindCount),
+              "kCatalogue: one row per ProblemKind, in enum order");
+static_assert(catalogue::names_unique(std::span<const ProblemKindInfo>(kCatalogue)),
+              "kCatalogue: every problem kind needs a name of its own");
 
 constexpr std::string_view kComponentNames[] = {"framing", "FDL", "DP service"};
 static_assert(std::size(kComponentNames) == kProblemComponentCount);

@@ -459,11 +459,11 @@ TEST(PcapSourceTest, LinkTypeNames) {
 
 // ---- unusable inputs -------------------------------------------------------------------------
 
-TEST(PcapSourceTest, UnsupportedLinkTypeNamesFileNumberAndName) {
-    TempFile file("ethernet.pcap");
+// A pcap file of link type EN10MB (Ethernet) holding one frame.
+void write_ethernet_pcap(const std::string& path) {
     pcap_t* dead = pcap_open_dead(DLT_EN10MB, 65535);
     ASSERT_NE(dead, nullptr);
-    pcap_dumper_t* dumper = pcap_dump_open(dead, file.path.c_str());
+    pcap_dumper_t* dumper = pcap_dump_open(dead, path.c_str());
     ASSERT_NE(dumper, nullptr) << pcap_geterr(dead);
     std::vector<std::uint8_t> frame(60, 0xFF);
     pcap_pkthdr header{};
@@ -472,6 +472,11 @@ TEST(PcapSourceTest, UnsupportedLinkTypeNamesFileNumberAndName) {
     pcap_dump(reinterpret_cast<u_char*>(dumper), &header, frame.data());
     pcap_dump_close(dumper);
     pcap_close(dead);
+}
+
+TEST(PcapSourceTest, UnsupportedLinkTypeNamesFileNumberAndName) {
+    TempFile file("ethernet.pcap");
+    write_ethernet_pcap(file.path);
 
     std::string error = open_error(file.path);
     EXPECT_NE(error.find(file.path), std::string::npos) << error;
@@ -487,20 +492,6 @@ TEST(PcapSourceTest, UnsupportedLinkTypeNamesFileNumberAndName) {
 const PcapLinkType kEthernetOnly[] = {{1, "EN10MB"}};
 const CaptureProtocol kEthernetProtocol{Protocol::ProfibusDp, "test", fdl_framing_rules(),
                                         kEthernetOnly};
-
-void write_ethernet_pcap(const std::string& path) {
-    pcap_t* dead = pcap_open_dead(DLT_EN10MB, 65535);
-    ASSERT_NE(dead, nullptr);
-    pcap_dumper_t* dumper = pcap_dump_open(dead, path.c_str());
-    ASSERT_NE(dumper, nullptr) << pcap_geterr(dead);
-    std::vector<std::uint8_t> frame(60, 0xFF);
-    pcap_pkthdr header{};
-    header.ts.tv_sec = 1'704'067'200;
-    header.caplen = header.len = static_cast<bpf_u_int32>(frame.size());
-    pcap_dump(reinterpret_cast<u_char*>(dumper), &header, frame.data());
-    pcap_dump_close(dumper);
-    pcap_close(dead);
-}
 
 TEST(PcapSourceTest, TheProtocolGivenChoosesTheLinkTypes) {
     TempFile file("ethernet-for-test-protocol.pcap");

@@ -1,0 +1,29 @@
+// Compile-time checks shared by the kind catalogues (decoder/finding.cpp, decoder/problem.cpp):
+// one row per enum value in enum order, so that a kind is its row's index, and names that are
+// neither empty nor used twice (they leave the program in every output format).
+#pragma once
+
+#include <cstddef>
+#include <span>
+
+namespace dpscope::catalogue {
+
+template <typename Row>
+constexpr bool one_row_per_kind_in_order(std::span<const Row> rows, std::size_t kind_count) {
+    if (rows.size() != kind_count) return false;
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        if (static_cast<std::size_t>(rows[i].kind) != i) return false;
+    return true;
+}
+
+template <typename Row>
+constexpr bool names_unique(std::span<const Row> rows) {
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (rows[i].name.empty()) return false;
+        for (std::size_t j = 0; j < i; ++j)
+            if (rows[i].name == rows[j].name) return false;
+    }
+    return true;
+}
+
+}  // namespace dpscope::catalogue
