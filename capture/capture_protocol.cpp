@@ -22,7 +22,7 @@ bool CaptureProtocol::carried_by(int link_type) const noexcept {
 }
 
 const CaptureProtocol& profibus_dp_protocol() noexcept {
-    static const CaptureProtocol protocol{Protocol::ProfibusDp, "PROFIBUS DP", fdl_framing_rules(),
+    static const CaptureProtocol protocol{Protocol::ProfibusDp, fdl_framing_rules(),
                                           kProfibusLinkTypes};
     return protocol;
 }

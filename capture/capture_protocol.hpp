@@ -1,7 +1,8 @@
 // The protocol a capture carries, as the capture layer needs to know it: how a byte stream (raw
 // dump, hex log, serial port) splits into telegrams, and which pcap link types hold one telegram
-// per record. The command line chooses it once per capture and hands it to open_source(), the
-// pcap and pcapng readers and the serial source; none of them names a protocol themselves.
+// per record. The command line chooses it once per capture and hands it to open_source() and the
+// pcap and pcapng readers (the serial source gets its framing rules); none of them names a
+// protocol itself.
 //
 // PROFIBUS DP is the only protocol today. Another (the Danfoss FC protocol on RS-485, say) adds
 // its framing rules in decoder/ and a CaptureProtocol here, and is listed in capture_protocols().
@@ -28,9 +29,10 @@ struct PcapLinkType {
 
 struct CaptureProtocol {
     Protocol protocol;            // the decoder's name for it (decoder/telegram.hpp)
-    std::string_view name;        // for people: "PROFIBUS DP"
     const FramingRules& framing;  // raw, hex and serial input; static, outlives every source
-    // The pcap link types whose records are its telegrams, in the order messages list them.
+    // The pcap link types whose records are its telegrams, in the order messages list them; the
+    // first is the link type of an empty pcapng capture. (Its name for people, in messages, is
+    // framing.protocol_name().)
     std::span<const PcapLinkType> link_types;
 
     // Are the records of a capture with this link type telegrams of the protocol?

@@ -67,7 +67,7 @@ class StdioWriter : public CaptureWriter {
     }
 
     bool put(const void* data, std::size_t size) {
-        if (!file_) return false;
+        if (!file_ || !error_.empty()) return false;  // the first write error stays
         if (std::fwrite(data, 1, size, file_) != size) return fail();
         return true;
     }

@@ -46,7 +46,8 @@ class CaptureWriter {
   private:
     Result<void> outcome(bool ok) const {
         if (ok) return {};
-        return Error{error_};
+        // A call after close() fails without a write error of its own.
+        return Error{error_.empty() ? std::string("the capture file is already closed") : error_};
     }
 };
 

@@ -521,8 +521,10 @@ Result<void> PcapngSource::open() {
     opening_ = false;
     if (!decodable_seen_ && first_link_type_ >= 0 && status() != InputStatus::Damaged)
         return Error{unsupported_link_type(name(), first_link_type_, protocol_)};
-    // No interface at all: an empty capture, of the protocol's first link type.
-    if (!decodable_seen_) link_type_ = protocol_.link_types.front().value;
+    // No interface at all: an empty capture, of the protocol's first link type (none: a protocol
+    // no pcap file carries, and the capture has no link type to pass on).
+    if (!decodable_seen_)
+        link_type_ = protocol_.link_types.empty() ? -1 : protocol_.link_types.front().value;
     return {};
 }
 

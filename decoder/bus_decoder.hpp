@@ -19,8 +19,6 @@
 
 namespace dpscope {
 
-inline constexpr std::size_t kStationCount = 128;
-
 struct DecoderOptions {
     Dialect dialect = Dialect::Vlt;
     // Per-station overrides: dialect, PPO type (1..5), control/status word profile.

@@ -6,7 +6,8 @@ namespace dpscope {
 
 namespace {
 
-bool is_link_problem(const Problem& p) { return problem_severity(p.kind) == Severity::Error; }
+// A problem of error severity at any layer makes the telegram unusable for the rules.
+bool is_error_problem(const Problem& p) { return problem_severity(p.kind) == Severity::Error; }
 
 Finding& add(FindingList& out, FindingKind kind, const DecodedTelegram& t) {
     return add_finding(out, kind, t.frame, t.time_ns, 0, t.has_roles, t.master, t.slave);
@@ -43,7 +44,7 @@ bool check_intact(const DecodedTelegram& t, FindingList& out) {
         return false;
     }
     for (const Problem& p : t.problems()) {
-        if (!is_link_problem(p)) continue;
+        if (!is_error_problem(p)) continue;
         add(out, FindingKind::MalformedTelegram, t).message =
             fmt::format("{}: {}", problem_kind_name(p.kind), problem_message(p));
         return false;
@@ -59,7 +60,7 @@ bool check_frame_count(FrameCountState& state, const DecodedTelegram& t, Finding
         state.valid = false;  // the frame count restarts after FDL_Status
         return false;
     }
-    if (!function_is_srd(function) && !function_is_sda(function)) return false;
+    if (!counts_frames(t)) return false;
     if (!t.dp.fdl.fc.fcv()) {
         state.valid = false;
         return false;

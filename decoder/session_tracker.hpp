@@ -20,11 +20,11 @@
 #include <span>
 #include <vector>
 
-#include "decoder/bus_decoder.hpp"
 #include "decoder/dp_config_rule.hpp"
 #include "decoder/dp_link_rules.hpp"
 #include "decoder/finding.hpp"
 #include "decoder/parameter_channel_engine.hpp"
+#include "decoder/telegram.hpp"
 
 namespace dpscope {
 

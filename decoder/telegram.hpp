@@ -4,6 +4,7 @@
 // decoder reuses one DecodedTelegram, so no payload is built or freed per telegram.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include "decoder/byte_reader.hpp"
@@ -12,6 +13,9 @@
 #include "decoder/time.hpp"
 
 namespace dpscope {
+
+// Station addresses are 0..127 (the header's master and slave).
+inline constexpr std::size_t kStationCount = 128;
 
 // The protocols dpscope decodes. One per capture.
 enum class Protocol : std::uint8_t { ProfibusDp };

@@ -15,7 +15,7 @@ namespace {
 TEST(CaptureProtocolTest, ProfibusDpIsFramedByFdlAndCarriedByLinkTypes257And147) {
     const CaptureProtocol& dp = profibus_dp_protocol();
     EXPECT_EQ(dp.protocol, Protocol::ProfibusDp);
-    EXPECT_EQ(dp.name, "PROFIBUS DP");
+    EXPECT_EQ(dp.framing.protocol_name(), "PROFIBUS");
     EXPECT_EQ(&dp.framing, &fdl_framing_rules());
     ASSERT_EQ(dp.link_types.size(), 2u);
     EXPECT_EQ(dp.link_types[0].value, kLinkTypeProfibusDl);
@@ -39,8 +39,9 @@ TEST(CaptureProtocolTest, EveryProtocolIsListedOnceWithLinkTypesNoOtherClaims) {
     std::set<Protocol> seen_protocols;
     std::set<int> seen_link_types;
     for (const CaptureProtocol* protocol : protocols) {
-        EXPECT_TRUE(seen_protocols.insert(protocol->protocol).second) << protocol->name;
-        EXPECT_FALSE(protocol->link_types.empty()) << protocol->name;
+        EXPECT_TRUE(seen_protocols.insert(protocol->protocol).second)
+            << protocol->framing.protocol_name();
+        EXPECT_FALSE(protocol->link_types.empty()) << protocol->framing.protocol_name();
         for (const PcapLinkType& type : protocol->link_types) {
             EXPECT_TRUE(seen_link_types.insert(type.value).second) << type.value;
             // link_type_name() names a protocol's link types as the protocol does.

@@ -490,8 +490,7 @@ TEST(PcapSourceTest, UnsupportedLinkTypeNamesFileNumberAndName) {
 // A protocol carried by Ethernet frames, for the tests below: the readers take the link types
 // from the protocol they are given, not from a list of their own.
 const PcapLinkType kEthernetOnly[] = {{1, "EN10MB"}};
-const CaptureProtocol kEthernetProtocol{Protocol::ProfibusDp, "test", fdl_framing_rules(),
-                                        kEthernetOnly};
+const CaptureProtocol kEthernetProtocol{Protocol::ProfibusDp, fdl_framing_rules(), kEthernetOnly};
 
 TEST(PcapSourceTest, TheProtocolGivenChoosesTheLinkTypes) {
     TempFile file("ethernet-for-test-protocol.pcap");
