@@ -202,6 +202,8 @@ void parse_fdl(Bytes bytes, FdlTelegram& out) noexcept {
     out.type = FrameType::Invalid;
     out.size = 0;
     out.length_field = 0;
+    out.has_length_repeat = false;
+    out.length_repeat = 0;
     out.has_addresses = out.has_fc = out.has_dsap = out.has_ssap = false;
     out.has_dest_segment = out.has_source_segment = false;
     out.da = out.sa = out.dsap = out.ssap = out.dest_segment = out.source_segment = 0;
@@ -262,6 +264,10 @@ void parse_fdl(Bytes bytes, FdlTelegram& out) noexcept {
                 break;
             }
             out.length_field = *le;
+            if (ler) {
+                out.has_length_repeat = true;
+                out.length_repeat = *ler;
+            }
             if (ler && *ler != *le) out.problems.add(ProblemKind::LengthMismatch, 2, *le, *ler);
             if (*le < 4 || *le > 249) out.problems.add(ProblemKind::LengthOutOfRange, 1, 0, *le);
             if (sd_repeat && *sd_repeat != kSd2)

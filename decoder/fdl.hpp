@@ -99,12 +99,14 @@ std::uint8_t fcs_of(Bytes bytes) noexcept;
 
 struct FdlTelegram {
     FrameType type = FrameType::Invalid;
-    std::uint16_t size = 0;         // bytes the telegram occupies, at most the record size
-    std::uint8_t length_field = 0;  // SD2: LE
-    bool has_addresses = false;     // SD1..SD4
-    std::uint8_t da = 0;            // 7-bit destination address
-    std::uint8_t sa = 0;            // 7-bit source address
-    bool has_fc = false;            // SD1..SD3
+    std::uint16_t size = 0;          // bytes the telegram occupies, at most the record size
+    std::uint8_t length_field = 0;   // SD2: LE
+    bool has_length_repeat = false;  // SD2 long enough to carry LEr
+    std::uint8_t length_repeat = 0;  // SD2: LEr
+    bool has_addresses = false;      // SD1..SD4
+    std::uint8_t da = 0;             // 7-bit destination address
+    std::uint8_t sa = 0;             // 7-bit source address
+    bool has_fc = false;             // SD1..SD3
     FrameControl fc{};
     bool has_dsap = false;
     bool has_ssap = false;

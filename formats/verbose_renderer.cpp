@@ -98,11 +98,9 @@ class VerboseRenderer final : public TelegramRenderer {
         }
         field(1, "Start delimiter: {} (0x{:02X})", frame_type_name(f.type), t.bytes[0]);
         if (f.type == FrameType::Sd2) {
-            ByteReader reader(t.bytes);
-            reader.skip(2);
-            auto ler = reader.u8();
-            field(1, "Length: LE {}, LEr {}", f.length_field,
-                  ler ? fmt::format("{}", *ler) : std::string("missing"));
+            field(
+                1, "Length: LE {}, LEr {}", f.length_field,
+                f.has_length_repeat ? fmt::format("{}", f.length_repeat) : std::string("missing"));
         }
         if (f.has_addresses) {
             line(1, "");

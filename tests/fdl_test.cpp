@@ -97,8 +97,17 @@ TEST(FdlTest, Sd2Truncated) {
     EXPECT_EQ(t.problems[0].expected, 13u);
 }
 
+TEST(FdlTest, Sd2CutAfterLeHasNoLengthRepeat) {
+    FdlTelegram t = parse(hex("68 07"));
+    EXPECT_EQ(t.length_field, 7u);
+    EXPECT_FALSE(t.has_length_repeat);
+}
+
 TEST(FdlTest, Sd2LengthFieldsDisagree) {
     FdlTelegram t = parse(hex("68 07 08 68 83 82 7D 3E 3E F3 F1 E2 16"));
+    EXPECT_EQ(t.length_field, 7u);
+    EXPECT_TRUE(t.has_length_repeat);
+    EXPECT_EQ(t.length_repeat, 8u);  // kept for the views, which show both
     ASSERT_FALSE(t.problems.empty());
     EXPECT_EQ(t.problems[0].kind, ProblemKind::LengthMismatch);
     EXPECT_EQ(t.problems[0].offset, 2);
