@@ -285,9 +285,7 @@ void Simulator::arm_faults() {
     }
 }
 
-bool Simulator::inject(FaultKind kind, std::size_t slave) {
-    std::uint64_t& armed = armed_[static_cast<std::size_t>(kind) * slaves_.size() + slave];
-    if (armed == 0) return false;
+void Simulator::take(FaultKind kind, std::size_t slave, std::uint64_t& armed) {
     --armed;
     const Injection injection{kind, cycle_, slaves_[slave].config.address, queued_ + 1};
     ++injection_count_;
@@ -299,7 +297,6 @@ bool Simulator::inject(FaultKind kind, std::size_t slave) {
         hold_open_until_ = std::max(
             hold_open_until_, later(now_, give_up + std::int64_t{options_.cycle_us} * 10'000));
     }
-    return true;
 }
 
 // A slave's parameter-channel model draws on the session's random sequence, on the faults armed

@@ -103,8 +103,15 @@ class Simulator {
     void exchange(std::size_t index);
     void arm_faults();
     // Takes a fault of this kind armed for this slave and records its injection; false when
-    // none is armed.
-    bool inject(FaultKind kind, std::size_t slave);
+    // none is armed. Asked for several kinds in every exchange and almost always false: the
+    // test is inline, the taking is not.
+    bool inject(FaultKind kind, std::size_t slave) {
+        std::uint64_t& armed = armed_[static_cast<std::size_t>(kind) * slaves_.size() + slave];
+        if (armed == 0) return false;
+        take(kind, slave, armed);
+        return true;
+    }
+    void take(FaultKind kind, std::size_t slave, std::uint64_t& armed);
 
     SimulatorOptions options_;
     std::vector<Slave> slaves_;
