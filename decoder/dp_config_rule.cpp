@@ -4,9 +4,8 @@
 
 namespace dpscope {
 
-void check_config(ConfigCheckState& state, const DecodedTelegram& t, FindingList& out) {
+void check_announced_lengths(ConfigCheckState& state, const DecodedTelegram& t, FindingList& out) {
     const PpoLayout& ppo = t.dp.ppo;
-    if (ppo.source != PpoSource::ChkCfg && ppo.source != PpoSource::GetCfg) return;
     const bool request = t.direction == Direction::Request;
     const std::size_t actual = t.dp.fdl.du.size();
     // A response without data (SC, or a status such as RS after a restart) carries no inputs to

@@ -17,7 +17,14 @@ struct ConfigCheckState {
     std::size_t input_mismatch = 0;
 };
 
+// Reports a length that disagrees with what the configuration announced.
+void check_announced_lengths(ConfigCheckState& state, const DecodedTelegram& t, FindingList& out);
+
 // config_mismatch, for an intact Data_Exchange telegram whose layout a configuration announced.
-void check_config(ConfigCheckState& state, const DecodedTelegram& t, FindingList& out);
+// Inline for the usual case: a layout no configuration announced is not checked.
+inline void check_config(ConfigCheckState& state, const DecodedTelegram& t, FindingList& out) {
+    if (t.dp.ppo.source == PpoSource::ChkCfg || t.dp.ppo.source == PpoSource::GetCfg)
+        check_announced_lengths(state, t, out);
+}
 
 }  // namespace dpscope

@@ -23,7 +23,7 @@ bool counts_frames(const DecodedTelegram& t) {
 
 }  // namespace
 
-void check_reply_missing(const DecodedTelegram& t, FindingList& out) {
+void report_reply_missing(const DecodedTelegram& t, FindingList& out) {
     if (!t.dp.unanswered ||
         !(function_is_srd(t.dp.unanswered->function) || function_is_sda(t.dp.unanswered->function)))
         return;
@@ -36,7 +36,7 @@ void check_reply_missing(const DecodedTelegram& t, FindingList& out) {
         request_function_name(u.function), u.slave, service_name(u.service));
 }
 
-bool check_intact(const DecodedTelegram& t, FindingList& out) {
+bool report_damage(const DecodedTelegram& t, FindingList& out) {
     if (!t.dp.fdl.fcs_ok) {
         Finding& f = add(out, FindingKind::FcsError, t);
         for (const Problem& p : t.problems())

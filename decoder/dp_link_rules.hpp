@@ -16,12 +16,22 @@ struct FrameCountState {
     bool last_fcb = false;
 };
 
+// The two checks run on every telegram test the usual case (nothing to report) inline and
+// report out of line.
+void report_reply_missing(const DecodedTelegram& t, FindingList& out);
+bool report_damage(const DecodedTelegram& t, FindingList& out);
+
 // fdl_no_response: `t` ended the wait for a reply to an SRD or SDA request that never came.
-void check_reply_missing(const DecodedTelegram& t, FindingList& out);
+inline void check_reply_missing(const DecodedTelegram& t, FindingList& out) {
+    if (t.dp.unanswered) report_reply_missing(t, out);
+}
 
 // fcs_error, malformed_telegram (a problem of error severity at any layer). Returns whether `t`
 // is intact: only an intact telegram is read any further.
-bool check_intact(const DecodedTelegram& t, FindingList& out);
+inline bool check_intact(const DecodedTelegram& t, FindingList& out) {
+    if (t.dp.fdl.fcs_ok && t.problems().empty()) return true;
+    return report_damage(t, out);
+}
 
 // fdl_retry, for an intact telegram with its stations. Returns whether `t` repeats the last
 // request with the same FCB. FDL_Status and requests without a valid FCB restart the count.
