@@ -1,10 +1,12 @@
-// Compile-time checks shared by the kind catalogues (decoder/finding.cpp, decoder/problem.cpp):
-// one row per enum value in enum order, so that a kind is its row's index, and names that are
-// neither empty nor used twice (they leave the program in every output format).
+// What the kind catalogues (decoder/finding.cpp, decoder/problem.cpp) share: the compile-time
+// checks (one row per enum value in enum order, so that a kind is its row's index; names neither
+// empty nor used twice, for they leave the program in every output format) and the listing of a
+// component's kinds.
 #pragma once
 
 #include <cstddef>
 #include <span>
+#include <vector>
 
 namespace dpscope::catalogue {
 
@@ -24,6 +26,15 @@ constexpr bool names_unique(std::span<const Row> rows) {
             if (rows[i].name == rows[j].name) return false;
     }
     return true;
+}
+
+// The kinds of `rows` that belong to `component`, in catalogue order.
+template <typename Row, typename Component>
+auto kinds_of(std::span<const Row> rows, Component component) {
+    std::vector<decltype(Row::kind)> kinds;
+    for (const Row& row : rows)
+        if (row.component == component) kinds.push_back(row.kind);
+    return kinds;
 }
 
 }  // namespace dpscope::catalogue

@@ -81,10 +81,7 @@ std::string_view finding_rule_text(FindingKind kind) { return finding_kind_info(
 FindingComponent finding_component(FindingKind kind) { return finding_kind_info(kind).component; }
 
 std::vector<FindingKind> finding_kinds_of(FindingComponent component) {
-    std::vector<FindingKind> kinds;
-    for (const FindingKindInfo& row : kCatalogue)
-        if (row.component == component) kinds.push_back(row.kind);
-    return kinds;
+    return catalogue::kinds_of(std::span<const FindingKindInfo>(kCatalogue), component);
 }
 
 std::string_view finding_component_name(FindingComponent component) {

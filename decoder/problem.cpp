@@ -84,10 +84,7 @@ Severity problem_severity(ProblemKind kind) {
 ProblemComponent problem_component(ProblemKind kind) { return problem_kind_info(kind).component; }
 
 std::vector<ProblemKind> problem_kinds_of(ProblemComponent component) {
-    std::vector<ProblemKind> kinds;
-    for (const ProblemKindInfo& row : kCatalogue)
-        if (row.component == component) kinds.push_back(row.kind);
-    return kinds;
+    return catalogue::kinds_of(std::span<const ProblemKindInfo>(kCatalogue), component);
 }
 
 std::string_view problem_component_name(ProblemComponent component) {
