@@ -33,7 +33,7 @@ struct ReportCommand {
 };
 
 // Renders the report of what `pipeline` read from `source` and returns the exit code.
-int write_report(const ReportCommand& command, const Pipeline& pipeline,
+int write_report(const ReportCommand& command, ReportFormat format, const Pipeline& pipeline,
                  const TelegramSource& source, const FindingLog& log, Output& out) {
     ReportContext context = report_context(
         pipeline, source, log, fail_on_from_name(command.fail_on).value_or(FailOn::Error));
@@ -47,8 +47,7 @@ int write_report(const ReportCommand& command, const Pipeline& pipeline,
             print_warning(
                 fmt::format("--station {}: no slave {} in the capture", station, station));
     }
-    const bool fails = render_report(
-        report_format_from_name(command.format).value_or(ReportFormat::Text), context, out);
+    const bool fails = render_report(format, context, out);
     if (!log.lost().empty()) print_warning(fmt::format("{}", log.lost()));
     if (!out.flush()) {
         print_error(fmt::format("cannot write the report to {}: {}",
@@ -98,7 +97,9 @@ int run_report(const ReportCommand& command) {
         Output out(report_file->file());
         Output diagnostics(stderr);
         report_input_issues(source, diagnostics);
-        Pipeline pipeline(*settings, report_format_from_name(command.format) == ReportFormat::Html);
+        const ReportFormat format =
+            report_format_from_name(command.format).value_or(ReportFormat::Text);
+        Pipeline pipeline(*settings, format == ReportFormat::Html);
         FindingLog log;
         Record record;
         std::uint64_t read = 0;
@@ -115,7 +116,7 @@ int run_report(const ReportCommand& command) {
             print_error(found.error());
             exit_code = kExitUsage;
         } else {
-            exit_code = write_report(command, pipeline, source, log, out);
+            exit_code = write_report(command, format, pipeline, source, log, out);
         }
     }
     if (exit_code == kExitUsage || exit_code == kExitOutputError) {
