@@ -1,5 +1,6 @@
 #include "decoder/bus_decoder.hpp"
 
+#include <algorithm>
 #include <vector>
 
 namespace dpscope {
@@ -32,6 +33,8 @@ bool carries_service_data(Service service, Direction direction, FrameType type) 
         case Service::SetSlaveAdd: return direction == Direction::Request;
         case Service::SlaveDiag:
         case Service::GetCfg: return direction == Direction::Response && is_data_frame(type);
+        case Service::MsacC1:
+        case Service::MsacC2: return is_data_frame(type);
         default: return false;
     }
 }
@@ -229,8 +232,68 @@ void BusDecoder::read_service_data(DecodedTelegram& t, StationConfig& station) {
         case Service::SetSlaveAdd:
             if (auto add = parse_set_slave_add(du, problems)) data.store_set_slave_add(*add);
             break;
+        case Service::MsacC1:
+        case Service::MsacC2: read_dpv1(t, du); break;
         default: break;
     }
+}
+
+void BusDecoder::read_dpv1(DecodedTelegram& t, ByteReader du) {
+    ProblemList& problems = t.dp.fdl.problems;
+    DpServiceData& data = t.dp.service_data;
+    Dpv1Pdu& pdu = data.store_dpv1();
+    bool request = t.direction == Direction::Request;
+    parse_dpv1_pdu(du, request, pdu, problems);
+    if (!pdu.on_parameter_channel()) return;
+    // The PROFIdrive message is what the length announces, as far as the data holds it.
+    Bytes message = pdu.data.first(std::min<std::size_t>(pdu.length, pdu.data.size()));
+    ByteReader reader(message, pdu.data_offset);
+    if (request && pdu.is_write()) {
+        ProfidriveMessage& parsed = data.store_profidrive();
+        parse_profidrive_request(reader, parsed, problems);
+        if (parsed.has_header) keep_profidrive_request(t, pdu, parsed);
+    } else if (!request && pdu.is_read() && !message.empty()) {
+        ProfidriveMessage& parsed = data.store_profidrive();
+        parse_profidrive_response(reader, parsed, problems);
+        if (const KeptProfidriveRequest* kept = kept_profidrive_request(t, pdu)) {
+            parsed.has_request = true;
+            parsed.request_frame = kept->frame;
+            parsed.request_id = kept->id;
+            parsed.request_reference = kept->reference;
+            parsed.addresses.assign(kept->addresses.begin(), kept->addresses.end());
+        }
+    }
+}
+
+void BusDecoder::keep_profidrive_request(const DecodedTelegram& t, const Dpv1Pdu& pdu,
+                                         const ProfidriveMessage& request) {
+    KeptProfidriveRequest* slot = nullptr;
+    for (KeptProfidriveRequest& kept : profidrive_requests_)
+        if (kept.master == t.master && kept.slave == t.slave && kept.slot == pdu.slot &&
+            kept.index == pdu.index)
+            slot = &kept;
+    if (!slot && profidrive_requests_.size() < kKeptProfidriveRequests)
+        slot = &profidrive_requests_.emplace_back();
+    if (!slot)  // full: the request kept longest goes
+        slot = &*std::min_element(profidrive_requests_.begin(), profidrive_requests_.end(),
+                                  [](const auto& a, const auto& b) { return a.frame < b.frame; });
+    slot->master = t.master;
+    slot->slave = t.slave;
+    slot->slot = pdu.slot;
+    slot->index = pdu.index;
+    slot->frame = t.frame;
+    slot->id = request.id;
+    slot->reference = request.reference;
+    slot->addresses.assign(request.addresses.begin(), request.addresses.end());
+}
+
+const BusDecoder::KeptProfidriveRequest* BusDecoder::kept_profidrive_request(
+    const DecodedTelegram& t, const Dpv1Pdu& pdu) const noexcept {
+    for (const KeptProfidriveRequest& kept : profidrive_requests_)
+        if (kept.master == t.master && kept.slave == t.slave && kept.slot == pdu.slot &&
+            kept.index == pdu.index)
+            return &kept;
+    return nullptr;
 }
 
 void BusDecoder::decode_data_exchange(DecodedTelegram& t) {

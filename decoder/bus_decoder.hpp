@@ -1,19 +1,23 @@
 // Decodes a capture telegram by telegram, in capture order. Keeps the little state a bus
 // decoder needs and nothing per telegram: the request waiting for its reply (so a response is
-// named after the request it answers) and, per slave, the PPO layout its configuration announced
-// and the DP-V1 mode its Set_Prm set.
+// named after the request it answers), per slave the PPO layout its configuration announced and
+// the DP-V1 mode its Set_Prm set, and the last PROFIdrive parameter request per master, slave,
+// slot and index (a parameter response carries no parameter numbers; it is named after it).
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "decoder/code_tables.hpp"
 #include "decoder/dp_payload.hpp"
 #include "decoder/dp_service.hpp"
+#include "decoder/dpv1.hpp"
 #include "decoder/fdl.hpp"
 #include "decoder/pcd.hpp"
 #include "decoder/ppo.hpp"
+#include "decoder/profidrive.hpp"
 #include "decoder/telegram.hpp"
 #include "decoder/time.hpp"
 
@@ -84,6 +88,24 @@ class BusDecoder {
     // views show the data of one that has some in the request's layout; this reads it for them.
     void read_response_in_request_layout(DecodedTelegram& t);
     void decode_data_exchange(DecodedTelegram& t);
+    // MSAC_C1 / MSAC_C2: the DP-V1 PDU and, on index 47, the PROFIdrive request or response.
+    void read_dpv1(DecodedTelegram& t, ByteReader du);
+    struct KeptProfidriveRequest {
+        std::uint8_t master = 0;
+        std::uint8_t slave = 0;
+        std::uint8_t slot = 0;
+        std::uint8_t index = 0;
+        std::uint64_t frame = 0;
+        std::uint8_t id = 0;
+        std::uint8_t reference = 0;
+        std::vector<ProfidriveAddress> addresses;
+    };
+    // At most this many kept requests (memory stays flat); a new key then replaces the oldest.
+    static constexpr std::size_t kKeptProfidriveRequests = 256;
+    void keep_profidrive_request(const DecodedTelegram& t, const Dpv1Pdu& pdu,
+                                 const ProfidriveMessage& request);
+    const KeptProfidriveRequest* kept_profidrive_request(const DecodedTelegram& t,
+                                                         const Dpv1Pdu& pdu) const noexcept;
     void learn_length12_type(const DecodedTelegram& t);
     // --ppo for this slave contradicts the configuration just learnt: remember the first time.
     void note_ppo_override(StationConfig& station, std::uint8_t slave,
@@ -95,6 +117,7 @@ class BusDecoder {
     // and the next request or token reports it as unanswered.
     bool has_pending_ = false;
     UnansweredRequest pending_;
+    std::vector<KeptProfidriveRequest> profidrive_requests_;
     DecodedTelegram current_;
 };
 

@@ -11,9 +11,11 @@
 #include "decoder/direction.hpp"
 #include "decoder/dp_payload.hpp"
 #include "decoder/dp_service.hpp"
+#include "decoder/dpv1.hpp"
 #include "decoder/fdl.hpp"
 #include "decoder/pcd.hpp"
 #include "decoder/ppo.hpp"
+#include "decoder/profidrive.hpp"
 #include "decoder/time.hpp"
 
 namespace dpscope {
@@ -45,7 +47,15 @@ bool carries_service_data(Service service, Direction direction, FrameType type) 
 // them; JSONL does not), with nothing reported when they do not fit.
 class DpServiceData {
   public:
-    enum class Kind : std::uint8_t { None, SlaveDiag, SetPrm, Cfg, GlobalControl, SetSlaveAdd };
+    enum class Kind : std::uint8_t {
+        None,
+        SlaveDiag,
+        SetPrm,
+        Cfg,
+        GlobalControl,
+        SetSlaveAdd,
+        Dpv1
+    };
 
     Kind kind() const noexcept { return kind_; }
     // Slave_Diag: the fixed part, and the blocks its extended diagnosis decoded to.
@@ -66,6 +76,12 @@ class DpServiceData {
     }
     const SetSlaveAdd* set_slave_add() const noexcept {
         return kind_ == Kind::SetSlaveAdd ? &set_slave_add_ : nullptr;
+    }
+    // MSAC_C1 / MSAC_C2: the DP-V1 PDU; and, for a Write request or Read response on index 47,
+    // the PROFIdrive parameter request or response it carries.
+    const Dpv1Pdu* dpv1() const noexcept { return kind_ == Kind::Dpv1 ? &dpv1_ : nullptr; }
+    const ProfidriveMessage* profidrive() const noexcept {
+        return kind_ == Kind::Dpv1 && has_profidrive_ ? &profidrive_ : nullptr;
     }
 
     // For the decoder. Each store makes its service's data the valid one; the returned vector
@@ -94,6 +110,18 @@ class DpServiceData {
         kind_ = Kind::SetSlaveAdd;
         set_slave_add_ = add;
     }
+    Dpv1Pdu& store_dpv1() noexcept {
+        kind_ = Kind::Dpv1;
+        dpv1_ = Dpv1Pdu{};
+        has_profidrive_ = false;
+        return dpv1_;
+    }
+    // Only after store_dpv1(); the message is cleared for the parser to fill.
+    ProfidriveMessage& store_profidrive() noexcept {
+        has_profidrive_ = true;
+        profidrive_.clear();
+        return profidrive_;
+    }
 
   private:
     Kind kind_ = Kind::None;
@@ -103,6 +131,9 @@ class DpServiceData {
     std::vector<CfgModule> cfg_modules_;
     GlobalControl global_control_;
     SetSlaveAdd set_slave_add_;
+    Dpv1Pdu dpv1_;
+    bool has_profidrive_ = false;
+    ProfidriveMessage profidrive_;
 };
 
 struct DpTelegram {

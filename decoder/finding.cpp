@@ -43,6 +43,24 @@ constexpr FindingKindInfo kCatalogue[] = {
      "requests are not repeated with the same FCB"},
     {FindingKind::FdlNoResponse, "fdl_no_response", Severity::Warning, ProfibusLink,
      "SRD and SDA requests get a reply"},
+    {FindingKind::Dpv1StackedRequest, "dpv1_stacked_request", Severity::Error, Dpv1ParameterAccess,
+     "a new parameter request is written only after the previous response was read"},
+    {FindingKind::Dpv1ReferenceMismatch, "dpv1_reference_mismatch", Severity::Error,
+     Dpv1ParameterAccess, "the parameter response mirrors the request reference"},
+    {FindingKind::Dpv1UnexpectedResponseId, "dpv1_unexpected_response_id", Severity::Error,
+     Dpv1ParameterAccess, "the response ID answers the request ID"},
+    {FindingKind::Dpv1ParameterCountMismatch, "dpv1_parameter_count_mismatch", Severity::Error,
+     Dpv1ParameterAccess, "the response mirrors the axis and the number of parameters"},
+    {FindingKind::Dpv1OrphanResponse, "dpv1_orphan_response", Severity::Warning,
+     Dpv1ParameterAccess, "every parameter response answers a written request"},
+    {FindingKind::Dpv1ResponseTimeout, "dpv1_response_timeout", Severity::Error,
+     Dpv1ParameterAccess, "every parameter request is answered within the time-out"},
+    {FindingKind::Dpv1NegativeResponse, "dpv1_negative_response", Severity::Note,
+     Dpv1ParameterAccess, "parameter requests are executed (negative responses)"},
+    {FindingKind::Dpv1LengthError, "dpv1_length_error", Severity::Error, Dpv1ParameterAccess,
+     "lengths and value blocks agree with the request"},
+    {FindingKind::Dpv1ErrorPdu, "dpv1_error_pdu", Severity::Note, Dpv1ParameterAccess,
+     "DP-V1 requests are accepted (error PDUs other than state conflict)"},
 };
 
 static_assert(catalogue::one_row_per_kind_in_order(std::span<const FindingKindInfo>(kCatalogue),
@@ -55,6 +73,7 @@ constexpr std::string_view kComponentNames[] = {
     "parameter channel",
     "PROFIBUS link",
     "DP configuration",
+    "DP-V1 parameter access",
 };
 static_assert(std::size(kComponentNames) == kFindingComponentCount);
 

@@ -33,6 +33,15 @@ enum class FindingKind : std::uint8_t {
     UnknownCode,
     FdlRetry,
     FdlNoResponse,
+    Dpv1StackedRequest,
+    Dpv1ReferenceMismatch,
+    Dpv1UnexpectedResponseId,
+    Dpv1ParameterCountMismatch,
+    Dpv1OrphanResponse,
+    Dpv1ResponseTimeout,
+    Dpv1NegativeResponse,
+    Dpv1LengthError,
+    Dpv1ErrorPdu,
     Count
 };
 
@@ -45,6 +54,7 @@ enum class FindingComponent : std::uint8_t {
     ParameterChannel,  // request/response pairing, rejections, spontaneous messages (any carrier)
     ProfibusLink,      // PROFIBUS FDL: checksum, framing, FCB repeats, requests left unanswered
     DpConfiguration,   // PROFIBUS DP: Data_Exchange lengths against the Chk_Cfg configuration
+    Dpv1ParameterAccess,  // PROFIdrive parameter access over DP-V1: Write, Read polls, response
     Count
 };
 
@@ -72,7 +82,7 @@ FindingComponent finding_component(FindingKind kind);
 
 // The kinds of one component, in enum order (for reports and documentation).
 std::vector<FindingKind> finding_kinds_of(FindingComponent component);
-// "parameter channel", "PROFIBUS link", "DP configuration".
+// "parameter channel", "PROFIBUS link", "DP configuration", "DP-V1 parameter access".
 std::string_view finding_component_name(FindingComponent component);
 
 struct Finding {

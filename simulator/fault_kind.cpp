@@ -31,6 +31,15 @@ constexpr FaultInfo kFaults[] = {
     {FaultKind::UnknownCode, FindingKind::UnknownCode, {}, true},
     {FaultKind::FdlRetry, FindingKind::FdlRetry, {}, false},
     {FaultKind::FdlNoResponse, FindingKind::FdlNoResponse, {}, false},
+    {FaultKind::Dpv1StackedRequest, FindingKind::Dpv1StackedRequest, {}, false},
+    {FaultKind::Dpv1ReferenceMismatch, FindingKind::Dpv1ReferenceMismatch, {}, false},
+    {FaultKind::Dpv1UnexpectedResponseId, FindingKind::Dpv1UnexpectedResponseId, {}, false},
+    {FaultKind::Dpv1ParameterCountMismatch, FindingKind::Dpv1ParameterCountMismatch, {}, false},
+    {FaultKind::Dpv1OrphanResponse, FindingKind::Dpv1OrphanResponse, {}, false},
+    {FaultKind::Dpv1ResponseTimeout, FindingKind::Dpv1ResponseTimeout, {}, false},
+    {FaultKind::Dpv1NegativeResponse, FindingKind::Dpv1NegativeResponse, {}, false},
+    {FaultKind::Dpv1LengthError, FindingKind::Dpv1LengthError, {}, false},
+    {FaultKind::Dpv1ErrorPdu, FindingKind::Dpv1ErrorPdu, {}, false},
 };
 
 // One entry per fault kind, in enum order; a name either from the finding catalogue or its own.

@@ -15,23 +15,32 @@ namespace dpscope {
 
 // In the order the names are listed to the user (parse_fault_spec's error message).
 enum class FaultKind : std::uint8_t {
-    FcsError,                   // one telegram's FCS is wrong
-    Garbage,                    // junk bytes between telegrams
-    MalformedTelegram,          // one telegram cut short
-    StackedRequest,             // the master changes its request before the answer
-    OrphanResponse,             // the slave answers although nothing was asked
-    MismatchedResponse,         // the answer carries another PNU
-    UnexpectedResponseType,     // the answer's code does not fit the request
-    ResponseTimeout,            // the slave never answers; the master gives up later
-    RequestRejected,            // RC 7 with an error number
-    NoAuthority,                // RC 8 to a change request
-    SpontaneousMessage,         // RC 9/10 with an SPM toggle, acknowledged by the master
-    SpontaneousUnacknowledged,  // the same, acknowledged only after the time-out
-    SpmViolation,               // the master toggles SPM with nothing pending
-    ConfigMismatch,             // one Data_Exchange telegram longer than configured
-    UnknownCode,                // one response with a code the dialect does not define
-    FdlRetry,                   // a response lost and the request repeated with the same FCB
-    FdlNoResponse,              // a response lost, no retry
+    FcsError,                    // one telegram's FCS is wrong
+    Garbage,                     // junk bytes between telegrams
+    MalformedTelegram,           // one telegram cut short
+    StackedRequest,              // the master changes its request before the answer
+    OrphanResponse,              // the slave answers although nothing was asked
+    MismatchedResponse,          // the answer carries another PNU
+    UnexpectedResponseType,      // the answer's code does not fit the request
+    ResponseTimeout,             // the slave never answers; the master gives up later
+    RequestRejected,             // RC 7 with an error number
+    NoAuthority,                 // RC 8 to a change request
+    SpontaneousMessage,          // RC 9/10 with an SPM toggle, acknowledged by the master
+    SpontaneousUnacknowledged,   // the same, acknowledged only after the time-out
+    SpmViolation,                // the master toggles SPM with nothing pending
+    ConfigMismatch,              // one Data_Exchange telegram longer than configured
+    UnknownCode,                 // one response with a code the dialect does not define
+    FdlRetry,                    // a response lost and the request repeated with the same FCB
+    FdlNoResponse,               // a response lost, no retry
+    Dpv1StackedRequest,          // the master writes a new request before reading the answer
+    Dpv1ReferenceMismatch,       // the response carries another request reference
+    Dpv1UnexpectedResponseId,    // a change request answered as a read
+    Dpv1ParameterCountMismatch,  // the response has another number of parameters
+    Dpv1OrphanResponse,          // a parameter response nobody asked for
+    Dpv1ResponseTimeout,         // the drive never answers; the master reads in vain
+    Dpv1NegativeResponse,        // a negative parameter response with an error number
+    Dpv1LengthError,             // a response whose value blocks do not fit the request
+    Dpv1ErrorPdu,                // a DP-V1 error PDU (access, invalid index)
     Count
 };
 

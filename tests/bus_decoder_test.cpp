@@ -767,8 +767,16 @@ TEST(BusDecoderTest, CarriesServiceDataNamesTheTelegramWithTheServicesData) {
         EXPECT_FALSE(carries_service_data(service, Direction::Response, FrameType::Sd1));
         EXPECT_FALSE(carries_service_data(service, Direction::Response, FrameType::ShortAck));
     }
+    // A DP-V1 PDU travels both ways, in data telegrams only.
+    for (Service service : {Service::MsacC1, Service::MsacC2}) {
+        for (Direction direction : {Direction::Request, Direction::Response}) {
+            EXPECT_TRUE(carries_service_data(service, direction, FrameType::Sd2));
+            EXPECT_FALSE(carries_service_data(service, direction, FrameType::Sd1));
+            EXPECT_FALSE(carries_service_data(service, direction, FrameType::ShortAck));
+        }
+    }
     for (Service service :
-         {Service::DataExchange, Service::RdInp, Service::MsacC1, Service::Token, Service::Unknown})
+         {Service::DataExchange, Service::RdInp, Service::Token, Service::Unknown})
         for (Direction direction : {Direction::Request, Direction::Response})
             EXPECT_FALSE(carries_service_data(service, direction, FrameType::Sd2));
 }
