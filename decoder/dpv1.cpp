@@ -39,7 +39,8 @@ void short_of(ProblemList& problems, const ByteReader& reader, std::size_t wante
                  static_cast<std::uint32_t>(reader.remaining()));
 }
 
-void read_initiate(ByteReader& reader, bool request, Dpv1Initiate& out, ProblemList& problems) {
+// True when the fixed part was there (the address parameters may still be missing).
+bool read_initiate(ByteReader& reader, bool request, Dpv1Initiate& out, ProblemList& problems) {
     // Request: Function, 3 reserved, Send_Timeout (2), Features_Supported (2),
     // Profile_Features_Supported (2), Profile_Ident_Number (2), then the address parameters.
     // Response: Function, Max_Len_Data_Unit, Features_Supported (2),
@@ -49,7 +50,7 @@ void read_initiate(ByteReader& reader, bool request, Dpv1Initiate& out, ProblemL
     std::size_t fixed = request ? kRequestFixed : kResponseFixed;
     if (reader.remaining() < fixed) {
         short_of(problems, reader, fixed);
-        return;
+        return false;
     }
     if (request) {
         reader.skip(3);
@@ -62,7 +63,7 @@ void read_initiate(ByteReader& reader, bool request, Dpv1Initiate& out, ProblemL
     out.profile_ident_number = *reader.u16_be();
     if (reader.remaining() < 4) {
         short_of(problems, reader, 4);
-        return;
+        return true;
     }
     out.has_addresses = true;
     out.s_type = *reader.u8();
@@ -76,6 +77,7 @@ void read_initiate(ByteReader& reader, bool request, Dpv1Initiate& out, ProblemL
     };
     take(out.s_len, out.s_addr);
     take(out.d_len, out.d_addr);
+    return true;
 }
 
 }  // namespace
@@ -151,30 +153,31 @@ std::string_view dpv1_abort_instance_name(std::uint8_t instance_reason) {
 std::string_view dpv1_abort_reason_name(std::uint8_t instance_reason) {
     std::uint8_t instance = (instance_reason >> 4) & 0x03;
     std::uint8_t reason = instance_reason & 0x0F;
-    if (instance == 0) {  // FDL: the link layer's status of the failed service
+    if (instance == 0) {  // FDL: the link layer's status of the failed service (dpscope's reading)
         switch (reason) {
             case 1: return "user error (UE)";
             case 2: return "no resource (RR)";
-            case 3: return "no service activated (RS)";
+            case 3: return "service not activated (RS)";
             case 9: return "no response (NR)";
             case 10: return "data high (DH)";
-            case 11: return "local error (LS)";
-            case 12: return "remote data high (RDH)";
-            case 15: return "no data (RDL)";
+            case 11: return "local resource error (LR)";
+            case 12: return "no response data (RDL)";
+            case 13: return "response data high (RDH)";
+            case 14: return "not in the logical ring (DS)";
+            case 15: return "no reaction (NA)";
             default: return "reserved";
         }
     }
-    if (instance == 1) {  // MSAC_C2
+    if (instance == 1) {  // MSAC_C2 (DDLM) (dpscope's reading of IEC 61158-6-3)
         switch (reason) {
-            case 1: return "connection aborted (ABT_SE)";
-            case 2: return "invalid function (ABT_FE)";
-            case 3: return "timeout (ABT_TO)";
-            case 4: return "invalid PDU (ABT_RE)";
-            case 5: return "invalid service (ABT_IV)";
-            case 6: return "station not ready (ABT_STO)";
-            case 7: return "protocol error (ABT_RS)";
-            case 8: return "invalid state (ABT_IA)";
-            case 9: return "out of resources (ABT_OC)";
+            case 1: return "sequence error (ABT_SE)";
+            case 2: return "invalid request PDU (ABT_FE)";
+            case 3: return "connection timeout (ABT_TO)";
+            case 4: return "invalid response PDU (ABT_RE)";
+            case 5: return "invalid service from the user (ABT_IV)";
+            case 6: return "Send_Timeout too small (ABT_STO)";
+            case 7: return "invalid additional address information (ABT_IA)";
+            case 8: return "waiting for FDL_DATA_REPLY.con (ABT_OC)";
             default: return "reserved";
         }
     }
@@ -199,6 +202,7 @@ void parse_dpv1_pdu(ByteReader reader, bool direction_is_request, Dpv1Pdu& out,
         out.error_decode = *reader.u8();
         out.error_code_1 = *reader.u8();
         out.error_code_2 = *reader.u8();
+        out.complete = true;
         return;
     }
     switch (out.function) {
@@ -217,13 +221,14 @@ void parse_dpv1_pdu(ByteReader reader, bool direction_is_request, Dpv1Pdu& out,
             out.slot = *reader.u8();
             out.index = *reader.u8();
             out.length = *reader.u8();
+            out.complete = true;
             out.data_offset = static_cast<std::uint16_t>(reader.offset());
             out.data = reader.rest();
             return;
         }
         case dpv1_function::kInitiate:
             out.layout = Dpv1Pdu::Layout::Initiate;
-            read_initiate(reader, direction_is_request, out.initiate, problems);
+            out.complete = read_initiate(reader, direction_is_request, out.initiate, problems);
             return;
         case dpv1_function::kAbort:
             out.layout = Dpv1Pdu::Layout::Abort;
@@ -234,10 +239,15 @@ void parse_dpv1_pdu(ByteReader reader, bool direction_is_request, Dpv1Pdu& out,
             }
             out.abort.subnet = *reader.u8();
             out.abort.instance_reason = *reader.u8();
+            out.complete = true;
             return;
-        case dpv1_function::kIdle: out.layout = Dpv1Pdu::Layout::Idle; return;
+        case dpv1_function::kIdle:
+            out.layout = Dpv1Pdu::Layout::Idle;
+            out.complete = true;
+            return;
         default:
             out.layout = Dpv1Pdu::Layout::Unknown;
+            out.complete = true;
             out.data_offset = static_cast<std::uint16_t>(reader.offset());
             out.data = reader.rest();
             return;

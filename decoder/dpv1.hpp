@@ -88,6 +88,9 @@ struct Dpv1Pdu {
     };
 
     Layout layout = Layout::None;
+    // The fixed part of the layout was all there (a ServiceDataShort problem says where it broke
+    // off otherwise). Initiate: up to Profile_Ident_Number; the address parameters may be missing.
+    bool complete = false;
     std::uint8_t function = 0;  // as sent, bit 7 included
     // Addressed: slot, index and length as sent; data are the bytes after the 4-byte header
     // (`data_offset` is their offset in the telegram). For Alarm_Ack, index holds the

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 
 namespace dpscope {
@@ -97,9 +98,12 @@ void append_one(std::uint8_t format, Bytes v, std::string& out) {
         case 0x02: fmt::format_to(it, "{}", static_cast<std::int8_t>(v[0])); return;
         case 0x03: fmt::format_to(it, "{}", static_cast<std::int16_t>(be16(v, 0))); return;
         case 0x04: fmt::format_to(it, "{}", static_cast<std::int32_t>(be32(v, 0))); return;
-        case 0x05: fmt::format_to(it, "{}", v[0]); return;
-        case 0x06: fmt::format_to(it, "{}", be16(v, 0)); return;
-        case 0x07: fmt::format_to(it, "{}", be32(v, 0)); return;
+        case 0x05:
+        case 0x41: fmt::format_to(it, "{}", v[0]); return;  // Byte, Word, Double word: unsigned
+        case 0x06:
+        case 0x42: fmt::format_to(it, "{}", be16(v, 0)); return;
+        case 0x07:
+        case 0x43: fmt::format_to(it, "{}", be32(v, 0)); return;
         case 0x08: fmt::format_to(it, "{}", std::bit_cast<float>(be32(v, 0))); return;
         case 0x21:  // N2: 0x4000 = 100 %
             fmt::format_to(it, "{:.3f} %", static_cast<std::int16_t>(be16(v, 0)) * 100.0 / 0x4000);
@@ -120,13 +124,15 @@ void append_one(std::uint8_t format, Bytes v, std::string& out) {
         case 0x34: append_clock(be32(v, 0) & 0x0FFFFFFF, out); return;  // time of day, no date
         case 0x36: fmt::format_to(it, "{} ms", be32(v, 0)); return;     // difference, no date
         case 0x32:  // Date: ms (2), minute, hour, day, month, year
-            fmt::format_to(it, "{:04}-{:02}-{:02} {:02}:{:02}:{:02}.{:03}", 2000 + (v[6] & 0x7F),
+            // Years 0-49 are 2000-2049, 50-99 are 1950-1999.
+            fmt::format_to(it, "{:04}-{:02}-{:02} {:02}:{:02}:{:02}.{:03}",
+                           (v[6] & 0x7F) < 50 ? 2000 + (v[6] & 0x7F) : 1900 + (v[6] & 0x7F),
                            v[5] & 0x0F, v[4] & 0x1F, v[3] & 0x1F, v[2] & 0x3F, be16(v, 0) / 1000,
                            be16(v, 0) % 1000);
             return;
         default: break;
     }
-    // Byte, Word, Double word and the other bit strings: hex, as wide as the value.
+    // Any other format of known size: hex, as wide as the value.
     out += "0x";
     for (std::uint8_t b : v)
         fmt::format_to(it, "{:02X}", b);
@@ -309,12 +315,24 @@ void parse_profidrive_response(ByteReader reader, ProfidriveMessage& out,
     if (!read_header(reader, out, problems)) return;
     for (std::uint8_t k = 0; k < out.count && !reader.empty(); ++k)
         if (!read_block(reader, out, problems)) return;
+    // A positive change response is the header alone; every other response has one block per
+    // parameter (a read's values, a negative response's 0x40 and 0x44 blocks).
+    bool header_only = out.id == profidrive::kChangeValue ||
+                       out.id == profidrive::kChangeValueNonVolatile ||
+                       out.id == profidrive::kChangeValueDoubleWord;
+    if (!header_only && out.blocks.size() < out.count) short_of(problems, reader, 2);
     out.trailing = static_cast<std::uint16_t>(reader.remaining());
 }
 
 void append_profidrive_values(const ProfidriveValueBlock& block, std::string& out) {
     int size = profidrive_format_size(block.format);
+    const std::size_t start = out.size();
+    auto cut_short = [&] { out += out.size() == start ? "(cut short)" : " (cut short)"; };
     if (block.is_error()) {
+        if (block.values.size() < 2) {
+            out += "error (number cut short)";
+            return;
+        }
         fmt::format_to(std::back_inserter(out), "error 0x{:02X}", block.error_number());
         if (block.has_error_info())
             fmt::format_to(std::back_inserter(out), ", info {}", block.error_info());
@@ -327,12 +345,61 @@ void append_profidrive_values(const ProfidriveValueBlock& block, std::string& ou
             for (std::size_t i = 0; i < block.values.size(); ++i)
                 fmt::format_to(std::back_inserter(out), "{}{:02X}", i ? " " : "", block.values[i]);
         }
+        if (size > 0 && !block.complete) cut_short();
         return;
     }
     auto step = static_cast<std::size_t>(size);
     for (std::size_t at = 0; at + step <= block.values.size(); at += step) {
         if (at) out += ", ";
         append_one(block.format, block.values.subspan(at, step), out);
+    }
+    if (!block.complete) cut_short();
+}
+
+std::size_t profidrive_value_count(const ProfidriveValueBlock& block) noexcept {
+    int size = profidrive_format_size(block.format);
+    if (size <= 0 || block.is_error()) return 0;
+    return block.values.size() / static_cast<std::size_t>(size);
+}
+
+std::optional<ProfidriveNumber> profidrive_number(const ProfidriveValueBlock& block,
+                                                  std::size_t index) noexcept {
+    int size = profidrive_format_size(block.format);
+    if (size <= 0 || block.is_error()) return std::nullopt;
+    std::size_t at = index * static_cast<std::size_t>(size);
+    if (at + static_cast<std::size_t>(size) > block.values.size()) return std::nullopt;
+    Bytes v = block.values.subspan(at, static_cast<std::size_t>(size));
+    ProfidriveNumber n;
+    switch (block.format) {
+        case 0x01: n.integer = v[0] ? 1 : 0; return n;
+        case 0x02: n.integer = static_cast<std::int8_t>(v[0]); return n;
+        case 0x03: n.integer = static_cast<std::int16_t>(be16(v, 0)); return n;
+        case 0x04: n.integer = static_cast<std::int32_t>(be32(v, 0)); return n;
+        case 0x05:
+        case 0x41: n.integer = v[0]; return n;
+        case 0x06:
+        case 0x23:
+        case 0x42: n.integer = be16(v, 0); return n;
+        case 0x07:
+        case 0x43: n.integer = be32(v, 0); return n;
+        case 0x08: {
+            auto f = std::bit_cast<float>(be32(v, 0));
+            if (!std::isfinite(f)) return std::nullopt;
+            n.is_real = true;
+            n.single = true;
+            n.real = f;
+            return n;
+        }
+        case 0x21:
+            n.is_real = true;
+            n.real = static_cast<std::int16_t>(be16(v, 0)) * 100.0 / 0x4000;
+            return n;
+        case 0x22:
+            n.is_real = true;
+            n.real = static_cast<std::int32_t>(be32(v, 0)) * 100.0 / 0x40000000;
+            return n;
+        case 0x36: n.integer = be32(v, 0); return n;  // milliseconds
+        default: return std::nullopt;
     }
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -132,10 +133,27 @@ void parse_profidrive_request(ByteReader reader, ProfidriveMessage& out,
 void parse_profidrive_response(ByteReader reader, ProfidriveMessage& out,
                                ProblemList& problems) noexcept;
 
-// A value block's values as text, by format: integers and unsigned in decimal, float32,
-// VisibleString quoted, OctetString / Byte / Word / Double word in hex, N2/N4 as a percentage
+// A value block's values as text, by format: integers, unsigned and Byte / Word / Double word in
+// decimal, float32, VisibleString quoted, OctetString in hex, N2/N4 as a percentage
 // (N2: 0x4000 = 100 %), V2 as 16 bits, time differences in ms; several values separated by
 // ", ". Error blocks give "error 0xNN" (renderers add the text). Appends to `out`.
+// A block cut short ends in " (cut short)".
 void append_profidrive_values(const ProfidriveValueBlock& block, std::string& out);
+
+// A value as a number: integers, unsigned, Boolean (0/1), V2, Byte, Word, Double word and
+// TimeDifference without date (ms) as integers; float32 and N2/N4 (in percent) as reals.
+struct ProfidriveNumber {
+    bool is_real = false;
+    bool single = false;  // a float32: write it with float precision ("0.1", not 0.100000001...)
+    std::int64_t integer = 0;
+    double real = 0;
+};
+// How many whole values a block holds (each character of a string counts; 0 for Zero, Error
+// and reserved formats).
+std::size_t profidrive_value_count(const ProfidriveValueBlock& block) noexcept;
+// Value `index` of a block as a number; nullopt where the format is not numeric (strings, dates,
+// times of day, Zero, Error, reserved), the value is missing, or a float is not finite.
+std::optional<ProfidriveNumber> profidrive_number(const ProfidriveValueBlock& block,
+                                                  std::size_t index) noexcept;
 
 }  // namespace dpscope

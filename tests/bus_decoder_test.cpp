@@ -1032,5 +1032,242 @@ TEST(BusDecoderTest, DirectionNames) {
     EXPECT_EQ(direction_name(Direction::Response), "response");
 }
 
+// ---- DP-V1 and PROFIdrive ------------------------------------------------------------------
+
+std::vector<std::uint8_t> msac_request(std::uint8_t slave, const std::vector<std::uint8_t>& du,
+                                       std::uint8_t dsap = sap::kMsacC1,
+                                       std::uint8_t ssap = sap::kMsacC1) {
+    return telegram(slave, kMasterAddress, request_fc(FdlFunction::SrdHigh, true, true), dsap, ssap,
+                    du);
+}
+
+std::vector<std::uint8_t> msac_response(std::uint8_t slave, const std::vector<std::uint8_t>& du,
+                                        std::uint8_t ssap = sap::kMsacC1,
+                                        std::uint8_t dsap = sap::kMsacC1) {
+    return telegram(kMasterAddress, slave, response_fc(FdlStatus::DataLow), dsap, ssap, du);
+}
+
+TEST(BusDecoderTest, Dpv1WriteStateConflictAndReadResponseNamedAfterTheRequest) {
+    Bus bus;
+    const DecodedTelegram& write =
+        bus.decode(msac_request(5, hex("5F 00 2F 0A 05 01 00 01 10 01 00 0C 00 04")));
+    EXPECT_EQ(write.dp.service, Service::MsacC1);
+    const Dpv1Pdu* pdu = write.dp.service_data.dpv1();
+    ASSERT_NE(pdu, nullptr);
+    EXPECT_TRUE(pdu->is_write());
+    EXPECT_TRUE(pdu->on_parameter_channel());
+    const ProfidriveMessage* request = write.dp.service_data.profidrive();
+    ASSERT_NE(request, nullptr);
+    EXPECT_FALSE(request->is_response);
+    EXPECT_EQ(request->reference, 5);
+    ASSERT_EQ(request->addresses.size(), 1u);
+    EXPECT_EQ(request->addresses[0].pnu, 12);
+    EXPECT_TRUE(write.problems().empty());
+
+    const DecodedTelegram& echo = bus.decode(msac_response(5, hex("5F 00 2F 0A")));
+    EXPECT_EQ(echo.request_frame, 1u);
+    ASSERT_NE(echo.dp.service_data.dpv1(), nullptr);
+    EXPECT_EQ(echo.dp.service_data.dpv1()->length, 10);
+    EXPECT_EQ(echo.dp.service_data.profidrive(), nullptr);  // a write response has no data
+
+    for (int poll = 0; poll < 2; ++poll) {
+        const DecodedTelegram& read = bus.decode(msac_request(5, hex("5E 00 2F F0")));
+        ASSERT_NE(read.dp.service_data.dpv1(), nullptr);
+        EXPECT_TRUE(read.dp.service_data.dpv1()->is_read());
+        EXPECT_EQ(read.dp.service_data.profidrive(), nullptr);
+        const DecodedTelegram& busy = bus.decode(msac_response(5, hex("DE 80 B5 00")));
+        ASSERT_NE(busy.dp.service_data.dpv1(), nullptr);
+        EXPECT_TRUE(busy.dp.service_data.dpv1()->is_state_conflict());
+        EXPECT_EQ(busy.dp.service_data.profidrive(), nullptr);
+    }
+
+    bus.decode(msac_request(5, hex("5E 00 2F F0")));
+    const DecodedTelegram& answer =
+        bus.decode(msac_response(5, hex("5E 00 2F 08 05 01 00 01 42 01 00 03")));
+    const ProfidriveMessage* response = answer.dp.service_data.profidrive();
+    ASSERT_NE(response, nullptr);
+    EXPECT_TRUE(response->is_response);
+    EXPECT_TRUE(response->has_request);
+    EXPECT_EQ(response->request_frame, 1u);
+    EXPECT_EQ(response->request_reference, 5);
+    EXPECT_EQ(response->request_id, 0x01);
+    ASSERT_EQ(response->addresses.size(), 1u);
+    EXPECT_EQ(response->addresses[0].pnu, 12);
+    EXPECT_EQ(response->addresses[0].subindex, 4);
+    ASSERT_EQ(response->blocks.size(), 1u);
+    EXPECT_EQ(response->blocks[0].format, 0x42);
+    EXPECT_TRUE(answer.problems().empty());
+}
+
+TEST(BusDecoderTest, Dpv1ResponseNamesOnlyTheRequestOfItsSlaveSlotAndIndex) {
+    Bus bus;
+    bus.decode(msac_request(5, hex("5F 00 2F 0A 05 01 00 01 10 01 00 0C 00 04")));
+    bus.decode(msac_response(5, hex("5F 00 2F 0A")));
+    // Another slave's read response: its request is not in the capture.
+    bus.decode(msac_request(6, hex("5E 00 2F F0")));
+    const DecodedTelegram& other =
+        bus.decode(msac_response(6, hex("5E 00 2F 08 07 01 00 01 42 01 00 03")));
+    ASSERT_NE(other.dp.service_data.profidrive(), nullptr);
+    EXPECT_FALSE(other.dp.service_data.profidrive()->has_request);
+    EXPECT_EQ(other.dp.service_data.profidrive()->request_frame, 0u);
+    EXPECT_TRUE(other.dp.service_data.profidrive()->addresses.empty());
+    // Same slave, another slot.
+    bus.decode(msac_request(5, hex("5E 01 2F F0")));
+    const DecodedTelegram& slot =
+        bus.decode(msac_response(5, hex("5E 01 2F 08 05 01 00 01 42 01 00 03")));
+    ASSERT_NE(slot.dp.service_data.profidrive(), nullptr);
+    EXPECT_FALSE(slot.dp.service_data.profidrive()->has_request);
+}
+
+TEST(BusDecoderTest, Dpv1ReadResponseWithoutItsRequestInTheCapture) {
+    Bus bus;
+    bus.decode(msac_request(5, hex("5E 00 2F F0")));
+    const DecodedTelegram& answer =
+        bus.decode(msac_response(5, hex("5E 00 2F 08 09 01 01 01 42 01 00 03")));
+    const ProfidriveMessage* response = answer.dp.service_data.profidrive();
+    ASSERT_NE(response, nullptr);
+    EXPECT_FALSE(response->has_request);
+    EXPECT_EQ(response->reference, 9);
+    EXPECT_TRUE(response->addresses.empty());
+}
+
+TEST(BusDecoderTest, Dpv1LengthByteBoundsTheProfidriveMessage) {
+    Bus bus;
+    // Length 4 announces the header alone; the address after it is not part of the message.
+    const DecodedTelegram& write =
+        bus.decode(msac_request(5, hex("5F 00 2F 04 05 01 00 01 10 01 00 0C 00 04")));
+    const ProfidriveMessage* request = write.dp.service_data.profidrive();
+    ASSERT_NE(request, nullptr);
+    EXPECT_TRUE(request->addresses.empty());
+    ASSERT_EQ(write.problems().size(), 1u);
+    EXPECT_EQ(write.problems()[0].kind, ProblemKind::ServiceDataShort);
+    // Length 20 with 10 bytes: the message is what the data holds.
+    bus.decode(msac_response(5, hex("5F 00 2F 14")));
+    const DecodedTelegram& longer =
+        bus.decode(msac_request(5, hex("5F 00 2F 14 06 01 00 01 10 01 00 0C 00 04")));
+    ASSERT_NE(longer.dp.service_data.profidrive(), nullptr);
+    EXPECT_EQ(longer.dp.service_data.profidrive()->addresses.size(), 1u);
+}
+
+TEST(BusDecoderTest, Dpv1EmptyDataUnitIsALinkLevelPoll) {
+    Bus bus;
+    const DecodedTelegram& poll = bus.decode(msac_request(5, {}));
+    EXPECT_EQ(poll.dp.service, Service::MsacC1);
+    const Dpv1Pdu* pdu = poll.dp.service_data.dpv1();
+    ASSERT_NE(pdu, nullptr);
+    EXPECT_EQ(pdu->layout, Dpv1Pdu::Layout::None);
+    EXPECT_EQ(poll.dp.service_data.profidrive(), nullptr);
+    EXPECT_TRUE(poll.problems().empty());
+}
+
+TEST(BusDecoderTest, Dpv1Class2InitiateAndConnectionDecode) {
+    Bus bus;
+    const DecodedTelegram& initiate = bus.decode(
+        msac_request(5, hex("57 00 00 00 03 E8 01 00 00 00 00 00 00 02 00 02 02 31 05 30"),
+                     sap::kResourceManager, sap::kMsacC2Master));
+    EXPECT_EQ(initiate.dp.service, Service::MsacC2);
+    const Dpv1Pdu* pdu = initiate.dp.service_data.dpv1();
+    ASSERT_NE(pdu, nullptr);
+    EXPECT_EQ(pdu->layout, Dpv1Pdu::Layout::Initiate);
+    EXPECT_EQ(pdu->initiate.send_timeout, 1000);
+    EXPECT_EQ(pdu->initiate.s_addr.size(), 2u);
+
+    const DecodedTelegram& accepted =
+        bus.decode(msac_response(5, hex("57 F0 01 00 00 00 00 00 00 02 00 02 02 31 05 30"),
+                                 sap::kResourceManager, sap::kMsacC2Master));
+    EXPECT_EQ(accepted.dp.service, Service::MsacC2);
+    ASSERT_NE(accepted.dp.service_data.dpv1(), nullptr);
+    EXPECT_EQ(accepted.dp.service_data.dpv1()->initiate.max_len_data_unit, 240);
+
+    // The connection SAP (here 48): a class-2 Write carrying a PROFIdrive request.
+    const DecodedTelegram& write = bus.decode(
+        msac_request(5, hex("5F 00 2F 0A 0C 01 00 01 10 00 03 96 00 00"), 48, sap::kMsacC2Master));
+    EXPECT_EQ(write.dp.service, Service::MsacC2);
+    ASSERT_NE(write.dp.service_data.profidrive(), nullptr);
+    EXPECT_EQ(write.dp.service_data.profidrive()->addresses[0].pnu, 918);
+    bus.decode(msac_response(5, hex("5F 00 2F 0A"), 48, sap::kMsacC2Master));
+    bus.decode(msac_request(5, hex("5E 00 2F F0"), 48, sap::kMsacC2Master));
+    const DecodedTelegram& read = bus.decode(
+        msac_response(5, hex("5E 00 2F 08 0C 81 00 01 44 01 00 00"), 48, sap::kMsacC2Master));
+    const ProfidriveMessage* response = read.dp.service_data.profidrive();
+    ASSERT_NE(response, nullptr);
+    EXPECT_TRUE(response->negative());
+    EXPECT_TRUE(response->has_request);
+    EXPECT_EQ(response->addresses[0].pnu, 918);
+
+    const DecodedTelegram& abort =
+        bus.decode(msac_request(5, hex("58 00 13"), 48, sap::kMsacC2Master));
+    ASSERT_NE(abort.dp.service_data.dpv1(), nullptr);
+    EXPECT_EQ(abort.dp.service_data.dpv1()->layout, Dpv1Pdu::Layout::Abort);
+}
+
+TEST(BusDecoderTest, Dpv1CutShortPduIsAProblemAndDecodingGoesOn) {
+    Bus bus;
+    const DecodedTelegram& cut = bus.decode(msac_request(5, hex("5F 00")));
+    ASSERT_EQ(cut.problems().size(), 1u);
+    EXPECT_EQ(cut.problems()[0].kind, ProblemKind::ServiceDataShort);
+    EXPECT_EQ(cut.problems()[0].offset, 10);  // SD2 header 4, DA SA FC, DSAP SSAP, function
+    const DecodedTelegram& next = bus.decode(msac_request(5, hex("5E 00 2F F0")));
+    EXPECT_TRUE(next.problems().empty());
+}
+
+// ../shared/protocol.md section 6.6 (ABB FPBA-01), whole DP-V1 PDUs through the decoder.
+TEST(BusDecoderTest, Dpv1WorkedExamplesOfTheProtocolNotes) {
+    Bus bus;
+    const DecodedTelegram& single =
+        bus.decode(msac_request(5, hex("5F 01 2F 0A 05 01 01 01 10 01 00 0C 00 04")));
+    ASSERT_NE(single.dp.service_data.dpv1(), nullptr);
+    EXPECT_EQ(single.dp.service_data.dpv1()->slot, 1);
+    EXPECT_EQ(single.dp.service_data.dpv1()->length, 10);
+    const ProfidriveMessage* m = single.dp.service_data.profidrive();
+    ASSERT_NE(m, nullptr);
+    EXPECT_EQ(m->reference, 5);
+    EXPECT_EQ(m->id, 0x01);
+    EXPECT_EQ(m->axis, 1);
+    ASSERT_EQ(m->addresses.size(), 1u);
+    EXPECT_EQ(m->addresses[0].attribute, 0x10);
+    EXPECT_EQ(m->addresses[0].elements, 1);
+    EXPECT_EQ(m->addresses[0].pnu, 12);
+    EXPECT_EQ(m->addresses[0].subindex, 4);
+    EXPECT_TRUE(single.problems().empty());
+    bus.decode(msac_response(5, hex("5F 01 2F 0A")));
+
+    const DecodedTelegram& three = bus.decode(msac_request(
+        5, hex("5F 01 2F 16 06 01 01 03 10 01 00 0C 00 04 10 01 00 14 00 08 10 01 00 1E 00 13")));
+    ASSERT_NE(three.dp.service_data.profidrive(), nullptr);
+    EXPECT_EQ(three.dp.service_data.dpv1()->length, 22);
+    const auto& addresses = three.dp.service_data.profidrive()->addresses;
+    ASSERT_EQ(addresses.size(), 3u);
+    EXPECT_EQ(addresses[1].pnu, 20);
+    EXPECT_EQ(addresses[1].subindex, 8);
+    EXPECT_EQ(addresses[2].pnu, 30);
+    EXPECT_EQ(addresses[2].subindex, 19);
+    EXPECT_TRUE(three.problems().empty());
+    bus.decode(msac_response(5, hex("5F 01 2F 16")));
+
+    const DecodedTelegram& station =
+        bus.decode(msac_request(5, hex("5F 01 2F 0A 09 01 01 01 10 00 03 96 00 00")));
+    ASSERT_NE(station.dp.service_data.profidrive(), nullptr);
+    EXPECT_EQ(station.dp.service_data.profidrive()->addresses[0].pnu, 918);
+    EXPECT_EQ(station.dp.service_data.profidrive()->addresses[0].elements, 0);
+    bus.decode(msac_response(5, hex("5F 01 2F 0A")));
+    bus.decode(msac_request(5, hex("5E 01 2F F0")));
+    const DecodedTelegram& answer =
+        bus.decode(msac_response(5, hex("5E 01 2F 08 09 01 01 01 42 01 00 03")));
+    const ProfidriveMessage* response = answer.dp.service_data.profidrive();
+    ASSERT_NE(response, nullptr);
+    EXPECT_EQ(response->reference, 9);
+    EXPECT_EQ(response->id, 0x01);
+    EXPECT_EQ(response->axis, 1);
+    EXPECT_EQ(response->count, 1);
+    ASSERT_EQ(response->blocks.size(), 1u);
+    EXPECT_EQ(response->blocks[0].format, 0x42);
+    EXPECT_EQ(profidrive_number(response->blocks[0], 0)->integer, 3);
+    EXPECT_TRUE(response->has_request);
+    EXPECT_EQ(response->request_frame, 5u);
+    EXPECT_EQ(response->addresses[0].pnu, 918);
+    EXPECT_TRUE(answer.problems().empty());
+}
+
 }  // namespace
 }  // namespace dpscope
