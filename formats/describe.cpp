@@ -169,6 +169,193 @@ void append_cfg_summary(TextBuffer& out, Bytes identifiers, std::span<const CfgM
     append_ppo_short(out, ppo_from_cfg(modules, PpoSource::ChkCfg));
 }
 
+namespace {
+
+// "PNU 12[4]", "PNU 12[4..7]" (several elements); "param 2" when the address is not known.
+// `subindex` false: "PNU 918" (an error, whose information names the failing subindex).
+void append_parameter_address(TextBuffer& out, const ProfidriveMessage& m, std::size_t k,
+                              bool subindex = true) {
+    auto it = std::back_inserter(out);
+    if (k >= m.addresses.size()) {
+        fmt::format_to(it, "param {}", k + 1);
+        return;
+    }
+    const ProfidriveAddress& a = m.addresses[k];
+    if (!subindex)
+        fmt::format_to(it, "PNU {}", a.pnu);
+    else if (a.elements > 1)
+        fmt::format_to(it, "PNU {}[{}..{}]", a.pnu, a.subindex, a.subindex + a.elements - 1);
+    else
+        fmt::format_to(it, "PNU {}[{}]", a.pnu, a.subindex);
+}
+
+void append_block_values(TextBuffer& out, const ProfidriveValueBlock& block) {
+    std::string values;
+    append_profidrive_values(block, values);
+    append(out, values);
+    fmt::format_to(std::back_inserter(out), " ({})", profidrive_format_name(block.format));
+}
+
+}  // namespace
+
+void append_profidrive_block(TextBuffer& out, const ProfidriveValueBlock& block, Dialect dialect) {
+    auto it = std::back_inserter(out);
+    if (block.is_error()) {
+        if (block.values.size() < 2) {
+            append(out, "error (number cut short)");
+            return;
+        }
+        fmt::format_to(it, "error 0x{:02X} {}", block.error_number(),
+                       profidrive_error_text(block.error_number(), dialect));
+        if (block.has_error_info()) fmt::format_to(it, " (subindex {})", block.error_info());
+        return;
+    }
+    if (block.format == profidrive::kFormatZero) {
+        append(out, "done (Zero)");
+        return;
+    }
+    append_block_values(out, block);
+}
+
+void append_profidrive_summary(TextBuffer& out, const ProfidriveMessage& m, Dialect dialect) {
+    auto it = std::back_inserter(out);
+    if (!m.has_header) {
+        append(out, "PROFIdrive header cut short");
+        return;
+    }
+    std::string_view id_name =
+        m.is_response ? profidrive_response_id_name(m.id) : profidrive_request_id_name(m.id);
+    fmt::format_to(it, "PROFIdrive {} ref {} ", m.is_response ? "rsp" : "req", m.reference);
+    if (id_name.empty())
+        fmt::format_to(it, "ID 0x{:02X}", m.id);
+    else
+        append(out, id_name);
+    fmt::format_to(it, " axis {}, {} param{}", m.axis, m.count, m.count == 1 ? "" : "s");
+    if (m.is_response) {
+        if (!m.blocks.empty()) append(out, ":");
+        for (std::size_t k = 0; k < m.blocks.size(); ++k) {
+            append(out, k ? ", " : " ");
+            const ProfidriveValueBlock& block = m.blocks[k];
+            append_parameter_address(out, m, k, !block.is_error());
+            if (block.is_error() || block.format == profidrive::kFormatZero) {
+                append(out, ": ");
+                append_profidrive_block(out, block, dialect);
+            } else {
+                append(out, " = ");
+                append_block_values(out, block);
+            }
+        }
+    } else {
+        if (!m.addresses.empty()) append(out, ":");
+        for (std::size_t k = 0; k < m.addresses.size(); ++k) {
+            append(out, k ? ", " : " ");
+            append_parameter_address(out, m, k);
+            std::string_view attribute = profidrive_attribute_name(m.addresses[k].attribute);
+            if (attribute.empty())
+                fmt::format_to(it, " attribute 0x{:02X}", m.addresses[k].attribute);
+            else
+                fmt::format_to(it, " {}", attribute);
+            if (k < m.blocks.size()) {
+                append(out, " = ");
+                append_block_values(out, m.blocks[k]);
+            }
+        }
+    }
+    if (m.trailing > 0) fmt::format_to(it, " +{} bytes after the message", m.trailing);
+}
+
+void append_dpv1_summary(TextBuffer& out, const DecodedTelegram& t) {
+    const FdlTelegram& f = t.dp.fdl;
+    const Dpv1Pdu* pdu = t.dp.service_data.dpv1();
+    auto it = std::back_inserter(out);
+    if (!pdu || pdu->layout == Dpv1Pdu::Layout::None) {
+        if (t.direction == Direction::Request)
+            append(out, "no PDU (link-level poll)");
+        else if (f.has_fc)
+            fmt::format_to(it, "no PDU: {} ({})", response_status_name(f.fc.function()),
+                           response_status_text(f.fc.function()));
+        else
+            append(out, "no PDU");
+        return;
+    }
+    std::string_view name = dpv1_function_name(pdu->function);
+    if (name.empty())
+        fmt::format_to(it, "function 0x{:02X}", pdu->function);
+    else
+        append(out, name);
+    if (!pdu->complete && pdu->layout != Dpv1Pdu::Layout::Initiate) {
+        append(out, " (header cut short)");
+        return;
+    }
+    switch (pdu->layout) {
+        case Dpv1Pdu::Layout::Error: {
+            std::string_view decode = dpv1_error_decode_name(pdu->error_decode);
+            if (decode.empty())
+                fmt::format_to(it, " Error_Decode 0x{:02X}", pdu->error_decode);
+            else
+                fmt::format_to(it, " {}", decode);
+            std::string_view error_class = dpv1_error_class_name(pdu->error_code_1);
+            if (pdu->error_decode == kDpv1ErrorDecodeDpv1)
+                fmt::format_to(it, " {}{}{} (0x{:02X})", error_class,
+                               error_class.empty() ? "" : ": ",
+                               dpv1_error_code_name(pdu->error_code_1), pdu->error_code_1);
+            else
+                fmt::format_to(it, " Error_Code_1 0x{:02X}", pdu->error_code_1);
+            if (pdu->error_code_2 != 0)
+                fmt::format_to(it, " Error_Code_2 0x{:02X}", pdu->error_code_2);
+            return;
+        }
+        case Dpv1Pdu::Layout::Addressed:
+            if (pdu->base_function() == dpv1_function::kAlarmAck) {
+                fmt::format_to(it, " slot {} alarm type {} specifier 0x{:02X}", pdu->slot,
+                               pdu->index, pdu->length);
+                return;
+            }
+            fmt::format_to(it, " slot {} idx {} len {}", pdu->slot, pdu->index, pdu->length);
+            if (const ProfidriveMessage* m = t.dp.service_data.profidrive()) {
+                append(out, " | ");
+                append_profidrive_summary(out, *m, t.dp.dialect);
+            } else if (!pdu->data.empty()) {
+                append(out, " data ");
+                append_hex(out, pdu->data.first(std::min<std::size_t>(pdu->data.size(), 16)));
+                if (pdu->data.size() > 16) append(out, " ...");
+            }
+            return;
+        case Dpv1Pdu::Layout::Initiate: {
+            const Dpv1Initiate& i = pdu->initiate;
+            if (!pdu->complete) {
+                append(out, " (cut short)");
+                return;
+            }
+            if (t.direction == Direction::Request)
+                fmt::format_to(it, " send timeout {} ms", i.send_timeout * 10);
+            else
+                fmt::format_to(it, " max data unit {}", i.max_len_data_unit);
+            fmt::format_to(
+                it, " features 0x{:04X} profile features 0x{:04X} profile ident 0x{:04X}",
+                i.features_supported, i.profile_features_supported, i.profile_ident_number);
+            if (i.has_addresses)
+                fmt::format_to(it, " S_Type {} S_Len {} D_Type {} D_Len {}", i.s_type, i.s_len,
+                               i.d_type, i.d_len);
+            return;
+        }
+        case Dpv1Pdu::Layout::Abort:
+            fmt::format_to(it, " subnet {} {}: {}", pdu->abort.subnet,
+                           dpv1_abort_instance_name(pdu->abort.instance_reason),
+                           dpv1_abort_reason_name(pdu->abort.instance_reason));
+            return;
+        case Dpv1Pdu::Layout::Idle:
+        case Dpv1Pdu::Layout::None: return;
+        case Dpv1Pdu::Layout::Unknown:
+            if (!pdu->data.empty()) {
+                append(out, " data ");
+                append_hex(out, pdu->data.first(std::min<std::size_t>(pdu->data.size(), 16)));
+                if (pdu->data.size() > 16) append(out, " ...");
+            }
+            return;
+    }
+}
+
 void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
     const FdlTelegram& f = t.dp.fdl;
     const DpServiceData& data = t.dp.service_data;
@@ -269,6 +456,13 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
             if (const GlobalControl* gc = data.global_control()) {
                 append_flags(out, gc->command, global_control_flags(), "operate");
                 fmt::format_to(std::back_inserter(out), " group 0x{:02X}", gc->group_select);
+                return;
+            }
+            break;
+        case Service::MsacC1:
+        case Service::MsacC2:
+            if (data.dpv1() || f.du.empty()) {
+                append_dpv1_summary(out, t);
                 return;
             }
             break;

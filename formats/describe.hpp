@@ -41,6 +41,14 @@ void append_ppo_long(TextBuffer& out, const PpoLayout& layout);
 void append_pcv_summary(TextBuffer& out, const DecodedTelegram& t);
 // "CTW=0x047F MRV=50.00%".
 void append_pcd_summary(TextBuffer& out, const DecodedTelegram& t);
+// A DP-V1 telegram: "Write slot 0 idx 47 len 10 | PROFIdrive req ...", "Read negative DP-V1
+// access: state conflict (0xB5)", "Abort subnet 0 MSAC_C2: ...", "no PDU (link-level poll)".
+void append_dpv1_summary(TextBuffer& out, const DecodedTelegram& t);
+// "PROFIdrive req ref 5 request parameter value axis 0, 1 param: PNU 12[4] value"; a response
+// "... : PNU 12[4] = 3 (Word)" or "PNU 918: error 0x00 illegal or unknown parameter number".
+void append_profidrive_summary(TextBuffer& out, const ProfidriveMessage& m, Dialect dialect);
+// One value block: "3, 4 (Word)", "error 0x03 invalid subindex (subindex 5)", "done (Zero)".
+void append_profidrive_block(TextBuffer& out, const ProfidriveValueBlock& block, Dialect dialect);
 // The detail column of the text format for any service.
 void append_service_detail(TextBuffer& out, const DecodedTelegram& t);
 // "CTW"/"MRV" for requests, "STW"/"MAV" for responses, "" for further words.

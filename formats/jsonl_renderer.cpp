@@ -1,5 +1,6 @@
 // One JSON object a telegram. Every key is present on every line (null where it does not apply);
 // the schema is documented in README.md and is stable.
+#include <algorithm>
 #include <iterator>
 #include <vector>
 
@@ -312,6 +313,208 @@ class JsonlRenderer final : public TelegramRenderer {
         } else {
             w.null();
         }
+
+        // Only on DP-V1 lines (MSAC_C1, MSAC_C2): other lines keep the schema they had.
+        if (t.dp.service == Service::MsacC1 || t.dp.service == Service::MsacC2) {
+            w.key("dpv1");
+            if (const Dpv1Pdu* pdu = data.dpv1())
+                render_dpv1(w, t, *pdu);
+            else
+                w.null();
+            w.key("profidrive");
+            if (const ProfidriveMessage* m = data.profidrive())
+                render_profidrive(w, *m, t.dp.dialect);
+            else
+                w.null();
+        }
+    }
+
+    static void optional_string(JsonWriter& w, std::string_view text) {
+        if (text.empty())
+            w.null();
+        else
+            w.string(text);
+    }
+
+    static void render_dpv1(JsonWriter& w, const DecodedTelegram& t, const Dpv1Pdu& pdu) {
+        using Layout = Dpv1Pdu::Layout;
+        w.begin_object();
+        bool has_function = pdu.layout != Layout::None;
+        w.key("function").optional_integer(has_function, pdu.function);
+        w.key("function_name");
+        if (has_function)
+            optional_string(w, dpv1_function_name(pdu.function));
+        else
+            w.null();
+        w.key("negative").boolean(pdu.negative());
+        w.key("complete").boolean(pdu.complete);
+        bool addressed = pdu.layout == Layout::Addressed && pdu.complete;
+        bool alarm = addressed && pdu.base_function() == dpv1_function::kAlarmAck;
+        w.key("slot").optional_integer(addressed, pdu.slot);
+        w.key("index").optional_integer(addressed && !alarm, pdu.index);
+        w.key("length").optional_integer(addressed && !alarm, pdu.length);
+        w.key("data_length")
+            .optional_integer(addressed || pdu.layout == Layout::Unknown,
+                              static_cast<std::int64_t>(pdu.data.size()));
+        w.key("alarm_type").optional_integer(alarm, pdu.index);
+        w.key("specifier").optional_integer(alarm, pdu.length);
+        bool error = pdu.layout == Layout::Error && pdu.complete;
+        w.key("error_decode").optional_integer(error, pdu.error_decode);
+        w.key("error_decode_name");
+        if (error)
+            optional_string(w, dpv1_error_decode_name(pdu.error_decode));
+        else
+            w.null();
+        w.key("error_code_1").optional_integer(error, pdu.error_code_1);
+        w.key("error_class").optional_integer(error, pdu.error_code_1 >> 4);
+        w.key("error_class_name");
+        if (error)
+            optional_string(w, dpv1_error_class_name(pdu.error_code_1));
+        else
+            w.null();
+        w.key("error_code").optional_integer(error, pdu.error_code_1 & 0x0F);
+        w.key("error_code_name");
+        if (error)
+            w.string(dpv1_error_code_name(pdu.error_code_1));
+        else
+            w.null();
+        w.key("error_code_2").optional_integer(error, pdu.error_code_2);
+        w.key("initiate");
+        if (pdu.layout == Layout::Initiate && pdu.complete) {
+            const Dpv1Initiate& i = pdu.initiate;
+            bool request = t.direction == Direction::Request;
+            w.begin_object();
+            w.key("send_timeout").optional_integer(request, i.send_timeout);
+            w.key("max_len_data_unit").optional_integer(!request, i.max_len_data_unit);
+            w.key("features_supported").integer(i.features_supported);
+            w.key("profile_features_supported").integer(i.profile_features_supported);
+            w.key("profile_ident_number").integer(i.profile_ident_number);
+            w.key("s_type").optional_integer(i.has_addresses, i.s_type);
+            w.key("s_len").optional_integer(i.has_addresses, i.s_len);
+            w.key("d_type").optional_integer(i.has_addresses, i.d_type);
+            w.key("d_len").optional_integer(i.has_addresses, i.d_len);
+            w.key("s_addr");
+            hex_string(w, i.s_addr);
+            w.key("d_addr");
+            hex_string(w, i.d_addr);
+            w.end_object();
+        } else {
+            w.null();
+        }
+        w.key("abort");
+        if (pdu.layout == Layout::Abort && pdu.complete) {
+            w.begin_object();
+            w.key("subnet").integer(pdu.abort.subnet);
+            w.key("instance").integer(pdu.abort.instance());
+            w.key("instance_name").string(dpv1_abort_instance_name(pdu.abort.instance_reason));
+            w.key("reason").integer(pdu.abort.reason());
+            w.key("reason_name").string(dpv1_abort_reason_name(pdu.abort.instance_reason));
+            w.end_object();
+        } else {
+            w.null();
+        }
+        w.end_object();
+    }
+
+    static void render_number(JsonWriter& w, const ProfidriveNumber& n) {
+        if (!n.is_real) {
+            w.integer(n.integer);
+            return;
+        }
+        w.raw_value([&n](TextBuffer& b) {
+            if (n.single)
+                fmt::format_to(std::back_inserter(b), "{}", static_cast<float>(n.real));
+            else
+                fmt::format_to(std::back_inserter(b), "{}", n.real);
+        });
+    }
+
+    static void render_profidrive(JsonWriter& w, const ProfidriveMessage& m, Dialect dialect) {
+        w.begin_object();
+        w.key("response").boolean(m.is_response);
+        w.key("reference").optional_integer(m.has_header, m.reference);
+        std::string_view id_name =
+            m.is_response ? profidrive_response_id_name(m.id) : profidrive_request_id_name(m.id);
+        w.key(m.is_response ? "response_id" : "request_id").optional_integer(m.has_header, m.id);
+        w.key("id_name");
+        if (m.has_header)
+            optional_string(w, id_name);
+        else
+            w.null();
+        w.key("negative").boolean(m.negative());
+        w.key("axis").optional_integer(m.has_header, m.axis);
+        w.key("count").optional_integer(m.has_header, m.count);
+        if (m.is_response) {
+            w.key("request_frame")
+                .optional_integer(m.has_request, static_cast<std::int64_t>(m.request_frame));
+        }
+        w.key("parameters").begin_array();
+        std::size_t parameters = std::max(m.addresses.size(), m.blocks.size());
+        for (std::size_t k = 0; k < parameters; ++k) {
+            w.begin_object();
+            bool address = k < m.addresses.size();
+            const ProfidriveAddress a = address ? m.addresses[k] : ProfidriveAddress{};
+            w.key("attribute").optional_integer(address, a.attribute);
+            w.key("attribute_name");
+            if (address)
+                optional_string(w, profidrive_attribute_name(a.attribute));
+            else
+                w.null();
+            w.key("elements").optional_integer(address, a.elements);
+            w.key("pnu").optional_integer(address, a.pnu);
+            w.key("subindex").optional_integer(address, a.subindex);
+            bool has_block = k < m.blocks.size();
+            const ProfidriveValueBlock* block = has_block ? &m.blocks[k] : nullptr;
+            w.key("format").optional_integer(has_block, has_block ? block->format : 0);
+            w.key("format_name");
+            if (block)
+                w.string(profidrive_format_name(block->format));
+            else
+                w.null();
+            w.key("value_count").optional_integer(has_block, has_block ? block->count : 0);
+            w.key("values");
+            bool values = block && !block->is_error() && block->format != profidrive::kFormatZero;
+            if (values) {
+                std::string text;
+                append_profidrive_values(*block, text);
+                w.string(text);
+            } else {
+                w.null();
+            }
+            w.key("numbers");
+            std::size_t count = values ? profidrive_value_count(*block) : 0;
+            if (values && count > 0 && profidrive_number(*block, 0)) {
+                w.begin_array();
+                for (std::size_t i = 0; i < count; ++i) {
+                    if (auto n = profidrive_number(*block, i))
+                        render_number(w, *n);
+                    else
+                        w.null();
+                }
+                w.end_array();
+            } else {
+                w.null();
+            }
+            w.key("complete");
+            if (block)
+                w.boolean(block->complete);
+            else
+                w.null();
+            w.key("error");
+            if (block && block->is_error() && block->values.size() >= 2) {
+                w.begin_object();
+                w.key("number").integer(block->error_number());
+                w.key("text").string(profidrive_error_text(block->error_number(), dialect));
+                w.key("info").optional_integer(block->has_error_info(), block->error_info());
+                w.end_object();
+            } else {
+                w.null();
+            }
+            w.end_object();
+        }
+        w.end_array();
+        w.key("trailing").integer(m.trailing);
+        w.end_object();
     }
 };
 

@@ -1,4 +1,5 @@
 // The whole field tree of each telegram, like tshark -V.
+#include <algorithm>
 #include <iterator>
 #include <span>
 #include <vector>
@@ -183,6 +184,13 @@ class VerboseRenderer final : public TelegramRenderer {
                     }
                 }
                 break;
+            case Service::MsacC1:
+            case Service::MsacC2:
+                if (const Dpv1Pdu* pdu = data.dpv1()) {
+                    render_dpv1(t, *pdu);
+                    break;
+                }
+                [[fallthrough]];
             default:
                 if (!t.dp.fdl.du.empty()) {
                     line(1, "Data: ");
@@ -191,6 +199,146 @@ class VerboseRenderer final : public TelegramRenderer {
                 }
                 break;
         }
+    }
+
+    void render_dpv1(const DecodedTelegram& t, const Dpv1Pdu& pdu) {
+        TextBuffer& b = out_.buffer();
+        if (pdu.layout == Dpv1Pdu::Layout::None) {
+            field(1, "DP-V1 PDU: none (empty data unit: a link-level poll)");
+            return;
+        }
+        std::string_view name = dpv1_function_name(pdu.function);
+        field(1, "DP-V1 function: 0x{:02X} ({}){}", pdu.function,
+              name.empty() ? "not defined by DP-V1" : name,
+              pdu.negative() ? ", negative response" : "");
+        if (!pdu.complete) field(2, "PDU cut short: the fields below are those read");
+        switch (pdu.layout) {
+            case Dpv1Pdu::Layout::Error: {
+                std::string_view decode = dpv1_error_decode_name(pdu.error_decode);
+                field(2, "Error_Decode: 0x{:02X} ({})", pdu.error_decode,
+                      decode.empty() ? "unknown" : decode);
+                std::string_view error_class = dpv1_error_class_name(pdu.error_code_1);
+                field(2, "Error_Code_1: 0x{:02X}", pdu.error_code_1);
+                field(3, "Error class: {} ({})", pdu.error_code_1 >> 4,
+                      error_class.empty() ? "reserved" : error_class);
+                field(3, "Error code: {} ({})", pdu.error_code_1 & 0x0F,
+                      dpv1_error_code_name(pdu.error_code_1));
+                field(2, "Error_Code_2: 0x{:02X}", pdu.error_code_2);
+                break;
+            }
+            case Dpv1Pdu::Layout::Addressed:
+                field(2, "Slot: {}", pdu.slot);
+                if (pdu.base_function() == dpv1_function::kAlarmAck) {
+                    field(2, "Alarm type: {}", pdu.index);
+                    field(2, "Specifier: 0x{:02X}", pdu.length);
+                } else {
+                    field(2, "Index: {}{}", pdu.index,
+                          pdu.index == kProfidriveIndex ? " (PROFIdrive parameter channel)" : "");
+                    field(2, "Length: {}", pdu.length);
+                }
+                if (!pdu.data.empty()) {
+                    line(2, "");
+                    fmt::format_to(std::back_inserter(b),
+                                   "Data ({} bytes from byte {}): ", pdu.data.size(),
+                                   pdu.data_offset);
+                    append_hex(b, pdu.data);
+                    b.push_back('\n');
+                }
+                break;
+            case Dpv1Pdu::Layout::Initiate: {
+                const Dpv1Initiate& i = pdu.initiate;
+                if (t.direction == Direction::Request)
+                    field(2, "Send_Timeout: {} ({} ms)", i.send_timeout, i.send_timeout * 10);
+                else
+                    field(2, "Max_Len_Data_Unit: {}", i.max_len_data_unit);
+                field(2, "Features_Supported: 0x{:04X}", i.features_supported);
+                field(2, "Profile_Features_Supported: 0x{:04X}", i.profile_features_supported);
+                field(2, "Profile_Ident_Number: 0x{:04X}", i.profile_ident_number);
+                if (i.has_addresses) {
+                    field(2, "S_Type: {}, S_Len: {}", i.s_type, i.s_len);
+                    line(2, "S_Addr: ");
+                    append_hex(b, i.s_addr);
+                    b.push_back('\n');
+                    field(2, "D_Type: {}, D_Len: {}", i.d_type, i.d_len);
+                    line(2, "D_Addr: ");
+                    append_hex(b, i.d_addr);
+                    b.push_back('\n');
+                }
+                break;
+            }
+            case Dpv1Pdu::Layout::Abort:
+                field(2, "Subnet: {}", pdu.abort.subnet);
+                field(2, "Instance_Reason_Code: 0x{:02X}", pdu.abort.instance_reason);
+                field(3, "Instance: {} ({})", pdu.abort.instance(),
+                      dpv1_abort_instance_name(pdu.abort.instance_reason));
+                field(3, "Reason code: {} ({})", pdu.abort.reason(),
+                      dpv1_abort_reason_name(pdu.abort.instance_reason));
+                break;
+            case Dpv1Pdu::Layout::Unknown:
+                if (!pdu.data.empty()) {
+                    line(2, "Data: ");
+                    append_hex(b, pdu.data);
+                    b.push_back('\n');
+                }
+                break;
+            case Dpv1Pdu::Layout::Idle:
+            case Dpv1Pdu::Layout::None: break;
+        }
+        if (const ProfidriveMessage* m = t.dp.service_data.profidrive())
+            render_profidrive(*m, t.dp.dialect);
+    }
+
+    void render_profidrive(const ProfidriveMessage& m, Dialect dialect) {
+        field(1, "PROFIdrive parameter {}", m.is_response ? "response" : "request");
+        if (!m.has_header) {
+            field(2, "header cut short");
+            return;
+        }
+        field(2, "Request reference: {}", m.reference);
+        std::string_view id_name =
+            m.is_response ? profidrive_response_id_name(m.id) : profidrive_request_id_name(m.id);
+        field(2, "{} ID: 0x{:02X} ({})", m.is_response ? "Response" : "Request", m.id,
+              id_name.empty() ? "not defined" : id_name);
+        field(2, "Axis: {}", m.axis);
+        field(2, "Number of parameters: {}", m.count);
+        if (m.is_response) {
+            if (m.has_request)
+                field(2, "Answers the request in frame {} (ref {}, ID 0x{:02X})", m.request_frame,
+                      m.request_reference, m.request_id);
+            else
+                field(2, "Request not in the capture: parameter numbers unknown");
+        }
+        std::size_t parameters = std::max(m.addresses.size(), m.blocks.size());
+        for (std::size_t k = 0; k < parameters; ++k) {
+            field(2, "Parameter {}", k + 1);
+            if (k < m.addresses.size()) {
+                const ProfidriveAddress& a = m.addresses[k];
+                std::string_view attribute = profidrive_attribute_name(a.attribute);
+                field(3, "Attribute: 0x{:02X} ({})", a.attribute,
+                      attribute.empty() ? "not defined" : attribute);
+                field(3, "Number of elements: {}", a.elements);
+                field(3, "Parameter number: {}", a.pnu);
+                field(3, "Subindex: {}", a.subindex);
+            }
+            if (k >= m.blocks.size()) continue;
+            const ProfidriveValueBlock& block = m.blocks[k];
+            field(3, "Format: 0x{:02X} ({})", block.format, profidrive_format_name(block.format));
+            field(3, "Number of values: {}", block.count);
+            if (block.is_error()) {
+                if (block.values.size() >= 2)
+                    field(3, "Error number: 0x{:02X} ({})", block.error_number(),
+                          profidrive_error_text(block.error_number(), dialect));
+                if (block.has_error_info())
+                    field(3, "Additional information: {}", block.error_info());
+            } else if (block.format != profidrive::kFormatZero) {
+                std::string values;
+                append_profidrive_values(block, values);
+                field(3, "Values: {}", values);
+            }
+            if (!block.complete) field(3, "(block cut short)");
+            if (block.padded) field(3, "Pad byte");
+        }
+        if (m.trailing > 0) field(2, "{} bytes after the message", m.trailing);
     }
 
     void render_data_exchange(const DecodedTelegram& t) {

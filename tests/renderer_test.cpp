@@ -1051,5 +1051,354 @@ TEST(RendererTest, OutputFormatNames) {
     EXPECT_FALSE(output_format_from_name("json").has_value());
 }
 
+// ---- DP-V1 and PROFIdrive --------------------------------------------------------------------
+
+std::vector<std::uint8_t> msac(bool request, std::vector<std::uint8_t> du,
+                               std::uint8_t slave_sap = 51, std::uint8_t master_sap = 51) {
+    if (request)
+        return build_telegram({kSlave, kMaster, request_fc(FdlFunction::SrdHigh, true, true),
+                               slave_sap, master_sap, Bytes(du)});
+    return build_telegram(
+        {kMaster, kSlave, response_fc(FdlStatus::DataLow), master_sap, slave_sap, Bytes(du)});
+}
+
+// Parameter access to slave 3 on slot 0, index 47: a read of PNU 12.4 with two polls answered
+// "state conflict", a read of PNU 918 answered negatively, a change of PNU 12.4, and a response
+// whose request is not in the capture.
+std::vector<Input> dpv1_session() {
+    std::vector<Input> in;
+    auto add = [&](bool request, std::string_view du) {
+        in.push_back(
+            {msac(request, hex(du)), kT0 + static_cast<std::int64_t>(in.size()) * 1'000'000, {}});
+    };
+    add(true, "5F 00 2F 0A 05 01 00 01 10 01 00 0C 00 04");              // 1 write: read PNU 12.4
+    add(false, "5F 00 2F 0A");                                           // 2 write response
+    add(true, "5E 00 2F F0");                                            // 3 read
+    add(false, "DE 80 B5 00");                                           // 4 state conflict
+    add(true, "5E 00 2F F0");                                            // 5 read
+    add(false, "5E 00 2F 08 05 01 00 01 42 01 00 03");                   // 6 read response: 3
+    add(true, "5F 00 2F 0A 06 01 00 01 10 00 03 96 00 00");              // 7 write: read PNU 918
+    add(false, "5F 00 2F 0A");                                           // 8
+    add(true, "5E 00 2F F0");                                            // 9
+    add(false, "5E 00 2F 08 06 81 00 01 44 01 00 00");                   // 10 error 0
+    add(true, "5F 00 2F 0E 07 02 00 01 10 01 00 0C 00 04 42 01 00 07");  // 11 change to 7
+    add(false, "5F 00 2F 0E");                                           // 12
+    add(true, "5E 00 2F F0");                                            // 13
+    add(false, "5E 00 2F 04 07 02 00 01");                               // 14 change (+)
+    add(true, "5E 00 2F F0");                                            // 15
+    add(false, "DF 80 A1 00");                                           // 16 write error
+    return in;
+}
+
+bool ends_with(const std::string& line, std::string_view tail) {
+    return line.size() >= tail.size() &&
+           line.compare(line.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+TEST(RendererTest, TextDpv1AndProfidriveDetail) {
+    std::vector<std::string> lines = split_lines(render(OutputFormat::Text, dpv1_session()));
+    ASSERT_EQ(lines.size(), 16u);
+    EXPECT_NE(lines[0].find("MSAC_C1"), std::string::npos) << lines[0];
+    EXPECT_TRUE(ends_with(lines[0],
+                          "req Write slot 0 idx 47 len 10 | PROFIdrive req ref 5 request parameter "
+                          "value axis 0, 1 param: PNU 12[4] value"))
+        << lines[0];
+    EXPECT_TRUE(ends_with(lines[1], "rsp Write slot 0 idx 47 len 10")) << lines[1];
+    EXPECT_TRUE(ends_with(lines[2], "req Read slot 0 idx 47 len 240")) << lines[2];
+    EXPECT_TRUE(ends_with(lines[3], "rsp Read negative DP-V1 access: state conflict (0xB5)"))
+        << lines[3];
+    EXPECT_TRUE(ends_with(lines[5],
+                          "Read slot 0 idx 47 len 8 | PROFIdrive rsp ref 5 request parameter (+) "
+                          "axis 0, 1 param: PNU 12[4] = 3 (Word)"))
+        << lines[5];
+    EXPECT_TRUE(ends_with(lines[9],
+                          "PROFIdrive rsp ref 6 request parameter (-) axis 0, 1 param: PNU 918: "
+                          "error 0x00 illegal or unknown parameter number"))
+        << lines[9];
+    EXPECT_TRUE(ends_with(lines[10],
+                          "PROFIdrive req ref 7 change parameter value axis 0, 1 param: PNU 12[4] "
+                          "value = 7 (Word)"))
+        << lines[10];
+    EXPECT_TRUE(ends_with(lines[13],
+                          "Read slot 0 idx 47 len 4 | PROFIdrive rsp ref 7 change parameter (+) "
+                          "axis 0, 1 param"))
+        << lines[13];
+    EXPECT_TRUE(ends_with(lines[15], "Write negative DP-V1 application: write error (0xA1)"))
+        << lines[15];
+}
+
+TEST(RendererTest, TextProfidriveResponseWithoutItsRequestNumbersTheParameters) {
+    std::vector<Input> in;
+    in.push_back({msac(true, hex("5E 00 2F F0")), kNoTime, {}});
+    in.push_back(
+        {msac(false, hex("5E 00 2F 0E 09 81 00 02 42 01 00 03 44 02 00 03 00 05")), kNoTime, {}});
+    std::vector<std::string> lines = split_lines(render(OutputFormat::Text, in));
+    ASSERT_EQ(lines.size(), 2u);
+    EXPECT_TRUE(ends_with(lines[1],
+                          "2 params: param 1 = 3 (Word), param 2: error 0x03 invalid subindex "
+                          "(subindex 5)"))
+        << lines[1];
+}
+
+TEST(RendererTest, TextDpv1ClassTwoAndOtherPdus) {
+    std::vector<Input> in;
+    auto add = [&](bool request, std::string_view du, std::uint8_t slave_sap) {
+        in.push_back({msac(request, hex(du), slave_sap, 50), kNoTime, {}});
+    };
+    add(true, "57 00 00 00 00 64 01 00 00 00 12 34 00 02 00 02 02 31 05 30", 49);
+    add(false, "57 F0 01 00 00 00 12 34 00 02 00 02 02 31 05 30", 49);
+    add(true, "48", 48);
+    add(true, "58 00 13", 48);
+    add(true, "51 00 10 02 AA BB", 48);
+    add(true, "", 48);
+    add(true, "5F 00", 48);
+    std::vector<std::string> lines = split_lines(render(OutputFormat::Text, in));
+    ASSERT_EQ(lines.size(), 7u);
+    EXPECT_NE(lines[0].find("MSAC_C2"), std::string::npos) << lines[0];
+    EXPECT_TRUE(ends_with(lines[0],
+                          "Initiate send timeout 1000 ms features 0x0100 profile features 0x0000 "
+                          "profile ident 0x1234 S_Type 0 S_Len 2 D_Type 0 D_Len 2"))
+        << lines[0];
+    EXPECT_TRUE(ends_with(lines[1],
+                          "Initiate max data unit 240 features 0x0100 profile features "
+                          "0x0000 profile ident 0x1234 S_Type 0 S_Len 2 D_Type 0 D_Len 2"))
+        << lines[1];
+    EXPECT_TRUE(ends_with(lines[2], "req Idle")) << lines[2];
+    EXPECT_TRUE(ends_with(lines[3], "Abort subnet 0 MSAC_C2: connection timeout (ABT_TO)"))
+        << lines[3];
+    EXPECT_TRUE(ends_with(lines[4], "Data_Transport slot 0 idx 16 len 2 data AA BB")) << lines[4];
+    EXPECT_TRUE(ends_with(lines[5], "no PDU (link-level poll)")) << lines[5];
+    EXPECT_TRUE(ends_with(lines[6], "Write (header cut short) [service_data_short]")) << lines[6];
+}
+
+TEST(RendererTest, VerboseDpv1AndProfidriveFields) {
+    std::string text = render(OutputFormat::Verbose, dpv1_session());
+    for (std::string_view expected : {
+             "    DP-V1 function: 0x5F (Write)\n",
+             "        Slot: 0\n",
+             "        Index: 47 (PROFIdrive parameter channel)\n",
+             "        Length: 10\n",
+             "        Data (10 bytes from byte 13): 05 01 00 01 10 01 00 0C 00 04\n",
+             "    PROFIdrive parameter request\n",
+             "        Request reference: 5\n",
+             "        Request ID: 0x01 (request parameter value)\n",
+             "        Axis: 0\n",
+             "        Number of parameters: 1\n",
+             "        Parameter 1\n",
+             "            Attribute: 0x10 (value)\n",
+             "            Number of elements: 1\n",
+             "            Parameter number: 12\n",
+             "            Subindex: 4\n",
+             "    DP-V1 function: 0xDE (Read negative), negative response\n",
+             "        Error_Decode: 0x80 (DP-V1)\n",
+             "        Error_Code_1: 0xB5\n",
+             "            Error class: 11 (access)\n",
+             "            Error code: 5 (state conflict)\n",
+             "        Error_Code_2: 0x00\n",
+             "    PROFIdrive parameter response\n",
+             "        Response ID: 0x01 (request parameter (+))\n",
+             "        Answers the request in frame 1 (ref 5, ID 0x01)\n",
+             "            Format: 0x42 (Word)\n",
+             "            Number of values: 1\n",
+             "            Values: 3\n",
+             "            Parameter number: 918\n",
+             "            Format: 0x44 (Error)\n",
+             "            Error number: 0x00 (illegal or unknown parameter number)\n",
+             "        Response ID: 0x02 (change parameter (+))\n",
+         })
+        EXPECT_NE(text.find(expected), std::string::npos) << expected;
+}
+
+TEST(RendererTest, VerboseDpv1InitiateAndAbort) {
+    std::vector<Input> in;
+    in.push_back(
+        {msac(true, hex("57 00 00 00 00 64 01 00 00 00 12 34 00 02 00 02 02 31 05 30"), 49, 50),
+         kNoTime,
+         {}});
+    in.push_back({msac(true, hex("58 01 13"), 48, 50), kNoTime, {}});
+    std::string text = render(OutputFormat::Verbose, in);
+    for (std::string_view expected : {
+             "    DP-V1 function: 0x57 (Initiate)\n",
+             "        Send_Timeout: 100 (1000 ms)\n",
+             "        Features_Supported: 0x0100\n",
+             "        Profile_Ident_Number: 0x1234\n",
+             "        S_Type: 0, S_Len: 2\n",
+             "        S_Addr: 02 31\n",
+             "        D_Addr: 05 30\n",
+             "        Subnet: 1\n",
+             "        Instance_Reason_Code: 0x13\n",
+             "            Instance: 1 (MSAC_C2)\n",
+             "            Reason code: 3 (connection timeout (ABT_TO))\n",
+         })
+        EXPECT_NE(text.find(expected), std::string::npos) << expected << text;
+}
+
+TEST(RendererTest, JsonlDpv1AndProfidriveKeys) {
+    std::string text = render(OutputFormat::Jsonl, dpv1_session());
+    std::vector<Json> lines;
+    for (const std::string& line : split_lines(text)) {
+        auto parsed = parse_json(line);
+        ASSERT_TRUE(parsed) << line;
+        std::vector<std::string> keys = kJsonKeys;
+        keys.insert(keys.begin() + 24, {"dpv1", "profidrive"});
+        EXPECT_EQ(parsed->keys(), keys) << line;
+        lines.push_back(std::move(*parsed));
+    }
+    ASSERT_EQ(lines.size(), 16u);
+    const std::vector<std::string> dpv1_keys = {"function",
+                                                "function_name",
+                                                "negative",
+                                                "complete",
+                                                "slot",
+                                                "index",
+                                                "length",
+                                                "data_length",
+                                                "alarm_type",
+                                                "specifier",
+                                                "error_decode",
+                                                "error_decode_name",
+                                                "error_code_1",
+                                                "error_class",
+                                                "error_class_name",
+                                                "error_code",
+                                                "error_code_name",
+                                                "error_code_2",
+                                                "initiate",
+                                                "abort"};
+    const Json& write = lines[0];
+    EXPECT_EQ(write["dpv1"].keys(), dpv1_keys);
+    EXPECT_EQ(write["dpv1"]["function"].integer(), 0x5F);
+    EXPECT_EQ(write["dpv1"]["function_name"].string(), "Write");
+    EXPECT_FALSE(write["dpv1"]["negative"].boolean);
+    EXPECT_EQ(write["dpv1"]["slot"].integer(), 0);
+    EXPECT_EQ(write["dpv1"]["index"].integer(), 47);
+    EXPECT_EQ(write["dpv1"]["length"].integer(), 10);
+    EXPECT_EQ(write["dpv1"]["data_length"].integer(), 10);
+    EXPECT_TRUE(write["dpv1"]["error_decode"].is_null());
+    const Json& request = write["profidrive"];
+    EXPECT_FALSE(request["response"].boolean);
+    EXPECT_EQ(request["reference"].integer(), 5);
+    EXPECT_EQ(request["request_id"].integer(), 1);
+    EXPECT_EQ(request["id_name"].string(), "request parameter value");
+    EXPECT_EQ(request["axis"].integer(), 0);
+    EXPECT_EQ(request["count"].integer(), 1);
+    EXPECT_EQ(request.find("request_frame"), nullptr);
+    const Json& parameter = request["parameters"][0];
+    EXPECT_EQ(parameter.keys(),
+              (std::vector<std::string>{"attribute", "attribute_name", "elements", "pnu",
+                                        "subindex", "format", "format_name", "value_count",
+                                        "values", "numbers", "complete", "error"}));
+    EXPECT_EQ(parameter["attribute"].integer(), 0x10);
+    EXPECT_EQ(parameter["attribute_name"].string(), "value");
+    EXPECT_EQ(parameter["elements"].integer(), 1);
+    EXPECT_EQ(parameter["pnu"].integer(), 12);
+    EXPECT_EQ(parameter["subindex"].integer(), 4);
+    EXPECT_TRUE(parameter["format"].is_null());
+
+    const Json& busy = lines[3]["dpv1"];
+    EXPECT_TRUE(busy["negative"].boolean);
+    EXPECT_EQ(busy["function_name"].string(), "Read negative");
+    EXPECT_EQ(busy["error_decode"].integer(), 0x80);
+    EXPECT_EQ(busy["error_decode_name"].string(), "DP-V1");
+    EXPECT_EQ(busy["error_code_1"].integer(), 0xB5);
+    EXPECT_EQ(busy["error_class"].integer(), 11);
+    EXPECT_EQ(busy["error_class_name"].string(), "access");
+    EXPECT_EQ(busy["error_code"].integer(), 5);
+    EXPECT_EQ(busy["error_code_name"].string(), "state conflict");
+    EXPECT_EQ(busy["error_code_2"].integer(), 0);
+    EXPECT_TRUE(busy["slot"].is_null());
+    EXPECT_TRUE(lines[3]["profidrive"].is_null());
+
+    const Json& answer = lines[5]["profidrive"];
+    EXPECT_TRUE(answer["response"].boolean);
+    EXPECT_EQ(answer["response_id"].integer(), 1);
+    EXPECT_EQ(answer["id_name"].string(), "request parameter (+)");
+    EXPECT_EQ(answer["request_frame"].integer(), 1);
+    const Json& value = answer["parameters"][0];
+    EXPECT_EQ(value["pnu"].integer(), 12);
+    EXPECT_EQ(value["format"].integer(), 0x42);
+    EXPECT_EQ(value["format_name"].string(), "Word");
+    EXPECT_EQ(value["value_count"].integer(), 1);
+    EXPECT_EQ(value["values"].string(), "3");
+    EXPECT_EQ(value["numbers"][0].integer(), 3);
+    EXPECT_TRUE(value["complete"].boolean);
+    EXPECT_TRUE(value["error"].is_null());
+
+    const Json& negative = lines[9]["profidrive"];
+    EXPECT_TRUE(negative["negative"].boolean);
+    const Json& error = negative["parameters"][0]["error"];
+    EXPECT_EQ(error["number"].integer(), 0);
+    EXPECT_EQ(error["text"].string(), "illegal or unknown parameter number");
+    EXPECT_TRUE(error["info"].is_null());
+    EXPECT_EQ(negative["parameters"][0]["pnu"].integer(), 918);
+    EXPECT_TRUE(negative["parameters"][0]["values"].is_null());
+
+    const Json& change = lines[10]["profidrive"]["parameters"][0];
+    EXPECT_EQ(change["values"].string(), "7");
+    EXPECT_EQ(change["numbers"][0].integer(), 7);
+    // A positive change response has no blocks: its parameter is the request's address alone.
+    const Json& changed = lines[13]["profidrive"]["parameters"];
+    ASSERT_EQ(changed.items.size(), 1u);
+    EXPECT_EQ(changed[0]["pnu"].integer(), 12);
+    EXPECT_TRUE(changed[0]["format"].is_null());
+}
+
+TEST(RendererTest, JsonlProfidriveRealNumbersAndStrings) {
+    std::vector<Input> in;
+    in.push_back({msac(true, hex("5E 00 2F F0")), kNoTime, {}});
+    in.push_back({msac(false, hex("5E 00 2F 12 09 01 00 03 08 01 3F C0 00 00 21 01 20 00 09 02 "
+                                  "48 49")),
+                  kNoTime,
+                  {}});
+    std::vector<std::string> text = split_lines(render(OutputFormat::Jsonl, in));
+    ASSERT_EQ(text.size(), 2u);
+    auto parsed = parse_json(text[1]);
+    ASSERT_TRUE(parsed) << text[1];
+    const Json& parameters = (*parsed)["profidrive"]["parameters"];
+    ASSERT_EQ(parameters.items.size(), 3u);
+    EXPECT_EQ(parameters[0]["numbers"][0].text, "1.5");
+    EXPECT_EQ(parameters[1]["values"].string(), "50.000 %");
+    EXPECT_EQ(parameters[1]["numbers"][0].text, "50");
+    EXPECT_EQ(parameters[2]["values"].string(), "\"HI\"");
+    EXPECT_TRUE(parameters[2]["numbers"].is_null());
+    EXPECT_TRUE(parameters[0]["pnu"].is_null());  // the request is not in the capture
+    EXPECT_TRUE((*parsed)["profidrive"]["request_frame"].is_null());
+}
+
+TEST(RendererTest, JsonlDpv1InitiateAndAbortObjects) {
+    std::vector<Input> in;
+    in.push_back(
+        {msac(false, hex("57 F0 01 00 00 00 12 34 00 02 00 02 02 31 05 30"), 49, 50), kNoTime, {}});
+    in.push_back({msac(true, hex("58 01 13"), 48, 50), kNoTime, {}});
+    std::vector<std::string> text = split_lines(render(OutputFormat::Jsonl, in));
+    ASSERT_EQ(text.size(), 2u);
+    auto initiate = parse_json(text[0]);
+    ASSERT_TRUE(initiate);
+    const Json& i = (*initiate)["dpv1"]["initiate"];
+    EXPECT_TRUE(i["send_timeout"].is_null());
+    EXPECT_EQ(i["max_len_data_unit"].integer(), 240);
+    EXPECT_EQ(i["features_supported"].integer(), 0x0100);
+    EXPECT_EQ(i["profile_ident_number"].integer(), 0x1234);
+    EXPECT_EQ(i["s_len"].integer(), 2);
+    EXPECT_EQ(i["s_addr"].string(), "0231");
+    EXPECT_EQ(i["d_addr"].string(), "0530");
+    auto abort = parse_json(text[1]);
+    ASSERT_TRUE(abort);
+    const Json& a = (*abort)["dpv1"]["abort"];
+    EXPECT_EQ(a["subnet"].integer(), 1);
+    EXPECT_EQ(a["instance"].integer(), 1);
+    EXPECT_EQ(a["instance_name"].string(), "MSAC_C2");
+    EXPECT_EQ(a["reason"].integer(), 3);
+    EXPECT_EQ(a["reason_name"].string(), "connection timeout (ABT_TO)");
+}
+
+TEST(RendererTest, CsvDpv1DetailColumn) {
+    std::string text = render(OutputFormat::Csv, dpv1_session());
+    EXPECT_NE(text.find("\"Read slot 0 idx 47 len 8 | PROFIdrive rsp ref 5 request parameter (+) "
+                        "axis 0, 1 param: PNU 12[4] = 3 (Word)\""),
+              std::string::npos)
+        << text;
+}
+
 }  // namespace
 }  // namespace dpscope
