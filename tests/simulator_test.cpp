@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -784,6 +785,10 @@ struct Dpv1Tally {
     std::size_t multi_reads = 0, arrays = 0, descriptions = 0, texts = 0, padded = 0;
     std::size_t change_02 = 0, change_42 = 0, floats = 0, strings = 0;
     std::size_t max_polls = 0, min_polls = 1000;
+    // Negative responses: their IDs, the error numbers, 0x40 blocks, errors with a subindex.
+    std::set<std::uint8_t> negative_ids;
+    std::set<std::uint16_t> error_numbers;
+    std::size_t zero_blocks = 0, error_infos = 0;
     // Anomalies, one per response at most (the first that applies), and the telegram (1-based)
     // of the last of each kind.
     std::map<FaultKind, std::size_t> anomalies;
@@ -920,6 +925,12 @@ Dpv1Tally tally_dpv1(const std::vector<Telegram>& telegrams) {
             anomaly(FaultKind::Dpv1ParameterCountMismatch, i + 1);
         } else if (message->negative()) {
             anomaly(FaultKind::Dpv1NegativeResponse, i + 1);
+            tally.negative_ids.insert(message->id);
+            for (const ProfidriveValueBlock& block : message->blocks) {
+                if (block.format == profidrive::kFormatZero) ++tally.zero_blocks;
+                if (block.is_error()) tally.error_numbers.insert(block.error_number());
+                if (block.has_error_info()) ++tally.error_infos;
+            }
             for (const ProfidriveValueBlock& block : message->blocks)
                 if (block.format != profidrive::kFormatZero && !block.is_error() &&
                     (message->id & 0x7F) == profidrive::kChangeValue)
@@ -1038,6 +1049,20 @@ TEST(SimulatorTest, EachDpv1FaultShowsOnceWhereAsked) {
             EXPECT_EQ(tally.anomaly_slave[kind], address);
         }
     }
+}
+
+TEST(SimulatorTest, Dpv1NegativeResponsesMixErrorsAndZeroBlocks) {
+    SimulatorOptions options = dpv1_session(13, 600);
+    options.faults = {FaultSpec{FaultKind::Dpv1NegativeResponse, 1.0, std::nullopt, std::nullopt}};
+    Dpv1Tally tally = tally_dpv1(run(options));
+    EXPECT_EQ(tally.problems, 0u);
+    EXPECT_EQ(tally.anomalies.size(), 1u);
+    EXPECT_GT(tally.anomalies[FaultKind::Dpv1NegativeResponse], 100u);
+    EXPECT_EQ(tally.negative_ids, (std::set<std::uint8_t>{0x81, 0x82}));
+    // Unknown parameter, read-only, limits, subindex, no texts.
+    EXPECT_EQ(tally.error_numbers, (std::set<std::uint16_t>{0x00, 0x01, 0x02, 0x03, 0x0F}));
+    EXPECT_GT(tally.zero_blocks, 0u);  // a multi-parameter change that wrote one of its values
+    EXPECT_GT(tally.error_infos, 0u);  // the subindex after the error number
 }
 
 TEST(SimulatorTest, Dpv1ResponseTimeoutKeepsTheSessionOpenUntilTheMasterGivesUp) {
