@@ -284,6 +284,21 @@ int run_simulate(const SimulateCommand& command) {
     return exit_code;
 }
 
+// --fault's help: the forms, then every kind of the catalogue.
+std::string fault_help() {
+    std::string kinds;
+    for (std::size_t i = 0; i < kFaultKindCount; ++i) {
+        const auto kind = static_cast<FaultKind>(i);
+        kinds += fmt::format("{}{}{}", kinds.empty() ? "" : ", ", fault_kind_name(kind),
+                             kind == FaultKind::FcsError ? " (alias bad_fcs)" : "");
+    }
+    return fmt::format(
+        "Inject a fault: KIND (once, at a cycle the seed picks), KIND@CYCLE (once, at the first "
+        "chance from that cycle), or KIND=RATE (chance per cycle and slave); append :ADDR to "
+        "pick the slave. Kinds: {}. The dpv1_* kinds need a dpv1 slave. Repeatable.",
+        kinds);
+}
+
 }  // namespace
 
 void add_simulate_command(CLI::App& app, int& exit_code) {
@@ -330,8 +345,11 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->check(whole_number(0, 126))
         ->default_str("2");
     sub->add_option("--slave", command->slaves,
-                    "ADDR:PPO[:DIALECT] adds a slave, e.g. 5:1 or 7:2:profidrive; repeatable. "
-                    "Default: 3:1 4:2 5:5 (vlt)")
+                    "ADDR:PPO[:DIALECT][:dpv1] adds a slave, e.g. 5:1, 7:2:profidrive or "
+                    "8:3:vlt:dpv1; repeatable. Default: 3:1 4:2 5:5 (vlt). A dpv1 slave has "
+                    "DP-V1 enabled in its Set_Prm, and after each cycle's Data_Exchange the "
+                    "master runs PROFIdrive parameter access with it (MSAC_C1, slot 0, index 47: "
+                    "a Write with the request, Reads until the response)")
         ->type_name("SPEC")
         ->allow_extra_args(false);
     sub->add_option("--cycles", command->cycles,
@@ -349,14 +367,7 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
                     "date right")
         ->type_name("SECONDS")
         ->default_str("1704067200 (2024-01-01T00:00:00Z)");
-    sub->add_option("--fault", command->faults,
-                    "Inject a fault: KIND (once, at a cycle the seed picks), KIND@CYCLE (once, at "
-                    "the first chance from that cycle), or KIND=RATE (chance per cycle and slave); "
-                    "append :ADDR to pick the slave. Kinds: fcs_error (alias bad_fcs), garbage, "
-                    "malformed_telegram, stacked_request, orphan_response, mismatched_response, "
-                    "unexpected_response_type, response_timeout, request_rejected, no_authority, "
-                    "spontaneous_message, spontaneous_unacknowledged, spm_violation, "
-                    "config_mismatch, unknown_code, fdl_retry, fdl_no_response. Repeatable.")
+    sub->add_option("--fault", command->faults, fault_help())
         ->type_name("SPEC")
         ->allow_extra_args(false);
     sub->add_flag("--no-start-up", command->no_start_up,

@@ -11,6 +11,7 @@ struct FaultInfo {
     std::optional<FindingKind> finding;  // the finding kind it is named after
     std::string_view own_name;           // set only for a fault no finding kind is named after
     bool needs_parameter_channel;
+    bool needs_dpv1 = false;  // acts on DP-V1 parameter access: needs a DP-V1 slave
 };
 
 constexpr FaultInfo kFaults[] = {
@@ -31,15 +32,19 @@ constexpr FaultInfo kFaults[] = {
     {FaultKind::UnknownCode, FindingKind::UnknownCode, {}, true},
     {FaultKind::FdlRetry, FindingKind::FdlRetry, {}, false},
     {FaultKind::FdlNoResponse, FindingKind::FdlNoResponse, {}, false},
-    {FaultKind::Dpv1StackedRequest, FindingKind::Dpv1StackedRequest, {}, false},
-    {FaultKind::Dpv1ReferenceMismatch, FindingKind::Dpv1ReferenceMismatch, {}, false},
-    {FaultKind::Dpv1UnexpectedResponseId, FindingKind::Dpv1UnexpectedResponseId, {}, false},
-    {FaultKind::Dpv1ParameterCountMismatch, FindingKind::Dpv1ParameterCountMismatch, {}, false},
-    {FaultKind::Dpv1OrphanResponse, FindingKind::Dpv1OrphanResponse, {}, false},
-    {FaultKind::Dpv1ResponseTimeout, FindingKind::Dpv1ResponseTimeout, {}, false},
-    {FaultKind::Dpv1NegativeResponse, FindingKind::Dpv1NegativeResponse, {}, false},
-    {FaultKind::Dpv1LengthError, FindingKind::Dpv1LengthError, {}, false},
-    {FaultKind::Dpv1ErrorPdu, FindingKind::Dpv1ErrorPdu, {}, false},
+    {FaultKind::Dpv1StackedRequest, FindingKind::Dpv1StackedRequest, {}, false, true},
+    {FaultKind::Dpv1ReferenceMismatch, FindingKind::Dpv1ReferenceMismatch, {}, false, true},
+    {FaultKind::Dpv1UnexpectedResponseId, FindingKind::Dpv1UnexpectedResponseId, {}, false, true},
+    {FaultKind::Dpv1ParameterCountMismatch,
+     FindingKind::Dpv1ParameterCountMismatch,
+     {},
+     false,
+     true},
+    {FaultKind::Dpv1OrphanResponse, FindingKind::Dpv1OrphanResponse, {}, false, true},
+    {FaultKind::Dpv1ResponseTimeout, FindingKind::Dpv1ResponseTimeout, {}, false, true},
+    {FaultKind::Dpv1NegativeResponse, FindingKind::Dpv1NegativeResponse, {}, false, true},
+    {FaultKind::Dpv1LengthError, FindingKind::Dpv1LengthError, {}, false, true},
+    {FaultKind::Dpv1ErrorPdu, FindingKind::Dpv1ErrorPdu, {}, false, true},
 };
 
 // One entry per fault kind, in enum order; a name either from the finding catalogue or its own.
@@ -91,6 +96,11 @@ std::optional<FaultKind> fault_kind_from_name(std::string_view name) {
 bool fault_needs_parameter_channel(FaultKind kind) noexcept {
     auto index = static_cast<std::size_t>(kind);
     return index >= std::size(kFaults) || kFaults[index].needs_parameter_channel;
+}
+
+bool fault_needs_dpv1(FaultKind kind) noexcept {
+    auto index = static_cast<std::size_t>(kind);
+    return index < std::size(kFaults) && kFaults[index].needs_dpv1;
 }
 
 }  // namespace dpscope

@@ -55,5 +55,7 @@ std::optional<FaultKind> fault_kind_from_name(std::string_view name);
 
 // Faults that act on the parameter channel need a slave with a PCV (PPO 1, 2 or 5).
 bool fault_needs_parameter_channel(FaultKind kind) noexcept;
+// Faults that act on DP-V1 parameter access need a DP-V1 slave (`--slave ADDR:PPO:dpv1`).
+bool fault_needs_dpv1(FaultKind kind) noexcept;
 
 }  // namespace dpscope

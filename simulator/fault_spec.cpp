@@ -73,7 +73,7 @@ Result<SimulatedSlave> parse_slave_spec(std::string_view text) {
     SimulatedSlave slave;
     auto first = text.find(':');
     if (first == std::string_view::npos) {
-        return Error{fmt::format("{}: expected ADDR:PPO or ADDR:PPO:DIALECT", text)};
+        return Error{fmt::format("{}: expected ADDR:PPO[:DIALECT][:dpv1]", text)};
     }
     unsigned address = 0, ppo = 0;
     auto second = text.find(':', first + 1);
@@ -87,12 +87,24 @@ Result<SimulatedSlave> parse_slave_spec(std::string_view text) {
     }
     slave.address = static_cast<std::uint8_t>(address);
     slave.ppo_type = static_cast<std::uint8_t>(ppo);
-    if (second != std::string_view::npos) {
-        auto dialect = dialect_from_name(text.substr(second + 1));
-        if (!dialect) {
-            return Error{fmt::format("{}: dialect must be vlt or profidrive", text)};
-        }
-        slave.dialect = *dialect;
+    if (second == std::string_view::npos) return slave;
+    // Then a dialect, a dpv1 flag, or both in that order.
+    std::string_view rest = text.substr(second + 1);
+    auto third = rest.find(':');
+    std::string_view dialect_text = rest.substr(0, third);
+    if (third == std::string_view::npos && dialect_text == "dpv1") {
+        slave.dpv1 = true;
+        return slave;
+    }
+    auto dialect = dialect_from_name(dialect_text);
+    if (!dialect) {
+        return Error{fmt::format("{}: dialect must be vlt or profidrive", text)};
+    }
+    slave.dialect = *dialect;
+    if (third != std::string_view::npos) {
+        if (rest.substr(third + 1) != "dpv1")
+            return Error{fmt::format("{}: only dpv1 may follow the dialect", text)};
+        slave.dpv1 = true;
     }
     return slave;
 }
@@ -105,10 +117,14 @@ Result<void> check_faults(const std::vector<FaultSpec>& faults,
                           const std::vector<SimulatedSlave>& slaves, std::uint64_t cycles) {
     for (const FaultSpec& spec : faults) {
         const bool needs_pcv = fault_needs_parameter_channel(spec.kind);
+        const bool needs_dpv1 = fault_needs_dpv1(spec.kind);
+        auto fits = [&](const SimulatedSlave& slave) {
+            return (!needs_pcv || has_parameter_channel(slave)) && (!needs_dpv1 || slave.dpv1);
+        };
         bool target = false;
         for (const SimulatedSlave& slave : slaves) {
             if (spec.slave && slave.address != *spec.slave) continue;
-            if (!needs_pcv || has_parameter_channel(slave)) target = true;
+            if (fits(slave)) target = true;
         }
         if (!target) {
             if (spec.slave) {
@@ -118,10 +134,20 @@ Result<void> check_faults(const std::vector<FaultSpec>& faults,
                 if (!simulated)
                     return Error{fmt::format("fault {}: slave {} is not simulated",
                                              describe_fault(spec), *spec.slave)};
+                if (needs_dpv1)
+                    return Error{
+                        fmt::format("fault {}: slave {} does not run DP-V1 (give it as "
+                                    "--slave ADDR:PPO[:DIALECT]:dpv1)",
+                                    describe_fault(spec), *spec.slave)};
                 return Error{fmt::format(
                     "fault {}: slave {} has no parameter channel (PPO 3 and 4 carry no PCV)",
                     describe_fault(spec), *spec.slave)};
             }
+            if (needs_dpv1)
+                return Error{
+                    fmt::format("fault {}: no simulated slave runs DP-V1 (add one with "
+                                "--slave ADDR:PPO[:DIALECT]:dpv1)",
+                                describe_fault(spec))};
             return Error{
                 fmt::format("fault {}: no simulated slave has a parameter channel (PPO 1, 2 "
                             "or 5)",

@@ -34,9 +34,13 @@ struct SimulatedSlave {
     std::uint8_t address = 0;
     std::uint8_t ppo_type = 1;
     Dialect dialect = Dialect::Vlt;
+    // DP-V1: Set_Prm enables it, and the master runs PROFIdrive parameter access (MSAC_C1,
+    // slot 0, index 47) with the slave between the cyclic exchanges.
+    bool dpv1 = false;
 };
 
-// "ADDR:PPO" or "ADDR:PPO:DIALECT", e.g. "5:2" or "7:1:profidrive".
+// "ADDR:PPO", "ADDR:PPO:DIALECT", each optionally followed by ":dpv1", e.g. "5:2",
+// "7:1:profidrive", "8:3:dpv1" or "9:1:profidrive:dpv1".
 Result<SimulatedSlave> parse_slave_spec(std::string_view text);
 
 // PPO 1, 2 and 5 carry a PCV; PPO 3 and 4 do not.
@@ -44,7 +48,7 @@ bool has_parameter_channel(const SimulatedSlave& slave);
 
 // An error when one of `faults` cannot be injected on `slaves` in a session of `cycles` cycles
 // (0: no limit), saying why: a slave that is not simulated, a parameter-channel fault on a slave
-// without a PCV, a cycle past the end.
+// without a PCV, a DP-V1 fault on a slave without DP-V1, a cycle past the end.
 Result<void> check_faults(const std::vector<FaultSpec>& faults,
                           const std::vector<SimulatedSlave>& slaves, std::uint64_t cycles);
 

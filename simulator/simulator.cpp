@@ -43,7 +43,10 @@ std::int64_t session_span_bound_ns(const SimulatorOptions& options) {
     const double start_up_bits = (slaves * 12 + 2) * kTelegramBits;
     // A cycle: per slave garbage, request, response and their repeats and two slot times; then a
     // gap poll and its slot time, Global_Control and the token. At least --cycle-us.
-    const double cycle_bits = slaves * (5 * kTelegramBits + 200) + 3 * kTelegramBits + 100;
+    double cycle_bits = slaves * (5 * kTelegramBits + 200) + 3 * kTelegramBits + 100;
+    // A DP-V1 slave adds a DP-V1 request and response per cycle, each at most 255 bytes.
+    for (const SimulatedSlave& slave : slaves_or_default(options))
+        if (slave.dpv1) cycle_bits += 2 * (255 * 11 + 100);
     const double cycle_ns =
         std::max(static_cast<double>(options.cycle_us) * 1e3, cycle_bits * 1e9 / baud);
     // Every cycle writes one telegram at least (the token).
@@ -83,6 +86,9 @@ Simulator::Simulator(SimulatorOptions options)
         if (slave.layout.has_pcv)
             slave.channel.emplace(config.dialect,
                                   std::int64_t{options_.master_give_up_ms} * 1'000'000);
+        if (config.dpv1)
+            slave.dpv1.emplace(config.dialect, config.address,
+                               std::int64_t{options_.master_give_up_ms} * 1'000'000);
         slave.actual = 0;
         slaves_.push_back(std::move(slave));
         highest = std::max(highest, config.address);
@@ -201,7 +207,9 @@ void Simulator::generate_start_up() {
         request(sap::kSlaveDiag, {}, FdlFunction::SrdHigh);
         response(sap::kSlaveDiag, {0x02, 0x05, 0x00, kNoMasterAddress, ident_hi, ident_lo});
         std::vector<std::uint8_t> prm = {0x88, 10, 10, 11, ident_hi, ident_lo, 0x00};
-        if (slave.config.dialect == Dialect::Profidrive) prm.insert(prm.end(), {0x80, 0x00, 0x00});
+        // DPV1_Status_1..3: DPV1_Enable (bit 7 of the first) for a DP-V1 slave.
+        if (slave.config.dialect == Dialect::Profidrive || slave.config.dpv1)
+            prm.insert(prm.end(), {0x80, 0x00, 0x00});
         request(sap::kSetPrm, prm, FdlFunction::SrdHigh);
         short_ack();
         request(sap::kChkCfg, cfg_bytes_of(slave.config.ppo_type), FdlFunction::SrdHigh);
@@ -223,6 +231,9 @@ void Simulator::generate_cycle() {
     arm_faults();
     for (std::size_t i = 0; i < slaves_.size(); ++i)
         exchange(i);
+    // Acyclic services after the cyclic exchanges: parameter access with each DP-V1 slave.
+    for (std::size_t i = 0; i < slaves_.size(); ++i)
+        if (slaves_[i].dpv1) parameter_access(i);
     const std::uint8_t master = options_.master;
     if (cycle_ % 100 == 99) {
         // Gap maintenance: ask the next address whether a station appeared (nobody answers).
@@ -266,6 +277,7 @@ void Simulator::arm_faults() {
         const FaultSpec& spec = options_.faults[j];
         auto eligible = [&](std::size_t i) {
             if (spec.slave && slaves_[i].config.address != *spec.slave) return false;
+            if (fault_needs_dpv1(spec.kind) && !slaves_[i].dpv1) return false;
             return !fault_needs_parameter_channel(spec.kind) || slaves_[i].layout.has_pcv;
         };
         if (spec.rate > 0) {
@@ -292,7 +304,8 @@ void Simulator::take(FaultKind kind, std::size_t slave, std::uint64_t& armed) {
     if (injections_.size() < kKeptInjections) injections_.push_back(injection);
     once_faults_.record(injection);
     if (on_injection_) on_injection_(injection);
-    if (kind == FaultKind::ResponseTimeout || kind == FaultKind::SpontaneousUnacknowledged) {
+    if (kind == FaultKind::ResponseTimeout || kind == FaultKind::SpontaneousUnacknowledged ||
+        kind == FaultKind::Dpv1ResponseTimeout) {
         const std::int64_t give_up = std::int64_t{options_.master_give_up_ms} * 1'000'000;
         hold_open_until_ = std::max(
             hold_open_until_, later(now_, give_up + std::int64_t{options_.cycle_us} * 10'000));
@@ -314,6 +327,23 @@ class Simulator::SlaveEnvironment final : public ChannelEnvironment {
     Simulator& simulator_;
     std::size_t index_;
 };
+
+void Simulator::parameter_access(std::size_t index) {
+    Slave& slave = slaves_[index];
+    const std::uint8_t master = options_.master;
+    const std::uint8_t address = slave.config.address;
+    SlaveEnvironment environment(*this, index);
+    std::vector<std::uint8_t> pdu;
+    if (!slave.dpv1->master_request(environment, pdu)) return;
+    emit(build_telegram({address, master, request_fc(FdlFunction::SrdHigh, slave.fcb, true),
+                         sap::kMsacC1, sap::kMsacC1, Bytes(pdu)}),
+         40 + random(30));
+    slave.dpv1->slave_response(environment, pdu);
+    emit(build_telegram({master, address, response_fc(FdlStatus::DataLow), sap::kMsacC1,
+                         sap::kMsacC1, Bytes(pdu)}),
+         30 + random(70));
+    slave.fcb = !slave.fcb;
+}
 
 void Simulator::exchange(std::size_t index) {
     Slave& slave = slaves_[index];

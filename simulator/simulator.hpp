@@ -3,6 +3,9 @@
 // and responses, token passing, gap polls and Global_Control, all timed at the bus baud rate.
 // Seeded and reproducible: the same options give the same bytes on every platform.
 //
+// A slave given as DP-V1 also gets PROFIdrive parameter access over MSAC_C1 after the cyclic
+// exchanges of each cycle (simulator/dpv1_parameter_model.hpp).
+//
 // Faults can be injected: link-level (bad FCS, garbage bytes, a truncated telegram, a missing
 // response, a retry) and every handshake fault the session tracker detects.
 //
@@ -21,6 +24,7 @@
 #include <vector>
 
 #include "decoder/ppo.hpp"
+#include "simulator/dpv1_parameter_model.hpp"
 #include "simulator/fault_spec.hpp"
 #include "simulator/parameter_channel_model.hpp"
 
@@ -86,6 +90,7 @@ class Simulator {
         std::uint16_t ident = 0;
         bool fcb = true;
         std::optional<ParameterChannelModel> channel;  // PPO 1, 2 and 5 (those with a PCV)
+        std::optional<Dpv1ParameterModel> dpv1;        // a DP-V1 slave's parameter access
         // Process data.
         std::uint16_t reference = 0x2000;
         std::uint16_t actual = 0;
@@ -101,6 +106,7 @@ class Simulator {
     void generate_start_up();
     void generate_cycle();
     void exchange(std::size_t index);
+    void parameter_access(std::size_t index);  // one DP-V1 request and response, if any
     void arm_faults();
     // Takes a fault of this kind armed for this slave and records its injection; false when
     // none is armed. Asked for several kinds in every exchange and almost always false: the

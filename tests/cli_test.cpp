@@ -682,7 +682,7 @@ TEST(CliTest, SimulateUsageErrors) {
     CommandResult slave = run_dpscope({"simulate", "-w", "-", "--slave", "3"});
     EXPECT_EQ(slave.exit_code, 2);
     EXPECT_TRUE(slave.out.empty());
-    EXPECT_EQ(slave.err, "dpscope: error: --slave 3: expected ADDR:PPO or ADDR:PPO:DIALECT\n");
+    EXPECT_EQ(slave.err, "dpscope: error: --slave 3: expected ADDR:PPO[:DIALECT][:dpv1]\n");
     CommandResult master = run_dpscope({"simulate", "-w", "-", "--slave", "2:1"});
     EXPECT_EQ(master.exit_code, 2);
     EXPECT_NE(master.err.find("the master has address 2"), std::string::npos) << master.err;
@@ -691,6 +691,11 @@ TEST(CliTest, SimulateUsageErrors) {
     EXPECT_NE(fault.err.find("dpscope: error: --fault nonsense: unknown kind 'nonsense'"),
               std::string::npos)
         << fault.err;
+    CommandResult dpv1 = run_dpscope({"simulate", "-w", "-", "--fault", "dpv1_error_pdu"});
+    EXPECT_EQ(dpv1.exit_code, 2);
+    EXPECT_EQ(dpv1.err,
+              "dpscope: error: --fault dpv1_error_pdu: no simulated slave runs DP-V1 (add one "
+              "with --slave ADDR:PPO[:DIALECT]:dpv1)\n");
     CommandResult endless = run_dpscope({"simulate", "-w", "-", "--cycles", "0"});
     EXPECT_EQ(endless.exit_code, 2);
     EXPECT_TRUE(endless.out.empty());

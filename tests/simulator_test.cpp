@@ -6,11 +6,15 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "capture/telegram_source.hpp"
 #include "decoder/bus_decoder.hpp"
 #include "decoder/dp_payload.hpp"
+#include "decoder/profidrive.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -200,7 +204,10 @@ TEST(SimulatorTest, SessionSpanBoundHoldsWithEveryFault) {
         options.cycle_us = c.cycle_us;
         options.max_telegrams = c.max_telegrams;
         options.faults = faults;
-        options.slaves = {{3, 1, Dialect::Vlt}, {4, 5, Dialect::Vlt}, {6, 2, Dialect::Profidrive}};
+        options.slaves = {{3, 1, Dialect::Vlt},
+                          {4, 5, Dialect::Vlt, true},
+                          {6, 2, Dialect::Profidrive},
+                          {7, 3, Dialect::Profidrive, true}};
         std::vector<Telegram> telegrams = run(options);
         ASSERT_FALSE(telegrams.empty());
         EXPECT_LE(telegrams.back().time_ns - options.start_time_ns, session_span_bound_ns(options));
@@ -455,7 +462,9 @@ TEST(SimulatorTest, ParseFaultSpecInvalid) {
                             0),
               0u)
         << unknown;
-    EXPECT_NE(unknown.find("fdl_no_response)"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("fdl_no_response, dpv1_stacked_request, "), std::string::npos)
+        << unknown;
+    EXPECT_NE(unknown.find("dpv1_error_pdu)"), std::string::npos) << unknown;
     EXPECT_EQ(fault_error("garbage@x"), "garbage@x: 'x' is not a cycle number");
     EXPECT_EQ(fault_error("garbage@-1"), "garbage@-1: '-1' is not a cycle number");
     EXPECT_EQ(fault_error("garbage@"), "garbage@: '' is not a cycle number");
@@ -497,10 +506,20 @@ TEST(SimulatorTest, ParseSlaveSpecValid) {
     EXPECT_EQ(c.ppo_type, 5);
     EXPECT_EQ(c.dialect, Dialect::Vlt);
     EXPECT_EQ(slave("0:3").address, 0);
+    EXPECT_FALSE(a.dpv1);
+    SimulatedSlave d = slave("8:3:dpv1");
+    EXPECT_EQ(d.address, 8);
+    EXPECT_EQ(d.ppo_type, 3);
+    EXPECT_EQ(d.dialect, Dialect::Vlt);
+    EXPECT_TRUE(d.dpv1);
+    SimulatedSlave e = slave("9:1:profidrive:dpv1");
+    EXPECT_EQ(e.dialect, Dialect::Profidrive);
+    EXPECT_TRUE(e.dpv1);
+    EXPECT_TRUE(slave("10:5:vlt:dpv1").dpv1);
 }
 
 TEST(SimulatorTest, ParseSlaveSpecInvalid) {
-    EXPECT_EQ(slave_error("5"), "5: expected ADDR:PPO or ADDR:PPO:DIALECT");
+    EXPECT_EQ(slave_error("5"), "5: expected ADDR:PPO[:DIALECT][:dpv1]");
     EXPECT_EQ(slave_error("126:1"), "126:1: the address must be from 0 to 125");
     EXPECT_EQ(slave_error("x:1"), "x:1: the address must be from 0 to 125");
     EXPECT_EQ(slave_error(":1"), ":1: the address must be from 0 to 125");
@@ -509,7 +528,10 @@ TEST(SimulatorTest, ParseSlaveSpecInvalid) {
     EXPECT_EQ(slave_error("5:"), "5:: the PPO type must be from 1 to 5");
     EXPECT_EQ(slave_error("5:1:foo"), "5:1:foo: dialect must be vlt or profidrive");
     EXPECT_EQ(slave_error("5:1:"), "5:1:: dialect must be vlt or profidrive");
-    EXPECT_EQ(slave_error("5:1:vlt:x"), "5:1:vlt:x: dialect must be vlt or profidrive");
+    EXPECT_EQ(slave_error("5:1:vlt:x"), "5:1:vlt:x: only dpv1 may follow the dialect");
+    EXPECT_EQ(slave_error("5:1:vlt:dpv1:x"), "5:1:vlt:dpv1:x: only dpv1 may follow the dialect");
+    EXPECT_EQ(slave_error("5:1:dpv1:vlt"), "5:1:dpv1:vlt: dialect must be vlt or profidrive");
+    EXPECT_EQ(slave_error("5:1:vlt:"), "5:1:vlt:: only dpv1 may follow the dialect");
 }
 
 // ---- fault injection -------------------------------------------------------------------------
@@ -522,6 +544,10 @@ TEST(SimulatorTest, EveryFaultKindIsInjectedExactlyOnce) {
                          std::to_string(address));
             SimulatorOptions options = small_session(9, 300);
             options.faults = {FaultSpec{kind, 0, 5, address}};
+            if (fault_needs_dpv1(kind))
+                options.slaves = {{3, 1, Dialect::Vlt, true},
+                                  {4, 3, Dialect::Profidrive, true},
+                                  {5, 5, Dialect::Vlt, true}};
             Simulator simulator(options);
             std::vector<Telegram> telegrams = run(simulator);
             ASSERT_EQ(simulator.injections().size(), 1u);
@@ -741,6 +767,375 @@ TEST(SimulatorTest, ConfigMismatchLengthensOneRequest) {
         }
     }
     EXPECT_EQ(long_requests, 1u);
+}
+
+// ---- DP-V1 parameter access ------------------------------------------------------------------
+
+SimulatorOptions dpv1_session(std::uint64_t seed, std::uint64_t cycles) {
+    SimulatorOptions options = small_session(seed, cycles);
+    options.slaves = {
+        {3, 1, Dialect::Vlt, true}, {4, 3, Dialect::Profidrive, true}, {5, 5, Dialect::Vlt, false}};
+    return options;
+}
+
+// What the checks below count in a session's DP-V1 traffic, read back through the decoder.
+struct Dpv1Tally {
+    std::size_t telegrams = 0;
+    std::size_t writes = 0, responses = 0, polls = 0;
+    std::size_t multi_reads = 0, arrays = 0, descriptions = 0, texts = 0, padded = 0;
+    std::size_t change_02 = 0, change_42 = 0, floats = 0, strings = 0;
+    std::size_t max_polls = 0, min_polls = 1000;
+    // Negative responses: their IDs, the error numbers, 0x40 blocks, errors with a subindex.
+    std::set<std::uint8_t> negative_ids;
+    std::set<std::uint16_t> error_numbers;
+    std::size_t zero_blocks = 0, error_infos = 0;
+    // Anomalies, one per response at most (the first that applies), and the telegram (1-based)
+    // of the last of each kind.
+    std::map<FaultKind, std::size_t> anomalies;
+    std::map<FaultKind, std::size_t> anomaly_at;
+    std::map<FaultKind, std::uint8_t> anomaly_slave;
+    std::size_t problems = 0;
+    bool set_prm_enables_dpv1 = true;
+};
+
+struct Dpv1Pending {
+    bool open = false;       // a request written and echoed, its response not read yet
+    bool any_write = false;  // a request has been written
+    std::uint8_t reference = 0, id = 0, axis = 0, count = 0;
+    std::vector<ProfidriveAddress> addresses;
+    std::int64_t write_time = 0;
+    std::size_t polls = 0;
+    bool awaiting_echo = false;
+};
+
+Dpv1Tally tally_dpv1(const std::vector<Telegram>& telegrams) {
+    Dpv1Tally tally;
+    BusDecoder decoder;
+    std::map<std::uint8_t, Dpv1Pending> pending;
+    std::uint8_t slave = 0;
+    auto anomaly = [&](FaultKind kind, std::size_t number) {
+        ++tally.anomalies[kind];
+        tally.anomaly_at[kind] = number;
+        tally.anomaly_slave[kind] = slave;
+    };
+    for (std::size_t i = 0; i < telegrams.size(); ++i) {
+        const Telegram& t = telegrams[i];
+        const DecodedTelegram& d =
+            decoder.decode(Bytes(t.bytes.data(), t.bytes.size()), t.time_ns, i + 1);
+        if (d.dp.service == Service::SetPrm && d.direction == Direction::Request &&
+            (d.slave == 3 || d.slave == 4)) {
+            const SetPrm* prm = d.dp.service_data.set_prm();
+            tally.set_prm_enables_dpv1 = tally.set_prm_enables_dpv1 && prm && prm->dpv1_enabled();
+        }
+        if (d.dp.service != Service::MsacC1) continue;
+        slave = d.slave;
+        ++tally.telegrams;
+        if (!d.problems().empty()) ++tally.problems;
+        const Dpv1Pdu* pdu = d.dp.service_data.dpv1();
+        if (!pdu) {
+            ++tally.problems;
+            continue;
+        }
+        Dpv1Pending& p = pending[d.slave];
+        const ProfidriveMessage* message = d.dp.service_data.profidrive();
+        if (d.direction == Direction::Request) {
+            if (pdu->is_write()) {
+                ++tally.writes;
+                if (!message || !message->has_header || message->is_response) {
+                    ++tally.problems;
+                    continue;
+                }
+                if (p.open) anomaly(FaultKind::Dpv1StackedRequest, i + 1);
+                if (p.any_write &&
+                    message->reference != (p.reference == 0xFF ? 1 : p.reference + 1))
+                    ++tally.problems;  // the reference goes up by one per request
+                p.any_write = true;
+                p.reference = message->reference;
+                p.id = message->id;
+                p.axis = message->axis;
+                p.count = message->count;
+                p.addresses = message->addresses;
+                p.write_time = d.time_ns;
+                p.polls = 0;
+                p.awaiting_echo = true;
+                if (message->count >= 2 && !message->is_change_request()) ++tally.multi_reads;
+                if (message->id == profidrive::kChangeValue) ++tally.change_02;
+                if (message->id == profidrive::kChangeValueNonVolatile) ++tally.change_42;
+                for (const ProfidriveAddress& a : message->addresses) {
+                    if (a.elements > 1) ++tally.arrays;
+                    if (a.attribute == profidrive::kAttributeDescription) ++tally.descriptions;
+                    if (a.attribute == profidrive::kAttributeText) ++tally.texts;
+                }
+            } else if (!pdu->is_read() || pdu->length != 240 || !pdu->data.empty()) {
+                ++tally.problems;
+            }
+            continue;
+        }
+        // Responses.
+        if (p.awaiting_echo) {
+            p.awaiting_echo = false;
+            if (pdu->layout == Dpv1Pdu::Layout::Error && pdu->function == 0xDF) {
+                anomaly(FaultKind::Dpv1ErrorPdu, i + 1);
+                p.open = false;
+            } else if (pdu->is_write() && pdu->data.empty()) {
+                p.open = true;
+            } else {
+                ++tally.problems;
+            }
+            continue;
+        }
+        if (pdu->is_state_conflict()) {
+            ++tally.polls;
+            ++p.polls;
+            if (p.open && d.time_ns - p.write_time > 1'000'000'000 && p.polls > 0) {
+                anomaly(FaultKind::Dpv1ResponseTimeout, i + 1);
+                p.open = false;  // counted once
+            }
+            continue;
+        }
+        if (!message || !message->is_response || !message->has_header) {
+            ++tally.problems;
+            continue;
+        }
+        ++tally.responses;
+        if (!p.open) {
+            anomaly(FaultKind::Dpv1OrphanResponse, i + 1);
+            continue;
+        }
+        p.open = false;
+        tally.max_polls = std::max(tally.max_polls, p.polls);
+        tally.min_polls = std::min(tally.min_polls, p.polls);
+        // The decoder names the response from the request it answers.
+        if (!message->has_request || message->addresses.size() != p.addresses.size()) {
+            ++tally.problems;
+        } else {
+            for (std::size_t k = 0; k < p.addresses.size(); ++k)
+                if (message->addresses[k].pnu != p.addresses[k].pnu) ++tally.problems;
+        }
+        for (const ProfidriveValueBlock& block : message->blocks) {
+            if (block.padded) ++tally.padded;
+            if (block.format == 0x08) ++tally.floats;
+            if (block.format == 0x09 || block.format == 0x0A) ++tally.strings;
+        }
+        if (message->reference != p.reference) {
+            anomaly(FaultKind::Dpv1ReferenceMismatch, i + 1);
+        } else if (!profidrive_response_answers(message->id, p.id)) {
+            anomaly(FaultKind::Dpv1UnexpectedResponseId, i + 1);
+        } else if (message->count != p.count || message->axis != p.axis) {
+            anomaly(FaultKind::Dpv1ParameterCountMismatch, i + 1);
+        } else if (message->negative()) {
+            anomaly(FaultKind::Dpv1NegativeResponse, i + 1);
+            tally.negative_ids.insert(message->id);
+            for (const ProfidriveValueBlock& block : message->blocks) {
+                if (block.format == profidrive::kFormatZero) ++tally.zero_blocks;
+                if (block.is_error()) tally.error_numbers.insert(block.error_number());
+                if (block.has_error_info()) ++tally.error_infos;
+            }
+            for (const ProfidriveValueBlock& block : message->blocks)
+                if (block.format != profidrive::kFormatZero && !block.is_error() &&
+                    (message->id & 0x7F) == profidrive::kChangeValue)
+                    ++tally.problems;  // a negative change response: 0x40 and 0x44 blocks only
+        } else {
+            bool consistent = message->trailing == 0;
+            if (message->id == profidrive::kChangeValue) {
+                consistent = consistent && message->blocks.empty();
+            } else {
+                consistent = consistent && message->blocks.size() == message->count;
+                for (std::size_t k = 0; consistent && k < message->blocks.size(); ++k) {
+                    const ProfidriveValueBlock& block = message->blocks[k];
+                    const ProfidriveAddress& a = p.addresses[k];
+                    consistent = block.complete && !block.is_error();
+                    bool string = block.format == 0x09 || block.format == 0x0A;
+                    if (a.attribute == profidrive::kAttributeValue && !string)
+                        consistent = consistent && block.count == a.elements;
+                }
+            }
+            if (!consistent) anomaly(FaultKind::Dpv1LengthError, i + 1);
+        }
+    }
+    return tally;
+}
+
+TEST(SimulatorTest, Dpv1ParameterAccessDecodes) {
+    for (std::uint64_t seed : {1u, 2u, 3u}) {
+        SCOPED_TRACE(seed);
+        Dpv1Tally tally = tally_dpv1(run(dpv1_session(seed, 600)));
+        EXPECT_TRUE(tally.set_prm_enables_dpv1);
+        EXPECT_EQ(tally.problems, 0u);
+        EXPECT_TRUE(tally.anomalies.empty());  // a clean session
+        EXPECT_GT(tally.writes, 100u);
+        EXPECT_GT(tally.responses, 100u);
+        EXPECT_LE(tally.writes - tally.responses, 2u);  // the last may still be open
+        // Each response after one to three polls answered with state conflict.
+        EXPECT_EQ(tally.min_polls, 1u);
+        EXPECT_EQ(tally.max_polls, 3u);
+        EXPECT_GE(tally.polls, tally.responses);
+        // The mix.
+        EXPECT_GT(tally.multi_reads, 0u);
+        EXPECT_GT(tally.arrays, 0u);
+        EXPECT_GT(tally.descriptions, 0u);
+        EXPECT_GT(tally.texts, 0u);
+        EXPECT_GT(tally.change_02, 0u);
+        EXPECT_GT(tally.change_42, 0u);  // the vlt slave's non-volatile change
+        EXPECT_GT(tally.padded, 0u);
+        EXPECT_GT(tally.floats, 0u);
+        EXPECT_GT(tally.strings, 0u);
+    }
+}
+
+TEST(SimulatorTest, Dpv1SlaveStartsUpWithDpv1Enabled) {
+    SimulatorOptions options = small_session(3, 5);
+    options.slaves = {{3, 3, Dialect::Vlt, true}};
+    std::vector<Telegram> telegrams = run(options);
+    BusDecoder decoder;
+    std::vector<Decoded> decoded = decode_all(telegrams, decoder);
+    auto set_prm = std::find_if(decoded.begin(), decoded.end(), [](const Decoded& d) {
+        return d.service == Service::SetPrm && d.direction == Direction::Request;
+    });
+    ASSERT_NE(set_prm, decoded.end());
+    EXPECT_EQ(set_prm->du, hex("88 0A 0A 0B 04 02 00 80 00 00"));
+    // A slave without DP-V1 keeps the DP-V0 Set_Prm.
+    options.slaves = {{3, 3, Dialect::Vlt}};
+    BusDecoder plain;
+    decoded = decode_all(run(options), plain);
+    set_prm = std::find_if(decoded.begin(), decoded.end(), [](const Decoded& d) {
+        return d.service == Service::SetPrm && d.direction == Direction::Request;
+    });
+    ASSERT_NE(set_prm, decoded.end());
+    EXPECT_EQ(set_prm->du, hex("88 0A 0A 0B 04 02 00"));
+    EXPECT_EQ(std::count_if(decoded.begin(), decoded.end(),
+                            [](const Decoded& d) { return d.service == Service::MsacC1; }),
+              0);
+}
+
+TEST(SimulatorTest, Dpv1SessionsAreReproducible) {
+    std::vector<Telegram> a = run(dpv1_session(5, 200));
+    std::vector<Telegram> b = run(dpv1_session(5, 200));
+    std::vector<Telegram> c = run(dpv1_session(6, 200));
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].bytes, b[i].bytes) << i;
+        EXPECT_EQ(a[i].time_ns, b[i].time_ns) << i;
+    }
+    bool differs = a.size() != c.size();
+    for (std::size_t i = 0; !differs && i < a.size(); ++i)
+        differs = a[i].bytes != c[i].bytes;
+    EXPECT_TRUE(differs);
+}
+
+TEST(SimulatorTest, EachDpv1FaultShowsOnceWhereAsked) {
+    for (std::size_t i = 0; i < kFaultKindCount; ++i) {
+        auto kind = static_cast<FaultKind>(i);
+        if (!fault_needs_dpv1(kind)) continue;
+        for (std::uint8_t address : {std::uint8_t{3}, std::uint8_t{4}}) {
+            SCOPED_TRACE(std::string(fault_kind_name(kind)) + " on slave " +
+                         std::to_string(address));
+            SimulatorOptions options = dpv1_session(11, 150);
+            options.faults = {FaultSpec{kind, 0, 20, address}};
+            Simulator simulator(options);
+            std::vector<Telegram> telegrams = run(simulator);
+            ASSERT_EQ(simulator.injections().size(), 1u);
+            const Injection& injection = simulator.injections()[0];
+            EXPECT_EQ(injection.kind, kind);
+            EXPECT_EQ(injection.slave, address);
+            EXPECT_GE(injection.cycle, 20u);
+            Dpv1Tally tally = tally_dpv1(telegrams);
+            EXPECT_EQ(tally.problems, 0u);
+            ASSERT_EQ(tally.anomalies.size(), 1u);
+            EXPECT_EQ(tally.anomalies.begin()->first, kind);
+            EXPECT_EQ(tally.anomalies.begin()->second, 1u);
+            // The anomaly shows at the injected telegram or after it.
+            EXPECT_GE(tally.anomaly_at[kind], injection.telegram);
+            EXPECT_EQ(tally.anomaly_slave[kind], address);
+        }
+    }
+}
+
+TEST(SimulatorTest, Dpv1NegativeResponsesMixErrorsAndZeroBlocks) {
+    SimulatorOptions options = dpv1_session(13, 600);
+    options.faults = {FaultSpec{FaultKind::Dpv1NegativeResponse, 1.0, std::nullopt, std::nullopt}};
+    Dpv1Tally tally = tally_dpv1(run(options));
+    EXPECT_EQ(tally.problems, 0u);
+    EXPECT_EQ(tally.anomalies.size(), 1u);
+    EXPECT_GT(tally.anomalies[FaultKind::Dpv1NegativeResponse], 100u);
+    EXPECT_EQ(tally.negative_ids, (std::set<std::uint8_t>{0x81, 0x82}));
+    // Unknown parameter, read-only, limits, subindex, no texts.
+    EXPECT_EQ(tally.error_numbers, (std::set<std::uint16_t>{0x00, 0x01, 0x02, 0x03, 0x0F}));
+    EXPECT_GT(tally.zero_blocks, 0u);  // a multi-parameter change that wrote one of its values
+    EXPECT_GT(tally.error_infos, 0u);  // the subindex after the error number
+}
+
+TEST(SimulatorTest, Dpv1ResponseTimeoutKeepsTheSessionOpenUntilTheMasterGivesUp) {
+    SimulatorOptions options = dpv1_session(11, 100);
+    options.faults = {FaultSpec{FaultKind::Dpv1ResponseTimeout, 0, 90, 3}};
+    std::vector<Telegram> telegrams = run(options);
+    ASSERT_FALSE(telegrams.empty());
+    // The master gives up after 1.5 s; the session runs on past it.
+    EXPECT_GT(telegrams.back().time_ns - options.start_time_ns, 1'500'000'000);
+    EXPECT_EQ(tally_dpv1(telegrams).anomalies[FaultKind::Dpv1ResponseTimeout], 1u);
+}
+
+TEST(SimulatorTest, Dpv1FaultsNeedADpv1Slave) {
+    SimulatorOptions options = small_session(9, 100);
+    options.faults = {FaultSpec{FaultKind::Dpv1ErrorPdu, 0, std::nullopt, std::nullopt}};
+    EXPECT_EQ(check_simulator_faults(options).error(),
+              "fault dpv1_error_pdu: no simulated slave runs DP-V1 (add one with "
+              "--slave ADDR:PPO[:DIALECT]:dpv1)");
+    options.slaves = {{3, 1, Dialect::Vlt}, {4, 3, Dialect::Vlt, true}};
+    options.faults = {FaultSpec{FaultKind::Dpv1NegativeResponse, 0, 5, 3}};
+    EXPECT_EQ(check_simulator_faults(options).error(),
+              "fault dpv1_negative_response@5:3: slave 3 does not run DP-V1 (give it as "
+              "--slave ADDR:PPO[:DIALECT]:dpv1)");
+    options.faults = {FaultSpec{FaultKind::Dpv1NegativeResponse, 0, 5, 4}};
+    EXPECT_TRUE(check_simulator_faults(options));
+    // A DP-V1 slave without a PCV takes no parameter-channel fault.
+    options.faults = {FaultSpec{FaultKind::StackedRequest, 0, 5, 4}};
+    EXPECT_FALSE(check_simulator_faults(options));
+    // Armed at a rate, a dpv1 fault only goes to the DP-V1 slave.
+    options.faults = {FaultSpec{FaultKind::Dpv1NegativeResponse, 0.5, std::nullopt, std::nullopt}};
+    Simulator simulator(options);
+    run(simulator);
+    EXPECT_GT(simulator.injections().size(), 5u);
+    for (const Injection& injection : simulator.injections())
+        EXPECT_EQ(injection.slave, 4);
+}
+
+// Without a DP-V1 slave the simulator writes what it wrote before DP-V1 existed: the samples
+// made by scripts/make-samples come out byte for byte.
+TEST(SimulatorTest, SessionsWithoutDpv1AreUnchanged) {
+    struct Case {
+        std::string sample;
+        SimulatorOptions options;
+    };
+    SimulatorOptions profidrive = small_session(16, 30);
+    profidrive.slaves = {{8, 1, Dialect::Profidrive}, {9, 5, Dialect::Profidrive}};
+    SimulatorOptions faults = small_session(19, 60);
+    for (const char* text :
+         {"fcs_error@4:3", "garbage@6:4", "malformed_telegram@8:5", "stacked_request@10:3",
+          "request_rejected@12:4", "mismatched_response@14:5", "unknown_code@18:3",
+          "config_mismatch@20:4", "orphan_response@22:5", "fdl_retry@26:3", "no_authority@28:4",
+          "unexpected_response_type@30:5", "spontaneous_message@34:3", "spm_violation@40:4",
+          "fdl_no_response@44:5"})
+        faults.faults.push_back(*parse_fault_spec(text));
+    for (Case& c : std::vector<Case>{{"samples/profidrive.pcap", profidrive},
+                                     {"samples/faults.pcap", faults}}) {
+        SCOPED_TRACE(c.sample);
+        std::vector<Telegram> telegrams = run(c.options);
+        OpenResult opened = open_source(test::source_dir() + "/" + c.sample, InputFormat::Auto,
+                                        profibus_dp_protocol());
+        ASSERT_TRUE(opened) << opened.error();
+        Record record;
+        std::size_t n = 0;
+        while (opened.value()->next(record)) {
+            ASSERT_LT(n, telegrams.size());
+            EXPECT_EQ(std::vector<std::uint8_t>(record.bytes.begin(), record.bytes.end()),
+                      telegrams[n].bytes)
+                << n;
+            EXPECT_EQ(record.time_ns, telegrams[n].time_ns) << n;
+            ++n;
+        }
+        EXPECT_EQ(n, telegrams.size());
+    }
 }
 
 }  // namespace
