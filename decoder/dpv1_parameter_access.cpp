@@ -175,18 +175,23 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
     Dpv1Stats& stats = *ch.stats;
     if (Transaction* open = ch.find(pdu.slot, pdu.index)) {
         // The same Write again before its Write response: a repeat, not a new request.
-        if (open->state == Transaction::State::Written && open->reference == m.reference &&
-            open->id == m.id && open->count == m.count)
+        if (open->state == Transaction::State::Written && !open->timed_out &&
+            open->reference == m.reference && open->id == m.id && open->count == m.count)
             return;
-        Finding& f = ch.add(out, FindingKind::Dpv1StackedRequest, t, open->frame);
-        if (!m.addresses.empty()) f.pnu = m.addresses.front().pnu;
-        f.message = fmt::format(
-            "new parameter request ({}) written to slot {} index {} while the response to the "
-            "request of frame {} ({}) was not read",
-            request_text(m.reference, m.id, m.addresses), pdu.slot, pdu.index, open->frame,
-            request_text(open->reference, open->id, open->addresses));
-        ++stats.abandoned;
-        ch.close(open);
+        if (open->timed_out) {
+            // Reported as a time-out already: the master gave up on it.
+            ch.close(open);
+        } else {
+            Finding& f = ch.add(out, FindingKind::Dpv1StackedRequest, t, open->frame);
+            if (!m.addresses.empty()) f.pnu = m.addresses.front().pnu;
+            f.message = fmt::format(
+                "new parameter request ({}) written to slot {} index {} while the response to "
+                "the request of frame {} ({}) was not read",
+                request_text(m.reference, m.id, m.addresses), pdu.slot, pdu.index, open->frame,
+                request_text(open->reference, open->id, open->addresses));
+            ++stats.abandoned;
+            ch.close(open);
+        }
     }
 
     Transaction& tx = ch.open.emplace_back();

@@ -336,6 +336,34 @@ TEST(Dpv1ParameterAccessTest, TimeoutAsTimePassesAndAtTheEndOfTheCapture) {
     EXPECT_EQ(bus.stats().timeouts, 2u);
 }
 
+TEST(Dpv1ParameterAccessTest, TimedOutRequestIsNotAlsoStackedAndItsLateResponseNoOrphan) {
+    TrackerOptions options;
+    options.timeout_ns = 100'000'000;
+    Dpv1Bus bus(options);
+    bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
+    bus.response(write_response(10));
+    bus.advance_ms(200);
+    std::uint64_t late = bus.request(read_request());
+    // The late response completes the timed-out request: no orphan.
+    bus.response(pdu(0x5E, parameter_response(1, 0x01, 1, {0x06, 0x01, 0, 1})));
+    // Timed out again; the master gives up and writes the next request: no stacked request.
+    bus.request(pdu(0x5F, parameter_request(2, 0x01, {{13}})));
+    bus.response(write_response(10));
+    bus.advance_ms(200);
+    std::uint64_t next = bus.request(pdu(0x5F, parameter_request(3, 0x01, {{14}})));
+    bus.response(write_response(10));
+    bus.request(read_request());
+    bus.response(pdu(0x5E, parameter_response(3, 0x01, 1, {0x06, 0x01, 0, 1})));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1ResponseTimeout, late, Severity::Error},
+                                   {FindingKind::Dpv1ResponseTimeout, next, Severity::Error}});
+    const Dpv1Stats& s = bus.stats();
+    EXPECT_EQ(s.started, 3u);
+    EXPECT_EQ(s.completed, 2u);
+    EXPECT_EQ(s.timeouts, 2u);
+    EXPECT_EQ(s.abandoned, 0u);
+}
+
 TEST(Dpv1ParameterAccessTest, OpenRequestAtTheEndOfTheCaptureTimesOut) {
     Dpv1Bus bus;
     std::uint64_t write = bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
