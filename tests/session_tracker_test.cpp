@@ -109,6 +109,13 @@ TEST_P(FaultScenarioTest, ExactlyTheExpectedFindings) {
     Result<FaultSpec> fault = parse_fault_spec(std::string(scenario.fault) + "@40:4");
     ASSERT_TRUE(fault) << fault.error();
     SimulatorOptions options = three_slaves(scenario.cycles);
+    if (std::optional<FindingKind> provokes = fault_finding_kind(fault->kind);
+        provokes && finding_component(*provokes) == FindingComponent::Dpv1ParameterAccess) {
+        // The DP-V1 faults need slave 4 to talk DP-V1.
+        Result<SimulatedSlave> dpv1_slave = parse_slave_spec("4:2:vlt:dpv1");
+        ASSERT_TRUE(dpv1_slave) << dpv1_slave.error();
+        options.slaves[1] = *dpv1_slave;
+    }
     options.faults.push_back(*fault);
     SimulatedRun run = simulate(options);
     ASSERT_EQ(run.injections.size(), 1u) << "the fault was not injected";
