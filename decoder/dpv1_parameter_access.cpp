@@ -73,6 +73,7 @@ void check_dpv1_length(const Dpv1Pdu& pdu, Inconsistencies& found) {
 
 struct Dpv1ParameterAccessTracker::Transaction {
     enum class State : std::uint8_t { Written, Reading };
+    bool active = false;
     std::uint8_t slot = 0;
     std::uint8_t index = 0;
     State state = State::Written;
@@ -98,7 +99,9 @@ struct Dpv1ParameterAccessTracker::Channel {
     std::uint8_t master = 0;
     std::uint8_t slave = 0;
     Dpv1Stats* stats = nullptr;
-    std::vector<Transaction> open;  // one per slot and index
+    // One per slot and index while active; closed ones are reused (their vectors keep their
+    // capacity, so tracking stops allocating).
+    std::vector<Transaction> open;
     // The last DP-V1 request still waiting for its DP-V1 response.
     bool awaiting = false;
     std::uint8_t function = 0;
@@ -108,10 +111,20 @@ struct Dpv1ParameterAccessTracker::Channel {
 
     Transaction* find(std::uint8_t slot_number, std::uint8_t index_number) {
         for (Transaction& tx : open)
-            if (tx.slot == slot_number && tx.index == index_number) return &tx;
+            if (tx.active && tx.slot == slot_number && tx.index == index_number) return &tx;
         return nullptr;
     }
-    void close(const Transaction* tx) { open.erase(open.begin() + (tx - open.data())); }
+    Transaction& start() {
+        for (Transaction& tx : open)
+            if (!tx.active) {
+                tx.active = true;
+                return tx;
+            }
+        Transaction& tx = open.emplace_back();
+        tx.active = true;
+        return tx;
+    }
+    static void close(Transaction* tx) { tx->active = false; }
     Finding& add(FindingList& out, FindingKind kind, const DecodedTelegram& t,
                  std::uint64_t request_frame) const {
         return add_finding(out, kind, t.frame, t.time_ns, request_frame, true, master, slave);
@@ -194,7 +207,10 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
         }
     }
 
-    Transaction& tx = ch.open.emplace_back();
+    Transaction& tx = ch.start();
+    tx.state = Transaction::State::Written;
+    tx.timed_out = false;
+    tx.polls = 0;
     tx.slot = pdu.slot;
     tx.index = pdu.index;
     tx.frame = t.frame;
@@ -445,7 +461,7 @@ void Dpv1ParameterAccessTracker::check_deadlines(std::int64_t now_ns, std::uint6
     for (auto& owned : channels_) {
         Channel& ch = *owned;
         for (Transaction& tx : ch.open) {
-            if (tx.timed_out || tx.time_ns == kNoTime) continue;
+            if (!tx.active || tx.timed_out || tx.time_ns == kNoTime) continue;
             std::int64_t deadline = tx.time_ns + timeout_ns_;
             if (now_ns > deadline) {
                 tx.timed_out = true;
