@@ -44,7 +44,10 @@ ParameterChannelPolicy dp_policy(const TrackerOptions& options) {
 }  // namespace
 
 SessionTracker::SessionTracker(TrackerOptions options)
-    : options_(options), engine_(dp_policy(options)), index_(kStationCount * kStationCount, -1) {}
+    : options_(options),
+      engine_(dp_policy(options)),
+      dpv1_(options.timeout_ns),
+      index_(kStationCount * kStationCount, -1) {}
 
 SessionTracker::~SessionTracker() = default;
 
@@ -57,6 +60,7 @@ SessionTracker::Channel& SessionTracker::channel(std::uint8_t master, std::uint8
         ch->stats.slave = slave & 0x7F;
         // The engine checks time-outs channel by channel in the order they are made here.
         engine_.add_channel(ch->stats.master, ch->stats.slave, ch->stats);
+        dpv1_.add_channel(ch->stats.master, ch->stats.slave, ch->stats.dpv1);
         channels_.push_back(std::move(ch));
     }
     return *channels_[static_cast<std::size_t>(index_[key])];
@@ -65,7 +69,7 @@ SessionTracker::Channel& SessionTracker::channel(std::uint8_t master, std::uint8
 std::vector<const ChannelStats*> SessionTracker::channels() const {
     std::vector<const ChannelStats*> out;
     for (const auto& ch : channels_)
-        if (ch->stats.data_exchange > 0 || ch->stats.requests > 0 ||
+        if (ch->stats.data_exchange > 0 || ch->stats.requests > 0 || ch->stats.dpv1.telegrams > 0 ||
             std::any_of(ch->stats.findings.begin(), ch->stats.findings.end(),
                         [](std::uint64_t n) { return n > 0; }))
             out.push_back(&ch->stats);
@@ -78,7 +82,7 @@ std::vector<const ChannelStats*> SessionTracker::channels() const {
 std::uint64_t SessionTracker::transactions() const noexcept {
     std::uint64_t total = 0;
     for (const auto& ch : channels_)
-        total += ch->stats.transactions.total();
+        total += ch->stats.transactions.total() + ch->stats.dpv1.completed;
     return total;
 }
 
@@ -101,6 +105,7 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
     if (t.has_time()) {
         now_ns_ = t.time_ns;
         engine_.advance(now_ns_, t.frame, current_);
+        dpv1_.advance(now_ns_, t.frame, current_);
     }
     check_reply_missing(t, current_);
     const bool intact = check_intact(t, current_);
@@ -109,7 +114,10 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
     if (!current_.empty()) count(0);  // most telegrams have no finding: no call then
     if (!t.has_roles) return current_;
     const std::size_t counted = current_.size();
-    track_channel(channel(t.master, t.slave), t, intact);
+    Channel& ch = channel(t.master, t.slave);
+    track_channel(ch, t, intact);
+    if (t.dp.service_data.kind() == DpServiceData::Kind::Dpv1 && t.dp.fdl.fcs_ok)
+        dpv1_.track(t, current_);
     if (current_.size() > counted) count(counted);
     return current_;
 }
@@ -146,7 +154,10 @@ std::span<const Finding> SessionTracker::finish(std::int64_t end_ns) {
     current_.clear();
     completed_.clear();
     if (end_ns != kNoTime && (now_ns_ == kNoTime || end_ns > now_ns_)) now_ns_ = end_ns;
-    if (now_ns_ != kNoTime) engine_.advance(now_ns_, last_frame_, current_);
+    if (now_ns_ != kNoTime) {
+        engine_.advance(now_ns_, last_frame_, current_);
+        dpv1_.advance(now_ns_, last_frame_, current_);
+    }
     count(0);
     return current_;
 }

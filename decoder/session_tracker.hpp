@@ -2,7 +2,9 @@
 // into the link checks (decoder/dp_link_rules.hpp: fcs_error, malformed_telegram, fdl_retry,
 // fdl_no_response), the configuration check (decoder/dp_config_rule.hpp: config_mismatch) and,
 // for a Data_Exchange telegram with a parameter channel, a sample for the parameter-channel
-// engine (decoder/parameter_channel_engine.hpp), which pairs requests with responses; it counts
+// engine (decoder/parameter_channel_engine.hpp), which pairs requests with responses; every
+// DP-V1 telegram (MSAC_C1, MSAC_C2) goes to the DP-V1 parameter-access tracker
+// (decoder/dpv1_parameter_access.hpp), which follows PROFIdrive parameter access; it counts
 // every finding per channel and keeps the DP statistics beside the engine's. No I/O; memory is
 // bounded per channel and nothing is kept per telegram.
 //
@@ -10,7 +12,9 @@
 //  - A cycle is a Data_Exchange request from the master to the slave; an FDL retry (the same
 //    FCB again) is no new cycle, unless the slave dropped the request it repeats (bad FCS).
 //  - The slave's response lags one cycle, and the PKE has an SPM bit (the PPO's layout).
-//  - A telegram with a bad FCS, or malformed, is reported and otherwise ignored.
+//  - A telegram with a bad FCS, or malformed, is reported and otherwise ignored; except that a
+//    DP-V1 telegram with a correct FCS still goes to the DP-V1 tracker, whose length rule says
+//    in DP-V1 terms what a PROFIdrive message cut short or too long is.
 #pragma once
 
 #include <array>
@@ -22,6 +26,7 @@
 
 #include "decoder/dp_config_rule.hpp"
 #include "decoder/dp_link_rules.hpp"
+#include "decoder/dpv1_parameter_access.hpp"
 #include "decoder/finding.hpp"
 #include "decoder/parameter_channel_engine.hpp"
 #include "decoder/telegram.hpp"
@@ -65,6 +70,7 @@ struct ChannelStats : ParameterChannelStats {
     std::array<std::uint64_t, kFindingKindCount> findings{};  // every rule's
     std::int64_t first_time_ns = kNoTime;
     std::int64_t last_time_ns = kNoTime;
+    Dpv1Stats dpv1;  // DP-V1 parameter access (decoder/dpv1_parameter_access.hpp)
 };
 
 // Counts for what no channel can be named for (garbage on the bus).
@@ -94,6 +100,7 @@ class SessionTracker {
     std::uint64_t findings(Severity severity) const noexcept {
         return by_severity_[static_cast<std::size_t>(severity)];
     }
+    // Parameter-channel transactions and completed DP-V1 parameter-access transactions.
     std::uint64_t transactions() const noexcept;
     const TrackerOptions& options() const noexcept { return options_; }
     // The parameter number the last tracked telegram's parameter channel is about, -1 when it
@@ -118,6 +125,7 @@ class SessionTracker {
 
     TrackerOptions options_;
     ParameterChannelEngine engine_;
+    Dpv1ParameterAccessTracker dpv1_;
     std::vector<std::int32_t> index_;  // master * 128 + slave -> position in channels_
     std::vector<std::unique_ptr<Channel>> channels_;
     std::vector<Finding> current_;

@@ -86,7 +86,7 @@ void write_html(const ReportContext& c, const ReportModel& m, Output& out) {
     card("bytes skipped", c.input.bytes_skipped, "");
     card("FCS errors", m.fcs_errors, "");
     card("transactions", m.transactions, "");
-    card("slaves", m.stations.size(), "");
+    card("slaves", m.slaves, "");
     card("errors", m.errors(), "error");
     card("warnings", m.warnings(), "warning");
     card("notes", m.notes(), "note");

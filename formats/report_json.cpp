@@ -56,8 +56,14 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
     }
     w.end_array();
     w.key("bus").begin_object();
-    w.key("findings");
-    json::finding_kind_counts(w, c.tracker->bus().findings);
+    // Telegrams no station can be named for: the link's kinds (a DP-V1 rule always has one).
+    w.key("findings").begin_object();
+    for (FindingKind kind : kAllKinds)
+        if (is_dp_kind(kind))
+            w.key(finding_kind_name(kind))
+                .integer(static_cast<std::int64_t>(
+                    c.tracker->bus().findings[static_cast<std::size_t>(kind)]));
+    w.end_object();
     w.end_object();
     w.key("findings").begin_array();
     c.findings->for_each([&](const Finding& f) {

@@ -18,10 +18,20 @@ ReportModel build_report_model(const ReportContext& c) {
     // The sections, one per station and channel kind.
     static const ChannelTimelines kNoTimelines;
     const ChannelTimelines& timelines = c.timelines ? *c.timelines : kNoTimelines;
-    for (const ChannelStats* stats : c.tracker->channels())
-        if (shows_slave(c, stats->slave))
+    for (const ChannelStats* stats : c.tracker->channels()) {
+        if (!shows_slave(c, stats->slave)) continue;
+        bool dp_findings = false, dpv1_findings = false;
+        for (FindingKind kind : kAllKinds)
+            if (stats->findings[static_cast<std::size_t>(kind)] > 0)
+                (is_dp_kind(kind) ? dp_findings : dpv1_findings) = true;
+        const bool dpv1 = stats->dpv1.telegrams > 0 || dpv1_findings;
+        // The cyclic channel's section, unless the slave only talked DP-V1.
+        if (!dpv1 || stats->data_exchange > 0 || stats->parameter_telegrams > 0 || dp_findings)
             m.stations.push_back(
                 make_pcv_section(c, *stats, timelines.of(stats->master, stats->slave)));
+        if (dpv1) m.stations.push_back(make_dpv1_section(*stats));
+        ++m.slaves;
+    }
 
     for (const auto& section : m.stations)
         m.transactions += section->transactions();
@@ -38,6 +48,10 @@ ReportModel build_report_model(const ReportContext& c) {
         if (!f.has_stations) m.has_bus_findings = true;
     });
     return m;
+}
+
+bool is_dp_kind(FindingKind kind) {
+    return finding_component(kind) != FindingComponent::Dpv1ParameterAccess;
 }
 
 double to_ms(std::uint64_t ns) { return static_cast<double>(ns) / 1e6; }

@@ -6,11 +6,13 @@
 //   report_markdown.cpp, report_html.cpp, report_junit.cpp. A writer lays out the document:
 //   header and verdict, summary, one section per station, the bus section, then the findings in
 //   capture order.
-// - The per-station sections are StationSection objects, one class per channel kind. Today there
-//   is one kind: PcvSection (report_pcv_section.cpp), the cyclic parameter channel (PCV) of a DP
-//   slave. Every format asks the section for its own part (write_text(), write_json(), ...), so
-//   a new channel kind (DP-V1 acyclic, FC protocol) is one new StationSection class plus the
-//   line in build_report_model() that makes its sections; the five writers stay as they are.
+// - The per-station sections are StationSection objects, one class per channel kind: PcvSection
+//   (report_pcv_section.cpp), the cyclic parameter channel (PCV) of a DP slave, and Dpv1Section
+//   (report_dpv1_section.cpp), its DP-V1 parameter access, which follows the PCV section of the
+//   same slave. Each section covers the finding kinds of its rules. Every format asks the section
+//   for its own part (write_text(), write_json(), ...), so a new channel kind (DP-V1 acyclic, FC
+//   protocol) is one new StationSection class plus the line in build_report_model() that makes its
+//   sections; the five writers stay as they are.
 // - Wording used by more than one writer lives here (verdict, filter, relative times, findings
 //   by kind); escaping for Markdown, HTML and XML in report_markup.hpp.
 #pragma once
@@ -56,8 +58,10 @@ class StationSection {
     virtual bool checked() const = 0;
     // Transactions, counted in the summary.
     virtual std::uint64_t transactions() const = 0;
-    // The station's findings by kind.
+    // The station's findings by kind, of the kinds the section covers.
     virtual const FindingCounts& findings() const = 0;
+    // Whether the section's rules find `kind` (its findings and its JUnit test cases).
+    virtual bool covers(FindingKind kind) const = 0;
 
     // Text: the station's block, from its leading empty line.
     virtual void write_text(const ReportContext& c, TextBuffer& b) const = 0;
@@ -81,8 +85,16 @@ class StationSection {
 std::unique_ptr<StationSection> make_pcv_section(const ReportContext& c, const ChannelStats& stats,
                                                  const Timeline& timeline);
 
+// DP-V1 parameter access of a DP slave (PROFIdrive over MSAC_C1/MSAC_C2), as the session
+// tracker counted it.
+std::unique_ptr<StationSection> make_dpv1_section(const ChannelStats& stats);
+
+// The bus suite's and the cyclic channel's kinds: all but the DP-V1 parameter-access ones.
+bool is_dp_kind(FindingKind kind);
+
 struct ReportModel {
-    std::vector<std::unique_ptr<StationSection>> stations;  // the stations reported, in order
+    std::vector<std::unique_ptr<StationSection>> stations;  // the sections reported, in order
+    std::uint64_t slaves = 0;                               // the slaves they are about
     std::array<std::uint64_t, 3> by_severity{};             // findings shown, by severity
     std::uint64_t fcs_errors = 0;    // fcs_error findings shown (every bad FCS is one)
     std::uint64_t shown = 0;         // findings shown

@@ -195,6 +195,10 @@ class PcvSection final : public StationSection {
   public:
     PcvSection(const ReportContext& c, const ChannelStats& stats, const Timeline& timeline)
         : s_(stats), timeline_(timeline) {
+        for (FindingKind kind : kAllKinds)
+            if (covers(kind))
+                findings_[static_cast<std::size_t>(kind)] =
+                    stats.findings[static_cast<std::size_t>(kind)];
         const StationConfig& config = c.decoder->station(stats.slave);
         has_ident_ = config.has_ident;
         ident_ = config.ident;
@@ -223,7 +227,8 @@ class PcvSection final : public StationSection {
     std::uint8_t slave() const override { return s_.slave; }
     bool checked() const override { return s_.parameter_telegrams > 0; }
     std::uint64_t transactions() const override { return s_.transactions.total(); }
-    const FindingCounts& findings() const override { return s_.findings; }
+    const FindingCounts& findings() const override { return findings_; }
+    bool covers(FindingKind kind) const override { return is_dp_kind(kind); }
 
     void write_text(const ReportContext& /*c*/, TextBuffer& b) const override {
         const ChannelStats& s = s_;
@@ -262,7 +267,7 @@ class PcvSection final : public StationSection {
             }
             b.push_back('\n');
         }
-        fmt::format_to(it, "  findings       {}\n", findings_by_kind_text(s.findings));
+        fmt::format_to(it, "  findings       {}\n", findings_by_kind_text(findings_));
     }
 
     void write_markdown_row(const ReportContext& /*c*/, TextBuffer& b) const override {
@@ -280,7 +285,7 @@ class PcvSection final : public StationSection {
                        md_escape(ppo_type_label(s.ppo)), dialect_name(s.dialect),
                        s.transactions.total(), s.transactions.rejected,
                        timed_ ? fmt::format("{}", s.timeouts) : "not judged", ms, cycles,
-                       md_escape(findings_by_kind_text(s.findings)));
+                       md_escape(findings_by_kind_text(findings_)));
     }
 
     void write_markdown(const ReportContext& /*c*/, TextBuffer& b) const override {
@@ -304,7 +309,7 @@ class PcvSection final : public StationSection {
             fmt::format_to(it, "- Rejected: PNU {} error {} ({}), {}x\n", key.first, key.second,
                            md_escape(text.empty() ? "unknown" : text), count);
         }
-        fmt::format_to(it, "- Findings: {}\n", md_escape(findings_by_kind_text(s.findings)));
+        fmt::format_to(it, "- Findings: {}\n", md_escape(findings_by_kind_text(findings_)));
     }
 
     void write_json(const ReportContext& c, JsonWriter& w) const override {
@@ -368,8 +373,11 @@ class PcvSection final : public StationSection {
             w.end_object();
         }
         w.end_array();
-        w.key("findings");
-        json::finding_kind_counts(w, s.findings);
+        w.key("findings").begin_object();
+        for (FindingKind kind : kAllKinds)
+            if (covers(kind))
+                count(finding_kind_name(kind), findings_[static_cast<std::size_t>(kind)]);
+        w.end_object();
         w.end_object();
     }
 
@@ -379,7 +387,7 @@ class PcvSection final : public StationSection {
         std::array<std::uint64_t, 3> severities{};
         for (FindingKind kind : kAllKinds)
             severities[static_cast<std::size_t>(default_severity(kind))] +=
-                s.findings[static_cast<std::size_t>(kind)];
+                findings_[static_cast<std::size_t>(kind)];
         fmt::format_to(std::back_inserter(b),
                        "<tr><td class=\"n\"><a href=\"#slave-{}-{}\">{}</a></td><td class=\"n\">{}"
                        "</td><td>{}</td><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>"
@@ -457,7 +465,7 @@ class PcvSection final : public StationSection {
             }
             append(b, "</table>\n");
         }
-        html_findings_by_kind(b, s.findings);
+        html_findings_by_kind(b, findings_);
         append(b, "</section>\n");
     }
 
@@ -480,6 +488,7 @@ class PcvSection final : public StationSection {
 
     const ChannelStats& s_;
     const Timeline& timeline_;
+    FindingCounts findings_{};  // the kinds the section covers
     bool has_ident_ = false;
     std::uint16_t ident_ = 0;
     bool timed_ = false;        // its telegrams carry timestamps: time-outs and ms latency judged

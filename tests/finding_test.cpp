@@ -42,6 +42,15 @@ TEST(FindingTest, NamesAndSeveritiesAreTheDocumentedOnes) {
         {"unknown_code", Severity::Warning},
         {"fdl_retry", Severity::Note},
         {"fdl_no_response", Severity::Warning},
+        {"dpv1_stacked_request", Severity::Error},
+        {"dpv1_reference_mismatch", Severity::Error},
+        {"dpv1_unexpected_response_id", Severity::Error},
+        {"dpv1_parameter_count_mismatch", Severity::Error},
+        {"dpv1_orphan_response", Severity::Warning},
+        {"dpv1_response_timeout", Severity::Error},
+        {"dpv1_negative_response", Severity::Note},
+        {"dpv1_length_error", Severity::Error},
+        {"dpv1_error_pdu", Severity::Note},
     };
     ASSERT_EQ(expected.size(), kFindingKindCount);
     for (std::size_t i = 0; i < kFindingKindCount; ++i) {

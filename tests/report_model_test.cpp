@@ -29,6 +29,7 @@ class FakeSection final : public StationSection {
     bool checked() const override { return true; }
     std::uint64_t transactions() const override { return 42; }
     const report::FindingCounts& findings() const override { return findings_; }
+    bool covers(FindingKind) const override { return true; }
     void write_text(const ReportContext&, TextBuffer& b) const override {
         append(b, "\nFAKE text\n");
     }

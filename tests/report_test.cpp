@@ -537,10 +537,19 @@ const std::vector<ExpectedFinding> kFaultsFindings = {
     {353, "fdl_no_response", "warning", 5},
 };
 
-std::vector<std::string> all_kind_names() {
+// The kinds of the cyclic channel's section and the bus: all but the DP-V1 ones.
+std::vector<std::string> dp_kind_names() {
     std::vector<std::string> names;
     for (std::size_t i = 0; i < kFindingKindCount; ++i)
-        names.emplace_back(finding_kind_name(static_cast<FindingKind>(i)));
+        if (finding_component(static_cast<FindingKind>(i)) != FindingComponent::Dpv1ParameterAccess)
+            names.emplace_back(finding_kind_name(static_cast<FindingKind>(i)));
+    return names;
+}
+
+std::vector<std::string> dpv1_kind_names() {
+    std::vector<std::string> names;
+    for (FindingKind kind : finding_kinds_of(FindingComponent::Dpv1ParameterAccess))
+        names.emplace_back(finding_kind_name(kind));
     return names;
 }
 
@@ -603,13 +612,13 @@ TEST(ReportTest, JsonHasTheDocumentedTopLevelSummaryAndStationKeys) {
     ASSERT_EQ(stations.items.size(), 3u);
     for (const Json& station : stations.items) {
         EXPECT_EQ(station.keys(), kStationKeys);
-        EXPECT_EQ(station["findings"].keys(), all_kind_names());
+        EXPECT_EQ(station["findings"].keys(), dp_kind_names());
         EXPECT_EQ(station["latency_ms"].keys(),
                   (std::vector<std::string>{"min", "median", "p95", "max"}));
         EXPECT_EQ(station["latency_cycles"].keys(),
                   (std::vector<std::string>{"min", "median", "p95", "max"}));
     }
-    EXPECT_EQ((*report)["bus"]["findings"].keys(), all_kind_names());
+    EXPECT_EQ((*report)["bus"]["findings"].keys(), dp_kind_names());
     ASSERT_EQ((*report)["findings"].type, Json::Type::Array);
     for (const Json& finding : (*report)["findings"].items)
         EXPECT_EQ(finding.keys(), kFindingKeys);
@@ -875,7 +884,7 @@ TEST(ReportTest, JunitOneSuitePerSlavePlusBusWithSixteenCasesEach) {
     EXPECT_EQ(root->attribute("tests"), "64");
     EXPECT_EQ(root->attribute("failures"), "7");
     EXPECT_EQ(root->attribute("errors"), "0");
-    const std::vector<std::string> kinds = all_kind_names();
+    const std::vector<std::string> kinds = dp_kind_names();
     const char* classnames[] = {"dpscope.master_2.slave_3", "dpscope.master_2.slave_4",
                                 "dpscope.master_2.slave_5", "dpscope.bus"};
     const char* failures[] = {"2", "1", "3", "1"};
@@ -887,7 +896,7 @@ TEST(ReportTest, JunitOneSuitePerSlavePlusBusWithSixteenCasesEach) {
         EXPECT_EQ(suite.attribute("failures"), std::to_string(failing_cases(suite)));
         EXPECT_EQ(suite.attribute("errors"), "0");
         auto cases = suite.elements("testcase");
-        ASSERT_EQ(cases.size(), kFindingKindCount);
+        ASSERT_EQ(cases.size(), 16u);  // the DP-V1 rules have a suite of their own
         for (std::size_t k = 0; k < cases.size(); ++k) {
             EXPECT_EQ(cases[k]->attribute("classname"), classnames[s]);
             EXPECT_EQ(
@@ -991,6 +1000,167 @@ TEST(ReportTest, JunitStationFilterKeepsTheSlaveAndTheBus) {
     EXPECT_EQ(suites[1]->attribute("name"), "bus");
     EXPECT_EQ(root->all("failure").size(), 2u);  // config_mismatch and the garbage
     EXPECT_EQ(root->attribute("tests"), "32");
+}
+
+// ---- DP-V1 parameter access -------------------------------------------------------------------
+
+// Master 1 and slave 5 talking DP-V1 only (SAP 51), 1 ms apart: a read with one state-conflict
+// poll, a two-parameter read answered negatively for PNU 30, and a request written over by the
+// next one (dpv1_stacked_request).
+const Analysis& dpv1_session() {
+    static const std::unique_ptr<Analysis> analysis = [] {
+        auto a = std::make_unique<Analysis>();
+        std::int64_t time = kT0Sample;
+        std::uint64_t number = 0;
+        bool fcb = true;
+        auto send = [&](std::vector<std::uint8_t> du, bool request) {
+            std::vector<std::uint8_t> bytes =
+                request
+                    ? build_telegram(
+                          {5, 1, request_fc(FdlFunction::SrdHigh, fcb, true), 51, 51, Bytes(du)})
+                    : build_telegram({1, 5, response_fc(FdlStatus::DataLow), 51, 51, Bytes(du)});
+            if (request) fcb = !fcb;
+            a->feed(Bytes(bytes.data(), bytes.size()), time, ++number);
+            time += 1'000'000;
+        };
+        auto write = [&](std::vector<std::uint8_t> request) {
+            std::vector<std::uint8_t> du{0x5F, 0, 47, static_cast<std::uint8_t>(request.size())};
+            du.insert(du.end(), request.begin(), request.end());
+            send(du, true);
+            send({0x5F, 0, 47, static_cast<std::uint8_t>(request.size())}, false);
+        };
+        auto read = [&](std::vector<std::uint8_t> response) {
+            send({0x5E, 0, 47, 240}, true);
+            std::vector<std::uint8_t> du{0x5E, 0, 47, static_cast<std::uint8_t>(response.size())};
+            du.insert(du.end(), response.begin(), response.end());
+            send(du, false);
+        };
+        write({1, 0x01, 0, 1, 0x10, 0, 0, 12, 0, 0});
+        send({0x5E, 0, 47, 240}, true);
+        send({0xDE, 0x80, 0xB5, 0x00}, false);  // not ready: a poll
+        read({1, 0x01, 0, 1, 0x42, 0x01, 0x00, 0x03});
+        write({2, 0x01, 0, 2, 0x10, 0, 0, 20, 0, 0, 0x10, 0, 0, 30, 0, 0});
+        read({2, 0x81, 0, 2, 0x06, 0x01, 0x00, 0x07, 0x44, 0x01, 0x00, 0x00});
+        write({3, 0x01, 0, 1, 0x10, 0, 0, 40, 0, 0});
+        write({4, 0x01, 0, 1, 0x10, 0, 0, 41, 0, 0});
+        read({4, 0x01, 0, 1, 0x06, 0x01, 0x00, 0x09});
+        a->finish();
+        a->input = InputSummary{"dpv1.pcap", "pcap", 0, false};
+        return a;
+    }();
+    return *analysis;
+}
+
+TEST(ReportTest, Dpv1SectionInText) {
+    std::string text = render(ReportFormat::Text, context_of(dpv1_session()));
+    EXPECT_NE(text.find("\nSlave 5 (master 1): DP-V1 parameter access\n"
+                        "  DP-V1          16 telegrams\n"
+                        "  transactions   4 started, 3 completed, 0 refused, 1 abandoned, 0 timed "
+                        "out\n"
+                        "  latency ms     min 3.000  mean "),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("  polls          1 state-conflict poll, at most 1 in one transaction\n"
+                        "  parameters     12 (1 read), 20 (1 read), 30 (1 read), 40 (1 read), 41 "
+                        "(1 read)\n"
+                        "  negative       1: error 0x00 (illegal or unknown parameter number) 1x\n"
+                        "  error PDUs     0\n"
+                        "  findings       dpv1_stacked_request 1, dpv1_negative_response 1\n"),
+              std::string::npos)
+        << text;
+    EXPECT_EQ(text.find("Slave 5 (master 1)\n"), std::string::npos) << "no cyclic section";
+    EXPECT_NE(text.find("  transactions   3\n"), std::string::npos);
+    EXPECT_NE(text.find("Result:  FAIL: 1 error, 0 warnings, 1 note"), std::string::npos) << text;
+}
+
+TEST(ReportTest, Dpv1SectionInJson) {
+    auto report = json_report(context_of(dpv1_session()));
+    ASSERT_TRUE(report);
+    EXPECT_FALSE((*report)["nothing_checked"].boolean);
+    EXPECT_EQ((*report)["summary"]["transactions"].integer(), 3);
+    const Json& stations = (*report)["stations"];
+    ASSERT_EQ(stations.items.size(), 1u);
+    const Json& s = stations[0];
+    EXPECT_EQ(s.keys(), (std::vector<std::string>{"master",
+                                                  "slave",
+                                                  "channel",
+                                                  "dialect",
+                                                  "telegrams",
+                                                  "transactions",
+                                                  "started",
+                                                  "completed",
+                                                  "refused",
+                                                  "abandoned",
+                                                  "timeouts",
+                                                  "polls",
+                                                  "max_polls",
+                                                  "latency_ms",
+                                                  "parameters",
+                                                  "parameters_not_counted",
+                                                  "negative_responses",
+                                                  "negative_errors",
+                                                  "error_pdus",
+                                                  "findings"}));
+    EXPECT_EQ(s["channel"].string(), "dpv1");
+    EXPECT_EQ(s["slave"].integer(), 5);
+    EXPECT_EQ(s["started"].integer(), 4);
+    EXPECT_EQ(s["abandoned"].integer(), 1);
+    EXPECT_EQ(s["timeouts"].integer(), 0);
+    EXPECT_EQ(s["polls"].integer(), 1);
+    EXPECT_EQ(s["latency_ms"].keys(), (std::vector<std::string>{"min", "mean", "p95", "max"}));
+    EXPECT_EQ(s["latency_ms"]["min"].text, "3.000000");
+    EXPECT_EQ(s["latency_ms"]["max"].text, "5.000000");
+    ASSERT_EQ(s["parameters"].items.size(), 5u);
+    EXPECT_EQ(s["parameters"][0]["pnu"].integer(), 12);
+    EXPECT_EQ(s["parameters"][0]["reads"].integer(), 1);
+    EXPECT_EQ(s["parameters"][0]["writes"].integer(), 0);
+    ASSERT_EQ(s["negative_errors"].items.size(), 1u);
+    EXPECT_EQ(s["negative_errors"][0]["error_text"].string(),
+              "illegal or unknown parameter number");
+    EXPECT_EQ(s["findings"].keys(), dpv1_kind_names());
+    EXPECT_EQ(s["findings"]["dpv1_stacked_request"].integer(), 1);
+    EXPECT_EQ(s["findings"]["dpv1_negative_response"].integer(), 1);
+}
+
+TEST(ReportTest, Dpv1SectionInMarkdownAndHtml) {
+    const ReportContext c = context_of(dpv1_session());
+    std::string markdown = render(ReportFormat::Markdown, c);
+    EXPECT_NE(markdown.find("| 5 | 1 | DP-V1 | vlt | 3 | 1 | 0 | 3.000 / "), std::string::npos)
+        << markdown;
+    EXPECT_NE(markdown.find("### Slave 5 (master 1): DP-V1 parameter access"), std::string::npos);
+    EXPECT_NE(markdown.find("- Error 0x00 (illegal or unknown parameter number), 1x"),
+              std::string::npos);
+    std::string html = render(ReportFormat::Html, c);
+    EXPECT_NE(html.find("<section class=\"station\" id=\"slave-5-1-dpv1\">"), std::string::npos);
+    EXPECT_NE(html.find("<a href=\"#slave-5-1-dpv1\">5</a>"), std::string::npos);
+    EXPECT_NE(html.find("<td>illegal or unknown parameter number</td>"), std::string::npos);
+    EXPECT_NE(html.find("<div class=\"n\">1</div><div class=\"l\">slaves</div>"),
+              std::string::npos);
+}
+
+TEST(ReportTest, JunitDpv1SuiteHasACasePerDpv1Rule) {
+    auto root = junit_report(context_of(dpv1_session()));
+    ASSERT_TRUE(root);
+    auto suites = root->elements("testsuite");
+    ASSERT_EQ(suites.size(), 1u);
+    const XmlNode& suite = *suites[0];
+    EXPECT_EQ(suite.attribute("name"), "slave 5 (master 1) DP-V1");
+    EXPECT_EQ(suite.attribute("tests"), "9");
+    EXPECT_EQ(suite.attribute("failures"), "1");
+    EXPECT_EQ(root->attribute("tests"), "9");
+    auto cases = suite.elements("testcase");
+    const std::vector<std::string> kinds = dpv1_kind_names();
+    ASSERT_EQ(cases.size(), kinds.size());
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+        EXPECT_EQ(cases[k]->attribute("classname"), "dpscope.master_1.slave_5.dpv1");
+        EXPECT_TRUE(starts_with(cases[k]->attribute("name"), kinds[k] + ": "));
+    }
+    ASSERT_EQ(cases[0]->elements("failure").size(), 1u);  // dpv1_stacked_request
+    EXPECT_EQ(cases[0]->elements("failure")[0]->attribute("type"), "dpv1_stacked_request");
+    // The negative response is a note: mentioned, not failed.
+    ASSERT_EQ(cases[6]->elements("system-out").size(), 1u);
+    EXPECT_EQ(cases[6]->elements("system-out")[0]->text,
+              "1 note finding below the failure threshold");
 }
 
 TEST(ReportTest, JunitEscapesMarkupInMessagesAndNames) {

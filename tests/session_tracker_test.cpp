@@ -109,6 +109,13 @@ TEST_P(FaultScenarioTest, ExactlyTheExpectedFindings) {
     Result<FaultSpec> fault = parse_fault_spec(std::string(scenario.fault) + "@40:4");
     ASSERT_TRUE(fault) << fault.error();
     SimulatorOptions options = three_slaves(scenario.cycles);
+    if (std::optional<FindingKind> provokes = fault_finding_kind(fault->kind);
+        provokes && finding_component(*provokes) == FindingComponent::Dpv1ParameterAccess) {
+        // The DP-V1 faults need slave 4 to talk DP-V1.
+        Result<SimulatedSlave> dpv1_slave = parse_slave_spec("4:2:vlt:dpv1");
+        ASSERT_TRUE(dpv1_slave) << dpv1_slave.error();
+        options.slaves[1] = *dpv1_slave;
+    }
     options.faults.push_back(*fault);
     SimulatedRun run = simulate(options);
     ASSERT_EQ(run.injections.size(), 1u) << "the fault was not injected";
@@ -148,6 +155,16 @@ const FaultScenario kFaultScenarios[] = {
     FaultScenario{"fdl_retry", 120, {{"fdl_no_response", 1}, {"fdl_retry", 1}}},
     // No reply to the request nor to its retry; the next telegram also finds one missing.
     FaultScenario{"fdl_no_response", 120, {{"fdl_no_response", 2}, {"fdl_retry", 1}}},
+    // DP-V1 parameter access (the simulator's DP-V1 traffic): each fault yields its own finding.
+    FaultScenario{"dpv1_stacked_request", 120, {{"dpv1_stacked_request", 1}}},
+    FaultScenario{"dpv1_reference_mismatch", 120, {{"dpv1_reference_mismatch", 1}}},
+    FaultScenario{"dpv1_unexpected_response_id", 120, {{"dpv1_unexpected_response_id", 1}}},
+    FaultScenario{"dpv1_parameter_count_mismatch", 120, {{"dpv1_parameter_count_mismatch", 1}}},
+    FaultScenario{"dpv1_orphan_response", 120, {{"dpv1_orphan_response", 1}}},
+    FaultScenario{"dpv1_response_timeout", 1200, {{"dpv1_response_timeout", 1}}},
+    FaultScenario{"dpv1_negative_response", 120, {{"dpv1_negative_response", 1}}},
+    FaultScenario{"dpv1_length_error", 120, {{"dpv1_length_error", 1}}},
+    FaultScenario{"dpv1_error_pdu", 120, {{"dpv1_error_pdu", 1}}},
 };
 
 INSTANTIATE_TEST_SUITE_P(SessionTrackerTest, FaultScenarioTest,

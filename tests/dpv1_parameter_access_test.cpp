@@ -1,0 +1,533 @@
+// DP-V1 parameter access: telegrams built byte by byte (SD2, DSAP/SSAP 51, the DP-V1 PDU and the
+// PROFIdrive request or response as in docs/protocol/dpv1-parameter-access.md), decoded by
+// BusDecoder and tracked by SessionTracker. A clean session with single and multi-parameter
+// reads, a change, arrays with subindices, state-conflict polls and link-level polls has no
+// finding; each dpv1_* rule is shown with its exact findings.
+#include "decoder/dpv1_parameter_access.hpp"
+
+#include <gtest/gtest.h>
+
+#include <initializer_list>
+#include <vector>
+
+#include "decoder/bus_decoder.hpp"
+#include "decoder/session_tracker.hpp"
+#include "decoder/telegram_builder.hpp"
+
+namespace dpscope {
+namespace {
+
+using ByteVector = std::vector<std::uint8_t>;
+
+constexpr std::uint8_t kMaster = 1;
+constexpr std::uint8_t kSlave = 5;
+constexpr std::uint8_t kSap = 51;
+
+// A PROFIdrive parameter address: attribute value, elements, PNU, subindex.
+struct Address {
+    std::uint16_t pnu = 0;
+    std::uint8_t elements = 0;
+    std::uint16_t subindex = 0;
+    std::uint8_t attribute = 0x10;
+};
+
+void put16(ByteVector& out, std::uint16_t v) { append_u16_be(out, v); }
+
+// The parameter request: header, addresses, then the value blocks given as raw bytes.
+ByteVector parameter_request(std::uint8_t reference, std::uint8_t id,
+                             std::initializer_list<Address> addresses, ByteVector blocks = {},
+                             std::uint8_t axis = 0) {
+    ByteVector out{reference, id, axis, static_cast<std::uint8_t>(addresses.size())};
+    for (const Address& a : addresses) {
+        out.push_back(a.attribute);
+        out.push_back(a.elements);
+        put16(out, a.pnu);
+        put16(out, a.subindex);
+    }
+    out.insert(out.end(), blocks.begin(), blocks.end());
+    return out;
+}
+
+// The parameter response: header, then the value blocks as raw bytes.
+ByteVector parameter_response(std::uint8_t reference, std::uint8_t id, std::uint8_t count,
+                              ByteVector blocks = {}, std::uint8_t axis = 0) {
+    ByteVector out{reference, id, axis, count};
+    out.insert(out.end(), blocks.begin(), blocks.end());
+    return out;
+}
+
+// A DP-V1 PDU: function, slot 0, index 47, length (the data's unless given), data.
+ByteVector pdu(std::uint8_t function, const ByteVector& data, int length = -1) {
+    ByteVector out{function, 0, 47,
+                   static_cast<std::uint8_t>(length < 0 ? data.size() : std::size_t(length))};
+    out.insert(out.end(), data.begin(), data.end());
+    return out;
+}
+ByteVector read_request() { return {0x5E, 0, 47, 240}; }
+ByteVector write_response(std::uint8_t length) { return {0x5F, 0, 47, length}; }
+ByteVector error_pdu(std::uint8_t function, std::uint8_t code_1) {
+    return {function, 0x80, code_1, 0x00};
+}
+
+// Master 1 and slave 5 talking DP-V1 on SAP 51, 1 ms between telegrams.
+class Dpv1Bus {
+  public:
+    explicit Dpv1Bus(TrackerOptions options = {}) : tracker_(options) {}
+
+    std::uint64_t request(const ByteVector& du) {
+        send(build_telegram({kSlave, kMaster, request_fc(FdlFunction::SrdHigh, fcb_, true), kSap,
+                             kSap, Bytes(du)}));
+        fcb_ = !fcb_;
+        return frame_;
+    }
+    // The same request again with the same FCB (an FDL retry).
+    std::uint64_t repeat(const ByteVector& du) {
+        fcb_ = !fcb_;
+        return request(du);
+    }
+    std::uint64_t response(const ByteVector& du) {
+        send(build_telegram(
+            {kMaster, kSlave, response_fc(FdlStatus::DataLow), kSap, kSap, Bytes(du)}));
+        return frame_;
+    }
+    std::uint64_t short_ack() {
+        ByteVector bytes;
+        append_short_ack(bytes);
+        send(bytes);
+        return frame_;
+    }
+    // A link-level poll: the master asks with an empty data unit, the slave has nothing yet.
+    void link_poll() {
+        request({});
+        short_ack();
+    }
+    // Write, Write response, Reads answered "state conflict" `polls` times, then the response.
+    std::uint64_t transaction(const ByteVector& request_data, const ByteVector& response_data,
+                              int polls = 0) {
+        request(pdu(0x5F, request_data));
+        response(write_response(static_cast<std::uint8_t>(request_data.size())));
+        for (int i = 0; i < polls; ++i) {
+            request(read_request());
+            response(error_pdu(0xDE, 0xB5));
+        }
+        request(read_request());
+        return response(pdu(0x5E, response_data));
+    }
+    void advance_ms(std::int64_t ms) { now_ += ms * 1'000'000; }
+    // The end of the capture, `later_ms` after the last telegram (a live capture's stop).
+    void finish(std::int64_t later_ms = 0) {
+        for (const Finding& f : tracker_.finish(later_ms ? now_ + later_ms * 1'000'000 : kNoTime))
+            findings.push_back(f);
+    }
+    const Dpv1Stats& stats() const {
+        for (const ChannelStats* s : tracker_.channels())
+            if (s->slave == kSlave && s->master == kMaster) return s->dpv1;
+        static const Dpv1Stats kNone;
+        ADD_FAILURE() << "no channel";
+        return kNone;
+    }
+    const SessionTracker& tracker() const { return tracker_; }
+
+    std::vector<Finding> findings;
+
+  private:
+    void send(const ByteVector& bytes) {
+        const DecodedTelegram& t =
+            decoder_.decode(Bytes(bytes.data(), bytes.size()), now_, ++frame_);
+        for (const Finding& f : tracker_.track(t))
+            findings.push_back(f);
+        now_ += 1'000'000;
+    }
+
+    BusDecoder decoder_;
+    SessionTracker tracker_;
+    std::int64_t now_ = 1'704'067'200'000'000'000;
+    std::uint64_t frame_ = 0;
+    bool fcb_ = true;
+};
+
+struct Expected {
+    FindingKind kind;
+    std::uint64_t frame;
+    Severity severity;
+};
+
+void expect_findings(const std::vector<Finding>& findings,
+                     std::initializer_list<Expected> expected) {
+    ASSERT_EQ(findings.size(), expected.size());
+    std::size_t i = 0;
+    for (const Expected& e : expected) {
+        const Finding& f = findings[i++];
+        SCOPED_TRACE(f.message);
+        EXPECT_EQ(f.kind, e.kind) << finding_kind_name(f.kind);
+        EXPECT_EQ(f.frame, e.frame);
+        EXPECT_EQ(f.severity, e.severity);
+        EXPECT_TRUE(f.has_stations);
+        EXPECT_EQ(f.master, kMaster);
+        EXPECT_EQ(f.slave, kSlave);
+        EXPECT_FALSE(f.message.empty());
+    }
+}
+
+std::string messages(const std::vector<Finding>& findings) {
+    std::string text;
+    for (const Finding& f : findings)
+        text += std::string(finding_kind_name(f.kind)) + ": " + f.message + "\n";
+    return text;
+}
+
+// ---- a clean session ----------------------------------------------------------------------------
+
+TEST(Dpv1ParameterAccessTest, CleanSessionHasNoFindings) {
+    Dpv1Bus bus;
+    // The worked example: reference 5, read PNU 12 subindex 4 of drive object 1; Word 3.
+    bus.transaction(parameter_request(5, 0x01, {{12, 1, 4}}, {}, 1),
+                    parameter_response(5, 0x01, 1, {0x42, 0x01, 0x00, 0x03}, 1), 2);
+    // Three parameters in one request, a value, a string and an array read (subindex 2..4).
+    bus.transaction(
+        parameter_request(6, 0x01, {{20, 0, 8}, {30, 0, 0}, {40, 3, 2}}),
+        parameter_response(6, 0x01, 3,
+                           {0x06, 0x01, 0x01, 0xF4,                             // Unsigned16 500
+                            0x09, 0x03, 'a', 'b', 'c', 0x00,                    // "abc", padded
+                            0x03, 0x03, 0x00, 0x01, 0x00, 0x02, 0x00, 0x03}));  // 3 x Integer16
+    // A change of one array element, answered with the header only, after link-level polls.
+    bus.request(pdu(0x5F, parameter_request(7, 0x02, {{40, 1, 3}}, {0x03, 0x01, 0x00, 0x07})));
+    bus.short_ack();
+    bus.link_poll();
+    bus.response(write_response(14));
+    bus.request(read_request());
+    bus.short_ack();
+    bus.link_poll();
+    bus.response(error_pdu(0xDE, 0xB5));
+    bus.request(read_request());
+    bus.short_ack();
+    bus.link_poll();
+    bus.request({});
+    bus.response(pdu(0x5E, parameter_response(7, 0x02, 1)));
+    // A Danfoss double-word read answered as a standard read.
+    bus.transaction(parameter_request(8, 0x51, {{100, 0, 0}}),
+                    parameter_response(8, 0x01, 1, {0x43, 0x01, 0, 0, 0x01, 0x00}));
+    bus.finish();
+    EXPECT_TRUE(bus.findings.empty()) << messages(bus.findings);
+
+    const Dpv1Stats& s = bus.stats();
+    EXPECT_EQ(s.started, 4u);
+    EXPECT_EQ(s.completed, 4u);
+    EXPECT_EQ(s.abandoned + s.timeouts + s.refused, 0u);
+    EXPECT_EQ(s.polls, 3u);
+    EXPECT_EQ(s.max_polls, 2u);
+    EXPECT_EQ(s.latency_ns.count(), 4u);
+    EXPECT_EQ(s.latency_ns.min(), 3'000'000u);   // Write, its response, Read, the response
+    EXPECT_EQ(s.latency_ns.max(), 15'000'000u);  // the change, with its link-level polls
+    EXPECT_EQ(s.parameters.size(), 5u);
+    EXPECT_EQ(s.parameters.at(40).reads, 1u);
+    EXPECT_EQ(s.parameters.at(40).writes, 1u);
+    EXPECT_EQ(s.parameters.at(12).reads, 1u);
+    EXPECT_EQ(s.negative_responses, 0u);
+    EXPECT_EQ(bus.tracker().transactions(), 4u);
+}
+
+TEST(Dpv1ParameterAccessTest, RepeatedWriteBeforeItsResponseIsOneRequest) {
+    Dpv1Bus bus;
+    ByteVector request = pdu(0x5F, parameter_request(9, 0x01, {{918, 0, 0}}));
+    bus.request(request);
+    std::uint64_t retry = bus.repeat(request);  // no reply: an FDL retry, same FCB and request
+    bus.response(write_response(10));
+    bus.request(read_request());
+    bus.response(pdu(0x5E, parameter_response(9, 0x01, 1, {0x42, 0x01, 0x00, 0x03})));
+    bus.finish();
+    // The link rules see the retry; the DP-V1 rules see one request.
+    ASSERT_EQ(bus.findings.size(), 2u) << messages(bus.findings);
+    EXPECT_EQ(bus.findings[0].kind, FindingKind::FdlNoResponse);
+    EXPECT_EQ(bus.findings[1].kind, FindingKind::FdlRetry);
+    EXPECT_EQ(bus.findings[1].frame, retry);
+    EXPECT_EQ(bus.stats().started, 1u);
+    EXPECT_EQ(bus.stats().completed, 1u);
+}
+
+// ---- one scenario per rule ----------------------------------------------------------------------
+
+TEST(Dpv1ParameterAccessTest, StackedRequest) {
+    Dpv1Bus bus;
+    std::uint64_t first = bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
+    bus.response(write_response(10));
+    std::uint64_t second = bus.request(pdu(0x5F, parameter_request(2, 0x01, {{13}})));
+    bus.response(write_response(10));
+    bus.request(read_request());
+    bus.response(pdu(0x5E, parameter_response(2, 0x01, 1, {0x06, 0x01, 0x00, 0x01})));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1StackedRequest, second, Severity::Error}});
+    EXPECT_EQ(bus.findings[0].request_frame, first);
+    EXPECT_EQ(bus.findings[0].pnu, 13);
+    EXPECT_NE(bus.findings[0].message.find("PNU 12"), std::string::npos);
+    EXPECT_EQ(bus.stats().abandoned, 1u);
+    EXPECT_EQ(bus.stats().completed, 1u);
+}
+
+TEST(Dpv1ParameterAccessTest, ReferenceMismatch) {
+    Dpv1Bus bus;
+    std::uint64_t at = bus.transaction(parameter_request(3, 0x01, {{12}}),
+                                       parameter_response(4, 0x01, 1, {0x06, 0x01, 0x00, 0x01}));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1ReferenceMismatch, at, Severity::Error}});
+    EXPECT_EQ(bus.findings[0].pnu, 12);
+    EXPECT_EQ(bus.findings[0].request_frame, 1u);
+}
+
+TEST(Dpv1ParameterAccessTest, ChangeAnsweredAsAReadIsAnUnexpectedResponseId) {
+    Dpv1Bus bus;
+    std::uint64_t at = bus.transaction(parameter_request(3, 0x02, {{12}}, {0x06, 0x01, 0x00, 0x05}),
+                                       parameter_response(3, 0x01, 1, {0x06, 0x01, 0x00, 0x05}));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1UnexpectedResponseId, at, Severity::Error}});
+    EXPECT_NE(bus.findings[0].message.find("change parameter value"), std::string::npos);
+}
+
+TEST(Dpv1ParameterAccessTest, ParameterCountOrAxisNotMirrored) {
+    Dpv1Bus bus;
+    std::uint64_t count = bus.transaction(
+        parameter_request(3, 0x01, {{12}}),
+        parameter_response(3, 0x01, 2, {0x06, 0x01, 0x00, 0x05, 0x06, 0x01, 0x00, 0x06}));
+    std::uint64_t axis = bus.transaction(parameter_request(4, 0x01, {{12}}, {}, 1),
+                                         parameter_response(4, 0x01, 1, {0x06, 0x01, 0x00, 0x05}));
+    bus.finish();
+    expect_findings(bus.findings,
+                    {{FindingKind::Dpv1ParameterCountMismatch, count, Severity::Error},
+                     {FindingKind::Dpv1ParameterCountMismatch, axis, Severity::Error}});
+    EXPECT_NE(bus.findings[1].message.find("axis 0 (request: 1)"), std::string::npos);
+}
+
+TEST(Dpv1ParameterAccessTest, ResponseWithoutARequestIsAnOrphan) {
+    Dpv1Bus bus;
+    bus.request(read_request());
+    std::uint64_t at = bus.response(pdu(0x5E, parameter_response(3, 0x01, 1, {0x06, 0x01, 0, 1})));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1OrphanResponse, at, Severity::Warning}});
+}
+
+TEST(Dpv1ParameterAccessTest, TimeoutAsTimePassesAndAtTheEndOfTheCapture) {
+    TrackerOptions options;
+    options.timeout_ns = 100'000'000;
+    Dpv1Bus bus(options);
+    std::uint64_t first = bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
+    bus.response(write_response(10));
+    bus.request(read_request());
+    bus.response(error_pdu(0xDE, 0xB5));
+    bus.advance_ms(200);
+    std::uint64_t poll = bus.request(read_request());  // the next telegram sees the deadline past
+    bus.response(error_pdu(0xDE, 0xB5));
+    // A second request on another slot, left open at the end of the capture.
+    ByteVector second = pdu(0x5F, parameter_request(2, 0x01, {{13}}));
+    second[1] = 1;
+    std::uint64_t open = bus.request(second);
+    bus.short_ack();
+    bus.advance_ms(150);
+    bus.link_poll();
+    bus.finish();
+    ASSERT_EQ(bus.findings.size(), 2u) << messages(bus.findings);
+    expect_findings(bus.findings,
+                    {{FindingKind::Dpv1ResponseTimeout, poll, Severity::Error},
+                     {FindingKind::Dpv1ResponseTimeout, bus.findings[1].frame, Severity::Error}});
+    EXPECT_EQ(bus.findings[0].request_frame, first);
+    EXPECT_EQ(bus.findings[1].request_frame, open);
+    EXPECT_GT(bus.findings[1].frame, open);
+    EXPECT_NE(bus.findings[0].message.find("within 100 ms, 1 poll"), std::string::npos)
+        << bus.findings[0].message;
+    EXPECT_EQ(bus.stats().timeouts, 2u);
+}
+
+TEST(Dpv1ParameterAccessTest, TimedOutRequestIsNotAlsoStackedAndItsLateResponseNoOrphan) {
+    TrackerOptions options;
+    options.timeout_ns = 100'000'000;
+    Dpv1Bus bus(options);
+    bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
+    bus.response(write_response(10));
+    bus.advance_ms(200);
+    std::uint64_t late = bus.request(read_request());
+    // The late response completes the timed-out request: no orphan.
+    bus.response(pdu(0x5E, parameter_response(1, 0x01, 1, {0x06, 0x01, 0, 1})));
+    // Timed out again; the master gives up and writes the next request: no stacked request.
+    bus.request(pdu(0x5F, parameter_request(2, 0x01, {{13}})));
+    bus.response(write_response(10));
+    bus.advance_ms(200);
+    std::uint64_t next = bus.request(pdu(0x5F, parameter_request(3, 0x01, {{14}})));
+    bus.response(write_response(10));
+    bus.request(read_request());
+    bus.response(pdu(0x5E, parameter_response(3, 0x01, 1, {0x06, 0x01, 0, 1})));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1ResponseTimeout, late, Severity::Error},
+                                   {FindingKind::Dpv1ResponseTimeout, next, Severity::Error}});
+    const Dpv1Stats& s = bus.stats();
+    EXPECT_EQ(s.started, 3u);
+    EXPECT_EQ(s.completed, 2u);
+    EXPECT_EQ(s.timeouts, 2u);
+    EXPECT_EQ(s.abandoned, 0u);
+}
+
+TEST(Dpv1ParameterAccessTest, OpenRequestAtTheEndOfTheCaptureTimesOut) {
+    Dpv1Bus bus;
+    std::uint64_t write = bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
+    bus.response(write_response(10));
+    bus.request(read_request());
+    std::uint64_t last = bus.response(error_pdu(0xDE, 0xB5));
+    EXPECT_TRUE(bus.findings.empty());
+    bus.finish(1000);  // a live capture stopped a second later
+    expect_findings(bus.findings, {{FindingKind::Dpv1ResponseTimeout, last, Severity::Error}});
+    EXPECT_EQ(bus.findings[0].request_frame, write);
+}
+
+TEST(Dpv1ParameterAccessTest, NegativeResponseListsEveryErrorWithItsText) {
+    Dpv1Bus bus;
+    std::uint64_t at = bus.transaction(
+        parameter_request(3, 0x01, {{12}, {20}, {30, 4, 1}}),
+        parameter_response(3, 0x81, 3,
+                           {0x06, 0x01, 0x00, 0x05,                 // PNU 12: a value
+                            0x44, 0x01, 0x00, 0x00,                 // PNU 20: unknown
+                            0x44, 0x02, 0x00, 0x03, 0x00, 0x07}));  // PNU 30: subindex 7
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1NegativeResponse, at, Severity::Note}});
+    EXPECT_EQ(bus.findings[0].pnu, 12);
+    EXPECT_NE(bus.findings[0].message.find(
+                  "PNU 20: error 0x00 (illegal or unknown parameter number); PNU 30: error 0x03 "
+                  "(invalid subindex), subindex 7"),
+              std::string::npos)
+        << bus.findings[0].message;
+    const Dpv1Stats& s = bus.stats();
+    EXPECT_EQ(s.negative_responses, 1u);
+    EXPECT_EQ(s.negative_errors.at(0x00), 1u);
+    EXPECT_EQ(s.negative_errors.at(0x03), 1u);
+}
+
+TEST(Dpv1ParameterAccessTest, NegativeChangeResponseWithZeroAndErrorBlocksIsConsistent) {
+    Dpv1Bus bus;
+    std::uint64_t at = bus.transaction(
+        parameter_request(3, 0x02, {{12}, {13}}, {0x06, 0x01, 0x00, 0x05, 0x06, 0x01, 0x00, 0x06}),
+        parameter_response(3, 0x82, 2, {0x40, 0x00, 0x44, 0x01, 0x00, 0x02}));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1NegativeResponse, at, Severity::Note}});
+    EXPECT_NE(bus.findings[0].message.find("PNU 13: error 0x02 (lower or upper limit exceeded)"),
+              std::string::npos);
+}
+
+TEST(Dpv1ParameterAccessTest, LengthErrors) {
+    Dpv1Bus bus;
+    // The DP-V1 length byte says 10, 8 data bytes follow.
+    std::uint64_t dpv1_length = [&] {
+        bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
+        bus.response(write_response(10));
+        bus.request(read_request());
+        return bus.response(pdu(0x5E, parameter_response(1, 0x01, 1, {0x06, 0x01, 0, 1}), 10));
+    }();
+    // Two values for an array access of three elements.
+    std::uint64_t values =
+        bus.transaction(parameter_request(2, 0x01, {{40, 3, 0}}),
+                        parameter_response(2, 0x01, 1, {0x06, 0x02, 0, 1, 0, 2}));
+    // A positive change response with a value block.
+    std::uint64_t change =
+        bus.transaction(parameter_request(3, 0x02, {{12}}, {0x06, 0x01, 0x00, 0x05}),
+                        parameter_response(3, 0x02, 1, {0x06, 0x01, 0x00, 0x05}));
+    // A negative change response with a value where 0x40 or 0x44 belongs.
+    std::uint64_t negative_change = bus.transaction(
+        parameter_request(4, 0x02, {{12}, {13}}, {0x06, 0x01, 0, 5, 0x06, 0x01, 0, 6}),
+        parameter_response(4, 0x82, 2, {0x06, 0x01, 0, 5, 0x44, 0x01, 0x00, 0x02}));
+    // One value block for two parameters, then trailing bytes.
+    std::uint64_t blocks = bus.transaction(parameter_request(5, 0x01, {{12}, {13}}),
+                                           parameter_response(5, 0x01, 2, {0x06, 0x01, 0, 5}));
+    std::uint64_t trailing =
+        bus.transaction(parameter_request(6, 0x01, {{12}}),
+                        parameter_response(6, 0x01, 1, {0x06, 0x01, 0, 5, 0xEE, 0xEE}));
+    bus.finish();
+    expect_findings(bus.findings,
+                    {{FindingKind::Dpv1LengthError, dpv1_length, Severity::Error},
+                     {FindingKind::Dpv1LengthError, values, Severity::Error},
+                     {FindingKind::Dpv1LengthError, change, Severity::Error},
+                     {FindingKind::Dpv1NegativeResponse, negative_change, Severity::Note},
+                     {FindingKind::Dpv1LengthError, negative_change, Severity::Error},
+                     {FindingKind::Dpv1LengthError, blocks, Severity::Error},
+                     {FindingKind::Dpv1LengthError, trailing, Severity::Error}});
+    EXPECT_NE(bus.findings[0].message.find("DP-V1 length 10 but 8 data bytes"), std::string::npos);
+    EXPECT_NE(bus.findings[1].message.find("PNU 40: 2 values for 3 elements"), std::string::npos);
+    EXPECT_NE(bus.findings[2].message.find("positive change response of 8 bytes"),
+              std::string::npos);
+    EXPECT_NE(bus.findings[4].message.find("PNU 12: format 0x06 in a negative change response"),
+              std::string::npos);
+    EXPECT_NE(bus.findings[5].message.find("1 value blocks for 2 parameters"), std::string::npos);
+    EXPECT_NE(bus.findings[6].message.find("2 bytes after the last value block"),
+              std::string::npos);
+}
+
+TEST(Dpv1ParameterAccessTest, ChangeRequestWithTooFewValuesIsALengthError) {
+    Dpv1Bus bus;
+    std::uint64_t at =
+        bus.request(pdu(0x5F, parameter_request(1, 0x02, {{40, 2, 0}}, {0x06, 0x01, 0x00, 0x05})));
+    bus.response(write_response(14));
+    bus.request(read_request());
+    bus.response(pdu(0x5E, parameter_response(1, 0x02, 1)));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1LengthError, at, Severity::Error}});
+    EXPECT_NE(bus.findings[0].message.find("PNU 40: 1 values for 2 elements"), std::string::npos);
+}
+
+TEST(Dpv1ParameterAccessTest, ErrorPdusAreNotesForAccessAndResourceWarningsOtherwise) {
+    Dpv1Bus bus;
+    // The Write refused: invalid index (access class): the transaction ends.
+    bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
+    std::uint64_t refused = bus.response(error_pdu(0xDF, 0xB0));
+    // A Read answered with an application error.
+    bus.request(pdu(0x5F, parameter_request(2, 0x01, {{13}})));
+    bus.response(write_response(10));
+    bus.request(read_request());
+    std::uint64_t application = bus.response(error_pdu(0xDE, 0xA0));
+    // Resource busy on a write to another index: no transaction, still a note.
+    bus.request({0x5F, 0, 3, 2, 0x00, 0x01});
+    std::uint64_t busy = bus.response(error_pdu(0xDF, 0xC2));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1ErrorPdu, refused, Severity::Note},
+                                   {FindingKind::Dpv1ErrorPdu, application, Severity::Warning},
+                                   {FindingKind::Dpv1ErrorPdu, busy, Severity::Note}});
+    EXPECT_NE(bus.findings[0].message.find("Error_Code_1 0xB0 (access: invalid index)"),
+              std::string::npos)
+        << bus.findings[0].message;
+    EXPECT_EQ(bus.findings[0].pnu, 12);
+    EXPECT_EQ(bus.findings[1].pnu, 13);
+    EXPECT_FALSE(bus.findings[2].pnu);
+    EXPECT_EQ(bus.stats().refused, 2u);
+    EXPECT_EQ(bus.stats().error_pdus, 3u);
+    EXPECT_EQ(bus.stats().polls, 0u);
+}
+
+TEST(Dpv1ParameterAccessTest, ResponseLaterThanTheFdlReplyToItsRequestIsPaired) {
+    Dpv1Bus bus;
+    bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
+    bus.short_ack();  // the Write taken, its response not ready at the link layer
+    bus.link_poll();
+    bus.response(write_response(10));  // the Write response, in answer to a later poll
+    bus.request(read_request());
+    bus.short_ack();
+    bus.request({});
+    bus.response(error_pdu(0xDE, 0xB5));  // the state conflict, also late
+    bus.request(read_request());
+    bus.short_ack();
+    bus.link_poll();
+    bus.request({});
+    bus.response(pdu(0x5E, parameter_response(1, 0x01, 1, {0x06, 0x01, 0, 1})));
+    bus.finish();
+    EXPECT_TRUE(bus.findings.empty()) << messages(bus.findings);
+    EXPECT_EQ(bus.stats().completed, 1u);
+    EXPECT_EQ(bus.stats().polls, 1u);
+}
+
+TEST(Dpv1ParameterAccessTest, ParametersAccessedAreBounded) {
+    Dpv1Bus bus;
+    for (std::uint16_t pnu = 1; pnu <= Dpv1Stats::kMaxParameters + 10; ++pnu)
+        bus.transaction(
+            parameter_request(static_cast<std::uint8_t>(pnu), 0x01, {{pnu}}),
+            parameter_response(static_cast<std::uint8_t>(pnu), 0x01, 1, {0x06, 0x01, 0, 1}));
+    bus.finish();
+    EXPECT_TRUE(bus.findings.empty()) << messages(bus.findings);
+    EXPECT_EQ(bus.stats().parameters.size(), Dpv1Stats::kMaxParameters);
+    EXPECT_EQ(bus.stats().parameters_not_counted, 10u);
+}
+
+}  // namespace
+}  // namespace dpscope
