@@ -60,6 +60,16 @@ golden_case(report_timeouts_json samples/expected/report.timeouts.json EXIT 1 re
 golden_case(report_clean_text samples/expected/report.ppo2.txt report samples/ppo2.pcap)
 golden_case(report_profidrive_json samples/expected/report.profidrive.json report -T json --dialect profidrive samples/profidrive.pcap)
 golden_case(decode_faults_findings_jsonl samples/expected/faults.findings.jsonl decode -T jsonl --station 5 -c 120 samples/faults.pcap)
+# DP-V1 parameter access (slave 4 speaks the PROFIdrive dialect): every decode and report format.
+golden_case(dpv1_text samples/expected/dpv1.txt decode --dialect 4=profidrive samples/dpv1.pcap)
+golden_case(dpv1_jsonl samples/expected/dpv1.jsonl decode -T jsonl --dialect 4=profidrive samples/dpv1.pcap)
+golden_case(dpv1_verbose samples/expected/dpv1.verbose.txt decode -V --dialect 4=profidrive --station 5 -c 60 samples/dpv1.pcap)
+golden_case(dpv1_csv samples/expected/dpv1.csv decode -T csv --dialect 4=profidrive samples/dpv1.pcap)
+golden_case(report_dpv1_text samples/expected/report.dpv1.txt EXIT 1 report --dialect 4=profidrive samples/dpv1.pcap)
+golden_case(report_dpv1_json samples/expected/report.dpv1.json EXIT 1 report -T json --dialect 4=profidrive samples/dpv1.pcap)
+golden_case(report_dpv1_markdown samples/expected/report.dpv1.md EXIT 1 report -T markdown --dialect 4=profidrive samples/dpv1.pcap)
+golden_case(report_dpv1_html samples/expected/report.dpv1.html EXIT 1 report -T html --dialect 4=profidrive samples/dpv1.pcap)
+golden_case(report_dpv1_junit samples/expected/report.dpv1.junit.xml EXIT 1 report -T junit --dialect 4=profidrive samples/dpv1.pcap)
 
 add_custom_target(update-golden ${golden_update_commands}
     DEPENDS dpscope
