@@ -255,12 +255,15 @@ void BusDecoder::read_dpv1(DecodedTelegram& t, ByteReader du) {
     } else if (!request && pdu.is_read() && !message.empty()) {
         ProfidriveMessage& parsed = data.store_profidrive();
         parse_profidrive_response(reader, parsed, problems);
-        if (const KeptProfidriveRequest* kept = kept_profidrive_request(t, pdu)) {
+        if (KeptProfidriveRequest* kept = kept_profidrive_request(t, pdu)) {
             parsed.has_request = true;
             parsed.request_frame = kept->frame;
             parsed.request_id = kept->id;
             parsed.request_reference = kept->reference;
             parsed.addresses.assign(kept->addresses.begin(), kept->addresses.end());
+            // A request names one response: a second one (an orphan) is not named after it.
+            // A damaged response is read again by the master, so it answers nothing yet.
+            if (t.dp.fdl.fcs_ok) kept->answered = true;
         }
     }
 }
@@ -284,15 +287,16 @@ void BusDecoder::keep_profidrive_request(const DecodedTelegram& t, const Dpv1Pdu
     slot->frame = t.frame;
     slot->id = request.id;
     slot->reference = request.reference;
+    slot->answered = false;
     slot->addresses.assign(request.addresses.begin(), request.addresses.end());
 }
 
-const BusDecoder::KeptProfidriveRequest* BusDecoder::kept_profidrive_request(
-    const DecodedTelegram& t, const Dpv1Pdu& pdu) const noexcept {
-    for (const KeptProfidriveRequest& kept : profidrive_requests_)
+BusDecoder::KeptProfidriveRequest* BusDecoder::kept_profidrive_request(
+    const DecodedTelegram& t, const Dpv1Pdu& pdu) noexcept {
+    for (KeptProfidriveRequest& kept : profidrive_requests_)
         if (kept.master == t.master && kept.slave == t.slave && kept.slot == pdu.slot &&
             kept.index == pdu.index)
-            return &kept;
+            return kept.answered ? nullptr : &kept;
     return nullptr;
 }
 

@@ -98,14 +98,17 @@ class BusDecoder {
         std::uint64_t frame = 0;
         std::uint8_t id = 0;
         std::uint8_t reference = 0;
+        bool answered = false;  // an intact response was named after it
         std::vector<ProfidriveAddress> addresses;
     };
     // At most this many kept requests (memory stays flat); a new key then replaces the oldest.
     static constexpr std::size_t kKeptProfidriveRequests = 256;
     void keep_profidrive_request(const DecodedTelegram& t, const Dpv1Pdu& pdu,
                                  const ProfidriveMessage& request);
-    const KeptProfidriveRequest* kept_profidrive_request(const DecodedTelegram& t,
-                                                         const Dpv1Pdu& pdu) const noexcept;
+    // The kept request a response on `pdu`'s slot and index answers: null when there is none
+    // or it has named a response already.
+    KeptProfidriveRequest* kept_profidrive_request(const DecodedTelegram& t,
+                                                   const Dpv1Pdu& pdu) noexcept;
     void learn_length12_type(const DecodedTelegram& t);
     // --ppo for this slave contradicts the configuration just learnt: remember the first time.
     void note_ppo_override(StationConfig& station, std::uint8_t slave,

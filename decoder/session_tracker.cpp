@@ -124,7 +124,12 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
 
 void SessionTracker::track_channel(Channel& ch, const DecodedTelegram& t, bool intact) {
     if (!intact) {
-        if (note_dropped_request(ch.frame_count, t)) ch.damaged_request = true;
+        // With a correct FCS the station received the telegram, whatever its data unit held:
+        // its FCB counts, so a repeat of it is a retry and the next request no false one.
+        if (t.dp.fdl.fcs_ok)
+            check_frame_count(ch.frame_count, t, current_);
+        else if (note_dropped_request(ch.frame_count, t))
+            ch.damaged_request = true;
         return;
     }
     const bool retry = check_frame_count(ch.frame_count, t, current_);

@@ -1099,6 +1099,24 @@ TEST(BusDecoderTest, Dpv1WriteStateConflictAndReadResponseNamedAfterTheRequest) 
     EXPECT_TRUE(answer.problems().empty());
 }
 
+TEST(BusDecoderTest, Dpv1RequestNamesOneResponseOnly) {
+    Bus bus;
+    bus.decode(msac_request(5, hex("5F 00 2F 0A 05 01 00 01 10 01 00 0C 00 04")));
+    bus.decode(msac_response(5, hex("5F 00 2F 0A")));
+    bus.decode(msac_request(5, hex("5E 00 2F F0")));
+    const DecodedTelegram& first =
+        bus.decode(msac_response(5, hex("5E 00 2F 08 05 01 00 01 42 01 00 03")));
+    ASSERT_NE(first.dp.service_data.profidrive(), nullptr);
+    EXPECT_TRUE(first.dp.service_data.profidrive()->has_request);
+    // The same response again, with no new request written: an orphan, named after nothing.
+    bus.decode(msac_request(5, hex("5E 00 2F F0")));
+    const DecodedTelegram& again =
+        bus.decode(msac_response(5, hex("5E 00 2F 08 05 01 00 01 42 01 00 03")));
+    ASSERT_NE(again.dp.service_data.profidrive(), nullptr);
+    EXPECT_FALSE(again.dp.service_data.profidrive()->has_request);
+    EXPECT_TRUE(again.dp.service_data.profidrive()->addresses.empty());
+}
+
 TEST(BusDecoderTest, Dpv1ResponseNamesOnlyTheRequestOfItsSlaveSlotAndIndex) {
     Bus bus;
     bus.decode(msac_request(5, hex("5F 00 2F 0A 05 01 00 01 10 01 00 0C 00 04")));
