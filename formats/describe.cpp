@@ -1,5 +1,6 @@
 #include "formats/describe.hpp"
 
+#include <algorithm>
 #include <ctime>
 #include <iterator>
 #include <vector>
@@ -184,7 +185,8 @@ void append_parameter_address(TextBuffer& out, const ProfidriveMessage& m, std::
     if (!subindex)
         fmt::format_to(it, "PNU {}", a.pnu);
     else if (a.elements > 1)
-        fmt::format_to(it, "PNU {}[{}..{}]", a.pnu, a.subindex, a.subindex + a.elements - 1);
+        fmt::format_to(it, "PNU {}[{}..{}]", a.pnu, a.subindex,
+                       std::min(0xFFFF, a.subindex + a.elements - 1));  // subindexes end there
     else
         fmt::format_to(it, "PNU {}[{}]", a.pnu, a.subindex);
 }
@@ -192,8 +194,11 @@ void append_parameter_address(TextBuffer& out, const ProfidriveMessage& m, std::
 void append_block_values(TextBuffer& out, const ProfidriveValueBlock& block) {
     std::string values;
     append_profidrive_values(block, values);
-    append(out, values);
-    fmt::format_to(std::back_inserter(out), " ({})", profidrive_format_name(block.format));
+    append(out, values.empty() ? std::string_view("(no values)") : std::string_view(values));
+    if (profidrive_format_size(block.format) < 0)  // a reserved format: name its number
+        fmt::format_to(std::back_inserter(out), " (format 0x{:02X}, reserved)", block.format);
+    else
+        fmt::format_to(std::back_inserter(out), " ({})", profidrive_format_name(block.format));
 }
 
 }  // namespace

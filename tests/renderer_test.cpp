@@ -1140,6 +1140,22 @@ TEST(RendererTest, TextProfidriveResponseWithoutItsRequestNumbersTheParameters) 
         << lines[1];
 }
 
+TEST(RendererTest, TextProfidriveReservedFormatAndLastSubindex) {
+    std::vector<Input> in;
+    // An array from subindex 65534 on, 5 elements: the range ends at the last subindex.
+    in.push_back({msac(true, hex("5F 00 2F 0A 01 01 00 01 10 05 00 0C FF FE")), kNoTime, {}});
+    // A value block of a reserved format with nothing after it, and one with a byte.
+    in.push_back({msac(false, hex("5E 00 2F 06 02 01 00 01 50 01")), kNoTime, {}});
+    in.push_back({msac(false, hex("5E 00 2F 07 03 01 00 01 50 01 AB")), kNoTime, {}});
+    std::vector<std::string> lines = split_lines(render(OutputFormat::Text, in));
+    ASSERT_EQ(lines.size(), 3u);
+    EXPECT_TRUE(ends_with(lines[0], "1 param: PNU 12[65534..65535] value")) << lines[0];
+    EXPECT_NE(lines[1].find("PNU 12[65534..65535] = (no values) (format 0x50, reserved)"),
+              std::string::npos)
+        << lines[1];
+    EXPECT_NE(lines[2].find("param 1 = AB (format 0x50, reserved)"), std::string::npos) << lines[2];
+}
+
 TEST(RendererTest, TextDpv1ClassTwoAndOtherPdus) {
     std::vector<Input> in;
     auto add = [&](bool request, std::string_view du, std::uint8_t slave_sap) {
