@@ -75,10 +75,12 @@ void add_display_options(CLI::App& app, DecodeOptionValues& values,
         ->type_name("ADDR")
         ->allow_extra_args(false);
     app.add_option("--pnu", values.pnus,
-                   "Show only Data_Exchange telegrams whose parameter channel is about parameter "
-                   "number N (a request for N and its answer, also a rejection that leaves the "
-                   "PNU out), and those carrying a finding about N; repeat for more")
-        ->check(whole_number(0, 2047))
+                   "Show only telegrams about parameter number N: Data_Exchange telegrams whose "
+                   "parameter channel is about N (a request for N and its answer, also a "
+                   "rejection that leaves the PNU out; PNUs 0-2047), DP-V1 telegrams whose "
+                   "PROFIdrive request or response addresses N (0-65535), and those carrying a "
+                   "finding about N; repeat for more")
+        ->check(whole_number(0, 65535))
         ->type_name("N")
         ->allow_extra_args(false);
 }
@@ -257,6 +259,13 @@ std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept {
     return stations;
 }
 
+bool addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
+    const ProfidriveMessage* message = t.dp.service_data.profidrive();
+    if (!message) return false;
+    return std::any_of(message->addresses.begin(), message->addresses.end(),
+                       [&](const ProfidriveAddress& a) { return a.pnu == pnu; });
+}
+
 bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
                    std::span<const Finding> findings, std::int32_t subject_pnu) noexcept {
     if (!settings.stations.empty()) {
@@ -273,7 +282,7 @@ bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
     if (!settings.pnus.empty()) {
         bool match =
             std::any_of(settings.pnus.begin(), settings.pnus.end(), [&](std::uint16_t pnu) {
-                return (t.dp.has_pcv && subject_pnu == pnu) ||
+                return (t.dp.has_pcv && subject_pnu == pnu) || addresses_pnu(t, pnu) ||
                        std::any_of(findings.begin(), findings.end(),
                                    [&](const Finding& f) { return f.pnu && *f.pnu == pnu; });
             });

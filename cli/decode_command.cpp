@@ -80,7 +80,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     bool write_failed = false;
     // What the capture holds of the --station and --pnu lists, to name filters that match nothing.
     std::bitset<kStationCount> stations_seen;
-    std::bitset<2048> pnus_seen;
+    std::bitset<65536> pnus_seen;
     Record record;
     std::uint64_t read = 0;
     std::span<const Finding> findings;
@@ -93,6 +93,9 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             stations_seen |= stations_of(t);
             if (t.dp.has_pcv && subject_pnu >= 0)
                 pnus_seen.set(static_cast<std::size_t>(subject_pnu));
+            if (const ProfidriveMessage* message = t.dp.service_data.profidrive())
+                for (const ProfidriveAddress& a : message->addresses)
+                    pnus_seen.set(a.pnu);
         }
         if (!show(renderer.get(), settings, t, findings, subject_pnu)) continue;
         if (settings.filtering()) {

@@ -271,7 +271,7 @@ TEST(CliTest, BadOptionValuesAreUsageErrors) {
 
     for (std::vector<std::string> args : {std::vector<std::string>{"decode", "-T", "json", kPpo1},
                                           {"decode", "--station", "128", kPpo1},
-                                          {"decode", "--pnu", "2048", kPpo1},
+                                          {"decode", "--pnu", "65536", kPpo1},
                                           {"decode", "-c", "0", kPpo1},
                                           {"decode", "--input-format", "pcapng2", kPpo1},
                                           {"decode", "--no-such-option", kPpo1}}) {
@@ -526,6 +526,30 @@ TEST(CliTest, PnuFilter) {
     CommandResult none = run_dpscope({"decode", "--pnu", "2000", kPpo1});
     EXPECT_EQ(none.exit_code, 0);
     EXPECT_TRUE(none.out.empty());
+}
+
+TEST(CliTest, PnuFilterSelectsDpv1RequestsAndTheResponsesNamedAfterThem) {
+    // samples/dpv1.pcap: PNU 1543 is read from slave 3 (one negative response) and slave 5.
+    CommandResult r = run_dpscope({"decode", "--pnu", "1543", "-T", "jsonl", "samples/dpv1.pcap"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+    std::vector<std::string> lines = lines_of(r.out);
+    ASSERT_GE(lines.size(), 4u);
+    std::size_t requests = 0, responses = 0;
+    for (const std::string& line : lines) {
+        EXPECT_NE(line.find("\"service\":\"MSAC_C1\""), std::string::npos) << line;
+        EXPECT_NE(line.find("\"pnu\":1543,"), std::string::npos) << line;
+        requests += line.find("\"response\":false") != std::string::npos;
+        responses += line.find("\"response\":true") != std::string::npos;
+    }
+    EXPECT_EQ(requests, responses);
+    // Above the cyclic PCV's 2047: only DP-V1 can match; nothing here does, which is said.
+    CommandResult none = run_dpscope({"decode", "--pnu", "60000", "samples/dpv1.pcap"});
+    EXPECT_EQ(none.exit_code, 0);
+    EXPECT_TRUE(none.out.empty());
+    EXPECT_NE(none.err.find("--pnu 60000: no parameter request or answer about PNU 60000"),
+              std::string::npos)
+        << none.err;
 }
 
 TEST(CliTest, QuietPrintsOnlyTheSummary) {
