@@ -335,7 +335,7 @@ TEST(CliOutputTest, NumericOptionsNameTheirRange) {
               std::string::npos)
         << timeout.err;
     EXPECT_EQ(run_dpscope({"decode", "--station", "128", kFaults}).exit_code, 2);
-    EXPECT_EQ(run_dpscope({"decode", "--pnu", "2048", kFaults}).exit_code, 2);
+    EXPECT_EQ(run_dpscope({"decode", "--pnu", "65536", kFaults}).exit_code, 2);
 }
 
 // ---- -l and the terminal -----------------------------------------------------------------------
