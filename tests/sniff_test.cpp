@@ -2,12 +2,14 @@
 // a pseudo-terminal, the dpscope executable capturing on the other end.
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <termios.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
@@ -515,6 +517,130 @@ TEST(SniffTest, ReportAtTheEnd) {
     std::string out = sniffer.out();
     EXPECT_NE(out.find("telegrams: "), std::string::npos) << out;  // the summary (-q) ...
     EXPECT_NE(out.find("FAIL"), std::string::npos) << out;         // ... and the text report
+}
+
+// Copies what arrives on one pty's master to another's until stopped and quiet: `simulate
+// --device` plays onto the slave end of the first, `sniff` captures on the slave end of the second.
+class Relay {
+  public:
+    Relay(int from, int to)
+        : thread_([this, from, to] {
+              std::uint8_t buffer[4096];
+              for (int quiet = 0; !stop_ || quiet < 30;) {
+                  pollfd p{from, POLLIN, 0};
+                  ssize_t n = poll(&p, 1, 10) > 0 ? read(from, buffer, sizeof buffer) : 0;
+                  if (n <= 0) {
+                      ++quiet;
+                      if (n < 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+                      continue;
+                  }
+                  quiet = 0;
+                  for (ssize_t at = 0; at < n;) {
+                      ssize_t w = ::write(to, buffer + at, static_cast<std::size_t>(n - at));
+                      if (w > 0) at += w;
+                  }
+              }
+          }) {}
+    ~Relay() { stop(); }
+    void stop() {
+        stop_ = true;
+        if (thread_.joinable()) thread_.join();
+    }
+
+  private:
+    std::atomic<bool> stop_{false};
+    std::thread thread_;
+};
+
+// The lines of `text` from the first one starting with `from` on.
+std::vector<std::string> lines_from(const std::string& text, const std::string& from) {
+    std::vector<std::string> all = test::lines_of(text);
+    auto first = std::find_if(all.begin(), all.end(),
+                              [&](const std::string& l) { return l.rfind(from, 0) == 0; });
+    return {first, all.end()};
+}
+
+std::vector<std::string> lines_with(const std::string& text, const std::string& part) {
+    std::vector<std::string> found;
+    for (const std::string& l : test::lines_of(text))
+        if (l.find(part) != std::string::npos) found.push_back(l);
+    return found;
+}
+
+TEST(SniffTest, DpV1SlavesAreDecodedAndTrackedLive) {
+    const std::vector<std::string> session = {"--seed",   "23",
+                                              "--cycles", "30",
+                                              "--slave",  "3:3:dpv1",
+                                              "--slave",  "4:2",
+                                              "--slave",  "5:1:vlt:dpv1",
+                                              "--fault",  "dpv1_stacked_request@3:3",
+                                              "--fault",  "dpv1_reference_mismatch@3:5",
+                                              "--fault",  "dpv1_negative_response@8:3",
+                                              "--fault",  "dpv1_unexpected_response_id@8:5",
+                                              "--fault",  "dpv1_parameter_count_mismatch@14:3",
+                                              "--fault",  "dpv1_length_error@14:5",
+                                              "--fault",  "dpv1_orphan_response@20:3",
+                                              "--fault",  "dpv1_error_pdu@20:5"};
+    const std::string reference = test::temp_path("dpv1-reference.pcap");
+    const std::string pcap = test::temp_path("dpv1-live.pcap");
+    std::vector<std::string> write = {"simulate", "-w", reference};
+    write.insert(write.end(), session.begin(), session.end());
+    ASSERT_EQ(test::run_dpscope(write).exit_code, 0);
+
+    PseudoTerminal bus, adapter;
+    Sniffer sniffer({"sniff", "-i", adapter.slave, "--baud", "1500000", "-w", pcap, "--report"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    {
+        Relay relay(bus.master, adapter.master);
+        std::vector<std::string> play = {"simulate", "--device", bus.slave,
+                                         "--baud",   "1500000",  "--as-fast-as-possible"};
+        play.insert(play.end(), session.begin(), session.end());
+        auto played = test::run_dpscope(play);
+        ASSERT_EQ(played.exit_code, 0) << played.err;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    sniffer.signal(SIGINT);
+    EXPECT_EQ(sniffer.wait(), 1) << sniffer.err();  // errors found, --fail-on error
+    const std::string out = sniffer.out();
+
+    // Every telegram arrived, the DP-V1 ones among them.
+    Capture capture = read_capture(pcap);
+    Capture expected = read_capture(reference);
+    EXPECT_EQ(capture.status, InputStatus::Ok);
+    ASSERT_EQ(capture.telegrams, expected.telegrams);
+    auto decoded = test::run_dpscope({"decode", pcap});
+    ASSERT_EQ(decoded.exit_code, 0) << decoded.err;
+    std::vector<std::string> dpv1 = lines_with(decoded.out, "MSAC_C1");
+    EXPECT_GT(dpv1.size(), 60u);
+    // The live decode shows them as `dpscope decode` does, PROFIdrive parameters and findings.
+    EXPECT_EQ(lines_with(out, "MSAC_C1"), dpv1);
+    EXPECT_GT(lines_with(out, "| PROFIdrive req ").size(), 10u) << out;
+    EXPECT_FALSE(lines_with(out, "| PROFIdrive rsp ").empty()) << out;
+    EXPECT_FALSE(lines_with(out, "[error dpv1_stacked_request]").empty()) << out;
+
+    // The report at the end: the same per-slave sections (the DP-V1 ones included) and the
+    // same findings as `dpscope report` on the written capture.
+    auto offline = test::run_dpscope({"report", pcap});
+    EXPECT_EQ(offline.exit_code, 1) << offline.err;
+    std::vector<std::string> live_report = lines_from(out, "Slave ");
+    ASSERT_GT(live_report.size(), 40u) << out;
+    EXPECT_EQ(live_report, lines_from(offline.out, "Slave ")) << out;
+    EXPECT_EQ(lines_with(out, ": DP-V1 parameter access").size(), 2u) << out;
+    std::vector<std::string> findings = lines_from(out, "Findings (");
+    for (const char* kind :
+         {"dpv1_stacked_request", "dpv1_reference_mismatch", "dpv1_negative_response",
+          "dpv1_unexpected_response_id", "dpv1_parameter_count_mismatch", "dpv1_orphan_response",
+          "dpv1_error_pdu"}) {
+        EXPECT_TRUE(std::any_of(findings.begin(), findings.end(),
+                                [&](const std::string& l) {
+                                    return l.find(std::string(" ") + kind + " ") !=
+                                           std::string::npos;
+                                }))
+            << kind << "\n"
+            << out;
+    }
+    std::remove(pcap.c_str());
+    std::remove(reference.c_str());
 }
 
 // Plays a faulty session into a sniffer started with `args` (after -i and --baud) and stops it.
