@@ -124,7 +124,11 @@ struct Dpv1ParameterAccessTracker::Channel {
         tx.active = true;
         return tx;
     }
-    static void close(Transaction* tx) { tx->active = false; }
+    // Ends `tx`. One that timed out was counted then; any other is no longer open.
+    void close(Transaction* tx) const {
+        if (!tx->timed_out) --stats->open;
+        tx->active = false;
+    }
     Finding& add(FindingList& out, FindingKind kind, const DecodedTelegram& t,
                  std::uint64_t request_frame) const {
         return add_finding(out, kind, t.frame, t.time_ns, request_frame, true, master, slave);
@@ -223,6 +227,7 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
     tx.change = m.is_change_request();
     tx.addresses.assign(m.addresses.begin(), m.addresses.end());
     ++stats.started;
+    ++stats.open;
     for (const ProfidriveAddress& address : m.addresses) {
         auto it = stats.parameters.find(address.pnu);
         if (it == stats.parameters.end()) {
@@ -305,24 +310,33 @@ void Dpv1ParameterAccessTracker::error_pdu(Channel& ch, const DecodedTelegram& t
     Dpv1Stats& stats = *ch.stats;
     if (pdu.is_state_conflict() && pdu.is_read()) {  // not ready yet: the master reads again
         ++stats.polls;
-        if (tx) ++tx->polls;
+        // Counted as the polls come, so a transaction that times out or stays open counts too.
+        if (tx) stats.max_polls = std::max(stats.max_polls, ++tx->polls);
         return;
     }
     ++stats.error_pdus;
     Finding& f = ch.add(out, FindingKind::Dpv1ErrorPdu, t, paired ? ch.frame : 0);
-    const std::uint8_t error_class = pdu.error_code_1 >> 4;
-    // Access (0xB) and resource (0xC) errors are the slave refusing a request it understood.
-    f.severity = error_class == 0x0B || error_class == 0x0C ? Severity::Note : Severity::Warning;
-    std::string_view decode = dpv1_error_decode_name(pdu.error_decode);
-    std::string_view class_name = dpv1_error_class_name(pdu.error_code_1);
-    f.message = fmt::format(
-        "{}: Error_Decode 0x{:02X}{}, Error_Code_1 0x{:02X} ({}{}), Error_Code_2 0x{:02X}",
-        function_text(pdu.function), pdu.error_decode,
-        decode.empty() ? std::string() : fmt::format(" ({})", decode), pdu.error_code_1,
-        class_name.empty() ? std::string("reserved class") : std::string(class_name),
-        class_name.empty() ? std::string()
-                           : fmt::format(": {}", dpv1_error_code_name(pdu.error_code_1)),
-        pdu.error_code_2);
+    if (!pdu.complete) {
+        // The decoder reports the missing bytes; the codes it did not read are no error class.
+        f.severity = Severity::Note;
+        f.message = fmt::format("{}: error PDU cut short (its error codes missing)",
+                                function_text(pdu.function));
+    } else {
+        const std::uint8_t error_class = pdu.error_code_1 >> 4;
+        // Access (0xB) and resource (0xC) errors are the slave refusing a request it understood.
+        f.severity =
+            error_class == 0x0B || error_class == 0x0C ? Severity::Note : Severity::Warning;
+        std::string_view decode = dpv1_error_decode_name(pdu.error_decode);
+        std::string_view class_name = dpv1_error_class_name(pdu.error_code_1);
+        f.message = fmt::format(
+            "{}: Error_Decode 0x{:02X}{}, Error_Code_1 0x{:02X} ({}{}), Error_Code_2 0x{:02X}",
+            function_text(pdu.function), pdu.error_decode,
+            decode.empty() ? std::string() : fmt::format(" ({})", decode), pdu.error_code_1,
+            class_name.empty() ? std::string("reserved class") : std::string(class_name),
+            class_name.empty() ? std::string()
+                               : fmt::format(": {}", dpv1_error_code_name(pdu.error_code_1)),
+            pdu.error_code_2);
+    }
     if (paired)
         fmt::format_to(std::back_inserter(f.message), " to the {} of slot {} index {}",
                        function_text(ch.function), ch.slot, ch.index);
@@ -330,7 +344,12 @@ void Dpv1ParameterAccessTracker::error_pdu(Channel& ch, const DecodedTelegram& t
         f.pnu = tx->first_pnu();
         fmt::format_to(std::back_inserter(f.message), " (parameter request of frame {}: {})",
                        tx->frame, request_text(tx->reference, tx->id, tx->addresses));
-        ++stats.refused;
+        if (tx->timed_out) {
+            ++stats.late;
+            f.message += ", after its time-out";
+        } else {
+            ++stats.refused;
+        }
         ch.close(tx);
     }
 }
@@ -353,14 +372,17 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
                                        pdu.slot, pdu.index);
         return;
     }
-    // The transaction is complete.
-    ++stats.completed;
-    if (tx->time_ns != kNoTime && t.has_time() && t.time_ns >= tx->time_ns) {
-        auto latency = static_cast<std::uint64_t>(t.time_ns - tx->time_ns);
-        stats.latency_ns.add(latency);
-        stats.latency_sum_ns += latency;
+    // The transaction is complete, or late when it timed out (counted as a time-out then).
+    if (tx->timed_out) {
+        ++stats.late;
+    } else {
+        ++stats.completed;
+        if (tx->time_ns != kNoTime && t.has_time() && t.time_ns >= tx->time_ns) {
+            auto latency = static_cast<std::uint64_t>(t.time_ns - tx->time_ns);
+            stats.latency_ns.add(latency);
+            stats.latency_sum_ns += latency;
+        }
     }
-    stats.max_polls = std::max(stats.max_polls, tx->polls);
     const std::string about = request_text(tx->reference, tx->id, tx->addresses);
     auto add = [&](FindingKind kind) -> Finding& {
         Finding& f = ch.add(out, kind, t, tx->frame);
@@ -398,7 +420,13 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
         for (std::size_t k = 0; k < m.blocks.size(); ++k) {
             const ProfidriveValueBlock& block = m.blocks[k];
             if (!block.is_error() || block.values.size() < 2) continue;
-            ++stats.negative_errors[block.error_number()];
+            if (auto it = stats.negative_errors.find(block.error_number());
+                it != stats.negative_errors.end())
+                ++it->second;
+            else if (stats.negative_errors.size() < Dpv1Stats::kMaxNegativeErrors)
+                stats.negative_errors.emplace(block.error_number(), 1);
+            else
+                ++stats.negative_errors_not_listed;
             if (!errors.empty()) errors += "; ";
             if (k < tx->addresses.size())
                 fmt::format_to(std::back_inserter(errors), "PNU {}: ", tx->addresses[k].pnu);
@@ -466,6 +494,7 @@ void Dpv1ParameterAccessTracker::check_deadlines(std::int64_t now_ns, std::uint6
             if (now_ns > deadline) {
                 tx.timed_out = true;
                 ++ch.stats->timeouts;
+                --ch.stats->open;
                 Finding& f = add_finding(out, FindingKind::Dpv1ResponseTimeout, frame, now_ns,
                                          tx.frame, true, ch.master, ch.slave);
                 f.pnu = tx.first_pnu();
