@@ -17,6 +17,8 @@ constexpr std::int64_t kNever = std::numeric_limits<std::int64_t>::max();
 constexpr std::size_t kStations = 128;
 // A message names at most this many parameters.
 constexpr std::size_t kNamedPnus = 8;
+// A Danfoss parameter request names at most 0x25 parameters [S003].
+constexpr std::uint8_t kMaxDanfossParameters = 0x25;
 
 std::string function_text(std::uint8_t function) {
     std::string_view name = dpv1_function_name(function);
@@ -107,6 +109,7 @@ struct Dpv1ParameterAccessTracker::Channel {
     std::uint8_t function = 0;
     std::uint8_t slot = 0;
     std::uint8_t index = 0;
+    std::uint8_t length = 0;  // a Read's: the most the master accepts
     std::uint64_t frame = 0;
 
     Transaction* find(std::uint8_t slot_number, std::uint8_t index_number) {
@@ -180,6 +183,7 @@ void Dpv1ParameterAccessTracker::request(Channel& ch, const DecodedTelegram& t, 
     ch.function = pdu.base_function();
     ch.slot = pdu.slot;
     ch.index = pdu.index;
+    ch.length = pdu.length;
     ch.frame = t.frame;
     if (!pdu.is_write()) return;
     const ProfidriveMessage* request = t.dp.service_data.profidrive();
@@ -245,6 +249,12 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
     // The request's own lengths.
     Inconsistencies found;
     check_dpv1_length(pdu, found);
+    // The header's ranges [S003]: reference 0x01..0xFF, 0x01..0x25 parameters (Danfoss).
+    if (m.reference == 0) found.add("request reference 0 (0x01 to 0xFF allowed)");
+    if (m.count == 0)
+        found.add("0 parameters (at least 1)");
+    else if (m.count > kMaxDanfossParameters && t.dp.dialect == Dialect::Vlt)
+        found.add("{} parameters, more than the {} Danfoss allows", m.count, kMaxDanfossParameters);
     if (m.addresses.size() < m.count)
         found.add("{} parameters announced, {} addresses present", m.count, m.addresses.size());
     if (tx.change && m.addresses.size() == m.count) {
@@ -255,12 +265,19 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
             const ProfidriveAddress& address = m.addresses[k];
             if (!block.complete) {
                 found.add("PNU {}: value block cut short", address.pnu);
-            } else if (address.attribute == profidrive::kAttributeValue &&
-                       !counts_bytes(block.format) &&
-                       block.count != std::max<std::uint8_t>(address.elements, 1)) {
+                continue;
+            }
+            if (address.attribute == profidrive::kAttributeValue && !counts_bytes(block.format) &&
+                block.count != std::max<std::uint8_t>(address.elements, 1))
                 found.add("PNU {}: {} values for {} elements", address.pnu, block.count,
                           std::max<std::uint8_t>(address.elements, 1));
-            }
+            // Danfoss 0x52 sends every value as a double word, whatever its type [S003].
+            if (m.id == profidrive::kChangeValueDoubleWord &&
+                profidrive_format_size(block.format) != 4)
+                found.add(
+                    "PNU {}: format 0x{:02X} in a double-word change (4-byte values, "
+                    "such as format 0x43, expected)",
+                    address.pnu, block.format);
         }
     }
     if (m.trailing > 0) found.add("{} bytes after the request", m.trailing);
@@ -279,9 +296,13 @@ void Dpv1ParameterAccessTracker::response(Channel& ch, const DecodedTelegram& t,
         return;
     }
     if (pdu.layout != Dpv1Pdu::Layout::Addressed || !(pdu.is_read() || pdu.is_write())) return;
+    // The most the paired Read accepts, when this answers one.
+    int read_max = -1;
     if (ch.awaiting && ch.function == pdu.base_function() && ch.slot == pdu.slot &&
-        ch.index == pdu.index)
+        ch.index == pdu.index) {
         ch.awaiting = false;
+        if (pdu.is_read()) read_max = ch.length;
+    }
     if (pdu.is_write()) {
         Transaction* tx = ch.find(pdu.slot, pdu.index);
         if (!tx || tx->state != Transaction::State::Written) return;
@@ -298,7 +319,7 @@ void Dpv1ParameterAccessTracker::response(Channel& ch, const DecodedTelegram& t,
         }
         return;
     }
-    if (t.dp.service_data.profidrive()) parameter_response(ch, t, pdu, out);
+    if (t.dp.service_data.profidrive()) parameter_response(ch, t, pdu, read_max, out);
 }
 
 void Dpv1ParameterAccessTracker::error_pdu(Channel& ch, const DecodedTelegram& t,
@@ -355,7 +376,8 @@ void Dpv1ParameterAccessTracker::error_pdu(Channel& ch, const DecodedTelegram& t
 }
 
 void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTelegram& t,
-                                                    const Dpv1Pdu& pdu, FindingList& out) {
+                                                    const Dpv1Pdu& pdu, int read_max,
+                                                    FindingList& out) {
     const ProfidriveMessage& m = *t.dp.service_data.profidrive();
     Dpv1Stats& stats = *ch.stats;
     Transaction* tx = ch.find(pdu.slot, pdu.index);
@@ -443,6 +465,14 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
     // Lengths and value blocks against the request.
     Inconsistencies found;
     check_dpv1_length(pdu, found);
+    // The response's size: no more than the Read asked for, nor than 240 bytes (a longer one is
+    // refused with error 0x15 [P:MCA101 p30]).
+    const std::size_t size = std::max<std::size_t>(pdu.length, pdu.data.size());
+    if (read_max >= 0 && size > static_cast<std::size_t>(read_max))
+        found.add("response of {} bytes, more than the {} its Read accepts", size, read_max);
+    if (size > profidrive::kMaxData)
+        found.add("response of {} bytes, more than the {} a parameter response may have", size,
+                  profidrive::kMaxData);
     if (!profidrive_response_answers(m.id, tx->id)) {
         // Not an answer to this request: its blocks cannot be judged against it.
     } else if (tx->change && !negative) {

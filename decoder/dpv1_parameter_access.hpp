@@ -108,7 +108,7 @@ class Dpv1ParameterAccessTracker {
     void write_request(Channel& ch, const DecodedTelegram& t, const Dpv1Pdu& pdu,
                        const ProfidriveMessage& request, FindingList& out);
     void error_pdu(Channel& ch, const DecodedTelegram& t, const Dpv1Pdu& pdu, FindingList& out);
-    void parameter_response(Channel& ch, const DecodedTelegram& t, const Dpv1Pdu& pdu,
+    void parameter_response(Channel& ch, const DecodedTelegram& t, const Dpv1Pdu& pdu, int read_max,
                             FindingList& out);
     void check_deadlines(std::int64_t now_ns, std::uint64_t frame, FindingList& out);
 

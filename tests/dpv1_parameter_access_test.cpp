@@ -591,6 +591,58 @@ TEST(Dpv1ParameterAccessTest, ErrorPdusAreNotesForAccessAndResourceWarningsOther
     EXPECT_EQ(bus.stats().polls, 0u);
 }
 
+TEST(Dpv1ParameterAccessTest, RequestHeaderOutOfTheSeedsRangesIsALengthError) {
+    Dpv1Bus bus;
+    std::uint64_t zero_reference = bus.request(pdu(0x5F, parameter_request(0, 0x01, {{12}})));
+    bus.response(write_response(10));
+    bus.request(read_request());
+    bus.response(pdu(0x5E, parameter_response(0, 0x01, 1, {0x06, 0x01, 0, 1})));
+    std::uint64_t no_parameters = bus.request(pdu(0x5F, parameter_request(2, 0x01, {})));
+    bus.response(write_response(4));
+    bus.request(read_request());
+    bus.response(pdu(0x5E, parameter_response(2, 0x01, 0)));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1LengthError, zero_reference, Severity::Error},
+                                   {FindingKind::Dpv1LengthError, no_parameters, Severity::Error}});
+    EXPECT_NE(bus.findings[0].message.find("request reference 0 (0x01 to 0xFF allowed)"),
+              std::string::npos)
+        << bus.findings[0].message;
+    EXPECT_NE(bus.findings[1].message.find("0 parameters (at least 1)"), std::string::npos)
+        << bus.findings[1].message;
+}
+
+TEST(Dpv1ParameterAccessTest, DoubleWordChangeWithOtherThanFourByteValuesIsALengthError) {
+    Dpv1Bus bus;
+    // 0x52 with a double word: fine.
+    bus.transaction(parameter_request(1, 0x52, {{12}}, {0x43, 0x01, 0, 0, 0, 5}),
+                    parameter_response(1, 0x02, 1));
+    // 0x52 with a Word: not a double word.
+    std::uint64_t word =
+        bus.request(pdu(0x5F, parameter_request(2, 0x52, {{13}}, {0x42, 0x01, 0, 5})));
+    bus.response(write_response(14));
+    bus.request(read_request());
+    bus.response(pdu(0x5E, parameter_response(2, 0x02, 1)));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1LengthError, word, Severity::Error}});
+    EXPECT_NE(bus.findings[0].message.find("PNU 13: format 0x42 in a double-word change"),
+              std::string::npos)
+        << bus.findings[0].message;
+}
+
+TEST(Dpv1ParameterAccessTest, ReadResponseLongerThanItsReadAcceptsIsALengthError) {
+    Dpv1Bus bus;
+    bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
+    bus.response(write_response(10));
+    bus.request({0x5E, 0, 47, 6});  // accepts at most 6 bytes
+    std::uint64_t response =
+        bus.response(pdu(0x5E, parameter_response(1, 0x01, 1, {0x06, 0x01, 0, 1})));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1LengthError, response, Severity::Error}});
+    EXPECT_NE(bus.findings[0].message.find("response of 8 bytes, more than the 6 its Read accepts"),
+              std::string::npos)
+        << bus.findings[0].message;
+}
+
 TEST(Dpv1ParameterAccessTest, ErrorPduCutShortIsANoteWithoutAClass) {
     Dpv1Bus bus;
     bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
