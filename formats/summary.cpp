@@ -1,5 +1,6 @@
 #include "formats/summary.hpp"
 
+#include <algorithm>
 #include <iterator>
 #include <optional>
 #include <string>
@@ -65,11 +66,13 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
     for (std::uint64_t n : findings_)
         total_findings += n;
     fmt::format_to(it, "  findings: {}\n", total_findings);
+    const std::size_t kind_width = std::max<std::size_t>(26, longest_finding_kind_name());
     for (std::size_t k = 0; k < kFindingKindCount; ++k)
         if (findings_[k]) {
             auto kind = static_cast<FindingKind>(k);
-            fmt::format_to(it, "    {:<26} {:>10}  ({})\n", finding_kind_name(kind), findings_[k],
-                           severity_name(default_severity(kind)));
+            // Kind and count span 37 columns; the kind column is as wide as the longest name.
+            fmt::format_to(it, "    {:<{}} {:>{}}  ({})\n", finding_kind_name(kind), kind_width,
+                           findings_[k], 36 - kind_width, severity_name(default_severity(kind)));
         }
 
     bool header = false;

@@ -1126,6 +1126,19 @@ TEST(ReportTest, Dpv1SectionInJson) {
     EXPECT_EQ(s["findings"]["dpv1_negative_response"].integer(), 1);
 }
 
+// The findings table's kind column holds the longest kind name in the catalogue.
+TEST(ReportTest, FindingsTableKindColumnHoldsTheLongestKindName) {
+    EXPECT_EQ(longest_finding_kind_name(),
+              std::string_view("dpv1_parameter_count_mismatch").size());
+    std::string text = render(ReportFormat::Text, context_of(dpv1_session()));
+    std::size_t header = text.find("severity kind ");
+    ASSERT_NE(header, std::string::npos) << text;
+    std::size_t kind = header + std::string_view("severity ").size();
+    std::size_t station = text.find("master/slave", header);
+    ASSERT_NE(station, std::string::npos);
+    EXPECT_EQ(station - kind, longest_finding_kind_name() + 1) << text;
+}
+
 // The transactions line accounts for every one started: late answers among the time-outs, and
 // those still open at the end of the capture; error numbers beyond the listed ones are counted.
 TEST(ReportTest, Dpv1SectionNamesLateOpenAndUnlistedErrors) {
@@ -1262,7 +1275,7 @@ TEST(ReportTest, TextHasTheSectionsAndOneLinePerFinding) {
     std::vector<std::string> rows = lines_after(lines, "Findings (");
     ASSERT_EQ(rows.size(), kFaultsFindings.size() + 1);  // the column heads, then the findings
     EXPECT_EQ(rows[0],
-              "     frame      time (s)  severity kind                        "
+              "     frame      time (s)  severity kind                          "
               "master/slave   pnu  message");
     for (std::size_t i = 0; i < kFaultsFindings.size(); ++i) {
         const ExpectedFinding& f = kFaultsFindings[i];
@@ -1277,7 +1290,7 @@ TEST(ReportTest, TextHasTheSectionsAndOneLinePerFinding) {
         EXPECT_NE(row.find(station), std::string::npos) << row;
     }
     EXPECT_EQ(rows[1],
-              "        62      0.011905  error    fcs_error                   2 / 3      "
+              "        62      0.011905  error    fcs_error                     2 / 3      "
               "      -  byte 19: FCS 0x7C wrong, checksum of the data is 0x26");
 }
 

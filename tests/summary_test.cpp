@@ -100,6 +100,30 @@ std::string render_text(const Counted& c, const InputSummary& input) {
     return text;
 }
 
+// The kind column holds the longest kind name: the counts stay in one column.
+TEST(SummaryTest, LongestKindNamesKeepTheCountsAligned) {
+    Counted c;
+    std::vector<Finding> list(3);
+    list[0].kind = FindingKind::Dpv1ParameterCountMismatch;
+    list[1].kind = FindingKind::Dpv1UnexpectedResponseId;
+    list[2].kind = FindingKind::FcsError;
+    c.summary.add_findings(list);
+    std::string text = render_text(c, InputSummary{"x.raw", "raw", 0, false});
+    std::vector<std::size_t> ends;
+    for (std::string_view name :
+         {"dpv1_parameter_count_mismatch", "dpv1_unexpected_response_id", "fcs_error"}) {
+        std::size_t at = text.find(std::string("    ") + std::string(name) + " ");
+        ASSERT_NE(at, std::string::npos) << text;
+        std::size_t end = text.find("  (", at);
+        ASSERT_NE(end, std::string::npos);
+        ends.push_back(end - at);
+    }
+    EXPECT_EQ(ends[0], ends[1]) << text;
+    EXPECT_EQ(ends[0], ends[2]) << text;
+    EXPECT_NE(text.find("    dpv1_parameter_count_mismatch       1  (error)\n"), std::string::npos)
+        << text;
+}
+
 TEST(SummaryTest, EmptySummary) {
     Summary summary;
     EXPECT_EQ(summary.telegrams(), 0u);
