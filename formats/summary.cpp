@@ -9,6 +9,25 @@
 
 namespace dpscope {
 
+namespace {
+
+// "note", or "1 warning, 1 note" when the findings of a kind had several severities.
+std::string severities_text(const std::array<std::uint64_t, 3>& by_severity) {
+    std::string text;
+    int seen = 0;
+    std::string_view only;
+    for (std::size_t s = by_severity.size(); s-- > 0;) {
+        if (!by_severity[s]) continue;
+        auto severity = static_cast<Severity>(s);
+        only = severity_name(severity);
+        fmt::format_to(std::back_inserter(text), "{}{} {}{}", seen++ ? ", " : "", by_severity[s],
+                       severity_name(severity), by_severity[s] == 1 ? "" : "s");
+    }
+    return seen == 1 ? std::string(only) : text;
+}
+
+}  // namespace
+
 std::string dialect_hint_text(std::uint8_t slave, Dialect decoded,
                               const DialectEvidence& evidence) {
     std::optional<Dialect> hint = evidence.hint();
@@ -72,7 +91,8 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
             auto kind = static_cast<FindingKind>(k);
             // Kind and count span 37 columns; the kind column is as wide as the longest name.
             fmt::format_to(it, "    {:<{}} {:>{}}  ({})\n", finding_kind_name(kind), kind_width,
-                           findings_[k], 36 - kind_width, severity_name(default_severity(kind)));
+                           findings_[k], 36 - kind_width,
+                           severities_text(findings_by_severity_[k]));
         }
 
     bool header = false;
