@@ -17,6 +17,8 @@ constexpr std::int64_t kNever = std::numeric_limits<std::int64_t>::max();
 constexpr std::size_t kStations = 128;
 // A message names at most this many parameters.
 constexpr std::size_t kNamedPnus = 8;
+// A Danfoss parameter request names at most 0x25 parameters [S003].
+constexpr std::uint8_t kMaxDanfossParameters = 0x25;
 
 std::string function_text(std::uint8_t function) {
     std::string_view name = dpv1_function_name(function);
@@ -107,6 +109,7 @@ struct Dpv1ParameterAccessTracker::Channel {
     std::uint8_t function = 0;
     std::uint8_t slot = 0;
     std::uint8_t index = 0;
+    std::uint8_t length = 0;  // a Read's: the most the master accepts
     std::uint64_t frame = 0;
 
     Transaction* find(std::uint8_t slot_number, std::uint8_t index_number) {
@@ -124,7 +127,11 @@ struct Dpv1ParameterAccessTracker::Channel {
         tx.active = true;
         return tx;
     }
-    static void close(Transaction* tx) { tx->active = false; }
+    // Ends `tx`. One that timed out was counted then; any other is no longer open.
+    void close(Transaction* tx) const {
+        if (!tx->timed_out) --stats->open;
+        tx->active = false;
+    }
     Finding& add(FindingList& out, FindingKind kind, const DecodedTelegram& t,
                  std::uint64_t request_frame) const {
         return add_finding(out, kind, t.frame, t.time_ns, request_frame, true, master, slave);
@@ -176,6 +183,7 @@ void Dpv1ParameterAccessTracker::request(Channel& ch, const DecodedTelegram& t, 
     ch.function = pdu.base_function();
     ch.slot = pdu.slot;
     ch.index = pdu.index;
+    ch.length = pdu.length;
     ch.frame = t.frame;
     if (!pdu.is_write()) return;
     const ProfidriveMessage* request = t.dp.service_data.profidrive();
@@ -223,6 +231,7 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
     tx.change = m.is_change_request();
     tx.addresses.assign(m.addresses.begin(), m.addresses.end());
     ++stats.started;
+    ++stats.open;
     for (const ProfidriveAddress& address : m.addresses) {
         auto it = stats.parameters.find(address.pnu);
         if (it == stats.parameters.end()) {
@@ -240,6 +249,12 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
     // The request's own lengths.
     Inconsistencies found;
     check_dpv1_length(pdu, found);
+    // The header's ranges [S003]: reference 0x01..0xFF, 0x01..0x25 parameters (Danfoss).
+    if (m.reference == 0) found.add("request reference 0 (0x01 to 0xFF allowed)");
+    if (m.count == 0)
+        found.add("0 parameters (at least 1)");
+    else if (m.count > kMaxDanfossParameters && t.dp.dialect == Dialect::Vlt)
+        found.add("{} parameters, more than the {} Danfoss allows", m.count, kMaxDanfossParameters);
     if (m.addresses.size() < m.count)
         found.add("{} parameters announced, {} addresses present", m.count, m.addresses.size());
     if (tx.change && m.addresses.size() == m.count) {
@@ -250,12 +265,19 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
             const ProfidriveAddress& address = m.addresses[k];
             if (!block.complete) {
                 found.add("PNU {}: value block cut short", address.pnu);
-            } else if (address.attribute == profidrive::kAttributeValue &&
-                       !counts_bytes(block.format) &&
-                       block.count != std::max<std::uint8_t>(address.elements, 1)) {
+                continue;
+            }
+            if (address.attribute == profidrive::kAttributeValue && !counts_bytes(block.format) &&
+                block.count != std::max<std::uint8_t>(address.elements, 1))
                 found.add("PNU {}: {} values for {} elements", address.pnu, block.count,
                           std::max<std::uint8_t>(address.elements, 1));
-            }
+            // Danfoss 0x52 sends every value as a double word, whatever its type [S003].
+            if (m.id == profidrive::kChangeValueDoubleWord &&
+                profidrive_format_size(block.format) != 4)
+                found.add(
+                    "PNU {}: format 0x{:02X} in a double-word change (4-byte values, "
+                    "such as format 0x43, expected)",
+                    address.pnu, block.format);
         }
     }
     if (m.trailing > 0) found.add("{} bytes after the request", m.trailing);
@@ -274,9 +296,13 @@ void Dpv1ParameterAccessTracker::response(Channel& ch, const DecodedTelegram& t,
         return;
     }
     if (pdu.layout != Dpv1Pdu::Layout::Addressed || !(pdu.is_read() || pdu.is_write())) return;
+    // The most the paired Read accepts, when this answers one.
+    int read_max = -1;
     if (ch.awaiting && ch.function == pdu.base_function() && ch.slot == pdu.slot &&
-        ch.index == pdu.index)
+        ch.index == pdu.index) {
         ch.awaiting = false;
+        if (pdu.is_read()) read_max = ch.length;
+    }
     if (pdu.is_write()) {
         Transaction* tx = ch.find(pdu.slot, pdu.index);
         if (!tx || tx->state != Transaction::State::Written) return;
@@ -293,7 +319,7 @@ void Dpv1ParameterAccessTracker::response(Channel& ch, const DecodedTelegram& t,
         }
         return;
     }
-    if (t.dp.service_data.profidrive()) parameter_response(ch, t, pdu, out);
+    if (t.dp.service_data.profidrive()) parameter_response(ch, t, pdu, read_max, out);
 }
 
 void Dpv1ParameterAccessTracker::error_pdu(Channel& ch, const DecodedTelegram& t,
@@ -305,24 +331,33 @@ void Dpv1ParameterAccessTracker::error_pdu(Channel& ch, const DecodedTelegram& t
     Dpv1Stats& stats = *ch.stats;
     if (pdu.is_state_conflict() && pdu.is_read()) {  // not ready yet: the master reads again
         ++stats.polls;
-        if (tx) ++tx->polls;
+        // Counted as the polls come, so a transaction that times out or stays open counts too.
+        if (tx) stats.max_polls = std::max(stats.max_polls, ++tx->polls);
         return;
     }
     ++stats.error_pdus;
     Finding& f = ch.add(out, FindingKind::Dpv1ErrorPdu, t, paired ? ch.frame : 0);
-    const std::uint8_t error_class = pdu.error_code_1 >> 4;
-    // Access (0xB) and resource (0xC) errors are the slave refusing a request it understood.
-    f.severity = error_class == 0x0B || error_class == 0x0C ? Severity::Note : Severity::Warning;
-    std::string_view decode = dpv1_error_decode_name(pdu.error_decode);
-    std::string_view class_name = dpv1_error_class_name(pdu.error_code_1);
-    f.message = fmt::format(
-        "{}: Error_Decode 0x{:02X}{}, Error_Code_1 0x{:02X} ({}{}), Error_Code_2 0x{:02X}",
-        function_text(pdu.function), pdu.error_decode,
-        decode.empty() ? std::string() : fmt::format(" ({})", decode), pdu.error_code_1,
-        class_name.empty() ? std::string("reserved class") : std::string(class_name),
-        class_name.empty() ? std::string()
-                           : fmt::format(": {}", dpv1_error_code_name(pdu.error_code_1)),
-        pdu.error_code_2);
+    if (!pdu.complete) {
+        // The decoder reports the missing bytes; the codes it did not read are no error class.
+        f.severity = Severity::Note;
+        f.message = fmt::format("{}: error PDU cut short (its error codes missing)",
+                                function_text(pdu.function));
+    } else {
+        const std::uint8_t error_class = pdu.error_code_1 >> 4;
+        // Access (0xB) and resource (0xC) errors are the slave refusing a request it understood.
+        f.severity =
+            error_class == 0x0B || error_class == 0x0C ? Severity::Note : Severity::Warning;
+        std::string_view decode = dpv1_error_decode_name(pdu.error_decode);
+        std::string_view class_name = dpv1_error_class_name(pdu.error_code_1);
+        f.message = fmt::format(
+            "{}: Error_Decode 0x{:02X}{}, Error_Code_1 0x{:02X} ({}{}), Error_Code_2 0x{:02X}",
+            function_text(pdu.function), pdu.error_decode,
+            decode.empty() ? std::string() : fmt::format(" ({})", decode), pdu.error_code_1,
+            class_name.empty() ? std::string("reserved class") : std::string(class_name),
+            class_name.empty() ? std::string()
+                               : fmt::format(": {}", dpv1_error_code_name(pdu.error_code_1)),
+            pdu.error_code_2);
+    }
     if (paired)
         fmt::format_to(std::back_inserter(f.message), " to the {} of slot {} index {}",
                        function_text(ch.function), ch.slot, ch.index);
@@ -330,13 +365,19 @@ void Dpv1ParameterAccessTracker::error_pdu(Channel& ch, const DecodedTelegram& t
         f.pnu = tx->first_pnu();
         fmt::format_to(std::back_inserter(f.message), " (parameter request of frame {}: {})",
                        tx->frame, request_text(tx->reference, tx->id, tx->addresses));
-        ++stats.refused;
+        if (tx->timed_out) {
+            ++stats.late;
+            f.message += ", after its time-out";
+        } else {
+            ++stats.refused;
+        }
         ch.close(tx);
     }
 }
 
 void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTelegram& t,
-                                                    const Dpv1Pdu& pdu, FindingList& out) {
+                                                    const Dpv1Pdu& pdu, int read_max,
+                                                    FindingList& out) {
     const ProfidriveMessage& m = *t.dp.service_data.profidrive();
     Dpv1Stats& stats = *ch.stats;
     Transaction* tx = ch.find(pdu.slot, pdu.index);
@@ -353,14 +394,17 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
                                        pdu.slot, pdu.index);
         return;
     }
-    // The transaction is complete.
-    ++stats.completed;
-    if (tx->time_ns != kNoTime && t.has_time() && t.time_ns >= tx->time_ns) {
-        auto latency = static_cast<std::uint64_t>(t.time_ns - tx->time_ns);
-        stats.latency_ns.add(latency);
-        stats.latency_sum_ns += latency;
+    // The transaction is complete, or late when it timed out (counted as a time-out then).
+    if (tx->timed_out) {
+        ++stats.late;
+    } else {
+        ++stats.completed;
+        if (tx->time_ns != kNoTime && t.has_time() && t.time_ns >= tx->time_ns) {
+            auto latency = static_cast<std::uint64_t>(t.time_ns - tx->time_ns);
+            stats.latency_ns.add(latency);
+            stats.latency_sum_ns += latency;
+        }
     }
-    stats.max_polls = std::max(stats.max_polls, tx->polls);
     const std::string about = request_text(tx->reference, tx->id, tx->addresses);
     auto add = [&](FindingKind kind) -> Finding& {
         Finding& f = ch.add(out, kind, t, tx->frame);
@@ -398,7 +442,13 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
         for (std::size_t k = 0; k < m.blocks.size(); ++k) {
             const ProfidriveValueBlock& block = m.blocks[k];
             if (!block.is_error() || block.values.size() < 2) continue;
-            ++stats.negative_errors[block.error_number()];
+            if (auto it = stats.negative_errors.find(block.error_number());
+                it != stats.negative_errors.end())
+                ++it->second;
+            else if (stats.negative_errors.size() < Dpv1Stats::kMaxNegativeErrors)
+                stats.negative_errors.emplace(block.error_number(), 1);
+            else
+                ++stats.negative_errors_not_listed;
             if (!errors.empty()) errors += "; ";
             if (k < tx->addresses.size())
                 fmt::format_to(std::back_inserter(errors), "PNU {}: ", tx->addresses[k].pnu);
@@ -415,6 +465,14 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
     // Lengths and value blocks against the request.
     Inconsistencies found;
     check_dpv1_length(pdu, found);
+    // The response's size: no more than the Read asked for, nor than 240 bytes (a longer one is
+    // refused with error 0x15 [P:MCA101 p30]).
+    const std::size_t size = std::max<std::size_t>(pdu.length, pdu.data.size());
+    if (read_max >= 0 && size > static_cast<std::size_t>(read_max))
+        found.add("response of {} bytes, more than the {} its Read accepts", size, read_max);
+    if (size > profidrive::kMaxData)
+        found.add("response of {} bytes, more than the {} a parameter response may have", size,
+                  profidrive::kMaxData);
     if (!profidrive_response_answers(m.id, tx->id)) {
         // Not an answer to this request: its blocks cannot be judged against it.
     } else if (tx->change && !negative) {
@@ -466,6 +524,7 @@ void Dpv1ParameterAccessTracker::check_deadlines(std::int64_t now_ns, std::uint6
             if (now_ns > deadline) {
                 tx.timed_out = true;
                 ++ch.stats->timeouts;
+                --ch.stats->open;
                 Finding& f = add_finding(out, FindingKind::Dpv1ResponseTimeout, frame, now_ns,
                                          tx.frame, true, ch.master, ch.slave);
                 f.pnu = tx.first_pnu();

@@ -9,6 +9,10 @@
 //    parameter response comes (a Read answered "state conflict", Error_Code_1 0xB5, is a poll:
 //    counted, no finding), and the Read response that completes it. Latency runs from the Write
 //    to that Read response.
+//  - A transaction without its response within the time-out is counted as timed out once. It
+//    stays known, so a response (or refusal) after the time-out ends it as "late": checked like
+//    any response, no orphan, neither completed nor in the latency. A new Write to its slot and
+//    index ends it silently (the master gave up).
 //  - The DP-V1 response may come in a later FDL response than the one to its request (the
 //    slave answers link polls with an empty data unit or a short acknowledge meanwhile): a
 //    response is paired with the last DP-V1 request of the same function on the channel, not
@@ -36,27 +40,35 @@ struct Dpv1Stats {
     // At most this many distinct PNUs are counted per channel; the others only in
     // parameters_not_counted.
     static constexpr std::size_t kMaxParameters = 256;
+    // At most this many distinct error numbers are listed per channel; the others only in
+    // negative_errors_not_listed.
+    static constexpr std::size_t kMaxNegativeErrors = 256;
 
     struct ParameterUse {
         std::uint64_t reads = 0;   // in request-value requests
         std::uint64_t writes = 0;  // in change requests
     };
 
+    // Every transaction started ends in exactly one of completed, refused, abandoned and
+    // timeouts, or is still open: started = completed + refused + abandoned + timeouts + open.
     std::uint64_t telegrams = 0;  // telegrams with a DP-V1 PDU, both directions
     std::uint64_t started = 0;    // parameter requests written
-    std::uint64_t completed = 0;  // answered by a parameter response
+    std::uint64_t completed = 0;  // answered by a parameter response within the time-out
     std::uint64_t refused = 0;    // ended by a negative Write or Read response (error PDU)
     std::uint64_t abandoned = 0;  // replaced by a new request before the response was read
     std::uint64_t timeouts = 0;   // no response within the time-out
+    std::uint64_t late = 0;       // of the timeouts: answered (or refused) after it
+    std::uint64_t open = 0;       // neither ended nor timed out (yet, or at the end)
     std::uint64_t polls = 0;      // Reads answered "state conflict"
-    std::uint64_t max_polls = 0;  // the most in one transaction
+    std::uint64_t max_polls = 0;  // the most in one transaction, whatever its end
     LogHistogram latency_ns;      // Write to the completing Read response
     std::uint64_t latency_sum_ns = 0;
     std::map<std::uint16_t, ParameterUse> parameters;  // PNU -> accesses
     std::uint64_t parameters_not_counted = 0;          // accesses to PNUs beyond kMaxParameters
     std::uint64_t negative_responses = 0;
     std::map<std::uint16_t, std::uint64_t> negative_errors;  // error number -> blocks
-    std::uint64_t error_pdus = 0;  // negative DP-V1 responses other than polls
+    std::uint64_t negative_errors_not_listed = 0;  // blocks with numbers beyond the first 256
+    std::uint64_t error_pdus = 0;                  // negative DP-V1 responses other than polls
     Dialect dialect = Dialect::Vlt;
     std::int64_t first_time_ns = kNoTime;
     std::int64_t last_time_ns = kNoTime;
@@ -96,7 +108,7 @@ class Dpv1ParameterAccessTracker {
     void write_request(Channel& ch, const DecodedTelegram& t, const Dpv1Pdu& pdu,
                        const ProfidriveMessage& request, FindingList& out);
     void error_pdu(Channel& ch, const DecodedTelegram& t, const Dpv1Pdu& pdu, FindingList& out);
-    void parameter_response(Channel& ch, const DecodedTelegram& t, const Dpv1Pdu& pdu,
+    void parameter_response(Channel& ch, const DecodedTelegram& t, const Dpv1Pdu& pdu, int read_max,
                             FindingList& out);
     void check_deadlines(std::int64_t now_ns, std::uint64_t frame, FindingList& out);
 

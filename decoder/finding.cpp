@@ -1,5 +1,6 @@
 #include "decoder/finding.hpp"
 
+#include <algorithm>
 #include <iterator>
 
 #include "decoder/catalogue.hpp"
@@ -80,6 +81,16 @@ static_assert(std::size(kComponentNames) == kFindingComponentCount);
 }  // namespace
 
 std::span<const FindingKindInfo> finding_catalogue() noexcept { return kCatalogue; }
+
+std::size_t longest_finding_kind_name() noexcept {
+    static const std::size_t longest = [] {
+        std::size_t n = 0;
+        for (const FindingKindInfo& row : kCatalogue)
+            n = std::max(n, row.name.size());
+        return n;
+    }();
+    return longest;
+}
 
 const FindingKindInfo& finding_kind_info(FindingKind kind) noexcept {
     return kCatalogue[static_cast<std::size_t>(kind)];

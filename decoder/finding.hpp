@@ -72,6 +72,8 @@ struct FindingKindInfo {
 // Every finding kind, one row each, in enum order (checked when finding.cpp compiles).
 std::span<const FindingKindInfo> finding_catalogue() noexcept;
 const FindingKindInfo& finding_kind_info(FindingKind kind) noexcept;
+// The length of the longest kind name: the width of a column of kind names.
+std::size_t longest_finding_kind_name() noexcept;
 
 std::string_view finding_kind_name(FindingKind kind);  // "stacked_request", ...
 std::optional<FindingKind> finding_kind_from_name(std::string_view name);

@@ -32,10 +32,24 @@ std::string parameters_text(const Dpv1Stats& s) {
     return text;
 }
 
+// "5 started, 2 completed, 0 refused, 0 abandoned, 2 timed out (1 answered late), 1 open at end
+// of capture": every transaction started is in exactly one of these (the late ones are among the
+// timed out).
 std::string transactions_text(const Dpv1Stats& s, bool timed) {
-    return fmt::format(
+    std::string text = fmt::format(
         "{} started, {} completed, {} refused, {} abandoned, {}", s.started, s.completed, s.refused,
         s.abandoned, timed ? fmt::format("{} timed out", s.timeouts) : std::string(kNoTimestamps));
+    if (s.late) fmt::format_to(std::back_inserter(text), " ({} answered late)", s.late);
+    if (s.open) fmt::format_to(std::back_inserter(text), ", {} open at end of capture", s.open);
+    return text;
+}
+
+// "; 3 with further error numbers not listed (at most 256 listed)", or "".
+std::string errors_not_listed_text(const Dpv1Stats& s) {
+    if (!s.negative_errors_not_listed) return {};
+    return fmt::format("; {} with further error numbers not listed (at most {} listed)",
+                       plural_count(s.negative_errors_not_listed, "block", "blocks"),
+                       Dpv1Stats::kMaxNegativeErrors);
 }
 
 std::string polls_text(const Dpv1Stats& s) {
@@ -92,6 +106,7 @@ class Dpv1Section final : public StationSection {
                            error_text_of(s_, error), n);
             separator = ";";
         }
+        append(b, errors_not_listed_text(s_));
         b.push_back('\n');
         fmt::format_to(it, "  error PDUs     {}\n", s_.error_pdus);
         fmt::format_to(it, "  findings       {}\n", findings_by_kind_text(findings_));
@@ -122,6 +137,9 @@ class Dpv1Section final : public StationSection {
         for (const auto& [error, n] : s_.negative_errors)
             fmt::format_to(it, "- Error 0x{:02X} ({}), {}x\n", error,
                            md_escape(error_text_of(s_, error)), n);
+        if (s_.negative_errors_not_listed)
+            fmt::format_to(it, "- Further error numbers not listed: {}\n",
+                           plural_count(s_.negative_errors_not_listed, "block", "blocks"));
         fmt::format_to(it, "- Error PDUs: {}\n", s_.error_pdus);
         fmt::format_to(it, "- Findings: {}\n", md_escape(findings_by_kind_text(findings_)));
     }
@@ -147,6 +165,8 @@ class Dpv1Section final : public StationSection {
         count("refused", s_.refused);
         count("abandoned", s_.abandoned);
         w.key("timeouts").optional_integer(timed_, static_cast<std::int64_t>(s_.timeouts));
+        count("late", s_.late);
+        count("open", s_.open);
         count("polls", s_.polls);
         count("max_polls", s_.max_polls);
         w.key("latency_ms");
@@ -184,6 +204,7 @@ class Dpv1Section final : public StationSection {
             w.end_object();
         }
         w.end_array();
+        count("negative_errors_not_listed", s_.negative_errors_not_listed);
         count("error_pdus", s_.error_pdus);
         w.key("findings").begin_object();
         for (FindingKind kind : kAllKinds)
@@ -248,6 +269,10 @@ class Dpv1Section final : public StationSection {
                                "class=\"n\">{}</td></tr>\n",
                                error, xml(error_text_of(s_, error)), n);
             append(b, "</table>\n");
+            if (s_.negative_errors_not_listed)
+                fmt::format_to(it,
+                               "<p class=\"meta\">{} with further error numbers not listed.</p>\n",
+                               plural_count(s_.negative_errors_not_listed, "block", "blocks"));
         }
         html_findings_by_kind(b, findings_);
         append(b, "</section>\n");

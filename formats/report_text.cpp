@@ -1,4 +1,5 @@
 // The text report.
+#include <algorithm>
 #include <iterator>
 
 #include "formats/report_model.hpp"
@@ -39,15 +40,17 @@ void write_text(const ReportContext& c, const ReportModel& m, Output& out) {
         fmt::format_to(it, "\nBus (telegrams no station can be named for)\n  findings       {}\n",
                        findings_by_kind_text(c.tracker->bus().findings));
     fmt::format_to(it, "\nFindings ({}, in capture order)\n", m.shown);
+    // The kind column is as wide as the longest kind name.
+    const std::size_t kind_width = longest_finding_kind_name();
     if (m.shown > 0)
-        fmt::format_to(it, "  {:>8}  {:>12}  {:<8} {:<27} {:<9} {:>5}  {}\n", "frame", "time (s)",
-                       "severity", "kind", "master/slave", "pnu", "message");
+        fmt::format_to(it, "  {:>8}  {:>12}  {:<8} {:<{}} {:<12} {:>5}  {}\n", "frame", "time (s)",
+                       "severity", "kind", kind_width, "master/slave", "pnu", "message");
     FindingCounts listed{};
     c.findings->for_each([&](const Finding& f) {
         if (!shows(c, f) || listed[static_cast<std::size_t>(f.kind)]++ >= kListedPerKind) return;
-        fmt::format_to(it, "  {:>8}  {:>12}  {:<8} {:<27} {:<12} {:>5}  {}\n", f.frame,
+        fmt::format_to(it, "  {:>8}  {:>12}  {:<8} {:<{}} {:<12} {:>5}  {}\n", f.frame,
                        relative_seconds(c, f.time_ns), severity_name(f.severity),
-                       finding_kind_name(f.kind), station_label(f),
+                       finding_kind_name(f.kind), kind_width, station_label(f),
                        f.pnu ? fmt::format("{}", *f.pnu) : std::string("-"), f.message);
         out.end_record();
     });

@@ -1,5 +1,6 @@
 #include "formats/summary.hpp"
 
+#include <algorithm>
 #include <iterator>
 #include <optional>
 #include <string>
@@ -7,6 +8,25 @@
 #include "formats/describe.hpp"
 
 namespace dpscope {
+
+namespace {
+
+// "note", or "1 warning, 1 note" when the findings of a kind had several severities.
+std::string severities_text(const std::array<std::uint64_t, 3>& by_severity) {
+    std::string text;
+    int seen = 0;
+    std::string_view only;
+    for (std::size_t s = by_severity.size(); s-- > 0;) {
+        if (!by_severity[s]) continue;
+        auto severity = static_cast<Severity>(s);
+        only = severity_name(severity);
+        fmt::format_to(std::back_inserter(text), "{}{} {}{}", seen++ ? ", " : "", by_severity[s],
+                       severity_name(severity), by_severity[s] == 1 ? "" : "s");
+    }
+    return seen == 1 ? std::string(only) : text;
+}
+
+}  // namespace
 
 std::string dialect_hint_text(std::uint8_t slave, Dialect decoded,
                               const DialectEvidence& evidence) {
@@ -65,11 +85,14 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
     for (std::uint64_t n : findings_)
         total_findings += n;
     fmt::format_to(it, "  findings: {}\n", total_findings);
+    const std::size_t kind_width = std::max<std::size_t>(26, longest_finding_kind_name());
     for (std::size_t k = 0; k < kFindingKindCount; ++k)
         if (findings_[k]) {
             auto kind = static_cast<FindingKind>(k);
-            fmt::format_to(it, "    {:<26} {:>10}  ({})\n", finding_kind_name(kind), findings_[k],
-                           severity_name(default_severity(kind)));
+            // Kind and count span 37 columns; the kind column is as wide as the longest name.
+            fmt::format_to(it, "    {:<{}} {:>{}}  ({})\n", finding_kind_name(kind), kind_width,
+                           findings_[k], 36 - kind_width,
+                           severities_text(findings_by_severity_[k]));
         }
 
     bool header = false;

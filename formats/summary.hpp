@@ -54,8 +54,11 @@ class Summary {
     }
 
     void add_findings(std::span<const Finding> findings) noexcept {
-        for (const Finding& f : findings)
+        for (const Finding& f : findings) {
             ++findings_[static_cast<std::size_t>(f.kind)];
+            ++findings_by_severity_[static_cast<std::size_t>(f.kind)]
+                                   [static_cast<std::size_t>(f.severity)];
+        }
     }
 
     std::uint64_t telegrams() const noexcept { return telegrams_; }
@@ -91,6 +94,8 @@ class Summary {
     std::array<std::uint64_t, kServiceCount> responses_{};
     std::array<std::uint64_t, kProblemKindCount> problems_{};
     std::array<std::uint64_t, kFindingKindCount> findings_{};
+    // Per kind, by the severity each finding had (options and rules can change the default).
+    std::array<std::array<std::uint64_t, 3>, kFindingKindCount> findings_by_severity_{};
     std::array<std::uint64_t, kStationCount> data_exchange_{};
     std::array<bool, kStationCount> slave_seen_{};  // a telegram to or from it was added
     std::array<DialectEvidence, kStationCount> dialects_{};

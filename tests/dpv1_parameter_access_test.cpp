@@ -365,9 +365,102 @@ TEST(Dpv1ParameterAccessTest, TimedOutRequestIsNotAlsoStackedAndItsLateResponseN
                                    {FindingKind::Dpv1ResponseTimeout, next, Severity::Error}});
     const Dpv1Stats& s = bus.stats();
     EXPECT_EQ(s.started, 3u);
-    EXPECT_EQ(s.completed, 2u);
+    // The late response ends the first as late (one of the time-outs): not completed, no latency.
+    EXPECT_EQ(s.completed, 1u);
     EXPECT_EQ(s.timeouts, 2u);
+    EXPECT_EQ(s.late, 1u);
     EXPECT_EQ(s.abandoned, 0u);
+    EXPECT_EQ(s.open, 0u);
+    EXPECT_EQ(s.latency_ns.count(), 1u);
+    EXPECT_LT(s.latency_ns.max(), 100'000'000u);
+}
+
+// Every transaction started is completed, refused, abandoned, timed out or still open.
+void expect_every_transaction_accounted(const Dpv1Stats& s) {
+    EXPECT_EQ(s.started, s.completed + s.refused + s.abandoned + s.timeouts + s.open)
+        << s.started << " started, " << s.completed << " completed, " << s.refused << " refused, "
+        << s.abandoned << " abandoned, " << s.timeouts << " timed out, " << s.open << " open";
+}
+
+TEST(Dpv1ParameterAccessTest, EveryTransactionStartedEndsOnceOrIsOpen) {
+    TrackerOptions options;
+    options.timeout_ns = 100'000'000;
+    Dpv1Bus bus(options);
+    // Completed.
+    bus.transaction(parameter_request(1, 0x01, {{12}}),
+                    parameter_response(1, 0x01, 1, {0x06, 0x01, 0, 1}));
+    // Refused.
+    bus.request(pdu(0x5F, parameter_request(2, 0x01, {{13}})));
+    bus.response(error_pdu(0xDF, 0xB0));
+    // Abandoned.
+    bus.request(pdu(0x5F, parameter_request(3, 0x01, {{14}})));
+    bus.response(write_response(10));
+    bus.request(pdu(0x5F, parameter_request(4, 0x01, {{15}})));
+    bus.response(write_response(10));
+    // ... that one times out after 3 polls and is answered late, after 2 more.
+    for (int i = 0; i < 3; ++i) {
+        bus.request(read_request());
+        bus.response(error_pdu(0xDE, 0xB5));
+        bus.advance_ms(40);
+    }
+    for (int i = 0; i < 2; ++i) {
+        bus.request(read_request());
+        bus.response(error_pdu(0xDE, 0xB5));
+    }
+    bus.request(read_request());
+    bus.response(pdu(0x5E, parameter_response(4, 0x01, 1, {0x06, 0x01, 0, 1})));
+    // Timed out, then refused late.
+    bus.request(pdu(0x5F, parameter_request(5, 0x01, {{16}})));
+    bus.response(write_response(10));
+    bus.advance_ms(200);
+    bus.request(read_request());
+    bus.response(error_pdu(0xDE, 0xA0));
+    // Timed out, then given up by a new Write, which is still open at the end.
+    bus.request(pdu(0x5F, parameter_request(6, 0x01, {{17}})));
+    bus.response(write_response(10));
+    bus.advance_ms(200);
+    bus.request(pdu(0x5F, parameter_request(7, 0x01, {{18}})));
+    bus.response(write_response(10));
+    bus.finish();
+    const Dpv1Stats& s = bus.stats();
+    EXPECT_EQ(s.started, 7u);
+    EXPECT_EQ(s.completed, 1u);
+    EXPECT_EQ(s.refused, 1u);
+    EXPECT_EQ(s.abandoned, 1u);
+    EXPECT_EQ(s.timeouts, 3u) << messages(bus.findings);
+    EXPECT_EQ(s.late, 2u);
+    EXPECT_EQ(s.open, 1u);
+    expect_every_transaction_accounted(s);
+    // The polls of the transaction that timed out count, before and after its time-out.
+    EXPECT_EQ(s.polls, 5u);
+    EXPECT_EQ(s.max_polls, 5u);
+    EXPECT_EQ(s.latency_ns.count(), 1u);
+    // The late refusal says so; the late response is no orphan.
+    bool late_refusal = false;
+    for (const Finding& f : bus.findings) {
+        EXPECT_NE(f.kind, FindingKind::Dpv1OrphanResponse) << f.message;
+        if (f.kind == FindingKind::Dpv1ErrorPdu)
+            late_refusal |= f.message.find("after its time-out") != std::string::npos;
+    }
+    EXPECT_TRUE(late_refusal) << messages(bus.findings);
+}
+
+TEST(Dpv1ParameterAccessTest, PollsOfATransactionStillOpenCountInTheMost) {
+    Dpv1Bus bus;
+    bus.transaction(parameter_request(1, 0x01, {{12}}),
+                    parameter_response(1, 0x01, 1, {0x06, 0x01, 0, 1}), 1);
+    bus.request(pdu(0x5F, parameter_request(2, 0x01, {{13}})));
+    bus.response(write_response(10));
+    for (int i = 0; i < 4; ++i) {
+        bus.request(read_request());
+        bus.response(error_pdu(0xDE, 0xB5));
+    }
+    bus.finish();
+    const Dpv1Stats& s = bus.stats();
+    EXPECT_EQ(s.max_polls, 4u);
+    EXPECT_EQ(s.open, 1u);
+    EXPECT_EQ(s.timeouts, 0u);
+    expect_every_transaction_accounted(s);
 }
 
 TEST(Dpv1ParameterAccessTest, OpenRequestAtTheEndOfTheCaptureTimesOut) {
@@ -504,6 +597,77 @@ TEST(Dpv1ParameterAccessTest, ErrorPdusAreNotesForAccessAndResourceWarningsOther
     EXPECT_EQ(bus.stats().polls, 0u);
 }
 
+TEST(Dpv1ParameterAccessTest, RequestHeaderOutOfTheSeedsRangesIsALengthError) {
+    Dpv1Bus bus;
+    std::uint64_t zero_reference = bus.request(pdu(0x5F, parameter_request(0, 0x01, {{12}})));
+    bus.response(write_response(10));
+    bus.request(read_request());
+    bus.response(pdu(0x5E, parameter_response(0, 0x01, 1, {0x06, 0x01, 0, 1})));
+    std::uint64_t no_parameters = bus.request(pdu(0x5F, parameter_request(2, 0x01, {})));
+    bus.response(write_response(4));
+    bus.request(read_request());
+    bus.response(pdu(0x5E, parameter_response(2, 0x01, 0)));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1LengthError, zero_reference, Severity::Error},
+                                   {FindingKind::Dpv1LengthError, no_parameters, Severity::Error}});
+    EXPECT_NE(bus.findings[0].message.find("request reference 0 (0x01 to 0xFF allowed)"),
+              std::string::npos)
+        << bus.findings[0].message;
+    EXPECT_NE(bus.findings[1].message.find("0 parameters (at least 1)"), std::string::npos)
+        << bus.findings[1].message;
+}
+
+TEST(Dpv1ParameterAccessTest, DoubleWordChangeWithOtherThanFourByteValuesIsALengthError) {
+    Dpv1Bus bus;
+    // 0x52 with a double word: fine.
+    bus.transaction(parameter_request(1, 0x52, {{12}}, {0x43, 0x01, 0, 0, 0, 5}),
+                    parameter_response(1, 0x02, 1));
+    // 0x52 with a Word: not a double word.
+    std::uint64_t word =
+        bus.request(pdu(0x5F, parameter_request(2, 0x52, {{13}}, {0x42, 0x01, 0, 5})));
+    bus.response(write_response(14));
+    bus.request(read_request());
+    bus.response(pdu(0x5E, parameter_response(2, 0x02, 1)));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1LengthError, word, Severity::Error}});
+    EXPECT_NE(bus.findings[0].message.find("PNU 13: format 0x42 in a double-word change"),
+              std::string::npos)
+        << bus.findings[0].message;
+}
+
+TEST(Dpv1ParameterAccessTest, ReadResponseLongerThanItsReadAcceptsIsALengthError) {
+    Dpv1Bus bus;
+    bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
+    bus.response(write_response(10));
+    bus.request({0x5E, 0, 47, 6});  // accepts at most 6 bytes
+    std::uint64_t response =
+        bus.response(pdu(0x5E, parameter_response(1, 0x01, 1, {0x06, 0x01, 0, 1})));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1LengthError, response, Severity::Error}});
+    EXPECT_NE(bus.findings[0].message.find("response of 8 bytes, more than the 6 its Read accepts"),
+              std::string::npos)
+        << bus.findings[0].message;
+}
+
+TEST(Dpv1ParameterAccessTest, ErrorPduCutShortIsANoteWithoutAClass) {
+    Dpv1Bus bus;
+    bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
+    std::uint64_t cut = bus.response({0xDF, 0x80});  // Error_Code_1 and _2 missing
+    bus.finish();
+    // The decoder reports the missing bytes; the tracker does not judge codes it never saw.
+    ASSERT_EQ(bus.findings.size(), 2u) << messages(bus.findings);
+    EXPECT_EQ(bus.findings[0].kind, FindingKind::MalformedTelegram);
+    const Finding& f = bus.findings[1];
+    EXPECT_EQ(f.kind, FindingKind::Dpv1ErrorPdu);
+    EXPECT_EQ(f.frame, cut);
+    EXPECT_EQ(f.severity, Severity::Note);
+    const std::string& message = f.message;
+    EXPECT_NE(message.find("cut short"), std::string::npos) << message;
+    EXPECT_EQ(message.find("Error_Code_1"), std::string::npos) << message;
+    EXPECT_EQ(message.find("reserved class"), std::string::npos) << message;
+    EXPECT_EQ(bus.stats().refused, 1u);
+}
+
 TEST(Dpv1ParameterAccessTest, ResponseLaterThanTheFdlReplyToItsRequestIsPaired) {
     Dpv1Bus bus;
     bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
@@ -528,13 +692,34 @@ TEST(Dpv1ParameterAccessTest, ResponseLaterThanTheFdlReplyToItsRequestIsPaired) 
 TEST(Dpv1ParameterAccessTest, ParametersAccessedAreBounded) {
     Dpv1Bus bus;
     for (std::uint16_t pnu = 1; pnu <= Dpv1Stats::kMaxParameters + 10; ++pnu)
-        bus.transaction(
-            parameter_request(static_cast<std::uint8_t>(pnu), 0x01, {{pnu}}),
-            parameter_response(static_cast<std::uint8_t>(pnu), 0x01, 1, {0x06, 0x01, 0, 1}));
+        bus.transaction(parameter_request(static_cast<std::uint8_t>(pnu % 255 + 1), 0x01, {{pnu}}),
+                        parameter_response(static_cast<std::uint8_t>(pnu % 255 + 1), 0x01, 1,
+                                           {0x06, 0x01, 0, 1}));
     bus.finish();
     EXPECT_TRUE(bus.findings.empty()) << messages(bus.findings);
     EXPECT_EQ(bus.stats().parameters.size(), Dpv1Stats::kMaxParameters);
     EXPECT_EQ(bus.stats().parameters_not_counted, 10u);
+}
+
+TEST(Dpv1ParameterAccessTest, NegativeErrorNumbersListedAreBounded) {
+    Dpv1Bus bus;
+    const std::uint16_t numbers = Dpv1Stats::kMaxNegativeErrors + 10;
+    for (std::uint16_t error = 0; error < numbers; ++error) {
+        auto reference = static_cast<std::uint8_t>(error % 255 + 1);
+        bus.transaction(parameter_request(reference, 0x01, {{12}}),
+                        parameter_response(reference, 0x81, 1,
+                                           {0x44, 0x01, static_cast<std::uint8_t>(error >> 8),
+                                            static_cast<std::uint8_t>(error & 0xFF)}));
+    }
+    // A number already listed is still counted.
+    bus.transaction(parameter_request(1, 0x01, {{12}}),
+                    parameter_response(1, 0x81, 1, {0x44, 0x01, 0x00, 0x02}));
+    bus.finish();
+    const Dpv1Stats& s = bus.stats();
+    EXPECT_EQ(s.negative_responses, numbers + 1u);
+    EXPECT_EQ(s.negative_errors.size(), Dpv1Stats::kMaxNegativeErrors);
+    EXPECT_EQ(s.negative_errors_not_listed, 10u);
+    EXPECT_EQ(s.negative_errors.at(2), 2u);
 }
 
 }  // namespace

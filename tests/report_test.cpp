@@ -32,6 +32,7 @@
 #include "decoder/session_tracker.hpp"
 #include "decoder/telegram_builder.hpp"
 #include "formats/finding_log.hpp"
+#include "formats/report_model.hpp"
 #include "formats/report_timeline.hpp"
 #include "formats/summary.hpp"
 #include "simulator/simulator.hpp"
@@ -1092,6 +1093,8 @@ TEST(ReportTest, Dpv1SectionInJson) {
                                                   "refused",
                                                   "abandoned",
                                                   "timeouts",
+                                                  "late",
+                                                  "open",
                                                   "polls",
                                                   "max_polls",
                                                   "latency_ms",
@@ -1099,6 +1102,7 @@ TEST(ReportTest, Dpv1SectionInJson) {
                                                   "parameters_not_counted",
                                                   "negative_responses",
                                                   "negative_errors",
+                                                  "negative_errors_not_listed",
                                                   "error_pdus",
                                                   "findings"}));
     EXPECT_EQ(s["channel"].string(), "dpv1");
@@ -1120,6 +1124,59 @@ TEST(ReportTest, Dpv1SectionInJson) {
     EXPECT_EQ(s["findings"].keys(), dpv1_kind_names());
     EXPECT_EQ(s["findings"]["dpv1_stacked_request"].integer(), 1);
     EXPECT_EQ(s["findings"]["dpv1_negative_response"].integer(), 1);
+}
+
+// The findings table's kind column holds the longest kind name in the catalogue.
+TEST(ReportTest, FindingsTableKindColumnHoldsTheLongestKindName) {
+    EXPECT_EQ(longest_finding_kind_name(),
+              std::string_view("dpv1_parameter_count_mismatch").size());
+    std::string text = render(ReportFormat::Text, context_of(dpv1_session()));
+    std::size_t header = text.find("severity kind ");
+    ASSERT_NE(header, std::string::npos) << text;
+    std::size_t kind = header + std::string_view("severity ").size();
+    std::size_t station = text.find("master/slave", header);
+    ASSERT_NE(station, std::string::npos);
+    EXPECT_EQ(station - kind, longest_finding_kind_name() + 1) << text;
+}
+
+// The transactions line accounts for every one started: late answers among the time-outs, and
+// those still open at the end of the capture; error numbers beyond the listed ones are counted.
+TEST(ReportTest, Dpv1SectionNamesLateOpenAndUnlistedErrors) {
+    ChannelStats stats;
+    stats.master = 1;
+    stats.slave = 5;
+    Dpv1Stats& s = stats.dpv1;
+    s.telegrams = 20;
+    s.first_time_ns = kT0Sample;
+    s.started = 6;
+    s.completed = 2;
+    s.refused = 1;
+    s.timeouts = 2;
+    s.late = 1;
+    s.open = 1;
+    s.negative_responses = 4;
+    s.negative_errors = {{2, 3}};
+    s.negative_errors_not_listed = 1;
+    auto section = report::make_dpv1_section(stats);
+    const ReportContext c = context_of(dpv1_session());
+    TextBuffer text;
+    section->write_text(c, text);
+    std::string out = fmt::to_string(text);
+    EXPECT_NE(out.find("  transactions   6 started, 2 completed, 1 refused, 0 abandoned, 2 timed "
+                       "out (1 answered late), 1 open at end of capture\n"),
+              std::string::npos)
+        << out;
+    EXPECT_NE(out.find("3x; 1 block with further error numbers not listed (at most 256 listed)\n"),
+              std::string::npos)
+        << out;
+    TextBuffer markdown;
+    section->write_markdown(c, markdown);
+    EXPECT_NE(fmt::to_string(markdown).find("1 open at end of capture"), std::string::npos);
+    TextBuffer html;
+    section->write_html(c, html);
+    EXPECT_NE(fmt::to_string(html).find("1 block with further error numbers not listed."),
+              std::string::npos)
+        << fmt::to_string(html);
 }
 
 TEST(ReportTest, Dpv1SectionInMarkdownAndHtml) {
@@ -1218,7 +1275,7 @@ TEST(ReportTest, TextHasTheSectionsAndOneLinePerFinding) {
     std::vector<std::string> rows = lines_after(lines, "Findings (");
     ASSERT_EQ(rows.size(), kFaultsFindings.size() + 1);  // the column heads, then the findings
     EXPECT_EQ(rows[0],
-              "     frame      time (s)  severity kind                        "
+              "     frame      time (s)  severity kind                          "
               "master/slave   pnu  message");
     for (std::size_t i = 0; i < kFaultsFindings.size(); ++i) {
         const ExpectedFinding& f = kFaultsFindings[i];
@@ -1233,7 +1290,7 @@ TEST(ReportTest, TextHasTheSectionsAndOneLinePerFinding) {
         EXPECT_NE(row.find(station), std::string::npos) << row;
     }
     EXPECT_EQ(rows[1],
-              "        62      0.011905  error    fcs_error                   2 / 3      "
+              "        62      0.011905  error    fcs_error                     2 / 3      "
               "      -  byte 19: FCS 0x7C wrong, checksum of the data is 0x26");
 }
 

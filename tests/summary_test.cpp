@@ -81,7 +81,10 @@ std::vector<Finding> findings() {
     stacked.kind = FindingKind::StackedRequest;
     Finding rejected;
     rejected.kind = FindingKind::RequestRejected;
-    return {fcs, stacked, fcs, rejected};
+    std::vector<Finding> out{fcs, stacked, fcs, rejected};
+    for (Finding& f : out)
+        f.severity = default_severity(f.kind);  // as the rules make them
+    return out;
 }
 
 std::string render_text(const Counted& c, const InputSummary& input) {
@@ -98,6 +101,51 @@ std::string render_text(const Counted& c, const InputSummary& input) {
     std::string text(data, size);
     std::free(data);
     return text;
+}
+
+// The kind column holds the longest kind name: the counts stay in one column.
+TEST(SummaryTest, LongestKindNamesKeepTheCountsAligned) {
+    Counted c;
+    std::vector<Finding> list(3);
+    list[0].kind = FindingKind::Dpv1ParameterCountMismatch;
+    list[1].kind = FindingKind::Dpv1UnexpectedResponseId;
+    list[2].kind = FindingKind::FcsError;
+    c.summary.add_findings(list);
+    std::string text = render_text(c, InputSummary{"x.raw", "raw", 0, false});
+    std::vector<std::size_t> ends;
+    for (std::string_view name :
+         {"dpv1_parameter_count_mismatch", "dpv1_unexpected_response_id", "fcs_error"}) {
+        std::size_t at = text.find(std::string("    ") + std::string(name) + " ");
+        ASSERT_NE(at, std::string::npos) << text;
+        std::size_t end = text.find("  (", at);
+        ASSERT_NE(end, std::string::npos);
+        ends.push_back(end - at);
+    }
+    EXPECT_EQ(ends[0], ends[1]) << text;
+    EXPECT_EQ(ends[0], ends[2]) << text;
+    EXPECT_NE(text.find("    dpv1_parameter_count_mismatch       1  (error)\n"), std::string::npos)
+        << text;
+}
+
+// A kind whose findings had several severities says how many had which.
+TEST(SummaryTest, KindWithMixedSeveritiesCountsEach) {
+    Counted c;
+    std::vector<Finding> list(4);
+    list[0].kind = FindingKind::Dpv1ErrorPdu;
+    list[0].severity = Severity::Warning;
+    list[1].kind = FindingKind::Dpv1ErrorPdu;
+    list[1].severity = Severity::Note;
+    list[2].kind = FindingKind::Dpv1ErrorPdu;
+    list[2].severity = Severity::Note;
+    list[3].kind = FindingKind::FcsError;
+    list[3].severity = Severity::Error;
+    c.summary.add_findings(list);
+    std::string text = render_text(c, InputSummary{"x.raw", "raw", 0, false});
+    EXPECT_NE(text.find("dpv1_error_pdu                      3  (1 warning, 2 notes)\n"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("fcs_error                           1  (error)\n"), std::string::npos)
+        << text;
 }
 
 TEST(SummaryTest, EmptySummary) {
