@@ -90,10 +90,16 @@ void SessionTracker::count(std::size_t from) {
     for (std::size_t i = from; i < current_.size(); ++i) {
         const Finding& f = current_[i];
         ++by_severity_[static_cast<std::size_t>(f.severity)];
-        if (f.has_stations)
-            ++channel(f.master, f.slave).stats.findings[static_cast<std::size_t>(f.kind)];
-        else
-            ++bus_.findings[static_cast<std::size_t>(f.kind)];
+        const auto kind = static_cast<std::size_t>(f.kind);
+        const auto severity = static_cast<std::size_t>(f.severity);
+        if (f.has_stations) {
+            ChannelStats& stats = channel(f.master, f.slave).stats;
+            ++stats.findings[kind];
+            ++stats.findings_by_severity[kind][severity];
+        } else {
+            ++bus_.findings[kind];
+            ++bus_.findings_by_severity[kind][severity];
+        }
     }
 }
 

@@ -59,6 +59,9 @@ class DialectEvidence {
     std::uint64_t other_defines_ = 0;  // of those, codes the other dialect defines
 };
 
+// Findings counted per kind and, within it, per severity (indexed by Severity).
+using FindingSeverityCounts = std::array<std::array<std::uint64_t, 3>, kFindingKindCount>;
+
 // One channel: the engine's counts and the DP carrier's.
 struct ChannelStats : ParameterChannelStats {
     std::uint8_t master = 0;
@@ -68,6 +71,9 @@ struct ChannelStats : ParameterChannelStats {
     std::uint64_t data_exchange = 0;  // Data_Exchange telegrams, both directions
     std::uint64_t cycles = 0;         // Data_Exchange requests (retries not counted)
     std::array<std::uint64_t, kFindingKindCount> findings{};  // every rule's
+    // The same split by the severity each finding had (a kind's severity can vary: options such
+    // as --strict, dpv1_error_pdu by error class).
+    FindingSeverityCounts findings_by_severity{};
     std::int64_t first_time_ns = kNoTime;
     std::int64_t last_time_ns = kNoTime;
     Dpv1Stats dpv1;  // DP-V1 parameter access (decoder/dpv1_parameter_access.hpp)
@@ -76,6 +82,7 @@ struct ChannelStats : ParameterChannelStats {
 // Counts for what no channel can be named for (garbage on the bus).
 struct BusStats {
     std::array<std::uint64_t, kFindingKindCount> findings{};
+    FindingSeverityCounts findings_by_severity{};
 };
 
 class SessionTracker {

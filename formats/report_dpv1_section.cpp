@@ -64,7 +64,8 @@ std::string error_text_of(const Dpv1Stats& s, std::uint16_t error) {
 
 class Dpv1Section final : public StationSection {
   public:
-    explicit Dpv1Section(const ChannelStats& stats) : c_(stats), s_(stats.dpv1) {
+    explicit Dpv1Section(const ChannelStats& stats)
+        : c_(stats), s_(stats.dpv1), by_severity_(stats.findings_by_severity) {
         for (FindingKind kind : kAllKinds)
             if (covers(kind))
                 findings_[static_cast<std::size_t>(kind)] =
@@ -217,8 +218,9 @@ class Dpv1Section final : public StationSection {
     void write_html_row(const ReportContext& /*c*/, TextBuffer& b) const override {
         std::array<std::uint64_t, 3> severities{};
         for (FindingKind kind : kAllKinds)
-            severities[static_cast<std::size_t>(default_severity(kind))] +=
-                findings_[static_cast<std::size_t>(kind)];
+            if (covers(kind))
+                for (std::size_t level = 0; level < severities.size(); ++level)
+                    severities[level] += by_severity_[static_cast<std::size_t>(kind)][level];
         fmt::format_to(std::back_inserter(b),
                        "<tr><td class=\"n\"><a href=\"#slave-{}-{}-dpv1\">{}</a></td><td "
                        "class=\"n\">{}</td><td>DP-V1</td><td>{}</td><td class=\"n\">{}</td><td "
@@ -274,7 +276,7 @@ class Dpv1Section final : public StationSection {
                                "<p class=\"meta\">{} with further error numbers not listed.</p>\n",
                                plural_count(s_.negative_errors_not_listed, "block", "blocks"));
         }
-        html_findings_by_kind(b, findings_);
+        html_findings_by_kind(b, findings_, by_severity_);
         append(b, "</section>\n");
     }
 
@@ -298,6 +300,7 @@ class Dpv1Section final : public StationSection {
     const ChannelStats& c_;
     const Dpv1Stats& s_;
     FindingCounts findings_{};  // the DP-V1 kinds only
+    const FindingSeverityCounts& by_severity_;
     bool timed_ = false;
     bool any_latency_ = false;
     double min_ms_ = 0, median_ms_ = 0, mean_ms_ = 0, p95_ms_ = 0, max_ms_ = 0;

@@ -108,7 +108,7 @@ void write_html(const ReportContext& c, const ReportModel& m, Output& out) {
         append(b,
                "<section class=\"bus\" id=\"bus\">\n<h2>Bus (telegrams no station can be "
                "named for)</h2>\n");
-        html_findings_by_kind(b, c.tracker->bus().findings);
+        html_findings_by_kind(b, c.tracker->bus().findings, c.tracker->bus().findings_by_severity);
         append(b, "</section>\n");
         out.end_record();
     }

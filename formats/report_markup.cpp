@@ -42,7 +42,8 @@ void html_kv(TextBuffer& b, std::string_view key, std::string_view value) {
     append(b, "</td></tr>\n");
 }
 
-void html_findings_by_kind(TextBuffer& b, const FindingCounts& findings) {
+void html_findings_by_kind(TextBuffer& b, const FindingCounts& findings,
+                           const FindingSeverityCounts& by_severity) {
     append(b, "<h3>Findings by kind</h3>\n");
     bool any = false;
     for (FindingKind kind : kAllKinds)
@@ -55,13 +56,17 @@ void html_findings_by_kind(TextBuffer& b, const FindingCounts& findings) {
            "<table class=\"kinds\"><tr><th>kind</th><th>severity</th><th "
            "class=\"n\">count</th></tr>\n");
     for (FindingKind kind : kAllKinds) {
-        std::uint64_t n = findings[static_cast<std::size_t>(kind)];
-        if (!n) continue;
-        std::string_view severity = severity_name(default_severity(kind));
-        fmt::format_to(std::back_inserter(b),
-                       "<tr class=\"{}\"><td>{}</td><td class=\"{}\">{}</td><td "
-                       "class=\"n\">{}</td></tr>\n",
-                       severity, finding_kind_name(kind), severity, severity, n);
+        if (!findings[static_cast<std::size_t>(kind)]) continue;
+        for (Severity level : {Severity::Error, Severity::Warning, Severity::Note}) {
+            std::uint64_t n =
+                by_severity[static_cast<std::size_t>(kind)][static_cast<std::size_t>(level)];
+            if (!n) continue;
+            std::string_view severity = severity_name(level);
+            fmt::format_to(std::back_inserter(b),
+                           "<tr class=\"{}\"><td>{}</td><td class=\"{}\">{}</td><td "
+                           "class=\"n\">{}</td></tr>\n",
+                           severity, finding_kind_name(kind), severity, severity, n);
+        }
     }
     append(b, "</table>\n");
 }

@@ -16,6 +16,8 @@ std::string xml(std::string_view text);
 // An HTML table row <tr><th>key</th><td>value</td></tr>, both escaped.
 void html_kv(TextBuffer& b, std::string_view key, std::string_view value);
 // HTML "Findings by kind": a table of the kinds found, or "None."
-void html_findings_by_kind(TextBuffer& b, const FindingCounts& findings);
+// The kinds `findings` counts, a row per kind and severity seen (`by_severity`).
+void html_findings_by_kind(TextBuffer& b, const FindingCounts& findings,
+                           const FindingSeverityCounts& by_severity);
 
 }  // namespace dpscope::report

@@ -194,7 +194,7 @@ void svg_timeline(TextBuffer& b, const Timeline& timeline, const ChannelStats& s
 class PcvSection final : public StationSection {
   public:
     PcvSection(const ReportContext& c, const ChannelStats& stats, const Timeline& timeline)
-        : s_(stats), timeline_(timeline) {
+        : s_(stats), timeline_(timeline), by_severity_(stats.findings_by_severity) {
         for (FindingKind kind : kAllKinds)
             if (covers(kind))
                 findings_[static_cast<std::size_t>(kind)] =
@@ -386,8 +386,9 @@ class PcvSection final : public StationSection {
         const Latency& l = latency_;
         std::array<std::uint64_t, 3> severities{};
         for (FindingKind kind : kAllKinds)
-            severities[static_cast<std::size_t>(default_severity(kind))] +=
-                findings_[static_cast<std::size_t>(kind)];
+            if (covers(kind))
+                for (std::size_t level = 0; level < severities.size(); ++level)
+                    severities[level] += by_severity_[static_cast<std::size_t>(kind)][level];
         fmt::format_to(std::back_inserter(b),
                        "<tr><td class=\"n\"><a href=\"#slave-{}-{}\">{}</a></td><td class=\"n\">{}"
                        "</td><td>{}</td><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>"
@@ -465,7 +466,7 @@ class PcvSection final : public StationSection {
             }
             append(b, "</table>\n");
         }
-        html_findings_by_kind(b, findings_);
+        html_findings_by_kind(b, findings_, by_severity_);
         append(b, "</section>\n");
     }
 
@@ -489,6 +490,7 @@ class PcvSection final : public StationSection {
     const ChannelStats& s_;
     const Timeline& timeline_;
     FindingCounts findings_{};  // the kinds the section covers
+    const FindingSeverityCounts& by_severity_;
     bool has_ident_ = false;
     std::uint16_t ident_ = 0;
     bool timed_ = false;        // its telegrams carry timestamps: time-outs and ms latency judged

@@ -1195,6 +1195,43 @@ TEST(ReportTest, Dpv1SectionInMarkdownAndHtml) {
               std::string::npos);
 }
 
+TEST(ReportTest, HtmlCountsEachFindingWithTheSeverityItHad) {
+    // Two error PDUs to Writes: an application-class one (a warning) and an access-class one
+    // (a note). The kinds table and the slave's row show what each was, not the kind's default.
+    Analysis a;
+    std::int64_t time = kT0Sample;
+    std::uint64_t number = 0;
+    bool fcb = true;
+    auto send = [&](std::vector<std::uint8_t> du, bool request) {
+        std::vector<std::uint8_t> bytes =
+            request ? build_telegram(
+                          {5, 1, request_fc(FdlFunction::SrdHigh, fcb, true), 51, 51, Bytes(du)})
+                    : build_telegram({1, 5, response_fc(FdlStatus::DataLow), 51, 51, Bytes(du)});
+        if (request) fcb = !fcb;
+        a.feed(Bytes(bytes.data(), bytes.size()), time, ++number);
+        time += 1'000'000;
+    };
+    for (std::uint8_t code : {std::uint8_t{0xA1}, std::uint8_t{0xB0}}) {
+        send({0x5F, 0, 47, 10, code, 0x01, 0, 1, 0x10, 0, 0, 12, 0, 0}, true);
+        send({0xDF, 0x80, code, 0x00}, false);
+    }
+    a.finish();
+    a.input = InputSummary{"dpv1.pcap", "pcap", 0, false};
+    std::string html = render(ReportFormat::Html, context_of(a));
+    EXPECT_NE(html.find("<tr class=\"warning\"><td>dpv1_error_pdu</td><td class=\"warning\">"
+                        "warning</td><td class=\"n\">1</td></tr>"),
+              std::string::npos)
+        << html;
+    EXPECT_NE(html.find("<tr class=\"note\"><td>dpv1_error_pdu</td><td class=\"note\">"
+                        "note</td><td class=\"n\">1</td></tr>"),
+              std::string::npos)
+        << html;
+    EXPECT_NE(html.find("<td class=\"n error\">0</td><td class=\"n warning\">1</td><td "
+                        "class=\"n note\">1</td></tr>"),
+              std::string::npos)
+        << html;
+}
+
 TEST(ReportTest, JunitDpv1SuiteHasACasePerDpv1Rule) {
     auto root = junit_report(context_of(dpv1_session()));
     ASSERT_TRUE(root);
