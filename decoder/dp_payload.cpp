@@ -50,14 +50,20 @@ constexpr std::uint8_t kDpv1Status1Reserved = 0x1B;
 constexpr std::uint8_t kDpv1Status2Reserved = 0x02;
 constexpr std::uint8_t kDpv1Status3Reserved = 0x60;
 
-bool need(ByteReader& reader, std::size_t bytes, ProblemList& problems) {
-    if (reader.remaining() >= bytes) return true;
-    problems.add(ProblemKind::ServiceDataShort, reader.offset(), static_cast<std::uint32_t>(bytes),
+}  // namespace
+
+void report_service_data_short(const ByteReader& reader, std::size_t wanted,
+                               ProblemList& problems) noexcept {
+    problems.add(ProblemKind::ServiceDataShort, reader.offset(), static_cast<std::uint32_t>(wanted),
                  static_cast<std::uint32_t>(reader.remaining()));
-    return false;
 }
 
-}  // namespace
+bool need_service_data(const ByteReader& reader, std::size_t bytes,
+                       ProblemList& problems) noexcept {
+    if (reader.remaining() >= bytes) return true;
+    report_service_data_short(reader, bytes, problems);
+    return false;
+}
 
 std::span<const FlagBit> station_status_1_flags() { return kStationStatus1; }
 std::span<const FlagBit> station_status_2_flags() { return kStationStatus2; }
@@ -147,7 +153,7 @@ std::string_view dpv1_alarm_mode_text(std::uint8_t status_3) {
 }
 
 std::optional<SlaveDiag> parse_slave_diag(ByteReader reader, ProblemList& problems) {
-    if (!need(reader, 6, problems)) return std::nullopt;
+    if (!need_service_data(reader, 6, problems)) return std::nullopt;
     SlaveDiag diag;
     diag.station_status_1 = *reader.u8();
     diag.station_status_2 = *reader.u8();
@@ -212,7 +218,7 @@ std::uint32_t SetPrm::watchdog_ms() const noexcept {
 }
 
 std::optional<SetPrm> parse_set_prm(ByteReader reader, ProblemList& problems) {
-    if (!need(reader, 7, problems)) return std::nullopt;
+    if (!need_service_data(reader, 7, problems)) return std::nullopt;
     SetPrm prm;
     prm.station_status = *reader.u8();
     prm.wd_fact_1 = *reader.u8();
@@ -304,7 +310,7 @@ bool parse_cfg(ByteReader reader, std::vector<CfgModule>& modules, ProblemList& 
 }
 
 std::optional<GlobalControl> parse_global_control(ByteReader reader, ProblemList& problems) {
-    if (!need(reader, 2, problems)) return std::nullopt;
+    if (!need_service_data(reader, 2, problems)) return std::nullopt;
     GlobalControl gc;
     gc.command = *reader.u8();
     gc.group_select = *reader.u8();
@@ -312,7 +318,7 @@ std::optional<GlobalControl> parse_global_control(ByteReader reader, ProblemList
 }
 
 std::optional<SetSlaveAdd> parse_set_slave_add(ByteReader reader, ProblemList& problems) {
-    if (!need(reader, 4, problems)) return std::nullopt;
+    if (!need_service_data(reader, 4, problems)) return std::nullopt;
     SetSlaveAdd ssa;
     ssa.new_address = *reader.u8();
     ssa.ident = *reader.u16_be();

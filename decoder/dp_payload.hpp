@@ -76,6 +76,12 @@ std::string_view channel_io_text(std::uint8_t io);
 // Alarms 1..6, statuses 1..3, 30, 31; 32..126 manufacturer-specific; 0, 127 and the gaps reserved.
 std::string_view dpv1_alarm_or_status_text(std::uint8_t type_byte);
 
+// ServiceDataShort at the reader's position: `wanted` bytes of a service's data unit were due
+// and fewer are left. need_service_data() reports it when fewer than `bytes` remain.
+void report_service_data_short(const ByteReader& reader, std::size_t wanted,
+                               ProblemList& problems) noexcept;
+bool need_service_data(const ByteReader& reader, std::size_t bytes, ProblemList& problems) noexcept;
+
 // Whether a slave runs in DP-V1 mode, as its last Set_Prm said (DPV1_Status_1 bit 7,
 // DPV1_Enable). A device-related diagnosis block is a DP-V1 alarm or status only in DP-V1 mode;
 // otherwise it is manufacturer-specific data. Unknown: no Set_Prm to the slave in the capture.

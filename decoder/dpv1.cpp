@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "decoder/dp_payload.hpp"
+
 namespace dpscope {
 
 namespace {
@@ -34,11 +36,6 @@ std::string_view negative_function_name(std::uint8_t base) {
     }
 }
 
-void short_of(ProblemList& problems, const ByteReader& reader, std::size_t wanted) {
-    problems.add(ProblemKind::ServiceDataShort, reader.offset(), static_cast<std::uint32_t>(wanted),
-                 static_cast<std::uint32_t>(reader.remaining()));
-}
-
 // True when the fixed part was there (the address parameters may still be missing).
 bool read_initiate(ByteReader& reader, bool request, Dpv1Initiate& out, ProblemList& problems) {
     // Request: Function, 3 reserved, Send_Timeout (2), Features_Supported (2),
@@ -49,7 +46,7 @@ bool read_initiate(ByteReader& reader, bool request, Dpv1Initiate& out, ProblemL
     constexpr std::size_t kResponseFixed = 7;
     std::size_t fixed = request ? kRequestFixed : kResponseFixed;
     if (reader.remaining() < fixed) {
-        short_of(problems, reader, fixed);
+        report_service_data_short(reader, fixed, problems);
         return false;
     }
     if (request) {
@@ -62,7 +59,7 @@ bool read_initiate(ByteReader& reader, bool request, Dpv1Initiate& out, ProblemL
     out.profile_features_supported = *reader.u16_be();
     out.profile_ident_number = *reader.u16_be();
     if (reader.remaining() < 4) {
-        short_of(problems, reader, 4);
+        report_service_data_short(reader, 4, problems);
         return true;
     }
     out.has_addresses = true;
@@ -73,7 +70,7 @@ bool read_initiate(ByteReader& reader, bool request, Dpv1Initiate& out, ProblemL
     auto take = [&](std::uint8_t length, Bytes& into) {
         std::size_t n = std::min<std::size_t>(length, reader.remaining());
         into = *reader.bytes(n);
-        if (n < length) short_of(problems, reader, length - n);
+        if (n < length) report_service_data_short(reader, length - n, problems);
     };
     take(out.s_len, out.s_addr);
     take(out.d_len, out.d_addr);
@@ -194,7 +191,7 @@ void parse_dpv1_pdu(ByteReader reader, bool direction_is_request, Dpv1Pdu& out,
     if (out.negative()) {
         out.layout = Dpv1Pdu::Layout::Error;
         if (reader.remaining() < 3) {
-            short_of(problems, reader, 3);
+            report_service_data_short(reader, 3, problems);
             out.error_decode = reader.u8().value_or(0);
             out.error_code_1 = reader.u8().value_or(0);
             return;
@@ -213,7 +210,7 @@ void parse_dpv1_pdu(ByteReader reader, bool direction_is_request, Dpv1Pdu& out,
             out.layout = Dpv1Pdu::Layout::Addressed;
             // Alarm_Ack has slot, type and specifier only; the others slot, index and length.
             if (reader.remaining() < 3) {
-                short_of(problems, reader, 3);
+                report_service_data_short(reader, 3, problems);
                 out.slot = reader.u8().value_or(0);
                 out.index = reader.u8().value_or(0);
                 return;
@@ -233,7 +230,7 @@ void parse_dpv1_pdu(ByteReader reader, bool direction_is_request, Dpv1Pdu& out,
         case dpv1_function::kAbort:
             out.layout = Dpv1Pdu::Layout::Abort;
             if (reader.remaining() < 2) {
-                short_of(problems, reader, 2);
+                report_service_data_short(reader, 2, problems);
                 out.abort.subnet = reader.u8().value_or(0);
                 return;
             }

@@ -59,7 +59,7 @@ constexpr FindingKindInfo kCatalogue[] = {
     {FindingKind::Dpv1NegativeResponse, "dpv1_negative_response", Severity::Note,
      Dpv1ParameterAccess, "parameter requests are executed (negative responses)"},
     {FindingKind::Dpv1LengthError, "dpv1_length_error", Severity::Error, Dpv1ParameterAccess,
-     "lengths and value blocks agree with the request"},
+     "requests are in range, and lengths and value blocks agree with the request"},
     {FindingKind::Dpv1ErrorPdu, "dpv1_error_pdu", Severity::Note, Dpv1ParameterAccess,
      "DP-V1 requests are accepted (error PDUs other than state conflict)"},
 };

@@ -7,18 +7,15 @@
 #include <cmath>
 #include <cstring>
 
+#include "decoder/dp_payload.hpp"
+
 namespace dpscope {
 
 namespace {
 
-void short_of(ProblemList& problems, const ByteReader& reader, std::size_t wanted) {
-    problems.add(ProblemKind::ServiceDataShort, reader.offset(), static_cast<std::uint32_t>(wanted),
-                 static_cast<std::uint32_t>(reader.remaining()));
-}
-
 bool read_header(ByteReader& reader, ProfidriveMessage& out, ProblemList& problems) {
     if (reader.remaining() < 4) {
-        short_of(problems, reader, 4);
+        report_service_data_short(reader, 4, problems);
         return false;
     }
     out.has_header = true;
@@ -33,7 +30,7 @@ bool read_header(ByteReader& reader, ProfidriveMessage& out, ProblemList& proble
 // recorded); a block whose format has no known size takes the rest of the data.
 bool read_block(ByteReader& reader, ProfidriveMessage& out, ProblemList& problems) {
     if (reader.remaining() < 2) {
-        short_of(problems, reader, 2);
+        report_service_data_short(reader, 2, problems);
         return false;
     }
     ProfidriveValueBlock& block = out.blocks.emplace_back();
@@ -47,7 +44,7 @@ bool read_block(ByteReader& reader, ProfidriveMessage& out, ProblemList& problem
     }
     std::size_t wanted = static_cast<std::size_t>(size) * block.count;
     if (reader.remaining() < wanted) {
-        short_of(problems, reader, wanted);
+        report_service_data_short(reader, wanted, problems);
         block.values = reader.rest();
         return false;
     }
@@ -293,7 +290,7 @@ void parse_profidrive_request(ByteReader reader, ProfidriveMessage& out,
     if (!read_header(reader, out, problems)) return;
     for (std::uint8_t k = 0; k < out.count; ++k) {
         if (reader.remaining() < 6) {
-            short_of(problems, reader, 6);
+            report_service_data_short(reader, 6, problems);
             return;
         }
         ProfidriveAddress& address = out.addresses.emplace_back();
@@ -320,7 +317,8 @@ void parse_profidrive_response(ByteReader reader, ProfidriveMessage& out,
     bool header_only = out.id == profidrive::kChangeValue ||
                        out.id == profidrive::kChangeValueNonVolatile ||
                        out.id == profidrive::kChangeValueDoubleWord;
-    if (!header_only && out.blocks.size() < out.count) short_of(problems, reader, 2);
+    if (!header_only && out.blocks.size() < out.count)
+        report_service_data_short(reader, 2, problems);
     out.trailing = static_cast<std::uint16_t>(reader.remaining());
 }
 
