@@ -216,11 +216,7 @@ class Dpv1Section final : public StationSection {
     }
 
     void write_html_row(const ReportContext& /*c*/, TextBuffer& b) const override {
-        std::array<std::uint64_t, 3> severities{};
-        for (FindingKind kind : kAllKinds)
-            if (covers(kind))
-                for (std::size_t level = 0; level < severities.size(); ++level)
-                    severities[level] += by_severity_[static_cast<std::size_t>(kind)][level];
+        const std::array<std::uint64_t, 3> severities = severity_totals(findings_, by_severity_);
         fmt::format_to(std::back_inserter(b),
                        "<tr><td class=\"n\"><a href=\"#slave-{}-{}-dpv1\">{}</a></td><td "
                        "class=\"n\">{}</td><td>DP-V1</td><td>{}</td><td class=\"n\">{}</td><td "

@@ -42,6 +42,16 @@ void html_kv(TextBuffer& b, std::string_view key, std::string_view value) {
     append(b, "</td></tr>\n");
 }
 
+std::array<std::uint64_t, 3> severity_totals(const FindingCounts& findings,
+                                             const FindingSeverityCounts& by_severity) {
+    std::array<std::uint64_t, 3> totals{};
+    for (FindingKind kind : kAllKinds)
+        if (findings[static_cast<std::size_t>(kind)])
+            for (std::size_t level = 0; level < totals.size(); ++level)
+                totals[level] += by_severity[static_cast<std::size_t>(kind)][level];
+    return totals;
+}
+
 void html_findings_by_kind(TextBuffer& b, const FindingCounts& findings,
                            const FindingSeverityCounts& by_severity) {
     append(b, "<h3>Findings by kind</h3>\n");

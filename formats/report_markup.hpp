@@ -1,6 +1,8 @@
 // Escaping and small building blocks for the Markdown, HTML and JUnit (XML) reports.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -19,5 +21,9 @@ void html_kv(TextBuffer& b, std::string_view key, std::string_view value);
 // The kinds `findings` counts, a row per kind and severity seen (`by_severity`).
 void html_findings_by_kind(TextBuffer& b, const FindingCounts& findings,
                            const FindingSeverityCounts& by_severity);
+// The findings of the kinds `findings` counts, by the severity each had (indexed by Severity):
+// the error, warning and note columns of a station's HTML row.
+std::array<std::uint64_t, 3> severity_totals(const FindingCounts& findings,
+                                             const FindingSeverityCounts& by_severity);
 
 }  // namespace dpscope::report

@@ -384,11 +384,7 @@ class PcvSection final : public StationSection {
     void write_html_row(const ReportContext& /*c*/, TextBuffer& b) const override {
         const ChannelStats& s = s_;
         const Latency& l = latency_;
-        std::array<std::uint64_t, 3> severities{};
-        for (FindingKind kind : kAllKinds)
-            if (covers(kind))
-                for (std::size_t level = 0; level < severities.size(); ++level)
-                    severities[level] += by_severity_[static_cast<std::size_t>(kind)][level];
+        const std::array<std::uint64_t, 3> severities = severity_totals(findings_, by_severity_);
         fmt::format_to(std::back_inserter(b),
                        "<tr><td class=\"n\"><a href=\"#slave-{}-{}\">{}</a></td><td class=\"n\">{}"
                        "</td><td>{}</td><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>"
