@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 
+#include "decoder/fc_framing_rules.hpp"
 #include "decoder/fdl_framing_rules.hpp"
 
 namespace dpscope {
@@ -11,6 +12,12 @@ namespace {
 
 constexpr std::array<PcapLinkType, 2> kProfibusLinkTypes{{
     {kLinkTypeProfibusDl, "PROFIBUS_DL"},
+    {kLinkTypeUser0, "USER0"},
+}};
+
+// The FC protocol has no link type of its own: dpscope writes it as USER0 and records the bus in
+// the file (capture/bus_tag.hpp).
+constexpr std::array<PcapLinkType, 1> kUser0LinkTypes{{
     {kLinkTypeUser0, "USER0"},
 }};
 
@@ -27,8 +34,18 @@ const CaptureProtocol& profibus_dp_protocol() noexcept {
     return protocol;
 }
 
+const CaptureProtocol& fc_protocol() noexcept {
+    static const CaptureProtocol protocol{Protocol::Fc, fc_framing_rules(), kUser0LinkTypes};
+    return protocol;
+}
+
+const CaptureProtocol& capture_protocol(Protocol protocol) noexcept {
+    return protocol == Protocol::Fc ? fc_protocol() : profibus_dp_protocol();
+}
+
 std::span<const CaptureProtocol* const> capture_protocols() noexcept {
-    static const std::array<const CaptureProtocol*, 1> protocols{&profibus_dp_protocol()};
+    static const std::array<const CaptureProtocol*, 2> protocols{&profibus_dp_protocol(),
+                                                                 &fc_protocol()};
     return protocols;
 }
 

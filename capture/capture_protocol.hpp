@@ -4,8 +4,8 @@
 // pcap and pcapng readers (the serial source gets its framing rules); none of them names a
 // protocol itself.
 //
-// PROFIBUS DP is the only protocol today. Another (the Danfoss FC protocol on RS-485, say) adds
-// its framing rules in decoder/ and a CaptureProtocol here, and is listed in capture_protocols().
+// PROFIBUS DP and the Danfoss FC protocol today. Another adds its framing rules in decoder/ and a
+// CaptureProtocol here, and is listed in capture_protocols().
 #pragma once
 
 #include <span>
@@ -41,6 +41,12 @@ struct CaptureProtocol {
 
 // PROFIBUS DP: FDL framing (decoder/fdl_framing_rules.hpp), link types 257 and 147.
 const CaptureProtocol& profibus_dp_protocol() noexcept;
+
+// The Danfoss FC protocol on RS-485: FC framing (decoder/fc_framing_rules.hpp), link type USER0.
+const CaptureProtocol& fc_protocol() noexcept;
+
+// The capture protocol of a decoder protocol.
+const CaptureProtocol& capture_protocol(Protocol protocol) noexcept;
 
 // Every protocol dpscope reads, for what is about link types in general (link_type_name).
 std::span<const CaptureProtocol* const> capture_protocols() noexcept;

@@ -113,6 +113,20 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_option("-c,--count", values.count, "Stop after reading N telegrams")
         ->check(whole_number(1, kMaxCount, " telegrams"))
         ->type_name("N");
+    app.add_option("--bus", values.bus,
+                   "The bus the capture carries: profibus (PROFIBUS DP) or fc (Danfoss FC "
+                   "protocol on RS-485). Default: from the capture (a pcap of link type 257 is "
+                   "PROFIBUS; a USER0 pcap written by dpscope names its bus; a raw or hex byte "
+                   "stream is tried with each bus's framing, and the choice is said on standard "
+                   "error)")
+        ->check(CLI::IsMember({"profibus", "fc"}))
+        ->type_name("BUS");
+    app.add_option("--fc-pnu-bits", values.fc_pnu_bits,
+                   "FC protocol: PKE bits holding the PNU: 12 (FC series, the default) or 11 "
+                   "(VLT 2800, FCD 300)")
+        ->check(CLI::IsMember({11u, 12u}))
+        ->type_name("BITS")
+        ->default_str("12");
     app.add_option("--ppo", values.ppo,
                    "ADDR=TYPE: decode slave ADDR (0 to 126) as PPO TYPE (1 to 5) instead of "
                    "inferring the type "
@@ -162,6 +176,12 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     settings.count = values.count;
     settings.tracker.timeout_ns = static_cast<std::int64_t>(values.timeout_ms) * 1'000'000;
     settings.tracker.strict = values.strict;
+    if (!values.bus.empty()) {
+        settings.protocol = &capture_protocol(*protocol_from_name(values.bus));
+        settings.bus_given = true;
+    }
+    settings.fc_decoder.pnu_bits = static_cast<std::uint8_t>(values.fc_pnu_bits);
+    settings.fc_decoder.response_window_ns = settings.tracker.timeout_ns;
     for (unsigned station : values.stations)
         settings.stations.push_back(static_cast<std::uint8_t>(station));
     for (unsigned pnu : values.pnus)
@@ -254,6 +274,11 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
 
 std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept {
     std::bitset<kStationCount> stations;
+    if (t.protocol == Protocol::Fc) {
+        // The FC master has no address: a telegram is about its drive (none for a broadcast).
+        if (t.has_roles && !t.fc.broadcast) stations.set(t.slave & 0x7F);
+        return stations;
+    }
     if (t.dp.fdl.has_addresses) stations.set(t.dp.fdl.da & 0x7F).set(t.dp.fdl.sa & 0x7F);
     if (t.has_roles) stations.set(t.master & 0x7F).set(t.slave & 0x7F);
     return stations;

@@ -16,6 +16,7 @@
 #include "capture/capture_writer.hpp"
 #include "capture/pcap_source.hpp"
 #include "decoder/bus_decoder.hpp"
+#include "decoder/fc_decoder.hpp"
 #include "decoder/result.hpp"
 #include "decoder/session_tracker.hpp"
 #include "formats/renderer.hpp"
@@ -71,6 +72,8 @@ struct DecodeOptionValues {
     std::vector<unsigned> pnus;
     std::vector<std::string> ppo;
     std::vector<std::string> dialects;
+    std::string bus;  // --bus: "" = from the capture
+    unsigned fc_pnu_bits = 12;
     std::string pcd_profile;
     std::uint32_t timeout_ms = 1000;
     bool strict = false;
@@ -82,7 +85,8 @@ struct DecodeOptionValues {
     bool print = false;        // -P: print the decode as well when writing a capture
 };
 
-// How to decode and track: -c, --ppo, --dialect, --pcd-profile, --timeout-ms, --strict.
+// How to decode and track: -c, --bus, --ppo, --dialect, --fc-pnu-bits, --pcd-profile,
+// --timeout-ms, --strict.
 void add_tracking_options(CLI::App& app, DecodeOptionValues& values);
 // What decode, hex and sniff print: -T, -V, -q, -l, --station, --pnu.
 void add_display_options(CLI::App& app, DecodeOptionValues& values,
@@ -91,10 +95,12 @@ void add_display_options(CLI::App& app, DecodeOptionValues& values,
 void add_write_options(CLI::App& app, DecodeOptionValues& values);
 
 struct DecodeSettings {
-    // What the capture carries; every source of the command is opened with it. Chosen here,
-    // once: PROFIBUS DP is the only protocol today, so no option names it.
+    // What the capture carries; every source of the command is opened with it. Chosen once:
+    // by --bus, or (bus_given false) from the capture before it is decoded.
     const CaptureProtocol* protocol = &profibus_dp_protocol();
+    bool bus_given = false;
     DecoderOptions decoder;
+    FcDecoderOptions fc_decoder;
     TrackerOptions tracker;
     OutputFormat format = OutputFormat::Text;
     bool quiet = false;

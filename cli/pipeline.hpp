@@ -18,11 +18,24 @@ class Pipeline {
   public:
     // `keep_timelines`: build the per-channel timelines (only the HTML report shows them; the
     // hot path of every other command skips them).
+    // The protocol is chosen once, from settings.protocol: its decoder and tracker are the ones
+    // fed.
     explicit Pipeline(const DecodeSettings& settings, bool keep_timelines = false)
-        : decoder_(settings.decoder), tracker_(settings.tracker), keep_timelines_(keep_timelines) {}
+        : protocol_(settings.protocol->protocol),
+          decoder_(settings.decoder),
+          fc_decoder_(settings.fc_decoder),
+          tracker_(settings.tracker),
+          keep_timelines_(keep_timelines) {}
 
     // Decodes and tracks one record; `findings` receives what the tracker found at it.
     const DecodedTelegram& feed(const Record& record, std::span<const Finding>& findings) {
+        if (protocol_ == Protocol::Fc) {
+            const DecodedTelegram& t =
+                fc_decoder_.decode(record.bytes, record.time_ns, record.number);
+            findings = {};
+            summary_.add(t);
+            return t;
+        }
         const DecodedTelegram& t = decoder_.decode(record.bytes, record.time_ns, record.number);
         findings = tracker_.track(t);
         summary_.add(t);
@@ -39,13 +52,16 @@ class Pipeline {
         return findings;
     }
 
+    Protocol protocol() const noexcept { return protocol_; }
     const BusDecoder& decoder() const noexcept { return decoder_; }
     const SessionTracker& tracker() const noexcept { return tracker_; }
     const Summary& summary() const noexcept { return summary_; }
     const ChannelTimelines& timelines() const noexcept { return timelines_; }
 
   private:
+    Protocol protocol_;
     BusDecoder decoder_;
+    FcDecoder fc_decoder_;
     SessionTracker tracker_;
     Summary summary_;
     ChannelTimelines timelines_;

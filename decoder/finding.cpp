@@ -62,6 +62,21 @@ constexpr FindingKindInfo kCatalogue[] = {
      "requests are in range, and lengths and value blocks agree with the request"},
     {FindingKind::Dpv1ErrorPdu, "dpv1_error_pdu", Severity::Note, Dpv1ParameterAccess,
      "DP-V1 requests are accepted (error PDUs other than state conflict)"},
+    {FindingKind::FcStackedRequest, "fc_stacked_request", Severity::Error, FcProtocol,
+     "the master waits for a drive's response before its next command to that drive"},
+    {FindingKind::FcNoResponse, "fc_no_response", Severity::Error, FcProtocol,
+     "every command to one drive is answered before the master's next telegram and within the "
+     "time-out"},
+    {FindingKind::FcLateResponse, "fc_late_response", Severity::Warning, FcProtocol,
+     "drives answer within their documented response time (--fc-response-ms)"},
+    {FindingKind::FcMismatchedResponse, "fc_mismatched_response", Severity::Error, FcProtocol,
+     "a response carries the command's address, PNU and index"},
+    {FindingKind::FcUnexpectedResponseType, "fc_unexpected_response_type", Severity::Error,
+     FcProtocol, "the response's AK is a valid answer to the command's AK"},
+    {FindingKind::FcCommandRejected, "fc_command_rejected", Severity::Note, FcProtocol,
+     "commands are performed (AK 7 with a fault code)"},
+    {FindingKind::FcBccError, "fc_bcc_error", Severity::Error, FcProtocol,
+     "every telegram's BCC (XOR from STX) is right"},
 };
 
 static_assert(catalogue::one_row_per_kind_in_order(std::span<const FindingKindInfo>(kCatalogue),
@@ -71,10 +86,8 @@ static_assert(catalogue::names_unique(std::span<const FindingKindInfo>(kCatalogu
               "kCatalogue: every finding kind needs a name of its own");
 
 constexpr std::string_view kComponentNames[] = {
-    "parameter channel",
-    "PROFIBUS link",
-    "DP configuration",
-    "DP-V1 parameter access",
+    "parameter channel",      "PROFIBUS link", "DP configuration",
+    "DP-V1 parameter access", "FC protocol",
 };
 static_assert(std::size(kComponentNames) == kFindingComponentCount);
 

@@ -42,6 +42,13 @@ enum class FindingKind : std::uint8_t {
     Dpv1NegativeResponse,
     Dpv1LengthError,
     Dpv1ErrorPdu,
+    FcStackedRequest,
+    FcNoResponse,
+    FcLateResponse,
+    FcMismatchedResponse,
+    FcUnexpectedResponseType,
+    FcCommandRejected,
+    FcBccError,
     Count
 };
 
@@ -55,6 +62,7 @@ enum class FindingComponent : std::uint8_t {
     ProfibusLink,      // PROFIBUS FDL: checksum, framing, FCB repeats, requests left unanswered
     DpConfiguration,   // PROFIBUS DP: Data_Exchange lengths against the Chk_Cfg configuration
     Dpv1ParameterAccess,  // PROFIdrive parameter access over DP-V1: Write, Read polls, response
+    FcProtocol,  // the Danfoss FC protocol on RS-485: command -> response per drive address, BCC
     Count
 };
 

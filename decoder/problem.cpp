@@ -26,7 +26,7 @@ constexpr ProblemKindInfo kCatalogue[] = {
     {ProblemKind::EmptyRecord, "empty_record", Severity::Error, Framing,
      "a capture record with no bytes at all"},
     {ProblemKind::BadStartDelimiter, "bad_start_delimiter", Severity::Error, Framing,
-     "the first byte is none of SD1, SD2, SD3, SD4, SC"},
+     "the first byte starts no telegram (PROFIBUS: none of SD1, SD2, SD3, SD4, SC; FC: not STX)"},
     {ProblemKind::Truncated, "truncated", Severity::Error, Framing,
      "the telegram ends before its structure says it should"},
     {ProblemKind::LengthMismatch, "length_mismatch", Severity::Error, Framing,
@@ -52,6 +52,12 @@ constexpr ProblemKindInfo kCatalogue[] = {
      "an extended-diagnosis block runs past the end of the data"},
     {ProblemKind::ReservedFrameControl, "reserved_frame_control", Severity::Error, Fdl,
      "FC bit 7 set in anything but the clock value request 0xC0"},
+    {ProblemKind::LgeInvalid, "lge_invalid", Severity::Error, Framing,
+     "FC protocol: LGE is none of 6 (process block), 14 (parameter block), 10..255 (text block)"},
+    {ProblemKind::BccMismatch, "bcc_mismatch", Severity::Error, Fc,
+     "FC protocol: the BCC (XOR of STX to the last data byte) is wrong"},
+    {ProblemKind::AdrInvalid, "adr_invalid", Severity::Error, Fc,
+     "FC protocol: the address byte names no address (0 in the 1-31 format, 127 in 1-126)"},
 };
 
 static_assert(catalogue::one_row_per_kind_in_order(std::span<const ProblemKindInfo>(kCatalogue),
@@ -60,7 +66,7 @@ static_assert(catalogue::one_row_per_kind_in_order(std::span<const ProblemKindIn
 static_assert(catalogue::names_unique(std::span<const ProblemKindInfo>(kCatalogue)),
               "kCatalogue: every problem kind needs a name of its own");
 
-constexpr std::string_view kComponentNames[] = {"framing", "FDL", "DP service"};
+constexpr std::string_view kComponentNames[] = {"framing", "FDL", "DP service", "FC telegram"};
 static_assert(std::size(kComponentNames) == kProblemComponentCount);
 
 }  // namespace
@@ -95,6 +101,10 @@ std::string problem_message(const Problem& p) {
     switch (p.kind) {
         case ProblemKind::EmptyRecord: return "record holds no bytes";
         case ProblemKind::BadStartDelimiter:
+            // The FC decoder names what it wanted (STX 0x02); FDL has five start delimiters.
+            if (p.expected != 0)
+                return fmt::format("byte {}: 0x{:02X} is not STX 0x{:02X}", p.offset, p.actual,
+                                   p.expected);
             return fmt::format(
                 "byte {}: 0x{:02X} is not a start delimiter (SD1 0x10, SD2 0x68, "
                 "SD3 0xA2, SD4 0xDC, SC 0xE5)",
@@ -138,6 +148,16 @@ std::string problem_message(const Problem& p) {
                 "byte {}: frame control 0x{:02X} has the reserved bit 7 set (only the clock value "
                 "request 0xC0 sets it)",
                 p.offset, p.actual);
+        case ProblemKind::LgeInvalid:
+            return fmt::format(
+                "byte {}: LGE {} is no FC block length (6 process, 14 parameter, 10..255 text)",
+                p.offset, p.actual);
+        case ProblemKind::BccMismatch:
+            return fmt::format("byte {}: BCC 0x{:02X} wrong, XOR of the telegram is 0x{:02X}",
+                               p.offset, p.actual, p.expected);
+        case ProblemKind::AdrInvalid:
+            return fmt::format("byte {}: address byte 0x{:02X} names no address", p.offset,
+                               p.actual);
         case ProblemKind::Count: break;
     }
     return "unknown problem";

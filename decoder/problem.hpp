@@ -33,6 +33,9 @@ enum class ProblemKind : std::uint8_t {
     CfgIdentifierTruncated,
     DiagBlockTruncated,
     ReservedFrameControl,
+    LgeInvalid,
+    BccMismatch,
+    AdrInvalid,
     Count
 };
 
@@ -43,6 +46,7 @@ enum class ProblemComponent : std::uint8_t {
     Framing,    // where the telegram starts and ends: delimiters, lengths, what is left over
     Fdl,        // the FDL telegram's own fields: checksum, addresses, frame control
     DpService,  // the data unit of a DP service
+    Fc,         // the Danfoss FC protocol telegram's own fields: checksum, address byte
     Count
 };
 

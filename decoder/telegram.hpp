@@ -6,9 +6,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <string_view>
 
 #include "decoder/byte_reader.hpp"
 #include "decoder/dp_telegram.hpp"
+#include "decoder/fc_telegram.hpp"
 #include "decoder/problem.hpp"
 #include "decoder/time.hpp"
 
@@ -18,7 +21,14 @@ namespace dpscope {
 inline constexpr std::size_t kStationCount = 128;
 
 // The protocols dpscope decodes. One per capture.
-enum class Protocol : std::uint8_t { ProfibusDp };
+enum class Protocol : std::uint8_t {
+    ProfibusDp,  // PROFIBUS DP: the payload is `dp`
+    Fc,          // the Danfoss FC protocol on RS-485: the payload is `fc`
+};
+
+// "profibus", "fc": the name --bus takes and captures record.
+std::string_view protocol_name(Protocol protocol) noexcept;
+std::optional<Protocol> protocol_from_name(std::string_view name) noexcept;
 
 struct DecodedTelegram {
     std::uint64_t frame = 0;         // 1-based record number
@@ -36,9 +46,12 @@ struct DecodedTelegram {
     // The payload: the member `protocol` names is the one that holds this telegram.
     Protocol protocol = Protocol::ProfibusDp;
     DpTelegram dp;
+    FcTelegram fc;
 
     // Every problem found at any layer, with byte offsets.
-    const ProblemList& problems() const noexcept { return dp.fdl.problems; }
+    const ProblemList& problems() const noexcept {
+        return protocol == Protocol::Fc ? fc.problems : dp.fdl.problems;
+    }
     bool has_time() const noexcept { return time_ns != kNoTime; }
 };
 

@@ -12,6 +12,7 @@ struct FaultInfo {
     std::string_view own_name;           // set only for a fault no finding kind is named after
     bool needs_parameter_channel;
     bool needs_dpv1 = false;  // acts on DP-V1 parameter access: needs a DP-V1 slave
+    bool fc = false;          // a fault of the FC protocol bus (simulate --bus fc)
 };
 
 constexpr FaultInfo kFaults[] = {
@@ -45,6 +46,18 @@ constexpr FaultInfo kFaults[] = {
     {FaultKind::Dpv1NegativeResponse, FindingKind::Dpv1NegativeResponse, {}, false, true},
     {FaultKind::Dpv1LengthError, FindingKind::Dpv1LengthError, {}, false, true},
     {FaultKind::Dpv1ErrorPdu, FindingKind::Dpv1ErrorPdu, {}, false, true},
+    {FaultKind::FcStackedRequest, FindingKind::FcStackedRequest, {}, false, false, true},
+    {FaultKind::FcNoResponse, FindingKind::FcNoResponse, {}, false, false, true},
+    {FaultKind::FcLateResponse, FindingKind::FcLateResponse, {}, false, false, true},
+    {FaultKind::FcMismatchedResponse, FindingKind::FcMismatchedResponse, {}, false, false, true},
+    {FaultKind::FcUnexpectedResponseType,
+     FindingKind::FcUnexpectedResponseType,
+     {},
+     false,
+     false,
+     true},
+    {FaultKind::FcCommandRejected, FindingKind::FcCommandRejected, {}, false, false, true},
+    {FaultKind::FcBccError, FindingKind::FcBccError, {}, false, false, true},
 };
 
 // One entry per fault kind, in enum order; a name either from the finding catalogue or its own.
@@ -101,6 +114,11 @@ bool fault_needs_parameter_channel(FaultKind kind) noexcept {
 bool fault_needs_dpv1(FaultKind kind) noexcept {
     auto index = static_cast<std::size_t>(kind);
     return index < std::size(kFaults) && kFaults[index].needs_dpv1;
+}
+
+bool fault_is_fc(FaultKind kind) noexcept {
+    auto index = static_cast<std::size_t>(kind);
+    return index < std::size(kFaults) && kFaults[index].fc;
 }
 
 }  // namespace dpscope

@@ -41,6 +41,13 @@ enum class FaultKind : std::uint8_t {
     Dpv1NegativeResponse,        // a negative parameter response with an error number
     Dpv1LengthError,             // a response whose value blocks do not fit the request
     Dpv1ErrorPdu,                // a DP-V1 error PDU (access, invalid index)
+    FcStackedRequest,            // FC: a second command to a drive before its response
+    FcNoResponse,                // FC: a drive does not answer
+    FcLateResponse,              // FC: a drive answers after its documented response time
+    FcMismatchedResponse,        // FC: the answer carries another PNU or index
+    FcUnexpectedResponseType,    // FC: the answer's AK does not fit the command
+    FcCommandRejected,           // FC: AK 7 with a fault code
+    FcBccError,                  // FC: one telegram's BCC is wrong
     Count
 };
 
@@ -57,5 +64,7 @@ std::optional<FaultKind> fault_kind_from_name(std::string_view name);
 bool fault_needs_parameter_channel(FaultKind kind) noexcept;
 // Faults that act on DP-V1 parameter access need a DP-V1 slave (`--slave ADDR:PPO:dpv1`).
 bool fault_needs_dpv1(FaultKind kind) noexcept;
+// Faults of the FC protocol (`simulate --bus fc`); the others act on PROFIBUS DP.
+bool fault_is_fc(FaultKind kind) noexcept;
 
 }  // namespace dpscope

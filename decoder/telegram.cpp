@@ -1,0 +1,19 @@
+#include "decoder/telegram.hpp"
+
+namespace dpscope {
+
+std::string_view protocol_name(Protocol protocol) noexcept {
+    switch (protocol) {
+        case Protocol::ProfibusDp: return "profibus";
+        case Protocol::Fc: return "fc";
+    }
+    return "profibus";
+}
+
+std::optional<Protocol> protocol_from_name(std::string_view name) noexcept {
+    if (name == "profibus") return Protocol::ProfibusDp;
+    if (name == "fc") return Protocol::Fc;
+    return std::nullopt;
+}
+
+}  // namespace dpscope
