@@ -103,4 +103,8 @@ bool fault_needs_dpv1(FaultKind kind) noexcept {
     return index < std::size(kFaults) && kFaults[index].needs_dpv1;
 }
 
+bool fault_needs_spontaneous_messages(FaultKind kind) noexcept {
+    return kind == FaultKind::SpontaneousMessage || kind == FaultKind::SpontaneousUnacknowledged;
+}
+
 }  // namespace dpscope

@@ -57,5 +57,7 @@ std::optional<FaultKind> fault_kind_from_name(std::string_view name);
 bool fault_needs_parameter_channel(FaultKind kind) noexcept;
 // Faults that act on DP-V1 parameter access need a DP-V1 slave (`--slave ADDR:PPO:dpv1`).
 bool fault_needs_dpv1(FaultKind kind) noexcept;
+// Faults that make a slave send spontaneous messages need a dialect that has them (not ge).
+bool fault_needs_spontaneous_messages(FaultKind kind) noexcept;
 
 }  // namespace dpscope

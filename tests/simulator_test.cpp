@@ -516,6 +516,12 @@ TEST(SimulatorTest, ParseSlaveSpecValid) {
     EXPECT_EQ(e.dialect, Dialect::Profidrive);
     EXPECT_TRUE(e.dpv1);
     EXPECT_TRUE(slave("10:5:vlt:dpv1").dpv1);
+    SimulatedSlave f = slave("11:1:ge");
+    EXPECT_EQ(f.dialect, Dialect::Ge);
+    EXPECT_FALSE(f.dpv1);
+    SimulatedSlave g = slave("12:5:ge:dpv1");
+    EXPECT_EQ(g.dialect, Dialect::Ge);
+    EXPECT_TRUE(g.dpv1);
 }
 
 TEST(SimulatorTest, ParseSlaveSpecInvalid) {
@@ -526,12 +532,14 @@ TEST(SimulatorTest, ParseSlaveSpecInvalid) {
     EXPECT_EQ(slave_error("5:0"), "5:0: the PPO type must be from 1 to 5");
     EXPECT_EQ(slave_error("5:6"), "5:6: the PPO type must be from 1 to 5");
     EXPECT_EQ(slave_error("5:"), "5:: the PPO type must be from 1 to 5");
-    EXPECT_EQ(slave_error("5:1:foo"), "5:1:foo: dialect must be vlt or profidrive");
-    EXPECT_EQ(slave_error("5:1:"), "5:1:: dialect must be vlt or profidrive");
+    EXPECT_EQ(slave_error("5:1:foo"), "5:1:foo: dialect must be one of vlt, ge, profidrive");
+    EXPECT_EQ(slave_error("5:1:"), "5:1:: dialect must be one of vlt, ge, profidrive");
     EXPECT_EQ(slave_error("5:1:vlt:x"), "5:1:vlt:x: only dpv1 may follow the dialect");
     EXPECT_EQ(slave_error("5:1:vlt:dpv1:x"), "5:1:vlt:dpv1:x: only dpv1 may follow the dialect");
-    EXPECT_EQ(slave_error("5:1:dpv1:vlt"), "5:1:dpv1:vlt: dialect must be vlt or profidrive");
+    EXPECT_EQ(slave_error("5:1:dpv1:vlt"),
+              "5:1:dpv1:vlt: dialect must be one of vlt, ge, profidrive");
     EXPECT_EQ(slave_error("5:1:vlt:"), "5:1:vlt:: only dpv1 may follow the dialect");
+    EXPECT_EQ(slave_error("5:1:GE"), "5:1:GE: dialect must be one of vlt, ge, profidrive");
 }
 
 // ---- fault injection -------------------------------------------------------------------------
