@@ -244,6 +244,7 @@ TEST(SimulatorTest, StartUpSequencePerSlave) {
         {{5, 3, Dialect::Vlt}, hex("F1"), 0x0402},
         {{6, 4, Dialect::Vlt}, hex("F5"), 0x0402},
         {{7, 5, Dialect::Profidrive}, hex("F3 F9"), 0x6001},
+        {{8, 1, Dialect::Ge}, hex("F3 F1"), 0x6002},
     };
     SimulatorOptions options = small_session(2, 1);
     for (const StartUpCase& c : cases)
