@@ -567,6 +567,15 @@ TEST(CliTest, GeSlaveDecodedWithTheGeDialect) {
     EXPECT_NE(report.out.find("dialect ge"), std::string::npos) << report.out;
     CommandResult vlt_report = run_dpscope({"report", capture.path});
     EXPECT_NE(vlt_report.out.find("(unknown error number)"), std::string::npos) << vlt_report.out;
+    for (const char* format : {"json", "markdown", "html"}) {
+        CommandResult other = run_dpscope({"report", "-T", format, capture.path});
+        EXPECT_NE(other.out.find("unknown error number"), std::string::npos) << format;
+        EXPECT_EQ(other.out.find("network access"), std::string::npos) << format;
+    }
+    CommandResult csv = run_dpscope({"decode", "-T", "csv", capture.path});
+    EXPECT_NE(csv.out.find("\"unknown error number\""), std::string::npos);
+    CommandResult jsonl = run_dpscope({"decode", "-T", "jsonl", capture.path});
+    EXPECT_NE(jsonl.out.find("\"error_text\":\"unknown error number\""), std::string::npos);
 
     // A ge slave sends no spontaneous messages: the fault cannot be injected there.
     CommandResult spontaneous = run_dpscope(
