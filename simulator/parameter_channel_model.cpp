@@ -131,8 +131,9 @@ void ParameterChannelModel::master_step(ChannelEnvironment& env) {
 SimulatedPcv ParameterChannelModel::compute_answer(ChannelEnvironment& env) {
     const SimulatedPcv& r = current_;
     if (env.inject(FaultKind::RequestRejected)) {
-        // A GE drive refuses a change with 131 (factory setup selected) and a read with 130 (no
-        // network access to the parameter) [S002]; the others with 2 (limit exceeded).
+        // A ge slave refuses with GE's own fault numbers [S002]: 131 (factory setup selected)
+        // for a change, 130 (no network access to the parameter) for a read (which for which is
+        // the simulator's choice); the others with 2 (limit exceeded).
         std::uint16_t error = 2;
         if (dialect_ == Dialect::Ge)
             error = request_code(dialect_, r.rc).is_change ? kGeFactorySetup : kGeNoNetworkAccess;
