@@ -134,14 +134,15 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
         ->type_name("ADDR=TYPE")
         ->allow_extra_args(false);
     app.add_option("--dialect", values.dialects,
-                   "Parameter-channel code tables: vlt (Danfoss VLT 5000 / GE AF-600, the "
-                   "default) or profidrive (PROFIdrive PKW with EEPROM variants). NAME sets it "
-                   "for every slave, ADDR=NAME for one; repeatable")
+                   "Parameter-channel code tables: vlt (Danfoss VLT 5000, the default), ge (GE "
+                   "AF-600/AF-650: RC 9-12 not used, errors 130/131) or profidrive (PROFIdrive "
+                   "PKW with EEPROM variants). NAME sets it for every slave, ADDR=NAME for one; "
+                   "repeatable")
         ->type_name("NAME|ADDR=NAME")
         ->allow_extra_args(false);
     app.add_option("--pcd-profile", values.pcd_profile,
                    "Control/status word profile: fc (Danfoss FC profile) or profidrive. Default: "
-                   "fc for vlt slaves, profidrive for profidrive slaves")
+                   "fc for vlt and ge slaves, profidrive for profidrive slaves")
         ->check(CLI::IsMember({"fc", "profidrive"}))
         ->type_name("NAME");
     app.add_option("--timeout-ms", values.timeout_ms,
@@ -211,8 +212,8 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
                                                         : std::string_view(item).substr(eq + 1);
         auto dialect = dialect_from_name(name);
         if (!dialect) {
-            return Error{
-                fmt::format("--dialect {}: '{}' is not a dialect (vlt, profidrive)", item, name)};
+            return Error{fmt::format("--dialect {}: '{}' is not a dialect ({})", item, name,
+                                     kDialectNameList)};
         }
         if (eq == std::string::npos) {
             if (dialect_for_all && settings.decoder.dialect != *dialect) {

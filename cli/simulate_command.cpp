@@ -345,7 +345,8 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->check(whole_number(0, 126))
         ->default_str("2");
     sub->add_option("--slave", command->slaves,
-                    "ADDR:PPO[:DIALECT][:dpv1] adds a slave, e.g. 5:1, 7:2:profidrive or "
+                    "ADDR:PPO[:DIALECT][:dpv1] adds a slave, DIALECT vlt (the default), ge or "
+                    "profidrive, e.g. 5:1, 6:1:ge, 7:2:profidrive or "
                     "8:3:vlt:dpv1; repeatable. Default: 3:1 4:2 5:5 (vlt). A dpv1 slave has "
                     "DP-V1 enabled in its Set_Prm, and after each cycle's Data_Exchange the "
                     "master runs PROFIdrive parameter access with it (MSAC_C1, slot 0, index 47: "

@@ -28,7 +28,7 @@ struct DecoderOptions {
     // Per-station overrides: dialect, PPO type (1..5), control/status word profile.
     std::array<std::optional<Dialect>, kStationCount> station_dialect{};
     std::array<std::uint8_t, kStationCount> station_ppo{};
-    // When unset the profile follows the dialect: vlt -> fc, profidrive -> profidrive.
+    // When unset the profile follows the dialect: vlt, ge -> fc; profidrive -> profidrive.
     std::optional<PcdProfile> pcd_profile;
 
     Dialect dialect_of(std::uint8_t station) const noexcept {
@@ -36,7 +36,7 @@ struct DecoderOptions {
     }
     PcdProfile pcd_profile_of(std::uint8_t station) const noexcept {
         if (pcd_profile) return *pcd_profile;
-        return dialect_of(station) == Dialect::Vlt ? PcdProfile::Fc : PcdProfile::Profidrive;
+        return danfoss_family(dialect_of(station)) ? PcdProfile::Fc : PcdProfile::Profidrive;
     }
 };
 

@@ -5,12 +5,17 @@
 namespace dpscope {
 
 std::string_view dialect_name(Dialect dialect) {
-    return dialect == Dialect::Vlt ? "vlt" : "profidrive";
+    switch (dialect) {
+        case Dialect::Vlt: return "vlt";
+        case Dialect::Ge: return "ge";
+        case Dialect::Profidrive: return "profidrive";
+    }
+    return "vlt";
 }
 
 std::optional<Dialect> dialect_from_name(std::string_view name) {
-    if (name == "vlt") return Dialect::Vlt;
-    if (name == "profidrive") return Dialect::Profidrive;
+    for (Dialect dialect : kDialects)
+        if (name == dialect_name(dialect)) return dialect;
     return std::nullopt;
 }
 
@@ -56,7 +61,7 @@ constexpr std::array<RequestCode, 16> kVltRequests{{
     {"Not assigned", W::None, false, false, false},
 }};
 
-// Seed 000 response table (seed 002, GE AF-600, prints 9..12 as "not used").
+// Seed 000 response table.
 constexpr std::array<ResponseCode, 16> kVltResponses{{
     {"No response", W::None, K::None, false},
     {"Transmit parameter value (word)", W::Word, K::Value, false},
@@ -74,6 +79,46 @@ constexpr std::array<ResponseCode, 16> kVltResponses{{
     {"Not assigned", W::None, K::Undefined, false},
     {"Not assigned", W::None, K::Undefined, false},
     {"Not assigned", W::None, K::Undefined, false},
+}};
+
+// Seed 002 (GE AF-600 FP / AF-650 GP) request table, in its words.
+constexpr std::array<RequestCode, 16> kGeRequests{{
+    {"No request", W::None, true, false, false},
+    {"Request parameter value", W::None, true, false, false},
+    {"Change parameter value (word)", W::Word, true, true, false},
+    {"Change parameter value (long word)", W::DoubleWord, true, true, false},
+    {"Request description element", W::None, true, false, false},
+    {"Change description element", W::DoubleWord, true, true, false},
+    {"Request parameter value (array)", W::None, true, false, true},
+    {"Change parameter value (array word)", W::Word, true, true, true},
+    {"Change parameter value (array long word)", W::DoubleWord, true, true, true},
+    {"Request number of array elements", W::None, true, false, false},
+    {"Not used", W::None, false, false, false},
+    {"Not used", W::None, false, false, false},
+    {"Not used", W::None, false, false, false},
+    {"Not used", W::None, false, false, false},
+    {"Not used", W::None, false, false, false},
+    {"Not used", W::None, false, false, false},
+}};
+
+// Seed 002 response table: 9..12 "Not used" (no spontaneous messages), 13-15 "Not used".
+constexpr std::array<ResponseCode, 16> kGeResponses{{
+    {"No response", W::None, K::None, false},
+    {"Transfer parameter value (word)", W::Word, K::Value, false},
+    {"Transfer parameter value (long word)", W::DoubleWord, K::Value, false},
+    {"Transfer description element", W::DoubleWord, K::Value, false},
+    {"Transfer parameter value (array word)", W::Word, K::Value, true},
+    {"Transfer parameter value (array long word)", W::DoubleWord, K::Value, true},
+    {"Transfer number of array elements", W::Word, K::Value, false},
+    {"Request rejected", W::Word, K::Rejected, false},
+    {"Not serviceable by PCV interface", W::None, K::NoAuthority, false},
+    {"Not used", W::None, K::Undefined, false},
+    {"Not used", W::None, K::Undefined, false},
+    {"Not used", W::None, K::Undefined, false},
+    {"Not used", W::None, K::Undefined, false},
+    {"Not used", W::None, K::Undefined, false},
+    {"Not used", W::None, K::Undefined, false},
+    {"Not used", W::None, K::Undefined, false},
 }};
 
 // PROFIdrive V2 task identifiers (MICROMASTER 440 table).
@@ -122,7 +167,7 @@ struct ErrorEntry {
     std::string_view text;
 };
 
-// Seed 000 (0..19) and seed 002 (130, 131).
+// Seed 000 (0..19), word for word.
 constexpr ErrorEntry kVltErrors[] = {
     {0, "Improper PNU"},
     {1, "Parameter value not changeable"},
@@ -144,6 +189,30 @@ constexpr ErrorEntry kVltErrors[] = {
     {17, "Request temporarily unexecutable"},
     {18, "Other error"},
     {19, "Data not readable in cyclical traffic"},
+};
+
+// Seed 002 (0..19, 130, 131), word for word.
+constexpr ErrorEntry kGeErrors[] = {
+    {0, "Illegal PNU"},
+    {1, "Parameter value cannot be changed"},
+    {2, "Upper or lower limit exceeded"},
+    {3, "Subindex corrupted"},
+    {4, "No array"},
+    {5, "Data type false"},
+    {6, "Cannot be set by user (reset only)"},
+    {7, "Description element cannot be changed"},
+    {8, "IR required PPO-write not available"},
+    {9, "Description data not available"},
+    {10, "Access group"},
+    {11, "No parameter write access"},
+    {12, "Key word missing"},
+    {13, "Text in cyclical transmission not readable"},
+    {14, "Name in cyclical transmission not readable"},
+    {15, "Text array not available"},
+    {16, "PPO-write missing"},
+    {17, "Request temporarily rejected"},
+    {18, "Other fault"},
+    {19, "Data in cyclical transmission not readable"},
     {130, "There is no network access to the parameter called"},
     {131, "Data change is not possible because factory setup has been selected"},
 };
@@ -223,16 +292,35 @@ constexpr std::array<Pairing, 16> kPairings{{
 }  // namespace
 
 const RequestCode& request_code(Dialect dialect, std::uint8_t rc) noexcept {
-    return dialect == Dialect::Vlt ? kVltRequests[rc & 0x0F] : kProfidriveRequests[rc & 0x0F];
+    switch (dialect) {
+        case Dialect::Ge: return kGeRequests[rc & 0x0F];
+        case Dialect::Profidrive: return kProfidriveRequests[rc & 0x0F];
+        case Dialect::Vlt: break;
+    }
+    return kVltRequests[rc & 0x0F];
 }
 
 const ResponseCode& response_code(Dialect dialect, std::uint8_t rc) noexcept {
-    return dialect == Dialect::Vlt ? kVltResponses[rc & 0x0F] : kProfidriveResponses[rc & 0x0F];
+    switch (dialect) {
+        case Dialect::Ge: return kGeResponses[rc & 0x0F];
+        case Dialect::Profidrive: return kProfidriveResponses[rc & 0x0F];
+        case Dialect::Vlt: break;
+    }
+    return kVltResponses[rc & 0x0F];
 }
 
 std::string_view error_text(Dialect dialect, std::uint16_t number) noexcept {
-    return dialect == Dialect::Vlt ? find_error(kVltErrors, number)
-                                   : find_error(kProfidriveErrors, number);
+    switch (dialect) {
+        case Dialect::Ge: return find_error(kGeErrors, number);
+        case Dialect::Profidrive: return find_error(kProfidriveErrors, number);
+        case Dialect::Vlt: break;
+    }
+    return find_error(kVltErrors, number);
+}
+
+std::string_view error_text_or_unknown(Dialect dialect, std::uint16_t number) noexcept {
+    std::string_view text = error_text(dialect, number);
+    return text.empty() ? kUnknownErrorNumber : text;
 }
 
 AnswerVerdict judge_answer(Dialect dialect, std::uint8_t request_rc, std::uint8_t response_rc,

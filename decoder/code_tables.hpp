@@ -10,9 +10,11 @@
 //              error number in bytes 7-8
 //
 // Dialects:
-//   vlt        Danfoss VLT 5000/6000/8000 (MG.90.D1.02) and GE AF-600/AF-650 (the same RC tables;
-//              the GE manual marks RC 9..12 unused). RC 0..9 requests, 0..12 responses, error
-//              numbers 0..19 and 130/131.
+//   vlt        Danfoss VLT 5000/6000/8000 (seed 000, MG.90.D1.02): RC 0..9 requests, 0..12
+//              responses (9..12 spontaneous messages), error numbers 0..19 in seed 000's words.
+//   ge         GE AF-600 FP / AF-650 GP (seed 002): the same requests and responses 0..8, but
+//              RC 9..12 are "not used" (undefined, no spontaneous messages); fault numbers 0..19,
+//              130 and 131 in seed 002's words.
 //   profidrive PROFIdrive V2 PKW: AK 0..15 with the store-to-EEPROM variants 11..14 and text
 //              access 15; error numbers 0..24 and the known manufacturer-specific numbers.
 #pragma once
@@ -25,10 +27,21 @@
 
 namespace dpscope {
 
-enum class Dialect : std::uint8_t { Vlt, Profidrive };
+enum class Dialect : std::uint8_t { Vlt, Profidrive, Ge };
 
-std::string_view dialect_name(Dialect dialect);  // "vlt", "profidrive"
+inline constexpr Dialect kDialects[] = {Dialect::Vlt, Dialect::Ge, Dialect::Profidrive};
+// The names as a list for help texts and error messages: "vlt, ge, profidrive".
+inline constexpr std::string_view kDialectNameList = "vlt, ge, profidrive";
+
+std::string_view dialect_name(Dialect dialect);  // "vlt", "ge", "profidrive"
 std::optional<Dialect> dialect_from_name(std::string_view name);
+
+// A Danfoss-built drive: vlt, and ge (GE's AF-600/AF-650 use Danfoss's PCA tables [S002] and the
+// Danfoss FC control word, docs/protocol/process-data.md). Everything but the PCV code tables
+// (PCD profile, Danfoss bits 11..15, DP-V1 limits and error numbers) treats ge like vlt.
+constexpr bool danfoss_family(Dialect dialect) noexcept { return dialect != Dialect::Profidrive; }
+// Whether the dialect's RC 9..12 are spontaneous messages (ge: "not used").
+constexpr bool has_spontaneous_messages(Dialect dialect) noexcept { return dialect != Dialect::Ge; }
 
 // Which of the two IND bytes holds the subindex: the first on the wire or the second.
 enum class IndexByte : std::uint8_t { High, Low };
@@ -68,7 +81,7 @@ enum class ResponseKind : std::uint8_t {
     Value,        // a parameter value, description element or element count
     Rejected,     // RC 7 with an error number
     NoAuthority,  // RC 8
-    Spontaneous,  // RC 9..12 in the vlt dialect, parameter change reports in profidrive
+    Spontaneous,  // RC 9..12 in the vlt dialect, parameter change reports in profidrive (not ge)
     Text,         // profidrive AK 15
     Undefined,    // not in the dialect's table
 };
@@ -94,6 +107,11 @@ const ResponseCode& response_code(Dialect dialect, std::uint8_t rc) noexcept;
 // The text of an RC 7 error number, or "" when the dialect does not define it.
 std::string_view error_text(Dialect dialect, std::uint16_t number) noexcept;
 
+// What every output shows for an error number the dialect does not define.
+inline constexpr std::string_view kUnknownErrorNumber = "unknown error number";
+// error_text, or kUnknownErrorNumber when the dialect does not define the number.
+std::string_view error_text_or_unknown(Dialect dialect, std::uint16_t number) noexcept;
+
 // How a response code answers a request code.
 enum class AnswerVerdict : std::uint8_t {
     Positive,  // a listed positive answer
@@ -102,7 +120,7 @@ enum class AnswerVerdict : std::uint8_t {
     Invalid,   // not a valid answer to this request
 };
 
-// Pairing table (MICROMASTER 440 / ABB FPBA-01 / PROFIdrive), applied to both dialects:
+// Pairing table (MICROMASTER 440 / ABB FPBA-01 / PROFIdrive), applied to every dialect:
 // 1 -> 1|2, 2 -> 1, 3 -> 2, 4 -> 3, 5 -> 3, 6 -> 4|5, 7 -> 4, 8 -> 5, 9 -> 6; profidrive adds
 // 11 -> 5, 12 -> 4, 13 -> 2, 14 -> 1, 15 -> 15. RC 7 answers any request 1..15 (RC 0 is no
 // request: only RC 0 answers it); RC 8 answers change requests, and after a read it is Unusual

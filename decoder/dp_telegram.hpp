@@ -162,10 +162,11 @@ struct DpTelegram {
     std::uint32_t pcv_value(Direction direction) const noexcept;
     std::string_view pcv_meaning(Direction direction) const noexcept;
     // Whether PCD 1 follows a Danfoss profile: the FC profile, or the PROFIdrive profile of a
-    // Danfoss drive (the vlt dialect), whose bits 11..15 are Danfoss-defined. A profidrive-dialect
-    // slave in the PROFIdrive profile gets the generic words (bits 11..15 device-specific).
+    // Danfoss-family drive (the vlt and ge dialects), whose bits 11..15 are Danfoss-defined. A
+    // profidrive-dialect slave in the PROFIdrive profile gets the generic words (bits 11..15
+    // device-specific).
     bool danfoss_pcd() const noexcept {
-        return pcd_profile == PcdProfile::Fc || dialect == Dialect::Vlt;
+        return pcd_profile == PcdProfile::Fc || danfoss_family(dialect);
     }
 };
 

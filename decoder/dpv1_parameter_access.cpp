@@ -253,7 +253,7 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
     if (m.reference == 0) found.add("request reference 0 (0x01 to 0xFF allowed)");
     if (m.count == 0)
         found.add("0 parameters (at least 1)");
-    else if (m.count > kMaxDanfossParameters && t.dp.dialect == Dialect::Vlt)
+    else if (m.count > kMaxDanfossParameters && danfoss_family(t.dp.dialect))
         found.add("{} parameters, more than the {} Danfoss allows", m.count, kMaxDanfossParameters);
     if (m.addresses.size() < m.count)
         found.add("{} parameters announced, {} addresses present", m.count, m.addresses.size());

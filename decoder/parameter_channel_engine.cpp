@@ -394,11 +394,10 @@ std::optional<CompletedTransaction> ParameterChannelEngine::slave_pcv(
         ++stats.transactions.unexpected;
     } else if (code.kind == ResponseKind::Rejected) {
         auto error = static_cast<std::uint16_t>(r.pva & 0xFFFF);
-        std::string_view text = error_text(dialect, error);
         Finding& f = add(out, FindingKind::RequestRejected, s, ch.pending.frame);
         f.pnu = q.pnu;
         f.message = fmt::format("{} rejected with error {} ({})", describe_request(dialect, q),
-                                error, text.empty() ? "not known to the dialect" : text);
+                                error, error_text_or_unknown(dialect, error));
         ++stats.transactions.rejected;
         ++stats.rejection_errors[error];
         if (stats.rejections.size() < 1024 || stats.rejections.count({q.pnu, error}))

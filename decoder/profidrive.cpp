@@ -250,7 +250,7 @@ std::string_view profidrive_error_text(std::uint16_t error, Dialect dialect) {
         default: break;
     }
     if (error < 0x65) return "reserved";
-    if (dialect == Dialect::Vlt) {
+    if (danfoss_family(dialect)) {
         switch (error) {
             case 0x65: return "wrong axis";
             case 0x66: return "unknown service request";

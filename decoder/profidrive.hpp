@@ -53,8 +53,8 @@ std::string_view profidrive_format_name(std::uint8_t format);
 // Bytes per value for a format; 0 for Zero, -1 where the size is unknown (reserved formats).
 int profidrive_format_size(std::uint8_t format) noexcept;
 // The text of an error number in a format-0x44 block. The manufacturer-specific numbers
-// (0x65 and up) read per dialect: the Danfoss FC texts for vlt, "manufacturer-specific" for
-// profidrive.
+// (0x65 and up) read per dialect: the Danfoss FC texts for vlt and ge (danfoss_family),
+// "manufacturer-specific" for profidrive.
 std::string_view profidrive_error_text(std::uint16_t error, Dialect dialect);
 // Whether a response ID is a valid answer to a request ID (the standard IDs mirrored, bit 7 set
 // when negative; for the Danfoss IDs 0x42/0x51/0x52 also 0x01/0x02/0x81/0x82, whose use the

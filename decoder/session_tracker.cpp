@@ -18,13 +18,18 @@ void DialectEvidence::add(const DecodedTelegram& t) noexcept {
     if (decoded_ != t.dp.dialect) *this = DialectEvidence{};  // the dialect changed: start again
     decoded_ = t.dp.dialect;
     ++undefined_;
-    const Dialect other = t.dp.dialect == Dialect::Vlt ? Dialect::Profidrive : Dialect::Vlt;
-    if (defines(other)) ++other_defines_;
+    for (Dialect other : kDialects)
+        if (other != decoded_ && defines(other)) ++other_defines_[static_cast<std::size_t>(other)];
 }
 
 std::optional<Dialect> DialectEvidence::hint() const noexcept {
-    if (undefined_ < kMinimum || other_defines_ != undefined_) return std::nullopt;
-    return decoded_ == Dialect::Vlt ? Dialect::Profidrive : Dialect::Vlt;
+    if (undefined_ < kMinimum) return std::nullopt;
+    // The first dialect in kDialects order that defines every one of them: vlt before ge (vlt
+    // defines all ge does and RC 9..12 besides), then profidrive.
+    for (Dialect other : kDialects)
+        if (other != decoded_ && other_defines_[static_cast<std::size_t>(other)] == undefined_)
+            return other;
+    return std::nullopt;
 }
 
 // ---- SessionTracker -----------------------------------------------------------------------------

@@ -40,9 +40,10 @@ struct TrackerOptions {
 
 // What the parameter-channel codes of one slave say about its dialect: a slave decoded with
 // the wrong code tables (a PROFIdrive drive decoded as vlt) shows codes its dialect does not
-// define but the other one does. The rule (docs/decisions.md): at least kMinimum telegrams with
-// a code the decoded dialect does not define, every one of them a code the other dialect
-// defines. Only intact Data_Exchange telegrams with a parameter channel count.
+// define but another one does. The rule (docs/decisions.md): at least kMinimum telegrams with
+// a code the decoded dialect does not define, every one of them a code another dialect defines
+// (the first such in kDialects order). Only intact Data_Exchange telegrams with a parameter
+// channel count.
 class DialectEvidence {
   public:
     static constexpr std::uint64_t kMinimum = 10;
@@ -56,7 +57,8 @@ class DialectEvidence {
   private:
     Dialect decoded_ = Dialect::Vlt;
     std::uint64_t undefined_ = 0;
-    std::uint64_t other_defines_ = 0;  // of those, codes the other dialect defines
+    // Of those, the codes each other dialect defines (indexed by Dialect).
+    std::array<std::uint64_t, std::size(kDialects)> other_defines_{};
 };
 
 // Findings counted per kind and, within it, per severity (indexed by Severity).

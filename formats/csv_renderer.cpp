@@ -62,7 +62,7 @@ class CsvRenderer final : public TelegramRenderer {
             if (rejected) {
                 auto error = static_cast<std::uint16_t>(t.dp.pcv.pva & 0xFFFF);
                 fmt::format_to(it, "{},", error);
-                quoted(b, error_text(t.dp.dialect, error));
+                quoted(b, error_text_or_unknown(t.dp.dialect, error));
             } else {
                 b.push_back(',');
             }

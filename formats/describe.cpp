@@ -135,9 +135,8 @@ void append_pcv_summary(TextBuffer& out, const DecodedTelegram& t) {
     fmt::format_to(std::back_inserter(out), " PNU={} IND={}", pcv.pnu, pcv.ind);
     if (!request && response_code(t.dp.dialect, pcv.rc).kind == ResponseKind::Rejected) {
         std::uint16_t error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
-        std::string_view text = error_text(t.dp.dialect, error);
         fmt::format_to(std::back_inserter(out), " error {} ({})", error,
-                       text.empty() ? "unknown error number" : text);
+                       error_text_or_unknown(t.dp.dialect, error));
         return;
     }
     fmt::format_to(std::back_inserter(out), " PVA={}", t.dp.pcv_value(t.direction));

@@ -184,12 +184,7 @@ class JsonlRenderer final : public TelegramRenderer {
         if (rejected) {
             auto error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
             w.integer(error);
-            w.key("error_text");
-            std::string_view text = error_text(t.dp.dialect, error);
-            if (text.empty())
-                w.null();
-            else
-                w.string(text);
+            w.key("error_text").string(error_text_or_unknown(t.dp.dialect, error));
         } else {
             w.null();
             w.key("error_text").null();

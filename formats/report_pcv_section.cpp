@@ -261,9 +261,8 @@ class PcvSection final : public StationSection {
         if (!s.rejections.empty()) {
             append(b, "  rejections    ");
             for (const auto& [key, count] : s.rejections) {
-                std::string_view text = error_text(s.dialect, key.second);
                 fmt::format_to(it, " PNU {} error {} ({}) {}x;", key.first, key.second,
-                               text.empty() ? "unknown" : text, count);
+                               error_text_or_unknown(s.dialect, key.second), count);
             }
             b.push_back('\n');
         }
@@ -305,9 +304,8 @@ class PcvSection final : public StationSection {
                        timeouts_text(), s.abandoned, s.spontaneous);
         fmt::format_to(it, "- Parameters: {}\n", parameters_text(s));
         for (const auto& [key, count] : s.rejections) {
-            std::string_view text = error_text(s.dialect, key.second);
             fmt::format_to(it, "- Rejected: PNU {} error {} ({}), {}x\n", key.first, key.second,
-                           md_escape(text.empty() ? "unknown" : text), count);
+                           md_escape(error_text_or_unknown(s.dialect, key.second)), count);
         }
         fmt::format_to(it, "- Findings: {}\n", md_escape(findings_by_kind_text(findings_)));
     }
@@ -363,12 +361,7 @@ class PcvSection final : public StationSection {
             w.begin_object();
             w.key("pnu").integer(key.first);
             w.key("error").integer(key.second);
-            w.key("error_text");
-            std::string_view text = error_text(s.dialect, key.second);
-            if (text.empty())
-                w.null();
-            else
-                w.string(text);
+            w.key("error_text").string(error_text_or_unknown(s.dialect, key.second));
             count("count", n);
             w.end_object();
         }
@@ -454,11 +447,11 @@ class PcvSection final : public StationSection {
                    "class=\"n\">PNU</th><th class=\"n\">error</th><th>meaning</th><th "
                    "class=\"n\">count</th></tr>\n");
             for (const auto& [key, count] : s.rejections) {
-                std::string_view text = error_text(s.dialect, key.second);
+                std::string_view text = error_text_or_unknown(s.dialect, key.second);
                 fmt::format_to(it,
                                "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td>"
                                "<td class=\"n\">{}</td></tr>\n",
-                               key.first, key.second, xml(text.empty() ? "unknown" : text), count);
+                               key.first, key.second, xml(text), count);
             }
             append(b, "</table>\n");
         }

@@ -369,10 +369,9 @@ class VerboseRenderer final : public TelegramRenderer {
                 !request && response_code(t.dp.dialect, pcv.rc).kind == ResponseKind::Rejected;
             if (rejected) {
                 auto error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
-                std::string_view text = error_text(t.dp.dialect, error);
                 field(2, "PVA: 0x{:08X}", pcv.pva);
                 field(2, "Error number: {} = {}", error,
-                      text.empty() ? "not known to the dialect" : text);
+                      error_text_or_unknown(t.dp.dialect, error));
             } else if (width == ValueWidth::Word) {
                 field(2, "PVA: 0x{:08X}, word value {}", pcv.pva, pcv_value(pcv, width));
             } else if (width == ValueWidth::DoubleWord) {

@@ -156,9 +156,9 @@ Dpv1ParameterModel::Dpv1ParameterModel(Dialect dialect, std::uint8_t address,
                                        std::int64_t master_give_up_ns)
     : dialect_(dialect),
       // Danfoss: always axis 0 [S003]; a PROFIdrive drive object 1, as ABB's examples.
-      axis_(dialect == Dialect::Vlt ? 0 : 1),
+      axis_(danfoss_family(dialect) ? 0 : 1),
       master_give_up_ns_(master_give_up_ns),
-      parameters_(dialect == Dialect::Vlt ? vlt_parameters() : profidrive_parameters(address)) {}
+      parameters_(danfoss_family(dialect) ? vlt_parameters() : profidrive_parameters(address)) {}
 
 Dpv1ParameterModel::Parameter* Dpv1ParameterModel::find(std::uint16_t pnu) {
     for (Parameter& p : parameters_)
@@ -218,7 +218,7 @@ Dpv1ParameterModel::Request Dpv1ParameterModel::choose_request(ChannelEnvironmen
     auto writable = [](const Parameter& p) { return p.writable; };
     auto change_id = [&] {
         // Danfoss also takes 0x42, the change stored in non-volatile memory [S003].
-        return dialect_ == Dialect::Vlt && env.random(2) == 0 ? profidrive::kChangeValueNonVolatile
+        return danfoss_family(dialect_) && env.random(2) == 0 ? profidrive::kChangeValueNonVolatile
                                                               : profidrive::kChangeValue;
     };
     // `count` different parameters of those that fit.
@@ -241,7 +241,7 @@ Dpv1ParameterModel::Request Dpv1ParameterModel::choose_request(ChannelEnvironmen
         r.items.push_back(change_item(env, pick(env, writable)));
     } else if (shape == Shape::Refused) {
         // A request the drive refuses: a negative response with error numbers.
-        const std::uint16_t unknown = dialect_ == Dialect::Vlt ? 9999 : 4242;
+        const std::uint16_t unknown = danfoss_family(dialect_) ? 9999 : 4242;
         switch (env.random(5)) {
             case 0:  // an unknown parameter, after one that reads
                 if (env.random(2) == 0) r.items.push_back(read_item(env, pick(env, any), false));

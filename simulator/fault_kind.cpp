@@ -121,4 +121,8 @@ bool fault_is_fc(FaultKind kind) noexcept {
     return index < std::size(kFaults) && kFaults[index].fc;
 }
 
+bool fault_needs_spontaneous_messages(FaultKind kind) noexcept {
+    return kind == FaultKind::SpontaneousMessage || kind == FaultKind::SpontaneousUnacknowledged;
+}
+
 }  // namespace dpscope

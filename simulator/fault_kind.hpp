@@ -66,5 +66,7 @@ bool fault_needs_parameter_channel(FaultKind kind) noexcept;
 bool fault_needs_dpv1(FaultKind kind) noexcept;
 // Faults of the FC protocol (`simulate --bus fc`); the others act on PROFIBUS DP.
 bool fault_is_fc(FaultKind kind) noexcept;
+// Faults that make a slave send spontaneous messages need a dialect that has them (not ge).
+bool fault_needs_spontaneous_messages(FaultKind kind) noexcept;
 
 }  // namespace dpscope

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cstdlib>
 
@@ -98,7 +99,7 @@ Result<SimulatedSlave> parse_slave_spec(std::string_view text) {
     }
     auto dialect = dialect_from_name(dialect_text);
     if (!dialect) {
-        return Error{fmt::format("{}: dialect must be vlt or profidrive", text)};
+        return Error{fmt::format("{}: dialect must be one of {}", text, kDialectNameList)};
     }
     slave.dialect = *dialect;
     if (third != std::string_view::npos) {
@@ -118,8 +119,10 @@ Result<void> check_faults(const std::vector<FaultSpec>& faults,
     for (const FaultSpec& spec : faults) {
         const bool needs_pcv = fault_needs_parameter_channel(spec.kind);
         const bool needs_dpv1 = fault_needs_dpv1(spec.kind);
+        const bool needs_spontaneous = fault_needs_spontaneous_messages(spec.kind);
         auto fits = [&](const SimulatedSlave& slave) {
-            return (!needs_pcv || has_parameter_channel(slave)) && (!needs_dpv1 || slave.dpv1);
+            return (!needs_pcv || has_parameter_channel(slave)) && (!needs_dpv1 || slave.dpv1) &&
+                   (!needs_spontaneous || has_spontaneous_messages(slave.dialect));
         };
         bool target = false;
         for (const SimulatedSlave& slave : slaves) {
@@ -139,6 +142,14 @@ Result<void> check_faults(const std::vector<FaultSpec>& faults,
                         fmt::format("fault {}: slave {} does not run DP-V1 (give it as "
                                     "--slave ADDR:PPO[:DIALECT]:dpv1)",
                                     describe_fault(spec), *spec.slave)};
+                const SimulatedSlave* slave = nullptr;
+                for (const SimulatedSlave& s : slaves)
+                    if (s.address == *spec.slave) slave = &s;
+                if (needs_spontaneous && has_parameter_channel(*slave))
+                    return Error{fmt::format(
+                        "fault {}: slave {} speaks the {} dialect, which has no spontaneous "
+                        "messages (RC 9 to 12 not used)",
+                        describe_fault(spec), *spec.slave, dialect_name(slave->dialect))};
                 return Error{fmt::format(
                     "fault {}: slave {} has no parameter channel (PPO 3 and 4 carry no PCV)",
                     describe_fault(spec), *spec.slave)};
@@ -148,6 +159,13 @@ Result<void> check_faults(const std::vector<FaultSpec>& faults,
                     fmt::format("fault {}: no simulated slave runs DP-V1 (add one with "
                                 "--slave ADDR:PPO[:DIALECT]:dpv1)",
                                 describe_fault(spec))};
+            if (needs_spontaneous &&
+                std::any_of(slaves.begin(), slaves.end(),
+                            [](const SimulatedSlave& s) { return has_parameter_channel(s); }))
+                return Error{fmt::format(
+                    "fault {}: no simulated slave with a parameter channel has spontaneous "
+                    "messages (the ge dialect has none)",
+                    describe_fault(spec))};
             return Error{
                 fmt::format("fault {}: no simulated slave has a parameter channel (PPO 1, 2 "
                             "or 5)",

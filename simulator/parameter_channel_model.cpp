@@ -10,6 +10,8 @@ constexpr std::uint8_t kRead = 1, kWriteWord = 2, kWriteDword = 3, kReadDescript
                        kReadArray = 6, kReadCount = 9;
 constexpr std::uint8_t kRejected = 7, kNoAuthority = 8, kSpontaneousWord = 9;
 constexpr std::uint8_t kUndefinedCode = 13;
+// GE AF-600 fault numbers [S002]: no network access to the parameter; factory setup selected.
+constexpr std::uint16_t kGeNoNetworkAccess = 130, kGeFactorySetup = 131;
 constexpr std::uint16_t kAlarmWordPnu = 538;
 
 }  // namespace
@@ -57,7 +59,9 @@ void ParameterChannelModel::master_step(ChannelEnvironment& env) {
     const std::uint64_t cycle = env.cycle();
     const SimulatedPcv& seen = master_seen_answer_;
     const bool saw = master_saw_response_;
-    const bool spontaneous_seen = saw && seen.rc >= kSpontaneousWord && seen.rc <= 12;
+    // RC 9..12 where the dialect has spontaneous messages (ge has none: an undefined code).
+    const bool spontaneous_seen =
+        saw && response_code(dialect_, seen.rc).kind == ResponseKind::Spontaneous;
     // The master reacts to the response of the previous cycle (cycle - 1). The slave lags one
     // cycle, so only a response from a cycle after the request was first sent can answer it.
     const bool fresh = cycle >= request_cycle_ + 2;
@@ -127,9 +131,15 @@ void ParameterChannelModel::master_step(ChannelEnvironment& env) {
 SimulatedPcv ParameterChannelModel::compute_answer(ChannelEnvironment& env) {
     const SimulatedPcv& r = current_;
     if (env.inject(FaultKind::RequestRejected)) {
+        // A ge slave refuses with GE's own fault numbers [S002]: 131 (factory setup selected)
+        // for a change, 130 (no network access to the parameter) for a read (which for which is
+        // the simulator's choice); the others with 2 (limit exceeded).
+        std::uint16_t error = 2;
+        if (dialect_ == Dialect::Ge)
+            error = request_code(dialect_, r.rc).is_change ? kGeFactorySetup : kGeNoNetworkAccess;
         // Half the time as in the Danfoss FCM 300 example: PCA 70 00, no PNU echo.
-        if (env.random(2) == 0) return {kRejected, 0, 0, 2};
-        return {kRejected, r.pnu, r.ind, 2};
+        if (env.random(2) == 0) return {kRejected, 0, 0, error};
+        return {kRejected, r.pnu, r.ind, error};
     }
     if (request_code(dialect_, r.rc).is_change && env.inject(FaultKind::NoAuthority))
         return {kNoAuthority, r.pnu, r.ind, 0};
@@ -204,7 +214,12 @@ void ParameterChannelModel::slave_step(ChannelEnvironment& env) {
         if (working_ && env.cycle() >= ready_cycle_ && !spontaneous_active_) {
             if (env.inject(FaultKind::UnknownCode)) {
                 override_active = true;  // the real answer follows in the next cycle
-                override_answer = {kUndefinedCode, current_.pnu, current_.ind, 0};
+                // A ge slave's unknown code is one of the unused 9..12 [S002], others' RC 13.
+                std::uint8_t code =
+                    dialect_ == Dialect::Ge
+                        ? static_cast<std::uint8_t>(kSpontaneousWord + env.random(4))
+                        : kUndefinedCode;
+                override_answer = {code, current_.pnu, current_.ind, 0};
             } else if (env.inject(FaultKind::ResponseTimeout)) {
                 working_ = false;  // never answers
             } else {

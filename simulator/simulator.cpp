@@ -82,7 +82,9 @@ Simulator::Simulator(SimulatorOptions options)
         Slave slave;
         slave.config = config;
         slave.layout = ppo_layout_of_type(config.ppo_type, PpoSource::Option);
-        slave.ident = config.dialect == Dialect::Vlt ? 0x0402 : 0x6001;
+        slave.ident = config.dialect == Dialect::Vlt  ? 0x0402
+                      : config.dialect == Dialect::Ge ? 0x6002
+                                                      : 0x6001;
         if (slave.layout.has_pcv)
             slave.channel.emplace(config.dialect,
                                   std::int64_t{options_.master_give_up_ms} * 1'000'000);
@@ -278,6 +280,9 @@ void Simulator::arm_faults() {
         auto eligible = [&](std::size_t i) {
             if (spec.slave && slaves_[i].config.address != *spec.slave) return false;
             if (fault_needs_dpv1(spec.kind) && !slaves_[i].dpv1) return false;
+            if (fault_needs_spontaneous_messages(spec.kind) &&
+                !has_spontaneous_messages(slaves_[i].config.dialect))
+                return false;
             return !fault_needs_parameter_channel(spec.kind) || slaves_[i].layout.has_pcv;
         };
         if (spec.rate > 0) {

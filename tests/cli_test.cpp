@@ -249,7 +249,16 @@ TEST(CliTest, BadOptionValuesAreUsageErrors) {
     EXPECT_EQ(dialect.exit_code, 2);
     EXPECT_TRUE(dialect.out.empty());
     EXPECT_EQ(dialect.err,
-              "dpscope: error: --dialect foo: 'foo' is not a dialect (vlt, profidrive)\n");
+              "dpscope: error: --dialect foo: 'foo' is not a dialect (vlt, ge, profidrive)\n");
+    CommandResult upper = run_dpscope({"decode", "--dialect", "3=GE", kPpo1});
+    EXPECT_EQ(upper.exit_code, 2);
+    EXPECT_EQ(upper.err,
+              "dpscope: error: --dialect 3=GE: 'GE' is not a dialect (vlt, ge, profidrive)\n");
+    CommandResult twice = run_dpscope({"decode", "--dialect", "ge", "--dialect", "vlt", kPpo1});
+    EXPECT_EQ(twice.exit_code, 2);
+    EXPECT_NE(twice.err.find("the dialect for every slave was already given as ge"),
+              std::string::npos)
+        << twice.err;
 
     CommandResult count = run_dpscope({"decode", "-c", "0", kPpo1});
     EXPECT_EQ(count.exit_code, 2);
@@ -502,6 +511,86 @@ TEST(CliTest, ProfidriveSlaveDecodedAsVltGetsADialectHintInSummaryAndReport) {
     // Decoded as profidrive: no unknown codes, no hint.
     CommandResult right = run_dpscope({"decode", "-q", "--dialect", "3=profidrive", capture.path});
     EXPECT_EQ(right.out.find("hint"), std::string::npos) << right.out;
+    // Decoded as ge: AK 13/14 only profidrive defines.
+    CommandResult ge = run_dpscope({"decode", "-q", "--dialect", "ge", capture.path});
+    EXPECT_NE(ge.out.find("fit the profidrive dialect"), std::string::npos) << ge.out;
+    EXPECT_NE(ge.out.find("codes ge does not define"), std::string::npos) << ge.out;
+}
+
+TEST(CliTest, VltSlaveWithSpontaneousMessagesDecodedAsGeGetsAVltHint) {
+    TempFile capture("vlt-spontaneous.pcap");
+    CommandResult made = run_dpscope({"simulate", "-w", capture.path, "--slave", "3:1", "--cycles",
+                                      "400", "--fault", "spontaneous_message=0.2"});
+    ASSERT_EQ(made.exit_code, 0) << made.err;
+    // RC 9..12 are not used in ge; vlt (first in order) and profidrive both define them.
+    CommandResult ge = run_dpscope({"decode", "-q", "--dialect", "3=ge", capture.path});
+    EXPECT_NE(ge.out.find("its parameter-channel codes fit the vlt dialect ("), std::string::npos)
+        << ge.out;
+    EXPECT_NE(ge.out.find("decode with --dialect 3=vlt"), std::string::npos) << ge.out;
+    CommandResult vlt = run_dpscope({"decode", "-q", capture.path});
+    EXPECT_EQ(vlt.out.find("hint"), std::string::npos) << vlt.out;
+}
+
+// A simulated GE slave (seed 002): its rejection carries fault number 130 or 131, which only the
+// ge dialect names; its unknown code is one of the unused RC 9..12.
+TEST(CliTest, GeSlaveDecodedWithTheGeDialect) {
+    TempFile capture("ge-slave.pcap");
+    CommandResult made =
+        run_dpscope({"simulate", "-w", capture.path, "--seed", "5", "--slave", "3:1:ge", "--cycles",
+                     "40", "--fault", "request_rejected@5:3", "--fault", "unknown_code@20:3"});
+    ASSERT_EQ(made.exit_code, 0) << made.err;
+    auto ge_text = [](const std::string& out) {
+        return out.find("(There is no network access to the parameter called)") !=
+                   std::string::npos ||
+               out.find(
+                   "(Data change is not possible because factory setup has been "
+                   "selected)") != std::string::npos;
+    };
+    for (const char* dialect : {"ge", "3=ge"}) {
+        CommandResult ge = run_dpscope({"decode", "--dialect", dialect, capture.path});
+        EXPECT_EQ(ge.exit_code, 0) << ge.err;
+        EXPECT_TRUE(ge_text(ge.out)) << dialect << "\n" << ge.out;
+        EXPECT_EQ(ge.out.find("unknown error number"), std::string::npos) << ge.out;
+        EXPECT_NE(ge.out.find("unknown_code"), std::string::npos) << ge.out;
+        EXPECT_EQ(ge.out.find("spontaneous"), std::string::npos) << ge.out;
+        CommandResult verbose = run_dpscope({"decode", "-V", "--dialect", dialect, capture.path});
+        EXPECT_NE(verbose.out.find("Dialect: ge;"), std::string::npos);
+    }
+    // vlt knows neither 130 nor 131, and reads RC 9..12 as spontaneous messages.
+    CommandResult vlt = run_dpscope({"decode", capture.path});
+    EXPECT_EQ(vlt.exit_code, 0) << vlt.err;
+    EXPECT_FALSE(ge_text(vlt.out)) << vlt.out;
+    EXPECT_NE(vlt.out.find("(unknown error number)"), std::string::npos) << vlt.out;
+    EXPECT_NE(vlt.out.find("spontaneous"), std::string::npos) << vlt.out;
+    CommandResult report = run_dpscope({"report", "--dialect", "3=ge", capture.path});
+    EXPECT_NE(report.out.find("PPO 1"), std::string::npos) << report.out;
+    EXPECT_NE(report.out.find("dialect ge"), std::string::npos) << report.out;
+    CommandResult vlt_report = run_dpscope({"report", capture.path});
+    EXPECT_NE(vlt_report.out.find("(unknown error number)"), std::string::npos) << vlt_report.out;
+    for (const char* format : {"json", "markdown", "html"}) {
+        CommandResult other = run_dpscope({"report", "-T", format, capture.path});
+        EXPECT_NE(other.out.find("unknown error number"), std::string::npos) << format;
+        EXPECT_EQ(other.out.find("network access"), std::string::npos) << format;
+    }
+    CommandResult csv = run_dpscope({"decode", "-T", "csv", capture.path});
+    EXPECT_NE(csv.out.find("\"unknown error number\""), std::string::npos);
+    CommandResult jsonl = run_dpscope({"decode", "-T", "jsonl", capture.path});
+    EXPECT_NE(jsonl.out.find("\"error_text\":\"unknown error number\""), std::string::npos);
+
+    // A ge slave sends no spontaneous messages: the fault cannot be injected there.
+    CommandResult spontaneous = run_dpscope(
+        {"simulate", "-w", "-", "--slave", "3:1:ge", "--fault", "spontaneous_message:3"});
+    EXPECT_EQ(spontaneous.exit_code, 2);
+    EXPECT_EQ(spontaneous.err,
+              "dpscope: error: --fault spontaneous_message:3: slave 3 speaks the ge dialect, "
+              "which has no spontaneous messages (RC 9 to 12 not used)\n");
+    CommandResult nobody = run_dpscope(
+        {"simulate", "-w", "-", "--slave", "3:1:ge", "--fault", "spontaneous_unacknowledged"});
+    EXPECT_EQ(nobody.exit_code, 2);
+    EXPECT_NE(nobody.err.find("no simulated slave with a parameter channel has spontaneous "
+                              "messages"),
+              std::string::npos)
+        << nobody.err;
 }
 
 TEST(CliTest, ReportWarnsOfAStationNotInTheCapture) {

@@ -245,8 +245,8 @@ TEST(CodeTablesTest, VltRequestCodes) {
         });
 }
 
-// Seed 000 "Response"; seed 002 marks 9-12 "not used" but the vlt dialect supports them
-// (docs/protocol/contradictions.md #2).
+// Seed 000 "Response"; seed 002 marks 9-12 "not used" (the ge dialect) but the vlt dialect
+// supports them (docs/protocol/contradictions.md #2).
 TEST(CodeTablesTest, VltResponseCodes) {
     check_responses(
         Dialect::Vlt,
@@ -268,6 +268,62 @@ TEST(CodeTablesTest, VltResponseCodes) {
             {14, "Not assigned", W::None, K::Undefined, false},
             {15, "Not assigned", W::None, K::Undefined, false},
         });
+}
+
+// Seed 002 "RC content / Request", word for word: 10-15 "Not used".
+TEST(CodeTablesTest, GeRequestCodes) {
+    check_requests(
+        Dialect::Ge,
+        {
+            {0, "No request", W::None, true, false, false},
+            {1, "Request parameter value", W::None, true, false, false},
+            {2, "Change parameter value (word)", W::Word, true, true, false},
+            {3, "Change parameter value (long word)", W::DoubleWord, true, true, false},
+            {4, "Request description element", W::None, true, false, false},
+            {5, "Change description element", W::DoubleWord, true, true, false},
+            {6, "Request parameter value (array)", W::None, true, false, true},
+            {7, "Change parameter value (array word)", W::Word, true, true, true},
+            {8, "Change parameter value (array long word)", W::DoubleWord, true, true, true},
+            {9, "Request number of array elements", W::None, true, false, false},
+            {10, "Not used", W::None, false, false, false},
+            {11, "Not used", W::None, false, false, false},
+            {12, "Not used", W::None, false, false, false},
+            {13, "Not used", W::None, false, false, false},
+            {14, "Not used", W::None, false, false, false},
+            {15, "Not used", W::None, false, false, false},
+        });
+}
+
+// Seed 002 "Response": 0-8 as printed, 9-12 and 13-15 "Not used", so undefined (an
+// unknown_code finding, no spontaneous message).
+TEST(CodeTablesTest, GeResponseCodes) {
+    check_responses(
+        Dialect::Ge,
+        {
+            {0, "No response", W::None, K::None, false},
+            {1, "Transfer parameter value (word)", W::Word, K::Value, false},
+            {2, "Transfer parameter value (long word)", W::DoubleWord, K::Value, false},
+            {3, "Transfer description element", W::DoubleWord, K::Value, false},
+            {4, "Transfer parameter value (array word)", W::Word, K::Value, true},
+            {5, "Transfer parameter value (array long word)", W::DoubleWord, K::Value, true},
+            {6, "Transfer number of array elements", W::Word, K::Value, false},
+            {7, "Request rejected", W::Word, K::Rejected, false},
+            {8, "Not serviceable by PCV interface", W::None, K::NoAuthority, false},
+            {9, "Not used", W::None, K::Undefined, false},
+            {10, "Not used", W::None, K::Undefined, false},
+            {11, "Not used", W::None, K::Undefined, false},
+            {12, "Not used", W::None, K::Undefined, false},
+            {13, "Not used", W::None, K::Undefined, false},
+            {14, "Not used", W::None, K::Undefined, false},
+            {15, "Not used", W::None, K::Undefined, false},
+        });
+    for (std::uint8_t rc = 9; rc <= 12; ++rc) {
+        EXPECT_EQ(response_code(Dialect::Vlt, rc).kind, K::Spontaneous) << int{rc};
+        EXPECT_EQ(judge_answer(Dialect::Ge, 1, rc, false), AnswerVerdict::Invalid) << int{rc};
+    }
+    EXPECT_FALSE(has_spontaneous_messages(Dialect::Ge));
+    EXPECT_TRUE(has_spontaneous_messages(Dialect::Vlt));
+    EXPECT_TRUE(has_spontaneous_messages(Dialect::Profidrive));
 }
 
 // docs/protocol/parameter-channel.md, "Task identifiers".
@@ -338,7 +394,8 @@ TEST(CodeTablesTest, CorruptedPcvWithUndefinedCode) {
 
 // ---- Error numbers ---------------------------------------------------------------------------
 
-// Seed 000 (0..19, wording verbatim: "2 Upper or lower value passed") and seed 002 (130, 131).
+// Seed 000 (0..19, wording verbatim: "2 Upper or lower value passed"); nothing else, not even
+// GE's 130/131 (the ge dialect's).
 TEST(CodeTablesTest, VltErrorNumbers) {
     const std::vector<std::pair<int, std::string>> errors = {
         {0, "Improper PNU"},
@@ -361,21 +418,69 @@ TEST(CodeTablesTest, VltErrorNumbers) {
         {17, "Request temporarily unexecutable"},
         {18, "Other error"},
         {19, "Data not readable in cyclical traffic"},
-        {130, "There is no network access to the parameter called"},  // seed 002, word for word
-        {131, "Data change is not possible because factory setup has been selected"},
     };
     std::set<int> defined;
     for (const auto& [number, text] : errors) {
         SCOPED_TRACE("vlt error " + std::to_string(number));
         EXPECT_EQ(error_text(Dialect::Vlt, static_cast<std::uint16_t>(number)), text);
+        EXPECT_EQ(error_text_or_unknown(Dialect::Vlt, static_cast<std::uint16_t>(number)), text);
         defined.insert(number);
     }
     for (int number = 0; number < 300; ++number) {
         if (defined.count(number)) continue;
         EXPECT_EQ(error_text(Dialect::Vlt, static_cast<std::uint16_t>(number)), "")
             << "vlt error " << number;
+        EXPECT_EQ(error_text_or_unknown(Dialect::Vlt, static_cast<std::uint16_t>(number)),
+                  "unknown error number")
+            << "vlt error " << number;
     }
     EXPECT_EQ(error_text(Dialect::Vlt, 0xFFFF), "");
+    EXPECT_EQ(error_text(Dialect::Vlt, 130), "");
+    EXPECT_EQ(error_text(Dialect::Vlt, 131), "");
+    EXPECT_EQ(error_text_or_unknown(Dialect::Vlt, 130), "unknown error number");
+}
+
+// Seed 002 "Fault no. / Interpretation", word for word: 0..19, 130, 131.
+TEST(CodeTablesTest, GeErrorNumbers) {
+    const std::vector<std::pair<int, std::string>> errors = {
+        {0, "Illegal PNU"},
+        {1, "Parameter value cannot be changed"},
+        {2, "Upper or lower limit exceeded"},
+        {3, "Subindex corrupted"},
+        {4, "No array"},
+        {5, "Data type false"},
+        {6, "Cannot be set by user (reset only)"},
+        {7, "Description element cannot be changed"},
+        {8, "IR required PPO-write not available"},
+        {9, "Description data not available"},
+        {10, "Access group"},
+        {11, "No parameter write access"},
+        {12, "Key word missing"},
+        {13, "Text in cyclical transmission not readable"},
+        {14, "Name in cyclical transmission not readable"},
+        {15, "Text array not available"},
+        {16, "PPO-write missing"},
+        {17, "Request temporarily rejected"},
+        {18, "Other fault"},
+        {19, "Data in cyclical transmission not readable"},
+        {130, "There is no network access to the parameter called"},
+        {131, "Data change is not possible because factory setup has been selected"},
+    };
+    std::set<int> defined;
+    for (const auto& [number, text] : errors) {
+        SCOPED_TRACE("ge error " + std::to_string(number));
+        EXPECT_EQ(error_text(Dialect::Ge, static_cast<std::uint16_t>(number)), text);
+        defined.insert(number);
+    }
+    for (int number = 0; number < 300; ++number) {
+        if (defined.count(number)) continue;
+        EXPECT_EQ(error_text(Dialect::Ge, static_cast<std::uint16_t>(number)), "")
+            << "ge error " << number;
+        EXPECT_EQ(error_text_or_unknown(Dialect::Ge, static_cast<std::uint16_t>(number)),
+                  "unknown error number")
+            << "ge error " << number;
+    }
+    EXPECT_EQ(error_text(Dialect::Ge, 0xFFFF), "");
 }
 
 // docs/protocol/parameter-channel.md, "Error numbers (PWE 2 with AK 7)": 0..24 and the
@@ -436,6 +541,8 @@ TEST(CodeTablesTest, ErrorNumbersDependOnTheDialect) {
     EXPECT_EQ(error_text(Dialect::Profidrive, 130), "");
     EXPECT_EQ(error_text(Dialect::Vlt, 20), "");
     EXPECT_EQ(error_text(Dialect::Vlt, 101), "");
+    EXPECT_EQ(error_text(Dialect::Ge, 20), "");
+    EXPECT_EQ(error_text(Dialect::Ge, 101), "");
 }
 
 // ---- Pairing (docs/protocol/parameter-channel.md) ----------------------------------------------
@@ -444,9 +551,11 @@ TEST(CodeTablesTest, ErrorNumbersDependOnTheDialect) {
 // implementation.
 AnswerVerdict expected_verdict(Dialect dialect, int request, int response, bool strict) {
     bool profidrive = dialect == Dialect::Profidrive;
+    bool ge = dialect == Dialect::Ge;  // responses 9..12 "not used"
     bool request_defined =
         (request >= 0 && request <= 9) || (profidrive && request >= 11 && request <= 15);
-    bool response_defined = (response >= 0 && response <= 12) || (profidrive && response == 15);
+    bool response_defined =
+        (response >= 0 && response <= (ge ? 8 : 12)) || (profidrive && response == 15);
     if (!request_defined || !response_defined) return AnswerVerdict::Invalid;
     const std::vector<std::set<int>> positive = {
         {0}, {1, 2}, {1}, {2}, {3}, {3}, {4, 5}, {4}, {5}, {6}, {}, {5}, {4}, {2}, {1}, {15},
@@ -463,7 +572,7 @@ AnswerVerdict expected_verdict(Dialect dialect, int request, int response, bool 
 }
 
 TEST(CodeTablesTest, JudgeAnswerMatchesThePairingTableForEveryCode) {
-    for (Dialect dialect : {Dialect::Vlt, Dialect::Profidrive}) {
+    for (Dialect dialect : {Dialect::Vlt, Dialect::Ge, Dialect::Profidrive}) {
         for (int strict = 0; strict < 2; ++strict) {
             for (int request = 0; request < 16; ++request) {
                 for (int response = 0; response < 16; ++response) {
@@ -528,8 +637,17 @@ TEST(CodeTablesTest, JudgeAnswerNamedCases) {
 TEST(CodeTablesTest, DialectNames) {
     EXPECT_EQ(dialect_name(Dialect::Vlt), "vlt");
     EXPECT_EQ(dialect_name(Dialect::Profidrive), "profidrive");
+    EXPECT_EQ(dialect_name(Dialect::Ge), "ge");
     EXPECT_EQ(dialect_from_name("vlt"), Dialect::Vlt);
     EXPECT_EQ(dialect_from_name("profidrive"), Dialect::Profidrive);
+    EXPECT_EQ(dialect_from_name("ge"), Dialect::Ge);
+    EXPECT_EQ(dialect_from_name("GE"), std::nullopt);
+    EXPECT_EQ(kDialectNameList, "vlt, ge, profidrive");
+    for (Dialect dialect : kDialects)
+        EXPECT_EQ(dialect_from_name(dialect_name(dialect)), dialect);
+    EXPECT_TRUE(danfoss_family(Dialect::Vlt));
+    EXPECT_TRUE(danfoss_family(Dialect::Ge));
+    EXPECT_FALSE(danfoss_family(Dialect::Profidrive));
     EXPECT_EQ(dialect_from_name("VLT"), std::nullopt);
     EXPECT_EQ(dialect_from_name(""), std::nullopt);
     EXPECT_EQ(dialect_from_name("fc"), std::nullopt);

@@ -59,6 +59,11 @@ golden_case(report_timeouts_text samples/expected/report.timeouts.txt EXIT 1 rep
 golden_case(report_timeouts_json samples/expected/report.timeouts.json EXIT 1 report -T json samples/timeouts.pcap)
 golden_case(report_clean_text samples/expected/report.ppo2.txt report samples/ppo2.pcap)
 golden_case(report_profidrive_json samples/expected/report.profidrive.json report -T json --dialect profidrive samples/profidrive.pcap)
+# Two GE AF-600 slaves (ge dialect): GE fault numbers 130/131, an unknown code from RC 9..12.
+golden_case(ge_text samples/expected/ge.txt decode --dialect ge samples/ge.pcap)
+golden_case(ge_jsonl samples/expected/ge.jsonl decode -T jsonl --dialect ge samples/ge.pcap)
+golden_case(report_ge_text samples/expected/report.ge.txt report --dialect ge samples/ge.pcap)
+golden_case(report_ge_json samples/expected/report.ge.json report -T json --dialect ge samples/ge.pcap)
 golden_case(decode_faults_findings_jsonl samples/expected/faults.findings.jsonl decode -T jsonl --station 5 -c 120 samples/faults.pcap)
 # DP-V1 parameter access (slave 4 speaks the PROFIdrive dialect): every decode and report format.
 golden_case(dpv1_text samples/expected/dpv1.txt decode --dialect 4=profidrive samples/dpv1.pcap)

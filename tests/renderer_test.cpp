@@ -268,13 +268,44 @@ TEST(RendererTest, JsonlRejectedRequestCarriesErrorNumberAndText) {
     EXPECT_EQ(pcv["error_text"].string(), "Request temporarily unexecutable");
     EXPECT_EQ(pcv["pva"].integer(), 17);
 
-    // An error number the dialect does not know: the number, and a null text.
+    // An error number the dialect does not know: the number, named as unknown.
     std::vector<Input> unknown = session();
     unknown[9].bytes = response(std::nullopt, pcv_and_pcd(7, false, 999, 0, 77, 0x0F07, 0x2000));
     std::vector<Json> again = jsonl(unknown);
     ASSERT_EQ(again.size(), 12u);
     EXPECT_EQ(again[9]["pcv"]["error"].integer(), 77);
-    EXPECT_TRUE(again[9]["pcv"]["error_text"].is_null());
+    EXPECT_EQ(again[9]["pcv"]["error_text"].string(), "unknown error number");
+}
+
+// GE's fault number 131 [S002]: named in the ge dialect, an unknown error number in vlt, the
+// same words in every format.
+TEST(RendererTest, ErrorNumber131PerDialectInEveryFormat) {
+    std::vector<Input> in = session();
+    in[9].bytes = response(std::nullopt, pcv_and_pcd(7, false, 999, 0, 131, 0x0F07, 0x2000));
+    const std::string ge_text =
+        "Data change is not possible because factory setup has been selected";
+    DecoderOptions ge;
+    ge.dialect = Dialect::Ge;
+    DecoderOptions ge_station;
+    ge_station.station_dialect[3] = Dialect::Ge;
+    for (const DecoderOptions& options : {ge, ge_station}) {
+        EXPECT_EQ(jsonl(in, options)[9]["pcv"]["error_text"].string(), ge_text);
+        EXPECT_EQ(jsonl(in, options)[9]["dialect"].string(), "ge");
+        EXPECT_NE(render(OutputFormat::Text, in, options).find("error 131 (" + ge_text + ")"),
+                  std::string::npos);
+        EXPECT_NE(render(OutputFormat::Verbose, in, options)
+                      .find("Error number: 131 = " + ge_text + "\n"),
+                  std::string::npos);
+        EXPECT_NE(render(OutputFormat::Csv, in, options).find(",131,\"" + ge_text + "\","),
+                  std::string::npos);
+    }
+    const std::string unknown = "unknown error number";
+    EXPECT_EQ(jsonl(in)[9]["pcv"]["error_text"].string(), unknown);
+    EXPECT_NE(render(OutputFormat::Text, in).find("error 131 (" + unknown + ")"),
+              std::string::npos);
+    EXPECT_NE(render(OutputFormat::Verbose, in).find("Error number: 131 = " + unknown + "\n"),
+              std::string::npos);
+    EXPECT_NE(render(OutputFormat::Csv, in).find(",131,\"" + unknown + "\","), std::string::npos);
 }
 
 TEST(RendererTest, JsonlServiceObjects) {

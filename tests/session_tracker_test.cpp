@@ -4,6 +4,7 @@
 // messages, time-outs and latency.
 #include "decoder/session_tracker.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <map>
@@ -895,6 +896,53 @@ TEST(SessionTrackerTest, UndefinedCodesAreUnknownAndDoNotAnswer) {
     ch.cycle(kRead520, kValue520);
     EXPECT_EQ(count_kinds(ch.findings), (Counts{{"unknown_code", 1}}));
     EXPECT_EQ(ch.stats().transactions.positive, 2u);
+}
+
+// Seed 002: a GE AF-600 marks RC 9..12 "not used". In the ge dialect they are unknown codes,
+// no spontaneous messages; the pending request stays open until the real answer.
+TEST(SessionTrackerTest, GeResponseCodesNineToTwelveAreUnknownCodes) {
+    for (std::uint8_t rc = 9; rc <= 12; ++rc) {
+        SCOPED_TRACE("RC " + std::to_string(rc));
+        Channel ge({}, Dialect::Ge);
+        ge.cycle(kRead520, kIdle);
+        ge.cycle(kRead520, Word{rc, 520, 0, 10, true});  // SPM toggled, as a VLT message would
+        ge.cycle(kRead520, kValue520);
+        ge.cycle(kIdle, kValue520);
+        EXPECT_EQ(count_kinds(ge.findings), (Counts{{"unknown_code", 1}}));
+        EXPECT_EQ(ge.stats().spontaneous, 0u);
+        EXPECT_EQ(ge.stats().transactions.positive, 1u);
+        EXPECT_EQ(ge.findings[0].message,
+                  fmt::format("response code RC {} is not defined in the ge dialect", rc));
+
+        Channel vlt;  // the same telegrams in the vlt dialect: a spontaneous message
+        vlt.cycle(kRead520, kIdle);
+        vlt.cycle(kRead520, Word{rc, 520, 0, 10, true});
+        EXPECT_EQ(count_kinds(vlt.findings), (Counts{{"spontaneous_message", 1}}));
+    }
+}
+
+// The ge dialect names 130 and 131 (seed 002); vlt reports them as unknown error numbers.
+TEST(SessionTrackerTest, GeRejectionNamesFaultNumbers130And131) {
+    for (std::uint16_t error : {std::uint16_t{130}, std::uint16_t{131}}) {
+        Channel ge({}, Dialect::Ge);
+        ge.cycle(kRead520, kIdle);
+        ge.cycle(kRead520, Word{7, 520, 0, error});
+        ASSERT_EQ(count_kinds(ge.findings), (Counts{{"request_rejected", 1}}));
+        EXPECT_NE(ge.findings[0].message.find(fmt::format("rejected with error {} ({})", error,
+                                                          error_text(Dialect::Ge, error))),
+                  std::string::npos)
+            << ge.findings[0].message;
+        EXPECT_FALSE(error_text(Dialect::Ge, error).empty());
+
+        Channel vlt;
+        vlt.cycle(kRead520, kIdle);
+        vlt.cycle(kRead520, Word{7, 520, 0, error});
+        ASSERT_EQ(vlt.findings.size(), 1u);
+        EXPECT_NE(vlt.findings[0].message.find(
+                      fmt::format("rejected with error {} (unknown error number)", error)),
+                  std::string::npos)
+            << vlt.findings[0].message;
+    }
 }
 
 TEST(SessionTrackerTest, UndefinedRequestIsTrackedUntilAnswered) {

@@ -244,6 +244,7 @@ TEST(SimulatorTest, StartUpSequencePerSlave) {
         {{5, 3, Dialect::Vlt}, hex("F1"), 0x0402},
         {{6, 4, Dialect::Vlt}, hex("F5"), 0x0402},
         {{7, 5, Dialect::Profidrive}, hex("F3 F9"), 0x6001},
+        {{8, 1, Dialect::Ge}, hex("F3 F1"), 0x6002},
     };
     SimulatorOptions options = small_session(2, 1);
     for (const StartUpCase& c : cases)
@@ -516,6 +517,12 @@ TEST(SimulatorTest, ParseSlaveSpecValid) {
     EXPECT_EQ(e.dialect, Dialect::Profidrive);
     EXPECT_TRUE(e.dpv1);
     EXPECT_TRUE(slave("10:5:vlt:dpv1").dpv1);
+    SimulatedSlave f = slave("11:1:ge");
+    EXPECT_EQ(f.dialect, Dialect::Ge);
+    EXPECT_FALSE(f.dpv1);
+    SimulatedSlave g = slave("12:5:ge:dpv1");
+    EXPECT_EQ(g.dialect, Dialect::Ge);
+    EXPECT_TRUE(g.dpv1);
 }
 
 TEST(SimulatorTest, ParseSlaveSpecInvalid) {
@@ -526,12 +533,14 @@ TEST(SimulatorTest, ParseSlaveSpecInvalid) {
     EXPECT_EQ(slave_error("5:0"), "5:0: the PPO type must be from 1 to 5");
     EXPECT_EQ(slave_error("5:6"), "5:6: the PPO type must be from 1 to 5");
     EXPECT_EQ(slave_error("5:"), "5:: the PPO type must be from 1 to 5");
-    EXPECT_EQ(slave_error("5:1:foo"), "5:1:foo: dialect must be vlt or profidrive");
-    EXPECT_EQ(slave_error("5:1:"), "5:1:: dialect must be vlt or profidrive");
+    EXPECT_EQ(slave_error("5:1:foo"), "5:1:foo: dialect must be one of vlt, ge, profidrive");
+    EXPECT_EQ(slave_error("5:1:"), "5:1:: dialect must be one of vlt, ge, profidrive");
     EXPECT_EQ(slave_error("5:1:vlt:x"), "5:1:vlt:x: only dpv1 may follow the dialect");
     EXPECT_EQ(slave_error("5:1:vlt:dpv1:x"), "5:1:vlt:dpv1:x: only dpv1 may follow the dialect");
-    EXPECT_EQ(slave_error("5:1:dpv1:vlt"), "5:1:dpv1:vlt: dialect must be vlt or profidrive");
+    EXPECT_EQ(slave_error("5:1:dpv1:vlt"),
+              "5:1:dpv1:vlt: dialect must be one of vlt, ge, profidrive");
     EXPECT_EQ(slave_error("5:1:vlt:"), "5:1:vlt:: only dpv1 may follow the dialect");
+    EXPECT_EQ(slave_error("5:1:GE"), "5:1:GE: dialect must be one of vlt, ge, profidrive");
 }
 
 // ---- fault injection -------------------------------------------------------------------------
@@ -597,6 +606,64 @@ TEST(SimulatorTest, FaultOnASlaveWithoutPcvIsNotInjected) {
     run(simulator);
     ASSERT_EQ(simulator.injections().size(), 1u);
     EXPECT_EQ(simulator.injections()[0].kind, FaultKind::ConfigMismatch);
+}
+
+// A GE slave (seed 002) rejects with its fault numbers 130 (a read) and 131 (a change), sends one
+// of the unused RC 9..12 as its unknown code, and no spontaneous messages; the vlt slave beside
+// it keeps error 2 and RC 13, and does send spontaneous messages.
+TEST(SimulatorTest, GeSlaveUsesGeFaultNumbersAndUnusedCodes) {
+    SimulatorOptions options = small_session(7, 600);
+    options.slaves = {{3, 1, Dialect::Ge}, {4, 1, Dialect::Vlt}};
+    options.faults = {FaultSpec{FaultKind::RequestRejected, 0.05, std::nullopt, std::nullopt},
+                      FaultSpec{FaultKind::UnknownCode, 0.05, std::nullopt, std::nullopt},
+                      FaultSpec{FaultKind::SpontaneousMessage, 0.05, std::nullopt, std::nullopt}};
+    Simulator simulator(options);
+    std::vector<Telegram> telegrams = run(simulator);
+    std::map<std::uint8_t, std::map<FaultKind, int>> injected;
+    for (const Injection& injection : simulator.injections())
+        ++injected[injection.slave][injection.kind];
+    EXPECT_EQ(injected[3][FaultKind::SpontaneousMessage], 0);
+    EXPECT_GT(injected[4][FaultKind::SpontaneousMessage], 0);
+    EXPECT_GT(injected[3][FaultKind::RequestRejected], 0);
+    EXPECT_GT(injected[3][FaultKind::UnknownCode], 0);
+
+    BusDecoder decoder;
+    std::map<std::uint8_t, std::set<int>> errors, high_codes;
+    std::map<std::uint8_t, int> last_request_rc;
+    std::set<std::pair<int, int>> request_and_error;  // slave 3: the pending request's RC, error
+    for (const Decoded& d : decode_all(telegrams, decoder)) {
+        if (d.service != Service::DataExchange || d.du.size() < 8) continue;
+        const int rc = d.du[0] >> 4;
+        if (d.direction == Direction::Request) {
+            if (rc != 0) last_request_rc[d.slave] = rc;
+            continue;
+        }
+        const int pva_low = d.du[6] << 8 | d.du[7];
+        if (rc == 7) {
+            errors[d.slave].insert(pva_low);
+            if (d.slave == 3) request_and_error.insert({last_request_rc[3], pva_low});
+        }
+        if (rc >= 9) high_codes[d.slave].insert(rc);
+    }
+    EXPECT_EQ(errors[3], (std::set<int>{130, 131}));
+    EXPECT_EQ(errors[4], (std::set<int>{2}));
+    for (const auto& [request, error] : request_and_error)
+        EXPECT_EQ(error, request == 2 || request == 3 ? 131 : 130) << "request RC " << request;
+    ASSERT_FALSE(high_codes[3].empty());
+    for (int rc : high_codes[3]) {
+        EXPECT_GE(rc, 9);
+        EXPECT_LE(rc, 12);
+    }
+    EXPECT_TRUE(high_codes[4].count(13));  // the vlt slave's unknown code
+    EXPECT_TRUE(high_codes[4].count(9));   // and its spontaneous messages
+
+    // Named beforehand: a spontaneous fault aimed at the ge slave cannot happen.
+    options.faults = {FaultSpec{FaultKind::SpontaneousUnacknowledged, 0, 5, 3}};
+    EXPECT_EQ(check_simulator_faults(options).error(),
+              "fault spontaneous_unacknowledged@5:3: slave 3 speaks the ge dialect, which has no "
+              "spontaneous messages (RC 9 to 12 not used)");
+    options.faults = {FaultSpec{FaultKind::SpontaneousMessage, 0, 5, std::nullopt}};
+    EXPECT_TRUE(check_simulator_faults(options));  // slave 4 can take it
 }
 
 TEST(SimulatorTest, FaultsThatCannotBeInjectedAreNamedBeforehand) {
