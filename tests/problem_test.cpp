@@ -39,6 +39,9 @@ TEST(ProblemTest, NamesAndSeveritiesAreTheDocumentedOnes) {
         "cfg_identifier_truncated",
         "diag_block_truncated",
         "reserved_frame_control",
+        "lge_invalid",
+        "bcc_mismatch",
+        "adr_invalid",
     };
     ASSERT_EQ(expected.size(), kProblemKindCount);
     for (std::size_t i = 0; i < kProblemKindCount; ++i) {
