@@ -193,6 +193,43 @@ TEST(FcRendererTest, TextWithoutAddressByteShowsTheBytes) {
     EXPECT_NE(l[1].find("bad unknown        req 02 [truncated]"), std::string::npos) << l[1];
 }
 
+// LGE 7 names no block: the data bytes are shown; the long-format broadcast 0x80.
+TEST(FcRendererTest, UnknownBlockAndLongBroadcast) {
+    std::vector<std::vector<std::uint8_t>> in = {
+        telegram(0x81, {0x04, 0x7F, 0x20, 0x00, 0x00}),
+        telegram(0x80, process(0x047F, 0x2000)),
+    };
+    std::vector<std::string> l = test::lines_of(render(OutputFormat::Text, in));
+    ASSERT_EQ(l.size(), 2u);
+    EXPECT_NE(l[0].find("M → 1   FC  unknown        req ADR 0x81 (1-126) data 04 7F 20 00 00 "
+                        "DF [lge_invalid]"),
+              std::string::npos)
+        << l[0];
+    EXPECT_NE(l[1].find("M → all FC  process        req ADR 0x80 (1-126, broadcast) | "),
+              std::string::npos)
+        << l[1];
+    std::string verbose = render(OutputFormat::Verbose, in);
+    EXPECT_NE(verbose.find("    LGE: 7 (no block has this length; telegram 9 bytes)\n"
+                           "    ADR: 0x81 (1-126 format, address 1)\n    BCC: 0xDF (correct)\n"),
+              std::string::npos)
+        << verbose;
+    EXPECT_NE(verbose.find("    ADR: 0x80 (1-126 format, broadcast)\n"), std::string::npos)
+        << verbose;
+    std::vector<std::string> j = test::lines_of(render(OutputFormat::Jsonl, in));
+    ASSERT_EQ(j.size(), 2u);
+    auto unknown = parse_json(j[0]);
+    ASSERT_TRUE(unknown);
+    EXPECT_EQ((*unknown)["fc_protocol"]["block"].string(), "unknown");
+    EXPECT_EQ((*unknown)["fc_protocol"]["lge"].integer(), 7);
+    EXPECT_TRUE((*unknown)["fc_protocol"]["pcd1"].is_null());
+    EXPECT_EQ((*unknown)["problems"][0]["kind"].string(), "lge_invalid");
+    auto broadcast = parse_json(j[1]);
+    ASSERT_TRUE(broadcast);
+    EXPECT_TRUE((*broadcast)["fc_protocol"]["broadcast"].boolean);
+    EXPECT_EQ((*broadcast)["fc_protocol"]["address"].integer(), 0);
+    EXPECT_EQ((*broadcast)["slave"].integer(), 0);
+}
+
 const std::vector<std::string> kFcJsonKeys = {"frame",    "time",    "len",           "direction",
                                               "master",   "slave",   "request_frame", "fc_protocol",
                                               "problems", "findings"};
