@@ -286,6 +286,8 @@ std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept {
 }
 
 bool addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
+    // An FC telegram's PKW names its PNU (a response echoes its request's).
+    if (t.protocol == Protocol::Fc) return t.fc.has_pkw && t.fc.pkw.pnu == pnu;
     const ProfidriveMessage* message = t.dp.service_data.profidrive();
     if (!message) return false;
     return std::any_of(message->addresses.begin(), message->addresses.end(),

@@ -127,7 +127,7 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
 std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept;
 
 // Whether a DP-V1 telegram's PROFIdrive request, or the request its response is named after,
-// addresses parameter `pnu`.
+// addresses parameter `pnu`; for an FC telegram, whether its PKW carries PNU `pnu`.
 bool addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept;
 
 // --station and --pnu: does the telegram pass? A telegram passes --station when it is to or

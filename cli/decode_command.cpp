@@ -93,6 +93,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             stations_seen |= stations_of(t);
             if (t.dp.has_pcv && subject_pnu >= 0)
                 pnus_seen.set(static_cast<std::size_t>(subject_pnu));
+            if (t.protocol == Protocol::Fc && t.fc.has_pkw) pnus_seen.set(t.fc.pkw.pnu);
             if (const ProfidriveMessage* message = t.dp.service_data.profidrive())
                 for (const ProfidriveAddress& a : message->addresses)
                     pnus_seen.set(a.pnu);

@@ -1,5 +1,6 @@
 // Comma-separated values, one row a telegram, with a header row. Fields that could hold a comma
-// or a quote are quoted (RFC 4180).
+// or a quote are quoted (RFC 4180). Both buses share the header; an FC protocol row fills the
+// columns that apply to it (README.md).
 #include <iterator>
 
 #include "formats/describe.hpp"
@@ -31,11 +32,38 @@ class CsvRenderer final : public TelegramRenderer {
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
         TextBuffer& b = out_.buffer();
         auto it = std::back_inserter(b);
+        if (t.protocol == Protocol::Fc)
+            render_fc_columns(t);
+        else
+            render_dp_columns(t);
+        bool first = true;
+        for (const Problem& p : t.problems()) {
+            if (!first) b.push_back(' ');
+            fmt::format_to(it, "{}@{}", problem_kind_name(p.kind), p.offset);
+            first = false;
+        }
+        b.push_back(',');
+        first = true;
+        for (const Finding& finding : findings) {
+            if (!first) b.push_back(' ');
+            append(b, finding_kind_name(finding.kind));
+            first = false;
+        }
+        b.push_back('\n');
+        out_.end_record();
+    }
+
+  private:
+    void opt(bool present, unsigned value) {
+        if (present) fmt::format_to(std::back_inserter(out_.buffer()), "{}", value);
+        out_.buffer().push_back(',');
+    }
+
+    // frame .. detail, each followed by its comma.
+    void render_dp_columns(const DecodedTelegram& t) {
+        TextBuffer& b = out_.buffer();
+        auto it = std::back_inserter(b);
         const FdlTelegram& f = t.dp.fdl;
-        auto opt = [&](bool present, unsigned value) {
-            if (present) fmt::format_to(it, "{}", value);
-            b.push_back(',');
-        };
         fmt::format_to(it, "{},", t.frame);
         if (t.has_time()) append_epoch_seconds(b, t.time_ns);
         fmt::format_to(it, ",{},{},", t.bytes.size(),
@@ -84,21 +112,48 @@ class CsvRenderer final : public TelegramRenderer {
         if (f.type != FrameType::Invalid) append_service_detail(detail, t);
         quoted(b, std::string_view(detail.data(), detail.size()));
         b.push_back(',');
-        bool first = true;
-        for (const Problem& p : t.problems()) {
-            if (!first) b.push_back(' ');
-            fmt::format_to(it, "{}@{}", problem_kind_name(p.kind), p.offset);
-            first = false;
+    }
+
+    // The same columns for an FC protocol telegram (README.md): sd, da, sa, dsap, ssap, fc,
+    // ppo and spm stay empty; service is the block; slave the drive (0: broadcast); fcs_ok the
+    // BCC; rc the AK, ind the index, pva PWE (per the AK's width), meaning the AK's name, error
+    // and error_text the AK 7 fault code and its text; pcd PCD 1 and PCD 2.
+    void render_fc_columns(const DecodedTelegram& t) {
+        TextBuffer& b = out_.buffer();
+        auto it = std::back_inserter(b);
+        const FcTelegram& fc = t.fc;
+        fmt::format_to(it, "{},", t.frame);
+        if (t.has_time()) append_epoch_seconds(b, t.time_ns);
+        fmt::format_to(it, ",{},,,,,,,{},{},", t.bytes.size(), fc_block_name(fc.block),
+                       direction_name(t.direction));
+        opt(t.has_roles, t.master);
+        opt(t.has_roles, t.slave);
+        opt(t.request_frame != 0, static_cast<unsigned>(t.request_frame));
+        fmt::format_to(it, "{},,", fc.bcc_ok ? "true" : "false");
+        if (fc.has_pkw) {
+            const bool rejected = fc_rejected(t);
+            const bool pwe = fc.block == FcBlock::Parameter && !rejected;
+            fmt::format_to(it, "{},,{},{},", fc.pkw.rc, fc.pkw.pnu, fc.pkw.ind);
+            if (pwe) fmt::format_to(it, "{}", pcv_value(fc.pkw, fc_ak_width(t)));
+            b.push_back(',');
+            quoted(b, fc_ak_meaning(t));
+            b.push_back(',');
+            if (rejected) {
+                fmt::format_to(it, "{},", fc_fault_code(fc));
+                quoted(b, fc_fault_text_or_unknown(fc_fault_code(fc)));
+            } else {
+                b.push_back(',');
+            }
+        } else {
+            append(b, ",,,,,,,");
         }
         b.push_back(',');
-        first = true;
-        for (const Finding& finding : findings) {
-            if (!first) b.push_back(' ');
-            append(b, finding_kind_name(finding.kind));
-            first = false;
-        }
-        b.push_back('\n');
-        out_.end_record();
+        if (fc.has_pcd) fmt::format_to(it, "{:04X} {:04X}", fc.pcd1, fc.pcd2);
+        b.push_back(',');
+        TextBuffer detail;
+        append_fc_detail(detail, t);
+        quoted(b, std::string_view(detail.data(), detail.size()));
+        b.push_back(',');
     }
 };
 

@@ -1,10 +1,12 @@
-// One JSON object a telegram. Every key is present on every line (null where it does not apply);
-// the schema is documented in README.md and is stable.
+// One JSON object a telegram. Every key is present on every line of its bus (null where it does
+// not apply); the schema is documented in README.md per bus and is stable. FC protocol lines
+// carry the common keys and an "fc_protocol" object instead of the FDL/DP keys.
 #include <algorithm>
 #include <iterator>
 #include <vector>
 
 #include "decoder/dp_payload.hpp"
+#include "decoder/pcd.hpp"
 #include "formats/describe.hpp"
 #include "formats/json.hpp"
 #include "formats/renderer.hpp"
@@ -36,14 +38,56 @@ class JsonlRenderer final : public TelegramRenderer {
 
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
         JsonWriter w(out_.buffer());
-        const FdlTelegram& f = t.dp.fdl;
-        const bool valid = f.type != FrameType::Invalid;
-        const bool data_exchange = t.dp.service == Service::DataExchange;
         w.begin_object();
         w.key("frame").integer(static_cast<std::int64_t>(t.frame));
         w.key("time");
         json::time(w, t.time_ns);
         w.key("len").integer(static_cast<std::int64_t>(t.bytes.size()));
+        if (t.protocol == Protocol::Fc)
+            render_fc_keys(w, t);
+        else
+            render_dp_keys(w, t);
+        w.key("problems").begin_array();
+        for (const Problem& p : t.problems()) {
+            w.begin_object();
+            w.key("kind").string(problem_kind_name(p.kind));
+            w.key("severity").string(severity_name(problem_severity(p.kind)));
+            w.key("offset").integer(p.offset);
+            w.key("message").string(problem_message(p));
+            w.end_object();
+        }
+        w.end_array();
+        w.key("findings").begin_array();
+        for (const Finding& finding : findings)
+            json::finding(w, finding);
+        w.end_array();
+        w.end_object();
+        out_.put('\n');
+        out_.end_record();
+    }
+
+    // A last line for findings that belong to no telegram:
+    // {"end_of_capture":true,"findings":[...]}.
+    void render_end_findings(std::span<const Finding> findings) override {
+        if (findings.empty()) return;
+        JsonWriter w(out_.buffer());
+        w.begin_object();
+        w.key("end_of_capture").boolean(true);
+        w.key("findings").begin_array();
+        for (const Finding& f : findings)
+            json::finding(w, f);
+        w.end_array();
+        w.end_object();
+        out_.put('\n');
+        out_.end_record();
+    }
+
+  private:
+    // The PROFIBUS keys between "len" and "problems".
+    static void render_dp_keys(JsonWriter& w, const DecodedTelegram& t) {
+        const FdlTelegram& f = t.dp.fdl;
+        const bool valid = f.type != FrameType::Invalid;
+        const bool data_exchange = t.dp.service == Service::DataExchange;
         w.key("sd");
         if (valid)
             w.string(frame_type_name(f.type));
@@ -110,42 +154,127 @@ class JsonlRenderer final : public TelegramRenderer {
             hex_string(w, f.du);
         else
             w.null();
-        w.key("problems").begin_array();
-        for (const Problem& p : t.problems()) {
-            w.begin_object();
-            w.key("kind").string(problem_kind_name(p.kind));
-            w.key("severity").string(severity_name(problem_severity(p.kind)));
-            w.key("offset").integer(p.offset);
-            w.key("message").string(problem_message(p));
-            w.end_object();
+    }
+
+    // The FC protocol keys between "len" and "problems": the common header keys and the
+    // "fc_protocol" object (README.md, "FC protocol lines"); no FDL or DP key.
+    static void render_fc_keys(JsonWriter& w, const DecodedTelegram& t) {
+        const FcTelegram& fc = t.fc;
+        const bool request = t.direction == Direction::Request;
+        w.key("direction").string(direction_name(t.direction));
+        w.key("master").optional_integer(t.has_roles, t.master);
+        w.key("slave").optional_integer(t.has_roles, t.slave);
+        w.key("request_frame")
+            .optional_integer(t.request_frame != 0, static_cast<std::int64_t>(t.request_frame));
+        w.key("fc_protocol").begin_object();
+        const bool has_lge = t.bytes.size() >= 2 && t.bytes[0] == kFcStx;
+        w.key("lge").optional_integer(has_lge, fc.lge);
+        w.key("adr").optional_integer(t.has_roles, fc.adr);
+        w.key("address").optional_integer(t.has_roles, fc.address);
+        w.key("address_format");
+        if (t.has_roles)
+            w.string(fc_address_format_name(fc.address_format));
+        else
+            w.null();
+        w.key("broadcast");
+        if (t.has_roles)
+            w.boolean(fc.broadcast);
+        else
+            w.null();
+        w.key("block").string(fc_block_name(fc.block));
+        w.key("complete").boolean(fc.complete);
+        const Pcv& pkw = fc.pkw;
+        w.key("pke").optional_integer(fc.has_pkw, pkw.pca);
+        w.key("ak").optional_integer(fc.has_pkw, pkw.rc);
+        w.key("ak_name");
+        if (fc.has_pkw)
+            w.string(fc_ak_meaning(t));
+        else
+            w.null();
+        w.key("ak_known");
+        if (fc.has_pkw)
+            w.boolean(fc_ak_defined(t));
+        else
+            w.null();
+        w.key("pnu").optional_integer(fc.has_pkw, pkw.pnu);
+        w.key("parameter");
+        if (fc.has_pkw)
+            w.string(fc_parameter_name(pkw.pnu));
+        else
+            w.null();
+        w.key("index").optional_integer(fc.has_pkw, pkw.ind);
+        w.key("ind_high").optional_integer(fc.has_pkw, fc.ind_high);
+        const bool text = fc.has_pkw && fc.block == FcBlock::Text;
+        w.key("text_mode");
+        if (text && !fc_text_mode_name(fc.ind_high).empty())
+            w.string(fc_text_mode_name(fc.ind_high));
+        else
+            w.null();
+        w.key("text");
+        if (text) {
+            TextBuffer chars;
+            append_fc_text(chars, fc.text);
+            w.string(std::string_view(chars.data(), chars.size()));
+        } else {
+            w.null();
         }
-        w.end_array();
-        w.key("findings").begin_array();
-        for (const Finding& finding : findings)
-            json::finding(w, finding);
-        w.end_array();
+        w.key("text_hex");
+        if (text)
+            hex_string(w, fc.text);
+        else
+            w.null();
+        const bool pwe = fc.has_pkw && fc.block == FcBlock::Parameter;
+        const bool rejected = pwe && fc_rejected(t);
+        const ValueWidth width = pwe ? fc_ak_width(t) : ValueWidth::None;
+        w.key("pwe").optional_integer(pwe && !rejected, pcv_value(pkw, width));
+        w.key("pwe_raw").optional_integer(pwe, pkw.pva);
+        w.key("width");
+        if (pwe && !rejected && width == ValueWidth::Word)
+            w.string("word");
+        else if (pwe && !rejected && width == ValueWidth::DoubleWord)
+            w.string("dword");
+        else
+            w.null();
+        w.key("fault_code").optional_integer(rejected, fc_fault_code(fc));
+        w.key("fault_text");
+        if (rejected)
+            w.string(fc_fault_text_or_unknown(fc_fault_code(fc)));
+        else
+            w.null();
+        w.key("pcd1").optional_integer(fc.has_pcd, fc.pcd1);
+        w.key("pcd1_word");
+        if (fc.has_pcd)
+            w.string(request ? "control" : "status");
+        else
+            w.null();
+        // The meaning of each bit 0..15 in the state it has (FC profile; "" where none).
+        w.key("pcd1_bits");
+        if (fc.has_pcd) {
+            const WordBits& bits = request ? control_word_bits(PcdProfile::Fc, true)
+                                           : status_word_bits(PcdProfile::Fc, true);
+            w.begin_array();
+            for (std::size_t bit = 0; bit < 16; ++bit)
+                w.string((fc.pcd1 >> bit) & 1 ? bits[bit].when_1 : bits[bit].when_0);
+            w.end_array();
+        } else {
+            w.null();
+        }
+        w.key("pcd2").optional_integer(fc.has_pcd, fc.pcd2);
+        w.key("pcd2_percent");
+        if (fc.has_pcd)
+            w.number_text(fmt::format("{:.2f}", reference_percent(fc.pcd2)));
+        else
+            w.null();
+        w.key("bcc").optional_integer(fc.complete, fc.bcc);
+        w.key("bcc_computed").optional_integer(fc.complete, fc.bcc_computed);
+        w.key("bcc_ok");
+        if (fc.complete)
+            w.boolean(fc.bcc_ok);
+        else
+            w.null();
         w.end_object();
-        out_.put('\n');
-        out_.end_record();
     }
 
-    // A last line for findings that belong to no telegram:
-    // {"end_of_capture":true,"findings":[...]}.
-    void render_end_findings(std::span<const Finding> findings) override {
-        if (findings.empty()) return;
-        JsonWriter w(out_.buffer());
-        w.begin_object();
-        w.key("end_of_capture").boolean(true);
-        w.key("findings").begin_array();
-        for (const Finding& f : findings)
-            json::finding(w, f);
-        w.end_array();
-        w.end_object();
-        out_.put('\n');
-        out_.end_record();
-    }
-
-  private:
     static void render_pcv(JsonWriter& w, const DecodedTelegram& t) {
         const Pcv& pcv = t.dp.pcv;
         const bool request = t.direction == Direction::Request;

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "decoder/fc_codes.hpp"
 #include "formats/describe.hpp"
 
 namespace dpscope {
@@ -58,23 +59,11 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
     if (input.bytes_skipped > 0)
         fmt::format_to(it, "  bytes skipped between telegrams: {}\n", input.bytes_skipped);
 
-    append(b, "  by frame type:");
-    for (FrameType type : {FrameType::Sd1, FrameType::Sd2, FrameType::Sd3, FrameType::Sd4,
-                           FrameType::ShortAck, FrameType::Invalid}) {
-        std::uint64_t n = frame_types_[static_cast<std::size_t>(type)];
-        if (n) fmt::format_to(it, " {} {}", frame_type_name(type), n);
+    if (fc_telegrams_ > 0) {
+        render_fc_counts(b);
+    } else {
+        render_dp_counts(b);
     }
-    b.push_back('\n');
-
-    append(b, "  by service:\n");
-    for (std::size_t s = 0; s < kServiceCount; ++s) {
-        std::uint64_t total = requests_[s] + responses_[s];
-        if (total == 0) continue;
-        fmt::format_to(it, "    {:<16} {:>10}  ({}, {})\n", service_name(static_cast<Service>(s)),
-                       total, counted(requests_[s], "request", "requests"),
-                       counted(responses_[s], "response", "responses"));
-    }
-
     fmt::format_to(it, "  telegrams with problems: {}\n", with_problems_);
     for (std::size_t k = 0; k < kProblemKindCount; ++k)
         if (problems_[k])
@@ -95,6 +84,11 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
                            severities_text(findings_by_severity_[k]));
         }
 
+    if (fc_telegrams_ > 0) {
+        render_fc_drives(b);
+        out.end_record();
+        return;
+    }
     bool header = false;
     for (std::size_t a = 0; a < kStationCount; ++a) {
         const StationConfig& station = decoder.station(static_cast<std::uint8_t>(a));
@@ -119,6 +113,70 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
         if (!hint.empty()) fmt::format_to(it, "         hint: {}\n", hint);
     }
     out.end_record();
+}
+
+void Summary::render_dp_counts(TextBuffer& b) const {
+    auto it = std::back_inserter(b);
+    append(b, "  by frame type:");
+    for (FrameType type : {FrameType::Sd1, FrameType::Sd2, FrameType::Sd3, FrameType::Sd4,
+                           FrameType::ShortAck, FrameType::Invalid}) {
+        std::uint64_t n = frame_types_[static_cast<std::size_t>(type)];
+        if (n) fmt::format_to(it, " {} {}", frame_type_name(type), n);
+    }
+    b.push_back('\n');
+
+    append(b, "  by service:\n");
+    for (std::size_t s = 0; s < kServiceCount; ++s) {
+        std::uint64_t total = requests_[s] + responses_[s];
+        if (total == 0) continue;
+        fmt::format_to(it, "    {:<16} {:>10}  ({}, {})\n", service_name(static_cast<Service>(s)),
+                       total, counted(requests_[s], "request", "requests"),
+                       counted(responses_[s], "response", "responses"));
+    }
+}
+
+void Summary::render_fc_counts(TextBuffer& b) const {
+    auto it = std::back_inserter(b);
+    append(b, "  bus: FC protocol\n");
+    append(b, "  by block:");
+    for (FcBlock block : {FcBlock::Process, FcBlock::Parameter, FcBlock::Text, FcBlock::Unknown})
+        if (std::uint64_t n = fc_blocks_[static_cast<std::size_t>(block)])
+            fmt::format_to(it, " {} {}", fc_block_name(block), n);
+    b.push_back('\n');
+    fmt::format_to(it, "  by direction: {}, {}", counted(fc_requests_, "request", "requests"),
+                   counted(fc_responses_total_, "response", "responses"));
+    if (fc_broadcasts_) fmt::format_to(it, " ({} broadcast)", fc_broadcasts_);
+    b.push_back('\n');
+    auto by_ak = [&](std::string_view title, const std::array<std::uint64_t, 16>& counts,
+                     bool request) {
+        bool any = false;
+        for (std::size_t ak = 0; ak < counts.size(); ++ak) {
+            if (!counts[ak]) continue;
+            if (!any) fmt::format_to(it, "  {}:\n", title);
+            any = true;
+            const auto code = static_cast<std::uint8_t>(ak);
+            std::string name = fmt::format(
+                "AK {:>2} {}", ak, request ? fc_command(code).meaning : fc_response(code).meaning);
+            fmt::format_to(it, "    {:<60} {:>10}\n", name, counts[ak]);
+        }
+    };
+    by_ak("parameter commands", fc_commands_, true);
+    by_ak("parameter responses", fc_responses_, false);
+}
+
+void Summary::render_fc_drives(TextBuffer& b) const {
+    auto it = std::back_inserter(b);
+    bool header = false;
+    for (std::size_t a = 0; a < kStationCount; ++a) {
+        if (!slave_seen_[a]) continue;
+        if (!header) {
+            append(b, "  drives:\n");
+            header = true;
+        }
+        fmt::format_to(it, "    {:>3}: {}, {}\n", a,
+                       counted(fc_drive_requests_[a], "request", "requests"),
+                       counted(fc_drive_responses_[a], "response", "responses"));
+    }
 }
 
 }  // namespace dpscope

@@ -1,6 +1,7 @@
 // Counts kept while decoding (cheap enough for every telegram) and the summary `decode -q`
 // prints: telegrams by frame type and service, problems by kind, findings by kind, and per
-// slave the PPO layout in use.
+// slave the PPO layout in use; for an FC protocol capture telegrams by block and by AK, and per
+// drive its requests and responses.
 #pragma once
 
 #include <array>
@@ -30,6 +31,10 @@ std::string dialect_hint_text(std::uint8_t slave, Dialect decoded, const Dialect
 class Summary {
   public:
     void add(const DecodedTelegram& t) noexcept {
+        if (t.protocol == Protocol::Fc) {
+            add_fc(t);
+            return;
+        }
         ++telegrams_;
         ++frame_types_[static_cast<std::size_t>(t.dp.fdl.type)];
         auto service = static_cast<std::size_t>(t.dp.service);
@@ -84,9 +89,46 @@ class Summary {
         return dialects_[slave & 0x7F];
     }
 
+    // FC protocol telegrams counted (by block, by AK, per drive).
+    std::uint64_t fc_telegrams() const noexcept { return fc_telegrams_; }
+    std::uint64_t fc_blocks(FcBlock block) const noexcept {
+        return fc_blocks_[static_cast<std::size_t>(block)];
+    }
+    std::uint64_t fc_commands(std::uint8_t ak) const noexcept { return fc_commands_[ak & 0x0F]; }
+    std::uint64_t fc_responses(std::uint8_t ak) const noexcept { return fc_responses_[ak & 0x0F]; }
+
+    // The text summary: PROFIBUS frame types and services, or, for an FC capture, FC blocks,
+    // AKs and drives.
     void render_text(Output& out, const InputSummary& input, const BusDecoder& decoder) const;
 
   private:
+    void add_fc(const DecodedTelegram& t) noexcept {
+        ++telegrams_;
+        ++fc_telegrams_;
+        const FcTelegram& fc = t.fc;
+        ++fc_blocks_[static_cast<std::size_t>(fc.block)];
+        const bool request = t.direction == Direction::Request;
+        ++(request ? fc_requests_ : fc_responses_total_);
+        if (fc.has_pkw) ++(request ? fc_commands_ : fc_responses_)[fc.pkw.rc & 0x0F];
+        if (fc.broadcast) ++fc_broadcasts_;
+        if (!t.problems().empty()) {
+            ++with_problems_;
+            for (const Problem& p : t.problems())
+                ++problems_[static_cast<std::size_t>(p.kind)];
+        }
+        if (t.has_time()) {
+            if (first_time_ == kNoTime) first_time_ = t.time_ns;
+            last_time_ = t.time_ns;
+        }
+        if (t.has_roles && !fc.broadcast) {
+            slave_seen_[t.slave & 0x7F] = true;
+            ++(request ? fc_drive_requests_ : fc_drive_responses_)[t.slave & 0x7F];
+        }
+    }
+    void render_dp_counts(fmt::memory_buffer& b) const;
+    void render_fc_counts(fmt::memory_buffer& b) const;
+    void render_fc_drives(fmt::memory_buffer& b) const;
+
     std::uint64_t telegrams_ = 0;
     std::uint64_t with_problems_ = 0;
     std::array<std::uint64_t, 6> frame_types_{};
@@ -101,6 +143,15 @@ class Summary {
     std::array<DialectEvidence, kStationCount> dialects_{};
     std::int64_t first_time_ = kNoTime;
     std::int64_t last_time_ = kNoTime;
+    std::uint64_t fc_telegrams_ = 0;
+    std::array<std::uint64_t, 4> fc_blocks_{};
+    std::uint64_t fc_requests_ = 0;
+    std::uint64_t fc_responses_total_ = 0;
+    std::uint64_t fc_broadcasts_ = 0;
+    std::array<std::uint64_t, 16> fc_commands_{};   // requests by AK
+    std::array<std::uint64_t, 16> fc_responses_{};  // responses by AK
+    std::array<std::uint64_t, kStationCount> fc_drive_requests_{};
+    std::array<std::uint64_t, kStationCount> fc_drive_responses_{};
 };
 
 }  // namespace dpscope

@@ -1,6 +1,8 @@
 // One line a telegram:
 //   frame  time(s, relative to the first)  source → destination  frame type  service  req|rsp
 //   detail  [problem kinds] [severity finding-kind ...]
+// An FC protocol telegram: source and destination are the master "M" and the drive's address
+// ("all" for a broadcast), the frame type "FC" and the service column the block.
 #include <algorithm>
 #include <iterator>
 
@@ -57,21 +59,11 @@ class TextRenderer final : public TelegramRenderer {
         } else {
             append(b, "           - ");
         }
-        if (t.dp.fdl.has_addresses) {
-            fmt::format_to(it, "{:>3} → {:<3} ", t.dp.fdl.sa, t.dp.fdl.da);
-        } else if (t.has_roles) {
-            fmt::format_to(it, "{:>3} → {:<3} ", t.slave, t.master);
+        if (t.protocol == Protocol::Fc) {
+            render_fc_columns(t);
         } else {
-            append(b, "  ? → ?   ");
+            render_dp_columns(t);
         }
-        fmt::format_to(it, "{:<3} {:<14} {} ",
-                       t.dp.fdl.type == FrameType::Invalid ? "bad" : frame_type_name(t.dp.fdl.type),
-                       service_name(t.dp.service),
-                       t.direction == Direction::Request ? "req" : "rsp");
-        if (t.dp.fdl.type == FrameType::Invalid)
-            append_hex(b, t.bytes.first(std::min<std::size_t>(t.bytes.size(), 16)));
-        else
-            append_service_detail(b, t);
         if (!t.problems().empty()) {
             append(b, " [");
             bool first = true;
@@ -96,6 +88,48 @@ class TextRenderer final : public TelegramRenderer {
     }
 
   private:
+    // source → destination, frame type, service, req|rsp, detail.
+    void render_dp_columns(const DecodedTelegram& t) {
+        TextBuffer& b = out_.buffer();
+        auto it = std::back_inserter(b);
+        if (t.dp.fdl.has_addresses) {
+            fmt::format_to(it, "{:>3} → {:<3} ", t.dp.fdl.sa, t.dp.fdl.da);
+        } else if (t.has_roles) {
+            fmt::format_to(it, "{:>3} → {:<3} ", t.slave, t.master);
+        } else {
+            append(b, "  ? → ?   ");
+        }
+        fmt::format_to(it, "{:<3} {:<14} {} ",
+                       t.dp.fdl.type == FrameType::Invalid ? "bad" : frame_type_name(t.dp.fdl.type),
+                       service_name(t.dp.service),
+                       t.direction == Direction::Request ? "req" : "rsp");
+        if (t.dp.fdl.type == FrameType::Invalid)
+            append_hex(b, t.bytes.first(std::min<std::size_t>(t.bytes.size(), 16)));
+        else
+            append_service_detail(b, t);
+    }
+
+    // The FC master has no address ("M"); a broadcast goes to "all". The frame type column says
+    // "FC", the service column the block.
+    void render_fc_columns(const DecodedTelegram& t) {
+        TextBuffer& b = out_.buffer();
+        auto it = std::back_inserter(b);
+        if (!t.has_roles) {
+            append(b, "  ? → ?   ");
+        } else {
+            const std::string drive =
+                t.fc.broadcast ? std::string("all") : fmt::format("{}", t.fc.address);
+            if (t.direction == Direction::Request)
+                fmt::format_to(it, "{:>3} → {:<3} ", "M", drive);
+            else
+                fmt::format_to(it, "{:>3} → {:<3} ", drive, "M");
+        }
+        fmt::format_to(it, "{:<3} {:<14} {} ", t.has_roles ? "FC" : "bad",
+                       fc_block_name(t.fc.block),
+                       t.direction == Direction::Request ? "req" : "rsp");
+        append_fc_detail(b, t);
+    }
+
     std::int64_t first_time_ = kNoTime;
 };
 

@@ -1,4 +1,5 @@
-// The whole field tree of each telegram, like tshark -V.
+// The whole field tree of each telegram, like tshark -V; an FC protocol telegram field by field
+// (STX, LGE, ADR, PKE, IND, PWE or text, PCD 1 bits, PCD 2, BCC).
 #include <algorithm>
 #include <iterator>
 #include <span>
@@ -28,8 +29,12 @@ class VerboseRenderer final : public TelegramRenderer {
         line(1, "Bytes: ");
         append_hex(b, t.bytes);
         b.push_back('\n');
-        render_fdl(t);
-        render_dp(t);
+        if (t.protocol == Protocol::Fc) {
+            render_fc(t);
+        } else {
+            render_fdl(t);
+            render_dp(t);
+        }
         if (!t.problems().empty()) {
             append(b, "Problems\n");
             for (const Problem& p : t.problems()) {
@@ -80,6 +85,101 @@ class VerboseRenderer final : public TelegramRenderer {
         fmt::format_to(std::back_inserter(out_.buffer()), "{}: 0x{:02X} (", name, value);
         append_flags(out_.buffer(), value, flags, "none", ignore);
         append(out_.buffer(), ")\n");
+    }
+
+    // The FC protocol telegram field by field, from what FcDecoder stored.
+    void render_fc(const DecodedTelegram& t) {
+        const FcTelegram& fc = t.fc;
+        TextBuffer& b = out_.buffer();
+        auto it = std::back_inserter(b);
+        const bool request = t.direction == Direction::Request;
+        append(b, "FC protocol");
+        if (t.has_roles) {
+            fmt::format_to(it, ": {} block {}", fc_block_name(fc.block),
+                           request ? "request" : "response");
+            if (fc.broadcast)
+                append(b, " to every drive (broadcast)");
+            else
+                fmt::format_to(it, " {} drive {}", request ? "to" : "from", fc.address);
+            if (t.request_frame != 0) fmt::format_to(it, ", answers frame {}", t.request_frame);
+        }
+        b.push_back('\n');
+        if (t.bytes.empty()) return;
+        if (t.bytes[0] != kFcStx) {
+            field(1, "STX: 0x{:02X} (not STX 0x02)", t.bytes[0]);
+            return;
+        }
+        field(1, "STX: 0x02");
+        if (t.bytes.size() < 2) return;
+        if (fc.block == FcBlock::Unknown)
+            field(1, "LGE: {} (no block has this length; telegram {} bytes)", fc.lge, fc.lge + 2);
+        else
+            field(1, "LGE: {} ({} block, telegram {} bytes)", fc.lge, fc_block_name(fc.block),
+                  fc.lge + 2);
+        if (!t.has_roles) return;
+        line(1, "");
+        fmt::format_to(it, "ADR: 0x{:02X} ({} format, ", fc.adr,
+                       fc_address_format_name(fc.address_format));
+        if (fc.broadcast)
+            append(b, "broadcast)\n");
+        else
+            fmt::format_to(it, "address {})\n", fc.address);
+        if (fc.has_pkw) {
+            const Pcv& pkw = fc.pkw;
+            field(1, "PKE: 0x{:04X}", pkw.pca);
+            field(2, "AK: {} = {}{}", pkw.rc, fc_ak_meaning(t),
+                  fc_ak_defined(t)
+                      ? ""
+                      : (request ? " (not a defined command)" : " (not a defined response)"));
+            field(2, "PNU: {} (parameter {})", pkw.pnu, fc_parameter_name(pkw.pnu));
+            field(1, "IND: 0x{:02X}{:02X}", fc.ind_high, pkw.ind_low);
+            std::string_view mode = fc_text_mode_name(fc.ind_high);
+            if (fc.block == FcBlock::Text && !mode.empty())
+                field(2, "high byte: 0x{:02X} ({} text)", fc.ind_high, mode);
+            else
+                field(2, "high byte: 0x{:02X}", fc.ind_high);
+            field(2, "index (low byte): {}", pkw.ind);
+            if (fc.block == FcBlock::Text) {
+                line(1, "");
+                fmt::format_to(it, "Text: {} characters \"", fc.text.size());
+                append_fc_text(b, fc.text);
+                append(b, "\"\n");
+            } else if (fc_rejected(t)) {
+                const std::uint16_t code = fc_fault_code(fc);
+                field(1, "PWE: 0x{:08X}", pkw.pva);
+                field(2, "Fault code: {} = {}", code, fc_fault_text_or_unknown(code));
+            } else {
+                const ValueWidth width = fc_ak_width(t);
+                if (width == ValueWidth::Word)
+                    field(1, "PWE: 0x{:08X}, word value {}", pkw.pva, pcv_value(pkw, width));
+                else if (width == ValueWidth::DoubleWord)
+                    field(1, "PWE: 0x{:08X}, double word value {}", pkw.pva, pkw.pva);
+                else
+                    field(1, "PWE: 0x{:08X} (the AK carries no value)", pkw.pva);
+            }
+        }
+        if (fc.has_pcd) {
+            field(1, "PCD 1 {}: 0x{:04X} ({} word, FC profile)", pcd_word_name(t.direction, 0),
+                  fc.pcd1, request ? "control" : "status");
+            const WordBits& bits = request ? control_word_bits(PcdProfile::Fc, true)
+                                           : status_word_bits(PcdProfile::Fc, true);
+            for (int bit = 0; bit < 16; ++bit) {
+                const bool set = (fc.pcd1 >> bit) & 1;
+                const WordBit& meaning = bits[static_cast<std::size_t>(bit)];
+                field(2, "bit {:>2} = {}: {}", bit, set ? 1 : 0,
+                      set ? meaning.when_1 : meaning.when_0);
+            }
+            field(1, "PCD 2 {}: 0x{:04X} = {:.2f} %", pcd_word_name(t.direction, 1), fc.pcd2,
+                  reference_percent(fc.pcd2));
+        }
+        if (fc.complete) {
+            if (fc.bcc_ok)
+                field(1, "BCC: 0x{:02X} (correct)", fc.bcc);
+            else
+                field(1, "BCC: 0x{:02X} (wrong: computed 0x{:02X})", fc.bcc, fc.bcc_computed);
+        } else {
+            field(1, "BCC: missing (telegram cut short)");
+        }
     }
 
     static std::string_view sap_label(std::uint8_t value, bool slave_side) {

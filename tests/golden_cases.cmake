@@ -47,6 +47,12 @@ golden_case(faults_station_filter samples/expected/faults.station4.txt decode --
 golden_case(ppo1_pnu_filter samples/expected/ppo1.pnu207.txt decode --pnu 207 -T jsonl samples/ppo1.pcap)
 golden_case(faults_pnu_filter samples/expected/faults.pnu207.txt decode --pnu 207 samples/faults.pcap)
 golden_case(truncated_capture samples/expected/truncated.txt EXIT 3 decode samples/truncated.pcap)
+# The Danfoss FC protocol: hand-made telegrams (samples/fc-examples.hex) in every decode format.
+golden_case(fc_examples_text samples/expected/fc-examples.txt decode --bus fc samples/fc-examples.hex)
+golden_case(fc_examples_jsonl samples/expected/fc-examples.jsonl decode --bus fc -T jsonl samples/fc-examples.hex)
+golden_case(fc_examples_verbose samples/expected/fc-examples.verbose.txt decode --bus fc -V samples/fc-examples.hex)
+golden_case(fc_examples_csv samples/expected/fc-examples.csv decode --bus fc -T csv samples/fc-examples.hex)
+golden_case(fc_examples_summary samples/expected/fc-examples.summary.txt decode --bus fc -q samples/fc-examples.hex)
 
 # Conformance reports: a capture with every fault kind (exit 1: errors found) and a clean one.
 golden_case(report_faults_text samples/expected/report.faults.txt EXIT 1 report samples/faults.pcap)
