@@ -71,8 +71,9 @@ TEST(CliTest, AppHelpListsSubcommandsAndExitCodes) {
 }
 
 const std::vector<std::string> kDecodeOptions = {
-    "-T,--format", "-V,--verbose", "-q,--quiet",    "-c,--count",   "--station", "--pnu",
-    "--ppo",       "--dialect",    "--pcd-profile", "--timeout-ms", "--strict",  "-h,--help"};
+    "-T,--format", "-V,--verbose", "-q,--quiet",      "-c,--count",    "--station",
+    "--pnu",       "--ppo",        "--dialect",       "--pcd-profile", "--timeout-ms",
+    "--strict",    "-h,--help",    "--fc-response-ms"};
 
 TEST(CliTest, DecodeHelpMentionsEveryOption) {
     CommandResult r = run_dpscope({"decode", "--help"});
@@ -254,6 +255,17 @@ TEST(CliTest, BadOptionValuesAreUsageErrors) {
     EXPECT_EQ(upper.exit_code, 2);
     EXPECT_EQ(upper.err,
               "dpscope: error: --dialect 3=GE: 'GE' is not a dialect (vlt, ge, profidrive)\n");
+    // fc is the FC carrier's code tables, no dialect of a PROFIBUS slave.
+    CommandResult fc = run_dpscope({"decode", "--dialect", "3=fc", kPpo1});
+    EXPECT_EQ(fc.exit_code, 2);
+    EXPECT_EQ(fc.err,
+              "dpscope: error: --dialect 3=fc: 'fc' is not a dialect (vlt, ge, profidrive)\n");
+    for (const char* bad : {"0", "60001", "-1", "2.5", "x"}) {
+        CommandResult response = run_dpscope({"report", "--fc-response-ms", bad, kPpo1});
+        EXPECT_EQ(response.exit_code, 2) << bad;
+        EXPECT_NE(response.err.find("must be a whole number from 1 to 60000 ms"), std::string::npos)
+            << response.err;
+    }
     CommandResult twice = run_dpscope({"decode", "--dialect", "ge", "--dialect", "vlt", kPpo1});
     EXPECT_EQ(twice.exit_code, 2);
     EXPECT_NE(twice.err.find("the dialect for every slave was already given as ge"),
