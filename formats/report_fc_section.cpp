@@ -43,8 +43,8 @@ std::string_view fault_text(std::uint16_t code) { return error_text_or_unknown(D
 
 class FcSection final : public StationSection {
   public:
-    FcSection(const ReportContext& c, const FcStationStats& stats)
-        : s_(stats), by_severity_(stats.findings_by_severity) {
+    FcSection(const ReportContext& c, const FcStationStats& stats, const Timeline& timeline)
+        : s_(stats), timeline_(timeline), by_severity_(stats.findings_by_severity) {
         for (FindingKind kind : kAllKinds)
             if (covers(kind))
                 findings_[static_cast<std::size_t>(kind)] =
@@ -204,7 +204,7 @@ class FcSection final : public StationSection {
             severities[0]);
     }
 
-    void write_html(const ReportContext& /*c*/, TextBuffer& b) const override {
+    void write_html(const ReportContext& c, TextBuffer& b) const override {
         const FcStationStats& s = s_;
         auto it = std::back_inserter(b);
         fmt::format_to(it,
@@ -220,7 +220,22 @@ class FcSection final : public StationSection {
                     fmt::format("{}; {} answered, {} unanswered, {}", s.responses, s.answered,
                                 s.no_responses, late_text()));
         html_kv(b, "Latency (ms)", latency_text());
-        append(b, "</table>\n<h3>Parameters accessed</h3>\n");
+        append(b, "</table>\n");
+        if (!broadcast()) {
+            append(b, "<h3>Latency histogram</h3>\n");
+            if (!s.timed())
+                append(b, "<p class=\"meta\">The capture carries no timestamps.</p>\n");
+            else
+                svg_latency_histogram(b, s.latency_ns, s.answered > 0, title_lower());
+        }
+        append(b,
+               "<h3>Timeline</h3>\n<div class=\"legend\"><span><i class=\"swatch\" "
+               "style=\"background:#4e79c5\"></i>transactions</span><span><i class=\"swatch\" "
+               "style=\"background:#d92d20\"></i>errors</span><span><i class=\"swatch\" "
+               "style=\"background:#f79009\"></i>warnings</span><span><i class=\"swatch\" "
+               "style=\"background:#2e90fa\"></i>notes</span></div>\n");
+        svg_timeline(b, timeline_, title_lower(), c);
+        append(b, "<h3>Parameters accessed</h3>\n");
         if (s.parameters.empty()) {
             append(b, "<p class=\"meta\">None.</p>\n");
         } else {
@@ -267,6 +282,9 @@ class FcSection final : public StationSection {
     std::string title() const {
         return broadcast() ? std::string("Broadcasts") : fmt::format("Drive {}", s_.address);
     }
+    std::string title_lower() const {
+        return broadcast() ? std::string("broadcasts") : fmt::format("drive {}", s_.address);
+    }
     // "1 late (over 20 ms)", or not judged without timestamps.
     std::string late_text() const {
         return s_.timed() ? fmt::format("{} late (over {} ms)", s_.late, response_ms_)
@@ -282,6 +300,7 @@ class FcSection final : public StationSection {
     }
 
     const FcStationStats& s_;
+    const Timeline& timeline_;
     FindingCounts findings_{};
     const FindingSeverityCounts& by_severity_;
     std::int64_t response_ms_ = 0;
@@ -290,9 +309,9 @@ class FcSection final : public StationSection {
 
 }  // namespace
 
-std::unique_ptr<StationSection> make_fc_section(const ReportContext& c,
-                                                const FcStationStats& stats) {
-    return std::make_unique<FcSection>(c, stats);
+std::unique_ptr<StationSection> make_fc_section(const ReportContext& c, const FcStationStats& stats,
+                                                const Timeline& timeline) {
+    return std::make_unique<FcSection>(c, stats, timeline);
 }
 
 }  // namespace dpscope::report

@@ -21,7 +21,7 @@ ReportModel build_report_model(const ReportContext& c) {
     if (is_fc(c)) {
         for (const FcStationStats* stats : c.fc_tracker->stations()) {
             if (!shows_slave(c, stats->address)) continue;
-            m.stations.push_back(make_fc_section(c, *stats));
+            m.stations.push_back(make_fc_section(c, *stats, timelines.of(0, stats->address)));
             ++m.slaves;
         }
     }

@@ -90,8 +90,8 @@ std::unique_ptr<StationSection> make_pcv_section(const ReportContext& c, const C
 std::unique_ptr<StationSection> make_dpv1_section(const ChannelStats& stats);
 
 // One drive address of an FC capture (address 0: the broadcasts), as the FC tracker counted it.
-std::unique_ptr<StationSection> make_fc_section(const ReportContext& c,
-                                                const FcStationStats& stats);
+std::unique_ptr<StationSection> make_fc_section(const ReportContext& c, const FcStationStats& stats,
+                                                const Timeline& timeline);
 
 // The PROFIBUS bus suite's and the cyclic channel's kinds: all but the DP-V1 parameter-access
 // and the FC protocol ones.

@@ -2617,6 +2617,7 @@ struct FcAnalysis {
             std::span<const Finding> found = tracker.track(t);
             summary.add(t);
             summary.add_findings(found);
+            timelines.add(found, tracker.completed());
             if (!found.empty()) log.append(found);
         }
         std::span<const Finding> found = tracker.finish();
@@ -2632,6 +2633,7 @@ struct FcAnalysis {
         c.decoder = &dp_decoder;
         c.tracker = &dp_tracker;
         c.fc_tracker = &tracker;
+        c.timelines = &timelines;
         c.findings = &log;
         c.version = "7.8.9-test";
         return c;
@@ -2642,6 +2644,7 @@ struct FcAnalysis {
     BusDecoder dp_decoder;
     SessionTracker dp_tracker;
     Summary summary;
+    ChannelTimelines timelines;
     FindingLog log;
 };
 
@@ -2738,6 +2741,8 @@ TEST(ReportTest, FcSectionInMarkdownAndHtml) {
               std::string::npos);
     EXPECT_NE(html.find("Danfoss FC protocol (RS-485)"), std::string::npos);
     EXPECT_NE(html.find("<td>fc_late_response</td>"), std::string::npos);
+    EXPECT_NE(html.find("aria-label=\"latency histogram of drive 2\""), std::string::npos);
+    EXPECT_NE(html.find("aria-label=\"timeline of drive 1\""), std::string::npos);
 }
 
 TEST(ReportTest, JunitFcSuitePerAddressWithACasePerFcRule) {
