@@ -951,3 +951,39 @@ TEST(CliTest, SimulateWriteErrorExitsFour) {
 
 }  // namespace
 }  // namespace dpscope
+
+namespace dpscope {
+namespace {
+
+// The FC protocol through the whole pipeline: FcDecoder, FcTracker, the report's FC sections.
+TEST(CliTest, FcCaptureIsTrackedAndReported) {
+    std::vector<std::uint8_t> bytes;
+    for (const std::vector<std::uint8_t>& telegram :
+         {test::fc_parameter(1, 1, 414), test::fc_parameter(1, 1, 414, 0, 1500, 0x0607),
+          test::fc_parameter(1, 14, 302, 0, 60000), test::fc_parameter(1, 7, 302, 0, 2, 0x0607),
+          test::fc_parameter(1, 1, 415), test::fc_process(2), test::fc_process(2, 0x0607)})
+        bytes.insert(bytes.end(), telegram.begin(), telegram.end());
+    const std::string path = test::temp_path("fc_capture.raw");
+    test::write_file(path, bytes);
+
+    CommandResult decode = run_dpscope({"decode", "--bus", "fc", path});
+    EXPECT_EQ(decode.exit_code, 0) << decode.err;
+    EXPECT_NE(decode.out.find("[note fc_command_rejected]"), std::string::npos) << decode.out;
+    EXPECT_NE(decode.out.find("[error fc_no_response]"), std::string::npos) << decode.out;
+
+    CommandResult report = run_dpscope({"report", "--bus", "fc", "-T", "json", path});
+    EXPECT_EQ(report.exit_code, 1) << report.err;  // fc_no_response is an error
+    EXPECT_NE(report.out.find("\"bus\":\"fc\""), std::string::npos) << report.out;
+    EXPECT_NE(report.out.find("\"fault_text\":\"Upper or lower limit is exceeded\""),
+              std::string::npos);
+    EXPECT_NE(report.out.find("\"fc_stacked_request\""), std::string::npos);
+    EXPECT_EQ(report.out.find("\"stacked_request\""), std::string::npos)
+        << "only the FC kinds are listed";
+
+    CommandResult filtered = run_dpscope({"report", "--bus", "fc", "--station", "9", path});
+    EXPECT_NE(filtered.err.find("--station 9: no drive 9 in the capture"), std::string::npos)
+        << filtered.err;
+}
+
+}  // namespace
+}  // namespace dpscope
