@@ -276,7 +276,9 @@ std::optional<CompletedTransaction> ParameterChannelEngine::slave_pcv(
         return std::nullopt;
     }
     if (code.kind == ResponseKind::Undefined) {
-        if (ch.unknown_valid && key == ch.unknown_key) return std::nullopt;
+        // Repeated in every cycle, it is reported once; without cyclic repetition each is new.
+        if (policy_.cyclic_requests && ch.unknown_valid && key == ch.unknown_key)
+            return std::nullopt;
         ch.unknown_valid = true;
         ch.unknown_key = key;
         if (Finding* f =

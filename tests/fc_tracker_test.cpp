@@ -239,6 +239,15 @@ TEST(FcTrackerTest, UnexpectedAkAndUndefinedCodes) {
     EXPECT_NE(run.all.back().message.find("request code AK 5 is not defined in the fc dialect"),
               std::string::npos)
         << run.all.back().message;
+    // An undefined response AK, twice the same: each is a response of its own, each reported.
+    // (Drive 2: a read to drive 1 now would look like the answer to its AK 5 command.)
+    for (std::int64_t t : {20, 30}) {
+        run.feed(fc_parameter(2, 1, 414), t);
+        found = run.feed(fc_parameter(2, 5, 414, 0, 0, 0x0607), t + 4);
+        ASSERT_EQ(found.size(), 1u) << t;
+        EXPECT_EQ(found[0].kind, FindingKind::UnknownCode);
+        EXPECT_NE(found[0].message.find("response code AK 5"), std::string::npos);
+    }
 }
 
 TEST(FcTrackerTest, DamagedTelegramsAreReportedAndOtherwiseIgnored) {
