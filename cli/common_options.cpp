@@ -147,10 +147,18 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
         ->type_name("NAME");
     app.add_option("--timeout-ms", values.timeout_ms,
                    "Session tracker: a parameter request unanswered (or a spontaneous message "
-                   "unacknowledged) for longer than this is a finding")
+                   "unacknowledged) for longer than this is a finding; FC protocol: a command "
+                   "unanswered for longer (fc_no_response)")
         ->check(whole_number(1, 3'600'000, " ms"))
         ->type_name("MS")
         ->default_str("1000");
+    app.add_option("--fc-response-ms", values.fc_response_ms,
+                   "FC protocol: a drive answering a command later than this is a finding "
+                   "(fc_late_response; a warning). Default 20; the VLT 2800 documents at most 50 "
+                   "ms. Unanswered for longer than --timeout-ms is fc_no_response")
+        ->check(whole_number(1, 60'000, " ms"))
+        ->type_name("MS")
+        ->default_str("20");
     app.add_flag("--strict", values.strict,
                  "Session tracker: RC 8 (no operating authority) after a read request is an "
                  "unexpected response type, not only unusual");
@@ -177,6 +185,8 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     settings.count = values.count;
     settings.tracker.timeout_ns = static_cast<std::int64_t>(values.timeout_ms) * 1'000'000;
     settings.tracker.strict = values.strict;
+    settings.fc_tracker.timeout_ns = settings.tracker.timeout_ns;
+    settings.fc_tracker.response_ns = static_cast<std::int64_t>(values.fc_response_ms) * 1'000'000;
     if (!values.bus.empty()) {
         settings.protocol = &capture_protocol(*protocol_from_name(values.bus));
         settings.bus_given = true;

@@ -17,6 +17,7 @@
 #include "capture/pcap_source.hpp"
 #include "decoder/bus_decoder.hpp"
 #include "decoder/fc_decoder.hpp"
+#include "decoder/fc_tracker.hpp"
 #include "decoder/result.hpp"
 #include "decoder/session_tracker.hpp"
 #include "formats/renderer.hpp"
@@ -76,6 +77,7 @@ struct DecodeOptionValues {
     unsigned fc_pnu_bits = 12;
     std::string pcd_profile;
     std::uint32_t timeout_ms = 1000;
+    std::uint32_t fc_response_ms = 20;
     bool strict = false;
     bool line_buffered = false;
     // decode/hex -w: the telegrams shown, as a capture.
@@ -86,7 +88,7 @@ struct DecodeOptionValues {
 };
 
 // How to decode and track: -c, --bus, --ppo, --dialect, --fc-pnu-bits, --pcd-profile,
-// --timeout-ms, --strict.
+// --timeout-ms, --fc-response-ms, --strict.
 void add_tracking_options(CLI::App& app, DecodeOptionValues& values);
 // What decode, hex and sniff print: -T, -V, -q, -l, --station, --pnu.
 void add_display_options(CLI::App& app, DecodeOptionValues& values,
@@ -102,6 +104,7 @@ struct DecodeSettings {
     DecoderOptions decoder;
     FcDecoderOptions fc_decoder;
     TrackerOptions tracker;
+    FcTrackerOptions fc_tracker;
     OutputFormat format = OutputFormat::Text;
     bool quiet = false;
     bool line_buffered = false;  // -l: flush the output after every telegram

@@ -88,7 +88,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     while (source.next(record)) {
         ++read;
         const DecodedTelegram& t = pipeline.feed(record, findings);
-        const std::int32_t subject_pnu = pipeline.tracker().subject_pnu();
+        const std::int32_t subject_pnu = pipeline.subject_pnu();
         if (settings.filtering()) {
             stations_seen |= stations_of(t);
             if (t.dp.has_pcv && subject_pnu >= 0)

@@ -6,6 +6,7 @@
 #include "capture/telegram_source.hpp"
 #include "cli/common_options.hpp"
 #include "cli/version.hpp"
+#include "decoder/fc_tracker.hpp"
 #include "decoder/session_tracker.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/report.hpp"
@@ -25,6 +26,7 @@ class Pipeline {
           decoder_(settings.decoder),
           fc_decoder_(settings.fc_decoder),
           tracker_(settings.tracker),
+          fc_tracker_(settings.fc_tracker),
           keep_timelines_(keep_timelines) {}
 
     // Decodes and tracks one record; `findings` receives what the tracker found at it.
@@ -32,8 +34,10 @@ class Pipeline {
         if (protocol_ == Protocol::Fc) {
             const DecodedTelegram& t =
                 fc_decoder_.decode(record.bytes, record.time_ns, record.number);
-            findings = {};
+            findings = fc_tracker_.track(t);
             summary_.add(t);
+            summary_.add_findings(findings);
+            if (keep_timelines_) timelines_.add(findings, fc_tracker_.completed());
             return t;
         }
         const DecodedTelegram& t = decoder_.decode(record.bytes, record.time_ns, record.number);
@@ -46,7 +50,8 @@ class Pipeline {
     // The end of the input: findings still open past the time-out.
     // `end_ns`: when the capture ended, if later than its last telegram (a live capture's stop).
     std::span<const Finding> finish(std::int64_t end_ns = kNoTime) {
-        std::span<const Finding> findings = tracker_.finish(end_ns);
+        std::span<const Finding> findings =
+            protocol_ == Protocol::Fc ? fc_tracker_.finish(end_ns) : tracker_.finish(end_ns);
         summary_.add_findings(findings);
         if (keep_timelines_) timelines_.add(findings, {});
         return findings;
@@ -55,6 +60,12 @@ class Pipeline {
     Protocol protocol() const noexcept { return protocol_; }
     const BusDecoder& decoder() const noexcept { return decoder_; }
     const SessionTracker& tracker() const noexcept { return tracker_; }
+    const FcTracker& fc_tracker() const noexcept { return fc_tracker_; }
+    // The parameter number the last telegram's parameter channel is about (-1: none), from the
+    // protocol's tracker.
+    std::int32_t subject_pnu() const noexcept {
+        return protocol_ == Protocol::Fc ? fc_tracker_.subject_pnu() : tracker_.subject_pnu();
+    }
     const Summary& summary() const noexcept { return summary_; }
     const ChannelTimelines& timelines() const noexcept { return timelines_; }
 
@@ -63,6 +74,7 @@ class Pipeline {
     BusDecoder decoder_;
     FcDecoder fc_decoder_;
     SessionTracker tracker_;
+    FcTracker fc_tracker_;
     Summary summary_;
     ChannelTimelines timelines_;
     bool keep_timelines_ = false;
@@ -81,7 +93,9 @@ inline ReportContext report_context(const Pipeline& pipeline, const TelegramSour
     context.input = describe_input(source);
     context.summary = &pipeline.summary();
     context.decoder = &pipeline.decoder();
+    context.protocol = pipeline.protocol();
     context.tracker = &pipeline.tracker();
+    context.fc_tracker = &pipeline.fc_tracker();
     context.timelines = &pipeline.timelines();  // empty unless the pipeline kept them
     context.findings = &log;
     context.fail_on = fail_on;

@@ -39,13 +39,17 @@ int write_report(const ReportCommand& command, ReportFormat format, const Pipeli
         pipeline, source, log, fail_on_from_name(command.fail_on).value_or(FailOn::Error));
     context.allow_empty = command.allow_empty;
     const std::vector<const ChannelStats*> channels = pipeline.tracker().channels();
+    const std::vector<const FcStationStats*> drives = pipeline.fc_tracker().stations();
+    const bool fc = pipeline.protocol() == Protocol::Fc;
     for (unsigned station : command.stations) {
         context.stations.push_back(static_cast<std::uint8_t>(station));
-        bool seen = std::any_of(channels.begin(), channels.end(),
-                                [&](const ChannelStats* s) { return s->slave == station; });
+        bool seen = fc ? std::any_of(drives.begin(), drives.end(),
+                                     [&](const FcStationStats* s) { return s->address == station; })
+                       : std::any_of(channels.begin(), channels.end(),
+                                     [&](const ChannelStats* s) { return s->slave == station; });
         if (!seen)
-            print_warning(
-                fmt::format("--station {}: no slave {} in the capture", station, station));
+            print_warning(fmt::format("--station {}: no {} {} in the capture", station,
+                                      fc ? "drive" : "slave", station));
     }
     const bool fails = render_report(format, context, out);
     if (!log.lost().empty()) print_warning(fmt::format("{}", log.lost()));

@@ -307,7 +307,7 @@ int run_sniff(const SniffCommand& command) {
             }
             const DecodedTelegram& t = pipeline.feed(record, findings);
             if (report && !findings.empty()) log.append(findings);
-            show(renderer.get(), *settings, t, findings, pipeline.tracker().subject_pnu());
+            show(renderer.get(), *settings, t, findings, pipeline.subject_pnu());
             // -c N: exactly N telegrams, not what else the driver still holds.
             if (settings->count != 0 && telegrams >= settings->count) break;
         }

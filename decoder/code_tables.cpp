@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "decoder/fc_codes.hpp"
+
 namespace dpscope {
 
 std::string_view dialect_name(Dialect dialect) {
@@ -9,6 +11,7 @@ std::string_view dialect_name(Dialect dialect) {
         case Dialect::Vlt: return "vlt";
         case Dialect::Ge: return "ge";
         case Dialect::Profidrive: return "profidrive";
+        case Dialect::Fc: return "fc";
     }
     return "vlt";
 }
@@ -289,12 +292,37 @@ constexpr std::array<Pairing, 16> kPairings{{
     {bit(15)},          // 15 (profidrive)
 }};
 
+// The fc dialect's tables, built once from the FC code tables (decoder/fc_codes.hpp) so that the
+// FC codes are written down in one place. There are no array commands: array elements are read
+// and written with the ordinary ones and the index in IND [S001], so every command but AK 0 has
+// its index checked in the answer (is_array).
+struct FcTables {
+    std::array<RequestCode, 16> requests{};
+    std::array<ResponseCode, 16> responses{};
+};
+
+const FcTables& fc_tables() noexcept {
+    static const FcTables tables = [] {
+        FcTables t;
+        for (std::uint8_t ak = 0; ak < 16; ++ak) {
+            const FcCommand& command = fc_command(ak);
+            t.requests[ak] = RequestCode{command.meaning, command.width, command.defined,
+                                         command.is_change, command.defined && ak != 0};
+            const FcResponse& response = fc_response(ak);
+            t.responses[ak] = ResponseCode{response.meaning, response.width, response.kind, false};
+        }
+        return t;
+    }();
+    return tables;
+}
+
 }  // namespace
 
 const RequestCode& request_code(Dialect dialect, std::uint8_t rc) noexcept {
     switch (dialect) {
         case Dialect::Ge: return kGeRequests[rc & 0x0F];
         case Dialect::Profidrive: return kProfidriveRequests[rc & 0x0F];
+        case Dialect::Fc: return fc_tables().requests[rc & 0x0F];
         case Dialect::Vlt: break;
     }
     return kVltRequests[rc & 0x0F];
@@ -304,6 +332,7 @@ const ResponseCode& response_code(Dialect dialect, std::uint8_t rc) noexcept {
     switch (dialect) {
         case Dialect::Ge: return kGeResponses[rc & 0x0F];
         case Dialect::Profidrive: return kProfidriveResponses[rc & 0x0F];
+        case Dialect::Fc: return fc_tables().responses[rc & 0x0F];
         case Dialect::Vlt: break;
     }
     return kVltResponses[rc & 0x0F];
@@ -313,6 +342,7 @@ std::string_view error_text(Dialect dialect, std::uint16_t number) noexcept {
     switch (dialect) {
         case Dialect::Ge: return find_error(kGeErrors, number);
         case Dialect::Profidrive: return find_error(kProfidriveErrors, number);
+        case Dialect::Fc: return fc_fault_text(number);
         case Dialect::Vlt: break;
     }
     return find_error(kVltErrors, number);
@@ -325,6 +355,7 @@ std::string_view error_text_or_unknown(Dialect dialect, std::uint16_t number) no
 
 AnswerVerdict judge_answer(Dialect dialect, std::uint8_t request_rc, std::uint8_t response_rc,
                            bool strict) noexcept {
+    if (dialect == Dialect::Fc) return fc_judge_answer(request_rc, response_rc);
     const RequestCode& request = request_code(dialect, request_rc);
     const ResponseCode& response = response_code(dialect, response_rc);
     if (!request.defined || response.kind == ResponseKind::Undefined) return AnswerVerdict::Invalid;

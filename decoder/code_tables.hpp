@@ -17,6 +17,10 @@
 //              130 and 131 in seed 002's words.
 //   profidrive PROFIdrive V2 PKW: AK 0..15 with the store-to-EEPROM variants 11..14 and text
 //              access 15; error numbers 0..24 and the known manufacturer-specific numbers.
+//   fc         the Danfoss FC protocol's parameter channel on RS-485 (seed 001): the AK commands,
+//              responses and fault codes of decoder/fc_codes.hpp, seen through these tables so
+//              that the parameter-channel engine reads FC like any other carrier. Not a dialect of
+//              a PROFIBUS slave: it is not in kDialects, so --dialect does not take it.
 #pragma once
 
 #include <cstdint>
@@ -27,21 +31,34 @@
 
 namespace dpscope {
 
-enum class Dialect : std::uint8_t { Vlt, Profidrive, Ge };
+enum class Dialect : std::uint8_t { Vlt, Profidrive, Ge, Fc };
 
+// The dialects of a PROFIBUS slave's PCV (--dialect, the dialect hint). Dialect::Fc is the FC
+// carrier's own and is left out.
 inline constexpr Dialect kDialects[] = {Dialect::Vlt, Dialect::Ge, Dialect::Profidrive};
 // The names as a list for help texts and error messages: "vlt, ge, profidrive".
 inline constexpr std::string_view kDialectNameList = "vlt, ge, profidrive";
 
-std::string_view dialect_name(Dialect dialect);  // "vlt", "ge", "profidrive"
+std::string_view dialect_name(Dialect dialect);  // "vlt", "ge", "profidrive", "fc"
+// One of kDialects by name ("fc" is none of them).
 std::optional<Dialect> dialect_from_name(std::string_view name);
 
 // A Danfoss-built drive: vlt, and ge (GE's AF-600/AF-650 use Danfoss's PCA tables [S002] and the
 // Danfoss FC control word, docs/protocol/process-data.md). Everything but the PCV code tables
 // (PCD profile, Danfoss bits 11..15, DP-V1 limits and error numbers) treats ge like vlt.
 constexpr bool danfoss_family(Dialect dialect) noexcept { return dialect != Dialect::Profidrive; }
-// Whether the dialect's RC 9..12 are spontaneous messages (ge: "not used").
-constexpr bool has_spontaneous_messages(Dialect dialect) noexcept { return dialect != Dialect::Ge; }
+// Whether the dialect's RC 9..12 are spontaneous messages (ge: "not used"; fc: no such codes).
+constexpr bool has_spontaneous_messages(Dialect dialect) noexcept {
+    return dialect != Dialect::Ge && dialect != Dialect::Fc;
+}
+// What the dialect's sources call the code and the number of a rejection: "RC" and "error" for
+// the PROFIBUS dialects, "AK" and "fault code" for fc.
+constexpr std::string_view code_label(Dialect dialect) noexcept {
+    return dialect == Dialect::Fc ? "AK" : "RC";
+}
+constexpr std::string_view error_label(Dialect dialect) noexcept {
+    return dialect == Dialect::Fc ? "fault code" : "error";
+}
 
 // Which of the two IND bytes holds the subindex: the first on the wire or the second.
 enum class IndexByte : std::uint8_t { High, Low };

@@ -161,9 +161,15 @@ const DecodedTelegram& FcDecoder::decode(Bytes bytes, std::int64_t time_ns, std:
     if (!addressed) return t_;
 
     if (t_.direction == Direction::Response) {
-        if (pending_.valid) t_.request_frame = pending_.frame;
-        pending_.valid = false;
-    } else if (fc.broadcast) {
+        // A response from another address (AK 7 goes anywhere) answers nothing pending here: the
+        // request still waits for its own drive.
+        if (pending_.valid && fc.adr == pending_.adr) {
+            t_.request_frame = pending_.frame;
+            pending_.valid = false;
+        }
+    } else if (fc.broadcast || !fc.complete || !fc.bcc_ok) {
+        // Nobody answers a broadcast, and a drive drops a damaged command: the master's next
+        // telegram is then no answer to it.
         pending_.valid = false;
     } else {
         pending_.valid = true;

@@ -5,8 +5,10 @@
 //   - a telegram that follows a request is its response when it carries the request's address
 //     byte, has the same kind of block (process, or parameter/text), is not the request's bytes
 //     again, has no AK only a command has (4, 13, 14), and comes within the response window;
-//   - a telegram with AK 7 (only a response has it) is a response wherever it comes;
-//   - everything else is a request; a broadcast is answered by nobody.
+//   - a telegram with AK 7 (only a response has it) is a response wherever it comes (from another
+//     address than the request's it answers nothing: the request still waits);
+//   - everything else is a request; a broadcast is answered by nobody, and neither is a damaged
+//     request (wrong BCC, cut short): a drive drops it.
 // The header's roles: master 0 (the FC master has no address), slave the drive's address (0 for
 // a broadcast); a response names the request it answers.
 #pragma once

@@ -5,6 +5,7 @@
 // it, and the rule in one sentence; a new kind is one enumerator and one row.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -94,6 +95,15 @@ FindingComponent finding_component(FindingKind kind);
 std::vector<FindingKind> finding_kinds_of(FindingComponent component);
 // "parameter channel", "PROFIBUS link", "DP configuration", "DP-V1 parameter access".
 std::string_view finding_component_name(FindingComponent component);
+
+// Findings counted per kind and, within it, per severity (indexed by Severity).
+using FindingSeverityCounts = std::array<std::array<std::uint64_t, 3>, kFindingKindCount>;
+
+// Counts for what no channel can be named for (garbage on the bus), kept by each bus's tracker.
+struct BusStats {
+    std::array<std::uint64_t, kFindingKindCount> findings{};
+    FindingSeverityCounts findings_by_severity{};
+};
 
 struct Finding {
     FindingKind kind = FindingKind::StackedRequest;

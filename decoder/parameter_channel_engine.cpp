@@ -44,13 +44,17 @@ bool same_value(ValueWidth request_width, ValueWidth response_width, std::uint32
 }
 
 std::string describe_request(Dialect dialect, const PcvKey& q) {
-    return fmt::format("RC {} ({}) PNU {}{}", q.rc, request_code(dialect, q.rc).meaning, q.pnu,
+    return fmt::format("{} {} ({}) PNU {}{}", code_label(dialect), q.rc,
+                       request_code(dialect, q.rc).meaning, q.pnu,
                        request_code(dialect, q.rc).is_array ? fmt::format(" IND {}", q.ind) : "");
 }
 
-Finding& add(FindingList& out, FindingKind kind, const ParameterChannelSample& s,
+// The finding as the carrier's kind, or nullptr when the carrier does not have the engine report
+// it.
+Finding* add(FindingList& out, std::optional<FindingKind> kind, const ParameterChannelSample& s,
              std::uint64_t request_frame) {
-    return add_finding(out, kind, s.frame, s.time_ns, request_frame, true, s.master, s.slave);
+    if (!kind) return nullptr;
+    return &add_finding(out, *kind, s.frame, s.time_ns, request_frame, true, s.master, s.slave);
 }
 
 }  // namespace
@@ -147,9 +151,10 @@ void ParameterChannelEngine::master_pcv(Channel& ch, const ParameterChannelSampl
             if (ch.spontaneous.pending) {
                 ch.spontaneous.pending = false;  // acknowledged
             } else {
-                add(out, FindingKind::SpmViolation, s, 0).message =
-                    fmt::format("master {} toggled SPM to {} with no spontaneous message pending",
-                                s.master, p.spm ? 1 : 0);
+                if (Finding* f = add(out, policy_.kinds.spm_violation, s, 0))
+                    f->message = fmt::format(
+                        "master {} toggled SPM to {} with no spontaneous message pending", s.master,
+                        p.spm ? 1 : 0);
             }
         }
         ch.master_spm = p.spm;
@@ -157,7 +162,8 @@ void ParameterChannelEngine::master_pcv(Channel& ch, const ParameterChannelSampl
     }
 
     PcvKey key = key_of(p);
-    if (ch.master_valid && key == ch.master_key) return;  // the request stands
+    // The request stands (where requests are repeated cyclically).
+    if (policy_.cyclic_requests && ch.master_valid && key == ch.master_key) return;
     ch.master_valid = true;
     ch.master_key = key;
     ParameterChannelStats& stats = *ch.stats;
@@ -166,12 +172,13 @@ void ParameterChannelEngine::master_pcv(Channel& ch, const ParameterChannelSampl
         if (!ch.pending.timed_out) {
             if (p.rc == 0) ++stats.abandoned;
             if (p.rc != 0) {
-                Finding& f = add(out, FindingKind::StackedRequest, s, ch.pending.frame);
-                f.pnu = ch.pending.key.pnu;
-                f.message =
-                    fmt::format("new request {} while {} from frame {} was still unanswered",
-                                describe_request(s.dialect, key),
-                                describe_request(s.dialect, ch.pending.key), ch.pending.frame);
+                if (Finding* f = add(out, policy_.kinds.stacked_request, s, ch.pending.frame)) {
+                    f->pnu = ch.pending.key.pnu;
+                    f->message =
+                        fmt::format("new request {} while {} from frame {} was still unanswered",
+                                    describe_request(s.dialect, key),
+                                    describe_request(s.dialect, ch.pending.key), ch.pending.frame);
+                }
             }
         }
         ch.previous = Channel::Previous{true, ch.pending.key, false, true, s.cycle, false, 0};
@@ -183,15 +190,16 @@ void ParameterChannelEngine::master_pcv(Channel& ch, const ParameterChannelSampl
     if (p.rc == 0) return;
     const bool undefined = !request_code(s.dialect, p.rc).defined;
     if (undefined) {
-        Finding& f = add(out, FindingKind::UnknownCode, s, 0);
-        f.pnu = p.pnu;
-        f.message = fmt::format("request code RC {} is not defined in the {} dialect", p.rc,
-                                dialect_name(s.dialect));
+        if (Finding* f = add(out, policy_.kinds.unknown_code, s, 0)) {
+            f->pnu = p.pnu;
+            f->message = fmt::format("request code {} {} is not defined in the {} dialect",
+                                     code_label(s.dialect), p.rc, dialect_name(s.dialect));
+        }
     }
     ch.pending =
         Channel::Pending{true, key, s.dialect, s.frame, s.time_ns, s.cycle, false, undefined};
     ch.orphan_valid = false;
-    if (s.time_ns != kNoTime)
+    if (s.time_ns != kNoTime && policy_.kinds.response_timeout)
         next_deadline_ns_ = std::min(next_deadline_ns_, s.time_ns + policy_.timeout_ns);
     ++stats.requests;
     ++stats.pnu_requests[p.pnu];
@@ -214,10 +222,11 @@ void ParameterChannelEngine::spontaneous_message(Channel& ch, const ParameterCha
         message.cycle = s.cycle;
         message.key = key;
         ++ch.stats->spontaneous;
-        Finding& f = add(out, FindingKind::SpontaneousMessage, s, 0);
-        f.pnu = r.pnu;
-        f.message = fmt::format("spontaneous message RC {} ({}) PNU {} value {}", r.rc,
-                                code.meaning, r.pnu, pcv_value(r, code.width));
+        if (Finding* f = add(out, policy_.kinds.spontaneous_message, s, 0)) {
+            f->pnu = r.pnu;
+            f->message = fmt::format("spontaneous message RC {} ({}) PNU {} value {}", r.rc,
+                                     code.meaning, r.pnu, pcv_value(r, code.width));
+        }
         return;
     }
     // A new message toggles SPM; the same SPM again is the message repeated.
@@ -241,11 +250,12 @@ void ParameterChannelEngine::spontaneous_message(Channel& ch, const ParameterCha
     message = Channel::Spontaneous{true,  !acknowledged, r.spm,        s.frame, s.time_ns,
                                    r.pnu, false,         acknowledged, s.cycle, key};
     ++ch.stats->spontaneous;
-    Finding& f = add(out, FindingKind::SpontaneousMessage, s, 0);
-    f.pnu = r.pnu;
-    f.message = fmt::format("spontaneous message RC {} ({}) PNU {} value {} with SPM {}{}", r.rc,
-                            code.meaning, r.pnu, pcv_value(r, code.width), r.spm ? 1 : 0,
-                            acknowledged ? " (already acknowledged)" : "");
+    if (Finding* f = add(out, policy_.kinds.spontaneous_message, s, 0)) {
+        f->pnu = r.pnu;
+        f->message = fmt::format("spontaneous message RC {} ({}) PNU {} value {} with SPM {}{}",
+                                 r.rc, code.meaning, r.pnu, pcv_value(r, code.width), r.spm ? 1 : 0,
+                                 acknowledged ? " (already acknowledged)" : "");
+    }
     if (acknowledged) return;
     if (s.time_ns != kNoTime)
         next_deadline_ns_ = std::min(next_deadline_ns_, s.time_ns + policy_.timeout_ns);
@@ -266,14 +276,17 @@ std::optional<CompletedTransaction> ParameterChannelEngine::slave_pcv(
         return std::nullopt;
     }
     if (code.kind == ResponseKind::Undefined) {
-        if (ch.unknown_valid && key == ch.unknown_key) return std::nullopt;
+        // Repeated in every cycle, it is reported once; without cyclic repetition each is new.
+        if (policy_.cyclic_requests && ch.unknown_valid && key == ch.unknown_key)
+            return std::nullopt;
         ch.unknown_valid = true;
         ch.unknown_key = key;
-        Finding& f =
-            add(out, FindingKind::UnknownCode, s, ch.pending.active ? ch.pending.frame : 0);
-        f.pnu = r.pnu;
-        f.message = fmt::format("response code RC {} is not defined in the {} dialect", r.rc,
-                                dialect_name(dialect));
+        if (Finding* f =
+                add(out, policy_.kinds.unknown_code, s, ch.pending.active ? ch.pending.frame : 0)) {
+            f->pnu = r.pnu;
+            f->message = fmt::format("response code {} {} is not defined in the {} dialect",
+                                     code_label(dialect), r.rc, dialect_name(dialect));
+        }
         return std::nullopt;
     }
     ch.unknown_valid = false;
@@ -306,7 +319,8 @@ std::optional<CompletedTransaction> ParameterChannelEngine::slave_pcv(
             return same_value(request.width, code.width, q.pva, r.pva);
         return true;
     };
-    bool fresh = !(ch.slave_valid && key == ch.slave_key);
+    // Without cyclic repetition every response is an answer of its own.
+    bool fresh = !policy_.cyclic_requests || !(ch.slave_valid && key == ch.slave_key);
     if (fresh) {
         ch.slave_valid = true;
         ch.slave_key = key;
@@ -331,6 +345,8 @@ std::optional<CompletedTransaction> ParameterChannelEngine::slave_pcv(
     // cycle the master moved on, and the late answer to an abandoned request.
     auto belongs_to_previous = [&] {
         Channel::Previous& prev = ch.previous;
+        // Without cyclic repetition nothing repeats an earlier answer.
+        if (!policy_.cyclic_requests) return false;
         if (!prev.valid || !concerns(dialect, prev.key, r)) return false;
         if (!prev.answered) {
             if (prev.late_answer_seen) return false;
@@ -361,23 +377,27 @@ std::optional<CompletedTransaction> ParameterChannelEngine::slave_pcv(
         if (ch.orphan_valid) return std::nullopt;
         ch.orphan_valid = true;
         ch.orphan_key = key;
-        Finding& f = add(out, FindingKind::OrphanResponse, s, 0);
-        f.pnu = r.pnu;
-        f.message = fmt::format("slave {} answered RC {} ({}) PNU {} but no request was pending",
-                                s.slave, r.rc, code.meaning, r.pnu);
+        if (Finding* f = add(out, policy_.kinds.orphan_response, s, 0)) {
+            f->pnu = r.pnu;
+            f->message =
+                fmt::format("slave {} answered {} {} ({}) PNU {} but no request was pending",
+                            s.slave, code_label(dialect), r.rc, code.meaning, r.pnu);
+        }
         return std::nullopt;
     }
 
     const PcvKey& q = ch.pending.key;
     if (!no_echo && !concerns(dialect, q, r)) {
         if (belongs_to_previous()) return std::nullopt;
-        Finding& f = add(out, FindingKind::MismatchedResponse, s, ch.pending.frame);
-        f.pnu = q.pnu;
-        f.message = fmt::format(
-            "answer RC {} for PNU {}{} to request {} from frame {}", r.rc, r.pnu,
-            request_code(dialect, q.rc).is_array || code.is_array ? fmt::format(" IND {}", r.ind)
-                                                                  : "",
-            describe_request(dialect, q), ch.pending.frame);
+        if (Finding* f = add(out, policy_.kinds.mismatched_response, s, ch.pending.frame)) {
+            f->pnu = q.pnu;
+            f->message = fmt::format("answer {} {} for PNU {}{} to request {} from frame {}",
+                                     code_label(dialect), r.rc, r.pnu,
+                                     request_code(dialect, q.rc).is_array || code.is_array
+                                         ? fmt::format(" IND {}", r.ind)
+                                         : "",
+                                     describe_request(dialect, q), ch.pending.frame);
+        }
         ++stats.transactions.mismatched;
         return answered(ch, s);
     }
@@ -387,26 +407,32 @@ std::optional<CompletedTransaction> ParameterChannelEngine::slave_pcv(
                                 ? (negative ? AnswerVerdict::Negative : AnswerVerdict::Positive)
                                 : judge_answer(dialect, q.rc, r.rc, policy_.strict);
     if (verdict == AnswerVerdict::Invalid) {
-        Finding& f = add(out, FindingKind::UnexpectedResponseType, s, ch.pending.frame);
-        f.pnu = q.pnu;
-        f.message = fmt::format("RC {} ({}) is no valid answer to {} from frame {}", r.rc,
-                                code.meaning, describe_request(dialect, q), ch.pending.frame);
+        if (Finding* f = add(out, policy_.kinds.unexpected_response_type, s, ch.pending.frame)) {
+            f->pnu = q.pnu;
+            f->message = fmt::format("{} {} ({}) is no valid answer to {} from frame {}",
+                                     code_label(dialect), r.rc, code.meaning,
+                                     describe_request(dialect, q), ch.pending.frame);
+        }
         ++stats.transactions.unexpected;
     } else if (code.kind == ResponseKind::Rejected) {
         auto error = static_cast<std::uint16_t>(r.pva & 0xFFFF);
-        Finding& f = add(out, FindingKind::RequestRejected, s, ch.pending.frame);
-        f.pnu = q.pnu;
-        f.message = fmt::format("{} rejected with error {} ({})", describe_request(dialect, q),
-                                error, error_text_or_unknown(dialect, error));
+        if (Finding* f = add(out, policy_.kinds.request_rejected, s, ch.pending.frame)) {
+            f->pnu = q.pnu;
+            f->message =
+                fmt::format("{} rejected with {} {} ({})", describe_request(dialect, q),
+                            error_label(dialect), error, error_text_or_unknown(dialect, error));
+        }
         ++stats.transactions.rejected;
         ++stats.rejection_errors[error];
         if (stats.rejections.size() < 1024 || stats.rejections.count({q.pnu, error}))
             ++stats.rejections[{q.pnu, error}];
     } else if (code.kind == ResponseKind::NoAuthority) {
-        Finding& f = add(out, FindingKind::NoAuthority, s, ch.pending.frame);
-        f.pnu = q.pnu;
-        f.message = fmt::format("no operating authority for {}{}", describe_request(dialect, q),
-                                verdict == AnswerVerdict::Unusual ? " (RC 8 after a read)" : "");
+        if (Finding* f = add(out, policy_.kinds.no_authority, s, ch.pending.frame)) {
+            f->pnu = q.pnu;
+            f->message =
+                fmt::format("no operating authority for {}{}", describe_request(dialect, q),
+                            verdict == AnswerVerdict::Unusual ? " (RC 8 after a read)" : "");
+        }
         ++stats.transactions.no_authority;
     } else {
         ++stats.transactions.positive;
@@ -427,19 +453,29 @@ CompletedTransaction ParameterChannelEngine::answered(Channel& ch,
     return CompletedTransaction{ch.master, ch.slave, s.frame, s.time_ns, timed};
 }
 
+void ParameterChannelEngine::abandon(std::uint8_t master, std::uint8_t slave) {
+    std::int32_t position = index_[std::size_t{master & 0x7Fu} * kAddresses + (slave & 0x7Fu)];
+    if (position < 0) return;
+    Channel& ch = *channels_[static_cast<std::size_t>(position)];
+    if (!ch.pending.active) return;
+    if (!ch.pending.timed_out) ++ch.stats->abandoned;
+    ch.previous = Channel::Previous{true, ch.pending.key, false, true, ch.pending.cycle, false, 0};
+    ch.pending.active = false;
+}
+
 void ParameterChannelEngine::check_deadlines(std::int64_t now_ns, std::uint64_t frame,
                                              FindingList& out) {
     std::int64_t next = kNever;
     for (auto& owned : channels_) {
         Channel& ch = *owned;
         Channel::Pending& p = ch.pending;
-        if (p.active && !p.timed_out && p.time_ns != kNoTime) {
+        if (p.active && !p.timed_out && p.time_ns != kNoTime && policy_.kinds.response_timeout) {
             std::int64_t deadline = p.time_ns + policy_.timeout_ns;
             if (now_ns > deadline) {
                 p.timed_out = true;
                 ++ch.stats->timeouts;
-                Finding& f = add_finding(out, FindingKind::ResponseTimeout, frame, now_ns, p.frame,
-                                         true, ch.master, ch.slave);
+                Finding& f = add_finding(out, *policy_.kinds.response_timeout, frame, now_ns,
+                                         p.frame, true, ch.master, ch.slave);
                 f.pnu = p.key.pnu;
                 f.message = fmt::format("no answer to request {} from frame {} within {} ms",
                                         describe_request(p.dialect, p.key), p.frame,
@@ -453,13 +489,15 @@ void ParameterChannelEngine::check_deadlines(std::int64_t now_ns, std::uint64_t 
             std::int64_t deadline = m.time_ns + policy_.timeout_ns;
             if (now_ns > deadline) {
                 m.reported_late = true;
-                Finding& f = add_finding(out, FindingKind::SpontaneousUnacknowledged, frame, now_ns,
-                                         m.frame, true, ch.master, ch.slave);
-                f.pnu = m.pnu;
-                f.message = fmt::format(
-                    "spontaneous message from frame {} (PNU {}) not "
-                    "acknowledged within {} ms",
-                    m.frame, m.pnu, policy_.timeout_ns / 1'000'000);
+                if (policy_.kinds.spontaneous_unacknowledged) {
+                    Finding& f = add_finding(out, *policy_.kinds.spontaneous_unacknowledged, frame,
+                                             now_ns, m.frame, true, ch.master, ch.slave);
+                    f.pnu = m.pnu;
+                    f.message = fmt::format(
+                        "spontaneous message from frame {} (PNU {}) not "
+                        "acknowledged within {} ms",
+                        m.frame, m.pnu, policy_.timeout_ns / 1'000'000);
+                }
             } else {
                 next = std::min(next, deadline);
             }

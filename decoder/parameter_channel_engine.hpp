@@ -21,6 +21,11 @@
 //  - RC 9..12 are spontaneous messages. With an SPM bit the slave toggles SPM and repeats the
 //    message until the master toggles its own SPM; the pending request stays pending meanwhile.
 //    Without one a message is reported when it changes, and no acknowledgement is awaited.
+//  - A carrier whose requests are not repeated cyclically (the FC protocol: each master telegram
+//    with a PKW is a command of its own, each response an answer) says so in the policy: every
+//    master sample is then a new request and every slave sample an answer, never a repeat.
+//  - The policy names the finding kind each of the engine's findings is reported as (the
+//    carrier's own kinds), or none where the carrier judges that itself.
 #pragma once
 
 #include <cstdint>
@@ -39,6 +44,22 @@
 
 namespace dpscope {
 
+// The finding kind the engine reports each of its findings as; nullopt: not reported (the
+// carrier judges it itself). The defaults are the parameter-channel kinds.
+struct ParameterChannelKinds {
+    std::optional<FindingKind> stacked_request = FindingKind::StackedRequest;
+    std::optional<FindingKind> orphan_response = FindingKind::OrphanResponse;
+    std::optional<FindingKind> mismatched_response = FindingKind::MismatchedResponse;
+    std::optional<FindingKind> unexpected_response_type = FindingKind::UnexpectedResponseType;
+    std::optional<FindingKind> response_timeout = FindingKind::ResponseTimeout;
+    std::optional<FindingKind> request_rejected = FindingKind::RequestRejected;
+    std::optional<FindingKind> no_authority = FindingKind::NoAuthority;
+    std::optional<FindingKind> spontaneous_message = FindingKind::SpontaneousMessage;
+    std::optional<FindingKind> spontaneous_unacknowledged = FindingKind::SpontaneousUnacknowledged;
+    std::optional<FindingKind> spm_violation = FindingKind::SpmViolation;
+    std::optional<FindingKind> unknown_code = FindingKind::UnknownCode;
+};
+
 // How a carrier's parameter channel behaves.
 struct ParameterChannelPolicy {
     // The PKE has an SPM bit (PROFIBUS PPO): a spontaneous message toggles it and the master
@@ -48,8 +69,13 @@ struct ParameterChannelPolicy {
     // request one cycle late (PROFIBUS Data_Exchange). Without the lag the response in the same
     // exchange answers the request (the FC protocol).
     bool response_lags_one_cycle = true;
+    // The master repeats its request in every cycle until it is answered, and the slave its
+    // answer (PROFIBUS Data_Exchange). Without it (the FC protocol) every master sample is a new
+    // request and every slave sample an answer to the request pending, never a repeat.
+    bool cyclic_requests = true;
     bool strict = false;                      // RC 8 after a read is an unexpected answer
     std::int64_t timeout_ns = 1'000'000'000;  // no answer within it: a time-out
+    ParameterChannelKinds kinds;
 };
 
 // One telegram with a parameter channel, as its carrier read it.
@@ -120,6 +146,11 @@ class ParameterChannelEngine {
     // findings it shows to `out`. Returns the transaction it completed, if any.
     std::optional<CompletedTransaction> track(const ParameterChannelSample& sample,
                                               FindingList& out);
+    // The carrier knows the request pending on the channel will not be answered (the FC master
+    // sent its next telegram): it ends unanswered, without a finding (the carrier has reported
+    // it), and a later answer finds no request pending.
+    void abandon(std::uint8_t master, std::uint8_t slave);
+
     // The time is now `now_ns` (at the telegram `frame`, or the end of the capture): appends to
     // `out` the requests and spontaneous messages left unanswered past the time-out.
     void advance(std::int64_t now_ns, std::uint64_t frame, FindingList& out) {

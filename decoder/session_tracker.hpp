@@ -61,9 +61,6 @@ class DialectEvidence {
     std::array<std::uint64_t, std::size(kDialects)> other_defines_{};
 };
 
-// Findings counted per kind and, within it, per severity (indexed by Severity).
-using FindingSeverityCounts = std::array<std::array<std::uint64_t, 3>, kFindingKindCount>;
-
 // One channel: the engine's counts and the DP carrier's.
 struct ChannelStats : ParameterChannelStats {
     std::uint8_t master = 0;
@@ -79,12 +76,6 @@ struct ChannelStats : ParameterChannelStats {
     std::int64_t first_time_ns = kNoTime;
     std::int64_t last_time_ns = kNoTime;
     Dpv1Stats dpv1;  // DP-V1 parameter access (decoder/dpv1_parameter_access.hpp)
-};
-
-// Counts for what no channel can be named for (garbage on the bus).
-struct BusStats {
-    std::array<std::uint64_t, kFindingKindCount> findings{};
-    FindingSeverityCounts findings_by_severity{};
 };
 
 class SessionTracker {

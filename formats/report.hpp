@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "decoder/fc_tracker.hpp"
 #include "decoder/session_tracker.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/output.hpp"
@@ -35,8 +36,11 @@ bool severity_fails(Severity severity, FailOn fail_on) noexcept;
 struct ReportContext {
     InputSummary input;
     const Summary* summary = nullptr;
+    // The capture's bus: its tracker's sections, bus findings and finding kinds are reported.
+    Protocol protocol = Protocol::ProfibusDp;
     const BusDecoder* decoder = nullptr;
-    const SessionTracker* tracker = nullptr;
+    const SessionTracker* tracker = nullptr;      // PROFIBUS DP (always set: its options are read)
+    const FcTracker* fc_tracker = nullptr;        // the FC protocol (set for an FC capture)
     const ChannelTimelines* timelines = nullptr;  // the HTML report's (none: empty timelines)
     const FindingLog* findings = nullptr;
     FailOn fail_on = FailOn::Error;

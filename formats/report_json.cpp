@@ -23,7 +23,11 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
     json::time(w, c.summary->last_time_ns());
     w.end_object();
     w.key("options").begin_object();
+    // An FC report names its bus and the drive response time; a PROFIBUS DP report has always
+    // been without both.
+    if (is_fc(c)) w.key("bus").string("fc");
     w.key("timeout_ms").integer(options.timeout_ns / 1'000'000);
+    if (is_fc(c)) w.key("fc_response_ms").integer(c.fc_tracker->options().response_ns / 1'000'000);
     w.key("strict").boolean(options.strict);
     w.key("fail_on").string(fail_on_name(c.fail_on));
     w.key("allow_empty").boolean(c.allow_empty);
@@ -41,7 +45,7 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
     w.key("nothing_checked").boolean(m.nothing_checked);
     w.key("summary").begin_object();
     count("telegrams", c.summary->telegrams());
-    count("fcs_errors", m.fcs_errors);
+    count(is_fc(c) ? "bcc_errors" : "fcs_errors", m.fcs_errors);
     count("transactions", m.transactions);
     w.key("findings").begin_object();
     count("error", m.errors());
@@ -56,13 +60,13 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
     }
     w.end_array();
     w.key("bus").begin_object();
-    // Telegrams no station can be named for: the link's kinds (a DP-V1 rule always has one).
+    // Telegrams no station can be named for: the bus's kinds (a DP-V1 rule always has one).
     w.key("findings").begin_object();
     for (FindingKind kind : kAllKinds)
-        if (is_dp_kind(kind))
+        if (is_bus_kind(c, kind))
             w.key(finding_kind_name(kind))
                 .integer(static_cast<std::int64_t>(
-                    c.tracker->bus().findings[static_cast<std::size_t>(kind)]));
+                    bus_stats(c).findings[static_cast<std::size_t>(kind)]));
     w.end_object();
     w.end_object();
     w.key("findings").begin_array();

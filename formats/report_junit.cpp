@@ -46,8 +46,8 @@ void write_junit(const ReportContext& c, const ReportModel& m, Output& out) {
                                {}});
     if (m.has_bus_findings)
         suites.push_back(Suite{"bus", "dpscope.bus", false, 0, 0, nullptr, {}, {}, {}});
-    auto covers = [](const Suite& s, FindingKind kind) {
-        return s.section ? s.section->covers(kind) : is_dp_kind(kind);
+    auto covers = [&c](const Suite& s, FindingKind kind) {
+        return s.section ? s.section->covers(kind) : is_bus_kind(c, kind);
     };
     auto in_suite = [&](const Suite& s, const Finding& f) {
         return s.has_stations == f.has_stations && covers(s, f.kind) &&
@@ -75,9 +75,10 @@ void write_junit(const ReportContext& c, const ReportModel& m, Output& out) {
     };
     // Without timestamps the time-out rules cannot be judged: those cases are skipped.
     auto judged = [&](FindingKind kind) {
-        return m.timed || (kind != FindingKind::ResponseTimeout &&
-                           kind != FindingKind::SpontaneousUnacknowledged &&
-                           kind != FindingKind::Dpv1ResponseTimeout);
+        return m.timed ||
+               (kind != FindingKind::ResponseTimeout &&
+                kind != FindingKind::SpontaneousUnacknowledged &&
+                kind != FindingKind::Dpv1ResponseTimeout && kind != FindingKind::FcLateResponse);
     };
     auto cases = [&](const Suite& s, bool only_skipped) {
         return static_cast<std::size_t>(std::count_if(
@@ -104,9 +105,11 @@ void write_junit(const ReportContext& c, const ReportModel& m, Output& out) {
         fmt::format_to(it,
                        "  <testsuite name=\"capture\" tests=\"1\" failures=\"{}\" errors=\"0\" "
                        "skipped=\"{}\">\n"
-                       "    <testcase classname=\"dpscope.capture\" name=\"parameter channel: the "
-                       "capture holds Data_Exchange telegrams with a parameter channel\">\n",
-                       c.allow_empty ? 0 : 1, c.allow_empty ? 1 : 0);
+                       "    <testcase classname=\"dpscope.capture\" name=\"{}\">\n",
+                       c.allow_empty ? 0 : 1, c.allow_empty ? 1 : 0,
+                       is_fc(c) ? "FC protocol: the capture holds commands to drives"
+                                : "parameter channel: the capture holds Data_Exchange telegrams "
+                                  "with a parameter channel");
         if (c.allow_empty)
             fmt::format_to(it, "      <skipped message=\"{} (--allow-empty)\"/>\n", xml(reason));
         else

@@ -15,30 +15,41 @@ void write_markdown(const ReportContext& c, const ReportModel& m, Output& out) {
     fmt::format_to(it, "- Input: `{}` ({}), {}{}\n", c.input.name, c.input.format,
                    counted(c.summary->telegrams(), "telegram", "telegrams"),
                    c.input.damaged ? " (ended in damage)" : "");
-    fmt::format_to(it, "- Checks: {}; RC 8 after a read: {}\n", timeout_rule_text(c, m),
-                   options.strict ? "strict" : "lenient");
+    if (const std::string bus = bus_text(c); !bus.empty()) fmt::format_to(it, "- Bus: {}\n", bus);
+    if (is_fc(c))
+        fmt::format_to(it, "- Checks: {}\n", checks_text(c, m));
+    else
+        fmt::format_to(it, "- Checks: {}; RC 8 after a read: {}\n", timeout_rule_text(c, m),
+                       options.strict ? "strict" : "lenient");
     if (!c.stations.empty())
         fmt::format_to(it, "- Filter: {} (telegram counts cover the whole capture)\n",
                        filter_text(c));
     fmt::format_to(it, "- dpscope {}\n\n", c.version);
-    append(b,
-           "## Summary\n\n| telegrams | bytes skipped | FCS errors | transactions | errors | "
-           "warnings | notes |\n"
-           "|---:|---:|---:|---:|---:|---:|---:|\n");
+    fmt::format_to(it,
+                   "## Summary\n\n| telegrams | bytes skipped | {} | transactions | errors | "
+                   "warnings | notes |\n"
+                   "|---:|---:|---:|---:|---:|---:|---:|\n",
+                   checksum_errors_label(c));
     fmt::format_to(it, "| {} | {} | {} | {} | {} | {} | {} |\n\n", c.summary->telegrams(),
                    c.input.bytes_skipped, m.fcs_errors, m.transactions, m.errors(), m.warnings(),
                    m.notes());
-    append(b,
-           "## Slaves\n\n| slave | master | PPO | dialect | transactions | rejected | "
-           "time-outs | latency ms (min / median / p95 / max) | latency cycles | findings |\n"
-           "|---:|---:|---|---|---:|---:|---:|---|---|---|\n");
+    if (is_fc(c))
+        append(b,
+               "## Drives\n\n| address | commands | answered | unanswered | late | latency ms "
+               "(min / mean / p95 / max) | rejected | findings |\n"
+               "|---|---:|---:|---:|---:|---|---:|---|\n");
+    else
+        append(b,
+               "## Slaves\n\n| slave | master | PPO | dialect | transactions | rejected | "
+               "time-outs | latency ms (min / median / p95 / max) | latency cycles | findings |\n"
+               "|---:|---:|---|---|---:|---:|---:|---|---|---|\n");
     for (const auto& section : m.stations)
         section->write_markdown_row(c, b);
     for (const auto& section : m.stations)
         section->write_markdown(c, b);
     if (m.has_bus_findings)
         fmt::format_to(it, "\n### Bus (telegrams no station can be named for)\n\n- Findings: {}\n",
-                       md_escape(findings_by_kind_text(c.tracker->bus().findings)));
+                       md_escape(findings_by_kind_text(bus_stats(c).findings)));
     fmt::format_to(it, "\n## Findings ({})\n\n", m.shown);
     if (m.shown > 0)
         append(b,

@@ -26,4 +26,12 @@ void html_findings_by_kind(TextBuffer& b, const FindingCounts& findings,
 std::array<std::uint64_t, 3> severity_totals(const FindingCounts& findings,
                                              const FindingSeverityCounts& by_severity);
 
+// HTML: a station's latency histogram as inline SVG (`who`: "slave 3", in its label), or a line
+// saying why there is none (`answered`: anything was answered).
+void svg_latency_histogram(TextBuffer& b, const LogHistogram& h, bool answered,
+                           std::string_view who);
+// HTML: a station's timeline of transactions and findings as inline SVG.
+void svg_timeline(TextBuffer& b, const Timeline& timeline, std::string_view who,
+                  const ReportContext& c);
+
 }  // namespace dpscope::report

@@ -18,7 +18,15 @@ ReportModel build_report_model(const ReportContext& c) {
     // The sections, one per station and channel kind.
     static const ChannelTimelines kNoTimelines;
     const ChannelTimelines& timelines = c.timelines ? *c.timelines : kNoTimelines;
-    for (const ChannelStats* stats : c.tracker->channels()) {
+    if (is_fc(c)) {
+        for (const FcStationStats* stats : c.fc_tracker->stations()) {
+            if (!shows_slave(c, stats->address)) continue;
+            m.stations.push_back(make_fc_section(c, *stats, timelines.of(0, stats->address)));
+            ++m.slaves;
+        }
+    }
+    for (const ChannelStats* stats :
+         is_fc(c) ? std::vector<const ChannelStats*>{} : c.tracker->channels()) {
         if (!shows_slave(c, stats->slave)) continue;
         bool dp_findings = false, dpv1_findings = false;
         for (FindingKind kind : kAllKinds)
@@ -43,7 +51,7 @@ ReportModel build_report_model(const ReportContext& c) {
         if (!shows(c, f)) return;
         ++m.shown;
         ++m.by_severity[static_cast<std::size_t>(f.severity)];
-        if (f.kind == FindingKind::FcsError) ++m.fcs_errors;
+        if (f.kind == (is_fc(c) ? FindingKind::FcBccError : FindingKind::FcsError)) ++m.fcs_errors;
         if (severity_fails(f.severity, c.fail_on)) m.fails = true;
         if (!f.has_stations) m.has_bus_findings = true;
     });
@@ -51,7 +59,35 @@ ReportModel build_report_model(const ReportContext& c) {
 }
 
 bool is_dp_kind(FindingKind kind) {
-    return finding_component(kind) != FindingComponent::Dpv1ParameterAccess;
+    const FindingComponent component = finding_component(kind);
+    return component != FindingComponent::Dpv1ParameterAccess &&
+           component != FindingComponent::FcProtocol;
+}
+
+bool is_fc(const ReportContext& c) { return c.protocol == Protocol::Fc && c.fc_tracker; }
+
+bool is_bus_kind(const ReportContext& c, FindingKind kind) {
+    return is_fc(c) ? is_fc_finding_kind(kind) : is_dp_kind(kind);
+}
+
+const BusStats& bus_stats(const ReportContext& c) {
+    return is_fc(c) ? c.fc_tracker->bus() : c.tracker->bus();
+}
+
+std::string_view checksum_errors_label(const ReportContext& c) {
+    return is_fc(c) ? "BCC errors" : "FCS errors";
+}
+
+std::string bus_text(const ReportContext& c) {
+    return is_fc(c) ? std::string("Danfoss FC protocol (RS-485)") : std::string();
+}
+
+std::string checks_text(const ReportContext& c, const ReportModel& m) {
+    if (!is_fc(c)) return timeout_rule_text(c, m);
+    return m.timed ? fmt::format("time-out {} ms, drive response time {} ms",
+                                 c.fc_tracker->options().timeout_ns / 1'000'000,
+                                 c.fc_tracker->options().response_ns / 1'000'000)
+                   : std::string("time-outs and response times not judged (no timestamps)");
 }
 
 double to_ms(std::uint64_t ns) { return static_cast<double>(ns) / 1e6; }
@@ -64,6 +100,8 @@ std::string findings_text(const ReportModel& m) {
 
 std::string nothing_checked_reason(const ReportContext& c) {
     if (c.summary->telegrams() == 0) return "no telegrams";
+    if (is_fc(c))
+        return c.stations.empty() ? "no command to a drive" : "no command to the selected drives";
     return c.stations.empty()
                ? "no Data_Exchange telegram with a parameter channel"
                : "no Data_Exchange telegram with a parameter channel from the selected slaves";

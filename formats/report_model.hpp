@@ -89,14 +89,32 @@ std::unique_ptr<StationSection> make_pcv_section(const ReportContext& c, const C
 // tracker counted it.
 std::unique_ptr<StationSection> make_dpv1_section(const ChannelStats& stats);
 
-// The bus suite's and the cyclic channel's kinds: all but the DP-V1 parameter-access ones.
+// One drive address of an FC capture (address 0: the broadcasts), as the FC tracker counted it.
+std::unique_ptr<StationSection> make_fc_section(const ReportContext& c, const FcStationStats& stats,
+                                                const Timeline& timeline);
+
+// The PROFIBUS bus suite's and the cyclic channel's kinds: all but the DP-V1 parameter-access
+// and the FC protocol ones.
 bool is_dp_kind(FindingKind kind);
+
+// The capture is an FC protocol one (with its tracker): FC sections, kinds and wording.
+bool is_fc(const ReportContext& c);
+// The kinds the capture's bus suite and bus legend list: the PROFIBUS ones (is_dp_kind) or the
+// FC tracker's (fc_finding_kinds()). A report lists only its own bus's kinds.
+bool is_bus_kind(const ReportContext& c, FindingKind kind);
+// The findings no station can be named for, from the capture's tracker.
+const BusStats& bus_stats(const ReportContext& c);
+// "FCS errors" or "BCC errors": the checksum findings the summary counts.
+std::string_view checksum_errors_label(const ReportContext& c);
+// The header line naming the bus of a capture other than PROFIBUS DP ("" for PROFIBUS DP, whose
+// reports have always been without it), and the checks the protocol's tracker applies.
+std::string bus_text(const ReportContext& c);
 
 struct ReportModel {
     std::vector<std::unique_ptr<StationSection>> stations;  // the sections reported, in order
     std::uint64_t slaves = 0;                               // the slaves they are about
     std::array<std::uint64_t, 3> by_severity{};             // findings shown, by severity
-    std::uint64_t fcs_errors = 0;    // fcs_error findings shown (every bad FCS is one)
+    std::uint64_t fcs_errors = 0;    // fcs_error (FC: fc_bcc_error) findings shown (each a bad one)
     std::uint64_t shown = 0;         // findings shown
     std::uint64_t transactions = 0;  // of every station reported
     bool fails = false;
@@ -132,6 +150,9 @@ double to_ms(std::uint64_t ns);
 std::string findings_text(const ReportModel& m);
 // Why nothing was checked: "no telegrams", "no Data_Exchange telegram with a parameter channel".
 std::string nothing_checked_reason(const ReportContext& c);
+// The checks the protocol's tracker applies: "time-out 1000 ms, drive response time 20 ms" for
+// FC (for PROFIBUS DP the writers say it with timeout_rule_text and the RC 8 rule).
+std::string checks_text(const ReportContext& c, const ReportModel& m);
 // "FAIL: 1 error, 0 warnings, 0 notes (fail on error)".
 std::string verdict_text(const ReportContext& c, const ReportModel& m);
 // "time-out 1000 ms", or kNoTimestamps without timestamps.

@@ -75,122 +75,6 @@ void json_latency(JsonWriter& w, bool any, double min, double median, double p95
     w.end_object();
 }
 
-void svg_latency_histogram(TextBuffer& b, const ChannelStats& s) {
-    const LogHistogram& h = s.latency_ns;
-    auto it = std::back_inserter(b);
-    if (h.count() == 0) {
-        append(b, s.transactions.total() == 0
-                      ? "<p class=\"meta\">No answered requests.</p>\n"
-                      : "<p class=\"meta\">The capture carries no timestamps: latency in cycles "
-                        "only (see above).</p>\n");
-        return;
-    }
-    constexpr int kBars = 30, kWidth = 720, kHeight = 170, kLeft = 48, kBottom = 28, kTop = 10;
-    const double max_ms = std::max(to_ms(h.max()), 0.001);
-    std::array<std::uint64_t, kBars> bars{};
-    h.for_each_bucket([&](std::uint64_t lower, std::uint64_t upper, std::uint64_t count) {
-        double middle = to_ms(lower + (upper - lower) / 2);
-        auto bar = static_cast<std::size_t>(std::min<double>(kBars - 1, middle / max_ms * kBars));
-        bars[bar] += count;
-    });
-    std::uint64_t tallest = *std::max_element(bars.begin(), bars.end());
-    const double bar_width = static_cast<double>(kWidth - kLeft - 10) / kBars;
-    const int plot_height = kHeight - kBottom - kTop;
-    fmt::format_to(it,
-                   "<svg class=\"latency\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} {}\" "
-                   "role=\"img\" aria-label=\"latency histogram of slave {}\">\n",
-                   kWidth, kHeight, kWidth, kHeight, s.slave);
-    fmt::format_to(it, "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#8a93a6\"/>\n",
-                   kLeft, kHeight - kBottom, kWidth - 10, kHeight - kBottom);
-    for (int i = 0; i < kBars; ++i) {
-        if (bars[static_cast<std::size_t>(i)] == 0) continue;
-        double height = static_cast<double>(bars[static_cast<std::size_t>(i)]) /
-                        static_cast<double>(tallest) * plot_height;
-        double x = kLeft + i * bar_width;
-        fmt::format_to(it,
-                       "<rect class=\"bar\" x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" "
-                       "height=\"{:.1f}\" fill=\"#4e79c5\"><title>{:.3f}-{:.3f} ms: {}"
-                       "</title></rect>\n",
-                       x + 1, kHeight - kBottom - height, bar_width - 2, height, max_ms * i / kBars,
-                       max_ms * (i + 1) / kBars,
-                       counted(bars[static_cast<std::size_t>(i)], "transaction", "transactions"));
-    }
-    fmt::format_to(it, "<text x=\"{}\" y=\"{}\">0 ms</text>\n", kLeft, kHeight - 10);
-    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:.3f} ms</text>\n",
-                   kWidth - 10, kHeight - 10, max_ms);
-    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", kLeft - 6,
-                   kTop + 10, tallest);
-    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">0</text>\n", kLeft - 6,
-                   kHeight - kBottom);
-    append(b, "</svg>\n");
-}
-
-void svg_timeline(TextBuffer& b, const Timeline& timeline, const ChannelStats& s,
-                  const ReportContext& c) {
-    auto it = std::back_inserter(b);
-    if (timeline.empty()) {
-        append(b, "<p class=\"meta\">No timed transactions or findings.</p>\n");
-        return;
-    }
-    constexpr int kWidth = 720, kLeft = 84, kRight = 10;
-    constexpr int kBarsTop = 64, kBarsHeight = 80, kHeight = 178;
-    const auto& bins = timeline.bins();
-    std::size_t used = 0;
-    std::uint32_t tallest = 1;
-    for (std::size_t i = 0; i < bins.size(); ++i) {
-        const Timeline::Bin& bin = bins[i];
-        if (bin.transactions || bin.errors || bin.warnings || bin.notes) used = i + 1;
-        tallest = std::max(tallest, bin.transactions);
-    }
-    used = std::max<std::size_t>(used, 1);
-    const double step = static_cast<double>(kWidth - kLeft - kRight) / static_cast<double>(used);
-    fmt::format_to(it,
-                   "<svg class=\"timeline\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} {}\" "
-                   "role=\"img\" aria-label=\"timeline of slave {}\">\n",
-                   kWidth, kHeight, kWidth, kHeight, s.slave);
-    const char* rows[] = {"errors", "warnings", "notes"};
-    const char* singular[] = {"error", "warning", "note"};
-    const char* colours[] = {"#d92d20", "#f79009", "#2e90fa"};
-    for (int row = 0; row < 3; ++row)
-        fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", kLeft - 6,
-                       14 + row * 16, rows[row]);
-    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">transactions</text>\n",
-                   kLeft - 6, kBarsTop + kBarsHeight / 2);
-    fmt::format_to(it, "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#8a93a6\"/>\n",
-                   kLeft, kBarsTop + kBarsHeight, kWidth - kRight, kBarsTop + kBarsHeight);
-    const std::int64_t width_ns = timeline.bin_width_ns();
-    for (std::size_t i = 0; i < used; ++i) {
-        const Timeline::Bin& bin = bins[i];
-        const double x = kLeft + static_cast<double>(i) * step;
-        std::int64_t from = timeline.start_ns() + static_cast<std::int64_t>(i) * width_ns;
-        std::string when = relative_seconds(c, from);
-        if (bin.transactions) {
-            double height = static_cast<double>(bin.transactions) / tallest * kBarsHeight;
-            fmt::format_to(it,
-                           "<rect class=\"tx\" x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" "
-                           "height=\"{:.2f}\" fill=\"#4e79c5\"><title>from {} s: {}"
-                           "</title></rect>\n",
-                           x, kBarsTop + kBarsHeight - height, std::max(step - 0.5, 0.8), height,
-                           when, counted(bin.transactions, "transaction", "transactions"));
-        }
-        const std::uint32_t counts[] = {bin.errors, bin.warnings, bin.notes};
-        for (int row = 0; row < 3; ++row) {
-            if (!counts[row]) continue;
-            fmt::format_to(it,
-                           "<rect class=\"mark {}\" x=\"{:.2f}\" y=\"{}\" width=\"{:.2f}\" "
-                           "height=\"10\" fill=\"{}\"><title>from {} s: {}</title></rect>\n",
-                           rows[row], x, 5 + row * 16, std::max(step, 3.0), colours[row], when,
-                           counted(counts[row], singular[row], rows[row]));
-        }
-    }
-    std::int64_t end_ns = timeline.start_ns() + static_cast<std::int64_t>(used) * width_ns;
-    fmt::format_to(it, "<text x=\"{}\" y=\"{}\">{} s</text>\n", kLeft, kHeight - 8,
-                   relative_seconds(c, timeline.start_ns()));
-    fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{} s</text>\n", kWidth - kRight,
-                   kHeight - 8, relative_seconds(c, end_ns));
-    append(b, "</svg>\n");
-}
-
 class PcvSection final : public StationSection {
   public:
     PcvSection(const ReportContext& c, const ChannelStats& stats, const Timeline& timeline)
@@ -421,14 +305,15 @@ class PcvSection final : public StationSection {
                                            l.median_cycles, l.p95_cycles, l.max_cycles)
                              : "-");
         append(b, "</table>\n<h3>Latency histogram</h3>\n");
-        svg_latency_histogram(b, s);
+        svg_latency_histogram(b, s.latency_ns, s.transactions.total() > 0,
+                              fmt::format("slave {}", s.slave));
         append(b,
                "<h3>Timeline</h3>\n<div class=\"legend\"><span><i class=\"swatch\" "
                "style=\"background:#4e79c5\"></i>transactions</span><span><i class=\"swatch\" "
                "style=\"background:#d92d20\"></i>errors</span><span><i class=\"swatch\" "
                "style=\"background:#f79009\"></i>warnings</span><span><i class=\"swatch\" "
                "style=\"background:#2e90fa\"></i>notes</span></div>\n");
-        svg_timeline(b, timeline_, s, c);
+        svg_timeline(b, timeline_, fmt::format("slave {}", s.slave), c);
         append(b, "<h3>Parameters accessed</h3>\n");
         if (s.pnu_requests.empty()) {
             append(b, "<p class=\"meta\">None.</p>\n");

@@ -22,8 +22,12 @@ void write_text(const ReportContext& c, const ReportModel& m, Output& out) {
     b.push_back('\n');
     if (c.input.damaged)
         append(b, "         the input ended in damage; the report covers what was read\n");
-    fmt::format_to(it, "Checks:  {}; RC 8 after a read is {}\n", timeout_rule_text(c, m),
-                   options.strict ? "an unexpected response (strict)" : "unusual, a warning");
+    if (const std::string bus = bus_text(c); !bus.empty()) fmt::format_to(it, "Bus:     {}\n", bus);
+    if (is_fc(c))
+        fmt::format_to(it, "Checks:  {}\n", checks_text(c, m));
+    else
+        fmt::format_to(it, "Checks:  {}; RC 8 after a read is {}\n", timeout_rule_text(c, m),
+                       options.strict ? "an unexpected response (strict)" : "unusual, a warning");
     if (!c.stations.empty())
         fmt::format_to(it, "Filter:  {} (telegram counts cover the whole capture)\n",
                        filter_text(c));
@@ -31,14 +35,14 @@ void write_text(const ReportContext& c, const ReportModel& m, Output& out) {
     append(b, "Summary\n");
     fmt::format_to(it, "  telegrams      {}\n", c.summary->telegrams());
     fmt::format_to(it, "  bytes skipped  {}\n", c.input.bytes_skipped);
-    fmt::format_to(it, "  FCS errors     {}\n", m.fcs_errors);
+    fmt::format_to(it, "  {}     {}\n", checksum_errors_label(c), m.fcs_errors);
     fmt::format_to(it, "  transactions   {}\n", m.transactions);
     fmt::format_to(it, "  findings       {}\n", findings_text(m));
     for (const auto& section : m.stations)
         section->write_text(c, b);
     if (m.has_bus_findings)
         fmt::format_to(it, "\nBus (telegrams no station can be named for)\n  findings       {}\n",
-                       findings_by_kind_text(c.tracker->bus().findings));
+                       findings_by_kind_text(bus_stats(c).findings));
     fmt::format_to(it, "\nFindings ({}, in capture order)\n", m.shown);
     // The kind column is as wide as the longest kind name.
     const std::size_t kind_width = longest_finding_kind_name();

@@ -71,8 +71,9 @@ TEST(CliTest, AppHelpListsSubcommandsAndExitCodes) {
 }
 
 const std::vector<std::string> kDecodeOptions = {
-    "-T,--format", "-V,--verbose", "-q,--quiet",    "-c,--count",   "--station", "--pnu",
-    "--ppo",       "--dialect",    "--pcd-profile", "--timeout-ms", "--strict",  "-h,--help"};
+    "-T,--format", "-V,--verbose", "-q,--quiet",      "-c,--count",    "--station",
+    "--pnu",       "--ppo",        "--dialect",       "--pcd-profile", "--timeout-ms",
+    "--strict",    "-h,--help",    "--fc-response-ms"};
 
 TEST(CliTest, DecodeHelpMentionsEveryOption) {
     CommandResult r = run_dpscope({"decode", "--help"});
@@ -254,6 +255,17 @@ TEST(CliTest, BadOptionValuesAreUsageErrors) {
     EXPECT_EQ(upper.exit_code, 2);
     EXPECT_EQ(upper.err,
               "dpscope: error: --dialect 3=GE: 'GE' is not a dialect (vlt, ge, profidrive)\n");
+    // fc is the FC carrier's code tables, no dialect of a PROFIBUS slave.
+    CommandResult fc = run_dpscope({"decode", "--dialect", "3=fc", kPpo1});
+    EXPECT_EQ(fc.exit_code, 2);
+    EXPECT_EQ(fc.err,
+              "dpscope: error: --dialect 3=fc: 'fc' is not a dialect (vlt, ge, profidrive)\n");
+    for (const char* bad : {"0", "60001", "-1", "2.5", "x"}) {
+        CommandResult response = run_dpscope({"report", "--fc-response-ms", bad, kPpo1});
+        EXPECT_EQ(response.exit_code, 2) << bad;
+        EXPECT_NE(response.err.find("must be a whole number from 1 to 60000 ms"), std::string::npos)
+            << response.err;
+    }
     CommandResult twice = run_dpscope({"decode", "--dialect", "ge", "--dialect", "vlt", kPpo1});
     EXPECT_EQ(twice.exit_code, 2);
     EXPECT_NE(twice.err.find("the dialect for every slave was already given as ge"),
@@ -935,6 +947,42 @@ TEST(CliTest, SimulateWriteErrorExitsFour) {
     CommandResult r = run_dpscope({"simulate", "-w", "/dev/full", "--cycles", "5"});
     EXPECT_EQ(r.exit_code, 4);
     EXPECT_NE(r.err.find("dpscope: error: /dev/full: write failed"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace dpscope
+
+namespace dpscope {
+namespace {
+
+// The FC protocol through the whole pipeline: FcDecoder, FcTracker, the report's FC sections.
+TEST(CliTest, FcCaptureIsTrackedAndReported) {
+    std::vector<std::uint8_t> bytes;
+    for (const std::vector<std::uint8_t>& telegram :
+         {test::fc_parameter(1, 1, 414), test::fc_parameter(1, 1, 414, 0, 1500, 0x0607),
+          test::fc_parameter(1, 14, 302, 0, 60000), test::fc_parameter(1, 7, 302, 0, 2, 0x0607),
+          test::fc_parameter(1, 1, 415), test::fc_process(2), test::fc_process(2, 0x0607)})
+        bytes.insert(bytes.end(), telegram.begin(), telegram.end());
+    const std::string path = test::temp_path("fc_capture.raw");
+    test::write_file(path, bytes);
+
+    CommandResult decode = run_dpscope({"decode", "--bus", "fc", path});
+    EXPECT_EQ(decode.exit_code, 0) << decode.err;
+    EXPECT_NE(decode.out.find("[note fc_command_rejected]"), std::string::npos) << decode.out;
+    EXPECT_NE(decode.out.find("[error fc_no_response]"), std::string::npos) << decode.out;
+
+    CommandResult report = run_dpscope({"report", "--bus", "fc", "-T", "json", path});
+    EXPECT_EQ(report.exit_code, 1) << report.err;  // fc_no_response is an error
+    EXPECT_NE(report.out.find("\"bus\":\"fc\""), std::string::npos) << report.out;
+    EXPECT_NE(report.out.find("\"fault_text\":\"Upper or lower limit is exceeded\""),
+              std::string::npos);
+    EXPECT_NE(report.out.find("\"fc_stacked_request\""), std::string::npos);
+    EXPECT_EQ(report.out.find("\"stacked_request\""), std::string::npos)
+        << "only the FC kinds are listed";
+
+    CommandResult filtered = run_dpscope({"report", "--bus", "fc", "--station", "9", path});
+    EXPECT_NE(filtered.err.find("--station 9: no drive 9 in the capture"), std::string::npos)
+        << filtered.err;
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "decoder/fc_codes.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -651,6 +652,32 @@ TEST(CodeTablesTest, DialectNames) {
     EXPECT_EQ(dialect_from_name("VLT"), std::nullopt);
     EXPECT_EQ(dialect_from_name(""), std::nullopt);
     EXPECT_EQ(dialect_from_name("fc"), std::nullopt);
+}
+
+TEST(CodeTablesTest, FcTablesAreTheFcCodes) {
+    EXPECT_EQ(dialect_name(Dialect::Fc), "fc");
+    EXPECT_FALSE(dialect_from_name("fc").has_value());  // no --dialect of a PROFIBUS slave
+    for (Dialect dialect : kDialects)
+        EXPECT_NE(dialect, Dialect::Fc);
+    for (std::uint8_t ak = 0; ak < 16; ++ak) {
+        EXPECT_EQ(request_code(Dialect::Fc, ak).meaning, fc_command(ak).meaning) << int(ak);
+        EXPECT_EQ(request_code(Dialect::Fc, ak).defined, fc_command(ak).defined) << int(ak);
+        EXPECT_EQ(request_code(Dialect::Fc, ak).is_change, fc_command(ak).is_change) << int(ak);
+        EXPECT_EQ(response_code(Dialect::Fc, ak).kind, fc_response(ak).kind) << int(ak);
+        for (std::uint8_t answer = 0; answer < 16; ++answer)
+            EXPECT_EQ(judge_answer(Dialect::Fc, ak, answer, false), fc_judge_answer(ak, answer));
+    }
+    // Every command but "no command" has its index checked in the answer.
+    EXPECT_FALSE(request_code(Dialect::Fc, 0).is_array);
+    EXPECT_TRUE(request_code(Dialect::Fc, 1).is_array);
+    EXPECT_EQ(response_code(Dialect::Fc, 7).kind, ResponseKind::Rejected);
+    EXPECT_EQ(error_text(Dialect::Fc, 2), "Upper or lower limit is exceeded");
+    EXPECT_EQ(error_text_or_unknown(Dialect::Fc, 100), kUnknownErrorNumber);
+    EXPECT_FALSE(has_spontaneous_messages(Dialect::Fc));
+    EXPECT_EQ(code_label(Dialect::Fc), "AK");
+    EXPECT_EQ(code_label(Dialect::Vlt), "RC");
+    EXPECT_EQ(error_label(Dialect::Fc), "fault code");
+    EXPECT_EQ(error_label(Dialect::Profidrive), "error");
 }
 
 }  // namespace

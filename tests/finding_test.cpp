@@ -51,6 +51,13 @@ TEST(FindingTest, NamesAndSeveritiesAreTheDocumentedOnes) {
         {"dpv1_negative_response", Severity::Note},
         {"dpv1_length_error", Severity::Error},
         {"dpv1_error_pdu", Severity::Note},
+        {"fc_stacked_request", Severity::Error},
+        {"fc_no_response", Severity::Error},
+        {"fc_late_response", Severity::Warning},
+        {"fc_mismatched_response", Severity::Error},
+        {"fc_unexpected_response_type", Severity::Error},
+        {"fc_command_rejected", Severity::Note},
+        {"fc_bcc_error", Severity::Error},
     };
     ASSERT_EQ(expected.size(), kFindingKindCount);
     for (std::size_t i = 0; i < kFindingKindCount; ++i) {

@@ -280,5 +280,73 @@ TEST(ParameterChannelEngineTest, RejectionWithoutItsPnuIsAboutTheRequest) {
     EXPECT_EQ(stats.rejection_errors.at(2), 1u);
 }
 
+// The FC carrier's policy: no lag, no SPM bit, no cyclic repetition, its own kinds.
+ParameterChannelPolicy not_cyclic() {
+    ParameterChannelPolicy policy;
+    policy.has_spm_bit = false;
+    policy.response_lags_one_cycle = false;
+    policy.cyclic_requests = false;
+    return policy;
+}
+
+TEST(ParameterChannelEngineTest, WithoutCyclicRepetitionEveryRequestIsNewAndEveryResponseAnAnswer) {
+    EngineChannel cyclic(without_lag());
+    EngineChannel commands(not_cyclic());
+    for (EngineChannel* ch : {&cyclic, &commands}) {
+        ch->cycle(kRead520, kValue520);
+        ch->cycle(kRead520, kValue520);  // the same request and answer again
+        ch->cycle(kRead520, kValue520);
+    }
+    // Cyclic: one request standing, answered once, the rest repeats.
+    EXPECT_EQ(cyclic.stats.requests, 1u);
+    EXPECT_EQ(cyclic.stats.transactions.positive, 1u);
+    // Not cyclic: three commands, three answers.
+    EXPECT_TRUE(commands.findings.empty());
+    EXPECT_EQ(commands.stats.requests, 3u);
+    EXPECT_EQ(commands.stats.transactions.positive, 3u);
+    EXPECT_EQ(commands.transactions.size(), 3u);
+}
+
+TEST(ParameterChannelEngineTest, PolicyKindsRenameOrSilenceFindings) {
+    ParameterChannelPolicy policy = not_cyclic();
+    policy.kinds.stacked_request = std::nullopt;
+    policy.kinds.mismatched_response = FindingKind::FcMismatchedResponse;
+    policy.kinds.request_rejected = FindingKind::FcCommandRejected;
+    EngineChannel ch(policy);
+    ch.cycle(kRead520, kIdle);             // unanswered ...
+    ch.cycle(kRead518, pcv(1, 520, 240));  // ... a new one (stacked: silenced), answered
+    ch.cycle(kRead520, pcv(7, 520, 2));    // rejected
+    EXPECT_EQ(kinds(ch.findings),
+              (std::vector{FindingKind::FcMismatchedResponse, FindingKind::FcCommandRejected}));
+    EXPECT_EQ(ch.stats.transactions.mismatched, 1u);
+    EXPECT_EQ(ch.stats.transactions.rejected, 1u);
+    EXPECT_EQ(ch.stats.abandoned, 0u);
+}
+
+TEST(ParameterChannelEngineTest, AbandonEndsThePendingRequestWithoutAFinding) {
+    ParameterChannelPolicy policy = not_cyclic();
+    policy.kinds.orphan_response = std::nullopt;
+    policy.kinds.response_timeout = std::nullopt;
+    ParameterChannelEngine engine(policy);
+    ParameterChannelStats stats;
+    engine.add_channel(0, 1, stats);
+    std::vector<Finding> findings;
+    engine.track(
+        ParameterChannelSample{1, kStart, Direction::Request, 0, 1, kRead520, Dialect::Fc, 1},
+        findings);
+    engine.abandon(0, 1);
+    // A later answer finds nothing pending; the time-out is the carrier's.
+    EXPECT_FALSE(engine
+                     .track(ParameterChannelSample{2, kStart + kMs, Direction::Response, 0, 1,
+                                                   kValue520, Dialect::Fc, 1},
+                            findings)
+                     .has_value());
+    engine.advance(kStart + 5000 * kMs, 3, findings);
+    EXPECT_TRUE(findings.empty());
+    EXPECT_EQ(stats.abandoned, 1u);
+    EXPECT_EQ(stats.timeouts, 0u);
+    EXPECT_EQ(stats.transactions.total(), 0u);
+}
+
 }  // namespace
 }  // namespace dpscope

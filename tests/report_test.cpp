@@ -27,6 +27,8 @@
 #include "capture/input_format.hpp"
 #include "capture/telegram_source.hpp"
 #include "decoder/bus_decoder.hpp"
+#include "decoder/fc_decoder.hpp"
+#include "decoder/fc_tracker.hpp"
 #include "decoder/finding.hpp"
 #include "decoder/log_histogram.hpp"
 #include "decoder/session_tracker.hpp"
@@ -538,12 +540,15 @@ const std::vector<ExpectedFinding> kFaultsFindings = {
     {353, "fdl_no_response", "warning", 5},
 };
 
-// The kinds of the cyclic channel's section and the bus: all but the DP-V1 ones.
+// The kinds of the cyclic channel's section and the bus: all but the DP-V1 and the FC ones.
 std::vector<std::string> dp_kind_names() {
     std::vector<std::string> names;
-    for (std::size_t i = 0; i < kFindingKindCount; ++i)
-        if (finding_component(static_cast<FindingKind>(i)) != FindingComponent::Dpv1ParameterAccess)
+    for (std::size_t i = 0; i < kFindingKindCount; ++i) {
+        const FindingComponent component = finding_component(static_cast<FindingKind>(i));
+        if (component != FindingComponent::Dpv1ParameterAccess &&
+            component != FindingComponent::FcProtocol)
             names.emplace_back(finding_kind_name(static_cast<FindingKind>(i)));
+    }
     return names;
 }
 
@@ -2584,6 +2589,197 @@ TEST(ReportTest, NoDialectHintForTheRightDialectOrForCodesNoDialectDefines) {
     auto vlt = json_report(context);
     ASSERT_TRUE(vlt);
     EXPECT_TRUE((*vlt)["stations"][0]["dialect_hint"].is_null());
+}
+
+// ---- the FC protocol section
+// ----------------------------------------------------------------------
+
+// What `dpscope report --bus fc` builds: FcDecoder and FcTracker (cli/pipeline.hpp).
+struct FcAnalysis {
+    FcAnalysis() {
+        using test::fc_parameter;
+        using test::fc_process;
+        const std::vector<std::pair<std::vector<std::uint8_t>, std::int64_t>> telegrams = {
+            {fc_parameter(1, 1, 414), 0},
+            {fc_parameter(1, 1, 414, 0, 1500, 0x0607), 4},
+            {fc_process(2), 10},
+            {fc_process(2, 0x0607), 40},  // late
+            {fc_parameter(1, 14, 302, 0, 60000), 50},
+            {fc_parameter(1, 7, 302, 0, 2, 0x0607), 54},  // rejected, fault code 2
+            {fc_parameter(1, 1, 415), 60},
+            {fc_process(2), 70},  // drive 1 did not answer
+            {fc_process(2, 0x0607), 72},
+            {fc_parameter(0, 2, 302, 0, 10), 80},  // broadcast
+        };
+        std::uint64_t frame = 0;
+        for (const auto& [bytes, ms] : telegrams) {
+            const DecodedTelegram& t = decoder.decode(bytes, ms * 1'000'000, ++frame);
+            std::span<const Finding> found = tracker.track(t);
+            summary.add(t);
+            summary.add_findings(found);
+            timelines.add(found, tracker.completed());
+            if (!found.empty()) log.append(found);
+        }
+        std::span<const Finding> found = tracker.finish();
+        summary.add_findings(found);
+        log.append(found);
+    }
+
+    ReportContext context() const {
+        ReportContext c;
+        c.input = InputSummary{"fc.hex", "hex", 0, false};
+        c.protocol = Protocol::Fc;
+        c.summary = &summary;
+        c.decoder = &dp_decoder;
+        c.tracker = &dp_tracker;
+        c.fc_tracker = &tracker;
+        c.timelines = &timelines;
+        c.findings = &log;
+        c.version = "7.8.9-test";
+        return c;
+    }
+
+    FcDecoder decoder;
+    FcTracker tracker;
+    BusDecoder dp_decoder;
+    SessionTracker dp_tracker;
+    Summary summary;
+    ChannelTimelines timelines;
+    FindingLog log;
+};
+
+std::vector<std::string> fc_kind_names() {
+    std::vector<std::string> names;
+    for (FindingKind kind : fc_finding_kinds())
+        names.emplace_back(finding_kind_name(kind));
+    return names;
+}
+
+TEST(ReportTest, FcSectionInText) {
+    FcAnalysis a;
+    std::string text = render(ReportFormat::Text, a.context());
+    EXPECT_NE(text.find("Bus:     Danfoss FC protocol (RS-485)\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("Checks:  time-out 1000 ms, drive response time 20 ms\n"),
+              std::string::npos);
+    EXPECT_NE(text.find("  BCC errors     0\n"), std::string::npos);
+    EXPECT_NE(text.find("\nDrive 1 (FC protocol)\n"), std::string::npos);
+    EXPECT_NE(text.find("\nDrive 2 (FC protocol)\n"), std::string::npos);
+    EXPECT_NE(text.find("\nBroadcasts (FC protocol)\n"), std::string::npos);
+    EXPECT_NE(text.find("  commands       3: 0 process, parameter/text AK 1 x2, AK 14 x1; 0 "
+                        "broadcasts\n"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("  responses      2; 2 answered, 1 unanswered, 0 late (over 20 ms)\n"),
+              std::string::npos);
+    EXPECT_NE(text.find("  parameters     302 (0 reads, 1 write), 414 (1 read, 0 writes), 415 (1 "
+                        "read, 0 writes)\n"),
+              std::string::npos);
+    EXPECT_NE(text.find(" PNU 302 fault code 2 (Upper or lower limit is exceeded) 1x;"),
+              std::string::npos);
+    EXPECT_NE(text.find("  findings       fc_no_response 1, fc_command_rejected 1\n"),
+              std::string::npos);
+    EXPECT_NE(text.find("  findings       fc_late_response 1\n"), std::string::npos);
+    EXPECT_NE(text.find("  latency ms     min 2.000  mean 16.000  p95 "), std::string::npos)
+        << text;
+    EXPECT_EQ(text.find("PPO"), std::string::npos);
+    EXPECT_NE(text.find("Result:  FAIL: 1 error, 1 warning, 1 note (fail on error)"),
+              std::string::npos);
+}
+
+TEST(ReportTest, FcSectionInJson) {
+    FcAnalysis a;
+    auto root = json_report(a.context());
+    ASSERT_TRUE(root);
+    const Json& r = *root;
+    EXPECT_EQ(r["options"]["bus"].string(), "fc");
+    EXPECT_EQ(r["options"]["fc_response_ms"].integer(), 20);
+    EXPECT_EQ(r["summary"]["bcc_errors"].integer(), 0);
+    EXPECT_EQ(r["summary"]["transactions"].integer(), 4);
+    EXPECT_EQ(r["bus"]["findings"].keys(), fc_kind_names());
+    ASSERT_EQ(r["stations"].items.size(), 3u);
+    const Json& broadcasts = r["stations"][0];
+    EXPECT_EQ(broadcasts["address"].integer(), 0);
+    EXPECT_TRUE(broadcasts["broadcast"].boolean);
+    EXPECT_EQ(broadcasts["broadcasts"].integer(), 1);
+    const Json& one = r["stations"][1];
+    EXPECT_EQ(one["bus"].string(), "fc");
+    EXPECT_EQ(one["address"].integer(), 1);
+    EXPECT_EQ(one["commands"].integer(), 3);
+    EXPECT_EQ(one["commands_by_ak"]["14"].integer(), 1);
+    EXPECT_EQ(one["no_responses"].integer(), 1);
+    EXPECT_EQ(one["late"].integer(), 0);
+    EXPECT_EQ(one["findings"].keys(), fc_kind_names());
+    EXPECT_EQ(one["findings"]["fc_command_rejected"].integer(), 1);
+    ASSERT_EQ(one["rejections"].items.size(), 1u);
+    EXPECT_EQ(one["rejections"][0]["pnu"].integer(), 302);
+    EXPECT_EQ(one["rejections"][0]["fault_code"].integer(), 2);
+    EXPECT_EQ(one["rejections"][0]["fault_text"].string(), "Upper or lower limit is exceeded");
+    ASSERT_EQ(one["parameters"].items.size(), 3u);
+    EXPECT_EQ(one["parameters"][0]["writes"].integer(), 1);
+    const Json& two = r["stations"][2];
+    EXPECT_EQ(two["late"].integer(), 1);
+    EXPECT_EQ(number_of(two["latency_ms"]["max"]), 30.0);
+    EXPECT_EQ(two["findings"]["fc_late_response"].integer(), 1);
+}
+
+TEST(ReportTest, FcSectionInMarkdownAndHtml) {
+    FcAnalysis a;
+    std::string md = render(ReportFormat::Markdown, a.context());
+    EXPECT_NE(md.find("- Bus: Danfoss FC protocol (RS-485)\n"), std::string::npos) << md;
+    EXPECT_NE(md.find("| telegrams | bytes skipped | BCC errors |"), std::string::npos);
+    EXPECT_NE(md.find("## Drives\n"), std::string::npos);
+    EXPECT_NE(md.find("\n### Drive 1 (FC protocol)\n"), std::string::npos);
+    EXPECT_NE(md.find("- Rejected: PNU 302 fault code 2 (Upper or lower limit is exceeded), 1x\n"),
+              std::string::npos);
+    EXPECT_EQ(md.find("## Slaves"), std::string::npos);
+    std::string html = render(ReportFormat::Html, a.context());
+    auto doc = parse_xml(html, true);
+    ASSERT_TRUE(doc) << html;
+    EXPECT_NE(html.find("<h2>Drive 1 (FC protocol)</h2>"), std::string::npos);
+    EXPECT_NE(html.find("<td class=\"n\">302</td><td class=\"n\">2</td><td>Upper or lower limit "
+                        "is exceeded</td>"),
+              std::string::npos);
+    EXPECT_NE(html.find("Danfoss FC protocol (RS-485)"), std::string::npos);
+    EXPECT_NE(html.find("<td>fc_late_response</td>"), std::string::npos);
+    EXPECT_NE(html.find("aria-label=\"latency histogram of drive 2\""), std::string::npos);
+    EXPECT_NE(html.find("aria-label=\"timeline of drive 1\""), std::string::npos);
+}
+
+TEST(ReportTest, JunitFcSuitePerAddressWithACasePerFcRule) {
+    FcAnalysis a;
+    auto root = junit_report(a.context());
+    ASSERT_TRUE(root);
+    auto suites = root->elements("testsuite");
+    ASSERT_EQ(suites.size(), 3u);
+    EXPECT_EQ(suites[0]->attribute("name"), "FC broadcasts");
+    EXPECT_EQ(suites[1]->attribute("name"), "FC drive 1");
+    EXPECT_EQ(suites[2]->attribute("name"), "FC drive 2");
+    const std::vector<std::string> kinds = fc_kind_names();
+    for (const XmlNode* suite : suites) {
+        auto cases = suite->elements("testcase");
+        ASSERT_EQ(cases.size(), kinds.size());
+        for (std::size_t k = 0; k < cases.size(); ++k)
+            EXPECT_EQ(cases[k]->attribute("name").substr(0, kinds[k].size() + 1), kinds[k] + ":");
+    }
+    EXPECT_EQ(suites[1]->attribute("failures"), "1");  // fc_no_response
+    EXPECT_EQ(suites[1]->elements("testcase")[0]->attribute("classname"), "dpscope.fc.drive_1");
+    EXPECT_EQ(suites[2]->attribute("failures"), "0");  // a late answer is a warning
+    EXPECT_EQ(root->attribute("failures"), "1");
+}
+
+TEST(ReportTest, ProfibusReportsListNoFcKinds) {
+    auto root = json_report(context_of(faults()));
+    ASSERT_TRUE(root);
+    std::vector<std::string> dp = dp_kind_names();
+    EXPECT_EQ((*root)["bus"]["findings"].keys(), dp);
+    EXPECT_EQ((*root)["stations"][0]["findings"].keys(), dp);
+    EXPECT_EQ((*root)["options"].find("bus"), nullptr);
+    for (ReportFormat format : {ReportFormat::Text, ReportFormat::Markdown, ReportFormat::Html,
+                                ReportFormat::Junit, ReportFormat::Json}) {
+        std::string text = render(format, context_of(faults()));
+        EXPECT_EQ(text.find("fc_"), std::string::npos) << report_format_name(format);
+        EXPECT_EQ(text.find("FC protocol"), std::string::npos) << report_format_name(format);
+    }
 }
 
 }  // namespace

@@ -12,8 +12,11 @@
 #include <vector>
 
 #include "decoder/bus_decoder.hpp"
+#include "decoder/fc_decoder.hpp"
+#include "decoder/fc_tracker.hpp"
 #include "decoder/telegram_builder.hpp"
 #include "simulator/simulator.hpp"
+#include "tests/test_support.hpp"
 
 namespace dpscope {
 namespace {
@@ -174,10 +177,130 @@ INSTANTIATE_TEST_SUITE_P(SessionTrackerTest, FaultScenarioTest,
                              return std::string(param.param.fault);
                          });
 
+// ---- FC protocol scenarios ----------------------------------------------------------------------
+// The FC faults on hand-made FC telegrams, decoded by FcDecoder and judged by FcTracker (the FC
+// tracker's detailed tests are in fc_tracker_test.cpp): a clean exchange with drives 1 and 2 (a
+// command every 10 ms, answered after 5 ms), with the fault at the fourth exchange.
+
+struct FcStep {
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ms;
+};
+
+struct FcScenario {
+    const char* fault;
+    std::vector<FcStep> steps;
+    Counts expected;
+};
+
+// Exchanges with drives 1 and 2 from `t0_ms`: read PNU 414 from drive 1, a process block to drive
+// 2, each answered after 5 ms.
+void fc_clean(std::vector<FcStep>& steps, std::int64_t t0_ms, int exchanges) {
+    for (int i = 0; i < exchanges; ++i) {
+        const std::int64_t t = t0_ms + 10 * i;
+        if (i % 2 == 0) {
+            steps.push_back({test::fc_parameter(1, 1, 414), t});
+            steps.push_back({test::fc_parameter(1, 1, 414, 0, 1500, 0x0607, 0x2000), t + 5});
+        } else {
+            steps.push_back({test::fc_process(2), t});
+            steps.push_back({test::fc_process(2, 0x0607, 0x2000), t + 5});
+        }
+    }
+}
+
+std::vector<FcScenario> fc_scenarios() {
+    auto with = [](std::vector<FcStep> fault) {
+        std::vector<FcStep> steps;
+        fc_clean(steps, 0, 3);
+        for (FcStep& step : fault)
+            steps.push_back(std::move(step));
+        fc_clean(steps, 100, 3);
+        return steps;
+    };
+    std::vector<std::uint8_t> bad_bcc = test::fc_parameter(1, 1, 414, 0, 1500, 0x0607, 0x2000);
+    bad_bcc.back() ^= 0x01;
+    return {
+        // A second command to drive 1 before it answered the first (a write: AK 14 is a command
+        // only, so the decoder cannot take it for the answer).
+        {"fc_stacked_request",
+         with({{test::fc_parameter(1, 1, 414), 30},
+               {test::fc_parameter(1, 14, 415, 0, 7), 35},
+               {test::fc_parameter(1, 1, 415, 0, 7, 0x0607, 0x2000), 40}}),
+         {{"fc_stacked_request", 1}}},
+        // Drive 1 does not answer; the master moves on to drive 2.
+        {"fc_no_response",
+         with({{test::fc_parameter(1, 1, 414), 30},
+               {test::fc_process(2), 50},
+               {test::fc_process(2, 0x0607, 0x2000), 55}}),
+         {{"fc_no_response", 1}}},
+        // Drive 1 answers after 30 ms (more than 20).
+        {"fc_late_response",
+         with({{test::fc_parameter(1, 1, 414), 30},
+               {test::fc_parameter(1, 1, 414, 0, 1500, 0x0607, 0x2000), 60}}),
+         {{"fc_late_response", 1}}},
+        // The answer carries PNU 415 for a read of PNU 414.
+        {"fc_mismatched_response",
+         with({{test::fc_parameter(1, 1, 414), 30},
+               {test::fc_parameter(1, 1, 415, 0, 1500, 0x0607, 0x2000), 35}}),
+         {{"fc_mismatched_response", 1}}},
+        // A word write answered with a double word value.
+        {"fc_unexpected_response_type",
+         with({{test::fc_parameter(1, 2, 414, 0, 1500), 30},
+               {test::fc_parameter(1, 2, 414, 0, 1500, 0x0607, 0x2000), 35}}),
+         {{"fc_unexpected_response_type", 1}}},
+        // AK 7 with fault code 2 (limit exceeded).
+        {"fc_command_rejected",
+         with({{test::fc_parameter(1, 14, 414, 0, 60000), 30},
+               {test::fc_parameter(1, 7, 414, 0, 2, 0x0607, 0x2000), 35}}),
+         {{"fc_command_rejected", 1}}},
+        // One answer with a wrong BCC.
+        {"fc_bcc_error",
+         with({{test::fc_parameter(1, 1, 414), 30}, {bad_bcc, 35}}),
+         {{"fc_bcc_error", 1}}},
+    };
+}
+
+std::vector<Finding> run_fc(const std::vector<FcStep>& steps) {
+    FcDecoder decoder;
+    FcTracker tracker;
+    std::vector<Finding> findings;
+    std::uint64_t frame = 0;
+    for (const FcStep& step : steps) {
+        const DecodedTelegram& t = decoder.decode(step.bytes, step.time_ms * 1'000'000, ++frame);
+        for (const Finding& f : tracker.track(t))
+            findings.push_back(f);
+    }
+    for (const Finding& f : tracker.finish())
+        findings.push_back(f);
+    return findings;
+}
+
+TEST(SessionTrackerTest, FcScenariosGiveExactlyTheExpectedFindings) {
+    std::vector<FcStep> clean;
+    fc_clean(clean, 0, 8);
+    EXPECT_TRUE(run_fc(clean).empty());
+    for (const FcScenario& scenario : fc_scenarios()) {
+        SCOPED_TRACE(scenario.fault);
+        std::vector<Finding> findings = run_fc(scenario.steps);
+        EXPECT_EQ(count_kinds(findings), scenario.expected);
+        for (const Finding& f : findings) {
+            EXPECT_FALSE(f.message.empty());
+            EXPECT_EQ(f.severity, default_severity(f.kind));
+            EXPECT_TRUE(f.has_stations);
+            EXPECT_EQ(f.master, 0);
+            EXPECT_EQ(f.slave, 1) << f.message;
+        }
+    }
+}
+
 TEST(SessionTrackerTest, EveryKindIsCoveredByAScenario) {
-    // Some scenario of kFaultScenarios expects each finding kind.
+    // Some scenario of kFaultScenarios (PROFIBUS DP, simulated) or of the FC scenarios expects
+    // each finding kind.
     std::set<std::string> covered;
     for (const FaultScenario& scenario : kFaultScenarios)
+        for (const auto& [kind, count] : scenario.expected)
+            covered.insert(kind);
+    for (const FcScenario& scenario : fc_scenarios())
         for (const auto& [kind, count] : scenario.expected)
             covered.insert(kind);
     for (std::size_t i = 0; i < kFindingKindCount; ++i)
@@ -192,10 +315,20 @@ TEST(SessionTrackerTest, EverySimulatorFaultHasAScenario) {
     std::set<std::string> faults;
     for (const FaultScenario& scenario : kFaultScenarios)
         faults.insert(scenario.fault);
+    const std::vector<FcScenario> fc = fc_scenarios();
+    for (const FcScenario& scenario : fc) {
+        faults.insert(scenario.fault);
+        auto kind = fault_kind_from_name(scenario.fault);
+        ASSERT_TRUE(kind) << scenario.fault;
+        EXPECT_TRUE(fault_is_fc(*kind)) << scenario.fault;
+    }
+    for (const FaultScenario& scenario : kFaultScenarios)
+        EXPECT_FALSE(fault_is_fc(*fault_kind_from_name(scenario.fault))) << scenario.fault;
     for (std::size_t i = 0; i < kFaultKindCount; ++i)
         EXPECT_TRUE(faults.count(std::string(fault_kind_name(static_cast<FaultKind>(i)))))
             << fault_kind_name(static_cast<FaultKind>(i));
-    EXPECT_EQ(faults.size(), std::size(kFaultScenarios)) << "a fault with two scenarios";
+    EXPECT_EQ(faults.size(), std::size(kFaultScenarios) + fc.size())
+        << "a fault with two scenarios";
 }
 
 TEST(SessionTrackerTest, TimeoutFindingNamesTheRequestAndItsDeadline) {

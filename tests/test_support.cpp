@@ -18,6 +18,44 @@
 
 namespace dpscope::test {
 
+namespace {
+
+std::vector<std::uint8_t> fc_finish(std::vector<std::uint8_t> bytes) {
+    bytes[1] = static_cast<std::uint8_t>(bytes.size() - 1);  // LGE: ADR .. BCC
+    std::uint8_t bcc = 0;
+    for (std::uint8_t b : bytes)
+        bcc ^= b;
+    bytes.push_back(bcc);
+    return bytes;
+}
+
+void put_u16(std::vector<std::uint8_t>& bytes, std::uint16_t value) {
+    bytes.push_back(static_cast<std::uint8_t>(value >> 8));
+    bytes.push_back(static_cast<std::uint8_t>(value & 0xFF));
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> fc_process(std::uint8_t address, std::uint16_t pcd1, std::uint16_t pcd2) {
+    std::vector<std::uint8_t> bytes{0x02, 0, static_cast<std::uint8_t>(0x80 | address)};
+    put_u16(bytes, pcd1);
+    put_u16(bytes, pcd2);
+    return fc_finish(std::move(bytes));
+}
+
+std::vector<std::uint8_t> fc_parameter(std::uint8_t address, std::uint8_t ak, std::uint16_t pnu,
+                                       std::uint8_t index, std::uint32_t pwe, std::uint16_t pcd1,
+                                       std::uint16_t pcd2) {
+    std::vector<std::uint8_t> bytes{0x02, 0, static_cast<std::uint8_t>(0x80 | address)};
+    put_u16(bytes, static_cast<std::uint16_t>((ak & 0x0F) << 12 | (pnu & 0x0FFF)));
+    put_u16(bytes, index);
+    put_u16(bytes, static_cast<std::uint16_t>(pwe >> 16));
+    put_u16(bytes, static_cast<std::uint16_t>(pwe & 0xFFFF));
+    put_u16(bytes, pcd1);
+    put_u16(bytes, pcd2);
+    return fc_finish(std::move(bytes));
+}
+
 std::vector<std::uint8_t> hex(std::string_view text) {
     Result<std::vector<std::uint8_t>> bytes = parse_hex_bytes(text);
     EXPECT_TRUE(bytes) << bytes.error();

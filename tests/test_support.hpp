@@ -16,6 +16,15 @@ namespace dpscope::test {
 std::vector<std::uint8_t> hex(std::string_view text);
 
 // The repository's root directory and the dpscope executable built with the tests.
+// Danfoss FC protocol telegrams, built by hand with their BCC (decoder/fc_framing_rules.hpp):
+// the address byte in the 1-126 format (0x80 | address; address 0: the broadcast 0x80).
+std::vector<std::uint8_t> fc_process(std::uint8_t address, std::uint16_t pcd1 = 0x047F,
+                                     std::uint16_t pcd2 = 0x2000);
+// A parameter block: PKE = AK << 12 | PNU (12 bits), IND = index, PWE, PCD 1 and 2.
+std::vector<std::uint8_t> fc_parameter(std::uint8_t address, std::uint8_t ak, std::uint16_t pnu,
+                                       std::uint8_t index = 0, std::uint32_t pwe = 0,
+                                       std::uint16_t pcd1 = 0x047F, std::uint16_t pcd2 = 0x2000);
+
 std::string source_dir();
 std::string dpscope_executable();
 

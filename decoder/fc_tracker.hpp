@@ -1,0 +1,145 @@
+// The FC tracker: the Danfoss FC protocol composition of the rules, as the session tracker is the
+// PROFIBUS DP one (docs/protocol/fc-protocol.md, docs/decisions.md "FC protocol: pairing"). It
+// reads only the decoded telegram (the direction and the request a response answers, as FcDecoder
+// inferred them) and judges:
+//  - the link: fc_bcc_error (a BccMismatch problem) and malformed_telegram (any other problem of
+//    error severity); a damaged telegram is reported and otherwise ignored, except that a damaged
+//    answer from the drive a command went to ends the wait for it;
+//  - the pairing, per drive address, of every command (process, parameter and text blocks) with
+//    its response: the master waits for each answer, so a command is unanswered (fc_no_response)
+//    when the master's next telegram goes to another drive, when --timeout-ms passes before
+//    anything answers it, or when the capture ends past that time-out; a new command to the same
+//    drive first is fc_stacked_request; an answer later than --fc-response-ms is
+//    fc_late_response; a response from a drive no command is pending for is
+//    fc_mismatched_response. Broadcasts expect no answer;
+//  - the parameter channel of parameter and text blocks, through the parameter-channel engine with
+//    the FC policy (no SPM bit, no lag, no cyclic repetition; Dialect::Fc code tables) and the FC
+//    kinds: fc_mismatched_response (PNU or index differ), fc_unexpected_response_type,
+//    fc_command_rejected (AK 7, with the fault code's text), and unknown_code.
+// It counts per drive address what the report shows (FcStationStats). No I/O; memory is bounded
+// per address and nothing is kept per telegram.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "decoder/finding.hpp"
+#include "decoder/log_histogram.hpp"
+#include "decoder/parameter_channel_engine.hpp"
+#include "decoder/telegram.hpp"
+
+namespace dpscope {
+
+struct FcTrackerOptions {
+    std::int64_t timeout_ns = 1'000'000'000;  // --timeout-ms: no answer within it
+    std::int64_t response_ns = 20'000'000;    // --fc-response-ms: an answer later is late
+};
+
+// The finding kinds the FC tracker reports: its own (FindingComponent::FcProtocol),
+// malformed_telegram and unknown_code, in enum order.
+std::span<const FindingKind> fc_finding_kinds() noexcept;
+bool is_fc_finding_kind(FindingKind kind) noexcept;
+
+// How often a parameter was read and written.
+struct FcParameterAccess {
+    std::uint64_t reads = 0;
+    std::uint64_t writes = 0;
+};
+
+// One drive address (address 0: the broadcasts).
+struct FcStationStats {
+    static constexpr std::size_t kMaxParameters = 256;
+
+    std::uint8_t address = 0;
+    std::uint64_t telegrams = 0;                     // intact telegrams to or from it
+    std::uint64_t commands = 0;                      // every block kind, broadcasts included
+    std::uint64_t process_commands = 0;              // process blocks
+    std::array<std::uint64_t, 16> commands_by_ak{};  // parameter and text blocks, by AK
+    std::uint64_t broadcasts = 0;
+    std::uint64_t responses = 0;  // every response from it, answering or not
+    std::uint64_t answered = 0;   // commands answered: the transactions
+    std::uint64_t no_responses = 0;
+    std::uint64_t late = 0;
+    LogHistogram latency_ns;  // command -> response, where both carry a time
+    std::uint64_t latency_sum_ns = 0;
+    std::map<std::uint16_t, FcParameterAccess> parameters;  // PNU -> reads and writes
+    std::uint64_t parameters_not_counted = 0;  // accesses to PNUs beyond kMaxParameters
+    ParameterChannelStats channel;  // the engine's: outcomes, rejections by (PNU, fault code)
+    std::array<std::uint64_t, kFindingKindCount> findings{};
+    FindingSeverityCounts findings_by_severity{};
+    std::int64_t first_time_ns = kNoTime;
+    std::int64_t last_time_ns = kNoTime;
+
+    bool timed() const noexcept { return first_time_ns != kNoTime; }
+    std::uint64_t mean_latency_ns() const noexcept {
+        return latency_ns.count() ? latency_sum_ns / latency_ns.count() : 0;
+    }
+};
+
+class FcTracker {
+  public:
+    explicit FcTracker(FcTrackerOptions options = {});
+    ~FcTracker();
+    FcTracker(const FcTracker&) = delete;
+    FcTracker& operator=(const FcTracker&) = delete;
+
+    // Feeds the next FC telegram in capture order. Returns the findings discovered at it (some
+    // concern an earlier command: their request_frame says which); valid until the next call.
+    std::span<const Finding> track(const DecodedTelegram& t);
+    // The end of the capture at `end_ns` (default: the last telegram's time): a command still
+    // unanswered past the time-out then is reported.
+    std::span<const Finding> finish(std::int64_t end_ns = kNoTime);
+    // The command -> response pairs the last track() completed; valid until the next call.
+    std::span<const CompletedTransaction> completed() const noexcept { return completed_; }
+
+    // The addresses seen, in address order.
+    std::vector<const FcStationStats*> stations() const;
+    const BusStats& bus() const noexcept { return bus_; }
+    std::uint64_t findings(Severity severity) const noexcept {
+        return by_severity_[static_cast<std::size_t>(severity)];
+    }
+    // Commands answered, over every address.
+    std::uint64_t transactions() const noexcept;
+    const FcTrackerOptions& options() const noexcept { return options_; }
+    // The parameter number the last telegram's PKW is about (-1: none); a rejection without
+    // PNU is about the command it answers.
+    std::int32_t subject_pnu() const noexcept { return subject_pnu_; }
+
+  private:
+    struct Pending {
+        bool active = false;
+        std::uint8_t address = 0;
+        std::uint64_t frame = 0;
+        std::int64_t time_ns = kNoTime;
+        bool pkw = false;  // a parameter or text block
+        std::uint8_t ak = 0;
+        std::uint16_t pnu = 0;
+    };
+
+    FcStationStats& station(std::uint8_t address);
+    void count(std::size_t from);
+    bool check_intact(const DecodedTelegram& t);
+    void command(FcStationStats& st, const DecodedTelegram& t);
+    void response(FcStationStats& st, const DecodedTelegram& t);
+    void close_pending();
+    void check_deadline(std::int64_t now_ns, std::uint64_t frame);
+
+    FcTrackerOptions options_;
+    ParameterChannelEngine engine_;
+    std::vector<std::int32_t> index_;  // address -> position in stations_
+    std::vector<std::unique_ptr<FcStationStats>> stations_;
+    Pending pending_;
+    std::vector<Finding> current_;
+    std::vector<CompletedTransaction> completed_;
+    BusStats bus_;
+    std::array<std::uint64_t, 3> by_severity_{};
+    std::int64_t now_ns_ = kNoTime;
+    std::uint64_t last_frame_ = 0;
+    std::int32_t subject_pnu_ = -1;
+};
+
+}  // namespace dpscope

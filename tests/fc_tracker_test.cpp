@@ -1,0 +1,325 @@
+// The FC tracker (decoder/fc_tracker.hpp) on hand-made FC telegrams decoded by FcDecoder: clean
+// exchanges with no findings, latency and the per-address counts, broadcasts, each rule with its
+// frames and message, time-outs at the end, bounded memory. (One scenario per FC fault, exactly
+// its findings: SessionTrackerTest.FcScenariosGiveExactlyTheExpectedFindings.)
+#include "decoder/fc_tracker.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "decoder/fc_decoder.hpp"
+#include "tests/test_support.hpp"
+
+namespace dpscope {
+namespace {
+
+using test::fc_parameter;
+using test::fc_process;
+
+constexpr std::int64_t kMs = 1'000'000;
+
+// Feeds telegrams through a decoder and a tracker, keeping every finding.
+struct FcRun {
+    explicit FcRun(FcTrackerOptions options = {}) : tracker(options) {}
+
+    // `time_ms` < 0: no timestamp.
+    std::vector<Finding> feed(const std::vector<std::uint8_t>& bytes, std::int64_t time_ms) {
+        const DecodedTelegram& t =
+            decoder.decode(bytes, time_ms < 0 ? kNoTime : time_ms * kMs, ++frame);
+        std::span<const Finding> found = tracker.track(t);
+        return keep(std::vector<Finding>(found.begin(), found.end()));
+    }
+    std::vector<Finding> finish(std::int64_t end_ms = -1) {
+        std::span<const Finding> found = tracker.finish(end_ms < 0 ? kNoTime : end_ms * kMs);
+        return keep(std::vector<Finding>(found.begin(), found.end()));
+    }
+    std::vector<Finding> keep(std::vector<Finding> found) {
+        all.insert(all.end(), found.begin(), found.end());
+        return found;
+    }
+    const FcStationStats* station(std::uint8_t address) const {
+        for (const FcStationStats* s : tracker.stations())
+            if (s->address == address) return s;
+        return nullptr;
+    }
+
+    FcDecoder decoder;
+    FcTracker tracker;
+    std::uint64_t frame = 0;
+    std::vector<Finding> all;
+};
+
+TEST(FcTrackerTest, CleanExchangesHaveNoFindingsAndCountLatencyPerAddress) {
+    FcRun run;
+    for (int i = 0; i < 4; ++i) {
+        const std::int64_t t = 20 * i;
+        run.feed(fc_parameter(1, 1, 414), t);
+        run.feed(fc_parameter(1, 1, 414, 0, 1500, 0x0607), t + 4 + i);  // 4..7 ms
+        run.feed(fc_process(2), t + 10);
+        run.feed(fc_process(2, 0x0607), t + 12);
+    }
+    run.feed(fc_parameter(1, 14, 415, 0, 33), 100);
+    run.feed(fc_parameter(1, 1, 415, 0, 33, 0x0607), 103);
+    run.finish(5000);
+    EXPECT_TRUE(run.all.empty()) << run.all[0].message;
+    EXPECT_EQ(run.tracker.transactions(), 9u);
+
+    const FcStationStats* one = run.station(1);
+    ASSERT_NE(one, nullptr);
+    EXPECT_EQ(one->commands, 5u);
+    EXPECT_EQ(one->commands_by_ak[1], 4u);
+    EXPECT_EQ(one->commands_by_ak[14], 1u);
+    EXPECT_EQ(one->process_commands, 0u);
+    EXPECT_EQ(one->responses, 5u);
+    EXPECT_EQ(one->answered, 5u);
+    EXPECT_EQ(one->latency_ns.count(), 5u);
+    EXPECT_EQ(one->latency_ns.min(), 3u * kMs);
+    EXPECT_EQ(one->latency_ns.max(), 7u * kMs);
+    EXPECT_EQ(one->mean_latency_ns(), (4u + 5 + 6 + 7 + 3) * kMs / 5);
+    ASSERT_EQ(one->parameters.size(), 2u);
+    EXPECT_EQ(one->parameters.at(414).reads, 4u);
+    EXPECT_EQ(one->parameters.at(414).writes, 0u);
+    EXPECT_EQ(one->parameters.at(415).writes, 1u);
+    EXPECT_EQ(one->channel.transactions.positive, 5u);
+
+    const FcStationStats* two = run.station(2);
+    ASSERT_NE(two, nullptr);
+    EXPECT_EQ(two->commands, 4u);
+    EXPECT_EQ(two->process_commands, 4u);
+    EXPECT_EQ(two->answered, 4u);
+    EXPECT_EQ(two->latency_ns.min(), 2u * kMs);
+    EXPECT_TRUE(two->parameters.empty());
+    EXPECT_EQ(two->channel.parameter_telegrams, 0u);  // process blocks skip the engine
+}
+
+TEST(FcTrackerTest, BroadcastsExpectNoAnswer) {
+    FcRun run;
+    run.feed(fc_parameter(0, 2, 302, 0, 10), 0);  // broadcast write, ADR 0x80
+    run.feed(fc_process(0), 10);
+    run.feed(fc_parameter(1, 1, 414), 20);
+    run.feed(fc_parameter(1, 1, 414, 0, 5, 0x0607), 25);
+    run.finish(9000);
+    EXPECT_TRUE(run.all.empty());
+    const FcStationStats* broadcasts = run.station(0);
+    ASSERT_NE(broadcasts, nullptr);
+    EXPECT_EQ(broadcasts->broadcasts, 2u);
+    EXPECT_EQ(broadcasts->commands, 2u);
+    EXPECT_EQ(broadcasts->answered, 0u);
+    EXPECT_EQ(broadcasts->parameters.at(302).writes, 1u);
+    EXPECT_EQ(run.tracker.transactions(), 1u);
+}
+
+TEST(FcTrackerTest, StackedCommandNamesTheFirst) {
+    FcRun run;
+    run.feed(fc_parameter(3, 1, 414), 0);
+    std::vector<Finding> found = run.feed(fc_parameter(3, 14, 415, 0, 7), 5);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcStackedRequest);
+    EXPECT_EQ(found[0].frame, 2u);
+    EXPECT_EQ(found[0].request_frame, 1u);
+    EXPECT_EQ(found[0].slave, 3);
+    EXPECT_EQ(found[0].pnu, 414);
+    EXPECT_NE(found[0].message.find("AK 14"), std::string::npos) << found[0].message;
+    // The answer to the second command is its answer, not a mismatch for the first.
+    EXPECT_TRUE(run.feed(fc_parameter(3, 1, 415, 0, 7, 0x0607), 8).empty());
+    EXPECT_EQ(run.station(3)->answered, 1u);
+}
+
+TEST(FcTrackerTest, NoResponseWhenTheMasterMovesOnOrTheTimeOutPasses) {
+    FcRun run;
+    run.feed(fc_parameter(1, 1, 414), 0);
+    std::vector<Finding> found = run.feed(fc_process(2), 40);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcNoResponse);
+    EXPECT_EQ(found[0].slave, 1);
+    EXPECT_EQ(found[0].request_frame, 1u);
+    EXPECT_NE(found[0].message.find("master's next telegram"), std::string::npos);
+    EXPECT_EQ(run.station(1)->no_responses, 1u);
+    // Drive 2 never answers: found at the end, past the 1000 ms time-out.
+    EXPECT_TRUE(run.finish(500).empty());
+    found = run.finish(1100);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcNoResponse);
+    EXPECT_EQ(found[0].slave, 2);
+    EXPECT_NE(found[0].message.find("within 1000 ms"), std::string::npos) << found[0].message;
+    EXPECT_TRUE(run.finish(3000).empty()) << "reported once";
+}
+
+TEST(FcTrackerTest, UntimedCaptureJudgesOnlyTheOrderOfTelegrams) {
+    FcRun run;
+    run.feed(fc_parameter(1, 1, 414), -1);
+    run.feed(fc_parameter(1, 1, 414, 0, 5, 0x0607), -1);
+    run.feed(fc_parameter(2, 1, 414), -1);
+    EXPECT_TRUE(run.finish().empty());
+    EXPECT_TRUE(run.all.empty());
+    EXPECT_EQ(run.station(1)->latency_ns.count(), 0u);
+    EXPECT_EQ(run.station(1)->answered, 1u);
+}
+
+TEST(FcTrackerTest, LateResponseFollowsTheOption) {
+    FcTrackerOptions options;
+    options.response_ns = 50 * kMs;  // the VLT 2800's documented time
+    FcRun run(options);
+    run.feed(fc_parameter(1, 1, 414), 0);
+    EXPECT_TRUE(run.feed(fc_parameter(1, 1, 414, 0, 5, 0x0607), 50).empty());
+    run.feed(fc_parameter(1, 1, 414), 100);
+    std::vector<Finding> found = run.feed(fc_parameter(1, 1, 414, 0, 5, 0x0607), 151);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcLateResponse);
+    EXPECT_EQ(found[0].severity, Severity::Warning);
+    EXPECT_EQ(found[0].request_frame, 3u);
+    EXPECT_NE(found[0].message.find("51.000 ms (more than 50 ms)"), std::string::npos)
+        << found[0].message;
+    EXPECT_EQ(run.station(1)->late, 1u);
+    EXPECT_EQ(run.station(1)->answered, 2u);
+}
+
+TEST(FcTrackerTest, ResponseFromAnotherDriveIsMismatched) {
+    FcRun run;
+    run.feed(fc_parameter(1, 1, 414), 0);
+    // AK 7 is only a response: from drive 2 while drive 1 is asked.
+    std::vector<Finding> found = run.feed(fc_parameter(2, 7, 414, 0, 0, 0x0607), 3);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcMismatchedResponse);
+    EXPECT_EQ(found[0].slave, 2);
+    EXPECT_EQ(found[0].request_frame, 1u);
+    // Drive 1 still answers its command.
+    EXPECT_TRUE(run.feed(fc_parameter(1, 1, 414, 0, 5, 0x0607), 6).empty());
+    // An AK 7 with no command pending at all.
+    found = run.feed(fc_parameter(4, 7, 414, 0, 0, 0x0607), 9);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcMismatchedResponse);
+    EXPECT_EQ(found[0].request_frame, 0u);
+    EXPECT_NE(found[0].message.find("no command was pending"), std::string::npos);
+}
+
+TEST(FcTrackerTest, IndexIsCheckedInTheAnswer) {
+    FcRun run;
+    run.feed(fc_parameter(1, 1, 1530, 2), 0);  // 15-30 alarm log, index 2
+    std::vector<Finding> found = run.feed(fc_parameter(1, 1, 1530, 3, 9, 0x0607), 4);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcMismatchedResponse);
+    EXPECT_NE(found[0].message.find("IND 3"), std::string::npos) << found[0].message;
+    EXPECT_EQ(run.station(1)->channel.transactions.mismatched, 1u);
+}
+
+TEST(FcTrackerTest, RejectionNamesTheFaultCodeAndCountsIt) {
+    FcRun run;
+    run.feed(fc_parameter(1, 14, 414, 0, 60000), 0);
+    std::vector<Finding> found = run.feed(fc_parameter(1, 7, 414, 0, 2, 0x0607), 4);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcCommandRejected);
+    EXPECT_EQ(found[0].severity, Severity::Note);
+    EXPECT_EQ(found[0].message,
+              "AK 14 (Write parameter value in RAM and EEPROM (word)) PNU 414 IND 0 rejected with "
+              "fault code 2 (Upper or lower limit is exceeded)");
+    const FcStationStats* one = run.station(1);
+    EXPECT_EQ(one->channel.transactions.rejected, 1u);
+    EXPECT_EQ(one->channel.rejection_errors.at(2), 1u);
+    EXPECT_EQ(one->channel.rejections.at({414, 2}), 1u);
+    // A fault code the table does not define.
+    run.feed(fc_parameter(1, 1, 415), 10);
+    found = run.feed(fc_parameter(1, 7, 415, 0, 100, 0x0607), 14);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_NE(found[0].message.find("fault code 100 (unknown error number)"), std::string::npos)
+        << found[0].message;
+}
+
+TEST(FcTrackerTest, UnexpectedAkAndUndefinedCodes) {
+    FcRun run;
+    run.feed(fc_parameter(1, 3, 414, 0, 70000), 0);  // write double word
+    std::vector<Finding> found = run.feed(fc_parameter(1, 1, 414, 0, 70000, 0x0607), 4);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcUnexpectedResponseType);
+    // AK 5 is no FC command: unknown_code; the answer then closes it whatever it is.
+    run.feed(fc_parameter(1, 5, 414), 10);
+    EXPECT_EQ(run.all.back().kind, FindingKind::UnknownCode);
+    EXPECT_NE(run.all.back().message.find("request code AK 5 is not defined in the fc dialect"),
+              std::string::npos)
+        << run.all.back().message;
+    // An undefined response AK, twice the same: each is a response of its own, each reported.
+    // (Drive 2: a read to drive 1 now would look like the answer to its AK 5 command.)
+    for (std::int64_t t : {20, 30}) {
+        run.feed(fc_parameter(2, 1, 414), t);
+        found = run.feed(fc_parameter(2, 5, 414, 0, 0, 0x0607), t + 4);
+        ASSERT_EQ(found.size(), 1u) << t;
+        EXPECT_EQ(found[0].kind, FindingKind::UnknownCode);
+        EXPECT_NE(found[0].message.find("response code AK 5"), std::string::npos);
+    }
+}
+
+TEST(FcTrackerTest, DamagedTelegramsAreReportedAndOtherwiseIgnored) {
+    FcRun run;
+    std::vector<std::uint8_t> command = fc_parameter(1, 1, 414);
+    command.back() ^= 0xFF;
+    std::vector<Finding> found = run.feed(command, 0);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcBccError);
+    EXPECT_FALSE(found[0].message.empty());
+    // The drive ignored the damaged command; the master's next one is no stacked command.
+    run.feed(fc_parameter(1, 1, 414), 20);
+    std::vector<std::uint8_t> answer = fc_parameter(1, 1, 414, 0, 5, 0x0607);
+    answer.back() ^= 0x10;
+    found = run.feed(answer, 24);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcBccError);
+    // The damaged answer ended the wait: no fc_no_response at the next command.
+    EXPECT_TRUE(run.feed(fc_parameter(2, 1, 414), 40).empty());
+    // A truncated telegram is malformed.
+    std::vector<std::uint8_t> cut = fc_parameter(2, 1, 414, 0, 5, 0x0607);
+    cut.resize(9);
+    found = run.feed(cut, 44);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::MalformedTelegram);
+    EXPECT_NE(found[0].message.find("truncated"), std::string::npos) << found[0].message;
+    // Garbage names no station.
+    found = run.feed({0x55, 0x55}, 50);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_FALSE(found[0].has_stations);
+    EXPECT_EQ(run.tracker.bus().findings[static_cast<std::size_t>(FindingKind::MalformedTelegram)],
+              1u);
+}
+
+TEST(FcTrackerTest, ParametersPerAddressAreBounded) {
+    FcRun run;
+    for (std::uint16_t pnu = 0; pnu < 300; ++pnu) {
+        run.feed(fc_parameter(1, 1, pnu), pnu * 10);
+        run.feed(fc_parameter(1, 1, pnu, 0, 5, 0x0607), pnu * 10 + 2);
+    }
+    const FcStationStats* one = run.station(1);
+    EXPECT_EQ(one->parameters.size(), FcStationStats::kMaxParameters);
+    EXPECT_EQ(one->parameters_not_counted, 300u - FcStationStats::kMaxParameters);
+    EXPECT_TRUE(run.all.empty());
+}
+
+TEST(FcTrackerTest, FindingsAreCountedPerAddressKindAndSeverity) {
+    FcRun run;
+    run.feed(fc_parameter(1, 1, 414), 0);
+    run.feed(fc_parameter(1, 1, 414, 0, 5, 0x0607), 30);  // late
+    run.feed(fc_parameter(1, 1, 414), 40);
+    run.feed(fc_process(2), 50);  // no response from 1
+    const FcStationStats* one = run.station(1);
+    const auto late = static_cast<std::size_t>(FindingKind::FcLateResponse);
+    const auto none = static_cast<std::size_t>(FindingKind::FcNoResponse);
+    EXPECT_EQ(one->findings[late], 1u);
+    EXPECT_EQ(one->findings_by_severity[late][static_cast<std::size_t>(Severity::Warning)], 1u);
+    EXPECT_EQ(one->findings[none], 1u);
+    EXPECT_EQ(run.tracker.findings(Severity::Error), 1u);
+    EXPECT_EQ(run.tracker.findings(Severity::Warning), 1u);
+}
+
+TEST(FcTrackerTest, KindsAreTheFcComponentsAndTheSharedOnes) {
+    for (FindingKind kind : finding_kinds_of(FindingComponent::FcProtocol))
+        EXPECT_TRUE(is_fc_finding_kind(kind)) << finding_kind_name(kind);
+    EXPECT_TRUE(is_fc_finding_kind(FindingKind::MalformedTelegram));
+    EXPECT_TRUE(is_fc_finding_kind(FindingKind::UnknownCode));
+    EXPECT_FALSE(is_fc_finding_kind(FindingKind::StackedRequest));
+    EXPECT_FALSE(is_fc_finding_kind(FindingKind::FcsError));
+    EXPECT_EQ(fc_finding_kinds().size(), finding_kinds_of(FindingComponent::FcProtocol).size() + 2);
+    EXPECT_TRUE(std::is_sorted(fc_finding_kinds().begin(), fc_finding_kinds().end()));
+}
+
+}  // namespace
+}  // namespace dpscope
