@@ -289,10 +289,13 @@ int run_simulate(const SimulateCommand& command) {
         return kExitUsage;
     }
     if (!command.device.empty()) {
-        if (!command.replay.empty()) return play_onto_device(command, nullptr);
+        // The port runs at the session's baud rate (9600 on an FC bus unless --baud).
+        SimulateCommand playing = command;
+        playing.baud = options.baud;
+        if (!command.replay.empty()) return play_onto_device(playing, nullptr);
         Simulator simulator(options);
-        list_injections(command, simulator);
-        return play_onto_device(command, &simulator);
+        list_injections(playing, simulator);
+        return play_onto_device(playing, &simulator);
     }
     CaptureFormat format =
         capture_format_from_name(command.output_format).value_or(CaptureFormat::Pcap);
