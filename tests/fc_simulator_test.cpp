@@ -3,14 +3,18 @@
 // each fault gives the telegram shape it stands for.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "capture/capture_protocol.hpp"
+#include "capture/telegram_source.hpp"
 #include "decoder/fc_codes.hpp"
 #include "decoder/fc_decoder.hpp"
 #include "decoder/fc_framing_rules.hpp"
 #include "simulator/simulator.hpp"
+#include "tests/test_support.hpp"
 
 namespace dpscope {
 namespace {
@@ -377,6 +381,49 @@ TEST(FcSimulatorTest, BuiltTelegramsHaveTheirBcc) {
     EXPECT_EQ(build_fc_telegram(0x81, {0x11, 0x9E, 0, 0, 0, 0, 0, 0, 0x04, 0x7F, 0x20, 0x00}),
               (std::vector<std::uint8_t>{0x02, 0x0E, 0x81, 0x11, 0x9E, 0, 0, 0, 0, 0, 0, 0x04, 0x7F,
                                          0x20, 0x00, 0x59}));
+}
+
+// The FC samples (scripts/make-samples): decoded as the simulator wrote them, the clean one without
+// a problem, the faulty one with exactly the damage its faults make; both formats, every block.
+TEST(FcSimulatorTest, SamplesDecode) {
+    for (const char* name : {"fc-clean.pcap", "fc.pcap"}) {
+        SCOPED_TRACE(name);
+        OpenResult opened = open_source(test::source_dir() + "/samples/" + name, InputFormat::Auto,
+                                        capture_protocol(Protocol::Fc));
+        ASSERT_TRUE(opened) << opened.error();
+        FcDecoder decoder;
+        Record record;
+        std::uint64_t frame = 0;
+        std::map<ProblemKind, int> problems;
+        std::set<FcAddressFormat> formats;
+        std::set<FcBlock> blocks;
+        std::set<std::uint8_t> aks;
+        int broadcasts = 0, responses = 0;
+        while (opened.value()->next(record)) {
+            const DecodedTelegram& t = decoder.decode(record.bytes, record.time_ns, ++frame);
+            for (const Problem& p : t.fc.problems)
+                ++problems[p.kind];
+            if (!t.has_roles) continue;
+            formats.insert(t.fc.address_format);
+            blocks.insert(t.fc.block);
+            if (t.fc.has_pkw) aks.insert(t.fc.pkw.rc);
+            broadcasts += t.fc.broadcast ? 1 : 0;
+            responses += t.direction == Direction::Response ? 1 : 0;
+        }
+        EXPECT_GT(frame, 300u);
+        EXPECT_EQ(formats.size(), 2u);
+        EXPECT_EQ(blocks, (std::set<FcBlock>{FcBlock::Process, FcBlock::Parameter, FcBlock::Text}));
+        EXPECT_EQ(aks, (std::set<std::uint8_t>{1, 2, 3, 7, 13, 14, 15}));
+        EXPECT_GE(broadcasts, 1);
+        if (std::string(name) == "fc-clean.pcap") {
+            EXPECT_TRUE(problems.empty());
+            EXPECT_EQ(responses * 2 + broadcasts, static_cast<int>(frame));
+        } else {
+            EXPECT_EQ(problems, (std::map<ProblemKind, int>{{ProblemKind::BccMismatch, 2},
+                                                            {ProblemKind::Truncated, 2},
+                                                            {ProblemKind::BadStartDelimiter, 2}}));
+        }
+    }
 }
 
 }  // namespace
