@@ -155,7 +155,7 @@ void FcBusModel::broadcast(FcBusEnvironment& env, std::uint64_t number) {
     env.send(build_fc_telegram(adr, data), between(env, kMasterGapMinNs, kMasterGapMaxNs));
 }
 
-FcBusModel::Command FcBusModel::plan(FcBusEnvironment& env, Drive& drive) {
+FcBusModel::Command FcBusModel::plan(FcBusEnvironment& env) {
     const std::uint64_t roll = env.random(100);
     Command c;
     c.parameter = true;
@@ -203,7 +203,6 @@ FcBusModel::Command FcBusModel::plan(FcBusEnvironment& env, Drive& drive) {
             c.pwe = 9000;
         }
     }
-    (void)drive;
     return c;
 }
 
@@ -314,7 +313,7 @@ void FcBusModel::poll(FcBusEnvironment& env, std::size_t index) {
         }
         env.send(std::move(junk), between(env, kMasterGapMinNs, kMasterGapMaxNs));
     }
-    Command command = plan(env, drive);
+    Command command = plan(env);
     env.send(request_bytes(drive, command), between(env, kMasterGapMinNs, kMasterGapMaxNs));
     if (env.inject(FaultKind::FcStackedRequest, index)) {
         // Before the drive had time to answer, the master sends another command to it: a word

@@ -118,7 +118,7 @@ class FcBusModel {
 
     void poll(FcBusEnvironment& env, std::size_t index);
     void broadcast(FcBusEnvironment& env, std::uint64_t number);
-    Command plan(FcBusEnvironment& env, Drive& drive);
+    static Command plan(FcBusEnvironment& env);
     Answer perform(Drive& drive, const Command& command);
     std::vector<std::uint8_t> request_bytes(const Drive& drive, const Command& command) const;
     std::vector<std::uint8_t> response_bytes(const Drive& drive, const Command& command,
