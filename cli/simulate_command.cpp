@@ -31,6 +31,12 @@ struct SimulateCommand {
     std::string output;
     std::string output_format = "pcap";
     std::string link_type = "profibus";
+    std::string bus = "profibus";
+    std::vector<std::string> drives;  // --bus fc
+    // Given on the command line (not defaults): --baud, --linktype, --master, --no-start-up.
+    bool baud_given = false;
+    bool link_type_given = false;
+    bool master_given = false;
     std::uint64_t seed = 1;
     std::uint32_t baud = 1'500'000;
     unsigned master = 2;
@@ -91,8 +97,10 @@ int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
     }
     std::unique_ptr<TelegramSource> replay;
     if (!command.replay.empty()) {
-        // The simulator makes PROFIBUS DP; a capture played in its place is one too.
-        OpenResult opened = open_source(command.replay, InputFormat::Auto, profibus_dp_protocol());
+        // The simulator makes the --bus protocol; a capture played in its place is one too.
+        OpenResult opened = open_source(
+            command.replay, InputFormat::Auto,
+            command.bus == "fc" ? capture_protocol(Protocol::Fc) : profibus_dp_protocol());
         if (!opened) {
             print_error(opened.error());
             return kExitUsage;
@@ -182,8 +190,49 @@ int run_simulate(const SimulateCommand& command) {
         return kExitUsage;
     }
     SimulatorOptions options;
+    const bool fc = command.bus == "fc";
+    options.bus = fc ? Protocol::Fc : Protocol::ProfibusDp;
     options.seed = command.seed;
-    options.baud = command.baud;
+    options.baud = fc && !command.baud_given ? 9600 : command.baud;
+    if (fc) {
+        if (!command.slaves.empty()) {
+            print_error(
+                fmt::format("--slave {}: slaves are PROFIBUS DP stations; an FC bus has "
+                            "drives (--drive ADDR[:1-31|1-126])",
+                            command.slaves.front()));
+            return kExitUsage;
+        }
+        if (command.master_given) {
+            print_error("--master: the FC master has no address; leave --master out with --bus fc");
+            return kExitUsage;
+        }
+        if (command.link_type_given && command.link_type != "user0") {
+            print_error("--linktype profibus: an FC capture has link type user0 (147)");
+            return kExitUsage;
+        }
+        for (const std::string& text : command.drives) {
+            Result<SimulatedDrive> drive = parse_drive_spec(text);
+            if (!drive) {
+                print_error(fmt::format("--drive {}", drive.error()));
+                return kExitUsage;
+            }
+            for (std::size_t i = 0; i < options.drives.size(); ++i) {
+                if (options.drives[i].address == drive->address) {
+                    print_error(fmt::format(
+                        "--drive {} and --drive {} both give address {}: one drive per address",
+                        command.drives[i], text, drive->address));
+                    return kExitUsage;
+                }
+            }
+            options.drives.push_back(*drive);
+        }
+    } else if (!command.drives.empty()) {
+        print_error(
+            fmt::format("--drive {}: drives are for --bus fc; a PROFIBUS DP bus has "
+                        "slaves (--slave ADDR:PPO)",
+                        command.drives.front()));
+        return kExitUsage;
+    }
     options.master = static_cast<std::uint8_t>(command.master);
     options.cycles = command.cycles;
     options.max_telegrams = command.count;
@@ -240,14 +289,17 @@ int run_simulate(const SimulateCommand& command) {
         return kExitUsage;
     }
     if (!command.device.empty()) {
-        if (!command.replay.empty()) return play_onto_device(command, nullptr);
+        // The port runs at the session's baud rate (9600 on an FC bus unless --baud).
+        SimulateCommand playing = command;
+        playing.baud = options.baud;
+        if (!command.replay.empty()) return play_onto_device(playing, nullptr);
         Simulator simulator(options);
-        list_injections(command, simulator);
-        return play_onto_device(command, &simulator);
+        list_injections(playing, simulator);
+        return play_onto_device(playing, &simulator);
     }
     CaptureFormat format =
         capture_format_from_name(command.output_format).value_or(CaptureFormat::Pcap);
-    int link_type = command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
+    int link_type = fc || command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
     // Written beside the file and moved into place once complete: a write error (disk full)
     // leaves an existing file as it was.
     Result<std::unique_ptr<PendingOutputFile>> opened_file =
@@ -295,7 +347,9 @@ std::string fault_help() {
     return fmt::format(
         "Inject a fault: KIND (once, at a cycle the seed picks), KIND@CYCLE (once, at the first "
         "chance from that cycle), or KIND=RATE (chance per cycle and slave); append :ADDR to "
-        "pick the slave. Kinds: {}. The dpv1_* kinds need a dpv1 slave. Repeatable.",
+        "pick the slave (or drive). Kinds: {}. The dpv1_* kinds need a dpv1 slave. The fc_* kinds "
+        "are for --bus fc, which also takes garbage and malformed_telegram; the others are for "
+        "PROFIBUS DP. Repeatable.",
         kinds);
 }
 
@@ -307,8 +361,25 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         "simulate",
         "Write a simulated PROFIBUS DP session: start-up of each slave (FDL_Status, Slave_Diag, "
         "Set_Prm, Chk_Cfg, Slave_Diag), then cyclic Data_Exchange with parameter requests and "
-        "responses, token passing, gap polls and Global_Control, timed at the baud rate. The same "
-        "options and seed give the same bytes.");
+        "responses, token passing, gap polls and Global_Control, timed at the baud rate; or, with "
+        "--bus fc, a Danfoss FC protocol session (a master polling drives). The same options and "
+        "seed give the same bytes.");
+    sub->add_option("--bus", command->bus,
+                    "profibus: a PROFIBUS DP bus (the default). fc: a Danfoss FC protocol bus on "
+                    "RS-485 (9600 baud 8E1 unless --baud): the master polls each --drive in turn "
+                    "with process blocks (control word, reference) and parameter commands (word "
+                    "and double-word reads and writes, indexed reads of 15-30, text reads, a few "
+                    "writes the drive refuses with AK 7), and sends a broadcast every 50 cycles; "
+                    "the drives answer within 2 to 8 ms. No start-up and no token; pcap and "
+                    "pcapng get link type user0")
+        ->check(CLI::IsMember({"profibus", "fc"}))
+        ->default_str("profibus");
+    sub->add_option("--drive", command->drives,
+                    "With --bus fc: ADDR[:FORMAT] adds a drive, FORMAT the address byte's format "
+                    "the master uses: 1-126 (the default, ADDR 1..126) or 1-31 (ADDR 1..31), e.g. "
+                    "7, 3:1-31; repeatable. Default: 1 2 (1-126) and 3:1-31")
+        ->type_name("SPEC")
+        ->allow_extra_args(false);
     sub->add_option("-w,--write", command->output,
                     "Output file; - writes to standard output. An existing file is replaced only "
                     "once the session is written whole")
@@ -332,16 +403,18 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->default_str("pcap");
     sub->add_option("--linktype", command->link_type,
                     "pcap link type: profibus (257, PROFIBUS_DL) or user0 (147) for tools that "
-                    "cannot open 257")
+                    "cannot open 257; always user0 with --bus fc")
         ->check(CLI::IsMember({"profibus", "user0"}))
         ->default_str("profibus");
     sub->add_option("--seed", command->seed, "Random seed; the same seed gives the same session")
         ->check(whole_number(0, kLargest))
         ->default_str("1");
-    sub->add_option("--baud", command->baud, "Bus baud rate used for the timing")
+    sub->add_option("--baud", command->baud,
+                    "Bus baud rate used for the timing (default 1500000; 9600 with --bus fc)")
         ->check(whole_number(9600, 12'000'000))
         ->default_str("1500000");
-    sub->add_option("--master", command->master, "Address of the DP master")
+    sub->add_option("--master", command->master,
+                    "Address of the DP master (PROFIBUS only: the FC master has none)")
         ->check(whole_number(0, 126))
         ->default_str("2");
     sub->add_option("--slave", command->slaves,
@@ -354,7 +427,8 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->type_name("SPEC")
         ->allow_extra_args(false);
     sub->add_option("--cycles", command->cycles,
-                    "Data_Exchange cycles after start-up; 0 runs until -c telegrams")
+                    "Data_Exchange cycles after start-up (with --bus fc: polling rounds of all "
+                    "drives); 0 runs until -c telegrams")
         ->check(whole_number(0, kLargest))
         ->default_str("1000");
     sub->add_option("-c,--count", command->count, "Stop after writing N telegrams")
@@ -373,12 +447,18 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->allow_extra_args(false);
     sub->add_flag("--no-start-up", command->no_start_up,
                   "Leave the start-up out of the capture, as when a tap is clipped on a running "
-                  "bus: slaves' PPO types must then be inferred from the Data_Exchange length");
+                  "bus: slaves' PPO types must then be inferred from the Data_Exchange length "
+                  "(an FC bus has no start-up)");
     sub->add_flag("-v,--list-injections", command->list_injections,
                   "Print each injected fault (kind, slave, cycle, telegram number) on standard "
                   "error");
     sub->footer(std::string(kExitCodeHelp));
-    sub->callback([command, &exit_code] { exit_code = run_simulate(*command); });
+    sub->callback([command, sub, &exit_code] {
+        command->baud_given = sub->count("--baud") > 0;
+        command->link_type_given = sub->count("--linktype") > 0;
+        command->master_given = sub->count("--master") > 0;
+        exit_code = run_simulate(*command);
+    });
 }
 
 }  // namespace dpscope::cli

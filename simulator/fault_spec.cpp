@@ -117,6 +117,9 @@ bool has_parameter_channel(const SimulatedSlave& slave) {
 Result<void> check_faults(const std::vector<FaultSpec>& faults,
                           const std::vector<SimulatedSlave>& slaves, std::uint64_t cycles) {
     for (const FaultSpec& spec : faults) {
+        if (fault_is_fc(spec.kind))
+            return Error{
+                fmt::format("fault {}: an FC protocol fault; give --bus fc", describe_fault(spec))};
         const bool needs_pcv = fault_needs_parameter_channel(spec.kind);
         const bool needs_dpv1 = fault_needs_dpv1(spec.kind);
         const bool needs_spontaneous = fault_needs_spontaneous_messages(spec.kind);

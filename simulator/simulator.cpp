@@ -27,13 +27,44 @@ std::vector<SimulatedSlave> slaves_or_default(const SimulatorOptions& options) {
     return {{3, 1, Dialect::Vlt}, {4, 2, Dialect::Vlt}, {5, 5, Dialect::Vlt}};
 }
 
+std::vector<SimulatedDrive> drives_or_default(const SimulatorOptions& options) {
+    return options.drives.empty() ? default_drives() : options.drives;
+}
+
+constexpr std::uint32_t kFcDefaultBaud = 9600;
+
+// session_span_bound_ns of an FC session.
+std::int64_t fc_session_span_bound_ns(const SimulatorOptions& options) {
+    const double drives = static_cast<double>(drives_or_default(options).size());
+    const double baud = options.baud == 0 ? kFcDefaultBaud : static_cast<double>(options.baud);
+    // A telegram is at most 257 bytes of 11 bits. A poll: garbage, a request, a stacked one and
+    // the answer, each after a gap of at most the master's time-out (the longest wait).
+    constexpr double kTelegramBits = 257 * 11;
+    const double wait_ns = static_cast<double>(FcBusModel::kMasterTimeoutNs);
+    const double poll_ns = 4 * (kTelegramBits * 1e9 / baud + wait_ns);
+    // A cycle: every drive polled, a broadcast (twice with one drive). At least --cycle-us.
+    const double cycle_ns = std::max(static_cast<double>(options.cycle_us) * 1e3,
+                                     drives * poll_ns + 2 * (kTelegramBits * 1e9 / baud + wait_ns));
+    double cycles = static_cast<double>(options.cycles);
+    if (options.max_telegrams != 0 &&
+        (options.cycles == 0 || options.max_telegrams < options.cycles))
+        cycles = static_cast<double>(options.max_telegrams);
+    const double span = cycles * cycle_ns;
+    constexpr double kLargest = 9.2e18;
+    return span >= kLargest ? std::numeric_limits<std::int64_t>::max()
+                            : static_cast<std::int64_t>(std::ceil(span));
+}
+
 }  // namespace
 
 Result<void> check_simulator_faults(const SimulatorOptions& options) {
+    if (options.bus == Protocol::Fc)
+        return check_fc_faults(options.faults, drives_or_default(options), options.cycles);
     return check_faults(options.faults, slaves_or_default(options), options.cycles);
 }
 
 std::int64_t session_span_bound_ns(const SimulatorOptions& options) {
+    if (options.bus == Protocol::Fc) return fc_session_span_bound_ns(options);
     const double slaves = static_cast<double>(slaves_or_default(options).size());
     const double baud = options.baud == 0 ? 1'500'000.0 : static_cast<double>(options.baud);
     // A telegram (or garbage record) is at most 64 bytes of 11 bits, after a gap of at most
@@ -73,10 +104,24 @@ std::vector<std::string> faults_not_injected(const SimulatorOptions& options,
 
 Simulator::Simulator(SimulatorOptions options)
     : options_(std::move(options)), once_faults_(options_.faults) {
-    options_.slaves = slaves_or_default(options_);
-    if (options_.baud == 0) options_.baud = 1'500'000;
     rng_state_ = options_.seed * 0x9E3779B97F4A7C15ULL + 0x2545F4914F6CDD1DULL;
     now_ = std::max<std::int64_t>(0, options_.start_time_ns);
+    if (options_.bus == Protocol::Fc) {
+        // An FC bus: the drives, and one address-only entry each for the faults.
+        options_.drives = drives_or_default(options_);
+        options_.slaves.clear();
+        if (options_.baud == 0) options_.baud = kFcDefaultBaud;
+        for (const SimulatedDrive& drive : options_.drives) {
+            Slave entry;
+            entry.config.address = drive.address;
+            slaves_.push_back(entry);
+        }
+        fc_.emplace(options_.drives);
+        started_ = true;  // no start-up
+    } else {
+        options_.slaves = slaves_or_default(options_);
+        if (options_.baud == 0) options_.baud = 1'500'000;
+    }
     std::uint8_t highest = options_.master;
     for (const SimulatedSlave& config : options_.slaves) {
         Slave slave;
@@ -137,8 +182,12 @@ std::int64_t later(std::int64_t time, std::int64_t ns) {
 void Simulator::advance(std::int64_t ns) { now_ = later(now_, ns); }
 
 void Simulator::emit(std::vector<std::uint8_t> bytes, std::uint64_t gap_bits) {
+    emit_after(std::move(bytes), bit_ns(gap_bits));
+}
+
+void Simulator::emit_after(std::vector<std::uint8_t> bytes, std::int64_t gap_ns) {
     if (options_.max_telegrams != 0 && queued_ >= options_.max_telegrams) return;
-    advance(bit_ns(gap_bits));
+    advance(gap_ns);
     if (!recording_) {
         advance(bit_ns(bytes.size() * 11));
         return;
@@ -228,9 +277,34 @@ void Simulator::generate_start_up() {
     emit(std::move(token), 40);
 }
 
+// The FC bus model's view of the session: its random numbers, faults and clock.
+class Simulator::FcEnvironment final : public FcBusEnvironment {
+  public:
+    explicit FcEnvironment(Simulator& simulator) : simulator_(simulator) {}
+    std::uint64_t random(std::uint64_t bound) override { return simulator_.random(bound); }
+    bool inject(FaultKind kind, std::size_t drive) override {
+        return simulator_.inject(kind, drive);
+    }
+    void send(std::vector<std::uint8_t> bytes, std::int64_t gap_ns) override {
+        simulator_.emit_after(std::move(bytes), gap_ns);
+    }
+    void wait(std::int64_t ns) override { simulator_.advance(ns); }
+
+  private:
+    Simulator& simulator_;
+};
+
 void Simulator::generate_cycle() {
     const std::int64_t cycle_start = now_;
     arm_faults();
+    if (fc_) {
+        FcEnvironment environment(*this);
+        fc_->cycle(environment, cycle_);
+        const std::int64_t cycle_ns = static_cast<std::int64_t>(options_.cycle_us) * 1000;
+        if (now_ - cycle_start < cycle_ns) advance(cycle_ns - (now_ - cycle_start));
+        ++cycle_;
+        return;
+    }
     for (std::size_t i = 0; i < slaves_.size(); ++i)
         exchange(i);
     // Acyclic services after the cyclic exchanges: parameter access with each DP-V1 slave.
@@ -279,6 +353,7 @@ void Simulator::arm_faults() {
         const FaultSpec& spec = options_.faults[j];
         auto eligible = [&](std::size_t i) {
             if (spec.slave && slaves_[i].config.address != *spec.slave) return false;
+            if (fc_) return fault_applies_to_fc(spec.kind);
             if (fault_needs_dpv1(spec.kind) && !slaves_[i].dpv1) return false;
             if (fault_needs_spontaneous_messages(spec.kind) &&
                 !has_spontaneous_messages(slaves_[i].config.dialect))

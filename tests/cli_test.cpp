@@ -93,10 +93,16 @@ TEST(CliTest, HexHelpMentionsEveryOption) {
 TEST(CliTest, SimulateHelpMentionsEveryOption) {
     CommandResult r = run_dpscope({"simulate", "--help"});
     EXPECT_EQ(r.exit_code, 0);
-    expect_mentions(
-        r.out, {"-w,--write", "-F,--output-format", "--linktype", "--seed", "--baud", "--master",
-                "--slave", "--cycles", "-c,--count", "--cycle-us", "--start", "--fault",
-                "--no-start-up", "-v,--list-injections", "-h,--help", "Exit codes:"});
+    expect_mentions(r.out, {"-w,--write",    "-F,--output-format",
+                            "--linktype",    "--seed",
+                            "--baud",        "--master",
+                            "--slave",       "--cycles",
+                            "-c,--count",    "--cycle-us",
+                            "--start",       "--fault",
+                            "--no-start-up", "-v,--list-injections",
+                            "-h,--help",     "Exit codes:",
+                            "--bus",         "--drive",
+                            "1-31",          "1-126"});
     // Every fault kind is listed.
     for (std::size_t i = 0; i < static_cast<std::size_t>(FaultKind::Count); ++i)
         expect_mentions(r.out, {std::string(fault_kind_name(static_cast<FaultKind>(i)))});
@@ -837,6 +843,65 @@ TEST(CliTest, SimulateUsageErrors) {
     EXPECT_FALSE(late.out.empty());  // the session is written all the same
     EXPECT_NE(late.err.find("--fault stacked_request@999 was not injected"), std::string::npos)
         << late.err;
+}
+
+// simulate --bus fc: a pcap of link type USER0 with FC telegrams; hex and raw as for PROFIBUS.
+TEST(CliTest, SimulateFcWritesUser0CapturesOfFcTelegrams) {
+    TempFile file("fc.pcap");
+    CommandResult r =
+        run_dpscope({"simulate", "--bus", "fc", "-w", file.path, "--seed", "3", "--cycles", "20",
+                     "--drive", "4", "--drive", "7:1-31", "-v", "--fault", "fc_bcc_error@2:7"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("injected fc_bcc_error on slave 7 in cycle 2"), std::string::npos)
+        << r.err;
+    std::vector<std::uint8_t> bytes = test::read_file(file.path);
+    ASSERT_GT(bytes.size(), 24u);
+    EXPECT_EQ(bytes[20] | bytes[21] << 8, 147);  // LINKTYPE_USER0
+    EXPECT_EQ(records_in(file.path), 80u);       // 20 cycles of two polls, no broadcast yet
+    CommandResult hex = run_dpscope({"simulate", "--bus", "fc", "-w", "-", "-F", "hex", "--seed",
+                                     "3", "--cycles", "1", "--drive", "4"});
+    EXPECT_EQ(hex.exit_code, 0) << hex.err;
+    std::vector<std::string> lines = lines_of(hex.out);
+    ASSERT_EQ(lines.size(), 2u) << hex.out;
+    EXPECT_NE(lines[0].find(" 02 06 84 04 7F 20 00 DB"), std::string::npos) << lines[0];
+    CommandResult raw = run_dpscope(
+        {"simulate", "--bus", "fc", "-w", "-", "-F", "raw", "--cycles", "1", "--drive", "4"});
+    EXPECT_EQ(raw.exit_code, 0) << raw.err;
+    EXPECT_EQ(raw.out.substr(0, 3), std::string("\x02\x06\x84", 3));
+}
+
+TEST(CliTest, SimulateFcUsageErrors) {
+    auto error_of = [](std::vector<std::string> args) {
+        CommandResult r = run_dpscope(args);
+        EXPECT_EQ(r.exit_code, 2);
+        EXPECT_TRUE(r.out.empty());
+        return r.err;
+    };
+    EXPECT_EQ(error_of({"simulate", "--bus", "fc", "-w", "-", "--slave", "3:1"}),
+              "dpscope: error: --slave 3:1: slaves are PROFIBUS DP stations; an FC bus has drives "
+              "(--drive ADDR[:1-31|1-126])\n");
+    EXPECT_EQ(error_of({"simulate", "-w", "-", "--drive", "3"}),
+              "dpscope: error: --drive 3: drives are for --bus fc; a PROFIBUS DP bus has slaves "
+              "(--slave ADDR:PPO)\n");
+    EXPECT_EQ(error_of({"simulate", "--bus", "fc", "-w", "-", "--drive", "40:1-31"}),
+              "dpscope: error: --drive 40:1-31: the address must be from 1 to 31 in the 1-31 "
+              "format\n");
+    EXPECT_EQ(error_of({"simulate", "--bus", "fc", "-w", "-", "--drive", "4", "--drive", "4:1-31"}),
+              "dpscope: error: --drive 4 and --drive 4:1-31 both give address 4: one drive per "
+              "address\n");
+    EXPECT_EQ(error_of({"simulate", "--bus", "fc", "-w", "-", "--fault", "fcs_error"}),
+              "dpscope: error: --fault fcs_error: a PROFIBUS DP fault; an FC bus takes the fc_* "
+              "faults, garbage and malformed_telegram\n");
+    EXPECT_EQ(error_of({"simulate", "-w", "-", "--fault", "fc_late_response"}),
+              "dpscope: error: --fault fc_late_response: an FC protocol fault; give --bus fc\n");
+    EXPECT_EQ(error_of({"simulate", "--bus", "fc", "-w", "-", "--fault", "fc_no_response:9"}),
+              "dpscope: error: --fault fc_no_response:9: drive 9 is not simulated\n");
+    EXPECT_EQ(error_of({"simulate", "--bus", "fc", "-w", "-", "--master", "3"}),
+              "dpscope: error: --master: the FC master has no address; leave --master out with "
+              "--bus fc\n");
+    EXPECT_EQ(error_of({"simulate", "--bus", "fc", "-w", "-", "--linktype", "profibus"}),
+              "dpscope: error: --linktype profibus: an FC capture has link type user0 (147)\n");
+    error_of({"simulate", "--bus", "vlt2000", "-w", "-"});
 }
 
 TEST(CliTest, SimulateNumbersOutOfRangeAreUsageErrors) {

@@ -465,7 +465,8 @@ TEST(SimulatorTest, ParseFaultSpecInvalid) {
         << unknown;
     EXPECT_NE(unknown.find("fdl_no_response, dpv1_stacked_request, "), std::string::npos)
         << unknown;
-    EXPECT_NE(unknown.find("dpv1_error_pdu)"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("dpv1_error_pdu, fc_stacked_request, "), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("fc_bcc_error)"), std::string::npos) << unknown;
     EXPECT_EQ(fault_error("garbage@x"), "garbage@x: 'x' is not a cycle number");
     EXPECT_EQ(fault_error("garbage@-1"), "garbage@-1: '-1' is not a cycle number");
     EXPECT_EQ(fault_error("garbage@"), "garbage@: '' is not a cycle number");
@@ -557,6 +558,12 @@ TEST(SimulatorTest, EveryFaultKindIsInjectedExactlyOnce) {
                 options.slaves = {{3, 1, Dialect::Vlt, true},
                                   {4, 3, Dialect::Profidrive, true},
                                   {5, 5, Dialect::Vlt, true}};
+            if (fault_is_fc(kind)) {
+                options.bus = Protocol::Fc;
+                options.drives = {{3, FcAddressFormat::Long},
+                                  {4, FcAddressFormat::Short},
+                                  {5, FcAddressFormat::Long}};
+            }
             Simulator simulator(options);
             std::vector<Telegram> telegrams = run(simulator);
             ASSERT_EQ(simulator.injections().size(), 1u);
