@@ -20,7 +20,7 @@
 namespace dpscope {
 
 // The character frame's parity bit (8 data bits always): PROFIBUS uses even, the FC protocol
-// even by default (8E1) and whatever the drive's parameter 8-32 sets (odd, or none with one or
+// even by default (8E1) and whatever the drive's parameter 8-33 sets (odd, or none with one or
 // two stop bits).
 enum class SerialParity { Even, Odd, None };
 

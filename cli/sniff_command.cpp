@@ -446,7 +446,7 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
         ->check(whole_number(300, 16'000'000, " baud"));
     sub->add_option("--parity", command->parity,
                     "Parity bit of each character: even (PROFIBUS and the FC protocol's default, "
-                    "8E1), odd or none; set it as the drive's parameter 8-32 (FC port parity) "
+                    "8E1), odd or none; set it as the drive's parameter 8-33 (FC port parity) "
                     "says")
         ->check(CLI::IsMember({"even", "odd", "none"}))
         ->type_name("PARITY")
