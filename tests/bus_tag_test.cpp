@@ -329,5 +329,30 @@ TEST(BusTagTest, HexArgumentsChooseTheBusToo) {
     EXPECT_NE(r.err.find("read as the FC protocol (RS-485)"), std::string::npos) << r.err;
 }
 
+TEST(BusTagTest, DecodeAndReportSayTheChoiceForUntaggedUser0AndHexLogs) {
+    // An untagged USER0 capture, as another tool writes it: chosen by its first record, and said.
+    std::string path =
+        write_capture(CaptureFormat::Pcap, kLinkTypeUser0, Protocol::Fc, fc_stream(2), 16);
+    std::vector<std::uint8_t> file = test::read_file(path);
+    std::fill(file.begin() + 8, file.begin() + 16, 0);
+    test::write_file(path, file);
+    for (const char* command : {"decode", "report"}) {
+        test::CommandResult r = run_dpscope({command, path});
+        EXPECT_NE(r.err.find("dpscope: note: " + path +
+                             ": read as the FC protocol (RS-485): a USER0 capture without a bus "
+                             "tag whose first record starts with STX (0x02); --bus chooses"),
+                  std::string::npos)
+            << command << ": " << r.err;
+    }
+    // A hex log of FC telegrams.
+    std::string log = test::temp_path("fc.txt");
+    test::write_text_file(log, hex_log_of(fc_stream(5), 16));
+    test::CommandResult r = run_dpscope({"decode", "-T", "jsonl", log});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(test::lines_of(r.out).size(), 10u);
+    EXPECT_NE(r.err.find("10 telegrams framed in the first 160 hex bytes"), std::string::npos)
+        << r.err;
+}
+
 }  // namespace
 }  // namespace dpscope
