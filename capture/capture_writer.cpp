@@ -12,6 +12,7 @@
 #include <cstring>
 #include <vector>
 
+#include "capture/bus_tag.hpp"
 #include "capture/pcap_source.hpp"
 #include "decoder/time.hpp"
 
@@ -117,26 +118,42 @@ class HexWriter final : public StdioWriter {
 
 class PcapngWriter final : public StdioWriter {
   public:
-    PcapngWriter(FILE* file, std::string name, int link_type) : StdioWriter(file, std::move(name)) {
+    PcapngWriter(FILE* file, std::string name, int link_type, Protocol bus)
+        : StdioWriter(file, std::move(name)) {
         // Section header block: type, length, byte-order magic, version 1.0, unknown length.
         for (std::uint32_t word : {0x0A0D0D0Au, 28u, 0x1A2B3C4Du, 0x00000001u})
             u32(word);
         u64(~0ULL);
         u32(28);
-        // Interface description block: link type, snapshot length, if_tsresol = 9 (ns).
+        // Interface description block: link type, snapshot length, if_tsresol = 9 (ns), and for
+        // USER0 the bus as if_description.
+        const std::string description =
+            link_type == kLinkTypeUser0 ? pcapng_bus_description(bus) : std::string();
+        const std::size_t description_padded = (description.size() + 3) & ~std::size_t{3};
+        const auto length =
+            static_cast<std::uint32_t>(32 + (description.empty() ? 0 : 4 + description_padded));
         u32(1);
-        u32(32);
+        u32(length);
         u16(static_cast<std::uint16_t>(link_type));
         u16(0);
         u32(65535);
         u16(9);  // option if_tsresol
         u16(1);  // option length
         u32(9);  // value 9 and three padding bytes
+        if (!description.empty()) {
+            u16(3);  // option if_description
+            u16(static_cast<std::uint16_t>(description.size()));
+            block_.insert(block_.end(), description.begin(), description.end());
+            block_.resize(block_.size() + (description_padded - description.size()), 0);
+        }
         u32(0);  // opt_endofopt
-        u32(32);
+        u32(length);
         put(block_.data(), block_.size());
+        header_bytes_ = block_.size();
         block_.clear();
     }
+
+    std::size_t header_bytes() const noexcept { return header_bytes_; }
 
   protected:
     // An enhanced packet block; a comment becomes its opt_comment option (UTF-8, at most
@@ -184,7 +201,50 @@ class PcapngWriter final : public StdioWriter {
     }
 
     std::vector<std::uint8_t> block_;
+    std::size_t header_bytes_ = 0;
 };
+
+// A stream over a stream that cannot seek (standard output into a pipe) that sets the bus tag in
+// the pcap file header libpcap writes through it (bytes 8 to 15, capture/bus_tag.hpp), and
+// passes everything else on unchanged. Closing it flushes the stream below, and closes it unless
+// it is standard output.
+struct TagCookie {
+    FILE* below = nullptr;
+    std::uint64_t position = 0;
+    std::uint8_t header[kPcapFileHeaderBytes] = {};
+    Protocol bus = Protocol::ProfibusDp;
+};
+
+ssize_t tag_write(void* cookie, const char* data, std::size_t size) {
+    auto* tag = static_cast<TagCookie*>(cookie);
+    const char* out = data;
+    std::vector<char> patched;
+    if (tag->position < kPcapFileHeaderBytes) {
+        // The header arrives in one piece or several; keep it until it is whole, then tag it.
+        patched.assign(data, data + size);
+        for (std::size_t i = 0; i < size && tag->position + i < kPcapFileHeaderBytes; ++i)
+            tag->header[tag->position + i] = static_cast<std::uint8_t>(data[i]);
+        std::uint8_t tagged[kPcapFileHeaderBytes];
+        std::memcpy(tagged, tag->header, sizeof tagged);
+        put_pcap_bus_tag(tagged, tag->bus);
+        for (std::size_t i = 0; i < size && tag->position + i < kPcapFileHeaderBytes; ++i) {
+            const std::size_t at = tag->position + i;
+            if (at >= 8 && at < 16) patched[i] = static_cast<char>(tagged[at]);
+        }
+        out = patched.data();
+    }
+    if (std::fwrite(out, 1, size, tag->below) != size || std::fflush(tag->below) != 0) return -1;
+    tag->position += size;
+    return static_cast<ssize_t>(size);
+}
+
+int tag_close(void* cookie) {
+    auto* tag = static_cast<TagCookie*>(cookie);
+    int rc = std::fflush(tag->below);
+    if (tag->below != stdout && std::fclose(tag->below) != 0) rc = EOF;
+    delete tag;
+    return rc;
+}
 
 // pcap through libpcap's dump API, nanosecond magic.
 class PcapWriter final : public CaptureWriter {
@@ -194,15 +254,28 @@ class PcapWriter final : public CaptureWriter {
     static constexpr std::size_t kMaxUnflushedRecords = 4096;
 
   public:
-    PcapWriter(pcap_t* dead, pcap_dumper_t* dumper, std::string name)
+    // `tag_at`: where the file header starts in a seekable file whose header gets the bus tag
+    // `bus` written over it (-1: none, or a tag stream does it).
+    PcapWriter(pcap_t* dead, pcap_dumper_t* dumper, std::string name, long tag_at, Protocol bus)
         : dead_(dead), dumper_(dumper), name_(std::move(name)) {
         // The file header is written at once, so that a full disk is named with its reason now
         // (errno is gone by the time a later record finds the stream's error flag set).
-        if (std::fflush(pcap_dump_file(dumper_)) != 0) {
+        FILE* file = pcap_dump_file(dumper_);
+        if (std::fflush(file) != 0) {
             error_ = fmt::format("{}: write failed: {}", name_, std::strerror(errno));
             committed_ = -1;
-        } else if (!is_regular(pcap_dump_file(dumper_))) {
-            committed_ = -1;
+            return;
+        }
+        if (!is_regular(file)) committed_ = -1;
+        if (tag_at >= 0) {
+            // libpcap writes the header in the host's byte order (the file may be write-only,
+            // so it is not read back).
+            std::uint8_t header[kPcapFileHeaderBytes] = {};
+            const std::uint32_t magic = 0xA1B23C4D;  // nanosecond magic
+            std::memcpy(header, &magic, sizeof magic);
+            put_pcap_bus_tag(header, bus);
+            if (::pwrite(fileno(file), header + 8, 8, tag_at + 8) != 8)
+                error_ = fmt::format("{}: write failed: {}", name_, std::strerror(errno));
         }
     }
     ~PcapWriter() override {
@@ -299,8 +372,13 @@ class PcapWriter final : public CaptureWriter {
 // lost at the seam.
 class RotatingWriter final : public CaptureWriter {
   public:
-    RotatingWriter(std::string path, CaptureFormat format, int link_type, RotationOptions rotation)
-        : path_(std::move(path)), format_(format), link_type_(link_type), rotation_(rotation) {}
+    RotatingWriter(std::string path, CaptureFormat format, int link_type, RotationOptions rotation,
+                   Protocol bus)
+        : path_(std::move(path)),
+          format_(format),
+          link_type_(link_type),
+          rotation_(rotation),
+          bus_(bus) {}
 
     // Closes the current file (if any) and starts the next one.
     Result<void> open_next() {
@@ -309,12 +387,16 @@ class RotatingWriter final : public CaptureWriter {
         }
         ++index_;
         std::string name = rotated_file_name(path_, index_);
-        WriterResult opened = open_capture_writer(name, format_, link_type_);
+        WriterResult opened = open_capture_writer(name, format_, link_type_, bus_);
         if (!opened) return Error{opened.error()};
         current_ = std::move(opened).value();
-        bytes_ = format_ == CaptureFormat::Pcap     ? kPcapFileHeaderBytes
-                 : format_ == CaptureFormat::Pcapng ? 60  // section and interface blocks
-                                                    : 0;
+        // pcapng: the section and interface blocks (with the bus tag of a USER0 interface).
+        bytes_ = format_ == CaptureFormat::Pcap ? kPcapFileHeaderBytes
+                 : format_ == CaptureFormat::Pcapng
+                     ? 60 + (link_type_ == kLinkTypeUser0
+                                 ? 4 + ((pcapng_bus_description(bus_).size() + 3) & ~std::size_t{3})
+                                 : 0)
+                     : 0;
         file_start_ns_ = kNoTime;
         records_ = 0;
         return {};
@@ -365,6 +447,7 @@ class RotatingWriter final : public CaptureWriter {
     CaptureFormat format_;
     int link_type_;
     RotationOptions rotation_;
+    Protocol bus_;
     std::unique_ptr<CaptureWriter> current_;
     std::uint64_t bytes_ = 0;
     std::uint64_t records_ = 0;
@@ -384,41 +467,64 @@ std::string rotated_file_name(const std::string& path, unsigned index) {
 }
 
 WriterResult open_rotating_writer(const std::string& path, CaptureFormat format, int link_type,
-                                  RotationOptions rotation) {
+                                  RotationOptions rotation, Protocol bus) {
     if (rotation.max_bytes == 0 && rotation.max_ns == 0)
-        return open_capture_writer(path, format, link_type);
+        return open_capture_writer(path, format, link_type, bus);
     if (path == "-") return Error{"cannot rotate standard output: give -w a file name"};
-    auto writer = std::make_unique<RotatingWriter>(path, format, link_type, rotation);
+    auto writer = std::make_unique<RotatingWriter>(path, format, link_type, rotation, bus);
     if (Result<void> first = writer->open_next(); !first) return Error{first.error()};
     return writer;
 }
 
-WriterResult open_capture_writer(const std::string& path, CaptureFormat format, int link_type) {
-    if (path == "-") return open_capture_writer(stdout, "<stdout>", format, link_type);
+WriterResult open_capture_writer(const std::string& path, CaptureFormat format, int link_type,
+                                 Protocol bus) {
+    if (path == "-") return open_capture_writer(stdout, "<stdout>", format, link_type, bus);
     FILE* file = std::fopen(path.c_str(), "wb");
     if (!file)
         return Error{fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno))};
-    return open_capture_writer(file, path, format, link_type);
+    return open_capture_writer(file, path, format, link_type, bus);
 }
 
-WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format,
-                                 int link_type) {
+WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format, int link_type,
+                                 Protocol bus) {
     switch (format) {
         case CaptureFormat::Pcap: {
+            // USER0 is shared by the buses: the header records which (capture/bus_tag.hpp). A
+            // seekable file gets it written over libpcap's header; anything else is written
+            // through a stream that sets it on the way.
+            const bool tagged = link_type == kLinkTypeUser0;
+            long tag_at = -1;
+            FILE* target = file;
+            if (tagged) {
+                std::fflush(file);
+                tag_at = is_regular(file) ? ::lseek(fileno(file), 0, SEEK_CUR) : -1;
+                if (tag_at < 0) {
+                    auto* cookie = new TagCookie{file, 0, {}, bus};
+                    target =
+                        fopencookie(cookie, "wb",
+                                    cookie_io_functions_t{nullptr, tag_write, nullptr, tag_close});
+                    if (!target) {
+                        delete cookie;
+                        if (file != stdout) std::fclose(file);
+                        return Error{fmt::format("{}: cannot set up writing: {}", name,
+                                                 std::strerror(errno))};
+                    }
+                }
+            }
             pcap_t* dead =
                 pcap_open_dead_with_tstamp_precision(link_type, 65535, PCAP_TSTAMP_PRECISION_NANO);
-            pcap_dumper_t* dumper = dead ? pcap_dump_fopen(dead, file) : nullptr;
+            pcap_dumper_t* dumper = dead ? pcap_dump_fopen(dead, target) : nullptr;
             if (!dumper) {
                 std::string error = fmt::format("{}: cannot write a pcap file: {}", name,
                                                 dead ? pcap_geterr(dead) : "libpcap has no writer");
                 if (dead) pcap_close(dead);
-                if (file != stdout) std::fclose(file);
+                if (target != stdout) std::fclose(target);
                 return Error{std::move(error)};
             }
-            return std::make_unique<PcapWriter>(dead, dumper, std::move(name));
+            return std::make_unique<PcapWriter>(dead, dumper, std::move(name), tag_at, bus);
         }
         case CaptureFormat::Pcapng:
-            return std::make_unique<PcapngWriter>(file, std::move(name), link_type);
+            return std::make_unique<PcapngWriter>(file, std::move(name), link_type, bus);
         case CaptureFormat::Raw: return std::make_unique<RawWriter>(file, std::move(name));
         case CaptureFormat::Hex: return std::make_unique<HexWriter>(file, std::move(name));
     }

@@ -11,6 +11,7 @@
 
 #include "decoder/byte_reader.hpp"
 #include "decoder/result.hpp"
+#include "decoder/telegram.hpp"
 
 namespace dpscope {
 
@@ -56,11 +57,14 @@ using WriterResult = Result<std::unique_ptr<CaptureWriter>>;
 
 // `path` "-" writes to standard output. `link_type` is used by pcap and pcapng. A pcap writer
 // whose write fails (disk full) cuts the file back to the last flushed record, so it stays a
-// valid capture of what came before.
-WriterResult open_capture_writer(const std::string& path, CaptureFormat format, int link_type);
+// valid capture of what came before. A pcap or pcapng capture of link type USER0, which several
+// buses share, records `bus` in its header (capture/bus_tag.hpp), also on standard output.
+WriterResult open_capture_writer(const std::string& path, CaptureFormat format, int link_type,
+                                 Protocol bus = Protocol::ProfibusDp);
 // The same into an open stream, which the writer then owns and closes (standard output is
 // flushed, not closed). `name` is what messages call it.
-WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format, int link_type);
+WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format, int link_type,
+                                 Protocol bus = Protocol::ProfibusDp);
 
 struct RotationOptions {
     std::uint64_t max_bytes = 0;  // start a new file before one grows past this (0: no limit)
@@ -70,7 +74,7 @@ struct RotationOptions {
 // With rotation, FILE is written as stem-00001.ext, stem-00002.ext, ... (see
 // rotated_file_name); without, this is open_capture_writer.
 WriterResult open_rotating_writer(const std::string& path, CaptureFormat format, int link_type,
-                                  RotationOptions rotation);
+                                  RotationOptions rotation, Protocol bus = Protocol::ProfibusDp);
 std::string rotated_file_name(const std::string& path, unsigned index);
 
 }  // namespace dpscope

@@ -21,6 +21,28 @@
 
 namespace dpscope {
 
+std::string_view serial_parity_name(SerialParity parity) {
+    switch (parity) {
+        case SerialParity::Even: return "even";
+        case SerialParity::Odd: return "odd";
+        case SerialParity::None: return "none";
+    }
+    return "even";
+}
+
+std::optional<SerialParity> serial_parity_from_name(std::string_view name) {
+    for (SerialParity parity : {SerialParity::Even, SerialParity::Odd, SerialParity::None})
+        if (serial_parity_name(parity) == name) return parity;
+    return std::nullopt;
+}
+
+std::string SerialPort::frame() const {
+    const char letter = settings_.parity == SerialParity::Even  ? 'E'
+                        : settings_.parity == SerialParity::Odd ? 'O'
+                                                                : 'N';
+    return fmt::format("8{}{}", letter, settings_.stop_bits == 2 ? 2 : 1);
+}
+
 namespace {
 
 // What a configured port is to be put back to, kept where a signal handler can reach it without
@@ -194,18 +216,22 @@ Result<void> SerialPort::configure() {
     // Raw mode.
     tio.c_iflag &= ~static_cast<tcflag_t>(IGNBRK | BRKINT | ISTRIP | INLCR | IGNCR | ICRNL | IXON |
                                           IXOFF | IXANY | IGNPAR | PARMRK | INPCK);
-    if (!settings_.for_writing) tio.c_iflag |= INPCK | PARMRK;  // mark parity errors
+    const bool parity = settings_.parity != SerialParity::None;
+    if (!settings_.for_writing && parity) tio.c_iflag |= INPCK | PARMRK;  // mark parity errors
     tio.c_oflag &= ~static_cast<tcflag_t>(OPOST);
     tio.c_lflag &= ~static_cast<tcflag_t>(ECHO | ECHONL | ICANON | ISIG | IEXTEN);
-    // 8E1 at an arbitrary rate.
-    tio.c_cflag &= ~static_cast<tcflag_t>(CSIZE | PARODD | CBAUD | CSTOPB | CRTSCTS);
-    tio.c_cflag |= CS8 | PARENB | CREAD | CLOCAL | BOTHER;
+    // 8E1 (or the parity and stop bits asked) at an arbitrary rate.
+    tio.c_cflag &= ~static_cast<tcflag_t>(CSIZE | PARENB | PARODD | CBAUD | CSTOPB | CRTSCTS);
+    tio.c_cflag |= CS8 | CREAD | CLOCAL | BOTHER;
+    if (parity) tio.c_cflag |= PARENB;
+    if (settings_.parity == SerialParity::Odd) tio.c_cflag |= PARODD;
+    if (settings_.stop_bits == 2) tio.c_cflag |= CSTOPB;
     tio.c_cflag &= ~static_cast<tcflag_t>(CIBAUD);
     tio.c_ispeed = tio.c_ospeed = settings_.baud;
     tio.c_cc[VMIN] = 0;
     tio.c_cc[VTIME] = 0;
     if (ioctl(fd, TCSETS2, &tio) != 0) {
-        return Error{fmt::format("{}: cannot set {} baud 8E1: {}", device, settings_.baud,
+        return Error{fmt::format("{}: cannot set {} baud {}: {}", device, settings_.baud, frame(),
                                  std::strerror(errno))};
     }
     struct termios2 back {};
@@ -224,13 +250,14 @@ Result<void> SerialPort::configure() {
     }
     // Pseudo-terminals have no parity (the kernel clears PARENB): capture still works, but
     // parity errors cannot be seen. Say so rather than refuse.
-    parity_checked_ = (back.c_cflag & PARENB) && !(back.c_cflag & PARODD);
-    parity_marked_ = (back.c_iflag & PARMRK) != 0;
-    if (!parity_checked_)
+    const bool odd = settings_.parity == SerialParity::Odd;
+    parity_checked_ = parity && (back.c_cflag & PARENB) && ((back.c_cflag & PARODD) != 0) == odd;
+    parity_marked_ = parity && (back.c_iflag & PARMRK) != 0;
+    if (parity && !parity_checked_)
         note_ = fmt::format(
-            "{}: the port does not check even parity (a pseudo-terminal?); "
+            "{}: the port does not check {} parity (a pseudo-terminal?); "
             "parity errors will not be seen",
-            device);
+            device, serial_parity_name(settings_.parity));
     if (settings_.low_latency) {
         struct serial_struct serial {};
         if (ioctl(fd, TIOCGSERIAL, &serial) == 0 && !(serial.flags & ASYNC_LOW_LATENCY)) {

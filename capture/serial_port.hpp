@@ -11,11 +11,22 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "decoder/result.hpp"
 
 namespace dpscope {
+
+// The character frame's parity bit (8 data bits always): PROFIBUS uses even, the FC protocol
+// even by default (8E1) and whatever the drive's parameter 8-33 sets (odd, or none with one or
+// two stop bits).
+enum class SerialParity { Even, Odd, None };
+
+// "even", "odd", "none", and back.
+std::string_view serial_parity_name(SerialParity parity);
+std::optional<SerialParity> serial_parity_from_name(std::string_view name);
 
 struct SerialSettings {
     std::string device;
@@ -25,6 +36,8 @@ struct SerialSettings {
     // Where the UUCP lock file goes; "" takes none (flock and TIOCEXCL still apply). A directory
     // that does not exist or cannot be written is passed over, as other serial programs do.
     std::string lock_dir = "/run/lock";
+    SerialParity parity = SerialParity::Even;
+    unsigned stop_bits = 1;  // 1 or 2
 };
 
 class SerialPort {
@@ -54,8 +67,10 @@ class SerialPort {
     const std::string& lock_file() const noexcept { return lock_file_; }  // "" when none taken
     std::uint32_t baud() const noexcept { return baud_; }       // as read back from the driver
     bool low_latency() const noexcept { return low_latency_; }  // the driver took the flag
-    bool parity_checked() const noexcept { return parity_checked_; }  // even parity is on
-    bool parity_marked() const noexcept { return parity_marked_; }    // PARMRK escaping is on
+    bool parity_checked() const noexcept { return parity_checked_; }  // the parity asked is on
+    // The character frame asked for: "8E1", "8O1", "8N2".
+    std::string frame() const;
+    bool parity_marked() const noexcept { return parity_marked_; }  // PARMRK escaping is on
     // Something a user should know about the settings ("" when all is as asked).
     const std::string& note() const noexcept { return note_; }
 
@@ -75,9 +90,15 @@ class SerialPort {
     std::string note_;
 };
 
-// Nanoseconds one character takes on the wire: start bit, 8 data bits, parity, stop bit.
-inline std::int64_t character_ns(std::uint32_t baud) {
-    return baud == 0 ? 0 : static_cast<std::int64_t>(11'000'000'000ULL / baud);
+// Bits of one character on the wire: start bit, 8 data bits, the parity bit if any, stop bits.
+inline unsigned character_bits(SerialParity parity, unsigned stop_bits) {
+    return 1 + 8 + (parity == SerialParity::None ? 0 : 1) + stop_bits;
+}
+
+// Nanoseconds one character takes on the wire: start bit, 8 data bits, parity, stop bit (11
+// bits, as PROFIBUS and the FC protocol's 8E1 have them), or `bits`.
+inline std::int64_t character_ns(std::uint32_t baud, unsigned bits = 11) {
+    return baud == 0 ? 0 : static_cast<std::int64_t>(bits * 1'000'000'000ULL / baud);
 }
 
 }  // namespace dpscope

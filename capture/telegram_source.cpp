@@ -1,6 +1,7 @@
 #include "capture/telegram_source.hpp"
 
 #include <fmt/format.h>
+#include <poll.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -130,6 +131,8 @@ void TelegramSource::check_time(const Record& record) {
 namespace {
 
 constexpr std::size_t kDetectBytes = 4096;
+// How long a live input (pipe, terminal) is waited for after its first bytes to choose the bus.
+constexpr int kBusChoiceWaitMs = 100;
 
 // A FILE* that first replays the bytes read for format detection and then continues with the
 // underlying stream, so pipes (standard input) need no seeking.
@@ -180,8 +183,50 @@ Result<std::vector<std::uint8_t>> read_head(int fd, const std::string& name) {
 
 }  // namespace
 
-OpenResult open_source(const std::string& path, InputFormat format,
-                       const CaptureProtocol& protocol) {
+namespace {
+
+// Reads the first bytes until they choose the bus (see choose_bus): the whole input or
+// kBusChoiceBytes, or less of a stream still arriving once they decide. `format`: forced, or
+// Auto (detected from the bytes).
+Result<std::vector<std::uint8_t>> read_head_for_bus(int fd, const std::string& name,
+                                                    InputFormat format, BusChoice& choice,
+                                                    bool live) {
+    std::vector<std::uint8_t> head(kBusChoiceBytes);
+    std::size_t got = 0;
+    bool end = false;
+    for (;;) {
+        // A pipe or terminal (live): once bytes have come, what arrives within kBusChoiceWaitMs
+        // more is looked at, and the choice is made on that, so a live stream is not held back.
+        if (live && got >= 4) {
+            pollfd waiting{fd, POLLIN, 0};
+            int ready = ::poll(&waiting, 1, kBusChoiceWaitMs);
+            if (ready < 0 && errno == EINTR) continue;
+            if (ready <= 0) {
+                choice = choose_bus(Bytes(head.data(), got),
+                                    format == InputFormat::Auto
+                                        ? detect_input_format(Bytes(head.data(), got))
+                                        : format,
+                                    true);
+                break;
+            }
+        }
+        ssize_t n = ::read(fd, head.data() + got, kBusChoiceBytes - got);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) return Error{fmt::format("{}: cannot read: {}", name, std::strerror(errno))};
+        got += static_cast<std::size_t>(n);
+        end = n == 0 || got == kBusChoiceBytes;
+        Bytes bytes(head.data(), got);
+        if (got < 4 && !end) continue;
+        InputFormat kind = format == InputFormat::Auto ? detect_input_format(bytes) : format;
+        choice = choose_bus(bytes, kind, end);
+        if (end || !choice.need_more) break;
+    }
+    head.resize(got);
+    return head;
+}
+
+OpenResult open_source_of(const std::string& path, InputFormat format,
+                          const CaptureProtocol* chosen, BusChoice* choice) {
     bool from_stdin = path == "-";
     std::string name = from_stdin ? std::string("<stdin>") : path;
     FILE* file = from_stdin ? stdin : std::fopen(path.c_str(), "rb");
@@ -197,8 +242,21 @@ OpenResult open_source(const std::string& path, InputFormat format,
     // A forced format needs no look at the content (and a typed hex log must not wait for 4 KiB).
     bool classic_pcap = false;
     bool pcapng = false;
-    if (format == InputFormat::Auto || format == InputFormat::Pcap ||
-        format == InputFormat::Pcapng) {
+    if (!chosen) {
+        // The bus is chosen from the first bytes, whatever the format.
+        Result<std::vector<std::uint8_t>> head =
+            read_head_for_bus(fileno(file), name, format, *choice, !S_ISREG(info.st_mode));
+        if (!head) {
+            replay_close(replay);
+            return Error{head.error()};
+        }
+        replay->head = std::move(head).value();
+        chosen = choice->protocol;
+        classic_pcap = detect_input_format(replay->head) == InputFormat::Pcap;
+        pcapng = detect_input_format(replay->head) == InputFormat::Pcapng;
+        if (format == InputFormat::Auto) format = detect_input_format(replay->head);
+    } else if (format == InputFormat::Auto || format == InputFormat::Pcap ||
+               format == InputFormat::Pcapng) {
         Result<std::vector<std::uint8_t>> head = read_head(fileno(file), name);
         if (!head) {
             replay_close(replay);
@@ -208,7 +266,9 @@ OpenResult open_source(const std::string& path, InputFormat format,
         classic_pcap = detect_input_format(replay->head) == InputFormat::Pcap;
         pcapng = detect_input_format(replay->head) == InputFormat::Pcapng;
         if (format == InputFormat::Auto) format = detect_input_format(replay->head);
+        if (choice) choice->tagged = read_capture_label(replay->head).tagged;
     }
+    const CaptureProtocol& protocol = *chosen;
     // A regular file goes back to its start and is read as it is: glibc reads a plain file's
     // small records (libpcap's 16-byte headers) much faster than through a cookie stream.
     FILE* stream = nullptr;
@@ -238,6 +298,20 @@ OpenResult open_source(const std::string& path, InputFormat format,
         case InputFormat::Auto: break;
     }
     return make_raw_source(stream, name, detected, rules);
+}
+
+}  // namespace
+
+OpenResult open_source(const std::string& path, InputFormat format,
+                       const CaptureProtocol& protocol) {
+    return open_source_of(path, format, &protocol, nullptr);
+}
+
+OpenResult open_source(const std::string& path, InputFormat format, const CaptureProtocol* protocol,
+                       BusChoice& choice) {
+    choice = BusChoice{};
+    if (protocol) choice.protocol = protocol;
+    return open_source_of(path, format, protocol, &choice);
 }
 
 std::unique_ptr<TelegramSource> memory_source(std::string display_name, Bytes bytes,

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "capture/bus_tag.hpp"
 #include "capture/capture_protocol.hpp"
 #include "capture/input_format.hpp"
 #include "decoder/byte_reader.hpp"
@@ -134,6 +135,14 @@ using OpenResult = Result<std::unique_ptr<TelegramSource>>;
 // a pcap or pcapng file must have one of its link types.
 OpenResult open_source(const std::string& path, InputFormat format,
                        const CaptureProtocol& protocol);
+
+// The same, where the bus may be left to the capture: `protocol` null chooses it from the first
+// bytes (choose_bus in capture/bus_tag.hpp: up to 64 KiB of a byte stream, the header and first
+// record of a pcap or pcapng file; a stream still arriving is read only until they decide), and
+// `choice` says which bus and why. With a `protocol`, the source is of that bus and
+// choice.tagged is what a pcap or pcapng file's tag names, if it has one.
+OpenResult open_source(const std::string& path, InputFormat format, const CaptureProtocol* protocol,
+                       BusChoice& choice);
 
 // A source over bytes already in memory (e.g. `dpscope hex` arguments), framed as a raw stream
 // of `protocol`.

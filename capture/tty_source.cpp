@@ -31,7 +31,7 @@ TtySource::TtySource(std::unique_ptr<SerialPort> port, int fd, std::string name,
       port_(std::move(port)),
       fd_(fd),
       options_(options),
-      character_ns_(character_ns(options.baud)),
+      character_ns_(character_ns(options.baud, options.character_bits)),
       raw_(kReadSize) {}
 
 FramedSource::Fill TtySource::fill() {

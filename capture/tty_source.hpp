@@ -29,7 +29,9 @@ namespace dpscope {
 std::int64_t wall_clock_ns();
 
 struct TtySourceOptions {
-    std::uint32_t baud = 1'500'000;         // for character times
+    std::uint32_t baud = 1'500'000;  // for character times
+    // Bits of one character on the wire (8E1: 11), for the time a byte took to arrive.
+    unsigned character_bits = 11;
     std::int64_t idle_gap_ns = 50'000'000;  // 0: do not use line idle time
     int poll_ms = 20;                       // how long poll() waits before reporting Idle
     bool parity_marked = true;              // the port marks parity errors (PARMRK)

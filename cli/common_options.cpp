@@ -100,11 +100,13 @@ void add_write_options(CLI::App& app, DecodeOptionValues& values) {
         ->check(CLI::IsMember({"pcap", "pcapng", "raw", "hex"}))
         ->type_name("FORMAT");
     app.add_option("--linktype", values.link_type,
-                   "Link type for -w pcap/pcapng: profibus (257, PROFIBUS_DL, the default) or "
-                   "user0 (147, for tools that cannot open 257); 257 and 147 are accepted too")
+                   "Link type for -w pcap/pcapng: profibus (257, PROFIBUS_DL, the default for "
+                   "PROFIBUS; PROFIBUS only) or user0 (147, for tools that cannot open 257, and "
+                   "the default for the FC protocol); 257 and 147 are accepted too. A USER0 "
+                   "capture records its bus in the file, so that decode reads it without --bus")
         ->check(CLI::IsMember({"profibus", "user0", "257", "147"}))
         ->type_name("TYPE")
-        ->default_str("profibus");
+        ->default_str("by --bus");
     app.add_flag("-P,--print", values.print,
                  "With -w FILE: print the decode on standard output as well (as tshark -P)");
 }
@@ -162,6 +164,16 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_flag("--strict", values.strict,
                  "Session tracker: RC 8 (no operating authority) after a read request is an "
                  "unexpected response type, not only unusual");
+}
+
+Result<int> capture_link_type(const CaptureProtocol& protocol, std::optional<int> given) {
+    if (!given) return protocol.protocol == Protocol::Fc ? kLinkTypeUser0 : kLinkTypeProfibusDl;
+    if (*given == kLinkTypeProfibusDl && protocol.protocol != Protocol::ProfibusDp)
+        return Error{fmt::format(
+            "--linktype profibus: link type 257 (PROFIBUS_DL) is PROFIBUS only; a capture of {} is "
+            "written as user0 (147), which records its bus",
+            protocol.framing.protocol_name())};
+    return *given;
 }
 
 Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
@@ -258,6 +270,7 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     settings.link_type = values.link_type == "user0" || values.link_type == "147"
                              ? kLinkTypeUser0
                              : kLinkTypeProfibusDl;
+    settings.link_type_given = !values.link_type.empty();
     settings.print = values.write.empty() || values.print;
     if (values.write.empty()) {
         const char* unused = values.print                   ? "-P"
@@ -354,18 +367,58 @@ void warn_ppo_overrides(const BusDecoder& decoder) {
     }
 }
 
+namespace {
+
+// The bus as messages name it: "the FC protocol (RS-485)", "PROFIBUS DP".
+std::string bus_title(Protocol protocol) {
+    return protocol == Protocol::Fc ? "the FC protocol (RS-485)" : "PROFIBUS DP";
+}
+
+}  // namespace
+
+void say_bus_choice(const DecodeSettings& settings, const BusChoice& choice,
+                    const std::string& input) {
+    if (settings.bus_given) {
+        if (choice.tagged && *choice.tagged != settings.protocol->protocol)
+            print_warning(fmt::format(
+                "{}: the capture records its bus as {}, but --bus {} says {}; decoded as --bus "
+                "says",
+                input, bus_title(*choice.tagged), protocol_name(settings.protocol->protocol),
+                bus_title(settings.protocol->protocol)));
+        return;
+    }
+    if (choice.say)
+        print_diagnostic(Severity::Note,
+                         fmt::format("{}: read as {}: {}; --bus chooses", input,
+                                     bus_title(choice.protocol->protocol), choice.reason));
+}
+
+OpenResult open_input(const std::string& path, InputFormat format, DecodeSettings& settings) {
+    BusChoice choice;
+    OpenResult opened =
+        open_source(path, format, settings.bus_given ? settings.protocol : nullptr, choice);
+    if (!opened) return opened;
+    settings.protocol = choice.protocol;
+    say_bus_choice(settings, choice, (*opened)->name());
+    return opened;
+}
+
 Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t telegrams,
-                                   const CaptureProtocol& protocol) {
+                                   const CaptureProtocol& protocol, bool bus_given) {
     if (source.status() == InputStatus::Unusable) return Error{source.unusable_reason()};
     if (telegrams > 0 || source.status() == InputStatus::Damaged) return {};
+    // Without --bus: the bus was chosen by the capture; name the option that chooses it.
+    const std::string hint = bus_given ? std::string()
+                                       : fmt::format(" (read as {}; --bus chooses the bus)",
+                                                     bus_title(protocol.protocol));
     const std::uint64_t skipped = source.bytes_skipped();
     switch (source.format()) {
         case InputFormat::Raw:
             if (skipped == 0) return Error{fmt::format("{}: the input is empty", source.name())};
             return Error{
                 fmt::format("{}: no {} telegram in its {} bytes read as a raw byte stream; is it a "
-                            "capture?",
-                            source.name(), protocol.framing.protocol_name(), skipped)};
+                            "capture?{}",
+                            source.name(), protocol.framing.protocol_name(), skipped, hint)};
         case InputFormat::Hex:
             if (skipped == 0 && source.issue_count(IssueKind::HexSyntax) > 0)
                 return Error{fmt::format(
@@ -377,8 +430,8 @@ Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t t
                         : fmt::format("{} lines", source.issue_count(IssueKind::HexSyntax)))};
             if (skipped == 0)
                 return Error{fmt::format("{}: no hex bytes in the text", source.name())};
-            return Error{fmt::format("{}: no {} telegram in its {} hex bytes", source.name(),
-                                     protocol.framing.protocol_name(), skipped)};
+            return Error{fmt::format("{}: no {} telegram in its {} hex bytes{}", source.name(),
+                                     protocol.framing.protocol_name(), skipped, hint)};
         default: return {};
     }
 }

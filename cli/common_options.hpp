@@ -115,10 +115,16 @@ struct DecodeSettings {
     std::string write;
     CaptureFormat write_format = CaptureFormat::Pcap;
     int link_type = kLinkTypeProfibusDl;
-    bool print = true;  // render the decode (false with -w unless -P)
+    bool link_type_given = false;  // --linktype; otherwise the bus's default (capture_link_type)
+    bool print = true;             // render the decode (false with -w unless -P)
 
     bool filtering() const noexcept { return !stations.empty() || !pnus.empty(); }
 };
+
+// The link type a capture of `protocol` is written with: `given` (--linktype) or the bus's
+// default (PROFIBUS 257 PROFIBUS_DL, FC protocol 147 USER0). An error when the link type is
+// 257, which is PROFIBUS only, for another bus.
+Result<int> capture_link_type(const CaptureProtocol& protocol, std::optional<int> given);
 
 // Validates the values; the error names the bad option.
 // `default_format`: the -T default of the subcommand (-q conflicts with any other).

@@ -49,14 +49,22 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             print_error(distinct.error());
             return kExitUsage;
         }
+        Result<int> link_type = capture_link_type(
+            *settings.protocol,
+            settings.link_type_given ? std::optional<int>(settings.link_type) : std::nullopt);
+        if (!link_type) {
+            print_error(link_type.error());
+            return kExitUsage;
+        }
         Result<std::unique_ptr<PendingOutputFile>> file = PendingOutputFile::open(settings.write);
         if (!file) {
             print_error(file.error());
             return kExitOutputError;
         }
         capture_file = std::move(file).value();
-        WriterResult opened = open_capture_writer(capture_file->file(), capture_file->name(),
-                                                  settings.write_format, settings.link_type);
+        WriterResult opened =
+            open_capture_writer(capture_file->file(), capture_file->name(), settings.write_format,
+                                *link_type, settings.protocol->protocol);
         capture_file->release_file();  // the writer closes it
         if (!opened) {
             print_error(opened.error());
@@ -120,7 +128,9 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         renderer->render_end_findings(open_at_end);
         renderer->end();
     }
-    if (Result<void> found = check_telegrams_found(source, read, *settings.protocol); !found) {
+    if (Result<void> found =
+            check_telegrams_found(source, read, *settings.protocol, settings.bus_given);
+        !found) {
         out.flush();
         print_error(found.error());
         return kExitUsage;  // an existing -w file stays as it was
@@ -221,9 +231,9 @@ void add_decode_command(CLI::App& app, int& exit_code) {
             exit_code = kExitUsage;
             return;
         }
-        OpenResult opened = open_source(
+        OpenResult opened = open_input(
             path, input_format_from_name(command->input_format).value_or(InputFormat::Auto),
-            *settings->protocol);
+            *settings);
         if (!opened) {
             print_error(opened.error());
             exit_code = kExitUsage;
@@ -260,7 +270,11 @@ void add_hex_command(CLI::App& app, int& exit_code) {
                 std::fprintf(stderr,
                              "dpscope hex: reading a hex log from the terminal, one telegram or "
                              "more a line; end with Ctrl-D (or give BYTES as arguments)\n");
-            OpenResult opened = open_source("-", InputFormat::Hex, *settings->protocol);
+            // A log typed at a terminal is not held back to choose the bus: PROFIBUS unless
+            // --bus says otherwise.
+            OpenResult opened = isatty(STDIN_FILENO)
+                                    ? open_source("-", InputFormat::Hex, *settings->protocol)
+                                    : open_input("-", InputFormat::Hex, *settings);
             if (!opened) {
                 print_error(opened.error());
                 exit_code = kExitUsage;
@@ -278,6 +292,12 @@ void add_hex_command(CLI::App& app, int& exit_code) {
                 return;
             }
             bytes.insert(bytes.end(), parsed->begin(), parsed->end());
+        }
+        if (!settings->bus_given) {
+            BusChoice choice =
+                choose_bus(Bytes(bytes.data(), bytes.size()), InputFormat::Raw, true);
+            settings->protocol = choice.protocol;
+            say_bus_choice(*settings, choice, "<command line>");
         }
         auto source =
             memory_source("<command line>", Bytes(bytes.data(), bytes.size()), *settings->protocol);

@@ -113,8 +113,18 @@ void warn_ppo_overrides(const BusDecoder& decoder);
 
 // A byte stream (raw or hex) in which no telegram of `protocol` was found is no capture dpscope
 // reads: an error saying so, unless `telegrams` were found or the input is a pcap/pcapng file
-// (which may rightly hold none). An unusable input gives its reason.
+// (which may rightly hold none). An unusable input gives its reason. `bus_given` false: the bus
+// was chosen from the capture, and the error suggests --bus.
 Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t telegrams,
-                                   const CaptureProtocol& protocol);
+                                   const CaptureProtocol& protocol, bool bus_given = true);
+
+// Says on standard error how the bus of `input` was chosen when that is worth saying (a note,
+// without --bus), or that the capture's tag names another bus than --bus (a warning).
+void say_bus_choice(const DecodeSettings& settings, const BusChoice& choice,
+                    const std::string& input);
+
+// Opens `path` for decode and report: with --bus as it says, without it choosing the bus from
+// the capture and setting settings.protocol; says the choice (say_bus_choice).
+OpenResult open_input(const std::string& path, InputFormat format, DecodeSettings& settings);
 
 }  // namespace dpscope::cli

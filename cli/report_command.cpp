@@ -75,9 +75,8 @@ int run_report(const ReportCommand& command) {
         print_error(settings.error());
         return kExitUsage;
     }
-    OpenResult opened =
-        open_source(path, input_format_from_name(command.input_format).value_or(InputFormat::Auto),
-                    *settings->protocol);
+    OpenResult opened = open_input(
+        path, input_format_from_name(command.input_format).value_or(InputFormat::Auto), *settings);
     if (!opened) {
         print_error(opened.error());
         return kExitUsage;
@@ -116,7 +115,9 @@ int run_report(const ReportCommand& command) {
         }
         log.append(pipeline.finish());
         warn_ppo_overrides(pipeline.decoder());
-        if (Result<void> found = check_telegrams_found(source, read, *settings->protocol); !found) {
+        if (Result<void> found =
+                check_telegrams_found(source, read, *settings->protocol, settings->bus_given);
+            !found) {
             print_error(found.error());
             exit_code = kExitUsage;
         } else {

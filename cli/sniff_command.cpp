@@ -122,10 +122,17 @@ bool is_capture_file(const std::string& path, const std::string& output, bool ro
     return same_file(path, rotated_file_name(output, static_cast<unsigned>(index)));
 }
 
+// The FC protocol's baud rates (docs/protocol/fc-protocol.md): 2400 to 115200, 9600 by default.
+constexpr std::uint32_t kFcDefaultBaud = 9600;
+constexpr std::uint32_t kFcMinBaud = 2400;
+constexpr std::uint32_t kFcMaxBaud = 115'200;
+
 struct SniffCommand {
     DecodeOptionValues options;
     std::string device;
-    std::uint32_t baud = 0;
+    std::uint32_t baud = 0;  // 0: not given (the FC protocol's default, 9600)
+    std::string parity;      // "": the bus's default (even)
+    unsigned stop_bits = 1;
     std::string output;
     std::string link_type;  // "" = profibus
     std::uint64_t rotate_size = 0;
@@ -168,6 +175,35 @@ int run_sniff(const SniffCommand& command) {
         print_error(settings.error());
         return kExitUsage;
     }
+    // The line: PROFIBUS runs at the baud rate given (8E1); the FC protocol at 2400 to 115200
+    // baud, 9600 8E1 unless --baud, --parity and --stop-bits say otherwise.
+    const bool fc = settings->protocol->protocol == Protocol::Fc;
+    std::uint32_t baud = command.baud;
+    if (fc && baud == 0) baud = kFcDefaultBaud;
+    if (baud == 0) {
+        print_error(
+            "--baud is required for PROFIBUS (the FC protocol, --bus fc, defaults to 9600)");
+        return kExitUsage;
+    }
+    if (fc && (baud < kFcMinBaud || baud > kFcMaxBaud)) {
+        print_error(
+            fmt::format("--baud: must be a whole number from {} to {} baud for the FC "
+                        "protocol (--bus fc), not '{}'",
+                        kFcMinBaud, kFcMaxBaud, baud));
+        return kExitUsage;
+    }
+    const SerialParity parity =
+        serial_parity_from_name(command.parity).value_or(SerialParity::Even);
+    Result<int> link_type =
+        capture_link_type(*settings->protocol, command.link_type.empty()
+                                                   ? std::nullopt
+                                                   : std::optional<int>(command.link_type == "user0"
+                                                                            ? kLinkTypeUser0
+                                                                            : kLinkTypeProfibusDl));
+    if (!link_type) {
+        print_error(link_type.error());
+        return kExitUsage;
+    }
     const bool pcap_to_stdout = command.output == "-";
     if (pcap_to_stdout && (command.rotate_size > 0 || command.rotate_seconds > 0)) {
         print_error("-w -: cannot rotate standard output; give a file name to rotate");
@@ -206,7 +242,12 @@ int run_sniff(const SniffCommand& command) {
     // The port is claimed first (its lock file: a port in use is no reason to truncate the -w
     // file), then the outputs are opened, and only then is the port opened and set up: a bad
     // output path leaves it untouched.
-    SerialSettings serial{command.device, command.baud, !command.no_low_latency, false};
+    SerialSettings serial;
+    serial.device = command.device;
+    serial.baud = baud;
+    serial.parity = parity;
+    serial.stop_bits = command.stop_bits;
+    serial.low_latency = !command.no_low_latency;
     Result<std::unique_ptr<SerialPort>> claimed = SerialPort::claim(serial);
     if (!claimed) {
         print_error(claimed.error());
@@ -223,9 +264,8 @@ int run_sniff(const SniffCommand& command) {
         if (!pcap_to_stdout && ::access(first.c_str(), F_OK) != 0) created_capture = first;
         RotationOptions rotation{command.rotate_size,
                                  static_cast<std::int64_t>(command.rotate_seconds * 1e9)};
-        int link_type = command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
-        WriterResult opened =
-            open_rotating_writer(command.output, CaptureFormat::Pcap, link_type, rotation);
+        WriterResult opened = open_rotating_writer(command.output, CaptureFormat::Pcap, *link_type,
+                                                   rotation, settings->protocol->protocol);
         if (!opened) {
             print_error(opened.error());
             return kExitOutputError;
@@ -254,12 +294,14 @@ int run_sniff(const SniffCommand& command) {
     }
     FILE* text_stream = pcap_to_stdout || report_to_stdout ? stderr : stdout;
     if (!port->note().empty()) print_warning(fmt::format("{}", port->note()));
-    std::fprintf(stderr, "dpscope: capturing on %s at %u baud 8E1%s; Ctrl-C stops\n",
-                 command.device.c_str(), port->baud(), port->low_latency() ? ", low latency" : "");
+    std::fprintf(stderr, "dpscope: capturing on %s at %u baud %s%s; Ctrl-C stops\n",
+                 command.device.c_str(), port->baud(), port->frame().c_str(),
+                 port->low_latency() ? ", low latency" : "");
     const int fd = port->fd();
     TtySourceOptions tty_options;
     tty_options.baud = port->baud();
     tty_options.parity_marked = port->parity_marked();
+    tty_options.character_bits = character_bits(parity, command.stop_bits);
     tty_options.idle_gap_ns = static_cast<std::int64_t>(command.idle_gap_ms) * 1'000'000;
     TtySource source(std::move(port), fd, command.device, tty_options, settings->protocol->framing);
 
@@ -388,7 +430,9 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
     CLI::App* sub = app.add_subcommand(
         "sniff",
         "Capture live from an RS-485 bus tap (a serial adapter, 8 data bits, even parity, 1 stop "
-        "bit, any baud rate the driver accepts), decode and track as telegrams arrive, optionally "
+        "bit unless --parity and --stop-bits say otherwise, any baud rate the driver accepts; "
+        "--bus fc for the Danfoss FC protocol, default 9600 baud; without --bus, PROFIBUS), "
+        "decode and track as telegrams arrive, optionally "
         "write pcap. Stops on -c, --duration, Ctrl-C (SIGINT), SIGTERM or SIGHUP with the "
         "capture file complete. The port is taken exclusively (lock file /run/lock/LCK..NAME, "
         "flock, TIOCEXCL) and its settings are put back as they were found when sniff ends.");
@@ -396,20 +440,34 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
         ->required()
         ->type_name("DEVICE");
     sub->add_option("--baud", command->baud,
-                    "Bus baud rate (9600, 19200, 45450, 93750, 187500, 500000, 1500000, 3000000, "
-                    "6000000, 12000000 or any rate the driver takes; read back and checked)")
-        ->required()
+                    "Bus baud rate (PROFIBUS: 9600, 19200, 45450, 93750, 187500, 500000, 1500000, "
+                    "3000000, 6000000, 12000000 or any rate the driver takes, required; FC "
+                    "protocol: 2400 to 115200, default 9600; read back and checked)")
         ->check(whole_number(300, 16'000'000, " baud"));
+    sub->add_option("--parity", command->parity,
+                    "Parity bit of each character: even (PROFIBUS and the FC protocol's default, "
+                    "8E1), odd or none; set it as the drive's parameter 8-33 (FC port parity) "
+                    "says")
+        ->check(CLI::IsMember({"even", "odd", "none"}))
+        ->type_name("PARITY")
+        ->default_str("even");
+    sub->add_option("--stop-bits", command->stop_bits,
+                    "Stop bits of each character: 1 (the default) or 2 (as FC drives set for "
+                    "no parity, 8N2)")
+        ->check(CLI::IsMember({1u, 2u}))
+        ->type_name("N")
+        ->default_str("1");
     sub->add_option("-w,--write", command->output,
                     "Write the telegrams to FILE as pcap, flushed at least every 100 ms; - writes "
                     "pcap to standard output (the decoded output then goes to standard error)")
         ->check(output_file_name())
         ->type_name("FILE");
     sub->add_option("--linktype", command->link_type,
-                    "pcap link type: profibus (257, PROFIBUS_DL) or user0 (147) for tools that "
-                    "cannot open 257")
+                    "pcap link type: profibus (257, PROFIBUS_DL; PROFIBUS only, its default) or "
+                    "user0 (147) for tools that cannot open 257 (the FC protocol's default); a "
+                    "USER0 capture records its bus for decode")
         ->check(CLI::IsMember({"profibus", "user0"}))
-        ->default_str("profibus");
+        ->default_str("by --bus");
     sub->add_option("--rotate-size", command->rotate_size,
                     "Start a new file before one would exceed SIZE (e.g. 100M); files are named "
                     "stem-00001.pcap, stem-00002.pcap, ...; no telegram is split or lost")

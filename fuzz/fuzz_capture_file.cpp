@@ -125,6 +125,13 @@ void read_all(const std::string& path, dpscope::InputFormat format, std::size_t 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const TempFile& file = temp_file();
     file.write(data, size);
+    // The choice of the bus reads the same bytes: a pcap or pcapng header, its tag and first
+    // record, and every bus's framing over a byte stream or a hex log's bytes.
+    const dpscope::Bytes bytes(data, size);
+    for (auto format : {dpscope::InputFormat::Pcap, dpscope::InputFormat::Pcapng,
+                        dpscope::InputFormat::Raw, dpscope::InputFormat::Hex})
+        for (bool complete : {false, true})
+            (void)dpscope::choose_bus(bytes, format, complete).reason.size();
     std::size_t turn = 0;
     for (auto format :
          {dpscope::InputFormat::Auto, dpscope::InputFormat::Pcap, dpscope::InputFormat::Pcapng,

@@ -23,6 +23,7 @@
 #include "capture/telegram_source.hpp"
 #include "capture/tty_player.hpp"
 #include "decoder/bus_decoder.hpp"
+#include "decoder/fc_framing_rules.hpp"
 #include "decoder/session_tracker.hpp"
 #include "simulator/simulator.hpp"
 #include "tests/json_parser.hpp"
@@ -896,6 +897,63 @@ TEST(SniffTest, UsageErrorsNameTheProblem) {
         {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", "-", "--rotate-size", "1000"});
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("cannot rotate standard output"), std::string::npos) << result.err;
+}
+
+TEST(SniffTest, FcBusDefaultsTo9600Baud8E1AndWritesATaggedUser0Capture) {
+    PseudoTerminal pty;
+    const std::string pcap = test::temp_path("fc-live.pcap");
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--bus", "fc", "-w", pcap, "-T", "jsonl"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    EXPECT_NE(sniffer.err().find("at 9600 baud 8E1"), std::string::npos) << sniffer.err();
+    // Two FC telegrams (LGE 6: PCD block), BCC computed.
+    std::vector<std::uint8_t> bytes;
+    for (std::uint8_t adr : {std::uint8_t{0x81}, std::uint8_t{0x01}}) {
+        std::vector<std::uint8_t> t{0x02, 0x06, adr, 0x04, 0x7C, 0x00, 0x00};
+        t.push_back(fc_bcc_of(Bytes(t.data(), t.size())));
+        bytes.insert(bytes.end(), t.begin(), t.end());
+    }
+    pty.write(bytes);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    sniffer.signal(SIGINT);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    EXPECT_EQ(test::lines_of(sniffer.out()).size(), 2u) << sniffer.out();
+    const std::vector<std::uint8_t> file = test::read_file(pcap);
+    ASSERT_GE(file.size(), 24u);
+    EXPECT_EQ(std::string(file.begin() + 8, file.begin() + 12), "dpsc");
+    Capture capture = read_capture(pcap);
+    EXPECT_EQ(capture.link_type, kLinkTypeUser0);
+    auto decoded = test::run_dpscope({"decode", "-T", "jsonl", pcap});
+    EXPECT_EQ(decoded.exit_code, 0) << decoded.err;
+    EXPECT_EQ(decoded.err, "");
+    EXPECT_EQ(test::lines_of(decoded.out).size(), 2u);
+}
+
+TEST(SniffTest, FcLineOptionsAreChecked) {
+    PseudoTerminal pty;
+    for (const char* baud : {"1200", "230400"}) {
+        auto result = test::run_dpscope({"sniff", "-i", pty.slave, "--bus", "fc", "--baud", baud});
+        EXPECT_EQ(result.exit_code, 2) << baud;
+        EXPECT_NE(result.err.find("--baud: must be a whole number from 2400 to 115200 baud for the "
+                                  "FC protocol (--bus fc), not '" +
+                                  std::string(baud) + "'"),
+                  std::string::npos)
+            << result.err;
+    }
+    auto parity = test::run_dpscope({"sniff", "-i", pty.slave, "--bus", "fc", "--parity", "bogus"});
+    EXPECT_EQ(parity.exit_code, 2);
+    EXPECT_NE(parity.err.find("--parity"), std::string::npos) << parity.err;
+    auto stop = test::run_dpscope({"sniff", "-i", pty.slave, "--bus", "fc", "--stop-bits", "3"});
+    EXPECT_EQ(stop.exit_code, 2);
+    EXPECT_NE(stop.err.find("--stop-bits"), std::string::npos) << stop.err;
+    auto link = test::run_dpscope(
+        {"sniff", "-i", pty.slave, "--bus", "fc", "-w", "-", "--linktype", "profibus"});
+    EXPECT_EQ(link.exit_code, 2);
+    EXPECT_NE(link.err.find("link type 257 (PROFIBUS_DL) is PROFIBUS only"), std::string::npos)
+        << link.err;
+    auto no_baud = test::run_dpscope({"sniff", "-i", pty.slave});
+    EXPECT_EQ(no_baud.exit_code, 2);
+    EXPECT_NE(no_baud.err.find("--baud is required for PROFIBUS"), std::string::npos)
+        << no_baud.err;
 }
 
 }  // namespace

@@ -429,3 +429,53 @@ TEST(SerialPortTest, CharacterTimeIsElevenBits) {
 
 }  // namespace
 }  // namespace dpscope
+
+namespace dpscope {
+namespace {
+
+TEST(SerialPortTest, ParityAndStopBitsAreSetAsAsked) {
+    PseudoTerminal pty;
+    SerialSettings odd{pty.slave, 9600, true, false, ""};
+    odd.parity = SerialParity::Odd;
+    odd.stop_bits = 2;
+    {
+        auto opened = SerialPort::open(odd);
+        ASSERT_TRUE(opened) << opened.error();
+        EXPECT_EQ((*opened)->frame(), "8O2");
+        const termios tio = test::settings_of(pty.slave);
+        EXPECT_NE(tio.c_cflag & CSTOPB, 0u);
+        EXPECT_NE(tio.c_cflag & PARODD, 0u);
+        EXPECT_NE(tio.c_iflag & INPCK, 0u);
+        EXPECT_NE((*opened)->note().find("does not check odd parity"), std::string::npos)
+            << (*opened)->note();
+    }
+    SerialSettings none{pty.slave, 115200, true, false, ""};
+    none.parity = SerialParity::None;
+    {
+        auto opened = SerialPort::open(none);
+        ASSERT_TRUE(opened) << opened.error();
+        EXPECT_EQ((*opened)->frame(), "8N1");
+        const termios tio = test::settings_of(pty.slave);
+        EXPECT_EQ(tio.c_cflag & (PARENB | PARODD | CSTOPB), 0u);
+        EXPECT_EQ(tio.c_iflag & (INPCK | PARMRK), 0u);  // no parity: nothing to mark
+        EXPECT_FALSE((*opened)->parity_marked());
+        EXPECT_EQ((*opened)->note(), "");
+    }
+    SerialSettings even{pty.slave, 9600, true, false, ""};
+    auto opened = SerialPort::open(even);
+    ASSERT_TRUE(opened) << opened.error();
+    EXPECT_EQ((*opened)->frame(), "8E1");
+    const termios tio = test::settings_of(pty.slave);
+    EXPECT_EQ(tio.c_cflag & (PARODD | CSTOPB), 0u);
+}
+
+TEST(SerialPortTest, CharacterTimeCountsTheFrameBits) {
+    EXPECT_EQ(character_bits(SerialParity::Even, 1), 11u);
+    EXPECT_EQ(character_bits(SerialParity::None, 1), 10u);
+    EXPECT_EQ(character_bits(SerialParity::None, 2), 11u);
+    EXPECT_EQ(character_ns(9600), 1'145'833);
+    EXPECT_EQ(character_ns(9600, 10), 1'041'666);
+}
+
+}  // namespace
+}  // namespace dpscope
