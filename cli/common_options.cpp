@@ -111,6 +111,15 @@ void add_write_options(CLI::App& app, DecodeOptionValues& values) {
                  "With -w FILE: print the decode on standard output as well (as tshark -P)");
 }
 
+void add_line_options(CLI::App& app, DecodeOptionValues& values) {
+    app.add_option("--baud", values.baud,
+                   "The line's baud rate when the capture was made. FC protocol: a telegram's time "
+                   "is when its first byte came, so the time a command takes on the line (11 bits "
+                   "a byte) is not counted in the drive's response time; default 9600")
+        ->check(whole_number(300, 12'000'000, " baud"))
+        ->type_name("BAUD");
+}
+
 void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_option("-c,--count", values.count, "Stop after reading N telegrams")
         ->check(whole_number(1, kMaxCount, " telegrams"))
@@ -199,6 +208,7 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     settings.tracker.strict = values.strict;
     settings.fc_tracker.timeout_ns = settings.tracker.timeout_ns;
     settings.fc_tracker.response_ns = static_cast<std::int64_t>(values.fc_response_ms) * 1'000'000;
+    settings.fc_tracker.line_baud = values.baud != 0 ? values.baud : kFcDefaultLineBaud;
     if (!values.bus.empty()) {
         settings.protocol = &capture_protocol(*protocol_from_name(values.bus));
         settings.bus_given = true;

@@ -24,6 +24,9 @@
 
 namespace dpscope::cli {
 
+// The FC protocol's line rate unless --baud says otherwise (docs/protocol/fc-protocol.md).
+inline constexpr std::uint32_t kFcDefaultLineBaud = 9600;
+
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFindings = 1;      // report: findings at or above --fail-on
 inline constexpr int kExitUsage = 2;         // bad command line, or input unusable from the start
@@ -78,6 +81,7 @@ struct DecodeOptionValues {
     std::string pcd_profile;
     std::uint32_t timeout_ms = 1000;
     std::uint32_t fc_response_ms = 20;
+    std::uint32_t baud = 0;  // --baud (decode, hex, report): 0 = not given
     bool strict = false;
     bool line_buffered = false;
     // decode/hex -w: the telegrams shown, as a capture.
@@ -90,6 +94,9 @@ struct DecodeOptionValues {
 // How to decode and track: -c, --bus, --ppo, --dialect, --fc-pnu-bits, --pcd-profile,
 // --timeout-ms, --fc-response-ms, --strict.
 void add_tracking_options(CLI::App& app, DecodeOptionValues& values);
+// decode, hex and report: --baud, the line rate of a capture read from a file (sniff has its own
+// --baud for the port and sets the same setting).
+void add_line_options(CLI::App& app, DecodeOptionValues& values);
 // What decode, hex and sniff print: -T, -V, -q, -l, --station, --pnu.
 void add_display_options(CLI::App& app, DecodeOptionValues& values,
                          std::string_view default_format);

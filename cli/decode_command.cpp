@@ -212,6 +212,7 @@ void add_decode_command(CLI::App& app, int& exit_code) {
     add_display_options(*sub, command->options, "text");
     add_write_options(*sub, command->options);
     add_tracking_options(*sub, command->options);
+    add_line_options(*sub, command->options);
     sub->footer(std::string(kExitCodeHelp));
     sub->callback([command, &exit_code] {
         std::string path = !command->read_option.empty() ? command->read_option : command->file;
@@ -256,6 +257,7 @@ void add_hex_command(CLI::App& app, int& exit_code) {
     add_display_options(*sub, command->options, "verbose");
     add_write_options(*sub, command->options);
     add_tracking_options(*sub, command->options);
+    add_line_options(*sub, command->options);
     sub->footer(std::string(kExitCodeHelp));
     sub->callback([command, &exit_code] {
         Result<DecodeSettings> settings = resolve_decode_options(command->options, "verbose");

@@ -182,6 +182,7 @@ void add_report_command(CLI::App& app, int& exit_code) {
                   "telegram with a parameter channel from the slaves reported); by default the "
                   "report says \"nothing checked\" and exits 1");
     add_tracking_options(*sub, command->options);
+    add_line_options(*sub, command->options);
     sub->footer(std::string(kExitCodeHelp) + " For report, 1 takes precedence over 3.");
     sub->callback([command, &exit_code] { exit_code = run_report(*command); });
 }

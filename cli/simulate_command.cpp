@@ -309,7 +309,8 @@ int run_simulate(const SimulateCommand& command) {
         return kExitOutputError;
     }
     std::unique_ptr<PendingOutputFile> file = std::move(opened_file).value();
-    WriterResult opened = open_capture_writer(file->file(), file->name(), format, link_type);
+    WriterResult opened =
+        open_capture_writer(file->file(), file->name(), format, link_type, options.bus);
     file->release_file();  // the writer closes it
     if (!opened) {
         print_error(opened.error());

@@ -123,7 +123,6 @@ bool is_capture_file(const std::string& path, const std::string& output, bool ro
 }
 
 // The FC protocol's baud rates (docs/protocol/fc-protocol.md): 2400 to 115200, 9600 by default.
-constexpr std::uint32_t kFcDefaultBaud = 9600;
 constexpr std::uint32_t kFcMinBaud = 2400;
 constexpr std::uint32_t kFcMaxBaud = 115'200;
 
@@ -179,7 +178,7 @@ int run_sniff(const SniffCommand& command) {
     // baud, 9600 8E1 unless --baud, --parity and --stop-bits say otherwise.
     const bool fc = settings->protocol->protocol == Protocol::Fc;
     std::uint32_t baud = command.baud;
-    if (fc && baud == 0) baud = kFcDefaultBaud;
+    if (fc && baud == 0) baud = kFcDefaultLineBaud;
     if (baud == 0) {
         print_error(
             "--baud is required for PROFIBUS (the FC protocol, --bus fc, defaults to 9600)");
@@ -302,6 +301,9 @@ int run_sniff(const SniffCommand& command) {
     tty_options.baud = port->baud();
     tty_options.parity_marked = port->parity_marked();
     tty_options.character_bits = character_bits(parity, command.stop_bits);
+    // The tracker measures the drive's response time from a command's last byte.
+    settings->fc_tracker.line_baud = port->baud();
+    settings->fc_tracker.character_bits = tty_options.character_bits;
     tty_options.idle_gap_ns = static_cast<std::int64_t>(command.idle_gap_ms) * 1'000'000;
     TtySource source(std::move(port), fd, command.device, tty_options, settings->protocol->framing);
 

@@ -350,7 +350,8 @@ std::string_view error_text(Dialect dialect, std::uint16_t number) noexcept {
 
 std::string_view error_text_or_unknown(Dialect dialect, std::uint16_t number) noexcept {
     std::string_view text = error_text(dialect, number);
-    return text.empty() ? kUnknownErrorNumber : text;
+    if (!text.empty()) return text;
+    return dialect == Dialect::Fc ? kUnknownFaultCode : kUnknownErrorNumber;
 }
 
 AnswerVerdict judge_answer(Dialect dialect, std::uint8_t request_rc, std::uint8_t response_rc,

@@ -126,7 +126,10 @@ std::string_view error_text(Dialect dialect, std::uint16_t number) noexcept;
 
 // What every output shows for an error number the dialect does not define.
 inline constexpr std::string_view kUnknownErrorNumber = "unknown error number";
-// error_text, or kUnknownErrorNumber when the dialect does not define the number.
+// The same for the FC protocol's fault codes (Dialect::Fc).
+inline constexpr std::string_view kUnknownFaultCode = "unknown fault code";
+// error_text, or kUnknownErrorNumber (kUnknownFaultCode for Dialect::Fc) when the dialect does not
+// define the number.
 std::string_view error_text_or_unknown(Dialect dialect, std::uint16_t number) noexcept;
 
 // How a response code answers a request code.

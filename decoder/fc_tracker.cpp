@@ -147,7 +147,7 @@ void FcTracker::close_pending() {
 
 void FcTracker::check_deadline(std::int64_t now_ns, std::uint64_t frame) {
     if (!pending_.active || pending_.time_ns == kNoTime ||
-        now_ns <= pending_.time_ns + options_.timeout_ns)
+        now_ns <= pending_.time_ns + pending_.wire_ns + options_.timeout_ns)
         return;
     Finding& f = add_finding(current_, FindingKind::FcNoResponse, frame, now_ns, pending_.frame,
                              true, kMaster, pending_.address);
@@ -240,7 +240,13 @@ void FcTracker::command(FcStationStats& st, const DecodedTelegram& t) {
         }
     }
     if (fc.broadcast) return;  // nobody answers a broadcast
-    pending_ = Pending{true, t.slave, t.frame, t.time_ns, fc.has_pkw, fc.pkw.rc, fc.pkw.pnu};
+    const auto wire_ns = options_.line_baud == 0
+                             ? std::int64_t{0}
+                             : static_cast<std::int64_t>(static_cast<double>(t.bytes.size()) *
+                                                         options_.character_bits * 1e9 /
+                                                         static_cast<double>(options_.line_baud));
+    pending_ =
+        Pending{true, t.slave, t.frame, t.time_ns, wire_ns, fc.has_pkw, fc.pkw.rc, fc.pkw.pnu};
     if (fc.has_pkw) {
         const ParameterChannelSample sample{t.frame, t.time_ns, Direction::Request, kMaster,
                                             t.slave, fc.pkw,    Dialect::Fc,        st.commands};
@@ -271,8 +277,9 @@ void FcTracker::response(FcStationStats& st, const DecodedTelegram& t) {
     const Pending command = pending_;
     const bool timed = t.has_time() && command.time_ns != kNoTime;
     if (timed) {
-        const auto latency =
-            static_cast<std::uint64_t>(std::max<std::int64_t>(0, t.time_ns - command.time_ns));
+        // The drive's response time: from the command's last byte to the response's first.
+        const auto latency = static_cast<std::uint64_t>(
+            std::max<std::int64_t>(0, t.time_ns - command.time_ns - command.wire_ns));
         st.latency_ns.add(latency);
         st.latency_sum_ns += latency;
         if (latency > static_cast<std::uint64_t>(options_.response_ns)) {

@@ -37,6 +37,12 @@ namespace dpscope {
 struct FcTrackerOptions {
     std::int64_t timeout_ns = 1'000'000'000;  // --timeout-ms: no answer within it
     std::int64_t response_ns = 20'000'000;    // --fc-response-ms: an answer later is late
+    // The line (--baud, 9600 unless given; sniff: the port's settings): a telegram's time is when
+    // its first byte arrived, so a drive's response time runs from the command's last byte,
+    // command bytes x character_bits / line_baud after its time. 0: no line time is subtracted
+    // (the times given are already those of the commands' ends).
+    std::uint32_t line_baud = 0;
+    std::uint32_t character_bits = 11;  // 8E1: start, 8 data, parity, stop
 };
 
 // The finding kinds the FC tracker reports: its own (FindingComponent::FcProtocol),
@@ -115,7 +121,8 @@ class FcTracker {
         std::uint8_t address = 0;
         std::uint64_t frame = 0;
         std::int64_t time_ns = kNoTime;
-        bool pkw = false;  // a parameter or text block
+        std::int64_t wire_ns = 0;  // how long the command took on the line
+        bool pkw = false;          // a parameter or text block
         std::uint8_t ak = 0;
         std::uint16_t pnu = 0;
     };

@@ -40,7 +40,7 @@ std::uint16_t fc_fault_code(const FcTelegram& fc) {
 
 std::string_view fc_fault_text_or_unknown(std::uint32_t code) {
     std::string_view text = fc_fault_text(code);
-    return text.empty() ? std::string_view("unknown fault code") : text;
+    return text.empty() ? kUnknownFaultCode : text;
 }
 
 std::string_view fc_text_mode_name(std::uint8_t ind_high) {

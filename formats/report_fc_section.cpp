@@ -30,9 +30,9 @@ std::string commands_by_ak_text(const FcStationStats& s) {
 std::string parameters_text(const FcStationStats& s) {
     std::string text;
     for (const auto& [pnu, access] : s.parameters)
-        text +=
-            fmt::format("{}{} ({} read{}, {} write{})", text.empty() ? "" : ", ", pnu, access.reads,
-                        access.reads == 1 ? "" : "s", access.writes, access.writes == 1 ? "" : "s");
+        text += fmt::format("{}PNU {} ({} read{}, {} write{})", text.empty() ? "" : ", ", pnu,
+                            access.reads, access.reads == 1 ? "" : "s", access.writes,
+                            access.writes == 1 ? "" : "s");
     if (s.parameters_not_counted)
         text += fmt::format("{}{} more accesses to further parameters", text.empty() ? "" : "; ",
                             s.parameters_not_counted);

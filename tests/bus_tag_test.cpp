@@ -269,7 +269,7 @@ TEST(BusTagTest, DecodeWritesTaggedCapturesThatDecodeReadsWithoutBus) {
         EXPECT_EQ(r.exit_code, 0) << r.err;
         EXPECT_EQ(r.err, "") << format;  // tagged: no note
         EXPECT_EQ(test::lines_of(r.out).size(), 6u);
-        EXPECT_NE(r.out.find("\"fc\""), std::string::npos) << r.out.substr(0, 300);
+        EXPECT_NE(r.out.find("\"fc_protocol\""), std::string::npos) << r.out.substr(0, 300);
         // --bus naming the other bus is obeyed, with a warning naming both.
         test::CommandResult other = run_dpscope({"decode", "--bus", "profibus", "-q", out});
         EXPECT_NE(other.err.find(out + ": the capture records its bus as the FC protocol "

@@ -672,7 +672,7 @@ TEST(CodeTablesTest, FcTablesAreTheFcCodes) {
     EXPECT_TRUE(request_code(Dialect::Fc, 1).is_array);
     EXPECT_EQ(response_code(Dialect::Fc, 7).kind, ResponseKind::Rejected);
     EXPECT_EQ(error_text(Dialect::Fc, 2), "Upper or lower limit is exceeded");
-    EXPECT_EQ(error_text_or_unknown(Dialect::Fc, 100), kUnknownErrorNumber);
+    EXPECT_EQ(error_text_or_unknown(Dialect::Fc, 100), kUnknownFaultCode);
     EXPECT_FALSE(has_spontaneous_messages(Dialect::Fc));
     EXPECT_EQ(code_label(Dialect::Fc), "AK");
     EXPECT_EQ(code_label(Dialect::Vlt), "RC");

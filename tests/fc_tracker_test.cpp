@@ -223,7 +223,7 @@ TEST(FcTrackerTest, RejectionNamesTheFaultCodeAndCountsIt) {
     run.feed(fc_parameter(1, 1, 415), 10);
     found = run.feed(fc_parameter(1, 7, 415, 0, 100, 0x0607), 14);
     ASSERT_EQ(found.size(), 1u);
-    EXPECT_NE(found[0].message.find("fault code 100 (unknown error number)"), std::string::npos)
+    EXPECT_NE(found[0].message.find("fault code 100 (unknown fault code)"), std::string::npos)
         << found[0].message;
 }
 
@@ -319,6 +319,31 @@ TEST(FcTrackerTest, KindsAreTheFcComponentsAndTheSharedOnes) {
     EXPECT_FALSE(is_fc_finding_kind(FindingKind::FcsError));
     EXPECT_EQ(fc_finding_kinds().size(), finding_kinds_of(FindingComponent::FcProtocol).size() + 2);
     EXPECT_TRUE(std::is_sorted(fc_finding_kinds().begin(), fc_finding_kinds().end()));
+}
+
+TEST(FcTrackerTest, ResponseTimeRunsFromTheCommandsLastByteAtTheLineRate) {
+    // 16 bytes at 9600 baud, 11 bits a byte: the command is on the line for 18.333 ms, so an
+    // answer starting 23.333 ms after the command started came 5 ms after its last byte.
+    FcTrackerOptions options;
+    options.line_baud = 9600;
+    FcRun run(options);
+    const std::int64_t wire_ns = 16 * 11 * 1'000'000'000LL / 9600;
+    FcDecoder& decoder = run.decoder;
+    FcTracker& tracker = run.tracker;
+    const auto command = fc_parameter(1, 1, 414);
+    const auto answer = fc_parameter(1, 1, 414, 0, 10, 0x0607);
+    (void)tracker.track(decoder.decode(command, 0, 1));
+    (void)tracker.track(decoder.decode(answer, wire_ns + 5 * kMs, 2));
+    // A second answer 30 ms after the last byte is late (20 ms by default).
+    (void)tracker.track(decoder.decode(command, 100 * kMs, 3));
+    std::span<const Finding> late =
+        tracker.track(decoder.decode(answer, 100 * kMs + wire_ns + 30 * kMs, 4));
+    const FcStationStats* one = run.station(1);
+    ASSERT_NE(one, nullptr);
+    EXPECT_EQ(one->latency_ns.min(), 5u * kMs);
+    ASSERT_EQ(late.size(), 1u);
+    EXPECT_EQ(late[0].kind, FindingKind::FcLateResponse);
+    EXPECT_NE(late[0].message.find("after 30.000 ms"), std::string::npos) << late[0].message;
 }
 
 }  // namespace

@@ -53,6 +53,21 @@ golden_case(fc_examples_jsonl samples/expected/fc-examples.jsonl decode --bus fc
 golden_case(fc_examples_verbose samples/expected/fc-examples.verbose.txt decode --bus fc -V samples/fc-examples.hex)
 golden_case(fc_examples_csv samples/expected/fc-examples.csv decode --bus fc -T csv samples/fc-examples.hex)
 golden_case(fc_examples_summary samples/expected/fc-examples.summary.txt decode --bus fc -q samples/fc-examples.hex)
+# Hand-made at 115200 baud: the drives answer 6.7 ms after a command's last byte.
+golden_case(report_fc_examples_text samples/expected/report.fc-examples.txt report --bus fc --baud 115200 samples/fc-examples.hex)
+# A simulated FC bus (samples/fc.pcap, USER0 with the bus recorded: no --bus needed): four drives,
+# both address formats, every FC fault twice; and a clean session.
+golden_case(fc_text samples/expected/fc.txt decode samples/fc.pcap)
+golden_case(fc_jsonl samples/expected/fc.jsonl decode -T jsonl samples/fc.pcap)
+golden_case(fc_verbose samples/expected/fc.verbose.txt decode -V --station 17 -c 80 samples/fc.pcap)
+golden_case(fc_csv samples/expected/fc.csv decode -T csv samples/fc.pcap)
+golden_case(fc_pnu_text samples/expected/fc.pnu414.txt decode --pnu 414 samples/fc.pcap)
+golden_case(report_fc_text samples/expected/report.fc.txt EXIT 1 report samples/fc.pcap)
+golden_case(report_fc_json samples/expected/report.fc.json EXIT 1 report -T json samples/fc.pcap)
+golden_case(report_fc_markdown samples/expected/report.fc.md EXIT 1 report -T markdown samples/fc.pcap)
+golden_case(report_fc_html samples/expected/report.fc.html EXIT 1 report -T html samples/fc.pcap)
+golden_case(report_fc_junit samples/expected/report.fc.junit.xml EXIT 1 report -T junit samples/fc.pcap)
+golden_case(report_fc_clean_text samples/expected/report.fc-clean.txt report samples/fc-clean.pcap)
 
 # Conformance reports: a capture with every fault kind (exit 1: errors found) and a clean one.
 golden_case(report_faults_text samples/expected/report.faults.txt EXIT 1 report samples/faults.pcap)

@@ -2671,7 +2671,7 @@ TEST(ReportTest, FcSectionInText) {
         << text;
     EXPECT_NE(text.find("  responses      2; 2 answered, 1 unanswered, 0 late (over 20 ms)\n"),
               std::string::npos);
-    EXPECT_NE(text.find("  parameters     302 (0 reads, 1 write), 414 (1 read, 0 writes), 415 (1 "
+    EXPECT_NE(text.find("  parameters     PNU 302 (0 reads, 1 write), PNU 414 (1 read, 0 writes), PNU 415 (1 "
                         "read, 0 writes)\n"),
               std::string::npos);
     EXPECT_NE(text.find(" PNU 302 fault code 2 (Upper or lower limit is exceeded) 1x;"),
