@@ -4,7 +4,8 @@
 // rules, the parameter-channel engine, the DP-V1 parameter-access tracker), renders it with the
 // findings at it in one of the output formats (taking turns, so every renderer sees every kind of
 // telegram over a run) and also decodes and tracks the whole input as a single capture record,
-// then finishes the session (what is still open is reported).
+// then finishes the session (what is still open is reported). The same input then goes through the
+// Danfoss FC protocol's framer, FcDecoder and FcTracker, rendered the same way.
 #include <cstdint>
 #include <cstdio>
 #include <memory>
@@ -12,6 +13,9 @@
 #include <vector>
 
 #include "decoder/bus_decoder.hpp"
+#include "decoder/fc_decoder.hpp"
+#include "decoder/fc_framing_rules.hpp"
+#include "decoder/fc_tracker.hpp"
 #include "decoder/fdl_framing_rules.hpp"
 #include "decoder/session_tracker.hpp"
 #include "decoder/stream_framer.hpp"
@@ -26,18 +30,21 @@ dpscope::Output& output() {
     return out;
 }
 
+// One protocol's decoder and tracker, and the framing rules its stream is cut by.
+template <typename Decoder, typename Tracker>
 struct RenderAll final : dpscope::StreamFramer::Sink {
-    dpscope::BusDecoder decoder;
-    dpscope::SessionTracker tracker;
-    std::uint64_t frame = 0;
-    std::int64_t time_ns = 1'000'000'000LL * 1700000000;
-    std::vector<std::unique_ptr<dpscope::TelegramRenderer>> renderers;
-
-    RenderAll() {
+    explicit RenderAll(const dpscope::FramingRules& rules_) : rules(rules_) {
         for (auto format : {dpscope::OutputFormat::Text, dpscope::OutputFormat::Verbose,
                             dpscope::OutputFormat::Jsonl, dpscope::OutputFormat::Csv})
             renderers.push_back(dpscope::make_renderer(format, output()));
     }
+
+    const dpscope::FramingRules& rules;
+    Decoder decoder;
+    Tracker tracker;
+    std::uint64_t frame = 0;
+    std::int64_t time_ns = 1'000'000'000LL * 1700000000;
+    std::vector<std::unique_ptr<dpscope::TelegramRenderer>> renderers;
 
     void decode(dpscope::Bytes telegram) {
         // The clock advances 1 ms a telegram, so that time-outs fire over a long input.
@@ -50,15 +57,16 @@ struct RenderAll final : dpscope::StreamFramer::Sink {
     }
     void on_telegram(dpscope::Bytes telegram, std::uint64_t) override { decode(telegram); }
     void on_skipped(const dpscope::SkippedBytes& skipped) override {
-        (void)dpscope::fdl_framing_rules().describe_skip(skipped);
+        (void)rules.describe_skip(skipped);
     }
 };
 
-}  // namespace
-
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    RenderAll all;
-    dpscope::StreamFramer framer(dpscope::fdl_framing_rules());
+// Frames the input in chunks whose size its first byte chooses (a 0x00 byte marks a line gap),
+// decodes, tracks and renders every telegram, then the whole input as one record.
+template <typename Decoder, typename Tracker>
+void run(const std::uint8_t* data, std::size_t size, const dpscope::FramingRules& rules) {
+    RenderAll<Decoder, Tracker> all(rules);
+    dpscope::StreamFramer framer(rules);
     std::size_t chunk = size > 0 ? (data[0] % 17) + 1 : 1;
     for (std::size_t at = 0; at < size; at += chunk) {
         std::size_t n = std::min(chunk, size - at);
@@ -68,7 +76,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     framer.finish(all);
     all.decode(dpscope::Bytes(data, size));
     (void)all.tracker.finish();
-    (void)all.tracker.channels();
-    (void)all.tracker.transactions();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    run<dpscope::BusDecoder, dpscope::SessionTracker>(data, size, dpscope::fdl_framing_rules());
+    run<dpscope::FcDecoder, dpscope::FcTracker>(data, size, dpscope::fc_framing_rules());
     return 0;
 }
