@@ -249,8 +249,9 @@ BusChoice choose_bus(Bytes head, InputFormat format, bool complete) {
         stream.size(), what,
         second_count.bytes == 0 ? std::string("none") : fmt::format("{} bytes", second_count.bytes),
         second ? second->framing.protocol_name() : std::string_view("other"));
-    // PROFIBUS, today's reading, is said only when another bus framed half of the stream too.
-    choice.say = best->protocol != Protocol::ProfibusDp || qualified > 1;
+    // A byte stream names no bus: the choice is always said (issue #10: "say which was chosen").
+    (void)qualified;
+    choice.say = true;
     return choice;
 }
 

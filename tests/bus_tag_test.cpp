@@ -197,7 +197,7 @@ TEST(BusTagTest, RawAndHexStreamsAreChosenByTheFramingThatFramesMost) {
     std::vector<std::uint8_t> dp = profibus_stream(20);
     BusChoice raw_dp = choose_bus(bytes_of(dp), InputFormat::Raw, true);
     EXPECT_EQ(raw_dp.protocol->protocol, Protocol::ProfibusDp);
-    EXPECT_FALSE(raw_dp.say);
+    EXPECT_TRUE(raw_dp.say) << "a byte stream names no bus: the choice is said";
     std::string log = hex_log_of(fc, 16);
     BusChoice hex_fc =
         choose_bus(Bytes(reinterpret_cast<const std::uint8_t*>(log.data()), log.size()),
@@ -298,12 +298,16 @@ TEST(BusTagTest, LinkType257IsRefusedForTheFcBus) {
         << r.err;
 }
 
-TEST(BusTagTest, ProfibusRawDumpsAreReadSilentlyAsBefore) {
+TEST(BusTagTest, ProfibusRawDumpsSayTheBusChosenAndGiveTheSameDecode) {
     std::string raw = test::temp_path("dp.raw");
     test::write_file(raw, profibus_stream(10));
     test::CommandResult r = run_dpscope({"decode", raw});
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.err.rfind("dpscope: note: " + raw + ": read as PROFIBUS DP: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("none by FC protocol framing; --bus chooses"), std::string::npos) << r.err;
+    test::CommandResult given = run_dpscope({"decode", "--bus", "profibus", raw});
+    EXPECT_EQ(given.err, "") << "with --bus nothing is said";
+    EXPECT_EQ(given.out, r.out);
 }
 
 TEST(BusTagTest, NoTelegramErrorNamesTheBusTriedAndSuggestsBus) {
