@@ -514,6 +514,10 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
                   "Do not ask the driver for low-latency mode (ASYNC_LOW_LATENCY)");
     add_display_options(*sub, command->options, "text");
     add_tracking_options(*sub, command->options);
+    // A live line cannot be judged before it is read: sniff takes the bus from --bus only.
+    sub->get_option("--bus")->description(
+        "The bus on the line: profibus (PROFIBUS DP, the default) or fc (Danfoss FC protocol on "
+        "RS-485: 9600 baud 8E1 unless --baud, --parity, --stop-bits say otherwise)");
     sub->footer(std::string(kExitCodeHelp) +
                 " For sniff: on 4 and 5 what was captured before is written and the file is a "
                 "valid pcap; with --report, 1 when a finding reaches --fail-on.");
