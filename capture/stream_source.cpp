@@ -14,6 +14,16 @@
 
 namespace dpscope {
 
+namespace {
+// "a PROFIBUS", "an FC protocol": the article a protocol's name takes ("FC" is read "eff").
+std::string article_for(std::string_view protocol) {
+    const bool vowel_sound =
+        !protocol.empty() && (protocol[0] == 'F' || protocol[0] == 'A' || protocol[0] == 'E' ||
+                              protocol[0] == 'I' || protocol[0] == 'O' || protocol[0] == 'U');
+    return fmt::format("{} {}", vowel_sound ? "an" : "a", protocol);
+}
+}  // namespace
+
 bool FramedSource::read_next(Record& record) {
     for (;;) {
         Poll result = poll(record);
@@ -73,8 +83,8 @@ bool FramedSource::judge() {
     const std::uint64_t skipped = framer_.bytes_skipped();
     if (decided < kMinJudgedBytes || skipped * 2 <= decided) return true;
     set_unusable(fmt::format(
-        "{}: not a {} {}: {} of {} {} bytes ({:.1f} %) form no telegram; {} decodes it anyway",
-        name(), framer_.rules().protocol_name(), judged_what_, skipped,
+        "{}: not {} {}: {} of {} {} bytes ({:.1f} %) form no telegram; {} decodes it anyway",
+        name(), article_for(framer_.rules().protocol_name()), judged_what_, skipped,
         finished_ ? "its" : "its first", decided,
         100.0 * static_cast<double>(skipped) / static_cast<double>(decided), judged_forced_));
     return false;

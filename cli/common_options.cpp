@@ -309,8 +309,9 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
 std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept {
     std::bitset<kStationCount> stations;
     if (t.protocol == Protocol::Fc) {
-        // The FC master has no address: a telegram is about its drive (none for a broadcast).
-        if (t.has_roles && !t.fc.broadcast) stations.set(t.slave & 0x7F);
+        // The FC master has no address: a telegram is about its drive, a broadcast about address 0
+        // (the report's "Broadcasts" section).
+        if (t.has_roles) stations.set(t.slave & 0x7F);
         return stations;
     }
     if (t.dp.fdl.has_addresses) stations.set(t.dp.fdl.da & 0x7F).set(t.dp.fdl.sa & 0x7F);
@@ -335,7 +336,9 @@ bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
             std::any_of(settings.stations.begin(), settings.stations.end(), [&](std::uint8_t a) {
                 return ends.test(a & 0x7F) ||
                        std::any_of(findings.begin(), findings.end(), [&](const Finding& f) {
-                           return f.has_stations && (f.master == a || f.slave == a);
+                           // The FC master has no address: an FC finding is about its drive.
+                           return f.has_stations &&
+                                  ((f.master == a && t.protocol != Protocol::Fc) || f.slave == a);
                        });
             });
         if (!match) return false;

@@ -26,6 +26,9 @@ namespace dpscope::cli {
 
 // The FC protocol's line rate unless --baud says otherwise (docs/protocol/fc-protocol.md).
 inline constexpr std::uint32_t kFcDefaultLineBaud = 9600;
+// The FC protocol's baud rates (par. 8-32 of the FC series): 2400 to 115200.
+inline constexpr std::uint32_t kFcMinBaud = 2400;
+inline constexpr std::uint32_t kFcMaxBaud = 115'200;
 
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFindings = 1;      // report: findings at or above --fail-on

@@ -6,6 +6,7 @@
 #include "capture/telegram_source.hpp"
 #include "cli/common_options.hpp"
 #include "cli/version.hpp"
+#include "decoder/counted.hpp"
 #include "decoder/fc_tracker.hpp"
 #include "decoder/session_tracker.hpp"
 #include "formats/finding_log.hpp"
@@ -52,6 +53,16 @@ class Pipeline {
     std::span<const Finding> finish(std::int64_t end_ns = kNoTime) {
         std::span<const Finding> findings =
             protocol_ == Protocol::Fc ? fc_tracker_.finish(end_ns) : tracker_.finish(end_ns);
+        if (protocol_ == Protocol::Fc && fc_tracker_.early_responses() != 0) {
+            const FcTrackerOptions& line = fc_tracker_.options();
+            print_warning(fmt::format(
+                "{} began before {} command could have ended at {} baud ({} bits a byte): the "
+                "line was faster; the drives' response times are counted from the commands' last "
+                "bytes at that rate (0 for these); give the line's rate with --baud",
+                counted(fc_tracker_.early_responses(), "response", "responses"),
+                fc_tracker_.early_responses() == 1 ? "its" : "their", line.line_baud,
+                line.character_bits));
+        }
         summary_.add_findings(findings);
         if (keep_timelines_) timelines_.add(findings, {});
         return findings;

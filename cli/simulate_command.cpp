@@ -193,7 +193,19 @@ int run_simulate(const SimulateCommand& command) {
     const bool fc = command.bus == "fc";
     options.bus = fc ? Protocol::Fc : Protocol::ProfibusDp;
     options.seed = command.seed;
-    options.baud = fc && !command.baud_given ? 9600 : command.baud;
+    options.baud = fc && !command.baud_given ? kFcDefaultLineBaud : command.baud;
+    if (fc && (options.baud < kFcMinBaud || options.baud > kFcMaxBaud)) {
+        print_error(fmt::format(
+            "--baud: must be a whole number from {} to {} baud for the FC protocol, not '{}'",
+            kFcMinBaud, kFcMaxBaud, options.baud));
+        return kExitUsage;
+    }
+    if (!fc && options.baud < 9600) {
+        print_error(fmt::format(
+            "--baud: must be a whole number from 9600 to 12000000 baud for PROFIBUS, not '{}'",
+            options.baud));
+        return kExitUsage;
+    }
     if (fc) {
         if (!command.slaves.empty()) {
             print_error(
@@ -411,8 +423,9 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->check(whole_number(0, kLargest))
         ->default_str("1");
     sub->add_option("--baud", command->baud,
-                    "Bus baud rate used for the timing (default 1500000; 9600 with --bus fc)")
-        ->check(whole_number(9600, 12'000'000))
+                    "Bus baud rate used for the timing (default 1500000; PROFIBUS 9600 to "
+                    "12000000; with --bus fc 2400 to 115200, default 9600)")
+        ->check(whole_number(2400, 12'000'000, " baud"))
         ->default_str("1500000");
     sub->add_option("--master", command->master,
                     "Address of the DP master (PROFIBUS only: the FC master has none)")

@@ -122,10 +122,6 @@ bool is_capture_file(const std::string& path, const std::string& output, bool ro
     return same_file(path, rotated_file_name(output, static_cast<unsigned>(index)));
 }
 
-// The FC protocol's baud rates (docs/protocol/fc-protocol.md): 2400 to 115200, 9600 by default.
-constexpr std::uint32_t kFcMinBaud = 2400;
-constexpr std::uint32_t kFcMaxBaud = 115'200;
-
 struct SniffCommand {
     DecodeOptionValues options;
     std::string device;

@@ -183,6 +183,7 @@ std::span<const Finding> FcTracker::track(const DecodedTelegram& t) {
         count(0);
         return current_;
     }
+    if (first_addressed_frame_ == 0) first_addressed_frame_ = t.frame;
     FcStationStats& st = station(t.slave);
     ++st.telegrams;
     if (t.has_time()) {
@@ -209,6 +210,10 @@ void FcTracker::command(FcStationStats& st, const DecodedTelegram& t) {
             f.message = fmt::format(
                 "new command {} to drive {} while the command {} from frame {} was unanswered",
                 describe_command(t), t.slave, pending_text, pending_.frame);
+        } else if (pending_.frame == first_addressed_frame_ && !pending_.certain) {
+            // The capture began with it: a tap clipped onto a running bus often starts with a
+            // drive's response, which nothing before it marks as one (docs/decisions.md). It is
+            // not judged.
         } else {
             Finding& f = add_finding(current_, FindingKind::FcNoResponse, t.frame, t.time_ns,
                                      pending_.frame, true, kMaster, pending_.address);
@@ -247,6 +252,8 @@ void FcTracker::command(FcStationStats& st, const DecodedTelegram& t) {
                                                          static_cast<double>(options_.line_baud));
     pending_ =
         Pending{true, t.slave, t.frame, t.time_ns, wire_ns, fc.has_pkw, fc.pkw.rc, fc.pkw.pnu};
+    // Only a command has AK 4, 13 or 14.
+    pending_.certain = fc.has_pkw && fc_command_only(fc.pkw.rc);
     if (fc.has_pkw) {
         const ParameterChannelSample sample{t.frame, t.time_ns, Direction::Request, kMaster,
                                             t.slave, fc.pkw,    Dialect::Fc,        st.commands};
@@ -277,7 +284,10 @@ void FcTracker::response(FcStationStats& st, const DecodedTelegram& t) {
     const Pending command = pending_;
     const bool timed = t.has_time() && command.time_ns != kNoTime;
     if (timed) {
-        // The drive's response time: from the command's last byte to the response's first.
+        // The drive's response time: from the command's last byte to the response's first. A
+        // response that began before the command could have ended says the line was faster than
+        // line_baud: counted, so that the user is told.
+        if (t.time_ns - command.time_ns < command.wire_ns) ++early_responses_;
         const auto latency = static_cast<std::uint64_t>(
             std::max<std::int64_t>(0, t.time_ns - command.time_ns - command.wire_ns));
         st.latency_ns.add(latency);

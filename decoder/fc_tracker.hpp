@@ -101,6 +101,10 @@ class FcTracker {
     std::span<const Finding> finish(std::int64_t end_ns = kNoTime);
     // The command -> response pairs the last track() completed; valid until the next call.
     std::span<const CompletedTransaction> completed() const noexcept { return completed_; }
+    // Responses that began before their command could have ended at options().line_baud (their
+    // response time is counted as 0): the line was faster than that.
+    std::uint64_t early_responses() const noexcept { return early_responses_; }
+    const FcTrackerOptions& options() const noexcept { return options_; }
 
     // The addresses seen, in address order.
     std::vector<const FcStationStats*> stations() const;
@@ -110,7 +114,6 @@ class FcTracker {
     }
     // Commands answered, over every address.
     std::uint64_t transactions() const noexcept;
-    const FcTrackerOptions& options() const noexcept { return options_; }
     // The parameter number the last telegram's PKW is about (-1: none); a rejection without
     // PNU is about the command it answers.
     std::int32_t subject_pnu() const noexcept { return subject_pnu_; }
@@ -125,6 +128,7 @@ class FcTracker {
         bool pkw = false;          // a parameter or text block
         std::uint8_t ak = 0;
         std::uint16_t pnu = 0;
+        bool certain = false;  // its content says it is a command (AK 4, 13, 14)
     };
 
     FcStationStats& station(std::uint8_t address);
@@ -146,6 +150,8 @@ class FcTracker {
     std::array<std::uint64_t, 3> by_severity_{};
     std::int64_t now_ns_ = kNoTime;
     std::uint64_t last_frame_ = 0;
+    std::uint64_t first_addressed_frame_ = 0;
+    std::uint64_t early_responses_ = 0;  // the first telegram to or from a drive
     std::int32_t subject_pnu_ = -1;
 };
 

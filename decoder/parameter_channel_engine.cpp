@@ -9,6 +9,12 @@ namespace dpscope {
 
 namespace {
 
+// "in the vlt dialect"; the FC protocol has one table, no dialect.
+std::string where_defined(Dialect dialect) {
+    if (dialect == Dialect::Fc) return "in the FC protocol";
+    return fmt::format("in the {} dialect", dialect_name(dialect));
+}
+
 constexpr std::int64_t kNever = std::numeric_limits<std::int64_t>::max();
 constexpr std::size_t kAddresses = 128;
 
@@ -192,8 +198,8 @@ void ParameterChannelEngine::master_pcv(Channel& ch, const ParameterChannelSampl
     if (undefined) {
         if (Finding* f = add(out, policy_.kinds.unknown_code, s, 0)) {
             f->pnu = p.pnu;
-            f->message = fmt::format("request code {} {} is not defined in the {} dialect",
-                                     code_label(s.dialect), p.rc, dialect_name(s.dialect));
+            f->message = fmt::format("request code {} {} is not defined {}", code_label(s.dialect),
+                                     p.rc, where_defined(s.dialect));
         }
     }
     ch.pending =
@@ -284,8 +290,8 @@ std::optional<CompletedTransaction> ParameterChannelEngine::slave_pcv(
         if (Finding* f =
                 add(out, policy_.kinds.unknown_code, s, ch.pending.active ? ch.pending.frame : 0)) {
             f->pnu = r.pnu;
-            f->message = fmt::format("response code {} {} is not defined in the {} dialect",
-                                     code_label(dialect), r.rc, dialect_name(dialect));
+            f->message = fmt::format("response code {} {} is not defined {}", code_label(dialect),
+                                     r.rc, where_defined(dialect));
         }
         return std::nullopt;
     }

@@ -73,7 +73,6 @@ void append_fc_pkw(TextBuffer& out, const DecodedTelegram& t) {
     const FcTelegram& fc = t.fc;
     auto it = std::back_inserter(out);
     fmt::format_to(it, "AK={} {}", fc.pkw.rc, fc_ak_meaning(t));
-    if (!fc_ak_defined(t)) append(out, " (not defined)");
     fmt::format_to(it, " PNU={} ({}) IND={}", fc.pkw.pnu, fc_parameter_name(fc.pkw.pnu),
                    fc.pkw.ind);
     if (fc.block == FcBlock::Text) {

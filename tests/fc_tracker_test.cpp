@@ -129,12 +129,16 @@ TEST(FcTrackerTest, StackedCommandNamesTheFirst) {
 
 TEST(FcTrackerTest, NoResponseWhenTheMasterMovesOnOrTheTimeOutPasses) {
     FcRun run;
+    // An exchange with drive 9 first (the capture's first telegram is not judged, see
+    // ACaptureStartingWithAResponseIsNotJudgedForIt).
+    run.feed(fc_process(9), -1);
+    run.feed(fc_process(9, 0x0607), -1);
     run.feed(fc_parameter(1, 1, 414), 0);
     std::vector<Finding> found = run.feed(fc_process(2), 40);
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, FindingKind::FcNoResponse);
     EXPECT_EQ(found[0].slave, 1);
-    EXPECT_EQ(found[0].request_frame, 1u);
+    EXPECT_EQ(found[0].request_frame, 3u);
     EXPECT_NE(found[0].message.find("master's next telegram"), std::string::npos);
     EXPECT_EQ(run.station(1)->no_responses, 1u);
     // Drive 2 never answers: found at the end, past the 1000 ms time-out.
@@ -236,7 +240,7 @@ TEST(FcTrackerTest, UnexpectedAkAndUndefinedCodes) {
     // AK 5 is no FC command: unknown_code; the answer then closes it whatever it is.
     run.feed(fc_parameter(1, 5, 414), 10);
     EXPECT_EQ(run.all.back().kind, FindingKind::UnknownCode);
-    EXPECT_NE(run.all.back().message.find("request code AK 5 is not defined in the fc dialect"),
+    EXPECT_NE(run.all.back().message.find("request code AK 5 is not defined in the FC protocol"),
               std::string::npos)
         << run.all.back().message;
     // An undefined response AK, twice the same: each is a response of its own, each reported.
@@ -344,6 +348,29 @@ TEST(FcTrackerTest, ResponseTimeRunsFromTheCommandsLastByteAtTheLineRate) {
     ASSERT_EQ(late.size(), 1u);
     EXPECT_EQ(late[0].kind, FindingKind::FcLateResponse);
     EXPECT_NE(late[0].message.find("after 30.000 ms"), std::string::npos) << late[0].message;
+}
+
+TEST(FcTrackerTest, ACaptureStartingWithAResponseIsNotJudgedForIt) {
+    // A tap clipped onto a running bus: the first telegram is drive 1's answer, taken for a
+    // command (nothing marks it); the master then polls drive 2. No fc_no_response for it.
+    FcRun run;
+    run.feed(fc_process(1, 0x0607), 0);
+    run.feed(fc_process(2), 10);
+    run.feed(fc_process(2, 0x0607), 15);
+    run.feed(fc_process(1), 30);
+    run.feed(fc_process(1, 0x0607), 35);
+    EXPECT_TRUE(run.all.empty()) << run.all[0].message;
+    // Later in the capture the same pattern is a missing answer.
+    run.feed(fc_process(1), 200);
+    std::vector<Finding> found = run.feed(fc_process(2), 210);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcNoResponse);
+    // A first command whose AK only a command has is judged from the start.
+    FcRun certain;
+    certain.feed(fc_parameter(1, 14, 202, 0, 5), 0);
+    found = certain.feed(fc_process(2), 10);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcNoResponse);
 }
 
 }  // namespace

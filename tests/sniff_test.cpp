@@ -725,8 +725,9 @@ TEST(SniffTest, FcDrivesAreDecodedAndTrackedLive) {
               std::string::npos)
         << err;
 
-    // The capture records its bus: decode reads it as FC without --bus, and says nothing of it.
-    auto plain = test::run_dpscope({"decode", pcap});
+    // The capture records its bus: decode reads it as FC without --bus, and says nothing of it
+    // (the line rate is not recorded: --baud gives it).
+    auto plain = test::run_dpscope({"decode", "--baud", "115200", pcap});
     EXPECT_EQ(plain.exit_code, 0) << plain.err;
     EXPECT_EQ(plain.err, "");
     EXPECT_EQ(lines_with(plain.out, " FC  ").size(), capture.telegrams.size()) << plain.out;
