@@ -1,6 +1,7 @@
 #include "cli/common_options.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <charconv>
@@ -406,6 +407,25 @@ void say_bus_choice(const DecodeSettings& settings, const BusChoice& choice,
                                      bus_title(choice.protocol->protocol), choice.reason));
 }
 
+void warn_profibus_options(const DecodeSettings& settings, const std::string& input) {
+    if (settings.protocol->protocol != Protocol::Fc) return;
+    const DecoderOptions& dp = settings.decoder;
+    std::vector<std::string_view> given;
+    if (std::any_of(dp.station_ppo.begin(), dp.station_ppo.end(),
+                    [](std::uint8_t ppo) { return ppo != 0; }))
+        given.push_back("--ppo");
+    if (dp.dialect != Dialect::Vlt ||
+        std::any_of(dp.station_dialect.begin(), dp.station_dialect.end(),
+                    [](const std::optional<Dialect>& d) { return d.has_value(); }))
+        given.push_back("--dialect");
+    if (dp.pcd_profile) given.push_back("--pcd-profile");
+    if (given.empty()) return;
+    print_warning(fmt::format(
+        "{}: {} {} to PROFIBUS DP; this capture is the FC protocol, whose code tables and FC "
+        "profile words are fixed: ignored",
+        input, fmt::join(given, ", "), given.size() == 1 ? "applies" : "apply"));
+}
+
 OpenResult open_input(const std::string& path, InputFormat format, DecodeSettings& settings) {
     BusChoice choice;
     OpenResult opened =
@@ -413,6 +433,7 @@ OpenResult open_input(const std::string& path, InputFormat format, DecodeSetting
     if (!opened) return opened;
     settings.protocol = choice.protocol;
     say_bus_choice(settings, choice, (*opened)->name());
+    warn_profibus_options(settings, (*opened)->name());
     return opened;
 }
 

@@ -14,6 +14,10 @@ std::string fc_parameter_name(std::uint16_t pnu) {
 }
 
 std::string_view fc_ak_meaning(const DecodedTelegram& t) {
+    // AK 15 is "read text" in seed 001, "read/write text" in the FC 102 guide: IND's high byte
+    // 0x05 asks to write it.
+    if (t.direction == Direction::Request && t.fc.pkw.rc == 15 && t.fc.ind_high == kFcTextWrite)
+        return "Write text";
     return t.direction == Direction::Request ? fc_command(t.fc.pkw.rc).meaning
                                              : fc_response(t.fc.pkw.rc).meaning;
 }

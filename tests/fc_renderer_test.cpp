@@ -492,5 +492,29 @@ TEST(FcRendererTest, PnuAndStationFiltersSelectFcTelegrams) {
     EXPECT_EQ(station.out.find("broadcast"), std::string::npos) << station.out;
 }
 
+TEST(FcRendererTest, ProfibusOnlyOptionsOnAnFcCaptureAreNamedAsIgnored) {
+    test::CommandResult r = test::run_dpscope(
+        {"decode", "-q", "--dialect", "ge", "--pcd-profile", "profidrive", "samples/fc.pcap"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err,
+              "dpscope: warning: samples/fc.pcap: --dialect, --pcd-profile apply to PROFIBUS DP; "
+              "this capture is the FC protocol, whose code tables and FC profile words are fixed: "
+              "ignored\n");
+    test::CommandResult dp =
+        test::run_dpscope({"decode", "-q", "--dialect", "ge", "samples/ge.pcap"});
+    EXPECT_EQ(dp.err, "");
+}
+
+TEST(FcRendererTest, TextWriteIsNamedByTheIndHighByte) {
+    // AK 15 with IND high byte 0x05 writes the text (FC 102 guide: "read/write text").
+    const std::string text =
+        render(OutputFormat::Text,
+               {telegram(0x81, text_block(1, kFcTextWrite, "Deutsch", 0x047F, 0x2000))});
+    EXPECT_NE(text.find("AK=15 Write text PNU=1"), std::string::npos) << text;
+    const std::string read = render(
+        OutputFormat::Text, {telegram(0x81, text_block(1, kFcTextRead, "", 0x047F, 0x2000))});
+    EXPECT_NE(read.find("AK=15 Read text PNU=1"), std::string::npos) << read;
+}
+
 }  // namespace
 }  // namespace dpscope
