@@ -241,22 +241,9 @@ class Dpv1Section final : public StationSection {
         html_kv(b, "Negative responses", fmt::format("{}", s_.negative_responses));
         html_kv(b, "Error PDUs", fmt::format("{}", s_.error_pdus));
         append(b, "</table>\n<h3>Parameters accessed</h3>\n");
-        if (s_.parameters.empty()) {
-            append(b, "<p class=\"meta\">None.</p>\n");
-        } else {
-            append(b,
-                   "<table class=\"parameters\"><tr><th class=\"n\">PNU</th><th "
-                   "class=\"n\">reads</th><th class=\"n\">writes</th></tr>\n");
-            for (const auto& [pnu, use] : s_.parameters)
-                fmt::format_to(it,
-                               "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td "
-                               "class=\"n\">{}</td></tr>\n",
-                               pnu, use.reads, use.writes);
-            append(b, "</table>\n");
-            if (s_.parameters_not_counted)
-                fmt::format_to(it, "<p class=\"meta\">{} to further PNUs not counted.</p>\n",
-                               plural_count(s_.parameters_not_counted, "access", "accesses"));
-        }
+        if (html_parameter_table(b, s_.parameters) && s_.parameters_not_counted)
+            fmt::format_to(it, "<p class=\"meta\">{} to further PNUs not counted.</p>\n",
+                           plural_count(s_.parameters_not_counted, "access", "accesses"));
         if (!s_.negative_errors.empty()) {
             append(b,
                    "<h3>Negative responses</h3>\n<table class=\"rejections\"><tr><th "

@@ -236,23 +236,9 @@ class FcSection final : public StationSection {
                "style=\"background:#2e90fa\"></i>notes</span></div>\n");
         svg_timeline(b, timeline_, title_lower(), c);
         append(b, "<h3>Parameters accessed</h3>\n");
-        if (s.parameters.empty()) {
-            append(b, "<p class=\"meta\">None.</p>\n");
-        } else {
-            append(b,
-                   "<table class=\"parameters\"><tr><th class=\"n\">PNU</th><th "
-                   "class=\"n\">reads</th><th class=\"n\">writes</th></tr>\n");
-            for (const auto& [pnu, access] : s.parameters)
-                fmt::format_to(it,
-                               "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td "
-                               "class=\"n\">{}</td></tr>\n",
-                               pnu, access.reads, access.writes);
-            append(b, "</table>\n");
-            if (s.parameters_not_counted)
-                fmt::format_to(it,
-                               "<p class=\"meta\">{} more accesses to further parameters.</p>\n",
-                               s.parameters_not_counted);
-        }
+        if (html_parameter_table(b, s.parameters) && s.parameters_not_counted)
+            fmt::format_to(it, "<p class=\"meta\">{} more accesses to further parameters.</p>\n",
+                           s.parameters_not_counted);
         if (!s.channel.rejections.empty()) {
             append(b,
                    "<h3>Rejected commands</h3>\n<table class=\"rejections\"><tr><th "

@@ -1,8 +1,11 @@
 // Escaping and small building blocks for the Markdown, HTML and JUnit (XML) reports.
 #pragma once
 
+#include <fmt/format.h>
+
 #include <array>
 #include <cstdint>
+#include <iterator>
 #include <string>
 #include <string_view>
 
@@ -25,6 +28,28 @@ void html_findings_by_kind(TextBuffer& b, const FindingCounts& findings,
 // the error, warning and note columns of a station's HTML row.
 std::array<std::uint64_t, 3> severity_totals(const FindingCounts& findings,
                                              const FindingSeverityCounts& by_severity);
+
+// HTML "Parameters accessed": a table of PNUs with their reads and writes (`parameters` maps PNU ->
+// anything with `reads` and `writes`), or "None." when it is empty. Returns whether a table was
+// written (the caller then says what was not counted).
+template <typename ParameterMap>
+bool html_parameter_table(TextBuffer& b, const ParameterMap& parameters) {
+    if (parameters.empty()) {
+        fmt::format_to(std::back_inserter(b), "<p class=\"meta\">None.</p>\n");
+        return false;
+    }
+    auto it = std::back_inserter(b);
+    fmt::format_to(it,
+                   "<table class=\"parameters\"><tr><th class=\"n\">PNU</th><th "
+                   "class=\"n\">reads</th><th class=\"n\">writes</th></tr>\n");
+    for (const auto& [pnu, access] : parameters)
+        fmt::format_to(it,
+                       "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td "
+                       "class=\"n\">{}</td></tr>\n",
+                       pnu, access.reads, access.writes);
+    fmt::format_to(it, "</table>\n");
+    return true;
+}
 
 // HTML: a station's latency histogram as inline SVG (`who`: "slave 3", in its label), or a line
 // saying why there is none (`answered`: anything was answered).
