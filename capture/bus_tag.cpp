@@ -148,6 +148,10 @@ BusChoice choose_by_label(const CaptureLabel& label, bool complete) {
         choice.reason =
             "a USER0 capture without a bus tag whose first record starts with STX (0x02)";
         choice.say = true;
+    } else if (*label.first_byte == kVlt2000Start) {
+        choice.protocol = &vlt2000_protocol();
+        choice.reason = "a USER0 capture without a bus tag whose first record starts with '<'";
+        choice.say = true;
     } else {
         choice.reason =
             fmt::format("a USER0 capture without a bus tag whose first record starts with 0x{:02X}",
@@ -159,13 +163,19 @@ BusChoice choose_by_label(const CaptureLabel& label, bool complete) {
 }  // namespace
 
 std::uint32_t pcap_bus_number(Protocol protocol) noexcept {
-    return protocol == Protocol::Fc ? 2 : 1;
+    switch (protocol) {
+        case Protocol::Fc: return 2;
+        case Protocol::Vlt2000: return 3;
+        case Protocol::ProfibusDp: break;
+    }
+    return 1;
 }
 
 std::optional<Protocol> protocol_of_pcap_bus_number(std::uint32_t number) noexcept {
     switch (number) {
         case 1: return Protocol::ProfibusDp;
         case 2: return Protocol::Fc;
+        case 3: return Protocol::Vlt2000;
         default: return std::nullopt;
     }
 }

@@ -4,9 +4,9 @@
 //
 // pcap: the file header's fields thiszone (bytes 8-11) and sigfigs (bytes 12-15), which the pcap
 // specification has writers fill with 0 and readers ignore, hold the ASCII magic "dpsc" and the
-// bus number (1 PROFIBUS DP, 2 FC protocol) as a 32-bit word in the file's byte order.
+// bus number (1 PROFIBUS DP, 2 FC protocol, 3 VLT 2000) as a 32-bit word in the file's byte order.
 // pcapng: the first interface description block carries the option if_description (code 3)
-// "dpscope bus=profibus" or "dpscope bus=fc".
+// "dpscope bus=profibus", "dpscope bus=fc" or "dpscope bus=vlt2000".
 #pragma once
 
 #include <cstdint>
@@ -25,7 +25,8 @@ inline constexpr std::uint8_t kPcapBusTagMagic[4] = {'d', 'p', 's', 'c'};
 // pcapng if_description of a tagged interface: the prefix, then the protocol name ("fc").
 inline constexpr std::string_view kPcapngBusTagPrefix = "dpscope bus=";
 
-// The bus number written into a pcap header (1 PROFIBUS DP, 2 FC protocol), and back.
+// The bus number written into a pcap header (1 PROFIBUS DP, 2 FC protocol, 3 VLT 2000), and
+// back.
 std::uint32_t pcap_bus_number(Protocol protocol) noexcept;
 std::optional<Protocol> protocol_of_pcap_bus_number(std::uint32_t number) noexcept;
 

@@ -5,6 +5,7 @@
 
 #include "decoder/fc_framing_rules.hpp"
 #include "decoder/fdl_framing_rules.hpp"
+#include "decoder/vlt2000_framing_rules.hpp"
 
 namespace dpscope {
 
@@ -39,13 +40,24 @@ const CaptureProtocol& fc_protocol() noexcept {
     return protocol;
 }
 
+const CaptureProtocol& vlt2000_protocol() noexcept {
+    static const CaptureProtocol protocol{Protocol::Vlt2000, vlt2000_framing_rules(),
+                                          kUser0LinkTypes};
+    return protocol;
+}
+
 const CaptureProtocol& capture_protocol(Protocol protocol) noexcept {
-    return protocol == Protocol::Fc ? fc_protocol() : profibus_dp_protocol();
+    switch (protocol) {
+        case Protocol::Fc: return fc_protocol();
+        case Protocol::Vlt2000: return vlt2000_protocol();
+        case Protocol::ProfibusDp: break;
+    }
+    return profibus_dp_protocol();
 }
 
 std::span<const CaptureProtocol* const> capture_protocols() noexcept {
-    static const std::array<const CaptureProtocol*, 2> protocols{&profibus_dp_protocol(),
-                                                                 &fc_protocol()};
+    static const std::array<const CaptureProtocol*, 3> protocols{
+        &profibus_dp_protocol(), &fc_protocol(), &vlt2000_protocol()};
     return protocols;
 }
 

@@ -4,7 +4,7 @@
 // pcap and pcapng readers (the serial source gets its framing rules); none of them names a
 // protocol itself.
 //
-// PROFIBUS DP and the Danfoss FC protocol today. Another adds its framing rules in decoder/ and a
+// PROFIBUS DP, the Danfoss FC protocol and the VLT 2000 telegram today. Another adds its framing rules in decoder/ and a
 // CaptureProtocol here, and is listed in capture_protocols().
 #pragma once
 
@@ -44,6 +44,10 @@ const CaptureProtocol& profibus_dp_protocol() noexcept;
 
 // The Danfoss FC protocol on RS-485: FC framing (decoder/fc_framing_rules.hpp), link type USER0.
 const CaptureProtocol& fc_protocol() noexcept;
+
+// The VLT 2000 serial telegram: VLT 2000 framing (decoder/vlt2000_framing_rules.hpp), link type
+// USER0.
+const CaptureProtocol& vlt2000_protocol() noexcept;
 
 // The capture protocol of a decoder protocol.
 const CaptureProtocol& capture_protocol(Protocol protocol) noexcept;

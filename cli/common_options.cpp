@@ -126,12 +126,13 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
         ->check(whole_number(1, kMaxCount, " telegrams"))
         ->type_name("N");
     app.add_option("--bus", values.bus,
-                   "The bus the capture carries: profibus (PROFIBUS DP) or fc (Danfoss FC "
-                   "protocol on RS-485). Default: from the capture (a pcap of link type 257 is "
+                   "The bus the capture carries: profibus (PROFIBUS DP), fc (Danfoss FC "
+                   "protocol on RS-485) or vlt2000 (VLT 2000/3000/3500 ASCII telegram). Default: "
+                   "from the capture (a pcap of link type 257 is "
                    "PROFIBUS; a USER0 pcap written by dpscope names its bus; a raw or hex byte "
                    "stream is tried with each bus's framing, and the choice is said on standard "
                    "error)")
-        ->check(CLI::IsMember({"profibus", "fc"}))
+        ->check(CLI::IsMember({"profibus", "fc", "vlt2000"}))
         ->type_name("BUS");
     app.add_option("--fc-pnu-bits", values.fc_pnu_bits,
                    "FC protocol: PKE bits holding the PNU: 12 (FC series, the default) or 11 "
@@ -160,7 +161,8 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_option("--timeout-ms", values.timeout_ms,
                    "Session tracker: a parameter request unanswered (or a spontaneous message "
                    "unacknowledged) for longer than this is a finding; FC protocol: a command "
-                   "unanswered for longer (fc_no_response)")
+                   "unanswered for longer (fc_no_response); VLT 2000: a command unanswered for "
+                   "longer (vlt2000_no_response)")
         ->check(whole_number(1, 3'600'000, " ms"))
         ->type_name("MS")
         ->default_str("1000");
@@ -171,13 +173,21 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
         ->check(whole_number(1, 60'000, " ms"))
         ->type_name("MS")
         ->default_str("20");
+    app.add_option("--vlt2000-checksum", values.vlt2000_checksum,
+                   "VLT 2000: check the telegrams' checksum (sum of bytes 2-19, last two decimal "
+                   "digits, the VLT 3000/3500 rule) or ignore it, for a drive that computes it "
+                   "otherwise. Default: check")
+        ->check(CLI::IsMember({"check", "ignore"}))
+        ->type_name("check|ignore")
+        ->default_str("check");
     app.add_flag("--strict", values.strict,
                  "Session tracker: RC 8 (no operating authority) after a read request is an "
                  "unexpected response type, not only unusual");
 }
 
 Result<int> capture_link_type(const CaptureProtocol& protocol, std::optional<int> given) {
-    if (!given) return protocol.protocol == Protocol::Fc ? kLinkTypeUser0 : kLinkTypeProfibusDl;
+    if (!given)
+        return protocol.protocol == Protocol::ProfibusDp ? kLinkTypeProfibusDl : kLinkTypeUser0;
     if (*given == kLinkTypeProfibusDl && protocol.protocol != Protocol::ProfibusDp)
         return Error{fmt::format(
             "--linktype profibus: link type 257 (PROFIBUS_DL) is PROFIBUS only; a capture of {} is "
@@ -216,6 +226,9 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     }
     settings.fc_decoder.pnu_bits = static_cast<std::uint8_t>(values.fc_pnu_bits);
     settings.fc_decoder.response_window_ns = settings.tracker.timeout_ns;
+    settings.vlt2000_decoder.response_window_ns = settings.tracker.timeout_ns;
+    settings.vlt2000_tracker.timeout_ns = settings.tracker.timeout_ns;
+    settings.vlt2000_decoder.check_checksum = values.vlt2000_checksum != "ignore";
     for (unsigned station : values.stations)
         settings.stations.push_back(static_cast<std::uint8_t>(station));
     for (unsigned pnu : values.pnus)
@@ -309,9 +322,9 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
 
 std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept {
     std::bitset<kStationCount> stations;
-    if (t.protocol == Protocol::Fc) {
-        // The FC master has no address: a telegram is about its drive, a broadcast about address 0
-        // (the report's "Broadcasts" section).
+    if (t.protocol != Protocol::ProfibusDp) {
+        // The FC and VLT 2000 masters have no address: a telegram is about its drive, a broadcast
+        // about address 0 (the report's "Broadcasts" section).
         if (t.has_roles) stations.set(t.slave & 0x7F);
         return stations;
     }
@@ -323,6 +336,10 @@ std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept {
 bool addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
     // An FC telegram's PKW names its PNU (a response echoes its request's).
     if (t.protocol == Protocol::Fc) return t.fc.has_pkw && t.fc.pkw.pnu == pnu;
+    // A VLT 2000 telegram names its parameter (a C telegram's is ignored).
+    if (t.protocol == Protocol::Vlt2000)
+        return t.vlt2000.has_parameter && t.vlt2000.letter != Vlt2000Letter::Control &&
+               t.vlt2000.parameter == pnu;
     const ProfidriveMessage* message = t.dp.service_data.profidrive();
     if (!message) return false;
     return std::any_of(message->addresses.begin(), message->addresses.end(),
@@ -337,9 +354,11 @@ bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
             std::any_of(settings.stations.begin(), settings.stations.end(), [&](std::uint8_t a) {
                 return ends.test(a & 0x7F) ||
                        std::any_of(findings.begin(), findings.end(), [&](const Finding& f) {
-                           // The FC master has no address: an FC finding is about its drive.
+                           // The FC and VLT 2000 masters have no address: a finding is about
+                           // its drive.
                            return f.has_stations &&
-                                  ((f.master == a && t.protocol != Protocol::Fc) || f.slave == a);
+                                  ((f.master == a && t.protocol == Protocol::ProfibusDp) ||
+                                   f.slave == a);
                        });
             });
         if (!match) return false;
@@ -385,7 +404,12 @@ namespace {
 
 // The bus as messages name it: "the FC protocol (RS-485)", "PROFIBUS DP".
 std::string bus_title(Protocol protocol) {
-    return protocol == Protocol::Fc ? "the FC protocol (RS-485)" : "PROFIBUS DP";
+    switch (protocol) {
+        case Protocol::Fc: return "the FC protocol (RS-485)";
+        case Protocol::Vlt2000: return "the VLT 2000 telegram";
+        case Protocol::ProfibusDp: break;
+    }
+    return "PROFIBUS DP";
 }
 
 }  // namespace
@@ -408,7 +432,7 @@ void say_bus_choice(const DecodeSettings& settings, const BusChoice& choice,
 }
 
 void warn_profibus_options(const DecodeSettings& settings, const std::string& input) {
-    if (settings.protocol->protocol != Protocol::Fc) return;
+    if (settings.protocol->protocol == Protocol::ProfibusDp) return;
     const DecoderOptions& dp = settings.decoder;
     std::vector<std::string_view> given;
     if (std::any_of(dp.station_ppo.begin(), dp.station_ppo.end(),

@@ -20,6 +20,8 @@
 #include "decoder/fc_tracker.hpp"
 #include "decoder/result.hpp"
 #include "decoder/session_tracker.hpp"
+#include "decoder/vlt2000_decoder.hpp"
+#include "decoder/vlt2000_tracker.hpp"
 #include "formats/renderer.hpp"
 
 namespace dpscope::cli {
@@ -84,7 +86,8 @@ struct DecodeOptionValues {
     std::string pcd_profile;
     std::uint32_t timeout_ms = 1000;
     std::uint32_t fc_response_ms = 20;
-    std::uint32_t baud = 0;  // --baud (decode, hex, report): 0 = not given
+    std::string vlt2000_checksum = "check";  // check or ignore
+    std::uint32_t baud = 0;                  // --baud (decode, hex, report): 0 = not given
     bool strict = false;
     bool line_buffered = false;
     // decode/hex -w: the telegrams shown, as a capture.
@@ -115,6 +118,8 @@ struct DecodeSettings {
     FcDecoderOptions fc_decoder;
     TrackerOptions tracker;
     FcTrackerOptions fc_tracker;
+    Vlt2000DecoderOptions vlt2000_decoder;
+    Vlt2000TrackerOptions vlt2000_tracker;
     OutputFormat format = OutputFormat::Text;
     bool quiet = false;
     bool line_buffered = false;  // -l: flush the output after every telegram

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <span>
+#include <type_traits>
 
 #include "capture/telegram_source.hpp"
 #include "cli/common_options.hpp"
@@ -9,6 +10,7 @@
 #include "decoder/counted.hpp"
 #include "decoder/fc_tracker.hpp"
 #include "decoder/session_tracker.hpp"
+#include "decoder/vlt2000_tracker.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/report.hpp"
 #include "formats/report_timeline.hpp"
@@ -16,51 +18,63 @@
 
 namespace dpscope::cli {
 
+// One bus's decoder and tracker: what the pipeline feeds for a capture of that bus.
+template <class Decoder, class Tracker>
+struct ProtocolLane {
+    Decoder decoder;
+    Tracker tracker;
+
+    template <class DecoderOptions, class TrackerOptions>
+    ProtocolLane(const DecoderOptions& decoder_options, const TrackerOptions& tracker_options)
+        : decoder(decoder_options), tracker(tracker_options) {}
+
+    const DecodedTelegram& feed(const Record& record, std::span<const Finding>& findings) {
+        const DecodedTelegram& t = decoder.decode(record.bytes, record.time_ns, record.number);
+        findings = tracker.track(t);
+        return t;
+    }
+};
+
+using DpLane = ProtocolLane<BusDecoder, SessionTracker>;
+using FcLane = ProtocolLane<FcDecoder, FcTracker>;
+using Vlt2000Lane = ProtocolLane<Vlt2000Decoder, Vlt2000Tracker>;
+
 class Pipeline {
   public:
     // `keep_timelines`: build the per-channel timelines (only the HTML report shows them; the
     // hot path of every other command skips them).
-    // The protocol is chosen once, from settings.protocol: its decoder and tracker are the ones
-    // fed.
+    // The protocol is chosen once, from settings.protocol: its lane (decoder and tracker) is the
+    // one fed. A new bus is a lane here and a case in with_lane().
     explicit Pipeline(const DecodeSettings& settings, bool keep_timelines = false)
         : protocol_(settings.protocol->protocol),
-          decoder_(settings.decoder),
-          fc_decoder_(settings.fc_decoder),
-          tracker_(settings.tracker),
-          fc_tracker_(settings.fc_tracker),
+          dp_(settings.decoder, settings.tracker),
+          fc_(settings.fc_decoder, settings.fc_tracker),
+          vlt2000_(settings.vlt2000_decoder, settings.vlt2000_tracker),
           keep_timelines_(keep_timelines) {}
 
     // Decodes and tracks one record; `findings` receives what the tracker found at it.
     const DecodedTelegram& feed(const Record& record, std::span<const Finding>& findings) {
-        if (protocol_ == Protocol::Fc) {
-            const DecodedTelegram& t =
-                fc_decoder_.decode(record.bytes, record.time_ns, record.number);
-            findings = fc_tracker_.track(t);
+        return with_lane([&](auto& lane) -> const DecodedTelegram& {
+            const DecodedTelegram& t = lane.feed(record, findings);
             summary_.add(t);
             summary_.add_findings(findings);
-            if (keep_timelines_) timelines_.add(findings, fc_tracker_.completed());
+            if (keep_timelines_) timelines_.add(findings, lane.tracker.completed());
             return t;
-        }
-        const DecodedTelegram& t = decoder_.decode(record.bytes, record.time_ns, record.number);
-        findings = tracker_.track(t);
-        summary_.add(t);
-        summary_.add_findings(findings);
-        if (keep_timelines_) timelines_.add(findings, tracker_.completed());
-        return t;
+        });
     }
     // The end of the input: findings still open past the time-out.
     // `end_ns`: when the capture ended, if later than its last telegram (a live capture's stop).
     std::span<const Finding> finish(std::int64_t end_ns = kNoTime) {
         std::span<const Finding> findings =
-            protocol_ == Protocol::Fc ? fc_tracker_.finish(end_ns) : tracker_.finish(end_ns);
-        if (protocol_ == Protocol::Fc && fc_tracker_.early_responses() != 0) {
-            const FcTrackerOptions& line = fc_tracker_.options();
+            with_lane([&](auto& lane) { return lane.tracker.finish(end_ns); });
+        if (protocol_ == Protocol::Fc && fc_.tracker.early_responses() != 0) {
+            const FcTrackerOptions& line = fc_.tracker.options();
             print_warning(fmt::format(
                 "{} began before {} command could have ended at {} baud ({} bits a byte): the "
                 "line was faster; the drives' response times are counted from the commands' last "
                 "bytes at that rate (0 for these); give the line's rate with --baud",
-                counted(fc_tracker_.early_responses(), "response", "responses"),
-                fc_tracker_.early_responses() == 1 ? "its" : "their", line.line_baud,
+                counted(fc_.tracker.early_responses(), "response", "responses"),
+                fc_.tracker.early_responses() == 1 ? "its" : "their", line.line_baud,
                 line.character_bits));
         }
         summary_.add_findings(findings);
@@ -69,23 +83,35 @@ class Pipeline {
     }
 
     Protocol protocol() const noexcept { return protocol_; }
-    const BusDecoder& decoder() const noexcept { return decoder_; }
-    const SessionTracker& tracker() const noexcept { return tracker_; }
-    const FcTracker& fc_tracker() const noexcept { return fc_tracker_; }
+    const BusDecoder& decoder() const noexcept { return dp_.decoder; }
+    const SessionTracker& tracker() const noexcept { return dp_.tracker; }
+    const FcTracker& fc_tracker() const noexcept { return fc_.tracker; }
+    const Vlt2000Tracker& vlt2000_tracker() const noexcept { return vlt2000_.tracker; }
     // The parameter number the last telegram's parameter channel is about (-1: none), from the
     // protocol's tracker.
     std::int32_t subject_pnu() const noexcept {
-        return protocol_ == Protocol::Fc ? fc_tracker_.subject_pnu() : tracker_.subject_pnu();
+        return const_cast<Pipeline*>(this)->with_lane(
+            [](auto& lane) { return lane.tracker.subject_pnu(); });
     }
     const Summary& summary() const noexcept { return summary_; }
     const ChannelTimelines& timelines() const noexcept { return timelines_; }
 
   private:
+    // Calls `f` with the lane of the capture's protocol.
+    template <class F>
+    std::invoke_result_t<F&, DpLane&> with_lane(F&& f) {
+        switch (protocol_) {
+            case Protocol::Fc: return f(fc_);
+            case Protocol::Vlt2000: return f(vlt2000_);
+            case Protocol::ProfibusDp: break;
+        }
+        return f(dp_);
+    }
+
     Protocol protocol_;
-    BusDecoder decoder_;
-    FcDecoder fc_decoder_;
-    SessionTracker tracker_;
-    FcTracker fc_tracker_;
+    DpLane dp_;
+    FcLane fc_;
+    Vlt2000Lane vlt2000_;
     Summary summary_;
     ChannelTimelines timelines_;
     bool keep_timelines_ = false;
@@ -107,6 +133,7 @@ inline ReportContext report_context(const Pipeline& pipeline, const TelegramSour
     context.protocol = pipeline.protocol();
     context.tracker = &pipeline.tracker();
     context.fc_tracker = &pipeline.fc_tracker();
+    context.vlt2000_tracker = &pipeline.vlt2000_tracker();
     context.timelines = &pipeline.timelines();  // empty unless the pipeline kept them
     context.findings = &log;
     context.fail_on = fail_on;

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "decoder/fc_codes.hpp"
+#include "decoder/vlt2000_codes.hpp"
 
 namespace dpscope {
 
@@ -12,6 +13,7 @@ std::string_view dialect_name(Dialect dialect) {
         case Dialect::Ge: return "ge";
         case Dialect::Profidrive: return "profidrive";
         case Dialect::Fc: return "fc";
+        case Dialect::Vlt2000: return "vlt2000";
     }
     return "vlt";
 }
@@ -323,6 +325,7 @@ const RequestCode& request_code(Dialect dialect, std::uint8_t rc) noexcept {
         case Dialect::Ge: return kGeRequests[rc & 0x0F];
         case Dialect::Profidrive: return kProfidriveRequests[rc & 0x0F];
         case Dialect::Fc: return fc_tables().requests[rc & 0x0F];
+        case Dialect::Vlt2000: return vlt2000_request_code(rc);
         case Dialect::Vlt: break;
     }
     return kVltRequests[rc & 0x0F];
@@ -333,6 +336,7 @@ const ResponseCode& response_code(Dialect dialect, std::uint8_t rc) noexcept {
         case Dialect::Ge: return kGeResponses[rc & 0x0F];
         case Dialect::Profidrive: return kProfidriveResponses[rc & 0x0F];
         case Dialect::Fc: return fc_tables().responses[rc & 0x0F];
+        case Dialect::Vlt2000: return vlt2000_response_code(rc);
         case Dialect::Vlt: break;
     }
     return kVltResponses[rc & 0x0F];
@@ -343,6 +347,7 @@ std::string_view error_text(Dialect dialect, std::uint16_t number) noexcept {
         case Dialect::Ge: return find_error(kGeErrors, number);
         case Dialect::Profidrive: return find_error(kProfidriveErrors, number);
         case Dialect::Fc: return fc_fault_text(number);
+        case Dialect::Vlt2000: return vlt2000_reason_text(number);
         case Dialect::Vlt: break;
     }
     return find_error(kVltErrors, number);
@@ -351,12 +356,14 @@ std::string_view error_text(Dialect dialect, std::uint16_t number) noexcept {
 std::string_view error_text_or_unknown(Dialect dialect, std::uint16_t number) noexcept {
     std::string_view text = error_text(dialect, number);
     if (!text.empty()) return text;
+    if (dialect == Dialect::Vlt2000) return kUnknownReasonCode;
     return dialect == Dialect::Fc ? kUnknownFaultCode : kUnknownErrorNumber;
 }
 
 AnswerVerdict judge_answer(Dialect dialect, std::uint8_t request_rc, std::uint8_t response_rc,
                            bool strict) noexcept {
     if (dialect == Dialect::Fc) return fc_judge_answer(request_rc, response_rc);
+    if (dialect == Dialect::Vlt2000) return vlt2000_judge_answer(request_rc, response_rc);
     const RequestCode& request = request_code(dialect, request_rc);
     const ResponseCode& response = response_code(dialect, response_rc);
     if (!request.defined || response.kind == ResponseKind::Undefined) return AnswerVerdict::Invalid;

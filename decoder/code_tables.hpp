@@ -31,7 +31,7 @@
 
 namespace dpscope {
 
-enum class Dialect : std::uint8_t { Vlt, Profidrive, Ge, Fc };
+enum class Dialect : std::uint8_t { Vlt, Profidrive, Ge, Fc, Vlt2000 };
 
 // The dialects of a PROFIBUS slave's PCV (--dialect, the dialect hint). Dialect::Fc is the FC
 // carrier's own and is left out.
@@ -49,15 +49,19 @@ std::optional<Dialect> dialect_from_name(std::string_view name);
 constexpr bool danfoss_family(Dialect dialect) noexcept { return dialect != Dialect::Profidrive; }
 // Whether the dialect's RC 9..12 are spontaneous messages (ge: "not used"; fc: no such codes).
 constexpr bool has_spontaneous_messages(Dialect dialect) noexcept {
-    return dialect != Dialect::Ge && dialect != Dialect::Fc;
+    return dialect != Dialect::Ge && dialect != Dialect::Fc && dialect != Dialect::Vlt2000;
 }
 // What the dialect's sources call the code and the number of a rejection: "RC" and "error" for
 // the PROFIBUS dialects, "AK" and "fault code" for fc.
+// vlt2000: "code" (the engine's number for a control letter, decoder/vlt2000_codes.hpp) and
+// "reason code".
 constexpr std::string_view code_label(Dialect dialect) noexcept {
-    return dialect == Dialect::Fc ? "AK" : "RC";
+    return dialect == Dialect::Fc ? "AK" : dialect == Dialect::Vlt2000 ? "code" : "RC";
 }
 constexpr std::string_view error_label(Dialect dialect) noexcept {
-    return dialect == Dialect::Fc ? "fault code" : "error";
+    return dialect == Dialect::Fc        ? "fault code"
+           : dialect == Dialect::Vlt2000 ? "reason code"
+                                         : "error";
 }
 
 // Which of the two IND bytes holds the subindex: the first on the wire or the second.
@@ -126,8 +130,9 @@ std::string_view error_text(Dialect dialect, std::uint16_t number) noexcept;
 
 // What every output shows for an error number the dialect does not define.
 inline constexpr std::string_view kUnknownErrorNumber = "unknown error number";
-// The same for the FC protocol's fault codes (Dialect::Fc).
+// The same for the FC protocol's fault codes (Dialect::Fc) and the VLT 2000 reason codes.
 inline constexpr std::string_view kUnknownFaultCode = "unknown fault code";
+inline constexpr std::string_view kUnknownReasonCode = "unknown reason code";
 // error_text, or kUnknownErrorNumber (kUnknownFaultCode for Dialect::Fc) when the dialect does not
 // define the number.
 std::string_view error_text_or_unknown(Dialect dialect, std::uint16_t number) noexcept;

@@ -77,6 +77,23 @@ constexpr FindingKindInfo kCatalogue[] = {
      "commands are performed (AK 7 with a fault code)"},
     {FindingKind::FcBccError, "fc_bcc_error", Severity::Error, FcProtocol,
      "every telegram's BCC (XOR from STX) is right"},
+    {FindingKind::Vlt2000StackedRequest, "vlt2000_stacked_request", Severity::Error,
+     Vlt2000Protocol,
+     "the master waits for a drive's reply before its next telegram to that drive"},
+    {FindingKind::Vlt2000NoResponse, "vlt2000_no_response", Severity::Error, Vlt2000Protocol,
+     "every command to one drive is answered before the master's next telegram and within the "
+     "time-out"},
+    {FindingKind::Vlt2000UnexpectedReply, "vlt2000_unexpected_reply", Severity::Error,
+     Vlt2000Protocol, "nobody replies to a broadcast (address 00)"},
+    {FindingKind::Vlt2000MismatchedResponse, "vlt2000_mismatched_response", Severity::Error,
+     Vlt2000Protocol, "a reply carries the command's address, control letter and parameter"},
+    {FindingKind::Vlt2000CommandFailed, "vlt2000_command_failed", Severity::Note, Vlt2000Protocol,
+     "commands are carried out (a reply with decimal position 9, with its reason code)"},
+    {FindingKind::Vlt2000ChecksumError, "vlt2000_checksum_error", Severity::Error, Vlt2000Protocol,
+     "every telegram's checksum (sum of bytes 2-19, last two digits) is right"},
+    {FindingKind::Vlt2000ChecksumDisabled, "vlt2000_checksum_disabled", Severity::Note,
+     Vlt2000Protocol,
+     "telegrams carry a checksum (\"??\" switches the check off; once per address)"},
 };
 
 static_assert(catalogue::one_row_per_kind_in_order(std::span<const FindingKindInfo>(kCatalogue),
@@ -87,7 +104,7 @@ static_assert(catalogue::names_unique(std::span<const FindingKindInfo>(kCatalogu
 
 constexpr std::string_view kComponentNames[] = {
     "parameter channel",      "PROFIBUS link", "DP configuration",
-    "DP-V1 parameter access", "FC protocol",
+    "DP-V1 parameter access", "FC protocol",   "VLT 2000",
 };
 static_assert(std::size(kComponentNames) == kFindingComponentCount);
 

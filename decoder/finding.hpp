@@ -50,6 +50,13 @@ enum class FindingKind : std::uint8_t {
     FcUnexpectedResponseType,
     FcCommandRejected,
     FcBccError,
+    Vlt2000StackedRequest,
+    Vlt2000NoResponse,
+    Vlt2000UnexpectedReply,
+    Vlt2000MismatchedResponse,
+    Vlt2000CommandFailed,
+    Vlt2000ChecksumError,
+    Vlt2000ChecksumDisabled,
     Count
 };
 
@@ -64,6 +71,7 @@ enum class FindingComponent : std::uint8_t {
     DpConfiguration,   // PROFIBUS DP: Data_Exchange lengths against the Chk_Cfg configuration
     Dpv1ParameterAccess,  // PROFIdrive parameter access over DP-V1: Write, Read polls, response
     FcProtocol,  // the Danfoss FC protocol on RS-485: command -> response per drive address, BCC
+    Vlt2000Protocol,  // the VLT 2000 serial telegram: command -> reply per address, checksum
     Count
 };
 

@@ -58,6 +58,15 @@ constexpr ProblemKindInfo kCatalogue[] = {
      "FC protocol: the BCC (XOR of STX to the last data byte) is wrong"},
     {ProblemKind::AdrInvalid, "adr_invalid", Severity::Error, Fc,
      "FC protocol: the address byte names no address (0 in the 1-31 format, 127 in 1-126)"},
+    {ProblemKind::Vlt2000CharacterInvalid, "vlt2000_character_invalid", Severity::Error, Framing,
+     "VLT 2000: a character between '<' and '>' is not printable ASCII"},
+    {ProblemKind::Vlt2000FieldInvalid, "vlt2000_field_invalid", Severity::Error, Vlt2000,
+     "VLT 2000: a character that must be a digit (address, parameter, value, decimals, checksum) "
+     "is not"},
+    {ProblemKind::Vlt2000LetterUnknown, "vlt2000_letter_unknown", Severity::Error, Vlt2000,
+     "VLT 2000: the control letter is none of U, R, C, I"},
+    {ProblemKind::Vlt2000ChecksumMismatch, "vlt2000_checksum_mismatch", Severity::Error, Vlt2000,
+     "VLT 2000: the checksum (sum of bytes 2-19, last two decimal digits) is wrong"},
 };
 
 static_assert(catalogue::one_row_per_kind_in_order(std::span<const ProblemKindInfo>(kCatalogue),
@@ -66,7 +75,8 @@ static_assert(catalogue::one_row_per_kind_in_order(std::span<const ProblemKindIn
 static_assert(catalogue::names_unique(std::span<const ProblemKindInfo>(kCatalogue)),
               "kCatalogue: every problem kind needs a name of its own");
 
-constexpr std::string_view kComponentNames[] = {"framing", "FDL", "DP service", "FC telegram"};
+constexpr std::string_view kComponentNames[] = {"framing", "FDL", "DP service", "FC telegram",
+                                                "VLT 2000 telegram"};
 static_assert(std::size(kComponentNames) == kProblemComponentCount);
 
 }  // namespace
@@ -97,6 +107,26 @@ std::string_view problem_component_name(ProblemComponent component) {
     return kComponentNames[static_cast<std::size_t>(component)];
 }
 
+namespace {
+
+// 'A', or 0x07 for a character that does not print.
+std::string quoted_char(std::uint32_t c) {
+    if (c >= 0x20 && c <= 0x7E) return fmt::format("'{}'", static_cast<char>(c));
+    return fmt::format("0x{:02X}", c);
+}
+
+// The VLT 2000 field a byte offset belongs to (decoder/vlt2000_telegram.hpp).
+std::string_view vlt2000_field_at(std::uint32_t offset) {
+    if (offset <= 2) return "address";
+    if (offset <= 7) return "control/status word";
+    if (offset <= 11) return "parameter number";
+    if (offset <= 17) return "value";
+    if (offset == 18) return "decimal position";
+    return "checksum";
+}
+
+}  // namespace
+
 std::string problem_message(const Problem& p) {
     switch (p.kind) {
         case ProblemKind::EmptyRecord: return "record holds no bytes";
@@ -123,8 +153,9 @@ std::string problem_message(const Problem& p) {
             return fmt::format("byte {}: FCS 0x{:02X} wrong, checksum of the data is 0x{:02X}",
                                p.offset, p.actual, p.expected);
         case ProblemKind::BadEndDelimiter:
-            return fmt::format("byte {}: end delimiter is 0x{:02X}, expected 0x16", p.offset,
-                               p.actual);
+            // The VLT 2000 decoder names what it wanted ('>' 0x3E); FDL's is ED 0x16.
+            return fmt::format("byte {}: end delimiter is 0x{:02X}, expected 0x{:02X}", p.offset,
+                               p.actual, p.expected != 0 ? p.expected : 0x16u);
         case ProblemKind::TrailingBytes:
             return fmt::format("byte {}: {} after the end of the telegram", p.offset,
                                counted(p.actual, "byte", "bytes"));
@@ -158,6 +189,17 @@ std::string problem_message(const Problem& p) {
         case ProblemKind::AdrInvalid:
             return fmt::format("byte {}: address byte 0x{:02X} names no address", p.offset,
                                p.actual);
+        case ProblemKind::Vlt2000CharacterInvalid:
+            return fmt::format("byte {}: 0x{:02X} is not printable ASCII", p.offset, p.actual);
+        case ProblemKind::Vlt2000FieldInvalid:
+            return fmt::format("byte {}: {} is not a digit ({})", p.offset, quoted_char(p.actual),
+                               vlt2000_field_at(p.offset));
+        case ProblemKind::Vlt2000LetterUnknown:
+            return fmt::format("byte {}: control letter {} is none of U, R, C, I", p.offset,
+                               quoted_char(p.actual));
+        case ProblemKind::Vlt2000ChecksumMismatch:
+            return fmt::format("byte {}: checksum {:02} wrong, the sum of bytes 1-18 ends in {:02}",
+                               p.offset, p.actual, p.expected);
         case ProblemKind::Count: break;
     }
     return "unknown problem";

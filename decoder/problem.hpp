@@ -36,6 +36,10 @@ enum class ProblemKind : std::uint8_t {
     LgeInvalid,
     BccMismatch,
     AdrInvalid,
+    Vlt2000CharacterInvalid,
+    Vlt2000FieldInvalid,
+    Vlt2000LetterUnknown,
+    Vlt2000ChecksumMismatch,
     Count
 };
 
@@ -47,6 +51,7 @@ enum class ProblemComponent : std::uint8_t {
     Fdl,        // the FDL telegram's own fields: checksum, addresses, frame control
     DpService,  // the data unit of a DP service
     Fc,         // the Danfoss FC protocol telegram's own fields: checksum, address byte
+    Vlt2000,    // the VLT 2000 telegram's own fields: digits, control letter, checksum
     Count
 };
 

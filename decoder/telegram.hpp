@@ -14,6 +14,7 @@
 #include "decoder/fc_telegram.hpp"
 #include "decoder/problem.hpp"
 #include "decoder/time.hpp"
+#include "decoder/vlt2000_telegram.hpp"
 
 namespace dpscope {
 
@@ -24,9 +25,10 @@ inline constexpr std::size_t kStationCount = 128;
 enum class Protocol : std::uint8_t {
     ProfibusDp,  // PROFIBUS DP: the payload is `dp`
     Fc,          // the Danfoss FC protocol on RS-485: the payload is `fc`
+    Vlt2000,     // the VLT 2000 serial telegram (ASCII; VLT 3000, 3500): the payload is `vlt2000`
 };
 
-// "profibus", "fc": the name --bus takes and captures record.
+// "profibus", "fc", "vlt2000": the name --bus takes and captures record.
 std::string_view protocol_name(Protocol protocol) noexcept;
 std::optional<Protocol> protocol_from_name(std::string_view name) noexcept;
 
@@ -47,10 +49,16 @@ struct DecodedTelegram {
     Protocol protocol = Protocol::ProfibusDp;
     DpTelegram dp;
     FcTelegram fc;
+    Vlt2000Telegram vlt2000;
 
     // Every problem found at any layer, with byte offsets.
     const ProblemList& problems() const noexcept {
-        return protocol == Protocol::Fc ? fc.problems : dp.fdl.problems;
+        switch (protocol) {
+            case Protocol::Fc: return fc.problems;
+            case Protocol::Vlt2000: return vlt2000.problems;
+            case Protocol::ProfibusDp: break;
+        }
+        return dp.fdl.problems;
     }
     bool has_time() const noexcept { return time_ns != kNoTime; }
 };

@@ -15,6 +15,7 @@
 
 #include "decoder/fc_tracker.hpp"
 #include "decoder/session_tracker.hpp"
+#include "decoder/vlt2000_tracker.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/output.hpp"
 #include "formats/report_timeline.hpp"
@@ -39,9 +40,10 @@ struct ReportContext {
     // The capture's bus: its tracker's sections, bus findings and finding kinds are reported.
     Protocol protocol = Protocol::ProfibusDp;
     const BusDecoder* decoder = nullptr;
-    const SessionTracker* tracker = nullptr;      // PROFIBUS DP (always set: its options are read)
-    const FcTracker* fc_tracker = nullptr;        // the FC protocol (set for an FC capture)
-    const ChannelTimelines* timelines = nullptr;  // the HTML report's (none: empty timelines)
+    const SessionTracker* tracker = nullptr;  // PROFIBUS DP (always set: its options are read)
+    const FcTracker* fc_tracker = nullptr;    // the FC protocol (set for an FC capture)
+    const Vlt2000Tracker* vlt2000_tracker = nullptr;  // VLT 2000 (set for a VLT 2000 capture)
+    const ChannelTimelines* timelines = nullptr;      // the HTML report's (none: empty timelines)
     const FindingLog* findings = nullptr;
     FailOn fail_on = FailOn::Error;
     // --allow-empty: a capture in which nothing could be checked (no Data_Exchange telegram with

@@ -61,7 +61,8 @@ ReportModel build_report_model(const ReportContext& c) {
 bool is_dp_kind(FindingKind kind) {
     const FindingComponent component = finding_component(kind);
     return component != FindingComponent::Dpv1ParameterAccess &&
-           component != FindingComponent::FcProtocol;
+           component != FindingComponent::FcProtocol &&
+           component != FindingComponent::Vlt2000Protocol;
 }
 
 bool is_fc(const ReportContext& c) { return c.protocol == Protocol::Fc && c.fc_tracker; }

@@ -11,8 +11,8 @@ struct FaultInfo {
     std::optional<FindingKind> finding;  // the finding kind it is named after
     std::string_view own_name;           // set only for a fault no finding kind is named after
     bool needs_parameter_channel;
-    bool needs_dpv1 = false;  // acts on DP-V1 parameter access: needs a DP-V1 slave
-    bool fc = false;          // a fault of the FC protocol bus (simulate --bus fc)
+    bool needs_dpv1 = false;              // acts on DP-V1 parameter access: needs a DP-V1 slave
+    Protocol bus = Protocol::ProfibusDp;  // the bus it acts on (simulate --bus)
 };
 
 constexpr FaultInfo kFaults[] = {
@@ -46,18 +46,65 @@ constexpr FaultInfo kFaults[] = {
     {FaultKind::Dpv1NegativeResponse, FindingKind::Dpv1NegativeResponse, {}, false, true},
     {FaultKind::Dpv1LengthError, FindingKind::Dpv1LengthError, {}, false, true},
     {FaultKind::Dpv1ErrorPdu, FindingKind::Dpv1ErrorPdu, {}, false, true},
-    {FaultKind::FcStackedRequest, FindingKind::FcStackedRequest, {}, false, false, true},
-    {FaultKind::FcNoResponse, FindingKind::FcNoResponse, {}, false, false, true},
-    {FaultKind::FcLateResponse, FindingKind::FcLateResponse, {}, false, false, true},
-    {FaultKind::FcMismatchedResponse, FindingKind::FcMismatchedResponse, {}, false, false, true},
+    {FaultKind::FcStackedRequest, FindingKind::FcStackedRequest, {}, false, false, Protocol::Fc},
+    {FaultKind::FcNoResponse, FindingKind::FcNoResponse, {}, false, false, Protocol::Fc},
+    {FaultKind::FcLateResponse, FindingKind::FcLateResponse, {}, false, false, Protocol::Fc},
+    {FaultKind::FcMismatchedResponse,
+     FindingKind::FcMismatchedResponse,
+     {},
+     false,
+     false,
+     Protocol::Fc},
     {FaultKind::FcUnexpectedResponseType,
      FindingKind::FcUnexpectedResponseType,
      {},
      false,
      false,
-     true},
-    {FaultKind::FcCommandRejected, FindingKind::FcCommandRejected, {}, false, false, true},
-    {FaultKind::FcBccError, FindingKind::FcBccError, {}, false, false, true},
+     Protocol::Fc},
+    {FaultKind::FcCommandRejected, FindingKind::FcCommandRejected, {}, false, false, Protocol::Fc},
+    {FaultKind::FcBccError, FindingKind::FcBccError, {}, false, false, Protocol::Fc},
+    {FaultKind::Vlt2000StackedRequest,
+     FindingKind::Vlt2000StackedRequest,
+     {},
+     false,
+     false,
+     Protocol::Vlt2000},
+    {FaultKind::Vlt2000NoResponse,
+     FindingKind::Vlt2000NoResponse,
+     {},
+     false,
+     false,
+     Protocol::Vlt2000},
+    {FaultKind::Vlt2000UnexpectedReply,
+     FindingKind::Vlt2000UnexpectedReply,
+     {},
+     false,
+     false,
+     Protocol::Vlt2000},
+    {FaultKind::Vlt2000MismatchedResponse,
+     FindingKind::Vlt2000MismatchedResponse,
+     {},
+     false,
+     false,
+     Protocol::Vlt2000},
+    {FaultKind::Vlt2000CommandFailed,
+     FindingKind::Vlt2000CommandFailed,
+     {},
+     false,
+     false,
+     Protocol::Vlt2000},
+    {FaultKind::Vlt2000ChecksumError,
+     FindingKind::Vlt2000ChecksumError,
+     {},
+     false,
+     false,
+     Protocol::Vlt2000},
+    {FaultKind::Vlt2000ChecksumDisabled,
+     FindingKind::Vlt2000ChecksumDisabled,
+     {},
+     false,
+     false,
+     Protocol::Vlt2000},
 };
 
 // One entry per fault kind, in enum order; a name either from the finding catalogue or its own.
@@ -116,10 +163,12 @@ bool fault_needs_dpv1(FaultKind kind) noexcept {
     return index < std::size(kFaults) && kFaults[index].needs_dpv1;
 }
 
-bool fault_is_fc(FaultKind kind) noexcept {
+Protocol fault_bus(FaultKind kind) noexcept {
     auto index = static_cast<std::size_t>(kind);
-    return index < std::size(kFaults) && kFaults[index].fc;
+    return index < std::size(kFaults) ? kFaults[index].bus : Protocol::ProfibusDp;
 }
+
+bool fault_is_fc(FaultKind kind) noexcept { return fault_bus(kind) == Protocol::Fc; }
 
 bool fault_needs_spontaneous_messages(FaultKind kind) noexcept {
     return kind == FaultKind::SpontaneousMessage || kind == FaultKind::SpontaneousUnacknowledged;

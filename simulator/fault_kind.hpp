@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "decoder/finding.hpp"
+#include "decoder/telegram.hpp"
 
 namespace dpscope {
 
@@ -48,6 +49,13 @@ enum class FaultKind : std::uint8_t {
     FcUnexpectedResponseType,    // FC: the answer's AK does not fit the command
     FcCommandRejected,           // FC: AK 7 with a fault code
     FcBccError,                  // FC: one telegram's BCC is wrong
+    Vlt2000StackedRequest,       // VLT 2000: a second command to a drive before its reply
+    Vlt2000NoResponse,           // VLT 2000: a drive does not reply
+    Vlt2000UnexpectedReply,      // VLT 2000: a drive replies to a broadcast
+    Vlt2000MismatchedResponse,   // VLT 2000: the reply carries another parameter
+    Vlt2000CommandFailed,        // VLT 2000: a reply with decimal position 9 and a reason code
+    Vlt2000ChecksumError,        // VLT 2000: one telegram's checksum is wrong
+    Vlt2000ChecksumDisabled,     // VLT 2000: a drive's telegrams carry "??" as checksum
     Count
 };
 
@@ -64,7 +72,9 @@ std::optional<FaultKind> fault_kind_from_name(std::string_view name);
 bool fault_needs_parameter_channel(FaultKind kind) noexcept;
 // Faults that act on DP-V1 parameter access need a DP-V1 slave (`--slave ADDR:PPO:dpv1`).
 bool fault_needs_dpv1(FaultKind kind) noexcept;
-// Faults of the FC protocol (`simulate --bus fc`); the others act on PROFIBUS DP.
+// The bus a fault acts on (`simulate --bus`): PROFIBUS DP, the FC protocol or VLT 2000.
+Protocol fault_bus(FaultKind kind) noexcept;
+// fault_bus(kind) is the FC protocol.
 bool fault_is_fc(FaultKind kind) noexcept;
 // Faults that make a slave send spontaneous messages need a dialect that has them (not ge).
 bool fault_needs_spontaneous_messages(FaultKind kind) noexcept;
