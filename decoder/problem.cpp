@@ -26,7 +26,8 @@ constexpr ProblemKindInfo kCatalogue[] = {
     {ProblemKind::EmptyRecord, "empty_record", Severity::Error, Framing,
      "a capture record with no bytes at all"},
     {ProblemKind::BadStartDelimiter, "bad_start_delimiter", Severity::Error, Framing,
-     "the first byte starts no telegram (PROFIBUS: none of SD1, SD2, SD3, SD4, SC; FC: not STX)"},
+     "the first byte starts no telegram (PROFIBUS: none of SD1, SD2, SD3, SD4, SC; FC: not STX; "
+     "VLT 2000: not '<')"},
     {ProblemKind::Truncated, "truncated", Severity::Error, Framing,
      "the telegram ends before its structure says it should"},
     {ProblemKind::LengthMismatch, "length_mismatch", Severity::Error, Framing,
@@ -131,10 +132,14 @@ std::string problem_message(const Problem& p) {
     switch (p.kind) {
         case ProblemKind::EmptyRecord: return "record holds no bytes";
         case ProblemKind::BadStartDelimiter:
-            // The FC decoder names what it wanted (STX 0x02); FDL has five start delimiters.
-            if (p.expected != 0)
+            // The FC decoder names what it wanted (STX 0x02), the VLT 2000 decoder its '<'; FDL
+            // has five start delimiters.
+            if (p.expected == 0x02)
                 return fmt::format("byte {}: 0x{:02X} is not STX 0x{:02X}", p.offset, p.actual,
                                    p.expected);
+            if (p.expected != 0)
+                return fmt::format("byte {}: {} is not {} (0x{:02X})", p.offset,
+                                   quoted_char(p.actual), quoted_char(p.expected), p.expected);
             return fmt::format(
                 "byte {}: 0x{:02X} is not a start delimiter (SD1 0x10, SD2 0x68, "
                 "SD3 0xA2, SD4 0xDC, SC 0xE5)",
@@ -154,8 +159,11 @@ std::string problem_message(const Problem& p) {
                                p.offset, p.actual, p.expected);
         case ProblemKind::BadEndDelimiter:
             // The VLT 2000 decoder names what it wanted ('>' 0x3E); FDL's is ED 0x16.
-            return fmt::format("byte {}: end delimiter is 0x{:02X}, expected 0x{:02X}", p.offset,
-                               p.actual, p.expected != 0 ? p.expected : 0x16u);
+            if (p.expected != 0)
+                return fmt::format("byte {}: end delimiter is {}, expected {} (0x{:02X})", p.offset,
+                                   quoted_char(p.actual), quoted_char(p.expected), p.expected);
+            return fmt::format("byte {}: end delimiter is 0x{:02X}, expected 0x16", p.offset,
+                               p.actual);
         case ProblemKind::TrailingBytes:
             return fmt::format("byte {}: {} after the end of the telegram", p.offset,
                                counted(p.actual, "byte", "bytes"));

@@ -109,8 +109,17 @@ void parse_vlt2000(Bytes bytes, Vlt2000Telegram& v, bool check_checksum) noexcep
                 v.reason = static_cast<std::uint8_t>((bytes[kVlt2000ReasonAt] - '0') * 10 +
                                                      (bytes[kVlt2000ReasonAt + 1] - '0'));
             }
-        } else if (v.letter == Vlt2000Letter::ReadIndex && v.has_index_number) {
-            // An index, not a value: nothing to complain about.
+        } else if (v.letter == Vlt2000Letter::ReadIndex) {
+            // The index ("x,y" on the VLT 3000), or in a reply perhaps the value: read as a value
+            // where it is digits, no complaint where it is not.
+            std::uint32_t digits = 0;
+            bool all = true;
+            for (std::size_t i = kVlt2000ValueAt; i < kVlt2000ValueAt + 5; ++i) {
+                all = all && is_digit(bytes[i]);
+                digits = digits * 10 + (is_digit(bytes[i]) ? bytes[i] - '0' : 0);
+            }
+            v.has_value = all;
+            v.digits = all ? digits : 0;
         } else if (auto digits = digits_at(bytes, kVlt2000ValueAt, 5, problems)) {
             v.digits = *digits;
             v.has_value = true;
