@@ -5,7 +5,8 @@
 // findings at it in one of the output formats (taking turns, so every renderer sees every kind of
 // telegram over a run) and also decodes and tracks the whole input as a single capture record,
 // then finishes the session (what is still open is reported). The same input then goes through the
-// Danfoss FC protocol's framer, FcDecoder and FcTracker, rendered the same way.
+// Danfoss FC protocol's framer, FcDecoder and FcTracker, and through the VLT 2000 telegram's
+// framer, Vlt2000Decoder and Vlt2000Tracker, rendered the same way.
 #include <cstdint>
 #include <cstdio>
 #include <memory>
@@ -19,6 +20,9 @@
 #include "decoder/fdl_framing_rules.hpp"
 #include "decoder/session_tracker.hpp"
 #include "decoder/stream_framer.hpp"
+#include "decoder/vlt2000_decoder.hpp"
+#include "decoder/vlt2000_framing_rules.hpp"
+#include "decoder/vlt2000_tracker.hpp"
 #include "formats/output.hpp"
 #include "formats/renderer.hpp"
 
@@ -83,5 +87,7 @@ void run(const std::uint8_t* data, std::size_t size, const dpscope::FramingRules
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     run<dpscope::BusDecoder, dpscope::SessionTracker>(data, size, dpscope::fdl_framing_rules());
     run<dpscope::FcDecoder, dpscope::FcTracker>(data, size, dpscope::fc_framing_rules());
+    run<dpscope::Vlt2000Decoder, dpscope::Vlt2000Tracker>(data, size,
+                                                          dpscope::vlt2000_framing_rules());
     return 0;
 }
