@@ -468,6 +468,38 @@ TEST(Vlt2000RendererTest, CsvRowsHaveTheHeaderColumns) {
     EXPECT_TRUE(contains(l[14], ",\"read\",,\"no reason code given\",")) << l[14];
 }
 
+// Every prefix of a telegram (and the bytes around it damaged) renders in every format without
+// reading past the record: each format still writes one record a telegram.
+TEST(Vlt2000RendererTest, EveryPrefixAndDamageRendersInEveryFormat) {
+    const std::string whole = vlt("<01R@@@@0999+000019");
+    std::vector<std::string> inputs;
+    for (std::size_t n = 0; n <= whole.size() + 1; ++n)
+        inputs.push_back(n <= whole.size() ? whole.substr(0, n) : whole + "x");
+    for (std::size_t at = 0; at < whole.size(); ++at) {
+        std::string damaged = whole;
+        damaged[at] = '\xFF';
+        inputs.push_back(damaged);
+        damaged[at] = '"';
+        inputs.push_back(damaged);
+    }
+    inputs.push_back(unchecked("<05I@@@@0621\x01,2   0"));  // an index that is no number
+    for (OutputFormat format :
+         {OutputFormat::Text, OutputFormat::Verbose, OutputFormat::Jsonl, OutputFormat::Csv}) {
+        const std::string text = render(format, inputs);
+        if (format == OutputFormat::Jsonl) {
+            std::vector<std::string> l = test::lines_of(text);
+            ASSERT_EQ(l.size(), inputs.size());
+            for (const std::string& line : l)
+                EXPECT_TRUE(parse_json(line)) << line;
+        } else if (format != OutputFormat::Verbose) {
+            EXPECT_EQ(test::lines_of(text).size(),
+                      inputs.size() + (format == OutputFormat::Csv ? 1 : 0));
+        }
+    }
+    const std::string index = render(OutputFormat::Text, {inputs.back()});
+    EXPECT_TRUE(contains(index, "parameter 621 index \"\\x01,2   \"")) << index;
+}
+
 std::string summary_text(const Summary& summary) {
     char* data = nullptr;
     std::size_t size = 0;
