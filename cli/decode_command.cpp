@@ -102,6 +102,10 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             if (t.dp.has_pcv && subject_pnu >= 0)
                 pnus_seen.set(static_cast<std::size_t>(subject_pnu));
             if (t.protocol == Protocol::Fc && t.fc.has_pkw) pnus_seen.set(t.fc.pkw.pnu);
+            // A VLT 2000 telegram names its parameter (a C telegram's is ignored).
+            if (t.protocol == Protocol::Vlt2000 && t.vlt2000.has_parameter &&
+                t.vlt2000.letter != Vlt2000Letter::Control)
+                pnus_seen.set(t.vlt2000.parameter);
             if (const ProfidriveMessage* message = t.dp.service_data.profidrive())
                 for (const ProfidriveAddress& a : message->addresses)
                     pnus_seen.set(a.pnu);

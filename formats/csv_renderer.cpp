@@ -1,6 +1,6 @@
 // Comma-separated values, one row a telegram, with a header row. Fields that could hold a comma
 // or a quote are quoted (RFC 4180). Both buses share the header; an FC protocol row fills the
-// columns that apply to it (README.md).
+// columns that apply to it, and so does a VLT 2000 row (README.md).
 #include <iterator>
 
 #include "formats/describe.hpp"
@@ -34,6 +34,8 @@ class CsvRenderer final : public TelegramRenderer {
         auto it = std::back_inserter(b);
         if (t.protocol == Protocol::Fc)
             render_fc_columns(t);
+        else if (t.protocol == Protocol::Vlt2000)
+            render_vlt2000_columns(t);
         else
             render_dp_columns(t);
         bool first = true;
@@ -152,6 +154,42 @@ class CsvRenderer final : public TelegramRenderer {
         b.push_back(',');
         TextBuffer detail;
         append_fc_detail(detail, t);
+        quoted(b, std::string_view(detail.data(), detail.size()));
+        b.push_back(',');
+    }
+
+    // The same columns for a VLT 2000 telegram (README.md): sd, da, sa, dsap, ssap, fc, ppo, rc
+    // and spm stay empty; service is the control letter with its name ("U update"); slave the
+    // drive's address (0: broadcast); fcs_ok whether the checksum is right or "??" (not checked);
+    // pnu the parameter (not for C), ind the index of an I telegram, pva the value with its
+    // decimal point, meaning the letter's name, error and error_text a failed reply's reason code
+    // and its text; pcd the control or status word in hex.
+    void render_vlt2000_columns(const DecodedTelegram& t) {
+        TextBuffer& b = out_.buffer();
+        auto it = std::back_inserter(b);
+        const Vlt2000Telegram& v = t.vlt2000;
+        fmt::format_to(it, "{},", t.frame);
+        if (t.has_time()) append_epoch_seconds(b, t.time_ns);
+        fmt::format_to(it, ",{},,,,,,,", t.bytes.size());
+        if (vlt2000_has_letter(t)) quoted(b, vlt2000_letter_text(t));
+        fmt::format_to(it, ",{},", direction_name(t.direction));
+        opt(t.has_roles, t.master);
+        opt(t.has_roles, t.slave);
+        opt(t.request_frame != 0, static_cast<unsigned>(t.request_frame));
+        fmt::format_to(it, "{},,,,", v.checksum_ok || v.checksum_disabled ? "true" : "false");
+        opt(v.has_parameter && v.letter != Vlt2000Letter::Control, v.parameter);
+        opt(v.letter == Vlt2000Letter::ReadIndex && v.has_index_number, v.index_number);
+        if (v.has_value && vlt2000_carries_value(v)) append(b, vlt2000_value_text(v));
+        b.push_back(',');
+        if (vlt2000_has_letter(t)) quoted(b, vlt2000_letter_name(v.letter));
+        b.push_back(',');
+        opt(v.failed && v.has_reason, v.reason);
+        if (v.failed) quoted(b, vlt2000_reason_or_unknown(v));
+        b.push_back(',');
+        if (v.has_word) fmt::format_to(it, "{:04X}", v.word);
+        b.push_back(',');
+        TextBuffer detail;
+        append_vlt2000_detail(detail, t);
         quoted(b, std::string_view(detail.data(), detail.size()));
         b.push_back(',');
     }

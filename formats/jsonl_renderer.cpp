@@ -1,6 +1,7 @@
 // One JSON object a telegram. Every key is present on every line of its bus (null where it does
 // not apply); the schema is documented in README.md per bus and is stable. FC protocol lines
-// carry the common keys and an "fc_protocol" object instead of the FDL/DP keys.
+// carry the common keys and an "fc_protocol" object instead of the FDL/DP keys, VLT 2000 lines the
+// common keys and a "vlt2000" object.
 #include <algorithm>
 #include <iterator>
 #include <vector>
@@ -45,6 +46,8 @@ class JsonlRenderer final : public TelegramRenderer {
         w.key("len").integer(static_cast<std::int64_t>(t.bytes.size()));
         if (t.protocol == Protocol::Fc)
             render_fc_keys(w, t);
+        else if (t.protocol == Protocol::Vlt2000)
+            render_vlt2000_keys(w, t);
         else
             render_dp_keys(w, t);
         w.key("problems").begin_array();
@@ -272,6 +275,109 @@ class JsonlRenderer final : public TelegramRenderer {
             w.boolean(fc.bcc_ok);
         else
             w.null();
+        w.end_object();
+    }
+
+    static void optional_text(JsonWriter& w, bool present, std::string_view text) {
+        if (present)
+            w.string(text);
+        else
+            w.null();
+    }
+
+    static void optional_boolean(JsonWriter& w, bool present, bool value) {
+        if (present)
+            w.boolean(value);
+        else
+            w.null();
+    }
+
+    // The VLT 2000 keys between "len" and "problems": the common header keys and the "vlt2000"
+    // object (README.md, "VLT 2000 telegrams"); no FDL or DP key.
+    static void render_vlt2000_keys(JsonWriter& w, const DecodedTelegram& t) {
+        const Vlt2000Telegram& v = t.vlt2000;
+        w.key("direction").string(direction_name(t.direction));
+        w.key("master").optional_integer(t.has_roles, t.master);
+        w.key("slave").optional_integer(t.has_roles, t.slave);
+        w.key("request_frame")
+            .optional_integer(t.request_frame != 0, static_cast<std::int64_t>(t.request_frame));
+        w.key("vlt2000").begin_object();
+        w.key("complete").boolean(v.complete);
+        w.key("address").optional_integer(t.has_roles, v.address);
+        w.key("broadcast");
+        optional_boolean(w, t.has_roles, v.broadcast);
+        const bool letter = vlt2000_has_letter(t);
+        w.key("letter");
+        if (letter) {
+            TextBuffer chars;  // as append_fc_text writes it: \xNN for what is not printable
+            append_fc_text(chars, t.bytes.subspan(kVlt2000LetterAt, 1));
+            w.string(std::string_view(chars.data(), chars.size()));
+        } else
+            w.null();
+        w.key("letter_name");
+        optional_text(w, letter, vlt2000_letter_name(v.letter));
+        w.key("word_name");
+        optional_text(w, v.has_word, vlt2000_word_name(t.direction));
+        w.key("word").optional_integer(v.has_word, v.word);
+        // The meaning of each bit 0..15 in the state it has ("group kept (P)" for a kept group).
+        w.key("word_bits");
+        if (v.has_word) {
+            w.begin_array();
+            for (unsigned bit = 0; bit < 16; ++bit)
+                w.string(vlt2000_bit_meaning(v, t.direction, bit));
+            w.end_array();
+        } else {
+            w.null();
+        }
+        w.key("word_kept");
+        if (v.has_word) {
+            w.begin_array();
+            for (unsigned group = 0; group < 4; ++group)
+                if ((v.word_keep >> group) & 1u) w.integer(group);
+            w.end_array();
+        } else {
+            w.null();
+        }
+        w.key("parameter").optional_integer(v.has_parameter, v.parameter);
+        const bool value = v.has_value && vlt2000_carries_value(v);
+        w.key("negative");
+        optional_boolean(w, value, v.negative);
+        w.key("digits").optional_integer(value, v.digits);
+        w.key("value_text");
+        const std::string text = value ? vlt2000_value_text(v) : std::string();
+        optional_text(w, value, text);
+        w.key("value");
+        if (value)
+            w.number_text(text);
+        else
+            w.null();
+        const std::string note = value ? vlt2000_value_note(v) : std::string();
+        w.key("value_note");
+        optional_text(w, !note.empty(), note);
+        w.key("decimals").optional_integer(v.has_decimals, v.decimals);
+        const bool index = v.letter == Vlt2000Letter::ReadIndex && !v.index.empty();
+        w.key("index");
+        if (index) {
+            TextBuffer chars;
+            append_vlt2000_index(chars, v);
+            w.string(std::string_view(chars.data(), chars.size()));
+        } else {
+            w.null();
+        }
+        w.key("index_number").optional_integer(index && v.has_index_number, v.index_number);
+        w.key("failed");
+        optional_boolean(w, v.has_decimals, v.failed);
+        w.key("reason").optional_integer(v.failed && v.has_reason, v.reason);
+        w.key("reason_text");
+        optional_text(w, v.failed, vlt2000_reason_or_unknown(v));
+        const bool checksum_there =
+            t.bytes.size() >= kVlt2000ChecksumAt + 2 && t.bytes[0] == kVlt2000Start;
+        w.key("checksum").optional_integer(v.has_checksum, v.checksum);
+        w.key("checksum_computed").optional_integer(checksum_there, v.checksum_computed);
+        w.key("checksum_disabled");
+        optional_boolean(w, checksum_there, v.checksum_disabled);
+        w.key("checksum_ok");
+        optional_boolean(w, v.has_checksum, v.checksum_ok);
         w.end_object();
     }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "decoder/fc_codes.hpp"
+#include "decoder/vlt2000_codes.hpp"
 #include "formats/describe.hpp"
 
 namespace dpscope {
@@ -61,6 +62,8 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
 
     if (fc_telegrams_ > 0) {
         render_fc_counts(b);
+    } else if (vlt2000_telegrams_ > 0) {
+        render_vlt2000_counts(b);
     } else {
         render_dp_counts(b);
     }
@@ -86,6 +89,11 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
 
     if (fc_telegrams_ > 0) {
         render_fc_drives(b);
+        out.end_record();
+        return;
+    }
+    if (vlt2000_telegrams_ > 0) {
+        render_vlt2000_addresses(b);
         out.end_record();
         return;
     }
@@ -176,6 +184,76 @@ void Summary::render_fc_drives(TextBuffer& b) const {
         fmt::format_to(it, "    {:>3}: {}, {}\n", a,
                        counted(fc_drive_requests_[a], "request", "requests"),
                        counted(fc_drive_responses_[a], "response", "responses"));
+    }
+}
+
+// "  bus: VLT 2000", telegrams by letter (commands and replies), by direction, failed replies by
+// reason code, and the checksums found wrong or switched off ("??").
+void Summary::render_vlt2000_counts(TextBuffer& b) const {
+    auto it = std::back_inserter(b);
+    append(b, "  bus: VLT 2000\n");
+    std::uint64_t commands = 0;
+    std::uint64_t replies = 0;
+    for (std::size_t l = 0; l < kVlt2000Letters; ++l) {
+        commands += vlt2000_commands_[l];
+        replies += vlt2000_replies_[l];
+    }
+    fmt::format_to(it, "  by direction: {}, {}", counted(commands, "command", "commands"),
+                   counted(replies, "reply", "replies"));
+    if (vlt2000_broadcasts_) fmt::format_to(it, " ({} broadcast)", vlt2000_broadcasts_);
+    b.push_back('\n');
+    if (commands + replies > 0) append(b, "  by letter:\n");
+    for (Vlt2000Letter letter : {Vlt2000Letter::Update, Vlt2000Letter::Read, Vlt2000Letter::Control,
+                                 Vlt2000Letter::ReadIndex, Vlt2000Letter::Unknown}) {
+        const auto l = static_cast<std::size_t>(letter);
+        const std::uint64_t total = vlt2000_commands_[l] + vlt2000_replies_[l];
+        if (total == 0) continue;
+        const std::string name =
+            letter == Vlt2000Letter::Unknown
+                ? std::string("unknown letter")
+                : fmt::format("{} {}", vlt2000_letter_char(letter), vlt2000_letter_name(letter));
+        fmt::format_to(it, "    {:<16} {:>10}  ({}, {})\n", name, total,
+                       counted(vlt2000_commands_[l], "command", "commands"),
+                       counted(vlt2000_replies_[l], "reply", "replies"));
+    }
+    fmt::format_to(it, "  failed replies (decimal position 9): {}\n", vlt2000_failed_);
+    for (std::size_t reason = 0; reason < vlt2000_reasons_.size(); ++reason) {
+        if (!vlt2000_reasons_[reason]) continue;
+        std::string name;
+        if (reason == kVlt2000NoReason) {
+            name = "no reason code given";
+        } else {
+            const std::string_view text = vlt2000_reason_text(static_cast<std::uint32_t>(reason));
+            name =
+                fmt::format("reason {:02} {}", reason, text.empty() ? "unknown reason code" : text);
+        }
+        fmt::format_to(it, "    {:<60} {:>10}\n", name, vlt2000_reasons_[reason]);
+    }
+    fmt::format_to(it, "  checksums: {} wrong, {} not checked (\"??\")\n", vlt2000_checksum_errors_,
+                   vlt2000_checksum_disabled_);
+}
+
+// Per address (00: broadcasts) its commands and replies, failures and checksums.
+void Summary::render_vlt2000_addresses(TextBuffer& b) const {
+    auto it = std::back_inserter(b);
+    bool header = false;
+    for (std::size_t a = 0; a < kStationCount; ++a) {
+        if (!slave_seen_[a]) continue;
+        if (!header) {
+            append(b, "  addresses:\n");
+            header = true;
+        }
+        const Vlt2000AddressCounts& counts = vlt2000_addresses_[a];
+        fmt::format_to(it, "    {:02}{}: {}, {}", a, a == 0 ? " (broadcast)" : "",
+                       counted(counts.commands, "command", "commands"),
+                       counted(counts.replies, "reply", "replies"));
+        if (counts.failed) fmt::format_to(it, ", {} failed", counts.failed);
+        if (counts.checksum_errors)
+            fmt::format_to(it, ", {}",
+                           counted(counts.checksum_errors, "checksum error", "checksum errors"));
+        if (counts.checksum_disabled)
+            fmt::format_to(it, ", {} without checksum (\"??\")", counts.checksum_disabled);
+        b.push_back('\n');
     }
 }
 

@@ -1,7 +1,8 @@
 // Counts kept while decoding (cheap enough for every telegram) and the summary `decode -q`
 // prints: telegrams by frame type and service, problems by kind, findings by kind, and per
 // slave the PPO layout in use; for an FC protocol capture telegrams by block and by AK, and per
-// drive its requests and responses.
+// drive its requests and responses; for a VLT 2000 capture telegrams by letter, failures by reason,
+// checksum errors and per address its commands and replies.
 #pragma once
 
 #include <array>
@@ -33,6 +34,10 @@ class Summary {
     void add(const DecodedTelegram& t) noexcept {
         if (t.protocol == Protocol::Fc) {
             add_fc(t);
+            return;
+        }
+        if (t.protocol == Protocol::Vlt2000) {
+            add_vlt2000(t);
             return;
         }
         ++telegrams_;
@@ -97,8 +102,35 @@ class Summary {
     std::uint64_t fc_commands(std::uint8_t ak) const noexcept { return fc_commands_[ak & 0x0F]; }
     std::uint64_t fc_responses(std::uint8_t ak) const noexcept { return fc_responses_[ak & 0x0F]; }
 
+    // VLT 2000 telegrams counted (by letter and direction, failures, checksums, per address).
+    struct Vlt2000AddressCounts {
+        std::uint64_t commands = 0;
+        std::uint64_t replies = 0;
+        std::uint64_t failed = 0;
+        std::uint64_t checksum_errors = 0;
+        std::uint64_t checksum_disabled = 0;
+    };
+    std::uint64_t vlt2000_telegrams() const noexcept { return vlt2000_telegrams_; }
+    std::uint64_t vlt2000_commands(Vlt2000Letter letter) const noexcept {
+        return vlt2000_commands_[static_cast<std::size_t>(letter)];
+    }
+    std::uint64_t vlt2000_replies(Vlt2000Letter letter) const noexcept {
+        return vlt2000_replies_[static_cast<std::size_t>(letter)];
+    }
+    std::uint64_t vlt2000_broadcasts() const noexcept { return vlt2000_broadcasts_; }
+    std::uint64_t vlt2000_failed() const noexcept { return vlt2000_failed_; }
+    // Failed replies by reason code (100: none given).
+    std::uint64_t vlt2000_failed_by_reason(std::size_t reason) const noexcept {
+        return reason < vlt2000_reasons_.size() ? vlt2000_reasons_[reason] : 0;
+    }
+    std::uint64_t vlt2000_checksum_errors() const noexcept { return vlt2000_checksum_errors_; }
+    std::uint64_t vlt2000_checksum_disabled() const noexcept { return vlt2000_checksum_disabled_; }
+    const Vlt2000AddressCounts& vlt2000_address(std::uint8_t address) const noexcept {
+        return vlt2000_addresses_[address & 0x7F];
+    }
+
     // The text summary: PROFIBUS frame types and services, or, for an FC capture, FC blocks,
-    // AKs and drives.
+    // AKs and drives, or, for a VLT 2000 capture, letters, failures, checksums and addresses.
     void render_text(Output& out, const InputSummary& input, const BusDecoder& decoder) const;
 
   private:
@@ -125,6 +157,46 @@ class Summary {
             ++(request ? fc_drive_requests_ : fc_drive_responses_)[t.slave & 0x7F];
         }
     }
+    void add_vlt2000(const DecodedTelegram& t) noexcept {
+        ++telegrams_;
+        ++vlt2000_telegrams_;
+        const Vlt2000Telegram& v = t.vlt2000;
+        const bool request = t.direction == Direction::Request;
+        if (t.has_roles) {
+            const auto letter = static_cast<std::size_t>(v.letter);
+            ++(request ? vlt2000_commands_ : vlt2000_replies_)[letter];
+            if (request && v.broadcast) ++vlt2000_broadcasts_;
+        }
+        if (v.failed) {
+            ++vlt2000_failed_;
+            ++vlt2000_reasons_[v.has_reason ? v.reason : kVlt2000NoReason];
+        }
+        // A wrong checksum judged so (not with --vlt2000-checksum ignore).
+        bool checksum_error = false;
+        for (const Problem& p : v.problems)
+            checksum_error = checksum_error || p.kind == ProblemKind::Vlt2000ChecksumMismatch;
+        if (checksum_error) ++vlt2000_checksum_errors_;
+        if (v.checksum_disabled) ++vlt2000_checksum_disabled_;
+        if (!t.problems().empty()) {
+            ++with_problems_;
+            for (const Problem& p : t.problems())
+                ++problems_[static_cast<std::size_t>(p.kind)];
+        }
+        if (t.has_time()) {
+            if (first_time_ == kNoTime) first_time_ = t.time_ns;
+            last_time_ = t.time_ns;
+        }
+        if (t.has_roles) {
+            slave_seen_[t.slave & 0x7F] = true;
+            Vlt2000AddressCounts& counts = vlt2000_addresses_[t.slave & 0x7F];
+            ++(request ? counts.commands : counts.replies);
+            if (v.failed) ++counts.failed;
+            if (checksum_error) ++counts.checksum_errors;
+            if (v.checksum_disabled) ++counts.checksum_disabled;
+        }
+    }
+    void render_vlt2000_counts(fmt::memory_buffer& b) const;
+    void render_vlt2000_addresses(fmt::memory_buffer& b) const;
     void render_dp_counts(fmt::memory_buffer& b) const;
     void render_fc_counts(fmt::memory_buffer& b) const;
     void render_fc_drives(fmt::memory_buffer& b) const;
@@ -152,6 +224,18 @@ class Summary {
     std::array<std::uint64_t, 16> fc_responses_{};  // responses by AK
     std::array<std::uint64_t, kStationCount> fc_drive_requests_{};
     std::array<std::uint64_t, kStationCount> fc_drive_responses_{};
+    static constexpr std::size_t kVlt2000NoReason = 100;
+    static constexpr std::size_t kVlt2000Letters =
+        static_cast<std::size_t>(Vlt2000Letter::Unknown) + 1;
+    std::uint64_t vlt2000_telegrams_ = 0;
+    std::array<std::uint64_t, kVlt2000Letters> vlt2000_commands_{};
+    std::array<std::uint64_t, kVlt2000Letters> vlt2000_replies_{};
+    std::uint64_t vlt2000_broadcasts_ = 0;
+    std::uint64_t vlt2000_failed_ = 0;
+    std::array<std::uint64_t, kVlt2000NoReason + 1> vlt2000_reasons_{};
+    std::uint64_t vlt2000_checksum_errors_ = 0;
+    std::uint64_t vlt2000_checksum_disabled_ = 0;
+    std::array<Vlt2000AddressCounts, kStationCount> vlt2000_addresses_{};
 };
 
 }  // namespace dpscope

@@ -2,7 +2,9 @@
 //   frame  time(s, relative to the first)  source → destination  frame type  service  req|rsp
 //   detail  [problem kinds] [severity finding-kind ...]
 // An FC protocol telegram: source and destination are the master "M" and the drive's address
-// ("all" for a broadcast), the frame type "FC" and the service column the block.
+// ("all" for a broadcast), the frame type "FC" and the service column the block. A VLT 2000
+// telegram: the master "M" and the drive's two-digit address ("all" for address 00), the frame
+// type "VLT" and the service column the control letter with its name ("U update").
 #include <algorithm>
 #include <iterator>
 
@@ -61,6 +63,8 @@ class TextRenderer final : public TelegramRenderer {
         }
         if (t.protocol == Protocol::Fc) {
             render_fc_columns(t);
+        } else if (t.protocol == Protocol::Vlt2000) {
+            render_vlt2000_columns(t);
         } else {
             render_dp_columns(t);
         }
@@ -128,6 +132,27 @@ class TextRenderer final : public TelegramRenderer {
                        fc_block_name(t.fc.block),
                        t.direction == Direction::Request ? "req" : "rsp");
         append_fc_detail(b, t);
+    }
+
+    // The VLT 2000 master has no address either ("M"); a drive is shown by its two-digit address
+    // as the telegram carries it, a broadcast (00) goes to "all".
+    void render_vlt2000_columns(const DecodedTelegram& t) {
+        TextBuffer& b = out_.buffer();
+        auto it = std::back_inserter(b);
+        if (!t.has_roles) {
+            append(b, "  ? → ?   ");
+        } else {
+            const std::string drive =
+                t.vlt2000.broadcast ? std::string("all") : fmt::format("{:02}", t.vlt2000.address);
+            if (t.direction == Direction::Request)
+                fmt::format_to(it, "{:>3} → {:<3} ", "M", drive);
+            else
+                fmt::format_to(it, "{:>3} → {:<3} ", drive, "M");
+        }
+        fmt::format_to(it, "{:<3} {:<14} {} ", t.has_roles ? "VLT" : "bad",
+                       t.has_roles ? vlt2000_letter_text(t) : std::string("-"),
+                       t.direction == Direction::Request ? "req" : "rsp");
+        append_vlt2000_detail(b, t);
     }
 
     std::int64_t first_time_ = kNoTime;

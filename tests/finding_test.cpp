@@ -58,6 +58,13 @@ TEST(FindingTest, NamesAndSeveritiesAreTheDocumentedOnes) {
         {"fc_unexpected_response_type", Severity::Error},
         {"fc_command_rejected", Severity::Note},
         {"fc_bcc_error", Severity::Error},
+        {"vlt2000_stacked_request", Severity::Error},
+        {"vlt2000_no_response", Severity::Error},
+        {"vlt2000_unexpected_reply", Severity::Error},
+        {"vlt2000_mismatched_response", Severity::Error},
+        {"vlt2000_command_failed", Severity::Note},
+        {"vlt2000_checksum_error", Severity::Error},
+        {"vlt2000_checksum_disabled", Severity::Note},
     };
     ASSERT_EQ(expected.size(), kFindingKindCount);
     for (std::size_t i = 0; i < kFindingKindCount; ++i) {

@@ -42,6 +42,10 @@ TEST(ProblemTest, NamesAndSeveritiesAreTheDocumentedOnes) {
         "lge_invalid",
         "bcc_mismatch",
         "adr_invalid",
+        "vlt2000_character_invalid",
+        "vlt2000_field_invalid",
+        "vlt2000_letter_unknown",
+        "vlt2000_checksum_mismatch",
     };
     ASSERT_EQ(expected.size(), kProblemKindCount);
     for (std::size_t i = 0; i < kProblemKindCount; ++i) {
