@@ -32,7 +32,7 @@ struct SimulateCommand {
     std::string output_format = "pcap";
     std::string link_type = "profibus";
     std::string bus = "profibus";
-    std::vector<std::string> drives;  // --bus fc
+    std::vector<std::string> drives;  // --bus fc, --bus vlt2000
     // Given on the command line (not defaults): --baud, --linktype, --master, --no-start-up.
     bool baud_given = false;
     bool link_type_given = false;
@@ -54,6 +54,11 @@ struct SimulateCommand {
 };
 
 constexpr std::uint64_t kLargest = std::numeric_limits<std::uint64_t>::max();
+
+// The VLT 2000's baud rates (parameter 501; its values were not found): as the FC protocol's,
+// 2400 to 115200 (docs/decisions.md "VLT 2000 simulator").
+constexpr std::uint32_t kVlt2000MinBaud = 2400;
+constexpr std::uint32_t kVlt2000MaxBaud = 115'200;
 
 std::atomic<bool> g_stop_playing{false};
 // The first signal stops playing cleanly; a second one ends the process at once, with the port
@@ -89,8 +94,10 @@ int report_injections(const Simulator& simulator) {
 
 // Plays the simulated session (or a capture, with --replay) onto a tty.
 int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
-    Result<std::unique_ptr<SerialPort>> port =
-        SerialPort::open({command.device, command.baud, false, true});
+    // 8E1 for PROFIBUS and the FC protocol, 8N1 for the VLT 2000.
+    SerialSettings serial{command.device, command.baud, false, true};
+    if (command.bus == "vlt2000") serial.parity = SerialParity::None;
+    Result<std::unique_ptr<SerialPort>> port = SerialPort::open(serial);
     if (!port) {
         print_error(port.error());
         return kExitUsage;
@@ -100,7 +107,9 @@ int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
         // The simulator makes the --bus protocol; a capture played in its place is one too.
         OpenResult opened = open_source(
             command.replay, InputFormat::Auto,
-            command.bus == "fc" ? capture_protocol(Protocol::Fc) : profibus_dp_protocol());
+            command.bus == "profibus"
+                ? profibus_dp_protocol()
+                : capture_protocol(protocol_from_name(command.bus).value_or(Protocol::Fc)));
         if (!opened) {
             print_error(opened.error());
             return kExitUsage;
@@ -191,16 +200,23 @@ int run_simulate(const SimulateCommand& command) {
     }
     SimulatorOptions options;
     const bool fc = command.bus == "fc";
-    options.bus = fc ? Protocol::Fc : Protocol::ProfibusDp;
+    const bool vlt2000 = command.bus == "vlt2000";
+    options.bus = fc ? Protocol::Fc : vlt2000 ? Protocol::Vlt2000 : Protocol::ProfibusDp;
     options.seed = command.seed;
-    options.baud = fc && !command.baud_given ? kFcDefaultLineBaud : command.baud;
+    options.baud = (fc || vlt2000) && !command.baud_given ? kFcDefaultLineBaud : command.baud;
     if (fc && (options.baud < kFcMinBaud || options.baud > kFcMaxBaud)) {
         print_error(fmt::format(
             "--baud: must be a whole number from {} to {} baud for the FC protocol, not '{}'",
             kFcMinBaud, kFcMaxBaud, options.baud));
         return kExitUsage;
     }
-    if (!fc && options.baud < 9600) {
+    if (vlt2000 && (options.baud < kVlt2000MinBaud || options.baud > kVlt2000MaxBaud)) {
+        print_error(fmt::format(
+            "--baud: must be a whole number from {} to {} baud for the VLT 2000, not '{}'",
+            kVlt2000MinBaud, kVlt2000MaxBaud, options.baud));
+        return kExitUsage;
+    }
+    if (!fc && !vlt2000 && options.baud < 9600) {
         print_error(fmt::format(
             "--baud: must be a whole number from 9600 to 12000000 baud for PROFIBUS, not '{}'",
             options.baud));
@@ -238,10 +254,44 @@ int run_simulate(const SimulateCommand& command) {
             }
             options.drives.push_back(*drive);
         }
+    } else if (vlt2000) {
+        if (!command.slaves.empty()) {
+            print_error(
+                fmt::format("--slave {}: slaves are PROFIBUS DP stations; a VLT 2000 bus has "
+                            "drives (--drive ADDR)",
+                            command.slaves.front()));
+            return kExitUsage;
+        }
+        if (command.master_given) {
+            print_error(
+                "--master: the VLT 2000 master has no address; leave --master out with --bus "
+                "vlt2000");
+            return kExitUsage;
+        }
+        if (command.link_type_given && command.link_type != "user0") {
+            print_error("--linktype profibus: a VLT 2000 capture has link type user0 (147)");
+            return kExitUsage;
+        }
+        for (const std::string& text : command.drives) {
+            Result<std::uint8_t> drive = parse_vlt2000_drive_spec(text);
+            if (!drive) {
+                print_error(fmt::format("--drive {}", drive.error()));
+                return kExitUsage;
+            }
+            for (std::size_t i = 0; i < options.vlt2000_drives.size(); ++i) {
+                if (options.vlt2000_drives[i] == *drive) {
+                    print_error(fmt::format(
+                        "--drive {} and --drive {} both give address {}: one drive per address",
+                        command.drives[i], text, *drive));
+                    return kExitUsage;
+                }
+            }
+            options.vlt2000_drives.push_back(*drive);
+        }
     } else if (!command.drives.empty()) {
         print_error(
-            fmt::format("--drive {}: drives are for --bus fc; a PROFIBUS DP bus has "
-                        "slaves (--slave ADDR:PPO)",
+            fmt::format("--drive {}: drives are for --bus fc and --bus vlt2000; a PROFIBUS DP "
+                        "bus has slaves (--slave ADDR:PPO)",
                         command.drives.front()));
         return kExitUsage;
     }
@@ -273,7 +323,7 @@ int run_simulate(const SimulateCommand& command) {
         options.slaves.push_back(*slave);
     }
     for (const std::string& text : command.faults) {
-        Result<FaultSpec> fault = parse_fault_spec(text);
+        Result<FaultSpec> fault = parse_fault_spec(text, options.bus);
         if (!fault) {
             print_error(fmt::format("--fault {}", fault.error()));
             return kExitUsage;
@@ -301,7 +351,8 @@ int run_simulate(const SimulateCommand& command) {
         return kExitUsage;
     }
     if (!command.device.empty()) {
-        // The port runs at the session's baud rate (9600 on an FC bus unless --baud).
+        // The port runs at the session's baud rate (9600 on an FC or VLT 2000 bus unless
+        // --baud).
         SimulateCommand playing = command;
         playing.baud = options.baud;
         if (!command.replay.empty()) return play_onto_device(playing, nullptr);
@@ -311,7 +362,8 @@ int run_simulate(const SimulateCommand& command) {
     }
     CaptureFormat format =
         capture_format_from_name(command.output_format).value_or(CaptureFormat::Pcap);
-    int link_type = fc || command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
+    int link_type =
+        fc || vlt2000 || command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
     // Written beside the file and moved into place once complete: a write error (disk full)
     // leaves an existing file as it was.
     Result<std::unique_ptr<PendingOutputFile>> opened_file =
@@ -349,21 +401,15 @@ int run_simulate(const SimulateCommand& command) {
     return exit_code;
 }
 
-// --fault's help: the forms, then every kind of the catalogue.
+// --fault's help: the forms, then the kinds of each bus.
 std::string fault_help() {
-    std::string kinds;
-    for (std::size_t i = 0; i < kFaultKindCount; ++i) {
-        const auto kind = static_cast<FaultKind>(i);
-        kinds += fmt::format("{}{}{}", kinds.empty() ? "" : ", ", fault_kind_name(kind),
-                             kind == FaultKind::FcsError ? " (alias bad_fcs)" : "");
-    }
     return fmt::format(
         "Inject a fault: KIND (once, at a cycle the seed picks), KIND@CYCLE (once, at the first "
         "chance from that cycle), or KIND=RATE (chance per cycle and slave); append :ADDR to "
-        "pick the slave (or drive). Kinds: {}. The dpv1_* kinds need a dpv1 slave. The fc_* kinds "
-        "are for --bus fc, which also takes garbage and malformed_telegram; the others are for "
-        "PROFIBUS DP. Repeatable.",
-        kinds);
+        "pick the slave (or drive). Kinds with --bus profibus: {} (the dpv1_* kinds need a dpv1 "
+        "slave). With --bus fc: {}. With --bus vlt2000: {}. Repeatable.",
+        fault_kind_names(Protocol::ProfibusDp, true), fault_kind_names(Protocol::Fc),
+        fault_kind_names(Protocol::Vlt2000));
 }
 
 }  // namespace
@@ -375,22 +421,29 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         "Write a simulated PROFIBUS DP session: start-up of each slave (FDL_Status, Slave_Diag, "
         "Set_Prm, Chk_Cfg, Slave_Diag), then cyclic Data_Exchange with parameter requests and "
         "responses, token passing, gap polls and Global_Control, timed at the baud rate; or, with "
-        "--bus fc, a Danfoss FC protocol session (a master polling drives). The same options and "
-        "seed give the same bytes.");
+        "--bus fc, a Danfoss FC protocol session, with --bus vlt2000 a VLT 2000 serial session "
+        "(a master polling drives). The same options and seed give the same bytes.");
     sub->add_option("--bus", command->bus,
                     "profibus: a PROFIBUS DP bus (the default). fc: a Danfoss FC protocol bus on "
                     "RS-485 (9600 baud 8E1 unless --baud): the master polls each --drive in turn "
                     "with process blocks (control word, reference) and parameter commands (word "
                     "and double-word reads and writes, indexed reads of 15-30, text reads, a few "
                     "writes the drive refuses with AK 7), and sends a broadcast every 50 cycles; "
-                    "the drives answer within 2 to 8 ms. No start-up and no token; pcap and "
-                    "pcapng get link type user0")
-        ->check(CLI::IsMember({"profibus", "fc"}))
+                    "the drives answer within 2 to 8 ms. vlt2000: a VLT 2000 (3000, 3500) serial "
+                    "bus, the 22-character ASCII telegram (9600 baud 8N1 unless --baud): the "
+                    "master polls each --drive in turn with the letters C (control word; the "
+                    "status word back), R (read), U (update; the value echoed) and I (read index "
+                    "of the fault log 0615), a few commands the drive cannot carry out (decimal "
+                    "position 9, reason codes 00 to 04), and a broadcast (address 00) every 20 "
+                    "cycles; the drives reply within 2 to 8 ms. No start-up and no token; pcap "
+                    "and pcapng get link type user0 with the bus recorded")
+        ->check(CLI::IsMember({"profibus", "fc", "vlt2000"}))
         ->default_str("profibus");
     sub->add_option("--drive", command->drives,
                     "With --bus fc: ADDR[:FORMAT] adds a drive, FORMAT the address byte's format "
                     "the master uses: 1-126 (the default, ADDR 1..126) or 1-31 (ADDR 1..31), e.g. "
-                    "7, 3:1-31; repeatable. Default: 1 2 (1-126) and 3:1-31")
+                    "7, 3:1-31; repeatable. Default: 1 2 (1-126) and 3:1-31. With --bus vlt2000: "
+                    "ADDR from 1 to 99; default 1 2 5")
         ->type_name("SPEC")
         ->allow_extra_args(false);
     sub->add_option("-w,--write", command->output,
@@ -400,7 +453,8 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->type_name("FILE");
     sub->add_option("--device", command->device,
                     "Play the session onto a tty instead (a serial adapter or one end of a "
-                    "pseudo-terminal), 8E1 at --baud, at the pace of the baud rate")
+                    "pseudo-terminal), 8E1 at --baud (8N1 with --bus vlt2000), at the pace of the "
+                    "baud rate")
         ->type_name("PATH");
     sub->add_option("--replay", command->replay,
                     "With --device: play this capture (any input format dpscope reads) with its "
@@ -416,7 +470,7 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->default_str("pcap");
     sub->add_option("--linktype", command->link_type,
                     "pcap link type: profibus (257, PROFIBUS_DL) or user0 (147) for tools that "
-                    "cannot open 257; always user0 with --bus fc")
+                    "cannot open 257; always user0 with --bus fc and vlt2000")
         ->check(CLI::IsMember({"profibus", "user0"}))
         ->default_str("profibus");
     sub->add_option("--seed", command->seed, "Random seed; the same seed gives the same session")
@@ -424,11 +478,12 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->default_str("1");
     sub->add_option("--baud", command->baud,
                     "Bus baud rate used for the timing (default 1500000; PROFIBUS 9600 to "
-                    "12000000; with --bus fc 2400 to 115200, default 9600)")
+                    "12000000; with --bus fc or vlt2000 2400 to 115200, default 9600)")
         ->check(whole_number(2400, 12'000'000, " baud"))
         ->default_str("1500000");
     sub->add_option("--master", command->master,
-                    "Address of the DP master (PROFIBUS only: the FC master has none)")
+                    "Address of the DP master (PROFIBUS only: the FC and VLT 2000 masters have "
+                    "none)")
         ->check(whole_number(0, 126))
         ->default_str("2");
     sub->add_option("--slave", command->slaves,
@@ -441,8 +496,8 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->type_name("SPEC")
         ->allow_extra_args(false);
     sub->add_option("--cycles", command->cycles,
-                    "Data_Exchange cycles after start-up (with --bus fc: polling rounds of all "
-                    "drives); 0 runs until -c telegrams")
+                    "Data_Exchange cycles after start-up (with --bus fc or vlt2000: polling rounds "
+                    "of all drives); 0 runs until -c telegrams")
         ->check(whole_number(0, kLargest))
         ->default_str("1000");
     sub->add_option("-c,--count", command->count, "Stop after writing N telegrams")

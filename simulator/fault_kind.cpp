@@ -170,6 +170,24 @@ Protocol fault_bus(FaultKind kind) noexcept {
 
 bool fault_is_fc(FaultKind kind) noexcept { return fault_bus(kind) == Protocol::Fc; }
 
+bool fault_applies_to_bus(FaultKind kind, Protocol bus) noexcept {
+    if (fault_bus(kind) == bus) return true;
+    return bus != Protocol::ProfibusDp &&
+           (kind == FaultKind::Garbage || kind == FaultKind::MalformedTelegram);
+}
+
+std::string fault_kind_names(Protocol bus, bool with_alias) {
+    std::string names;
+    for (std::size_t i = 0; i < kFaultKindCount; ++i) {
+        const auto kind = static_cast<FaultKind>(i);
+        if (!fault_applies_to_bus(kind, bus)) continue;
+        if (!names.empty()) names += ", ";
+        names += fault_kind_name(kind);
+        if (with_alias && kind == FaultKind::FcsError) names += " (alias bad_fcs)";
+    }
+    return names;
+}
+
 bool fault_needs_spontaneous_messages(FaultKind kind) noexcept {
     return kind == FaultKind::SpontaneousMessage || kind == FaultKind::SpontaneousUnacknowledged;
 }

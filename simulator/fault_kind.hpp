@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "decoder/finding.hpp"
@@ -76,6 +77,12 @@ bool fault_needs_dpv1(FaultKind kind) noexcept;
 Protocol fault_bus(FaultKind kind) noexcept;
 // fault_bus(kind) is the FC protocol.
 bool fault_is_fc(FaultKind kind) noexcept;
+// A session on `bus` can inject it: the faults of that bus; the FC and VLT 2000 buses also take
+// the shared garbage and malformed_telegram.
+bool fault_applies_to_bus(FaultKind kind, Protocol bus) noexcept;
+// The names of the faults a session on `bus` can inject, in catalogue order, ", " between them
+// ("bad_fcs" as "fcs_error (alias bad_fcs)" when `with_alias`).
+std::string fault_kind_names(Protocol bus, bool with_alias = false);
 // Faults that make a slave send spontaneous messages need a dialect that has them (not ge).
 bool fault_needs_spontaneous_messages(FaultKind kind) noexcept;
 

@@ -20,7 +20,7 @@ bool parse_number(std::string_view text, T& value) {
 
 }  // namespace
 
-Result<FaultSpec> parse_fault_spec(std::string_view text) {
+Result<FaultSpec> parse_fault_spec(std::string_view text, Protocol bus) {
     FaultSpec spec;
     std::string_view rest = text;
     if (auto colon = rest.rfind(':'); colon != std::string_view::npos) {
@@ -51,13 +51,9 @@ Result<FaultSpec> parse_fault_spec(std::string_view text) {
         name = rest.substr(0, eq);
     }
     auto kind = fault_kind_from_name(name);
-    if (!kind) {
-        std::string names;
-        for (std::size_t i = 0; i < kFaultKindCount; ++i)
-            names += fmt::format("{}{}", names.empty() ? "" : ", ",
-                                 fault_kind_name(static_cast<FaultKind>(i)));
-        return Error{fmt::format("{}: unknown kind '{}' (known: {})", text, name, names)};
-    }
+    if (!kind)
+        return Error{fmt::format("{}: unknown kind '{}' (known with --bus {}: {})", text, name,
+                                 protocol_name(bus), fault_kind_names(bus))};
     spec.kind = *kind;
     return spec;
 }
@@ -117,9 +113,12 @@ bool has_parameter_channel(const SimulatedSlave& slave) {
 Result<void> check_faults(const std::vector<FaultSpec>& faults,
                           const std::vector<SimulatedSlave>& slaves, std::uint64_t cycles) {
     for (const FaultSpec& spec : faults) {
-        if (fault_is_fc(spec.kind))
+        if (fault_bus(spec.kind) == Protocol::Fc)
             return Error{
                 fmt::format("fault {}: an FC protocol fault; give --bus fc", describe_fault(spec))};
+        if (fault_bus(spec.kind) == Protocol::Vlt2000)
+            return Error{fmt::format("fault {}: a VLT 2000 fault; give --bus vlt2000",
+                                     describe_fault(spec))};
         const bool needs_pcv = fault_needs_parameter_channel(spec.kind);
         const bool needs_dpv1 = fault_needs_dpv1(spec.kind);
         const bool needs_spontaneous = fault_needs_spontaneous_messages(spec.kind);

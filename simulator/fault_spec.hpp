@@ -24,8 +24,9 @@ struct FaultSpec {
 
 // "KIND" (once, at a cycle chosen by the seed), "KIND@CYCLE", "KIND=RATE", each optionally
 // followed by ":ADDR". KIND is one of the names of fault_kind_name ("bad_fcs" = "fcs_error").
-// The error names the text and what is wrong with it.
-Result<FaultSpec> parse_fault_spec(std::string_view text);
+// The error names the text and what is wrong with it; for an unknown kind, the kinds a session
+// on `bus` takes (a kind of another bus is parsed: check_simulator_faults names its bus).
+Result<FaultSpec> parse_fault_spec(std::string_view text, Protocol bus = Protocol::ProfibusDp);
 
 // The spec written back as parse_fault_spec reads it ("fcs_error@4:3").
 std::string describe_fault(const FaultSpec& spec);

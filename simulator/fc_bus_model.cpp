@@ -81,7 +81,7 @@ std::vector<SimulatedDrive> default_drives() {
 }
 
 bool fault_applies_to_fc(FaultKind kind) noexcept {
-    return fault_is_fc(kind) || kind == FaultKind::Garbage || kind == FaultKind::MalformedTelegram;
+    return fault_applies_to_bus(kind, Protocol::Fc);
 }
 
 Result<void> check_fc_faults(const std::vector<FaultSpec>& faults,
@@ -89,9 +89,10 @@ Result<void> check_fc_faults(const std::vector<FaultSpec>& faults,
     for (const FaultSpec& spec : faults) {
         if (!fault_applies_to_fc(spec.kind))
             return Error{fmt::format(
-                "fault {}: a PROFIBUS DP fault; an FC bus takes the fc_* faults, garbage and "
+                "fault {}: {} fault; an FC bus takes the fc_* faults, garbage and "
                 "malformed_telegram",
-                describe_fault(spec))};
+                describe_fault(spec),
+                fault_bus(spec.kind) == Protocol::Vlt2000 ? "a VLT 2000" : "a PROFIBUS DP")};
         if (spec.slave && std::none_of(drives.begin(), drives.end(), [&](const SimulatedDrive& d) {
                 return d.address == *spec.slave;
             }))

@@ -32,6 +32,37 @@ std::vector<SimulatedDrive> drives_or_default(const SimulatorOptions& options) {
 }
 
 constexpr std::uint32_t kFcDefaultBaud = 9600;
+constexpr std::uint32_t kVlt2000DefaultBaud = 9600;
+
+std::vector<std::uint8_t> vlt2000_drives_or_default(const SimulatorOptions& options) {
+    return options.vlt2000_drives.empty() ? default_vlt2000_drives() : options.vlt2000_drives;
+}
+
+// session_span_bound_ns of a VLT 2000 session.
+std::int64_t vlt2000_session_span_bound_ns(const SimulatorOptions& options) {
+    const double drives = static_cast<double>(vlt2000_drives_or_default(options).size());
+    const double baud = options.baud == 0 ? kVlt2000DefaultBaud : static_cast<double>(options.baud);
+    // A telegram is 22 characters of 10 bits (garbage is shorter). A poll: garbage, a command, a
+    // stacked one and the reply, each after a gap of at most the master's time-out (the longest
+    // wait).
+    constexpr double kTelegramBits = 22 * 10;
+    const double wait_ns = static_cast<double>(Vlt2000BusModel::kMasterTimeoutNs);
+    const double telegram_ns = kTelegramBits * 1e9 / baud + wait_ns;
+    const double poll_ns = 4 * telegram_ns;
+    // A cycle: every drive polled, a broadcast and a reply to it (twice with one drive). At
+    // least --cycle-us.
+    const double cycle_ns =
+        std::max(static_cast<double>(options.cycle_us) * 1e3, drives * poll_ns + 4 * telegram_ns);
+    double cycles = static_cast<double>(options.cycles);
+    if (options.max_telegrams != 0 &&
+        (options.cycles == 0 || options.max_telegrams < options.cycles))
+        cycles = static_cast<double>(options.max_telegrams);
+    // After a missing reply the session runs one cycle more.
+    const double span = (cycles + 1) * cycle_ns;
+    constexpr double kLargest = 9.2e18;
+    return span >= kLargest ? std::numeric_limits<std::int64_t>::max()
+                            : static_cast<std::int64_t>(std::ceil(span));
+}
 
 // session_span_bound_ns of an FC session.
 std::int64_t fc_session_span_bound_ns(const SimulatorOptions& options) {
@@ -60,11 +91,15 @@ std::int64_t fc_session_span_bound_ns(const SimulatorOptions& options) {
 Result<void> check_simulator_faults(const SimulatorOptions& options) {
     if (options.bus == Protocol::Fc)
         return check_fc_faults(options.faults, drives_or_default(options), options.cycles);
+    if (options.bus == Protocol::Vlt2000)
+        return check_vlt2000_faults(options.faults, vlt2000_drives_or_default(options),
+                                    options.cycles);
     return check_faults(options.faults, slaves_or_default(options), options.cycles);
 }
 
 std::int64_t session_span_bound_ns(const SimulatorOptions& options) {
     if (options.bus == Protocol::Fc) return fc_session_span_bound_ns(options);
+    if (options.bus == Protocol::Vlt2000) return vlt2000_session_span_bound_ns(options);
     const double slaves = static_cast<double>(slaves_or_default(options).size());
     const double baud = options.baud == 0 ? 1'500'000.0 : static_cast<double>(options.baud);
     // A telegram (or garbage record) is at most 64 bytes of 11 bits, after a gap of at most
@@ -117,6 +152,19 @@ Simulator::Simulator(SimulatorOptions options)
             slaves_.push_back(entry);
         }
         fc_.emplace(options_.drives);
+        started_ = true;  // no start-up
+    } else if (options_.bus == Protocol::Vlt2000) {
+        // A VLT 2000 bus: likewise, 8N1.
+        options_.vlt2000_drives = vlt2000_drives_or_default(options_);
+        options_.slaves.clear();
+        if (options_.baud == 0) options_.baud = kVlt2000DefaultBaud;
+        character_bits_ = 10;
+        for (std::uint8_t address : options_.vlt2000_drives) {
+            Slave entry;
+            entry.config.address = address;
+            slaves_.push_back(entry);
+        }
+        vlt2000_.emplace(options_.vlt2000_drives);
         started_ = true;  // no start-up
     } else {
         options_.slaves = slaves_or_default(options_);
@@ -189,11 +237,11 @@ void Simulator::emit_after(std::vector<std::uint8_t> bytes, std::int64_t gap_ns)
     if (options_.max_telegrams != 0 && queued_ >= options_.max_telegrams) return;
     advance(gap_ns);
     if (!recording_) {
-        advance(bit_ns(bytes.size() * 11));
+        advance(bit_ns(bytes.size() * character_bits_));
         return;
     }
     std::int64_t at = now_;
-    advance(bit_ns(bytes.size() * 11));
+    advance(bit_ns(bytes.size() * character_bits_));
     queue_.emplace_back(std::move(bytes), at);
     ++queued_;
 }
@@ -294,12 +342,34 @@ class Simulator::FcEnvironment final : public FcBusEnvironment {
     Simulator& simulator_;
 };
 
+// The VLT 2000 bus model's view of the session: its random numbers, faults and clock.
+class Simulator::Vlt2000Environment final : public Vlt2000BusEnvironment {
+  public:
+    explicit Vlt2000Environment(Simulator& simulator) : simulator_(simulator) {}
+    std::uint64_t random(std::uint64_t bound) override { return simulator_.random(bound); }
+    bool inject(FaultKind kind, std::size_t drive) override {
+        return simulator_.inject(kind, drive);
+    }
+    void send(std::vector<std::uint8_t> bytes, std::int64_t gap_ns) override {
+        simulator_.emit_after(std::move(bytes), gap_ns);
+    }
+    void wait(std::int64_t ns) override { simulator_.advance(ns); }
+
+  private:
+    Simulator& simulator_;
+};
+
 void Simulator::generate_cycle() {
     const std::int64_t cycle_start = now_;
     arm_faults();
-    if (fc_) {
-        FcEnvironment environment(*this);
-        fc_->cycle(environment, cycle_);
+    if (fc_ || vlt2000_) {
+        if (fc_) {
+            FcEnvironment environment(*this);
+            fc_->cycle(environment, cycle_);
+        } else {
+            Vlt2000Environment environment(*this);
+            vlt2000_->cycle(environment, cycle_);
+        }
         const std::int64_t cycle_ns = static_cast<std::int64_t>(options_.cycle_us) * 1000;
         if (now_ - cycle_start < cycle_ns) advance(cycle_ns - (now_ - cycle_start));
         ++cycle_;
@@ -354,6 +424,7 @@ void Simulator::arm_faults() {
         auto eligible = [&](std::size_t i) {
             if (spec.slave && slaves_[i].config.address != *spec.slave) return false;
             if (fc_) return fault_applies_to_fc(spec.kind);
+            if (vlt2000_) return fault_applies_to_vlt2000(spec.kind);
             if (fault_needs_dpv1(spec.kind) && !slaves_[i].dpv1) return false;
             if (fault_needs_spontaneous_messages(spec.kind) &&
                 !has_spontaneous_messages(slaves_[i].config.dialect))
@@ -390,6 +461,12 @@ void Simulator::take(FaultKind kind, std::size_t slave, std::uint64_t& armed) {
         hold_open_until_ = std::max(
             hold_open_until_, later(now_, give_up + std::int64_t{options_.cycle_us} * 10'000));
     }
+    // A VLT 2000 drive that does not reply: one cycle more, so that the master's next command
+    // (which shows the reply missing) is in the capture.
+    if (kind == FaultKind::Vlt2000NoResponse)
+        hold_open_until_ = std::max(
+            hold_open_until_, later(now_, Vlt2000BusModel::kMasterTimeoutNs +
+                                              std::int64_t{options_.cycle_us} * 1000 + 1'000'000));
 }
 
 // A slave's parameter-channel model draws on the session's random sequence, on the faults armed

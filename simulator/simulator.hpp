@@ -29,18 +29,22 @@
 #include "simulator/fault_spec.hpp"
 #include "simulator/fc_bus_model.hpp"
 #include "simulator/parameter_channel_model.hpp"
+#include "simulator/vlt2000_bus_model.hpp"
 
 namespace dpscope {
 
 struct SimulatorOptions {
-    // The bus: PROFIBUS DP (slaves, start-up, Data_Exchange) or the Danfoss FC protocol (drives
-    // polled by a master, simulator/fc_bus_model.hpp; no start-up, no token).
+    // The bus: PROFIBUS DP (slaves, start-up, Data_Exchange), the Danfoss FC protocol (drives
+    // polled by a master, simulator/fc_bus_model.hpp; no start-up, no token) or the VLT 2000
+    // serial telegram (simulator/vlt2000_bus_model.hpp, likewise).
     Protocol bus = Protocol::ProfibusDp;
     std::uint64_t seed = 1;
-    std::uint32_t baud = 1'500'000;  // 0: 1500000 on PROFIBUS, 9600 on an FC bus
+    std::uint32_t baud = 1'500'000;  // 0: 1500000 on PROFIBUS, 9600 on an FC or VLT 2000 bus
     std::uint8_t master = 2;
     std::vector<SimulatedSlave> slaves;  // empty: 3:PPO1, 4:PPO2, 5:PPO5
     std::vector<SimulatedDrive> drives;  // FC bus; empty: default_drives()
+    // VLT 2000 bus: the drives' addresses 1..99; empty: default_vlt2000_drives().
+    std::vector<std::uint8_t> vlt2000_drives;
     // Data_Exchange cycles after start-up; 0: until max_telegrams (with neither, the session is
     // the start-up alone: it always ends).
     std::uint64_t cycles = 1000;
@@ -110,7 +114,8 @@ class Simulator {
     void advance(std::int64_t ns);  // now_ += ns, stopping at the largest int64
     void emit(std::vector<std::uint8_t> bytes, std::uint64_t gap_bits);
     void emit_after(std::vector<std::uint8_t> bytes, std::int64_t gap_ns);
-    class FcEnvironment;  // the FC bus model's view of the session
+    class FcEnvironment;       // the FC bus model's view of the session
+    class Vlt2000Environment;  // the VLT 2000 bus model's view of the session
     void generate_start_up();
     void generate_cycle();
     void exchange(std::size_t index);
@@ -128,9 +133,12 @@ class Simulator {
     void take(FaultKind kind, std::size_t slave, std::uint64_t& armed);
 
     SimulatorOptions options_;
-    // On an FC bus, one entry per drive with its address only (faults are armed per entry).
+    // On an FC or VLT 2000 bus, one entry per drive with its address only (faults are armed per
+    // entry).
     std::vector<Slave> slaves_;
-    std::optional<FcBusModel> fc_;  // the FC bus model (options_.bus == Protocol::Fc)
+    std::optional<FcBusModel> fc_;            // the FC bus model (options_.bus == Protocol::Fc)
+    std::optional<Vlt2000BusModel> vlt2000_;  // options_.bus == Protocol::Vlt2000
+    std::uint64_t character_bits_ = 11;       // 8E1 (PROFIBUS, FC); 8N1 (VLT 2000): 10
     std::deque<std::pair<std::vector<std::uint8_t>, std::int64_t>> queue_;
     // Faults armed and not taken yet, per kind and slave: armed_[kind * slaves + slave].
     std::vector<std::uint64_t> armed_;

@@ -881,8 +881,8 @@ TEST(CliTest, SimulateFcUsageErrors) {
               "dpscope: error: --slave 3:1: slaves are PROFIBUS DP stations; an FC bus has drives "
               "(--drive ADDR[:1-31|1-126])\n");
     EXPECT_EQ(error_of({"simulate", "-w", "-", "--drive", "3"}),
-              "dpscope: error: --drive 3: drives are for --bus fc; a PROFIBUS DP bus has slaves "
-              "(--slave ADDR:PPO)\n");
+              "dpscope: error: --drive 3: drives are for --bus fc and --bus vlt2000; a PROFIBUS "
+              "DP bus has slaves (--slave ADDR:PPO)\n");
     EXPECT_EQ(error_of({"simulate", "--bus", "fc", "-w", "-", "--drive", "40:1-31"}),
               "dpscope: error: --drive 40:1-31: the address must be from 1 to 31 in the 1-31 "
               "format\n");
@@ -901,7 +901,83 @@ TEST(CliTest, SimulateFcUsageErrors) {
               "--bus fc\n");
     EXPECT_EQ(error_of({"simulate", "--bus", "fc", "-w", "-", "--linktype", "profibus"}),
               "dpscope: error: --linktype profibus: an FC capture has link type user0 (147)\n");
-    error_of({"simulate", "--bus", "vlt2000", "-w", "-"});
+}
+
+// simulate --bus vlt2000: a pcap of link type USER0 with VLT 2000 telegrams; hex and raw too.
+TEST(CliTest, SimulateVlt2000WritesUser0CapturesOfVlt2000Telegrams) {
+    TempFile file("vlt2000.pcap");
+    CommandResult r = run_dpscope({"simulate", "--bus", "vlt2000", "-w", file.path, "--seed", "3",
+                                   "--cycles", "19", "--drive", "4", "--drive", "99", "-v",
+                                   "--fault", "vlt2000_checksum_error@2:99"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("injected vlt2000_checksum_error on slave 99 in cycle 2"),
+              std::string::npos)
+        << r.err;
+    std::vector<std::uint8_t> bytes = test::read_file(file.path);
+    ASSERT_GT(bytes.size(), 24u);
+    EXPECT_EQ(bytes[20] | bytes[21] << 8, 147);  // LINKTYPE_USER0
+    EXPECT_EQ(records_in(file.path), 76u);       // 19 cycles of two polls, no broadcast yet
+    // decode finds the bus in the capture: the drive's reply names the command it answers.
+    CommandResult decoded = run_dpscope({"decode", "-T", "jsonl", file.path});
+    EXPECT_EQ(decoded.exit_code, 0) << decoded.err;
+    std::vector<std::string> records = lines_of(decoded.out);
+    ASSERT_EQ(records.size(), 76u);
+    EXPECT_NE(records[1].find("\"direction\":\"response\""), std::string::npos) << records[1];
+    EXPECT_NE(records[1].find("\"request_frame\":1,"), std::string::npos) << records[1];
+    CommandResult hex = run_dpscope({"simulate", "--bus", "vlt2000", "-w", "-", "-F", "hex",
+                                     "--seed", "3", "--cycles", "1", "--drive", "4"});
+    EXPECT_EQ(hex.exit_code, 0) << hex.err;
+    std::vector<std::string> lines = lines_of(hex.out);
+    ASSERT_EQ(lines.size(), 2u) << hex.out;
+    EXPECT_NE(lines[0].find(" 3C 30 34 "), std::string::npos) << lines[0];  // "<04"
+    CommandResult raw = run_dpscope(
+        {"simulate", "--bus", "vlt2000", "-w", "-", "-F", "raw", "--cycles", "1", "--drive", "4"});
+    EXPECT_EQ(raw.exit_code, 0) << raw.err;
+    ASSERT_EQ(raw.out.size(), 44u);
+    EXPECT_EQ(raw.out.substr(0, 3), "<04");
+    EXPECT_EQ(raw.out.substr(21, 4), "><04");
+    EXPECT_EQ(raw.out.back(), '>');
+}
+
+TEST(CliTest, SimulateVlt2000UsageErrors) {
+    auto error_of = [](std::vector<std::string> args) {
+        CommandResult r = run_dpscope(args);
+        EXPECT_EQ(r.exit_code, 2);
+        EXPECT_TRUE(r.out.empty());
+        return r.err;
+    };
+    EXPECT_EQ(error_of({"simulate", "--bus", "vlt2000", "-w", "-", "--slave", "3:1"}),
+              "dpscope: error: --slave 3:1: slaves are PROFIBUS DP stations; a VLT 2000 bus has "
+              "drives (--drive ADDR)\n");
+    EXPECT_EQ(error_of({"simulate", "--bus", "vlt2000", "-w", "-", "--drive", "100"}),
+              "dpscope: error: --drive 100: the address must be from 1 to 99 (two digits; 00 is "
+              "the broadcast)\n");
+    EXPECT_EQ(
+        error_of({"simulate", "--bus", "vlt2000", "-w", "-", "--drive", "4", "--drive", "04"}),
+        "dpscope: error: --drive 4 and --drive 04 both give address 4: one drive per "
+        "address\n");
+    EXPECT_EQ(error_of({"simulate", "--bus", "vlt2000", "-w", "-", "--fault", "fc_bcc_error"}),
+              "dpscope: error: --fault fc_bcc_error: an FC protocol fault; a VLT 2000 bus takes "
+              "the vlt2000_* faults, garbage and malformed_telegram\n");
+    EXPECT_EQ(error_of({"simulate", "-w", "-", "--fault", "vlt2000_no_response"}),
+              "dpscope: error: --fault vlt2000_no_response: a VLT 2000 fault; give --bus "
+              "vlt2000\n");
+    EXPECT_EQ(
+        error_of({"simulate", "--bus", "vlt2000", "-w", "-", "--fault", "vlt2000_no_response:9"}),
+        "dpscope: error: --fault vlt2000_no_response:9: drive 9 is not simulated\n");
+    EXPECT_NE(error_of({"simulate", "--bus", "vlt2000", "-w", "-", "--fault", "nonsense"})
+                  .find("(known with --bus vlt2000: garbage, malformed_telegram, "
+                        "vlt2000_stacked_request, "),
+              std::string::npos);
+    EXPECT_EQ(error_of({"simulate", "--bus", "vlt2000", "-w", "-", "--master", "3"}),
+              "dpscope: error: --master: the VLT 2000 master has no address; leave --master out "
+              "with --bus vlt2000\n");
+    EXPECT_EQ(error_of({"simulate", "--bus", "vlt2000", "-w", "-", "--linktype", "profibus"}),
+              "dpscope: error: --linktype profibus: a VLT 2000 capture has link type user0 "
+              "(147)\n");
+    EXPECT_EQ(error_of({"simulate", "--bus", "vlt2000", "-w", "-", "--baud", "230400"}),
+              "dpscope: error: --baud: must be a whole number from 2400 to 115200 baud for the "
+              "VLT 2000, not '230400'\n");
 }
 
 TEST(CliTest, SimulateNumbersOutOfRangeAreUsageErrors) {

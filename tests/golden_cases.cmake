@@ -68,6 +68,23 @@ golden_case(report_fc_markdown samples/expected/report.fc.md EXIT 1 report -T ma
 golden_case(report_fc_html samples/expected/report.fc.html EXIT 1 report -T html samples/fc.pcap)
 golden_case(report_fc_junit samples/expected/report.fc.junit.xml EXIT 1 report -T junit samples/fc.pcap)
 golden_case(report_fc_clean_text samples/expected/report.fc-clean.txt report samples/fc-clean.pcap)
+# The VLT 2000 serial telegram: a simulated bus (samples/vlt2000.pcap, USER0 with the bus
+# recorded: no --bus needed) with four drives, every letter, broadcasts, the drives' own failures
+# and every VLT 2000 fault; a clean session; hand-written telegrams in a plain-text log
+# (samples/vlt2000-examples.txt: the worked example, the seed's value example, failures, a
+# broadcast, "??").
+golden_case(vlt2000_text samples/expected/vlt2000.txt decode samples/vlt2000.pcap)
+golden_case(vlt2000_jsonl samples/expected/vlt2000.jsonl decode -T jsonl samples/vlt2000.pcap)
+golden_case(vlt2000_verbose samples/expected/vlt2000.verbose.txt decode -V --station 17 -c 80 samples/vlt2000.pcap)
+golden_case(vlt2000_csv samples/expected/vlt2000.csv decode -T csv samples/vlt2000.pcap)
+golden_case(report_vlt2000_text samples/expected/report.vlt2000.txt EXIT 1 report samples/vlt2000.pcap)
+golden_case(report_vlt2000_json samples/expected/report.vlt2000.json EXIT 1 report -T json samples/vlt2000.pcap)
+golden_case(report_vlt2000_markdown samples/expected/report.vlt2000.md EXIT 1 report -T markdown samples/vlt2000.pcap)
+golden_case(report_vlt2000_html samples/expected/report.vlt2000.html EXIT 1 report -T html samples/vlt2000.pcap)
+golden_case(report_vlt2000_junit samples/expected/report.vlt2000.junit.xml EXIT 1 report -T junit samples/vlt2000.pcap)
+golden_case(report_vlt2000_clean_text samples/expected/report.vlt2000-clean.txt report samples/vlt2000-clean.pcap)
+golden_case(vlt2000_examples_text samples/expected/vlt2000-examples.txt decode --bus vlt2000 samples/vlt2000-examples.txt)
+golden_case(vlt2000_examples_jsonl samples/expected/vlt2000-examples.jsonl decode --bus vlt2000 -T jsonl samples/vlt2000-examples.txt)
 
 # Conformance reports: a capture with every fault kind (exit 1: errors found) and a clean one.
 golden_case(report_faults_text samples/expected/report.faults.txt EXIT 1 report samples/faults.pcap)

@@ -15,6 +15,8 @@
 #include "decoder/fc_decoder.hpp"
 #include "decoder/fc_tracker.hpp"
 #include "decoder/telegram_builder.hpp"
+#include "decoder/vlt2000_decoder.hpp"
+#include "decoder/vlt2000_tracker.hpp"
 #include "simulator/simulator.hpp"
 #include "tests/test_support.hpp"
 
@@ -293,14 +295,146 @@ TEST(SessionTrackerTest, FcScenariosGiveExactlyTheExpectedFindings) {
     }
 }
 
+// ---- VLT 2000 scenarios ------------------------------------------------------------------------
+// The VLT 2000 faults simulated (simulate --bus vlt2000), decoded by Vlt2000Decoder and judged by
+// Vlt2000Tracker: drives 1, 2 and 5, the fault once on drive 2 from cycle 40 of 120. The simulated
+// drives also fail some commands by design (vlt2000_simulated_failure: the background of
+// vlt2000_command_failed notes, counted apart); beyond those, exactly the expected findings.
+
+struct Vlt2000Scenario {
+    const char* fault;
+    Counts expected;
+};
+
+const Vlt2000Scenario kVlt2000Scenarios[] = {
+    // A second command (another letter) to drive 2 before its reply.
+    {"vlt2000_stacked_request", {{"vlt2000_stacked_request", 1}}},
+    // Drive 2 does not reply; the master moves on to the next drive.
+    {"vlt2000_no_response", {{"vlt2000_no_response", 1}}},
+    // Drive 2 replies to the next broadcast.
+    {"vlt2000_unexpected_reply", {{"vlt2000_unexpected_reply", 1}}},
+    // The reply carries the next parameter number.
+    {"vlt2000_mismatched_response", {{"vlt2000_mismatched_response", 1}}},
+    // A command that works otherwise fails: decimal position 9, reason 01 or 04.
+    {"vlt2000_command_failed", {{"vlt2000_command_failed", 1}}},
+    // One reply with two digits that are not the sum's.
+    {"vlt2000_checksum_error", {{"vlt2000_checksum_error", 1}}},
+    // From then on "??" to and from drive 2: one note.
+    {"vlt2000_checksum_disabled", {{"vlt2000_checksum_disabled", 1}}},
+    // The shared faults on a VLT 2000 bus: junk between telegrams, a reply cut short.
+    {"garbage", {{"malformed_telegram", 1}}},
+    {"malformed_telegram", {{"malformed_telegram", 1}}},
+};
+
+struct Vlt2000Run {
+    std::vector<Finding> findings;  // beyond the background
+    std::uint64_t background = 0;   // command_failed notes of commands that fail by design
+    std::vector<Injection> injections;
+    std::uint64_t transactions = 0;
+};
+
+Vlt2000Run simulate_vlt2000(std::vector<FaultSpec> faults, std::uint64_t seed = 42,
+                            std::uint64_t cycles = 120) {
+    SimulatorOptions options;
+    options.bus = Protocol::Vlt2000;
+    options.baud = 0;
+    options.seed = seed;
+    options.cycles = cycles;
+    options.vlt2000_drives = {1, 2, 5};
+    options.faults = std::move(faults);
+    Simulator simulator(options);
+    Vlt2000Decoder decoder;
+    Vlt2000Tracker tracker;
+    Vlt2000Run run;
+    // The commands, by frame: whether the simulated drive fails them by design.
+    std::map<std::uint64_t, bool> fails_by_design;
+    auto keep = [&](const Finding& f) {
+        if (f.kind == FindingKind::Vlt2000CommandFailed && fails_by_design[f.request_frame])
+            ++run.background;
+        else
+            run.findings.push_back(f);
+    };
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time = 0;
+    std::uint64_t frame = 0;
+    while (simulator.next(bytes, time)) {
+        const DecodedTelegram& t = decoder.decode(Bytes(bytes.data(), bytes.size()), time, ++frame);
+        if (t.has_roles && t.direction == Direction::Request)
+            fails_by_design[frame] =
+                vlt2000_simulated_failure(static_cast<char>(t.vlt2000.letter_char),
+                                          t.vlt2000.parameter, t.vlt2000.index_number)
+                    .has_value();
+        for (const Finding& f : tracker.track(t))
+            keep(f);
+    }
+    for (const Finding& f : tracker.finish())
+        keep(f);
+    run.injections = simulator.injections();
+    run.transactions = tracker.transactions();
+    return run;
+}
+
+TEST(SessionTrackerTest, CleanVlt2000SessionHasOnlyTheDrivesOwnFailures) {
+    Vlt2000Run run = simulate_vlt2000({}, 7, 600);
+    EXPECT_TRUE(run.findings.empty()) << finding_kind_name(run.findings[0].kind) << " in frame "
+                                      << run.findings[0].frame << ": " << run.findings[0].message;
+    EXPECT_GT(run.background, 10u);
+    EXPECT_GT(run.transactions, 1500u);
+}
+
+TEST(SessionTrackerTest, Vlt2000ScenariosGiveExactlyTheExpectedFindings) {
+    for (const Vlt2000Scenario& scenario : kVlt2000Scenarios) {
+        SCOPED_TRACE(scenario.fault);
+        Result<FaultSpec> fault =
+            parse_fault_spec(std::string(scenario.fault) + "@40:2", Protocol::Vlt2000);
+        ASSERT_TRUE(fault) << fault.error();
+        Vlt2000Run run = simulate_vlt2000({*fault});
+        ASSERT_EQ(run.injections.size(), 1u) << "the fault was not injected";
+        EXPECT_EQ(count_kinds(run.findings), scenario.expected);
+        for (const Finding& f : run.findings) {
+            EXPECT_FALSE(f.message.empty());
+            EXPECT_GE(f.frame, run.injections[0].telegram) << f.message;
+            EXPECT_EQ(f.severity, default_severity(f.kind));
+            if (f.has_stations) {
+                EXPECT_EQ(f.master, 0);
+                // A reply to a broadcast comes with address 00.
+                EXPECT_EQ(f.slave, f.kind == FindingKind::Vlt2000UnexpectedReply ? 0 : 2)
+                    << f.message;
+            }
+        }
+    }
+}
+
+// Every injection of a VLT 2000 kind, at a rate over a long session, yields exactly its finding
+// and nothing else (the kinds judged once per address or per broadcast left out).
+TEST(SessionTrackerTest, Vlt2000FaultsAtARateAreAllFoundAndNothingElse) {
+    for (const Vlt2000Scenario& scenario : kVlt2000Scenarios) {
+        const std::string name = scenario.fault;
+        if (name == "vlt2000_checksum_disabled" || name == "vlt2000_unexpected_reply") continue;
+        SCOPED_TRACE(name);
+        Result<FaultSpec> fault = parse_fault_spec(name + "=0.01", Protocol::Vlt2000);
+        ASSERT_TRUE(fault) << fault.error();
+        Vlt2000Run run = simulate_vlt2000({*fault}, 3, 1500);
+        const int injected = static_cast<int>(run.injections.size());
+        ASSERT_GT(injected, 10);
+        Counts want;
+        for (const auto& [kind, n] : scenario.expected)
+            want[kind] = n * injected;
+        EXPECT_EQ(count_kinds(run.findings), want);
+    }
+}
+
 TEST(SessionTrackerTest, EveryKindIsCoveredByAScenario) {
-    // Some scenario of kFaultScenarios (PROFIBUS DP, simulated) or of the FC scenarios expects
-    // each finding kind.
+    // Some scenario of kFaultScenarios (PROFIBUS DP, simulated), of the FC scenarios or of the
+    // VLT 2000 scenarios expects each finding kind.
     std::set<std::string> covered;
     for (const FaultScenario& scenario : kFaultScenarios)
         for (const auto& [kind, count] : scenario.expected)
             covered.insert(kind);
     for (const FcScenario& scenario : fc_scenarios())
+        for (const auto& [kind, count] : scenario.expected)
+            covered.insert(kind);
+    for (const Vlt2000Scenario& scenario : kVlt2000Scenarios)
         for (const auto& [kind, count] : scenario.expected)
             covered.insert(kind);
     for (std::size_t i = 0; i < kFindingKindCount; ++i)
@@ -312,22 +446,36 @@ TEST(SessionTrackerTest, EveryKindIsCoveredByAScenario) {
 }
 
 TEST(SessionTrackerTest, EverySimulatorFaultHasAScenario) {
-    std::set<std::string> faults;
+    // Every fault has a scenario on its own bus; garbage and malformed_telegram (PROFIBUS DP
+    // faults the VLT 2000 bus takes too) also one on the VLT 2000 bus.
+    std::map<Protocol, std::set<std::string>> faults;
     for (const FaultScenario& scenario : kFaultScenarios)
-        faults.insert(scenario.fault);
+        faults[Protocol::ProfibusDp].insert(scenario.fault);
     const std::vector<FcScenario> fc = fc_scenarios();
-    for (const FcScenario& scenario : fc) {
-        faults.insert(scenario.fault);
-        auto kind = fault_kind_from_name(scenario.fault);
-        ASSERT_TRUE(kind) << scenario.fault;
-        EXPECT_TRUE(fault_is_fc(*kind)) << scenario.fault;
+    for (const FcScenario& scenario : fc)
+        faults[Protocol::Fc].insert(scenario.fault);
+    for (const Vlt2000Scenario& scenario : kVlt2000Scenarios)
+        faults[Protocol::Vlt2000].insert(scenario.fault);
+    for (const auto& [bus, names] : faults) {
+        for (const std::string& name : names) {
+            auto kind = fault_kind_from_name(name);
+            ASSERT_TRUE(kind) << name;
+            EXPECT_TRUE(fault_applies_to_bus(*kind, bus)) << name;
+        }
     }
-    for (const FaultScenario& scenario : kFaultScenarios)
-        EXPECT_FALSE(fault_is_fc(*fault_kind_from_name(scenario.fault))) << scenario.fault;
-    for (std::size_t i = 0; i < kFaultKindCount; ++i)
-        EXPECT_TRUE(faults.count(std::string(fault_kind_name(static_cast<FaultKind>(i)))))
-            << fault_kind_name(static_cast<FaultKind>(i));
-    EXPECT_EQ(faults.size(), std::size(kFaultScenarios) + fc.size())
+    for (std::size_t i = 0; i < kFaultKindCount; ++i) {
+        const auto kind = static_cast<FaultKind>(i);
+        EXPECT_TRUE(faults[fault_bus(kind)].count(std::string(fault_kind_name(kind))))
+            << fault_kind_name(kind);
+        if (fault_applies_to_bus(kind, Protocol::Vlt2000)) {
+            EXPECT_TRUE(faults[Protocol::Vlt2000].count(std::string(fault_kind_name(kind))))
+                << fault_kind_name(kind);
+        }
+    }
+    EXPECT_EQ(faults[Protocol::ProfibusDp].size(), std::size(kFaultScenarios))
+        << "a fault with two scenarios";
+    EXPECT_EQ(faults[Protocol::Fc].size(), fc.size()) << "a fault with two scenarios";
+    EXPECT_EQ(faults[Protocol::Vlt2000].size(), std::size(kVlt2000Scenarios))
         << "a fault with two scenarios";
 }
 

@@ -458,15 +458,33 @@ TEST(SimulatorTest, ParseFaultSpecValid) {
 
 TEST(SimulatorTest, ParseFaultSpecInvalid) {
     std::string unknown = fault_error("nonsense@3");
-    EXPECT_EQ(unknown.rfind("nonsense@3: unknown kind 'nonsense' (known: fcs_error, "
-                            "garbage, ",
+    // The kinds a PROFIBUS DP session takes (the default bus), and only those.
+    EXPECT_EQ(unknown.rfind("nonsense@3: unknown kind 'nonsense' (known with --bus profibus: "
+                            "fcs_error, garbage, ",
                             0),
               0u)
         << unknown;
     EXPECT_NE(unknown.find("fdl_no_response, dpv1_stacked_request, "), std::string::npos)
         << unknown;
-    EXPECT_NE(unknown.find("dpv1_error_pdu, fc_stacked_request, "), std::string::npos) << unknown;
-    EXPECT_NE(unknown.find("fc_bcc_error)"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find(", dpv1_error_pdu)"), std::string::npos) << unknown;
+    EXPECT_EQ(unknown.find("fc_"), std::string::npos) << unknown;
+    EXPECT_EQ(unknown.find("vlt2000_"), std::string::npos) << unknown;
+    Result<FaultSpec> fc = parse_fault_spec("nonsense", Protocol::Fc);
+    ASSERT_FALSE(fc);
+    EXPECT_EQ(fc.error(),
+              "nonsense: unknown kind 'nonsense' (known with --bus fc: garbage, "
+              "malformed_telegram, fc_stacked_request, fc_no_response, fc_late_response, "
+              "fc_mismatched_response, fc_unexpected_response_type, fc_command_rejected, "
+              "fc_bcc_error)");
+    Result<FaultSpec> vlt = parse_fault_spec("nonsense", Protocol::Vlt2000);
+    ASSERT_FALSE(vlt);
+    EXPECT_EQ(vlt.error(),
+              "nonsense: unknown kind 'nonsense' (known with --bus vlt2000: garbage, "
+              "malformed_telegram, vlt2000_stacked_request, vlt2000_no_response, "
+              "vlt2000_unexpected_reply, vlt2000_mismatched_response, vlt2000_command_failed, "
+              "vlt2000_checksum_error, vlt2000_checksum_disabled)");
+    // A kind of another bus is parsed; check_simulator_faults names its bus.
+    EXPECT_TRUE(parse_fault_spec("fc_bcc_error", Protocol::Vlt2000));
     EXPECT_EQ(fault_error("garbage@x"), "garbage@x: 'x' is not a cycle number");
     EXPECT_EQ(fault_error("garbage@-1"), "garbage@-1: '-1' is not a cycle number");
     EXPECT_EQ(fault_error("garbage@"), "garbage@: '' is not a cycle number");
@@ -558,11 +576,16 @@ TEST(SimulatorTest, EveryFaultKindIsInjectedExactlyOnce) {
                 options.slaves = {{3, 1, Dialect::Vlt, true},
                                   {4, 3, Dialect::Profidrive, true},
                                   {5, 5, Dialect::Vlt, true}};
-            if (fault_is_fc(kind)) {
+            if (fault_bus(kind) == Protocol::Fc) {
                 options.bus = Protocol::Fc;
                 options.drives = {{3, FcAddressFormat::Long},
                                   {4, FcAddressFormat::Short},
                                   {5, FcAddressFormat::Long}};
+            }
+            if (fault_bus(kind) == Protocol::Vlt2000) {
+                options.bus = Protocol::Vlt2000;
+                options.baud = 0;
+                options.vlt2000_drives = {3, 4, 5};
             }
             Simulator simulator(options);
             std::vector<Telegram> telegrams = run(simulator);
