@@ -9,14 +9,20 @@
 namespace dpscope {
 
 // Serial: a live serial port (dpscope sniff); never detected from a file's content.
-enum class InputFormat { Auto, Pcap, Pcapng, Raw, Hex, Serial };
+// Text: a text log of ASCII telegrams (the VLT 2000's "<...>", capture/text_log.hpp).
+enum class InputFormat { Auto, Pcap, Pcapng, Raw, Hex, Serial, Text };
 
-// "auto", "pcap", "pcapng", "raw", "hex", "serial".
+// "auto", "pcap", "pcapng", "raw", "hex", "serial", "text".
 std::string_view input_format_name(InputFormat format);
 std::optional<InputFormat> input_format_from_name(std::string_view name);
 
-// pcap (any byte order, microsecond or nanosecond magic), pcapng (section header block), hex text
-// (only printable ASCII and white space, with at least one hex digit pair), raw bytes otherwise.
+// pcap (any byte order, microsecond or nanosecond magic), pcapng (section header block), a text
+// log of VLT 2000 telegrams (only printable ASCII and white space, holding '<', 20 printable
+// characters and '>' on one line), hex text (only printable ASCII and white space, with at least
+// one hex digit pair), raw bytes otherwise.
 InputFormat detect_input_format(Bytes head);
+
+// Does `text` hold a VLT 2000 telegram's shape: '<', 20 printable ASCII characters, '>'?
+bool has_vlt2000_telegram_shape(Bytes text);
 
 }  // namespace dpscope
