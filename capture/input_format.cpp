@@ -34,8 +34,8 @@ bool is_hex_digit(std::uint8_t c) {
 }  // namespace
 
 bool has_vlt2000_telegram_shape(Bytes text) {
-    // 22 characters: '<', 20 printable (no '<' among them would be required by no rule, but a
-    // '<' inside restarts the count as the framer resynchronises there), '>'.
+    // '<', 20 printable characters, '>' (22 in all); a '<' among them starts the count again, as
+    // the framer resynchronises there.
     std::size_t run = 0;  // characters since the last '<', that '<' included; 0: none open
     for (std::uint8_t c : text) {
         if (c == '<') {

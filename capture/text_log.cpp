@@ -80,7 +80,11 @@ class TextLogSource final : public FramedSource {
             return;
         }
         ++column_;
-        if (pending_size_ > 0) {
+        if (c == '\r' && pending_size_ > 0) {
+            // CR LF: the line ends here for a telegram still open.
+            while (pending_size_ > 0)
+                broken(Broken::LineEnd);
+        } else if (pending_size_ > 0) {
             append(c);
         } else if (c == kVlt2000Start) {
             start(column_);

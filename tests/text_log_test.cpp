@@ -110,6 +110,16 @@ TEST(TextLogTest, TelegramsAmongOtherTextWithTimeStampsAndCrlf) {
     EXPECT_EQ(dated.times[1], 1'704'067'200'000'125'000LL);
 }
 
+TEST(TextLogTest, ACarriageReturnEndsAnOpenTelegramLikeTheLineEnd) {
+    ReadResult r = read_text("TX <01UOGD@05\r\n" + kReply + "\r\n");
+    ASSERT_EQ(r.telegrams.size(), 1u);
+    ASSERT_EQ(r.issues.size(), 1u);
+    EXPECT_NE(r.issues[0].find("line 1, column 4: skipped 10 characters: '<01UOGD@05' is no VLT "
+                               "2000 telegram: the line ends after 10 of its 22 characters"),
+              std::string::npos)
+        << r.issues[0];
+}
+
 TEST(TextLogTest, LinesWithoutATimeStampHaveNoTime) {
     ReadResult r = read_text("TX: " + kRequest + "\n" + kReply + "\n");
     ASSERT_EQ(r.telegrams.size(), 2u);
