@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <random>
 #include <string>
 #include <vector>
 
@@ -227,6 +228,45 @@ TEST(TextLogTest, AnEmptyOrTelegramLessTextHasNoTelegrams) {
     EXPECT_EQ(cli.exit_code, 2);
     EXPECT_NE(cli.err.find("no VLT 2000 telegram ('<' ... '>') in the text"), std::string::npos)
         << cli.err;
+}
+
+TEST(TextLogTest, PiecesOfTelegramsInAnyOrderNeverLoseAWholeOne) {
+    // Telegrams, their pieces, time stamps, line ends and stray bytes mixed at random: nothing
+    // but 22-character telegrams comes out, and at least every whole telegram that follows no
+    // open '<' is among them.
+    std::mt19937 random(11);
+    const std::vector<std::string> pieces = {kRequest,
+                                             kReply,
+                                             "<01U",
+                                             "<",
+                                             ">",
+                                             "12:00:00.5 ",
+                                             "TX: ",
+                                             "\r\n",
+                                             "\n",
+                                             "x",
+                                             std::string(1, '\x01')};
+    for (int round = 0; round < 200; ++round) {
+        std::string text;
+        std::size_t whole = 0;
+        bool clean_before = true;  // nothing open that a telegram could be taken into
+        for (int i = 0; i < 40; ++i) {
+            const std::string& piece = pieces[random() % pieces.size()];
+            text += piece;
+            const bool telegram = piece.size() == 22;
+            if (telegram && clean_before) ++whole;
+            clean_before = telegram || piece.find('<') == std::string::npos;
+            if (piece == "<01U" || piece == "<") clean_before = false;
+        }
+        ReadResult r = read_text(text, InputFormat::Text);
+        EXPECT_GE(r.telegrams.size(), whole) << text;
+        for (const std::string& t : r.telegrams) {
+            EXPECT_EQ(t.size(), 22u);
+            EXPECT_EQ(t.front(), '<');
+            EXPECT_EQ(t.back(), '>');
+        }
+        EXPECT_EQ(r.status, InputStatus::Ok);
+    }
 }
 
 TEST(TextLogTest, DetectionTellsTextLogsFromHexLogs) {
