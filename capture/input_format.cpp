@@ -34,17 +34,18 @@ bool is_hex_digit(std::uint8_t c) {
 }  // namespace
 
 bool has_vlt2000_telegram_shape(Bytes text) {
-    // '<', 20 printable characters, '>' (22 in all); a '<' among them starts the count again, as
-    // the framer resynchronises there.
+    // '<', the two address digits, 18 printable characters, '>' (22 in all); a '<' among them
+    // starts the count again, as the framer resynchronises there.
     std::size_t run = 0;  // characters since the last '<', that '<' included; 0: none open
     for (std::uint8_t c : text) {
+        const bool fits = run <= 2 ? c >= '0' && c <= '9' : c >= 0x20 && c < 0x7F;
         if (c == '<') {
             run = 1;
         } else if (run == 0) {
             continue;
         } else if (run == 21 && c == '>') {
             return true;
-        } else if (c >= 0x20 && c < 0x7F && run < 21) {
+        } else if (fits && run < 21) {
             ++run;
         } else {
             run = 0;

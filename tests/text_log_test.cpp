@@ -280,7 +280,11 @@ TEST(TextLogTest, DetectionTellsTextLogsFromHexLogs) {
     EXPECT_EQ(detect_input_format(bytes_of(hex_of_vlt + "\n")), InputFormat::Hex);
     BusChoice choice = choose_bus(bytes_of(hex_of_vlt + "\n"), InputFormat::Hex, true);
     EXPECT_EQ(choice.protocol->protocol, Protocol::Vlt2000);
-    // Not the shape: one character short, a line break inside, a byte that is not text.
+    // Not the shape: no address digits (markup), one character short, a line break inside, a
+    // byte that is not text.
+    EXPECT_EQ(detect_input_format(bytes_of("<!DOCTYPE html PUBLIC>\n<p>ab 12</p>\n")),
+              InputFormat::Hex);
+    EXPECT_EQ(detect_input_format(bytes_of("<0xUOGD@0516+00080007>")), InputFormat::Hex);
     EXPECT_EQ(detect_input_format(bytes_of("<01UOGD@0516+0008007>")), InputFormat::Hex);
     EXPECT_EQ(detect_input_format(bytes_of("<01UOGD@05\n16+00080007>")), InputFormat::Hex);
     std::string binary = kRequest;
