@@ -208,6 +208,13 @@ BusChoice choose_bus(Bytes head, InputFormat format, bool complete) {
     if (head.size() >= kBusChoiceBytes) complete = true;
     if (format == InputFormat::Pcap || format == InputFormat::Pcapng)
         return choose_by_label(read_capture_label(head), complete);
+    if (format == InputFormat::Text) {
+        BusChoice choice;
+        choice.protocol = &vlt2000_protocol();
+        choice.reason = "a text log of ASCII telegrams ('<' ... '>')";
+        choice.say = true;
+        return choice;
+    }
     std::vector<std::uint8_t> text_bytes;
     Bytes stream = head.first(std::min(head.size(), kBusChoiceBytes));
     if (format == InputFormat::Hex) {

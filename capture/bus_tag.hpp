@@ -62,12 +62,13 @@ struct BusChoice {
     std::optional<Protocol> tagged;
 };
 
-// Chooses the bus of a capture of input kind `format` (pcap, pcapng, raw or hex) from its first
-// bytes `head`; `complete`: `head` is the whole input (or as much as will be judged). A pcap or
-// pcapng file: link type 257 is PROFIBUS, a tag names its bus, an untagged USER0 capture is FC
+// Chooses the bus of a capture of input kind `format` (pcap, pcapng, raw, hex or text) from its
+// first bytes `head`; `complete`: `head` is the whole input (or as much as will be judged). A pcap
+// or pcapng file: link type 257 is PROFIBUS, a tag names its bus, an untagged USER0 capture is FC
 // when its first record starts with STX (0x02) and PROFIBUS otherwise. A raw or hex byte
 // stream: each protocol's framing rules are run over it, and the one that frames the most bytes
-// as telegrams wins (a tie, or none at all: PROFIBUS). need_more is set when `complete` is false
+// as telegrams wins (a tie, or none at all: PROFIBUS). A text log of ASCII telegrams (Text) is
+// VLT 2000. need_more is set when `complete` is false
 // and the head does not decide yet.
 BusChoice choose_bus(Bytes head, InputFormat format, bool complete);
 

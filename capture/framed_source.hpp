@@ -56,8 +56,10 @@ class FramedSource : public TelegramSource, private StreamFramer::Sink {
     virtual std::string where(std::uint64_t offset) const;
 
     void feed(Bytes bytes) { framer_.feed(bytes, *this); }
-    // An issue reported in stream order with the telegrams framed so far.
-    void defer_report(Severity severity, IssueKind kind, std::string message);
+    // An issue reported in stream order with the telegrams framed so far; `bytes`: input bytes it
+    // skipped (IssueKind::SkippedBytes, counted in bytes_skipped()).
+    void defer_report(Severity severity, IssueKind kind, std::string message,
+                      std::uint64_t bytes = 0);
     // The line was idle: a telegram cannot continue across the gap.
     void mark_gap() { framer_.mark_gap(*this); }
     std::size_t pending_bytes() const noexcept { return framer_.pending(); }

@@ -12,13 +12,15 @@ std::string_view input_format_name(InputFormat format) {
         case InputFormat::Raw: return "raw";
         case InputFormat::Hex: return "hex";
         case InputFormat::Serial: return "serial";
+        case InputFormat::Text: return "text";
     }
     return "auto";
 }
 
 std::optional<InputFormat> input_format_from_name(std::string_view name) {
-    for (InputFormat format : {InputFormat::Auto, InputFormat::Pcap, InputFormat::Pcapng,
-                               InputFormat::Raw, InputFormat::Hex, InputFormat::Serial})
+    for (InputFormat format :
+         {InputFormat::Auto, InputFormat::Pcap, InputFormat::Pcapng, InputFormat::Raw,
+          InputFormat::Hex, InputFormat::Serial, InputFormat::Text})
         if (input_format_name(format) == name) return format;
     return std::nullopt;
 }
@@ -30,6 +32,27 @@ bool is_hex_digit(std::uint8_t c) {
 }
 
 }  // namespace
+
+bool has_vlt2000_telegram_shape(Bytes text) {
+    // '<', the two address digits, 18 printable characters, '>' (22 in all); a '<' among them
+    // starts the count again, as the framer resynchronises there.
+    std::size_t run = 0;  // characters since the last '<', that '<' included; 0: none open
+    for (std::uint8_t c : text) {
+        const bool fits = run <= 2 ? c >= '0' && c <= '9' : c >= 0x20 && c < 0x7F;
+        if (c == '<') {
+            run = 1;
+        } else if (run == 0) {
+            continue;
+        } else if (run == 21 && c == '>') {
+            return true;
+        } else if (fits && run < 21) {
+            ++run;
+        } else {
+            run = 0;
+        }
+    }
+    return false;
+}
 
 InputFormat detect_input_format(Bytes head) {
     ByteReader reader(head);
@@ -51,6 +74,7 @@ InputFormat detect_input_format(Bytes head) {
         text = printable;
         if (i + 1 < head.size() && is_hex_digit(c) && is_hex_digit(head[i + 1])) hex_pair = true;
     }
+    if (text && has_vlt2000_telegram_shape(head)) return InputFormat::Text;
     return text && hex_pair ? InputFormat::Hex : InputFormat::Raw;
 }
 

@@ -94,9 +94,10 @@ std::string FramedSource::where(std::uint64_t offset) const {
     return fmt::format("byte offset {}", offset);
 }
 
-void FramedSource::defer_report(Severity severity, IssueKind kind, std::string message) {
+void FramedSource::defer_report(Severity severity, IssueKind kind, std::string message,
+                                std::uint64_t bytes) {
     entries_.push_back(Entry{issues_.size(), 0, 0, kNoTime, true});
-    issues_.push_back(Issue{severity, kind, 0, std::move(message)});
+    issues_.push_back(Issue{severity, kind, bytes, std::move(message)});
 }
 
 void FramedSource::on_telegram(Bytes telegram, std::uint64_t offset) {
@@ -111,11 +112,7 @@ void FramedSource::on_skipped(const SkippedBytes& skipped) {
                                         framer_.rules().describe_skip(skipped))});
 }
 
-namespace {
-
-// Reads what has arrived, at least one byte unless the input ended: a pipe or terminal is decoded
-// as it is written (fread would wait until the whole buffer is full). One getc() waits for
-// data; what the stream's buffer then holds is taken without waiting again.
+// One getc() waits for data; what the stream's buffer then holds is taken without waiting again.
 std::size_t read_available(FILE* file, std::uint8_t* data, std::size_t size) {
     int c = std::getc(file);
     if (c == EOF || size == 0) return 0;
@@ -123,6 +120,8 @@ std::size_t read_available(FILE* file, std::uint8_t* data, std::size_t size) {
     auto held = static_cast<std::size_t>(file->_IO_read_end - file->_IO_read_ptr);  // glibc
     return 1 + std::fread(data + 1, 1, std::min(size - 1, held), file);
 }
+
+namespace {
 
 class RawSource final : public FramedSource {
   public:

@@ -25,6 +25,10 @@ std::unique_ptr<TelegramSource> make_raw_source(FILE* file, std::string name, bo
                                                 const FramingRules& rules);
 std::unique_ptr<TelegramSource> make_hex_source(FILE* file, std::string name, bool judged,
                                                 const FramingRules& rules);
+// Reads what has arrived into `data`, at least one byte unless the input ended: a pipe or
+// terminal is decoded as it is written (fread would wait until the whole buffer is full).
+std::size_t read_available(FILE* file, std::uint8_t* data, std::size_t size);
+
 std::unique_ptr<TelegramSource> make_memory_source(std::string name, Bytes bytes,
                                                    const FramingRules& rules);
 

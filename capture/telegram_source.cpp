@@ -11,6 +11,7 @@
 
 #include "capture/pcap_source.hpp"
 #include "capture/stream_source.hpp"
+#include "capture/text_log.hpp"
 #include "decoder/counted.hpp"
 
 namespace dpscope {
@@ -268,6 +269,15 @@ OpenResult open_source_of(const std::string& path, InputFormat format,
         if (format == InputFormat::Auto) format = detect_input_format(replay->head);
         if (choice) choice->tagged = read_capture_label(replay->head).tagged;
     }
+    // A text log holds VLT 2000 telegrams ('<' ... '>'): no other bus's framing reads it.
+    if (format == InputFormat::Text && chosen->protocol != Protocol::Vlt2000) {
+        replay_close(replay);
+        return Error{fmt::format(
+            "{}: a text log of telegrams ('<' ... '>'{}) is VLT 2000 traffic; --bus {} cannot "
+            "read it (--input-format hex reads a log of hex bytes, raw a byte stream)",
+            name, detected ? ", as detected from its content" : "",
+            protocol_name(chosen->protocol))};
+    }
     const CaptureProtocol& protocol = *chosen;
     // A regular file goes back to its start and is read as it is: glibc reads a plain file's
     // small records (libpcap's 16-byte headers) much faster than through a cookie stream.
@@ -293,6 +303,7 @@ OpenResult open_source_of(const std::string& path, InputFormat format,
             return pcapng ? open_pcapng_source(stream, name, protocol)
                           : open_pcap_source(stream, name, classic_pcap, protocol);
         case InputFormat::Hex: return make_hex_source(stream, name, detected, rules);
+        case InputFormat::Text: return make_text_source(stream, name, rules);
         case InputFormat::Raw:
         case InputFormat::Serial:
         case InputFormat::Auto: break;

@@ -103,7 +103,8 @@ void add_write_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_option("--linktype", values.link_type,
                    "Link type for -w pcap/pcapng: profibus (257, PROFIBUS_DL, the default for "
                    "PROFIBUS; PROFIBUS only) or user0 (147, for tools that cannot open 257, and "
-                   "the default for the FC protocol); 257 and 147 are accepted too. A USER0 "
+                   "the default for the FC protocol and the VLT 2000); 257 and 147 are accepted "
+                   "too. A USER0 "
                    "capture records its bus in the file, so that decode reads it without --bus")
         ->check(CLI::IsMember({"profibus", "user0", "257", "147"}))
         ->type_name("TYPE")
@@ -490,6 +491,13 @@ Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t t
                 return Error{fmt::format("{}: no hex bytes in the text", source.name())};
             return Error{fmt::format("{}: no {} telegram in its {} hex bytes{}", source.name(),
                                      protocol.framing.protocol_name(), skipped, hint)};
+        case InputFormat::Text:
+            if (skipped == 0)
+                return Error{fmt::format("{}: no {} telegram ('<' ... '>') in the text",
+                                         source.name(), protocol.framing.protocol_name())};
+            return Error{fmt::format(
+                "{}: no {} telegram in the text, only {} characters of broken ones (named above)",
+                source.name(), protocol.framing.protocol_name(), skipped)};
         default: return {};
     }
 }

@@ -28,6 +28,9 @@ namespace dpscope::cli {
 
 // The FC protocol's line rate unless --baud says otherwise (docs/protocol/fc-protocol.md).
 inline constexpr std::uint32_t kFcDefaultLineBaud = 9600;
+// The VLT 2000's line when sniff is given no --baud: 9600 baud (the values of its parameter 501
+// were not found; dpscope's choice, docs/decisions.md).
+inline constexpr std::uint32_t kVlt2000DefaultLineBaud = 9600;
 // The FC protocol's baud rates (par. 8-32 of the FC series): 2400 to 115200.
 inline constexpr std::uint32_t kFcMinBaud = 2400;
 inline constexpr std::uint32_t kFcMaxBaud = 115'200;

@@ -201,7 +201,8 @@ void add_decode_command(CLI::App& app, int& exit_code) {
     CLI::App* sub = app.add_subcommand(
         "decode",
         "Decode a capture: pcap or pcapng (link type 257 PROFIBUS_DL or 147 USER0), a raw serial "
-        "byte stream, or a hex text log. The input kind is detected from the content.");
+        "byte stream, a hex text log, or a text log of VLT 2000 telegrams. The input kind is "
+        "detected from the content.");
     sub->add_option("file", command->file, "Capture file to read; - reads standard input")
         ->type_name("FILE");
     sub->add_option("-r,--read", command->read_option,
@@ -210,8 +211,10 @@ void add_decode_command(CLI::App& app, int& exit_code) {
         ->type_name("FILE");
     sub->add_option("--input-format", command->input_format,
                     "Input kind: auto (detect from the content), pcap, pcapng, raw (serial byte "
-                    "stream, framed by structure), hex (text lines of hex bytes)")
-        ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "hex"}))
+                    "stream, framed by structure), hex (text lines of hex bytes), text (a log of "
+                    "VLT 2000 telegrams '<...>' as copied from a terminal; other text on a line "
+                    "is ignored)")
+        ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "hex", "text"}))
         ->default_str("auto");
     add_display_options(*sub, command->options, "text");
     add_write_options(*sub, command->options);

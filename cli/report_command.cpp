@@ -151,8 +151,9 @@ void add_report_command(CLI::App& app, int& exit_code) {
                     "Capture file to read (as tshark -r); - reads standard input")
         ->type_name("FILE");
     sub->add_option("--input-format", command->input_format,
-                    "Input kind: auto (detect from the content), pcap, pcapng, raw, hex")
-        ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "hex"}))
+                    "Input kind: auto (detect from the content), pcap, pcapng, raw, hex, text (a "
+                    "log of VLT 2000 telegrams '<...>')")
+        ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "hex", "text"}))
         ->default_str("auto");
     sub->add_option("-T,--format", command->format,
                     "Report format: text, json (stable schema, see README), markdown, html (one "

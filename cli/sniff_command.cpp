@@ -126,7 +126,7 @@ struct SniffCommand {
     DecodeOptionValues options;
     std::string device;
     std::uint32_t baud = 0;  // 0: not given (the FC protocol's default, 9600)
-    std::string parity;      // "": the bus's default (even)
+    std::string parity;      // "": the bus's default (even; none for the VLT 2000)
     unsigned stop_bits = 1;
     std::string output;
     std::string link_type;  // "" = profibus
@@ -171,13 +171,17 @@ int run_sniff(const SniffCommand& command) {
         return kExitUsage;
     }
     // The line: PROFIBUS runs at the baud rate given (8E1); the FC protocol at 2400 to 115200
-    // baud, 9600 8E1 unless --baud, --parity and --stop-bits say otherwise.
+    // baud, 9600 8E1 unless --baud, --parity and --stop-bits say otherwise; the VLT 2000 at 9600
+    // 8N1 (its manual: 8 data bits, no parity, 1 stop bit) unless they say otherwise.
     const bool fc = settings->protocol->protocol == Protocol::Fc;
+    const bool vlt2000 = settings->protocol->protocol == Protocol::Vlt2000;
     std::uint32_t baud = command.baud;
     if (fc && baud == 0) baud = kFcDefaultLineBaud;
+    if (vlt2000 && baud == 0) baud = kVlt2000DefaultLineBaud;
     if (baud == 0) {
         print_error(
-            "--baud is required for PROFIBUS (the FC protocol, --bus fc, defaults to 9600)");
+            "--baud is required for PROFIBUS (the FC protocol, --bus fc, and the VLT 2000, --bus "
+            "vlt2000, default to 9600)");
         return kExitUsage;
     }
     if (fc && (baud < kFcMinBaud || baud > kFcMaxBaud)) {
@@ -187,8 +191,8 @@ int run_sniff(const SniffCommand& command) {
                         kFcMinBaud, kFcMaxBaud, baud));
         return kExitUsage;
     }
-    const SerialParity parity =
-        serial_parity_from_name(command.parity).value_or(SerialParity::Even);
+    const SerialParity parity = serial_parity_from_name(command.parity)
+                                    .value_or(vlt2000 ? SerialParity::None : SerialParity::Even);
     Result<int> link_type =
         capture_link_type(*settings->protocol, command.link_type.empty()
                                                    ? std::nullopt
@@ -429,7 +433,9 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
         "sniff",
         "Capture live from an RS-485 bus tap (a serial adapter, 8 data bits, even parity, 1 stop "
         "bit unless --parity and --stop-bits say otherwise, any baud rate the driver accepts; "
-        "--bus fc for the Danfoss FC protocol, default 9600 baud; without --bus, PROFIBUS), "
+        "--bus fc for the Danfoss FC protocol, default 9600 baud; --bus vlt2000 for the VLT 2000 "
+        "ASCII telegram on its RS-232 or RS-485 line, default 9600 baud 8N1; without --bus, "
+        "PROFIBUS), "
         "decode and track as telegrams arrive, optionally "
         "write pcap. Stops on -c, --duration, Ctrl-C (SIGINT), SIGTERM or SIGHUP with the "
         "capture file complete. The port is taken exclusively (lock file /run/lock/LCK..NAME, "
@@ -440,15 +446,16 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
     sub->add_option("--baud", command->baud,
                     "Bus baud rate (PROFIBUS: 9600, 19200, 45450, 93750, 187500, 500000, 1500000, "
                     "3000000, 6000000, 12000000 or any rate the driver takes, required; FC "
-                    "protocol: 2400 to 115200, default 9600; read back and checked)")
+                    "protocol: 2400 to 115200, default 9600; VLT 2000: default 9600, as the "
+                    "drive's parameter 501 sets it; read back and checked)")
         ->check(whole_number(300, 16'000'000, " baud"));
     sub->add_option("--parity", command->parity,
                     "Parity bit of each character: even (PROFIBUS and the FC protocol's default, "
-                    "8E1), odd or none; set it as the drive's parameter 8-33 (FC port parity) "
-                    "says")
+                    "8E1), odd or none (the VLT 2000's default, 8N1); set it as the drive's "
+                    "parameter 8-33 (FC port parity) says")
         ->check(CLI::IsMember({"even", "odd", "none"}))
         ->type_name("PARITY")
-        ->default_str("even");
+        ->default_str("by --bus");
     sub->add_option("--stop-bits", command->stop_bits,
                     "Stop bits of each character: 1 (the default) or 2 (as FC drives set for "
                     "no parity, 8N2)")
@@ -462,7 +469,8 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
         ->type_name("FILE");
     sub->add_option("--linktype", command->link_type,
                     "pcap link type: profibus (257, PROFIBUS_DL; PROFIBUS only, its default) or "
-                    "user0 (147) for tools that cannot open 257 (the FC protocol's default); a "
+                    "user0 (147) for tools that cannot open 257 (the FC protocol's and the VLT "
+                    "2000's default); a "
                     "USER0 capture records its bus for decode")
         ->check(CLI::IsMember({"profibus", "user0"}))
         ->default_str("by --bus");
@@ -512,8 +520,9 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
     add_tracking_options(*sub, command->options);
     // A live line cannot be judged before it is read: sniff takes the bus from --bus only.
     sub->get_option("--bus")->description(
-        "The bus on the line: profibus (PROFIBUS DP, the default) or fc (Danfoss FC protocol on "
-        "RS-485: 9600 baud 8E1 unless --baud, --parity, --stop-bits say otherwise)");
+        "The bus on the line: profibus (PROFIBUS DP, the default), fc (Danfoss FC protocol on "
+        "RS-485: 9600 baud 8E1 unless --baud, --parity, --stop-bits say otherwise) or vlt2000 "
+        "(Danfoss VLT 2000 ASCII telegram: 9600 baud 8N1 unless they say otherwise)");
     sub->footer(std::string(kExitCodeHelp) +
                 " For sniff: on 4 and 5 what was captured before is written and the file is a "
                 "valid pcap; with --report, 1 when a finding reaches --fail-on.");

@@ -23,7 +23,7 @@ std::string_view Vlt2000FramingRules::reason_text(ProblemKind reason) const {
     switch (reason) {
         case ProblemKind::BadStartDelimiter: return "no '<'";
         case ProblemKind::Vlt2000CharacterInvalid: return "a character that is not printable ASCII";
-        case ProblemKind::BadEndDelimiter: return "no '>' as the 22nd character";
+        case ProblemKind::BadEndDelimiter: return "no '>' at the telegram's end";
         case ProblemKind::Vlt2000ChecksumMismatch: return "checksum wrong and another '<' inside";
         default: return FramingRules::reason_text(reason);
     }

@@ -1,6 +1,7 @@
 // The input bytes as a whole capture file, read the way `dpscope decode` reads one: written to a
 // temporary file (made once per process, rewritten for every input), opened with the format
-// detected from the content and then with each forced format (pcap, pcapng, raw, hex), every
+// detected from the content and then with each forced format (pcap, pcapng, raw, hex), then
+// with the bus chosen from the content and as a forced text log of VLT 2000 telegrams, every
 // record pulled, decoded with one BusDecoder, tracked with a SessionTracker, counted in a Summary
 // and rendered into an Output that is thrown away by one of the four renderers in turn (the
 // others pass over it). Input issues are formatted and dropped, as `decode` prints them.
@@ -63,9 +64,11 @@ const TempFile& temp_file() {
     return file;
 }
 
-void read_all(const std::string& path, dpscope::InputFormat format, std::size_t turn) {
-    dpscope::OpenResult opened =
-        dpscope::open_source(path, format, dpscope::profibus_dp_protocol());
+// `protocol` null: the bus is chosen from the input, as `decode` without --bus does.
+void read_all(const std::string& path, dpscope::InputFormat format,
+              const dpscope::CaptureProtocol* protocol, std::size_t turn) {
+    dpscope::BusChoice choice;
+    dpscope::OpenResult opened = dpscope::open_source(path, format, protocol, choice);
     if (!opened) {
         (void)opened.error().size();
         return;
@@ -128,14 +131,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // The choice of the bus reads the same bytes: a pcap or pcapng header, its tag and first
     // record, and every bus's framing over a byte stream or a hex log's bytes.
     const dpscope::Bytes bytes(data, size);
-    for (auto format : {dpscope::InputFormat::Pcap, dpscope::InputFormat::Pcapng,
-                        dpscope::InputFormat::Raw, dpscope::InputFormat::Hex})
+    for (auto format :
+         {dpscope::InputFormat::Pcap, dpscope::InputFormat::Pcapng, dpscope::InputFormat::Raw,
+          dpscope::InputFormat::Hex, dpscope::InputFormat::Text})
         for (bool complete : {false, true})
             (void)dpscope::choose_bus(bytes, format, complete).reason.size();
     std::size_t turn = 0;
+    const dpscope::CaptureProtocol* profibus = &dpscope::profibus_dp_protocol();
     for (auto format :
          {dpscope::InputFormat::Auto, dpscope::InputFormat::Pcap, dpscope::InputFormat::Pcapng,
           dpscope::InputFormat::Raw, dpscope::InputFormat::Hex})
-        read_all(file.path, format, turn++);
+        read_all(file.path, format, profibus, turn++);
+    // The bus chosen from the content (a text log: VLT 2000), and the text-log reader forced.
+    read_all(file.path, dpscope::InputFormat::Auto, nullptr, turn++);
+    read_all(file.path, dpscope::InputFormat::Text, &dpscope::vlt2000_protocol(), turn++);
     return 0;
 }

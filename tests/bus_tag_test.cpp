@@ -11,6 +11,7 @@
 #include "capture/capture_writer.hpp"
 #include "capture/telegram_source.hpp"
 #include "decoder/fc_framing_rules.hpp"
+#include "decoder/vlt2000_framing_rules.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -355,6 +356,132 @@ TEST(BusTagTest, DecodeAndReportSayTheChoiceForUntaggedUser0AndHexLogs) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(test::lines_of(r.out).size(), 10u);
     EXPECT_NE(r.err.find("10 telegrams framed in the first 160 hex bytes"), std::string::npos)
+        << r.err;
+}
+
+// VLT 2000: a command and its reply (the VLT 3000 manual's example; checksums computed), `pairs`
+// times, as the ASCII characters go over the line.
+std::vector<std::uint8_t> vlt2000_stream(int pairs) {
+    std::vector<std::uint8_t> stream;
+    for (int i = 0; i < pairs; ++i)
+        for (std::string_view t : {"<01UOGD@0516+00080007>", "<01UGHK@0516+00080007>"})
+            stream.insert(stream.end(), t.begin(), t.end());
+    return stream;
+}
+
+TEST(BusTagTest, Vlt2000StreamExampleTelegramsHaveTheirChecksum) {
+    std::vector<std::uint8_t> one = vlt2000_stream(1);
+    EXPECT_TRUE(vlt2000_checksum_matches(Bytes(one.data(), 22)));
+    EXPECT_TRUE(vlt2000_checksum_matches(Bytes(one.data() + 22, 22)));
+}
+
+TEST(BusTagTest, Vlt2000RawDumpsAreChosenByFramingAndAsciiDumpsAreTextLogs) {
+    // Line noise before the telegrams: no text, a raw byte stream.
+    std::vector<std::uint8_t> noisy{0xFF, 0x00, 0x83};
+    for (std::uint8_t b : vlt2000_stream(20))
+        noisy.push_back(b);
+    EXPECT_EQ(detect_input_format(bytes_of(noisy)), InputFormat::Raw);
+    BusChoice raw = choose_bus(bytes_of(noisy), InputFormat::Raw, true);
+    EXPECT_EQ(raw.protocol->protocol, Protocol::Vlt2000);
+    EXPECT_TRUE(raw.say);
+    EXPECT_NE(raw.reason.find("40 telegrams framed in the first 883 bytes"), std::string::npos)
+        << raw.reason;
+    // Still arriving: decided once 32 telegrams are framed.
+    EXPECT_FALSE(choose_bus(bytes_of(noisy), InputFormat::Raw, false).need_more);
+    EXPECT_TRUE(choose_bus(Bytes(noisy.data(), 200), InputFormat::Raw, false).need_more);
+    // Only the ASCII characters: a text log on one line, VLT 2000 by its kind.
+    std::vector<std::uint8_t> ascii = vlt2000_stream(20);
+    EXPECT_EQ(detect_input_format(bytes_of(ascii)), InputFormat::Text);
+    BusChoice text = choose_bus(bytes_of(ascii), InputFormat::Text, false);
+    EXPECT_EQ(text.protocol->protocol, Protocol::Vlt2000);
+    EXPECT_FALSE(text.need_more);
+    // Either way through decode, with the skipped noise named in VLT 2000 words.
+    std::string path = test::temp_path("vlt.raw");
+    test::write_file(path, noisy);
+    test::CommandResult r = run_dpscope({"decode", "-T", "jsonl", path});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(test::lines_of(r.out).size(), 40u);
+    EXPECT_NE(r.err.find("read as the VLT 2000 telegram: 40 telegrams framed"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find(path + ": byte offset 0: skipped 3 bytes: no '<'"), std::string::npos)
+        << r.err;
+}
+
+TEST(BusTagTest, Vlt2000RawDumpResynchronisesAfterGarbageAndABrokenTelegram) {
+    std::vector<std::uint8_t> stream = vlt2000_stream(2);
+    const std::string cut = "<01UOGD@05";  // a telegram cut short, the next one right behind it
+    stream.insert(stream.begin() + 22, cut.begin(), cut.end());
+    stream.insert(stream.begin(), {0x00, 0x7F});
+    std::string path = test::temp_path("vlt-broken.raw");
+    test::write_file(path, stream);
+    test::CommandResult r =
+        run_dpscope({"decode", "--bus", "vlt2000", "--input-format", "raw", "-T", "jsonl", path});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(test::lines_of(r.out).size(), 4u) << r.out;
+    EXPECT_NE(r.err.find(path + ": byte offset 0: skipped 2 bytes: no '<'"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find(path + ": byte offset 24: skipped 10 bytes: no '>' at the telegram's end"),
+              std::string::npos)
+        << r.err;
+}
+
+TEST(BusTagTest, Vlt2000CapturesAreWrittenTaggedAndReadBackWithoutBus) {
+    std::string log = test::temp_path("vlt.log");
+    std::vector<std::uint8_t> stream = vlt2000_stream(2);
+    std::string text;
+    for (std::size_t at = 0; at < stream.size(); at += 22)
+        text += "TX: " +
+                std::string(stream.begin() + static_cast<std::ptrdiff_t>(at),
+                            stream.begin() + static_cast<std::ptrdiff_t>(at + 22)) +
+                "\n";
+    test::write_text_file(log, text);
+    for (const char* format : {"pcap", "pcapng"}) {
+        std::string out = test::temp_path(std::string("vlt.") + format);
+        test::CommandResult w = run_dpscope({"decode", log, "-w", out, "-F", format});
+        ASSERT_EQ(w.exit_code, 0) << w.err;
+        CaptureLabel label = read_capture_label(bytes_of(test::read_file(out)));
+        EXPECT_EQ(label.link_type, kLinkTypeUser0) << format;
+        ASSERT_TRUE(label.tagged) << format;
+        EXPECT_EQ(*label.tagged, Protocol::Vlt2000);
+        test::CommandResult r = run_dpscope({"decode", "-T", "jsonl", out});
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_EQ(r.err, "") << format;  // tagged: no note
+        EXPECT_EQ(test::lines_of(r.out).size(), 4u);
+        EXPECT_NE(r.out.find("\"len\":22,"), std::string::npos) << r.out.substr(0, 300);
+    }
+    // The hex command's bytes are written tagged as well.
+    std::string out = test::temp_path("vlt-hex.pcap");
+    test::CommandResult h = run_dpscope({"hex", hex_log_of(vlt2000_stream(1), 100), "-w", out});
+    ASSERT_EQ(h.exit_code, 0) << h.err;
+    CaptureLabel label = read_capture_label(bytes_of(test::read_file(out)));
+    ASSERT_TRUE(label.tagged);
+    EXPECT_EQ(*label.tagged, Protocol::Vlt2000);
+    // Untagged, as another tool writes USER0: the first record's '<' chooses, and that is said.
+    std::string path = write_capture(CaptureFormat::Pcap, kLinkTypeUser0, Protocol::Vlt2000,
+                                     vlt2000_stream(2), 22);
+    std::vector<std::uint8_t> file = test::read_file(path);
+    std::fill(file.begin() + 8, file.begin() + 16, 0);
+    BusChoice choice = choose_bus(bytes_of(file), InputFormat::Pcap, true);
+    EXPECT_FALSE(choice.tagged);
+    EXPECT_EQ(choice.protocol->protocol, Protocol::Vlt2000);
+    EXPECT_TRUE(choice.say);
+    test::write_file(path, file);
+    test::CommandResult r = run_dpscope({"decode", "-q", path});
+    EXPECT_NE(r.err.find("read as the VLT 2000 telegram: a USER0 capture without a bus tag whose "
+                         "first record starts with '<'; --bus chooses"),
+              std::string::npos)
+        << r.err;
+}
+
+TEST(BusTagTest, LinkType257IsRefusedForTheVlt2000Bus) {
+    std::string raw = test::temp_path("vlt.raw");
+    test::write_file(raw, vlt2000_stream(2));
+    std::string out = test::temp_path("refused.pcap");
+    test::CommandResult r = run_dpscope({"decode", raw, "-w", out, "--linktype", "profibus"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--linktype profibus: link type 257 (PROFIBUS_DL) is PROFIBUS only; a "
+                         "capture of VLT 2000 is written as user0 (147)"),
+              std::string::npos)
         << r.err;
 }
 

@@ -42,7 +42,7 @@ TEST(InputFormatTest, UnknownNamesAreRejected) {
     EXPECT_FALSE(input_format_from_name("").has_value());
     EXPECT_FALSE(input_format_from_name("PCAP").has_value());
     EXPECT_FALSE(input_format_from_name("pcap-ng").has_value());
-    EXPECT_FALSE(input_format_from_name("text").has_value());
+    EXPECT_FALSE(input_format_from_name("TEXT").has_value());
 }
 
 TEST(InputFormatTest, PcapMicrosecondMagicBothByteOrders) {

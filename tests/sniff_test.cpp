@@ -1065,6 +1065,52 @@ TEST(SniffTest, FcBusDefaultsTo9600Baud8E1AndWritesATaggedUser0Capture) {
     EXPECT_EQ(test::lines_of(decoded.out).size(), 2u);
 }
 
+TEST(SniffTest, Vlt2000BusDefaultsTo9600Baud8N1AndWritesATaggedUser0Capture) {
+    PseudoTerminal pty;
+    const std::string pcap = test::temp_path("vlt2000-live.pcap");
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--bus", "vlt2000", "-w", pcap, "-T", "jsonl"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    EXPECT_NE(sniffer.err().find("at 9600 baud 8N1"), std::string::npos) << sniffer.err();
+    // A command and its reply (the VLT 3000 manual's example), with noise between them.
+    const std::string line = "<01UOGD@0516+00080007>\x01<01UGHK@0516+00080007>";
+    pty.write(std::vector<std::uint8_t>(line.begin(), line.end()));
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    sniffer.signal(SIGINT);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    EXPECT_EQ(test::lines_of(sniffer.out()).size(), 2u) << sniffer.out();
+    EXPECT_NE(sniffer.err().find("skipped 1 byte: no '<'"), std::string::npos) << sniffer.err();
+    const std::vector<std::uint8_t> file = test::read_file(pcap);
+    ASSERT_GE(file.size(), 24u);
+    EXPECT_EQ(std::string(file.begin() + 8, file.begin() + 12), "dpsc");
+    Capture capture = read_capture(pcap);
+    EXPECT_EQ(capture.link_type, kLinkTypeUser0);
+    auto decoded = test::run_dpscope({"decode", "-T", "jsonl", pcap});
+    EXPECT_EQ(decoded.exit_code, 0) << decoded.err;
+    EXPECT_EQ(decoded.err, "");
+    EXPECT_EQ(test::lines_of(decoded.out).size(), 2u);
+}
+
+TEST(SniffTest, Vlt2000LineOptionsOverrideTheDefaults) {
+    PseudoTerminal pty;
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--bus", "vlt2000", "--baud", "4800", "--parity",
+                     "even", "--stop-bits", "2", "-c", "1"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    EXPECT_NE(sniffer.err().find("at 4800 baud 8E2"), std::string::npos) << sniffer.err();
+    sniffer.signal(SIGINT);
+    EXPECT_EQ(sniffer.wait(), 0) << sniffer.err();
+    auto link = test::run_dpscope(
+        {"sniff", "-i", pty.slave, "--bus", "vlt2000", "-w", "-", "--linktype", "profibus"});
+    EXPECT_EQ(link.exit_code, 2);
+    EXPECT_NE(link.err.find("link type 257 (PROFIBUS_DL) is PROFIBUS only; a capture of VLT 2000 "
+                            "is written as user0 (147)"),
+              std::string::npos)
+        << link.err;
+    auto parity =
+        test::run_dpscope({"sniff", "-i", pty.slave, "--bus", "vlt2000", "--parity", "x"});
+    EXPECT_EQ(parity.exit_code, 2);
+    EXPECT_NE(parity.err.find("--parity"), std::string::npos) << parity.err;
+}
+
 TEST(SniffTest, FcLineOptionsAreChecked) {
     PseudoTerminal pty;
     for (const char* baud : {"1200", "230400"}) {
@@ -1089,7 +1135,10 @@ TEST(SniffTest, FcLineOptionsAreChecked) {
         << link.err;
     auto no_baud = test::run_dpscope({"sniff", "-i", pty.slave});
     EXPECT_EQ(no_baud.exit_code, 2);
-    EXPECT_NE(no_baud.err.find("--baud is required for PROFIBUS"), std::string::npos)
+    EXPECT_NE(
+        no_baud.err.find("--baud is required for PROFIBUS (the FC protocol, --bus fc, and the "
+                         "VLT 2000, --bus vlt2000, default to 9600)"),
+        std::string::npos)
         << no_baud.err;
 }
 
