@@ -187,6 +187,13 @@ const DecodedTelegram& Vlt2000Decoder::decode(Bytes bytes, std::int64_t time_ns,
     t_.direction = addressed ? direction_of(v) : Direction::Request;
     if (!addressed) return t_;
 
+    // A reply to I carries the element's value in bytes 13-19, as a reply to R does (dpscope's
+    // reading: the VLT 2000's I reply is not documented): no index.
+    if (t_.direction == Direction::Response && v.letter == Vlt2000Letter::ReadIndex) {
+        v.index = Bytes();
+        v.has_index_number = false;
+        v.index_number = 0;
+    }
     const bool intact = v.complete && v.problems.empty();
     if (t_.direction == Direction::Response) {
         // A failed reply from another address answers nothing pending here.

@@ -161,10 +161,21 @@ TEST(Vlt2000DecoderTest, ReadIndexCarriesTheIndexInBytes13To18) {
     EXPECT_EQ(v.index_number, 12u);
     // The VLT 3000's two-dimensional index "x,y" is shown as sent, without a number.
     const Telegram two = bytes_of(vlt("03I@@D@0600003,012"));
-    const Vlt2000Telegram& w = decoder.decode(span_of(two), 0, 2).vlt2000;
+    Vlt2000Decoder other;  // a second I to drive 03 would be taken for the first one's reply
+    const Vlt2000Telegram& w = other.decode(span_of(two), 0, 2).vlt2000;
     EXPECT_TRUE(w.problems.empty());
     EXPECT_FALSE(w.has_index_number);
     EXPECT_EQ(std::string(w.index.begin(), w.index.end()), "003,01");
+    // The reply carries the element's value where the command had the index.
+    Vlt2000Decoder paired;
+    paired.decode(span_of(bytes), 0, 1);
+    const Telegram reply = bytes_of(vlt("03IGHK@0600+004501"));
+    const DecodedTelegram& r = paired.decode(span_of(reply), kMs, 2);
+    EXPECT_EQ(r.direction, Direction::Response);
+    EXPECT_TRUE(r.vlt2000.index.empty());
+    EXPECT_FALSE(r.vlt2000.has_index_number);
+    ASSERT_TRUE(r.vlt2000.has_value);
+    EXPECT_DOUBLE_EQ(r.vlt2000.value(), 45.0);  // "00450" with 1 decimal
 }
 
 TEST(Vlt2000DecoderTest, FailedReplyCarriesItsReasonCode) {
