@@ -51,13 +51,11 @@ bool station_in_capture(const Pipeline& pipeline, unsigned station) {
 }
 
 // Renders the report of what `pipeline` read from `source` and returns the exit code.
-int write_report(const ReportCommand& command, const DecodeSettings& settings, ReportFormat format,
-                 const Pipeline& pipeline, const TelegramSource& source, const FindingLog& log,
-                 Output& out) {
+int write_report(const ReportCommand& command, ReportFormat format, const Pipeline& pipeline,
+                 const TelegramSource& source, const FindingLog& log, Output& out) {
     ReportContext context = report_context(
         pipeline, source, log, fail_on_from_name(command.fail_on).value_or(FailOn::Error));
     context.allow_empty = command.allow_empty;
-    context.vlt2000_checksum = settings.vlt2000_decoder.check_checksum;
     for (unsigned station : command.stations) {
         context.stations.push_back(static_cast<std::uint8_t>(station));
         if (!station_in_capture(pipeline, station)) {
@@ -136,7 +134,7 @@ int run_report(const ReportCommand& command) {
             print_error(found.error());
             exit_code = kExitUsage;
         } else {
-            exit_code = write_report(command, *settings, format, pipeline, source, log, out);
+            exit_code = write_report(command, format, pipeline, source, log, out);
         }
     }
     if (exit_code == kExitUsage || exit_code == kExitOutputError) {

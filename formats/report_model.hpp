@@ -9,7 +9,10 @@
 // - The per-station sections are StationSection objects, one class per channel kind: PcvSection
 //   (report_pcv_section.cpp), the cyclic parameter channel (PCV) of a DP slave, and Dpv1Section
 //   (report_dpv1_section.cpp), its DP-V1 parameter access, which follows the PCV section of the
-//   same slave. Each section covers the finding kinds of its rules. Every format asks the section
+//   same slave; FcSection (report_fc_section.cpp) and Vlt2000Section (report_vlt2000_section.cpp),
+//   a drive address of an FC or VLT 2000 capture. Each section covers the finding kinds of its
+//   rules. What differs by bus (sections, kinds, bus findings, wording) is chosen by report_bus():
+//   a switch, or the bus's row of BusWording. Every format asks the section
 //   for its own part (write_text(), write_json(), ...), so a new channel kind (DP-V1 acyclic, FC
 //   protocol) is one new StationSection class plus the line in build_report_model() that makes its
 //   sections; the five writers stay as they are.
