@@ -87,6 +87,7 @@ class Pipeline {
     const SessionTracker& tracker() const noexcept { return dp_.tracker; }
     const FcTracker& fc_tracker() const noexcept { return fc_.tracker; }
     const Vlt2000Tracker& vlt2000_tracker() const noexcept { return vlt2000_.tracker; }
+    const Vlt2000Decoder& vlt2000_decoder() const noexcept { return vlt2000_.decoder; }
     // The parameter number the last telegram's parameter channel is about (-1: none), from the
     // protocol's tracker.
     std::int32_t subject_pnu() const noexcept {
@@ -134,6 +135,7 @@ inline ReportContext report_context(const Pipeline& pipeline, const TelegramSour
     context.tracker = &pipeline.tracker();
     context.fc_tracker = &pipeline.fc_tracker();
     context.vlt2000_tracker = &pipeline.vlt2000_tracker();
+    context.vlt2000_checksum = pipeline.vlt2000_decoder().options().check_checksum;
     context.timelines = &pipeline.timelines();  // empty unless the pipeline kept them
     context.findings = &log;
     context.fail_on = fail_on;

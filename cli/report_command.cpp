@@ -15,6 +15,7 @@
 #include "cli/pipeline.hpp"
 #include "cli/version.hpp"
 #include "formats/report.hpp"
+#include "formats/report_model.hpp"
 
 namespace dpscope::cli {
 
@@ -32,24 +33,36 @@ struct ReportCommand {
     bool allow_empty = false;
 };
 
+// The addresses `--station` can name in the capture: the slaves of a PROFIBUS DP capture, the
+// drive addresses of an FC or VLT 2000 one.
+bool station_in_capture(const Pipeline& pipeline, unsigned station) {
+    auto has_address = [station](const auto& drives) {
+        return std::any_of(drives.begin(), drives.end(),
+                           [station](const auto* s) { return s->address == station; });
+    };
+    switch (pipeline.protocol()) {
+        case Protocol::Fc: return has_address(pipeline.fc_tracker().stations());
+        case Protocol::Vlt2000: return has_address(pipeline.vlt2000_tracker().stations());
+        case Protocol::ProfibusDp: break;
+    }
+    const std::vector<const ChannelStats*> channels = pipeline.tracker().channels();
+    return std::any_of(channels.begin(), channels.end(),
+                       [station](const ChannelStats* s) { return s->slave == station; });
+}
+
 // Renders the report of what `pipeline` read from `source` and returns the exit code.
 int write_report(const ReportCommand& command, ReportFormat format, const Pipeline& pipeline,
                  const TelegramSource& source, const FindingLog& log, Output& out) {
     ReportContext context = report_context(
         pipeline, source, log, fail_on_from_name(command.fail_on).value_or(FailOn::Error));
     context.allow_empty = command.allow_empty;
-    const std::vector<const ChannelStats*> channels = pipeline.tracker().channels();
-    const std::vector<const FcStationStats*> drives = pipeline.fc_tracker().stations();
-    const bool fc = pipeline.protocol() == Protocol::Fc;
     for (unsigned station : command.stations) {
         context.stations.push_back(static_cast<std::uint8_t>(station));
-        bool seen = fc ? std::any_of(drives.begin(), drives.end(),
-                                     [&](const FcStationStats* s) { return s->address == station; })
-                       : std::any_of(channels.begin(), channels.end(),
-                                     [&](const ChannelStats* s) { return s->slave == station; });
-        if (!seen)
-            print_warning(fmt::format("--station {}: no {} {} in the capture", station,
-                                      fc ? "drive" : "slave", station));
+        if (!station_in_capture(pipeline, station)) {
+            const std::string_view noun = report::bus_wording(pipeline.protocol()).station;
+            print_warning(
+                fmt::format("--station {}: no {} {} in the capture", station, noun, station));
+        }
     }
     const bool fails = render_report(format, context, out);
     if (!log.lost().empty()) print_warning(fmt::format("{}", log.lost()));
@@ -144,7 +157,8 @@ void add_report_command(CLI::App& app, int& exit_code) {
         "Protocol-conformance report of a capture: pairs every parameter request with its "
         "response and lists, per slave, transactions, latency, parameters, rejections and "
         "handshake findings; exit code 1 when a finding reaches --fail-on, or when nothing was "
-        "checked (no Data_Exchange telegram with a parameter channel) without --allow-empty.");
+        "checked (no Data_Exchange telegram with a parameter channel; FC: no command to a drive; "
+        "VLT 2000: no command answered) without --allow-empty.");
     sub->add_option("file", command->file, "Capture file to read; - reads standard input")
         ->type_name("FILE");
     sub->add_option("-r,--read", command->read_option,
@@ -173,14 +187,15 @@ void add_report_command(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember({"error", "warning", "never"}))
         ->default_str("error");
     sub->add_option("--station", command->stations,
-                    "Report only slave ADDR (repeatable); telegrams of other stations are still "
-                    "decoded")
+                    "Report only slave ADDR (repeatable; of an FC or VLT 2000 capture the drive "
+                    "address ADDR); telegrams of other stations are still decoded")
         ->check(whole_number(0, 127))
         ->type_name("ADDR")
         ->allow_extra_args(false);
     sub->add_flag("--allow-empty", command->allow_empty,
                   "Pass a capture in which nothing was checked (no telegrams, or no Data_Exchange "
-                  "telegram with a parameter channel from the slaves reported); by default the "
+                  "telegram with a parameter channel from the slaves reported; FC: no command to a "
+                  "drive; VLT 2000: no command a drive answered); by default the "
                   "report says \"nothing checked\" and exits 1");
     add_tracking_options(*sub, command->options);
     add_line_options(*sub, command->options);

@@ -136,10 +136,20 @@ void Vlt2000Tracker::close_pending() {
     pending_.active = false;
 }
 
+bool Vlt2000Tracker::pending_judged() const noexcept {
+    // The capture began with it: a tap clipped onto a running line may start with a drive's
+    // reply, which nothing before it marks as one (docs/decisions.md, "VLT 2000").
+    return pending_.frame != first_addressed_frame_;
+}
+
 void Vlt2000Tracker::check_deadline(std::int64_t now_ns, std::uint64_t frame) {
     if (!pending_.active || pending_.time_ns == kNoTime ||
         now_ns <= pending_.time_ns + options_.timeout_ns)
         return;
+    if (!pending_judged()) {
+        close_pending();
+        return;
+    }
     Finding& f = add_finding(current_, FindingKind::Vlt2000NoResponse, frame, now_ns,
                              pending_.frame, true, kMaster, pending_.address);
     if (pending_.letter != Vlt2000Letter::Control) f.pnu = pending_.parameter;
@@ -232,16 +242,15 @@ void Vlt2000Tracker::command(Vlt2000StationStats& st, const DecodedTelegram& t) 
             pending_.letter == Vlt2000Letter::Control
                 ? std::nullopt
                 : std::optional<std::uint16_t>(pending_.parameter);
-        if (!v.broadcast && t.slave == pending_.address) {
+        if (!pending_judged()) {
+            // The capture's first telegram, perhaps a reply: neither unanswered nor stacked on.
+        } else if (!v.broadcast && t.slave == pending_.address) {
             Finding& f = add_finding(current_, FindingKind::Vlt2000StackedRequest, t.frame,
                                      t.time_ns, pending_.frame, true, kMaster, t.slave);
             f.pnu = pnu;
             f.message = fmt::format(
                 "new command {} to drive {:02} while the command {} from frame {} was unanswered",
                 describe(v), t.slave, pending_text, pending_.frame);
-        } else if (pending_.frame == first_addressed_frame_) {
-            // The capture began with it: a tap clipped onto a running line may start with a
-            // drive's reply, which nothing before it marks as one (docs/decisions.md). Not judged.
         } else {
             Finding& f = add_finding(current_, FindingKind::Vlt2000NoResponse, t.frame, t.time_ns,
                                      pending_.frame, true, kMaster, pending_.address);

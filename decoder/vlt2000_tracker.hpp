@@ -9,7 +9,8 @@
 //  - the pairing, per address, of every command with its reply: the master waits for each reply,
 //    so a command is unanswered (vlt2000_no_response) when the master's next telegram goes to
 //    another drive, when --timeout-ms passes, or when the capture ends past it; a new command to
-//    the same drive first is vlt2000_stacked_request; a reply from a drive no command is pending
+//    the same drive first is vlt2000_stacked_request (the capture's first telegram, which may
+//    have been a reply, is judged neither way); a reply from a drive no command is pending
 //    for, or with another control letter or parameter (a C command's parameter is ignored), is
 //    vlt2000_mismatched_response; a reply to a broadcast is vlt2000_unexpected_reply; a reply
 //    with decimal position 9 is vlt2000_command_failed (a note, with the reason code);
@@ -130,6 +131,9 @@ class Vlt2000Tracker {
     void command(Vlt2000StationStats& st, const DecodedTelegram& t);
     void reply(Vlt2000StationStats& st, const DecodedTelegram& t);
     void close_pending();
+    // Whether the pending command may be judged unanswered or stacked on: not when it is the
+    // capture's first telegram, which may have been a reply.
+    bool pending_judged() const noexcept;
     void check_deadline(std::int64_t now_ns, std::uint64_t frame);
     ParameterChannelSample sample_of(const DecodedTelegram& t, std::uint64_t cycle) const;
 

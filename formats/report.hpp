@@ -44,6 +44,9 @@ struct ReportContext {
     const FcTracker* fc_tracker = nullptr;    // the FC protocol (set for an FC capture)
     const Vlt2000Tracker* vlt2000_tracker = nullptr;  // VLT 2000 (set for a VLT 2000 capture)
     const ChannelTimelines* timelines = nullptr;      // the HTML report's (none: empty timelines)
+    // --vlt2000-checksum check: a VLT 2000 telegram's wrong checksum is a finding (the report's
+    // checks say whether it was judged).
+    bool vlt2000_checksum = true;
     const FindingLog* findings = nullptr;
     FailOn fail_on = FailOn::Error;
     // --allow-empty: a capture in which nothing could be checked (no Data_Exchange telegram with

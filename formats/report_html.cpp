@@ -59,18 +59,18 @@ void write_html(const ReportContext& c, const ReportModel& m, Output& out) {
                    "<title>dpscope report: {}</title>\n<style>{}</style>\n</head>\n<body>\n",
                    xml(c.input.name), kHtmlStyle);
     append(b, "<h1>dpscope conformance report</h1>\n");
-    if (is_fc(c))
-        fmt::format_to(it,
-                       "<p class=\"meta\">{} ({}) &middot; dpscope {} &middot; {} &middot; {}"
-                       "</p>\n",
-                       xml(c.input.name), xml(c.input.format), xml(c.version), xml(bus_text(c)),
-                       xml(checks_text(c, m)));
-    else
+    if (report_bus(c) == Protocol::ProfibusDp)
         fmt::format_to(it,
                        "<p class=\"meta\">{} ({}) &middot; dpscope {} &middot; {} "
                        "&middot; RC 8 rule {}</p>\n",
                        xml(c.input.name), xml(c.input.format), xml(c.version),
                        timeout_rule_text(c, m), options.strict ? "strict" : "lenient");
+    else
+        fmt::format_to(it,
+                       "<p class=\"meta\">{} ({}) &middot; dpscope {} &middot; {} &middot; {}"
+                       "</p>\n",
+                       xml(c.input.name), xml(c.input.format), xml(c.version), xml(bus_text(c)),
+                       xml(checks_text(c, m)));
     if (!c.stations.empty())
         fmt::format_to(it,
                        "<p class=\"meta\">Filter: {} (telegram counts cover the whole "
@@ -93,25 +93,12 @@ void write_html(const ReportContext& c, const ReportModel& m, Output& out) {
     card("bytes skipped", c.input.bytes_skipped, "");
     card(checksum_errors_label(c), m.fcs_errors, "");
     card("transactions", m.transactions, "");
-    card(is_fc(c) ? "drives" : "slaves", m.slaves, "");
+    card(bus_wording(c).stations, m.slaves, "");
     card("errors", m.errors(), "error");
     card("warnings", m.warnings(), "warning");
     card("notes", m.notes(), "note");
-    if (is_fc(c))
-        append(b,
-               "</div>\n<div class=\"scroll\"><table class=\"slaves\">\n<tr><th "
-               "class=\"n\">address</th><th class=\"n\">commands</th><th class=\"n\">answered"
-               "</th><th class=\"n\">unanswered</th><th class=\"n\">mean ms</th><th "
-               "class=\"n\">p95 ms</th><th class=\"n\">errors</th><th class=\"n\">warnings</th>"
-               "<th class=\"n\">notes</th></tr>\n");
-    else
-        append(
-            b,
-            "</div>\n<div class=\"scroll\"><table class=\"slaves\">\n<tr><th "
-            "class=\"n\">slave</th><th class=\"n\">"
-            "master</th><th>PPO</th><th>dialect</th><th class=\"n\">transactions</th><th "
-            "class=\"n\">median ms</th><th class=\"n\">p95 ms</th><th class=\"n\">errors</th><th "
-            "class=\"n\">warnings</th><th class=\"n\">notes</th></tr>\n");
+    append(b, "</div>\n<div class=\"scroll\"><table class=\"slaves\">\n");
+    append(b, bus_wording(c).html_table);
     for (const auto& section : m.stations)
         section->write_html_row(c, b);
     append(b, "</table></div>\n</section>\n");

@@ -23,11 +23,20 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
     json::time(w, c.summary->last_time_ns());
     w.end_object();
     w.key("options").begin_object();
-    // An FC report names its bus and the drive response time; a PROFIBUS DP report has always
-    // been without both.
-    if (is_fc(c)) w.key("bus").string("fc");
+    // An FC or VLT 2000 report names its bus and its bus's own options; a PROFIBUS DP report has
+    // always been without them.
+    const BusWording& bus = bus_wording(c);
+    if (!bus.option.empty()) w.key("bus").string(bus.option);
     w.key("timeout_ms").integer(options.timeout_ns / 1'000'000);
-    if (is_fc(c)) w.key("fc_response_ms").integer(c.fc_tracker->options().response_ns / 1'000'000);
+    switch (report_bus(c)) {
+        case Protocol::Fc:
+            w.key("fc_response_ms").integer(c.fc_tracker->options().response_ns / 1'000'000);
+            break;
+        case Protocol::Vlt2000:
+            w.key("vlt2000_checksum").string(c.vlt2000_checksum ? "check" : "ignore");
+            break;
+        case Protocol::ProfibusDp: break;
+    }
     w.key("strict").boolean(options.strict);
     w.key("fail_on").string(fail_on_name(c.fail_on));
     w.key("allow_empty").boolean(c.allow_empty);
@@ -45,7 +54,7 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
     w.key("nothing_checked").boolean(m.nothing_checked);
     w.key("summary").begin_object();
     count("telegrams", c.summary->telegrams());
-    count(is_fc(c) ? "bcc_errors" : "fcs_errors", m.fcs_errors);
+    count(bus.checksum_key, m.fcs_errors);
     count("transactions", m.transactions);
     w.key("findings").begin_object();
     count("error", m.errors());

@@ -107,9 +107,7 @@ void write_junit(const ReportContext& c, const ReportModel& m, Output& out) {
                        "skipped=\"{}\">\n"
                        "    <testcase classname=\"dpscope.capture\" name=\"{}\">\n",
                        c.allow_empty ? 0 : 1, c.allow_empty ? 1 : 0,
-                       is_fc(c) ? "FC protocol: the capture holds commands to drives"
-                                : "parameter channel: the capture holds Data_Exchange telegrams "
-                                  "with a parameter channel");
+                       bus_wording(c).nothing_checked_case);
         if (c.allow_empty)
             fmt::format_to(it, "      <skipped message=\"{} (--allow-empty)\"/>\n", xml(reason));
         else

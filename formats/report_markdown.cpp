@@ -16,11 +16,11 @@ void write_markdown(const ReportContext& c, const ReportModel& m, Output& out) {
                    counted(c.summary->telegrams(), "telegram", "telegrams"),
                    c.input.damaged ? " (ended in damage)" : "");
     if (const std::string bus = bus_text(c); !bus.empty()) fmt::format_to(it, "- Bus: {}\n", bus);
-    if (is_fc(c))
-        fmt::format_to(it, "- Checks: {}\n", checks_text(c, m));
-    else
+    if (report_bus(c) == Protocol::ProfibusDp)
         fmt::format_to(it, "- Checks: {}; RC 8 after a read: {}\n", timeout_rule_text(c, m),
                        options.strict ? "strict" : "lenient");
+    else
+        fmt::format_to(it, "- Checks: {}\n", checks_text(c, m));
     if (!c.stations.empty())
         fmt::format_to(it, "- Filter: {} (telegram counts cover the whole capture)\n",
                        filter_text(c));
@@ -33,16 +33,7 @@ void write_markdown(const ReportContext& c, const ReportModel& m, Output& out) {
     fmt::format_to(it, "| {} | {} | {} | {} | {} | {} | {} |\n\n", c.summary->telegrams(),
                    c.input.bytes_skipped, m.fcs_errors, m.transactions, m.errors(), m.warnings(),
                    m.notes());
-    if (is_fc(c))
-        append(b,
-               "## Drives\n\n| address | commands | answered | unanswered | late | latency ms "
-               "(min / mean / p95 / max) | rejected | findings |\n"
-               "|---|---:|---:|---:|---:|---|---:|---|\n");
-    else
-        append(b,
-               "## Slaves\n\n| slave | master | PPO | dialect | transactions | rejected | "
-               "time-outs | latency ms (min / median / p95 / max) | latency cycles | findings |\n"
-               "|---:|---:|---|---|---:|---:|---:|---|---|---|\n");
+    append(b, bus_wording(c).markdown_table);
     for (const auto& section : m.stations)
         section->write_markdown_row(c, b);
     for (const auto& section : m.stations)

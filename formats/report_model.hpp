@@ -9,7 +9,10 @@
 // - The per-station sections are StationSection objects, one class per channel kind: PcvSection
 //   (report_pcv_section.cpp), the cyclic parameter channel (PCV) of a DP slave, and Dpv1Section
 //   (report_dpv1_section.cpp), its DP-V1 parameter access, which follows the PCV section of the
-//   same slave. Each section covers the finding kinds of its rules. Every format asks the section
+//   same slave; FcSection (report_fc_section.cpp) and Vlt2000Section (report_vlt2000_section.cpp),
+//   a drive address of an FC or VLT 2000 capture. Each section covers the finding kinds of its
+//   rules. What differs by bus (sections, kinds, bus findings, wording) is chosen by report_bus():
+//   a switch, or the bus's row of BusWording. Every format asks the section
 //   for its own part (write_text(), write_json(), ...), so a new channel kind (DP-V1 acyclic, FC
 //   protocol) is one new StationSection class plus the line in build_report_model() that makes its
 //   sections; the five writers stay as they are.
@@ -93,29 +96,60 @@ std::unique_ptr<StationSection> make_dpv1_section(const ChannelStats& stats);
 std::unique_ptr<StationSection> make_fc_section(const ReportContext& c, const FcStationStats& stats,
                                                 const Timeline& timeline);
 
-// The PROFIBUS bus suite's and the cyclic channel's kinds: all but the DP-V1 parameter-access
-// and the FC protocol ones.
+// One drive address of a VLT 2000 capture (address 00: the broadcasts), as the VLT 2000 tracker
+// counted it.
+std::unique_ptr<StationSection> make_vlt2000_section(const ReportContext& c,
+                                                     const Vlt2000StationStats& stats,
+                                                     const Timeline& timeline);
+
+// The PROFIBUS bus suite's and the cyclic channel's kinds: all but the DP-V1 parameter-access,
+// the FC protocol and the VLT 2000 ones.
 bool is_dp_kind(FindingKind kind);
 
-// The capture is an FC protocol one (with its tracker): FC sections, kinds and wording.
-bool is_fc(const ReportContext& c);
-// The kinds the capture's bus suite and bus legend list: the PROFIBUS ones (is_dp_kind) or the
-// FC tracker's (fc_finding_kinds()). A report lists only its own bus's kinds.
+// The bus the report is about: the capture's protocol when its tracker is there, else PROFIBUS DP.
+// Everything that differs by bus switches on it, or reads the bus's BusWording.
+Protocol report_bus(const ReportContext& c);
+
+// What the writers say differently per bus: one row per bus (report_model.cpp).
+struct BusWording {
+    // The header line naming the bus ("" for PROFIBUS DP, whose reports have always been
+    // without it) and the JSON options.bus ("": not written).
+    std::string_view name;
+    std::string_view option;
+    // The checksum findings the summary counts, as the summary and JSON name them.
+    FindingKind checksum_kind;
+    std::string_view checksum_label;  // "FCS errors"
+    std::string_view checksum_key;    // "fcs_errors"
+    // "slave" or "drive", "slaves" or "drives" (the HTML summary card).
+    std::string_view station;
+    std::string_view stations;
+    // Markdown: the stations table's heading, header and alignment rows; HTML: the summary
+    // table's header row.
+    std::string_view markdown_table;
+    std::string_view html_table;
+    // JUnit: the name of the test case that says nothing was checked.
+    std::string_view nothing_checked_case;
+};
+const BusWording& bus_wording(Protocol bus);
+const BusWording& bus_wording(const ReportContext& c);
+
+// The kinds the capture's bus suite and bus legend list: the PROFIBUS ones (is_dp_kind), or the
+// FC or VLT 2000 tracker's. A report lists only its own bus's kinds.
 bool is_bus_kind(const ReportContext& c, FindingKind kind);
 // The findings no station can be named for, from the capture's tracker.
 const BusStats& bus_stats(const ReportContext& c);
-// "FCS errors" or "BCC errors": the checksum findings the summary counts.
+// "FCS errors", "BCC errors" or "checksum errors": the checksum findings the summary counts.
 std::string_view checksum_errors_label(const ReportContext& c);
 // The header line naming the bus of a capture other than PROFIBUS DP ("" for PROFIBUS DP, whose
-// reports have always been without it), and the checks the protocol's tracker applies.
+// reports have always been without it).
 std::string bus_text(const ReportContext& c);
 
 struct ReportModel {
     std::vector<std::unique_ptr<StationSection>> stations;  // the sections reported, in order
     std::uint64_t slaves = 0;                               // the slaves they are about
     std::array<std::uint64_t, 3> by_severity{};             // findings shown, by severity
-    std::uint64_t fcs_errors = 0;    // fcs_error (FC: fc_bcc_error) findings shown (each a bad one)
-    std::uint64_t shown = 0;         // findings shown
+    std::uint64_t fcs_errors = 0;  // the bus's checksum findings shown (BusWording::checksum_kind)
+    std::uint64_t shown = 0;       // findings shown
     std::uint64_t transactions = 0;  // of every station reported
     bool fails = false;
     bool has_bus_findings = false;
@@ -151,7 +185,8 @@ std::string findings_text(const ReportModel& m);
 // Why nothing was checked: "no telegrams", "no Data_Exchange telegram with a parameter channel".
 std::string nothing_checked_reason(const ReportContext& c);
 // The checks the protocol's tracker applies: "time-out 1000 ms, drive response time 20 ms" for
-// FC (for PROFIBUS DP the writers say it with timeout_rule_text and the RC 8 rule).
+// FC, "time-out 1000 ms, checksums checked" for VLT 2000 (for PROFIBUS DP the writers say it with
+// timeout_rule_text and the RC 8 rule).
 std::string checks_text(const ReportContext& c, const ReportModel& m);
 // "FAIL: 1 error, 0 warnings, 0 notes (fail on error)".
 std::string verdict_text(const ReportContext& c, const ReportModel& m);

@@ -23,11 +23,11 @@ void write_text(const ReportContext& c, const ReportModel& m, Output& out) {
     if (c.input.damaged)
         append(b, "         the input ended in damage; the report covers what was read\n");
     if (const std::string bus = bus_text(c); !bus.empty()) fmt::format_to(it, "Bus:     {}\n", bus);
-    if (is_fc(c))
-        fmt::format_to(it, "Checks:  {}\n", checks_text(c, m));
-    else
+    if (report_bus(c) == Protocol::ProfibusDp)
         fmt::format_to(it, "Checks:  {}; RC 8 after a read is {}\n", timeout_rule_text(c, m),
                        options.strict ? "an unexpected response (strict)" : "unusual, a warning");
+    else
+        fmt::format_to(it, "Checks:  {}\n", checks_text(c, m));
     if (!c.stations.empty())
         fmt::format_to(it, "Filter:  {} (telegram counts cover the whole capture)\n",
                        filter_text(c));
@@ -35,7 +35,7 @@ void write_text(const ReportContext& c, const ReportModel& m, Output& out) {
     append(b, "Summary\n");
     fmt::format_to(it, "  telegrams      {}\n", c.summary->telegrams());
     fmt::format_to(it, "  bytes skipped  {}\n", c.input.bytes_skipped);
-    fmt::format_to(it, "  {}     {}\n", checksum_errors_label(c), m.fcs_errors);
+    fmt::format_to(it, "  {:<14} {}\n", checksum_errors_label(c), m.fcs_errors);
     fmt::format_to(it, "  transactions   {}\n", m.transactions);
     fmt::format_to(it, "  findings       {}\n", findings_text(m));
     for (const auto& section : m.stations)

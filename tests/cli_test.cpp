@@ -1,5 +1,6 @@
 // The dpscope executable: help and version, decode from a file and from standard input, exit
 // codes and error messages, filters, the hex and simulate subcommands.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <pcap/pcap.h>
 
@@ -1125,6 +1126,42 @@ TEST(CliTest, FcCaptureIsTrackedAndReported) {
     CommandResult filtered = run_dpscope({"report", "--bus", "fc", "--station", "9", path});
     EXPECT_NE(filtered.err.find("--station 9: no drive 9 in the capture"), std::string::npos)
         << filtered.err;
+}
+
+TEST(CliTest, Vlt2000CaptureIsReportedPerDrive) {
+    // Drive 01: a read answered, a read unanswered; drive 02: a control telegram answered. Each
+    // telegram's first 19 characters, then its checksum (the sum of offsets 1..18, mod 100).
+    std::string capture;
+    for (const std::string head :
+         {"<01R@@@@0102+000000", "<01RGH@@0102+001501", "<01R@@@@0999+000000",
+          "<02COGD@0000+000000", "<02CGHK@0000+000000"}) {
+        unsigned sum = 0;
+        for (std::size_t i = 1; i < head.size(); ++i)
+            sum += static_cast<unsigned char>(head[i]);
+        capture += fmt::format("{}{:02}>", head, sum % 100);
+    }
+    const std::string path = test::temp_path("vlt2000_capture.raw");
+    test::write_file(path, std::vector<std::uint8_t>(capture.begin(), capture.end()));
+
+    CommandResult report =
+        run_dpscope({"report", "--input-format", "raw", "--bus", "vlt2000", path});
+    EXPECT_EQ(report.exit_code, 1) << report.err;  // vlt2000_no_response is an error
+    EXPECT_NE(report.out.find("\nDrive 01 (VLT 2000)\n"), std::string::npos) << report.out;
+    EXPECT_NE(report.out.find("\nDrive 02 (VLT 2000)\n"), std::string::npos) << report.out;
+    EXPECT_NE(report.out.find("Checks:  time-outs not judged (no timestamps), checksums checked"),
+              std::string::npos)
+        << report.out;
+
+    CommandResult json =
+        run_dpscope({"report", "--input-format", "raw", "--bus", "vlt2000", "--vlt2000-checksum",
+                     "ignore", "--station", "2", "--station", "7", "-T", "json", path});
+    EXPECT_EQ(json.exit_code, 0) << json.err;  // drive 02 is clean
+    EXPECT_NE(json.out.find("\"vlt2000_checksum\":\"ignore\""), std::string::npos) << json.out;
+    EXPECT_NE(json.out.find("\"address\":2,"), std::string::npos) << json.out;
+    EXPECT_EQ(json.out.find("\"address\":1,"), std::string::npos) << json.out;
+    EXPECT_NE(json.err.find("--station 7: no drive 7 in the capture"), std::string::npos)
+        << json.err;
+    EXPECT_EQ(json.err.find("--station 2"), std::string::npos) << json.err;
 }
 
 }  // namespace

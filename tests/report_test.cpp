@@ -33,6 +33,8 @@
 #include "decoder/log_histogram.hpp"
 #include "decoder/session_tracker.hpp"
 #include "decoder/telegram_builder.hpp"
+#include "decoder/vlt2000_decoder.hpp"
+#include "decoder/vlt2000_tracker.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/report_model.hpp"
 #include "formats/report_timeline.hpp"
@@ -546,7 +548,8 @@ std::vector<std::string> dp_kind_names() {
     for (std::size_t i = 0; i < kFindingKindCount; ++i) {
         const FindingComponent component = finding_component(static_cast<FindingKind>(i));
         if (component != FindingComponent::Dpv1ParameterAccess &&
-            component != FindingComponent::FcProtocol)
+            component != FindingComponent::FcProtocol &&
+            component != FindingComponent::Vlt2000Protocol)
             names.emplace_back(finding_kind_name(static_cast<FindingKind>(i)));
     }
     return names;
@@ -2671,9 +2674,11 @@ TEST(ReportTest, FcSectionInText) {
         << text;
     EXPECT_NE(text.find("  responses      2; 2 answered, 1 unanswered, 0 late (over 20 ms)\n"),
               std::string::npos);
-    EXPECT_NE(text.find("  parameters     PNU 302 (0 reads, 1 write), PNU 414 (1 read, 0 writes), PNU 415 (1 "
-                        "read, 0 writes)\n"),
-              std::string::npos);
+    EXPECT_NE(
+        text.find(
+            "  parameters     PNU 302 (0 reads, 1 write), PNU 414 (1 read, 0 writes), PNU 415 (1 "
+            "read, 0 writes)\n"),
+        std::string::npos);
     EXPECT_NE(text.find(" PNU 302 fault code 2 (Upper or lower limit is exceeded) 1x;"),
               std::string::npos);
     EXPECT_NE(text.find("  findings       fc_no_response 1, fc_command_rejected 1\n"),
@@ -2779,6 +2784,454 @@ TEST(ReportTest, ProfibusReportsListNoFcKinds) {
         std::string text = render(format, context_of(faults()));
         EXPECT_EQ(text.find("fc_"), std::string::npos) << report_format_name(format);
         EXPECT_EQ(text.find("FC protocol"), std::string::npos) << report_format_name(format);
+        EXPECT_EQ(text.find("vlt2000"), std::string::npos) << report_format_name(format);
+        EXPECT_EQ(text.find("VLT 2000"), std::string::npos) << report_format_name(format);
+    }
+}
+
+// ---- the VLT 2000 section
+// ----------------------------------------------------------------------
+
+// A VLT 2000 telegram (22 characters) with its checksum: the sum of offsets 1..18 mod 100, or
+// `checksum` as given ("??").
+std::string vlt2000(int address, char letter, int parameter, long value = 0, int decimals = 0,
+                    std::string_view word = "@@@@", std::string_view checksum = {}) {
+    std::string t =
+        fmt::format("<{:02}{}{}{:04}+{:05}{}", address, letter, word, parameter, value, decimals);
+    unsigned sum = 0;
+    for (std::size_t i = 1; i < t.size(); ++i)
+        sum += static_cast<unsigned char>(t[i]);
+    t += checksum.empty() ? fmt::format("{:02}", sum % 100) : std::string(checksum);
+    return t + '>';
+}
+
+// A drive's reply: decimals 9 (failed), the reason code in bytes 17-18; none: "--" there.
+std::string vlt2000_failed(int address, char letter, int parameter, int reason = -1) {
+    std::string t = vlt2000(address, letter, parameter, reason < 0 ? 0 : reason, 9);
+    if (reason >= 0) return t;
+    t[16] = '-';
+    t[17] = '-';
+    unsigned sum = 0;
+    for (std::size_t i = 1; i <= 18; ++i)
+        sum += static_cast<unsigned char>(t[i]);
+    t.replace(19, 2, fmt::format("{:02}", sum % 100));
+    return t;
+}
+
+// What `dpscope report --bus vlt2000` builds: Vlt2000Decoder and Vlt2000Tracker
+// (cli/pipeline.hpp), over `telegrams` (time in ms; < 0: none).
+struct Vlt2000Analysis {
+    using Telegrams = std::vector<std::pair<std::string, std::int64_t>>;
+
+    // Drive 01: R answered, U failed (reason 04), R unanswered, R failed without a reason; drive
+    // 02: C answered twice, a damaged R, an R with the checksum off; a broadcast U.
+    static Telegrams mixed() {
+        std::string damaged = vlt2000(2, 'R', 102);
+        damaged[20] = damaged[20] == '0' ? '1' : '0';
+        return {
+            {vlt2000(1, 'R', 102), 0},
+            {vlt2000(1, 'R', 102, 1500, 1, "GH@@"), 3},
+            {vlt2000(1, 'U', 516, 800), 10},
+            {vlt2000_failed(1, 'U', 516, 4), 15},  // read only
+            {vlt2000(2, 'C', 0, 0, 0, "OGD@"), 20},
+            {vlt2000(2, 'C', 0, 0, 0, "GHK@"), 40},
+            {vlt2000(1, 'R', 999), 50},
+            {vlt2000(2, 'C', 0, 0, 0, "OGD@"), 60},  // drive 01 did not reply
+            {vlt2000(2, 'C', 0, 0, 0, "GHK@"), 62},
+            {vlt2000(0, 'U', 516, 100), 70},  // broadcast
+            {damaged, 80},
+            {vlt2000(2, 'R', 102, 0, 0, "@@@@", "??"), 90},
+            {vlt2000(2, 'R', 102, 7, 0, "GH@@", "??"), 95},
+            {vlt2000(1, 'R', 5), 100},
+            {vlt2000_failed(1, 'R', 5), 101},
+        };
+    }
+
+    explicit Vlt2000Analysis(const Telegrams& telegrams = mixed()) {
+        std::uint64_t frame = 0;
+        for (const auto& [text, ms] : telegrams) {
+            bytes.assign(text.begin(), text.end());
+            const DecodedTelegram& t =
+                decoder.decode(bytes, ms < 0 ? kNoTime : ms * 1'000'000, ++frame);
+            std::span<const Finding> found = tracker.track(t);
+            summary.add(t);
+            summary.add_findings(found);
+            timelines.add(found, tracker.completed());
+            if (!found.empty()) log.append(found);
+        }
+        std::span<const Finding> found = tracker.finish();
+        summary.add_findings(found);
+        log.append(found);
+    }
+
+    ReportContext context() const {
+        ReportContext c;
+        c.input = InputSummary{"vlt2000.pcap", "pcap", 0, false};
+        c.protocol = Protocol::Vlt2000;
+        c.summary = &summary;
+        c.decoder = &dp_decoder;
+        c.tracker = &dp_tracker;
+        c.fc_tracker = &fc_tracker;
+        c.vlt2000_tracker = &tracker;
+        c.timelines = &timelines;
+        c.findings = &log;
+        c.version = "7.8.9-test";
+        return c;
+    }
+
+    Vlt2000Decoder decoder;
+    Vlt2000Tracker tracker;
+    BusDecoder dp_decoder;
+    SessionTracker dp_tracker;
+    FcTracker fc_tracker;
+    Summary summary;
+    ChannelTimelines timelines;
+    FindingLog log;
+    std::vector<std::uint8_t> bytes;
+};
+
+std::vector<std::string> vlt2000_kind_names() {
+    std::vector<std::string> names;
+    for (FindingKind kind : vlt2000_finding_kinds())
+        names.emplace_back(finding_kind_name(kind));
+    return names;
+}
+
+TEST(ReportTest, Vlt2000SectionInText) {
+    Vlt2000Analysis a;
+    std::string text = render(ReportFormat::Text, a.context());
+    EXPECT_NE(text.find("Bus:     Danfoss VLT 2000 serial telegram (ASCII)\n"), std::string::npos)
+        << text;
+    EXPECT_NE(text.find("Checks:  time-out 1000 ms, checksums checked\n"), std::string::npos);
+    EXPECT_NE(text.find("Result:  FAIL: 2 errors, 0 warnings, 3 notes (fail on error)\n"),
+              std::string::npos);
+    EXPECT_NE(text.find("  checksum errors 1\n"), std::string::npos);
+    EXPECT_NE(text.find("  transactions   6\n"), std::string::npos);
+    EXPECT_NE(text.find("\nBroadcasts (VLT 2000)\n  commands       1: U 1; 1 broadcast\n"
+                        "  replies        0 (nobody replies to a broadcast)\n"),
+              std::string::npos);
+    EXPECT_NE(text.find("\nDrive 01 (VLT 2000)\n"
+                        "  commands       4: U 1, R 3; 0 broadcasts\n"
+                        "  replies        3; 3 answered, 1 unanswered\n"
+                        "  failed         2: reason 04 (read only (e.g. factory set-up selected)) "
+                        "1x, no reason code 1x\n"
+                        "  checksums      0 checksum errors, 0 telegrams with the check off "
+                        "(\"??\")\n"
+                        "  latency ms     min 1.000  mean 3.000  p95 "),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("  parameters     5 (1 read, 0 writes), 102 (1 read, 0 writes), 516 (0 "
+                        "reads, 1 write), 999 (1 read, 0 writes)\n"
+                        "  findings       vlt2000_no_response 1, vlt2000_command_failed 2\n"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("\nDrive 02 (VLT 2000)\n"
+                        "  commands       3: R 1, C 2; 0 broadcasts\n"
+                        "  replies        3; 3 answered, 0 unanswered\n"
+                        "  failed         0: none\n"
+                        "  checksums      1 checksum error, 2 telegrams with the check off "
+                        "(\"??\")\n"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("  findings       vlt2000_checksum_error 1, vlt2000_checksum_disabled 1\n"),
+              std::string::npos);
+    // In address order: the broadcasts first.
+    EXPECT_LT(text.find("Broadcasts (VLT 2000)"), text.find("Drive 01 (VLT 2000)"));
+    EXPECT_LT(text.find("Drive 01 (VLT 2000)"), text.find("Drive 02 (VLT 2000)"));
+    for (std::string_view other : {"PPO", "fc_", "FC protocol", "FCS errors", "RC 8"})
+        EXPECT_EQ(text.find(other), std::string::npos) << other;
+}
+
+const std::vector<std::string> kVlt2000StationKeys = {"bus",
+                                                      "address",
+                                                      "broadcast",
+                                                      "telegrams",
+                                                      "commands",
+                                                      "commands_by_letter",
+                                                      "broadcasts",
+                                                      "replies",
+                                                      "transactions",
+                                                      "no_responses",
+                                                      "failed",
+                                                      "failures",
+                                                      "failures_without_reason",
+                                                      "checksum_errors",
+                                                      "checksum_disabled",
+                                                      "latency_ms",
+                                                      "outcomes",
+                                                      "parameters",
+                                                      "parameters_not_counted",
+                                                      "findings"};
+
+TEST(ReportTest, Vlt2000SectionInJson) {
+    Vlt2000Analysis a;
+    auto root = json_report(a.context());
+    ASSERT_TRUE(root);
+    const Json& r = *root;
+    EXPECT_EQ(r["options"].keys(),
+              (std::vector<std::string>{"bus", "timeout_ms", "vlt2000_checksum", "strict",
+                                        "fail_on", "allow_empty", "stations"}));
+    EXPECT_EQ(r["options"]["bus"].string(), "vlt2000");
+    EXPECT_EQ(r["options"]["vlt2000_checksum"].string(), "check");
+    EXPECT_EQ(r["summary"].keys(), (std::vector<std::string>{"telegrams", "checksum_errors",
+                                                             "transactions", "findings"}));
+    EXPECT_EQ(r["summary"]["telegrams"].integer(), 15);
+    EXPECT_EQ(r["summary"]["checksum_errors"].integer(), 1);
+    EXPECT_EQ(r["summary"]["transactions"].integer(), 6);
+    EXPECT_EQ(r["summary"]["findings"]["error"].integer(), 2);
+    EXPECT_EQ(r["summary"]["findings"]["note"].integer(), 3);
+    EXPECT_EQ(r["result"].string(), "fail");
+    EXPECT_FALSE(r["nothing_checked"].boolean);
+    EXPECT_EQ(r["bus"]["findings"].keys(), vlt2000_kind_names());
+    ASSERT_EQ(r["stations"].items.size(), 3u);
+    for (const Json& station : r["stations"].items) {
+        EXPECT_EQ(station.keys(), kVlt2000StationKeys);
+        EXPECT_EQ(station["bus"].string(), "vlt2000");
+        EXPECT_EQ(station["findings"].keys(), vlt2000_kind_names());
+        EXPECT_EQ(station["commands_by_letter"].keys(),
+                  (std::vector<std::string>{"U", "R", "C", "I"}));
+        EXPECT_EQ(station["outcomes"].keys(),
+                  (std::vector<std::string>{"positive", "failed", "mismatched", "unexpected"}));
+    }
+    const Json& broadcasts = r["stations"][0];
+    EXPECT_EQ(broadcasts["address"].integer(), 0);
+    EXPECT_TRUE(broadcasts["broadcast"].boolean);
+    EXPECT_EQ(broadcasts["broadcasts"].integer(), 1);
+    EXPECT_TRUE(broadcasts["latency_ms"].is_null());
+    const Json& one = r["stations"][1];
+    EXPECT_EQ(one["address"].integer(), 1);
+    EXPECT_FALSE(one["broadcast"].boolean);
+    EXPECT_EQ(one["commands"].integer(), 4);
+    EXPECT_EQ(one["commands_by_letter"]["R"].integer(), 3);
+    EXPECT_EQ(one["commands_by_letter"]["U"].integer(), 1);
+    EXPECT_EQ(one["commands_by_letter"]["I"].integer(), 0);
+    EXPECT_EQ(one["replies"].integer(), 3);
+    EXPECT_EQ(one["transactions"].integer(), 3);
+    EXPECT_EQ(one["no_responses"].integer(), 1);
+    EXPECT_EQ(one["failed"].integer(), 2);
+    ASSERT_EQ(one["failures"].items.size(), 1u);
+    EXPECT_EQ(one["failures"][0].keys(),
+              (std::vector<std::string>{"reason", "reason_text", "count"}));
+    EXPECT_EQ(one["failures"][0]["reason"].integer(), 4);
+    EXPECT_EQ(one["failures"][0]["reason_text"].string(),
+              "read only (e.g. factory set-up selected)");
+    EXPECT_EQ(one["failures_without_reason"].integer(), 1);
+    EXPECT_EQ(number_of(one["latency_ms"]["min"]), 1.0);
+    EXPECT_EQ(number_of(one["latency_ms"]["mean"]), 3.0);
+    EXPECT_EQ(number_of(one["latency_ms"]["max"]), 5.0);
+    EXPECT_EQ(one["outcomes"]["positive"].integer(), 1);
+    EXPECT_EQ(one["outcomes"]["failed"].integer(), 2);
+    ASSERT_EQ(one["parameters"].items.size(), 4u);
+    EXPECT_EQ(one["parameters"][2]["pnu"].integer(), 516);
+    EXPECT_EQ(one["parameters"][2]["writes"].integer(), 1);
+    EXPECT_EQ(one["findings"]["vlt2000_command_failed"].integer(), 2);
+    EXPECT_EQ(one["findings"]["vlt2000_no_response"].integer(), 1);
+    const Json& two = r["stations"][2];
+    EXPECT_EQ(two["checksum_errors"].integer(), 1);
+    EXPECT_EQ(two["checksum_disabled"].integer(), 2);
+    EXPECT_EQ(number_of(two["latency_ms"]["max"]), 20.0);
+    EXPECT_EQ(two["findings"]["vlt2000_checksum_error"].integer(), 1);
+    EXPECT_EQ(two["findings"]["vlt2000_checksum_disabled"].integer(), 1);
+    // Every finding listed, with its station.
+    ASSERT_EQ(r["findings"].items.size(), 5u);
+    EXPECT_EQ(r["findings"][0]["kind"].string(), "vlt2000_command_failed");
+    EXPECT_EQ(r["findings"][0]["slave"].integer(), 1);
+    EXPECT_EQ(r["findings"][0]["pnu"].integer(), 516);
+}
+
+TEST(ReportTest, Vlt2000SectionInMarkdownAndHtml) {
+    Vlt2000Analysis a;
+    std::string md = render(ReportFormat::Markdown, a.context());
+    EXPECT_NE(md.find("- Bus: Danfoss VLT 2000 serial telegram (ASCII)\n"), std::string::npos)
+        << md;
+    EXPECT_NE(md.find("- Checks: time-out 1000 ms, checksums checked\n"), std::string::npos);
+    EXPECT_NE(md.find("| telegrams | bytes skipped | checksum errors |"), std::string::npos);
+    EXPECT_NE(md.find("## Drives\n\n| address | commands | answered | unanswered | failed |"),
+              std::string::npos);
+    EXPECT_NE(md.find("| 01 | 4 | 3 | 1 | 2 | min 1.000  mean 3.000  p95 "), std::string::npos)
+        << md;
+    EXPECT_NE(md.find("| broadcast | 1 | 0 | 0 | 0 | - | 0 | none |\n"), std::string::npos) << md;
+    EXPECT_NE(md.find("\n### Drive 01 (VLT 2000)\n\n- Commands: 4 (U 1, R 3; 0 broadcasts)\n"),
+              std::string::npos);
+    EXPECT_NE(md.find("- Failed: reason code 04 (read only (e.g. factory set-up selected)), 1x\n"
+                      "- Failed: no reason code, 1x\n"),
+              std::string::npos);
+    EXPECT_NE(
+        md.find("- Findings: vlt2000\\_checksum\\_error 1, vlt2000\\_checksum\\_disabled 1\n"),
+        std::string::npos);
+    EXPECT_EQ(md.find("## Slaves"), std::string::npos);
+
+    std::string html = render(ReportFormat::Html, a.context());
+    auto doc = parse_xml(html, true);
+    ASSERT_TRUE(doc) << html;
+    EXPECT_NE(html.find("Danfoss VLT 2000 serial telegram (ASCII) &middot; time-out 1000 ms, "
+                        "checksums checked"),
+              std::string::npos);
+    EXPECT_NE(html.find("<div class=\"n\">3</div><div class=\"l\">drives</div>"),
+              std::string::npos);
+    EXPECT_NE(html.find("<div class=\"l\">checksum errors</div>"), std::string::npos);
+    EXPECT_NE(html.find("<h2>Drive 01 (VLT 2000)</h2>"), std::string::npos);
+    EXPECT_NE(html.find("<h2>Broadcasts (VLT 2000)</h2>"), std::string::npos);
+    EXPECT_NE(html.find("<a href=\"#drive-01\">01</a>"), std::string::npos);
+    EXPECT_NE(html.find("id=\"drive-01\""), std::string::npos);
+    EXPECT_NE(html.find("<tr><td class=\"n\">04</td><td>read only (e.g. factory set-up "
+                        "selected)</td><td class=\"n\">1</td></tr>"),
+              std::string::npos);
+    EXPECT_NE(html.find("<tr><td class=\"n\">-</td><td>no reason code</td><td class=\"n\">1</td>"),
+              std::string::npos);
+    EXPECT_NE(html.find("<tr><td class=\"n\">516</td><td class=\"n\">0</td><td "
+                        "class=\"n\">1</td></tr>"),
+              std::string::npos);
+    EXPECT_NE(html.find("<td>vlt2000_checksum_error</td>"), std::string::npos);
+    EXPECT_NE(html.find("aria-label=\"latency histogram of drive 02\""), std::string::npos);
+    EXPECT_NE(html.find("aria-label=\"timeline of drive 01\""), std::string::npos);
+    // The sections' anchors are unique.
+    std::vector<std::string> ids;
+    for (const XmlNode* section : doc->all("section", "station"))
+        ids.push_back(section->attribute("id"));
+    EXPECT_EQ(ids, (std::vector<std::string>{"drive-00", "drive-01", "drive-02"}));
+}
+
+TEST(ReportTest, JunitVlt2000SuitePerAddressWithACasePerRule) {
+    Vlt2000Analysis a;
+    auto root = junit_report(a.context());
+    ASSERT_TRUE(root);
+    auto suites = root->elements("testsuite");
+    ASSERT_EQ(suites.size(), 3u);
+    EXPECT_EQ(suites[0]->attribute("name"), "VLT 2000 broadcasts");
+    EXPECT_EQ(suites[1]->attribute("name"), "VLT 2000 drive 01");
+    EXPECT_EQ(suites[2]->attribute("name"), "VLT 2000 drive 02");
+    const std::vector<std::string> kinds = vlt2000_kind_names();
+    for (const XmlNode* suite : suites) {
+        auto cases = suite->elements("testcase");
+        ASSERT_EQ(cases.size(), kinds.size());
+        for (std::size_t k = 0; k < cases.size(); ++k)
+            EXPECT_EQ(cases[k]->attribute("name").substr(0, kinds[k].size() + 1), kinds[k] + ":");
+    }
+    EXPECT_EQ(suites[1]->elements("testcase")[0]->attribute("classname"),
+              "dpscope.vlt2000.drive_01");
+    EXPECT_EQ(suites[1]->attribute("failures"), "1");  // vlt2000_no_response
+    EXPECT_EQ(suites[2]->attribute("failures"), "1");  // vlt2000_checksum_error
+    EXPECT_EQ(suites[0]->attribute("failures"), "0");
+    EXPECT_EQ(root->attribute("failures"), "2");
+    EXPECT_EQ(root->attribute("tests"), std::to_string(3 * kinds.size()));
+    // The notes are below the failure threshold, said in the case.
+    const XmlNode& failed = *suites[1]->elements("testcase")[static_cast<std::size_t>(
+        std::find(kinds.begin(), kinds.end(), "vlt2000_command_failed") - kinds.begin())];
+    ASSERT_EQ(failed.elements("system-out").size(), 1u);
+    EXPECT_EQ(failed.elements("system-out")[0]->text,
+              "2 note findings below the failure threshold");
+}
+
+TEST(ReportTest, Vlt2000ReportWithoutTimestampsAndWithoutChecksums) {
+    Vlt2000Analysis::Telegrams untimed = Vlt2000Analysis::mixed();
+    for (auto& telegram : untimed)
+        telegram.second = -1;
+    Vlt2000Analysis a(untimed);
+    ReportContext c = a.context();
+    c.vlt2000_checksum = false;
+    std::string text = render(ReportFormat::Text, c);
+    EXPECT_NE(text.find("Checks:  time-outs not judged (no timestamps), checksums not checked "
+                        "(--vlt2000-checksum ignore)\n"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("  latency ms     not measured (no timestamps)\n"), std::string::npos);
+    auto root = json_report(c);
+    ASSERT_TRUE(root);
+    EXPECT_EQ((*root)["options"]["vlt2000_checksum"].string(), "ignore");
+    EXPECT_TRUE((*root)["stations"][1]["latency_ms"].is_null());
+    std::string html = render(ReportFormat::Html, c);
+    EXPECT_TRUE(parse_xml(html, true));
+    EXPECT_NE(html.find("The capture carries no timestamps."), std::string::npos);
+}
+
+TEST(ReportTest, Vlt2000NothingCheckedWhenNoCommandWasAnswered) {
+    // Broadcasts and a command nobody answered: nothing was paired.
+    Vlt2000Analysis a({{vlt2000(0, 'U', 516, 100), 0},
+                       {vlt2000(0, 'C', 0, 0, 0, "OGD@"), 10},
+                       {vlt2000(3, 'R', 102), 20}});
+    ReportContext c = a.context();
+    std::string text = render(ReportFormat::Text, c);
+    EXPECT_NE(text.find("Result:  FAIL: nothing checked (no command answered by a drive); 0 "
+                        "errors, 0 warnings, 0 notes (fail on error)\n"),
+              std::string::npos)
+        << text;
+    auto junit = junit_report(c);
+    ASSERT_TRUE(junit);
+    auto suites = junit->elements("testsuite");
+    ASSERT_GE(suites.size(), 1u);
+    EXPECT_EQ(suites[0]->attribute("name"), "capture");
+    EXPECT_EQ(suites[0]->elements("testcase")[0]->attribute("name"),
+              "VLT 2000: the capture holds commands answered by drives");
+    c.allow_empty = true;
+    EXPECT_FALSE(report_fails(c));
+    EXPECT_NE(render(ReportFormat::Markdown, c)
+                  .find("**PASS: nothing checked (no command answered "
+                        "by a drive); 0 errors, 0 warnings, 0 notes "
+                        "(fail on error, empty allowed)**"),
+              std::string::npos);
+    // A station filter naming a drive that answered nothing.
+    Vlt2000Analysis b;
+    ReportContext filtered = b.context();
+    filtered.stations = {0};
+    EXPECT_NE(render(ReportFormat::Text, filtered)
+                  .find("nothing checked (no command answered by the selected drives)"),
+              std::string::npos);
+}
+
+TEST(ReportTest, Vlt2000StationFilterKeepsTheDrivesChosen) {
+    Vlt2000Analysis a;
+    ReportContext c = a.context();
+    c.stations = {2};
+    auto root = json_report(c);
+    ASSERT_TRUE(root);
+    ASSERT_EQ((*root)["stations"].items.size(), 1u);
+    EXPECT_EQ((*root)["stations"][0]["address"].integer(), 2);
+    EXPECT_EQ((*root)["summary"]["transactions"].integer(), 3);
+    EXPECT_EQ((*root)["summary"]["checksum_errors"].integer(), 1);
+    ASSERT_EQ((*root)["findings"].items.size(), 2u);
+    EXPECT_EQ((*root)["result"].string(), "fail");
+    std::string text = render(ReportFormat::Text, c);
+    EXPECT_EQ(text.find("Drive 01"), std::string::npos);
+    EXPECT_NE(text.find("Drive 02 (VLT 2000)"), std::string::npos);
+}
+
+TEST(ReportTest, Vlt2000ReportsListOnlyTheirBussKinds) {
+    // A finding no station is named for: the bus section, with the VLT 2000 kinds.
+    std::string no_address = vlt2000(1, 'R', 102);
+    no_address[1] = 'x';
+    Vlt2000Analysis::Telegrams telegrams = Vlt2000Analysis::mixed();
+    telegrams.emplace_back(no_address, 200);
+    Vlt2000Analysis b(telegrams);
+    auto root = json_report(b.context());
+    ASSERT_TRUE(root);
+    EXPECT_EQ((*root)["bus"]["findings"].keys(), vlt2000_kind_names());
+    EXPECT_EQ((*root)["bus"]["findings"]["vlt2000_checksum_error"].integer(), 1);
+    for (ReportFormat format : {ReportFormat::Text, ReportFormat::Markdown, ReportFormat::Html,
+                                ReportFormat::Junit, ReportFormat::Json}) {
+        std::string text = render(format, b.context());
+        EXPECT_EQ(text.find("fc_"), std::string::npos) << report_format_name(format);
+        EXPECT_EQ(text.find("FC protocol"), std::string::npos) << report_format_name(format);
+        EXPECT_EQ(text.find("dpv1_"), std::string::npos) << report_format_name(format);
+        EXPECT_EQ(text.find("\"response_timeout\""), std::string::npos)
+            << report_format_name(format);
+        EXPECT_NE(text.find(format == ReportFormat::Markdown ? "vlt2000\\_checksum\\_error"
+                                                             : "vlt2000_checksum_error"),
+                  std::string::npos)
+            << report_format_name(format);
+    }
+    auto junit = junit_report(b.context());
+    ASSERT_TRUE(junit);
+    const XmlNode* bus = junit->elements("testsuite").back();
+    EXPECT_EQ(bus->attribute("name"), "bus");
+    EXPECT_EQ(bus->elements("testcase").size(), vlt2000_kind_names().size());
+    // An FC report names no VLT 2000 kind.
+    FcAnalysis fc;
+    for (ReportFormat format : {ReportFormat::Text, ReportFormat::Markdown, ReportFormat::Html,
+                                ReportFormat::Junit, ReportFormat::Json}) {
+        std::string text = render(format, fc.context());
+        EXPECT_EQ(text.find("vlt2000"), std::string::npos) << report_format_name(format);
+        EXPECT_EQ(text.find("VLT 2000"), std::string::npos) << report_format_name(format);
     }
 }
 
