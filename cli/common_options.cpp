@@ -115,9 +115,10 @@ void add_write_options(CLI::App& app, DecodeOptionValues& values) {
 
 void add_line_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_option("--baud", values.baud,
-                   "The line's baud rate when the capture was made. FC protocol: a telegram's time "
-                   "is when its first byte came, so the time a command takes on the line (11 bits "
-                   "a byte) is not counted in the drive's response time; default 9600")
+                   "The line's baud rate when the capture was made. FC protocol and VLT 2000: a "
+                   "telegram's time is when its first byte came, so the time a command takes on "
+                   "the line (11 bits a byte for FC, 10 for VLT 2000) is not counted in the "
+                   "drive's response time; default 9600")
         ->check(whole_number(300, 12'000'000, " baud"))
         ->type_name("BAUD");
 }
@@ -221,6 +222,7 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     settings.fc_tracker.timeout_ns = settings.tracker.timeout_ns;
     settings.fc_tracker.response_ns = static_cast<std::int64_t>(values.fc_response_ms) * 1'000'000;
     settings.fc_tracker.line_baud = values.baud != 0 ? values.baud : kFcDefaultLineBaud;
+    settings.vlt2000_tracker.line_baud = values.baud != 0 ? values.baud : kVlt2000DefaultLineBaud;
     if (!values.bus.empty()) {
         settings.protocol = &capture_protocol(*protocol_from_name(values.bus));
         settings.bus_given = true;

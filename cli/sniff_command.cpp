@@ -304,6 +304,8 @@ int run_sniff(const SniffCommand& command) {
     // The tracker measures the drive's response time from a command's last byte.
     settings->fc_tracker.line_baud = port->baud();
     settings->fc_tracker.character_bits = tty_options.character_bits;
+    settings->vlt2000_tracker.line_baud = port->baud();
+    settings->vlt2000_tracker.character_bits = tty_options.character_bits;
     tty_options.idle_gap_ns = static_cast<std::int64_t>(command.idle_gap_ms) * 1'000'000;
     TtySource source(std::move(port), fd, command.device, tty_options, settings->protocol->framing);
 

@@ -324,8 +324,15 @@ void Vlt2000Tracker::reply(Vlt2000StationStats& st, const DecodedTelegram& t) {
     const Pending command = pending_;
     const bool timed = t.has_time() && command.time_ns != kNoTime;
     if (timed) {
-        const auto latency =
-            static_cast<std::uint64_t>(std::max<std::int64_t>(0, t.time_ns - command.time_ns));
+        // The drive's reply time: from the command's last character to the reply's first.
+        const auto wire_ns =
+            options_.line_baud == 0
+                ? std::int64_t{0}
+                : static_cast<std::int64_t>(static_cast<double>(kVlt2000TelegramSize) *
+                                            options_.character_bits * 1e9 /
+                                            static_cast<double>(options_.line_baud));
+        const auto latency = static_cast<std::uint64_t>(
+            std::max<std::int64_t>(0, t.time_ns - command.time_ns - wire_ns));
         st.latency_ns.add(latency);
         st.latency_sum_ns += latency;
     }

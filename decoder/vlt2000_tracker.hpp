@@ -38,6 +38,11 @@ namespace dpscope {
 
 struct Vlt2000TrackerOptions {
     std::int64_t timeout_ns = 1'000'000'000;  // --timeout-ms: no reply within it
+    // The line (--baud, 9600 unless given; sniff: the port's settings): a telegram's time is when
+    // its first character arrived, so a drive's reply time runs from the command's last
+    // character, 22 x character_bits / line_baud after its time. 0: no line time is subtracted.
+    std::uint32_t line_baud = 0;
+    std::uint32_t character_bits = 10;  // 8N1: start, 8 data, stop
 };
 
 // The finding kinds the VLT 2000 tracker reports: its own (FindingComponent::Vlt2000Protocol) and

@@ -88,7 +88,7 @@ const BusWording kVlt2000Wording{
     "Danfoss VLT 2000 serial telegram (ASCII)",
     "vlt2000",
     FindingKind::Vlt2000ChecksumError,
-    "checksum errors",
+    "bad checksums",
     "checksum_errors",
     "drive",
     "drives",

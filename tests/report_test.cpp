@@ -2905,7 +2905,7 @@ TEST(ReportTest, Vlt2000SectionInText) {
     EXPECT_NE(text.find("Checks:  time-out 1000 ms, checksums checked\n"), std::string::npos);
     EXPECT_NE(text.find("Result:  FAIL: 2 errors, 0 warnings, 3 notes (fail on error)\n"),
               std::string::npos);
-    EXPECT_NE(text.find("  checksum errors 1\n"), std::string::npos);
+    EXPECT_NE(text.find("  bad checksums  1\n"), std::string::npos);
     EXPECT_NE(text.find("  transactions   6\n"), std::string::npos);
     EXPECT_NE(text.find("\nBroadcasts (VLT 2000)\n  commands       1: U 1; 1 broadcast\n"
                         "  replies        0 (nobody replies to a broadcast)\n"),
@@ -3045,7 +3045,7 @@ TEST(ReportTest, Vlt2000SectionInMarkdownAndHtml) {
     EXPECT_NE(md.find("- Bus: Danfoss VLT 2000 serial telegram (ASCII)\n"), std::string::npos)
         << md;
     EXPECT_NE(md.find("- Checks: time-out 1000 ms, checksums checked\n"), std::string::npos);
-    EXPECT_NE(md.find("| telegrams | bytes skipped | checksum errors |"), std::string::npos);
+    EXPECT_NE(md.find("| telegrams | bytes skipped | bad checksums |"), std::string::npos);
     EXPECT_NE(md.find("## Drives\n\n| address | commands | answered | unanswered | failed |"),
               std::string::npos);
     EXPECT_NE(md.find("| 01 | 4 | 3 | 1 | 2 | min 1.000  mean 3.000  p95 "), std::string::npos)
@@ -3069,7 +3069,7 @@ TEST(ReportTest, Vlt2000SectionInMarkdownAndHtml) {
               std::string::npos);
     EXPECT_NE(html.find("<div class=\"n\">3</div><div class=\"l\">drives</div>"),
               std::string::npos);
-    EXPECT_NE(html.find("<div class=\"l\">checksum errors</div>"), std::string::npos);
+    EXPECT_NE(html.find("<div class=\"l\">bad checksums</div>"), std::string::npos);
     EXPECT_NE(html.find("<h2>Drive 01 (VLT 2000)</h2>"), std::string::npos);
     EXPECT_NE(html.find("<h2>Broadcasts (VLT 2000)</h2>"), std::string::npos);
     EXPECT_NE(html.find("<a href=\"#drive-01\">01</a>"), std::string::npos);
