@@ -435,22 +435,36 @@ void say_bus_choice(const DecodeSettings& settings, const BusChoice& choice,
 }
 
 void warn_profibus_options(const DecodeSettings& settings, const std::string& input) {
-    if (settings.protocol->protocol == Protocol::ProfibusDp) return;
+    const Protocol bus = settings.protocol->protocol;
+    // The options given (not at their defaults) that belong to each bus.
+    std::vector<std::string_view> profibus;
+    std::vector<std::string_view> fc;
+    std::vector<std::string_view> vlt2000;
     const DecoderOptions& dp = settings.decoder;
-    std::vector<std::string_view> given;
     if (std::any_of(dp.station_ppo.begin(), dp.station_ppo.end(),
                     [](std::uint8_t ppo) { return ppo != 0; }))
-        given.push_back("--ppo");
+        profibus.push_back("--ppo");
     if (dp.dialect != Dialect::Vlt ||
         std::any_of(dp.station_dialect.begin(), dp.station_dialect.end(),
                     [](const std::optional<Dialect>& d) { return d.has_value(); }))
-        given.push_back("--dialect");
-    if (dp.pcd_profile) given.push_back("--pcd-profile");
-    if (given.empty()) return;
-    print_warning(fmt::format(
-        "{}: {} {} to PROFIBUS DP; this capture is the FC protocol, whose code tables and FC "
-        "profile words are fixed: ignored",
-        input, fmt::join(given, ", "), given.size() == 1 ? "applies" : "apply"));
+        profibus.push_back("--dialect");
+    if (dp.pcd_profile) profibus.push_back("--pcd-profile");
+    if (settings.tracker.strict) profibus.push_back("--strict");
+    if (settings.fc_decoder.pnu_bits != FcDecoderOptions{}.pnu_bits) fc.push_back("--fc-pnu-bits");
+    if (settings.fc_tracker.response_ns != FcTrackerOptions{}.response_ns)
+        fc.push_back("--fc-response-ms");
+    if (!settings.vlt2000_decoder.check_checksum) vlt2000.push_back("--vlt2000-checksum");
+    const auto warn = [&](Protocol owner, const std::vector<std::string_view>& given) {
+        if (owner == bus || given.empty()) return;
+        print_warning(fmt::format(
+            "{}: {} {} to {}; this capture is {}: ignored", input, fmt::join(given, ", "),
+            given.size() == 1 ? "applies" : "apply",
+            owner == Protocol::ProfibusDp ? std::string("PROFIBUS DP") : bus_title(owner),
+            bus_title(bus)));
+    };
+    warn(Protocol::ProfibusDp, profibus);
+    warn(Protocol::Fc, fc);
+    warn(Protocol::Vlt2000, vlt2000);
 }
 
 OpenResult open_input(const std::string& path, InputFormat format, DecodeSettings& settings) {

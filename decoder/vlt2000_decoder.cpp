@@ -194,15 +194,22 @@ const DecodedTelegram& Vlt2000Decoder::decode(Bytes bytes, std::int64_t time_ns,
         v.has_index_number = false;
         v.index_number = 0;
     }
-    const bool intact = v.complete && v.problems.empty();
+    // A command that is whole and wrong only in its checksum may still be answered: the error
+    // may be the tap's alone (docs/decisions.md). Cut short or with a field that is no number, a
+    // drive drops it: the next telegram is no reply to it.
+    const bool answerable =
+        v.complete && v.letter != Vlt2000Letter::Unknown &&
+        std::none_of(v.problems.begin(), v.problems.end(), [](const Problem& p) {
+            return p.kind != ProblemKind::Vlt2000ChecksumMismatch &&
+                   problem_severity(p.kind) == Severity::Error;
+        });
     if (t_.direction == Direction::Response) {
         // A failed reply from another address answers nothing pending here.
         if (pending_.valid && v.address == pending_.address) {
             t_.request_frame = pending_.frame;
             pending_.valid = false;
         }
-    } else if (!intact) {
-        // A drive drops a damaged command: the next telegram is no reply to it.
+    } else if (!answerable) {
         pending_.valid = false;
     } else {
         pending_.valid = true;

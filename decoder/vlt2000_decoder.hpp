@@ -7,8 +7,9 @@
 //     control letter, is not the command's characters again, and comes within the response
 //     window; a broadcast (address 00) is answered by nobody, but a telegram with address 00 and
 //     its letter right after one is taken for a reply (the tracker reports it);
-//   - everything else is a command; a damaged command (wrong checksum, cut short) expects no
-//     reply: a drive drops it.
+//   - everything else is a command; a command cut short or with a field that is no number
+//     expects no reply (a drive drops it); one wrong only in its checksum may still be answered
+//     (the error may be the tap's alone), so its reply is recognised.
 // The header's roles: master 0 (the master has no address), slave the drive's address (0 for a
 // broadcast); a reply names the command it answers.
 #pragma once

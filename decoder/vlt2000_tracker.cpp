@@ -198,6 +198,7 @@ std::span<const Finding> Vlt2000Tracker::track(const DecodedTelegram& t) {
     }
     if (!check_intact(t, answers_pending)) {
         if (answers_pending) close_pending();
+        if (t.has_roles && t.direction == Direction::Request) damaged_command_frame_ = t.frame;
         count();
         return current_;
     }
@@ -306,6 +307,8 @@ void Vlt2000Tracker::reply(Vlt2000StationStats& st, const DecodedTelegram& t) {
                                       describe(v));
         return;
     }
+    if (!pending_.active && t.request_frame != 0 && t.request_frame == damaged_command_frame_)
+        return;  // the reply to a command with a wrong checksum, which was the finding
     if (!pending_.active || t.slave != pending_.address) {
         Finding& f =
             add_finding(current_, FindingKind::Vlt2000MismatchedResponse, t.frame, t.time_ns,

@@ -148,6 +148,9 @@ class Vlt2000Tracker {
     std::vector<std::unique_ptr<Vlt2000StationStats>> stations_;
     std::array<bool, 100> checksum_disabled_said_{};
     Pending pending_;
+    // The last command with a wrong checksum (reported, not tracked): a reply to it (the decoder
+    // pairs one, the error may be the tap's alone) is no finding of its own.
+    std::uint64_t damaged_command_frame_ = 0;
     std::vector<Finding> current_;
     std::vector<CompletedTransaction> completed_;
     BusStats bus_;

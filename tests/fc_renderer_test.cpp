@@ -498,8 +498,24 @@ TEST(FcRendererTest, ProfibusOnlyOptionsOnAnFcCaptureAreNamedAsIgnored) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.err,
               "dpscope: warning: samples/fc.pcap: --dialect, --pcd-profile apply to PROFIBUS DP; "
-              "this capture is the FC protocol, whose code tables and FC profile words are fixed: "
-              "ignored\n");
+              "this capture is the FC protocol (RS-485): ignored\n");
+    // Options of the other serial buses are named too.
+    test::CommandResult vlt = test::run_dpscope(
+        {"decode", "-q", "--fc-pnu-bits", "11", "--strict", "samples/vlt2000-examples.txt"});
+    EXPECT_EQ(vlt.exit_code, 0) << vlt.err;
+    EXPECT_NE(vlt.err.find("dpscope: warning: samples/vlt2000-examples.txt: --strict applies to "
+                           "PROFIBUS DP; this capture is the VLT 2000 telegram: ignored\n"),
+              std::string::npos)
+        << vlt.err;
+    EXPECT_NE(vlt.err.find("--fc-pnu-bits applies to the FC protocol (RS-485); this capture is "
+                           "the VLT 2000 telegram: ignored"),
+              std::string::npos)
+        << vlt.err;
+    test::CommandResult fc =
+        test::run_dpscope({"decode", "-q", "--vlt2000-checksum", "ignore", "samples/fc.pcap"});
+    EXPECT_EQ(fc.err,
+              "dpscope: warning: samples/fc.pcap: --vlt2000-checksum applies to the VLT 2000 "
+              "telegram; this capture is the FC protocol (RS-485): ignored\n");
     test::CommandResult dp =
         test::run_dpscope({"decode", "-q", "--dialect", "ge", "samples/ge.pcap"});
     EXPECT_EQ(dp.err, "");

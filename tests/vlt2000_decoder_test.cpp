@@ -272,11 +272,23 @@ TEST(Vlt2000DecoderTest, DirectionByAddressLetterRepeatAndWindow) {
     Vlt2000Decoder windowed(options);
     EXPECT_EQ(windowed.decode(span_of(read1), 0, 1).direction, Direction::Request);
     EXPECT_EQ(windowed.decode(span_of(reply1), 200 * kMs, 2).direction, Direction::Request);
-    // A damaged command expects no reply.
+    // A command wrong only in its checksum may still be answered (the error may be the tap's);
+    // one cut short or with a field that is no number expects no reply.
     Vlt2000Decoder fresh;
     const Telegram damaged = bytes_of("<01R@@D@0516+00000000>");
     ASSERT_FALSE(fresh.decode(span_of(damaged), 0, 1).problems().empty());
-    EXPECT_EQ(fresh.decode(span_of(reply1), kMs, 2).direction, Direction::Request);
+    const DecodedTelegram& answer = fresh.decode(span_of(reply1), kMs, 2);
+    EXPECT_EQ(answer.direction, Direction::Response);
+    EXPECT_EQ(answer.request_frame, 1u);
+    const Telegram cut = bytes_of("<01R@@D@0516+0000");
+    EXPECT_EQ(fresh.decode(span_of(cut), 2 * kMs, 3).direction, Direction::Request);
+    EXPECT_EQ(fresh.decode(span_of(reply1), 3 * kMs, 4).direction, Direction::Request);
+    // A trailing byte (a warning) does not keep the reply from being recognised.
+    Telegram trailing = read1;
+    trailing.push_back('\r');
+    Vlt2000Decoder lenient;
+    lenient.decode(span_of(trailing), 0, 1);
+    EXPECT_EQ(lenient.decode(span_of(reply1), kMs, 2).direction, Direction::Response);
 }
 
 TEST(Vlt2000DecoderTest, PGroupsAreKeptGroupsOfTheVlt3000) {

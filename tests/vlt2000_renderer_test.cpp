@@ -51,9 +51,10 @@ std::string wrong_checksum(std::string_view head) {
 //   1/2 the worked example: U 516 = 80 with control word 0x047F, and its reply (status 0x0B87);
 //   3/4 R 999 to drive 02 and the failed reply, reason 00; 5/6 U 101 = -23.750 and its reply;
 //   7/8 I 621 index 3 and its reply, both with "??"; 9 a C broadcast (0x0400); 10 a wrong
-//   checksum; 11 cut short; 12 a letter in the parameter; 13 a failed reply with reason 07
-//   (unknown); 14 a failed reply without a reason code; 15 decimal position 7; 16 groups kept
-//   (P) to drive 04; 17 an unknown letter; 18 no address.
+//   checksum (to drive 05: a command wrong only in its checksum may be answered); 11 cut short; 12
+//   a letter in the parameter; 13 a failed reply with reason 07 (unknown); 14 a failed reply
+//   without a reason code; 15 decimal position 7; 16 groups kept (P) to drive 04; 17 an unknown
+//   letter; 18 no address.
 std::vector<std::string> session() {
     return {
         vlt("<01UOGD@0516+000800"),
@@ -65,7 +66,7 @@ std::vector<std::string> session() {
         unchecked("<03I@@@@0621+000030"),
         unchecked("<03IGHK@0621+000030"),
         vlt("<00C@@D@0000+000000"),
-        wrong_checksum("<01R@@@@0516+000000"),
+        wrong_checksum("<05R@@@@0516+000000"),
         "<01R@@@@05",
         vlt("<01R@@@@05x6+000000"),
         vlt("<01R@@@@0999+000079"),
@@ -557,10 +558,11 @@ TEST(Vlt2000RendererTest, SummaryCountsLettersFailuresChecksumsAndAddresses) {
              "    vlt2000_checksum_mismatch",
              "  addresses:\n"
              "    00 (broadcast): 1 command, 0 replies\n"
-             "    01: 7 commands, 4 replies, 2 failed, 1 checksum error\n"
+             "    01: 6 commands, 4 replies, 2 failed\n"
              "    02: 1 command, 1 reply, 1 failed\n"
              "    03: 1 command, 1 reply, 2 without checksum (\"??\")\n"
-             "    04: 1 command, 0 replies\n",
+             "    04: 1 command, 0 replies\n"
+             "    05: 1 command, 0 replies, 1 checksum error\n",
          })
         EXPECT_TRUE(contains(text, expected)) << expected << "\n---\n" << text;
 }

@@ -514,6 +514,23 @@ TEST(Vlt2000TrackerTest, ChecksumErrorsAreReportedAndTheTelegramIgnored) {
     EXPECT_EQ(run.station(2)->findings[at(FindingKind::Vlt2000ChecksumError)], 1u);
 }
 
+TEST(Vlt2000TrackerTest, TheReplyToACommandWithAWrongChecksumIsNoFindingOfItsOwn) {
+    // The checksum error may be the tap's alone: the drive got the command and replies. The
+    // reply is paired with it (no phantom command, no vlt2000_no_response later).
+    Vlt2000Run run;
+    run.warm_up();
+    std::vector<Finding> found = run.feed(damaged(vlt(4, 'R', 102)));
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::Vlt2000ChecksumError);
+    EXPECT_TRUE(run.feed(vlt(4, 'R', 102, 5, 0, {}, "GH@@")).empty());
+    EXPECT_TRUE(run.feed(vlt(1, 'C', 0)).empty());
+    EXPECT_TRUE(run.feed(vlt(1, 'C', 0, 0, 0, {}, "GH@@")).empty());
+    EXPECT_TRUE(run.finish(100'000).empty());
+    EXPECT_EQ(run.station(4)->commands, 0u);
+    EXPECT_EQ(run.station(4)->replies, 1u);
+    EXPECT_EQ(run.station(4)->no_responses, 0u);
+}
+
 TEST(Vlt2000TrackerTest, ADamagedReplyAfterTheTimeOutStillEndsTheWait) {
     Vlt2000Run run(Vlt2000TrackerOptions{100 * kMs});
     run.warm_up();
