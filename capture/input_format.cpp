@@ -31,6 +31,21 @@ bool is_hex_digit(std::uint8_t c) {
     return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
 }
 
+// Does the first line that is not empty look like a line of `xxd` ("00000010: 8382 ...") or
+// `hexdump -C` ("00000010  83 82 ...")? Their character column can hold a whole VLT 2000 telegram
+// (xxd -c 32), which makes a hex dump no text log.
+bool starts_like_hex_dump(Bytes head) {
+    std::size_t i = 0;
+    while (i < head.size() && (head[i] == '\n' || head[i] == '\r'))
+        ++i;
+    std::size_t digits = 0;
+    while (i + digits < head.size() && is_hex_digit(head[i + digits]))
+        ++digits;
+    if (digits < 7 || i + digits + 1 >= head.size()) return false;
+    const std::uint8_t after = head[i + digits];
+    return after == ':' || (after == ' ' && head[i + digits + 1] == ' ');
+}
+
 }  // namespace
 
 bool has_vlt2000_telegram_shape(Bytes text) {
@@ -74,7 +89,8 @@ InputFormat detect_input_format(Bytes head) {
         text = printable;
         if (i + 1 < head.size() && is_hex_digit(c) && is_hex_digit(head[i + 1])) hex_pair = true;
     }
-    if (text && has_vlt2000_telegram_shape(head)) return InputFormat::Text;
+    if (text && has_vlt2000_telegram_shape(head) && !starts_like_hex_dump(head))
+        return InputFormat::Text;
     return text && hex_pair ? InputFormat::Hex : InputFormat::Raw;
 }
 

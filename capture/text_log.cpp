@@ -120,7 +120,11 @@ class TextLogSource final : public FramedSource {
         current_line_ = line_;
         current_column_ = pending_column_;
         current_start_ = stream_offset_;
+        // The line's time stamp is its first telegram's: a later one on the same line came after
+        // it by a time the log does not say, so it has no time of its own (no reply time is
+        // measured from or to it; docs/decisions.md).
         current_time_ = line_time_;
+        line_time_ = kNoTime;
         feed(Bytes(pending_.data(), pending_size_));
         stream_offset_ += pending_size_;
         pending_size_ = 0;

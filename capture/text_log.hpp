@@ -5,7 +5,7 @@
 // Only the telegrams are data: on a line, a '<' starts a telegram that must be followed by 20
 // printable ASCII characters and '>' on the same line; whatever else is on the line (a time
 // stamp, "TX:"/"RX:", spaces, a CR) is ignored. A leading time stamp, before the line's first '<',
-// gives the time of the line's telegrams, in the forms a hex log takes (capture/hex_log.hpp):
+// gives the time of the line's first telegram (later ones on the line have none), in the forms a hex log takes (capture/hex_log.hpp):
 // epoch seconds, a time of day, an ISO date and time, optionally in brackets; all UTC.
 //
 // A '<' that starts no telegram (the line or the input ends first, a character that is no

@@ -176,7 +176,8 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
         ->type_name("MS")
         ->default_str("20");
     app.add_option("--vlt2000-checksum", values.vlt2000_checksum,
-                   "VLT 2000: check the telegrams' checksum (sum of bytes 2-19, last two decimal "
+                   "VLT 2000: check the telegrams' checksum (sum of the 18 characters after '<', "
+                   "last two decimal "
                    "digits, the VLT 3000/3500 rule) or ignore it, for a drive that computes it "
                    "otherwise. Default: check")
         ->check(CLI::IsMember({"check", "ignore"}))

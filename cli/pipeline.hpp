@@ -67,15 +67,14 @@ class Pipeline {
     std::span<const Finding> finish(std::int64_t end_ns = kNoTime) {
         std::span<const Finding> findings =
             with_lane([&](auto& lane) { return lane.tracker.finish(end_ns); });
-        if (protocol_ == Protocol::Fc && fc_.tracker.early_responses() != 0) {
-            const FcTrackerOptions& line = fc_.tracker.options();
-            print_warning(fmt::format(
-                "{} began before {} command could have ended at {} baud ({} bits a byte): the "
-                "line was faster; the drives' response times are counted from the commands' last "
-                "bytes at that rate (0 for these); give the line's rate with --baud",
-                counted(fc_.tracker.early_responses(), "response", "responses"),
-                fc_.tracker.early_responses() == 1 ? "its" : "their", line.line_baud,
-                line.character_bits));
+        if (protocol_ == Protocol::Fc)
+            warn_early_responses(fc_.tracker.early_responses(), fc_.tracker.options().line_baud,
+                                 fc_.tracker.options().character_bits);
+        if (protocol_ == Protocol::Vlt2000) {
+            warn_early_responses(vlt2000_.tracker.early_responses(),
+                                 vlt2000_.tracker.options().line_baud,
+                                 vlt2000_.tracker.options().character_bits);
+            warn_checksum_rule();
         }
         summary_.add_findings(findings);
         if (keep_timelines_) timelines_.add(findings, {});
@@ -98,6 +97,32 @@ class Pipeline {
     const ChannelTimelines& timelines() const noexcept { return timelines_; }
 
   private:
+    // Responses that began before their command could have ended at the line's rate: the line
+    // was faster (FC, VLT 2000; the serial trackers count them).
+    static void warn_early_responses(std::uint64_t early, std::uint32_t baud, std::uint32_t bits) {
+        if (early == 0) return;
+        print_warning(fmt::format(
+            "{} began before {} command could have ended at {} baud ({} bits a byte): the "
+            "line was faster; the drives' response times are counted from the commands' last "
+            "bytes at that rate (0 for these); give the line's rate with --baud",
+            counted(early, "response", "responses"), early == 1 ? "its" : "their", baud, bits));
+    }
+
+    // Most VLT 2000 telegrams with a wrong checksum: perhaps the drives compute it otherwise than
+    // the VLT 3000/3500 rule dpscope applies (docs/decisions.md); the option is named.
+    void warn_checksum_rule() const {
+        std::uint64_t wrong = 0;
+        for (const Vlt2000StationStats* st : vlt2000_.tracker.stations())
+            wrong += st->checksum_errors;
+        const std::uint64_t telegrams = summary_.telegrams();
+        if (wrong < 4 || wrong * 2 < telegrams) return;
+        print_warning(fmt::format(
+            "{} of {} telegrams have a wrong checksum by the VLT 3000/3500 rule (the sum of the 18 "
+            "characters after '<'); if the drives compute it otherwise, --vlt2000-checksum ignore "
+            "decodes them without it",
+            wrong, telegrams));
+    }
+
     // Calls `f` with the lane of the capture's protocol.
     template <class F>
     std::invoke_result_t<F&, DpLane&> with_lane(F&& f) {

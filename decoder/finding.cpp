@@ -90,7 +90,7 @@ constexpr FindingKindInfo kCatalogue[] = {
     {FindingKind::Vlt2000CommandFailed, "vlt2000_command_failed", Severity::Note, Vlt2000Protocol,
      "commands are carried out (a reply with decimal position 9, with its reason code)"},
     {FindingKind::Vlt2000ChecksumError, "vlt2000_checksum_error", Severity::Error, Vlt2000Protocol,
-     "every telegram's checksum (sum of bytes 2-19, last two digits) is right"},
+     "every telegram's checksum (sum of the 18 characters after '<', last two digits) is right"},
     {FindingKind::Vlt2000ChecksumDisabled, "vlt2000_checksum_disabled", Severity::Note,
      Vlt2000Protocol,
      "telegrams carry a checksum (\"??\" switches the check off; once per address)"},

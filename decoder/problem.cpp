@@ -67,7 +67,8 @@ constexpr ProblemKindInfo kCatalogue[] = {
     {ProblemKind::Vlt2000LetterUnknown, "vlt2000_letter_unknown", Severity::Error, Vlt2000,
      "VLT 2000: the control letter is none of U, R, C, I"},
     {ProblemKind::Vlt2000ChecksumMismatch, "vlt2000_checksum_mismatch", Severity::Error, Vlt2000,
-     "VLT 2000: the checksum (sum of bytes 2-19, last two decimal digits) is wrong"},
+     "VLT 2000: the checksum (sum of the 18 characters after '<', last two decimal digits) is "
+     "wrong"},
 };
 
 static_assert(catalogue::one_row_per_kind_in_order(std::span<const ProblemKindInfo>(kCatalogue),

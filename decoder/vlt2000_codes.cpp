@@ -69,17 +69,17 @@ namespace {
 // Control word: VLT 2000 manual MG.20.B6.02 p. 37 (table "Control word"), VLT 3000 MG.30.A7.02
 // p. 75; the names in dpscope's words (docs/protocol/vlt2000.md).
 constexpr std::array<Vlt2000Bit, 16> kControlBits{{
-    {"OFF1 (ramp stop, relay off)", "ON1"},
-    {"OFF2 (coast, relay off)", "ON2"},
-    {"OFF3 (quick stop, relay off)", "ON3"},
-    {"coast", "coasting possible"},
-    {"quick stop", "ramp"},
-    {"hold output frequency", "ramp"},
-    {"ramp stop", "start"},
+    {"OFF1 (ramp stop, relay off)", "ON1", true},
+    {"OFF2 (coast, relay off)", "ON2", true},
+    {"OFF3 (quick stop, relay off)", "ON3", true},
+    {"coast", "coasting possible", true},
+    {"quick stop", "ramp (no quick stop)", true},
+    {"hold output frequency", "ramp (no hold)", true},
+    {"ramp stop", "start", true},
     {"no function", "reset"},
     {"no function", "jog 1"},
     {"no function", "jog 2"},
-    {"data not valid (no change)", "data valid"},
+    {"data not valid: no change", "data valid", true},
     {"no function", "no function"},
     {"no function", "no function"},
     {"set-up select bit 0", "set-up select bit 0"},
@@ -90,9 +90,9 @@ constexpr std::array<Vlt2000Bit, 16> kControlBits{{
 // Status word: VLT 2000 manual p. 56 (table "Status word"); checked against the VLT 3000 example
 // (0x0B87: ready, running at reference, warning, out of frequency range) [P:VLT3000 p80].
 constexpr std::array<Vlt2000Bit, 16> kStatusBits{{
-    {"control not ready", "control ready"},
-    {"VLT not ready", "VLT ready"},
-    {"coasting", "enabled"},
+    {"control not ready", "control ready", true},
+    {"VLT not ready", "VLT ready", true},
+    {"coasting", "enabled", true},
     {"no trip", "trip"},
     {"no OFF2", "OFF2 active"},
     {"no OFF3", "OFF3 active"},
@@ -100,7 +100,7 @@ constexpr std::array<Vlt2000Bit, 16> kStatusBits{{
     {"no warning", "warning"},
     {"speed not at reference", "speed at reference"},
     {"local control", "serial communication control"},
-    {"out of frequency range", "frequency range OK"},
+    {"out of frequency range", "frequency range OK", true},
     {"not running", "running"},
     {"VLT OK", "stopped, auto start"},
     {"voltage OK", "voltage warning"},
@@ -153,7 +153,7 @@ std::string_view vlt2000_reason_text(std::uint32_t reason) noexcept {
         case 1: return "no read/write access";
         case 2: return "index does not exist";
         case 3: return "index read on a parameter without index";
-        case 4: return "read only (e.g. factory set-up selected)";
+        case 4: return "read only, e.g. factory set-up selected";
         default: return "";
     }
 }

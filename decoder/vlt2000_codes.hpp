@@ -28,10 +28,13 @@ std::uint8_t vlt2000_code(Vlt2000Letter letter) noexcept;
 // The letter of an engine code 1..4 (Unknown otherwise).
 Vlt2000Letter vlt2000_letter_of_code(std::uint8_t code) noexcept;
 
-// One bit of the control or status word: what 0 and what 1 mean.
+// One bit of the control or status word: what 0 and what 1 mean, and whether its 0 is worth
+// naming where only the bits that are 1 are listed (an OFF command, "ramp stop", "out of
+// frequency range": the states a commissioning engineer looks for).
 struct Vlt2000Bit {
     std::string_view when_0;
     std::string_view when_1;
+    bool notable_0 = false;
 };
 // Control word (master -> drive) and status word (drive -> master), bits 0..15 (docs/protocol/
 // vlt2000.md "Control and status word").

@@ -334,6 +334,7 @@ void Vlt2000Tracker::reply(Vlt2000StationStats& st, const DecodedTelegram& t) {
                 : static_cast<std::int64_t>(static_cast<double>(kVlt2000TelegramSize) *
                                             options_.character_bits * 1e9 /
                                             static_cast<double>(options_.line_baud));
+        if (t.time_ns - command.time_ns < wire_ns) ++early_responses_;
         const auto latency = static_cast<std::uint64_t>(
             std::max<std::int64_t>(0, t.time_ns - command.time_ns - wire_ns));
         st.latency_ns.add(latency);

@@ -107,6 +107,9 @@ class Vlt2000Tracker {
     // The command -> reply pairs the last track() completed; valid until the next call.
     std::span<const CompletedTransaction> completed() const noexcept { return completed_; }
     const Vlt2000TrackerOptions& options() const noexcept { return options_; }
+    // Replies that began before their command could have ended at options().line_baud (their
+    // reply time is counted as 0): the line was faster than that.
+    std::uint64_t early_responses() const noexcept { return early_responses_; }
 
     // The addresses seen, in address order.
     std::vector<const Vlt2000StationStats*> stations() const;
@@ -151,6 +154,7 @@ class Vlt2000Tracker {
     // The last command with a wrong checksum (reported, not tracked): a reply to it (the decoder
     // pairs one, the error may be the tap's alone) is no finding of its own.
     std::uint64_t damaged_command_frame_ = 0;
+    std::uint64_t early_responses_ = 0;
     std::vector<Finding> current_;
     std::vector<CompletedTransaction> completed_;
     BusStats bus_;

@@ -51,11 +51,18 @@ void append_vlt2000_word(TextBuffer& out, const Vlt2000Telegram& v, Direction di
         if ((v.word_keep >> group) & 1u)
             fmt::format_to(std::back_inserter(kept), "{}bits {}-{} group kept (P)",
                            kept.empty() ? "" : ", ", 4 * group, 4 * group + 3);
-    // The meanings of the bits that are 1, each once (bits 4 and 5 both read "ramp").
+    // The meanings of the bits that are 1, and of those that are 0 where 0 is worth naming (an
+    // OFF, a stop, "out of frequency range"), each meaning once. A control word without "data
+    // valid" (bit 10) acts on nothing: its other 0 bits are not named.
+    const bool control = direction == Direction::Request;
+    const bool acts = !control || ((v.word >> 10) & 1u) != 0;
     std::vector<std::string_view> named;
     std::string bits;
     for (unsigned bit = 0; bit < 16; ++bit) {
-        if (vlt2000_bit_kept(v, bit) || !((v.word >> bit) & 1u)) continue;
+        if (vlt2000_bit_kept(v, bit)) continue;
+        const bool set = ((v.word >> bit) & 1u) != 0;
+        const Vlt2000Bit& row = control ? vlt2000_control_bit(bit) : vlt2000_status_bit(bit);
+        if (!set && !(row.notable_0 && (acts || bit == 10))) continue;
         const std::string_view meaning = vlt2000_bit_meaning(v, direction, bit);
         const std::string_view separator = bits.empty() ? "" : ", ";
         if (meaning == "no function") {
@@ -82,7 +89,7 @@ std::string vlt2000_value_text(const Vlt2000Telegram& v) {
 }
 
 std::string vlt2000_value_note(const Vlt2000Telegram& v) {
-    if (!v.has_decimals) return "no decimal position (byte 19 is not a digit): the digits as sent";
+    if (!v.has_decimals) return "no decimal position (byte 18 is not a digit): the digits as sent";
     if (v.decimals > 5 && !v.failed)
         return fmt::format("decimal position {} is out of range (0-5): the digits as sent",
                            v.decimals);

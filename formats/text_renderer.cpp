@@ -142,8 +142,10 @@ class TextRenderer final : public TelegramRenderer {
         if (!t.has_roles) {
             append(b, "  ? → ?   ");
         } else {
-            const std::string drive =
-                t.vlt2000.broadcast ? std::string("all") : fmt::format("{:02}", t.vlt2000.address);
+            // A reply with address 00 (nobody should send one) comes from "00".
+            const std::string drive = t.vlt2000.broadcast && t.direction == Direction::Request
+                                          ? std::string("all")
+                                          : fmt::format("{:02}", t.vlt2000.address);
             if (t.direction == Direction::Request)
                 fmt::format_to(it, "{:>3} → {:<3} ", "M", drive);
             else

@@ -208,8 +208,10 @@ class VerboseRenderer final : public TelegramRenderer {
         append(b, "VLT 2000 telegram");
         if (t.has_roles) {
             fmt::format_to(it, ": {} {}", vlt2000_letter_text(t), request ? "command" : "reply");
-            if (v.broadcast)
+            if (v.broadcast && request)
                 append(b, " to every drive (broadcast, address 00)");
+            else if (v.broadcast)
+                append(b, " from address 00 (a broadcast; nobody should reply)");
             else
                 fmt::format_to(it, " {} drive {:02}", request ? "to" : "from", v.address);
             if (t.request_frame != 0) fmt::format_to(it, ", answers frame {}", t.request_frame);

@@ -2824,9 +2824,10 @@ struct Vlt2000Analysis {
     using Telegrams = std::vector<std::pair<std::string, std::int64_t>>;
 
     // Drive 01: R answered, U failed (reason 04), R unanswered, R failed without a reason; drive
-    // 02: C answered twice, a damaged R, an R with the checksum off; a broadcast U.
+    // 02: C answered twice, a damaged C (nothing replies), an R with the checksum off; a broadcast
+    // U.
     static Telegrams mixed() {
-        std::string damaged = vlt2000(2, 'R', 102);
+        std::string damaged = vlt2000(2, 'C', 0);
         damaged[20] = damaged[20] == '0' ? '1' : '0';
         return {
             {vlt2000(1, 'R', 102), 0},
@@ -2913,7 +2914,7 @@ TEST(ReportTest, Vlt2000SectionInText) {
     EXPECT_NE(text.find("\nDrive 01 (VLT 2000)\n"
                         "  commands       4: U 1, R 3; 0 broadcasts\n"
                         "  replies        3; 3 answered, 1 unanswered\n"
-                        "  failed         2: reason 04 (read only (e.g. factory set-up selected)) "
+                        "  failed         2: reason 04 (read only, e.g. factory set-up selected) "
                         "1x, no reason code 1x\n"
                         "  checksums      0 checksum errors, 0 telegrams with the check off "
                         "(\"??\")\n"
@@ -3014,7 +3015,7 @@ TEST(ReportTest, Vlt2000SectionInJson) {
               (std::vector<std::string>{"reason", "reason_text", "count"}));
     EXPECT_EQ(one["failures"][0]["reason"].integer(), 4);
     EXPECT_EQ(one["failures"][0]["reason_text"].string(),
-              "read only (e.g. factory set-up selected)");
+              "read only, e.g. factory set-up selected");
     EXPECT_EQ(one["failures_without_reason"].integer(), 1);
     EXPECT_EQ(number_of(one["latency_ms"]["min"]), 1.0);
     EXPECT_EQ(number_of(one["latency_ms"]["mean"]), 3.0);
@@ -3053,7 +3054,7 @@ TEST(ReportTest, Vlt2000SectionInMarkdownAndHtml) {
     EXPECT_NE(md.find("| broadcast | 1 | 0 | 0 | 0 | - | 0 | none |\n"), std::string::npos) << md;
     EXPECT_NE(md.find("\n### Drive 01 (VLT 2000)\n\n- Commands: 4 (U 1, R 3; 0 broadcasts)\n"),
               std::string::npos);
-    EXPECT_NE(md.find("- Failed: reason code 04 (read only (e.g. factory set-up selected)), 1x\n"
+    EXPECT_NE(md.find("- Failed: reason code 04 (read only, e.g. factory set-up selected), 1x\n"
                       "- Failed: no reason code, 1x\n"),
               std::string::npos);
     EXPECT_NE(
@@ -3074,8 +3075,8 @@ TEST(ReportTest, Vlt2000SectionInMarkdownAndHtml) {
     EXPECT_NE(html.find("<h2>Broadcasts (VLT 2000)</h2>"), std::string::npos);
     EXPECT_NE(html.find("<a href=\"#drive-01\">01</a>"), std::string::npos);
     EXPECT_NE(html.find("id=\"drive-01\""), std::string::npos);
-    EXPECT_NE(html.find("<tr><td class=\"n\">04</td><td>read only (e.g. factory set-up "
-                        "selected)</td><td class=\"n\">1</td></tr>"),
+    EXPECT_NE(html.find("<tr><td class=\"n\">04</td><td>read only, e.g. factory set-up "
+                        "selected</td><td class=\"n\">1</td></tr>"),
               std::string::npos);
     EXPECT_NE(html.find("<tr><td class=\"n\">-</td><td>no reason code</td><td class=\"n\">1</td>"),
               std::string::npos);

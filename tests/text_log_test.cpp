@@ -97,9 +97,9 @@ TEST(TextLogTest, TelegramsAmongOtherTextWithTimeStampsAndCrlf) {
     EXPECT_EQ(r.telegrams[3], kRequest);
     EXPECT_EQ(r.times[0], 12LL * 3600 * 1'000'000'000);
     EXPECT_EQ(r.times[1] - r.times[0], 15'000'000);
-    // Both telegrams of a line take its time.
+    // The line's time is its first telegram's; the second has none (the log does not say when).
     EXPECT_EQ(r.times[2], 12LL * 3600 * 1'000'000'000 + 1'500'000'000);
-    EXPECT_EQ(r.times[3], r.times[2]);
+    EXPECT_EQ(r.times[3], kNoTime);
     EXPECT_TRUE(r.issues.empty()) << r.issues.front();
     EXPECT_EQ(r.skipped, 0u);
     // Dates, and epoch seconds.
@@ -290,9 +290,21 @@ TEST(TextLogTest, DetectionTellsTextLogsFromHexLogs) {
     std::string binary = kRequest;
     binary += '\x02';
     EXPECT_EQ(detect_input_format(bytes_of(binary)), InputFormat::Raw);
-    // xxd and hexdump -C show at most 16 characters in their text column: no telegram shape.
+    // xxd and hexdump -C show 16 characters in their text column by default: no telegram shape.
     EXPECT_EQ(detect_input_format(bytes_of("00000000: 3c30 3155 4f47 4440 3035 3136 2b30 3030  "
                                            "<01UOGD@0516+000\n")),
+              InputFormat::Hex);
+    // With 32 a line (xxd -c 32, hexdump -C of wider lines) the column holds whole telegrams:
+    // the offset column still makes them hex dumps.
+    std::string xxd32 = "00000000:";
+    for (std::size_t i = 0; i < 32; i += 2)
+        xxd32 += fmt::format(" {:02x}{:02x}", static_cast<unsigned char>((kRequest + kReply)[i]),
+                             static_cast<unsigned char>((kRequest + kReply)[i + 1]));
+    xxd32 += "  " + (kRequest + kReply).substr(0, 32) + "\n";
+    EXPECT_EQ(detect_input_format(bytes_of(xxd32)), InputFormat::Hex) << xxd32;
+    EXPECT_EQ(detect_input_format(bytes_of("00000000  3c 30 31 55 4f 47 44 40  30 35 31 36 2b 30 "
+                                           "30 30  |" +
+                                           kRequest + "|\n")),
               InputFormat::Hex);
 }
 

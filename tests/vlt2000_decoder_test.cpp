@@ -192,7 +192,7 @@ TEST(Vlt2000DecoderTest, FailedReplyCarriesItsReasonCode) {
     ASSERT_TRUE(t.vlt2000.has_reason);
     EXPECT_EQ(t.vlt2000.reason, 0);
     EXPECT_EQ(vlt2000_reason_text(0), "parameter does not exist");
-    EXPECT_EQ(vlt2000_reason_text(4), "read only (e.g. factory set-up selected)");
+    EXPECT_EQ(vlt2000_reason_text(4), "read only, e.g. factory set-up selected");
     EXPECT_EQ(vlt2000_reason_text(5), "");
     EXPECT_EQ(error_text_or_unknown(Dialect::Vlt2000, 99), kUnknownReasonCode);
     // Without digits in bytes 17-18 there is no reason code (the VLT 2000: "unknown parameter").

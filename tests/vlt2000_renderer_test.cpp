@@ -131,39 +131,51 @@ TEST(Vlt2000RendererTest, TextOneLinePerTelegram) {
     ASSERT_EQ(l.size(), 18u);
     EXPECT_EQ(l[0],
               "     1     0.000000   M → 01  VLT U update       req CTW=0x047F (ON1, ON2, ON3, "
-              "coasting possible, ramp, start, data valid) parameter 516 = 80");
+              "coasting possible, ramp (no quick stop), ramp (no hold), start, data valid) "
+              "parameter 516 = 80");
     EXPECT_EQ(l[1],
               "     2     0.010000  01 → M   VLT U update       rsp STW=0x0B87 (control ready, VLT "
-              "ready, enabled, warning, speed at reference, serial communication control, "
-              "running) parameter 516 = 80");
+              "ready, enabled, warning, speed at reference, serial communication control, out "
+              "of frequency range, running) parameter 516 = 80");
     // A read command's value is the drive's to fill in: not shown.
     EXPECT_EQ(l[2],
-              "     3     0.020000   M → 02  VLT R read         req CTW=0x0000 (no bit set) "
+              "     3     0.020000   M → 02  VLT R read         req CTW=0x0000 (data not valid: no "
+              "change) "
               "parameter 999");
     EXPECT_EQ(l[3],
-              "     4     0.030000  02 → M   VLT R read         rsp STW=0x0000 (no bit set) "
+              "     4     0.030000  02 → M   VLT R read         rsp STW=0x0000 (control not ready, "
+              "VLT not ready, coasting, out of frequency range) "
               "parameter 999 failed: reason 00 (parameter does not exist)");
-    EXPECT_TRUE(contains(l[4],
-                         "M → 01  VLT U update       req CTW=0x0000 (no bit set) parameter "
-                         "101 = -23.750"))
+    EXPECT_TRUE(
+        contains(l[4],
+                 "M → 01  VLT U update       req CTW=0x0000 (data not valid: no change) parameter "
+                 "101 = -23.750"))
         << l[4];
     EXPECT_TRUE(contains(l[5], "01 → M   VLT U update       rsp STW=0x0B87")) << l[5];
     EXPECT_TRUE(contains(l[5], "parameter 101 = -23.750")) << l[5];
-    EXPECT_TRUE(contains(l[6],
-                         "M → 03  VLT I read index   req CTW=0x0000 (no bit set) parameter "
-                         "621 index 3 checksum ?? (not checked; computed "))
+    EXPECT_TRUE(
+        contains(l[6],
+                 "M → 03  VLT I read index   req CTW=0x0000 (data not valid: no change) parameter "
+                 "621 index 3 checksum ?? (not checked; computed "))
         << l[6];
     EXPECT_TRUE(contains(l[7], "03 → M   VLT I read index   rsp STW=0x0B87")) << l[7];
-    EXPECT_TRUE(contains(l[8], "  M → all VLT C control      req CTW=0x0400 (data valid)")) << l[8];
+    EXPECT_TRUE(contains(
+        l[8],
+        "  M → all VLT C control      req CTW=0x0400 (OFF1 (ramp stop, relay off), OFF2 (coast, "
+        "relay off), OFF3 (quick stop, relay off), coast, quick stop, hold output "
+        "frequency, ramp stop, data valid)"))
+        << l[8];
     EXPECT_EQ(l[8].find("parameter"), std::string::npos) << l[8];  // ignored with C
     EXPECT_TRUE(contains(l[9], "parameter 516 checksum "));
     EXPECT_TRUE(contains(l[9], " (wrong: computed ")) << l[9];
     EXPECT_TRUE(contains(l[9], ") [vlt2000_checksum_mismatch]")) << l[9];
     EXPECT_TRUE(contains(l[10],
-                         "M → 01  VLT R read         req CTW=0x0000 (no bit set) "
+                         "M → 01  VLT R read         req CTW=0x0000 (data not valid: no change) "
                          "[truncated]"))
         << l[10];
-    EXPECT_TRUE(contains(l[11], "req CTW=0x0000 (no bit set) [vlt2000_field_invalid]")) << l[11];
+    EXPECT_TRUE(
+        contains(l[11], "req CTW=0x0000 (data not valid: no change) [vlt2000_field_invalid]"))
+        << l[11];
     EXPECT_TRUE(contains(l[12], "parameter 999 failed: reason 07 (unknown reason code)")) << l[12];
     EXPECT_TRUE(contains(l[13], "parameter 999 failed: no reason code given")) << l[13];
     EXPECT_TRUE(
@@ -451,7 +463,8 @@ TEST(Vlt2000RendererTest, CsvRowsHaveTheHeaderColumns) {
         EXPECT_EQ(columns(row), columns(l[0])) << row;
     EXPECT_EQ(l[1],
               "1,1704067200.000000000,22,,,,,,,\"U update\",request,0,1,,true,,,,516,,80,"
-              "\"update\",,,047F,\"CTW=0x047F (ON1, ON2, ON3, coasting possible, ramp, start, "
+              "\"update\",,,047F,\"CTW=0x047F (ON1, ON2, ON3, coasting possible, ramp (no quick "
+              "stop), ramp (no hold), start, "
               "data valid) parameter 516 = 80\",,");
     EXPECT_TRUE(contains(l[4],
                          ",\"R read\",response,0,2,3,true,,,,999,,,\"read\",0,"
@@ -621,6 +634,46 @@ TEST_F(Vlt2000CliTest, StationFilterAndBroadcasts) {
     test::CommandResult quiet = decode({"-q"});
     EXPECT_TRUE(contains(quiet.out, "  bus: VLT 2000\n")) << quiet.out;
     EXPECT_TRUE(contains(quiet.out, "  addresses:\n")) << quiet.out;
+}
+
+// A line slower than --baud says, and drives that compute the checksum another way: each is said
+// once, with the option that helps.
+TEST(Vlt2000CliWarningTest, EarlyRepliesAndAnotherChecksumRuleAreSaid) {
+    test::CommandResult slow =
+        test::run_dpscope({"report", "--baud", "2400", "-w", test::temp_path("vlt-early.txt"),
+                           "samples/vlt2000-examples.txt"});
+    EXPECT_TRUE(contains(slow.err,
+                         "responses began before their command could have ended at "
+                         "2400 baud (10 bits a byte)"))
+        << slow.err;
+    test::CommandResult fine = test::run_dpscope(
+        {"report", "-w", test::temp_path("vlt-fine.txt"), "samples/vlt2000-examples.txt"});
+    EXPECT_FALSE(contains(fine.err, "warning")) << fine.err;
+
+    // Every checksum off by 13 from the VLT 3000/3500 rule.
+    std::string log;
+    for (int i = 0; i < 4; ++i)
+        for (std::string telegram : {vlt("<01R@@D@0516+000000"), vlt("<01RGH@@0516+001002")}) {
+            const int sum = (telegram[19] - '0') * 10 + (telegram[20] - '0');
+            const int other = (sum + 13) % 100;
+            telegram[19] = static_cast<char>('0' + other / 10);
+            telegram[20] = static_cast<char>('0' + other % 10);
+            log += telegram + "\n";
+        }
+    const std::string path = test::temp_path("vlt-othersum.txt");
+    test::write_text_file(path, log);
+    test::CommandResult other =
+        test::run_dpscope({"report", "-w", test::temp_path("vlt-other.txt"), path});
+    EXPECT_EQ(other.exit_code, 1) << other.err;
+    EXPECT_TRUE(contains(other.err,
+                         "8 of 8 telegrams have a wrong checksum by the VLT 3000/3500 "
+                         "rule"))
+        << other.err;
+    EXPECT_TRUE(contains(other.err, "--vlt2000-checksum ignore decodes them without it"));
+    test::CommandResult ignored = test::run_dpscope(
+        {"report", "--vlt2000-checksum", "ignore", "-w", test::temp_path("vlt-ignored.txt"), path});
+    EXPECT_EQ(ignored.exit_code, 0) << ignored.err;
+    EXPECT_FALSE(contains(ignored.err, "wrong checksum")) << ignored.err;
 }
 
 }  // namespace
