@@ -13,11 +13,6 @@ namespace dpscope::report {
 
 namespace {
 
-struct FcLatency {
-    bool any = false;
-    double min_ms = 0, mean_ms = 0, p95_ms = 0, max_ms = 0;
-};
-
 // "parameter AK 1 x3, AK 2 x1" or "none".
 std::string commands_by_ak_text(const FcStationStats& s) {
     std::string text;
@@ -50,14 +45,7 @@ class FcSection final : public StationSection {
                 findings_[static_cast<std::size_t>(kind)] =
                     stats.findings[static_cast<std::size_t>(kind)];
         response_ms_ = c.fc_tracker->options().response_ns / 1'000'000;
-        const LogHistogram& ns = stats.latency_ns;
-        if (ns.count() > 0) {
-            latency_.any = true;
-            latency_.min_ms = to_ms(ns.min());
-            latency_.mean_ms = to_ms(stats.mean_latency_ns());
-            latency_.p95_ms = to_ms(ns.percentile(95));
-            latency_.max_ms = to_ms(ns.max());
-        }
+        latency_ = DriveLatency::of(stats.latency_ns, stats.mean_latency_ns());
     }
 
     std::uint8_t master() const override { return 0; }
@@ -118,7 +106,7 @@ class FcSection final : public StationSection {
 
     void write_json(const ReportContext& /*c*/, JsonWriter& w) const override {
         const FcStationStats& s = s_;
-        const FcLatency& l = latency_;
+        const DriveLatency& l = latency_;
         auto count = [&w](std::string_view key, std::uint64_t n) {
             w.key(key).integer(static_cast<std::int64_t>(n));
         };
@@ -190,18 +178,10 @@ class FcSection final : public StationSection {
 
     void write_html_row(const ReportContext& /*c*/, TextBuffer& b) const override {
         const FcStationStats& s = s_;
-        const FcLatency& l = latency_;
-        const std::array<std::uint64_t, 3> severities = severity_totals(findings_, by_severity_);
-        fmt::format_to(
-            std::back_inserter(b),
-            "<tr><td class=\"n\"><a href=\"#drive-{}\">{}</a></td><td class=\"n\">{}"
-            "</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>"
-            "<td class=\"n\">{}</td><td class=\"n error\">{}</td><td class=\"n "
-            "warning\">{}</td><td class=\"n note\">{}</td></tr>\n",
-            s.address, broadcast() ? std::string("broadcast") : fmt::format("{}", s.address),
-            s.commands, s.answered, s.no_responses, l.any ? fmt::format("{:.3f}", l.mean_ms) : "-",
-            l.any ? fmt::format("{:.3f}", l.p95_ms) : "-", severities[2], severities[1],
-            severities[0]);
+        html_drive_row(b, fmt::format("drive-{}", s.address),
+                       broadcast() ? std::string("broadcast") : fmt::format("{}", s.address),
+                       s.commands, s.answered, s.no_responses, latency_,
+                       severity_totals(findings_, by_severity_));
     }
 
     void write_html(const ReportContext& c, TextBuffer& b) const override {
@@ -276,21 +256,14 @@ class FcSection final : public StationSection {
         return s_.timed() ? fmt::format("{} late (over {} ms)", s_.late, response_ms_)
                           : std::string("lateness not judged (no timestamps)");
     }
-    std::string latency_text() const {
-        const FcLatency& l = latency_;
-        if (broadcast()) return "-";
-        if (!s_.timed()) return "not measured (no timestamps)";
-        if (!l.any) return "-";
-        return fmt::format("min {:.3f}  mean {:.3f}  p95 {:.3f}  max {:.3f}", l.min_ms, l.mean_ms,
-                           l.p95_ms, l.max_ms);
-    }
+    std::string latency_text() const { return latency_.text(broadcast(), s_.timed()); }
 
     const FcStationStats& s_;
     const Timeline& timeline_;
     FindingCounts findings_{};
     const FindingSeverityCounts& by_severity_;
     std::int64_t response_ms_ = 0;
-    FcLatency latency_;
+    DriveLatency latency_;
 };
 
 }  // namespace

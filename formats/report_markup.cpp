@@ -198,4 +198,37 @@ void svg_timeline(TextBuffer& b, const Timeline& timeline, std::string_view who,
     append(b, "</svg>\n");
 }
 
+DriveLatency DriveLatency::of(const LogHistogram& ns, std::uint64_t mean_ns) {
+    DriveLatency l;
+    if (ns.count() == 0) return l;
+    l.any = true;
+    l.min_ms = to_ms(ns.min());
+    l.mean_ms = to_ms(mean_ns);
+    l.p95_ms = to_ms(ns.percentile(95));
+    l.max_ms = to_ms(ns.max());
+    return l;
+}
+
+std::string DriveLatency::text(bool broadcast, bool timed) const {
+    if (broadcast) return "-";
+    if (!timed) return "not measured (no timestamps)";
+    if (!any) return "-";
+    return fmt::format("min {:.3f}  mean {:.3f}  p95 {:.3f}  max {:.3f}", min_ms, mean_ms, p95_ms,
+                       max_ms);
+}
+
+void html_drive_row(TextBuffer& b, std::string_view anchor, std::string_view label,
+                    std::uint64_t commands, std::uint64_t answered, std::uint64_t unanswered,
+                    const DriveLatency& l, const std::array<std::uint64_t, 3>& severities) {
+    fmt::format_to(std::back_inserter(b),
+                   "<tr><td class=\"n\"><a href=\"#{}\">{}</a></td><td class=\"n\">{}"
+                   "</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>"
+                   "<td class=\"n\">{}</td><td class=\"n error\">{}</td><td class=\"n "
+                   "warning\">{}</td><td class=\"n note\">{}</td></tr>\n",
+                   anchor, label, commands, answered, unanswered,
+                   l.any ? fmt::format("{:.3f}", l.mean_ms) : "-",
+                   l.any ? fmt::format("{:.3f}", l.p95_ms) : "-", severities[2], severities[1],
+                   severities[0]);
+}
+
 }  // namespace dpscope::report

@@ -51,6 +51,23 @@ bool html_parameter_table(TextBuffer& b, const ParameterMap& parameters) {
     return true;
 }
 
+// A serial-bus drive's reply times in ms (FC and VLT 2000 sections), from its histogram and mean.
+struct DriveLatency {
+    bool any = false;
+    double min_ms = 0, mean_ms = 0, p95_ms = 0, max_ms = 0;
+
+    static DriveLatency of(const LogHistogram& ns, std::uint64_t mean_ns);
+    // "min 2.014  mean 4.835  p95 7.635  max 7.988"; "-" for the broadcasts or nothing answered,
+    // "not measured (no timestamps)" without times.
+    std::string text(bool broadcast, bool timed) const;
+};
+
+// HTML: one row of a serial bus's drives table: the address (linked to `anchor`, shown as
+// `label`), commands, answered, unanswered, mean and p95 reply time, findings by severity.
+void html_drive_row(TextBuffer& b, std::string_view anchor, std::string_view label,
+                    std::uint64_t commands, std::uint64_t answered, std::uint64_t unanswered,
+                    const DriveLatency& latency, const std::array<std::uint64_t, 3>& severities);
+
 // HTML: a station's latency histogram as inline SVG (`who`: "slave 3", in its label), or a line
 // saying why there is none (`answered`: anything was answered).
 void svg_latency_histogram(TextBuffer& b, const LogHistogram& h, bool answered,
