@@ -14,7 +14,8 @@ int main(int argc, char** argv) {
     using namespace dpscope::cli;
     CLI::App app{
         "dpscope: decode PROFIBUS DP captures down to the drive parameter channel (PPO "
-        "PCV/PKW: RC/AK, SPM, PNU, IND, PVA, PCD words).",
+        "PCV/PKW: RC/AK, SPM, PNU, IND, PVA, PCD words), and the Danfoss FC protocol and VLT 2000 "
+        "serial telegrams (--bus fc, --bus vlt2000).",
         "dpscope"};
     app.set_version_flag("--version", std::string("dpscope ") + dpscope::kVersion);
     app.require_subcommand(1);
