@@ -16,6 +16,7 @@
 #include "capture/capture_writer.hpp"
 #include "capture/pcap_source.hpp"
 #include "decoder/bus_decoder.hpp"
+#include "decoder/bus_health.hpp"
 #include "decoder/fc_decoder.hpp"
 #include "decoder/fc_tracker.hpp"
 #include "decoder/result.hpp"
@@ -123,6 +124,10 @@ struct DecodeSettings {
     FcTrackerOptions fc_tracker;
     Vlt2000DecoderOptions vlt2000_decoder;
     Vlt2000TrackerOptions vlt2000_tracker;
+    // PROFIBUS bus health (decoder/bus_health.hpp): kept when track_health is set (stats, report,
+    // sniff --stats); its baud rate is the line's when known.
+    bool track_health = false;
+    BusHealthOptions health;
     OutputFormat format = OutputFormat::Text;
     bool quiet = false;
     bool line_buffered = false;  // -l: flush the output after every telegram

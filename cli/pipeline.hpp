@@ -1,12 +1,14 @@
 // The decode -> track -> count chain every subcommand that reads telegrams runs.
 #pragma once
 
+#include <optional>
 #include <span>
 #include <type_traits>
 
 #include "capture/telegram_source.hpp"
 #include "cli/common_options.hpp"
 #include "cli/version.hpp"
+#include "decoder/bus_health.hpp"
 #include "decoder/counted.hpp"
 #include "decoder/fc_tracker.hpp"
 #include "decoder/session_tracker.hpp"
@@ -50,12 +52,17 @@ class Pipeline {
           dp_(settings.decoder, settings.tracker),
           fc_(settings.fc_decoder, settings.fc_tracker),
           vlt2000_(settings.vlt2000_decoder, settings.vlt2000_tracker),
-          keep_timelines_(keep_timelines) {}
+          keep_timelines_(keep_timelines) {
+        if (settings.track_health && protocol_ == Protocol::ProfibusDp)
+            health_.emplace(settings.health);
+    }
 
     // Decodes and tracks one record; `findings` receives what the tracker found at it.
     const DecodedTelegram& feed(const Record& record, std::span<const Finding>& findings) {
         return with_lane([&](auto& lane) -> const DecodedTelegram& {
             const DecodedTelegram& t = lane.feed(record, findings);
+            if constexpr (std::is_same_v<std::remove_cvref_t<decltype(lane)>, DpLane>)
+                if (health_) health_events_ = health_->observe(t);
             summary_.add(t);
             summary_.add_findings(findings);
             if (keep_timelines_) timelines_.add(findings, lane.tracker.completed());
@@ -76,6 +83,7 @@ class Pipeline {
                                  vlt2000_.tracker.options().character_bits);
             warn_checksum_rule();
         }
+        if (health_) health_->finish(end_ns);
         summary_.add_findings(findings);
         if (keep_timelines_) timelines_.add(findings, {});
         return findings;
@@ -94,6 +102,11 @@ class Pipeline {
             [](auto& lane) { return lane.tracker.subject_pnu(); });
     }
     const Summary& summary() const noexcept { return summary_; }
+    // The bus-health statistics (PROFIBUS, with settings.track_health); null otherwise.
+    const BusHealthTracker* health() const noexcept { return health_ ? &*health_ : nullptr; }
+    BusHealthTracker* health() noexcept { return health_ ? &*health_ : nullptr; }
+    // The health events (station lost, returned) the last feed() caused.
+    std::span<const HealthEvent> health_events() const noexcept { return health_events_; }
     const ChannelTimelines& timelines() const noexcept { return timelines_; }
 
   private:
@@ -138,6 +151,8 @@ class Pipeline {
     DpLane dp_;
     FcLane fc_;
     Vlt2000Lane vlt2000_;
+    std::optional<BusHealthTracker> health_;
+    std::span<const HealthEvent> health_events_;
     Summary summary_;
     ChannelTimelines timelines_;
     bool keep_timelines_ = false;
@@ -162,6 +177,7 @@ inline ReportContext report_context(const Pipeline& pipeline, const TelegramSour
     context.vlt2000_tracker = &pipeline.vlt2000_tracker();
     context.vlt2000_checksum = pipeline.vlt2000_decoder().options().check_checksum;
     context.timelines = &pipeline.timelines();  // empty unless the pipeline kept them
+    context.health = pipeline.health() ? &pipeline.health()->health() : nullptr;
     context.findings = &log;
     context.fail_on = fail_on;
     context.version = kVersion;
