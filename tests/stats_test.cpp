@@ -454,6 +454,33 @@ TEST(StatsTest, HtmlWithoutTimesDrawsStatesByFrameAndNoPlot) {
     EXPECT_TRUE(has(text, "unknown (give --baud)"));
 }
 
+TEST(StatsTest, HtmlSaysWhenStateChangesWereNotKeptAndPlotsEveryPoint) {
+    BusHealth h = health_sample();
+    h.stations[1].state_changes = 4 + 10;  // 10 changes beyond the kept timeline
+    MasterHealth& m = h.masters[0];
+    m.cycle_series = TimeSeries{};
+    for (std::int64_t i = 0; i < 2000; ++i)
+        m.cycle_series.add(test::kHealthStart + i * test::kMs, (10 + i % 3) * test::kMs);
+    const std::string text = render(StatsFormat::Html, h);
+    auto root = parse_xml(text, true);
+    ASSERT_TRUE(root);
+    EXPECT_TRUE(has(text, "10 later state changes not drawn (at most 4096 kept per station"))
+        << text;
+    auto plots = root->all("svg", "master-plot");
+    ASSERT_EQ(plots.size(), 1u);
+    // The points of both series, each with its tooltip.
+    const std::size_t points = m.cycle_series.points().size() + 1;
+    EXPECT_LE(m.cycle_series.points().size(), TimeSeries::kMaxPoints);
+    EXPECT_EQ(plots[0]->all("circle", "point").size(), points);
+    EXPECT_TRUE(has(plots[0]->all("circle", "point")[0]->elements("title")[0]->text,
+                    "cycle time from 0.000000 s: min 10.000 mean"));
+    // The highest value (the 20 ms rotation, above the 15 ms target) sets the axis, 5 % above.
+    bool top = false;
+    for (const XmlNode* label : plots[0]->all("text"))
+        top |= label->text == "21.000 ms";
+    EXPECT_TRUE(top);
+}
+
 TEST(StatsTest, HtmlOfAnEmptyCapture) {
     const BusHealth h;
     auto root = parse_xml(render(StatsFormat::Html, h), true);
