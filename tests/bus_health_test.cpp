@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <deque>
+#include <memory>
 #include <optional>
 #include <vector>
 
