@@ -235,6 +235,7 @@ struct BusHealthTracker::State {
         StationState before_lost = StationState::Unknown;
         std::uint64_t diag_streak = 0;  // Slave_Diag answers in a row while in data exchange
         bool exchange_data_seen = false;
+        bool parameterised = false;  // answered Set_Prm (since listed or since lost)
         Verdict last_verdict = Verdict::Good;
     };
     struct Master {
@@ -331,6 +332,7 @@ class BusHealthTrackerImpl {
     static void go_lost(State& s, State::Slot& slot, const DecodedTelegram& t) {
         if (slot.health.state == StationState::Lost) return;
         slot.before_lost = slot.health.state;
+        slot.parameterised = false;
         ++slot.health.lost_events;
         set_state(s, slot, StationState::Lost, t, false);
         emit(s, HealthEventKind::StationLost, slot, t);
@@ -632,18 +634,22 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     if (asked.service == Service::SlaveDiag) {
         if (const SlaveDiag* diag = t.dp.service_data.slave_diag(); diag != nullptr && data) {
             ++h.diag_answers;
-            const std::uint8_t s1 = diag->station_status_1;
-            const std::uint8_t s2 = diag->station_status_2;
-            const bool bits[kDiagFaultCount] = {(s1 & 0x02) != 0, (s1 & 0x04) != 0,
-                                                (s1 & 0x08) != 0, (s1 & 0x40) != 0,
-                                                (s2 & 0x02) != 0};
-            bool fault = false;
-            for (std::size_t i = 0; i < kDiagFaultCount; ++i)
-                if (bits[i]) {
-                    ++h.diag_fault_bits[i];
-                    fault = true;
-                }
-            if (fault) ++h.diag_faults;
+            // Before Set_Prm a slave reports Station_Not_Ready / Prm_Fault by design: the
+            // start-up's diagnosis shows no fault.
+            if (slot.parameterised) {
+                const std::uint8_t s1 = diag->station_status_1;
+                const std::uint8_t s2 = diag->station_status_2;
+                const bool bits[kDiagFaultCount] = {(s1 & 0x02) != 0, (s1 & 0x04) != 0,
+                                                    (s1 & 0x08) != 0, (s1 & 0x40) != 0,
+                                                    (s2 & 0x02) != 0};
+                bool fault = false;
+                for (std::size_t i = 0; i < kDiagFaultCount; ++i)
+                    if (bits[i]) {
+                        ++h.diag_fault_bits[i];
+                        fault = true;
+                    }
+                if (fault) ++h.diag_faults;
+            }
         }
     }
 
@@ -658,6 +664,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     switch (asked.service) {
         case Service::SetPrm:
         case Service::ChkCfg:
+            if (asked.service == Service::SetPrm) slot.parameterised = true;
             if (before == StationState::DataExchange &&
                 (was_lost || h.state != StationState::Configuring))
                 ++h.resyncs;
