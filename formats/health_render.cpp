@@ -349,6 +349,7 @@ void json_segment(JsonWriter& w, const BusHealth& h) {
     count(w, "bytes", s.bytes);
     count(w, "damaged", s.damaged);
     count(w, "unattributed_damaged", s.unattributed_damaged);
+    count(w, "unasked_short_acks", s.unasked_short_acks);
     w.key("first_time");
     json::time(w, s.first_ns);
     w.key("end_time");
@@ -398,6 +399,7 @@ void json_station(JsonWriter& w, const BusHealth& h, const StationHealth& s) {
         count(w, column.id, column.value(s));
     }
     count(w, "diag_answers", s.diag_answers);
+    count(w, "replies_due", s.replies_due);
     w.key("diag_fault_bits").begin_object();
     for (std::size_t i = 0; i < kDiagFaultCount; ++i)
         count(w, diag_fault_name(static_cast<DiagFault>(i)), s.diag_fault_bits[i]);
@@ -662,7 +664,7 @@ void write_csv(TextBuffer& b, const BusHealth& h) {
            "telegrams_sent");
     for (const SlaveColumn& column : slave_columns())
         fmt::format_to(it, ",{}", column.id);
-    append(b, ",diag_answers");
+    append(b, ",diag_answers,replies_due");
     for (std::size_t i = 0; i < kDiagFaultCount; ++i)
         fmt::format_to(it, ",diag_{}", diag_fault_name(static_cast<DiagFault>(i)));
     append(b,
@@ -691,7 +693,7 @@ void write_csv(TextBuffer& b, const BusHealth& h) {
         fmt::format_to(it, ",{},{},{}", s.first_frame, s.last_frame, s.telegrams_sent);
         for (const SlaveColumn& column : slave_columns())
             fmt::format_to(it, ",{}", column.value(s));
-        fmt::format_to(it, ",{}", s.diag_answers);
+        fmt::format_to(it, ",{},{}", s.diag_answers, s.replies_due);
         for (std::uint64_t n : s.diag_fault_bits)
             fmt::format_to(it, ",{}", n);
         fmt::format_to(it, ",{}", s.state_changes);

@@ -23,6 +23,7 @@ inline BusHealth health_sample(bool timed = true, std::uint32_t baud = 1'500'000
     seg.bytes = 12'000;
     seg.damaged = 3;
     seg.unattributed_damaged = 1;
+    seg.unasked_short_acks = 2;
     seg.first_ns = at(0);
     seg.end_ns = at(2000);
     seg.baud = baud;
@@ -54,6 +55,7 @@ inline BusHealth health_sample(bool timed = true, std::uint32_t baud = 1'500'000
     slave.requests = 400;
     slave.answers = 390;
     slave.no_answers = 10;
+    slave.replies_due = 400;
     slave.repeats = 4;
     slave.max_repeats_per_cycle = 2;
     slave.lost_events = 1;

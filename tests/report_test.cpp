@@ -27,6 +27,7 @@
 #include "capture/input_format.hpp"
 #include "capture/telegram_source.hpp"
 #include "decoder/bus_decoder.hpp"
+#include "decoder/bus_health.hpp"
 #include "decoder/fc_decoder.hpp"
 #include "decoder/fc_tracker.hpp"
 #include "decoder/finding.hpp"
@@ -3104,6 +3105,62 @@ TEST(ReportTest, BusHealthSuiteInJunitFailsOnBadVerdicts) {
     ASSERT_EQ(cases[4]->elements("system-out").size(), 1u);
     EXPECT_EQ(cases[4]->elements("system-out")[0]->text,
               "verdict weak: target_rotation_ms: 20 ms (weak above 15 ms)");
+}
+
+TEST(ReportTest, BusHealthSectionOfASimulatedSession) {
+    // The real tracker over a clean simulated session: every format carries its figures.
+    Analysis a;
+    BusDecoder decoder;
+    BusHealthTracker tracker;
+    Simulator simulator(one_slave(3, 1, 60));
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns = 0;
+    std::uint64_t number = 0;
+    while (simulator.next(bytes, time_ns)) {
+        ++number;
+        a.feed(Bytes(bytes.data(), bytes.size()), time_ns, number);
+        tracker.observe(decoder.decode(Bytes(bytes.data(), bytes.size()), time_ns, number));
+    }
+    a.finish();
+    tracker.finish();
+    a.input = InputSummary{"simulated.pcap", "pcap", 0, false};
+    ReportContext context = context_of(a);
+    context.health = &tracker.health();
+
+    auto report = json_report(context);
+    ASSERT_TRUE(report);
+    const Json& health = (*report)["bus_health"];
+    EXPECT_EQ(health["segment"]["telegrams"].integer(),
+              static_cast<long long>(a.summary.telegrams()));
+    const Json* slave = nullptr;
+    for (const Json& station : health["stations"].items)
+        if (station["address"].integer() == 3) slave = &station;
+    ASSERT_TRUE(slave);
+    EXPECT_EQ((*slave)["role"].string(), "slave");
+    EXPECT_EQ((*slave)["state"].string(), "data_exchange");
+    EXPECT_GT((*slave)["requests"].integer(), 60);
+    EXPECT_FALSE((*slave)["timeline"].items.empty());
+    EXPECT_FALSE(health["masters"].items.empty());
+
+    auto root = junit_report(context);
+    ASSERT_TRUE(root);
+    const XmlNode* suite = nullptr;
+    for (const XmlNode* s : root->elements("testsuite"))
+        if (s->attribute("name") == "bus health") suite = s;
+    ASSERT_TRUE(suite);
+    EXPECT_EQ(suite->elements("testcase").size(),
+              1 + tracker.health().stations.size() + tracker.health().masters.size());
+    EXPECT_EQ(suite->attribute("failures"), "0") << render(ReportFormat::Text, context);
+
+    auto html = parse_xml(render(ReportFormat::Html, context), true);
+    ASSERT_TRUE(html);
+    const XmlNode* section = find_id(*html, "section", "bus-health");
+    ASSERT_TRUE(section);
+    EXPECT_EQ(section->all("svg", "states").size(), 1u);
+    EXPECT_FALSE(section->all("rect", "data_exchange").empty());
+    const std::string text = render(ReportFormat::Text, context);
+    EXPECT_NE(text.find("\nBus health\n"), std::string::npos);
+    EXPECT_NE(render(ReportFormat::Markdown, context).find("\n## Bus health\n"), std::string::npos);
 }
 
 }  // namespace

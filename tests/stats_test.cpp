@@ -241,10 +241,11 @@ TEST(StatsTest, JsonSchemaAndValues) {
     EXPECT_EQ((*json)["dpscope"].string(), "7.8.9-test");
     EXPECT_EQ((*json)["input"]["file"].string(), kHostile);
     const Json& seg = (*json)["segment"];
-    EXPECT_EQ(seg.keys(), (std::vector<std::string>{
-                              "telegrams", "bytes", "damaged", "unattributed_damaged", "first_time",
-                              "end_time", "duration_s", "telegrams_per_s", "baud", "character_bits",
-                              "load_percent", "idle_s", "verdict", "reasons"}));
+    EXPECT_EQ(seg.keys(),
+              (std::vector<std::string>{"telegrams", "bytes", "damaged", "unattributed_damaged",
+                                        "unasked_short_acks", "first_time", "end_time",
+                                        "duration_s", "telegrams_per_s", "baud", "character_bits",
+                                        "load_percent", "idle_s", "verdict", "reasons"}));
     EXPECT_EQ(seg["telegrams"].integer(), 1000);
     EXPECT_EQ(seg["first_time"].text, "1704067200.000000000");
     EXPECT_EQ(seg["duration_s"].text, "2.000000000");
@@ -285,7 +286,8 @@ TEST(StatsTest, JsonSchemaAndValues) {
                                                         {"diag_faults", 2},
                                                         {"damaged", 2},
                                                         {"state_changes", 4},
-                                                        {"telegrams_sent", 390}})
+                                                        {"telegrams_sent", 390},
+                                                        {"replies_due", 400}})
         EXPECT_EQ(s5[key].integer(), value) << key;
     EXPECT_EQ(s5["illegal_answers"]["not_asked"].integer(), 1);
     EXPECT_EQ(s5["illegal_answers"]["short_ack"].integer(), 2);
@@ -510,6 +512,7 @@ TEST(StatsTest, CsvOneRowPerStationWithMasterColumns) {
     EXPECT_EQ(records[2][column("reasons")],
               "lost_events_bad: 1 (bad from 1); repeat_percent_weak: 1 % (weak above 0.1 %)");
     EXPECT_EQ(records[2][column("requests")], "400");
+    EXPECT_EQ(records[2][column("replies_due")], "400");
     EXPECT_EQ(records[2][column("illegal_short_ack")], "2");
     EXPECT_EQ(records[2][column("negative_dh")], "3");
     EXPECT_EQ(records[2][column("damaged")], "2");
