@@ -274,6 +274,8 @@ struct BusHealthTracker::State {
     std::uint64_t last_frame = 0;
     Verdict segment_last_verdict = Verdict::Good;
     bool finished = false;
+    double ns_per_byte = 0;  // a character's time on the line (0: baud not known)
+    std::uint64_t lost_cycles = 3;
 };
 
 BusHealthTracker::BusHealthTracker(BusHealthOptions options)
@@ -282,6 +284,11 @@ BusHealthTracker::BusHealthTracker(BusHealthOptions options)
     health_.segment.baud = options_.baud;
     health_.segment.character_bits = options_.character_bits;
     state_->events.reserve(8);
+    state_->lost_cycles =
+        static_cast<std::uint64_t>(health_.thresholds.get(HealthThreshold::LostCycles));
+    if (options_.baud != 0)
+        state_->ns_per_byte =
+            static_cast<double>(options_.character_bits) * 1e9 / static_cast<double>(options_.baud);
     for (std::size_t a = 0; a < kStationCount; ++a) {
         state_->slots[a].health.address = static_cast<std::uint8_t>(a);
         state_->masters[a].health.address = static_cast<std::uint8_t>(a);
@@ -385,8 +392,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     if (t.protocol != Protocol::ProfibusDp) return {};
     SegmentHealth& seg = health_.segment;
     const FdlTelegram& fdl = t.dp.fdl;
-    const std::uint64_t lost_cycles =
-        static_cast<std::uint64_t>(health_.thresholds.get(HealthThreshold::LostCycles));
+    const std::uint64_t lost_cycles = s.lost_cycles;
 
     ++seg.telegrams;
     seg.bytes += t.bytes.size();
@@ -395,14 +401,11 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
         s.last_time_ns = t.time_ns;
         if (seg.first_ns == kNoTime) seg.first_ns = t.time_ns;
     }
-    if (seg.baud != 0) {
-        const double duration_ns = static_cast<double>(t.bytes.size()) *
-                                   static_cast<double>(seg.character_bits) * 1e9 /
-                                   static_cast<double>(seg.baud);
+    if (s.ns_per_byte != 0) {
+        const double duration_ns = static_cast<double>(t.bytes.size()) * s.ns_per_byte;
         seg.busy_ns += duration_ns;
         if (t.time_ns != kNoTime) {
-            const std::int64_t end =
-                t.time_ns + static_cast<std::int64_t>(std::llround(duration_ns));
+            const std::int64_t end = t.time_ns + static_cast<std::int64_t>(duration_ns + 0.5);
             if (seg.end_ns == kNoTime || end > seg.end_ns) seg.end_ns = end;
         }
     } else if (t.time_ns != kNoTime && (seg.end_ns == kNoTime || t.time_ns > seg.end_ns)) {
