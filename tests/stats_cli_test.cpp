@@ -169,39 +169,52 @@ TEST(StatsCliTest, WriteNeverOntoTheInputAndAtomically) {
 }
 
 TEST(StatsCliTest, FailOnSetsTheExitCodeFromTheSegmentVerdict) {
-    // A clean capture is good: 0 whatever --fail-on says.
-    for (const char* fail_on : {"bad", "weak", "never"}) {
-        CommandResult r = run_dpscope({"stats", "--fail-on", fail_on, "--baud", kBaud, kClean});
-        EXPECT_EQ(r.exit_code, 0) << fail_on << ": " << r.err;
-    }
-    // Any load above 0 % is weak: exit 1 with --fail-on weak only.
-    const auto load = [](const char* threshold, const char* fail_on) {
-        return run_dpscope({"stats", "--fail-on", fail_on, "--baud", kBaud, "--threshold",
-                            threshold, kClean})
-            .exit_code;
+    // The clean capture is weak by its slave's start-up diagnosis (diag_faults_weak) only.
+    const auto clean = [](const char* fail_on, std::vector<std::string> more = {}) {
+        std::vector<std::string> args = {"stats", "--fail-on", fail_on, "--baud", kBaud};
+        for (std::string& arg : more)
+            args.push_back(std::move(arg));
+        args.push_back(kClean);
+        return run_dpscope(args).exit_code;
     };
-    EXPECT_EQ(load("bus_load_percent_weak=0", "bad"), 0);
-    EXPECT_EQ(load("bus_load_percent_weak=0", "weak"), 1);
-    // Any load above 0 % is bad: exit 1 by default, 0 with --fail-on never.
+    EXPECT_EQ(clean("bad"), 0);
+    EXPECT_EQ(clean("weak"), 1);
+    EXPECT_EQ(clean("never"), 0);
+    // Without that threshold it is good: 0 whatever --fail-on says.
+    for (const char* fail_on : {"bad", "weak", "never"})
+        EXPECT_EQ(clean(fail_on, {"--threshold", "diag_faults_weak=0"}), 0) << fail_on;
+    // Any load above 0 % weak: exit 1 with --fail-on weak only.
+    const std::vector<std::string> load_weak = {"--threshold", "diag_faults_weak=0", "--threshold",
+                                                "bus_load_percent_weak=0"};
+    EXPECT_EQ(clean("bad", load_weak), 0);
+    EXPECT_EQ(clean("weak", load_weak), 1);
+    // Any load above 0 % bad: exit 1 by default, 0 with --fail-on never.
     EXPECT_EQ(
         run_dpscope({"stats", "--baud", kBaud, "--threshold", "bus_load_percent_bad=0", kClean})
             .exit_code,
         1);
-    EXPECT_EQ(load("bus_load_percent_bad=0", "never"), 0);
+    EXPECT_EQ(clean("never", {"--threshold", "bus_load_percent_bad=0"}), 0);
     // Without --baud the load is unknown and judges nothing.
     EXPECT_EQ(run_dpscope({"stats", "--threshold", "bus_load_percent_bad=0", kClean}).exit_code, 0);
-    // The command line wins over the settings file.
+    // The command line wins over the settings file; the last --threshold for a name wins.
     const std::string config = test::temp_path("health-load.toml");
-    test::write_text_file(config, "bus_load_percent_bad = 0\n");
-    EXPECT_EQ(run_dpscope({"stats", "--baud", kBaud, "--health-config", config, kClean}).exit_code,
-              1);
-    EXPECT_EQ(run_dpscope({"stats", "--baud", kBaud, "--health-config", config, "--threshold",
-                           "bus_load_percent_bad=100", kClean})
-                  .exit_code,
+    test::write_text_file(config, "[thresholds]\nbus_load_percent_bad = 0\n");
+    EXPECT_EQ(clean("bad", {"--health-config", config}), 1);
+    EXPECT_EQ(clean("bad", {"--health-config", config, "--threshold", "bus_load_percent_bad=100"}),
               0);
-    // The faults capture (FCS errors, a station without an answer) is bad.
+    EXPECT_EQ(clean("bad", {"--threshold", "bus_load_percent_bad=100", "--threshold",
+                            "bus_load_percent_bad=0"}),
+              1);
+    // The faults capture (damaged telegrams on two slaves' links) is bad.
     EXPECT_EQ(run_dpscope({"stats", kFaults}).exit_code, 1);
     EXPECT_EQ(run_dpscope({"stats", "--fail-on", "never", kFaults}).exit_code, 0);
+    // report reads the same thresholds: its exit code follows its findings, not the verdict.
+    CommandResult report = run_dpscope(
+        {"report", "-T", "json", "--baud", kBaud, "--threshold", "bus_load_percent_bad=0", kClean});
+    EXPECT_EQ(report.exit_code, 0) << report.err;
+    for (const char* member : {"\"bus_health\"", "\"baud\":1500000", "\"load_percent\":23.774",
+                               "\"bus_load_percent_bad\":0"})
+        EXPECT_NE(report.out.find(member), std::string::npos) << member;
 }
 
 TEST(StatsCliTest, TruncatedCaptureExitsThreeUnlessTheVerdictFails) {
