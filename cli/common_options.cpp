@@ -121,7 +121,8 @@ void add_line_options(CLI::App& app, DecodeOptionValues& values) {
                    "The line's baud rate when the capture was made. FC protocol and VLT 2000: a "
                    "telegram's time is when its first byte came, so the time a command takes on "
                    "the line (11 bits a byte for FC, 10 for VLT 2000) is not counted in the "
-                   "drive's response time; default 9600")
+                   "drive's response time; default 9600. PROFIBUS (report): the bus load and idle "
+                   "time of the bus-health section need it; without it they are unknown")
         ->check(whole_number(300, 12'000'000, " baud"))
         ->type_name("BAUD");
 }
