@@ -88,6 +88,12 @@ void TelegramSource::finish_reporting() {
     }
 }
 
+std::uint64_t TelegramSource::bytes_read() const {
+    if (position_stream_ == nullptr) return 0;
+    const off_t position = ::ftello(position_stream_);
+    return position < 0 ? 0 : static_cast<std::uint64_t>(position);
+}
+
 bool TelegramSource::next(Record& record) {
     if ((limit_ != 0 && handed_out_ >= limit_) || !read_next(record)) {
         finish_reporting();
@@ -226,6 +232,24 @@ Result<std::vector<std::uint8_t>> read_head_for_bus(int fd, const std::string& n
     return head;
 }
 
+// The source of `format` reading `stream` (which it then owns).
+OpenResult open_stream(FILE* stream, const std::string& name, InputFormat format, bool detected,
+                       bool classic_pcap, bool pcapng, const CaptureProtocol& protocol) {
+    const FramingRules& rules = protocol.framing;
+    switch (format) {
+        case InputFormat::Pcap:
+        case InputFormat::Pcapng:
+            return pcapng ? open_pcapng_source(stream, name, protocol)
+                          : open_pcap_source(stream, name, classic_pcap, protocol);
+        case InputFormat::Hex: return make_hex_source(stream, name, detected, rules);
+        case InputFormat::Text: return make_text_source(stream, name, rules);
+        case InputFormat::Raw:
+        case InputFormat::Serial:
+        case InputFormat::Auto: break;
+    }
+    return make_raw_source(stream, name, detected, rules);
+}
+
 OpenResult open_source_of(const std::string& path, InputFormat format,
                           const CaptureProtocol* chosen, BusChoice* choice) {
     bool from_stdin = path == "-";
@@ -296,19 +320,11 @@ OpenResult open_source_of(const std::string& path, InputFormat format,
         return Error{std::move(error)};
     }
     std::setvbuf(stream, nullptr, _IOFBF, 1 << 16);
-    const FramingRules& rules = protocol.framing;
-    switch (format) {
-        case InputFormat::Pcap:
-        case InputFormat::Pcapng:
-            return pcapng ? open_pcapng_source(stream, name, protocol)
-                          : open_pcap_source(stream, name, classic_pcap, protocol);
-        case InputFormat::Hex: return make_hex_source(stream, name, detected, rules);
-        case InputFormat::Text: return make_text_source(stream, name, rules);
-        case InputFormat::Raw:
-        case InputFormat::Serial:
-        case InputFormat::Auto: break;
-    }
-    return make_raw_source(stream, name, detected, rules);
+    OpenResult opened = open_stream(stream, name, format, detected, classic_pcap, pcapng, protocol);
+    // The position is read from a regular file's own stream (a cookie stream cannot tell it).
+    if (opened && stream == file)
+        (*opened)->watch_position(stream, static_cast<std::uint64_t>(info.st_size));
+    return opened;
 }
 
 }  // namespace

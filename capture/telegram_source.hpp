@@ -79,6 +79,17 @@ class TelegramSource {
     virtual int link_type() const { return 0; }
     // Bytes skipped by the stream framer (raw and hex inputs).
     virtual std::uint64_t bytes_skipped() const { return 0; }
+    // How far the reading has got: bytes of the input consumed so far (what the source has
+    // buffered ahead of the telegram handed out last is not counted). 0 when not known (standard
+    // input, bytes in memory). Costs a library call: ask now and then, not per telegram.
+    std::uint64_t bytes_read() const;
+    // The input's size in bytes when it is a regular file opened by name; 0 otherwise.
+    std::uint64_t input_size() const noexcept { return input_size_; }
+    // Set by open_source: the stream the source reads (which it owns) and the file's size.
+    void watch_position(std::FILE* stream, std::uint64_t size) noexcept {
+        position_stream_ = stream;
+        input_size_ = size;
+    }
 
     InputStatus status() const noexcept { return status_; }
     // Why the input is Unusable when that was found out while reading (e.g. a byte stream that is
@@ -125,6 +136,8 @@ class TelegramSource {
     std::uint64_t last_number_ = 0;
     Counted counted_[kIssueKinds];
     bool reporting_finished_ = false;
+    std::FILE* position_stream_ = nullptr;
+    std::uint64_t input_size_ = 0;
 };
 
 // A source, or why the input is unusable (naming the file).

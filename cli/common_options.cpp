@@ -4,11 +4,14 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "cli/pipeline.hpp"
+#include "cli/progress.hpp"
 
 namespace dpscope::cli {
 
@@ -118,7 +121,8 @@ void add_line_options(CLI::App& app, DecodeOptionValues& values) {
                    "The line's baud rate when the capture was made. FC protocol and VLT 2000: a "
                    "telegram's time is when its first byte came, so the time a command takes on "
                    "the line (11 bits a byte for FC, 10 for VLT 2000) is not counted in the "
-                   "drive's response time; default 9600")
+                   "drive's response time; default 9600. PROFIBUS (report): the bus load and idle "
+                   "time of the bus-health section need it; without it they are unknown")
         ->check(whole_number(300, 12'000'000, " baud"))
         ->type_name("BAUD");
 }
@@ -520,6 +524,7 @@ Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t t
 }
 
 void print_diagnostic(Severity severity, std::string_view message) {
+    clear_progress_line();
     std::fflush(stdout);
     fmt::print(stderr, "dpscope: {}: {}\n", severity_name(severity), message);
 }
@@ -527,5 +532,86 @@ void print_diagnostic(Severity severity, std::string_view message) {
 void print_error(std::string_view message) { print_diagnostic(Severity::Error, message); }
 
 void print_warning(std::string_view message) { print_diagnostic(Severity::Warning, message); }
+
+// --- Bus health (issue 12) ----------------------------------------------------------------------
+
+namespace {
+
+// A threshold's value as the help writes it: "3", "0.1", "1000000000".
+std::string limit_text(double value) {
+    return value == std::floor(value) ? fmt::format("{:.0f}", value) : fmt::format("{:g}", value);
+}
+
+// "lost_cycles (default 3, 1 to 1000)", "repeat_percent_bad (default 5, 0 to 100 %)" for each
+// threshold, for --threshold's help.
+std::string threshold_list() {
+    std::string list;
+    for (const HealthThresholdRow& row : health_threshold_catalogue()) {
+        if (!list.empty()) list += "; ";
+        list += fmt::format("{} (default {}, {} to {}{}{})", row.name,
+                            limit_text(row.default_value), limit_text(row.minimum),
+                            limit_text(row.maximum), row.unit.empty() ? "" : " ", row.unit);
+    }
+    return list;
+}
+
+}  // namespace
+
+void add_health_options(CLI::App& app, HealthOptionValues& values) {
+    app.add_option("--health-config", values.config,
+                   "Read the bus-health thresholds from FILE: 'name = value' lines, '#' or ';' "
+                   "comments, optionally under a [thresholds] header (TOML or INI); an error "
+                   "names FILE:LINE. --threshold options apply after it")
+        ->type_name("FILE");
+    app.add_option("--threshold", values.thresholds,
+                   "Set one bus-health threshold, NAME=VALUE (repeatable; after --health-config). "
+                   "The thresholds (docs/bus-health.md, README \"Bus health thresholds\"): " +
+                       threshold_list())
+        ->type_name("NAME=VALUE")
+        ->allow_extra_args(false);
+}
+
+Result<HealthThresholds> resolve_health_options(const HealthOptionValues& values) {
+    HealthThresholds thresholds;
+    if (!values.config.empty()) {
+        std::FILE* file = std::fopen(values.config.c_str(), "rb");
+        if (file == nullptr)
+            return Error{fmt::format("--health-config {}: cannot read: {}", values.config,
+                                     std::strerror(errno))};
+        std::string text;
+        char buffer[4096];
+        std::size_t n = 0;
+        while ((n = std::fread(buffer, 1, sizeof buffer, file)) > 0)
+            text.append(buffer, n);
+        const bool failed = std::ferror(file) != 0;
+        const int error = errno;
+        std::fclose(file);
+        if (failed)
+            return Error{fmt::format("--health-config {}: cannot read: {}", values.config,
+                                     std::strerror(error))};
+        if (Result<void> loaded = thresholds.load(text, values.config); !loaded)
+            return Error{fmt::format("--health-config {}", loaded.error())};
+    }
+    for (const std::string& assignment : values.thresholds)
+        if (Result<void> set = thresholds.set_from_text(assignment); !set)
+            return Error{fmt::format("--threshold {}: {}", assignment, set.error())};
+    return thresholds;
+}
+
+std::optional<HealthFailOn> health_fail_on_from_name(std::string_view name) noexcept {
+    if (name == "bad") return HealthFailOn::Bad;
+    if (name == "weak") return HealthFailOn::Weak;
+    if (name == "never") return HealthFailOn::Never;
+    return std::nullopt;
+}
+
+bool verdict_fails(Verdict verdict, HealthFailOn fail_on) noexcept {
+    switch (fail_on) {
+        case HealthFailOn::Bad: return verdict == Verdict::Bad;
+        case HealthFailOn::Weak: return verdict != Verdict::Good;
+        case HealthFailOn::Never: break;
+    }
+    return false;
+}
 
 }  // namespace dpscope::cli

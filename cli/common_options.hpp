@@ -192,4 +192,21 @@ void print_error(std::string_view message);
 void print_warning(std::string_view message);
 void print_diagnostic(Severity severity, std::string_view message);
 
+// --- Bus health (issue 12): the thresholds of the verdict (stats, report, sniff --stats) -------
+struct HealthOptionValues {
+    std::string config;                   // --health-config FILE ("" none)
+    std::vector<std::string> thresholds;  // --threshold NAME=VALUE, in the order given
+};
+// --health-config FILE and --threshold NAME=VALUE (repeatable); the help lists the thresholds
+// with their defaults and ranges (decoder/health_thresholds.hpp).
+void add_health_options(CLI::App& app, HealthOptionValues& values);
+// The defaults, then the settings file, then each --threshold in order. The error names the file
+// (and line), or the --threshold with its value and range; a file that cannot be read is named
+// with the reason.
+Result<HealthThresholds> resolve_health_options(const HealthOptionValues& values);
+// The --fail-on of stats: exit code 1 when the segment's verdict reaches it.
+enum class HealthFailOn { Bad, Weak, Never };
+std::optional<HealthFailOn> health_fail_on_from_name(std::string_view name) noexcept;
+bool verdict_fails(Verdict verdict, HealthFailOn fail_on) noexcept;
+
 }  // namespace dpscope::cli

@@ -19,6 +19,7 @@
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
 #include "cli/pipeline.hpp"
+#include "cli/progress.hpp"
 
 namespace dpscope::cli {
 
@@ -93,8 +94,12 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     std::uint64_t read = 0;
     std::span<const Finding> findings;
     source.stop_after(settings.count);
+    // Not over a decode printed on the same terminal (its lines would be overwritten).
+    ProgressMeter progress =
+        ProgressMeter::for_source(source, !renderer || isatty(fileno(text_stream)) == 0);
     while (source.next(record)) {
         ++read;
+        progress.tick(source);
         const DecodedTelegram& t = pipeline.feed(record, findings);
         const std::int32_t subject_pnu = pipeline.subject_pnu();
         if (settings.filtering()) {
@@ -126,6 +131,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             }
         }
     }
+    progress.clear();
     std::span<const Finding> open_at_end = pipeline.finish();
     warn_ppo_overrides(pipeline.decoder());
     if (renderer) {

@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
     add_report_command(app, exit_code);
     add_simulate_command(app, exit_code);
     add_sniff_command(app, exit_code);
+    add_stats_command(app, exit_code);
     // CLI11 would only say that a subcommand is required.
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
@@ -43,8 +44,8 @@ int main(int argc, char** argv) {
             known = known || sub->get_name() == argv[1];
         if (!known) {
             print_error(fmt::format(
-                "unknown subcommand '{}'; one of decode, hex, report, simulate, sniff (see "
-                "--help)",
+                "unknown subcommand '{}'; one of decode, hex, report, simulate, sniff, stats "
+                "(see --help)",
                 argv[1]));
             return kExitUsage;
         }

@@ -13,6 +13,7 @@
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
 #include "cli/pipeline.hpp"
+#include "cli/progress.hpp"
 #include "cli/version.hpp"
 #include "formats/report.hpp"
 #include "formats/report_model.hpp"
@@ -23,6 +24,7 @@ namespace {
 
 struct ReportCommand {
     DecodeOptionValues options;
+    HealthOptionValues health;
     std::string file;
     std::string read_option;
     std::string input_format = "auto";
@@ -88,6 +90,11 @@ int run_report(const ReportCommand& command) {
         print_error(settings.error());
         return kExitUsage;
     }
+    Result<HealthThresholds> thresholds = resolve_health_options(command.health);
+    if (!thresholds) {
+        print_error(thresholds.error());
+        return kExitUsage;
+    }
     OpenResult opened = open_input(
         path, input_format_from_name(command.input_format).value_or(InputFormat::Auto), *settings);
     if (!opened) {
@@ -108,6 +115,10 @@ int run_report(const ReportCommand& command) {
     }
     std::unique_ptr<PendingOutputFile> report_file = std::move(opened_file).value();
     TelegramSource& source = *opened.value();
+    // The bus-health section of a PROFIBUS capture (the Pipeline keeps no tracker for another).
+    settings->track_health = settings->protocol->protocol == Protocol::ProfibusDp;
+    settings->health.thresholds = *thresholds;
+    settings->health.baud = command.options.baud;  // 0: the bus load is unknown
     int exit_code = kExitOk;
     {
         Output out(report_file->file());
@@ -121,10 +132,14 @@ int run_report(const ReportCommand& command) {
         std::uint64_t read = 0;
         std::span<const Finding> findings;
         source.stop_after(settings->count);
-        while (source.next(record)) {
-            ++read;
-            pipeline.feed(record, findings);
-            if (!findings.empty()) log.append(findings);
+        {
+            ProgressMeter progress = ProgressMeter::for_source(source);
+            while (source.next(record)) {
+                ++read;
+                pipeline.feed(record, findings);
+                if (!findings.empty()) log.append(findings);
+                progress.tick(source);
+            }
         }
         log.append(pipeline.finish());
         warn_ppo_overrides(pipeline.decoder());
@@ -199,6 +214,7 @@ void add_report_command(CLI::App& app, int& exit_code) {
                   "report says \"nothing checked\" and exits 1");
     add_tracking_options(*sub, command->options);
     add_line_options(*sub, command->options);
+    add_health_options(*sub, command->health);
     sub->footer(std::string(kExitCodeHelp) + " For report, 1 takes precedence over 3.");
     sub->callback([command, &exit_code] { exit_code = run_report(*command); });
 }

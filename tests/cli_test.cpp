@@ -117,8 +117,8 @@ TEST(CliTest, MissingSubcommandIsUsageError) {
     EXPECT_EQ(unknown.exit_code, 2);
     EXPECT_EQ(
         unknown.err,
-        "dpscope: error: unknown subcommand 'frob'; one of decode, hex, report, simulate, sniff "
-        "(see --help)\n");
+        "dpscope: error: unknown subcommand 'frob'; one of decode, hex, report, simulate, sniff, "
+        "stats (see --help)\n");
 }
 
 // ---- decode ----------------------------------------------------------------------------------

@@ -114,6 +114,20 @@ golden_case(report_dpv1_markdown samples/expected/report.dpv1.md EXIT 1 report -
 golden_case(report_dpv1_html samples/expected/report.dpv1.html EXIT 1 report -T html --dialect 4=profidrive samples/dpv1.pcap)
 golden_case(report_dpv1_junit samples/expected/report.dpv1.junit.xml EXIT 1 report -T junit --dialect 4=profidrive samples/dpv1.pcap)
 
+# Bus health (dpscope stats, issue 12): the capture with every link fault (FCS errors, garbage, a
+# slave silent, an FDL retry) in every stats format, simulated at 1500000 baud (scripts/
+# make-samples: simulate's default), so the bus load is known; and a clean bus, good (exit 0).
+foreach(format text json markdown csv html)
+    set(extension ${format})
+    if(format STREQUAL "markdown")
+        set(extension md)
+    elseif(format STREQUAL "text")
+        set(extension txt)
+    endif()
+    golden_case(stats_faults_${format} samples/expected/stats.faults.${extension} EXIT 1 stats -T ${format} --baud 1500000 samples/faults.pcap)
+endforeach()
+golden_case(stats_clean_text samples/expected/stats.ppo2.txt stats --baud 1500000 samples/ppo2.pcap)
+
 add_custom_target(update-golden ${golden_update_commands}
     DEPENDS dpscope
     COMMENT "Rewriting samples/expected/ from the current dpscope"

@@ -1,0 +1,217 @@
+// dpscope stats: the bus-health statistics of a PROFIBUS capture (docs/bus-health.md).
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+
+#include "capture/output_file.hpp"
+#include "capture/telegram_source.hpp"
+#include "cli/commands.hpp"
+#include "cli/common_options.hpp"
+#include "cli/pipeline.hpp"
+#include "cli/progress.hpp"
+#include "cli/version.hpp"
+#include "formats/stats.hpp"
+
+namespace dpscope::cli {
+
+namespace {
+
+struct StatsCommand {
+    DecodeOptionValues options;
+    HealthOptionValues health;
+    std::string file;
+    std::string read_option;
+    std::string input_format = "auto";
+    std::string format = "text";
+    std::string output = "-";
+    std::string fail_on = "bad";
+};
+
+// The bus of a capture as the PROFIBUS-only error names it.
+std::string_view bus_noun(Protocol protocol) {
+    switch (protocol) {
+        case Protocol::Fc: return "an FC protocol";
+        case Protocol::Vlt2000: return "a VLT 2000";
+        case Protocol::ProfibusDp: break;
+    }
+    return "a PROFIBUS DP";
+}
+
+// Renders the statistics and returns the exit code.
+int write_stats(const StatsCommand& command, const Pipeline& pipeline, const TelegramSource& source,
+                Output& out) {
+    const BusHealth& health = pipeline.health()->health();
+    const StatsFormat format = stats_format_from_name(command.format).value_or(StatsFormat::Text);
+    render_stats(format, StatsContext{describe_input(source), &health, kVersion}, out);
+    if (!out.flush()) {
+        print_error(fmt::format("cannot write the statistics to {}: {}",
+                                command.output == "-" ? "standard output" : command.output,
+                                std::strerror(errno)));
+        return kExitOutputError;
+    }
+    const HealthFailOn fail_on =
+        health_fail_on_from_name(command.fail_on).value_or(HealthFailOn::Bad);
+    if (verdict_fails(health.segment.judgement.verdict, fail_on)) return kExitFindings;
+    if (source.status() == InputStatus::Damaged) return kExitDamagedInput;
+    return kExitOk;
+}
+
+int run_stats(const StatsCommand& command) {
+    const std::string path = !command.read_option.empty() ? command.read_option : command.file;
+    if (path.empty()) {
+        print_error("stats: no input; give a FILE or -r FILE (- for standard input)");
+        return kExitUsage;
+    }
+    Result<DecodeSettings> settings = resolve_decode_options(command.options, "text");
+    if (!settings) {
+        print_error(settings.error());
+        return kExitUsage;
+    }
+    Result<HealthThresholds> thresholds = resolve_health_options(command.health);
+    if (!thresholds) {
+        print_error(thresholds.error());
+        return kExitUsage;
+    }
+    settings->track_health = true;
+    settings->health.thresholds = *thresholds;
+    settings->health.baud = command.options.baud;  // 0: the bus load is unknown
+    if (Result<void> distinct = check_not_an_input({path}, command.output, "-w"); !distinct) {
+        print_error(distinct.error());
+        return kExitUsage;
+    }
+    OpenResult opened = open_input(
+        path, input_format_from_name(command.input_format).value_or(InputFormat::Auto), *settings);
+    if (!opened) {
+        print_error(opened.error());
+        return kExitUsage;
+    }
+    TelegramSource& source = *opened.value();
+    if (settings->protocol->protocol != Protocol::ProfibusDp) {
+        print_error(fmt::format(
+            "{}: {} capture; bus health (stats) is PROFIBUS-only: it judges the FDL/DP link "
+            "layer (token, polls, retries, live list); dpscope report gives the figures of each "
+            "drive",
+            source.name(), bus_noun(settings->protocol->protocol)));
+        return kExitUsage;
+    }
+    // Written beside OUT and moved into place only once the statistics are complete: an unusable
+    // input or a write error leaves an existing OUT as it was.
+    Result<std::unique_ptr<PendingOutputFile>> opened_file =
+        PendingOutputFile::open(command.output);
+    if (!opened_file) {
+        print_error(opened_file.error());
+        return kExitOutputError;
+    }
+    std::unique_ptr<PendingOutputFile> stats_file = std::move(opened_file).value();
+    int exit_code = kExitOk;
+    {
+        Output out(stats_file->file());
+        Output diagnostics(stderr);
+        report_input_issues(source, diagnostics);
+        Pipeline pipeline(*settings);
+        Record record;
+        std::uint64_t read = 0;
+        std::span<const Finding> findings;
+        source.stop_after(settings->count);
+        {
+            ProgressMeter progress = ProgressMeter::for_source(source);
+            while (source.next(record)) {
+                ++read;
+                pipeline.feed(record, findings);
+                progress.tick(source);
+            }
+        }
+        pipeline.finish();
+        warn_ppo_overrides(pipeline.decoder());
+        if (Result<void> found =
+                check_telegrams_found(source, read, *settings->protocol, settings->bus_given);
+            !found) {
+            print_error(found.error());
+            exit_code = kExitUsage;
+        } else {
+            exit_code = write_stats(command, pipeline, source, out);
+        }
+    }
+    if (exit_code == kExitUsage || exit_code == kExitOutputError) {
+        stats_file->discard();
+        return exit_code;
+    }
+    if (Result<void> committed = stats_file->commit(); !committed) {
+        print_error(committed.error());
+        return kExitOutputError;
+    }
+    return exit_code;
+}
+
+}  // namespace
+
+void add_stats_command(CLI::App& app, int& exit_code) {
+    auto command = std::make_shared<StatsCommand>();
+    CLI::App* sub = app.add_subcommand(
+        "stats",
+        "Bus-health statistics of a PROFIBUS DP capture (docs/bus-health.md): the live list of "
+        "stations with their role and state over time, per slave requests, answers, no answers, "
+        "FDL retries, lost and returned, illegal and negative answers, diagnosis faults, damaged "
+        "telegrams and resyncs; per master the token rotation and poll cycle (min / mean / p95 / "
+        "max, jitter); telegrams per second and, with --baud, the bus load; a verdict (good, "
+        "weak, bad) for each station and the segment from documented thresholds. PROFIBUS only; "
+        "exit code 1 when the segment's verdict reaches --fail-on.");
+    sub->add_option("file", command->file, "Capture file to read; - reads standard input")
+        ->type_name("FILE");
+    sub->add_option("-r,--read", command->read_option,
+                    "Capture file to read (as tshark -r); - reads standard input")
+        ->type_name("FILE");
+    sub->add_option("--input-format", command->input_format,
+                    "Input kind: auto (detect from the content), pcap, pcapng, raw, hex")
+        ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "hex"}))
+        ->default_str("auto");
+    sub->add_option("-T,--format", command->format,
+                    "Output format: text, json (stable schema, see README), markdown, html (one "
+                    "self-contained page with an SVG timeline of each station's state and plots "
+                    "of cycle time and token rotation), csv (one row per station and master)")
+        ->check(CLI::IsMember({"text", "json", "markdown", "html", "csv"}))
+        ->default_str("text");
+    sub->add_option("-w,--write", command->output,
+                    "Write the statistics to FILE; - is standard output. An existing FILE is "
+                    "replaced only once the statistics are complete (an unusable input or a write "
+                    "error leaves it as it was), and never when it is the input")
+        ->check(output_file_name())
+        ->type_name("FILE")
+        ->default_str("-");
+    sub->add_option("--fail-on", command->fail_on,
+                    "Exit code 1 when the segment's verdict is this or worse: bad, weak, or never")
+        ->check(CLI::IsMember({"bad", "weak", "never"}))
+        ->default_str("bad");
+    sub->add_option("--baud", command->options.baud,
+                    "The line's baud rate when the capture was made (PROFIBUS: 9600 to 12000000, "
+                    "e.g. 1500000): the bus load and idle time need it; without it they are "
+                    "unknown")
+        ->check(whole_number(9600, 12'000'000, " baud"))
+        ->type_name("BAUD");
+    add_health_options(*sub, command->health);
+    sub->add_option("-c,--count", command->options.count, "Stop after reading N telegrams")
+        ->check(whole_number(1, kMaxCount, " telegrams"))
+        ->type_name("N");
+    sub->add_option("--bus", command->options.bus,
+                    "The bus the capture carries; stats reads profibus only (the default for a "
+                    "pcap of link type 257; a raw or hex byte stream is tried with each bus's "
+                    "framing)")
+        ->check(CLI::IsMember({"profibus", "fc", "vlt2000"}))
+        ->type_name("BUS");
+    sub->add_option("--ppo", command->options.ppo,
+                    "ADDR=TYPE: decode slave ADDR (0 to 126) as PPO TYPE (1 to 5) instead of "
+                    "inferring the type from Chk_Cfg, Get_Cfg or the Data_Exchange length; "
+                    "repeatable")
+        ->type_name("ADDR=TYPE")
+        ->allow_extra_args(false);
+    sub->footer(std::string(kExitCodeHelp) +
+                " For stats, 1 means the segment's verdict reached --fail-on (bad by default), "
+                "and takes precedence over 3.");
+    sub->callback([command, &exit_code] { exit_code = run_stats(*command); });
+}
+
+}  // namespace dpscope::cli
