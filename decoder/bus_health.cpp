@@ -235,6 +235,7 @@ struct BusHealthTracker::State {
         StationState before_lost = StationState::Unknown;
         std::uint64_t diag_streak = 0;  // Slave_Diag answers in a row while in data exchange
         bool exchange_data_seen = false;
+        bool parameterised = false;  // answered Set_Prm (since listed or since lost)
         Verdict last_verdict = Verdict::Good;
     };
     struct Master {
@@ -273,6 +274,8 @@ struct BusHealthTracker::State {
     std::uint64_t last_frame = 0;
     Verdict segment_last_verdict = Verdict::Good;
     bool finished = false;
+    double ns_per_byte = 0;  // a character's time on the line (0: baud not known)
+    std::uint64_t lost_cycles = 3;
 };
 
 BusHealthTracker::BusHealthTracker(BusHealthOptions options)
@@ -281,6 +284,11 @@ BusHealthTracker::BusHealthTracker(BusHealthOptions options)
     health_.segment.baud = options_.baud;
     health_.segment.character_bits = options_.character_bits;
     state_->events.reserve(8);
+    state_->lost_cycles =
+        static_cast<std::uint64_t>(health_.thresholds.get(HealthThreshold::LostCycles));
+    if (options_.baud != 0)
+        state_->ns_per_byte =
+            static_cast<double>(options_.character_bits) * 1e9 / static_cast<double>(options_.baud);
     for (std::size_t a = 0; a < kStationCount; ++a) {
         state_->slots[a].health.address = static_cast<std::uint8_t>(a);
         state_->masters[a].health.address = static_cast<std::uint8_t>(a);
@@ -331,6 +339,7 @@ class BusHealthTrackerImpl {
     static void go_lost(State& s, State::Slot& slot, const DecodedTelegram& t) {
         if (slot.health.state == StationState::Lost) return;
         slot.before_lost = slot.health.state;
+        slot.parameterised = false;
         ++slot.health.lost_events;
         set_state(s, slot, StationState::Lost, t, false);
         emit(s, HealthEventKind::StationLost, slot, t);
@@ -383,8 +392,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     if (t.protocol != Protocol::ProfibusDp) return {};
     SegmentHealth& seg = health_.segment;
     const FdlTelegram& fdl = t.dp.fdl;
-    const std::uint64_t lost_cycles =
-        static_cast<std::uint64_t>(health_.thresholds.get(HealthThreshold::LostCycles));
+    const std::uint64_t lost_cycles = s.lost_cycles;
 
     ++seg.telegrams;
     seg.bytes += t.bytes.size();
@@ -393,14 +401,11 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
         s.last_time_ns = t.time_ns;
         if (seg.first_ns == kNoTime) seg.first_ns = t.time_ns;
     }
-    if (seg.baud != 0) {
-        const double duration_ns = static_cast<double>(t.bytes.size()) *
-                                   static_cast<double>(seg.character_bits) * 1e9 /
-                                   static_cast<double>(seg.baud);
+    if (s.ns_per_byte != 0) {
+        const double duration_ns = static_cast<double>(t.bytes.size()) * s.ns_per_byte;
         seg.busy_ns += duration_ns;
         if (t.time_ns != kNoTime) {
-            const std::int64_t end =
-                t.time_ns + static_cast<std::int64_t>(std::llround(duration_ns));
+            const std::int64_t end = t.time_ns + static_cast<std::int64_t>(duration_ns + 0.5);
             if (seg.end_ns == kNoTime || end > seg.end_ns) seg.end_ns = end;
         }
     } else if (t.time_ns != kNoTime && (seg.end_ns == kNoTime || t.time_ns > seg.end_ns)) {
@@ -632,18 +637,22 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     if (asked.service == Service::SlaveDiag) {
         if (const SlaveDiag* diag = t.dp.service_data.slave_diag(); diag != nullptr && data) {
             ++h.diag_answers;
-            const std::uint8_t s1 = diag->station_status_1;
-            const std::uint8_t s2 = diag->station_status_2;
-            const bool bits[kDiagFaultCount] = {(s1 & 0x02) != 0, (s1 & 0x04) != 0,
-                                                (s1 & 0x08) != 0, (s1 & 0x40) != 0,
-                                                (s2 & 0x02) != 0};
-            bool fault = false;
-            for (std::size_t i = 0; i < kDiagFaultCount; ++i)
-                if (bits[i]) {
-                    ++h.diag_fault_bits[i];
-                    fault = true;
-                }
-            if (fault) ++h.diag_faults;
+            // Before Set_Prm a slave reports Station_Not_Ready / Prm_Fault by design: the
+            // start-up's diagnosis shows no fault.
+            if (slot.parameterised) {
+                const std::uint8_t s1 = diag->station_status_1;
+                const std::uint8_t s2 = diag->station_status_2;
+                const bool bits[kDiagFaultCount] = {(s1 & 0x02) != 0, (s1 & 0x04) != 0,
+                                                    (s1 & 0x08) != 0, (s1 & 0x40) != 0,
+                                                    (s2 & 0x02) != 0};
+                bool fault = false;
+                for (std::size_t i = 0; i < kDiagFaultCount; ++i)
+                    if (bits[i]) {
+                        ++h.diag_fault_bits[i];
+                        fault = true;
+                    }
+                if (fault) ++h.diag_faults;
+            }
         }
     }
 
@@ -658,6 +667,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     switch (asked.service) {
         case Service::SetPrm:
         case Service::ChkCfg:
+            if (asked.service == Service::SetPrm) slot.parameterised = true;
             if (before == StationState::DataExchange &&
                 (was_lost || h.state != StationState::Configuring))
                 ++h.resyncs;

@@ -4,12 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <deque>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "decoder/bus_decoder.hpp"
 #include "decoder/telegram_builder.hpp"
+#include "simulator/simulator.hpp"
 
 namespace dpscope {
 namespace {
@@ -237,10 +240,10 @@ TEST_F(BusHealthTest, StartUpStatesAndTimeline) {
     EXPECT_EQ(s->answers, 5u);
     EXPECT_EQ(s->diag_requests, 2u);
     EXPECT_EQ(s->diag_answers, 2u);
-    EXPECT_EQ(s->diag_faults, 1u);
+    EXPECT_EQ(s->diag_faults, 0u);  // Station_Not_Ready before Set_Prm is the start-up's
     EXPECT_EQ(s->resyncs, 0u);
-    EXPECT_EQ(s->judgement.verdict, Verdict::Weak);  // the first diagnosis: Station_Not_Ready
-    EXPECT_TRUE(has_reason(s->judgement, HealthThreshold::DiagFaultsWeak, Verdict::Weak));
+    EXPECT_EQ(s->judgement.verdict, Verdict::Good);
+    EXPECT_TRUE(s->judgement.reasons.empty());
 }
 
 TEST_F(BusHealthTest, DiagnosisOnlyAfterLostCyclesOfDiagInDataExchange) {
@@ -434,7 +437,9 @@ TEST_F(BusHealthTest, ShortAckWhereDataWasDue) {
 // ---- diagnosis and negative answers ---------------------------------------------------------
 
 TEST_F(BusHealthTest, DiagFaultBits) {
-    start_up(3);  // one Station_Not_Ready
+    start_up(3);  // Station_Not_Ready before Set_Prm: not counted
+    feed(diag(3));
+    feed(diag_data(3, 0x02));  // Station_Not_Ready
     feed(diag(3));
     feed(diag_data(3, 0x04));  // Cfg_Fault
     feed(diag(3));
@@ -445,8 +450,8 @@ TEST_F(BusHealthTest, DiagFaultBits) {
     feed(diag_data(3, 0x80));  // Master_Lock: no fault
     tracker().finish();
     const StationHealth* s = station(3);
-    EXPECT_EQ(s->diag_requests, 6u);
-    EXPECT_EQ(s->diag_answers, 6u);
+    EXPECT_EQ(s->diag_requests, 7u);
+    EXPECT_EQ(s->diag_answers, 7u);
     EXPECT_EQ(s->diag_faults, 4u);
     EXPECT_EQ(s->diag_fault_bits[static_cast<std::size_t>(DiagFault::StationNotReady)], 1u);
     EXPECT_EQ(s->diag_fault_bits[static_cast<std::size_t>(DiagFault::CfgFault)], 1u);
@@ -776,6 +781,50 @@ TEST_F(BusHealthTest, TimelineIsCappedButAllChangesCounted) {
     EXPECT_EQ(station(3)->timeline.size(), BusHealthTracker::kMaxStateChanges);
     EXPECT_EQ(station(3)->state_changes, 3 + changes);
     EXPECT_EQ(station(3)->resyncs, changes / 2);
+}
+
+// A clean simulated session (start-up and 1000 cycles of three slaves): every slave in data
+// exchange, nothing illegal, lost or damaged, and the master's cycle near the simulator's target.
+TEST(BusHealthSimulatedTest, CleanSessionIsGood) {
+    SimulatorOptions options;
+    Simulator simulator(options);
+    BusDecoder decoder;
+    BusHealthOptions health_options;
+    health_options.baud = options.baud;
+    BusHealthTracker tracker(health_options);
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time = 0;
+    std::uint64_t frame = 0;
+    std::uint64_t events = 0;
+    while (simulator.next(bytes, time))
+        events += tracker.observe(decoder.decode(Bytes(bytes.data(), bytes.size()), time, ++frame))
+                      .size();
+    tracker.finish();
+    const BusHealth& h = tracker.health();
+    EXPECT_EQ(events, 0u);
+    EXPECT_EQ(h.segment.telegrams, frame);
+    EXPECT_EQ(h.segment.damaged, 0u);
+    ASSERT_EQ(h.stations.size(), 4u);  // the master 2 and slaves 3, 4, 5
+    for (const StationHealth& s : h.stations) {
+        EXPECT_EQ(s.illegal_answers_total(), 0u) << int(s.address);
+        EXPECT_EQ(s.lost_events, 0u) << int(s.address);
+        EXPECT_EQ(s.repeats, 0u) << int(s.address);
+        if (s.address == 2) {
+            EXPECT_EQ(s.role, StationRole::Master);
+            continue;
+        }
+        EXPECT_EQ(s.role, StationRole::Slave) << int(s.address);
+        EXPECT_EQ(s.state, StationState::DataExchange) << int(s.address);
+        EXPECT_EQ(s.no_answers, 0u) << int(s.address);
+        EXPECT_EQ(s.answers, s.requests) << int(s.address);
+        EXPECT_EQ(s.judgement.verdict, Verdict::Good) << int(s.address);
+    }
+    ASSERT_EQ(h.masters.size(), 1u);
+    EXPECT_EQ(h.masters[0].slaves_polled, 3u);
+    EXPECT_GE(h.masters[0].cycle.count(), 999u);
+    EXPECT_NEAR(h.masters[0].cycle.mean(), options.cycle_us * 1000.0, options.cycle_us * 100.0);
+    EXPECT_GT(h.segment.load_percent(), 0.0);
+    EXPECT_EQ(h.segment.judgement.verdict, Verdict::Good);
 }
 
 TEST(TimeSeriesTest, MergesPairwiseWhenFull) {
