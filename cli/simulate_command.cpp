@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <atomic>
 #include <charconv>
 #include <cmath>
@@ -46,6 +47,9 @@ struct SimulateCommand {
     std::uint32_t cycle_us = 2000;
     std::string start = "1704067200";
     std::vector<std::string> faults;
+    std::vector<unsigned> ring_masters;  // --masters
+    std::uint32_t token_hold_us = 100;
+    bool token_hold_given = false;
     bool list_injections = false;
     bool no_start_up = false;
     std::string device;
@@ -322,6 +326,36 @@ int run_simulate(const SimulateCommand& command) {
         }
         options.slaves.push_back(*slave);
     }
+    if (!command.ring_masters.empty() && (fc || vlt2000)) {
+        print_error(fmt::format(
+            "--masters: a token ring is PROFIBUS; leave --masters out with --bus {}", command.bus));
+        return kExitUsage;
+    }
+    if (command.token_hold_given && command.ring_masters.empty()) {
+        print_error("--token-hold-us: only with --masters (the masters that hold the token)");
+        return kExitUsage;
+    }
+    for (unsigned address : command.ring_masters) {
+        if (address == options.master) {
+            print_error(fmt::format("--masters: {} is the DP master (--master)", address));
+            return kExitUsage;
+        }
+        // Without --slave the slaves are 3, 4 and 5.
+        bool slave = options.slaves.empty() && address >= 3 && address <= 5;
+        for (const SimulatedSlave& config : options.slaves)
+            slave = slave || config.address == address;
+        if (slave) {
+            print_error(fmt::format("--masters: {} is a slave's address", address));
+            return kExitUsage;
+        }
+        if (std::find(options.ring_masters.begin(), options.ring_masters.end(), address) !=
+            options.ring_masters.end()) {
+            print_error(fmt::format("--masters: {} is given twice", address));
+            return kExitUsage;
+        }
+        options.ring_masters.push_back(static_cast<std::uint8_t>(address));
+    }
+    options.token_hold_us = command.token_hold_us;
     for (const std::string& text : command.faults) {
         Result<FaultSpec> fault = parse_fault_spec(text, options.bus);
         if (!fault) {
@@ -407,9 +441,9 @@ std::string fault_help() {
         "Inject a fault: KIND (once, at a cycle the seed picks), KIND@CYCLE (once, at the first "
         "chance from that cycle), or KIND=RATE (chance per cycle and slave); append :ADDR to "
         "pick the slave (or drive). Kinds with --bus profibus: {} (the dpv1_* kinds need a dpv1 "
-        "slave). With --bus fc: {}. With --bus vlt2000: {}. Repeatable.",
-        fault_kind_names(Protocol::ProfibusDp, true), fault_kind_names(Protocol::Fc),
-        fault_kind_names(Protocol::Vlt2000));
+        "slave; the bus-health kinds: {}). With --bus fc: {}. With --bus vlt2000: {}. Repeatable.",
+        fault_kind_names(Protocol::ProfibusDp, true), bus_health_fault_help(),
+        fault_kind_names(Protocol::Fc), fault_kind_names(Protocol::Vlt2000));
 }
 
 }  // namespace
@@ -502,9 +536,30 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->default_str("1000");
     sub->add_option("-c,--count", command->count, "Stop after writing N telegrams")
         ->check(whole_number(0, kLargest));
-    sub->add_option("--cycle-us", command->cycle_us, "Target bus cycle time in microseconds")
+    sub->add_option("--cycle-us", command->cycle_us,
+                    "Target bus cycle time in microseconds: the DP master starts a cycle every "
+                    "--cycle-us, or as soon as the last one is done when its polls (and the "
+                    "token ring) take longer")
         ->check(whole_number(100, 1'000'000))
         ->default_str("2000");
+    sub->add_option("--masters", command->ring_masters,
+                    "ADDR[,ADDR...]: further active masters in a token ring with the DP master "
+                    "(PROFIBUS only). At the end of each cycle the DP master passes the token to "
+                    "the first, each holds it for --token-hold-us (every 20th cycle it gap-polls a "
+                    "free address with FDL_Status meanwhile) and passes it to the next, the last "
+                    "back to the DP master. Every master's token rotation, and the DP master's "
+                    "poll cycle, is then --cycle-us, or when longer the cycle's work: the DP "
+                    "master's polls plus, per further master, its token (3 characters) and its "
+                    "hold. Without --masters the DP master passes the token to itself")
+        ->delimiter(',')
+        ->check(whole_number(0, 126))
+        ->type_name("ADDR[,ADDR...]")
+        ->allow_extra_args(false);
+    sub->add_option("--token-hold-us", command->token_hold_us,
+                    "With --masters: how long each further master holds the token, in "
+                    "microseconds (at least the 33-bit sync pause)")
+        ->check(whole_number(0, 1'000'000))
+        ->default_str("100");
     sub->add_option("--start", command->start,
                     "Time of the first telegram, seconds since the epoch (UTC), 0 to 2147483647; "
                     "the session must end by 2038-01-19T03:14:07Z, the last time pcap readers "
@@ -526,6 +581,7 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         command->baud_given = sub->count("--baud") > 0;
         command->link_type_given = sub->count("--linktype") > 0;
         command->master_given = sub->count("--master") > 0;
+        command->token_hold_given = sub->count("--token-hold-us") > 0;
         exit_code = run_simulate(*command);
     });
 }

@@ -105,7 +105,39 @@ constexpr FaultInfo kFaults[] = {
      false,
      false,
      Protocol::Vlt2000},
+    {FaultKind::StationLost, std::nullopt, "station_lost", false},
+    {FaultKind::Resync, std::nullopt, "resync", false},
+    {FaultKind::AnswerNotAsked, std::nullopt, "answer_not_asked", false},
+    {FaultKind::AnswerWrongKind, std::nullopt, "answer_wrong_kind", false},
+    {FaultKind::AnswerShortAck, std::nullopt, "answer_short_ack", false},
+    {FaultKind::DiagFault, std::nullopt, "diag_fault", false},
+    {FaultKind::Repeats, std::nullopt, "repeats", false},
+    {FaultKind::Refusal, std::nullopt, "refusal", false},
 };
+
+// The bus-health faults' descriptions, in enum order from StationLost.
+constexpr std::string_view kBusHealthDescriptions[] = {
+    "a slave stops answering for 5 cycles (the master repeats each poll once, then polls "
+    "Slave_Diag instead of Data_Exchange), then answers again and is parameterised anew "
+    "(Slave_Diag, Set_Prm, Chk_Cfg, Slave_Diag): one lost event, one return, one resync",
+    "a slave answers a Data_Exchange with DH (diagnosis), its Slave_Diag shows "
+    "Station_Not_Ready and Prm_Req, and the master runs Set_Prm and Chk_Cfg again: one resync "
+    "without being lost",
+    "a slave sends its Data_Exchange response a second time when nothing waits for it: one "
+    "illegal answer 'not asked'",
+    "the master checks a slave with FDL_Status and it answers with data (SD2): one illegal "
+    "answer 'wrong kind'",
+    "a slave answers a Data_Exchange with a short acknowledge instead of its inputs: one "
+    "illegal answer 'short acknowledge where data was due'",
+    "a slave answers a Data_Exchange with DH, and the master's Slave_Diag that follows shows "
+    "Ext_Diag with a device-related block: one diagnosis fault",
+    "a response lost twice: the master repeats the request twice with the same FCB (retry limit "
+    "2 or more) and the third try is answered: max repeats per cycle 2",
+    "a slave refuses a Data_Exchange with RS (SD1, service not activated): one negative answer "
+    "(refusal)",
+};
+static_assert(std::size(kBusHealthDescriptions) ==
+              kFaultKindCount - static_cast<std::size_t>(FaultKind::StationLost));
 
 // One entry per fault kind, in enum order; a name either from the finding catalogue or its own.
 constexpr bool faults_in_enum_order() {
@@ -186,6 +218,27 @@ std::string fault_kind_names(Protocol bus, bool with_alias) {
         if (with_alias && kind == FaultKind::FcsError) names += " (alias bad_fcs)";
     }
     return names;
+}
+
+std::string_view fault_kind_description(FaultKind kind) {
+    const auto index = static_cast<std::size_t>(kind);
+    const auto first = static_cast<std::size_t>(FaultKind::StationLost);
+    if (index >= first && index < kFaultKindCount) return kBusHealthDescriptions[index - first];
+    if (auto finding = fault_finding_kind(kind)) return finding_rule_text(*finding);
+    if (kind == FaultKind::Garbage) return "junk bytes between telegrams";
+    return {};
+}
+
+std::string bus_health_fault_help() {
+    std::string help;
+    for (auto i = static_cast<std::size_t>(FaultKind::StationLost); i < kFaultKindCount; ++i) {
+        const auto kind = static_cast<FaultKind>(i);
+        if (!help.empty()) help += "; ";
+        help += fault_kind_name(kind);
+        help += ": ";
+        help += fault_kind_description(kind);
+    }
+    return help;
 }
 
 bool fault_needs_spontaneous_messages(FaultKind kind) noexcept {

@@ -57,6 +57,15 @@ enum class FaultKind : std::uint8_t {
     Vlt2000CommandFailed,        // VLT 2000: a reply with decimal position 9 and a reason code
     Vlt2000ChecksumError,        // VLT 2000: one telegram's checksum is wrong
     Vlt2000ChecksumDisabled,     // VLT 2000: a drive's telegrams carry "??" as checksum
+    // Bus-health faults (PROFIBUS DP link layer; docs/bus-health.md):
+    StationLost,      // a slave silent for kStationLostCycles cycles, then re-parameterised
+    Resync,           // a slave leaves data exchange (DH, Prm_Req) and is parameterised again
+    AnswerNotAsked,   // a slave sends its Data_Exchange response twice: the second is not asked
+    AnswerWrongKind,  // the master's FDL_Status answered with data (SD2)
+    AnswerShortAck,   // a Data_Exchange answered with a short acknowledge instead of data
+    DiagFault,        // a Data_Exchange answered DH, the master's Slave_Diag shows Ext_Diag
+    Repeats,          // a response lost twice: the request repeated twice with the same FCB
+    Refusal,          // a Data_Exchange refused with RS (SD1, service not activated)
     Count
 };
 
@@ -83,6 +92,14 @@ bool fault_applies_to_bus(FaultKind kind, Protocol bus) noexcept;
 // The names of the faults a session on `bus` can inject, in catalogue order, ", " between them
 // ("bad_fcs" as "fcs_error (alias bad_fcs)" when `with_alias`).
 std::string fault_kind_names(Protocol bus, bool with_alias = false);
+// The cycles a slave stays silent with the station_lost fault (lost under the default
+// lost_cycles 3); it answers again in the cycle after and is parameterised anew.
+inline constexpr std::uint64_t kStationLostCycles = 5;
+// What a fault does, one line for --help ("a slave silent for 5 cycles, ...").
+std::string_view fault_kind_description(FaultKind kind);
+// The bus-health faults (station_lost .. refusal): their names and descriptions for --help.
+std::string bus_health_fault_help();
+
 // Faults that make a slave send spontaneous messages need a dialect that has them (not ge).
 bool fault_needs_spontaneous_messages(FaultKind kind) noexcept;
 

@@ -22,6 +22,20 @@ std::vector<std::uint8_t> cfg_bytes_of(std::uint8_t ppo_type) {
     }
 }
 
+// Set_Prm's parameter data: lock, watchdog 10 x 10 ms, min TSDR 11 bit times, the ident number,
+// group 0; DPV1_Status_1..3 with DPV1_Enable (bit 7 of the first) for a DP-V1 slave.
+std::vector<std::uint8_t> prm_bytes_of(const SimulatedSlave& config, std::uint16_t ident) {
+    std::vector<std::uint8_t> prm = {
+        0x88, 10, 10, 11, static_cast<std::uint8_t>(ident >> 8), static_cast<std::uint8_t>(ident),
+        0x00};
+    if (config.dialect == Dialect::Profidrive || config.dpv1) {
+        prm.push_back(0x80);
+        prm.push_back(0x00);
+        prm.push_back(0x00);
+    }
+    return prm;
+}
+
 std::vector<SimulatedSlave> slaves_or_default(const SimulatorOptions& options) {
     if (!options.slaves.empty()) return options.slaves;
     return {{3, 1, Dialect::Vlt}, {4, 2, Dialect::Vlt}, {5, 5, Dialect::Vlt}};
@@ -113,16 +127,28 @@ std::int64_t session_span_bound_ns(const SimulatorOptions& options) {
     // A DP-V1 slave adds a DP-V1 request and response per cycle, each at most 255 bytes.
     for (const SimulatedSlave& slave : slaves_or_default(options))
         if (slave.dpv1) cycle_bits += 2 * (255 * 11 + 100);
-    const double cycle_ns =
+    // Bus-health faults: a slave parameterised anew (ten telegrams more) or a second repeat; a
+    // token ring: per further master two tokens, a gap poll, its slot time and the hold.
+    bool health_faults = false;
+    for (const FaultSpec& spec : options.faults)
+        health_faults = health_faults || spec.kind >= FaultKind::StationLost;
+    if (health_faults) cycle_bits += slaves * 10 * kTelegramBits;
+    const double ring = static_cast<double>(options.ring_masters.size());
+    cycle_bits += ring * (3 * kTelegramBits + 100);
+    double cycle_ns =
         std::max(static_cast<double>(options.cycle_us) * 1e3, cycle_bits * 1e9 / baud);
+    cycle_ns += ring * std::max(static_cast<double>(options.token_hold_us) * 1e3, 40 * 1e9 / baud);
     // Every cycle writes one telegram at least (the token).
     double cycles = static_cast<double>(options.cycles);
     if (options.max_telegrams != 0 &&
         (options.cycles == 0 || options.max_telegrams < options.cycles))
         cycles = static_cast<double>(options.max_telegrams);
     // After a time-out fault the session runs on until the master has given up, plus ten cycles.
-    const double tail_ns = static_cast<double>(options.master_give_up_ms) * 1e6 +
-                           static_cast<double>(options.cycle_us) * 1e4 + cycle_ns;
+    // A slave lost (station_lost) in the last cycle is silent, then parameterised anew, after it.
+    const double tail_ns =
+        static_cast<double>(options.master_give_up_ms) * 1e6 +
+        static_cast<double>(options.cycle_us) * 1e4 + cycle_ns +
+        (health_faults ? static_cast<double>(kStationLostCycles + 1) * cycle_ns : 0.0);
     const double span = start_up_bits * 1e9 / baud + cycles * cycle_ns + tail_ns;
     constexpr double kLargest = 9.2e18;  // below the largest int64 (9.22e18)
     return span >= kLargest ? std::numeric_limits<std::int64_t>::max()
@@ -189,6 +215,18 @@ Simulator::Simulator(SimulatorOptions options)
         highest = std::max(highest, config.address);
     }
     gap_address_ = static_cast<std::uint8_t>(std::min(highest + 1, 125));
+    if (!options_.ring_masters.empty()) {
+        for (int tries = 0; tries < 126 && address_in_use(gap_address_); ++tries)
+            gap_address_ = static_cast<std::uint8_t>(gap_address_ >= 125 ? 1 : gap_address_ + 1);
+        for (std::uint8_t ring_master : options_.ring_masters) {
+            std::uint8_t gap = ring_master;
+            for (int tries = 0; tries < 126; ++tries) {
+                gap = static_cast<std::uint8_t>(gap >= 125 ? 1 : gap + 1);
+                if (!address_in_use(gap)) break;
+            }
+            ring_gap_addresses_.push_back(gap);
+        }
+    }
     // Faults given without a cycle or rate happen once, at a cycle the seed picks.
     for (FaultSpec& spec : options_.faults) {
         if (spec.rate == 0 && !spec.cycle) {
@@ -255,8 +293,9 @@ bool Simulator::next(std::vector<std::uint8_t>& bytes, std::int64_t& time_ns) {
             recording_ = options_.record_start_up;
             generate_start_up();
             recording_ = true;
-        } else if (options_.cycles == 0 ? options_.max_telegrams != 0
-                                        : cycle_ < options_.cycles || now_ < hold_open_until_) {
+        } else if (options_.cycles == 0
+                       ? options_.max_telegrams != 0
+                       : cycle_ < options_.cycles || now_ < hold_open_until_ || recovering_ > 0) {
             generate_cycle();
         } else {
             return false;
@@ -305,11 +344,7 @@ void Simulator::generate_start_up() {
         slave.fcb = true;  // the first SRD after FDL_Status carries FCB = 1, FCV = 1
         request(sap::kSlaveDiag, {}, FdlFunction::SrdHigh);
         response(sap::kSlaveDiag, {0x02, 0x05, 0x00, kNoMasterAddress, ident_hi, ident_lo});
-        std::vector<std::uint8_t> prm = {0x88, 10, 10, 11, ident_hi, ident_lo, 0x00};
-        // DPV1_Status_1..3: DPV1_Enable (bit 7 of the first) for a DP-V1 slave.
-        if (slave.config.dialect == Dialect::Profidrive || slave.config.dpv1)
-            prm.insert(prm.end(), {0x80, 0x00, 0x00});
-        request(sap::kSetPrm, prm, FdlFunction::SrdHigh);
+        request(sap::kSetPrm, prm_bytes_of(slave.config, slave.ident), FdlFunction::SrdHigh);
         short_ack();
         request(sap::kChkCfg, cfg_bytes_of(slave.config.ppo_type), FdlFunction::SrdHigh);
         short_ack();
@@ -320,6 +355,10 @@ void Simulator::generate_start_up() {
     emit(build_telegram({kBroadcastAddress, master, request_fc(FdlFunction::SdnHigh),
                          sap::kGlobalControl, sap::kMaster, Bytes(operate)}),
          100);
+    if (!options_.ring_masters.empty()) {
+        pass_token_ring();
+        return;
+    }
     std::vector<std::uint8_t> token;
     append_token(token, master, master);
     emit(std::move(token), 40);
@@ -379,22 +418,18 @@ void Simulator::generate_cycle() {
         exchange(i);
     // Acyclic services after the cyclic exchanges: parameter access with each DP-V1 slave.
     for (std::size_t i = 0; i < slaves_.size(); ++i)
-        if (slaves_[i].dpv1) parameter_access(i);
+        if (slaves_[i].dpv1 && slaves_[i].silent == 0 && !slaves_[i].reparameterise)
+            parameter_access(i);
     const std::uint8_t master = options_.master;
     if (cycle_ % 100 == 99) {
         // Gap maintenance: ask the next address whether a station appeared (nobody answers).
         emit(build_telegram({gap_address_, master, request_fc(FdlFunction::FdlStatus), {}, {}, {}}),
              60);
         advance(bit_ns(100));  // slot time expires
-        // The next address nobody uses (the master and the slaves are on the bus).
-        auto in_use = [&](std::uint8_t address) {
-            if (address == master) return true;
-            return std::any_of(slaves_.begin(), slaves_.end(),
-                               [&](const Slave& slave) { return slave.config.address == address; });
-        };
+        // The next address nobody uses (the masters and the slaves are on the bus).
         for (int tries = 0; tries < 126; ++tries) {
             gap_address_ = static_cast<std::uint8_t>(gap_address_ >= 125 ? 1 : gap_address_ + 1);
-            if (!in_use(gap_address_)) break;
+            if (!address_in_use(gap_address_)) break;
         }
     }
     if (cycle_ % 250 == 249) {
@@ -403,12 +438,115 @@ void Simulator::generate_cycle() {
                              sap::kGlobalControl, sap::kMaster, Bytes(operate)}),
              60);
     }
-    std::vector<std::uint8_t> token;
-    append_token(token, master, master);
-    emit(std::move(token), 40);
+    if (options_.ring_masters.empty()) {
+        std::vector<std::uint8_t> token;
+        append_token(token, master, master);
+        emit(std::move(token), 40);
+    } else {
+        pass_token_ring();
+    }
     const std::int64_t cycle_ns = static_cast<std::int64_t>(options_.cycle_us) * 1000;
     if (now_ - cycle_start < cycle_ns) advance(cycle_ns - (now_ - cycle_start));
     ++cycle_;
+}
+
+bool Simulator::address_in_use(std::uint8_t address) const {
+    if (address == options_.master) return true;
+    if (std::find(options_.ring_masters.begin(), options_.ring_masters.end(), address) !=
+        options_.ring_masters.end())
+        return true;
+    return std::any_of(slaves_.begin(), slaves_.end(),
+                       [&](const Slave& slave) { return slave.config.address == address; });
+}
+
+void Simulator::pass_token_ring() {
+    const std::int64_t hold_ns = std::max<std::int64_t>(std::int64_t{options_.token_hold_us} * 1000,
+                                                        bit_ns(40));  // at least the sync pause
+    std::uint8_t holder = options_.master;
+    for (std::size_t i = 0; i < options_.ring_masters.size(); ++i) {
+        const std::uint8_t next = options_.ring_masters[i];
+        std::vector<std::uint8_t> token;
+        append_token(token, next, holder);
+        if (i == 0) {
+            emit(std::move(token), 40);
+        } else {
+            emit_after(std::move(token), 0);  // the previous holder's hold ends now
+        }
+        const std::int64_t received = now_;
+        // Gap maintenance now and then: is there a new station at the next free address?
+        if (cycle_ % 20 == 10) {
+            std::uint8_t& gap = ring_gap_addresses_[i];
+            emit(build_telegram({gap, next, request_fc(FdlFunction::FdlStatus), {}, {}, {}}), 60);
+            advance(bit_ns(100));  // slot time expires
+            for (int tries = 0; tries < 126; ++tries) {
+                gap = static_cast<std::uint8_t>(gap >= 125 ? 1 : gap + 1);
+                if (!address_in_use(gap)) break;
+            }
+        }
+        if (now_ - received < hold_ns) advance(hold_ns - (now_ - received));
+        holder = next;
+    }
+    std::vector<std::uint8_t> token;
+    append_token(token, options_.master, holder);
+    emit_after(std::move(token), 0);
+}
+
+void Simulator::request_srd(Slave& slave, std::optional<std::uint8_t> dsap,
+                            std::vector<std::uint8_t> du) {
+    TelegramSpec spec{slave.config.address,
+                      options_.master,
+                      request_fc(FdlFunction::SrdHigh, slave.fcb, true),
+                      dsap,
+                      dsap ? std::optional<std::uint8_t>(sap::kMaster) : std::nullopt,
+                      Bytes(du)};
+    emit(build_telegram(spec), 60 + random(40));
+}
+
+void Simulator::answer_sd2(Slave& slave, std::optional<std::uint8_t> ssap,
+                           std::vector<std::uint8_t> du, FdlStatus status) {
+    TelegramSpec spec{options_.master,
+                      slave.config.address,
+                      response_fc(status),
+                      ssap ? std::optional<std::uint8_t>(sap::kMaster) : std::nullopt,
+                      ssap,
+                      Bytes(du)};
+    emit(build_telegram(spec), 30 + random(70));
+    slave.fcb = !slave.fcb;
+}
+
+void Simulator::answer_short_ack(Slave& slave) {
+    std::vector<std::uint8_t> ack;
+    append_short_ack(ack);
+    emit(std::move(ack), 30 + random(70));
+    slave.fcb = !slave.fcb;
+}
+
+void Simulator::silent_poll(std::size_t index) {
+    // A lost slave: the master asks for its diagnosis instead of exchanging data, repeats the
+    // request once (retry limit 1) and hears nothing.
+    Slave& slave = slaves_[index];
+    request_srd(slave, sap::kSlaveDiag, {});
+    advance(bit_ns(100));  // slot time expires
+    request_srd(slave, sap::kSlaveDiag, {});
+    advance(bit_ns(100));
+    slave.fcb = !slave.fcb;
+    if (--slave.silent == 0) slave.reparameterise = true;
+}
+
+void Simulator::parameterise_again(std::size_t index) {
+    // The slave answers the master's Slave_Diag: not parameterised (Station_Not_Ready, Prm_Req,
+    // no master); the master parameterises and configures it, and checks its diagnosis again.
+    Slave& slave = slaves_[index];
+    const auto ident_hi = static_cast<std::uint8_t>(slave.ident >> 8);
+    const auto ident_lo = static_cast<std::uint8_t>(slave.ident);
+    request_srd(slave, sap::kSlaveDiag, {});
+    answer_sd2(slave, sap::kSlaveDiag, {0x02, 0x05, 0x00, kNoMasterAddress, ident_hi, ident_lo});
+    request_srd(slave, sap::kSetPrm, prm_bytes_of(slave.config, slave.ident));
+    answer_short_ack(slave);
+    request_srd(slave, sap::kChkCfg, cfg_bytes_of(slave.config.ppo_type));
+    answer_short_ack(slave);
+    request_srd(slave, sap::kSlaveDiag, {});
+    answer_sd2(slave, sap::kSlaveDiag, {0x00, 0x0C, 0x00, options_.master, ident_hi, ident_lo});
 }
 
 void Simulator::arm_faults() {
@@ -506,6 +644,17 @@ void Simulator::exchange(std::size_t index) {
     Slave& slave = slaves_[index];
     const std::uint8_t master = options_.master;
     const std::uint8_t address = slave.config.address;
+    if (slave.silent > 0) {
+        silent_poll(index);
+        return;
+    }
+    if (slave.reparameterise) {
+        // Back from station_lost: it answers the master's Slave_Diag again.
+        parameterise_again(index);
+        slave.reparameterise = false;
+        --recovering_;
+        return;
+    }
     if (inject(FaultKind::Garbage, index)) {
         std::vector<std::uint8_t> junk(3 + random(10));
         for (std::uint8_t& b : junk) {
@@ -513,6 +662,16 @@ void Simulator::exchange(std::size_t index) {
             if (is_start_delimiter(b) || b == kEndDelimiter) b ^= 0x01;
         }
         emit(std::move(junk), 20);
+    }
+    if (inject(FaultKind::AnswerWrongKind, index)) {
+        // The master checks the station with FDL_Status; the slave answers with data.
+        emit(build_telegram({address, master, request_fc(FdlFunction::FdlStatus), {}, {}, {}}),
+             60 + random(40));
+        std::vector<std::uint8_t> data = {0x0F, 0x07};
+        emit(
+            build_telegram({master, address, response_fc(FdlStatus::DataLow), {}, {}, Bytes(data)}),
+            30 + random(70));
+        slave.fcb = true;  // the first SRD after FDL_Status carries FCB = 1
     }
     SlaveEnvironment environment(*this, index);
     if (slave.channel) slave.channel->master_step(environment);
@@ -563,6 +722,7 @@ void Simulator::exchange(std::size_t index) {
     enum class Fate { Delivered, Lost, BadFcs, Truncated };
     Fate first = Fate::Delivered;
     bool retry_lost = false;
+    bool second_retry = false;  // repeats: the first repeat is lost too
     if (inject(FaultKind::FdlRetry, index)) {
         first = Fate::Lost;
     } else if (inject(FaultKind::FdlNoResponse, index)) {
@@ -572,10 +732,66 @@ void Simulator::exchange(std::size_t index) {
         first = Fate::BadFcs;
     } else if (inject(FaultKind::MalformedTelegram, index)) {
         first = Fate::Truncated;
+    } else if (inject(FaultKind::StationLost, index)) {
+        // Silent from now on for kStationLostCycles cycles, this one included.
+        first = Fate::Lost;
+        retry_lost = true;
+        slave.silent = kStationLostCycles - 1;
+        slave.reparameterise = slave.silent == 0;
+        ++recovering_;
+    } else if (inject(FaultKind::Repeats, index)) {
+        first = Fate::Lost;
+        second_retry = true;
+    }
+    // What the slave answers when its response gets through.
+    enum class Answer { Data, ShortAck, Refusal, DataHigh };
+    Answer answer = Answer::Data;
+    bool resync = false;
+    bool answer_twice = false;
+    if (first == Fate::Delivered) {
+        if (inject(FaultKind::AnswerShortAck, index)) {
+            answer = Answer::ShortAck;
+        } else if (inject(FaultKind::Refusal, index)) {
+            answer = Answer::Refusal;
+        } else if (inject(FaultKind::Resync, index)) {
+            answer = Answer::DataHigh;
+            resync = true;
+        } else if (inject(FaultKind::DiagFault, index)) {
+            answer = Answer::DataHigh;
+        } else if (inject(FaultKind::AnswerNotAsked, index)) {
+            answer_twice = true;
+        }
     }
     bool delivered = true;
     switch (first) {
-        case Fate::Delivered: emit(response_bytes, 30 + random(70)); break;
+        case Fate::Delivered:
+            switch (answer) {
+                case Answer::Data: emit(response_bytes, 30 + random(70)); break;
+                case Answer::ShortAck: {
+                    std::vector<std::uint8_t> ack;
+                    append_short_ack(ack);
+                    emit(std::move(ack), 30 + random(70));
+                    delivered = false;
+                    break;
+                }
+                case Answer::Refusal:
+                    emit(build_telegram(
+                             {master, address, response_fc(FdlStatus::NoService), {}, {}, {}}),
+                         30 + random(70));
+                    delivered = false;
+                    break;
+                case Answer::DataHigh:
+                    emit(build_telegram({master,
+                                         address,
+                                         response_fc(FdlStatus::DataHigh),
+                                         {},
+                                         {},
+                                         Bytes(input)}),
+                         30 + random(70));
+                    break;
+            }
+            if (answer_twice) emit(response_bytes, 30 + random(70));
+            break;
         case Fate::Lost: advance(bit_ns(100)); break;  // slot time expires
         case Fate::BadFcs: {
             std::vector<std::uint8_t> bad = response_bytes;
@@ -589,6 +805,10 @@ void Simulator::exchange(std::size_t index) {
             break;
         }
     }
+    if (second_retry) {
+        emit(request_bytes, 40 + random(30));  // the first repeat, lost as well
+        advance(bit_ns(100));
+    }
     if (first != Fate::Delivered) {
         emit(request_bytes, 40 + random(30));  // retry: same telegram, same FCB
         if (retry_lost) {
@@ -600,6 +820,20 @@ void Simulator::exchange(std::size_t index) {
     }
     if (slave.channel) slave.channel->master_sees_response(delivered);
     slave.fcb = !slave.fcb;
+    if (answer == Answer::DataHigh) {
+        // Diagnosis pending: the master asks for it before the next Data_Exchange.
+        if (resync) {
+            // The slave left data exchange (a watchdog, a restart): parameterised again.
+            parameterise_again(index);
+        } else {
+            const auto ident_hi = static_cast<std::uint8_t>(slave.ident >> 8);
+            const auto ident_lo = static_cast<std::uint8_t>(slave.ident);
+            request_srd(slave, sap::kSlaveDiag, {});
+            // Ext_Diag with a device-related block (header: length 3, two bytes).
+            answer_sd2(slave, sap::kSlaveDiag,
+                       {0x08, 0x0C, 0x00, master, ident_hi, ident_lo, 0x03, 0x01, 0x00});
+        }
+    }
 
     // Process data: the drive ramps toward the reference; the reference moves now and then.
     if (slave.actual < slave.reference)

@@ -57,6 +57,13 @@ struct SimulatorOptions {
     std::uint32_t master_give_up_ms = 1500;  // the master abandons an unanswered request
     bool record_start_up = true;             // false: the capture begins with the first cycle
     std::vector<FaultSpec> faults;
+    // A token ring: further active masters (not the DP master). The DP master passes the token
+    // at the end of its cycle to the first, each holds it for token_hold_us (and now and then
+    // gap-polls a free address) and passes it on; the last passes it back to the DP master. Every
+    // master's token rotation is then max(cycle_us, the cycle's work). Empty: the DP master passes
+    // the token to itself (the bytes of a session without a ring are unchanged).
+    std::vector<std::uint8_t> ring_masters;
+    std::uint32_t token_hold_us = 100;
 };
 
 // An error when `options` cannot inject one of its faults, saying why (a slave that is not
@@ -104,6 +111,9 @@ class Simulator {
         // Process data.
         std::uint16_t reference = 0x2000;
         std::uint16_t actual = 0;
+        // station_lost: cycles it stays silent still; then re-parameterised in the next cycle.
+        std::uint64_t silent = 0;
+        bool reparameterise = false;
     };
     class SlaveEnvironment;  // a slave's ChannelEnvironment: the session's random numbers etc.
 
@@ -121,6 +131,16 @@ class Simulator {
     void exchange(std::size_t index);
     void parameter_access(std::size_t index);  // one DP-V1 request and response, if any
     void arm_faults();
+    // Bus-health faults: a slave that is silent (station_lost) or is parameterised anew.
+    void silent_poll(std::size_t index);
+    void parameterise_again(std::size_t index);
+    void request_srd(Slave& slave, std::optional<std::uint8_t> dsap, std::vector<std::uint8_t> du);
+    void answer_sd2(Slave& slave, std::optional<std::uint8_t> ssap, std::vector<std::uint8_t> du,
+                    FdlStatus status = FdlStatus::DataLow);
+    void answer_short_ack(Slave& slave);
+    // The token ring after the DP master's cycle (options_.ring_masters not empty).
+    void pass_token_ring();
+    bool address_in_use(std::uint8_t address) const;
     // Takes a fault of this kind armed for this slave and records its injection; false when
     // none is armed. Asked for several kinds in every exchange and almost always false: the
     // test is inline, the taking is not.
@@ -159,6 +179,8 @@ class Simulator {
     bool started_ = false;
     bool recording_ = true;
     std::uint8_t gap_address_;
+    std::vector<std::uint8_t> ring_gap_addresses_;  // each further master's next gap address
+    std::uint64_t recovering_ = 0;  // slaves silent or waiting to be parameterised anew
 };
 
 }  // namespace dpscope

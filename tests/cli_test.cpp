@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <pcap/pcap.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <random>
 #include <regex>
@@ -808,6 +809,47 @@ TEST(CliTest, SimulateCountLimitsTheTelegrams) {
     CommandResult r = run_dpscope({"simulate", "-w", file.path, "-c", "40"});
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(records_in(file.path), 40u);
+}
+
+TEST(CliTest, SimulateTokenRing) {
+    TempFile file("ring.pcap");
+    CommandResult r = run_dpscope({"simulate", "-w", file.path, "--cycles", "10", "--masters",
+                                   "1,9", "--token-hold-us", "300"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    // Per cycle two tokens more than with one master (3 passes instead of 1), also at start-up.
+    CommandResult alone = run_dpscope({"simulate", "-w", "-", "-F", "hex", "--cycles", "10"});
+    CommandResult ring =
+        run_dpscope({"simulate", "-w", "-", "-F", "hex", "--cycles", "10", "--masters", "1,9"});
+    ASSERT_EQ(alone.exit_code, 0) << alone.err;
+    ASSERT_EQ(ring.exit_code, 0) << ring.err;
+    auto lines = [](const std::string& text) {
+        return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+    };
+    EXPECT_EQ(lines(ring.out), lines(alone.out) + 2 * 11);
+
+    auto error_of = [](std::vector<std::string> args) {
+        std::vector<std::string> full = {"simulate", "-w", "-"};
+        full.insert(full.end(), args.begin(), args.end());
+        CommandResult result = run_dpscope(full);
+        EXPECT_EQ(result.exit_code, 2) << result.err;
+        EXPECT_TRUE(result.out.empty());
+        return result.err;
+    };
+    EXPECT_EQ(error_of({"--masters", "2"}),
+              "dpscope: error: --masters: 2 is the DP master (--master)\n");
+    EXPECT_EQ(error_of({"--masters", "4"}), "dpscope: error: --masters: 4 is a slave's address\n");
+    EXPECT_EQ(error_of({"--slave", "9:1", "--masters", "9"}),
+              "dpscope: error: --masters: 9 is a slave's address\n");
+    EXPECT_EQ(error_of({"--masters", "1,7,1"}), "dpscope: error: --masters: 1 is given twice\n");
+    EXPECT_EQ(error_of({"--token-hold-us", "50"}),
+              "dpscope: error: --token-hold-us: only with --masters (the masters that hold the "
+              "token)\n");
+    EXPECT_EQ(error_of({"--bus", "fc", "--masters", "1"}),
+              "dpscope: error: --masters: a token ring is PROFIBUS; leave --masters out with --bus "
+              "fc\n");
+    EXPECT_NE(error_of({"--masters", "127"}).find("--masters"), std::string::npos);
+    EXPECT_NE(error_of({"--masters", "1", "--token-hold-us", "1000001"}).find("--token-hold-us"),
+              std::string::npos);
 }
 
 TEST(CliTest, SimulateUsageErrors) {

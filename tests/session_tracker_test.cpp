@@ -161,6 +161,17 @@ const FaultScenario kFaultScenarios[] = {
     FaultScenario{"fdl_retry", 120, {{"fdl_no_response", 1}, {"fdl_retry", 1}}},
     // No reply to the request nor to its retry; the next telegram also finds one missing.
     FaultScenario{"fdl_no_response", 120, {{"fdl_no_response", 2}, {"fdl_retry", 1}}},
+    // Bus-health faults (docs/bus-health.md), judged by the BusHealthTracker: the session tracker
+    // sees only their missing responses. station_lost: five polls and their repeats unanswered.
+    FaultScenario{"station_lost", 120, {{"fdl_no_response", 10}, {"fdl_retry", 5}}},
+    FaultScenario{"resync", 120, {}},
+    FaultScenario{"answer_not_asked", 120, {}},
+    FaultScenario{"answer_wrong_kind", 120, {}},
+    FaultScenario{"answer_short_ack", 120, {}},
+    FaultScenario{"diag_fault", 120, {}},
+    // Two responses lost: each repeat is an fdl_retry, each loss an fdl_no_response.
+    FaultScenario{"repeats", 120, {{"fdl_no_response", 2}, {"fdl_retry", 2}}},
+    FaultScenario{"refusal", 120, {}},
     // DP-V1 parameter access (the simulator's DP-V1 traffic): each fault yields its own finding.
     FaultScenario{"dpv1_stacked_request", 120, {{"dpv1_stacked_request", 1}}},
     FaultScenario{"dpv1_reference_mismatch", 120, {{"dpv1_reference_mismatch", 1}}},

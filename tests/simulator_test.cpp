@@ -466,7 +466,10 @@ TEST(SimulatorTest, ParseFaultSpecInvalid) {
         << unknown;
     EXPECT_NE(unknown.find("fdl_no_response, dpv1_stacked_request, "), std::string::npos)
         << unknown;
-    EXPECT_NE(unknown.find(", dpv1_error_pdu)"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find(", dpv1_error_pdu, station_lost, resync, answer_not_asked, "
+                           "answer_wrong_kind, answer_short_ack, diag_fault, repeats, refusal)"),
+              std::string::npos)
+        << unknown;
     EXPECT_EQ(unknown.find("fc_"), std::string::npos) << unknown;
     EXPECT_EQ(unknown.find("vlt2000_"), std::string::npos) << unknown;
     Result<FaultSpec> fc = parse_fault_spec("nonsense", Protocol::Fc);
@@ -598,6 +601,93 @@ TEST(SimulatorTest, EveryFaultKindIsInjectedExactlyOnce) {
             EXPECT_LE(injection.telegram, telegrams.size());
         }
     }
+}
+
+// station_lost: silent for kStationLostCycles cycles (a Data_Exchange and its repeat, then
+// Slave_Diag and its repeat, unanswered), then Slave_Diag, Set_Prm, Chk_Cfg, Slave_Diag answered.
+TEST(SimulatorTest, StationLostIsSilentThenParameterisedAnew) {
+    SimulatorOptions options = small_session(3, 30);
+    options.record_start_up = false;
+    options.slaves = {{3, 3, Dialect::Vlt}};
+    options.faults = {FaultSpec{FaultKind::StationLost, 0, 5, 3}};
+    std::vector<Telegram> telegrams = run(options);
+    // Per cycle: Data_Exchange request and response, the token.
+    std::size_t first = 5 * 3;
+    ASSERT_GT(telegrams.size(), first + 30);
+    auto is_request_to_3 = [](const Telegram& t) {
+        return t.bytes.size() > 6 && t.bytes[0] == 0x68 && (t.bytes[4] & 0x7F) == 0x03 &&
+               (t.bytes[6] & 0x40) != 0;
+    };
+    auto is_token = [](const Telegram& t) { return t.bytes.size() == 3 && t.bytes[0] == 0xDC; };
+    // Cycle 5: the Data_Exchange and its repeat (same bytes), then the token.
+    EXPECT_TRUE(is_request_to_3(telegrams[first]));
+    EXPECT_EQ(telegrams[first].bytes, telegrams[first + 1].bytes);
+    EXPECT_TRUE(is_token(telegrams[first + 2]));
+    // Cycles 6 to 9: Slave_Diag (DSAP 60) and its repeat, then the token.
+    for (std::size_t cycle = 0; cycle < kStationLostCycles - 1; ++cycle) {
+        const std::size_t at = first + 3 + 3 * cycle;
+        ASSERT_TRUE(is_request_to_3(telegrams[at])) << cycle;
+        EXPECT_EQ(telegrams[at].bytes[7], sap::kSlaveDiag);
+        EXPECT_EQ(telegrams[at].bytes, telegrams[at + 1].bytes);
+        EXPECT_TRUE(is_token(telegrams[at + 2]));
+        if (cycle > 0) {  // FCB toggles from poll to poll
+            EXPECT_NE(telegrams[at].bytes[6], telegrams[at - 3].bytes[6]);
+        }
+    }
+    // Cycle 10: Slave_Diag answered, Set_Prm, Chk_Cfg (short acknowledges), Slave_Diag answered.
+    const std::size_t back = first + 3 + 3 * (kStationLostCycles - 1);
+    const std::uint8_t dsaps[] = {sap::kSlaveDiag, sap::kSetPrm, sap::kChkCfg, sap::kSlaveDiag};
+    for (std::size_t i = 0; i < 4; ++i) {
+        ASSERT_TRUE(is_request_to_3(telegrams[back + 2 * i])) << i;
+        EXPECT_EQ(telegrams[back + 2 * i].bytes[7], dsaps[i]);
+        if (i == 1 || i == 2) {
+            EXPECT_EQ(telegrams[back + 2 * i + 1].bytes, std::vector<std::uint8_t>{0xE5});
+        } else {
+            EXPECT_EQ(telegrams[back + 2 * i + 1].bytes[0], 0xA2);  // SD3: 2 SAPs, 6 bytes
+        }
+    }
+    // The first diagnosis: Station_Not_Ready, Prm_Req, no master.
+    EXPECT_EQ(telegrams[back + 1].bytes[6], 0x02);
+    EXPECT_EQ(telegrams[back + 1].bytes[7], 0x05);
+    EXPECT_EQ(telegrams[back + 1].bytes[9], 0xFF);
+    EXPECT_TRUE(is_token(telegrams[back + 8]));
+    // Cycle 11: Data_Exchange again, answered.
+    EXPECT_TRUE(is_request_to_3(telegrams[back + 9]));
+    EXPECT_EQ(telegrams[back + 10].bytes[0], 0x68);
+    EXPECT_EQ(telegrams[back + 10].bytes[5], 0x03);  // from slave 3
+}
+
+TEST(SimulatorTest, TokenRingPassesThroughEveryMaster) {
+    SimulatorOptions options = small_session(3, 40);
+    options.ring_masters = {1, 9};
+    options.token_hold_us = 250;
+    std::vector<Telegram> telegrams = run(options);
+    std::vector<std::pair<std::uint8_t, std::uint8_t>> tokens;  // (to, from)
+    for (const Telegram& t : telegrams)
+        if (t.bytes.size() == 3 && t.bytes[0] == 0xDC) tokens.emplace_back(t.bytes[1], t.bytes[2]);
+    ASSERT_EQ(tokens.size(), 3u * 41);  // start-up and every cycle
+    for (std::size_t i = 0; i < tokens.size(); i += 3) {
+        EXPECT_EQ(tokens[i], std::make_pair(std::uint8_t{1}, std::uint8_t{2}));
+        EXPECT_EQ(tokens[i + 1], std::make_pair(std::uint8_t{9}, std::uint8_t{1}));
+        EXPECT_EQ(tokens[i + 2], std::make_pair(std::uint8_t{2}, std::uint8_t{9}));
+    }
+    // The further masters' gap polls (cycle 10 and 30) ask free addresses only.
+    std::size_t gap_polls = 0;
+    for (const Telegram& t : telegrams) {
+        if (t.bytes.size() != 6 || t.bytes[0] != 0x10) continue;
+        if (t.bytes[2] != 1 && t.bytes[2] != 9) continue;  // from a further master
+        ++gap_polls;
+        EXPECT_TRUE(t.bytes[1] != 2 && t.bytes[1] != 1 && t.bytes[1] != 9 &&
+                    (t.bytes[1] < 3 || t.bytes[1] > 5))
+            << int{t.bytes[1]};
+    }
+    EXPECT_EQ(gap_polls, 4u);
+    // Without a ring the session is the one of before: tokens to itself only.
+    SimulatorOptions alone = small_session(3, 40);
+    for (const Telegram& t : run(alone))
+        if (t.bytes.size() == 3 && t.bytes[0] == 0xDC) {
+            EXPECT_EQ(t.bytes[1], t.bytes[2]);
+        }
 }
 
 TEST(SimulatorTest, FaultWithoutCycleHappensOnceAtASeededCycle) {
