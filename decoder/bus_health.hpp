@@ -10,8 +10,8 @@
 #pragma once
 
 #include <array>
-#include <memory>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -35,10 +35,10 @@ std::string_view station_role_name(StationRole role) noexcept;
 
 // A station's state at a moment of the capture.
 enum class StationState : std::uint8_t {
-    Unknown,        // listed (addressed, or heard only answering FDL_Status) with nothing more known
-    Active,         // a master using the token
-    Configuring,    // a slave answering Set_Prm / Chk_Cfg: being parameterised and configured
-    DataExchange,   // a slave answering Data_Exchange
+    Unknown,       // listed (addressed, or heard only answering FDL_Status) with nothing more known
+    Active,        // a master using the token
+    Configuring,   // a slave answering Set_Prm / Chk_Cfg: being parameterised and configured
+    DataExchange,  // a slave answering Data_Exchange
     DiagnosisOnly,  // a slave answering only Slave_Diag (not, or no longer, in data exchange)
     Lost,           // no answer for `lost_cycles` consecutive cycles (a master: token not taken)
 };
@@ -181,14 +181,15 @@ struct StationHealth {
     std::uint64_t telegrams_sent = 0;  // telegrams it sent, short acknowledges included
 
     // As the station asked:
-    std::uint64_t requests = 0;    // requests addressed to it (repeats included, tokens not)
-    std::uint64_t answers = 0;     // responses it gave (short acknowledges included)
-    std::uint64_t no_answers = 0;  // requests that expected a reply and got none
-    std::uint64_t repeats = 0;     // FDL retries: a request repeated with the same FCB
+    std::uint64_t requests = 0;     // requests addressed to it (repeats included, tokens not)
+    std::uint64_t answers = 0;      // responses it gave (short acknowledges included)
+    std::uint64_t no_answers = 0;   // requests that expected a reply and got none
+    std::uint64_t replies_due = 0;  // requests that expected a reply (the no-answer rate's base)
+    std::uint64_t repeats = 0;      // FDL retries: a request repeated with the same FCB
     std::uint64_t max_repeats_per_cycle = 0;  // most repeats of one request
     std::uint64_t lost_events = 0;            // times it became Lost
     std::uint64_t returns = 0;                // times it came back from Lost
-    std::uint64_t resyncs = 0;  // left data exchange and went through Set_Prm/Chk_Cfg again
+    std::uint64_t resyncs = 0;        // left data exchange and went through Set_Prm/Chk_Cfg again
     std::uint64_t diag_requests = 0;  // Slave_Diag requests
     std::uint64_t diag_answers = 0;   // Slave_Diag answers with the diagnosis data
     std::uint64_t diag_faults = 0;    // of those, the ones with a fault bit (DiagFault)
@@ -206,12 +207,14 @@ struct StationHealth {
 
     std::uint64_t illegal_answers_total() const noexcept {
         std::uint64_t n = 0;
-        for (std::uint64_t c : illegal_answers) n += c;
+        for (std::uint64_t c : illegal_answers)
+            n += c;
         return n;
     }
     std::uint64_t negative_answers_total() const noexcept {
         std::uint64_t n = 0;
-        for (std::uint64_t c : negative_answers) n += c;
+        for (std::uint64_t c : negative_answers)
+            n += c;
         return n;
     }
     // Telegrams on its link: requests to it and its answers (the base of the FCS error rate).
@@ -221,11 +224,11 @@ struct StationHealth {
 // A master's figures.
 struct MasterHealth {
     std::uint8_t address = 0;
-    std::uint64_t tokens_received = 0;  // SD4 addressed to it
-    std::uint64_t tokens_passed = 0;    // SD4 it sent
-    std::uint64_t tokens_not_taken = 0; // tokens passed to it after which it sent nothing
-    std::uint64_t requests = 0;         // requests it sent (tokens not counted)
-    std::uint64_t slaves_polled = 0;    // distinct stations it sent Data_Exchange requests to
+    std::uint64_t tokens_received = 0;   // SD4 addressed to it
+    std::uint64_t tokens_passed = 0;     // SD4 it sent
+    std::uint64_t tokens_not_taken = 0;  // tokens passed to it after which it sent nothing
+    std::uint64_t requests = 0;          // requests it sent (tokens not counted)
+    std::uint64_t slaves_polled = 0;     // distinct stations it sent Data_Exchange requests to
     // Token rotation: the time between two tokens addressed to it.
     DurationStats token_rotation;
     TimeSeries token_rotation_series;
@@ -243,14 +246,15 @@ struct MasterHealth {
 // The capture as a whole.
 struct SegmentHealth {
     std::uint64_t telegrams = 0;
-    std::uint64_t bytes = 0;                // bytes in telegrams
-    std::uint64_t damaged = 0;              // bad FCS or malformed
-    std::uint64_t unattributed_damaged = 0; // of those, no station could be named
-    std::int64_t first_ns = kNoTime;        // first telegram's start
-    std::int64_t end_ns = kNoTime;          // last telegram's end (its start when no baud)
-    std::uint32_t baud = 0;                 // the line rate (0: not known)
-    std::uint32_t character_bits = 11;      // UART character on PROFIBUS: 8E1 = 11 bits
-    double busy_ns = 0;                     // time the line carried telegrams (needs baud)
+    std::uint64_t bytes = 0;                 // bytes in telegrams
+    std::uint64_t damaged = 0;               // bad FCS or malformed
+    std::uint64_t unattributed_damaged = 0;  // of those, no station could be named
+    std::uint64_t unasked_short_acks = 0;    // short acknowledges with no request waiting
+    std::int64_t first_ns = kNoTime;         // first telegram's start
+    std::int64_t end_ns = kNoTime;           // last telegram's end (its start when no baud)
+    std::uint32_t baud = 0;                  // the line rate (0: not known)
+    std::uint32_t character_bits = 11;       // UART character on PROFIBUS: 8E1 = 11 bits
+    double busy_ns = 0;                      // time the line carried telegrams (needs baud)
 
     bool has_time() const noexcept { return first_ns != kNoTime && end_ns != kNoTime; }
     double duration_s() const noexcept {
@@ -301,9 +305,11 @@ struct HealthEvent {
 };
 inline constexpr std::uint8_t kSegmentAddress = 0xFF;
 
+class BusHealthTrackerImpl;
+
 struct BusHealthOptions {
     HealthThresholds thresholds;
-    std::uint32_t baud = 0;            // line rate for bus load and idle time (0: unknown)
+    std::uint32_t baud = 0;  // line rate for bus load and idle time (0: unknown)
     std::uint32_t character_bits = 11;
 };
 
@@ -332,6 +338,7 @@ class BusHealthTracker {
     const BusHealthOptions& options() const noexcept { return options_; }
 
   private:
+    friend class BusHealthTrackerImpl;
     struct State;
     BusHealthOptions options_;
     BusHealth health_;
