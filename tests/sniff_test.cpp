@@ -1505,9 +1505,11 @@ TEST(SniffTest, StatsOffATerminalPrintAPlainLinePerHealthEvent) {
 
 TEST(SniffTest, AlarmRunsOncePerKindAndStationWithinTheMinute) {
     PseudoTerminal pty;
-    std::string log = test::temp_path("alarms.log");
+    // Each alarm writes its variables to a file of its own (they may run at the same time).
+    std::string dir = test::temp_path("alarms");
+    std::filesystem::create_directories(dir);
     Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "--alarm",
-                     "{ env | grep ^DPSCOPE_ | sort; echo --; } >> " + log});
+                     "env | grep ^DPSCOPE_ | sort > " + dir + "/alarm.$$"});
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 400;
@@ -1517,25 +1519,25 @@ TEST(SniffTest, AlarmRunsOncePerKindAndStationWithinTheMinute) {
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
     sniffer.signal(SIGINT);
     ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
-    // One block per alarm, each variable once.
+    // One file per alarm, each variable once.
     std::map<std::pair<std::string, std::string>, int> alarms;
-    std::map<std::string, std::string> block;
-    for (const std::string& line : test::lines_of(slurp(log))) {
-        if (line == "--") {
-            ++alarms[{block["DPSCOPE_EVENT"], block["DPSCOPE_STATION"]}];
-            for (const char* name : {"DPSCOPE_ROLE", "DPSCOPE_TIME", "DPSCOPE_FRAME",
-                                     "DPSCOPE_VERDICT", "DPSCOPE_REASONS"})
-                EXPECT_EQ(block.count(name), 1u) << name;
-            block.clear();
-            continue;
+    std::string all;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        std::string text = slurp(entry.path().string());
+        all += text + "--\n";
+        std::map<std::string, std::string> block;
+        for (const std::string& line : test::lines_of(text)) {
+            std::size_t eq = line.find('=');
+            EXPECT_EQ(block.count(line.substr(0, eq)), 0u) << line;
+            block[line.substr(0, eq)] = line.substr(eq + 1);
         }
-        std::size_t eq = line.find('=');
-        block[line.substr(0, eq)] = line.substr(eq + 1);
-        if (line.rfind("DPSCOPE_TIME=", 0) == 0) {
-            EXPECT_EQ(line.back(), 'Z') << line;
-        }
+        ++alarms[{block["DPSCOPE_EVENT"], block["DPSCOPE_STATION"]}];
+        for (const char* name : {"DPSCOPE_ROLE", "DPSCOPE_TIME", "DPSCOPE_FRAME", "DPSCOPE_VERDICT",
+                                 "DPSCOPE_REASONS"})
+            EXPECT_EQ(block.count(name), 1u) << name << "\n" << text;
+        EXPECT_EQ(block["DPSCOPE_TIME"].back(), 'Z') << text;
     }
-    EXPECT_EQ((alarms[{"station_lost", "5"}]), 1) << slurp(log);
+    EXPECT_EQ((alarms[{"station_lost", "5"}]), 1) << all;
     for (const auto& [key, count] : alarms)
         EXPECT_EQ(count, 1) << key.first << " " << key.second;
     // The second loss was held back, and the end says so.
@@ -1545,7 +1547,7 @@ TEST(SniffTest, AlarmRunsOncePerKindAndStationWithinTheMinute) {
         << sniffer.err();
     // -q: the output is the summary; no event lines without --stats.
     EXPECT_EQ(sniffer.out().find(" health: "), std::string::npos) << sniffer.out();
-    std::remove(log.c_str());
+    std::filesystem::remove_all(dir);
 }
 
 TEST(SniffTest, StatsOptionsThatCannotWorkAreUsageErrors) {
