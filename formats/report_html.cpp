@@ -1,6 +1,7 @@
 // The HTML report: one self-contained file with inline SVG.
 #include <iterator>
 
+#include "formats/health_render.hpp"
 #include "formats/report_markup.hpp"
 #include "formats/report_model.hpp"
 
@@ -48,6 +49,8 @@ svg text { font: 11px system-ui, sans-serif; fill: #394150; }
 )";
 
 }  // namespace
+
+std::string_view html_style() { return kHtmlStyle; }
 
 void write_html(const ReportContext& c, const ReportModel& m, Output& out) {
     TextBuffer& b = out.buffer();
@@ -112,6 +115,14 @@ void write_html(const ReportContext& c, const ReportModel& m, Output& out) {
                "<section class=\"bus\" id=\"bus\">\n<h2>Bus (telegrams no station can be "
                "named for)</h2>\n");
         html_findings_by_kind(b, bus_stats(c).findings, bus_stats(c).findings_by_severity);
+        append(b, "</section>\n");
+        out.end_record();
+    }
+
+    if (c.health) {
+        append(b, "<section class=\"bus\" id=\"bus-health\">\n<h2>Bus health</h2>\n");
+        health::html_segment(b, *c.health);
+        health::html_tables(b, *c.health);
         append(b, "</section>\n");
         out.end_record();
     }

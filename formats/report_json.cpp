@@ -1,4 +1,5 @@
 // The JSON report (schema in README.md, stable): one object, the findings all listed.
+#include "formats/health_render.hpp"
 #include "formats/json.hpp"
 #include "formats/report_model.hpp"
 
@@ -78,6 +79,13 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
                     bus_stats(c).findings[static_cast<std::size_t>(kind)]));
     w.end_object();
     w.end_object();
+    if (c.health) {
+        // The same objects as `dpscope stats -T json` ("stats JSON" in README.md).
+        w.key("bus_health").begin_object();
+        health::write_json_members(w, *c.health);
+        w.end_object();
+        out.end_record();
+    }
     w.key("findings").begin_array();
     c.findings->for_each([&](const Finding& f) {
         if (!shows(c, f)) return;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <iterator>
 
+#include "formats/health_render.hpp"
 #include "formats/report_markup.hpp"
 #include "formats/report_model.hpp"
 
@@ -13,6 +14,54 @@ namespace {
 
 // A test case lists at most this many failures; the rest are counted in <system-out>.
 constexpr std::size_t kJunitFailuresPerCase = 10'000;
+
+// The bus-health suite's test cases: the segment, each station, each master; a bad verdict is a
+// failure with the reasons as its message.
+struct HealthCase {
+    std::string name;
+    const Judgement* judgement;
+};
+
+std::vector<HealthCase> health_cases(const BusHealth& h) {
+    std::vector<HealthCase> cases{{"segment", &h.segment.judgement}};
+    for (const StationHealth& s : h.stations)
+        cases.push_back(
+            {fmt::format("station {} ({})", s.address, station_role_name(s.role)), &s.judgement});
+    for (const MasterHealth& master : h.masters)
+        cases.push_back({fmt::format("master {}", master.address), &master.judgement});
+    return cases;
+}
+
+void write_health_suite(const BusHealth& h, const std::vector<HealthCase>& cases, TextBuffer& b) {
+    auto it = std::back_inserter(b);
+    const auto failures = std::count_if(cases.begin(), cases.end(), [](const HealthCase& c) {
+        return c.judgement->verdict == Verdict::Bad;
+    });
+    fmt::format_to(it,
+                   "  <testsuite name=\"bus health\" tests=\"{}\" failures=\"{}\" errors=\"0\" "
+                   "skipped=\"0\">\n",
+                   cases.size(), failures);
+    for (const HealthCase& c : cases) {
+        const Verdict verdict = c.judgement->verdict;
+        fmt::format_to(it, "    <testcase classname=\"dpscope.bus_health\" name=\"{}\"",
+                       xml(c.name));
+        if (verdict == Verdict::Good) {
+            append(b, "/>\n");
+            continue;
+        }
+        const std::string reasons = health::reasons_text(*c.judgement, h.thresholds);
+        if (verdict == Verdict::Bad)
+            fmt::format_to(it,
+                           ">\n      <failure type=\"bus_health\" message=\"{}\">verdict bad: {}"
+                           "</failure>\n    </testcase>\n",
+                           xml(reasons), xml(reasons));
+        else
+            fmt::format_to(it,
+                           ">\n      <system-out>verdict weak: {}</system-out>\n    </testcase>\n",
+                           xml(reasons));
+    }
+    append(b, "  </testsuite>\n");
+}
 
 }  // namespace
 
@@ -96,6 +145,12 @@ void write_junit(const ReportContext& c, const ReportModel& m, Output& out) {
         ++total_tests;
         if (!c.allow_empty) ++total_failed;
     }
+    const std::vector<HealthCase> health =
+        c.health ? health_cases(*c.health) : std::vector<HealthCase>{};
+    total_tests += health.size();
+    total_failed += static_cast<std::size_t>(
+        std::count_if(health.begin(), health.end(),
+                      [](const HealthCase& h) { return h.judgement->verdict == Verdict::Bad; }));
     fmt::format_to(it,
                    "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
                    "<testsuites name=\"dpscope {}\" tests=\"{}\" failures=\"{}\" errors=\"0\">\n",
@@ -182,6 +237,10 @@ void write_junit(const ReportContext& c, const ReportModel& m, Output& out) {
             append(b, "    </testcase>\n");
         }
         append(b, "  </testsuite>\n");
+        out.end_record();
+    }
+    if (c.health) {
+        write_health_suite(*c.health, health, b);
         out.end_record();
     }
     append(b, "</testsuites>\n");

@@ -1,6 +1,7 @@
 // The Markdown report.
 #include <iterator>
 
+#include "formats/health_render.hpp"
 #include "formats/report_markup.hpp"
 #include "formats/report_model.hpp"
 
@@ -41,6 +42,12 @@ void write_markdown(const ReportContext& c, const ReportModel& m, Output& out) {
     if (m.has_bus_findings)
         fmt::format_to(it, "\n### Bus (telegrams no station can be named for)\n\n- Findings: {}\n",
                        md_escape(findings_by_kind_text(bus_stats(c).findings)));
+    if (c.health) {
+        append(b, "\n## Bus health\n\n");
+        health::markdown_segment(b, *c.health);
+        health::markdown_tables(b, *c.health, "###");
+        out.end_record();
+    }
     fmt::format_to(it, "\n## Findings ({})\n\n", m.shown);
     if (m.shown > 0)
         append(b,

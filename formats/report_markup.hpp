@@ -13,6 +13,8 @@
 
 namespace dpscope::report {
 
+// The report's stylesheet (report_html.cpp), also the `dpscope stats` page's.
+std::string_view html_style();
 // Markdown text with \ | * _ ` < > escaped.
 std::string md_escape(std::string_view text);
 // XML/HTML text with & < > " ' escaped.

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <iterator>
 
+#include "formats/health_render.hpp"
 #include "formats/report_model.hpp"
 
 namespace dpscope::report {
@@ -43,6 +44,12 @@ void write_text(const ReportContext& c, const ReportModel& m, Output& out) {
     if (m.has_bus_findings)
         fmt::format_to(it, "\nBus (telegrams no station can be named for)\n  findings       {}\n",
                        findings_by_kind_text(bus_stats(c).findings));
+    if (c.health) {
+        append(b, "\nBus health\n");
+        health::text_segment(b, *c.health, "  ");
+        health::text_tables(b, *c.health);
+        out.end_record();
+    }
     fmt::format_to(it, "\nFindings ({}, in capture order)\n", m.shown);
     // The kind column is as wide as the longest kind name.
     const std::size_t kind_width = longest_finding_kind_name();

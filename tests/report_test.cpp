@@ -38,10 +38,13 @@
 #include "formats/finding_log.hpp"
 #include "formats/report_model.hpp"
 #include "formats/report_timeline.hpp"
+#include "formats/stats.hpp"
 #include "formats/summary.hpp"
 #include "simulator/simulator.hpp"
+#include "tests/health_sample.hpp"
 #include "tests/json_parser.hpp"
 #include "tests/test_support.hpp"
+#include "tests/xml_parser.hpp"
 
 namespace dpscope {
 namespace {
@@ -51,280 +54,9 @@ using test::JsonParser;
 using test::number_of;
 using test::parse_json;
 
-// ---- a small XML parser ----------------------------------------------------------------------
-// Well-formedness: balanced tags, one root, quoted attributes without '<' and without duplicates,
-// valid entity references, no raw '<' in text. In HTML mode also a DOCTYPE, void elements
-// (<meta>), raw text in <style> and <script>, and named entities such as &middot;.
-
-struct XmlNode {
-    std::string name;
-    std::vector<std::pair<std::string, std::string>> attributes;  // values unescaped
-    std::vector<XmlNode> children;
-    std::string text;   // character data directly inside, unescaped
-    std::string inner;  // all character data inside, descendants included, in document order
-
-    const std::string* find_attribute(std::string_view key) const {
-        for (const auto& [attribute_name, value] : attributes)
-            if (attribute_name == key) return &value;
-        return nullptr;
-    }
-    std::string attribute(std::string_view key) const {
-        const std::string* value = find_attribute(key);
-        return value ? *value : std::string();
-    }
-    bool has_class(std::string_view wanted) const {
-        std::string classes = attribute("class");
-        std::size_t start = 0;
-        while (start <= classes.size()) {
-            std::size_t end = classes.find(' ', start);
-            if (end == std::string::npos) end = classes.size();
-            if (std::string_view(classes).substr(start, end - start) == wanted) return true;
-            start = end + 1;
-        }
-        return false;
-    }
-    // Descendants named `tag` (with class `cls` unless empty), in document order.
-    std::vector<const XmlNode*> all(std::string_view tag, std::string_view cls = {}) const {
-        std::vector<const XmlNode*> out;
-        collect(tag, cls, out);
-        return out;
-    }
-    // Children named `tag`.
-    std::vector<const XmlNode*> elements(std::string_view tag) const {
-        std::vector<const XmlNode*> out;
-        for (const XmlNode& child : children)
-            if (child.name == tag) out.push_back(&child);
-        return out;
-    }
-
-  private:
-    void collect(std::string_view tag, std::string_view cls,
-                 std::vector<const XmlNode*>& out) const {
-        for (const XmlNode& child : children) {
-            if (child.name == tag && (cls.empty() || child.has_class(cls))) out.push_back(&child);
-            child.collect(tag, cls, out);
-        }
-    }
-};
-
-class XmlParser {
-  public:
-    XmlParser(std::string_view text, bool html) : text_(text), html_(html) {}
-
-    std::optional<XmlNode> parse(std::string& error) {
-        std::optional<XmlNode> result = document();
-        if (!result) error = error_ + " at offset " + std::to_string(pos_);
-        return result;
-    }
-
-  private:
-    std::optional<XmlNode> fail(std::string message) {
-        if (error_.empty()) error_ = std::move(message);
-        return std::nullopt;
-    }
-    bool starts(std::string_view prefix) const {
-        return text_.substr(pos_, prefix.size()) == prefix;
-    }
-    char peek() const { return pos_ < text_.size() ? text_[pos_] : '\0'; }
-    bool skip_space() {
-        std::size_t from = pos_;
-        while (peek() == ' ' || peek() == '\n' || peek() == '\t' || peek() == '\r')
-            ++pos_;
-        return pos_ > from;
-    }
-    static bool name_start(char c) {
-        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_' || c == ':';
-    }
-    std::string name() {
-        std::size_t from = pos_;
-        if (!name_start(peek())) return {};
-        while (name_start(peek()) || (peek() >= '0' && peek() <= '9') || peek() == '-' ||
-               peek() == '.')
-            ++pos_;
-        return std::string(text_.substr(from, pos_ - from));
-    }
-    static bool is_void(std::string_view tag) {
-        for (std::string_view v : {"meta", "br", "hr", "img", "input", "link", "col", "wbr"})
-            if (tag == v) return true;
-        return false;
-    }
-    static void append_utf8(std::string& out, unsigned long code) {
-        if (code < 0x80) {
-            out.push_back(static_cast<char>(code));
-        } else if (code < 0x800) {
-            out.push_back(static_cast<char>(0xC0 | (code >> 6)));
-            out.push_back(static_cast<char>(0x80 | (code & 0x3F)));
-        } else {
-            out.push_back(static_cast<char>(0xE0 | (code >> 12)));
-            out.push_back(static_cast<char>(0x80 | ((code >> 6) & 0x3F)));
-            out.push_back(static_cast<char>(0x80 | (code & 0x3F)));
-        }
-    }
-    // Unescapes `raw` (text or an attribute value); false on a bad entity reference.
-    bool decode(std::string_view raw, std::string& out) const {
-        for (std::size_t i = 0; i < raw.size(); ++i) {
-            if (raw[i] != '&') {
-                out.push_back(raw[i]);
-                continue;
-            }
-            std::size_t end = raw.find(';', i);
-            if (end == std::string_view::npos || end - i > 10 || end == i + 1) return false;
-            std::string_view entity = raw.substr(i + 1, end - i - 1);
-            if (entity == "amp") {
-                out += '&';
-            } else if (entity == "lt") {
-                out += '<';
-            } else if (entity == "gt") {
-                out += '>';
-            } else if (entity == "quot") {
-                out += '"';
-            } else if (entity == "apos") {
-                out += '\'';
-            } else if (entity[0] == '#') {
-                bool hex = entity.size() > 1 && entity[1] == 'x';
-                std::string digits(entity.substr(hex ? 2 : 1));
-                if (digits.empty()) return false;
-                char* stop = nullptr;
-                unsigned long code = std::strtoul(digits.c_str(), &stop, hex ? 16 : 10);
-                if (*stop != '\0' || code == 0 || code > 0xFFFF) return false;
-                append_utf8(out, code);
-            } else if (html_ && std::all_of(entity.begin(), entity.end(), name_start)) {
-                out += '&';  // a named HTML entity: kept as written
-                out += entity;
-                out += ';';
-            } else {
-                return false;
-            }
-            i = end;
-        }
-        return true;
-    }
-
-    bool close(XmlNode node, std::vector<XmlNode>& stack, std::optional<XmlNode>& root) {
-        if (!stack.empty()) {
-            stack.back().children.push_back(std::move(node));
-            return true;
-        }
-        if (root) {
-            fail("a second root element <" + node.name + ">");
-            return false;
-        }
-        root = std::move(node);
-        return true;
-    }
-
-    std::optional<XmlNode> document() {
-        std::vector<XmlNode> stack;
-        std::optional<XmlNode> root;
-        if (starts("<?xml")) {
-            std::size_t end = text_.find("?>", pos_);
-            if (end == std::string_view::npos) return fail("unterminated XML declaration");
-            pos_ = end + 2;
-        }
-        skip_space();
-        if (html_) {
-            if (!starts("<!DOCTYPE html>")) return fail("no <!DOCTYPE html>");
-            pos_ += 15;
-        }
-        while (pos_ < text_.size()) {
-            if (peek() != '<') {
-                std::size_t end = std::min(text_.find('<', pos_), text_.size());
-                std::string_view raw = text_.substr(pos_, end - pos_);
-                if (stack.empty()) {
-                    if (raw.find_first_not_of(" \t\r\n") != std::string_view::npos)
-                        return fail("text outside the root element");
-                } else {
-                    std::string value;
-                    if (!decode(raw, value)) return fail("bad entity reference");
-                    stack.back().text += value;
-                    for (XmlNode& open : stack)
-                        open.inner += value;
-                }
-                pos_ = end;
-                continue;
-            }
-            if (starts("<!--")) {
-                std::size_t end = text_.find("-->", pos_);
-                if (end == std::string_view::npos) return fail("unterminated comment");
-                pos_ = end + 3;
-                continue;
-            }
-            if (starts("</")) {
-                pos_ += 2;
-                std::string tag = name();
-                skip_space();
-                if (tag.empty() || peek() != '>') return fail("bad end tag");
-                ++pos_;
-                if (stack.empty() || stack.back().name != tag)
-                    return fail("</" + tag + "> closes " +
-                                (stack.empty() ? "nothing" : "<" + stack.back().name + ">"));
-                XmlNode done = std::move(stack.back());
-                stack.pop_back();
-                if (!close(std::move(done), stack, root)) return std::nullopt;
-                continue;
-            }
-            ++pos_;
-            XmlNode node;
-            node.name = name();
-            if (node.name.empty()) return fail("'<' that starts no tag");
-            bool self_closing = false;
-            for (;;) {
-                bool space = skip_space();
-                if (starts("/>")) {
-                    pos_ += 2;
-                    self_closing = true;
-                    break;
-                }
-                if (peek() == '>') {
-                    ++pos_;
-                    break;
-                }
-                if (!space) return fail("expected white space before an attribute");
-                std::string key = name();
-                if (key.empty()) return fail("bad attribute name");
-                if (node.find_attribute(key)) return fail("duplicate attribute " + key);
-                if (peek() != '=') return fail("attribute " + key + " without a value");
-                ++pos_;
-                if (peek() != '"') return fail("attribute " + key + " not quoted");
-                ++pos_;
-                std::size_t end = text_.find('"', pos_);
-                if (end == std::string_view::npos) return fail("unterminated attribute value");
-                std::string_view raw = text_.substr(pos_, end - pos_);
-                if (raw.find('<') != std::string_view::npos) return fail("'<' in an attribute");
-                std::string value;
-                if (!decode(raw, value)) return fail("bad entity reference in an attribute");
-                node.attributes.emplace_back(std::move(key), std::move(value));
-                pos_ = end + 1;
-            }
-            if (self_closing || (html_ && is_void(node.name))) {
-                if (!close(std::move(node), stack, root)) return std::nullopt;
-                continue;
-            }
-            if (html_ && (node.name == "style" || node.name == "script")) {
-                std::size_t end = text_.find("</" + node.name + ">", pos_);
-                if (end == std::string_view::npos) return fail("unterminated <" + node.name + ">");
-                node.text = node.inner = std::string(text_.substr(pos_, end - pos_));
-                pos_ = end;
-            }
-            stack.push_back(std::move(node));
-        }
-        if (!stack.empty()) return fail("<" + stack.back().name + "> is not closed");
-        if (!root) return fail("no root element");
-        return root;
-    }
-
-    std::string_view text_;
-    bool html_;
-    std::size_t pos_ = 0;
-    std::string error_;
-};
-
-std::optional<XmlNode> parse_xml(std::string_view text, bool html = false) {
-    std::string error;
-    std::optional<XmlNode> result = XmlParser(text, html).parse(error);
-    if (!result) ADD_FAILURE() << "not well-formed (" << error << ")";
-    return result;
-}
+using test::parse_xml;
+using test::XmlNode;
+using test::XmlParser;
 
 TEST(ReportTest, CheckersAcceptValidAndRejectBrokenDocuments) {
     std::string error;
@@ -3234,6 +2966,144 @@ TEST(ReportTest, Vlt2000ReportsListOnlyTheirBussKinds) {
         EXPECT_EQ(text.find("vlt2000"), std::string::npos) << report_format_name(format);
         EXPECT_EQ(text.find("VLT 2000"), std::string::npos) << report_format_name(format);
     }
+}
+
+// ---- the bus-health section -----------------------------------------------------------------
+
+ReportContext with_health(const BusHealth& h) {
+    ReportContext context = context_of(clean());
+    context.health = &h;
+    return context;
+}
+
+TEST(ReportTest, NoBusHealthSectionWithoutHealth) {
+    const ReportContext context = context_of(clean());
+    EXPECT_EQ(render(ReportFormat::Text, context).find("Bus health"), std::string::npos);
+    EXPECT_EQ(render(ReportFormat::Markdown, context).find("Bus health"), std::string::npos);
+    EXPECT_EQ(render(ReportFormat::Html, context).find("bus-health"), std::string::npos);
+    EXPECT_EQ(render(ReportFormat::Json, context).find("bus_health"), std::string::npos);
+    EXPECT_EQ(render(ReportFormat::Junit, context).find("bus health"), std::string::npos);
+}
+
+TEST(ReportTest, BusHealthSectionInText) {
+    const BusHealth h = test::health_sample();
+    const std::string text = render(ReportFormat::Text, with_health(h));
+    const std::size_t section = text.find("\nBus health\n  Capture:   2024-01-01T00:00:00");
+    ASSERT_NE(section, std::string::npos) << text;
+    const std::size_t findings = text.find("\nFindings (");
+    EXPECT_LT(section, findings);
+    EXPECT_NE(text.find("  Bus load:  25.00 % at 1500000 baud, idle 1.500000 s\n", section),
+              std::string::npos);
+    EXPECT_NE(
+        text.find("  Segment:   bad\n             - lost_events_bad: 1 (bad from 1)\n", section),
+        std::string::npos)
+        << text;
+    for (std::string_view title :
+         {"\nLive list (3 stations)\n", "\nSlaves (as asked", "\nMasters (times in ms)\n",
+          "\nVerdicts\n", "\nThresholds (other than the defaults)\n"}) {
+        const std::size_t at = text.find(title, section);
+        EXPECT_TRUE(at != std::string::npos && at < findings) << title;
+    }
+    // The result stays the findings' (the verdicts are the section's own).
+    EXPECT_NE(text.find("Result:  PASS"), std::string::npos);
+}
+
+TEST(ReportTest, BusHealthSectionInJsonIsTheStatsJson) {
+    const BusHealth h = test::health_sample();
+    const ReportContext context = with_health(h);
+    auto report = json_report(context);
+    ASSERT_TRUE(report);
+    const Json& health = (*report)["bus_health"];
+    EXPECT_EQ(health.keys(),
+              (std::vector<std::string>{"segment", "stations", "masters", "thresholds"}));
+    EXPECT_EQ(health["stations"].items.size(), 3u);
+    EXPECT_EQ(health["segment"]["verdict"].string(), "bad");
+    std::vector<std::string> keys = report->keys();
+    auto at = std::find(keys.begin(), keys.end(), "bus_health");
+    ASSERT_NE(at, keys.end());
+    EXPECT_EQ(*(at - 1), "bus");
+    EXPECT_EQ(*(at + 1), "findings");
+    // The very same text as `dpscope stats -T json` writes after "dpscope" and "input".
+    StatsContext stats;
+    stats.input = context.input;
+    stats.health = &h;
+    stats.version = context.version;
+    char* data = nullptr;
+    std::size_t size = 0;
+    FILE* file = open_memstream(&data, &size);
+    ASSERT_NE(file, nullptr);
+    {
+        Output out(file);
+        render_stats(StatsFormat::Json, stats, out);
+    }
+    std::fclose(file);
+    std::string stats_text(data, size);
+    std::free(data);
+    const std::size_t members = stats_text.find(",\"segment\":");
+    ASSERT_NE(members, std::string::npos);
+    ASSERT_TRUE(stats_text.ends_with("}\n"));
+    const std::string body = stats_text.substr(members + 1, stats_text.size() - members - 3);
+    EXPECT_NE(render(ReportFormat::Json, context).find("\"bus_health\":{" + body + "}"),
+              std::string::npos);
+}
+
+TEST(ReportTest, BusHealthSectionInMarkdownAndHtml) {
+    const BusHealth h = test::health_sample();
+    const std::string markdown = render(ReportFormat::Markdown, with_health(h));
+    const std::size_t section = markdown.find("\n## Bus health\n\n- Capture: ");
+    ASSERT_NE(section, std::string::npos) << markdown;
+    EXPECT_LT(section, markdown.find("\n## Findings ("));
+    EXPECT_NE(markdown.find("\n### Live list (3 stations)\n", section), std::string::npos);
+    EXPECT_NE(markdown.find("\n### Masters (times in ms)\n", section), std::string::npos);
+    EXPECT_NE(markdown.find("| 5 | 400 | 390 | 10 |", section), std::string::npos);
+
+    auto html = parse_xml(render(ReportFormat::Html, with_health(h)), true);
+    ASSERT_TRUE(html);
+    const XmlNode* health = find_id(*html, "section", "bus-health");
+    ASSERT_TRUE(health);
+    EXPECT_EQ(health->elements("h2")[0]->text, "Bus health");
+    EXPECT_EQ(health->all("svg", "states").size(), 1u);
+    EXPECT_EQ(health->all("svg", "master-plot").size(), 1u);
+    EXPECT_EQ(health->all("table", "live").size(), 1u);
+    EXPECT_EQ(health->all("table", "health-slaves").size(), 1u);
+    EXPECT_EQ(health->all("table", "health-masters").size(), 1u);
+    EXPECT_TRUE(find_id(*html, "section", "findings"));
+}
+
+TEST(ReportTest, BusHealthSuiteInJunitFailsOnBadVerdicts) {
+    const BusHealth h = test::health_sample();
+    auto root = junit_report(with_health(h));
+    ASSERT_TRUE(root);
+    const XmlNode* suite = nullptr;
+    std::size_t tests = 0, failures = 0;
+    for (const XmlNode* s : root->elements("testsuite")) {
+        if (s->attribute("name") == "bus health") suite = s;
+        tests += std::stoul(s->attribute("tests"));
+        failures += std::stoul(s->attribute("failures"));
+    }
+    ASSERT_TRUE(suite);
+    EXPECT_EQ(root->attribute("tests"), std::to_string(tests));
+    EXPECT_EQ(root->attribute("failures"), std::to_string(failures));
+    EXPECT_EQ(suite->attribute("tests"), "5");
+    EXPECT_EQ(suite->attribute("failures"), "2");
+    auto cases = suite->elements("testcase");
+    ASSERT_EQ(cases.size(), 5u);
+    std::vector<std::string> names;
+    for (const XmlNode* c : cases) {
+        names.push_back(c->attribute("name"));
+        EXPECT_EQ(c->attribute("classname"), "dpscope.bus_health");
+    }
+    EXPECT_EQ(names, (std::vector<std::string>{"segment", "station 2 (master)", "station 5 (slave)",
+                                               "station 7 (unknown)", "master 2"}));
+    ASSERT_EQ(cases[2]->elements("failure").size(), 1u);
+    EXPECT_EQ(cases[2]->elements("failure")[0]->attribute("message"),
+              "lost_events_bad: 1 (bad from 1); repeat_percent_weak: 1 % (weak above 0.1 %)");
+    EXPECT_EQ(failing_cases(*suite), 2u);
+    EXPECT_TRUE(cases[1]->children.empty());
+    EXPECT_TRUE(cases[4]->elements("failure").empty());
+    ASSERT_EQ(cases[4]->elements("system-out").size(), 1u);
+    EXPECT_EQ(cases[4]->elements("system-out")[0]->text,
+              "verdict weak: target_rotation_ms: 20 ms (weak above 15 ms)");
 }
 
 }  // namespace
