@@ -83,6 +83,9 @@ void LiveHealth::tick(std::int64_t now_ns, std::uint64_t telegrams, double secon
 void LiveHealth::before_finish() {
     for (const HealthEvent& event : tracker_.judge())
         handle(event);
+    // The statistics end with the last telegram, not at the stop: `dpscope stats` of the -w
+    // file gives the same figures (Pipeline::finish() later finds the tracker finished).
+    tracker_.finish();
 }
 
 void LiveHealth::after_finish(std::uint64_t telegrams, double seconds) {

@@ -37,7 +37,7 @@ class LiveHealth {
     // Called often (after each telegram and when the line is idle): judges at most every
     // kRedrawEveryNs of `now_ns` (monotonic), reports verdicts that turned bad, redraws.
     void tick(std::int64_t now_ns, std::uint64_t telegrams, double seconds);
-    // Before Pipeline::finish(): the last verdicts.
+    // Before Pipeline::finish(): the last verdicts; the tracker finished at the last telegram.
     void before_finish();
     // After it: the last table (a terminal).
     void after_finish(std::uint64_t telegrams, double seconds);
