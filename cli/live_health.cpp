@@ -94,11 +94,14 @@ void LiveHealth::after_finish(std::uint64_t telegrams, double seconds) {
 
 void LiveHealth::redraw(std::uint64_t telegrams, double seconds, bool final) {
     const TerminalSize size = terminal_size(stream_);
-    // The table, rendered into the output's buffer and taken back out of it.
-    const std::size_t mark = out_.buffer().size();
-    render_live_table(tracker_.health(), out_, size.columns);
-    std::string table(out_.buffer().data() + mark, out_.buffer().size() - mark);
-    out_.buffer().resize(mark);
+    // The table, rendered into a buffer of its own (never flushed: emptied before it goes).
+    std::string table;
+    {
+        Output scratch(stream_);
+        render_live_table(tracker_.health(), scratch, size.columns);
+        table.assign(scratch.buffer().data(), scratch.buffer().size());
+        scratch.buffer().clear();
+    }
 
     std::vector<std::string_view> lines;
     const std::string heading =

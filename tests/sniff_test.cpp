@@ -1453,6 +1453,24 @@ TEST(SniffTest, StatsOnATerminalRedrawTheStationTableAtMost4TimesASecond) {
     EXPECT_NE(out.find(", stopped\n"), std::string::npos) << out;
     EXPECT_NE(out.find("\r\x1b["), std::string::npos) << out;  // cursor up, then clear
     EXPECT_EQ(out.find("Data_Exchange"), std::string::npos) << out;
+    // Each redraw goes back up over exactly the lines the one before drew (heading, table,
+    // events); the table has a line per station once they are heard.
+    std::size_t frames = 0;
+    bool stations_shown = false;
+    for (std::size_t at = out.find("\x1b[J"), next; at != std::string::npos; at = next) {
+        next = out.find("\x1b[J", at + 1);
+        if (next == std::string::npos) break;  // the last: the statistics follow it
+        std::string frame = out.substr(at, next - at);
+        ++frames;
+        const std::size_t drawn =
+            static_cast<std::size_t>(std::count(frame.begin(), frame.end(), '\n'));
+        const std::string up = "\r\x1b[" + std::to_string(drawn) + "A";
+        EXPECT_EQ(frame.substr(frame.size() - std::min(frame.size(), up.size())), up) << frame;
+        EXPECT_GE(drawn, 3u) << frame;
+        if (frame.find("\n   3 slave ") != std::string::npos) stations_shown = true;
+    }
+    EXPECT_GE(frames, 1u);
+    EXPECT_TRUE(stations_shown) << out;
     // At most 4 redraws a second (and the last one at the stop), at least one per second.
     std::vector<std::chrono::steady_clock::time_point> redraws = sniffer.redraws();
     const double seconds = sniffer.seconds();
