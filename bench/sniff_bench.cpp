@@ -2,14 +2,19 @@
 // while `dpscope sniff` captures on the other, writing pcap and printing -T text (to /dev/null).
 // Reports bytes/s at full speed and when paced at the bus rate, lost telegrams, and the sniffer's
 // CPU time per second of bus traffic.
-// Usage: dpscope_sniff_bench DPSCOPE [TELEGRAMS]
+// --stats: `sniff --stats -w FILE` with its standard output on a second pseudo-terminal (the live
+// station table, read as fast as it comes), played as fast as the pty takes it and paced at
+// 1.1 MB/s (a saturated 12 Mbit/s bus); exit code 1 when a telegram was lost.
+// Usage: dpscope_sniff_bench [--stats] DPSCOPE [TELEGRAMS]
 #include <fcntl.h>
+#include <poll.h>
 #include <pty.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -46,22 +51,44 @@ std::string slurp(const std::string& path) {
 // (12 Mbit/s with the protocol's idle gaps), or back to back at a fixed byte rate.
 enum class Pace { FullSpeed, BusTiming, ByteRate };
 
-Result run(const std::string& dpscope, std::uint64_t telegrams, Pace pace) {
+Result run(const std::string& dpscope, std::uint64_t telegrams, Pace pace, bool stats = false) {
     int master = -1, slave_fd = -1;
     char name[128] = {};
     if (openpty(&master, &slave_fd, name, nullptr, nullptr) != 0) std::exit(1);
     fcntl(master, F_SETFD, FD_CLOEXEC);
     close(slave_fd);
+    // --stats: standard output on a terminal of its own, drained by a thread.
+    int screen = -1, screen_slave = -1;
+    std::atomic<bool> drained{false};
+    std::thread drain;
+    if (stats) {
+        winsize size{};
+        size.ws_col = 160;
+        size.ws_row = 50;
+        if (openpty(&screen, &screen_slave, nullptr, nullptr, &size) != 0) std::exit(1);
+        fcntl(screen, F_SETFD, FD_CLOEXEC);
+        drain = std::thread([&] {
+            char buffer[65536];
+            while (!drained) {
+                pollfd p{screen, POLLIN, 0};
+                if (poll(&p, 1, 20) > 0 && read(screen, buffer, sizeof buffer) <= 0) break;
+            }
+        });
+    }
     const std::string pcap = "/tmp/dpscope-sniff-bench.pcap";
     const std::string err = "/tmp/dpscope-sniff-bench.err";
     pid_t pid = fork();
     if (pid == 0) {
         int null = open("/dev/null", O_WRONLY);
         int errfd = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(null, STDOUT_FILENO);
+        dup2(stats ? screen_slave : null, STDOUT_FILENO);
         dup2(errfd, STDERR_FILENO);
-        execl(dpscope.c_str(), dpscope.c_str(), "sniff", "-i", name, "--baud", "12000000", "-w",
-              pcap.c_str(), "-T", "text", static_cast<char*>(nullptr));
+        if (stats)
+            execl(dpscope.c_str(), dpscope.c_str(), "sniff", "-i", name, "--baud", "12000000", "-w",
+                  pcap.c_str(), "--stats", static_cast<char*>(nullptr));
+        else
+            execl(dpscope.c_str(), dpscope.c_str(), "sniff", "-i", name, "--baud", "12000000", "-w",
+                  pcap.c_str(), "-T", "text", static_cast<char*>(nullptr));
         _exit(127);
     }
     for (int i = 0; i < 500 && slurp(err).find("capturing on") == std::string::npos; ++i)
@@ -102,6 +129,12 @@ Result run(const std::string& dpscope, std::uint64_t telegrams, Pace pace) {
     rusage usage{};
     wait4(pid, &status, 0, &usage);
     close(master);
+    if (stats) {
+        drained = true;
+        drain.join();
+        close(screen);
+        close(screen_slave);
+    }
     Result r;
     r.seconds = seconds;
     r.bytes = played->bytes;
@@ -129,11 +162,27 @@ void print(const char* label, const Result& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    const bool stats = argc > 1 && std::string(argv[1]) == "--stats";
+    if (stats) {
+        --argc;
+        ++argv;
+    }
     if (argc < 2) {
-        std::fprintf(stderr, "usage: dpscope_sniff_bench DPSCOPE [TELEGRAMS]\n");
+        std::fprintf(stderr, "usage: dpscope_sniff_bench [--stats] DPSCOPE [TELEGRAMS]\n");
         return 2;
     }
     std::uint64_t telegrams = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 500'000;
+    if (stats) {
+        std::printf(
+            "| playback | telegrams | throughput | lost | sniffer CPU "
+            "|\n|---|---:|---:|---:|---:|\n");
+        Result fast = run(argv[1], telegrams, Pace::FullSpeed, true);
+        print("sniff --stats -w FILE (table on a terminal), as fast as the pty takes it", fast);
+        Result paced = run(argv[1], telegrams, Pace::ByteRate, true);
+        print("sniff --stats -w FILE (table on a terminal), paced at 1.1 MB/s, no idle time",
+              paced);
+        return fast.captured == fast.sent && paced.captured == paced.sent ? 0 : 1;
+    }
     std::printf(
         "| playback | telegrams | throughput | lost | sniffer CPU |\n|---|---:|---:|---:|---:|\n");
     print("as fast as the pty takes it", run(argv[1], telegrams, Pace::FullSpeed));

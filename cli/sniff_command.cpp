@@ -22,11 +22,14 @@
 #include "capture/pcap_source.hpp"
 #include "capture/serial_port.hpp"
 #include "capture/tty_source.hpp"
+#include "cli/alarm.hpp"
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
+#include "cli/live_health.hpp"
 #include "cli/pipeline.hpp"
 #include "cli/version.hpp"
 #include "formats/report.hpp"
+#include "formats/stats.hpp"
 
 namespace dpscope::cli {
 
@@ -140,7 +143,51 @@ struct SniffCommand {
     bool allow_empty = false;
     std::uint32_t idle_gap_ms = 50;
     bool no_low_latency = false;
+    // Bus health (PROFIBUS): --stats, --stats-file, --stats-format, --alarm.
+    bool stats = false;
+    std::string stats_file;
+    std::string stats_format = "text";
+    std::string alarm;
 };
+
+// How long the end of the capture waits for --alarm commands still running.
+constexpr int kAlarmWaitAtEndMs = 5000;
+
+// Checks --stats, --stats-file, --stats-format and --alarm against the bus, each other, -w and
+// the report.
+Result<void> check_stats_options(const SniffCommand& command, Protocol protocol) {
+    const std::string& file = command.stats_file;
+    const bool stats = command.stats || !file.empty();
+    if ((stats || !command.alarm.empty()) && protocol != Protocol::ProfibusDp)
+        return Error{fmt::format(
+            "{}: bus health is PROFIBUS statistics (FDL/DP link layer); the {} bus has none",
+            stats ? "--stats" : "--alarm", protocol == Protocol::Fc ? "FC protocol" : "VLT 2000")};
+    if (command.stats_format != "text" && file.empty())
+        return Error{fmt::format(
+            "--stats-format {}: the statistics would be mixed into the live output on standard "
+            "output; give --stats-file FILE (- for standard output, the live output then goes to "
+            "standard error)",
+            command.stats_format)};
+    if (file == "-" && command.output == "-")
+        return Error{
+            "--stats-file -: standard output already carries the pcap of -w -; give the "
+            "statistics a file name"};
+    if (file == "-" && command.report_file == "-")
+        return Error{
+            "--stats-file -: standard output already carries the report of --report-file -; "
+            "give one of them a file name"};
+    if (!file.empty() && file != "-" && !command.report_file.empty() &&
+        command.report_file != "-" && same_file(file, command.report_file))
+        return Error{
+            fmt::format("--stats-file {}: it is the report file too; give another name", file)};
+    if (!file.empty() && file != "-" && !command.output.empty() && command.output != "-" &&
+        is_capture_file(file, command.output,
+                        command.rotate_size > 0 || command.rotate_seconds > 0))
+        return Error{
+            fmt::format("--stats-file {}: it is the capture file of -w {}; give another name", file,
+                        command.output)};
+    return {};
+}
 
 // Checks --report, --report-format and --report-file against each other and -w.
 Result<void> check_report_options(const SniffCommand& command) {
@@ -212,6 +259,10 @@ int run_sniff(const SniffCommand& command) {
         print_error(usage.error());
         return kExitUsage;
     }
+    if (Result<void> usage = check_stats_options(command, settings->protocol->protocol); !usage) {
+        print_error(usage.error());
+        return kExitUsage;
+    }
     // Options about the -w file mean nothing without one.
     if (command.output.empty()) {
         const char* unused = command.rotate_size > 0      ? "--rotate-size"
@@ -227,7 +278,8 @@ int run_sniff(const SniffCommand& command) {
     // Written onto the port, the capture or the report would go out onto the bus.
     for (const auto& [option, path] :
          {std::pair<const char*, const std::string&>{"-w", command.output},
-          std::pair<const char*, const std::string&>{"--report-file", command.report_file}}) {
+          std::pair<const char*, const std::string&>{"--report-file", command.report_file},
+          std::pair<const char*, const std::string&>{"--stats-file", command.stats_file}}) {
         if (!path.empty() && path != "-" && same_file(path, command.device)) {
             print_error(
                 fmt::format("{} {}: that is the capture device -i {}; writing to it would "
@@ -238,6 +290,8 @@ int run_sniff(const SniffCommand& command) {
     }
     const bool report = command.report || !command.report_file.empty();
     const bool report_to_stdout = command.report_file == "-";
+    const bool stats = command.stats || !command.stats_file.empty();
+    const bool stats_to_stdout = command.stats_file == "-";
     // The port is claimed first (its lock file: a port in use is no reason to truncate the -w
     // file), then the outputs are opened, and only then is the port opened and set up: a bad
     // output path leaves it untouched.
@@ -283,15 +337,26 @@ int run_sniff(const SniffCommand& command) {
         }
         report_file = std::move(opened).value();
     }
+    std::unique_ptr<PendingOutputFile> stats_file;
+    if (!command.stats_file.empty() && !stats_to_stdout) {
+        Result<std::unique_ptr<PendingOutputFile>> opened =
+            PendingOutputFile::open(command.stats_file);
+        if (!opened) {
+            print_error(fmt::format("--stats-file {}", opened.error()));
+            return kExitOutputError;
+        }
+        stats_file = std::move(opened).value();
+    }
     install_stop_handlers();  // from here on, a signal never leaves the port in raw mode
     if (Result<void> configured = port->configure(); !configured) {
         print_error(configured.error());
         writer.reset();
         report_file.reset();  // discards the staged report: an existing file stays as it was
+        stats_file.reset();
         if (!created_capture.empty()) std::remove(created_capture.c_str());
         return kExitUsage;
     }
-    FILE* text_stream = pcap_to_stdout || report_to_stdout ? stderr : stdout;
+    FILE* text_stream = pcap_to_stdout || report_to_stdout || stats_to_stdout ? stderr : stdout;
     if (!port->note().empty()) print_warning(fmt::format("{}", port->note()));
     std::fprintf(stderr, "dpscope: capturing on %s at %u baud %s%s; Ctrl-C stops\n",
                  command.device.c_str(), port->baud(), port->frame().c_str(),
@@ -307,6 +372,12 @@ int run_sniff(const SniffCommand& command) {
     settings->vlt2000_tracker.line_baud = port->baud();
     settings->vlt2000_tracker.character_bits = tty_options.character_bits;
     tty_options.idle_gap_ns = static_cast<std::int64_t>(command.idle_gap_ms) * 1'000'000;
+    // Bus health: the bus load at the port's rate and character (8E1: 11 bits).
+    settings->track_health = stats || !command.alarm.empty();
+    settings->health.baud = port->baud();
+    settings->health.character_bits = tty_options.character_bits;
+    const std::string heading =
+        fmt::format("{} at {} baud {}", command.device, port->baud(), port->frame());
     TtySource source(std::move(port), fd, command.device, tty_options, settings->protocol->framing);
 
     Output out(text_stream, settings->line_buffered || isatty(fileno(text_stream)) != 0);
@@ -314,8 +385,27 @@ int run_sniff(const SniffCommand& command) {
     report_input_issues(source, out);
     Pipeline pipeline(
         *settings, report && report_format_from_name(command.report_format) == ReportFormat::Html);
+    // --stats on a terminal: the station table, redrawn in place, instead of a line per
+    // telegram (docs/decisions.md, "Bus health: sniff").
+    const bool stats_table = stats && isatty(fileno(text_stream)) != 0;
+    std::unique_ptr<AlarmRunner> alarms;
+    if (!command.alarm.empty())
+        alarms = std::make_unique<AlarmRunner>(command.alarm, monotonic_ns,
+                                               [](std::string_view m) { print_warning(m); });
+    std::unique_ptr<LiveHealth> live;
+    if (pipeline.health()) {
+        // Off a terminal, a line per event beside the decode; not inside jsonl or csv lines.
+        const bool plain = settings->quiet || settings->format == OutputFormat::Text ||
+                           settings->format == OutputFormat::Verbose;
+        const LiveHealth::Show show = !stats        ? LiveHealth::Show::Nothing
+                                      : stats_table ? LiveHealth::Show::Table
+                                      : plain       ? LiveHealth::Show::Lines
+                                                    : LiveHealth::Show::StandardError;
+        live = std::make_unique<LiveHealth>(*pipeline.health(), out, text_stream, show, heading,
+                                            alarms.get());
+    }
     std::unique_ptr<TelegramRenderer> renderer;
-    if (!settings->quiet) {
+    if (!settings->quiet && !stats_table) {
         renderer = make_renderer(settings->format, out);
         renderer->begin();
     }
@@ -354,6 +444,7 @@ int run_sniff(const SniffCommand& command) {
             const DecodedTelegram& t = pipeline.feed(record, findings);
             if (report && !findings.empty()) log.append(findings);
             show(renderer.get(), *settings, t, findings, pipeline.subject_pnu());
+            if (live) live->on_events(pipeline.health_events());
             // -c N: exactly N telegrams, not what else the driver still holds.
             if (settings->count != 0 && telegrams >= settings->count) break;
         }
@@ -367,7 +458,9 @@ int run_sniff(const SniffCommand& command) {
                     fmt::format("{}: write failed: {}", text_stream_name, std::strerror(errno)));
             last_flush = now;
         }
+        if (live) live->tick(now, telegrams, static_cast<double>(now - start) / 1e9);
     }
+    if (live) live->before_finish();
     // Judged at the stop: a request left unanswered past the time-out before it is reported.
     std::span<const Finding> open_at_end = pipeline.finish(wall_clock_ns());
     warn_ppo_overrides(pipeline.decoder());
@@ -384,6 +477,7 @@ int run_sniff(const SniffCommand& command) {
         }
     }
     double seconds = static_cast<double>(monotonic_ns() - start) / 1e9;
+    if (live) live->after_finish(telegrams, seconds);
     out.flush();
     std::fprintf(stderr,
                  "dpscope: %llu telegrams, %llu bytes in %.1f s; %llu bytes skipped, %llu parity "
@@ -395,6 +489,39 @@ int run_sniff(const SniffCommand& command) {
                  static_cast<unsigned long long>(source.idle_gaps()));
     if (settings->quiet)
         pipeline.summary().render_text(out, describe_input(source), pipeline.decoder());
+    if (stats) {
+        StatsContext context{describe_input(source), &pipeline.health()->health(),
+                             std::string(kVersion)};
+        const StatsFormat format =
+            stats_format_from_name(command.stats_format).value_or(StatsFormat::Text);
+        if (!stats_file) {
+            // Standard output: after the live output, or alone on it (--stats-file -).
+            if (stats_to_stdout) {
+                Output stats_out(stdout);
+                render_stats(format, context, stats_out);
+                if (!stats_out.flush()) output_failed = true;
+            } else {
+                render_stats(format, context, out);
+            }
+        } else {
+            Output stats_out(stats_file->file());
+            render_stats(format, context, stats_out);
+            if (!stats_out.flush()) {
+                print_error(fmt::format("--stats-file {}: cannot write the statistics: {}",
+                                        command.stats_file, std::strerror(errno)));
+                stats_file->discard();
+                output_failed = true;
+            } else if (Result<void> committed = stats_file->commit(); !committed) {
+                print_error(fmt::format("--stats-file {}", committed.error()));
+                output_failed = true;
+            }
+        }
+    }
+    if (alarms) {
+        alarms->finish(kAlarmWaitAtEndMs);
+        if (std::string said = alarms->summary(); !said.empty())
+            std::fprintf(stderr, "dpscope: %s\n", said.c_str());
+    }
     int exit_code = kExitOk;
     if (report) {
         ReportContext context = report_context(
@@ -516,6 +643,31 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
                     "Keep it above a USB adapter's latency timer")
         ->check(whole_number(0, kMaxIdleGapMs, " ms"))
         ->default_str("50");
+    sub->add_flag("--stats", command->stats,
+                  "Bus health (PROFIBUS): on a terminal, a live table of the stations (role, "
+                  "state, requests, answers, repeats, lost, illegal, damaged, verdict) redrawn "
+                  "at most 4 times a second instead of a line per telegram; otherwise a line "
+                  "per event (station lost, returned, verdict turned bad) beside the decode. At "
+                  "the end the statistics, as `dpscope stats` gives them (see --stats-file)");
+    sub->add_option("--stats-file", command->stats_file,
+                    "Write the statistics at the end to FILE instead (implies --stats); - puts "
+                    "them alone on standard output and moves the live output to standard error "
+                    "(not with -w - or --report-file -). Not the -w file")
+        ->check(output_file_name())
+        ->type_name("FILE");
+    sub->add_option("--stats-format", command->stats_format,
+                    "Format of the statistics: text, json, markdown, html, csv; all but text "
+                    "need --stats-file")
+        ->check(CLI::IsMember({"text", "json", "markdown", "html", "csv"}))
+        ->default_str("text");
+    sub->add_option("--alarm", command->alarm,
+                    "Run CMD (through /bin/sh -c) when a station is lost or a verdict turns bad "
+                    "(PROFIBUS), with DPSCOPE_EVENT (station_lost, verdict_bad), DPSCOPE_STATION "
+                    "(address or segment), DPSCOPE_ROLE, DPSCOPE_TIME (ISO 8601 UTC), "
+                    "DPSCOPE_FRAME, DPSCOPE_VERDICT and DPSCOPE_REASONS in its environment; at "
+                    "most once per event kind and station a minute; the capture never waits "
+                    "for it")
+        ->type_name("CMD");
     sub->add_flag("--no-low-latency", command->no_low_latency,
                   "Do not ask the driver for low-latency mode (ASYNC_LOW_LATENCY)");
     add_display_options(*sub, command->options, "text");

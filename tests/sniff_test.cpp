@@ -3,7 +3,9 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <poll.h>
+#include <pty.h>
 #include <signal.h>
+#include <sys/ioctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <termios.h>
@@ -15,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -23,8 +26,10 @@
 #include "capture/telegram_source.hpp"
 #include "capture/tty_player.hpp"
 #include "decoder/bus_decoder.hpp"
+#include "decoder/bus_health.hpp"
 #include "decoder/fc_framing_rules.hpp"
 #include "decoder/session_tracker.hpp"
+#include "formats/stats.hpp"
 #include "simulator/simulator.hpp"
 #include "tests/json_parser.hpp"
 #include "tests/test_support.hpp"
@@ -1260,6 +1265,356 @@ TEST(SniffTest, FcLineOptionsAreChecked) {
                          "VLT 2000, --bus vlt2000, default to 9600)"),
         std::string::npos)
         << no_baud.err;
+}
+
+// --- sniff --stats and --alarm ----------------------------------------------------------------
+
+// `session` with the answers of `slave` taken out of the played telegrams in each of `windows`
+// (played indices, from, to): the slave stops answering there, and is lost.
+Session without_answers(const Session& session, std::uint8_t slave,
+                        std::vector<std::pair<std::size_t, std::size_t>> windows) {
+    BusDecoder decoder;
+    Session out;
+    for (std::size_t i = 0; i < session.played.size(); ++i) {
+        const auto& bytes = session.played[i];
+        const DecodedTelegram& t =
+            decoder.decode(Bytes(bytes.data(), bytes.size()), kNoTime, i + 1);
+        bool silent = std::any_of(windows.begin(), windows.end(),
+                                  [i](auto w) { return i >= w.first && i < w.second; });
+        if (silent && t.direction == Direction::Response && t.has_roles && t.slave == slave)
+            continue;
+        out.played.push_back(bytes);
+        out.times.push_back(session.times[i]);
+    }
+    out.expected = out.played;  // no garbage in these sessions
+    return out;
+}
+
+// The text statistics of the capture at `pcap`, as sniff --stats at `baud` computes them live.
+std::string reference_stats(const std::string& pcap, const std::string& device,
+                            std::uint32_t baud) {
+    BusHealthOptions options;
+    options.baud = baud;
+    BusHealthTracker tracker(options);
+    BusDecoder decoder;
+    OpenResult opened = open_source(pcap, InputFormat::Auto, profibus_dp_protocol());
+    EXPECT_TRUE(opened) << opened.error();
+    if (!opened) return {};
+    Record record;
+    while (opened.value()->next(record))
+        tracker.observe(decoder.decode(record.bytes, record.time_ns, record.number));
+    tracker.finish();
+    auto version = test::run_dpscope({"--version"});
+    std::string number = version.out.substr(version.out.rfind(' ') + 1);
+    while (!number.empty() && std::isspace(static_cast<unsigned char>(number.back())))
+        number.pop_back();
+    StatsContext context{InputSummary{device, "serial", 0, false}, &tracker.health(), number};
+    std::string path = test::temp_path("reference-stats.txt");
+    {
+        FILE* file = std::fopen(path.c_str(), "wb");
+        Output out(file);
+        render_stats(StatsFormat::Text, context, out);
+        out.flush();
+        std::fclose(file);
+    }
+    std::string text = slurp(path);
+    std::remove(path.c_str());
+    return text;
+}
+
+// dpscope running with standard output on a terminal (a pseudo-terminal of 120 x 40 without
+// output processing), standard error in a file; what it draws is read as it comes.
+class TerminalSniffer {
+  public:
+    explicit TerminalSniffer(std::vector<std::string> args) : err_(test::temp_path("err")) {
+        winsize size{};
+        size.ws_col = 120;
+        size.ws_row = 40;
+        int slave = -1;
+        if (openpty(&master_, &slave, nullptr, nullptr, &size) != 0) return;
+        termios mode{};
+        tcgetattr(slave, &mode);
+        mode.c_oflag &= ~static_cast<tcflag_t>(OPOST);  // the bytes as written
+        tcsetattr(slave, TCSANOW, &mode);
+        pid_ = fork();
+        if (pid_ == 0) {
+            int err = open(err_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            dup2(slave, STDOUT_FILENO);
+            dup2(err, STDERR_FILENO);
+            close(master_);
+            std::vector<std::string> argv = {test::dpscope_executable()};
+            argv.insert(argv.end(), args.begin(), args.end());
+            std::vector<char*> pointers;
+            for (std::string& a : argv)
+                pointers.push_back(a.data());
+            pointers.push_back(nullptr);
+            setenv("TZ", "UTC", 1);
+            execv(pointers[0], pointers.data());
+            _exit(127);
+        }
+        close(slave);
+        started_ = std::chrono::steady_clock::now();
+        reader_ = std::thread([this] {
+            char buffer[4096];
+            for (;;) {
+                pollfd p{master_, POLLIN, 0};
+                if (poll(&p, 1, 20) <= 0) {
+                    if (stop_) break;
+                    continue;
+                }
+                ssize_t n = read(master_, buffer, sizeof buffer);
+                if (n <= 0) break;  // EIO: the sniffer has closed the terminal
+                auto now = std::chrono::steady_clock::now();
+                std::lock_guard<std::mutex> lock(mutex_);
+                std::string chunk(buffer, static_cast<std::size_t>(n));
+                for (std::size_t at = 0; (at = chunk.find("\x1b[J", at)) != std::string::npos; ++at)
+                    redraws_.push_back(now);
+                out_ += chunk;
+            }
+        });
+    }
+    ~TerminalSniffer() {
+        if (pid_ > 0 && !reaped_) {
+            kill(pid_, SIGKILL);
+            waitpid(pid_, nullptr, 0);
+        }
+        stop_ = true;
+        if (reader_.joinable()) reader_.join();
+        if (master_ >= 0) close(master_);
+        std::remove(err_.c_str());
+    }
+    bool ready() const {
+        for (int i = 0; i < 500; ++i) {
+            if (err().find("capturing on") != std::string::npos) return true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        return false;
+    }
+    void signal(int number) const { kill(pid_, number); }
+    int wait(int seconds = 20) {
+        for (int i = 0; i < seconds * 100; ++i) {
+            int status = 0;
+            if (waitpid(pid_, &status, WNOHANG) == pid_) {
+                reaped_ = true;
+                ended_ = std::chrono::steady_clock::now();
+                stop_ = true;
+                if (reader_.joinable()) reader_.join();
+                return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        return -1;
+    }
+    std::string out() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return out_;
+    }
+    std::string err() const { return slurp(err_); }
+    std::vector<std::chrono::steady_clock::time_point> redraws() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return redraws_;
+    }
+    double seconds() const { return std::chrono::duration<double>(ended_ - started_).count(); }
+
+  private:
+    std::string err_;
+    int master_ = -1;
+    pid_t pid_ = -1;
+    bool reaped_ = false;
+    std::atomic<bool> stop_{false};
+    std::thread reader_;
+    std::mutex mutex_;
+    std::string out_;
+    std::vector<std::chrono::steady_clock::time_point> redraws_;
+    std::chrono::steady_clock::time_point started_, ended_;
+};
+
+TEST(SniffTest, StatsOnATerminalRedrawTheStationTableAtMost4TimesASecond) {
+    PseudoTerminal pty;
+    std::string pcap = test::temp_path("stats.pcap");
+    TerminalSniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "--stats"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options;
+    options.cycles = 600;  // 1.2 s of bus time, played at its pace
+    Session session = without_answers(simulate(options), 5, {{1000, 1100}});
+    play(pty, session, false);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    sniffer.signal(SIGINT);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    Capture capture = read_capture(pcap);
+    ASSERT_EQ(capture.telegrams, session.expected);
+
+    std::string out = sniffer.out();
+    // The table and its heading, redrawn in place; no line per telegram.
+    EXPECT_NE(out.find("dpscope sniff --stats: " + pty.slave + " at 1500000 baud 8E1: "),
+              std::string::npos)
+        << out;
+    EXPECT_NE(out.find("telegrams in "), std::string::npos) << out;
+    EXPECT_NE(out.find(", stopped\n"), std::string::npos) << out;
+    EXPECT_NE(out.find("\r\x1b["), std::string::npos) << out;  // cursor up, then clear
+    EXPECT_EQ(out.find("Data_Exchange"), std::string::npos) << out;
+    // Each redraw goes back up over exactly the lines the one before drew (heading, table,
+    // events); the table has a line per station once they are heard.
+    std::size_t frames = 0;
+    bool stations_shown = false;
+    for (std::size_t at = out.find("\x1b[J"), next; at != std::string::npos; at = next) {
+        next = out.find("\x1b[J", at + 1);
+        if (next == std::string::npos) break;  // the last: the statistics follow it
+        std::string frame = out.substr(at, next - at);
+        ++frames;
+        const std::size_t drawn =
+            static_cast<std::size_t>(std::count(frame.begin(), frame.end(), '\n'));
+        const std::string up = "\r\x1b[" + std::to_string(drawn) + "A";
+        EXPECT_EQ(frame.substr(frame.size() - std::min(frame.size(), up.size())), up) << frame;
+        EXPECT_GE(drawn, 3u) << frame;
+        if (frame.find("\n   3 slave ") != std::string::npos) stations_shown = true;
+    }
+    EXPECT_GE(frames, 1u);
+    EXPECT_TRUE(stations_shown) << out;
+    // At most 4 redraws a second (and the last one at the stop), at least one per second.
+    std::vector<std::chrono::steady_clock::time_point> redraws = sniffer.redraws();
+    const double seconds = sniffer.seconds();
+    EXPECT_GE(static_cast<double>(redraws.size()), seconds) << seconds;
+    EXPECT_LE(static_cast<double>(redraws.size()), seconds * 4 + 2) << seconds;
+    // Read back as they came, neighbours are a quarter of a second apart (less what the
+    // reading adds, averaged over four).
+    for (std::size_t i = 4; i + 1 < redraws.size(); ++i)
+        EXPECT_GE(redraws[i] - redraws[i - 4], std::chrono::milliseconds(900)) << i;
+    // The final statistics, as from the written capture.
+    std::string expected = reference_stats(pcap, pty.slave, 1'500'000);
+    ASSERT_FALSE(expected.empty());
+    ASSERT_GE(out.size(), expected.size());
+    EXPECT_EQ(out.substr(out.size() - expected.size()), expected) << out;
+    std::remove(pcap.c_str());
+}
+
+TEST(SniffTest, StatsOffATerminalPrintAPlainLinePerHealthEvent) {
+    PseudoTerminal pty;
+    std::string pcap = test::temp_path("events.pcap");
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "--stats", "-w", pcap});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options;
+    options.cycles = 300;
+    Session session = without_answers(simulate(options), 5, {{400, 500}});
+    play(pty, session, true);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    sniffer.signal(SIGINT);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    std::string out = sniffer.out();
+    EXPECT_EQ(out.find('\x1b'), std::string::npos) << out;           // no escapes
+    EXPECT_NE(out.find("Data_Exchange"), std::string::npos) << out;  // the decode beside them
+    std::vector<std::string> lost = lines_with(out, " health: station 5 lost (slave, frame ");
+    std::vector<std::string> returned =
+        lines_with(out, " health: station 5 returned (slave, frame ");
+    EXPECT_EQ(lost.size(), 1u) << out;
+    EXPECT_EQ(returned.size(), 1u) << out;
+    // Lines start with the time (ISO 8601 UTC).
+    for (const std::string& line : lost)
+        EXPECT_EQ(line.find("Z health: "), 26u) << line;
+    // No other station was lost.
+    EXPECT_EQ(lines_with(out, " lost (").size(), 1u) << out;
+    // The statistics at the end, after the live output.
+    std::string expected = reference_stats(pcap, pty.slave, 1'500'000);
+    ASSERT_FALSE(expected.empty());
+    ASSERT_GE(out.size(), expected.size());
+    EXPECT_EQ(out.substr(out.size() - expected.size()), expected) << out;
+    std::remove(pcap.c_str());
+}
+
+TEST(SniffTest, AlarmRunsOncePerKindAndStationWithinTheMinute) {
+    PseudoTerminal pty;
+    // Each alarm writes its variables to a file of its own (they may run at the same time).
+    std::string dir = test::temp_path("alarms");
+    std::filesystem::create_directories(dir);
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "--alarm",
+                     "env | grep ^DPSCOPE_ | sort > " + dir + "/alarm.$$"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options;
+    options.cycles = 400;
+    // Station 5 stops answering twice: lost, back, lost again within the minute.
+    Session session = without_answers(simulate(options), 5, {{400, 500}, {900, 1000}});
+    play(pty, session, true);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    sniffer.signal(SIGINT);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    // One file per alarm, each variable once.
+    std::map<std::pair<std::string, std::string>, int> alarms;
+    std::string all;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        std::string text = slurp(entry.path().string());
+        all += text + "--\n";
+        std::map<std::string, std::string> block;
+        for (const std::string& line : test::lines_of(text)) {
+            std::size_t eq = line.find('=');
+            EXPECT_EQ(block.count(line.substr(0, eq)), 0u) << line;
+            block[line.substr(0, eq)] = line.substr(eq + 1);
+        }
+        ++alarms[{block["DPSCOPE_EVENT"], block["DPSCOPE_STATION"]}];
+        for (const char* name : {"DPSCOPE_ROLE", "DPSCOPE_TIME", "DPSCOPE_FRAME", "DPSCOPE_VERDICT",
+                                 "DPSCOPE_REASONS"})
+            EXPECT_EQ(block.count(name), 1u) << name << "\n" << text;
+        EXPECT_EQ(block["DPSCOPE_TIME"].back(), 'Z') << text;
+    }
+    EXPECT_EQ((alarms[{"station_lost", "5"}]), 1) << all;
+    for (const auto& [key, count] : alarms)
+        EXPECT_EQ(count, 1) << key.first << " " << key.second;
+    // The second loss was held back, and the end says so.
+    EXPECT_NE(sniffer.err().find("suppressed by the limit of one per event kind and station per "
+                                 "60 s (station_lost 1"),
+              std::string::npos)
+        << sniffer.err();
+    // -q: the output is the summary; no event lines without --stats.
+    EXPECT_EQ(sniffer.out().find(" health: "), std::string::npos) << sniffer.out();
+    std::filesystem::remove_all(dir);
+}
+
+TEST(SniffTest, StatsOptionsThatCannotWorkAreUsageErrors) {
+    PseudoTerminal pty;
+    auto fc = test::run_dpscope({"sniff", "-i", pty.slave, "--bus", "fc", "--stats"});
+    EXPECT_EQ(fc.exit_code, 2);
+    EXPECT_NE(fc.err.find("--stats: bus health is PROFIBUS statistics (FDL/DP link layer); the FC "
+                          "protocol bus has none"),
+              std::string::npos)
+        << fc.err;
+    auto vlt = test::run_dpscope({"sniff", "-i", pty.slave, "--bus", "vlt2000", "--alarm", "true"});
+    EXPECT_EQ(vlt.exit_code, 2);
+    EXPECT_NE(vlt.err.find("--alarm: bus health is PROFIBUS"), std::string::npos) << vlt.err;
+    auto format = test::run_dpscope(
+        {"sniff", "-i", pty.slave, "--baud", "1500000", "--stats", "--stats-format", "json"});
+    EXPECT_EQ(format.exit_code, 2);
+    EXPECT_NE(format.err.find("--stats-format json: "), std::string::npos) << format.err;
+    auto both = test::run_dpscope(
+        {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", "-", "--stats-file", "-"});
+    EXPECT_EQ(both.exit_code, 2);
+    EXPECT_NE(both.err.find("--stats-file -: standard output already carries the pcap"),
+              std::string::npos)
+        << both.err;
+    const std::string pcap = test::temp_path("stats-same.pcap");
+    auto same = test::run_dpscope(
+        {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "--stats-file", pcap});
+    EXPECT_EQ(same.exit_code, 2);
+    EXPECT_NE(same.err.find("it is the capture file of -w"), std::string::npos) << same.err;
+    auto device = test::run_dpscope(
+        {"sniff", "-i", pty.slave, "--baud", "1500000", "--stats-file", pty.slave});
+    EXPECT_EQ(device.exit_code, 2);
+    EXPECT_NE(device.err.find("that is the capture device"), std::string::npos) << device.err;
+}
+
+TEST(SniffTest, StatsFileHoldsTheStatisticsInTheFormatAsked) {
+    std::string path = test::temp_path("stats.json");
+    std::string out, err;
+    EXPECT_EQ(sniff_faulty_session({"--stats-file", path, "--stats-format", "json"}, out, err), 0)
+        << err;
+    std::vector<std::uint8_t> bytes = test::read_file(path);
+    EXPECT_FALSE(bytes.empty());
+    EXPECT_NE(out.find("Data_Exchange"), std::string::npos) << out;  // the live lines
+    std::remove(path.c_str());
+    // - : alone on standard output, the live decode on standard error.
+    EXPECT_EQ(sniff_faulty_session({"--stats-file", "-", "--stats-format", "csv", "-q"}, out, err),
+              0)
+        << err;
+    EXPECT_EQ(out.find("telegrams: "), std::string::npos) << out;  // the -q summary is elsewhere
+    EXPECT_NE(err.find("telegrams: "), std::string::npos) << err;
 }
 
 }  // namespace

@@ -1,0 +1,131 @@
+// `sniff --alarm CMD`: a command run when a station is lost or a verdict turns bad, with the event
+// in its environment; and the plain lines `sniff --stats` prints for health events when its
+// output is no terminal. The throttle (once per event kind per station per minute) and the
+// environment are pure and tested with an injected clock; AlarmRunner starts the commands
+// (posix_spawn, never waiting for them during the capture) and reaps them.
+#pragma once
+
+#include <sys/types.h>
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "decoder/bus_health.hpp"
+
+namespace dpscope::cli {
+
+// A health event with what the statistics said about its station when it happened.
+struct AlarmEvent {
+    HealthEventKind kind = HealthEventKind::StationLost;
+    std::uint8_t address = 0;  // kSegmentAddress: the segment
+    StationRole role = StationRole::Unknown;
+    std::int64_t time_ns = kNoTime;  // capture time of the telegram that caused it
+    std::uint64_t frame = 0;
+    Verdict verdict = Verdict::Good;
+    std::vector<std::string> reasons;  // describe_reason() of the judgement, the worst first
+};
+
+// The event `e` with the verdict and reasons `health` holds for its station: a master's own
+// judgement for a master with one, the station's otherwise, the segment's for kSegmentAddress.
+AlarmEvent describe_health_event(const HealthEvent& e, const BusHealth& health);
+
+// "2026-11-26T04:05:06.123456Z" (UTC, microseconds); "unknown" for kNoTime.
+std::string iso8601_utc(std::int64_t time_ns);
+
+// "station 5", "station 2 (master)", "the segment".
+std::string event_subject(const AlarmEvent& e);
+
+// One plain line (no newline) for the live output of `sniff --stats` off a terminal:
+// "2026-...Z health: station 5 lost (slave, frame 1234)",
+// "2026-...Z health: station 5 returned (slave, frame 2345)",
+// "2026-...Z health: verdict of station 5 turned bad: <reason>; <reason> (frame 3456)".
+std::string health_event_line(const AlarmEvent& e);
+
+// The variables the alarm command gets, as NAME=VALUE: DPSCOPE_EVENT (station_lost,
+// verdict_bad), DPSCOPE_STATION (the address, or "segment"), DPSCOPE_ROLE (master, slave,
+// unknown, segment), DPSCOPE_TIME (ISO 8601 UTC), DPSCOPE_FRAME, DPSCOPE_VERDICT (good, weak,
+// bad), DPSCOPE_REASONS (the reasons joined by "; ", empty when good).
+std::vector<std::string> alarm_environment(const AlarmEvent& e);
+
+// Does `kind` raise an alarm? StationLost and VerdictBad do; StationReturned does not.
+bool raises_alarm(HealthEventKind kind) noexcept;
+
+// At most one alarm per event kind per station (the segment is one more) per interval of the
+// clock given to admit(); what is held back is counted.
+class AlarmThrottle {
+  public:
+    static constexpr std::int64_t kDefaultIntervalNs = 60'000'000'000;  // one minute
+
+    explicit AlarmThrottle(std::int64_t interval_ns = kDefaultIntervalNs)
+        : interval_ns_(interval_ns) {
+        for (auto& row : last_)
+            row.fill(kNoTime);
+    }
+    // True when an alarm of `kind` for `address` may go out at `now_ns` (and notes it); false,
+    // counted as suppressed, when one went out less than the interval before.
+    bool admit(HealthEventKind kind, std::uint8_t address, std::int64_t now_ns);
+    std::uint64_t suppressed(HealthEventKind kind) const noexcept {
+        return suppressed_[static_cast<std::size_t>(kind)];
+    }
+    std::uint64_t suppressed_total() const noexcept;
+    std::int64_t interval_ns() const noexcept { return interval_ns_; }
+
+  private:
+    static constexpr std::size_t kKinds = static_cast<std::size_t>(HealthEventKind::Count);
+    std::int64_t interval_ns_;
+    std::array<std::array<std::int64_t, 256>, kKinds> last_{};
+    std::array<std::uint64_t, kKinds> suppressed_{};
+};
+
+// Runs the alarm command through /bin/sh -c with the event's variables added to the environment,
+// its standard input from /dev/null and its standard output onto standard error (standard output
+// may carry the pcap of -w -), no descriptor of ours inherited. Never waits during the capture.
+class AlarmRunner {
+  public:
+    using Clock = std::function<std::int64_t()>;
+    using Warn = std::function<void(std::string_view)>;
+
+    // `clock`: the throttle's time (monotonic nanoseconds; injected by tests). `warn`: where
+    // the one warning about a failing command goes.
+    AlarmRunner(std::string command, Clock clock, Warn warn,
+                std::int64_t interval_ns = AlarmThrottle::kDefaultIntervalNs);
+    ~AlarmRunner();  // leaves commands still running alone (finish() waited for them)
+    AlarmRunner(const AlarmRunner&) = delete;
+    AlarmRunner& operator=(const AlarmRunner&) = delete;
+
+    // Starts the command for `e` unless its kind raises no alarm or the throttle holds it back.
+    // Returns whether it was started.
+    bool raise(const AlarmEvent& e);
+    // Collects the commands that have ended (waitpid WNOHANG); the first that failed (exit code
+    // not 0, killed, or not started) is warned about, the rest counted.
+    void reap();
+    // The end of the capture: waits up to `timeout_ms` for the commands still running, then
+    // reaps. Returns how many are still running.
+    std::size_t finish(int timeout_ms);
+
+    std::uint64_t started() const noexcept { return started_; }
+    std::uint64_t failed() const noexcept { return failed_; }
+    std::size_t running() const noexcept { return running_.size(); }
+    const AlarmThrottle& throttle() const noexcept { return throttle_; }
+    // What the end of the capture says about the alarms ("" when nothing is worth saying):
+    // "alarms: 2 run, 3 suppressed by the once-a-minute limit (station_lost 2, verdict_bad 1)";
+    // failures and commands left running are added.
+    std::string summary() const;
+
+  private:
+    void failure(std::string_view what);
+
+    std::string command_;
+    Clock clock_;
+    Warn warn_;
+    AlarmThrottle throttle_;
+    std::vector<pid_t> running_;
+    std::uint64_t started_ = 0;
+    std::uint64_t failed_ = 0;
+};
+
+}  // namespace dpscope::cli
