@@ -83,7 +83,9 @@ class Pipeline {
                                  vlt2000_.tracker.options().character_bits);
             warn_checksum_rule();
         }
-        if (health_) health_->finish(end_ns);
+        // Bus health ends with the last telegram, not at a live capture's stop: sniff's figures
+        // then equal those of `dpscope stats` on the capture it wrote.
+        if (health_) health_->finish();
         summary_.add_findings(findings);
         if (keep_timelines_) timelines_.add(findings, {});
         return findings;

@@ -373,7 +373,8 @@ int run_sniff(const SniffCommand& command) {
     settings->vlt2000_tracker.character_bits = tty_options.character_bits;
     tty_options.idle_gap_ns = static_cast<std::int64_t>(command.idle_gap_ms) * 1'000'000;
     // Bus health: the bus load at the port's rate and character (8E1: 11 bits).
-    settings->track_health = stats || !command.alarm.empty();
+    // The report at the end has its bus-health section too (PROFIBUS), as `dpscope report` has.
+    settings->track_health = stats || !command.alarm.empty() || report;
     settings->health.baud = port->baud();
     settings->health.character_bits = tty_options.character_bits;
     const std::string heading =

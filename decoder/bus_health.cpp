@@ -232,10 +232,14 @@ struct BusHealthTracker::State {
         bool cycle_answered = false;
         std::uint64_t cycle_repeats = 0;
         std::uint64_t unanswered_cycles = 0;
-        StationState before_lost = StationState::Unknown;
         std::uint64_t diag_streak = 0;  // Slave_Diag answers in a row while in data exchange
         bool exchange_data_seen = false;
-        bool parameterised = false;  // answered Set_Prm (since listed or since lost)
+        // Answered Set_Prm or Data_Exchange (since listed or since lost): its diagnosis from then
+        // on can show a fault (before, Station_Not_Ready and Prm_Req are the start-up's).
+        bool parameterised = false;
+        // Answered Data_Exchange since it last answered Set_Prm or Chk_Cfg: the next of those
+        // answered is a resync (whatever came between, e.g. being lost and diagnosis polls).
+        bool exchanged_since_prm = false;
         Verdict last_verdict = Verdict::Good;
     };
     struct Master {
@@ -338,7 +342,6 @@ class BusHealthTrackerImpl {
 
     static void go_lost(State& s, State::Slot& slot, const DecodedTelegram& t) {
         if (slot.health.state == StationState::Lost) return;
-        slot.before_lost = slot.health.state;
         slot.parameterised = false;
         ++slot.health.lost_events;
         set_state(s, slot, StationState::Lost, t, false);
@@ -662,21 +665,23 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
         return s.events;
     }
     const bool was_lost = h.state == StationState::Lost;
-    const StationState before = was_lost ? slot.before_lost : h.state;
     StationState next = was_lost ? StationState::Unknown : h.state;
     switch (asked.service) {
         case Service::SetPrm:
         case Service::ChkCfg:
             if (asked.service == Service::SetPrm) slot.parameterised = true;
-            if (before == StationState::DataExchange &&
-                (was_lost || h.state != StationState::Configuring))
+            if (slot.exchanged_since_prm) {
                 ++h.resyncs;
+                slot.exchanged_since_prm = false;
+            }
             next = StationState::Configuring;
             slot.diag_streak = 0;
             break;
         case Service::DataExchange:
             next = StationState::DataExchange;
             slot.diag_streak = 0;
+            slot.parameterised = true;
+            slot.exchanged_since_prm = true;
             if (data) slot.exchange_data_seen = true;
             break;
         case Service::SlaveDiag:

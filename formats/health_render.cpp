@@ -71,6 +71,9 @@ struct SlaveColumn {
     std::string_view header;  // text, Markdown and HTML
     std::string_view id;      // CSV
     std::function<std::uint64_t(const StationHealth&)> value;
+    // In the slave table of text, Markdown and HTML; the illegal and negative answers by kind are
+    // CSV columns only: the table shows them in one cell each (illegal_cell, negative_cell).
+    bool in_table = true;
 };
 
 const std::vector<SlaveColumn>& slave_columns() {
@@ -94,30 +97,60 @@ const std::vector<SlaveColumn>& slave_columns() {
             "illegal_not_asked", "illegal_wrong_kind", "illegal_short_ack"};
         for (std::size_t i = 0; i < kIllegalAnswerCount; ++i)
             c.push_back({kIllegalHeaders[i], kIllegalIds[i],
-                         [i](const StationHealth& s) { return s.illegal_answers[i]; }});
+                         [i](const StationHealth& s) { return s.illegal_answers[i]; }, false});
         static constexpr std::string_view kNegativeIds[] = {"negative_ue", "negative_rr",
                                                             "negative_rs", "negative_nr",
                                                             "negative_dh", "negative_rdh"};
         for (std::size_t i = 0; i < kNegativeAnswerCount; ++i)
             c.push_back({negative_answer_name(static_cast<NegativeAnswer>(i)), kNegativeIds[i],
-                         [i](const StationHealth& s) { return s.negative_answers[i]; }});
+                         [i](const StationHealth& s) { return s.negative_answers[i]; }, false});
         c.push_back({"damaged", "damaged", [](const StationHealth& s) { return s.fcs_errors; }});
         return c;
     }();
     return columns;
 }
 
+// "0", or the total and the kinds that occurred: "2 (not asked 1, short ack 1)".
+std::string illegal_cell(const StationHealth& s) {
+    static constexpr std::string_view kShort[] = {"not asked", "wrong kind", "short ack"};
+    std::string cell = number(s.illegal_answers_total());
+    std::string kinds;
+    for (std::size_t i = 0; i < kIllegalAnswerCount; ++i) {
+        if (s.illegal_answers[i] == 0) continue;
+        kinds += fmt::format("{}{} {}", kinds.empty() ? "" : ", ", kShort[i], s.illegal_answers[i]);
+    }
+    return kinds.empty() ? cell : fmt::format("{} ({})", cell, kinds);
+}
+
+// "-", or the kinds that occurred with their counts: "RS 1, DH 3".
+std::string negative_cell(const StationHealth& s) {
+    std::string cell;
+    for (std::size_t i = 0; i < kNegativeAnswerCount; ++i) {
+        if (s.negative_answers[i] == 0) continue;
+        cell += fmt::format("{}{} {}", cell.empty() ? "" : ", ",
+                            negative_answer_name(static_cast<NegativeAnswer>(i)),
+                            s.negative_answers[i]);
+    }
+    return cell.empty() ? std::string("-") : cell;
+}
+
 Table slave_table(const BusHealth& h) {
     Table t;
     t.headers.push_back("address");
     for (const SlaveColumn& column : slave_columns())
-        t.headers.push_back(column.header);
+        if (column.in_table) t.headers.push_back(column.header);
     t.numeric.assign(t.headers.size(), true);
+    t.headers.push_back("illegal");
+    t.headers.push_back("negative answers");
+    t.numeric.push_back(false);
+    t.numeric.push_back(false);
     for (const StationHealth& s : h.stations) {
         if (!in_slave_table(s)) continue;
         std::vector<std::string> row{number(s.address)};
         for (const SlaveColumn& column : slave_columns())
-            row.push_back(number(column.value(s)));
+            if (column.in_table) row.push_back(number(column.value(s)));
+        row.push_back(illegal_cell(s));
+        row.push_back(negative_cell(s));
         t.rows.push_back(std::move(row));
     }
     return t;
@@ -531,7 +564,8 @@ void text_segment(TextBuffer& b, const BusHealth& h, std::string_view indent) {
         fmt::format_to(it, "{}           - {}\n", indent, describe_reason(r, h.thresholds));
 }
 
-void text_tables(TextBuffer& b, const BusHealth& h) {
+void text_tables(TextBuffer& out, const BusHealth& h, std::string_view indent) {
+    TextBuffer b;
     auto it = std::back_inserter(b);
     if (h.stations.empty()) {
         append(b, "\nLive list: no stations\n");
@@ -570,6 +604,16 @@ void text_tables(TextBuffer& b, const BusHealth& h) {
                        threshold_value(row.default_value));
     }
     if (!any) append(b, "\nThresholds: the defaults\n");
+    // Every line but the empty ones indented (the report nests the tables in its section).
+    const std::string_view text(b.data(), b.size());
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string_view::npos) end = text.size() - 1;
+        if (end > start) append(out, indent);
+        append(out, text.substr(start, end - start + 1));
+        start = end + 1;
+    }
 }
 
 // ---- Markdown ----------------------------------------------------------------------------------

@@ -39,8 +39,9 @@ void write_json_members(JsonWriter& w, const BusHealth& h);
 // telegrams, the segment's verdict and its reasons. Each line starts with `indent`.
 void text_segment(TextBuffer& b, const BusHealth& h, std::string_view indent);
 // The live list, the slave table, the master table, the verdict reasons per station and the
-// thresholds that differ from the defaults, each under a title line.
-void text_tables(TextBuffer& b, const BusHealth& h);
+// thresholds that differ from the defaults, each under a title line; every line that is not
+// empty starts with `indent`.
+void text_tables(TextBuffer& b, const BusHealth& h, std::string_view indent = "");
 
 // ---- Markdown
 // --------------------------------------------------------------------------------------

@@ -47,7 +47,7 @@ void write_text(const ReportContext& c, const ReportModel& m, Output& out) {
     if (c.health) {
         append(b, "\nBus health\n");
         health::text_segment(b, *c.health, "  ");
-        health::text_tables(b, *c.health);
+        health::text_tables(b, *c.health, "  ");
         out.end_record();
     }
     fmt::format_to(it, "\nFindings ({}, in capture order)\n", m.shown);

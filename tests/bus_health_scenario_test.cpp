@@ -146,10 +146,9 @@ TEST(BusHealthScenarioTest, StationLostAndBack) {
     // Silent for five cycles, each poll repeated once and unanswered.
     EXPECT_EQ(s.lost_events, 1u);
     EXPECT_EQ(s.returns, 1u);
-    // docs/bus-health.md: only a return *through Set_Prm* resyncs; a DP master asks a returning
-    // station for its diagnosis first, so the return is the Slave_Diag answer (diagnosis only)
-    // and the Set_Prm after it no resync.
-    EXPECT_EQ(s.resyncs, 0u);
+    // docs/bus-health.md: it was in data exchange, so its Set_Prm after the return (a DP master
+    // asks for the diagnosis first) is a resync.
+    EXPECT_EQ(s.resyncs, 1u);
     EXPECT_EQ(s.repeats, kStationLostCycles);
     EXPECT_EQ(s.max_repeats_per_cycle, 1u);
     EXPECT_EQ(s.no_answers, 2 * kStationLostCycles);

@@ -127,6 +127,19 @@ foreach(format text json markdown csv html)
     golden_case(stats_faults_${format} samples/expected/stats.faults.${extension} EXIT 1 stats -T ${format} --baud 1500000 samples/faults.pcap)
 endforeach()
 golden_case(stats_clean_text samples/expected/stats.ppo2.txt stats --baud 1500000 samples/ppo2.pcap)
+# The bus-health sample (scripts/make-samples: two masters in the token ring, five slaves, each
+# bus-health fault once): every stats format, and the report's bus-health section.
+foreach(format text json markdown csv html)
+    set(extension ${format})
+    if(format STREQUAL "markdown")
+        set(extension md)
+    elseif(format STREQUAL "text")
+        set(extension txt)
+    endif()
+    golden_case(stats_bus_health_${format} samples/expected/stats.bus-health.${extension} EXIT 1 stats -T ${format} --baud 1500000 samples/bus-health.pcap)
+endforeach()
+golden_case(report_bus_health_text samples/expected/report.bus-health.txt report --baud 1500000 samples/bus-health.pcap)
+golden_case(report_bus_health_junit samples/expected/report.bus-health.junit.xml report -T junit --baud 1500000 samples/bus-health.pcap)
 
 add_custom_target(update-golden ${golden_update_commands}
     DEPENDS dpscope

@@ -3000,8 +3000,8 @@ TEST(ReportTest, BusHealthSectionInText) {
         std::string::npos)
         << text;
     for (std::string_view title :
-         {"\nLive list (3 stations)\n", "\nSlaves (as asked", "\nMasters (times in ms)\n",
-          "\nVerdicts\n", "\nThresholds (other than the defaults)\n"}) {
+         {"\n  Live list (3 stations)\n", "\n  Slaves (as asked", "\n  Masters (times in ms)\n",
+          "\n  Verdicts\n", "\n  Thresholds (other than the defaults)\n"}) {
         const std::size_t at = text.find(title, section);
         EXPECT_TRUE(at != std::string::npos && at < findings) << title;
     }

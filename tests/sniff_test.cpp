@@ -626,7 +626,8 @@ TEST(SniffTest, DpV1SlavesAreDecodedAndTrackedLive) {
 
     // The report at the end: the same per-slave sections (the DP-V1 ones included) and the
     // same findings as `dpscope report` on the written capture.
-    auto offline = test::run_dpscope({"report", pcap});
+    // (At the port's rate, as the live report's bus-health section has it.)
+    auto offline = test::run_dpscope({"report", "--baud", "1500000", pcap});
     EXPECT_EQ(offline.exit_code, 1) << offline.err;
     std::vector<std::string> live_report = lines_from(out, "Slave ");
     ASSERT_GT(live_report.size(), 40u) << out;
