@@ -274,6 +274,21 @@ TEST(BusHealthScenarioTest, DiagnosisFault) {
     expect_others_clean(run.health);
 }
 
+// A tap clipped onto a running bus sees no start-up: the slave's first answer is to Data_Exchange,
+// and its diagnosis faults count from there (docs/bus-health.md, "Start-up diagnosis").
+TEST(BusHealthScenarioTest, DiagnosisFaultWithoutTheStartUp) {
+    SimulatorOptions options = session(FaultKind::DiagFault);
+    options.record_start_up = false;
+    Outcome run = simulate(options);
+    ASSERT_EQ(run.injections.size(), 1u);
+    const StationHealth& s = station(run.health, 4);
+    EXPECT_EQ(s.diag_requests, 1u);
+    EXPECT_EQ(s.diag_answers, 1u);
+    EXPECT_EQ(s.diag_faults, 1u);
+    EXPECT_EQ(diag_bit(s, DiagFault::ExtDiag), 1u);
+    EXPECT_EQ(s.judgement.verdict, Verdict::Weak);
+}
+
 TEST(BusHealthScenarioTest, OneRepeat) {
     Outcome run = simulate(session(FaultKind::FdlRetry));
     const StationHealth& s = station(run.health, 4);
