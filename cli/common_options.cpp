@@ -565,7 +565,7 @@ void add_health_options(CLI::App& app, HealthOptionValues& values) {
         ->type_name("FILE");
     app.add_option("--threshold", values.thresholds,
                    "Set one bus-health threshold, NAME=VALUE (repeatable; after --health-config). "
-                   "The thresholds (docs/bus-health.md, README \"Bus health thresholds\"): " +
+                   "The thresholds (docs/bus-health.md, README \"Bus health\"): " +
                        threshold_list())
         ->type_name("NAME=VALUE")
         ->allow_extra_args(false);

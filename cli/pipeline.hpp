@@ -85,7 +85,10 @@ class Pipeline {
         }
         // Bus health ends with the last telegram, not at a live capture's stop: sniff's figures
         // then equal those of `dpscope stats` on the capture it wrote.
-        if (health_) health_->finish();
+        if (health_) {
+            health_->finish();
+            warn_line_rate(health_->health().segment);
+        }
         summary_.add_findings(findings);
         if (keep_timelines_) timelines_.add(findings, {});
         return findings;
@@ -121,6 +124,17 @@ class Pipeline {
             "line was faster; the drives' response times are counted from the commands' last "
             "bytes at that rate (0 for these); give the line's rate with --baud",
             counted(early, "response", "responses"), early == 1 ? "its" : "their", baud, bits));
+    }
+
+    // The telegrams need more time at the baud rate given than the capture lasts: the line was
+    // faster (the bus load would read over 100 %, shown as 100).
+    static void warn_line_rate(const SegmentHealth& segment) {
+        const double duration_ns = segment.duration_s() * 1e9;
+        if (segment.baud == 0 || duration_ns <= 0 || segment.busy_ns <= duration_ns * 1.01) return;
+        print_warning(fmt::format(
+            "the telegrams take {:.0f} % of the capture's time at {} baud: the line was faster "
+            "than --baud says (the bus load shows as 100 %); give the rate the capture was made at",
+            segment.busy_ns / duration_ns * 100.0, segment.baud));
     }
 
     // Most VLT 2000 telegrams with a wrong checksum: perhaps the drives compute it otherwise than

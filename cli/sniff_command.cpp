@@ -148,6 +148,7 @@ struct SniffCommand {
     std::string stats_file;
     std::string stats_format = "text";
     std::string alarm;
+    HealthOptionValues health;  // --health-config, --threshold (the verdicts of --stats, --alarm)
 };
 
 // How long the end of the capture waits for --alarm commands still running.
@@ -217,6 +218,12 @@ int run_sniff(const SniffCommand& command) {
         print_error(settings.error());
         return kExitUsage;
     }
+    Result<HealthThresholds> thresholds = resolve_health_options(command.health);
+    if (!thresholds) {
+        print_error(thresholds.error());
+        return kExitUsage;
+    }
+    settings->health.thresholds = *thresholds;
     // The line: PROFIBUS runs at the baud rate given (8E1); the FC protocol at 2400 to 115200
     // baud, 9600 8E1 unless --baud, --parity and --stop-bits say otherwise; the VLT 2000 at 9600
     // 8N1 (its manual: 8 data bits, no parity, 1 stop bit) unless they say otherwise.
@@ -673,6 +680,7 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
                   "Do not ask the driver for low-latency mode (ASYNC_LOW_LATENCY)");
     add_display_options(*sub, command->options, "text");
     add_tracking_options(*sub, command->options);
+    add_health_options(*sub, command->health);
     // A live line cannot be judged before it is read: sniff takes the bus from --bus only.
     sub->get_option("--bus")->description(
         "The bus on the line: profibus (PROFIBUS DP, the default), fc (Danfoss FC protocol on "

@@ -105,8 +105,13 @@ std::string describe_reason(const VerdictReason& reason, const HealthThresholds&
     const std::string_view what = row.name;
     const std::string_view comparison =
         row.comparison == ThresholdComparison::From ? "from" : "above";
-    return fmt::format("{}: {:g}{} ({} {} {:g}{})", what, reason.measured, unit,
-                       verdict_name(reason.verdict), comparison, limit, unit);
+    // Counts as whole numbers, rates to three significant digits (0.758 %, 2.99 %, 12.5 %).
+    const auto figure = [](double value) {
+        if (value == std::floor(value) && value < 1e15) return fmt::format("{:.0f}", value);
+        return value >= 100 ? fmt::format("{:.1f}", value) : fmt::format("{:.3g}", value);
+    };
+    return fmt::format("{}: {}{} ({} {} {}{})", what, figure(reason.measured), unit,
+                       verdict_name(reason.verdict), comparison, figure(limit), unit);
 }
 
 void TimeSeries::add(std::int64_t time_ns, std::int64_t value_ns) {
@@ -792,8 +797,10 @@ std::span<const HealthEvent> BusHealthTracker::judge() {
         else if (load > limits.get(BusLoadPercentWeak))
             sj.reasons.push_back({BusLoadPercentWeak, load, Verdict::Weak});
     }
+    // The segment's damaged telegrams, all of them, over all its telegrams (the rate its
+    // "Damaged" line reads; those no station could be named for weigh here only).
     judge_rate(sj.reasons, limits, FcsErrorPercentWeak, FcsErrorPercentBad,
-               static_cast<double>(seg.unattributed_damaged), static_cast<double>(seg.telegrams));
+               static_cast<double>(seg.damaged), static_cast<double>(seg.telegrams));
     conclude(sj);
     sj.verdict = worse(sj.verdict, segment);
     turned_bad(s.segment_last_verdict, sj.verdict, kSegmentAddress, StationRole::Unknown);

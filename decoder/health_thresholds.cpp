@@ -44,7 +44,8 @@ constexpr HealthThresholdRow kRows[] = {
      "repeats of one request from which a slave is weak (0: never)",
      "a request that needed two repeats came close to the usual retry limit of the master"},
     {NoAnswerPercentWeak, "no_answer_percent_weak", 0.1, 0, 100, false, "%", Verdict::Weak,
-     C::Above, "requests without an answer, in % of those that expected one, above which a station "
+     C::Above,
+     "requests without an answer, in % of those that expected one, above which a station "
      "is weak",
      "a slave in data exchange answers every request; silence beyond noise level is a warning"},
     {NoAnswerPercentBad, "no_answer_percent_bad", 5, 0, 100, false, "%", Verdict::Bad, C::Above,
@@ -102,7 +103,8 @@ static_assert(catalogue::names_unique(std::span<const HealthThresholdRow>(kRows)
               "health threshold names are unique and not empty");
 
 std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t'))
+        s.remove_prefix(1);
     while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
         s.remove_suffix(1);
     return s;
@@ -155,8 +157,8 @@ Result<void> HealthThresholds::set(HealthThreshold kind, double value) {
                                  format_limit(value), format_limit(row.minimum),
                                  format_limit(row.maximum), unit)};
     if (row.whole && value != std::floor(value))
-        return Error{fmt::format("threshold {}: {} is not a whole number", row.name,
-                                 format_limit(value))};
+        return Error{
+            fmt::format("threshold {}: {} is not a whole number", row.name, format_limit(value))};
     values_[static_cast<std::size_t>(kind)] = value;
     return {};
 }
@@ -164,15 +166,16 @@ Result<void> HealthThresholds::set(HealthThreshold kind, double value) {
 Result<void> HealthThresholds::set_from_text(std::string_view assignment) {
     const std::size_t equals = assignment.find('=');
     if (equals == std::string_view::npos)
-        return Error{fmt::format("'{}' is no threshold setting; write NAME=VALUE, e.g. "
-                                 "lost_cycles=5 (thresholds: {})",
-                                 assignment, known_names())};
+        return Error{
+            fmt::format("'{}' is no threshold setting; write NAME=VALUE, e.g. "
+                        "lost_cycles=5 (thresholds: {})",
+                        assignment, known_names())};
     const std::string_view name = trim(assignment.substr(0, equals));
     const std::string_view text = trim(assignment.substr(equals + 1));
     const std::optional<HealthThreshold> kind = health_threshold_from_name(name);
     if (!kind)
-        return Error{fmt::format("unknown threshold '{}'; the thresholds are: {}", name,
-                                 known_names())};
+        return Error{
+            fmt::format("unknown threshold '{}'; the thresholds are: {}", name, known_names())};
     double value = 0;
     const char* end = text.data() + text.size();
     auto [stop, error] = std::from_chars(text.data(), end, value);
@@ -183,6 +186,8 @@ Result<void> HealthThresholds::set_from_text(std::string_view assignment) {
 
 Result<void> HealthThresholds::load(std::string_view text, std::string_view origin) {
     HealthThresholds loaded = *this;
+    // A UTF-8 byte order mark (as Notepad writes one) is no part of the first name.
+    if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
     std::size_t line_number = 0;
     while (!text.empty()) {
         ++line_number;
@@ -195,9 +200,10 @@ Result<void> HealthThresholds::load(std::string_view text, std::string_view orig
         if (line.empty()) continue;
         if (line.front() == '[') {
             if (line != "[thresholds]")
-                return Error{fmt::format("{}:{}: unknown section '{}'; the settings go in "
-                                         "[thresholds] or before any section",
-                                         origin, line_number, line)};
+                return Error{
+                    fmt::format("{}:{}: unknown section '{}'; the settings go in "
+                                "[thresholds] or before any section",
+                                origin, line_number, line)};
             continue;
         }
         if (Result<void> set = loaded.set_from_text(line); !set)

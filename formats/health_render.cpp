@@ -553,10 +553,10 @@ void text_segment(TextBuffer& b, const BusHealth& h, std::string_view indent) {
     if (s.load_percent() >= 0)
         fmt::format_to(it, "{}Bus load:  {:.2f} % at {} baud, idle {:.6f} s\n", indent,
                        s.load_percent(), s.baud, s.idle_s());
-    else if (s.baud == 0)
-        fmt::format_to(it, "{}Bus load:  unknown (give --baud)\n", indent);
-    else
+    else if (s.duration_s() <= 0)
         fmt::format_to(it, "{}Bus load:  unknown (no timestamps)\n", indent);
+    else
+        fmt::format_to(it, "{}Bus load:  unknown (give --baud)\n", indent);
     fmt::format_to(it, "{}Damaged:   {} ({} no station could be named for)\n", indent, s.damaged,
                    s.unattributed_damaged);
     fmt::format_to(it, "{}Segment:   {}\n", indent, verdict_name(s.judgement.verdict));
@@ -638,7 +638,7 @@ void markdown_segment(TextBuffer& b, const BusHealth& h) {
                        s.baud, s.idle_s());
     else
         fmt::format_to(it, "- Bus load: unknown ({})\n",
-                       s.baud == 0 ? "give --baud" : "no timestamps");
+                       s.duration_s() <= 0 ? "no timestamps" : "give --baud");
     fmt::format_to(it, "- Damaged: {} ({} no station could be named for)\n", s.damaged,
                    s.unattributed_damaged);
     fmt::format_to(it, "- Segment: **{}**\n", verdict_name(s.judgement.verdict));
@@ -783,7 +783,7 @@ void html_segment(TextBuffer& b, const BusHealth& h) {
         b, "bus load",
         s.load_percent() >= 0
             ? fmt::format("{:.2f} % at {} baud", s.load_percent(), s.baud)
-            : fmt::format("unknown ({})", s.baud == 0 ? "give --baud" : "no timestamps"));
+            : fmt::format("unknown ({})", s.duration_s() <= 0 ? "no timestamps" : "give --baud"));
     report::html_kv(b, "idle", s.idle_s() >= 0 ? fmt::format("{:.6f} s", s.idle_s()) : "unknown");
     report::html_kv(
         b, "damaged",

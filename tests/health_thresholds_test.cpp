@@ -147,5 +147,12 @@ TEST(HealthThresholdsTest, LoadErrorsNameFileAndLine) {
     EXPECT_EQ(value.error().rfind("d.ini:1: threshold lost_cycles: '= 3' is not a number", 0), 0u);
 }
 
+TEST(HealthThresholdsTest, LoadSkipsAUtf8ByteOrderMark) {
+    HealthThresholds t;
+    // Notepad writes one before the first line.
+    ASSERT_TRUE(t.load("\xEF\xBB\xBFlost_cycles = 4\r\n", "bom.toml").has_value());
+    EXPECT_EQ(t.get(HealthThreshold::LostCycles), 4);
+}
+
 }  // namespace
 }  // namespace dpscope

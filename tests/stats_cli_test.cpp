@@ -220,5 +220,25 @@ TEST(StatsCliTest, TruncatedCaptureExitsThreeUnlessTheVerdictFails) {
     EXPECT_EQ(counted.exit_code, 0) << counted.err;
 }
 
+TEST(StatsCliTest, ABaudRateTooLowForTheCaptureIsWarnedAbout) {
+    // samples/bus-health.pcap was made at 1500000 baud: at 187500 its telegrams need about three
+    // times the capture's length.
+    CommandResult slow = run_dpscope({"stats", "--baud", "187500", "samples/bus-health.pcap"});
+    EXPECT_NE(slow.err.find("the line was faster than --baud says"), std::string::npos) << slow.err;
+    CommandResult right = run_dpscope({"stats", "--baud", kBaud, "samples/bus-health.pcap"});
+    EXPECT_EQ(right.err.find("the line was faster"), std::string::npos) << right.err;
+}
+
+TEST(StatsCliTest, SniffTakesTheThresholdsToo) {
+    // Checked before the device is opened.
+    CommandResult bad = run_dpscope(
+        {"sniff", "-i", "/nonexistent/tty", "--baud", kBaud, "--stats", "--threshold", "nope=1"});
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("unknown threshold 'nope'"), std::string::npos) << bad.err;
+    CommandResult help = run_dpscope({"sniff", "--help"});
+    EXPECT_NE(help.out.find("--health-config"), std::string::npos);
+    EXPECT_NE(help.out.find("--threshold"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace dpscope

@@ -455,7 +455,7 @@ TEST(StatsTest, HtmlWithoutTimesDrawsStatesByFrameAndNoPlot) {
     EXPECT_EQ(lost[0]->elements("title")[0]->text, "station 5: lost from frame 500 to frame 700");
     EXPECT_TRUE(root->all("svg", "master-plot").empty());
     EXPECT_TRUE(has(text, "Master 2: no cycle time or token rotation measured (no timestamps)."));
-    EXPECT_TRUE(has(text, "unknown (give --baud)"));
+    EXPECT_TRUE(has(text, "unknown (no timestamps)"));
 }
 
 TEST(StatsTest, HtmlSaysWhenStateChangesWereNotKeptAndPlotsEveryPoint) {
