@@ -66,7 +66,16 @@ void LiveHealth::handle(const HealthEvent& event) {
 }
 
 void LiveHealth::on_events(std::span<const HealthEvent> events) {
-    for (const HealthEvent& event : events)
+    if (events.empty()) return;
+    // A station lost or back changes verdicts: judged now (cheap, and events are rare), so the
+    // event's line and alarm carry the verdict it leads to, and a verdict that turns bad by it
+    // is said at once, with this telegram, not at the next redraw.
+    const std::vector<HealthEvent> station_events(events.begin(), events.end());
+    const std::span<const HealthEvent> verdicts = tracker_.judge();
+    const std::vector<HealthEvent> turned_bad(verdicts.begin(), verdicts.end());
+    for (const HealthEvent& event : station_events)
+        handle(event);
+    for (const HealthEvent& event : turned_bad)
         handle(event);
 }
 
