@@ -33,6 +33,24 @@ std::string reasons_text(const Judgement& judgement, const HealthThresholds& thr
     return text;
 }
 
+std::string segment_cause(const BusHealth& h) {
+    const Verdict verdict = h.segment.judgement.verdict;
+    for (const VerdictReason& reason : h.segment.judgement.reasons)
+        if (reason.verdict == verdict) return "";  // its own reasons say it
+    std::string text;
+    auto add = [&](std::string_view who) {
+        text += text.empty() ? "from " : ", ";
+        text += who;
+    };
+    for (const StationHealth& s : h.stations)
+        if (verdict != Verdict::Good && s.judgement.verdict == verdict)
+            add(fmt::format("station {} ({})", s.address, station_role_name(s.role)));
+    for (const MasterHealth& m : h.masters)
+        if (verdict != Verdict::Good && m.judgement.verdict == verdict)
+            add(fmt::format("master {} (token and cycle)", m.address));
+    return text;
+}
+
 bool in_slave_table(const StationHealth& s) {
     return s.role != StationRole::Master || s.requests > 0 || s.answers > 0;
 }
@@ -559,7 +577,9 @@ void text_segment(TextBuffer& b, const BusHealth& h, std::string_view indent) {
         fmt::format_to(it, "{}Bus load:  unknown (give --baud)\n", indent);
     fmt::format_to(it, "{}Damaged:   {} ({} no station could be named for)\n", indent, s.damaged,
                    s.unattributed_damaged);
-    fmt::format_to(it, "{}Segment:   {}\n", indent, verdict_name(s.judgement.verdict));
+    const std::string cause = segment_cause(h);
+    fmt::format_to(it, "{}Segment:   {}{}\n", indent, verdict_name(s.judgement.verdict),
+                   cause.empty() ? "" : fmt::format(" ({})", cause));
     for (const VerdictReason& r : s.judgement.reasons)
         fmt::format_to(it, "{}           - {}\n", indent, describe_reason(r, h.thresholds));
 }

@@ -21,6 +21,9 @@ std::string when(std::int64_t time_ns, std::uint64_t frame);
 std::string reasons_text(const Judgement& judgement, const HealthThresholds& thresholds);
 // The stations listed in the slave table: every station that is not a master, and a master
 // that was asked something (it answers FDL_Status).
+// Why the segment has its verdict when its own reasons do not say it: "from station 4 (slave),
+// master 2 (token and cycle)" (those with the segment's verdict); "" otherwise.
+std::string segment_cause(const BusHealth& h);
 bool in_slave_table(const StationHealth& s);
 // The thresholds whose value differs from the default.
 bool differs_from_default(const HealthThresholds& thresholds, HealthThreshold kind);

@@ -28,7 +28,8 @@ std::vector<HealthCase> health_cases(const BusHealth& h) {
         cases.push_back(
             {fmt::format("station {} ({})", s.address, station_role_name(s.role)), &s.judgement});
     for (const MasterHealth& master : h.masters)
-        cases.push_back({fmt::format("master {}", master.address), &master.judgement});
+        cases.push_back(
+            {fmt::format("master {} (token and cycle)", master.address), &master.judgement});
     return cases;
 }
 
@@ -49,7 +50,11 @@ void write_health_suite(const BusHealth& h, const std::vector<HealthCase>& cases
             append(b, "/>\n");
             continue;
         }
-        const std::string reasons = health::reasons_text(*c.judgement, h.thresholds);
+        std::string reasons = health::reasons_text(*c.judgement, h.thresholds);
+        if (c.judgement == &h.segment.judgement) {
+            const std::string cause = health::segment_cause(h);
+            if (!cause.empty()) reasons += (reasons.empty() ? "" : "; ") + cause;
+        }
         if (verdict == Verdict::Bad)
             fmt::format_to(it,
                            ">\n      <failure type=\"bus_health\" message=\"{}\">verdict bad: {}"

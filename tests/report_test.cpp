@@ -3094,8 +3094,14 @@ TEST(ReportTest, BusHealthSuiteInJunitFailsOnBadVerdicts) {
         names.push_back(c->attribute("name"));
         EXPECT_EQ(c->attribute("classname"), "dpscope.bus_health");
     }
-    EXPECT_EQ(names, (std::vector<std::string>{"segment", "station 2 (master)", "station 5 (slave)",
-                                               "station 7 (unknown)", "master 2"}));
+    EXPECT_EQ(names,
+              (std::vector<std::string>{"segment", "station 2 (master)", "station 5 (slave)",
+                                        "station 7 (unknown)", "master 2 (token and cycle)"}));
+    // The segment's own reason says why it is bad: no station named besides (samples/expected/
+    // report.bus-health.junit.xml has a segment bad by its station, which it names).
+    ASSERT_EQ(cases[0]->elements("failure").size(), 1u);
+    EXPECT_EQ(cases[0]->elements("failure")[0]->attribute("message"),
+              "lost_events_bad: 1 (bad from 1)");
     ASSERT_EQ(cases[2]->elements("failure").size(), 1u);
     EXPECT_EQ(cases[2]->elements("failure")[0]->attribute("message"),
               "lost_events_bad: 1 (bad from 1); repeat_percent_weak: 1 % (weak above 0.1 %)");
