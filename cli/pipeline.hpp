@@ -5,6 +5,7 @@
 #include <span>
 #include <type_traits>
 
+#include "capture/output_file.hpp"
 #include "capture/telegram_source.hpp"
 #include "cli/common_options.hpp"
 #include "cli/version.hpp"
@@ -198,6 +199,34 @@ inline ReportContext report_context(const Pipeline& pipeline, const TelegramSour
     context.fail_on = fail_on;
     context.version = kVersion;
     return context;
+}
+
+// Runs `write(out)` with `out` on PATH (- is standard output) staged as a PendingOutputFile: the
+// file is moved into place only when `write` returns neither kExitUsage nor kExitOutputError, so
+// an unusable input or a write error leaves an existing file as it was. Returns write's exit
+// code, or kExitOutputError when the file cannot be opened or moved into place.
+template <class Write>
+int write_staged_output(const std::string& path, Write&& write) {
+    Result<std::unique_ptr<PendingOutputFile>> opened = PendingOutputFile::open(path);
+    if (!opened) {
+        print_error(opened.error());
+        return kExitOutputError;
+    }
+    std::unique_ptr<PendingOutputFile> file = std::move(opened).value();
+    int exit_code = kExitOk;
+    {
+        Output out(file->file());
+        exit_code = write(out);
+    }
+    if (exit_code == kExitUsage || exit_code == kExitOutputError) {
+        file->discard();
+        return exit_code;
+    }
+    if (Result<void> committed = file->commit(); !committed) {
+        print_error(committed.error());
+        return kExitOutputError;
+    }
+    return exit_code;
 }
 
 // Reports input problems on standard error (after flushing `out`, so messages and output keep

@@ -105,23 +105,14 @@ int run_report(const ReportCommand& command) {
         print_error(distinct.error());
         return kExitUsage;
     }
-    // Written beside OUT and moved into place only once the report is complete: an unusable
-    // input or a write error leaves an existing OUT as it was.
-    Result<std::unique_ptr<PendingOutputFile>> opened_file =
-        PendingOutputFile::open(command.output);
-    if (!opened_file) {
-        print_error(opened_file.error());
-        return kExitOutputError;
-    }
-    std::unique_ptr<PendingOutputFile> report_file = std::move(opened_file).value();
     TelegramSource& source = *opened.value();
     // The bus-health section of a PROFIBUS capture (the Pipeline keeps no tracker for another).
     settings->track_health = settings->protocol->protocol == Protocol::ProfibusDp;
     settings->health.thresholds = *thresholds;
     settings->health.baud = command.options.baud;  // 0: the bus load is unknown
-    int exit_code = kExitOk;
-    {
-        Output out(report_file->file());
+    // Written beside OUT and moved into place only once the report is complete: an unusable
+    // input or a write error leaves an existing OUT as it was.
+    return write_staged_output(command.output, [&](Output& out) {
         Output diagnostics(stderr);
         report_input_issues(source, diagnostics);
         const ReportFormat format =
@@ -147,20 +138,10 @@ int run_report(const ReportCommand& command) {
                 check_telegrams_found(source, read, *settings->protocol, settings->bus_given);
             !found) {
             print_error(found.error());
-            exit_code = kExitUsage;
-        } else {
-            exit_code = write_report(command, format, pipeline, source, log, out);
+            return kExitUsage;
         }
-    }
-    if (exit_code == kExitUsage || exit_code == kExitOutputError) {
-        report_file->discard();
-        return exit_code;
-    }
-    if (Result<void> committed = report_file->commit(); !committed) {
-        print_error(committed.error());
-        return kExitOutputError;
-    }
-    return exit_code;
+        return write_report(command, format, pipeline, source, log, out);
+    });
 }
 
 }  // namespace

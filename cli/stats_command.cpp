@@ -100,16 +100,7 @@ int run_stats(const StatsCommand& command) {
     }
     // Written beside OUT and moved into place only once the statistics are complete: an unusable
     // input or a write error leaves an existing OUT as it was.
-    Result<std::unique_ptr<PendingOutputFile>> opened_file =
-        PendingOutputFile::open(command.output);
-    if (!opened_file) {
-        print_error(opened_file.error());
-        return kExitOutputError;
-    }
-    std::unique_ptr<PendingOutputFile> stats_file = std::move(opened_file).value();
-    int exit_code = kExitOk;
-    {
-        Output out(stats_file->file());
+    return write_staged_output(command.output, [&](Output& out) {
         Output diagnostics(stderr);
         report_input_issues(source, diagnostics);
         Pipeline pipeline(*settings);
@@ -131,20 +122,10 @@ int run_stats(const StatsCommand& command) {
                 check_telegrams_found(source, read, *settings->protocol, settings->bus_given);
             !found) {
             print_error(found.error());
-            exit_code = kExitUsage;
-        } else {
-            exit_code = write_stats(command, pipeline, source, out);
+            return kExitUsage;
         }
-    }
-    if (exit_code == kExitUsage || exit_code == kExitOutputError) {
-        stats_file->discard();
-        return exit_code;
-    }
-    if (Result<void> committed = stats_file->commit(); !committed) {
-        print_error(committed.error());
-        return kExitOutputError;
-    }
-    return exit_code;
+        return write_stats(command, pipeline, source, out);
+    });
 }
 
 }  // namespace
