@@ -85,6 +85,11 @@ Table live_list(const BusHealth& h) {
     return t;
 }
 
+// The illegal answers' short names (by IllegalAnswer): the slave table's cell and the columns'
+// headers.
+constexpr std::string_view kIllegalShort[] = {"not asked", "wrong kind", "short ack"};
+static_assert(std::size(kIllegalShort) == kIllegalAnswerCount);
+
 struct SlaveColumn {
     std::string_view header;  // text, Markdown and HTML
     std::string_view id;      // CSV
@@ -109,12 +114,10 @@ const std::vector<SlaveColumn>& slave_columns() {
             {"diag req", "diag_requests", [](const StationHealth& s) { return s.diag_requests; }},
             {"diag faults", "diag_faults", [](const StationHealth& s) { return s.diag_faults; }},
         };
-        static constexpr std::string_view kIllegalHeaders[] = {"not asked", "wrong kind",
-                                                               "short ack"};
         static constexpr std::string_view kIllegalIds[] = {
             "illegal_not_asked", "illegal_wrong_kind", "illegal_short_ack"};
         for (std::size_t i = 0; i < kIllegalAnswerCount; ++i)
-            c.push_back({kIllegalHeaders[i], kIllegalIds[i],
+            c.push_back({kIllegalShort[i], kIllegalIds[i],
                          [i](const StationHealth& s) { return s.illegal_answers[i]; }, false});
         static constexpr std::string_view kNegativeIds[] = {"negative_ue", "negative_rr",
                                                             "negative_rs", "negative_nr",
@@ -130,12 +133,12 @@ const std::vector<SlaveColumn>& slave_columns() {
 
 // "0", or the total and the kinds that occurred: "2 (not asked 1, short ack 1)".
 std::string illegal_cell(const StationHealth& s) {
-    static constexpr std::string_view kShort[] = {"not asked", "wrong kind", "short ack"};
     std::string cell = number(s.illegal_answers_total());
     std::string kinds;
     for (std::size_t i = 0; i < kIllegalAnswerCount; ++i) {
         if (s.illegal_answers[i] == 0) continue;
-        kinds += fmt::format("{}{} {}", kinds.empty() ? "" : ", ", kShort[i], s.illegal_answers[i]);
+        kinds += fmt::format("{}{} {}", kinds.empty() ? "" : ", ", kIllegalShort[i],
+                             s.illegal_answers[i]);
     }
     return kinds.empty() ? cell : fmt::format("{} ({})", cell, kinds);
 }
