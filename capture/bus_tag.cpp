@@ -143,13 +143,13 @@ BusChoice choose_by_label(const CaptureLabel& label, bool complete) {
         choice.reason = "a USER0 capture without a bus tag or records";
         return choice;
     }
-    if (*label.first_byte == kStx) {
-        choice.protocol = &fc_protocol();
+    const Protocol protocol = protocol_of_untagged_user0(*label.first_byte);
+    choice.protocol = &capture_protocol(protocol);
+    if (protocol == Protocol::Fc) {
         choice.reason =
             "a USER0 capture without a bus tag whose first record starts with STX (0x02)";
         choice.say = true;
-    } else if (*label.first_byte == kVlt2000Start) {
-        choice.protocol = &vlt2000_protocol();
+    } else if (protocol == Protocol::Vlt2000) {
         choice.reason = "a USER0 capture without a bus tag whose first record starts with '<'";
         choice.say = true;
     } else {
@@ -202,6 +202,12 @@ CaptureLabel read_capture_label(Bytes head) {
         default: break;
     }
     return label;
+}
+
+Protocol protocol_of_untagged_user0(std::uint8_t first_byte) noexcept {
+    if (first_byte == kStx) return Protocol::Fc;
+    if (first_byte == kVlt2000Start) return Protocol::Vlt2000;
+    return Protocol::ProfibusDp;
 }
 
 BusChoice choose_bus(Bytes head, InputFormat format, bool complete) {

@@ -48,6 +48,11 @@ struct CaptureLabel {
 // unknown.
 CaptureLabel read_capture_label(Bytes head);
 
+// The bus of a USER0 capture without dpscope's tag, by its first record's first byte: STX (0x02)
+// is the FC protocol, '<' the VLT 2000 telegram, anything else PROFIBUS DP. choose_bus() and the
+// Wireshark dissector (wireshark/) both use it.
+Protocol protocol_of_untagged_user0(std::uint8_t first_byte) noexcept;
+
 // The bus chosen for a capture, and why.
 struct BusChoice {
     const CaptureProtocol* protocol = &profibus_dp_protocol();

@@ -11,6 +11,7 @@
 #include "decoder/bus_decoder.hpp"
 #include "decoder/counted.hpp"
 #include "decoder/dp_payload.hpp"
+#include "decoder/finding.hpp"
 
 namespace dpscope {
 
@@ -127,5 +128,11 @@ bool vlt2000_checksum_judged_wrong(const DecodedTelegram& t);
 // "CTW=0x047F (ON1, …) parameter 516 = 80", "STW=… parameter 999 failed: reason 0 (parameter
 // does not exist)", "… checksum ?? (not checked; computed 07)".
 void append_vlt2000_detail(TextBuffer& out, const DecodedTelegram& t);
+
+// The text format's line after the frame and time columns: source → destination, frame type,
+// service, req|rsp, the detail, then [problem kinds] and [severity finding-kind] for each finding.
+// `dpscope decode` prints it; Wireshark's Info column shows it (wireshark/).
+void append_telegram_columns(TextBuffer& out, const DecodedTelegram& t,
+                             std::span<const Finding> findings);
 
 }  // namespace dpscope

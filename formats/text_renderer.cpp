@@ -43,6 +43,94 @@ void append_relative_time(TextBuffer& b, std::int64_t relative_ns) {
                    kTimeColumn);
 }
 
+// source → destination, frame type, service, req|rsp, detail.
+void append_dp_columns(TextBuffer& b, const DecodedTelegram& t) {
+    auto it = std::back_inserter(b);
+    if (t.dp.fdl.has_addresses) {
+        fmt::format_to(it, "{:>3} → {:<3} ", t.dp.fdl.sa, t.dp.fdl.da);
+    } else if (t.has_roles) {
+        fmt::format_to(it, "{:>3} → {:<3} ", t.slave, t.master);
+    } else {
+        append(b, "  ? → ?   ");
+    }
+    fmt::format_to(it, "{:<3} {:<14} {} ",
+                   t.dp.fdl.type == FrameType::Invalid ? "bad" : frame_type_name(t.dp.fdl.type),
+                   service_name(t.dp.service), t.direction == Direction::Request ? "req" : "rsp");
+    if (t.dp.fdl.type == FrameType::Invalid)
+        append_hex(b, t.bytes.first(std::min<std::size_t>(t.bytes.size(), 16)));
+    else
+        append_service_detail(b, t);
+}
+
+// The FC master has no address ("M"); a broadcast goes to "all". The frame type column says
+// "FC", the service column the block.
+void append_fc_columns(TextBuffer& b, const DecodedTelegram& t) {
+    auto it = std::back_inserter(b);
+    if (!t.has_roles) {
+        append(b, "  ? → ?   ");
+    } else {
+        const std::string drive =
+            t.fc.broadcast ? std::string("all") : fmt::format("{}", t.fc.address);
+        if (t.direction == Direction::Request)
+            fmt::format_to(it, "{:>3} → {:<3} ", "M", drive);
+        else
+            fmt::format_to(it, "{:>3} → {:<3} ", drive, "M");
+    }
+    fmt::format_to(it, "{:<3} {:<14} {} ", t.has_roles ? "FC" : "bad", fc_block_name(t.fc.block),
+                   t.direction == Direction::Request ? "req" : "rsp");
+    append_fc_detail(b, t);
+}
+
+// The VLT 2000 master has no address either ("M"); a drive is shown by its two-digit address
+// as the telegram carries it, a broadcast (00) goes to "all".
+void append_vlt2000_columns(TextBuffer& b, const DecodedTelegram& t) {
+    auto it = std::back_inserter(b);
+    if (!t.has_roles) {
+        append(b, "  ? → ?   ");
+    } else {
+        // A reply with address 00 (nobody should send one) comes from "00".
+        const std::string drive = t.vlt2000.broadcast && t.direction == Direction::Request
+                                      ? std::string("all")
+                                      : fmt::format("{:02}", t.vlt2000.address);
+        if (t.direction == Direction::Request)
+            fmt::format_to(it, "{:>3} → {:<3} ", "M", drive);
+        else
+            fmt::format_to(it, "{:>3} → {:<3} ", drive, "M");
+    }
+    fmt::format_to(it, "{:<3} {:<14} {} ", t.has_roles ? "VLT" : "bad",
+                   t.has_roles ? vlt2000_letter_text(t) : std::string("-"),
+                   t.direction == Direction::Request ? "req" : "rsp");
+    append_vlt2000_detail(b, t);
+}
+
+}  // namespace
+
+void append_telegram_columns(TextBuffer& b, const DecodedTelegram& t,
+                             std::span<const Finding> findings) {
+    if (t.protocol == Protocol::Fc) {
+        append_fc_columns(b, t);
+    } else if (t.protocol == Protocol::Vlt2000) {
+        append_vlt2000_columns(b, t);
+    } else {
+        append_dp_columns(b, t);
+    }
+    if (!t.problems().empty()) {
+        append(b, " [");
+        bool first = true;
+        for (const Problem& p : t.problems()) {
+            if (!first) b.push_back(',');
+            append(b, problem_kind_name(p.kind));
+            first = false;
+        }
+        append(b, "]");
+    }
+    for (const Finding& f : findings)
+        fmt::format_to(std::back_inserter(b), " [{} {}]", severity_name(f.severity),
+                       finding_kind_name(f.kind));
+}
+
+namespace {
+
 class TextRenderer final : public TelegramRenderer {
   public:
     using TelegramRenderer::TelegramRenderer;
@@ -53,33 +141,14 @@ class TextRenderer final : public TelegramRenderer {
 
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
         TextBuffer& b = out_.buffer();
-        auto it = std::back_inserter(b);
-        fmt::format_to(it, "{:>6} ", t.frame);
+        fmt::format_to(std::back_inserter(b), "{:>6} ", t.frame);
         if (t.has_time()) {
             if (first_time_ == kNoTime) first_time_ = t.time_ns;
             append_relative_time(b, t.time_ns - first_time_);
         } else {
             append(b, "           - ");
         }
-        if (t.protocol == Protocol::Fc) {
-            render_fc_columns(t);
-        } else if (t.protocol == Protocol::Vlt2000) {
-            render_vlt2000_columns(t);
-        } else {
-            render_dp_columns(t);
-        }
-        if (!t.problems().empty()) {
-            append(b, " [");
-            bool first = true;
-            for (const Problem& p : t.problems()) {
-                if (!first) b.push_back(',');
-                append(b, problem_kind_name(p.kind));
-                first = false;
-            }
-            append(b, "]");
-        }
-        for (const Finding& f : findings)
-            fmt::format_to(it, " [{} {}]", severity_name(f.severity), finding_kind_name(f.kind));
+        append_telegram_columns(b, t, findings);
         b.push_back('\n');
         out_.end_record();
     }
@@ -92,71 +161,6 @@ class TextRenderer final : public TelegramRenderer {
     }
 
   private:
-    // source → destination, frame type, service, req|rsp, detail.
-    void render_dp_columns(const DecodedTelegram& t) {
-        TextBuffer& b = out_.buffer();
-        auto it = std::back_inserter(b);
-        if (t.dp.fdl.has_addresses) {
-            fmt::format_to(it, "{:>3} → {:<3} ", t.dp.fdl.sa, t.dp.fdl.da);
-        } else if (t.has_roles) {
-            fmt::format_to(it, "{:>3} → {:<3} ", t.slave, t.master);
-        } else {
-            append(b, "  ? → ?   ");
-        }
-        fmt::format_to(it, "{:<3} {:<14} {} ",
-                       t.dp.fdl.type == FrameType::Invalid ? "bad" : frame_type_name(t.dp.fdl.type),
-                       service_name(t.dp.service),
-                       t.direction == Direction::Request ? "req" : "rsp");
-        if (t.dp.fdl.type == FrameType::Invalid)
-            append_hex(b, t.bytes.first(std::min<std::size_t>(t.bytes.size(), 16)));
-        else
-            append_service_detail(b, t);
-    }
-
-    // The FC master has no address ("M"); a broadcast goes to "all". The frame type column says
-    // "FC", the service column the block.
-    void render_fc_columns(const DecodedTelegram& t) {
-        TextBuffer& b = out_.buffer();
-        auto it = std::back_inserter(b);
-        if (!t.has_roles) {
-            append(b, "  ? → ?   ");
-        } else {
-            const std::string drive =
-                t.fc.broadcast ? std::string("all") : fmt::format("{}", t.fc.address);
-            if (t.direction == Direction::Request)
-                fmt::format_to(it, "{:>3} → {:<3} ", "M", drive);
-            else
-                fmt::format_to(it, "{:>3} → {:<3} ", drive, "M");
-        }
-        fmt::format_to(it, "{:<3} {:<14} {} ", t.has_roles ? "FC" : "bad",
-                       fc_block_name(t.fc.block),
-                       t.direction == Direction::Request ? "req" : "rsp");
-        append_fc_detail(b, t);
-    }
-
-    // The VLT 2000 master has no address either ("M"); a drive is shown by its two-digit address
-    // as the telegram carries it, a broadcast (00) goes to "all".
-    void render_vlt2000_columns(const DecodedTelegram& t) {
-        TextBuffer& b = out_.buffer();
-        auto it = std::back_inserter(b);
-        if (!t.has_roles) {
-            append(b, "  ? → ?   ");
-        } else {
-            // A reply with address 00 (nobody should send one) comes from "00".
-            const std::string drive = t.vlt2000.broadcast && t.direction == Direction::Request
-                                          ? std::string("all")
-                                          : fmt::format("{:02}", t.vlt2000.address);
-            if (t.direction == Direction::Request)
-                fmt::format_to(it, "{:>3} → {:<3} ", "M", drive);
-            else
-                fmt::format_to(it, "{:>3} → {:<3} ", drive, "M");
-        }
-        fmt::format_to(it, "{:<3} {:<14} {} ", t.has_roles ? "VLT" : "bad",
-                       t.has_roles ? vlt2000_letter_text(t) : std::string("-"),
-                       t.direction == Direction::Request ? "req" : "rsp");
-        append_vlt2000_detail(b, t);
-    }
-
     std::int64_t first_time_ = kNoTime;
 };
 

@@ -1,0 +1,154 @@
+#include "wireshark/capture_replay.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <optional>
+
+namespace dpscope {
+
+ReplayOptions default_replay_options() {
+    ReplayOptions options;
+    // As cli/common_options.cpp resolves the defaults of `dpscope decode`.
+    options.fc_tracker.timeout_ns = options.tracker.timeout_ns;
+    options.fc_tracker.line_baud = 9600;
+    options.vlt2000_tracker.line_baud = 9600;
+    options.fc_decoder.response_window_ns = options.tracker.timeout_ns;
+    options.vlt2000_decoder.response_window_ns = options.tracker.timeout_ns;
+    options.vlt2000_tracker.timeout_ns = options.tracker.timeout_ns;
+    return options;
+}
+
+struct CaptureReplay::Stored {
+    std::uint64_t frame = 0;
+    std::int64_t time_ns = kNoTime;
+    Bytes bytes;
+};
+
+struct CaptureReplay::DecoderState {
+    std::optional<BusDecoder> dp;
+    std::optional<FcDecoder> fc;
+    std::optional<Vlt2000Decoder> vlt2000;
+
+    DecoderState(Protocol protocol, const ReplayOptions& options) {
+        switch (protocol) {
+            case Protocol::Fc: fc.emplace(options.fc_decoder); return;
+            case Protocol::Vlt2000: vlt2000.emplace(options.vlt2000_decoder); return;
+            case Protocol::ProfibusDp: break;
+        }
+        dp.emplace(options.decoder);
+    }
+
+    const DecodedTelegram& decode(Bytes bytes, std::int64_t time_ns, std::uint64_t frame) {
+        if (fc) return fc->decode(bytes, time_ns, frame);
+        if (vlt2000) return vlt2000->decode(bytes, time_ns, frame);
+        return dp->decode(bytes, time_ns, frame);
+    }
+};
+
+struct CaptureReplay::Trackers {
+    std::optional<SessionTracker> dp;
+    std::optional<FcTracker> fc;
+    std::optional<Vlt2000Tracker> vlt2000;
+
+    Trackers(Protocol protocol, const ReplayOptions& options) {
+        switch (protocol) {
+            case Protocol::Fc: fc.emplace(options.fc_tracker); return;
+            case Protocol::Vlt2000: vlt2000.emplace(options.vlt2000_tracker); return;
+            case Protocol::ProfibusDp: break;
+        }
+        dp.emplace(options.tracker);
+    }
+
+    std::span<const Finding> track(const DecodedTelegram& t) {
+        if (fc) return fc->track(t);
+        if (vlt2000) return vlt2000->track(t);
+        return dp->track(t);
+    }
+};
+
+CaptureReplay::CaptureReplay(Protocol protocol, const ReplayOptions& options)
+    : protocol_(protocol),
+      options_(options),
+      decoder_(std::make_unique<DecoderState>(protocol, options)),
+      trackers_(std::make_unique<Trackers>(protocol, options)) {}
+
+CaptureReplay::~CaptureReplay() = default;
+
+const CaptureReplay::Stored* CaptureReplay::find(std::uint64_t frame) const noexcept {
+    auto it = std::lower_bound(stored_.begin(), stored_.end(), frame,
+                               [](const Stored& s, std::uint64_t f) { return s.frame < f; });
+    return it != stored_.end() && it->frame == frame ? &*it : nullptr;
+}
+
+bool CaptureReplay::seen(std::uint64_t frame) const noexcept { return find(frame) != nullptr; }
+
+// The bytes go into chunks that never move, so the views the decoder keeps (a request's bytes,
+// the telegram's own) stay valid for the capture's lifetime.
+Bytes CaptureReplay::keep(Bytes bytes) {
+    constexpr std::size_t kChunk = 1 << 20;
+    if (bytes.empty()) return {};
+    if (chunks_.empty() || chunk_used_ + bytes.size() > chunk_size_) {
+        chunk_size_ = std::max(kChunk, bytes.size());
+        chunks_.push_back(std::make_unique<std::uint8_t[]>(chunk_size_));
+        chunk_used_ = 0;
+    }
+    std::uint8_t* at = chunks_.back().get() + chunk_used_;
+    std::memcpy(at, bytes.data(), bytes.size());
+    chunk_used_ += bytes.size();
+    return Bytes(at, bytes.size());
+}
+
+const DecodedTelegram& CaptureReplay::first_pass(std::uint64_t frame, Bytes bytes,
+                                                 std::int64_t time_ns) {
+    if (!stored_.empty() && frame <= stored_.back().frame)
+        return decode_again(frame, bytes, time_ns);
+    if (stored_.size() % kCheckpointInterval == 0)
+        checkpoints_.push_back(std::make_unique<DecoderState>(*decoder_));
+    stored_.push_back(Stored{frame, time_ns, keep(bytes)});
+    const DecodedTelegram& t = decoder_->decode(stored_.back().bytes, time_ns, frame);
+    std::span<const Finding> found = trackers_->track(t);
+    if (!found.empty()) findings_[frame].assign(found.begin(), found.end());
+    if (t.direction == Direction::Response && t.request_frame != 0)
+        responses_.try_emplace(t.request_frame, frame);
+    return t;
+}
+
+const DecodedTelegram& CaptureReplay::decode_again(std::uint64_t frame, Bytes bytes,
+                                                   std::int64_t time_ns) {
+    const Stored* stored = find(frame);
+    if (stored == nullptr) {
+        standalone_ = std::make_unique<DecoderState>(protocol_, options_);
+        return standalone_->decode(bytes, time_ns, frame);
+    }
+    const auto index = static_cast<std::size_t>(stored - stored_.data());
+    if (!replay_ || replay_next_ > index || index - replay_next_ >= kCheckpointInterval) {
+        const std::size_t checkpoint = index / kCheckpointInterval;
+        replay_ = std::make_unique<DecoderState>(*checkpoints_[checkpoint]);
+        replay_next_ = checkpoint * kCheckpointInterval;
+    }
+    for (; replay_next_ < index; ++replay_next_, ++replayed_) {
+        const Stored& s = stored_[replay_next_];
+        replay_->decode(s.bytes, s.time_ns, s.frame);
+    }
+    ++replay_next_;
+    ++replayed_;
+    return replay_->decode(stored->bytes, stored->time_ns, stored->frame);
+}
+
+std::span<const Finding> CaptureReplay::findings(std::uint64_t frame) const noexcept {
+    auto it = findings_.find(frame);
+    return it == findings_.end() ? std::span<const Finding>()
+                                 : std::span<const Finding>(it->second);
+}
+
+std::uint64_t CaptureReplay::response_frame(std::uint64_t frame) const noexcept {
+    auto it = responses_.find(frame);
+    return it == responses_.end() ? 0 : it->second;
+}
+
+std::int64_t CaptureReplay::time_of(std::uint64_t frame) const noexcept {
+    const Stored* stored = find(frame);
+    return stored ? stored->time_ns : kNoTime;
+}
+
+}  // namespace dpscope
