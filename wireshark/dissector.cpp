@@ -66,7 +66,7 @@ struct Field {
     X(bus, "Bus", "dpscope.bus", FT_STRING, BASE_NONE, "profibus, fc or vlt2000")                  \
     X(direction, "Direction", "dpscope.direction", FT_STRING, BASE_NONE, "request or response")    \
     X(master, "Master", "dpscope.master", FT_UINT8, BASE_DEC, "The master's address")              \
-    X(slave, "Slave", "dpscope.slave", FT_UINT8, BASE_DEC, "The slave's (drive's) address")        \
+    X(slave, "Slave/drive", "dpscope.slave", FT_UINT8, BASE_DEC, "The slave's (drive's) address")  \
     X(request_frame, "Request in frame", "dpscope.request_frame", FT_FRAMENUM, BASE_NONE,          \
       "The request this response answers")                                                         \
     X(response_frame, "Response in frame", "dpscope.response_frame", FT_FRAMENUM, BASE_NONE,       \
@@ -516,7 +516,8 @@ void add_pcv(const Tree& tree, const DecodedTelegram& t) {
     const Pcv& pcv = t.dp.pcv;
     const std::size_t at = t.dp.fdl.du_offset;
     Tree sub = tree.sub(tree.bytes(hf_pcv, at, kPcvBytes), kEttPcv);
-    Tree pca = sub.sub(sub.uint(hf_pcv_pca, at, 2, pcv.pca), kEttPca);
+    Tree pca =
+        sub.sub(sub.uint(hf_pcv_pca, at, 2, pcv.pca, fmt::format("0x{:04X}", pcv.pca)), kEttPca);
     const bool defined = request
                              ? request_code(t.dp.dialect, pcv.rc).defined
                              : response_code(t.dp.dialect, pcv.rc).kind != ResponseKind::Undefined;
@@ -917,7 +918,8 @@ void add_fc(const Tree& top, const DecodedTelegram& t) {
     std::size_t pcd_at = 3;
     if (fc.has_pkw) {
         const Pcv& pkw = fc.pkw;
-        Tree pke = tree.sub(tree.uint(hf_fc_pke, 3, 2, pkw.pca), kEttPca);
+        Tree pke = tree.sub(tree.uint(hf_fc_pke, 3, 2, pkw.pca, fmt::format("0x{:04X}", pkw.pca)),
+                            kEttPca);
         pke.uint(hf_fc_ak, 3, 2, pkw.rc,
                  fmt::format("{} = {}{}", pkw.rc, fc_ak_meaning(t),
                              fc_ak_defined(t) ? ""
@@ -1037,8 +1039,9 @@ void add_vlt2000(const Tree& top, const DecodedTelegram& t) {
         if (has(kVlt2000ValueAt, 5) && v.has_value && !v.failed) {
             const std::string note = vlt2000_value_note(v);
             tree.string(hf_vlt_value, kVlt2000ValueAt, 5, vlt2000_value_text(v),
-                        fmt::format("{:05} = {}{}", v.digits, vlt2000_value_text(v),
-                                    note.empty() ? note : " (" + note + ")"));
+                        fmt::format("{:05} = {}{}{}", v.digits, vlt2000_value_text(v),
+                                    note.empty() ? note : " (" + note + ")",
+                                    v.letter == Vlt2000Letter::Control ? " (ignored with C)" : ""));
         }
     }
     tree.boolean(hf_vlt_failed, kVlt2000DecimalsAt, 1, v.failed);
@@ -1052,7 +1055,12 @@ void add_vlt2000(const Tree& top, const DecodedTelegram& t) {
     append_vlt2000_checksum(checksum, t);
     tree.string(hf_vlt_checksum, kVlt2000ChecksumAt, 2, buffer_text(checksum));
     tree.boolean(hf_vlt_checksum_ok, kVlt2000ChecksumAt, 2, v.checksum_ok);
-    if (has(kVlt2000StopAt, 1)) tree.uint(hf_vlt_stop, kVlt2000StopAt, 1, t.bytes[kVlt2000StopAt]);
+    if (has(kVlt2000StopAt, 1)) {
+        const std::uint8_t stop = t.bytes[kVlt2000StopAt];
+        tree.uint(
+            hf_vlt_stop, kVlt2000StopAt, 1, stop,
+            stop == kVlt2000Stop ? std::string("'>'") : fmt::format("0x{:02X} (not '>')", stop));
+    }
 }
 
 // The request/response link: a response names its request and the time since it; a request the

@@ -16,6 +16,7 @@ decoder    decoder
 simulator  decoder simulator
 capture    decoder capture pcap
 formats    decoder formats
+wireshark  decoder capture formats wireshark
 cli        *
 '
 # Include roots outside the rule table that are still guarded: a library may name them only when
