@@ -1179,7 +1179,8 @@ int dissect_dpscope(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) 
         pinfo->fd->has_ts
             ? static_cast<std::int64_t>(pinfo->abs_ts.secs) * 1'000'000'000 + pinfo->abs_ts.nsecs
             : kNoTime;
-    const Bytes bytes(tvb_get_ptr(tvb, 0, static_cast<gint>(length)), length);
+    const Bytes bytes =
+        length == 0 ? Bytes() : Bytes(tvb_get_ptr(tvb, 0, static_cast<gint>(length)), length);
     const DecodedTelegram& t = PINFO_FD_VISITED(pinfo) || capture->seen(frame)
                                    ? capture->decode_again(frame, bytes, time_ns)
                                    : capture->first_pass(frame, bytes, time_ns);
