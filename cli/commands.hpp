@@ -13,4 +13,10 @@ void add_simulate_command(CLI::App& app, int& exit_code);
 void add_sniff_command(CLI::App& app, int& exit_code);
 void add_stats_command(CLI::App& app, int& exit_code);
 
+// Wireshark extcap (cli/extcap_command.cpp): argv starts with an extcap option
+// (--extcap-interfaces, --extcap-dlts, --extcap-config, --extcap-version..., --capture), as
+// Wireshark runs the dpscope in its extcap folder; run_extcap answers and returns the exit code.
+bool is_extcap_call(int argc, char** argv);
+int run_extcap(int argc, char** argv);
+
 }  // namespace dpscope::cli

@@ -12,6 +12,8 @@
 
 int main(int argc, char** argv) {
     using namespace dpscope::cli;
+    // Wireshark runs dpscope as an extcap capture interface: its own options, not a subcommand.
+    if (is_extcap_call(argc, argv)) return run_extcap(argc, argv);
     CLI::App app{
         "dpscope: decode PROFIBUS DP captures down to the drive parameter channel (PPO "
         "PCV/PKW: RC/AK, SPM, PNU, IND, PVA, PCD words), and the Danfoss FC protocol and VLT 2000 "

@@ -1,5 +1,9 @@
 // dpscope sniff: live capture from an RS-485 adapter (or any tty) at a PROFIBUS baud rate.
+#include "cli/sniff_command.hpp"
+
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -68,6 +72,32 @@ std::int64_t monotonic_ns() {
     return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
 }
 
+// The extcap's fifo, opened a second time (write end, non-blocking) once Wireshark reads it:
+// poll() says POLLERR on it when the last reader has closed the fifo.
+class ReaderWatch {
+  public:
+    explicit ReaderWatch(const std::string& path) {
+        struct stat info {};
+        if (path.empty() || path == "-" || ::stat(path.c_str(), &info) != 0 ||
+            !S_ISFIFO(info.st_mode))
+            return;
+        fd_ = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+    }
+    ~ReaderWatch() {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    ReaderWatch(const ReaderWatch&) = delete;
+    ReaderWatch& operator=(const ReaderWatch&) = delete;
+    bool reader_gone() const {
+        if (fd_ < 0) return false;
+        pollfd watched{fd_, POLLOUT, 0};
+        return ::poll(&watched, 1, 0) > 0 && (watched.revents & POLLERR) != 0;
+    }
+
+  private:
+    int fd_ = -1;
+};
+
 constexpr std::int64_t kFlushEveryNs = 50'000'000;  // at most 100 ms in buffers, with margin
 
 // Accepted ranges of the numeric options (named in their error messages).
@@ -124,32 +154,6 @@ bool is_capture_file(const std::string& path, const std::string& output, bool ro
         return false;
     return same_file(path, rotated_file_name(output, static_cast<unsigned>(index)));
 }
-
-struct SniffCommand {
-    DecodeOptionValues options;
-    std::string device;
-    std::uint32_t baud = 0;  // 0: not given (the FC protocol's default, 9600)
-    std::string parity;      // "": the bus's default (even; none for the VLT 2000)
-    unsigned stop_bits = 1;
-    std::string output;
-    std::string link_type;  // "" = profibus
-    std::uint64_t rotate_size = 0;
-    double rotate_seconds = 0;
-    double duration = 0;
-    bool report = false;
-    std::string report_format = "text";
-    std::string report_file;
-    std::string fail_on = "error";
-    bool allow_empty = false;
-    std::uint32_t idle_gap_ms = 50;
-    bool no_low_latency = false;
-    // Bus health (PROFIBUS): --stats, --stats-file, --stats-format, --alarm.
-    bool stats = false;
-    std::string stats_file;
-    std::string stats_format = "text";
-    std::string alarm;
-    HealthOptionValues health;  // --health-config, --threshold (the verdicts of --stats, --alarm)
-};
 
 // How long the end of the capture waits for --alarm commands still running.
 constexpr int kAlarmWaitAtEndMs = 5000;
@@ -211,6 +215,8 @@ Result<void> check_report_options(const SniffCommand& command) {
                         file, command.output)};
     return {};
 }
+
+}  // namespace
 
 int run_sniff(const SniffCommand& command) {
     Result<DecodeSettings> settings = resolve_decode_options(command.options, "text");
@@ -364,10 +370,13 @@ int run_sniff(const SniffCommand& command) {
         return kExitUsage;
     }
     FILE* text_stream = pcap_to_stdout || report_to_stdout || stats_to_stdout ? stderr : stdout;
-    if (!port->note().empty()) print_warning(fmt::format("{}", port->note()));
-    std::fprintf(stderr, "dpscope: capturing on %s at %u baud %s%s; Ctrl-C stops\n",
-                 command.device.c_str(), port->baud(), port->frame().c_str(),
-                 port->low_latency() ? ", low latency" : "");
+    const bool extcap = command.extcap;
+    if (!extcap) {
+        if (!port->note().empty()) print_warning(fmt::format("{}", port->note()));
+        std::fprintf(stderr, "dpscope: capturing on %s at %u baud %s%s; Ctrl-C stops\n",
+                     command.device.c_str(), port->baud(), port->frame().c_str(),
+                     port->low_latency() ? ", low latency" : "");
+    }
     const int fd = port->fd();
     TtySourceOptions tty_options;
     tty_options.baud = port->baud();
@@ -413,7 +422,7 @@ int run_sniff(const SniffCommand& command) {
                                             alarms.get());
     }
     std::unique_ptr<TelegramRenderer> renderer;
-    if (!settings->quiet && !stats_table) {
+    if (!settings->quiet && !stats_table && !extcap) {
         renderer = make_renderer(settings->format, out);
         renderer->begin();
     }
@@ -425,9 +434,16 @@ int run_sniff(const SniffCommand& command) {
     std::uint64_t telegrams = 0;
     bool output_failed = false;
     bool stopping = false;
+    // extcap: Wireshark's fifo, watched for its reader going away (-1: not a fifo).
+    ReaderWatch reader_watch(extcap ? command.output : std::string());
+    bool reader_left = false;
     // A failed write or flush (disk full, a closed pipe) ends the capture; the file stays valid.
+    // Wireshark closing the extcap's fifo is the end of its capture, not an error.
     auto stop_on_write_error = [&](const std::string& message) {
-        if (!output_failed) print_error(fmt::format("{}; stopping the capture", message));
+        if (reader_watch.reader_gone())
+            reader_left = true;
+        else if (!output_failed)
+            print_error(fmt::format("{}; stopping the capture", message));
         output_failed = true;
         stopping = true;
         source.request_stop();
@@ -448,6 +464,10 @@ int run_sniff(const SniffCommand& command) {
             if (writer && !output_failed) {
                 if (Result<void> written = writer->write(record.bytes, record.time_ns); !written)
                     stop_on_write_error(written.error());
+                // extcap: Wireshark shows each telegram as it comes.
+                else if (extcap)
+                    if (Result<void> flushed = writer->flush(); !flushed)
+                        stop_on_write_error(flushed.error());
             }
             const DecodedTelegram& t = pipeline.feed(record, findings);
             if (report && !findings.empty()) log.append(findings);
@@ -465,6 +485,13 @@ int run_sniff(const SniffCommand& command) {
                 stop_on_write_error(
                     fmt::format("{}: write failed: {}", text_stream_name, std::strerror(errno)));
             last_flush = now;
+            // A quiet bus writes nothing that could fail: the fifo is watched as well.
+            if (!stopping && reader_watch.reader_gone()) {
+                reader_left = true;
+                output_failed = true;  // nothing more is written into it
+                stopping = true;
+                source.request_stop();
+            }
         }
         if (live) live->tick(now, telegrams, static_cast<double>(now - start) / 1e9);
     }
@@ -487,14 +514,16 @@ int run_sniff(const SniffCommand& command) {
     double seconds = static_cast<double>(monotonic_ns() - start) / 1e9;
     if (live) live->after_finish(telegrams, seconds);
     out.flush();
-    std::fprintf(stderr,
-                 "dpscope: %llu telegrams, %llu bytes in %.1f s; %llu bytes skipped, %llu parity "
-                 "errors, %llu telegrams cut off by line idle time\n",
-                 static_cast<unsigned long long>(telegrams),
-                 static_cast<unsigned long long>(source.bytes_read()), seconds,
-                 static_cast<unsigned long long>(source.bytes_skipped()),
-                 static_cast<unsigned long long>(source.parity_errors()),
-                 static_cast<unsigned long long>(source.idle_gaps()));
+    if (!extcap)
+        std::fprintf(
+            stderr,
+            "dpscope: %llu telegrams, %llu bytes in %.1f s; %llu bytes skipped, %llu parity "
+            "errors, %llu telegrams cut off by line idle time\n",
+            static_cast<unsigned long long>(telegrams),
+            static_cast<unsigned long long>(source.bytes_read()), seconds,
+            static_cast<unsigned long long>(source.bytes_skipped()),
+            static_cast<unsigned long long>(source.parity_errors()),
+            static_cast<unsigned long long>(source.idle_gaps()));
     if (settings->quiet)
         pipeline.summary().render_text(out, describe_input(source), pipeline.decoder());
     if (stats) {
@@ -557,12 +586,10 @@ int run_sniff(const SniffCommand& command) {
         if (fails) exit_code = kExitFindings;
     }
     if (!out.flush()) output_failed = true;
-    if (output_failed) return kExitOutputError;
+    if (output_failed && !reader_left) return kExitOutputError;
     if (source.status() == InputStatus::Damaged) return kExitDeviceError;
     return exit_code;
 }
-
-}  // namespace
 
 void add_sniff_command(CLI::App& app, int& exit_code) {
     auto command = std::make_shared<SniffCommand>();

@@ -1,0 +1,47 @@
+// dpscope sniff: what its command line says, and the capture it runs. The Wireshark extcap
+// interface (cli/extcap_command.cpp) runs its captures through the same run_sniff.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "cli/common_options.hpp"
+
+namespace dpscope::cli {
+
+struct SniffCommand {
+    DecodeOptionValues options;
+    std::string device;
+    std::uint32_t baud = 0;  // 0: not given (the FC protocol's default, 9600)
+    std::string parity;      // "": the bus's default (even; none for the VLT 2000)
+    unsigned stop_bits = 1;
+    std::string output;
+    std::string link_type;  // "" = profibus
+    std::uint64_t rotate_size = 0;
+    double rotate_seconds = 0;
+    double duration = 0;
+    bool report = false;
+    std::string report_format = "text";
+    std::string report_file;
+    std::string fail_on = "error";
+    bool allow_empty = false;
+    std::uint32_t idle_gap_ms = 50;
+    bool no_low_latency = false;
+    // Bus health (PROFIBUS): --stats, --stats-file, --stats-format, --alarm.
+    bool stats = false;
+    std::string stats_file;
+    std::string stats_format = "text";
+    std::string alarm;
+    HealthOptionValues health;  // --health-config, --threshold (the verdicts of --stats, --alarm)
+    // The Wireshark extcap capture (cli/extcap_command.cpp): -w is Wireshark's fifo. Every
+    // telegram is flushed into it at once; nothing is printed but errors (Wireshark shows
+    // anything on standard error as an error); the fifo's reader going away (Wireshark stopped
+    // or closed) ends the capture with exit code 0, as a signal does.
+    bool extcap = false;
+};
+
+// Checks the options, captures until stopped (-c, --duration, a signal, the device or the
+// output failing) and returns the exit code.
+int run_sniff(const SniffCommand& command);
+
+}  // namespace dpscope::cli
