@@ -179,6 +179,50 @@ TEST(BusTagTest, UntaggedUser0IsChosenByItsFirstRecord) {
     }
 }
 
+// A live capture saved from Wireshark: dumpcap writes its own pcapng, whose interface description
+// is the extcap interface's display text, not dpscope's tag. The first record still chooses.
+TEST(BusTagTest, PcapngAsDumpcapWritesAnExtcapCaptureIsChosenByItsFirstRecord) {
+    auto block = [](std::uint32_t type, std::vector<std::uint8_t> body) {
+        while (body.size() % 4 != 0)
+            body.push_back(0);
+        const auto length = static_cast<std::uint32_t>(body.size() + 12);
+        std::vector<std::uint8_t> out;
+        for (std::uint32_t word : {type, length})
+            for (int i = 0; i < 4; ++i)
+                out.push_back(static_cast<std::uint8_t>(word >> (8 * i)));
+        out.insert(out.end(), body.begin(), body.end());
+        for (int i = 0; i < 4; ++i)
+            out.push_back(static_cast<std::uint8_t>(length >> (8 * i)));
+        return out;
+    };
+    const std::vector<std::uint8_t> shb =
+        block(0x0A0D0D0A,
+              {0x4D, 0x3C, 0x2B, 0x1A, 1, 0, 0, 0, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF});
+    const std::string display = "dpscope: serial bus sniffer on /dev/ttyUSB0";
+    std::vector<std::uint8_t> idb_body = {147, 0, 0, 0, 0xFF, 0xFF, 0, 0, 3, 0};
+    idb_body.push_back(static_cast<std::uint8_t>(display.size()));
+    idb_body.push_back(0);
+    idb_body.insert(idb_body.end(), display.begin(), display.end());
+    while (idb_body.size() % 4 != 0)
+        idb_body.push_back(0);
+    for (int i = 0; i < 4; ++i)
+        idb_body.push_back(0);  // opt_endofopt
+    for (auto [bus, record] :
+         {std::pair{Protocol::Fc, fc_stream(1)},
+          std::pair{Protocol::Vlt2000, std::vector<std::uint8_t>({'<', '0', '1', 'C'})},
+          std::pair{Protocol::ProfibusDp, profibus_stream(1)}}) {
+        std::vector<std::uint8_t> epb_body(20, 0);
+        epb_body[12] = epb_body[16] = static_cast<std::uint8_t>(record.size());
+        epb_body.insert(epb_body.end(), record.begin(), record.end());
+        std::vector<std::uint8_t> file = shb;
+        for (const std::vector<std::uint8_t>& b : {block(1, idb_body), block(6, epb_body)})
+            file.insert(file.end(), b.begin(), b.end());
+        BusChoice choice = choose_bus(bytes_of(file), InputFormat::Pcapng, true);
+        EXPECT_FALSE(choice.tagged);
+        EXPECT_EQ(choice.protocol->protocol, bus) << choice.reason;
+    }
+}
+
 TEST(BusTagTest, Linktype257IsAlwaysProfibus) {
     std::vector<std::uint8_t> records = fc_stream(1);
     std::string path =
