@@ -29,7 +29,10 @@ int main(int argc, char** argv) {
             e.what());
     });
     app.footer(std::string(kExitCodeHelp) +
-               "\nRun 'dpscope SUBCOMMAND --help' for the options of each subcommand.");
+               "\nRun 'dpscope SUBCOMMAND --help' for the options of each subcommand."
+               "\nWireshark runs dpscope as an extcap capture interface (--extcap-interfaces, "
+               "--extcap-dlts, --extcap-config, --capture); 'dpscope --capture --help' explains "
+               "those options.");
     // A file-size limit (ulimit -f) then fails a write like a full disk instead of killing us.
     std::signal(SIGXFSZ, SIG_IGN);
     int exit_code = kExitOk;
