@@ -93,6 +93,22 @@ wireshark_case(vlt2000_examples samples/vlt2000-examples.txt vlt2000_examples
                failed,finding,comment,expert DECODE --bus vlt2000)
 wireshark_case(vlt2000 samples/vlt2000.pcap vlt2000 failed,finding,problem,comment,expert,expert_error)
 
+# The checks themselves fail when they should: a required check on a sample without such
+# telegrams (ppo1 has no RC 7), and tshark judging with another time-out than the conversion.
+set(run_filters ${CMAKE_COMMAND} -E env ${tshark_environment} bash ${tshark_test} filters)
+add_test(NAME wireshark.detects_vacuous_filter
+         COMMAND ${run_filters} vacuous samples/ppo1.pcap rc7 -- --
+         WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+set_tests_properties(wireshark.detects_vacuous_filter PROPERTIES
+    PASS_REGULAR_EXPRESSION "rc7 selects no frame; the sample has such telegrams")
+add_test(NAME wireshark.detects_filter_mismatch
+         COMMAND ${run_filters} mismatch samples/timeouts.pcap finding -- -- -o dpscope.timeout_ms:1
+         WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+set_tests_properties(wireshark.detects_filter_mismatch PROPERTIES
+    PASS_REGULAR_EXPRESSION "-Y 'dpscope.finding' selects [0-9]+ frames, dpscope decode 3")
+set_tests_properties(wireshark.detects_vacuous_filter wireshark.detects_filter_mismatch
+                     PROPERTIES LABELS wireshark TIMEOUT 300)
+
 # The README's field table against the fields the plugin registers.
 add_test(NAME wireshark.field_table
          COMMAND ${CMAKE_COMMAND} -E env ${tshark_environment} bash
