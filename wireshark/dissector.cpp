@@ -2,7 +2,8 @@
 // by dpscope's own decoder library and judged by its trackers (wireshark/capture_replay.hpp), so
 // that Wireshark shows what `dpscope decode` shows. This file only turns a DecodedTelegram into
 // Wireshark's tree, columns and expert info; it parses no byte itself. The field names are listed
-// in the README ("Wireshark"), checked by tests/docs_test.cpp against fields_of_plugin().
+// in the README ("Wireshark", "Fields"), checked against the registered fields by
+// tests/wireshark/field_table_test.sh.
 #include <wireshark.h>
 // wireshark.h first: it sets up what the epan headers need.
 #include <epan/expert.h>
@@ -1138,7 +1139,7 @@ std::string_view protocol_column(Protocol protocol) {
         case Protocol::Vlt2000: return "VLT 2000";
         case Protocol::ProfibusDp: break;
     }
-    return "PROFIBUS DP";
+    return "PROFIBUS";
 }
 
 // Source and destination as the text line has them: station addresses, "M" for the FC and VLT 2000
