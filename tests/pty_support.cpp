@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 #include "capture/tty_player.hpp"
 
@@ -36,12 +37,7 @@ Child::Child(std::vector<std::string> argv, ChildOptions options)
         setenv("TZ", "UTC", 1);
         for (const auto& [name, value] : options.env)
             setenv(name.c_str(), value.c_str(), 1);
-        std::vector<char*> pointers;
-        for (std::string& a : argv)
-            pointers.push_back(a.data());
-        pointers.push_back(nullptr);
-        execvp(pointers[0], pointers.data());
-        _exit(127);
+        exec_or_exit(std::move(argv));
     }
 }
 
@@ -78,6 +74,15 @@ bool Child::err_says(std::string_view text, double seconds) const {
 
 std::string Child::out() const { return slurp(out_); }
 std::string Child::err() const { return slurp(err_); }
+
+void exec_or_exit(std::vector<std::string> argv) {
+    std::vector<char*> pointers;
+    for (std::string& a : argv)
+        pointers.push_back(a.data());
+    pointers.push_back(nullptr);
+    execvp(pointers[0], pointers.data());
+    _exit(127);
+}
 
 std::vector<std::string> dpscope_argv(const std::vector<std::string>& args) {
     std::vector<std::string> argv = {dpscope_executable()};

@@ -54,7 +54,11 @@ class Child {
     bool reaped_ = false;
 };
 
-// The dpscope built with the tests as a Child, with `args`.
+// In a child process after fork(): runs `argv` (argv[0] found on PATH unless it names a file);
+// if that fails, the child ends with exit code 127.
+[[noreturn]] void exec_or_exit(std::vector<std::string> argv);
+
+// The dpscope built with the tests, with `args`: the argv of a Child or of exec_or_exit.
 std::vector<std::string> dpscope_argv(const std::vector<std::string>& args);
 
 // Whether the program on the slave side has put the line into raw mode (sniff configures the

@@ -1183,15 +1183,8 @@ class TerminalSniffer {
             dup2(slave, STDOUT_FILENO);
             dup2(err, STDERR_FILENO);
             close(master_);
-            std::vector<std::string> argv = {test::dpscope_executable()};
-            argv.insert(argv.end(), args.begin(), args.end());
-            std::vector<char*> pointers;
-            for (std::string& a : argv)
-                pointers.push_back(a.data());
-            pointers.push_back(nullptr);
             setenv("TZ", "UTC", 1);
-            execv(pointers[0], pointers.data());
-            _exit(127);
+            test::exec_or_exit(test::dpscope_argv(args));
         }
         close(slave);
         started_ = std::chrono::steady_clock::now();
