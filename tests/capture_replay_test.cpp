@@ -48,19 +48,7 @@ Capture read_sample(const std::string& name) {
 
 // One telegram as `dpscope decode -T jsonl` writes it, with the findings given.
 std::string jsonl(const DecodedTelegram& t, std::span<const Finding> findings) {
-    char* data = nullptr;
-    std::size_t size = 0;
-    FILE* file = open_memstream(&data, &size);
-    {
-        Output out(file);
-        auto renderer = make_jsonl_renderer(out);
-        renderer->render(t, findings);
-        out.flush();
-    }
-    std::fclose(file);
-    std::string text(data, size);
-    std::free(data);
-    return text;
+    return test::output_text([&](Output& out) { make_jsonl_renderer(out)->render(t, findings); });
 }
 
 // The decode of every sample of each bus, once on the first pass and again in a shuffled order.

@@ -3,169 +3,42 @@
 // tshark capturing on the extcap interface while `dpscope simulate --device` plays a session.
 #include <fcntl.h>
 #include <gtest/gtest.h>
-#include <poll.h>
 #include <signal.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <termios.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <mutex>
 #include <regex>
 #include <set>
-#include <sstream>
 #include <thread>
 #include <vector>
 
 #include "capture/serial_ports.hpp"
 #include "capture/telegram_source.hpp"
-#include "capture/tty_player.hpp"
-#include "simulator/simulator.hpp"
+#include "tests/pty_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
 namespace {
 
 namespace fs = std::filesystem;
+using test::Capture;
+using test::Child;
+using test::play;
 using test::PseudoTerminal;
-using Telegrams = std::vector<std::vector<std::uint8_t>>;
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-// A program running as a child process, standard output and error in files.
-class Child {
-  public:
-    Child(std::vector<std::string> argv, std::map<std::string, std::string> env = {})
-        : out_(test::temp_path("child-out")), err_(test::temp_path("child-err")) {
-        pid_ = fork();
-        if (pid_ == 0) {
-            int out = open(out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-            int err = open(err_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-            dup2(out, STDOUT_FILENO);
-            dup2(err, STDERR_FILENO);
-            int null = open("/dev/null", O_RDONLY);
-            dup2(null, STDIN_FILENO);
-            setenv("TZ", "UTC", 1);
-            for (const auto& [name, value] : env)
-                setenv(name.c_str(), value.c_str(), 1);
-            std::vector<char*> pointers;
-            for (std::string& a : argv)
-                pointers.push_back(a.data());
-            pointers.push_back(nullptr);
-            execvp(pointers[0], pointers.data());
-            _exit(127);
-        }
-    }
-    ~Child() {
-        if (pid_ > 0 && !reaped_) {
-            kill(pid_, SIGKILL);
-            waitpid(pid_, nullptr, 0);
-        }
-    }
-    Child(const Child&) = delete;
-    Child& operator=(const Child&) = delete;
-    void signal(int number) const { kill(pid_, number); }
-    // The exit code (128 + N for signal N), or -1 if it does not end within the time.
-    int wait(double seconds = 15) {
-        for (int i = 0; i < seconds * 100; ++i) {
-            int status = 0;
-            if (waitpid(pid_, &status, WNOHANG) == pid_) {
-                reaped_ = true;
-                return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        }
-        return -1;
-    }
-    std::string out() const { return slurp(out_); }
-    std::string err() const { return slurp(err_); }
-
-  private:
-    std::string out_;
-    std::string err_;
-    pid_t pid_ = -1;
-    bool reaped_ = false;
-};
+using test::read_capture;
+using test::Relay;
+using test::Session;
+using test::simulate;
+using test::wait_for_raw_mode;
 
 Child extcap_capture(std::vector<std::string> args) {
-    std::vector<std::string> argv = {test::dpscope_executable(), "--capture"};
-    argv.insert(argv.end(), args.begin(), args.end());
-    return Child(argv);
-}
-
-// Whether the program on the slave side has put the line into raw mode (sniff configures the
-// port after opening its outputs): the master shares the slave's settings.
-bool wait_for_raw_mode(const PseudoTerminal& pty, double seconds) {
-    for (int i = 0; i < seconds * 100; ++i) {
-        termios settings{};
-        if (tcgetattr(pty.master, &settings) == 0 && (settings.c_lflag & ICANON) == 0) return true;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return false;
-}
-
-// A PROFIBUS session from the simulator: the telegrams to play, in order, with their times.
-struct Session {
-    Telegrams telegrams;
-    std::vector<std::int64_t> times;
-};
-
-Session simulate(std::uint64_t cycles) {
-    SimulatorOptions options;
-    options.cycles = cycles;
-    Simulator simulator(options);
-    Session s;
-    std::vector<std::uint8_t> bytes;
-    std::int64_t time = 0;
-    while (simulator.next(bytes, time)) {
-        s.telegrams.push_back(bytes);
-        s.times.push_back(time);
-    }
-    return s;
-}
-
-void play(const PseudoTerminal& pty, const Session& s) {
-    std::size_t next = 0;
-    TelegramGenerator generator = [&](std::vector<std::uint8_t>& bytes, std::int64_t& time) {
-        if (next >= s.telegrams.size()) return false;
-        bytes = s.telegrams[next];
-        time = s.times[next];
-        ++next;
-        return true;
-    };
-    Result<PlayStats> played = play_telegrams(pty.master, generator, true, nullptr);
-    ASSERT_TRUE(played) << played.error();
-}
-
-struct Capture {
-    Telegrams telegrams;
-    InputStatus status = InputStatus::Unusable;
-    int link_type = 0;
-    Protocol bus = Protocol::ProfibusDp;
-};
-
-// The capture read back with dpscope's reader (the bus from the capture's own tag).
-Capture read_capture(const std::string& path, const CaptureProtocol& protocol) {
-    Capture c;
-    OpenResult opened = open_source(path, InputFormat::Auto, protocol);
-    EXPECT_TRUE(opened) << opened.error();
-    if (!opened) return c;
-    Record record;
-    while (opened.value()->next(record))
-        c.telegrams.emplace_back(record.bytes.begin(), record.bytes.end());
-    c.status = opened.value()->status();
-    c.link_type = opened.value()->link_type();
-    return c;
+    args.insert(args.begin(), "--capture");
+    return Child(test::dpscope_argv(args));
 }
 
 // An extcap sentence: its keyword and its {name=value} fields, or nullopt when malformed.
@@ -426,11 +299,11 @@ TEST(ExtcapTest, CapturesIntoAFifoLiveAndEndsOnSigterm) {
     FifoReader reader(fifo);
     ASSERT_TRUE(wait_for_raw_mode(pty, 10)) << capture.err();
     Session session = simulate(20);
-    play(pty, session);
+    play(pty, session, true);
     // Each telegram is in the fifo as soon as it is decoded: all of them before any stop.
     const std::size_t expected_bytes = [&] {
         std::size_t n = 24;
-        for (const auto& t : session.telegrams)
+        for (const auto& t : session.played)
             n += 16 + t.size();
         return n;
     }();
@@ -438,7 +311,7 @@ TEST(ExtcapTest, CapturesIntoAFifoLiveAndEndsOnSigterm) {
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     EXPECT_EQ(reader.bytes().size(), expected_bytes);
     capture.signal(SIGTERM);
-    EXPECT_EQ(capture.wait(), 0) << capture.err();
+    EXPECT_EQ(capture.wait(15), 0) << capture.err();
     reader.join();
     EXPECT_EQ(capture.err(), "");  // Wireshark shows anything on standard error as an error
     EXPECT_EQ(capture.out(), "");
@@ -447,7 +320,7 @@ TEST(ExtcapTest, CapturesIntoAFifoLiveAndEndsOnSigterm) {
     Capture got = read_capture(pcap, profibus_dp_protocol());
     EXPECT_EQ(got.status, InputStatus::Ok);
     EXPECT_EQ(got.link_type, 147);
-    EXPECT_EQ(got.telegrams, session.telegrams);
+    EXPECT_EQ(got.telegrams, session.played);
     // The port is put back as it was found.
     termios after{};
     ASSERT_EQ(tcgetattr(pty.master, &after), 0);
@@ -479,10 +352,10 @@ TEST(ExtcapTest, CapturesIntoAFileWithTheBusTagAndEndsCompleteOnSigterm) {
                                     "--stop-bits", "1", "--idle-gap-ms", "20"});
     ASSERT_TRUE(wait_for_raw_mode(pty, 10)) << capture.err();
     Session session = simulate(10);
-    play(pty, session);
+    play(pty, session, true);
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
     capture.signal(SIGTERM);
-    EXPECT_EQ(capture.wait(), 0) << capture.err();
+    EXPECT_EQ(capture.wait(15), 0) << capture.err();
     EXPECT_EQ(capture.err(), "");
     // Read with the FC protocol asked for: the file's own tag says PROFIBUS.
     auto decoded = test::run_dpscope({"decode", "-q", pcap});
@@ -490,7 +363,7 @@ TEST(ExtcapTest, CapturesIntoAFileWithTheBusTagAndEndsCompleteOnSigterm) {
     Capture got = read_capture(pcap, profibus_dp_protocol());
     EXPECT_EQ(got.status, InputStatus::Ok);
     EXPECT_EQ(got.link_type, 147);
-    EXPECT_EQ(got.telegrams, session.telegrams);
+    EXPECT_EQ(got.telegrams, session.played);
     std::vector<std::uint8_t> bytes = test::read_file(pcap);
     ASSERT_GE(bytes.size(), 24u);
     EXPECT_EQ(std::string(bytes.begin() + 8, bytes.begin() + 12), "dpsc");
@@ -501,40 +374,6 @@ TEST(ExtcapTest, CapturesIntoAFileWithTheBusTagAndEndsCompleteOnSigterm) {
     EXPECT_NE(missing.exit_code, 0);
     EXPECT_NE(missing.err.find("/dev/ttyUSB99"), std::string::npos) << missing.err;
 }
-
-// Copies what arrives on one pty's master to another's until stopped and quiet: `simulate
-// --device` plays onto the slave end of the first, the extcap captures on the slave end of the
-// second (a null-modem cable between two ports).
-class Relay {
-  public:
-    Relay(int from, int to)
-        : thread_([this, from, to] {
-              std::uint8_t buffer[4096];
-              for (int quiet = 0; !stop_ || quiet < 30;) {
-                  pollfd p{from, POLLIN, 0};
-                  ssize_t n = poll(&p, 1, 10) > 0 ? read(from, buffer, sizeof buffer) : 0;
-                  if (n <= 0) {
-                      ++quiet;
-                      if (n < 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-                      continue;
-                  }
-                  quiet = 0;
-                  for (ssize_t at = 0; at < n;) {
-                      ssize_t w = ::write(to, buffer + at, static_cast<std::size_t>(n - at));
-                      if (w > 0) at += w;
-                  }
-              }
-          }) {}
-    ~Relay() { stop(); }
-    void stop() {
-        stop_ = true;
-        if (thread_.joinable()) thread_.join();
-    }
-
-  private:
-    std::atomic<bool> stop_{false};
-    std::thread thread_;
-};
 
 std::string find_tshark() {
     for (const char* dir : {"/usr/bin", "/usr/local/bin", "/bin"}) {
@@ -558,8 +397,8 @@ TEST(ExtcapTest, TsharkCapturesOnTheExtcapInterface) {
         {"HOME", home.string()}, {"XDG_CONFIG_HOME", (home / ".config").string()}};
 
     // tshark -D lists the interface dpscope (with the personal folder's extcap).
-    Child list({tshark, "-D"}, env);
-    ASSERT_EQ(list.wait(), 0) << list.err();
+    Child list({tshark, "-D"}, {env});
+    ASSERT_EQ(list.wait(15), 0) << list.err();
     EXPECT_NE(list.out().find(". dpscope (dpscope: serial bus sniffer"), std::string::npos)
         << list.out();
 
@@ -577,7 +416,7 @@ TEST(ExtcapTest, TsharkCapturesOnTheExtcapInterface) {
     Child capture({tshark, "-i", "dpscope", "-o", "extcap.dpscope.device:" + adapter.slave, "-o",
                    "extcap.dpscope.baud:1500000", "-c", std::to_string(expected.telegrams.size()),
                    "-a", "duration:15", "-w", out.string()},
-                  env);
+                  {env});
     ASSERT_TRUE(wait_for_raw_mode(adapter, 10)) << capture.err();
     {
         Relay relay(bus.master, adapter.master);
@@ -587,7 +426,7 @@ TEST(ExtcapTest, TsharkCapturesOnTheExtcapInterface) {
         auto played = test::run_dpscope(play);
         ASSERT_EQ(played.exit_code, 0) << played.err;
     }
-    ASSERT_EQ(capture.wait(), 0) << capture.err();
+    ASSERT_EQ(capture.wait(15), 0) << capture.err();
     Capture got = read_capture(out.string(), profibus_dp_protocol());
     EXPECT_EQ(got.status, InputStatus::Ok);
     EXPECT_EQ(got.link_type, 147);

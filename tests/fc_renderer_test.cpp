@@ -105,12 +105,7 @@ std::vector<std::vector<std::uint8_t>> session() {
 }
 
 std::string render(OutputFormat format, const std::vector<std::vector<std::uint8_t>>& inputs) {
-    char* data = nullptr;
-    std::size_t size = 0;
-    FILE* file = open_memstream(&data, &size);
-    EXPECT_NE(file, nullptr);
-    {
-        Output out(file);
+    return test::output_text([&](Output& out) {
         auto renderer = make_renderer(format, out);
         FcDecoder decoder;
         renderer->begin();
@@ -122,12 +117,7 @@ std::string render(OutputFormat format, const std::vector<std::vector<std::uint8
         }
         renderer->render_end_findings({});
         renderer->end();
-        EXPECT_TRUE(out.flush());
-    }
-    std::fclose(file);
-    std::string text(data, size);
-    std::free(data);
-    return text;
+    });
 }
 
 std::vector<std::string> lines(OutputFormat format) {
@@ -418,20 +408,10 @@ TEST(FcRendererTest, CsvRowsHaveTheHeaderColumns) {
 }
 
 std::string summary_text(const Summary& summary) {
-    char* data = nullptr;
-    std::size_t size = 0;
-    FILE* file = open_memstream(&data, &size);
-    EXPECT_NE(file, nullptr);
-    {
-        Output out(file);
+    return test::output_text([&](Output& out) {
         BusDecoder decoder;
         summary.render_text(out, InputSummary{"fc.hex", "hex", 0, false}, decoder);
-        EXPECT_TRUE(out.flush());
-    }
-    std::fclose(file);
-    std::string text(data, size);
-    std::free(data);
-    return text;
+    });
 }
 
 TEST(FcRendererTest, SummaryCountsBlocksAndAks) {

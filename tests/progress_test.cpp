@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/pty_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope::cli {
@@ -183,15 +184,8 @@ std::pair<std::string, int> run_on_terminal(const std::vector<std::string>& args
         dup2(null, STDOUT_FILENO);
         dup2(terminal, STDERR_FILENO);
         if (chdir(test::source_dir().c_str()) != 0) _exit(126);
-        std::vector<std::string> argv = {test::dpscope_executable()};
-        argv.insert(argv.end(), args.begin(), args.end());
-        std::vector<char*> pointers;
-        for (std::string& a : argv)
-            pointers.push_back(a.data());
-        pointers.push_back(nullptr);
         setenv("DPSCOPE_PROGRESS_MIN_BYTES", min_bytes.c_str(), 1);
-        execv(pointers[0], pointers.data());
-        _exit(127);
+        test::exec_or_exit(test::dpscope_argv(args));
     }
     std::string seen;
     int status = 0;

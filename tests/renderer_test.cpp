@@ -71,12 +71,7 @@ struct Input {
 
 std::string render(OutputFormat format, const std::vector<Input>& inputs,
                    DecoderOptions options = {}, std::span<const Finding> end_findings = {}) {
-    char* data = nullptr;
-    std::size_t size = 0;
-    FILE* file = open_memstream(&data, &size);
-    EXPECT_NE(file, nullptr);
-    {
-        Output out(file);
+    return test::output_text([&](Output& out) {
         auto renderer = make_renderer(format, out);
         BusDecoder decoder(options);
         renderer->begin();
@@ -88,12 +83,7 @@ std::string render(OutputFormat format, const std::vector<Input>& inputs,
         }
         renderer->render_end_findings(end_findings);
         renderer->end();
-        EXPECT_TRUE(out.flush());
-    }
-    std::fclose(file);
-    std::string text(data, size);
-    std::free(data);
-    return text;
+    });
 }
 
 std::vector<std::uint8_t> request(std::optional<std::uint8_t> dsap, std::vector<std::uint8_t> du,

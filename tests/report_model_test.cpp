@@ -14,6 +14,7 @@
 #include "formats/finding_log.hpp"
 #include "formats/summary.hpp"
 #include "tests/json_parser.hpp"
+#include "tests/test_support.hpp"
 
 namespace dpscope {
 namespace {
@@ -79,19 +80,7 @@ struct EmptyCapture {
 
 template <typename Write>
 std::string written(Write write) {
-    char* data = nullptr;
-    std::size_t size = 0;
-    FILE* file = open_memstream(&data, &size);
-    EXPECT_NE(file, nullptr);
-    {
-        Output out(file);
-        write(out);
-        EXPECT_TRUE(out.flush());
-    }
-    std::fclose(file);
-    std::string text(data, size);
-    std::free(data);
-    return text;
+    return test::output_text(write);
 }
 
 TEST(ReportModelTest, AnEmptyCaptureChecksNothingAndFailsUnlessAllowed) {

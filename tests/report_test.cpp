@@ -185,19 +185,7 @@ ReportContext context_of(const Analysis& a, FailOn fail_on = FailOn::Error,
 }
 
 std::string render(ReportFormat format, const ReportContext& context) {
-    char* data = nullptr;
-    std::size_t size = 0;
-    FILE* file = open_memstream(&data, &size);
-    EXPECT_NE(file, nullptr);
-    {
-        Output out(file);
-        render_report(format, context, out);
-        EXPECT_TRUE(out.flush());
-    }
-    std::fclose(file);
-    std::string text(data, size);
-    std::free(data);
-    return text;
+    return test::output_text([&](Output& out) { render_report(format, context, out); });
 }
 
 std::size_t count_of(std::string_view text, std::string_view needle) {
@@ -3029,17 +3017,8 @@ TEST(ReportTest, BusHealthSectionInJsonIsTheStatsJson) {
     stats.input = context.input;
     stats.health = &h;
     stats.version = context.version;
-    char* data = nullptr;
-    std::size_t size = 0;
-    FILE* file = open_memstream(&data, &size);
-    ASSERT_NE(file, nullptr);
-    {
-        Output out(file);
-        render_stats(StatsFormat::Json, stats, out);
-    }
-    std::fclose(file);
-    std::string stats_text(data, size);
-    std::free(data);
+    const std::string stats_text =
+        test::output_text([&](Output& out) { render_stats(StatsFormat::Json, stats, out); });
     const std::size_t members = stats_text.find(",\"segment\":");
     ASSERT_NE(members, std::string::npos);
     ASSERT_TRUE(stats_text.ends_with("}\n"));

@@ -15,7 +15,6 @@
 #include <chrono>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -24,7 +23,6 @@
 
 #include "capture/capture_writer.hpp"
 #include "capture/telegram_source.hpp"
-#include "capture/tty_player.hpp"
 #include "decoder/bus_decoder.hpp"
 #include "decoder/bus_health.hpp"
 #include "decoder/fc_framing_rules.hpp"
@@ -32,6 +30,7 @@
 #include "formats/stats.hpp"
 #include "simulator/simulator.hpp"
 #include "tests/json_parser.hpp"
+#include "tests/pty_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -40,141 +39,25 @@ namespace {
 using test::same_settings;
 using test::settings_of;
 
-using Telegrams = std::vector<std::vector<std::uint8_t>>;
-
+using test::Capture;
+using test::play;
 using test::PseudoTerminal;
+using test::read_capture;
+using test::Relay;
+using test::Session;
+using test::simulate;
+using test::slurp;
+using test::Telegrams;
 
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-// dpscope running as a child process, standard output and error in files.
-class Sniffer {
+// dpscope running as a child process, standard output and error in files (standard input the
+// test's own, as it always was here).
+class Sniffer : public test::Child {
   public:
     explicit Sniffer(std::vector<std::string> args, rlim_t file_size_limit = RLIM_INFINITY)
-        : out_(test::temp_path("out")), err_(test::temp_path("err")) {
-        pid_ = fork();
-        if (pid_ == 0) {
-            int out = open(out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-            int err = open(err_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-            dup2(out, STDOUT_FILENO);
-            dup2(err, STDERR_FILENO);
-            if (file_size_limit != RLIM_INFINITY) {
-                rlimit limit{file_size_limit, file_size_limit};
-                setrlimit(RLIMIT_FSIZE, &limit);
-            }
-            std::vector<std::string> argv = {test::dpscope_executable()};
-            argv.insert(argv.end(), args.begin(), args.end());
-            std::vector<char*> pointers;
-            for (std::string& a : argv)
-                pointers.push_back(a.data());
-            pointers.push_back(nullptr);
-            setenv("TZ", "UTC", 1);
-            execv(pointers[0], pointers.data());
-            _exit(127);
-        }
-    }
-    ~Sniffer() {
-        if (pid_ > 0 && !reaped_) {
-            kill(pid_, SIGKILL);
-            waitpid(pid_, nullptr, 0);
-        }
-        std::remove(out_.c_str());
-        std::remove(err_.c_str());
-    }
+        : Child(test::dpscope_argv(args), {{}, file_size_limit, false}) {}
     // Waits until the sniffer says it is capturing.
-    bool ready() const {
-        for (int i = 0; i < 500; ++i) {
-            if (slurp(err_).find("capturing on") != std::string::npos) return true;
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        }
-        return false;
-    }
-    void signal(int number) const { kill(pid_, number); }
-    // The exit code, or -1 if it does not end within the time.
-    int wait(int seconds = 20) {
-        for (int i = 0; i < seconds * 100; ++i) {
-            int status = 0;
-            if (waitpid(pid_, &status, WNOHANG) == pid_) {
-                reaped_ = true;
-                return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        }
-        return -1;
-    }
-    std::string out() const { return slurp(out_); }
-    std::string err() const { return slurp(err_); }
-
-  private:
-    std::string out_;
-    std::string err_;
-    pid_t pid_ = -1;
-    bool reaped_ = false;
+    bool ready() const { return err_says("capturing on"); }
 };
-
-struct Session {
-    Telegrams played;    // every record the simulator produced, garbage included
-    Telegrams expected;  // the telegrams a sniffer must capture (garbage is no telegram)
-    std::vector<std::int64_t> times;
-};
-
-Session simulate(SimulatorOptions options) {
-    Simulator simulator(options);
-    Session s;
-    std::vector<std::uint8_t> bytes;
-    std::int64_t time = 0;
-    while (simulator.next(bytes, time)) {
-        s.played.push_back(bytes);
-        s.times.push_back(time);
-    }
-    std::vector<std::uint64_t> garbage;
-    for (const Injection& i : simulator.injections())
-        if (i.kind == FaultKind::Garbage) garbage.push_back(i.telegram);
-    for (std::size_t i = 0; i < s.played.size(); ++i)
-        if (std::find(garbage.begin(), garbage.end(), i + 1) == garbage.end())
-            s.expected.push_back(s.played[i]);
-    return s;
-}
-
-void play(const PseudoTerminal& pty, const Session& s, bool as_fast_as_possible,
-          std::size_t count = SIZE_MAX) {
-    std::size_t next = 0;
-    TelegramGenerator generator = [&](std::vector<std::uint8_t>& bytes, std::int64_t& time) {
-        if (next >= s.played.size() || next >= count) return false;
-        bytes = s.played[next];
-        time = s.times[next];
-        ++next;
-        return true;
-    };
-    Result<PlayStats> played = play_telegrams(pty.master, generator, as_fast_as_possible, nullptr);
-    ASSERT_TRUE(played) << played.error();
-}
-
-struct Capture {
-    Telegrams telegrams;
-    std::vector<std::int64_t> times;
-    InputStatus status = InputStatus::Unusable;
-    int link_type = 0;
-};
-
-Capture read_capture(const std::string& path) {
-    Capture c;
-    OpenResult opened = open_source(path, InputFormat::Auto, profibus_dp_protocol());
-    EXPECT_TRUE(opened) << opened.error();
-    if (!opened) return c;
-    Record record;
-    while (opened.value()->next(record)) {
-        c.telegrams.emplace_back(record.bytes.begin(), record.bytes.end());
-        c.times.push_back(record.time_ns);
-    }
-    c.status = opened.value()->status();
-    c.link_type = opened.value()->link_type();
-    return c;
-}
 
 // Finding kinds with counts in the jsonl output of dpscope.
 std::map<std::string, int> jsonl_finding_kinds(const std::string& jsonl) {
@@ -524,39 +407,6 @@ TEST(SniffTest, ReportAtTheEnd) {
     EXPECT_NE(out.find("telegrams: "), std::string::npos) << out;  // the summary (-q) ...
     EXPECT_NE(out.find("FAIL"), std::string::npos) << out;         // ... and the text report
 }
-
-// Copies what arrives on one pty's master to another's until stopped and quiet: `simulate
-// --device` plays onto the slave end of the first, `sniff` captures on the slave end of the second.
-class Relay {
-  public:
-    Relay(int from, int to)
-        : thread_([this, from, to] {
-              std::uint8_t buffer[4096];
-              for (int quiet = 0; !stop_ || quiet < 30;) {
-                  pollfd p{from, POLLIN, 0};
-                  ssize_t n = poll(&p, 1, 10) > 0 ? read(from, buffer, sizeof buffer) : 0;
-                  if (n <= 0) {
-                      ++quiet;
-                      if (n < 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-                      continue;
-                  }
-                  quiet = 0;
-                  for (ssize_t at = 0; at < n;) {
-                      ssize_t w = ::write(to, buffer + at, static_cast<std::size_t>(n - at));
-                      if (w > 0) at += w;
-                  }
-              }
-          }) {}
-    ~Relay() { stop(); }
-    void stop() {
-        stop_ = true;
-        if (thread_.joinable()) thread_.join();
-    }
-
-  private:
-    std::atomic<bool> stop_{false};
-    std::thread thread_;
-};
 
 // The lines of `text` from the first one starting with `from` on.
 std::vector<std::string> lines_from(const std::string& text, const std::string& from) {
@@ -1310,17 +1160,7 @@ std::string reference_stats(const std::string& pcap, const std::string& device,
     while (!number.empty() && std::isspace(static_cast<unsigned char>(number.back())))
         number.pop_back();
     StatsContext context{InputSummary{device, "serial", 0, false}, &tracker.health(), number};
-    std::string path = test::temp_path("reference-stats.txt");
-    {
-        FILE* file = std::fopen(path.c_str(), "wb");
-        Output out(file);
-        render_stats(StatsFormat::Text, context, out);
-        out.flush();
-        std::fclose(file);
-    }
-    std::string text = slurp(path);
-    std::remove(path.c_str());
-    return text;
+    return test::output_text([&](Output& out) { render_stats(StatsFormat::Text, context, out); });
 }
 
 // dpscope running with standard output on a terminal (a pseudo-terminal of 120 x 40 without
@@ -1343,15 +1183,8 @@ class TerminalSniffer {
             dup2(slave, STDOUT_FILENO);
             dup2(err, STDERR_FILENO);
             close(master_);
-            std::vector<std::string> argv = {test::dpscope_executable()};
-            argv.insert(argv.end(), args.begin(), args.end());
-            std::vector<char*> pointers;
-            for (std::string& a : argv)
-                pointers.push_back(a.data());
-            pointers.push_back(nullptr);
             setenv("TZ", "UTC", 1);
-            execv(pointers[0], pointers.data());
-            _exit(127);
+            test::exec_or_exit(test::dpscope_argv(args));
         }
         close(slave);
         started_ = std::chrono::steady_clock::now();

@@ -16,6 +16,7 @@
 #include "formats/health_render.hpp"
 #include "tests/health_sample.hpp"
 #include "tests/json_parser.hpp"
+#include "tests/test_support.hpp"
 #include "tests/xml_parser.hpp"
 
 namespace dpscope {
@@ -31,19 +32,7 @@ constexpr std::string_view kHostile = "cap<script>alert('x')</script>&\"|*_,\n.p
 
 template <typename Write>
 std::string capture(Write write) {
-    char* data = nullptr;
-    std::size_t size = 0;
-    FILE* file = open_memstream(&data, &size);
-    EXPECT_NE(file, nullptr);
-    {
-        Output out(file);
-        write(out);
-        EXPECT_TRUE(out.flush());
-    }
-    std::fclose(file);
-    std::string text(data, size);
-    std::free(data);
-    return text;
+    return test::output_text(write);
 }
 
 std::string render(StatsFormat format, const BusHealth& h, std::string_view name = "bus.pcap") {

@@ -88,19 +88,7 @@ std::vector<Finding> findings() {
 }
 
 std::string render_text(const Counted& c, const InputSummary& input) {
-    char* data = nullptr;
-    std::size_t size = 0;
-    FILE* file = open_memstream(&data, &size);
-    EXPECT_NE(file, nullptr);
-    {
-        Output out(file);
-        c.summary.render_text(out, input, c.decoder);
-        EXPECT_TRUE(out.flush());
-    }
-    std::fclose(file);
-    std::string text(data, size);
-    std::free(data);
-    return text;
+    return test::output_text([&](Output& out) { c.summary.render_text(out, input, c.decoder); });
 }
 
 // The kind column holds the longest kind name: the counts stay in one column.

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "capture/hex_log.hpp"
+#include "formats/output.hpp"
 
 namespace dpscope::test {
 
@@ -117,14 +118,31 @@ std::vector<std::uint8_t> read_file(const std::string& path) {
     return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), {});
 }
 
-namespace {
-
 std::string slurp(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::stringstream content;
     content << in.rdbuf();
     return content.str();
 }
+
+std::string output_text(const std::function<void(Output&)>& write) {
+    char* data = nullptr;
+    std::size_t size = 0;
+    FILE* file = open_memstream(&data, &size);
+    EXPECT_NE(file, nullptr);
+    if (file == nullptr) return {};
+    {
+        Output out(file);
+        write(out);
+        EXPECT_TRUE(out.flush());
+    }
+    std::fclose(file);
+    std::string text(data, size);
+    std::free(data);
+    return text;
+}
+
+namespace {
 
 std::string shell_quote(const std::string& text) {
     std::string quoted = "'";

@@ -4,11 +4,16 @@
 #include <termios.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "decoder/byte_reader.hpp"
+
+namespace dpscope {
+class Output;
+}
 
 namespace dpscope::test {
 
@@ -34,6 +39,11 @@ std::string temp_path(std::string_view name);
 void write_file(const std::string& path, const std::vector<std::uint8_t>& bytes);
 void write_text_file(const std::string& path, std::string_view text);
 std::vector<std::uint8_t> read_file(const std::string& path);
+std::string slurp(const std::string& path);  // the file's content as text ("" if unreadable)
+
+// The text `write` writes to an Output (over an open_memstream); the test fails if the stream
+// cannot be opened or the Output does not flush.
+std::string output_text(const std::function<void(Output&)>& write);
 
 struct CommandResult {
     int exit_code = -1;

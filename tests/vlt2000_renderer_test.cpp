@@ -84,12 +84,7 @@ Bytes bytes_of(const std::string& s) {
 
 std::string render(OutputFormat format, const std::vector<std::string>& inputs,
                    Vlt2000DecoderOptions options = {}) {
-    char* data = nullptr;
-    std::size_t size = 0;
-    FILE* file = open_memstream(&data, &size);
-    EXPECT_NE(file, nullptr);
-    {
-        Output out(file);
+    return test::output_text([&](Output& out) {
         auto renderer = make_renderer(format, out);
         Vlt2000Decoder decoder(options);
         renderer->begin();
@@ -100,12 +95,7 @@ std::string render(OutputFormat format, const std::vector<std::string>& inputs,
         }
         renderer->render_end_findings({});
         renderer->end();
-        EXPECT_TRUE(out.flush());
-    }
-    std::fclose(file);
-    std::string text(data, size);
-    std::free(data);
-    return text;
+    });
 }
 
 std::vector<std::string> lines(OutputFormat format) {
@@ -515,20 +505,10 @@ TEST(Vlt2000RendererTest, EveryPrefixAndDamageRendersInEveryFormat) {
 }
 
 std::string summary_text(const Summary& summary) {
-    char* data = nullptr;
-    std::size_t size = 0;
-    FILE* file = open_memstream(&data, &size);
-    EXPECT_NE(file, nullptr);
-    {
-        Output out(file);
+    return test::output_text([&](Output& out) {
         BusDecoder decoder;
         summary.render_text(out, InputSummary{"vlt.raw", "raw", 0, false}, decoder);
-        EXPECT_TRUE(out.flush());
-    }
-    std::fclose(file);
-    std::string text(data, size);
-    std::free(data);
-    return text;
+    });
 }
 
 TEST(Vlt2000RendererTest, SummaryCountsLettersFailuresChecksumsAndAddresses) {

@@ -1,0 +1,110 @@
+// Helpers for the tests that run dpscope (or tshark) as a child process on a pseudo-terminal and
+// play a simulated session into it: sniff_test.cpp and extcap_test.cpp.
+#pragma once
+
+#include <sys/resource.h>
+#include <sys/types.h>
+
+#include <atomic>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
+
+#include "capture/capture_protocol.hpp"
+#include "capture/telegram_source.hpp"
+#include "simulator/simulator.hpp"
+#include "tests/test_support.hpp"
+
+namespace dpscope::test {
+
+using Telegrams = std::vector<std::vector<std::uint8_t>>;
+
+struct ChildOptions {
+    std::map<std::string, std::string> env;  // set in the child (after TZ=UTC, so they win)
+    rlim_t file_size_limit = RLIM_INFINITY;  // RLIMIT_FSIZE of the child (a full disk)
+    // Standard input from /dev/null (extcap, tshark); false keeps the test's own (as sniff_test
+    // always ran dpscope sniff, which reads its port, not standard input).
+    bool stdin_from_null = true;
+};
+
+// A program running as a child process (argv[0] found on PATH unless it names a file), with
+// TZ=UTC, standard output and error in files (removed with the Child). Killed if still running
+// when destroyed.
+class Child {
+  public:
+    explicit Child(std::vector<std::string> argv, ChildOptions options = {});
+    ~Child();
+    Child(const Child&) = delete;
+    Child& operator=(const Child&) = delete;
+    void signal(int number) const;
+    // The exit code (128 + N for signal N), or -1 if it does not end within the time.
+    int wait(double seconds = 20);
+    // Whether standard error says `text` within `seconds`.
+    bool err_says(std::string_view text, double seconds = 5) const;
+    std::string out() const;
+    std::string err() const;
+
+  private:
+    std::string out_;
+    std::string err_;
+    pid_t pid_ = -1;
+    bool reaped_ = false;
+};
+
+// In a child process after fork(): runs `argv` (argv[0] found on PATH unless it names a file);
+// if that fails, the child ends with exit code 127.
+[[noreturn]] void exec_or_exit(std::vector<std::string> argv);
+
+// The dpscope built with the tests, with `args`: the argv of a Child or of exec_or_exit.
+std::vector<std::string> dpscope_argv(const std::vector<std::string>& args);
+
+// Whether the program on the slave side has put the line into raw mode (sniff configures the
+// port after opening its outputs): the master shares the slave's settings.
+bool wait_for_raw_mode(const PseudoTerminal& pty, double seconds);
+
+// Copies what arrives on one pty's master to another's until stopped and quiet: `simulate
+// --device` plays onto the slave end of the first, the program under test (sniff, the extcap)
+// captures on the slave end of the second (a null-modem cable between two ports).
+class Relay {
+  public:
+    Relay(int from, int to);
+    ~Relay() { stop(); }
+    Relay(const Relay&) = delete;
+    Relay& operator=(const Relay&) = delete;
+    void stop();
+
+  private:
+    std::atomic<bool> stop_{false};
+    std::thread thread_;
+};
+
+// A PROFIBUS session from the simulator: the telegrams to play, in order, with their times.
+struct Session {
+    Telegrams played;    // every record the simulator produced, garbage included
+    Telegrams expected;  // the telegrams a sniffer must capture (garbage is no telegram)
+    std::vector<std::int64_t> times;
+};
+
+Session simulate(SimulatorOptions options);
+Session simulate(std::uint64_t cycles);  // the default session, `cycles` long, no faults
+
+// Plays the first `count` telegrams of `s.played` into the master of `pty` (fails the test if
+// playing fails).
+void play(const PseudoTerminal& pty, const Session& s, bool as_fast_as_possible,
+          std::size_t count = SIZE_MAX);
+
+// A capture read back with dpscope's reader (the bus from the capture's own tag, if it has one).
+struct Capture {
+    Telegrams telegrams;
+    std::vector<std::int64_t> times;
+    InputStatus status = InputStatus::Unusable;
+    int link_type = 0;
+};
+
+Capture read_capture(const std::string& path,
+                     const CaptureProtocol& protocol = profibus_dp_protocol());
+
+}  // namespace dpscope::test
