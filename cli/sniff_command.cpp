@@ -82,6 +82,8 @@ class ReaderWatch {
             !S_ISFIFO(info.st_mode))
             return;
         fd_ = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+        // No reader any more (ENXIO): Wireshark closed the fifo before the watch was set up.
+        gone_at_open_ = fd_ < 0 && errno == ENXIO;
     }
     ~ReaderWatch() {
         if (fd_ >= 0) ::close(fd_);
@@ -89,13 +91,14 @@ class ReaderWatch {
     ReaderWatch(const ReaderWatch&) = delete;
     ReaderWatch& operator=(const ReaderWatch&) = delete;
     bool reader_gone() const {
-        if (fd_ < 0) return false;
+        if (fd_ < 0) return gone_at_open_;
         pollfd watched{fd_, POLLOUT, 0};
         return ::poll(&watched, 1, 0) > 0 && (watched.revents & POLLERR) != 0;
     }
 
   private:
     int fd_ = -1;
+    bool gone_at_open_ = false;
 };
 
 constexpr std::int64_t kFlushEveryNs = 50'000'000;  // at most 100 ms in buffers, with margin
