@@ -48,7 +48,9 @@ std::map<std::string, std::string> by_id_names(const std::string& dev_root) {
     std::error_code error;
     fs::directory_iterator it(fs::path(dev_root) / "serial" / "by-id", error);
     if (error) return names;
-    for (const fs::directory_entry& entry : it) {
+    // increment(error), not a range-for: a failing step must not throw (never a crash).
+    for (; it != fs::directory_iterator(); it.increment(error)) {
+        const fs::directory_entry& entry = *it;
         std::error_code link_error;
         if (!entry.is_symlink(link_error)) continue;
         fs::path target = fs::read_symlink(entry.path(), link_error);
@@ -71,7 +73,8 @@ std::vector<SerialPortEntry> list_serial_ports(const std::string& sys_root,
     fs::directory_iterator it(fs::path(sys_root) / "class" / "tty", error);
     if (error) return ports;
     const std::map<std::string, std::string> by_id = by_id_names(dev_root);
-    for (const fs::directory_entry& entry : it) {
+    for (; it != fs::directory_iterator(); it.increment(error)) {
+        const fs::directory_entry& entry = *it;
         const std::string name = entry.path().filename().string();
         std::error_code entry_error;
         const fs::path device_link = entry.path() / "device";
