@@ -6,15 +6,21 @@
 
 namespace dpscope {
 
-ReplayOptions default_replay_options() {
+ReplayOptions replay_options(const ReplayChoices& choices) {
     ReplayOptions options;
-    // As cli/common_options.cpp resolves the defaults of `dpscope decode`.
-    options.fc_tracker.timeout_ns = options.tracker.timeout_ns;
-    options.fc_tracker.line_baud = 9600;
-    options.vlt2000_tracker.line_baud = 9600;
-    options.fc_decoder.response_window_ns = options.tracker.timeout_ns;
-    options.vlt2000_decoder.response_window_ns = options.tracker.timeout_ns;
-    options.vlt2000_tracker.timeout_ns = options.tracker.timeout_ns;
+    const std::int64_t timeout_ns = static_cast<std::int64_t>(choices.timeout_ms) * 1'000'000;
+    options.decoder.dialect = choices.dialect;
+    options.tracker.timeout_ns = timeout_ns;
+    options.tracker.strict = choices.strict;
+    options.fc_tracker.timeout_ns = timeout_ns;
+    options.fc_tracker.response_ns = static_cast<std::int64_t>(choices.fc_response_ms) * 1'000'000;
+    options.fc_tracker.line_baud = choices.line_baud;
+    options.vlt2000_tracker.line_baud = choices.line_baud;
+    options.vlt2000_tracker.timeout_ns = timeout_ns;
+    options.fc_decoder.pnu_bits = choices.fc_pnu_bits;
+    options.fc_decoder.response_window_ns = timeout_ns;
+    options.vlt2000_decoder.response_window_ns = timeout_ns;
+    options.vlt2000_decoder.check_checksum = choices.vlt2000_checksum;
     return options;
 }
 

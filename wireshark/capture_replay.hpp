@@ -40,9 +40,22 @@ struct ReplayOptions {
     Vlt2000TrackerOptions vlt2000_tracker;
 };
 
-// The options `dpscope decode` uses when none is given (--timeout-ms 1000, --fc-response-ms 20,
-// 9600 baud for FC and VLT 2000, --fc-pnu-bits 12, the VLT 2000 checksum checked).
-ReplayOptions default_replay_options();
+// The choices the decoder and tracker options are made of, as `dpscope decode`'s options name
+// them; the defaults are decode's (--timeout-ms 1000, --fc-response-ms 20, 9600 baud for FC and
+// VLT 2000, --fc-pnu-bits 12, the VLT 2000 checksum checked).
+struct ReplayChoices {
+    Dialect dialect = Dialect::Vlt;
+    std::uint32_t timeout_ms = 1000;
+    bool strict = false;
+    std::uint32_t fc_response_ms = 20;
+    std::uint32_t line_baud = 9600;
+    std::uint8_t fc_pnu_bits = 12;
+    bool vlt2000_checksum = true;
+};
+
+// Every bus's options from the choices, as cli/common_options.cpp resolves decode's options.
+ReplayOptions replay_options(const ReplayChoices& choices);
+inline ReplayOptions default_replay_options() { return replay_options(ReplayChoices{}); }
 
 class CaptureReplay {
   public:

@@ -313,23 +313,16 @@ ReplayOptions options_from_preferences() {
     checked(prefs.timeout_ms, 1, 3'600'000, 1000, "timeout_ms");
     checked(prefs.fc_response_ms, 1, 60'000, 20, "fc_response_ms");
     checked(prefs.baud, 300, 12'000'000, 9600, "baud");
-    ReplayOptions options = default_replay_options();
     static constexpr Dialect kDialects[] = {Dialect::Vlt, Dialect::Ge, Dialect::Profidrive};
-    options.decoder.dialect =
-        kDialects[prefs.dialect >= 0 && prefs.dialect < 3 ? prefs.dialect : 0];
-    const std::int64_t timeout_ns = static_cast<std::int64_t>(prefs.timeout_ms) * 1'000'000;
-    options.tracker.timeout_ns = timeout_ns;
-    options.tracker.strict = prefs.strict;
-    options.fc_tracker.timeout_ns = timeout_ns;
-    options.fc_tracker.response_ns = static_cast<std::int64_t>(prefs.fc_response_ms) * 1'000'000;
-    options.fc_tracker.line_baud = prefs.baud;
-    options.vlt2000_tracker.line_baud = prefs.baud;
-    options.vlt2000_tracker.timeout_ns = timeout_ns;
-    options.fc_decoder.pnu_bits = static_cast<std::uint8_t>(prefs.fc_pnu_bits == 11 ? 11 : 12);
-    options.fc_decoder.response_window_ns = timeout_ns;
-    options.vlt2000_decoder.response_window_ns = timeout_ns;
-    options.vlt2000_decoder.check_checksum = prefs.vlt2000_checksum;
-    return options;
+    ReplayChoices choices;
+    choices.dialect = kDialects[prefs.dialect >= 0 && prefs.dialect < 3 ? prefs.dialect : 0];
+    choices.timeout_ms = prefs.timeout_ms;
+    choices.strict = prefs.strict;
+    choices.fc_response_ms = prefs.fc_response_ms;
+    choices.line_baud = prefs.baud;
+    choices.fc_pnu_bits = static_cast<std::uint8_t>(prefs.fc_pnu_bits == 11 ? 11 : 12);
+    choices.vlt2000_checksum = prefs.vlt2000_checksum;
+    return replay_options(choices);
 }
 
 // ---- the capture's state ----------------------------------------------------------------------
