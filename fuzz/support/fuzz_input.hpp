@@ -68,17 +68,16 @@ inline Output& null_output() {
 }  // namespace dpscope::fuzz
 
 // libFuzzer's own mutator (the replay driver has a stand-in that changes nothing).
-extern "C" std::size_t LLVMFuzzerMutate(std::uint8_t* data, std::size_t size,
-                                        std::size_t max_size);
+extern "C" std::size_t LLVMFuzzerMutate(std::uint8_t* data, std::size_t size, std::size_t max_size);
 
 // Defines the target's custom mutator: libFuzzer mutates, then `repair(data, size, max_size,
 // seed)` (returning the new size) makes the input pass the checks in front of the layer (a
 // checksum, a length byte), except for one mutation in `keep_broken_one_in`, which keeps its
 // damage so that the checks themselves are fuzzed too.
-#define DPSCOPE_FUZZ_REPAIRING_MUTATOR(repair, keep_broken_one_in)                                 \
-    extern "C" std::size_t LLVMFuzzerCustomMutator(std::uint8_t* data, std::size_t size,          \
-                                                   std::size_t max_size, unsigned int seed) {     \
-        size = LLVMFuzzerMutate(data, size, max_size);                                            \
-        if ((seed % (keep_broken_one_in)) == 0) return size;                                      \
-        return repair(data, size, max_size, seed);                                                \
+#define DPSCOPE_FUZZ_REPAIRING_MUTATOR(repair, keep_broken_one_in)                            \
+    extern "C" std::size_t LLVMFuzzerCustomMutator(std::uint8_t* data, std::size_t size,      \
+                                                   std::size_t max_size, unsigned int seed) { \
+        size = LLVMFuzzerMutate(data, size, max_size);                                        \
+        if ((seed % (keep_broken_one_in)) == 0) return size;                                  \
+        return repair(data, size, max_size, seed);                                            \
     }
