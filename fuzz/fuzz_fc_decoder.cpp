@@ -22,6 +22,7 @@
 
 #include "decoder/fc_codes.hpp"
 #include "decoder/fc_decoder.hpp"
+#include "decoder/fc_framing_rules.hpp"
 #include "decoder/fc_telegram.hpp"
 #include "fuzz/support/checksum_repair.hpp"
 #include "fuzz/support/decoded_check.hpp"
@@ -171,6 +172,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     decoded_check(t.bytes.data() == telegram.data() && t.bytes.size() == telegram.size(),
                   "the decoded telegram is the record");
     decoded_check(t.protocol == dpscope::Protocol::Fc, "an FC telegram");
+    dpscope::fuzz::check_rules_agree(t, dpscope::fc_framing_rules(), true);
     volatile std::size_t sink = walk(t);
     (void)sink;
     return 0;

@@ -21,6 +21,7 @@
 
 #include "decoder/vlt2000_codes.hpp"
 #include "decoder/vlt2000_decoder.hpp"
+#include "decoder/vlt2000_framing_rules.hpp"
 #include "decoder/vlt2000_telegram.hpp"
 #include "fuzz/support/checksum_repair.hpp"
 #include "fuzz/support/decoded_check.hpp"
@@ -149,6 +150,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     decoded_check(t.bytes.data() == telegram.data() && t.bytes.size() == telegram.size(),
                   "the decoded telegram is the record");
     decoded_check(t.protocol == dpscope::Protocol::Vlt2000, "a VLT 2000 telegram");
+    dpscope::fuzz::check_rules_agree(t, dpscope::vlt2000_framing_rules(), options.check_checksum);
     volatile std::size_t sink = walk(t);
     (void)sink;
     return 0;

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <functional>
 
+#include "decoder/framing_rules.hpp"
 #include "decoder/problem.hpp"
 #include "decoder/telegram.hpp"
 
@@ -64,6 +65,30 @@ inline std::size_t walk_problems(const DecodedTelegram& t) {
         total += problem_message(problem).size() + info.name.size();
     }
     return total;
+}
+
+// The protocol's framing rules and its decoder agree on the record: when the rules alone (at the
+// end of the input) take all of it for one telegram, the decoder finds no framing problem in it;
+// and when the decoder finds no problem at all, the rules take it for one telegram of its length
+// (`decoder_checks_all`: false where an option turns a check of the decoder off). `documented`
+// (may be null) names the framing problems where the two differ by design.
+inline void check_rules_agree(const DecodedTelegram& t, const FramingRules& rules,
+                              bool decoder_checks_all,
+                              bool (*documented)(const Problem&, Bytes) = nullptr) {
+    if (t.bytes.empty()) return;
+    const FramingVerdict verdict = rules.can_start(t.bytes[0])
+                                       ? rules.judge(t.bytes, true)
+                                       : FramingVerdict::invalid(ProblemKind::BadStartDelimiter, 0);
+    const bool taken =
+        verdict.status == FramingStatus::Telegram && verdict.length == t.bytes.size();
+    if (taken) {
+        for (const Problem& problem : t.problems())
+            decoded_check(problem_component(problem.kind) != ProblemComponent::Framing ||
+                              (documented != nullptr && documented(problem, t.bytes)),
+                          "a record the framing rules take has no framing problem");
+    }
+    if (decoder_checks_all && t.problems().empty() && t.problems().dropped() == 0)
+        decoded_check(taken, "a record the decoder finds nothing wrong with, the rules take");
 }
 
 }  // namespace dpscope::fuzz
