@@ -3,8 +3,9 @@
 // behind those checks. The custom mutators of fuzz_profibus_decoder, fuzz_fc_decoder and
 // fuzz_vlt2000_decoder call them (DPSCOPE_FUZZ_REPAIRING_MUTATOR); tests/fuzz_repair_test.cpp
 // checks that a repaired telegram decodes without a checksum or length problem. Each works on the
-// telegram in place, may shorten it or lengthen it (up to `max_size`, new bytes 0) and returns
-// its new size. Header-only, so it builds in the libFuzzer tree, the replay and the tests alike.
+// telegram in place, may shorten it or lengthen it (up to `max_size`) and returns its new size
+// (new bytes are 0, '0' in a VLT 2000 telegram). Header-only, so it builds in the libFuzzer tree,
+// the replay and the tests alike.
 #pragma once
 
 #include <algorithm>
@@ -16,19 +17,19 @@ namespace dpscope::fuzz {
 
 namespace repair_detail {
 
-// Makes the telegram exactly `wanted` bytes when `max_size` allows it: cut, or padded with 0.
-// Returns the size it has then (smaller than `wanted` only when max_size is).
+// Makes the telegram exactly `wanted` bytes when `max_size` allows it: cut, or padded with
+// `fill`. Returns the size it has then (smaller than `wanted` only when max_size is).
 inline std::size_t resize_to(std::uint8_t* data, std::size_t size, std::size_t max_size,
-                             std::size_t wanted) noexcept {
+                             std::size_t wanted, std::uint8_t fill = 0) noexcept {
     const std::size_t target = std::min(wanted, max_size);
-    if (target > size) std::memset(data + size, 0, target - size);
+    if (target > size) std::memset(data + size, fill, target - size);
     return target;
 }
 
 }  // namespace repair_detail
 
 // PROFIBUS FDL (decoder/fdl.hpp). By the first byte: SD2 0x68 gets LE = LEr = the data length
-// (size - 6, brought into 3..249), the repeated SD, the FCS (sum of DA..DU mod 256) and ED 0x16;
+// (size - 6, brought into 4..249), the repeated SD, the FCS (sum of DA..DU mod 256) and ED 0x16;
 // SD1 0x10 is made 6 bytes and SD3 0xA2 14, each with its FCS and ED. SD4, SC and a telegram with
 // no start delimiter are left as they are.
 inline std::size_t repair_fdl_telegram(std::uint8_t* data, std::size_t size,
@@ -39,10 +40,11 @@ inline std::size_t repair_fdl_telegram(std::uint8_t* data, std::size_t size,
         case 0x10: fixed = 6; break;
         case 0xA2: fixed = 14; break;
         case 0x68: {
-            // LE counts DA..DU: 3..249 bytes, so the telegram is 9..255.
-            const std::size_t wanted = std::clamp<std::size_t>(size, 9, 255);
+            // LE counts DA..DU: 4..249 bytes as the parser wants (the framer also takes 3), so
+            // the telegram is 10..255.
+            const std::size_t wanted = std::clamp<std::size_t>(size, 10, 255);
             size = repair_detail::resize_to(data, size, max_size, wanted);
-            if (size < 9) return size;
+            if (size < 10) return size;
             const auto le = static_cast<std::uint8_t>(size - 6);
             data[1] = le;
             data[2] = le;
@@ -86,10 +88,11 @@ inline std::size_t repair_fc_telegram(std::uint8_t* data, std::size_t size,
 
 // VLT 2000 (decoder/vlt2000_telegram.hpp): 22 characters, '<' first, '>' last, and the checksum
 // (offsets 19-20: the last two decimal digits of the sum of offsets 1..18) unless it reads "??"
-// (not checked). The fields between are left as they are, printable or not.
+// (not checked). A telegram cut short is padded with '0'; the fields between are left as they
+// are, printable or not.
 inline std::size_t repair_vlt2000_telegram(std::uint8_t* data, std::size_t size,
                                            std::size_t max_size) noexcept {
-    size = repair_detail::resize_to(data, size, max_size, 22);
+    size = repair_detail::resize_to(data, size, max_size, 22, '0');
     if (size < 22) return size;
     data[0] = '<';
     data[21] = '>';
