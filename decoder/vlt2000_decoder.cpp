@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "decoder/vlt2000_codes.hpp"
+#include "decoder/vlt2000_framing_rules.hpp"
 
 namespace dpscope {
 
@@ -42,6 +43,16 @@ void parse_vlt2000(Bytes bytes, Vlt2000Telegram& v, bool check_checksum) noexcep
     if (!v.complete) {
         problems.add(ProblemKind::Truncated, bytes.size(), kVlt2000TelegramSize,
                      static_cast<std::uint32_t>(bytes.size()));
+    }
+    // Every character between '<' and '>' is printable ASCII: the framer takes no other (a
+    // control character or a byte above 0x7E means the line broke), and neither does a record
+    // from elsewhere (a capture file) pass unremarked. The first one that is not is reported; the
+    // fields are still read.
+    for (std::size_t i = 1; i < std::min(size, kVlt2000StopAt); ++i) {
+        if (!vlt2000_char_valid(bytes[i])) {
+            problems.add(ProblemKind::Vlt2000CharacterInvalid, i, 0, bytes[i]);
+            break;
+        }
     }
     // Fields are read as far as the characters go; a field cut short is left unset.
     const auto has = [&](std::size_t at, std::size_t count) { return at + count <= size; };

@@ -331,6 +331,28 @@ TEST(Vlt2000DecoderTest, NonDigitsUnknownLetterAndEndDelimiterAreProblems) {
               "byte 21: end delimiter is '!', expected '>' (0x3E)");
 }
 
+// Found by fuzz_vlt2000_decoder (fuzz/corpus/fuzz_vlt2000_decoder/regression-control-character):
+// a control character or a byte above 0x7E where no digit is checked (the word, the sign, an
+// index) decoded without any problem, although the framer never takes such a telegram.
+TEST(Vlt2000DecoderTest, CharacterOutsidePrintableAsciiIsAProblem) {
+    Vlt2000Decoder decoder;
+    Telegram word = bytes_of(vlt("01C@@@@0000+000000"));
+    word[5] = 0x07;
+    Telegram sign = bytes_of(vlt("01I@@@@0615+000003"));
+    sign[12] = 0xA2;
+    sign[19] = sign[20] = '?';  // no checksum: only the character is wrong
+    for (const Telegram& bytes : {word, sign}) {
+        const DecodedTelegram& t = decoder.decode(span_of(bytes), kNoTime, 1);
+        ASSERT_TRUE(t.problems().contains(ProblemKind::Vlt2000CharacterInvalid));
+    }
+    const DecodedTelegram& s = decoder.decode(span_of(sign), kNoTime, 2);
+    ASSERT_EQ(s.problems().size(), 1u);
+    EXPECT_EQ(s.problems()[0].offset, 12);
+    EXPECT_EQ(problem_message(s.problems()[0]), "byte 12: 0xA2 is not printable ASCII");
+    // The framing rules reject the same bytes.
+    EXPECT_EQ(vlt2000_framing_rules().judge(span_of(sign), true).status, FramingStatus::Invalid);
+}
+
 TEST(Vlt2000DecoderTest, EveryPrefixIsTruncatedAndNeverCrashes) {
     const Telegram whole = bytes_of("<01UOGD@0516+00080007>");
     Vlt2000Decoder decoder;
