@@ -30,7 +30,7 @@ namespace {
 
 using namespace dpscope;
 
-constexpr std::size_t kMaxTelegrams = 96;
+constexpr std::size_t kMaxTelegrams = 40;
 
 void check(bool ok) {
     if (!ok) __builtin_trap();
@@ -79,7 +79,7 @@ void run_lane(const fuzz::TelegramScript& script, const DecoderOptions& decoder_
         (void)tracker.subject_pnu();
         if (health) {
             (void)health->observe(t);
-            if (s.frame % 16 == 0) (void)health->judge();
+            if (s.frame % 32 == 0) (void)health->judge();
         }
     }
     check_findings(tracker.finish(), frame, counts);
