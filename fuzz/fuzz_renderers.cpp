@@ -31,7 +31,7 @@ namespace {
 
 using namespace dpscope;
 
-constexpr std::size_t kMaxTelegrams = 24;
+constexpr std::size_t kMaxTelegrams = 6;
 constexpr OutputFormat kFormats[] = {OutputFormat::Text, OutputFormat::Verbose, OutputFormat::Jsonl,
                                      OutputFormat::Csv};
 

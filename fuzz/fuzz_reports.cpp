@@ -41,7 +41,7 @@ namespace {
 
 using namespace dpscope;
 
-constexpr std::size_t kMaxTelegrams = 48;
+constexpr std::size_t kMaxTelegrams = 12;
 constexpr ReportFormat kReportFormats[] = {ReportFormat::Text, ReportFormat::Json,
                                            ReportFormat::Markdown, ReportFormat::Html,
                                            ReportFormat::Junit};

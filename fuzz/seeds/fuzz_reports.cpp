@@ -11,7 +11,7 @@ namespace dpscope::fuzz {
 void make_seeds_fuzz_reports(SeedWriter& writer) {
     static constexpr const char* kReport[] = {"text", "json", "markdown", "html", "junit"};
     static constexpr const char* kStats[] = {"text", "json", "markdown", "html", "csv"};
-    for (const Seed& seed : telegram_script_seeds(12, 30))
+    for (const Seed& seed : telegram_script_seeds(12, 8))
         for (std::uint8_t format = 0; format < 5; ++format) {
             // fail-on cycles with the format; every other seed filters station 3 or 4.
             const std::uint8_t report = static_cast<std::uint8_t>(
