@@ -10,7 +10,8 @@
 //   byte 1  options: bit 0 strict, bit 1 untimed (every time kNoTime), bits 2-3 the time-out
 //           (1 s, 100 ms, 10 ms, 5 s), bits 4-5 the PROFIBUS dialect (vlt, ge, profidrive,
 //           vlt), bit 6 FC PNU bits 11, bit 7 VLT 2000 checksum ignored
-//   byte 2  the line rate (0, 9600, 19200, 187500, 1500000, 12000000 baud; mod 6)
+//   byte 2  the line rate (0, 9600, 19200, 187500, 1500000, 12000000 baud; mod 6); bits 7-6
+//           where fuzz_renderers' rotation over the renderers starts
 //   then per event: a time-step byte (bits 7-6 the scale: x10 us, x1 ms, x50 ms, x1 s: the last
 //   passes every time-out), a kind byte, and the kind's fields (stations from a small set, RC/AK
 //   codes, PNU, IND, values), until the input or `max_telegrams` ends.
@@ -112,6 +113,8 @@ struct TelegramScript {
     std::uint8_t fc_pnu_bits = 12;
     bool vlt2000_checksum = true;
     std::uint32_t baud = 0;
+    // Where a rotation over renderers starts (fuzz_renderers): the line-rate byte's high bits.
+    std::size_t turn = 0;
     std::vector<std::uint8_t> bytes;
     std::vector<ScriptedTelegram> telegrams;
 
@@ -686,7 +689,9 @@ inline void build_telegram_script(FuzzInput& in, TelegramScript& script,
     script.dialect = script_detail::kScriptDialects[(options >> 4) & 3];
     script.fc_pnu_bits = (options & 0x40) ? 11 : 12;
     script.vlt2000_checksum = (options & 0x80) == 0;
-    script.baud = script_detail::kBauds[in.byte() % std::size(script_detail::kBauds)];
+    const std::uint8_t line = in.byte();
+    script.baud = script_detail::kBauds[line % std::size(script_detail::kBauds)];
+    script.turn = line >> 6;
     script_detail::Builder(in, script, max_telegrams).run();
 }
 
