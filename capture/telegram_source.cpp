@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <vector>
@@ -198,7 +199,16 @@ namespace {
 Result<std::vector<std::uint8_t>> read_head_for_bus(int fd, const std::string& name,
                                                     InputFormat format, BusChoice& choice,
                                                     bool live) {
-    std::vector<std::uint8_t> head(kBusChoiceBytes);
+    // A regular file smaller than kBusChoiceBytes needs no more than its size (and one byte more,
+    // so that the read that finds its end is the same as with a full-size buffer).
+    std::size_t capacity = kBusChoiceBytes;
+    struct stat info {};
+    if (!live && ::fstat(fd, &info) == 0 && S_ISREG(info.st_mode)) {
+        const off_t at = ::lseek(fd, 0, SEEK_CUR);
+        if (at >= 0 && info.st_size >= at)
+            capacity = std::min(capacity, static_cast<std::size_t>(info.st_size - at) + 1);
+    }
+    std::vector<std::uint8_t> head(capacity);
     std::size_t got = 0;
     bool end = false;
     for (;;) {
@@ -217,11 +227,15 @@ Result<std::vector<std::uint8_t>> read_head_for_bus(int fd, const std::string& n
                 break;
             }
         }
-        ssize_t n = ::read(fd, head.data() + got, kBusChoiceBytes - got);
+        ssize_t n = ::read(fd, head.data() + got, capacity - got);
         if (n < 0 && errno == EINTR) continue;
         if (n < 0) return Error{fmt::format("{}: cannot read: {}", name, std::strerror(errno))};
         got += static_cast<std::size_t>(n);
         end = n == 0 || got == kBusChoiceBytes;
+        if (got == capacity && !end) {  // the file grew: read on as with a full-size buffer
+            capacity = kBusChoiceBytes;
+            head.resize(capacity);
+        }
         Bytes bytes(head.data(), got);
         if (got < 4 && !end) continue;
         InputFormat kind = format == InputFormat::Auto ? detect_input_format(bytes) : format;

@@ -14,7 +14,6 @@ namespace dpscope {
 namespace {
 
 constexpr std::int64_t kNever = std::numeric_limits<std::int64_t>::max();
-constexpr std::size_t kStations = 128;
 // A message names at most this many parameters.
 constexpr std::size_t kNamedPnus = 8;
 // A Danfoss parameter request names at most 0x25 parameters [S003].
@@ -139,15 +138,14 @@ struct Dpv1ParameterAccessTracker::Channel {
 };
 
 Dpv1ParameterAccessTracker::Dpv1ParameterAccessTracker(std::int64_t timeout_ns)
-    : timeout_ns_(timeout_ns), index_(kStations * kStations, -1) {}
+    : timeout_ns_(timeout_ns) {}
 
 Dpv1ParameterAccessTracker::~Dpv1ParameterAccessTracker() = default;
 
 void Dpv1ParameterAccessTracker::add_channel(std::uint8_t master, std::uint8_t slave,
                                              Dpv1Stats& stats) {
-    std::size_t key = std::size_t{master & 0x7Fu} * kStations + (slave & 0x7Fu);
-    if (index_[key] >= 0) return;
-    index_[key] = static_cast<std::int32_t>(channels_.size());
+    if (index_.find(master, slave) != ChannelIndex::kNone) return;
+    index_.set(master, slave, static_cast<std::int32_t>(channels_.size()));
     auto ch = std::make_unique<Channel>();
     ch->master = master & 0x7F;
     ch->slave = slave & 0x7F;
@@ -158,7 +156,7 @@ void Dpv1ParameterAccessTracker::add_channel(std::uint8_t master, std::uint8_t s
 void Dpv1ParameterAccessTracker::track(const DecodedTelegram& t, FindingList& out) {
     const Dpv1Pdu* pdu = t.dp.service_data.dpv1();
     if (!pdu || !t.has_roles) return;
-    std::int32_t at = index_[std::size_t{t.master & 0x7Fu} * kStations + (t.slave & 0x7Fu)];
+    std::int32_t at = index_.find(t.master, t.slave);
     if (at < 0) return;
     Channel& ch = *channels_[static_cast<std::size_t>(at)];
     // An empty data unit is a poll at the link layer: no DP-V1 PDU, nothing to pair.

@@ -27,6 +27,7 @@
 #include <memory>
 #include <vector>
 
+#include "decoder/channel_index.hpp"
 #include "decoder/code_tables.hpp"
 #include "decoder/finding_list.hpp"
 #include "decoder/log_histogram.hpp"
@@ -113,7 +114,7 @@ class Dpv1ParameterAccessTracker {
     void check_deadlines(std::int64_t now_ns, std::uint64_t frame, FindingList& out);
 
     std::int64_t timeout_ns_;
-    std::vector<std::int32_t> index_;  // master * 128 + slave -> position in channels_
+    ChannelIndex index_;  // (master, slave) -> position in channels_
     std::vector<std::unique_ptr<Channel>> channels_;
     std::int64_t next_deadline_ns_ = std::numeric_limits<std::int64_t>::max();
 };

@@ -16,7 +16,6 @@ std::string where_defined(Dialect dialect) {
 }
 
 constexpr std::int64_t kNever = std::numeric_limits<std::int64_t>::max();
-constexpr std::size_t kAddresses = 128;
 
 struct PcvKey {
     std::uint8_t rc = 0;
@@ -116,16 +115,14 @@ struct ParameterChannelEngine::Channel {
     } spontaneous;
 };
 
-ParameterChannelEngine::ParameterChannelEngine(ParameterChannelPolicy policy)
-    : policy_(policy), index_(kAddresses * kAddresses, -1) {}
+ParameterChannelEngine::ParameterChannelEngine(ParameterChannelPolicy policy) : policy_(policy) {}
 
 ParameterChannelEngine::~ParameterChannelEngine() = default;
 
 void ParameterChannelEngine::add_channel(std::uint8_t master, std::uint8_t slave,
                                          ParameterChannelStats& stats) {
-    std::size_t key = std::size_t{master & 0x7Fu} * kAddresses + (slave & 0x7Fu);
-    if (index_[key] >= 0) return;
-    index_[key] = static_cast<std::int32_t>(channels_.size());
+    if (index_.find(master, slave) != ChannelIndex::kNone) return;
+    index_.set(master, slave, static_cast<std::int32_t>(channels_.size()));
     auto ch = std::make_unique<Channel>();
     ch->master = master & 0x7F;
     ch->slave = slave & 0x7F;
@@ -136,8 +133,7 @@ void ParameterChannelEngine::add_channel(std::uint8_t master, std::uint8_t slave
 std::optional<CompletedTransaction> ParameterChannelEngine::track(
     const ParameterChannelSample& sample, FindingList& out) {
     subject_pnu_ = sample.pcv.pnu;
-    std::int32_t position =
-        index_[std::size_t{sample.master & 0x7Fu} * kAddresses + (sample.slave & 0x7Fu)];
+    std::int32_t position = index_.find(sample.master, sample.slave);
     if (position < 0) return std::nullopt;
     Channel& ch = *channels_[static_cast<std::size_t>(position)];
     ++ch.stats->parameter_telegrams;
@@ -460,7 +456,7 @@ CompletedTransaction ParameterChannelEngine::answered(Channel& ch,
 }
 
 void ParameterChannelEngine::abandon(std::uint8_t master, std::uint8_t slave) {
-    std::int32_t position = index_[std::size_t{master & 0x7Fu} * kAddresses + (slave & 0x7Fu)];
+    std::int32_t position = index_.find(master, slave);
     if (position < 0) return;
     Channel& ch = *channels_[static_cast<std::size_t>(position)];
     if (!ch.pending.active) return;

@@ -36,6 +36,7 @@
 #include <utility>
 #include <vector>
 
+#include "decoder/channel_index.hpp"
 #include "decoder/code_tables.hpp"
 #include "decoder/direction.hpp"
 #include "decoder/finding_list.hpp"
@@ -174,7 +175,7 @@ class ParameterChannelEngine {
     void check_deadlines(std::int64_t now_ns, std::uint64_t frame, FindingList& out);
 
     ParameterChannelPolicy policy_;
-    std::vector<std::int32_t> index_;  // master * 128 + slave -> position in channels_
+    ChannelIndex index_;  // (master, slave) -> position in channels_
     std::vector<std::unique_ptr<Channel>> channels_;
     std::int64_t next_deadline_ns_ = std::numeric_limits<std::int64_t>::max();
     std::int32_t subject_pnu_ = -1;

@@ -49,17 +49,15 @@ ParameterChannelPolicy dp_policy(const TrackerOptions& options) {
 }  // namespace
 
 SessionTracker::SessionTracker(TrackerOptions options)
-    : options_(options),
-      engine_(dp_policy(options)),
-      dpv1_(options.timeout_ns),
-      index_(kStationCount * kStationCount, -1) {}
+    : options_(options), engine_(dp_policy(options)), dpv1_(options.timeout_ns) {}
 
 SessionTracker::~SessionTracker() = default;
 
 SessionTracker::Channel& SessionTracker::channel(std::uint8_t master, std::uint8_t slave) {
-    std::size_t key = std::size_t{master & 0x7Fu} * kStationCount + (slave & 0x7Fu);
-    if (index_[key] < 0) {
-        index_[key] = static_cast<std::int32_t>(channels_.size());
+    std::int32_t position = index_.find(master, slave);
+    if (position == ChannelIndex::kNone) {
+        position = static_cast<std::int32_t>(channels_.size());
+        index_.set(master, slave, position);
         auto ch = std::make_unique<Channel>();
         ch->stats.master = master & 0x7F;
         ch->stats.slave = slave & 0x7F;
@@ -68,7 +66,7 @@ SessionTracker::Channel& SessionTracker::channel(std::uint8_t master, std::uint8
         dpv1_.add_channel(ch->stats.master, ch->stats.slave, ch->stats.dpv1);
         channels_.push_back(std::move(ch));
     }
-    return *channels_[static_cast<std::size_t>(index_[key])];
+    return *channels_[static_cast<std::size_t>(position)];
 }
 
 std::vector<const ChannelStats*> SessionTracker::channels() const {

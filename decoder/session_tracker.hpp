@@ -24,6 +24,7 @@
 #include <span>
 #include <vector>
 
+#include "decoder/channel_index.hpp"
 #include "decoder/dp_config_rule.hpp"
 #include "decoder/dp_link_rules.hpp"
 #include "decoder/dpv1_parameter_access.hpp"
@@ -126,7 +127,7 @@ class SessionTracker {
     TrackerOptions options_;
     ParameterChannelEngine engine_;
     Dpv1ParameterAccessTracker dpv1_;
-    std::vector<std::int32_t> index_;  // master * 128 + slave -> position in channels_
+    ChannelIndex index_;  // (master, slave) -> position in channels_
     std::vector<std::unique_ptr<Channel>> channels_;
     std::vector<Finding> current_;
     std::vector<CompletedTransaction> completed_;

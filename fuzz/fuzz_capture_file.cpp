@@ -1,35 +1,39 @@
-// The input bytes as a whole capture file, read the way `dpscope decode` reads one: written to a
-// temporary file (made once per process, rewritten for every input), opened with the format
-// detected from the content and then with each forced format (pcap, pcapng, raw, hex), then
-// with the bus chosen from the content and as a forced text log of VLT 2000 telegrams, every
-// record pulled, decoded with one BusDecoder, tracked with a SessionTracker, counted in a Summary
-// and rendered into an Output that is thrown away by one of the four renderers in turn (the
-// others pass over it). Input issues are formatted and dropped, as `decode` prints them.
+// The input bytes (after a first choice byte) as a whole capture file, read the way `dpscope
+// decode` reads one: written to a temporary file (made once per process, rewritten for every
+// input) and opened by name with dpscope's own reader path (capture/telegram_source.hpp
+// open_source), with the format and bus the first byte chooses (bits 0-2: auto, pcap, pcapng,
+// raw, hex, text, mod 6; bits 3-4: the bus chosen from the content as `decode` without --bus
+// does, or PROFIBUS DP, FC, VLT 2000 forced; bit 5: choose_bus judges the bytes as complete or as
+// a head still arriving). choose_bus() also runs over the bytes with that format (the detected one
+// for auto). Every record is pulled, decoded with the bus's decoder, tracked by its tracker and
+// counted in a Summary whose text is rendered into an Output that is thrown away; input issues
+// are formatted and dropped, as `decode` prints them. One reading a run, and no renderers (they
+// have their own targets, fuzz_renderers and fuzz_reports), keep it fast; pcap and pcapng headers
+// with a few records fit in the 2 KiB max_len.
+//
+// Invariants: every record's number follows the last one's, and a source that read the input
+// reports a format other than auto.
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <memory>
 #include <span>
 #include <string>
-#include <vector>
 
 #include "capture/telegram_source.hpp"
 #include "decoder/bus_decoder.hpp"
+#include "decoder/fc_decoder.hpp"
+#include "decoder/fc_tracker.hpp"
 #include "decoder/session_tracker.hpp"
+#include "decoder/vlt2000_decoder.hpp"
+#include "decoder/vlt2000_tracker.hpp"
 #include "formats/output.hpp"
-#include "formats/renderer.hpp"
 #include "formats/summary.hpp"
+#include "fuzz/support/fuzz_input.hpp"
 
 namespace {
-
-dpscope::Output& output() {
-    static FILE* sink = std::fopen("/dev/null", "w");
-    static dpscope::Output out{sink};
-    return out;
-}
 
 // The temporary file every input is written to. It is unlinked at once and opened by its
 // /proc/self/fd name: libFuzzer ends some runs without running destructors, and no run may
@@ -64,9 +68,49 @@ const TempFile& temp_file() {
     return file;
 }
 
-// `protocol` null: the bus is chosen from the input, as `decode` without --bus does.
+void check(bool ok) {
+    if (!ok) __builtin_trap();
+}
+
+// The PROFIBUS decoder the summary names the slaves' configuration from (none for another bus).
+const dpscope::BusDecoder& dp_decoder_of(const dpscope::BusDecoder& decoder) { return decoder; }
+template <class Decoder>
+const dpscope::BusDecoder& dp_decoder_of(const Decoder&) {
+    static const dpscope::BusDecoder none;
+    return none;
+}
+
+// Pulls every record of `source`, decoding and tracking it with the bus's decoder and tracker,
+// counting it in a Summary, and renders the summary.
+template <class Decoder, class Tracker>
+void read_records(dpscope::TelegramSource& source) {
+    dpscope::Summary summary;
+    Decoder decoder;
+    Tracker tracker;
+    dpscope::Record record;
+    std::uint64_t last = 0;
+    while (source.next(record)) {
+        check(record.number > last);
+        last = record.number;
+        const dpscope::DecodedTelegram& t =
+            decoder.decode(record.bytes, record.time_ns, record.number);
+        summary.add(t);
+        summary.add_findings(tracker.track(t));
+    }
+    summary.add_findings(tracker.finish());
+    check(source.format() != dpscope::InputFormat::Auto);
+    dpscope::Output& out = dpscope::fuzz::null_output();
+    summary.render_text(
+        out,
+        dpscope::InputSummary{source.name(), std::string(input_format_name(source.format())),
+                              source.bytes_skipped(),
+                              source.status() == dpscope::InputStatus::Damaged},
+        dp_decoder_of(decoder));
+    out.buffer().clear();
+}
+
 void read_all(const std::string& path, dpscope::InputFormat format,
-              const dpscope::CaptureProtocol* protocol, std::size_t turn) {
+              const dpscope::CaptureProtocol* protocol) {
     dpscope::BusChoice choice;
     dpscope::OpenResult opened = dpscope::open_source(path, format, protocol, choice);
     if (!opened) {
@@ -77,73 +121,43 @@ void read_all(const std::string& path, dpscope::InputFormat format,
     std::size_t issue_bytes = 0;
     source.on_issue(
         [&issue_bytes](const dpscope::InputIssue& issue) { issue_bytes += issue.message.size(); });
-    dpscope::Output& out = output();
-    dpscope::BusDecoder decoder;
-    dpscope::SessionTracker tracker;
-    dpscope::Summary summary;
-    std::vector<std::unique_ptr<dpscope::TelegramRenderer>> renderers;
-    for (auto kind : {dpscope::OutputFormat::Text, dpscope::OutputFormat::Verbose,
-                      dpscope::OutputFormat::Jsonl, dpscope::OutputFormat::Csv}) {
-        renderers.push_back(dpscope::make_renderer(kind, out));
-        renderers.back()->begin();
+    switch (choice.protocol->protocol) {
+        case dpscope::Protocol::ProfibusDp:
+            read_records<dpscope::BusDecoder, dpscope::SessionTracker>(source);
+            break;
+        case dpscope::Protocol::Fc:
+            read_records<dpscope::FcDecoder, dpscope::FcTracker>(source);
+            break;
+        case dpscope::Protocol::Vlt2000:
+            read_records<dpscope::Vlt2000Decoder, dpscope::Vlt2000Tracker>(source);
+            break;
     }
-    dpscope::Record record;
-    while (source.next(record)) {
-        const dpscope::DecodedTelegram& t =
-            decoder.decode(record.bytes, record.time_ns, record.number);
-        std::span<const dpscope::Finding> findings = tracker.track(t);
-        summary.add(t);
-        summary.add_findings(findings);
-        // Renderers take turns, as in fuzz_framer_decoder (rendering is most of the time spent);
-        // the others pass over the telegram as `decode` does with one it filters out. `turn`
-        // differs between the readings of one input, so each renderer sees every record.
-        const std::size_t shown = (record.number + turn) % renderers.size();
-        for (std::size_t i = 0; i < renderers.size(); ++i) {
-            if (i == shown)
-                renderers[i]->render(t, findings);
-            else
-                renderers[i]->pass_over(t);
-        }
-        out.buffer().clear();
-    }
-    std::span<const dpscope::Finding> open_at_end = tracker.finish();
-    summary.add_findings(open_at_end);
-    for (auto& renderer : renderers) {
-        renderer->render_end_findings(open_at_end);
-        renderer->end();
-    }
-    summary.render_text(
-        out,
-        dpscope::InputSummary{source.name(), std::string(input_format_name(source.format())),
-                              source.bytes_skipped(),
-                              source.status() == dpscope::InputStatus::Damaged},
-        decoder);
     (void)source.link_type();
     (void)source.unusable_reason();
-    out.buffer().clear();
 }
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    const TempFile& file = temp_file();
-    file.write(data, size);
-    // The choice of the bus reads the same bytes: a pcap or pcapng header, its tag and first
-    // record, and every bus's framing over a byte stream or a hex log's bytes.
-    const dpscope::Bytes bytes(data, size);
-    for (auto format :
-         {dpscope::InputFormat::Pcap, dpscope::InputFormat::Pcapng, dpscope::InputFormat::Raw,
-          dpscope::InputFormat::Hex, dpscope::InputFormat::Text})
-        for (bool complete : {false, true})
-            (void)dpscope::choose_bus(bytes, format, complete).reason.size();
-    std::size_t turn = 0;
-    const dpscope::CaptureProtocol* profibus = &dpscope::profibus_dp_protocol();
-    for (auto format :
-         {dpscope::InputFormat::Auto, dpscope::InputFormat::Pcap, dpscope::InputFormat::Pcapng,
-          dpscope::InputFormat::Raw, dpscope::InputFormat::Hex})
-        read_all(file.path, format, profibus, turn++);
-    // The bus chosen from the content (a text log: VLT 2000), and the text-log reader forced.
-    read_all(file.path, dpscope::InputFormat::Auto, nullptr, turn++);
-    read_all(file.path, dpscope::InputFormat::Text, &dpscope::vlt2000_protocol(), turn++);
+    using dpscope::InputFormat;
+    static constexpr InputFormat kFormats[] = {InputFormat::Auto,   InputFormat::Pcap,
+                                               InputFormat::Pcapng, InputFormat::Raw,
+                                               InputFormat::Hex,    InputFormat::Text};
+    dpscope::fuzz::FuzzInput in(data, size);
+    const std::uint8_t choice = in.byte();
+    const InputFormat format = kFormats[(choice & 7) % std::size(kFormats)];
+    const dpscope::CaptureProtocol* protocols[] = {nullptr, &dpscope::profibus_dp_protocol(),
+                                                   &dpscope::fc_protocol(),
+                                                   &dpscope::vlt2000_protocol()};
+    const dpscope::CaptureProtocol* protocol = protocols[(choice >> 3) & 3];
+    const std::span<const std::uint8_t> file = in.rest();
+    const TempFile& temp = temp_file();
+    temp.write(file.data(), file.size());
+    const dpscope::Bytes bytes(file.data(), file.size());
+    const InputFormat judged =
+        format == InputFormat::Auto ? dpscope::detect_input_format(bytes) : format;
+    if (judged != InputFormat::Auto)
+        (void)dpscope::choose_bus(bytes, judged, (choice & 0x20) != 0).reason.size();
+    read_all(temp.path, format, protocol);
     return 0;
 }

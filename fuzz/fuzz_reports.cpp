@@ -1,0 +1,172 @@
+// The whole-session reports: telegrams built from an event script
+// (fuzz/support/telegram_script.hpp, as in fuzz_trackers) are decoded and tracked the way `dpscope
+// report` and `dpscope stats` do it (cli/pipeline.hpp: the bus's decoder and tracker, a
+// BusHealthTracker for PROFIBUS, the Summary, a FindingLog and, for HTML, the channel timelines),
+// then the conformance report (formats/report.hpp) is rendered in one input-chosen format (text,
+// JSON, Markdown, HTML, JUnit XML: their PCV, DP-V1, FC, VLT 2000 and bus-health sections) with an
+// input-chosen --fail-on,
+// --allow-empty and --station filter, and for PROFIBUS the bus-health statistics
+// (formats/stats.hpp) in one input-chosen StatsFormat and as the live table at an input-chosen
+// width. One format a run (not all of them) keeps each run fast; the corpus holds inputs for
+// every format. JSON output must parse (fuzz/support/json_check.hpp); no output may hold a NUL.
+//
+// Input layout: byte 0 the report format (bits 0-2, mod 5), --fail-on (bits 3-4), --allow-empty
+// (bit 5), a --station filter (bit 6: the station in byte 1's low bits); byte 1 the stats format
+// (bits 5-7, mod 5), byte 2 the live table's width (0: the default, else 20 + byte); then the
+// event script.
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "decoder/bus_decoder.hpp"
+#include "decoder/bus_health.hpp"
+#include "decoder/fc_decoder.hpp"
+#include "decoder/fc_tracker.hpp"
+#include "decoder/session_tracker.hpp"
+#include "decoder/vlt2000_decoder.hpp"
+#include "decoder/vlt2000_tracker.hpp"
+#include "formats/finding_log.hpp"
+#include "formats/output.hpp"
+#include "formats/report.hpp"
+#include "formats/report_timeline.hpp"
+#include "formats/stats.hpp"
+#include "formats/summary.hpp"
+#include "fuzz/support/fuzz_input.hpp"
+#include "fuzz/support/json_check.hpp"
+#include "fuzz/support/telegram_script.hpp"
+
+namespace {
+
+using namespace dpscope;
+
+constexpr std::size_t kMaxTelegrams = 12;
+constexpr ReportFormat kReportFormats[] = {ReportFormat::Text, ReportFormat::Json,
+                                           ReportFormat::Markdown, ReportFormat::Html,
+                                           ReportFormat::Junit};
+constexpr StatsFormat kStatsFormats[] = {StatsFormat::Text, StatsFormat::Json,
+                                         StatsFormat::Markdown, StatsFormat::Html,
+                                         StatsFormat::Csv};
+constexpr FailOn kFailOns[] = {FailOn::Error, FailOn::Warning, FailOn::Never, FailOn::Error};
+
+void check(bool ok) {
+    if (!ok) __builtin_trap();
+}
+
+void check_and_clear(Output& out, bool json) {
+    const std::string_view text(out.buffer().data(), out.buffer().size());
+    check(!text.empty());
+    check(text.find('\0') == std::string_view::npos);
+    if (json) check(fuzz::is_json(text));
+    out.buffer().clear();
+}
+
+struct Choices {
+    ReportFormat report = ReportFormat::Text;
+    FailOn fail_on = FailOn::Error;
+    bool allow_empty = false;
+    std::optional<std::uint8_t> station;
+    StatsFormat stats = StatsFormat::Text;
+    unsigned width = 0;
+};
+
+// Decodes and tracks the script as the report command's Pipeline does, then renders.
+template <class Decoder, class Tracker>
+void run_lane(const fuzz::TelegramScript& script, const Choices& choices, Decoder& decoder,
+              Tracker& tracker, const BusDecoder& dp_decoder, ReportContext& context,
+              BusHealthTracker* health) {
+    Summary summary;
+    FindingLog log;
+    ChannelTimelines timelines;
+    const bool keep_timelines = choices.report == ReportFormat::Html;
+    for (const fuzz::ScriptedTelegram& s : script.telegrams) {
+        const DecodedTelegram& t = decoder.decode(script.telegram_bytes(s), s.time_ns, s.frame);
+        std::span<const Finding> findings = tracker.track(t);
+        if (health) (void)health->observe(t);
+        summary.add(t);
+        summary.add_findings(findings);
+        if (keep_timelines) timelines.add(findings, tracker.completed());
+        if (!findings.empty()) log.append(findings);
+    }
+    std::span<const Finding> open_at_end = tracker.finish();
+    if (health) health->finish();
+    summary.add_findings(open_at_end);
+    if (keep_timelines) timelines.add(open_at_end, {});
+    log.append(open_at_end);
+
+    Output& out = fuzz::null_output();
+    out.buffer().clear();
+    context.input = InputSummary{"fuzz.raw", "raw", script.telegrams.size() % 5,
+                                 script.telegrams.size() % 7 == 3};
+    context.summary = &summary;
+    context.decoder = &dp_decoder;
+    context.timelines = &timelines;
+    context.health = health ? &health->health() : nullptr;
+    context.vlt2000_checksum = script.vlt2000_checksum;
+    context.findings = &log;
+    context.fail_on = choices.fail_on;
+    context.allow_empty = choices.allow_empty;
+    if (choices.station) context.stations.push_back(*choices.station);
+    context.version = "fuzz";
+    const bool fails = render_report(choices.report, context, out);
+    check(fails == report_fails(context));
+    check_and_clear(out, choices.report == ReportFormat::Json);
+    if (health) {
+        render_stats(choices.stats, StatsContext{context.input, &health->health(), "fuzz"}, out);
+        check_and_clear(out, choices.stats == StatsFormat::Json);
+        render_live_table(health->health(), out, choices.width);
+        check_and_clear(out, false);
+    }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    static fuzz::TelegramScript script;
+    fuzz::FuzzInput in(data, size);
+    Choices choices;
+    const std::uint8_t report = in.byte();
+    const std::uint8_t stats = in.byte();
+    const std::uint8_t width = in.byte();
+    choices.report = kReportFormats[(report & 7) % std::size(kReportFormats)];
+    choices.fail_on = kFailOns[(report >> 3) & 3];
+    choices.allow_empty = (report & 0x20) != 0;
+    if (report & 0x40) choices.station = static_cast<std::uint8_t>(stats & 0x1F);
+    choices.stats = kStatsFormats[(stats >> 5) % std::size(kStatsFormats)];
+    choices.width = width == 0 ? 0u : 20u + width;
+    fuzz::build_telegram_script(in, script, kMaxTelegrams);
+
+    // Every tracker exists (the report reads the PROFIBUS one's options); the script's bus is fed.
+    BusDecoder dp_decoder(script.decoder_options());
+    SessionTracker dp_tracker(script.tracker_options());
+    FcTracker fc_tracker(script.fc_tracker_options());
+    Vlt2000Tracker vlt2000_tracker(script.vlt2000_tracker_options());
+    ReportContext context;
+    context.tracker = &dp_tracker;
+    context.fc_tracker = &fc_tracker;
+    context.vlt2000_tracker = &vlt2000_tracker;
+    switch (script.bus) {
+        case fuzz::ScriptBus::Profibus: {
+            context.protocol = Protocol::ProfibusDp;
+            BusHealthOptions options;
+            options.baud = script.baud;
+            BusHealthTracker health(options);
+            run_lane(script, choices, dp_decoder, dp_tracker, dp_decoder, context, &health);
+            break;
+        }
+        case fuzz::ScriptBus::Fc: {
+            context.protocol = Protocol::Fc;
+            FcDecoder decoder(script.fc_decoder_options());
+            run_lane(script, choices, decoder, fc_tracker, dp_decoder, context, nullptr);
+            break;
+        }
+        case fuzz::ScriptBus::Vlt2000: {
+            context.protocol = Protocol::Vlt2000;
+            Vlt2000Decoder decoder(script.vlt2000_decoder_options());
+            run_lane(script, choices, decoder, vlt2000_tracker, dp_decoder, context, nullptr);
+            break;
+        }
+    }
+    return 0;
+}
