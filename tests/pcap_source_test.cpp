@@ -301,7 +301,7 @@ TEST(PcapSourceTest, PcapngBigEndianWithResolutionAndOffset) {
 // the epoch hold leaves the packet without a time, with a warning, and is no signed overflow
 // (the offset was added to the seconds before the range check). A wrapped sum lands out of range
 // too, so without the check this test fails only under UBSan (the asan preset), as
-// fuzz_capture_file does on fuzz/corpus-fuzz_capture_file/tsoffset-overflow.pcapng.
+// fuzz_capture_file does on fuzz/corpus/fuzz_capture_file/regression-tsoffset-overflow.pcapng.
 TEST(PcapSourceTest, PcapngTimestampOffsetBeyondTheRangeLeavesThePacketUntimed) {
     TempFile file("huge-offset.pcapng");
     PcapngBuilder b;
