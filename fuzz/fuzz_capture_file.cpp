@@ -14,6 +14,7 @@
 // Invariants: every record's number follows the last one's, and a source that read the input
 // reports a format other than auto.
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include <cstdint>
@@ -35,20 +36,24 @@
 
 namespace {
 
-// The temporary file every input is written to. It is unlinked at once and opened by its
-// /proc/self/fd name: libFuzzer ends some runs without running destructors, and no run may
-// leave a file behind.
+// The temporary file every input is written to: a file in memory (memfd_create), opened by its
+// /proc/self/fd name, so that a run costs no disk and leaves nothing behind (libFuzzer ends some
+// runs without running destructors). Where memfd_create is missing, a file in /tmp, unlinked at
+// once.
 struct TempFile {
     std::string path;
     int fd = -1;
     TempFile() {
-        char name[] = "/tmp/dpscope-fuzz-capture-XXXXXX";
-        fd = mkstemp(name);
+        fd = ::memfd_create("dpscope-fuzz-capture", 0);
         if (fd < 0) {
-            std::perror("fuzz_capture_file: mkstemp");
-            std::abort();
+            char name[] = "/tmp/dpscope-fuzz-capture-XXXXXX";
+            fd = mkstemp(name);
+            if (fd < 0) {
+                std::perror("fuzz_capture_file: mkstemp");
+                std::abort();
+            }
+            ::unlink(name);
         }
-        ::unlink(name);
         path = "/proc/self/fd/" + std::to_string(fd);
     }
     ~TempFile() { ::close(fd); }

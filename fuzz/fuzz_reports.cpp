@@ -2,18 +2,18 @@
 // (fuzz/support/telegram_script.hpp, as in fuzz_trackers) are decoded and tracked the way `dpscope
 // report` and `dpscope stats` do it (cli/pipeline.hpp: the bus's decoder and tracker, a
 // BusHealthTracker for PROFIBUS, the Summary, a FindingLog and, for HTML, the channel timelines),
-// then the conformance report (formats/report.hpp) is rendered in one input-chosen format (text,
-// JSON, Markdown, HTML, JUnit XML: their PCV, DP-V1, FC, VLT 2000 and bus-health sections) with an
-// input-chosen --fail-on,
-// --allow-empty and --station filter, and for PROFIBUS the bus-health statistics
-// (formats/stats.hpp) in one input-chosen StatsFormat and as the live table at an input-chosen
-// width. One format a run (not all of them) keeps each run fast; the corpus holds inputs for
-// every format. JSON output must parse (fuzz/support/json_check.hpp); no output may hold a NUL.
+// then either the conformance report (formats/report.hpp) is rendered in one input-chosen format
+// (text, JSON, Markdown, HTML, JUnit XML: their PCV, DP-V1, FC, VLT 2000 and bus-health sections)
+// with an input-chosen --fail-on, --allow-empty and --station filter, or, for PROFIBUS when the
+// input says so, the bus-health statistics (formats/stats.hpp) in one input-chosen StatsFormat
+// and the live table at an input-chosen width. One output a run (not all of them) keeps each run
+// fast; the corpus holds inputs for every one. JSON output must parse
+// (fuzz/support/json_check.hpp); no output may hold a NUL.
 //
 // Input layout: byte 0 the report format (bits 0-2, mod 5), --fail-on (bits 3-4), --allow-empty
-// (bit 5), a --station filter (bit 6: the station in byte 1's low bits); byte 1 the stats format
-// (bits 5-7, mod 5), byte 2 the live table's width (0: the default, else 20 + byte); then the
-// event script.
+// (bit 5), a --station filter (bit 6: the station in byte 1's low bits), the statistics instead
+// of the report (bit 7, PROFIBUS only); byte 1 the stats format (bits 5-7, mod 5), byte 2 the
+// live table's width (0: the default, else 20 + byte); then the event script.
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -69,6 +69,9 @@ struct Choices {
     std::optional<std::uint8_t> station;
     StatsFormat stats = StatsFormat::Text;
     unsigned width = 0;
+    // PROFIBUS: the bus-health statistics and the live table instead of the report (one of the
+    // two a run keeps a run as short as on the other buses).
+    bool stats_instead = false;
 };
 
 // Decodes and tracks the script as the report command's Pipeline does, then renders.
@@ -109,10 +112,11 @@ void run_lane(const fuzz::TelegramScript& script, const Choices& choices, Decode
     context.allow_empty = choices.allow_empty;
     if (choices.station) context.stations.push_back(*choices.station);
     context.version = "fuzz";
-    const bool fails = render_report(choices.report, context, out);
-    check(fails == report_fails(context));
-    check_and_clear(out, choices.report == ReportFormat::Json);
-    if (health) {
+    if (!health || !choices.stats_instead) {
+        const bool fails = render_report(choices.report, context, out);
+        check(fails == report_fails(context));
+        check_and_clear(out, choices.report == ReportFormat::Json);
+    } else {
         render_stats(choices.stats, StatsContext{context.input, &health->health(), "fuzz"}, out);
         check_and_clear(out, choices.stats == StatsFormat::Json);
         render_live_table(health->health(), out, choices.width);
@@ -132,6 +136,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     choices.report = kReportFormats[(report & 7) % std::size(kReportFormats)];
     choices.fail_on = kFailOns[(report >> 3) & 3];
     choices.allow_empty = (report & 0x20) != 0;
+    choices.stats_instead = (report & 0x80) != 0;
     if (report & 0x40) choices.station = static_cast<std::uint8_t>(stats & 0x1F);
     choices.stats = kStatsFormats[(stats >> 5) % std::size(kStatsFormats)];
     choices.width = width == 0 ? 0u : 20u + width;

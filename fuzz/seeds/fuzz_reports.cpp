@@ -1,6 +1,6 @@
 // Seeds of fuzz_reports: the event scripts of fuzz/seeds/script_seeds.hpp behind the three choice
-// bytes (report format, --fail-on, --allow-empty, --station; stats format; live-table width), each
-// script once per report format and stats format.
+// bytes (report format, --fail-on, --allow-empty, --station, statistics instead of the report;
+// stats format; live-table width), each script once per report format and once per stats format.
 #include <string>
 
 #include "script_seeds.hpp"
@@ -20,7 +20,10 @@ void make_seeds_fuzz_reports(SeedWriter& writer) {
             const std::uint8_t width = static_cast<std::uint8_t>(format * 30);
             std::vector<std::uint8_t> bytes = {report, stats, width};
             bytes.insert(bytes.end(), seed.second.begin(), seed.second.end());
-            writer.add(seed.first + "-" + kReport[format] + "-" + kStats[format], bytes);
+            writer.add(seed.first + "-" + kReport[format], bytes);
+            // The same with the statistics instead of the report (PROFIBUS scripts only use it).
+            bytes[0] = static_cast<std::uint8_t>(report | 0x80);
+            writer.add(seed.first + "-stats-" + kStats[format], bytes);
         }
 }
 
