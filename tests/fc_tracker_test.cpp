@@ -375,3 +375,25 @@ TEST(FcTrackerTest, ACaptureStartingWithAResponseIsNotJudgedForIt) {
 
 }  // namespace
 }  // namespace dpscope
+
+namespace dpscope {
+namespace {
+
+// A process-data command answered with a parameter block (AK 7 is a response in any case, so
+// the decoder calls it one): the answer is a mismatched response naming the block and the
+// command, and the command is closed (no time-out follows).
+TEST(FcTrackerTest, AnswerWithTheOtherBlockTypeIsAMismatchedResponse) {
+    FcRun run;
+    run.feed(fc_process(1), 0);
+    std::vector<Finding> found = run.feed(fc_parameter(1, 7, 414, 0, 0, 0x0607), 4);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcMismatchedResponse);
+    EXPECT_EQ(found[0].frame, 2u);
+    EXPECT_EQ(found[0].request_frame, 1u);
+    EXPECT_NE(found[0].message.find("block answers the command"), std::string::npos)
+        << found[0].message;
+    EXPECT_TRUE(run.finish(5000).empty());
+}
+
+}  // namespace
+}  // namespace dpscope

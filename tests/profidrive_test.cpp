@@ -468,3 +468,38 @@ TEST(ProfidriveTest, CorruptedBytesNeverCrash) {
 
 }  // namespace
 }  // namespace dpscope
+
+namespace dpscope {
+namespace {
+
+// The numeric formats NumericValues leaves out (scripts/coverage found them unreached): Boolean,
+// Integer8 and Integer32 as signed integers, N4 as a percentage (0x40000000 = 100 %).
+TEST(ProfidriveTest, NumbersOfBooleanIntegerAndN4Values) {
+    std::vector<std::uint8_t> bytes = hex("FE 00 00 02");
+    ProfidriveValueBlock block;
+    block.values = Bytes(bytes.data(), bytes.size());
+
+    block.format = 0x01;  // Boolean: any byte but 0 is 1
+    ASSERT_EQ(profidrive_value_count(block), 4u);
+    EXPECT_EQ(profidrive_number(block, 0)->integer, 1);
+    EXPECT_EQ(profidrive_number(block, 1)->integer, 0);
+
+    block.format = 0x02;  // Integer8
+    EXPECT_EQ(profidrive_number(block, 0)->integer, -2);
+    EXPECT_EQ(profidrive_number(block, 3)->integer, 2);
+
+    block.format = 0x04;  // Integer32
+    ASSERT_EQ(profidrive_value_count(block), 1u);
+    EXPECT_EQ(profidrive_number(block, 0)->integer, -33554430);
+
+    std::vector<std::uint8_t> half = hex("20 00 00 00");
+    block.values = Bytes(half.data(), half.size());
+    block.format = 0x22;  // N4: 0x20000000 is 50 %
+    auto n4 = profidrive_number(block, 0);
+    ASSERT_TRUE(n4);
+    EXPECT_TRUE(n4->is_real);
+    EXPECT_DOUBLE_EQ(n4->real, 50.0);
+}
+
+}  // namespace
+}  // namespace dpscope
