@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bitset>
 #include <cmath>
+#include <memory>
 
 #include "decoder/dp_service.hpp"
 
@@ -41,16 +42,6 @@ std::string_view station_state_id(StationState state) noexcept {
         case StationState::Unknown: break;
     }
     return "unknown";
-}
-
-std::string_view illegal_answer_name(IllegalAnswer kind) noexcept {
-    switch (kind) {
-        case IllegalAnswer::NotAsked: return "not asked";
-        case IllegalAnswer::WrongKind: return "wrong kind";
-        case IllegalAnswer::ShortAck:
-        case IllegalAnswer::Count: break;
-    }
-    return "short acknowledge where data was due";
 }
 
 std::string_view illegal_answer_id(IllegalAnswer kind) noexcept {
@@ -222,6 +213,48 @@ void conclude(Judgement& judgement) {
         judgement.verdict = worse(judgement.verdict, r.verdict);
 }
 
+// Per-address entries (a station's Slot, a master's Master), each made on first use with its
+// address: a capture names a handful of the 128 addresses, and all 128 made up front (about
+// 100 KB) cost more than tracking a short capture. Iterating visits the entries made so far, in
+// address order.
+template <class Entry>
+class StationTable {
+  public:
+    Entry& operator[](std::size_t address) {
+        std::unique_ptr<Entry>& entry = entries_[address];
+        if (!entry) {
+            entry = std::make_unique<Entry>();
+            entry->health.address = static_cast<std::uint8_t>(address);
+        }
+        return *entry;
+    }
+
+    class iterator {
+      public:
+        using Slots = std::array<std::unique_ptr<Entry>, kStationCount>;
+        iterator(Slots& entries, std::size_t at) : entries_(&entries), at_(at) { skip_empty(); }
+        Entry& operator*() const { return *(*entries_)[at_]; }
+        iterator& operator++() {
+            ++at_;
+            skip_empty();
+            return *this;
+        }
+        bool operator==(const iterator& other) const { return at_ == other.at_; }
+
+      private:
+        void skip_empty() {
+            while (at_ < kStationCount && !(*entries_)[at_]) ++at_;
+        }
+        Slots* entries_;
+        std::size_t at_;
+    };
+    iterator begin() { return iterator(entries_, 0); }
+    iterator end() { return iterator(entries_, kStationCount); }
+
+  private:
+    std::array<std::unique_ptr<Entry>, kStationCount> entries_;
+};
+
 }  // namespace
 
 // The tracker's state beyond what BusHealth holds.
@@ -270,8 +303,8 @@ struct BusHealthTracker::State {
         bool counted = false;  // counted as a request of a listed station
     };
 
-    std::array<Slot, kStationCount> slots;
-    std::array<Master, kStationCount> masters;
+    StationTable<Slot> slots;
+    StationTable<Master> masters;
     // Frame count per master -> slave link: bit 0 valid, bit 1 the last FCB.
     std::array<std::array<std::uint8_t, kStationCount>, kStationCount> link_fcb{};
     Pending pending;
@@ -298,10 +331,6 @@ BusHealthTracker::BusHealthTracker(BusHealthOptions options)
     if (options_.baud != 0)
         state_->ns_per_byte =
             static_cast<double>(options_.character_bits) * 1e9 / static_cast<double>(options_.baud);
-    for (std::size_t a = 0; a < kStationCount; ++a) {
-        state_->slots[a].health.address = static_cast<std::uint8_t>(a);
-        state_->masters[a].health.address = static_cast<std::uint8_t>(a);
-    }
 }
 
 BusHealthTracker::~BusHealthTracker() = default;

@@ -119,8 +119,6 @@ enum class IllegalAnswer : std::uint8_t {
     Count
 };
 inline constexpr std::size_t kIllegalAnswerCount = static_cast<std::size_t>(IllegalAnswer::Count);
-// "not asked", "wrong kind", "short acknowledge where data was due".
-std::string_view illegal_answer_name(IllegalAnswer kind) noexcept;
 // "not_asked", "wrong_kind", "short_ack".
 std::string_view illegal_answer_id(IllegalAnswer kind) noexcept;
 

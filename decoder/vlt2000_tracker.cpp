@@ -178,7 +178,7 @@ ParameterChannelSample Vlt2000Tracker::sample_of(const DecodedTelegram& t,
     // A failed command's reason code (100: none given) is the engine's error number.
     s.pcv.pva = reply && v.failed ? (v.has_reason ? v.reason : 100u)
                                   : static_cast<std::uint32_t>(v.signed_digits());
-    s.pcv.pca = static_cast<std::uint16_t>(s.pcv.rc) << 12;
+    s.pcv.pca = static_cast<std::uint16_t>(s.pcv.rc << 12);
     return s;
 }
 
