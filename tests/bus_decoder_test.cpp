@@ -1287,5 +1287,65 @@ TEST(BusDecoderTest, Dpv1WorkedExamplesOfTheProtocolNotes) {
     EXPECT_TRUE(answer.problems().empty());
 }
 
+// The decoder keeps at most 256 PROFIdrive requests (BusDecoder::kKeptProfidriveRequests), one
+// per master, slave, slot and index. A Write on a 257th key takes the place of the request kept
+// longest: a response to that one is named after nothing, the newer ones still name theirs.
+TEST(BusDecoderTest, Dpv1KeptRequestsAreBoundedAndTheOldestMakesRoom) {
+    constexpr int kKept = 256;  // BusDecoder::kKeptProfidriveRequests (private)
+    // A Write on `slot` (index 47) reading PNU 0x100 + slot.
+    const auto write = [](std::uint8_t slot) {
+        return std::vector<std::uint8_t>{
+            0x5F, slot, 0x2F, 0x0A,             // Write, slot, index 47, 10 bytes
+            0x05, 0x01, 0x00, 0x01,             // reference 5, request value, axis 0, 1 PNU
+            0x10, 0x01, 0x01, slot, 0x00, 0x00  // value, 1 element, PNU, subindex 0
+        };
+    };
+    const auto read = [](std::uint8_t slot) {
+        return std::vector<std::uint8_t>{0x5E, slot, 0x2F, 0xF0};
+    };
+    // The parameter response on `slot`: reference 5, request parameter (+), one Word: 3.
+    const auto response = [](std::uint8_t slot) {
+        return std::vector<std::uint8_t>{
+            0x5E, slot, 0x2F, 0x08,  // Read, slot, index 47, 8 bytes
+            0x05, 0x01, 0x00, 0x01,  // reference 5, response ID 0x01, axis 0, 1 parameter
+            0x42, 0x01, 0x00, 0x03   // Word, 1 value: 3
+        };
+    };
+    Bus bus;
+    // Slave 5, slots 0..255: frames 1..256 fill the store.
+    for (int slot = 0; slot < kKept; ++slot)
+        bus.decode(msac_request(5, write(static_cast<std::uint8_t>(slot))));
+    // Slave 6, slot 0 (frame 257): slave 5's slot 0, written in frame 1, makes room.
+    bus.decode(msac_request(6, write(0)));
+
+    bus.decode(msac_request(5, read(0)));
+    const DecodedTelegram& evicted = bus.decode(msac_response(5, response(0)));
+    const ProfidriveMessage* m = evicted.dp.service_data.profidrive();
+    ASSERT_NE(m, nullptr);
+    EXPECT_FALSE(m->has_request);
+    EXPECT_EQ(m->request_frame, 0u);
+    EXPECT_TRUE(m->addresses.empty());
+
+    // The next oldest, slot 1 of frame 2, is still kept.
+    bus.decode(msac_request(5, read(1)));
+    const DecodedTelegram& next_oldest = bus.decode(msac_response(5, response(1)));
+    m = next_oldest.dp.service_data.profidrive();
+    ASSERT_NE(m, nullptr);
+    EXPECT_TRUE(m->has_request);
+    EXPECT_EQ(m->request_frame, 2u);
+    ASSERT_EQ(m->addresses.size(), 1u);
+    EXPECT_EQ(m->addresses[0].pnu, 0x101);
+
+    // And so is the request that took the place.
+    bus.decode(msac_request(6, read(0)));
+    const DecodedTelegram& newest = bus.decode(msac_response(6, response(0)));
+    m = newest.dp.service_data.profidrive();
+    ASSERT_NE(m, nullptr);
+    EXPECT_TRUE(m->has_request);
+    EXPECT_EQ(m->request_frame, 257u);
+    ASSERT_EQ(m->addresses.size(), 1u);
+    EXPECT_EQ(m->addresses[0].pnu, 0x100);
+}
+
 }  // namespace
 }  // namespace dpscope

@@ -865,6 +865,45 @@ TEST(BusHealthNamesTest, Names) {
     EXPECT_EQ(diag_fault_name(DiagFault::PrmFault), "Prm_Fault");
     EXPECT_EQ(negative_answer_name(NegativeAnswer::RDH), "RDH");
     EXPECT_EQ(health_event_name(HealthEventKind::VerdictBad), "verdict_bad");
+    EXPECT_EQ(health_event_name(HealthEventKind::StationLost), "station_lost");
+    EXPECT_EQ(health_event_name(HealthEventKind::StationReturned), "station_returned");
+}
+
+// An SDA is acknowledged, not answered with data: an SD1 carrying the SRD status DL (data low)
+// is an answer of the wrong kind, an SD1 with status OK the right one.
+TEST_F(BusHealthTest, SdaAnsweredWithTheDataLowStatusIsTheWrongKind) {
+    start_up(3);
+    feed(sda(3));
+    feed(sd1(3, FdlStatus::DataLow));  // wrong
+    feed(sda(3));
+    feed(sd1(3, FdlStatus::Ok));  // right
+    tracker().finish();
+    const StationHealth* s = station(3);
+    ASSERT_NE(s, nullptr);
+    EXPECT_EQ(s->illegal_answers[static_cast<std::size_t>(IllegalAnswer::WrongKind)], 1u);
+    EXPECT_EQ(s->illegal_answers_total(), 1u);
+    EXPECT_EQ(s->negative_answers_total(), 0u);  // neither status is a negative answer
+    EXPECT_EQ(s->no_answers, 0u);
+}
+
+// An SRD without a valid frame count (FCV 0) restarts the link's frame count, as FDL_Status
+// does (FdlStatusResetsTheFrameCount): the next request with the FCB of the one before it is no
+// repeat; the one after that, with the same FCB again, is.
+TEST_F(BusHealthTest, RequestWithoutFcvRestartsTheFrameCount) {
+    start_up(3);
+    feed(dx(3));
+    feed(data(3));
+    feed(build_telegram({3, kMaster, request_fc(FdlFunction::SrdHigh, false, false), std::nullopt,
+                         std::nullopt, Bytes(kOutputs, 2)}));
+    feed(data(3));
+    feed(dx(3, true));  // the FCB of the last counted request, but the link restarted
+    feed(data(3));
+    tracker().judge();  // the counts so far
+    EXPECT_EQ(station(3)->repeats, 0u);
+    feed(dx(3, true));  // the same FCB once more: a repeat
+    feed(data(3));
+    tracker().finish();
+    EXPECT_EQ(station(3)->repeats, 1u);
 }
 
 }  // namespace

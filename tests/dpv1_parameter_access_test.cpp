@@ -722,5 +722,184 @@ TEST(Dpv1ParameterAccessTest, NegativeErrorNumbersListedAreBounded) {
     EXPECT_EQ(s.negative_errors.at(2), 2u);
 }
 
+// Danfoss allows at most 0x25 (37) parameters in one request [S003]; the default dialect (vlt)
+// is a Danfoss one, so a request naming 38 is a length error, even when answered in full.
+TEST(Dpv1ParameterAccessTest, MoreParametersThanDanfossAllowsIsALengthError) {
+    constexpr std::uint8_t kParameters = 38;  // one more than the Danfoss limit
+    Dpv1Bus bus;
+    // Reference 1 reads PNUs 1..38; each is answered with the value block Unsigned16 1.
+    ByteVector request{1, 0x01, 0, kParameters};
+    const ByteVector value{0x06, 0x01, 0x00, 0x01};
+    ByteVector blocks;
+    for (std::uint16_t pnu = 1; pnu <= kParameters; ++pnu) {
+        request.push_back(0x10);  // attribute value
+        request.push_back(0);     // no elements: a simple parameter
+        put16(request, pnu);
+        put16(request, 0);  // subindex
+        for (std::uint8_t b : value)
+            blocks.push_back(b);
+    }
+    bus.transaction(request, parameter_response(1, 0x01, kParameters, blocks));
+    bus.finish();
+    const std::uint64_t write = 1;  // the Write, the transaction's first telegram
+    expect_findings(bus.findings, {{FindingKind::Dpv1LengthError, write, Severity::Error}});
+    EXPECT_EQ(bus.findings[0].pnu, 1);
+    EXPECT_EQ(bus.findings[0].message,
+              "parameter request (reference 1, request parameter value, PNUs 1, 2, 3, 4, 5, 6, 7, "
+              "8, ...): 38 parameters, more than the 37 Danfoss allows");
+    EXPECT_EQ(bus.stats().completed, 1u);
+}
+
+// The Write response echoes the Write's length and carries no data; an echo of another length
+// (and one with data) is a length error on the Write response, naming the Write.
+TEST(Dpv1ParameterAccessTest, WriteResponseEchoingAnotherLengthIsALengthError) {
+    Dpv1Bus bus;
+    std::uint64_t first = bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));  // length 10
+    std::uint64_t longer = bus.response(write_response(12));
+    bus.request(read_request());
+    bus.response(pdu(0x5E, parameter_response(1, 0x01, 1, {0x06, 0x01, 0, 1})));
+    std::uint64_t second = bus.request(pdu(0x5F, parameter_request(2, 0x01, {{13}})));
+    std::uint64_t with_data = bus.response(pdu(0x5F, {0xEE, 0xEE, 0xEE}));  // length 3, 3 bytes
+    bus.request(read_request());
+    bus.response(pdu(0x5E, parameter_response(2, 0x01, 1, {0x06, 0x01, 0, 1})));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1LengthError, longer, Severity::Error},
+                                   {FindingKind::Dpv1LengthError, with_data, Severity::Error}});
+    EXPECT_EQ(bus.findings[0].request_frame, first);
+    EXPECT_EQ(bus.findings[0].pnu, 12);
+    EXPECT_EQ(bus.findings[0].message, "Write response echoes length 12, the request had 10");
+    EXPECT_EQ(bus.findings[1].request_frame, second);
+    EXPECT_EQ(bus.findings[1].pnu, 13);
+    EXPECT_EQ(bus.findings[1].message,
+              "Write response echoes length 3, the request had 10; Write response carries 3 data "
+              "bytes");
+    // The transactions go on to their responses.
+    EXPECT_EQ(bus.stats().completed, 2u);
+}
+
+// A Read response of 3 bytes has no PROFIdrive header (4 bytes), so no reference to quote: the
+// orphan is named by its slot and index alone. The decoder reports the short data, too.
+TEST(Dpv1ParameterAccessTest, OrphanResponseWithoutAHeaderIsNamedBySlotAndIndex) {
+    Dpv1Bus bus;
+    bus.request(read_request());
+    std::uint64_t at = bus.response(pdu(0x5E, {0x03, 0x01, 0x00}));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::MalformedTelegram, at, Severity::Error},
+                                   {FindingKind::Dpv1OrphanResponse, at, Severity::Warning}});
+    EXPECT_FALSE(bus.findings[1].pnu);
+    EXPECT_EQ(bus.findings[1].message,
+              "parameter response on slot 0 index 47 answers no open request");
+}
+
+// A parameter response without its complete header ends the transaction with a length error
+// naming the request; its size is what the data holds, or less when the DP-V1 length says so.
+TEST(Dpv1ParameterAccessTest, ResponseWithoutACompleteHeaderIsALengthError) {
+    Dpv1Bus bus;
+    std::uint64_t cut = bus.transaction(parameter_request(1, 0x01, {{12}}), {0x01, 0x01, 0x00});
+    // The whole response sent, but the length byte announces only 2 of its 8 bytes.
+    std::uint64_t write = bus.request(pdu(0x5F, parameter_request(2, 0x01, {{13}})));
+    bus.response(write_response(10));
+    bus.request(read_request());
+    std::uint64_t announced =
+        bus.response(pdu(0x5E, parameter_response(2, 0x01, 1, {0x06, 0x01, 0, 1}), 2));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::MalformedTelegram, cut, Severity::Error},
+                                   {FindingKind::Dpv1LengthError, cut, Severity::Error},
+                                   {FindingKind::MalformedTelegram, announced, Severity::Error},
+                                   {FindingKind::Dpv1LengthError, announced, Severity::Error}});
+    EXPECT_EQ(bus.findings[1].request_frame, 1u);
+    EXPECT_EQ(bus.findings[1].pnu, 12);
+    EXPECT_EQ(bus.findings[1].message,
+              "parameter response of 3 bytes has no complete header (request of frame 1: "
+              "reference 1, request parameter value, PNU 12)");
+    EXPECT_EQ(bus.findings[3].request_frame, write);
+    EXPECT_EQ(bus.findings[3].message,
+              "parameter response of 2 bytes has no complete header (request of frame 5: "
+              "reference 2, request parameter value, PNU 13)");
+    // Both transactions end there: none is left open to time out.
+    EXPECT_EQ(bus.stats().started, 2u);
+    EXPECT_EQ(bus.stats().completed, 2u);
+    EXPECT_EQ(bus.stats().open, 0u);
+}
+
+// No parameter response is longer than 240 bytes [P:MCA101 p30]. One FDL telegram carries at
+// most 240 bytes of DP-V1 data (LE 249), so only the DP-V1 length byte can announce more.
+TEST(Dpv1ParameterAccessTest, ResponseAnnouncingMoreThan240BytesIsALengthError) {
+    Dpv1Bus bus;
+    bus.request(pdu(0x5F, parameter_request(1, 0x01, {{12}})));
+    bus.response(write_response(10));
+    // A Read accepting up to 255 bytes (not judged), so only the 240-byte limit is passed.
+    bus.request({0x5E, 0, 47, 255});
+    std::uint64_t at =
+        bus.response(pdu(0x5E, parameter_response(1, 0x01, 1, {0x06, 0x01, 0, 1}), 250));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1LengthError, at, Severity::Error}});
+    EXPECT_EQ(bus.findings[0].message,
+              "parameter response to the request of frame 1 (reference 1, request parameter "
+              "value, PNU 12): DP-V1 length 250 but 8 data bytes; response of 250 bytes, more "
+              "than the 240 a parameter response may have");
+}
+
+// A value block whose values stop short of the count it announces (2 Unsigned16, 2 bytes).
+TEST(Dpv1ParameterAccessTest, ResponseValueBlockCutShortIsALengthError) {
+    Dpv1Bus bus;
+    std::uint64_t at = bus.transaction(parameter_request(1, 0x01, {{12}}),
+                                       parameter_response(1, 0x01, 1, {0x06, 0x02, 0x00, 0x01}));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::MalformedTelegram, at, Severity::Error},
+                                   {FindingKind::Dpv1LengthError, at, Severity::Error}});
+    EXPECT_EQ(bus.findings[1].message,
+              "parameter response to the request of frame 1 (reference 1, request parameter "
+              "value, PNU 12): PNU 12: value block cut short");
+}
+
+// In a negative change response a parameter that was changed has a Zero block (0x40), which
+// holds no values: one announcing 2 is a length error.
+TEST(Dpv1ParameterAccessTest, ZeroBlockWithValuesInANegativeChangeResponseIsALengthError) {
+    Dpv1Bus bus;
+    std::uint64_t at = bus.transaction(
+        parameter_request(3, 0x02, {{12}, {13}}, {0x06, 0x01, 0x00, 0x05, 0x06, 0x01, 0x00, 0x06}),
+        parameter_response(3, 0x82, 2, {0x40, 0x02, 0x44, 0x01, 0x00, 0x02}));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1NegativeResponse, at, Severity::Note},
+                                   {FindingKind::Dpv1LengthError, at, Severity::Error}});
+    EXPECT_EQ(bus.findings[0].message,
+              "negative response 0x82 (change parameter (-)) to the request of frame 1 "
+              "(reference 3, change parameter value, PNUs 12, 13): PNU 13: error 0x02 (lower or "
+              "upper limit exceeded)");
+    EXPECT_EQ(bus.findings[1].message,
+              "parameter response to the request of frame 1 (reference 3, change parameter "
+              "value, PNUs 12, 13): PNU 12: 2 values in a format 0x40 block");
+}
+
+// An error block (0x44) holds the error number and perhaps one more value (1 or 2 values);
+// none, or three, is a length error.
+TEST(Dpv1ParameterAccessTest, ErrorBlockWithOtherThanOneOrTwoValuesIsALengthError) {
+    Dpv1Bus bus;
+    std::uint64_t none = bus.transaction(parameter_request(1, 0x01, {{12}}),
+                                         parameter_response(1, 0x81, 1, {0x44, 0x00}));
+    std::uint64_t three = bus.transaction(
+        parameter_request(2, 0x01, {{13}}),
+        parameter_response(2, 0x81, 1, {0x44, 0x03, 0x00, 0x00, 0x00, 0x03, 0x00, 0x07}));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1NegativeResponse, none, Severity::Note},
+                                   {FindingKind::Dpv1LengthError, none, Severity::Error},
+                                   {FindingKind::Dpv1NegativeResponse, three, Severity::Note},
+                                   {FindingKind::Dpv1LengthError, three, Severity::Error}});
+    EXPECT_EQ(bus.findings[0].message,
+              "negative response 0x81 (request parameter (-)) to the request of frame 1 "
+              "(reference 1, request parameter value, PNU 12): no error number");
+    EXPECT_EQ(bus.findings[1].message,
+              "parameter response to the request of frame 1 (reference 1, request parameter "
+              "value, PNU 12): PNU 12: error block with 0 values");
+    EXPECT_EQ(bus.findings[2].message,
+              "negative response 0x81 (request parameter (-)) to the request of frame 5 "
+              "(reference 2, request parameter value, PNU 13): PNU 13: error 0x00 (illegal or "
+              "unknown parameter number), subindex 3");
+    EXPECT_EQ(bus.findings[3].message,
+              "parameter response to the request of frame 5 (reference 2, request parameter "
+              "value, PNU 13): PNU 13: error block with 3 values");
+}
+
 }  // namespace
 }  // namespace dpscope

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "tests/test_support.hpp"
@@ -261,6 +263,29 @@ TEST(Dpv1Test, AbortFields) {
     EXPECT_EQ(dpv1_abort_reason_name(0x25), "user specific");
     EXPECT_EQ(dpv1_abort_instance_name(0x30), "reserved");
     EXPECT_EQ(dpv1_abort_reason_name(0x1F), "reserved");
+
+    // Every reason the FDL and MSAC_C2 instances name (dpscope's reading of IEC 61158-6-3).
+    const std::pair<std::uint8_t, std::string_view> named[] = {
+        {0x01, "user error (UE)"},
+        {0x02, "no resource (RR)"},
+        {0x03, "service not activated (RS)"},
+        {0x0A, "data high (DH)"},
+        {0x0B, "local resource error (LR)"},
+        {0x0C, "no response data (RDL)"},
+        {0x0D, "response data high (RDH)"},
+        {0x0E, "not in the logical ring (DS)"},
+        {0x0F, "no reaction (NA)"},
+        {0x04, "reserved"},
+        {0x11, "sequence error (ABT_SE)"},
+        {0x12, "invalid request PDU (ABT_FE)"},
+        {0x14, "invalid response PDU (ABT_RE)"},
+        {0x15, "invalid service from the user (ABT_IV)"},
+        {0x16, "Send_Timeout too small (ABT_STO)"},
+        {0x17, "invalid additional address information (ABT_IA)"},
+        {0x18, "waiting for FDL_DATA_REPLY.con (ABT_OC)"},
+    };
+    for (const auto& [instance_reason, name] : named)
+        EXPECT_EQ(dpv1_abort_reason_name(instance_reason), name) << int{instance_reason};
 
     Parsed cut = parse("58 02");
     EXPECT_EQ(cut.pdu.layout, Dpv1Pdu::Layout::Abort);

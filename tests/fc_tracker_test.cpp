@@ -395,5 +395,33 @@ TEST(FcTrackerTest, AnswerWithTheOtherBlockTypeIsAMismatchedResponse) {
     EXPECT_TRUE(run.finish(5000).empty());
 }
 
+// A byte after the BCC is a problem of warning severity only (trailing_bytes): the telegram is
+// still intact, so no malformed_telegram is reported and the exchange is tracked as usual.
+TEST(FcTrackerTest, TrailingBytesAloneLeaveTheTelegramIntact) {
+    std::vector<std::uint8_t> command = fc_parameter(1, 1, 414);
+    command.push_back(0x00);
+    std::vector<std::uint8_t> answer = fc_parameter(1, 1, 414, 0, 5, 0x0607);
+    answer.push_back(0x00);
+    {
+        FcDecoder decoder;
+        const DecodedTelegram& t = decoder.decode(command, 0, 1);
+        ASSERT_EQ(t.problems().size(), 1u);
+        EXPECT_EQ(t.problems()[0].kind, ProblemKind::TrailingBytes);
+        EXPECT_EQ(problem_severity(t.problems()[0].kind), Severity::Warning);
+    }
+    FcRun run;
+    EXPECT_TRUE(run.feed(command, 0).empty());
+    EXPECT_TRUE(run.feed(answer, 4).empty());
+    EXPECT_TRUE(run.finish(5000).empty());
+    const FcStationStats* one = run.station(1);
+    ASSERT_NE(one, nullptr);
+    EXPECT_EQ(one->telegrams, 2u);
+    EXPECT_EQ(one->commands, 1u);
+    EXPECT_EQ(one->responses, 1u);
+    EXPECT_EQ(one->answered, 1u);
+    EXPECT_EQ(one->latency_ns.min(), 4u * kMs);
+    EXPECT_EQ(run.tracker.transactions(), 1u);
+}
+
 }  // namespace
 }  // namespace dpscope

@@ -232,6 +232,8 @@ TEST(FdlTest, FrameControlBit7) {
     EXPECT_TRUE(time_event.problems.empty());
     EXPECT_EQ(request_function_name(time_event.fc), "time event");
     EXPECT_EQ(request_function_name(FrameControl{0x7D}), "SRD high");
+    EXPECT_EQ(request_function_name(FrameControl{0x4E}), "ident");
+    EXPECT_EQ(request_function_name(FrameControl{0x4F}), "LSAP status");
 
     // Bit 7 with SRD high (request), and with DL (response): reserved, a problem at the FC byte.
     for (std::uint8_t fc : {std::uint8_t{0xCD}, std::uint8_t{0x88}, std::uint8_t{0xF0}}) {

@@ -89,5 +89,14 @@ TEST(ProblemTest, DpServiceProblemsAreTheirOwnComponent) {
                                         ProblemKind::DiagBlockTruncated}));
 }
 
+// The end delimiter's text names what was wanted: FDL's ED (expected left 0) in hex, VLT 2000's
+// '>' as a character.
+TEST(ProblemTest, EndDelimiterMessageNamesWhatWasWanted) {
+    EXPECT_EQ(problem_message(Problem{ProblemKind::BadEndDelimiter, 9, 0, 0x17}),
+              "byte 9: end delimiter is 0x17, expected 0x16");
+    EXPECT_EQ(problem_message(Problem{ProblemKind::BadEndDelimiter, 21, '>', '<'}),
+              "byte 21: end delimiter is '<', expected '>' (0x3E)");
+}
+
 }  // namespace
 }  // namespace dpscope
