@@ -42,19 +42,7 @@ std::size_t repair(std::uint8_t* data, std::size_t size, std::size_t max_size, u
            dpscope::fuzz::repair_fc_telegram(data + kHeader, size - kHeader, max_size - kHeader);
 }
 
-struct Run {
-    dpscope::FcDecoder decoder;
-    bool timed = true;
-    std::uint64_t frame = 0;
-    std::int64_t time_ns = 1'700'000'000'000'000'000;
-
-    explicit Run(dpscope::FcDecoderOptions options) : decoder(options) {}
-
-    const dpscope::DecodedTelegram& decode(Bytes bytes) {
-        time_ns += 1'000'000;
-        return decoder.decode(bytes, timed ? time_ns : dpscope::kNoTime, ++frame);
-    }
-};
+using Run = dpscope::fuzz::DecoderRun<dpscope::FcDecoder>;
 
 // The data of a command like `telegram` (its block's length, PNU and index) with AK `ak` and
 // index `ind`; a process block's data when the telegram has none to copy.
@@ -168,12 +156,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     Run run(options);
     run.timed = (h0 & 0x02) == 0;
     decode_context(run, telegram, h0, h1);
-    const dpscope::DecodedTelegram& t = run.decode(telegram);
-    decoded_check(t.bytes.data() == telegram.data() && t.bytes.size() == telegram.size(),
-                  "the decoded telegram is the record");
-    decoded_check(t.protocol == dpscope::Protocol::Fc, "an FC telegram");
-    dpscope::fuzz::check_rules_agree(t, dpscope::fc_framing_rules(), true);
-    volatile std::size_t sink = walk(t);
-    (void)sink;
+    dpscope::fuzz::decode_and_check(run, telegram, dpscope::Protocol::Fc,
+                                    dpscope::fc_framing_rules(), true, walk);
     return 0;
 }

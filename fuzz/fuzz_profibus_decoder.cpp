@@ -96,17 +96,10 @@ std::vector<std::uint8_t> cfg_of(std::uint8_t type) {
 }
 
 // The decoder and the clock the context and the telegram go through.
-struct Run {
-    dpscope::BusDecoder decoder;
-    std::uint64_t frame = 0;
-    std::int64_t time_ns = 1'700'000'000'000'000'000;
+// The decoder, with the context's telegrams built from specs.
+struct Run : dpscope::fuzz::DecoderRun<dpscope::BusDecoder> {
+    using DecoderRun::DecoderRun;
 
-    explicit Run(dpscope::DecoderOptions options) : decoder(options) {}
-
-    const dpscope::DecodedTelegram& decode(Bytes bytes) {
-        time_ns += 1'000'000;
-        return decoder.decode(bytes, time_ns, ++frame);
-    }
     void decode_built(const dpscope::TelegramSpec& spec) {
         const std::vector<std::uint8_t> bytes = dpscope::build_telegram(spec);
         (void)decode(Bytes(bytes));
@@ -332,12 +325,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
     Run run(options);
     decode_context(run, s, h0, h1, telegram);
-    const dpscope::DecodedTelegram& t = run.decode(telegram);
-    decoded_check(t.bytes.data() == telegram.data() && t.bytes.size() == telegram.size(),
-                  "the decoded telegram is the record");
-    decoded_check(t.protocol == dpscope::Protocol::ProfibusDp, "a PROFIBUS telegram");
-    dpscope::fuzz::check_rules_agree(t, dpscope::fdl_framing_rules(), true, &documented_difference);
-    volatile std::size_t sink = walk(t);
-    (void)sink;
+    dpscope::fuzz::decode_and_check(run, telegram, dpscope::Protocol::ProfibusDp,
+                                    dpscope::fdl_framing_rules(), true, walk,
+                                    &documented_difference);
     return 0;
 }

@@ -15,6 +15,7 @@
 #include <memory>
 #include <span>
 #include <string_view>
+#include <type_traits>
 
 #include "decoder/bus_decoder.hpp"
 #include "decoder/fc_decoder.hpp"
@@ -53,13 +54,10 @@ void check_and_clear(Output& out, OutputFormat format, bool rendered) {
     out.buffer().clear();
 }
 
-template <class Decoder, class Tracker, class DecoderOptions, class TrackerOptions>
-void run_lane(const fuzz::TelegramScript& script, const DecoderOptions& decoder_options,
-              const TrackerOptions& tracker_options) {
+template <class Decoder, class Tracker>
+void run_lane(const fuzz::TelegramScript& script, Decoder& decoder, Tracker& tracker) {
     Output& out = fuzz::null_output();
     out.buffer().clear();
-    Decoder decoder(decoder_options);
-    Tracker tracker(tracker_options);
     Summary summary;
     std::unique_ptr<TelegramRenderer> renderers[std::size(kFormats)];
     for (std::size_t i = 0; i < std::size(kFormats); ++i) {
@@ -106,19 +104,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     static fuzz::TelegramScript script;
     fuzz::FuzzInput in(data, size);
     fuzz::build_telegram_script(in, script, kMaxTelegrams);
-    switch (script.bus) {
-        case fuzz::ScriptBus::Profibus:
-            run_lane<BusDecoder, SessionTracker>(script, script.decoder_options(),
-                                                 script.tracker_options());
-            break;
-        case fuzz::ScriptBus::Fc:
-            run_lane<FcDecoder, FcTracker>(script, script.fc_decoder_options(),
-                                           script.fc_tracker_options());
-            break;
-        case fuzz::ScriptBus::Vlt2000:
-            run_lane<Vlt2000Decoder, Vlt2000Tracker>(script, script.vlt2000_decoder_options(),
-                                                     script.vlt2000_tracker_options());
-            break;
-    }
+    fuzz::with_script_bus(script,
+                          [&](auto& decoder, auto& tracker) { run_lane(script, decoder, tracker); });
     return 0;
 }

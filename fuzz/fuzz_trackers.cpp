@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 #include "decoder/bus_decoder.hpp"
 #include "decoder/bus_health.hpp"
@@ -61,12 +62,11 @@ void check_totals(const Tracker& tracker, const Counts& counts) {
           counts.findings);
 }
 
-// Decodes and tracks every telegram of the script with `Decoder` and `Tracker`.
-template <class Decoder, class Tracker, class DecoderOptions, class TrackerOptions>
-void run_lane(const fuzz::TelegramScript& script, const DecoderOptions& decoder_options,
-              const TrackerOptions& tracker_options, BusHealthTracker* health) {
-    Decoder decoder(decoder_options);
-    Tracker tracker(tracker_options);
+// Decodes and tracks every telegram of the script with the bus's decoder and tracker (and, on
+// PROFIBUS, a BusHealthTracker).
+template <class Decoder, class Tracker>
+void run_lane(const fuzz::TelegramScript& script, Decoder& decoder, Tracker& tracker,
+              BusHealthTracker* health) {
     Counts counts;
     std::uint64_t frame = 0;
     for (const fuzz::ScriptedTelegram& s : script.telegrams) {
@@ -106,25 +106,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     static fuzz::TelegramScript script;
     fuzz::FuzzInput in(data, size);
     fuzz::build_telegram_script(in, script, kMaxTelegrams);
-    switch (script.bus) {
-        case fuzz::ScriptBus::Profibus: {
+    fuzz::with_script_bus(script, [&](auto& decoder, auto& tracker) {
+        if constexpr (std::is_same_v<std::remove_cvref_t<decltype(decoder)>, BusDecoder>) {
             BusHealthOptions options;
             options.baud = script.baud;
             (void)options.thresholds.set(HealthThreshold::LostCycles,
                                          1 + (size > 0 ? data[0] >> 2 : 0) % 5);
             BusHealthTracker health(options);
-            run_lane<BusDecoder, SessionTracker>(script, script.decoder_options(),
-                                                 script.tracker_options(), &health);
-            break;
+            run_lane(script, decoder, tracker, &health);
+        } else {
+            run_lane(script, decoder, tracker, nullptr);
         }
-        case fuzz::ScriptBus::Fc:
-            run_lane<FcDecoder, FcTracker>(script, script.fc_decoder_options(),
-                                           script.fc_tracker_options(), nullptr);
-            break;
-        case fuzz::ScriptBus::Vlt2000:
-            run_lane<Vlt2000Decoder, Vlt2000Tracker>(script, script.vlt2000_decoder_options(),
-                                                     script.vlt2000_tracker_options(), nullptr);
-            break;
-    }
+    });
     return 0;
 }

@@ -41,19 +41,7 @@ std::size_t repair(std::uint8_t* data, std::size_t size, std::size_t max_size, u
                                                             max_size - kHeader);
 }
 
-struct Run {
-    dpscope::Vlt2000Decoder decoder;
-    bool timed = true;
-    std::uint64_t frame = 0;
-    std::int64_t time_ns = 1'700'000'000'000'000'000;
-
-    explicit Run(dpscope::Vlt2000DecoderOptions options) : decoder(options) {}
-
-    const dpscope::DecodedTelegram& decode(Bytes bytes) {
-        time_ns += 1'000'000;
-        return decoder.decode(bytes, timed ? time_ns : dpscope::kNoTime, ++frame);
-    }
-};
+using Run = dpscope::fuzz::DecoderRun<dpscope::Vlt2000Decoder>;
 
 // The decimal number in `count` characters at `at`, or `otherwise` when they are no digits.
 unsigned digits_at(Bytes t, std::size_t at, std::size_t count, unsigned otherwise) {
@@ -146,12 +134,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     Run run(options);
     run.timed = (h0 & 0x02) == 0;
     decode_context(run, telegram, h0, h1);
-    const dpscope::DecodedTelegram& t = run.decode(telegram);
-    decoded_check(t.bytes.data() == telegram.data() && t.bytes.size() == telegram.size(),
-                  "the decoded telegram is the record");
-    decoded_check(t.protocol == dpscope::Protocol::Vlt2000, "a VLT 2000 telegram");
-    dpscope::fuzz::check_rules_agree(t, dpscope::vlt2000_framing_rules(), options.check_checksum);
-    volatile std::size_t sink = walk(t);
-    (void)sink;
+    dpscope::fuzz::decode_and_check(run, telegram, dpscope::Protocol::Vlt2000,
+                                    dpscope::vlt2000_framing_rules(), options.check_checksum, walk);
     return 0;
 }

@@ -14,7 +14,7 @@ namespace dpscope::fuzz {
 
 namespace {
 
-constexpr std::size_t kMaxLen = 2048;  // fuzz/CMakeLists.txt
+constexpr std::size_t kMaxLen = 1024;  // fuzz/CMakeLists.txt
 
 // The choice byte (fuzz/fuzz_capture_file.cpp): format in bits 0-2, bus in bits 3-4.
 std::uint8_t forced_choice(std::string_view name) {

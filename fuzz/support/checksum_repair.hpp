@@ -26,6 +26,16 @@ inline std::size_t resize_to(std::uint8_t* data, std::size_t size, std::size_t m
     return target;
 }
 
+// Ends an FDL telegram of `size` bytes whose FCS sums the bytes from `first` to the FCS: the
+// FCS, then ED 0x16.
+inline void end_fdl_telegram(std::uint8_t* data, std::size_t first, std::size_t size) noexcept {
+    std::uint8_t fcs = 0;
+    for (std::size_t i = first; i < size - 2; ++i)
+        fcs = static_cast<std::uint8_t>(fcs + data[i]);
+    data[size - 2] = fcs;
+    data[size - 1] = 0x16;
+}
+
 }  // namespace repair_detail
 
 // PROFIBUS FDL (decoder/fdl.hpp). By the first byte: SD2 0x68 gets LE = LEr = the data length
@@ -49,22 +59,14 @@ inline std::size_t repair_fdl_telegram(std::uint8_t* data, std::size_t size,
             data[1] = le;
             data[2] = le;
             data[3] = 0x68;
-            std::uint8_t fcs = 0;
-            for (std::size_t i = 4; i < size - 2; ++i)
-                fcs = static_cast<std::uint8_t>(fcs + data[i]);
-            data[size - 2] = fcs;
-            data[size - 1] = 0x16;
+            repair_detail::end_fdl_telegram(data, 4, size);
             return size;
         }
         default: return size;  // SD4, SC, no start delimiter
     }
     size = repair_detail::resize_to(data, size, max_size, fixed);
     if (size < fixed) return size;
-    std::uint8_t fcs = 0;
-    for (std::size_t i = 1; i < fixed - 2; ++i)
-        fcs = static_cast<std::uint8_t>(fcs + data[i]);
-    data[fixed - 2] = fcs;
-    data[fixed - 1] = 0x16;
+    repair_detail::end_fdl_telegram(data, 1, fixed);
     return size;
 }
 

@@ -1,7 +1,9 @@
 // What the three decoder targets (fuzz_profibus_decoder, fuzz_fc_decoder, fuzz_vlt2000_decoder)
-// share: checks on a DecodedTelegram that hold whatever the bytes are (every problem lies in the
-// telegram, every view into the telegram lies in it), and the problem list walked so that each
-// problem's message (built only when asked for) is built once.
+// share: a decoder fed telegrams 1 ms apart (DecoderRun), checks on a DecodedTelegram that hold
+// whatever the bytes are (every problem lies in the telegram, every view into the telegram lies in
+// it, the framing rules and the decoder agree), the problem list walked so that each problem's
+// message (built only when asked for) is built once, and the end of every run
+// (decode_and_check).
 #pragma once
 
 #include <cstddef>
@@ -13,6 +15,7 @@
 #include "decoder/framing_rules.hpp"
 #include "decoder/problem.hpp"
 #include "decoder/telegram.hpp"
+#include "decoder/time.hpp"
 
 namespace dpscope::fuzz {
 
@@ -89,6 +92,40 @@ inline void check_rules_agree(const DecodedTelegram& t, const FramingRules& rule
     }
     if (decoder_checks_all && t.problems().empty() && t.problems().dropped() == 0)
         decoded_check(taken, "a record the decoder finds nothing wrong with, the rules take");
+}
+
+// A decoder of the target's protocol fed one telegram after another, 1 ms apart (or without
+// times), each with the next frame number.
+template <class Decoder>
+struct DecoderRun {
+    Decoder decoder;
+    bool timed = true;
+    std::uint64_t frame = 0;
+    std::int64_t time_ns = 1'700'000'000'000'000'000;
+
+    template <class Options>
+    explicit DecoderRun(const Options& options) : decoder(options) {}
+
+    const DecodedTelegram& decode(Bytes bytes) {
+        time_ns += 1'000'000;
+        return decoder.decode(bytes, timed ? time_ns : kNoTime, ++frame);
+    }
+};
+
+// The end of a decoder target's run: decodes `telegram` (after the context the target fed), checks
+// that the decoded telegram is the record and of `protocol`, that the framing rules agree
+// (check_rules_agree) and walks it with the target's `walk`, which checks its own fields.
+template <class Decoder, class Walk>
+void decode_and_check(DecoderRun<Decoder>& run, Bytes telegram, Protocol protocol,
+                      const FramingRules& rules, bool decoder_checks_all, Walk walk,
+                      bool (*documented)(const Problem&, Bytes) = nullptr) {
+    const DecodedTelegram& t = run.decode(telegram);
+    decoded_check(t.bytes.data() == telegram.data() && t.bytes.size() == telegram.size(),
+                  "the decoded telegram is the record");
+    decoded_check(t.protocol == protocol, "a telegram of the target's protocol");
+    check_rules_agree(t, rules, decoder_checks_all, documented);
+    volatile std::size_t sink = walk(t);
+    (void)sink;
 }
 
 }  // namespace dpscope::fuzz

@@ -158,6 +158,33 @@ struct TelegramScript {
     }
 };
 
+// Calls lane(decoder, tracker) with the decoder and the tracker of the script's bus, made with the
+// script's options (fuzz_trackers, fuzz_renderers; fuzz_reports makes every tracker, as the report
+// reads them all).
+template <class Lane>
+void with_script_bus(const TelegramScript& script, Lane&& lane) {
+    switch (script.bus) {
+        case ScriptBus::Profibus: {
+            BusDecoder decoder(script.decoder_options());
+            SessionTracker tracker(script.tracker_options());
+            lane(decoder, tracker);
+            break;
+        }
+        case ScriptBus::Fc: {
+            FcDecoder decoder(script.fc_decoder_options());
+            FcTracker tracker(script.fc_tracker_options());
+            lane(decoder, tracker);
+            break;
+        }
+        case ScriptBus::Vlt2000: {
+            Vlt2000Decoder decoder(script.vlt2000_decoder_options());
+            Vlt2000Tracker tracker(script.vlt2000_tracker_options());
+            lane(decoder, tracker);
+            break;
+        }
+    }
+}
+
 namespace script_detail {
 
 inline constexpr std::uint32_t kBauds[] = {0, 9600, 19200, 187500, 1500000, 12000000};
