@@ -1318,33 +1318,30 @@ TEST(BusDecoderTest, Dpv1KeptRequestsAreBoundedAndTheOldestMakesRoom) {
     // Slave 6, slot 0 (frame 257): slave 5's slot 0, written in frame 1, makes room.
     bus.decode(msac_request(6, write(0)));
 
-    bus.decode(msac_request(5, read(0)));
-    const DecodedTelegram& evicted = bus.decode(msac_response(5, response(0)));
-    const ProfidriveMessage* m = evicted.dp.service_data.profidrive();
-    ASSERT_NE(m, nullptr);
-    EXPECT_FALSE(m->has_request);
-    EXPECT_EQ(m->request_frame, 0u);
-    EXPECT_TRUE(m->addresses.empty());
+    // Reads `slot` of `slave` and returns the parameter response's message.
+    const auto answer = [&](std::uint8_t slave, std::uint8_t slot) {
+        bus.decode(msac_request(slave, read(slot)));
+        return bus.decode(msac_response(slave, response(slot))).dp.service_data.profidrive();
+    };
+    // The response names the request of `frame` and its PNU.
+    const auto expect_named = [&](std::uint8_t slave, std::uint8_t slot, std::uint64_t frame,
+                                  std::uint16_t pnu) {
+        SCOPED_TRACE(testing::Message() << "slave " << int{slave} << " slot " << int{slot});
+        const ProfidriveMessage* m = answer(slave, slot);
+        ASSERT_NE(m, nullptr);
+        EXPECT_TRUE(m->has_request);
+        EXPECT_EQ(m->request_frame, frame);
+        ASSERT_EQ(m->addresses.size(), 1u);
+        EXPECT_EQ(m->addresses[0].pnu, pnu);
+    };
 
-    // The next oldest, slot 1 of frame 2, is still kept.
-    bus.decode(msac_request(5, read(1)));
-    const DecodedTelegram& next_oldest = bus.decode(msac_response(5, response(1)));
-    m = next_oldest.dp.service_data.profidrive();
-    ASSERT_NE(m, nullptr);
-    EXPECT_TRUE(m->has_request);
-    EXPECT_EQ(m->request_frame, 2u);
-    ASSERT_EQ(m->addresses.size(), 1u);
-    EXPECT_EQ(m->addresses[0].pnu, 0x101);
-
-    // And so is the request that took the place.
-    bus.decode(msac_request(6, read(0)));
-    const DecodedTelegram& newest = bus.decode(msac_response(6, response(0)));
-    m = newest.dp.service_data.profidrive();
-    ASSERT_NE(m, nullptr);
-    EXPECT_TRUE(m->has_request);
-    EXPECT_EQ(m->request_frame, 257u);
-    ASSERT_EQ(m->addresses.size(), 1u);
-    EXPECT_EQ(m->addresses[0].pnu, 0x100);
+    const ProfidriveMessage* evicted = answer(5, 0);
+    ASSERT_NE(evicted, nullptr);
+    EXPECT_FALSE(evicted->has_request);
+    EXPECT_EQ(evicted->request_frame, 0u);
+    EXPECT_TRUE(evicted->addresses.empty());
+    expect_named(5, 1, 2, 0x101);    // the next oldest, slot 1 of frame 2, is still kept
+    expect_named(6, 0, 257, 0x100);  // and so is the request that took the place
 }
 
 }  // namespace
