@@ -31,6 +31,9 @@ class FramedSource : public TelegramSource, private StreamFramer::Sink {
 
     // Skipped bytes reported so far (those before the last telegram handed out, or all at the end).
     std::uint64_t bytes_skipped() const override { return skipped_reported_; }
+    // Telegrams framed from what fill() fed last and not yet handed out: what the source holds in
+    // memory, bounded by what one fill() feeds.
+    std::size_t telegrams_waiting() const noexcept { return entries_.size() - cursor_; }
 
     // A judged input needs at least this many bytes for a verdict.
     static constexpr std::uint64_t kMinJudgedBytes = 512;

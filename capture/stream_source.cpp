@@ -158,8 +158,11 @@ class RawSource final : public FramedSource {
 
 class HexSource final : public FramedSource {
   public:
-    HexSource(FILE* file, std::string name, const FramingRules& rules)
-        : FramedSource(std::move(name), rules), file_(file) {}
+    HexSource(FILE* file, std::string name, const FramingRules& rules,
+              std::uint64_t max_repeat_bytes)
+        : FramedSource(std::move(name), rules),
+          file_(file),
+          max_repeat_bytes_(std::clamp<std::uint64_t>(max_repeat_bytes, 1, kMaxHexRepeatBytes)) {}
     ~HexSource() override {
         std::free(line_);
         std::fclose(file_);
@@ -173,9 +176,21 @@ class HexSource final : public FramedSource {
         std::int64_t time_ns;
     };
 
-    // One line per call, so typed input is decoded as soon as a telegram is complete.
+    // One line per call, so typed input is decoded as soon as a telegram is complete; what a "*"
+    // line stands for, one chunk per call, so that the telegrams framed from it are handed out
+    // before the next chunk is framed (a 1 KiB dump may stand for many MiB).
     Fill fill() override {
         for (;;) {
+            if (repeat_left_ > 0) {
+                feed_repeat_chunk();
+                return Fill::Fed;
+            }
+            if (held_) {
+                held_ = false;
+                if (held_line_.byte_count == 0 && !held_line_.error) continue;
+                feed_line(held_line_);
+                return Fill::Fed;
+            }
             ssize_t length = getline(&line_, &capacity_, file_);
             if (length < 0) {
                 if (std::ferror(file_)) {
@@ -195,24 +210,33 @@ class HexSource final : public FramedSource {
                 repeat_pending_ = true;
                 continue;
             }
-            if (parsed.dump_offset) expand_repeat(*parsed.dump_offset);
+            if (parsed.dump_offset && start_repeat(*parsed.dump_offset)) {
+                // The line's own bytes (in bytes_) come after the repeats.
+                held_line_ = std::move(parsed);
+                held_ = true;
+                continue;
+            }
             if (parsed.byte_count == 0 && !parsed.error) continue;
-            lines_.push_back(Line{stream_offset_, line_number_, parsed.time_ns.value_or(kNoTime)});
-            // Bytes on either side of a bad token do not belong to one telegram.
-            std::size_t from = 0;
-            for (std::size_t at : parsed.breaks) {
-                feed_line_bytes(from, at);
-                from = at;
-                if (at == parsed.breaks.front() && parsed.error) report_bad_line(parsed);
-                mark_gap();
-            }
-            feed_line_bytes(from, bytes_.size());
-            if (parsed.dump_offset) {
-                last_dump_bytes_.assign(bytes_.begin(), bytes_.end());
-                dump_next_ = *parsed.dump_offset + bytes_.size();
-                have_dump_ = true;
-            }
+            feed_line(parsed);
             return Fill::Fed;
+        }
+    }
+
+    void feed_line(const HexLogLine& parsed) {
+        lines_.push_back(Line{stream_offset_, line_number_, parsed.time_ns.value_or(kNoTime)});
+        // Bytes on either side of a bad token do not belong to one telegram.
+        std::size_t from = 0;
+        for (std::size_t at : parsed.breaks) {
+            feed_line_bytes(from, at);
+            from = at;
+            if (at == parsed.breaks.front() && parsed.error) report_bad_line(parsed);
+            mark_gap();
+        }
+        feed_line_bytes(from, bytes_.size());
+        if (parsed.dump_offset) {
+            last_dump_bytes_.assign(bytes_.begin(), bytes_.end());
+            dump_next_ = *parsed.dump_offset + bytes_.size();
+            have_dump_ = true;
         }
     }
 
@@ -234,36 +258,43 @@ class HexSource final : public FramedSource {
                                  parsed.error->what, more));
     }
 
-    // A dump line after "*": the lines left out repeat the one before the "*" up to this offset.
-    void expand_repeat(std::uint64_t offset) {
+    // A dump line at `offset`: after a "*", the lines left out repeat the one before the "*" up
+    // to this offset, and true says they are to be fed first (feed_repeat_chunk). An offset that
+    // does not follow on is reported.
+    bool start_repeat(std::uint64_t offset) {
         const bool repeat = repeat_pending_;
         repeat_pending_ = false;
-        if (!have_dump_ || offset == dump_next_) return;
+        if (!have_dump_ || offset == dump_next_) return false;
         if (!repeat || last_dump_bytes_.empty() || offset < dump_next_ ||
-            offset - dump_next_ > kMaxRepeatedBytes) {
+            offset - dump_next_ > max_repeat_bytes_) {
             defer_report(Severity::Warning, IssueKind::HexSyntax,
                          fmt::format("{}: line {}: the dump's offset is 0x{:x}, but 0x{:x} bytes "
                                      "came before it{}; lines are missing or out of order",
                                      name(), line_number_, offset, dump_next_,
                                      repeat ? " (counting the lines \"*\" stands for)" : ""));
             mark_gap();
-            return;
+            return false;
         }
-        std::vector<std::uint8_t> repeated;
-        for (std::uint64_t left = offset - dump_next_; left > 0;) {
-            repeated.clear();
-            while (left > 0 && repeated.size() < (1u << 16)) {
-                std::size_t n = static_cast<std::size_t>(
-                    std::min<std::uint64_t>(left, last_dump_bytes_.size()));
-                repeated.insert(repeated.end(), last_dump_bytes_.begin(),
-                                last_dump_bytes_.begin() + static_cast<std::ptrdiff_t>(n));
-                left -= n;
-            }
-            lines_.push_back(Line{stream_offset_, line_number_ - 1, kNoTime});
-            feed(Bytes(repeated.data(), repeated.size()));
-            stream_offset_ += repeated.size();
-        }
+        repeat_left_ = offset - dump_next_;
+        repeat_line_ = line_number_ - 1;
         dump_next_ = offset;
+        return true;
+    }
+
+    // The next 64 KiB or so of what the "*" stands for: whole copies of the line before it (the
+    // last copy cut short at the offset), so that every chunk starts where the line starts.
+    void feed_repeat_chunk() {
+        repeated_.clear();
+        while (repeat_left_ > 0 && repeated_.size() < kRepeatChunkBytes) {
+            std::size_t n = static_cast<std::size_t>(
+                std::min<std::uint64_t>(repeat_left_, last_dump_bytes_.size()));
+            repeated_.insert(repeated_.end(), last_dump_bytes_.begin(),
+                             last_dump_bytes_.begin() + static_cast<std::ptrdiff_t>(n));
+            repeat_left_ -= n;
+        }
+        lines_.push_back(Line{stream_offset_, repeat_line_, kNoTime});
+        feed(Bytes(repeated_.data(), repeated_.size()));
+        stream_offset_ += repeated_.size();
     }
 
     const Line* line_of(std::uint64_t offset) const {
@@ -297,11 +328,19 @@ class HexSource final : public FramedSource {
     std::vector<std::uint8_t> bytes_;
     std::deque<Line> lines_;
     // xxd and hexdump -C dumps: the last line's bytes, the offset expected next, a pending "*".
-    static constexpr std::uint64_t kMaxRepeatedBytes = 64 * 1024 * 1024;
     std::vector<std::uint8_t> last_dump_bytes_;
     std::uint64_t dump_next_ = 0;
     bool have_dump_ = false;
     bool repeat_pending_ = false;
+    // What a "*" stands for, fed a chunk a call: the bytes still to come, the "*" line's number,
+    // the chunk, and the dump line after the "*", held until they are fed.
+    static constexpr std::size_t kRepeatChunkBytes = 1 << 16;
+    std::uint64_t max_repeat_bytes_;
+    std::uint64_t repeat_left_ = 0;
+    std::uint64_t repeat_line_ = 0;
+    std::vector<std::uint8_t> repeated_;
+    HexLogLine held_line_;
+    bool held_ = false;
 };
 
 class MemorySource final : public FramedSource {
@@ -335,8 +374,9 @@ std::unique_ptr<TelegramSource> make_raw_source(FILE* file, std::string name, bo
 }
 
 std::unique_ptr<TelegramSource> make_hex_source(FILE* file, std::string name, bool judged,
-                                                const FramingRules& rules) {
-    auto source = std::make_unique<HexSource>(file, std::move(name), rules);
+                                                const FramingRules& rules,
+                                                std::uint64_t max_repeat_bytes) {
+    auto source = std::make_unique<HexSource>(file, std::move(name), rules, max_repeat_bytes);
     if (judged) source->judge_input(kJudgedHexBytes, "hex log", "--input-format hex");
     return source;
 }

@@ -23,8 +23,10 @@ inline constexpr std::uint64_t kJudgedHexBytes = 4 * 1024;
 // framing) must outlive the source.
 std::unique_ptr<TelegramSource> make_raw_source(FILE* file, std::string name, bool judged,
                                                 const FramingRules& rules);
+// `max_repeat_bytes`: the most bytes one "*" line of a dump may stand for (SourceOptions).
 std::unique_ptr<TelegramSource> make_hex_source(FILE* file, std::string name, bool judged,
-                                                const FramingRules& rules);
+                                                const FramingRules& rules,
+                                                std::uint64_t max_repeat_bytes);
 // Reads what has arrived into `data`, at least one byte unless the input ended: a pipe or
 // terminal is decoded as it is written (fread would wait until the whole buffer is full).
 std::size_t read_available(FILE* file, std::uint8_t* data, std::size_t size);

@@ -248,14 +248,16 @@ Result<std::vector<std::uint8_t>> read_head_for_bus(int fd, const std::string& n
 
 // The source of `format` reading `stream` (which it then owns).
 OpenResult open_stream(FILE* stream, const std::string& name, InputFormat format, bool detected,
-                       bool classic_pcap, bool pcapng, const CaptureProtocol& protocol) {
+                       bool classic_pcap, bool pcapng, const CaptureProtocol& protocol,
+                       const SourceOptions& options) {
     const FramingRules& rules = protocol.framing;
     switch (format) {
         case InputFormat::Pcap:
         case InputFormat::Pcapng:
             return pcapng ? open_pcapng_source(stream, name, protocol)
                           : open_pcap_source(stream, name, classic_pcap, protocol);
-        case InputFormat::Hex: return make_hex_source(stream, name, detected, rules);
+        case InputFormat::Hex:
+            return make_hex_source(stream, name, detected, rules, options.max_hex_repeat_bytes);
         case InputFormat::Text: return make_text_source(stream, name, rules);
         case InputFormat::Raw:
         case InputFormat::Serial:
@@ -265,7 +267,8 @@ OpenResult open_stream(FILE* stream, const std::string& name, InputFormat format
 }
 
 OpenResult open_source_of(const std::string& path, InputFormat format,
-                          const CaptureProtocol* chosen, BusChoice* choice) {
+                          const CaptureProtocol* chosen, BusChoice* choice,
+                          const SourceOptions& options) {
     bool from_stdin = path == "-";
     std::string name = from_stdin ? std::string("<stdin>") : path;
     FILE* file = from_stdin ? stdin : std::fopen(path.c_str(), "rb");
@@ -334,7 +337,8 @@ OpenResult open_source_of(const std::string& path, InputFormat format,
         return Error{std::move(error)};
     }
     std::setvbuf(stream, nullptr, _IOFBF, 1 << 16);
-    OpenResult opened = open_stream(stream, name, format, detected, classic_pcap, pcapng, protocol);
+    OpenResult opened =
+        open_stream(stream, name, format, detected, classic_pcap, pcapng, protocol, options);
     // The position is read from a regular file's own stream (a cookie stream cannot tell it).
     if (opened && stream == file)
         (*opened)->watch_position(stream, static_cast<std::uint64_t>(info.st_size));
@@ -343,16 +347,16 @@ OpenResult open_source_of(const std::string& path, InputFormat format,
 
 }  // namespace
 
-OpenResult open_source(const std::string& path, InputFormat format,
-                       const CaptureProtocol& protocol) {
-    return open_source_of(path, format, &protocol, nullptr);
+OpenResult open_source(const std::string& path, InputFormat format, const CaptureProtocol& protocol,
+                       const SourceOptions& options) {
+    return open_source_of(path, format, &protocol, nullptr, options);
 }
 
 OpenResult open_source(const std::string& path, InputFormat format, const CaptureProtocol* protocol,
-                       BusChoice& choice) {
+                       BusChoice& choice, const SourceOptions& options) {
     choice = BusChoice{};
     if (protocol) choice.protocol = protocol;
-    return open_source_of(path, format, protocol, &choice);
+    return open_source_of(path, format, protocol, &choice, options);
 }
 
 std::unique_ptr<TelegramSource> memory_source(std::string display_name, Bytes bytes,

@@ -143,11 +143,23 @@ class TelegramSource {
 // A source, or why the input is unusable (naming the file).
 using OpenResult = Result<std::unique_ptr<TelegramSource>>;
 
+// The most bytes one "*" line of a hexdump -C or xxd -a dump may stand for (docs/decisions.md,
+// "Hex dumps: what a '*' line stands for"): a dump of a real capture repeats idle or identical
+// traffic for far less, and a gap wider than this is reported as missing lines.
+inline constexpr std::uint64_t kMaxHexRepeatBytes = 64 * 1024 * 1024;
+
+// How a source reads, beyond format and bus.
+struct SourceOptions {
+    // The most bytes one "*" line of a hex dump may stand for; 1 to kMaxHexRepeatBytes (the
+    // fuzz target fuzz_capture_file lowers it, so that a run stays short).
+    std::uint64_t max_hex_repeat_bytes = kMaxHexRepeatBytes;
+};
+
 // Opens `path` ("-" for standard input), detecting the format from the content unless `format`
 // forces one. `protocol` is what the capture carries: a byte stream is framed by its rules, and
 // a pcap or pcapng file must have one of its link types.
-OpenResult open_source(const std::string& path, InputFormat format,
-                       const CaptureProtocol& protocol);
+OpenResult open_source(const std::string& path, InputFormat format, const CaptureProtocol& protocol,
+                       const SourceOptions& options = {});
 
 // The same, where the bus may be left to the capture: `protocol` null chooses it from the first
 // bytes (choose_bus in capture/bus_tag.hpp: up to 64 KiB of a byte stream, the header and first
@@ -155,7 +167,7 @@ OpenResult open_source(const std::string& path, InputFormat format,
 // `choice` says which bus and why. With a `protocol`, the source is of that bus and
 // choice.tagged is what a pcap or pcapng file's tag names, if it has one.
 OpenResult open_source(const std::string& path, InputFormat format, const CaptureProtocol* protocol,
-                       BusChoice& choice);
+                       BusChoice& choice, const SourceOptions& options = {});
 
 // A source over bytes already in memory (e.g. `dpscope hex` arguments), framed as a raw stream
 // of `protocol`.

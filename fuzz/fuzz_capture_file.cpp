@@ -8,7 +8,9 @@
 // pulled, decoded with the bus's decoder and tracked by its tracker; input issues are formatted
 // and dropped, as `decode` prints them. One reading a run, and no renderers (they have their own
 // targets, fuzz_renderers and fuzz_reports), keep it fast; pcap and pcapng headers with a few
-// records fit in the 1 KiB max_len.
+// records fit in the 1 KiB max_len. For the same reason a "*" line of a hex dump stands for at
+// most 16 KiB here (SourceOptions), not the 64 MiB dpscope allows: with that, a 1 KiB dump of a
+// few "*" lines is hundreds of MiB of telegrams, seconds of work that find nothing new.
 //
 // Invariants: every record's number follows the last one's, no record holds more bytes than the
 // file, and a source that read the input reports a format other than auto.
@@ -97,7 +99,9 @@ void read_records(dpscope::TelegramSource& source, std::size_t file_size) {
 void read_all(const std::string& path, dpscope::InputFormat format,
               const dpscope::CaptureProtocol* protocol, std::size_t file_size) {
     dpscope::BusChoice choice;
-    dpscope::OpenResult opened = dpscope::open_source(path, format, protocol, choice);
+    dpscope::SourceOptions options;
+    options.max_hex_repeat_bytes = 16 * 1024;
+    dpscope::OpenResult opened = dpscope::open_source(path, format, protocol, choice, options);
     if (!opened) {
         (void)opened.error().size();
         return;

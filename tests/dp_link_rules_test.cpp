@@ -46,6 +46,19 @@ TEST_F(DpLinkRulesTest, IntactTelegramHasNoFinding) {
     EXPECT_TRUE(findings.empty());
 }
 
+// A byte after the end delimiter is a problem of warning severity only (trailing_bytes): the
+// telegram is still intact, so no malformed_telegram is reported and it is read further.
+TEST_F(DpLinkRulesTest, TrailingBytesAloneLeaveTheTelegramIntact) {
+    std::vector<std::uint8_t> bytes = srd(true);
+    bytes.push_back(0x00);
+    const DecodedTelegram& t = decode(bytes);
+    ASSERT_EQ(t.problems().size(), 1u);
+    EXPECT_EQ(t.problems()[0].kind, ProblemKind::TrailingBytes);
+    EXPECT_TRUE(t.dp.fdl.fcs_ok);
+    EXPECT_TRUE(check_intact(t, findings));
+    EXPECT_TRUE(findings.empty());
+}
+
 TEST_F(DpLinkRulesTest, BadFcsIsAnFcsError) {
     const DecodedTelegram& t = decode(damaged(srd(true)));
     EXPECT_FALSE(check_intact(t, findings));

@@ -211,6 +211,16 @@ std::pair<std::string, int> run_on_terminal(const std::vector<std::string>& args
         waitpid(pid, &status, 0);
         ADD_FAILURE() << "dpscope did not end";
     }
+    // What the child wrote between the last poll and its end is still in the terminal: read it
+    // (a read fails with EIO once the buffer is empty and the child's side is closed).
+    for (;;) {
+        pollfd readable{pty.master, POLLIN, 0};
+        if (poll(&readable, 1, 100) <= 0) break;
+        char buffer[4096];
+        ssize_t n = read(pty.master, buffer, sizeof buffer);
+        if (n <= 0) break;
+        seen.append(buffer, static_cast<std::size_t>(n));
+    }
     return {seen, WIFEXITED(status) ? WEXITSTATUS(status) : -1};
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <future>
@@ -374,6 +375,71 @@ TEST(StreamSourceTest, DumpRepeatMarkerStandsForTheLeftOutLines) {
                      ": line 2: the dump's offset is 0x30, but 0x10 bytes came "
                      "before it; lines are missing") != std::string::npos;
     EXPECT_TRUE(named);
+}
+
+// Found by fuzz_capture_file (fuzz/corpus/fuzz_capture_file/regression-hexdump-star-1 and -2:
+// 1 KiB dumps whose "*" lines stand for 60 MiB): a "*" was framed whole before its first telegram
+// was handed out, so every telegram it stood for was held in memory at once (3.6 M telegrams,
+// 1.5 GB). Now it is framed 64 KiB at a time: at most one chunk's telegrams wait.
+TEST(StreamSourceTest, DumpRepeatIsFramedAChunkAtATime) {
+    // Lines of two SD1 telegrams and four short acknowledgements; the "*" stands for 1 MiB.
+    TempFile file("long-repeat.hd");
+    const std::string line =
+        "  10 03 02 49 4e 16 10 03  02 49 4e 16 e5 e5 e5 e5  |...IN...IN.....|\n";
+    test::write_text_file(file.path, "00000000" + line + "*\n00100000" + line + "00100010\n");
+    OpenResult opened = open_source(file.path, InputFormat::Hex, profibus_dp_protocol());
+    ASSERT_TRUE(opened) << opened.error();
+    auto* source = dynamic_cast<FramedSource*>(opened.value().get());
+    ASSERT_NE(source, nullptr);
+    constexpr std::uint64_t kStarts[] = {0, 6, 12, 13, 14, 15};  // in each 16-byte line
+    Record record;
+    std::uint64_t n = 0;
+    std::size_t most_waiting = 0;
+    bool offsets_ok = true;
+    while (source->next(record)) {
+        offsets_ok &= record.offset == (n / 6) * 16 + kStarts[n % 6];
+        most_waiting = std::max(most_waiting, source->telegrams_waiting());
+        ++n;
+    }
+    EXPECT_TRUE(offsets_ok);
+    EXPECT_EQ(n, 6u * (0x100000 / 16 + 1));
+    EXPECT_EQ(source->bytes_skipped(), 0u);
+    EXPECT_EQ(source->status(), InputStatus::Ok);
+    EXPECT_LE(most_waiting, 6u * (64 * 1024 / 16));  // one chunk of lines
+}
+
+TEST(StreamSourceTest, DumpRepeatLongerThanTheLimitIsNamed) {
+    // The "*" stands for 0x20 bytes: the lines 0x10 and 0x20, each a telegram as the first.
+    TempFile file("repeat-limit.hd");
+    test::write_text_file(
+        file.path,
+        "00000000  10 03 02 49 4e 16 00 00  00 00 00 00 00 00 00 00  |...IN...........|\n"
+        "*\n"
+        "00000030  10 03 02 49 4e 16                                 |...IN.|\n");
+    for (std::uint64_t limit : {std::uint64_t{0x20}, std::uint64_t{0x1f}}) {
+        SCOPED_TRACE(limit);
+        SourceOptions options;
+        options.max_hex_repeat_bytes = limit;
+        OpenResult opened =
+            open_source(file.path, InputFormat::Hex, profibus_dp_protocol(), options);
+        ASSERT_TRUE(opened) << opened.error();
+        ReadResult r = drain(*opened.value());
+        bool named = false;
+        for (const InputIssue& issue : r.issues)
+            named |= issue.message == file.path +
+                                          ": line 3: the dump's offset is 0x30, but 0x10 bytes "
+                                          "came before it (counting the lines \"*\" stands "
+                                          "for); lines are missing or out of order";
+        if (limit == 0x20) {
+            ASSERT_EQ(r.records.size(), 4u);
+            EXPECT_EQ(r.records[3].offset, 0x30u);
+            EXPECT_FALSE(named);
+        } else {
+            ASSERT_EQ(r.records.size(), 2u);
+            EXPECT_EQ(r.records[1].offset, 0x10u);  // the repeats are left out
+            EXPECT_TRUE(named);
+        }
+    }
 }
 
 TEST(StreamSourceTest, EmptyHexFile) {
