@@ -12,8 +12,10 @@
 // most 16 KiB here (SourceOptions), not the 64 MiB dpscope allows: with that, a 1 KiB dump of a
 // few "*" lines is hundreds of MiB of telegrams, seconds of work that find nothing new.
 //
-// Invariants: every record's number follows the last one's, no record holds more bytes than the
-// file, and a source that read the input reports a format other than auto.
+// Invariants: every record's number follows the last one's, a record of a byte stream (raw, hex,
+// text) holds no more bytes than the bus's longest telegram, a record of a raw or text stream or
+// a pcap or pcapng file no more than the file (a hex dump's "*" lines may stand for more bytes
+// than the dump has), and a source that read the input reports a format other than auto.
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <unistd.h>
@@ -28,8 +30,10 @@
 #include "decoder/bus_decoder.hpp"
 #include "decoder/fc_decoder.hpp"
 #include "decoder/fc_tracker.hpp"
+#include "decoder/fdl.hpp"
 #include "decoder/session_tracker.hpp"
 #include "decoder/vlt2000_decoder.hpp"
+#include "decoder/vlt2000_telegram.hpp"
 #include "decoder/vlt2000_tracker.hpp"
 #include "fuzz/support/fuzz_input.hpp"
 
@@ -76,16 +80,33 @@ void check(bool ok) {
     if (!ok) __builtin_trap();
 }
 
+// The most bytes a telegram of `protocol` has: FDL SD2 with LE 249; FC STX, LGE 255 and the 255
+// bytes LGE counts; VLT 2000 its fixed size.
+std::size_t longest_telegram(dpscope::Protocol protocol) {
+    switch (protocol) {
+        case dpscope::Protocol::ProfibusDp: return dpscope::kMaxTelegramSize;
+        case dpscope::Protocol::Fc: return 2 + 255;
+        case dpscope::Protocol::Vlt2000: return dpscope::kVlt2000TelegramSize;
+    }
+    return 0;
+}
+
 // Pulls every record of `source`, decoding and tracking it with the bus's decoder and tracker.
 template <class Decoder, class Tracker>
-void read_records(dpscope::TelegramSource& source, std::size_t file_size) {
+void read_records(dpscope::TelegramSource& source, dpscope::Protocol protocol,
+                  std::size_t file_size) {
+    using dpscope::InputFormat;
     Decoder decoder;
     Tracker tracker;
     dpscope::Record record;
     std::uint64_t last = 0;
     while (source.next(record)) {
         check(record.number > last);
-        check(record.bytes.size() <= file_size);
+        const InputFormat format = source.format();
+        const bool stream =
+            format == InputFormat::Raw || format == InputFormat::Hex || format == InputFormat::Text;
+        if (stream) check(record.bytes.size() <= longest_telegram(protocol));
+        if (format != InputFormat::Hex) check(record.bytes.size() <= file_size);
         last = record.number;
         (void)tracker.track(decoder.decode(record.bytes, record.time_ns, record.number));
     }
@@ -112,13 +133,16 @@ void read_all(const std::string& path, dpscope::InputFormat format,
         [&issue_bytes](const dpscope::InputIssue& issue) { issue_bytes += issue.message.size(); });
     switch (choice.protocol->protocol) {
         case dpscope::Protocol::ProfibusDp:
-            read_records<dpscope::BusDecoder, dpscope::SessionTracker>(source, file_size);
+            read_records<dpscope::BusDecoder, dpscope::SessionTracker>(
+                source, choice.protocol->protocol, file_size);
             break;
         case dpscope::Protocol::Fc:
-            read_records<dpscope::FcDecoder, dpscope::FcTracker>(source, file_size);
+            read_records<dpscope::FcDecoder, dpscope::FcTracker>(source, choice.protocol->protocol,
+                                                                 file_size);
             break;
         case dpscope::Protocol::Vlt2000:
-            read_records<dpscope::Vlt2000Decoder, dpscope::Vlt2000Tracker>(source, file_size);
+            read_records<dpscope::Vlt2000Decoder, dpscope::Vlt2000Tracker>(
+                source, choice.protocol->protocol, file_size);
             break;
     }
     (void)source.link_type();

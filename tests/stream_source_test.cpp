@@ -408,6 +408,26 @@ TEST(StreamSourceTest, DumpRepeatIsFramedAChunkAtATime) {
     EXPECT_LE(most_waiting, 6u * (64 * 1024 / 16));  // one chunk of lines
 }
 
+// What fuzz_capture_file took for a defect (fuzz/corpus/fuzz_capture_file/regression-hexdump-
+// star-fc-1 and -2): an FC telegram framed from a dump's "*" longer than the dump itself. That is
+// right, the dumped file held it; the target's invariant was wrong and now allows it.
+TEST(StreamSourceTest, DumpRepeatMakesATelegramLongerThanTheDump) {
+    // An SD2 telegram with LE 249 and zero data (FCS 0): 255 bytes from a dump of fewer.
+    TempFile file("long-telegram.hd");
+    const std::string dump =
+        "00000000  68 f9 f9 68 00 00 00 00  00 00 00 00 00 00 00 00  |h..h............|\n"
+        "00000010  00 00 00 00 00 00 00 00  00 00 00 00 00 00 00 00  |................|\n"
+        "*\n"
+        "000000f0  00 00 00 00 00 00 00 00  00 00 00 00 00 00 16     |...............|\n";
+    test::write_text_file(file.path, dump);
+    ReadResult r = read_all(file.path, InputFormat::Hex);
+    ASSERT_EQ(r.records.size(), 1u);
+    EXPECT_EQ(r.data[0].size(), 255u);
+    EXPECT_GT(r.data[0].size(), dump.size());
+    EXPECT_EQ(r.skipped, 0u);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+}
+
 TEST(StreamSourceTest, DumpRepeatLongerThanTheLimitIsNamed) {
     // The "*" stands for 0x20 bytes: the lines 0x10 and 0x20, each a telegram as the first.
     TempFile file("repeat-limit.hd");
