@@ -409,8 +409,9 @@ TEST(StreamSourceTest, DumpRepeatIsFramedAChunkAtATime) {
 }
 
 // What fuzz_capture_file took for a defect (fuzz/corpus/fuzz_capture_file/regression-hexdump-
-// star-fc-1 and -2): an FC telegram framed from a dump's "*" longer than the dump itself. That is
-// right, the dumped file held it; the target's invariant was wrong and now allows it.
+// star-fc-1 and -2, FC telegrams): a telegram framed from a dump's "*" longer than the dump
+// itself. That is right, the dumped file held it; the target's invariant was wrong and now allows
+// it. Shown here with a PROFIBUS telegram of the longest kind.
 TEST(StreamSourceTest, DumpRepeatMakesATelegramLongerThanTheDump) {
     // An SD2 telegram with LE 249 and zero data (FCS 0): 255 bytes from a dump of fewer.
     TempFile file("long-telegram.hd");
