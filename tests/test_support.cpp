@@ -6,6 +6,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -68,36 +70,55 @@ std::string dpscope_executable() { return DPSCOPE_EXECUTABLE; }
 
 namespace {
 
-// Every path temp_path() handed out, removed when the test process ends (set
-// DPSCOPE_KEEP_TEST_FILES to keep them for a look after a failure).
-struct TempPaths {
-    std::vector<std::string> paths;
-    ~TempPaths() {
+// The folder of each test that asked for a temporary path, removed with everything in it when
+// the test process ends (set DPSCOPE_KEEP_TEST_FILES to keep them for a look after a failure).
+// Each test has a folder of its own, made with mkdtemp, so that a test inspecting its folder
+// (for staging files left behind, say) never sees another test's files, whether the other test
+// runs in this process or in a parallel one.
+struct TempFolders {
+    std::string test;    // the test the current folder belongs to
+    std::string folder;  // "" until the test asks
+    std::vector<std::string> made;
+    ~TempFolders() {
         if (std::getenv("DPSCOPE_KEEP_TEST_FILES")) return;
-        for (const std::string& path : paths) {
+        for (const std::string& path : made) {
             std::error_code ignored;
-            std::filesystem::remove_all(path, ignored);  // a symbolic link itself, not its target
+            std::filesystem::remove_all(path, ignored);  // symbolic links themselves, not targets
         }
     }
 };
 
-TempPaths& temp_paths() {
-    static TempPaths paths;
-    return paths;
+TempFolders& temp_folders() {
+    static TempFolders folders;
+    return folders;
 }
 
 }  // namespace
 
-std::string temp_path(std::string_view name) {
-    static int counter = 0;
-    const char* base = std::getenv("TEST_TMPDIR");
-    std::string dir = base ? base : "/tmp";
+std::string temp_folder() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::string test = info ? std::string(info->test_suite_name()) + "." + info->name() : "test";
-    std::string path = dir + "/dpscope-" + std::to_string(getpid()) + "-" + test + "-" +
-                       std::to_string(counter++) + "-" + std::string(name);
-    temp_paths().paths.push_back(path);
-    return path;
+    std::replace(test.begin(), test.end(), '/', '_');  // parameterised tests: "Suite/Case.Test/0"
+    TempFolders& folders = temp_folders();
+    if (folders.folder.empty() || folders.test != test) {
+        const char* base = std::getenv("TEST_TMPDIR");
+        std::string pattern =
+            std::string(base && *base ? base : "/tmp") + "/dpscope-" + test + "-XXXXXX";
+        if (::mkdtemp(pattern.data()) == nullptr) {
+            ADD_FAILURE() << "cannot make a temporary folder " << pattern << ": "
+                          << std::strerror(errno);
+            return "/nonexistent";
+        }
+        folders.test = test;
+        folders.folder = pattern;
+        folders.made.push_back(pattern);
+    }
+    return folders.folder;
+}
+
+std::string temp_path(std::string_view name) {
+    static int counter = 0;
+    return temp_folder() + "/" + std::to_string(counter++) + "-" + std::string(name);
 }
 
 void write_file(const std::string& path, const std::vector<std::uint8_t>& bytes) {

@@ -33,8 +33,11 @@ std::vector<std::uint8_t> fc_parameter(std::uint8_t address, std::uint8_t ak, st
 std::string source_dir();
 std::string dpscope_executable();
 
-// A fresh path under the test's temporary directory (the file does not exist yet; whatever is
-// made there is removed when the test process ends, unless DPSCOPE_KEEP_TEST_FILES is set).
+// The current test's own temporary folder (made on first use under $TEST_TMPDIR, else /tmp;
+// no other test, in this process or another, writes there). It and everything in it are removed
+// when the test process ends, unless DPSCOPE_KEEP_TEST_FILES is set.
+std::string temp_folder();
+// A fresh path in the test's temporary folder (the file does not exist yet).
 std::string temp_path(std::string_view name);
 void write_file(const std::string& path, const std::vector<std::uint8_t>& bytes);
 void write_text_file(const std::string& path, std::string_view text);
