@@ -100,6 +100,17 @@ std::string listed_link_types(const CaptureProtocol& protocol, bool name_in_pare
 
 std::string unsupported_link_type(const std::string& name, int link_type,
                                   const CaptureProtocol& protocol) {
+    // A link type another bus is carried by (257 is PROFIBUS only): the capture is of that bus,
+    // and the bus option chose another; name the real problem.
+    for (const CaptureProtocol* other : capture_protocols()) {
+        if (other->protocol == protocol.protocol || !other->carried_by(link_type)) continue;
+        return fmt::format(
+            "{}: link type {} ({}) is a {} capture, but --bus {} reads {} telegrams from captures "
+            "of link type {} only; leave --bus out (or give --bus {})",
+            name, link_type, link_type_name(link_type), other->framing.protocol_name(),
+            protocol_name(protocol.protocol), protocol.framing.protocol_name(),
+            listed_link_types(protocol, true), protocol_name(other->protocol));
+    }
     return fmt::format("{}: unsupported link type {} ({}); dpscope reads {}", name, link_type,
                        link_type_name(link_type), listed_link_types(protocol, true));
 }

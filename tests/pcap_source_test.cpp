@@ -511,6 +511,29 @@ TEST(PcapSourceTest, TheProtocolGivenChoosesTheLinkTypes) {
         profibus.path + ": unsupported link type 257 (PROFIBUS_DL); dpscope reads 1 (EN10MB)");
 }
 
+// A PROFIBUS capture (link type 257) read with another bus's protocol (--bus fc): the message
+// names the real problem, the bus option, not an unsupported link type.
+TEST(PcapSourceTest, AProfibusCaptureReadAsAnotherBusNamesTheBus) {
+    for (CaptureFormat format : {CaptureFormat::Pcap, CaptureFormat::Pcapng}) {
+        TempFile file(format == CaptureFormat::Pcap ? "profibus-as-fc.pcap"
+                                                    : "profibus-as-fc.pcapng");
+        write_capture(file.path, format, kLinkTypeProfibusDl);
+        OpenResult refused = open_source(file.path, InputFormat::Auto, fc_protocol());
+        ASSERT_FALSE(refused);
+        EXPECT_EQ(refused.error(),
+                  file.path +
+                      ": link type 257 (PROFIBUS_DL) is a PROFIBUS capture, but --bus fc reads FC "
+                      "protocol telegrams from captures of link type 147 (USER0) only; leave "
+                      "--bus out (or give --bus profibus)");
+        OpenResult vlt = open_source(file.path, InputFormat::Auto, vlt2000_protocol());
+        ASSERT_FALSE(vlt);
+        EXPECT_NE(vlt.error().find("is a PROFIBUS capture, but --bus vlt2000 reads VLT 2000 "
+                                   "telegrams"),
+                  std::string::npos)
+            << vlt.error();
+    }
+}
+
 TEST(PcapSourceTest, PcapngInterfacesAreJudgedByTheProtocolGiven) {
     TempFile file("profibus-and-ethernet-for-test-protocol.pcapng");
     PcapngBuilder b;
