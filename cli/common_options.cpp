@@ -116,6 +116,13 @@ void add_write_options(CLI::App& app, DecodeOptionValues& values) {
                  "With -w FILE: print the decode on standard output as well (as tshark -P)");
 }
 
+void add_allow_empty_option(CLI::App& app, bool& allow_empty) {
+    app.add_flag("--allow-empty", allow_empty,
+                 "Pass a capture that holds no telegram (a pcap or pcapng file without records): "
+                 "by default that is said on standard error and the exit code is 1, so that a "
+                 "failed recording does not pass a check");
+}
+
 void add_line_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_option("--baud", values.baud,
                    "The line's baud rate when the capture was made. FC protocol and VLT 2000: a "
@@ -221,6 +228,7 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     }
     settings.quiet = values.quiet;
     settings.line_buffered = values.line_buffered;
+    settings.allow_empty = values.allow_empty;
     settings.count = values.count;
     settings.tracker.timeout_ns = static_cast<std::int64_t>(values.timeout_ms) * 1'000'000;
     settings.tracker.strict = values.strict;
@@ -521,6 +529,16 @@ Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t t
                 source.name(), protocol.framing.protocol_name(), skipped)};
         default: return {};
     }
+}
+
+int empty_input_exit(const TelegramSource& source, bool allow_empty) {
+    if (allow_empty) {
+        print_diagnostic(Severity::Note, fmt::format("{}: no telegrams", source.name()));
+        return kExitOk;
+    }
+    print_error(fmt::format("{}: no telegrams: the capture is empty (--allow-empty accepts it)",
+                            source.name()));
+    return kExitFindings;
 }
 
 void print_diagnostic(Severity severity, std::string_view message) {

@@ -37,14 +37,15 @@ inline constexpr std::uint32_t kFcMinBaud = 2400;
 inline constexpr std::uint32_t kFcMaxBaud = 115'200;
 
 inline constexpr int kExitOk = 0;
-inline constexpr int kExitFindings = 1;      // report: findings at or above --fail-on
+inline constexpr int kExitFindings = 1;      // report: findings at or above --fail-on; no telegrams
 inline constexpr int kExitUsage = 2;         // bad command line, or input unusable from the start
 inline constexpr int kExitDamagedInput = 3;  // input stopped early; what came before was decoded
 inline constexpr int kExitOutputError = 4;   // output could not be opened or written
 inline constexpr int kExitDeviceError = 5;   // sniff: the capture device failed
 
 inline constexpr std::string_view kExitCodeHelp =
-    "Exit codes: 0 success; 1 report found something at or above --fail-on; 2 bad usage or "
+    "Exit codes: 0 success; 1 report found something at or above --fail-on (stats: the verdict "
+    "reached it), or the input holds no telegram (without --allow-empty); 2 bad usage or "
     "unusable input (cannot open, unknown format, unsupported link type); 3 the input ended in "
     "damage (truncated record, read error) after what was decoded; 4 output could not be "
     "opened or written (no such directory, disk full); 5 the capture device failed (sniff).";
@@ -99,6 +100,7 @@ struct DecodeOptionValues {
     std::string write_format;  // -F; "" = pcap
     std::string link_type;     // "" = profibus
     bool print = false;        // -P: print the decode as well when writing a capture
+    bool allow_empty = false;  // --allow-empty: an input without telegrams passes (exit 0)
 };
 
 // How to decode and track: -c, --bus, --ppo, --dialect, --fc-pnu-bits, --pcd-profile,
@@ -112,6 +114,8 @@ void add_display_options(CLI::App& app, DecodeOptionValues& values,
                          std::string_view default_format);
 // decode and hex: -w FILE, -F, --linktype, -P.
 void add_write_options(CLI::App& app, DecodeOptionValues& values);
+// decode, hex and stats: --allow-empty (report and sniff word their own).
+void add_allow_empty_option(CLI::App& app, bool& allow_empty);
 
 struct DecodeSettings {
     // What the capture carries; every source of the command is opened with it. Chosen once:
@@ -140,6 +144,7 @@ struct DecodeSettings {
     int link_type = kLinkTypeProfibusDl;
     bool link_type_given = false;  // --linktype; otherwise the bus's default (capture_link_type)
     bool print = true;             // render the decode (false with -w unless -P)
+    bool allow_empty = false;      // --allow-empty: an input without telegrams exits 0
 
     bool filtering() const noexcept { return !stations.empty() || !pnus.empty(); }
 };

@@ -185,7 +185,9 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
                                 std::strerror(errno)));
         return kExitOutputError;
     }
-    return source.status() == InputStatus::Damaged ? kExitDamagedInput : kExitOk;
+    if (source.status() == InputStatus::Damaged) return kExitDamagedInput;
+    if (read == 0) return empty_input_exit(source, settings.allow_empty);
+    return kExitOk;
 }
 
 struct DecodeCommand {
@@ -224,6 +226,7 @@ void add_decode_command(CLI::App& app, int& exit_code) {
         ->default_str("auto");
     add_display_options(*sub, command->options, "text");
     add_write_options(*sub, command->options);
+    add_allow_empty_option(*sub, command->options.allow_empty);
     add_tracking_options(*sub, command->options);
     add_line_options(*sub, command->options);
     sub->footer(std::string(kExitCodeHelp));
@@ -269,6 +272,7 @@ void add_hex_command(CLI::App& app, int& exit_code) {
         ->type_name("BYTES");
     add_display_options(*sub, command->options, "verbose");
     add_write_options(*sub, command->options);
+    add_allow_empty_option(*sub, command->options.allow_empty);
     add_tracking_options(*sub, command->options);
     add_line_options(*sub, command->options);
     sub->footer(std::string(kExitCodeHelp));

@@ -239,10 +239,16 @@ void warn_ppo_overrides(const BusDecoder& decoder);
 
 // A byte stream (raw or hex) in which no telegram of `protocol` was found is no capture dpscope
 // reads: an error saying so, unless `telegrams` were found or the input is a pcap/pcapng file
-// (which may rightly hold none). An unusable input gives its reason. `bus_given` false: the bus
+// (which may rightly hold none: empty_input_exit()). An unusable input gives its reason. `bus_given` false: the bus
 // was chosen from the capture, and the error suggests --bus.
 Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t telegrams,
                                    const CaptureProtocol& protocol, bool bus_given = true);
+
+// The exit code of a decode, hex or stats run that read no telegram from a capture without
+// records (check_telegrams_found() passed; a byte stream without telegrams is no capture):
+// an error naming the input and exit code 1 (as report's "nothing checked"), or with
+// --allow-empty a note and 0 (docs/decisions.md, "An empty input").
+int empty_input_exit(const TelegramSource& source, bool allow_empty);
 
 // Says on standard error how the bus of `input` was chosen when that is worth saying (a note,
 // without --bus), or that the capture's tag names another bus than --bus (a warning).

@@ -29,6 +29,7 @@ struct StatsCommand {
     std::string format = "text";
     std::string output = "-";
     std::string fail_on = "bad";
+    bool allow_empty = false;
 };
 
 // The bus of a capture as the PROFIBUS-only error names it.
@@ -57,6 +58,7 @@ int write_stats(const StatsCommand& command, const Pipeline& pipeline, const Tel
         health_fail_on_from_name(command.fail_on).value_or(HealthFailOn::Bad);
     if (verdict_fails(health.segment.judgement.verdict, fail_on)) return kExitFindings;
     if (source.status() == InputStatus::Damaged) return kExitDamagedInput;
+    if (!health.segment.judged()) return empty_input_exit(source, command.allow_empty);
     return kExitOk;
 }
 
@@ -173,6 +175,7 @@ void add_stats_command(CLI::App& app, int& exit_code) {
                     "unknown")
         ->check(whole_number(9600, 12'000'000, " baud"))
         ->type_name("BAUD");
+    add_allow_empty_option(*sub, command->allow_empty);
     add_health_options(*sub, command->health);
     sub->add_option("-c,--count", command->options.count, "Stop after reading N telegrams")
         ->check(whole_number(1, kMaxCount, " telegrams"))

@@ -254,6 +254,10 @@ struct SegmentHealth {
     std::uint32_t character_bits = 11;       // UART character on PROFIBUS: 8E1 = 11 bits
     double busy_ns = 0;                      // time the line carried telegrams (needs baud)
 
+    // A segment with no telegram is not judged: its verdict stays good, but nothing was seen to
+    // judge, and every format says "not judged (no telegrams)" instead (docs/decisions.md, "An
+    // empty capture").
+    bool judged() const noexcept { return telegrams > 0; }
     bool has_time() const noexcept { return first_ns != kNoTime && end_ns != kNoTime; }
     double duration_s() const noexcept {
         return has_time() ? static_cast<double>(end_ns - first_ns) / 1e9 : 0.0;

@@ -337,8 +337,13 @@ void count(JsonWriter& w, std::string_view key, std::uint64_t n) {
     w.key(key).integer(static_cast<std::int64_t>(n));
 }
 
-void json_judgement(JsonWriter& w, const Judgement& j, const HealthThresholds& thresholds) {
-    w.key("verdict").string(verdict_name(j.verdict));
+void json_judgement(JsonWriter& w, const Judgement& j, const HealthThresholds& thresholds,
+                    bool judged = true) {
+    w.key("verdict");
+    if (judged)
+        w.string(verdict_name(j.verdict));
+    else
+        w.null();
     w.key("reasons").begin_array();
     for (const VerdictReason& r : j.reasons) {
         w.begin_object();
@@ -430,7 +435,7 @@ void json_segment(JsonWriter& w, const BusHealth& h) {
         fixed(w, s.idle_s(), 9);
     else
         w.null();
-    json_judgement(w, s.judgement, h.thresholds);
+    json_judgement(w, s.judgement, h.thresholds, s.judged());
     w.end_object();
 }
 
@@ -581,8 +586,11 @@ void text_segment(TextBuffer& b, const BusHealth& h, std::string_view indent) {
     fmt::format_to(it, "{}Damaged:   {} ({} no station could be named for)\n", indent, s.damaged,
                    s.unattributed_damaged);
     const std::string cause = segment_cause(h);
-    fmt::format_to(it, "{}Segment:   {}{}\n", indent, verdict_name(s.judgement.verdict),
-                   cause.empty() ? "" : fmt::format(" ({})", cause));
+    if (!s.judged())
+        fmt::format_to(it, "{}Segment:   not judged (no telegrams)\n", indent);
+    else
+        fmt::format_to(it, "{}Segment:   {}{}\n", indent, verdict_name(s.judgement.verdict),
+                       cause.empty() ? "" : fmt::format(" ({})", cause));
     for (const VerdictReason& r : s.judgement.reasons)
         fmt::format_to(it, "{}           - {}\n", indent, describe_reason(r, h.thresholds));
 }
@@ -611,7 +619,10 @@ void text_tables(TextBuffer& out, const BusHealth& h, std::string_view indent) {
     }
     const std::vector<Judged> judged = not_good(h);
     append(b, "\nVerdicts\n");
-    if (judged.empty()) append(b, "  every station and master good\n");
+    if (!h.segment.judged())
+        append(b, "  nothing judged: no telegrams\n");
+    else if (judged.empty())
+        append(b, "  every station and master good\n");
     for (const Judged& j : judged) {
         fmt::format_to(it, "  {}: {}\n", j.who, verdict_name(j.judgement->verdict));
         for (const VerdictReason& r : j.judgement->reasons)
@@ -664,7 +675,10 @@ void markdown_segment(TextBuffer& b, const BusHealth& h) {
                        s.duration_s() <= 0 ? "no timestamps" : "give --baud");
     fmt::format_to(it, "- Damaged: {} ({} no station could be named for)\n", s.damaged,
                    s.unattributed_damaged);
-    fmt::format_to(it, "- Segment: **{}**\n", verdict_name(s.judgement.verdict));
+    if (!s.judged())
+        append(b, "- Segment: **not judged** (no telegrams)\n");
+    else
+        fmt::format_to(it, "- Segment: **{}**\n", verdict_name(s.judgement.verdict));
     for (const VerdictReason& r : s.judgement.reasons)
         fmt::format_to(it, "  - {}\n", md_escape(describe_reason(r, h.thresholds)));
 }
@@ -690,7 +704,10 @@ void markdown_tables(TextBuffer& b, const BusHealth& h, std::string_view level) 
         markdown_table(b, master_table(h));
     fmt::format_to(it, "\n{} Verdicts\n\n", level);
     const std::vector<Judged> judged = not_good(h);
-    if (judged.empty()) append(b, "Every station and master good.\n");
+    if (!h.segment.judged())
+        append(b, "Nothing judged: no telegrams.\n");
+    else if (judged.empty())
+        append(b, "Every station and master good.\n");
     for (const Judged& j : judged) {
         fmt::format_to(it, "- {}: **{}**\n", md_escape(j.who), verdict_name(j.judgement->verdict));
         for (const VerdictReason& r : j.judgement->reasons)
@@ -812,10 +829,15 @@ void html_segment(TextBuffer& b, const BusHealth& h) {
         b, "damaged",
         fmt::format("{} ({} no station could be named for)", s.damaged, s.unattributed_damaged));
     const std::string_view verdict = verdict_name(s.judgement.verdict);
-    fmt::format_to(it,
-                   "<tr><th>verdict</th><td class=\"verdict-{}\" id=\"segment-verdict\" "
-                   "style=\"color:{};font-weight:600\">{}</td></tr>\n",
-                   verdict, verdict_colour(verdict), verdict);
+    if (!s.judged())
+        append(b,
+               "<tr><th>verdict</th><td class=\"verdict-none\" id=\"segment-verdict\">not "
+               "judged (no telegrams)</td></tr>\n");
+    else
+        fmt::format_to(it,
+                       "<tr><th>verdict</th><td class=\"verdict-{}\" id=\"segment-verdict\" "
+                       "style=\"color:{};font-weight:600\">{}</td></tr>\n",
+                       verdict, verdict_colour(verdict), verdict);
     if (!s.judgement.reasons.empty())
         report::html_kv(b, "reasons", reasons_text(s.judgement, h.thresholds));
     append(b, "</table>\n");
@@ -1048,7 +1070,9 @@ void html_tables(TextBuffer& b, const BusHealth& h) {
     }
     append(b, "<h3>Verdicts</h3>\n");
     const std::vector<Judged> judged = not_good(h);
-    if (judged.empty()) {
+    if (!h.segment.judged()) {
+        append(b, "<p class=\"meta\">Nothing judged: no telegrams.</p>\n");
+    } else if (judged.empty()) {
         append(b, "<p class=\"meta\">Every station and master good.</p>\n");
     } else {
         append(b, "<ul class=\"verdicts\">\n");

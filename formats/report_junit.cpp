@@ -23,7 +23,10 @@ struct HealthCase {
 };
 
 std::vector<HealthCase> health_cases(const BusHealth& h) {
-    std::vector<HealthCase> cases{{"segment", &h.segment.judgement}};
+    // A segment without telegrams is not judged (SegmentHealth::judged()): no case, as a station
+    // never seen has none; the report's own result says that nothing was checked.
+    std::vector<HealthCase> cases;
+    if (h.segment.judged()) cases.push_back({"segment", &h.segment.judgement});
     for (const StationHealth& s : h.stations)
         cases.push_back(
             {fmt::format("station {} ({})", s.address, station_role_name(s.role)), &s.judgement});

@@ -124,8 +124,8 @@ void render_live_table(const BusHealth& health, Output& out, unsigned width) {
                                     : std::string(", - tel/s");
     segment += seg.load_percent() >= 0 ? fmt::format(", load {:.1f} %", seg.load_percent())
                                        : std::string(", load unknown");
-    segment +=
-        fmt::format(", {} damaged, verdict {}", seg.damaged, verdict_name(seg.judgement.verdict));
+    segment += fmt::format(", {} damaged, verdict {}", seg.damaged,
+                           seg.judged() ? verdict_name(seg.judgement.verdict) : "-");
     line(segment);
     out.end_record();
 }

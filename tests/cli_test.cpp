@@ -231,8 +231,6 @@ TEST(CliTest, InputWithoutAnyTelegramIsUsageError) {
         header.assign(first.out.begin(), first.out.begin() + 24);  // the file header alone
     }
     test::write_file(no_records.path, header);
-    CommandResult pcap = run_dpscope({"decode", no_records.path});
-    EXPECT_EQ(pcap.exit_code, 0) << pcap.err;
     // ... but the report of it is no pass: nothing was checked (exit 1), unless --allow-empty.
     CommandResult report = run_dpscope({"report", no_records.path});
     EXPECT_EQ(report.exit_code, 1) << report.err;
@@ -244,6 +242,70 @@ TEST(CliTest, InputWithoutAnyTelegramIsUsageError) {
     EXPECT_NE(allowed.out.find("\"result\":\"pass\",\"nothing_checked\":true"), std::string::npos)
         << allowed.out;
     EXPECT_NE(run_dpscope({"report", "--help"}).out.find("--allow-empty"), std::string::npos);
+}
+
+// A capture without telegrams (a pcap or pcapng file without records) is no pass for any command
+// that reads one: decode and stats say "no telegrams" and exit 1, as report says "nothing
+// checked"; --allow-empty lets each pass (exit 0, a note). (An empty byte stream is no capture:
+// InputWithoutAnyTelegramIsUsageError.)
+TEST(CliTest, AnEmptyInputFailsUnlessAllowed) {
+    TempFile no_records("none.pcap");
+    {
+        CommandResult first = run_dpscope({"simulate", "-w", "-", "-c", "1"});
+        ASSERT_GT(first.out.size(), 24u);
+        test::write_file(no_records.path,
+                         std::vector<std::uint8_t>(first.out.begin(), first.out.begin() + 24));
+    }
+    TempFile no_packets("none.pcapng");
+    {
+        CommandResult first = run_dpscope({"simulate", "-F", "pcapng", "-w", "-", "-c", "1"});
+        ASSERT_GT(first.out.size(), 64u);
+        // The section header and the interface description, without the packet.
+        std::vector<std::uint8_t> head(first.out.begin(), first.out.end());
+        const std::uint32_t shb = head[4] | head[5] << 8 | head[6] << 16 | head[7] << 24;
+        const std::uint32_t idb =
+            head[shb + 4] | head[shb + 5] << 8 | head[shb + 6] << 16 | head[shb + 7] << 24;
+        head.resize(shb + idb);
+        test::write_file(no_packets.path, head);
+    }
+    for (const std::string& input : {no_records.path, no_packets.path}) {
+        for (const std::vector<std::string>& command :
+             std::vector<std::vector<std::string>>{{"decode"}, {"decode", "-q"}, {"stats"}}) {
+            std::vector<std::string> args = command;
+            args.push_back(input);
+            CommandResult failed = run_dpscope(args);
+            EXPECT_EQ(failed.exit_code, 1) << args[0] << " " << input;
+            EXPECT_EQ(failed.err, "dpscope: error: " + input +
+                                      ": no telegrams: the capture is empty (--allow-empty accepts "
+                                      "it)\n")
+                << args[0];
+            args.insert(args.begin() + 1, "--allow-empty");
+            CommandResult allowed = run_dpscope(args);
+            EXPECT_EQ(allowed.exit_code, 0) << args[0] << " " << input;
+            EXPECT_EQ(allowed.err, "dpscope: note: " + input + ": no telegrams\n") << args[0];
+        }
+        CommandResult report = run_dpscope({"report", input});
+        EXPECT_EQ(report.exit_code, 1) << input << report.err;
+        EXPECT_NE(report.out.find("FAIL: nothing checked (no telegrams)"), std::string::npos)
+            << report.out;
+        EXPECT_EQ(run_dpscope({"report", "--allow-empty", input}).exit_code, 0) << input;
+    }
+    // The segment of an empty capture is not judged, in every stats format.
+    CommandResult text = run_dpscope({"stats", "--allow-empty", no_records.path});
+    EXPECT_NE(text.out.find("Segment:   not judged (no telegrams)\n"), std::string::npos)
+        << text.out;
+    EXPECT_EQ(text.out.find("good"), std::string::npos) << text.out;
+    CommandResult json = run_dpscope({"stats", "--allow-empty", "-T", "json", no_records.path});
+    EXPECT_NE(json.out.find("\"verdict\":null,\"reasons\":[]}"), std::string::npos) << json.out;
+    for (const char* format : {"markdown", "html"}) {
+        CommandResult other =
+            run_dpscope({"stats", "--allow-empty", "-T", format, no_records.path});
+        EXPECT_NE(other.out.find("not judged"), std::string::npos) << format << other.out;
+        EXPECT_EQ(other.out.find("good"), std::string::npos) << format;
+    }
+    for (const char* command : {"decode", "hex", "stats"})
+        EXPECT_NE(run_dpscope({command, "--help"}).out.find("--allow-empty"), std::string::npos)
+            << command;
 }
 
 TEST(CliTest, BadOptionValuesAreUsageErrors) {
