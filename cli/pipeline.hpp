@@ -13,6 +13,7 @@
 #include "decoder/counted.hpp"
 #include "decoder/fc_tracker.hpp"
 #include "decoder/session_tracker.hpp"
+#include "decoder/text_encoding.hpp"
 #include "decoder/vlt2000_tracker.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/report.hpp"
@@ -175,10 +176,13 @@ class Pipeline {
     bool keep_timelines_ = false;
 };
 
-// What the summary and the report say about the input itself.
+// What the summary and the report say about the input itself. The name is shown as valid UTF-8
+// without control characters (display_text()): a file name can be any bytes, and every output
+// format is UTF-8.
 inline InputSummary describe_input(const TelegramSource& source) {
-    return InputSummary{source.name(), std::string(input_format_name(source.format())),
-                        source.bytes_skipped(), source.status() == InputStatus::Damaged};
+    return InputSummary{display_text(source.name()),
+                        std::string(input_format_name(source.format())), source.bytes_skipped(),
+                        source.status() == InputStatus::Damaged};
 }
 
 // The conformance report over what `pipeline` decoded from `source`, findings from `log`.
@@ -239,8 +243,8 @@ void warn_ppo_overrides(const BusDecoder& decoder);
 
 // A byte stream (raw or hex) in which no telegram of `protocol` was found is no capture dpscope
 // reads: an error saying so, unless `telegrams` were found or the input is a pcap/pcapng file
-// (which may rightly hold none: empty_input_exit()). An unusable input gives its reason. `bus_given` false: the bus
-// was chosen from the capture, and the error suggests --bus.
+// (which may rightly hold none: empty_input_exit()). An unusable input gives its reason.
+// `bus_given` false: the bus was chosen from the capture, and the error suggests --bus.
 Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t telegrams,
                                    const CaptureProtocol& protocol, bool bus_given = true);
 

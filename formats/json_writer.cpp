@@ -2,12 +2,17 @@
 
 #include <iterator>
 
+#include "decoder/text_encoding.hpp"
+
 namespace dpscope::json {
 
 namespace {
 
+// Quotes, backslashes and control characters are escaped; bytes from 0x80 are checked for
+// valid UTF-8 (JSON text is UTF-8: RFC 8259, section 8.1).
 constexpr bool needs_escape(char c) noexcept {
-    return c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20;
+    return c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20 ||
+           static_cast<unsigned char>(c) >= 0x80;
 }
 
 }  // namespace
@@ -19,6 +24,20 @@ void string(fmt::memory_buffer& out, std::string_view text) {
     for (const char* p = run; p != end; ++p) {
         const char c = *p;
         if (!needs_escape(c)) continue;
+        if (static_cast<unsigned char>(c) >= 0x80) {
+            // A valid sequence is copied as it is; a byte that starts none becomes U+FFFD (a
+            // file name need not be UTF-8).
+            const std::size_t length =
+                utf8_sequence_length(text, static_cast<std::size_t>(p - text.data()));
+            if (length != 0) {
+                p += length - 1;
+                continue;
+            }
+            out.append(run, p);
+            run = p + 1;
+            out.append(kReplacementCharacter);
+            continue;
+        }
         out.append(run, p);
         run = p + 1;
         switch (c) {

@@ -3,11 +3,25 @@
 #include <algorithm>
 #include <iterator>
 
+#include "decoder/text_encoding.hpp"
+
 namespace dpscope::report {
 
 std::string md_escape(std::string_view text) {
     std::string out;
-    for (char ch : text) {
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char ch = text[i];
+        if (static_cast<unsigned char>(ch) >= 0x80) {
+            // Valid UTF-8 as it is; a byte that starts no sequence becomes U+FFFD.
+            const std::size_t length = utf8_sequence_length(text, i);
+            if (length == 0) {
+                out += kReplacementCharacter;
+            } else {
+                out.append(text.substr(i, length));
+                i += length - 1;
+            }
+            continue;
+        }
         if (ch == '\\' || ch == '|' || ch == '*' || ch == '_' || ch == '`' || ch == '<' ||
             ch == '>')
             out += '\\';
@@ -17,7 +31,27 @@ std::string md_escape(std::string_view text) {
 }
 
 void escape_xml(TextBuffer& b, std::string_view text) {
-    for (char ch : text) {
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char ch = text[i];
+        const auto byte = static_cast<unsigned char>(ch);
+        if (byte >= 0x80) {
+            // XML and HTML here are UTF-8 (declared so): valid sequences as they are, a byte that
+            // starts none becomes U+FFFD.
+            const std::size_t length = utf8_sequence_length(text, i);
+            if (length == 0) {
+                append(b, kReplacementCharacter);
+            } else {
+                append(b, text.substr(i, length));
+                i += length - 1;
+            }
+            continue;
+        }
+        // XML 1.0 allows no control character but tab, line feed and carriage return, not even
+        // as a character reference.
+        if ((byte < 0x20 && ch != '\t' && ch != '\n' && ch != '\r') || byte == 0x7F) {
+            append(b, kReplacementCharacter);
+            continue;
+        }
         switch (ch) {
             case '&': append(b, "&amp;"); break;
             case '<': append(b, "&lt;"); break;

@@ -17,7 +17,10 @@
 #include <string>
 #include <vector>
 
+#include "decoder/text_encoding.hpp"
+#include "tests/json_parser.hpp"
 #include "tests/test_support.hpp"
+#include "tests/xml_parser.hpp"
 
 namespace dpscope {
 namespace {
@@ -531,6 +534,40 @@ TEST(CliOutputTest, SimulateStartIsDecimal) {
     CommandResult r = run_dpscope({"simulate", "-w", "-", "--start", "0x10"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(r.out.empty());
+}
+
+// A file name that is not UTF-8 (and holds a control character) comes out of every format as
+// valid UTF-8, U+FFFD for each bad byte: JSON parses, JUnit and the HTML page are well-formed.
+TEST(CliOutputTest, EveryOutputIsValidUtf8WhateverTheFileName) {
+    const std::string capture = test::temp_folder() + "/cap\xFF\xFE\x01.pcap";
+    test::write_file(capture, test::read_file(sample(kFaults)));
+    const std::string shown = test::temp_folder() + "/cap\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD.pcap";
+    for (const char* format : {"text", "json", "markdown", "html", "junit"}) {
+        CommandResult r = run_dpscope({"report", "-T", format, capture});
+        EXPECT_EQ(r.exit_code, 1) << format << r.err;
+        EXPECT_TRUE(is_valid_utf8(r.out)) << format;
+        EXPECT_EQ(r.out.find('\x01'), std::string::npos) << format;
+        EXPECT_NE(r.out.find(shown), std::string::npos) << format;
+        if (std::string_view(format) == "json") {
+            auto json = test::parse_json(r.out);
+            ASSERT_TRUE(json) << r.out.substr(0, 200);
+            EXPECT_EQ((*json)["input"]["file"].string(), shown);
+        }
+        if (std::string_view(format) == "junit") {
+            EXPECT_TRUE(test::parse_xml(r.out)) << r.out;
+        }
+        if (std::string_view(format) == "html") {
+            EXPECT_TRUE(test::parse_xml(r.out, true));
+        }
+    }
+    for (const char* format : {"text", "json", "markdown", "html"}) {
+        CommandResult r = run_dpscope({"stats", "-T", format, capture});
+        EXPECT_TRUE(is_valid_utf8(r.out)) << format;
+        EXPECT_NE(r.out.find(shown), std::string::npos) << format;
+    }
+    CommandResult summary = run_dpscope({"decode", "-q", capture});
+    EXPECT_TRUE(is_valid_utf8(summary.out));
+    EXPECT_NE(summary.out.find(shown), std::string::npos) << summary.out;
 }
 
 }  // namespace
