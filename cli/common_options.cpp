@@ -1,7 +1,10 @@
 #include "cli/common_options.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -579,7 +582,8 @@ void add_health_options(CLI::App& app, HealthOptionValues& values) {
     app.add_option("--health-config", values.config,
                    "Read the bus-health thresholds from FILE: 'name = value' lines, '#' or ';' "
                    "comments, optionally under a [thresholds] header (TOML or INI); an error "
-                   "names FILE:LINE. --threshold options apply after it")
+                   "names FILE:LINE. A regular file of at most 64 KiB. --threshold options "
+                   "apply after it")
         ->type_name("FILE");
     app.add_option("--threshold", values.thresholds,
                    "Set one bus-health threshold, NAME=VALUE (repeatable; after --health-config). "
@@ -592,15 +596,41 @@ void add_health_options(CLI::App& app, HealthOptionValues& values) {
 Result<HealthThresholds> resolve_health_options(const HealthOptionValues& values) {
     HealthThresholds thresholds;
     if (!values.config.empty()) {
-        std::FILE* file = std::fopen(values.config.c_str(), "rb");
-        if (file == nullptr)
+        // A settings file is a regular file of a few lines: a device (/dev/zero), FIFO or
+        // directory is refused before anything is read (opened without waiting, as a FIFO
+        // would wait for a writer), and a file is read up to kMaxHealthConfigBytes.
+        const int fd = ::open(values.config.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+        if (fd < 0)
             return Error{fmt::format("--health-config {}: cannot read: {}", values.config,
                                      std::strerror(errno))};
+        struct stat info {};
+        if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+            ::close(fd);
+            return Error{
+                fmt::format("--health-config {}: not a regular file; give a settings "
+                            "file of 'name = value' lines",
+                            values.config)};
+        }
+        std::FILE* file = ::fdopen(fd, "rb");
+        if (file == nullptr) {
+            const int error = errno;
+            ::close(fd);
+            return Error{fmt::format("--health-config {}: cannot read: {}", values.config,
+                                     std::strerror(error))};
+        }
         std::string text;
         char buffer[4096];
         std::size_t n = 0;
-        while ((n = std::fread(buffer, 1, sizeof buffer, file)) > 0)
+        while ((n = std::fread(buffer, 1, sizeof buffer, file)) > 0) {
             text.append(buffer, n);
+            if (text.size() > kMaxHealthConfigBytes) {
+                std::fclose(file);
+                return Error{fmt::format(
+                    "--health-config {}: larger than {} KiB; a settings file holds a few lines "
+                    "of 'name = value'",
+                    values.config, kMaxHealthConfigBytes / 1024)};
+            }
+        }
         const bool failed = std::ferror(file) != 0;
         const int error = errno;
         std::fclose(file);

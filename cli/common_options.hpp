@@ -198,6 +198,8 @@ void print_warning(std::string_view message);
 void print_diagnostic(Severity severity, std::string_view message);
 
 // --- Bus health (issue 12): the thresholds of the verdict (stats, report, sniff --stats) -------
+// The largest --health-config file read: the thresholds fit in 2 KiB with comments.
+inline constexpr std::size_t kMaxHealthConfigBytes = 64 * 1024;
 struct HealthOptionValues {
     std::string config;                   // --health-config FILE ("" none)
     std::vector<std::string> thresholds;  // --threshold NAME=VALUE, in the order given

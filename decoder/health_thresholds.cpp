@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "decoder/catalogue.hpp"
+#include "decoder/text_encoding.hpp"
 
 namespace dpscope {
 
@@ -169,18 +170,18 @@ Result<void> HealthThresholds::set_from_text(std::string_view assignment) {
         return Error{
             fmt::format("'{}' is no threshold setting; write NAME=VALUE, e.g. "
                         "lost_cycles=5 (thresholds: {})",
-                        assignment, known_names())};
+                        quoted_excerpt(assignment), known_names())};
     const std::string_view name = trim(assignment.substr(0, equals));
     const std::string_view text = trim(assignment.substr(equals + 1));
     const std::optional<HealthThreshold> kind = health_threshold_from_name(name);
     if (!kind)
-        return Error{
-            fmt::format("unknown threshold '{}'; the thresholds are: {}", name, known_names())};
+        return Error{fmt::format("unknown threshold '{}'; the thresholds are: {}",
+                                 quoted_excerpt(name), known_names())};
     double value = 0;
     const char* end = text.data() + text.size();
     auto [stop, error] = std::from_chars(text.data(), end, value);
     if (text.empty() || error != std::errc{} || stop != end)
-        return Error{fmt::format("threshold {}: '{}' is not a number", name, text)};
+        return Error{fmt::format("threshold {}: '{}' is not a number", name, quoted_excerpt(text))};
     return set(*kind, value);
 }
 
@@ -203,7 +204,7 @@ Result<void> HealthThresholds::load(std::string_view text, std::string_view orig
                 return Error{
                     fmt::format("{}:{}: unknown section '{}'; the settings go in "
                                 "[thresholds] or before any section",
-                                origin, line_number, line)};
+                                origin, line_number, quoted_excerpt(line))};
             continue;
         }
         if (Result<void> set = loaded.set_from_text(line); !set)

@@ -2,6 +2,7 @@
 // (format, thresholds, settings file), the PROFIBUS-only refusal, -w never onto the input and
 // left as it was by a failed run, and the exit codes of --fail-on.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstdio>
 #include <string>
@@ -102,7 +103,7 @@ TEST(StatsCliTest, SettingsFileErrorsNameTheFileAndLine) {
         run_dpscope({"stats", "--health-config", missing, kClean}),
         "dpscope: error: --health-config " + missing + ": cannot read: No such file or directory");
     expect_usage_error(run_dpscope({"stats", "--health-config", test::source_dir(), kClean}),
-                       "--health-config " + test::source_dir() + ": cannot read: Is a directory");
+                       "--health-config " + test::source_dir() + ": not a regular file");
 
     const std::string bad = test::temp_path("health-bad.toml");
     test::write_text_file(bad, "# thresholds\n[thresholds]\nlost_cycles = 4\nrepeat_percent = 2\n");
@@ -125,6 +126,34 @@ TEST(StatsCliTest, SettingsFileErrorsNameTheFileAndLine) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     CommandResult report = run_dpscope({"report", "--health-config", good, kClean});
     EXPECT_EQ(report.exit_code, 0) << report.err;
+}
+
+// A settings file that is no settings file is refused before it is read whole: a device that
+// never ends, a FIFO, a file too large; a line quoted in an error is cut and shown without
+// control characters or invalid UTF-8.
+TEST(StatsCliTest, HostileSettingsFilesAreRefusedAndQuotedSafely) {
+    expect_usage_error(run_dpscope({"stats", "--health-config", "/dev/zero", kClean}),
+                       "dpscope: error: --health-config /dev/zero: not a regular file");
+    const std::string fifo = test::temp_path("health.fifo");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    // Opened for reading, a FIFO waits for a writer: it is refused without waiting.
+    expect_usage_error(run_dpscope({"stats", "--health-config", fifo, kClean}),
+                       "--health-config " + fifo + ": not a regular file");
+    const std::string big = test::temp_path("big.toml");
+    test::write_text_file(big, std::string(200 * 1024, '#') + "\n");
+    expect_usage_error(run_dpscope({"stats", "--health-config", big, kClean}),
+                       "--health-config " + big + ": larger than 64 KiB");
+    const std::string hostile = test::temp_path("hostile.toml");
+    test::write_text_file(hostile, "lost_cycles = " + std::string(5000, 'x') + "\x1b[2J\xff\n");
+    CommandResult quoted = run_dpscope({"stats", "--health-config", hostile, kClean});
+    expect_usage_error(quoted, "--health-config " + hostile + ":1: threshold lost_cycles: '" +
+                                   std::string(80, 'x') + "...' is not a number");
+    EXPECT_LT(quoted.err.size(), 400u);
+    const std::string section = test::temp_path("section.toml");
+    test::write_text_file(section, "[sec\x1b[2J\xff]\n");
+    CommandResult escaped = run_dpscope({"stats", "--health-config", section, kClean});
+    expect_usage_error(escaped, "unknown section '[sec\xEF\xBF\xBD[2J\xEF\xBF\xBD]'");
+    EXPECT_EQ(escaped.err.find('\x1b'), std::string::npos);
 }
 
 TEST(StatsCliTest, FcAndVlt2000CapturesAreRefused) {
