@@ -175,6 +175,7 @@ void svg_timeline(TextBuffer& b, const Timeline& timeline, std::string_view who,
     }
     constexpr int kWidth = 720, kLeft = 84, kRight = 10;
     constexpr int kBarsTop = 64, kBarsHeight = 80, kHeight = 178;
+    constexpr double kPlot = kWidth - kLeft - kRight;
     const auto& bins = timeline.bins();
     std::size_t used = 0;
     std::uint32_t tallest = 1;
@@ -184,7 +185,21 @@ void svg_timeline(TextBuffer& b, const Timeline& timeline, std::string_view who,
         tallest = std::max(tallest, bin.transactions);
     }
     used = std::max<std::size_t>(used, 1);
-    const double step = static_cast<double>(kWidth - kLeft - kRight) / static_cast<double>(used);
+    const std::int64_t width_ns = timeline.bin_width_ns();
+    // The axis spans the capture, first telegram to last, whatever part of it this channel was
+    // busy in: one finding is a tick at its time, not a bar across the page (issue 27). Without
+    // the capture's times (never, when a timeline has events) the channel's own bins.
+    std::int64_t axis_start = c.summary->first_time_ns();
+    std::int64_t axis_end = c.summary->last_time_ns();
+    if (axis_start == kNoTime || axis_end == kNoTime || axis_start > timeline.start_ns()) {
+        axis_start = timeline.start_ns();
+        axis_end = timeline.start_ns() + static_cast<std::int64_t>(used) * width_ns;
+    }
+    const double span_ns = static_cast<double>(std::max<std::int64_t>(axis_end - axis_start, 1));
+    const auto x_of = [&](std::int64_t time_ns) {
+        const double x = static_cast<double>(time_ns - axis_start) / span_ns * kPlot;
+        return kLeft + std::clamp(x, 0.0, kPlot);
+    };
     fmt::format_to(it,
                    "<svg class=\"timeline\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} {}\" "
                    "role=\"img\" aria-label=\"timeline of {}\">\n",
@@ -192,43 +207,51 @@ void svg_timeline(TextBuffer& b, const Timeline& timeline, std::string_view who,
     const char* rows[] = {"errors", "warnings", "notes"};
     const char* singular[] = {"error", "warning", "note"};
     const char* colours[] = {"#d92d20", "#f79009", "#2e90fa"};
-    for (int row = 0; row < 3; ++row)
+    for (int row = 0; row < 3; ++row) {
         fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", kLeft - 6,
                        14 + row * 16, rows[row]);
+        // Each row's axis: the capture, on which the events are ticks.
+        fmt::format_to(it,
+                       "<line class=\"axis\" x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" "
+                       "stroke=\"#d0d5dd\"/>\n",
+                       kLeft, 10 + row * 16, kWidth - kRight, 10 + row * 16);
+    }
     fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">transactions</text>\n",
                    kLeft - 6, kBarsTop + kBarsHeight / 2);
     fmt::format_to(it, "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#8a93a6\"/>\n",
                    kLeft, kBarsTop + kBarsHeight, kWidth - kRight, kBarsTop + kBarsHeight);
-    const std::int64_t width_ns = timeline.bin_width_ns();
     for (std::size_t i = 0; i < used; ++i) {
         const Timeline::Bin& bin = bins[i];
-        const double x = kLeft + static_cast<double>(i) * step;
-        std::int64_t from = timeline.start_ns() + static_cast<std::int64_t>(i) * width_ns;
-        std::string when = relative_seconds(c, from);
+        const std::int64_t from = timeline.start_ns() + static_cast<std::int64_t>(i) * width_ns;
+        const double x = x_of(from);
+        const double x_end = x_of(from + width_ns);
+        const std::string when = relative_seconds(c, from);
         if (bin.transactions) {
             double height = static_cast<double>(bin.transactions) / tallest * kBarsHeight;
             fmt::format_to(it,
                            "<rect class=\"tx\" x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" "
                            "height=\"{:.2f}\" fill=\"#4e79c5\"><title>from {} s: {}"
                            "</title></rect>\n",
-                           x, kBarsTop + kBarsHeight - height, std::max(step - 0.5, 0.8), height,
-                           when, counted(bin.transactions, "transaction", "transactions"));
+                           x, kBarsTop + kBarsHeight - height, std::max(x_end - x - 0.5, 0.8),
+                           height, when, counted(bin.transactions, "transaction", "transactions"));
         }
+        // An event is a tick 2 units wide in the middle of its bin (its time within the bin is
+        // not kept), however wide the bin is drawn.
+        const double tick = std::min((x + x_end) / 2 - 1, static_cast<double>(kWidth - kRight) - 2);
         const std::uint32_t counts[] = {bin.errors, bin.warnings, bin.notes};
         for (int row = 0; row < 3; ++row) {
             if (!counts[row]) continue;
             fmt::format_to(it,
-                           "<rect class=\"mark {}\" x=\"{:.2f}\" y=\"{}\" width=\"{:.2f}\" "
+                           "<rect class=\"mark {}\" x=\"{:.2f}\" y=\"{}\" width=\"2\" "
                            "height=\"10\" fill=\"{}\"><title>from {} s: {}</title></rect>\n",
-                           rows[row], x, 5 + row * 16, std::max(step, 3.0), colours[row], when,
-                           counted(counts[row], singular[row], rows[row]));
+                           rows[row], std::max(tick, static_cast<double>(kLeft)), 5 + row * 16,
+                           colours[row], when, counted(counts[row], singular[row], rows[row]));
         }
     }
-    std::int64_t end_ns = timeline.start_ns() + static_cast<std::int64_t>(used) * width_ns;
     fmt::format_to(it, "<text x=\"{}\" y=\"{}\">{} s</text>\n", kLeft, kHeight - 8,
-                   relative_seconds(c, timeline.start_ns()));
+                   relative_seconds(c, axis_start));
     fmt::format_to(it, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{} s</text>\n", kWidth - kRight,
-                   kHeight - 8, relative_seconds(c, end_ns));
+                   kHeight - 8, relative_seconds(c, axis_end));
     append(b, "</svg>\n");
 }
 

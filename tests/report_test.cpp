@@ -1485,6 +1485,39 @@ TEST(ReportTest, HtmlStationWithoutTransactionsHasNoCharts) {
               std::string::npos);
 }
 
+// The timeline's axis spans the capture, and an event is a tick on it: a slave whose only event
+// is one finding halfway through gets a 2-unit mark in the middle, not a bar across the page.
+TEST(ReportTest, HtmlTimelineDrawsASingleFindingAsATickOnTheCapture) {
+    auto analysis = analyse_simulation(one_slave(6, 3, 200));  // PPO 3: no parameter channel
+    ASSERT_EQ(analysis->tracker.transactions(), 0u);
+    const std::int64_t first = analysis->summary.first_time_ns();
+    const std::int64_t last = analysis->summary.last_time_ns();
+    ASSERT_LT(first, last);
+    Finding finding;
+    finding.kind = FindingKind::FdlNoResponse;
+    finding.severity = Severity::Error;
+    finding.time_ns = first + (last - first) / 2;
+    finding.has_stations = true;
+    finding.master = 2;
+    finding.slave = 6;
+    analysis->timelines.add(std::span<const Finding>(&finding, 1), {});
+    auto html = parse_xml(render(ReportFormat::Html, context_of(*analysis)), true);
+    ASSERT_TRUE(html);
+    auto timeline = html->all("svg", "timeline");
+    ASSERT_EQ(timeline.size(), 1u);
+    auto marks = timeline[0]->all("rect", "mark");
+    ASSERT_EQ(marks.size(), 1u);
+    EXPECT_TRUE(marks[0]->has_class("errors"));
+    EXPECT_EQ(marks[0]->attribute("width"), "2");
+    // The plot runs from x 84 to 710; the middle is 397 (the bin's middle, within a bin).
+    const double x = std::strtod(marks[0]->attribute("x").c_str(), nullptr);
+    EXPECT_NEAR(x, 396.0, 8.0);
+    // The axis is labelled with the capture's start and end.
+    auto labels = timeline[0]->all("text");
+    ASSERT_FALSE(labels.empty());
+    EXPECT_EQ(labels.back()->text, relative_seconds_text(last - first) + " s");
+}
+
 TEST(ReportTest, HtmlStationFilterHidesOtherSlavesAndTheirFindings) {
     auto html =
         parse_xml(render(ReportFormat::Html, context_of(faults(), FailOn::Error, {5})), true);
