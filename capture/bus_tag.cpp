@@ -275,6 +275,7 @@ BusChoice choose_bus(Bytes head, InputFormat format, bool complete) {
     // A byte stream names no bus: the choice is always said (issue #10: "say which was chosen").
     (void)qualified;
     choice.say = true;
+    choice.unambiguous = second_count.bytes == 0;
     return choice;
 }
 

@@ -61,6 +61,9 @@ struct BusChoice {
     // The choice was not obvious from the capture (a byte stream, an untagged USER0 capture) and
     // is worth saying.
     bool say = false;
+    // A byte stream that one bus frames and no other frames a byte of: the choice is plain
+    // (`dpscope hex` does not say it for telegrams typed on its command line).
+    bool unambiguous = false;
     // Not enough input yet to choose (a byte stream that is still arriving).
     bool need_more = false;
     // The bus the capture's tag names (pcap, pcapng).

@@ -232,6 +232,7 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     settings.quiet = values.quiet;
     settings.line_buffered = values.line_buffered;
     settings.allow_empty = values.allow_empty;
+    settings.baud_given = values.baud != 0;
     settings.count = values.count;
     settings.tracker.timeout_ns = static_cast<std::int64_t>(values.timeout_ms) * 1'000'000;
     settings.tracker.strict = values.strict;

@@ -145,6 +145,7 @@ struct DecodeSettings {
     bool link_type_given = false;  // --linktype; otherwise the bus's default (capture_link_type)
     bool print = true;             // render the decode (false with -w unless -P)
     bool allow_empty = false;      // --allow-empty: an input without telegrams exits 0
+    bool baud_given = false;       // --baud (decode, hex, report)
 
     bool filtering() const noexcept { return !stations.empty() || !pnus.empty(); }
 };

@@ -73,6 +73,14 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         }
         writer = std::move(opened).value();
     }
+    // --baud times the serial buses' commands on the line; a PROFIBUS decode has no use for it
+    // (report and stats take it for the bus load), so it is said, as for the other options of
+    // another bus.
+    if (settings.baud_given && settings.protocol->protocol == Protocol::ProfibusDp)
+        print_warning(fmt::format(
+            "{}: --baud applies to the FC protocol and VLT 2000 in decode (for PROFIBUS, report "
+            "and stats use it for the bus load); this capture is PROFIBUS DP: ignored",
+            source.name()));
     // With -w -, the capture owns standard output; text goes to standard error.
     FILE* text_stream = settings.write == "-" ? stderr : stdout;
     Output out(text_stream, settings.line_buffered || isatty(fileno(text_stream)) != 0);
@@ -316,7 +324,9 @@ void add_hex_command(CLI::App& app, int& exit_code) {
             BusChoice choice =
                 choose_bus(Bytes(bytes.data(), bytes.size()), InputFormat::Raw, true);
             settings->protocol = choice.protocol;
-            say_bus_choice(*settings, choice, "<command line>");
+            // Typed telegrams that only one bus frames need no note; one that several buses
+            // could frame (or none) is said, with the option that chooses.
+            if (!choice.unambiguous) say_bus_choice(*settings, choice, "<command line>");
         }
         auto source =
             memory_source("<command line>", Bytes(bytes.data(), bytes.size()), *settings->protocol);

@@ -8,6 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
+#include "cli/parse_errors.hpp"
 #include "cli/version.hpp"
 
 int main(int argc, char** argv) {
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
         return fmt::format(
             "dpscope: error: {}\nRun 'dpscope --help' or 'dpscope SUBCOMMAND "
             "--help' for the options.\n",
-            e.what());
+            parse_error_text(e));
     });
     app.footer(std::string(kExitCodeHelp) +
                "\nRun 'dpscope SUBCOMMAND --help' for the options of each subcommand."

@@ -497,11 +497,17 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
     sub->add_flag("--as-fast-as-possible", command->as_fast_as_possible,
                   "With --device: do not wait for the telegrams' times, write as fast as the "
                   "device takes them");
-    sub->add_option("-F,--output-format", command->output_format,
-                    "pcap (nanosecond timestamps), pcapng, raw (bytes as on the wire) or hex "
-                    "(one line a telegram with its timestamp)")
+    sub->add_option("-F,--write-format", command->output_format,
+                    "Capture format for -w, as in decode: pcap (nanosecond timestamps), pcapng, "
+                    "raw (bytes as on the wire) or hex (one line a telegram with its timestamp)")
         ->check(CLI::IsMember({"pcap", "pcapng", "raw", "hex"}))
+        ->type_name("FORMAT")
         ->default_str("pcap");
+    // Its name before issue 27, still read (not shown in --help): -F is --write-format in every
+    // subcommand now.
+    sub->add_option("--output-format", command->output_format)
+        ->check(CLI::IsMember({"pcap", "pcapng", "raw", "hex"}))
+        ->group("");
     sub->add_option("--linktype", command->link_type,
                     "pcap link type: profibus (257, PROFIBUS_DL) or user0 (147) for tools that "
                     "cannot open 257; always user0 with --bus fc and vlt2000")

@@ -69,9 +69,12 @@ class FcSection final : public StationSection {
         fmt::format_to(it, "  parameters     {}\n", parameters_text(s));
         if (!s.channel.rejections.empty()) {
             append(b, "  rejections    ");
-            for (const auto& [key, count] : s.channel.rejections)
-                fmt::format_to(it, " PNU {} fault code {} ({}) {}x;", key.first, key.second,
-                               fault_text(key.second), count);
+            const char* separator = " ";
+            for (const auto& [key, count] : s.channel.rejections) {
+                fmt::format_to(it, "{}PNU {} fault code {} ({}) {}x", separator, key.first,
+                               key.second, fault_text(key.second), count);
+                separator = "; ";
+            }
             b.push_back('\n');
         }
         fmt::format_to(it, "  findings       {}\n", findings_by_kind_text(findings_));

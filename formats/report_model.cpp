@@ -245,8 +245,11 @@ std::string timeout_rule_text(const ReportContext& c, const ReportModel& m) {
 
 std::string filter_text(const ReportContext& c) {
     std::string text;
+    // "slaves 3, 5" on PROFIBUS, "drives 7" on the FC protocol and VLT 2000 (as the sections).
+    const std::string_view noun =
+        c.stations.size() == 1 ? bus_wording(c).station : bus_wording(c).stations;
     for (std::uint8_t station : c.stations)
-        text += fmt::format("{}{}", text.empty() ? "slaves " : ", ", station);
+        text += text.empty() ? fmt::format("{} {}", noun, station) : fmt::format(", {}", station);
     return text;
 }
 

@@ -144,9 +144,11 @@ class PcvSection final : public StationSection {
         fmt::format_to(it, "  parameters     {}\n", parameters_text(s));
         if (!s.rejections.empty()) {
             append(b, "  rejections    ");
+            const char* separator = " ";
             for (const auto& [key, count] : s.rejections) {
-                fmt::format_to(it, " PNU {} error {} ({}) {}x;", key.first, key.second,
+                fmt::format_to(it, "{}PNU {} error {} ({}) {}x", separator, key.first, key.second,
                                error_text_or_unknown(s.dialect, key.second), count);
+                separator = "; ";
             }
             b.push_back('\n');
         }

@@ -95,7 +95,16 @@ TEST(CliTest, HexHelpMentionsEveryOption) {
 TEST(CliTest, SimulateHelpMentionsEveryOption) {
     CommandResult r = run_dpscope({"simulate", "--help"});
     EXPECT_EQ(r.exit_code, 0);
-    expect_mentions(r.out, {"-w,--write",    "-F,--output-format",
+    // -F has one name in every subcommand; simulate's old --output-format is still read.
+    EXPECT_EQ(r.out.find("--output-format"), std::string::npos);
+    for (const char* command : {"decode", "hex"})
+        EXPECT_NE(run_dpscope({command, "--help"}).out.find("-F,--write-format"), std::string::npos)
+            << command;
+    CommandResult old_name =
+        run_dpscope({"simulate", "-c", "2", "--output-format", "hex", "-w", "-"});
+    EXPECT_EQ(old_name.exit_code, 0) << old_name.err;
+    EXPECT_EQ(old_name.out, run_dpscope({"simulate", "-c", "2", "-F", "hex", "-w", "-"}).out);
+    expect_mentions(r.out, {"-w,--write",    "-F,--write-format",
                             "--linktype",    "--seed",
                             "--baud",        "--master",
                             "--slave",       "--cycles",
@@ -306,6 +315,46 @@ TEST(CliTest, AnEmptyInputFailsUnlessAllowed) {
     for (const char* command : {"decode", "hex", "stats"})
         EXPECT_NE(run_dpscope({command, "--help"}).out.find("--allow-empty"), std::string::npos)
             << command;
+}
+
+// The report's filter line names what the bus has: slaves on PROFIBUS, drives on the serial
+// buses (as their sections and the --station warning do).
+TEST(CliTest, ReportFilterLineNamesSlavesOrDrives) {
+    EXPECT_NE(run_dpscope({"report", "--station", "2", "samples/vlt2000.pcap"})
+                  .out.find("\nFilter:  drive 2 (telegram counts cover the whole capture)\n"),
+              std::string::npos);
+    EXPECT_NE(run_dpscope({"report", "--station", "1", "--station", "2", "samples/fc.pcap"})
+                  .out.find("\nFilter:  drives 1, 2 ("),
+              std::string::npos);
+    CommandResult markdown =
+        run_dpscope({"report", "-T", "markdown", "--station", "2", "samples/vlt2000.pcap"});
+    EXPECT_NE(markdown.out.find("- Filter: drive 2 ("), std::string::npos) << markdown.out;
+    EXPECT_NE(run_dpscope({"report", "--station", "3", "--station", "5", "samples/faults.pcap"})
+                  .out.find("\nFilter:  slaves 3, 5 ("),
+              std::string::npos);
+}
+
+// The errors CLI11 finds itself are worded as dpscope words its own: what was wrong, how to
+// mend it; never CLI11's "At Most 1 required but received 2".
+TEST(CliTest, CommandLineErrorsAreInDpscopesWords) {
+    const std::string help =
+        "\nRun 'dpscope --help' or 'dpscope SUBCOMMAND --help' for the options.\n";
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+        {{"decode", "-r", kPpo1, "-r", kPpo1}, "--read: given 2 times; give it once"},
+        {{"decode", "--bogus", kPpo1}, "unknown option --bogus"},
+        {{"decode", "-T", "foo", kPpo1}, "--format: 'foo' is not one of text, verbose, jsonl, csv"},
+        {{"decode", kPpo1, "-c"}, "--count needs a value: N, 1 to 9223372036854775807 telegrams"},
+        {{"decode", "--ppo"}, "--ppo needs a value: ADDR=TYPE"},
+        {{"decode", kPpo1, "extra"},
+         "unexpected argument 'extra': give one input FILE, and repeat an option for each of its "
+         "values (--station 3 --station 5)"},
+        {{}, "give a subcommand: decode, hex, report, simulate, sniff or stats"},
+    };
+    for (const auto& [args, message] : cases) {
+        CommandResult r = run_dpscope(args);
+        EXPECT_EQ(r.exit_code, 2) << message;
+        EXPECT_EQ(r.err, "dpscope: error: " + message + help);
+    }
 }
 
 TEST(CliTest, BadOptionValuesAreUsageErrors) {
@@ -761,6 +810,8 @@ TEST(CliTest, HexFromArguments) {
     EXPECT_NE(r.out.find("    Frame control: 0x49 (request, FCB 0, FCV 0, FDL status)\n"),
               std::string::npos)
         << r.out;
+    // One typed telegram only one bus frames: no note about the bus.
+    EXPECT_EQ(r.err, "");
 
     // Every documented spelling, split over arguments; two telegrams.
     CommandResult text = run_dpscope({"hex", "-T", "text", "0x10", "0302", "49:4E", "16,E5"});
@@ -768,6 +819,20 @@ TEST(CliTest, HexFromArguments) {
     EXPECT_EQ(text.out,
               "     1            -   2 → 3   SD1 FDL_Status     req FDL status\n"
               "     2            -   3 → 2   SC  FDL_Status     rsp short acknowledge\n");
+    EXPECT_EQ(text.err, "");
+    // Bytes that two buses could frame: the choice is said, with the option that makes it.
+    CommandResult mixed = run_dpscope({"hex", "-T", "text", "10 03 02 49 4E 16",
+                                       "02 0E 81 24 22 00 00 00 00 02 30 04 7F 20 00 FE"});
+    EXPECT_NE(mixed.err.find("dpscope: note: <command line>: read as the FC protocol"),
+              std::string::npos)
+        << mixed.err;
+    // --baud is no option of a PROFIBUS decode: said, as for the other buses' options.
+    CommandResult baud = run_dpscope({"hex", "--baud", "19200", "10 03 02 49 4E 16"});
+    EXPECT_EQ(baud.err,
+              "dpscope: warning: <command line>: --baud applies to the FC protocol and VLT 2000 "
+              "in decode (for PROFIBUS, report and stats use it for the bus load); this capture "
+              "is PROFIBUS DP: ignored\n");
+    EXPECT_EQ(run_dpscope({"decode", "--baud", "19200", "samples/fc.pcap"}).err, "");
 }
 
 TEST(CliTest, HexFromStandardInput) {
@@ -800,7 +865,8 @@ TEST(CliTest, BadHexArgumentIsUsageErrorNamingIt) {
     EXPECT_NE(odd.err.find("argument 1: '680'"), std::string::npos) << odd.err;
 }
 
-// ---- simulate --------------------------------------------------------------------------------
+// ---- simulate
+// --------------------------------------------------------------------------------
 
 TEST(CliTest, SimulateThenDecodeRoundTrip) {
     TempFile file("sim.pcap");

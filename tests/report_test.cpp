@@ -1034,7 +1034,7 @@ TEST(ReportTest, TextHasTheSectionsAndOneLinePerFinding) {
           "Slave 4 (master 2)", "Slave 5 (master 2)",
           "  latency ms     min 2.182  median 4.227  p95 8.202  max 8.202",
           "  latency cycles min 1  median 2  p95 4  max 4",
-          "  rejections     PNU 207 error 2 (Upper or lower value passed) 1x;",
+          "  rejections     PNU 207 error 2 (Upper or lower value passed) 1x",
           "Bus (telegrams no station can be named for)", "  findings       malformed_telegram 1",
           "Findings (20, in capture order)"})
         EXPECT_EQ(std::count(lines.begin(), lines.end(), std::string(line)), 1) << line;
@@ -2433,7 +2433,7 @@ TEST(ReportTest, FcSectionInText) {
             "  parameters     PNU 302 (0 reads, 1 write), PNU 414 (1 read, 0 writes), PNU 415 (1 "
             "read, 0 writes)\n"),
         std::string::npos);
-    EXPECT_NE(text.find(" PNU 302 fault code 2 (Upper or lower limit is exceeded) 1x;"),
+    EXPECT_NE(text.find(" PNU 302 fault code 2 (Upper or lower limit is exceeded) 1x\n"),
               std::string::npos);
     EXPECT_NE(text.find("  findings       fc_no_response 1, fc_command_rejected 1\n"),
               std::string::npos);

@@ -66,7 +66,7 @@ TEST(StatsCliTest, WritesTheStatisticsOfAProfibusCapture) {
 
 TEST(StatsCliTest, WrongFormatAndMissingInputAreUsageErrors) {
     expect_usage_error(run_dpscope({"stats", "-T", "jsonl", kClean}),
-                       "--format: jsonl not in {text,json,markdown,html,csv}");
+                       "--format: 'jsonl' is not one of text, json, markdown, html, csv");
     expect_usage_error(run_dpscope({"stats", "--fail-on", "error", kClean}), "--fail-on");
     expect_usage_error(run_dpscope({"stats"}), "stats: no input; give a FILE or -r FILE");
     expect_usage_error(run_dpscope({"stats", "samples/no-such.pcap"}), "samples/no-such.pcap");
