@@ -1242,16 +1242,23 @@ void register_dpscope() {
               expert_severity(info.severity), keep(std::string(info.check)), EXPFILL}});
     }
     for (const FindingKindInfo& info : finding_catalogue()) {
+        // One expert info per severity, all three with the kind's plain name, so that
+        // `dpscope.finding.KIND` selects every finding of the kind: a kind's severity can depend
+        // on what the telegram says (dpv1_error_pdu: a warning or a note by its error class).
+        // The kind's default severity is registered last: Wireshark's severity table
+        // (expert_severity_levels) finds a name's last registration.
+        const char* abbrev = keep(fmt::format("dpscope.finding.{}", info.name));
         for (Severity severity : {Severity::Note, Severity::Warning, Severity::Error}) {
-            // The default severity has the plain name; a finding made stricter or milder by an
-            // option gets the severity appended.
-            std::string abbrev = fmt::format("dpscope.finding.{}", info.name);
-            if (severity != info.severity) abbrev += fmt::format(".{}", severity_name(severity));
+            if (severity == info.severity) continue;
             experts.push_back({&ei_finding[static_cast<std::size_t>(info.kind)]
                                           [static_cast<std::size_t>(severity)],
-                               {keep(std::move(abbrev)), finding_group(info.kind),
-                                expert_severity(severity), keep(std::string(info.rule)), EXPFILL}});
+                               {abbrev, finding_group(info.kind), expert_severity(severity),
+                                keep(std::string(info.rule)), EXPFILL}});
         }
+        experts.push_back({&ei_finding[static_cast<std::size_t>(info.kind)]
+                                      [static_cast<std::size_t>(info.severity)],
+                           {abbrev, finding_group(info.kind), expert_severity(info.severity),
+                            keep(std::string(info.rule)), EXPFILL}});
     }
     expert_module_t* expert = expert_register_protocol(proto_dpscope);
     expert_register_field_array(expert, experts.data(), static_cast<int>(experts.size()));

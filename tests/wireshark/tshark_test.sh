@@ -127,6 +127,31 @@ check expert '_ws.expert' '(.findings | length > 0) or (.problems | length > 0)'
 check expert_error '_ws.expert.severity == "Error"' \
     '([.findings[], .problems[] | select(.severity == "error")] | length > 0)'
 
+# Each expert info by name: dpscope.finding.KIND and dpscope.problem.KIND select the frames with
+# such a finding or problem, whatever its severity (one tshark run, a column per kind).
+kinds=$(jq -r '(.findings[] | "finding.\(.kind)"), (.problems[] | "problem.\(.kind)")' "$jsonl" | sort -u)
+if [ -z "$kinds" ] && [[ ",$fourth," == *",expert_kinds,"* ]]; then
+    echo "$sample: expert_kinds has no finding or problem to check; the sample has such telegrams" >&2
+    failures=$((failures + 1))
+elif [ -n "$kinds" ]; then
+    want="$WORK_DIR/$name.expert_kinds.want" got="$WORK_DIR/$name.expert_kinds.got"
+    jq -r '"\(.frame) finding.\(.findings[].kind)", "\(.frame) problem.\(.problems[].kind)"' \
+        "$jsonl" | sort -u >"$want"
+    columns=()
+    for kind in $kinds; do columns+=(-e "dpscope.$kind"); done
+    tshark "$got.table" -T fields -e frame.number "${columns[@]}"
+    # A column holds 1 (or 1,1,...) where the frame has that expert info.
+    awk -F'\t' -v kinds="$(echo $kinds)" 'BEGIN { split(kinds, kind, " ") }
+        { for (i = 2; i <= NF; ++i) if ($i != "") print $1 " " kind[i - 1] }' "$got.table" |
+        sort -u >"$got"
+    if ! cmp -s "$want" "$got"; then
+        echo "$sample: the expert infos dpscope.finding.KIND / dpscope.problem.KIND are not the frames' kinds (frame kind):" >&2
+        diff "$want" "$got" | head -20 >&2 || true
+        failures=$((failures + 1))
+    fi
+    checked=$((checked + 1))
+fi
+
 # The comment's text: each finding as `severity kind: message`, one a line.
 want="$WORK_DIR/$name.comment_text.want" got="$WORK_DIR/$name.comment_text.got"
 jq -r 'select(.findings | length > 0)
@@ -139,7 +164,7 @@ if ! cmp -s "$want" "$got"; then
     failures=$((failures + 1))
 fi
 for need in ${required[@]+"${required[@]}"}; do
-    case ",rc7,ak7,failed,finding,problem,comment,expert,expert_error," in
+    case ",rc7,ak7,failed,finding,problem,comment,expert,expert_error,expert_kinds," in
         *",$need,"*) ;;
         *) fail "$sample: required check $need is not run for bus $bus" ;;
     esac
