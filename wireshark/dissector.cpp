@@ -196,9 +196,10 @@ struct Field {
     X(vlt_decimals, "Decimal position", "dpscope.vlt2000.decimals", FT_UINT8, BASE_DEC, NULL)      \
     X(vlt_failed, "Command failed", "dpscope.vlt2000.failed", FT_BOOLEAN, BASE_NONE, NULL)         \
     X(vlt_reason, "Reason code", "dpscope.vlt2000.reason", FT_UINT8, BASE_DEC, NULL)               \
-    X(vlt_checksum, "Checksum", "dpscope.vlt2000.checksum", FT_STRING, BASE_NONE, NULL)            \
+    X(vlt_checksum, "Checksum", "dpscope.vlt2000.checksum", FT_STRING, BASE_NONE,                  \
+      "As sent: two digits, or ?? when switched off")                                              \
     X(vlt_checksum_ok, "Checksum correct", "dpscope.vlt2000.checksum_ok", FT_BOOLEAN, BASE_NONE,   \
-      NULL)                                                                                        \
+      "Only where the checksum was judged: not when it is ??")                                     \
     X(vlt_stop, "Stop", "dpscope.vlt2000.stop", FT_UINT8, BASE_HEX, NULL)
 
 #define DPSCOPE_FIELD_ID(id, name, abbrev, type, display, blurb) int hf_##id = -1;
@@ -429,6 +430,13 @@ std::string flags_text(std::uint8_t value, std::span<const FlagBit> flags,
     fmt::format_to(std::back_inserter(b), "0x{:02X} (", value);
     append_flags(b, value, flags, "none", ignore);
     b.push_back(')');
+    return buffer_text(b);
+}
+
+// Characters as sent, as jsonl writes them (\xNN for a byte that is not printable).
+std::string chars_text(Bytes bytes) {
+    TextBuffer b;
+    append_fc_text(b, bytes);
     return buffer_text(b);
 }
 
@@ -1002,7 +1010,12 @@ void add_vlt2000(const Tree& top, const DecodedTelegram& t) {
                   fmt::format("{:02}{}", v.address,
                               v.broadcast ? " (broadcast: every drive acts, none replies)" : ""));
     if (!has(kVlt2000LetterAt, 1)) return;
-    tree.string(hf_vlt_letter, kVlt2000LetterAt, 1, vlt2000_letter_text(t));
+    // The letter as sent (jsonl's "letter"), its name in the text.
+    if (vlt2000_has_letter(t)) {
+        const std::string letter = chars_text(t.bytes.subspan(kVlt2000LetterAt, 1));
+        tree.string(hf_vlt_letter, kVlt2000LetterAt, 1, letter,
+                    fmt::format("{} ({})", letter, vlt2000_letter_name(v.letter)));
+    }
     if (!has(kVlt2000WordAt, 4)) return;
     proto_item* word =
         tree.uint(hf_vlt_word, kVlt2000WordAt, 4, v.word,
@@ -1028,27 +1041,33 @@ void add_vlt2000(const Tree& top, const DecodedTelegram& t) {
     if (!has(kVlt2000SignAt, 1)) return;
     if (v.letter == Vlt2000Letter::ReadIndex && !v.index.empty()) {
         if (v.has_index_number) tree.uint(hf_vlt_index, kVlt2000SignAt, 6, v.index_number);
-    } else {
+    } else if (v.has_value && vlt2000_carries_value(v)) {
+        // The sign and the value only where the telegram carries one, as jsonl has them: a
+        // failed reply's bytes hold no value, a C command's are ignored (shown as text).
         tree.boolean(hf_vlt_negative, kVlt2000SignAt, 1, v.negative);
-        if (has(kVlt2000ValueAt, 5) && v.has_value && !v.failed) {
-            const std::string note = vlt2000_value_note(v);
-            tree.string(hf_vlt_value, kVlt2000ValueAt, 5, vlt2000_value_text(v),
-                        fmt::format("{:05} = {}{}{}", v.digits, vlt2000_value_text(v),
-                                    note.empty() ? note : " (" + note + ")",
-                                    v.letter == Vlt2000Letter::Control ? " (ignored with C)" : ""));
-        }
+        const std::string note = vlt2000_value_note(v);
+        tree.string(hf_vlt_value, kVlt2000ValueAt, 5, vlt2000_value_text(v),
+                    fmt::format("{:05} = {}{}", v.digits, vlt2000_value_text(v),
+                                note.empty() ? note : " (" + note + ")"));
+    } else if (v.has_value && v.letter == Vlt2000Letter::Control) {
+        tree.text(
+            kVlt2000SignAt, 6, kEttVlt2000,
+            fmt::format("Value: {:05} = {} (ignored with C)", v.digits, vlt2000_value_text(v)));
     }
-    tree.boolean(hf_vlt_failed, kVlt2000DecimalsAt, 1, v.failed);
+    if (v.has_decimals) tree.boolean(hf_vlt_failed, kVlt2000DecimalsAt, 1, v.failed);
     if (v.failed && v.has_reason)
         tree.uint(hf_vlt_reason, kVlt2000ReasonAt, 2, v.reason,
                   fmt::format("{:02} = {}", v.reason, vlt2000_reason_or_unknown(v)));
     if (!has(kVlt2000DecimalsAt, 1)) return;
     if (v.has_decimals) tree.uint(hf_vlt_decimals, kVlt2000DecimalsAt, 1, v.decimals);
     if (!has(kVlt2000ChecksumAt, 2)) return;
+    // The two characters as sent ("??": switched off), the verdict in the text; checksum_ok only
+    // where the checksum was judged (two digits), as jsonl's "checksum_ok".
     TextBuffer checksum;
     append_vlt2000_checksum(checksum, t);
-    tree.string(hf_vlt_checksum, kVlt2000ChecksumAt, 2, buffer_text(checksum));
-    tree.boolean(hf_vlt_checksum_ok, kVlt2000ChecksumAt, 2, v.checksum_ok);
+    tree.string(hf_vlt_checksum, kVlt2000ChecksumAt, 2,
+                chars_text(t.bytes.subspan(kVlt2000ChecksumAt, 2)), buffer_text(checksum));
+    if (v.has_checksum) tree.boolean(hf_vlt_checksum_ok, kVlt2000ChecksumAt, 2, v.checksum_ok);
     if (has(kVlt2000StopAt, 1)) {
         const std::uint8_t stop = t.bytes[kVlt2000StopAt];
         tree.uint(

@@ -28,7 +28,8 @@ set(tshark_fields
     dpscope.profidrive.pnu dpscope.fc.address dpscope.fc.block dpscope.fc.ak dpscope.fc.pnu
     dpscope.fc.value dpscope.fc.fault dpscope.fc.bcc_ok dpscope.vlt2000.address
     dpscope.vlt2000.letter dpscope.vlt2000.parameter dpscope.vlt2000.value
-    dpscope.vlt2000.reason dpscope.vlt2000.checksum_ok dpscope.problem dpscope.finding
+    dpscope.vlt2000.reason dpscope.vlt2000.checksum dpscope.vlt2000.checksum_ok dpscope.problem
+    dpscope.finding
     frame.comment)
 set(tshark_field_args -T fields -E header=y -E quote=d)
 foreach(field ${tshark_fields})
@@ -99,9 +100,13 @@ wireshark_case(timeouts samples/timeouts.pcap timeouts finding,comment,expert,ex
 wireshark_case(truncated samples/truncated.pcap truncated -)
 wireshark_case(user0 samples/user0.pcap user0 -)
 wireshark_case(vlt2000_clean samples/vlt2000-clean.pcap vlt2000_clean -)
+# The VLT 2000 fields that hold the characters as sent (letter, checksum) and the verdicts made only
+# where one was (checksum_ok, negative, value).
+set(vlt2000_field_checks letter,checksum_off,checksum_judged,negative,value)
 wireshark_case(vlt2000_examples samples/vlt2000-examples.txt vlt2000_examples
-               failed,finding,comment,expert DECODE --bus vlt2000)
-wireshark_case(vlt2000 samples/vlt2000.pcap vlt2000 failed,finding,problem,comment,expert,expert_error)
+               failed,finding,comment,expert,${vlt2000_field_checks} DECODE --bus vlt2000)
+wireshark_case(vlt2000 samples/vlt2000.pcap vlt2000
+               failed,finding,problem,comment,expert,expert_error,checksum_bad,${vlt2000_field_checks})
 
 # The checks themselves fail when they should: a required check on a sample without such
 # telegrams (ppo1 has no RC 7), and tshark judging with another time-out than the conversion.
