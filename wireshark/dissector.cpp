@@ -16,6 +16,7 @@
 
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,6 +25,7 @@
 #include "decoder/code_tables.hpp"
 #include "decoder/dp_payload.hpp"
 #include "decoder/pcd.hpp"
+#include "decoder/profidrive.hpp"
 #include "formats/describe.hpp"
 #include "wireshark/capture_replay.hpp"
 
@@ -126,9 +128,17 @@ struct Field {
     X(diag_master, "Master address", "dpscope.diag.master", FT_UINT8, BASE_DEC, NULL)              \
     X(diag_ident, "Ident number", "dpscope.diag.ident", FT_UINT16, BASE_HEX, NULL)                 \
     X(diag_ext, "Extended diagnosis", "dpscope.diag.ext", FT_BYTES, BASE_NONE, NULL)               \
-    X(diag_block, "Block", "dpscope.diag.block", FT_STRING, BASE_NONE, "Extended diagnosis block") \
+    X(diag_block, "Block", "dpscope.diag.block", FT_BYTES, BASE_NONE,                              \
+      "Extended diagnosis block as sent, its header byte first")                                   \
+    X(diag_block_type, "Block type", "dpscope.diag.block_type", FT_STRING, BASE_NONE,              \
+      "device-related, identifier-related, channel-related or revision")                           \
     X(prm_status, "Station status", "dpscope.prm.status", FT_UINT8, BASE_HEX, NULL)                \
-    X(prm_watchdog, "Watchdog", "dpscope.prm.watchdog", FT_STRING, BASE_NONE, NULL)                \
+    X(prm_wd_fact_1, "WD_Fact_1", "dpscope.prm.wd_fact_1", FT_UINT8, BASE_DEC, NULL)               \
+    X(prm_wd_fact_2, "WD_Fact_2", "dpscope.prm.wd_fact_2", FT_UINT8, BASE_DEC, NULL)               \
+    X(prm_watchdog_ms, "Watchdog time", "dpscope.prm.watchdog_ms", FT_UINT32, BASE_DEC,            \
+      "ms; only with the watchdog on")                                                             \
+    X(prm_watchdog_ms_alt, "Watchdog time with a 10 ms base", "dpscope.prm.watchdog_ms_alt",       \
+      FT_UINT32, BASE_DEC, "ms; where the time base is uncertain")                                 \
     X(prm_min_tsdr, "min TSDR", "dpscope.prm.min_tsdr", FT_UINT8, BASE_DEC, "Bit times")           \
     X(prm_ident, "Ident number", "dpscope.prm.ident", FT_UINT16, BASE_HEX, NULL)                   \
     X(prm_group, "Group ident", "dpscope.prm.group", FT_UINT8, BASE_HEX, NULL)                     \
@@ -136,7 +146,8 @@ struct Field {
     X(prm_user, "User_Prm_Data", "dpscope.prm.user", FT_BYTES, BASE_NONE, NULL)                    \
     X(cfg_identifiers, "Identifier bytes", "dpscope.cfg.identifiers", FT_BYTES, BASE_NONE, NULL)   \
     X(cfg_module, "Module", "dpscope.cfg.module", FT_UINT8, BASE_HEX, "An identifier byte")        \
-    X(cfg_layout, "Layout", "dpscope.cfg.layout", FT_STRING, BASE_NONE, "The PPO it announces")    \
+    X(cfg_ppo, "PPO type", "dpscope.cfg.ppo", FT_UINT8, BASE_DEC,                                  \
+      "The PPO the identifiers announce; 0: no standard PPO")                                      \
     X(gc_command, "Control command", "dpscope.gc.command", FT_UINT8, BASE_HEX, NULL)               \
     X(gc_group, "Group select", "dpscope.gc.group", FT_UINT8, BASE_HEX, NULL)                      \
     X(ssa_address, "New slave address", "dpscope.ssa.address", FT_UINT8, BASE_DEC, NULL)           \
@@ -151,8 +162,21 @@ struct Field {
     X(dpv1_error_decode, "Error_Decode", "dpscope.dpv1.error_decode", FT_UINT8, BASE_HEX, NULL)    \
     X(dpv1_error_code_1, "Error_Code_1", "dpscope.dpv1.error_code_1", FT_UINT8, BASE_HEX, NULL)    \
     X(dpv1_error_code_2, "Error_Code_2", "dpscope.dpv1.error_code_2", FT_UINT8, BASE_HEX, NULL)    \
-    X(dpv1_detail, "Detail", "dpscope.dpv1.detail", FT_STRING, BASE_NONE,                          \
-      "Initiate and Abort fields")                                                                 \
+    X(dpv1_send_timeout, "Send_Timeout", "dpscope.dpv1.send_timeout", FT_UINT16, BASE_DEC,         \
+      "Initiate request, 10 ms units")                                                             \
+    X(dpv1_max_len_data_unit, "Max_Len_Data_Unit", "dpscope.dpv1.max_len_data_unit", FT_UINT8,     \
+      BASE_DEC, "Initiate response")                                                               \
+    X(dpv1_features, "Features_Supported", "dpscope.dpv1.features_supported", FT_UINT16, BASE_HEX, \
+      "Initiate")                                                                                  \
+    X(dpv1_profile_features, "Profile_Features_Supported",                                         \
+      "dpscope.dpv1.profile_features_supported", FT_UINT16, BASE_HEX, "Initiate")                  \
+    X(dpv1_profile_ident, "Profile_Ident_Number", "dpscope.dpv1.profile_ident_number", FT_UINT16,  \
+      BASE_HEX, "Initiate")                                                                        \
+    X(dpv1_abort_subnet, "Subnet", "dpscope.dpv1.abort.subnet", FT_UINT8, BASE_DEC, "Abort")       \
+    X(dpv1_abort_instance, "Instance", "dpscope.dpv1.abort.instance", FT_UINT8, BASE_DEC,          \
+      "Abort: the instance that aborted (bits 4-5)")                                               \
+    X(dpv1_abort_reason, "Reason code", "dpscope.dpv1.abort.reason", FT_UINT8, BASE_DEC,           \
+      "Abort: bits 0-3")                                                                           \
     X(pd_reference, "Request reference", "dpscope.profidrive.reference", FT_UINT8, BASE_DEC, NULL) \
     X(pd_id, "Request/Response ID", "dpscope.profidrive.id", FT_UINT8, BASE_HEX, NULL)             \
     X(pd_axis, "Axis", "dpscope.profidrive.axis", FT_UINT8, BASE_DEC, NULL)                        \
@@ -164,7 +188,10 @@ struct Field {
     X(pd_pnu, "Parameter number", "dpscope.profidrive.pnu", FT_UINT16, BASE_DEC, NULL)             \
     X(pd_subindex, "Subindex", "dpscope.profidrive.subindex", FT_UINT16, BASE_DEC, NULL)           \
     X(pd_format, "Format", "dpscope.profidrive.format", FT_UINT8, BASE_HEX, NULL)                  \
-    X(pd_values, "Values", "dpscope.profidrive.values", FT_STRING, BASE_NONE, NULL)                \
+    X(pd_values, "Values", "dpscope.profidrive.values", FT_BYTES, BASE_NONE,                       \
+      "The value bytes as sent")                                                                   \
+    X(pd_value, "Value", "dpscope.profidrive.value", FT_DOUBLE, BASE_NONE,                         \
+      "One value as a number (N2/N4 in %, times in ms)")                                           \
     X(pd_error, "Error number", "dpscope.profidrive.error", FT_UINT16, BASE_HEX, NULL)             \
     X(pd_error_info, "Additional information", "dpscope.profidrive.error_info", FT_UINT16,         \
       BASE_DEC, NULL)                                                                              \
@@ -406,6 +433,17 @@ class Tree {
         auto [o, l] = place(at, length);
         return proto_tree_add_item(tree_, hf, tvb_, o, l, ENC_NA);
     }
+    proto_item* bytes(int hf, std::size_t at, std::size_t length, const std::string& shown) const {
+        auto [o, l] = place(at, length);
+        return proto_tree_add_bytes_format_value(tree_, hf, tvb_, o, l, nullptr, "%s",
+                                                 shown.c_str());
+    }
+    proto_item* real(int hf, std::size_t at, std::size_t length, double value,
+                     const std::string& shown) const {
+        auto [o, l] = place(at, length);
+        return proto_tree_add_double_format_value(tree_, hf, tvb_, o, l, value, "%s",
+                                                  shown.c_str());
+    }
     proto_item* generated(proto_item* item) const {
         proto_item_set_generated(item);
         return item;
@@ -629,7 +667,11 @@ void add_diag(const Tree& tree, const DecodedTelegram& t, const SlaveDiag& diag,
                 break;
             }
         }
-        ext.string(hf_diag_block, block.offset, block.data.size() + 1, text);
+        // The block as sent (header byte and data), its wording in the text.
+        Tree sub =
+            ext.sub(ext.bytes(hf_diag_block, block.offset, block.data.size() + 1, text), kEttBlock);
+        sub.string(hf_diag_block_type, block.offset, 1,
+                   std::string(diag_block_type_name(block.type)));
     }
 }
 
@@ -637,7 +679,7 @@ void add_prm(const Tree& tree, const DecodedTelegram& t, const SetPrm& prm) {
     const std::size_t at = t.dp.fdl.du_offset;
     tree.uint(hf_prm_status, at, 1, prm.station_status,
               flags_text(prm.station_status, set_prm_station_flags()));
-    std::string watchdog = fmt::format("factors {} x {}", prm.wd_fact_1, prm.wd_fact_2);
+    std::string watchdog = fmt::format("Watchdog: factors {} x {}", prm.wd_fact_1, prm.wd_fact_2);
     if (prm.watchdog_on() && prm.watchdog_base_uncertain())
         watchdog += fmt::format(" = {} ms with WD_Base_1ms, or {} ms with a 10 ms base",
                                 prm.watchdog_ms(), prm.watchdog_ms_10ms_base());
@@ -645,7 +687,18 @@ void add_prm(const Tree& tree, const DecodedTelegram& t, const SetPrm& prm) {
         watchdog += fmt::format(" = {} ms", prm.watchdog_ms());
     else
         watchdog += " (off)";
-    tree.string(hf_prm_watchdog, at + 1, 2, watchdog);
+    // The two factors as sent; the time (jsonl's watchdog_ms, watchdog_ms_alt) only with the
+    // watchdog on.
+    Tree wd = tree.text(at + 1, 2, kEttBlock, watchdog);
+    wd.uint(hf_prm_wd_fact_1, at + 1, 1, prm.wd_fact_1);
+    wd.uint(hf_prm_wd_fact_2, at + 2, 1, prm.wd_fact_2);
+    if (prm.watchdog_on()) {
+        wd.generated(wd.uint(hf_prm_watchdog_ms, at + 1, 2, prm.watchdog_ms(),
+                             fmt::format("{} ms", prm.watchdog_ms())));
+        if (prm.watchdog_base_uncertain())
+            wd.generated(wd.uint(hf_prm_watchdog_ms_alt, at + 1, 2, prm.watchdog_ms_10ms_base(),
+                                 fmt::format("{} ms", prm.watchdog_ms_10ms_base())));
+    }
     tree.uint(hf_prm_min_tsdr, at + 3, 1, prm.min_tsdr);
     tree.uint(hf_prm_ident, at + 4, 2, prm.ident);
     tree.uint(hf_prm_group, at + 6, 1, prm.group_ident);
@@ -685,10 +738,11 @@ void add_cfg(const Tree& tree, const DecodedTelegram& t, std::span<const CfgModu
         sub.uint(hf_cfg_module, m.offset, 1, m.identifier,
                  fmt::format("{}: 0x{:02X} {}", number++, m.identifier, text));
     }
+    const PpoLayout layout = ppo_from_cfg(
+        modules, t.dp.service == Service::ChkCfg ? PpoSource::ChkCfg : PpoSource::GetCfg);
     TextBuffer b;
-    append_ppo_long(b, ppo_from_cfg(modules, t.dp.service == Service::ChkCfg ? PpoSource::ChkCfg
-                                                                             : PpoSource::GetCfg));
-    tree.string(hf_cfg_layout, t.dp.fdl.du_offset, t.dp.fdl.du.size(), buffer_text(b));
+    append_ppo_long(b, layout);
+    tree.uint(hf_cfg_ppo, t.dp.fdl.du_offset, t.dp.fdl.du.size(), layout.type, buffer_text(b));
 }
 
 void add_profidrive(const Tree& tree, const DecodedTelegram& t, const ProfidriveMessage& m,
@@ -738,9 +792,24 @@ void add_profidrive(const Tree& tree, const DecodedTelegram& t, const Profidrive
             if (block.has_error_info())
                 p.uint(hf_pd_error_info, block.values_offset + 2u, 2, block.error_info());
         } else if (block.format != profidrive::kFormatZero) {
+            // The bytes as sent, worded in the text; each value that is a number (jsonl's
+            // "numbers") in a field of its own.
             std::string values;
             append_profidrive_values(block, values);
-            p.string(hf_pd_values, block.values_offset, block.values.size(), values);
+            Tree sub = p.sub(p.bytes(hf_pd_values, block.values_offset, block.values.size(),
+                                     values.empty() ? std::string("(no values)") : values),
+                             kEttParameter);
+            const std::size_t size =
+                static_cast<std::size_t>(std::max(profidrive_format_size(block.format), 0));
+            for (std::size_t i = 0; i < profidrive_value_count(block); ++i) {
+                const std::optional<ProfidriveNumber> n = profidrive_number(block, i);
+                if (!n) continue;
+                const double number = n->is_real ? n->real : static_cast<double>(n->integer);
+                sub.real(hf_pd_value, block.values_offset + i * size, size, number,
+                         !n->is_real ? fmt::format("{}", n->integer)
+                         : n->single ? fmt::format("{}", static_cast<float>(n->real))
+                                     : fmt::format("{}", n->real));
+            }
         }
     }
 }
@@ -783,26 +852,31 @@ void add_dpv1(const Tree& tree, const DecodedTelegram& t, const Dpv1Pdu& pdu) {
             if (!pdu.data.empty()) sub.bytes(hf_dpv1_data, pdu.data_offset, pdu.data.size());
             break;
         case Dpv1Pdu::Layout::Initiate: {
+            // The fields as sent, where the PDU holds them (as jsonl's "initiate"). Request:
+            // function, 3 reserved bytes, Send_Timeout; response: function, Max_Len_Data_Unit.
+            if (!pdu.complete) break;
             const Dpv1Initiate& i = pdu.initiate;
-            sub.string(
-                hf_dpv1_detail, at + 1, 0,
-                t.direction == Direction::Request
-                    ? fmt::format("Send_Timeout {} ({} ms)", i.send_timeout, i.send_timeout * 10)
-                    : fmt::format("Max_Len_Data_Unit {}", i.max_len_data_unit));
-            sub.string(hf_dpv1_detail, at + 1, 0,
-                       fmt::format("Features_Supported 0x{:04X}, Profile_Features_Supported "
-                                   "0x{:04X}, Profile_Ident_Number 0x{:04X}",
-                                   i.features_supported, i.profile_features_supported,
-                                   i.profile_ident_number));
+            const bool request = t.direction == Direction::Request;
+            if (request)
+                sub.uint(hf_dpv1_send_timeout, at + 4, 2, i.send_timeout,
+                         fmt::format("{} ({} ms)", i.send_timeout, i.send_timeout * 10));
+            else
+                sub.uint(hf_dpv1_max_len_data_unit, at + 1, 1, i.max_len_data_unit);
+            const std::size_t features_at = request ? at + 6 : at + 2;
+            sub.uint(hf_dpv1_features, features_at, 2, i.features_supported);
+            sub.uint(hf_dpv1_profile_features, features_at + 2, 2, i.profile_features_supported);
+            sub.uint(hf_dpv1_profile_ident, features_at + 4, 2, i.profile_ident_number);
             break;
         }
         case Dpv1Pdu::Layout::Abort:
-            sub.string(
-                hf_dpv1_detail, at + 1, 2,
-                fmt::format("Subnet {}, instance {} ({}), reason {} ({})", pdu.abort.subnet,
-                            pdu.abort.instance(),
-                            dpv1_abort_instance_name(pdu.abort.instance_reason), pdu.abort.reason(),
-                            dpv1_abort_reason_name(pdu.abort.instance_reason)));
+            if (!pdu.complete) break;
+            sub.uint(hf_dpv1_abort_subnet, at + 1, 1, pdu.abort.subnet);
+            sub.uint(hf_dpv1_abort_instance, at + 2, 1, pdu.abort.instance(),
+                     fmt::format("{} ({})", pdu.abort.instance(),
+                                 dpv1_abort_instance_name(pdu.abort.instance_reason)));
+            sub.uint(hf_dpv1_abort_reason, at + 2, 1, pdu.abort.reason(),
+                     fmt::format("{} ({})", pdu.abort.reason(),
+                                 dpv1_abort_reason_name(pdu.abort.instance_reason)));
             break;
         case Dpv1Pdu::Layout::Unknown:
             if (!pdu.data.empty()) sub.bytes(hf_dpv1_data, pdu.data_offset, pdu.data.size());

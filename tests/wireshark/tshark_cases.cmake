@@ -72,12 +72,15 @@ endfunction()
 # Every input dpscope reads, with the options its golden_case uses (the dialect is also the
 # plugin's preference; dpv1's per-slave dialect has no preference, so dpv1 runs with the default).
 wireshark_case(bus_health samples/bus-health.pcap bus_health finding,comment,expert)
-wireshark_case(dpv1 samples/dpv1.pcap dpv1 finding,comment,expert,expert_error)
+wireshark_case(dpv1 samples/dpv1.pcap dpv1
+               finding,comment,expert,expert_error,cfg_ppo,watchdog,pd_value)
 # DP-V1 PDUs no sample has: error PDUs of a warning (class 0xA) and a note (0xB), an MSAC_C2
 # Initiate, its response and an Abort, and a Slave_Diag with a device- and a channel-related block.
 # A hex log written by hand (each telegram's FCS summed), not by the simulator.
-wireshark_case(dpv1_pdus tests/wireshark/dpv1-pdus.hex dpv1_pdus finding,comment,expert,expert_kinds)
-wireshark_case(faults samples/faults.pcap faults rc7,finding,problem,comment,expert,expert_error)
+wireshark_case(dpv1_pdus tests/wireshark/dpv1-pdus.hex dpv1_pdus
+               finding,comment,expert,expert_kinds,initiate,abort)
+wireshark_case(faults samples/faults.pcap faults
+               rc7,finding,problem,comment,expert,expert_error,cfg_ppo,watchdog)
 wireshark_case(fc_clean samples/fc-clean.pcap fc_clean -)
 wireshark_case(fc_examples samples/fc-examples.hex fc_examples ak7,finding,comment,expert
                DECODE --bus fc)

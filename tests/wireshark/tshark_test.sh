@@ -125,6 +125,15 @@ bus=$(jq -r 'if .fc_protocol then "fc" elif .vlt2000 then "vlt2000" else "profib
 case "$bus" in
     profibus)
         check rc7 'dpscope.pcv.rc == 7' '.pcv != null and .pcv.rc == 7'
+        # Fields that hold a value, not a wording of it (the wording is the item's text).
+        field_check cfg_ppo 'dpscope.cfg.ppo == 1' '.cfg.ppo == 1'
+        field_check watchdog 'dpscope.prm.watchdog_ms == 1000 && dpscope.prm.wd_fact_1 == 10' \
+            '.prm.watchdog_ms == 1000 and .prm.wd_fact_1 == 10'
+        field_check pd_value 'dpscope.profidrive.value == 300' \
+            '[.profidrive.parameters[]?.numbers // [] | .[] | select(. == 300)] | length > 0'
+        field_check initiate 'dpscope.dpv1.profile_ident_number == 0x1234' \
+            '.dpv1.initiate.profile_ident_number == 4660'
+        field_check abort 'dpscope.dpv1.abort.reason == 3' '.dpv1.abort.reason == 3'
         ;;
     fc) check ak7 'dpscope.fc.ak == 7' '.fc_protocol.ak == 7' ;;
     vlt2000)
