@@ -14,6 +14,7 @@
 #include <epan/tvbuff.h>
 #include <fmt/format.h>
 
+#include <charconv>
 #include <deque>
 #include <memory>
 #include <optional>
@@ -218,7 +219,8 @@ struct Field {
     X(vlt_word, "Control/status word", "dpscope.vlt2000.word", FT_UINT16, BASE_HEX, NULL)          \
     X(vlt_parameter, "Parameter", "dpscope.vlt2000.parameter", FT_UINT16, BASE_DEC, NULL)          \
     X(vlt_negative, "Negative", "dpscope.vlt2000.negative", FT_BOOLEAN, BASE_NONE, NULL)           \
-    X(vlt_value, "Value", "dpscope.vlt2000.value", FT_STRING, BASE_NONE, NULL)                     \
+    X(vlt_value, "Value", "dpscope.vlt2000.value", FT_DOUBLE, BASE_NONE,                           \
+      "The digits with the decimal position applied")                                              \
     X(vlt_index, "Index", "dpscope.vlt2000.index", FT_UINT32, BASE_DEC, NULL)                      \
     X(vlt_decimals, "Decimal position", "dpscope.vlt2000.decimals", FT_UINT8, BASE_DEC, NULL)      \
     X(vlt_failed, "Command failed", "dpscope.vlt2000.failed", FT_BOOLEAN, BASE_NONE, NULL)         \
@@ -1119,10 +1121,15 @@ void add_vlt2000(const Tree& top, const DecodedTelegram& t) {
         // The sign and the value only where the telegram carries one, as jsonl has them: a
         // failed reply's bytes hold no value, a C command's are ignored (shown as text).
         tree.boolean(hf_vlt_negative, kVlt2000SignAt, 1, v.negative);
+        // A number, as jsonl's value: read back from the text the renderers write, so the two
+        // cannot differ.
+        const std::string text = vlt2000_value_text(v);
+        double number = 0;
+        std::from_chars(text.data(), text.data() + text.size(), number);
         const std::string note = vlt2000_value_note(v);
-        tree.string(hf_vlt_value, kVlt2000ValueAt, 5, vlt2000_value_text(v),
-                    fmt::format("{:05} = {}{}", v.digits, vlt2000_value_text(v),
-                                note.empty() ? note : " (" + note + ")"));
+        tree.real(
+            hf_vlt_value, kVlt2000ValueAt, 5, number,
+            fmt::format("{:05} = {}{}", v.digits, text, note.empty() ? note : " (" + note + ")"));
     } else if (v.has_value && v.letter == Vlt2000Letter::Control) {
         tree.text(
             kVlt2000SignAt, 6, kEttVlt2000,

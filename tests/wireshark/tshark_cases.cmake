@@ -104,8 +104,8 @@ wireshark_case(truncated samples/truncated.pcap truncated -)
 wireshark_case(user0 samples/user0.pcap user0 -)
 wireshark_case(vlt2000_clean samples/vlt2000-clean.pcap vlt2000_clean -)
 # The VLT 2000 fields that hold the characters as sent (letter, checksum) and the verdicts made only
-# where one was (checksum_ok, negative, value).
-set(vlt2000_field_checks letter,checksum_off,checksum_judged,negative,value)
+# where one was (checksum_ok, negative, value), the value a number.
+set(vlt2000_field_checks letter,checksum_off,checksum_judged,negative,value,value_number)
 wireshark_case(vlt2000_examples samples/vlt2000-examples.txt vlt2000_examples
                failed,finding,comment,expert,${vlt2000_field_checks} DECODE --bus vlt2000)
 wireshark_case(vlt2000 samples/vlt2000.pcap vlt2000

@@ -147,6 +147,9 @@ case "$bus" in
         field_check checksum_judged 'dpscope.vlt2000.checksum_ok' '.vlt2000.checksum_ok != null'
         field_check negative 'dpscope.vlt2000.negative' '.vlt2000.negative != null'
         field_check value 'dpscope.vlt2000.value' '.vlt2000.value_text != null'
+        # A number, compared as one (a string field compares "7" > "50").
+        field_check value_number 'dpscope.vlt2000.value >= 50' \
+            '.vlt2000.value != null and .vlt2000.value >= 50'
         ;;
     *) fail "$converted: one bus expected, dpscope decode says: $bus" ;;
 esac
