@@ -6,7 +6,8 @@
 #   wireshark.NAME.filters  display filters select the frames `dpscope decode -T jsonl` reports
 #                           (on the samples that name the checks they need; each check is a
 #                           tshark run of its own, so the samples with nothing new for them, and
-#                           inputs that repeat another's bytes, have none: CI time)
+#                           inputs that repeat another's bytes, have none: CI time; the
+#                           checks of one field's values only where named)
 # The goldens are rewritten by the update-golden target, with dpscope's own.
 set(tshark_test ${CMAKE_CURRENT_SOURCE_DIR}/wireshark/tshark_test.sh)
 set(tshark_work_dir ${CMAKE_CURRENT_BINARY_DIR}/wireshark)

@@ -11,6 +11,9 @@
 # filters: the frames each display filter selects must be exactly the frames whose
 # `dpscope decode -T jsonl` line (of the converted capture, same DECODE ARGS) says so; REQUIRED
 # (comma-separated check names, - for none) must select at least one frame, so the check is not vacuous.
+# The checks of one field's values (field_check: cfg_ppo, letter, ...) run only where REQUIRED names
+# them; expert_kinds (each dpscope.finding.KIND and dpscope.problem.KIND against jsonl's kinds) runs
+# on every sample with a finding or a problem.
 # Environment: DPSCOPE (the executable), DPSCOPE_PLUGIN (dpscope.so), WORK_DIR (a scratch folder),
 # WIRESHARK_PLUGIN_VERSION (optional, "4.0").
 set -euo pipefail
