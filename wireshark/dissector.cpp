@@ -1348,17 +1348,15 @@ void register_dpscope() {
         // The kind's default severity is registered last: Wireshark's severity table
         // (expert_severity_levels) finds a name's last registration.
         const char* abbrev = keep(fmt::format("dpscope.finding.{}", info.name));
-        for (Severity severity : {Severity::Note, Severity::Warning, Severity::Error}) {
-            if (severity == info.severity) continue;
+        std::vector<Severity> severities;
+        for (Severity severity : {Severity::Note, Severity::Warning, Severity::Error})
+            if (severity != info.severity) severities.push_back(severity);
+        severities.push_back(info.severity);
+        for (Severity severity : severities)
             experts.push_back({&ei_finding[static_cast<std::size_t>(info.kind)]
                                           [static_cast<std::size_t>(severity)],
                                {abbrev, finding_group(info.kind), expert_severity(severity),
                                 keep(std::string(info.rule)), EXPFILL}});
-        }
-        experts.push_back({&ei_finding[static_cast<std::size_t>(info.kind)]
-                                      [static_cast<std::size_t>(info.severity)],
-                           {abbrev, finding_group(info.kind), expert_severity(info.severity),
-                            keep(std::string(info.rule)), EXPFILL}});
     }
     expert_module_t* expert = expert_register_protocol(proto_dpscope);
     expert_register_field_array(expert, experts.data(), static_cast<int>(experts.size()));
