@@ -14,8 +14,10 @@
 #include <epan/tvbuff.h>
 #include <fmt/format.h>
 
+#include <charconv>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,6 +26,7 @@
 #include "decoder/code_tables.hpp"
 #include "decoder/dp_payload.hpp"
 #include "decoder/pcd.hpp"
+#include "decoder/profidrive.hpp"
 #include "formats/describe.hpp"
 #include "wireshark/capture_replay.hpp"
 
@@ -126,9 +129,17 @@ struct Field {
     X(diag_master, "Master address", "dpscope.diag.master", FT_UINT8, BASE_DEC, NULL)              \
     X(diag_ident, "Ident number", "dpscope.diag.ident", FT_UINT16, BASE_HEX, NULL)                 \
     X(diag_ext, "Extended diagnosis", "dpscope.diag.ext", FT_BYTES, BASE_NONE, NULL)               \
-    X(diag_block, "Block", "dpscope.diag.block", FT_STRING, BASE_NONE, "Extended diagnosis block") \
+    X(diag_block, "Block", "dpscope.diag.block", FT_BYTES, BASE_NONE,                              \
+      "Extended diagnosis block as sent, its header byte first")                                   \
+    X(diag_block_type, "Block type", "dpscope.diag.block_type", FT_STRING, BASE_NONE,              \
+      "device-related, identifier-related, channel-related or revision")                           \
     X(prm_status, "Station status", "dpscope.prm.status", FT_UINT8, BASE_HEX, NULL)                \
-    X(prm_watchdog, "Watchdog", "dpscope.prm.watchdog", FT_STRING, BASE_NONE, NULL)                \
+    X(prm_wd_fact_1, "WD_Fact_1", "dpscope.prm.wd_fact_1", FT_UINT8, BASE_DEC, NULL)               \
+    X(prm_wd_fact_2, "WD_Fact_2", "dpscope.prm.wd_fact_2", FT_UINT8, BASE_DEC, NULL)               \
+    X(prm_watchdog_ms, "Watchdog time", "dpscope.prm.watchdog_ms", FT_UINT32, BASE_DEC,            \
+      "ms; only with the watchdog on")                                                             \
+    X(prm_watchdog_ms_alt, "Watchdog time with a 10 ms base", "dpscope.prm.watchdog_ms_alt",       \
+      FT_UINT32, BASE_DEC, "ms; where the time base is uncertain")                                 \
     X(prm_min_tsdr, "min TSDR", "dpscope.prm.min_tsdr", FT_UINT8, BASE_DEC, "Bit times")           \
     X(prm_ident, "Ident number", "dpscope.prm.ident", FT_UINT16, BASE_HEX, NULL)                   \
     X(prm_group, "Group ident", "dpscope.prm.group", FT_UINT8, BASE_HEX, NULL)                     \
@@ -136,7 +147,8 @@ struct Field {
     X(prm_user, "User_Prm_Data", "dpscope.prm.user", FT_BYTES, BASE_NONE, NULL)                    \
     X(cfg_identifiers, "Identifier bytes", "dpscope.cfg.identifiers", FT_BYTES, BASE_NONE, NULL)   \
     X(cfg_module, "Module", "dpscope.cfg.module", FT_UINT8, BASE_HEX, "An identifier byte")        \
-    X(cfg_layout, "Layout", "dpscope.cfg.layout", FT_STRING, BASE_NONE, "The PPO it announces")    \
+    X(cfg_ppo, "PPO type", "dpscope.cfg.ppo", FT_UINT8, BASE_DEC,                                  \
+      "The PPO the identifiers announce; 0: no standard PPO")                                      \
     X(gc_command, "Control command", "dpscope.gc.command", FT_UINT8, BASE_HEX, NULL)               \
     X(gc_group, "Group select", "dpscope.gc.group", FT_UINT8, BASE_HEX, NULL)                      \
     X(ssa_address, "New slave address", "dpscope.ssa.address", FT_UINT8, BASE_DEC, NULL)           \
@@ -151,8 +163,21 @@ struct Field {
     X(dpv1_error_decode, "Error_Decode", "dpscope.dpv1.error_decode", FT_UINT8, BASE_HEX, NULL)    \
     X(dpv1_error_code_1, "Error_Code_1", "dpscope.dpv1.error_code_1", FT_UINT8, BASE_HEX, NULL)    \
     X(dpv1_error_code_2, "Error_Code_2", "dpscope.dpv1.error_code_2", FT_UINT8, BASE_HEX, NULL)    \
-    X(dpv1_detail, "Detail", "dpscope.dpv1.detail", FT_STRING, BASE_NONE,                          \
-      "Initiate and Abort fields")                                                                 \
+    X(dpv1_send_timeout, "Send_Timeout", "dpscope.dpv1.send_timeout", FT_UINT16, BASE_DEC,         \
+      "Initiate request, 10 ms units")                                                             \
+    X(dpv1_max_len_data_unit, "Max_Len_Data_Unit", "dpscope.dpv1.max_len_data_unit", FT_UINT8,     \
+      BASE_DEC, "Initiate response")                                                               \
+    X(dpv1_features, "Features_Supported", "dpscope.dpv1.features_supported", FT_UINT16, BASE_HEX, \
+      "Initiate")                                                                                  \
+    X(dpv1_profile_features, "Profile_Features_Supported",                                         \
+      "dpscope.dpv1.profile_features_supported", FT_UINT16, BASE_HEX, "Initiate")                  \
+    X(dpv1_profile_ident, "Profile_Ident_Number", "dpscope.dpv1.profile_ident_number", FT_UINT16,  \
+      BASE_HEX, "Initiate")                                                                        \
+    X(dpv1_abort_subnet, "Subnet", "dpscope.dpv1.abort.subnet", FT_UINT8, BASE_DEC, "Abort")       \
+    X(dpv1_abort_instance, "Instance", "dpscope.dpv1.abort.instance", FT_UINT8, BASE_DEC,          \
+      "Abort: the instance that aborted (bits 4-5)")                                               \
+    X(dpv1_abort_reason, "Reason code", "dpscope.dpv1.abort.reason", FT_UINT8, BASE_DEC,           \
+      "Abort: bits 0-3")                                                                           \
     X(pd_reference, "Request reference", "dpscope.profidrive.reference", FT_UINT8, BASE_DEC, NULL) \
     X(pd_id, "Request/Response ID", "dpscope.profidrive.id", FT_UINT8, BASE_HEX, NULL)             \
     X(pd_axis, "Axis", "dpscope.profidrive.axis", FT_UINT8, BASE_DEC, NULL)                        \
@@ -164,7 +189,10 @@ struct Field {
     X(pd_pnu, "Parameter number", "dpscope.profidrive.pnu", FT_UINT16, BASE_DEC, NULL)             \
     X(pd_subindex, "Subindex", "dpscope.profidrive.subindex", FT_UINT16, BASE_DEC, NULL)           \
     X(pd_format, "Format", "dpscope.profidrive.format", FT_UINT8, BASE_HEX, NULL)                  \
-    X(pd_values, "Values", "dpscope.profidrive.values", FT_STRING, BASE_NONE, NULL)                \
+    X(pd_values, "Values", "dpscope.profidrive.values", FT_BYTES, BASE_NONE,                       \
+      "The value bytes as sent")                                                                   \
+    X(pd_value, "Value", "dpscope.profidrive.value", FT_DOUBLE, BASE_NONE,                         \
+      "One value as a number (N2/N4 in %, times in ms)")                                           \
     X(pd_error, "Error number", "dpscope.profidrive.error", FT_UINT16, BASE_HEX, NULL)             \
     X(pd_error_info, "Additional information", "dpscope.profidrive.error_info", FT_UINT16,         \
       BASE_DEC, NULL)                                                                              \
@@ -191,14 +219,16 @@ struct Field {
     X(vlt_word, "Control/status word", "dpscope.vlt2000.word", FT_UINT16, BASE_HEX, NULL)          \
     X(vlt_parameter, "Parameter", "dpscope.vlt2000.parameter", FT_UINT16, BASE_DEC, NULL)          \
     X(vlt_negative, "Negative", "dpscope.vlt2000.negative", FT_BOOLEAN, BASE_NONE, NULL)           \
-    X(vlt_value, "Value", "dpscope.vlt2000.value", FT_STRING, BASE_NONE, NULL)                     \
+    X(vlt_value, "Value", "dpscope.vlt2000.value", FT_DOUBLE, BASE_NONE,                           \
+      "The digits with the decimal position applied")                                              \
     X(vlt_index, "Index", "dpscope.vlt2000.index", FT_UINT32, BASE_DEC, NULL)                      \
     X(vlt_decimals, "Decimal position", "dpscope.vlt2000.decimals", FT_UINT8, BASE_DEC, NULL)      \
     X(vlt_failed, "Command failed", "dpscope.vlt2000.failed", FT_BOOLEAN, BASE_NONE, NULL)         \
     X(vlt_reason, "Reason code", "dpscope.vlt2000.reason", FT_UINT8, BASE_DEC, NULL)               \
-    X(vlt_checksum, "Checksum", "dpscope.vlt2000.checksum", FT_STRING, BASE_NONE, NULL)            \
+    X(vlt_checksum, "Checksum", "dpscope.vlt2000.checksum", FT_STRING, BASE_NONE,                  \
+      "As sent: two digits, or ?? when switched off")                                              \
     X(vlt_checksum_ok, "Checksum correct", "dpscope.vlt2000.checksum_ok", FT_BOOLEAN, BASE_NONE,   \
-      NULL)                                                                                        \
+      "Only where the checksum was judged: not when it is ??")                                     \
     X(vlt_stop, "Stop", "dpscope.vlt2000.stop", FT_UINT8, BASE_HEX, NULL)
 
 #define DPSCOPE_FIELD_ID(id, name, abbrev, type, display, blurb) int hf_##id = -1;
@@ -405,6 +435,17 @@ class Tree {
         auto [o, l] = place(at, length);
         return proto_tree_add_item(tree_, hf, tvb_, o, l, ENC_NA);
     }
+    proto_item* bytes(int hf, std::size_t at, std::size_t length, const std::string& shown) const {
+        auto [o, l] = place(at, length);
+        return proto_tree_add_bytes_format_value(tree_, hf, tvb_, o, l, nullptr, "%s",
+                                                 shown.c_str());
+    }
+    proto_item* real(int hf, std::size_t at, std::size_t length, double value,
+                     const std::string& shown) const {
+        auto [o, l] = place(at, length);
+        return proto_tree_add_double_format_value(tree_, hf, tvb_, o, l, value, "%s",
+                                                  shown.c_str());
+    }
     proto_item* generated(proto_item* item) const {
         proto_item_set_generated(item);
         return item;
@@ -429,6 +470,13 @@ std::string flags_text(std::uint8_t value, std::span<const FlagBit> flags,
     fmt::format_to(std::back_inserter(b), "0x{:02X} (", value);
     append_flags(b, value, flags, "none", ignore);
     b.push_back(')');
+    return buffer_text(b);
+}
+
+// Characters as sent, as jsonl writes them (\xNN for a byte that is not printable).
+std::string chars_text(Bytes bytes) {
+    TextBuffer b;
+    append_fc_text(b, bytes);
     return buffer_text(b);
 }
 
@@ -621,7 +669,11 @@ void add_diag(const Tree& tree, const DecodedTelegram& t, const SlaveDiag& diag,
                 break;
             }
         }
-        ext.string(hf_diag_block, block.offset, block.data.size() + 1, text);
+        // The block as sent (header byte and data), its wording in the text.
+        Tree sub =
+            ext.sub(ext.bytes(hf_diag_block, block.offset, block.data.size() + 1, text), kEttBlock);
+        sub.string(hf_diag_block_type, block.offset, 1,
+                   std::string(diag_block_type_name(block.type)));
     }
 }
 
@@ -629,7 +681,7 @@ void add_prm(const Tree& tree, const DecodedTelegram& t, const SetPrm& prm) {
     const std::size_t at = t.dp.fdl.du_offset;
     tree.uint(hf_prm_status, at, 1, prm.station_status,
               flags_text(prm.station_status, set_prm_station_flags()));
-    std::string watchdog = fmt::format("factors {} x {}", prm.wd_fact_1, prm.wd_fact_2);
+    std::string watchdog = fmt::format("Watchdog: factors {} x {}", prm.wd_fact_1, prm.wd_fact_2);
     if (prm.watchdog_on() && prm.watchdog_base_uncertain())
         watchdog += fmt::format(" = {} ms with WD_Base_1ms, or {} ms with a 10 ms base",
                                 prm.watchdog_ms(), prm.watchdog_ms_10ms_base());
@@ -637,7 +689,18 @@ void add_prm(const Tree& tree, const DecodedTelegram& t, const SetPrm& prm) {
         watchdog += fmt::format(" = {} ms", prm.watchdog_ms());
     else
         watchdog += " (off)";
-    tree.string(hf_prm_watchdog, at + 1, 2, watchdog);
+    // The two factors as sent; the time (jsonl's watchdog_ms, watchdog_ms_alt) only with the
+    // watchdog on.
+    Tree wd = tree.text(at + 1, 2, kEttBlock, watchdog);
+    wd.uint(hf_prm_wd_fact_1, at + 1, 1, prm.wd_fact_1);
+    wd.uint(hf_prm_wd_fact_2, at + 2, 1, prm.wd_fact_2);
+    if (prm.watchdog_on()) {
+        wd.generated(wd.uint(hf_prm_watchdog_ms, at + 1, 2, prm.watchdog_ms(),
+                             fmt::format("{} ms", prm.watchdog_ms())));
+        if (prm.watchdog_base_uncertain())
+            wd.generated(wd.uint(hf_prm_watchdog_ms_alt, at + 1, 2, prm.watchdog_ms_10ms_base(),
+                                 fmt::format("{} ms", prm.watchdog_ms_10ms_base())));
+    }
     tree.uint(hf_prm_min_tsdr, at + 3, 1, prm.min_tsdr);
     tree.uint(hf_prm_ident, at + 4, 2, prm.ident);
     tree.uint(hf_prm_group, at + 6, 1, prm.group_ident);
@@ -677,10 +740,11 @@ void add_cfg(const Tree& tree, const DecodedTelegram& t, std::span<const CfgModu
         sub.uint(hf_cfg_module, m.offset, 1, m.identifier,
                  fmt::format("{}: 0x{:02X} {}", number++, m.identifier, text));
     }
+    const PpoLayout layout = ppo_from_cfg(
+        modules, t.dp.service == Service::ChkCfg ? PpoSource::ChkCfg : PpoSource::GetCfg);
     TextBuffer b;
-    append_ppo_long(b, ppo_from_cfg(modules, t.dp.service == Service::ChkCfg ? PpoSource::ChkCfg
-                                                                             : PpoSource::GetCfg));
-    tree.string(hf_cfg_layout, t.dp.fdl.du_offset, t.dp.fdl.du.size(), buffer_text(b));
+    append_ppo_long(b, layout);
+    tree.uint(hf_cfg_ppo, t.dp.fdl.du_offset, t.dp.fdl.du.size(), layout.type, buffer_text(b));
 }
 
 void add_profidrive(const Tree& tree, const DecodedTelegram& t, const ProfidriveMessage& m,
@@ -730,9 +794,24 @@ void add_profidrive(const Tree& tree, const DecodedTelegram& t, const Profidrive
             if (block.has_error_info())
                 p.uint(hf_pd_error_info, block.values_offset + 2u, 2, block.error_info());
         } else if (block.format != profidrive::kFormatZero) {
+            // The bytes as sent, worded in the text; each value that is a number (jsonl's
+            // "numbers") in a field of its own.
             std::string values;
             append_profidrive_values(block, values);
-            p.string(hf_pd_values, block.values_offset, block.values.size(), values);
+            Tree sub = p.sub(p.bytes(hf_pd_values, block.values_offset, block.values.size(),
+                                     values.empty() ? std::string("(no values)") : values),
+                             kEttParameter);
+            const std::size_t size =
+                static_cast<std::size_t>(std::max(profidrive_format_size(block.format), 0));
+            for (std::size_t i = 0; i < profidrive_value_count(block); ++i) {
+                const std::optional<ProfidriveNumber> n = profidrive_number(block, i);
+                if (!n) continue;
+                const double number = n->is_real ? n->real : static_cast<double>(n->integer);
+                sub.real(hf_pd_value, block.values_offset + i * size, size, number,
+                         !n->is_real ? fmt::format("{}", n->integer)
+                         : n->single ? fmt::format("{}", static_cast<float>(n->real))
+                                     : fmt::format("{}", n->real));
+            }
         }
     }
 }
@@ -775,26 +854,31 @@ void add_dpv1(const Tree& tree, const DecodedTelegram& t, const Dpv1Pdu& pdu) {
             if (!pdu.data.empty()) sub.bytes(hf_dpv1_data, pdu.data_offset, pdu.data.size());
             break;
         case Dpv1Pdu::Layout::Initiate: {
+            // The fields as sent, where the PDU holds them (as jsonl's "initiate"). Request:
+            // function, 3 reserved bytes, Send_Timeout; response: function, Max_Len_Data_Unit.
+            if (!pdu.complete) break;
             const Dpv1Initiate& i = pdu.initiate;
-            sub.string(
-                hf_dpv1_detail, at + 1, 0,
-                t.direction == Direction::Request
-                    ? fmt::format("Send_Timeout {} ({} ms)", i.send_timeout, i.send_timeout * 10)
-                    : fmt::format("Max_Len_Data_Unit {}", i.max_len_data_unit));
-            sub.string(hf_dpv1_detail, at + 1, 0,
-                       fmt::format("Features_Supported 0x{:04X}, Profile_Features_Supported "
-                                   "0x{:04X}, Profile_Ident_Number 0x{:04X}",
-                                   i.features_supported, i.profile_features_supported,
-                                   i.profile_ident_number));
+            const bool request = t.direction == Direction::Request;
+            if (request)
+                sub.uint(hf_dpv1_send_timeout, at + 4, 2, i.send_timeout,
+                         fmt::format("{} ({} ms)", i.send_timeout, i.send_timeout * 10));
+            else
+                sub.uint(hf_dpv1_max_len_data_unit, at + 1, 1, i.max_len_data_unit);
+            const std::size_t features_at = request ? at + 6 : at + 2;
+            sub.uint(hf_dpv1_features, features_at, 2, i.features_supported);
+            sub.uint(hf_dpv1_profile_features, features_at + 2, 2, i.profile_features_supported);
+            sub.uint(hf_dpv1_profile_ident, features_at + 4, 2, i.profile_ident_number);
             break;
         }
         case Dpv1Pdu::Layout::Abort:
-            sub.string(
-                hf_dpv1_detail, at + 1, 2,
-                fmt::format("Subnet {}, instance {} ({}), reason {} ({})", pdu.abort.subnet,
-                            pdu.abort.instance(),
-                            dpv1_abort_instance_name(pdu.abort.instance_reason), pdu.abort.reason(),
-                            dpv1_abort_reason_name(pdu.abort.instance_reason)));
+            if (!pdu.complete) break;
+            sub.uint(hf_dpv1_abort_subnet, at + 1, 1, pdu.abort.subnet);
+            sub.uint(hf_dpv1_abort_instance, at + 2, 1, pdu.abort.instance(),
+                     fmt::format("{} ({})", pdu.abort.instance(),
+                                 dpv1_abort_instance_name(pdu.abort.instance_reason)));
+            sub.uint(hf_dpv1_abort_reason, at + 2, 1, pdu.abort.reason(),
+                     fmt::format("{} ({})", pdu.abort.reason(),
+                                 dpv1_abort_reason_name(pdu.abort.instance_reason)));
             break;
         case Dpv1Pdu::Layout::Unknown:
             if (!pdu.data.empty()) sub.bytes(hf_dpv1_data, pdu.data_offset, pdu.data.size());
@@ -1002,7 +1086,12 @@ void add_vlt2000(const Tree& top, const DecodedTelegram& t) {
                   fmt::format("{:02}{}", v.address,
                               v.broadcast ? " (broadcast: every drive acts, none replies)" : ""));
     if (!has(kVlt2000LetterAt, 1)) return;
-    tree.string(hf_vlt_letter, kVlt2000LetterAt, 1, vlt2000_letter_text(t));
+    // The letter as sent (jsonl's "letter"), its name in the text.
+    if (vlt2000_has_letter(t)) {
+        const std::string letter = chars_text(t.bytes.subspan(kVlt2000LetterAt, 1));
+        tree.string(hf_vlt_letter, kVlt2000LetterAt, 1, letter,
+                    fmt::format("{} ({})", letter, vlt2000_letter_name(v.letter)));
+    }
     if (!has(kVlt2000WordAt, 4)) return;
     proto_item* word =
         tree.uint(hf_vlt_word, kVlt2000WordAt, 4, v.word,
@@ -1028,27 +1117,38 @@ void add_vlt2000(const Tree& top, const DecodedTelegram& t) {
     if (!has(kVlt2000SignAt, 1)) return;
     if (v.letter == Vlt2000Letter::ReadIndex && !v.index.empty()) {
         if (v.has_index_number) tree.uint(hf_vlt_index, kVlt2000SignAt, 6, v.index_number);
-    } else {
+    } else if (v.has_value && vlt2000_carries_value(v)) {
+        // The sign and the value only where the telegram carries one, as jsonl has them: a
+        // failed reply's bytes hold no value, a C command's are ignored (shown as text).
         tree.boolean(hf_vlt_negative, kVlt2000SignAt, 1, v.negative);
-        if (has(kVlt2000ValueAt, 5) && v.has_value && !v.failed) {
-            const std::string note = vlt2000_value_note(v);
-            tree.string(hf_vlt_value, kVlt2000ValueAt, 5, vlt2000_value_text(v),
-                        fmt::format("{:05} = {}{}{}", v.digits, vlt2000_value_text(v),
-                                    note.empty() ? note : " (" + note + ")",
-                                    v.letter == Vlt2000Letter::Control ? " (ignored with C)" : ""));
-        }
+        // A number, as jsonl's value: read back from the text the renderers write, so the two
+        // cannot differ.
+        const std::string text = vlt2000_value_text(v);
+        double number = 0;
+        std::from_chars(text.data(), text.data() + text.size(), number);
+        const std::string note = vlt2000_value_note(v);
+        tree.real(
+            hf_vlt_value, kVlt2000ValueAt, 5, number,
+            fmt::format("{:05} = {}{}", v.digits, text, note.empty() ? note : " (" + note + ")"));
+    } else if (v.has_value && v.letter == Vlt2000Letter::Control) {
+        tree.text(
+            kVlt2000SignAt, 6, kEttVlt2000,
+            fmt::format("Value: {:05} = {} (ignored with C)", v.digits, vlt2000_value_text(v)));
     }
-    tree.boolean(hf_vlt_failed, kVlt2000DecimalsAt, 1, v.failed);
+    if (v.has_decimals) tree.boolean(hf_vlt_failed, kVlt2000DecimalsAt, 1, v.failed);
     if (v.failed && v.has_reason)
         tree.uint(hf_vlt_reason, kVlt2000ReasonAt, 2, v.reason,
                   fmt::format("{:02} = {}", v.reason, vlt2000_reason_or_unknown(v)));
     if (!has(kVlt2000DecimalsAt, 1)) return;
     if (v.has_decimals) tree.uint(hf_vlt_decimals, kVlt2000DecimalsAt, 1, v.decimals);
     if (!has(kVlt2000ChecksumAt, 2)) return;
+    // The two characters as sent ("??": switched off), the verdict in the text; checksum_ok only
+    // where the checksum was judged (two digits), as jsonl's "checksum_ok".
     TextBuffer checksum;
     append_vlt2000_checksum(checksum, t);
-    tree.string(hf_vlt_checksum, kVlt2000ChecksumAt, 2, buffer_text(checksum));
-    tree.boolean(hf_vlt_checksum_ok, kVlt2000ChecksumAt, 2, v.checksum_ok);
+    tree.string(hf_vlt_checksum, kVlt2000ChecksumAt, 2,
+                chars_text(t.bytes.subspan(kVlt2000ChecksumAt, 2)), buffer_text(checksum));
+    if (v.has_checksum) tree.boolean(hf_vlt_checksum_ok, kVlt2000ChecksumAt, 2, v.checksum_ok);
     if (has(kVlt2000StopAt, 1)) {
         const std::uint8_t stop = t.bytes[kVlt2000StopAt];
         tree.uint(
@@ -1242,16 +1342,21 @@ void register_dpscope() {
               expert_severity(info.severity), keep(std::string(info.check)), EXPFILL}});
     }
     for (const FindingKindInfo& info : finding_catalogue()) {
-        for (Severity severity : {Severity::Note, Severity::Warning, Severity::Error}) {
-            // The default severity has the plain name; a finding made stricter or milder by an
-            // option gets the severity appended.
-            std::string abbrev = fmt::format("dpscope.finding.{}", info.name);
-            if (severity != info.severity) abbrev += fmt::format(".{}", severity_name(severity));
+        // One expert info per severity, all three with the kind's plain name, so that
+        // `dpscope.finding.KIND` selects every finding of the kind: a kind's severity can depend
+        // on what the telegram says (dpv1_error_pdu: a warning or a note by its error class).
+        // The kind's default severity is registered last: Wireshark's severity table
+        // (expert_severity_levels) finds a name's last registration.
+        const char* abbrev = keep(fmt::format("dpscope.finding.{}", info.name));
+        std::vector<Severity> severities;
+        for (Severity severity : {Severity::Note, Severity::Warning, Severity::Error})
+            if (severity != info.severity) severities.push_back(severity);
+        severities.push_back(info.severity);
+        for (Severity severity : severities)
             experts.push_back({&ei_finding[static_cast<std::size_t>(info.kind)]
                                           [static_cast<std::size_t>(severity)],
-                               {keep(std::move(abbrev)), finding_group(info.kind),
-                                expert_severity(severity), keep(std::string(info.rule)), EXPFILL}});
-        }
+                               {abbrev, finding_group(info.kind), expert_severity(severity),
+                                keep(std::string(info.rule)), EXPFILL}});
     }
     expert_module_t* expert = expert_register_protocol(proto_dpscope);
     expert_register_field_array(expert, experts.data(), static_cast<int>(experts.size()));

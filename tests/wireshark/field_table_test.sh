@@ -4,8 +4,8 @@
 # Every registered dpscope.* field must have a row with its type (tshark's type without FT_), and
 # every row must name a registered field. A row may name a run of numbered fields:
 # `dpscope.pcd.ctw.bit0` to `dpscope.pcd.ctw.bit15`. The expert infos (FT_NONE) must be
-# dpscope.problem.KIND or dpscope.finding.KIND[.note|.warning|.error], KIND a problem kind the
-# README names or a kind of its Findings table, and every finding kind must have one.
+# dpscope.problem.KIND or dpscope.finding.KIND (one name whatever the severity), KIND a problem
+# kind the README names or a kind of its Findings table, and every finding kind must have one.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 [ $# -eq 2 ] || {
@@ -68,7 +68,7 @@ while read -r expert; do
     if [[ "$expert" =~ ^dpscope\.problem\.([a-z0-9_]+)$ ]]; then
         grep -qx "${BASH_REMATCH[1]}" "$work/problem_kinds" ||
             { echo "expert info $expert: the README names no such problem kind" >&2; status=1; }
-    elif [[ "$expert" =~ ^dpscope\.finding\.([a-z0-9_]+)(\.(note|warning|error))?$ ]]; then
+    elif [[ "$expert" =~ ^dpscope\.finding\.([a-z0-9_]+)$ ]]; then
         grep -qx "${BASH_REMATCH[1]}" "$work/finding_kinds" ||
             { echo "expert info $expert: the README's Findings table has no such kind" >&2; status=1; }
     else

@@ -6,7 +6,8 @@
 #   wireshark.NAME.filters  display filters select the frames `dpscope decode -T jsonl` reports
 #                           (on the samples that name the checks they need; each check is a
 #                           tshark run of its own, so the samples with nothing new for them, and
-#                           inputs that repeat another's bytes, have none: CI time)
+#                           inputs that repeat another's bytes, have none: CI time; the
+#                           checks of one field's values only where named)
 # The goldens are rewritten by the update-golden target, with dpscope's own.
 set(tshark_test ${CMAKE_CURRENT_SOURCE_DIR}/wireshark/tshark_test.sh)
 set(tshark_work_dir ${CMAKE_CURRENT_BINARY_DIR}/wireshark)
@@ -28,7 +29,8 @@ set(tshark_fields
     dpscope.profidrive.pnu dpscope.fc.address dpscope.fc.block dpscope.fc.ak dpscope.fc.pnu
     dpscope.fc.value dpscope.fc.fault dpscope.fc.bcc_ok dpscope.vlt2000.address
     dpscope.vlt2000.letter dpscope.vlt2000.parameter dpscope.vlt2000.value
-    dpscope.vlt2000.reason dpscope.vlt2000.checksum_ok dpscope.problem dpscope.finding
+    dpscope.vlt2000.reason dpscope.vlt2000.checksum dpscope.vlt2000.checksum_ok dpscope.problem
+    dpscope.finding
     frame.comment)
 set(tshark_field_args -T fields -E header=y -E quote=d)
 foreach(field ${tshark_fields})
@@ -71,8 +73,15 @@ endfunction()
 # Every input dpscope reads, with the options its golden_case uses (the dialect is also the
 # plugin's preference; dpv1's per-slave dialect has no preference, so dpv1 runs with the default).
 wireshark_case(bus_health samples/bus-health.pcap bus_health finding,comment,expert)
-wireshark_case(dpv1 samples/dpv1.pcap dpv1 finding,comment,expert,expert_error)
-wireshark_case(faults samples/faults.pcap faults rc7,finding,problem,comment,expert,expert_error)
+wireshark_case(dpv1 samples/dpv1.pcap dpv1
+               finding,comment,expert,expert_error,cfg_ppo,watchdog,pd_value)
+# DP-V1 PDUs no sample has: error PDUs of a warning (class 0xA) and a note (0xB), an MSAC_C2
+# Initiate, its response and an Abort, and a Slave_Diag with a device- and a channel-related block.
+# A hex log written by hand (each telegram's FCS summed), not by the simulator.
+wireshark_case(dpv1_pdus tests/wireshark/dpv1-pdus.hex dpv1_pdus
+               finding,comment,expert,expert_kinds,initiate,abort)
+wireshark_case(faults samples/faults.pcap faults
+               rc7,finding,problem,comment,expert,expert_error,cfg_ppo,watchdog)
 wireshark_case(fc_clean samples/fc-clean.pcap fc_clean -)
 wireshark_case(fc_examples samples/fc-examples.hex fc_examples ak7,finding,comment,expert
                DECODE --bus fc)
@@ -95,9 +104,13 @@ wireshark_case(timeouts samples/timeouts.pcap timeouts finding,comment,expert,ex
 wireshark_case(truncated samples/truncated.pcap truncated -)
 wireshark_case(user0 samples/user0.pcap user0 -)
 wireshark_case(vlt2000_clean samples/vlt2000-clean.pcap vlt2000_clean -)
+# The VLT 2000 fields that hold the characters as sent (letter, checksum) and the verdicts made only
+# where one was (checksum_ok, negative, value), the value a number.
+set(vlt2000_field_checks letter,checksum_off,checksum_judged,negative,value,value_number)
 wireshark_case(vlt2000_examples samples/vlt2000-examples.txt vlt2000_examples
-               failed,finding,comment,expert DECODE --bus vlt2000)
-wireshark_case(vlt2000 samples/vlt2000.pcap vlt2000 failed,finding,problem,comment,expert,expert_error)
+               failed,finding,comment,expert,${vlt2000_field_checks} DECODE --bus vlt2000)
+wireshark_case(vlt2000 samples/vlt2000.pcap vlt2000
+               failed,finding,problem,comment,expert,expert_error,checksum_bad,${vlt2000_field_checks})
 
 # The checks themselves fail when they should: a required check on a sample without such
 # telegrams (ppo1 has no RC 7), and tshark judging with another time-out than the conversion.
