@@ -89,6 +89,11 @@ std::vector<std::string> dpscope_argv(const std::vector<std::string>& args) {
     return argv;
 }
 
+std::vector<std::string> without_idle_gap(std::vector<std::string> args) {
+    args.insert(args.end(), {"--idle-gap-ms", "0"});
+    return args;
+}
+
 bool wait_for_raw_mode(const PseudoTerminal& pty, double seconds) {
     return wait_until(
         [&] {

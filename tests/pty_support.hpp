@@ -63,6 +63,12 @@ class Child {
 // The dpscope built with the tests, with `args`: the argv of a Child or of exec_or_exit.
 std::vector<std::string> dpscope_argv(const std::vector<std::string>& args);
 
+// `args` of dpscope capturing on a pty the test writes into (sniff), with --idle-gap-ms 0: a
+// thread of the test writing the pty, or relaying into it, can pause anywhere, within a telegram
+// too, for as long as a loaded machine keeps it waiting, and an idle gap would cut the telegram
+// off. Only the tests of the gap itself keep one (tty_source_test, with a clock of its own).
+std::vector<std::string> without_idle_gap(std::vector<std::string> args);
+
 // Whether the program on the slave side has put the line into raw mode (sniff configures the
 // port after opening its outputs): the master shares the slave's settings.
 bool wait_for_raw_mode(const PseudoTerminal& pty, double seconds = kPatienceSeconds);

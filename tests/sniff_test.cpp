@@ -48,6 +48,7 @@ using test::Session;
 using test::simulate;
 using test::slurp;
 using test::Telegrams;
+using test::without_idle_gap;
 
 // dpscope running as a child process, standard output and error in files (standard input the
 // test's own, as it always was here).
@@ -58,18 +59,6 @@ class Sniffer : public test::Child {
     // Waits until the sniffer says it is capturing.
     bool ready() const { return err_says("capturing on"); }
 };
-
-// The options of a sniffer fed by the test: a pty written by a thread of the test (or relayed by
-// one) can pause anywhere, in the middle of a telegram too, for as long as a loaded machine keeps
-// that thread waiting; an idle gap would then cut the telegram off. These tests do not test the
-// gap (tty_source_test does, with a clock of its own), so they switch it off.
-const std::vector<std::string> kNoIdleGap = {"--idle-gap-ms", "0"};
-
-std::vector<std::string> sniff_args(std::vector<std::string> args,
-                                    const std::vector<std::string>& more = kNoIdleGap) {
-    args.insert(args.end(), more.begin(), more.end());
-    return args;
-}
 
 // Finding kinds with counts in the jsonl output of dpscope.
 std::map<std::string, int> jsonl_finding_kinds(const std::string& jsonl) {
@@ -118,8 +107,8 @@ TEST(SniffTest, EveryTelegramArrivesIntactAndInOrderAndTheFindingsMatch) {
     std::string pcap = test::temp_path("capture.pcap");
     // --timeout-ms: the reference has no times and finds no time-out; live, a request still open
     // at the stop is judged by the stop's wall-clock time, however late a loaded machine makes it.
-    Sniffer sniffer(sniff_args({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-T",
-                                "jsonl", "--timeout-ms", "3600000"}));
+    Sniffer sniffer(without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap,
+                                      "-T", "jsonl", "--timeout-ms", "3600000"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     Session session = simulate(faulty_session());
     play(pty, session, true);
@@ -155,7 +144,8 @@ TEST(SniffTest, EveryTelegramArrivesIntactAndInOrderAndTheFindingsMatch) {
 TEST(SniffTest, PacedAt12MbitNothingIsLost) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("paced.pcap");
-    Sniffer sniffer(sniff_args({"sniff", "-i", pty.slave, "--baud", "12000000", "-w", pcap, "-q"}));
+    Sniffer sniffer(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "12000000", "-w", pcap, "-q"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.seed = 4;
@@ -215,7 +205,8 @@ TEST(SniffTest, SigintInTheMiddleOfATelegramKeepsAValidCompleteFile) {
 TEST(SniffTest, DeviceVanishingEndsWithExitCode5AndAValidFile) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("vanished.pcap");
-    Sniffer sniffer(sniff_args({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q"}));
+    Sniffer sniffer(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 20;
@@ -235,7 +226,8 @@ TEST(SniffTest, DeviceVanishingEndsWithExitCode5AndAValidFile) {
 TEST(SniffTest, StopsAfterCountAndAfterDuration) {
     {
         PseudoTerminal pty;
-        Sniffer sniffer(sniff_args({"sniff", "-i", pty.slave, "--baud", "1500000", "-c", "10"}));
+        Sniffer sniffer(
+            without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-c", "10"}));
         ASSERT_TRUE(sniffer.ready()) << sniffer.err();
         SimulatorOptions options;
         options.cycles = 20;
@@ -258,8 +250,8 @@ TEST(SniffTest, StopsAfterCountAndAfterDuration) {
 TEST(SniffTest, RotationLosesNothingAtTheSeams) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("rotated.pcap");
-    Sniffer sniffer(sniff_args({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q",
-                                "--rotate-size", "2000"}));
+    Sniffer sniffer(without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap,
+                                      "-q", "--rotate-size", "2000"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 40;
@@ -288,8 +280,8 @@ TEST(SniffTest, RotationLosesNothingAtTheSeams) {
 TEST(SniffTest, RotationByTimeSpan) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("timed.pcap");
-    Sniffer sniffer(sniff_args({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q",
-                                "--rotate-seconds", "0.25"}));
+    Sniffer sniffer(without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap,
+                                      "-q", "--rotate-seconds", "0.25"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 500;  // 1 s of bus time, played at its pace
@@ -383,7 +375,7 @@ TEST(SniffTest, SimulatePlaysOntoADeviceAndReplaysACapture) {
 
 TEST(SniffTest, PcapToStandardOutputWithUser0LinkType) {
     PseudoTerminal pty;
-    Sniffer sniffer(sniff_args(
+    Sniffer sniffer(without_idle_gap(
         {"sniff", "-i", pty.slave, "--baud", "500000", "-w", "-", "--linktype", "user0"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
@@ -408,8 +400,8 @@ TEST(SniffTest, FullDiskStopsWithExitCode4AndAValidFile) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("full.pcap");
     // A file size limit makes writes fail as on a full disk.
-    Sniffer sniffer(sniff_args({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q"}),
-                    3000);
+    Sniffer sniffer(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q"}), 3000);
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 30;  // about 7 KB: more than the limit, less than the pty buffers hold
@@ -429,8 +421,8 @@ TEST(SniffTest, FullDiskStopsWithExitCode4AndAValidFile) {
 TEST(SniffTest, ReportAtTheEnd) {
     PseudoTerminal pty;
     const std::string pcap = test::temp_path("report.pcap");  // to see when all has arrived
-    Sniffer sniffer(
-        sniff_args({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "--report", "-w", pcap}));
+    Sniffer sniffer(without_idle_gap(
+        {"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "--report", "-w", pcap}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options = faulty_session();
     options.cycles = 200;
@@ -483,8 +475,8 @@ TEST(SniffTest, DpV1SlavesAreDecodedAndTrackedLive) {
     // --timeout-ms: a request still open at the stop is judged live by the stop's wall-clock
     // time, however late a loaded machine makes it, and by `dpscope report` at the last telegram.
     const std::vector<std::string> patient = {"--timeout-ms", "3600000"};
-    Sniffer sniffer(sniff_args({"sniff", "-i", adapter.slave, "--baud", "1500000", "-w", pcap,
-                                "--report", patient[0], patient[1]}));
+    Sniffer sniffer(without_idle_gap({"sniff", "-i", adapter.slave, "--baud", "1500000", "-w", pcap,
+                                      "--report", patient[0], patient[1]}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     Capture expected = read_capture(reference);
     {
@@ -581,7 +573,7 @@ TEST(SniffTest, FcDrivesAreDecodedAndTrackedLive) {
     PseudoTerminal bus, adapter;
     // No idle gap: the master's next command follows the cut response within a few ms, but the
     // relay on a loaded machine can hold bytes back for any time, a telegram's last ones too.
-    Sniffer sniffer(sniff_args(
+    Sniffer sniffer(without_idle_gap(
         {"sniff", "-i", adapter.slave, "--bus", "fc", "--baud", "115200", "-w", pcap, "--report"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     EXPECT_NE(sniffer.err().find("at 115200 baud 8E1"), std::string::npos) << sniffer.err();
@@ -721,8 +713,8 @@ TEST(SniffTest, Vlt2000DrivesAreDecodedAndTrackedLive) {
     PseudoTerminal bus, adapter;
     // No idle gap: the relay on a loaded machine can hold bytes back for any time, within a
     // telegram too.
-    Sniffer sniffer(sniff_args({"sniff", "-i", adapter.slave, "--bus", "vlt2000", "--baud",
-                                "115200", "-w", pcap, "--report"}));
+    Sniffer sniffer(without_idle_gap({"sniff", "-i", adapter.slave, "--bus", "vlt2000", "--baud",
+                                      "115200", "-w", pcap, "--report"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     EXPECT_NE(sniffer.err().find("at 115200 baud 8N1"), std::string::npos) << sniffer.err();
     Capture expected = read_capture(reference);
@@ -824,7 +816,7 @@ int sniff_faulty_session(std::vector<std::string> args, std::string& out, std::s
     PseudoTerminal pty;
     const std::string pcap = test::temp_path("faulty.pcap");
     args.insert(args.begin(), {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap});
-    Sniffer sniffer(sniff_args(args));
+    Sniffer sniffer(without_idle_gap(args));
     EXPECT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options = faulty_session();
     options.cycles = 100;
@@ -1026,7 +1018,8 @@ TEST(SniffTest, ThePortIsLeftAsItWasFoundOnEveryWayOut) {
 TEST(SniffTest, ASecondSnifferOnThePortIsRefusedAndTheFirstCapturesOn) {
     PseudoTerminal pty;
     const std::string pcap = test::temp_path("first.pcap");
-    Sniffer first(sniff_args({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "-w", pcap}));
+    Sniffer first(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "-w", pcap}));
     ASSERT_TRUE(first.ready()) << first.err();
     // Even with the same -w file: refused before that file is touched.
     auto second =
@@ -1310,7 +1303,7 @@ TEST(SniffTest, StatsOnATerminalRedrawTheStationTableAtMost4TimesASecond) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("stats.pcap");
     TerminalSniffer sniffer(
-        sniff_args({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "--stats"}));
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "--stats"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 600;  // 1.2 s of bus time, played at its pace
@@ -1370,7 +1363,7 @@ TEST(SniffTest, StatsOffATerminalPrintAPlainLinePerHealthEvent) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("events.pcap");
     Sniffer sniffer(
-        sniff_args({"sniff", "-i", pty.slave, "--baud", "1500000", "--stats", "-w", pcap}));
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "--stats", "-w", pcap}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 300;
@@ -1406,8 +1399,9 @@ TEST(SniffTest, AlarmRunsOncePerKindAndStationWithinTheMinute) {
     std::string dir = test::temp_path("alarms");
     std::filesystem::create_directories(dir);
     const std::string pcap = test::temp_path("alarms.pcap");  // to see when all has arrived
-    Sniffer sniffer(sniff_args({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "-w", pcap,
-                                "--alarm", "env | grep ^DPSCOPE_ | sort > " + dir + "/alarm.$$"}));
+    Sniffer sniffer(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "-w", pcap,
+                          "--alarm", "env | grep ^DPSCOPE_ | sort > " + dir + "/alarm.$$"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 400;
