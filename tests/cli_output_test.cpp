@@ -343,6 +343,10 @@ TEST(CliOutputTest, NumericOptionsNameTheirRange) {
 
 // ---- -l and the terminal -----------------------------------------------------------------------
 
+// How long a test waits for a line (it comes within milliseconds on an idle machine; this only
+// bounds a program that would hold it back until its input ends).
+constexpr int kPatienceMs = static_cast<int>(test::kPatienceSeconds * 1000);
+
 // dpscope ARGS with standard input from `stdin_fd`; its standard output and error are pipes.
 struct Child {
     pid_t pid = -1;
@@ -407,7 +411,7 @@ TEST(CliOutputTest, LineBufferedOutputReachesAPipeBeforeTheInputEnds) {
     const std::string line = "10 03 02 49 4E 16\n";
     ASSERT_EQ(::write(in[1], line.data(), line.size()), static_cast<ssize_t>(line.size()));
     // The input stays open: without -l the line would wait in the output buffer until the end.
-    std::string out = Child::read_for(child.out, 10'000, "\n");
+    std::string out = Child::read_for(child.out, kPatienceMs, "\n");
     EXPECT_NE(out.find("SD1 FDL_Status"), std::string::npos) << out;
     ::close(in[1]);
 }
@@ -418,7 +422,7 @@ TEST(CliOutputTest, HexOnATerminalSaysItWaitsForInput) {
     ASSERT_GE(slave, 0);
     Child child({"hex"}, slave);
     ::close(slave);
-    std::string err = Child::read_for(child.err, 10'000, "Ctrl-D");
+    std::string err = Child::read_for(child.err, kPatienceMs, "Ctrl-D");
     EXPECT_NE(err.find("dpscope hex: reading a hex log from the terminal"), std::string::npos)
         << err;
 }
@@ -431,7 +435,7 @@ TEST(CliOutputTest, LineBufferedRawInputOnAPipeIsDecodedAsItArrives) {
     const std::vector<std::uint8_t> bytes = test::hex("10 03 02 49 4E 16 10 03 02 49 4E 16");
     ASSERT_EQ(::write(in[1], bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
     // 12 bytes, not the 64 KiB a whole read buffer holds: they are decoded at once.
-    std::string out = Child::read_for(child.out, 10'000, "\n");
+    std::string out = Child::read_for(child.out, kPatienceMs, "\n");
     EXPECT_NE(out.find("SD1 FDL_Status"), std::string::npos) << out;
     ::close(in[1]);
 }

@@ -8,7 +8,6 @@
 #include <termios.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -217,6 +216,7 @@ TEST(ExtcapTest, BadValuesAreClearErrors) {
         std::vector<std::string> args;
         std::string message;
     };
+    const std::string unused = test::temp_path("unused");  // never made: every case is refused
     const std::vector<Case> cases = {
         {{"--extcap-config", "--extcap-interface", "eth0"}, "--extcap-interface eth0: not a"},
         {{"--extcap-config", "--extcap-interface", "dpscope-../etc"}, "not a dpscope interface"},
@@ -235,18 +235,16 @@ TEST(ExtcapTest, BadValuesAreClearErrors) {
         {{"--capture", "--extcap-interface", "dpscope", "--device", "/dev/null", "--baud",
           "1500000"},
          "--capture needs --fifo PATH"},
-        {{"--capture", "--extcap-interface", "dpscope", "--fifo", "/tmp/unused", "--baud",
-          "1500000"},
+        {{"--capture", "--extcap-interface", "dpscope", "--fifo", unused, "--baud", "1500000"},
          "--device is required for interface dpscope"},
-        {{"--capture", "--extcap-interface", "dpscope-ttyUSB0", "--fifo", "/tmp/unused",
+        {{"--capture", "--extcap-interface", "dpscope-ttyUSB0", "--fifo", unused,
           "--extcap-capture-filter", "port 80"},
          "--extcap-capture-filter 'port 80': dpscope has no capture filter"},
         // As sniff validates them: PROFIBUS needs a rate, the FC protocol takes 2400 to 115200.
-        {{"--capture", "--extcap-interface", "dpscope", "--device", "/dev/null", "--fifo",
-          "/tmp/unused"},
+        {{"--capture", "--extcap-interface", "dpscope", "--device", "/dev/null", "--fifo", unused},
          "--baud is required for PROFIBUS"},
-        {{"--capture", "--extcap-interface", "dpscope", "--device", "/dev/null", "--fifo",
-          "/tmp/unused", "--bus", "fc", "--baud", "1500000"},
+        {{"--capture", "--extcap-interface", "dpscope", "--device", "/dev/null", "--fifo", unused,
+          "--bus", "fc", "--baud", "1500000"},
          "from 2400 to 115200 baud for the FC protocol"},
     };
     for (const Case& c : cases) {
@@ -256,7 +254,7 @@ TEST(ExtcapTest, BadValuesAreClearErrors) {
         EXPECT_EQ(result.err.find("dpscope: error: "), 0u) << result.err;
         EXPECT_EQ(result.out, "");
     }
-    EXPECT_FALSE(fs::exists("/tmp/unused"));
+    EXPECT_FALSE(fs::exists(unused));
 }
 
 // Reads a fifo until its writer closes it, in a thread.
@@ -294,10 +292,12 @@ TEST(ExtcapTest, CapturesIntoAFifoLiveAndEndsOnSigterm) {
     const std::string fifo = test::temp_path("extcap.fifo");
     ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
     PseudoTerminal pty;
+    // --idle-gap-ms 0: the test's thread writing the pty can pause within a telegram for as long
+    // as a loaded machine keeps it waiting; a gap would cut the telegram off.
     Child capture = extcap_capture({"--extcap-interface", "dpscope", "--fifo", fifo, "--device",
-                                    pty.slave, "--baud", "1500000"});
+                                    pty.slave, "--baud", "1500000", "--idle-gap-ms", "0"});
     FifoReader reader(fifo);
-    ASSERT_TRUE(wait_for_raw_mode(pty, 10)) << capture.err();
+    ASSERT_TRUE(wait_for_raw_mode(pty)) << capture.err();
     Session session = simulate(20);
     play(pty, session, true);
     // Each telegram is in the fifo as soon as it is decoded: all of them before any stop.
@@ -307,11 +307,10 @@ TEST(ExtcapTest, CapturesIntoAFifoLiveAndEndsOnSigterm) {
             n += 16 + t.size();
         return n;
     }();
-    for (int i = 0; i < 500 && reader.bytes().size() < expected_bytes; ++i)
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    EXPECT_TRUE(test::wait_until([&] { return reader.bytes().size() >= expected_bytes; }));
     EXPECT_EQ(reader.bytes().size(), expected_bytes);
     capture.signal(SIGTERM);
-    EXPECT_EQ(capture.wait(15), 0) << capture.err();
+    EXPECT_EQ(capture.wait(), 0) << capture.err();
     reader.join();
     EXPECT_EQ(capture.err(), "");  // Wireshark shows anything on standard error as an error
     EXPECT_EQ(capture.out(), "");
@@ -335,27 +334,29 @@ TEST(ExtcapTest, WiresharkClosingTheFifoEndsTheCaptureQuietly) {
         {"--extcap-interface", "dpscope", "--fifo", fifo, "--device", pty.slave, "--bus", "fc"});
     int fd = open(fifo.c_str(), O_RDONLY);
     ASSERT_GE(fd, 0);
-    ASSERT_TRUE(wait_for_raw_mode(pty, 10)) << capture.err();
+    ASSERT_TRUE(wait_for_raw_mode(pty)) << capture.err();
     char header[24];
     ASSERT_EQ(read(fd, header, sizeof header), 24);
     close(fd);  // Wireshark is gone; the bus is quiet
-    EXPECT_EQ(capture.wait(5), 0) << capture.err();
+    EXPECT_EQ(capture.wait(), 0) << capture.err();
     EXPECT_EQ(capture.err(), "");
 }
 
 TEST(ExtcapTest, CapturesIntoAFileWithTheBusTagAndEndsCompleteOnSigterm) {
     const std::string pcap = test::temp_path("extcap-file.pcap");
     PseudoTerminal pty;
-    // dpscope-NAME with --device: the device given wins over /dev/NAME.
+    // dpscope-NAME with --device: the device given wins over /dev/NAME. (--idle-gap-ms 0: the
+    // test's thread writing the pty can pause within a telegram on a loaded machine.)
     Child capture = extcap_capture({"--extcap-interface", "dpscope-ttyUSB99", "--fifo", pcap,
                                     "--device", pty.slave, "--baud", "500000", "--parity", "even",
-                                    "--stop-bits", "1", "--idle-gap-ms", "20"});
-    ASSERT_TRUE(wait_for_raw_mode(pty, 10)) << capture.err();
+                                    "--stop-bits", "1", "--idle-gap-ms", "0"});
+    ASSERT_TRUE(wait_for_raw_mode(pty)) << capture.err();
     Session session = simulate(10);
     play(pty, session, true);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    // Each telegram is written and flushed as it comes: stopped once all of them are there.
+    EXPECT_TRUE(test::wait_for_records(pcap, session.played.size())) << capture.err();
     capture.signal(SIGTERM);
-    EXPECT_EQ(capture.wait(15), 0) << capture.err();
+    EXPECT_EQ(capture.wait(), 0) << capture.err();
     EXPECT_EQ(capture.err(), "");
     // Read with the FC protocol asked for: the file's own tag says PROFIBUS.
     auto decoded = test::run_dpscope({"decode", "-q", pcap});
@@ -398,7 +399,7 @@ TEST(ExtcapTest, TsharkCapturesOnTheExtcapInterface) {
 
     // tshark -D lists the interface dpscope (with the personal folder's extcap).
     Child list({tshark, "-D"}, {env});
-    ASSERT_EQ(list.wait(15), 0) << list.err();
+    ASSERT_EQ(list.wait(), 0) << list.err();
     EXPECT_NE(list.out().find(". dpscope (dpscope: serial bus sniffer"), std::string::npos)
         << list.out();
 
@@ -413,11 +414,16 @@ TEST(ExtcapTest, TsharkCapturesOnTheExtcapInterface) {
     PseudoTerminal bus, adapter;
     const fs::path out = home / "live.pcapng";
     // The extcap's options are tshark preferences: extcap.<interface>.<option without dashes>.
+    // No idle gap: the relay (a thread of the test) can pause within a telegram for as long as a
+    // loaded machine keeps it waiting. -a duration: only a bound for a capture that never
+    // completes; tshark ends at -c.
+    const int duration = static_cast<int>(test::kPatienceSeconds) / 2;
     Child capture({tshark, "-i", "dpscope", "-o", "extcap.dpscope.device:" + adapter.slave, "-o",
-                   "extcap.dpscope.baud:1500000", "-c", std::to_string(expected.telegrams.size()),
-                   "-a", "duration:15", "-w", out.string()},
+                   "extcap.dpscope.baud:1500000", "-o", "extcap.dpscope.idlegapms:0", "-c",
+                   std::to_string(expected.telegrams.size()), "-a",
+                   "duration:" + std::to_string(duration), "-w", out.string()},
                   {env});
-    ASSERT_TRUE(wait_for_raw_mode(adapter, 10)) << capture.err();
+    ASSERT_TRUE(wait_for_raw_mode(adapter)) << capture.err();
     {
         Relay relay(bus.master, adapter.master);
         std::vector<std::string> play = {"simulate", "--device", bus.slave,
@@ -426,7 +432,7 @@ TEST(ExtcapTest, TsharkCapturesOnTheExtcapInterface) {
         auto played = test::run_dpscope(play);
         ASSERT_EQ(played.exit_code, 0) << played.err;
     }
-    ASSERT_EQ(capture.wait(15), 0) << capture.err();
+    ASSERT_EQ(capture.wait(), 0) << capture.err();
     Capture got = read_capture(out.string(), profibus_dp_protocol());
     EXPECT_EQ(got.status, InputStatus::Ok);
     EXPECT_EQ(got.link_type, 147);

@@ -189,23 +189,18 @@ std::pair<std::string, int> run_on_terminal(const std::vector<std::string>& args
     }
     std::string seen;
     int status = 0;
-    bool ended = false;
-    for (int i = 0; i < 6000; ++i) {
-        pollfd readable{pty.master, POLLIN, 0};
-        if (poll(&readable, 1, 10) > 0) {
+    // Read what it draws until it ends (within the patience: a bound for a hang).
+    const bool ended = test::wait_until([&] {
+        for (;;) {
+            pollfd readable{pty.master, POLLIN, 0};
+            if (poll(&readable, 1, 0) <= 0) break;
             char buffer[4096];
             ssize_t n = read(pty.master, buffer, sizeof buffer);
-            if (n > 0) {
-                seen.append(buffer, static_cast<std::size_t>(n));
-                continue;  // drain before looking at the child
-            }
-            usleep(10'000);  // hung up: the child is ending
+            if (n <= 0) break;  // hung up (EIO): the child is ending, or not there yet
+            seen.append(buffer, static_cast<std::size_t>(n));
         }
-        if (waitpid(pid, &status, WNOHANG) == pid) {
-            ended = true;
-            break;
-        }
-    }
+        return waitpid(pid, &status, WNOHANG) == pid;
+    });
     if (!ended) {
         kill(pid, SIGKILL);
         waitpid(pid, &status, 0);

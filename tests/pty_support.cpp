@@ -9,11 +9,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <utility>
 
+#include "capture/capture_writer.hpp"
+#include "capture/pcap_source.hpp"
 #include "capture/tty_player.hpp"
 
 namespace dpscope::test {
@@ -53,23 +56,19 @@ Child::~Child() {
 void Child::signal(int number) const { kill(pid_, number); }
 
 int Child::wait(double seconds) {
-    for (int i = 0; i < seconds * 100; ++i) {
-        int status = 0;
-        if (waitpid(pid_, &status, WNOHANG) == pid_) {
-            reaped_ = true;
-            return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    int status = 0;
+    const bool ended =
+        reaped_ || wait_until([&] { return waitpid(pid_, &status, WNOHANG) == pid_; }, seconds);
+    if (!ended) return -1;
+    if (!reaped_) {
+        reaped_ = true;
+        exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     }
-    return -1;
+    return exit_code_;
 }
 
 bool Child::err_says(std::string_view text, double seconds) const {
-    for (int i = 0; i < seconds * 100; ++i) {
-        if (err().find(text) != std::string::npos) return true;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return false;
+    return wait_until([&] { return err().find(text) != std::string::npos; }, seconds);
 }
 
 std::string Child::out() const { return slurp(out_); }
@@ -90,31 +89,86 @@ std::vector<std::string> dpscope_argv(const std::vector<std::string>& args) {
     return argv;
 }
 
+std::vector<std::string> without_idle_gap(std::vector<std::string> args) {
+    args.insert(args.end(), {"--idle-gap-ms", "0"});
+    return args;
+}
+
 bool wait_for_raw_mode(const PseudoTerminal& pty, double seconds) {
-    for (int i = 0; i < seconds * 100; ++i) {
-        termios settings{};
-        if (tcgetattr(pty.master, &settings) == 0 && (settings.c_lflag & ICANON) == 0) return true;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    return wait_until(
+        [&] {
+            termios settings{};
+            return tcgetattr(pty.master, &settings) == 0 && (settings.c_lflag & ICANON) == 0;
+        },
+        seconds);
+}
+
+namespace {
+
+std::uint32_t pcap_u32(const std::vector<std::uint8_t>& bytes, std::size_t at, bool swapped) {
+    std::uint32_t v = 0;
+    for (std::size_t i = 0; i < 4; ++i)
+        v |= static_cast<std::uint32_t>(bytes[at + i]) << (8 * (swapped ? 3 - i : i));
+    return v;
+}
+
+}  // namespace
+
+std::size_t pcap_records(const std::string& path) {
+    const std::vector<std::uint8_t> bytes = read_file(path);
+    if (bytes.size() < kPcapFileHeaderBytes) return 0;
+    const std::uint32_t magic = pcap_u32(bytes, 0, false);
+    const bool swapped = magic == 0xD4C3B2A1 || magic == 0x4D3CB2A1;
+    std::size_t records = 0;
+    for (std::size_t at = kPcapFileHeaderBytes; at + kPcapRecordHeaderBytes <= bytes.size();
+         ++records) {
+        at += kPcapRecordHeaderBytes + pcap_u32(bytes, at + 8, swapped);  // incl_len
+        if (at > bytes.size()) break;
     }
-    return false;
+    return records;
+}
+
+std::size_t rotated_pcap_records(const std::string& path) {
+    std::size_t records = 0;
+    for (unsigned index = 1;; ++index) {
+        const std::string name = rotated_file_name(path, index);
+        if (access(name.c_str(), F_OK) != 0) return records;
+        records += pcap_records(name);
+    }
+}
+
+bool wait_for_records(const std::string& path, std::size_t records, bool rotated) {
+    return wait_until(
+        [&] { return (rotated ? rotated_pcap_records(path) : pcap_records(path)) >= records; });
 }
 
 Relay::Relay(int from, int to)
     : thread_([this, from, to] {
           std::uint8_t buffer[4096];
-          for (int quiet = 0; !stop_ || quiet < 30;) {
+          std::chrono::steady_clock::time_point give_up{};
+          for (;;) {
               pollfd p{from, POLLIN, 0};
               ssize_t n = poll(&p, 1, 10) > 0 ? read(from, buffer, sizeof buffer) : 0;
-              if (n <= 0) {
-                  ++quiet;
-                  if (n < 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+              if (n > 0) {
+                  for (ssize_t at = 0; at < n;) {
+                      ssize_t w = ::write(to, buffer + at, static_cast<std::size_t>(n - at));
+                      if (w > 0)
+                          at += w;
+                      else if (w < 0 && errno != EINTR)
+                          return;  // the other end is gone: nothing more can be copied
+                  }
                   continue;
               }
-              quiet = 0;
-              for (ssize_t at = 0; at < n;) {
-                  ssize_t w = ::write(to, buffer + at, static_cast<std::size_t>(n - at));
-                  if (w > 0) at += w;
+              // Nothing came: a quiet line (0), or no writer on the slave end (EIO: not yet, or
+              // no more, and then everything it wrote has been read).
+              const bool hung_up = n < 0 && errno == EIO;
+              if (stop_) {
+                  const auto now = std::chrono::steady_clock::now();
+                  if (give_up == std::chrono::steady_clock::time_point{})
+                      give_up = now + std::chrono::seconds(static_cast<int>(kPatienceSeconds));
+                  if (hung_up || now >= give_up) return;
               }
+              if (n < 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
           }
       }) {}
 

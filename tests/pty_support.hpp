@@ -41,17 +41,19 @@ class Child {
     Child& operator=(const Child&) = delete;
     void signal(int number) const;
     // The exit code (128 + N for signal N), or -1 if it does not end within the time.
-    int wait(double seconds = 20);
+    int wait(double seconds = kPatienceSeconds);
     // Whether standard error says `text` within `seconds`.
-    bool err_says(std::string_view text, double seconds = 5) const;
+    bool err_says(std::string_view text, double seconds = kPatienceSeconds) const;
     std::string out() const;
     std::string err() const;
+    const std::string& out_path() const { return out_; }  // the file standard output goes to
 
   private:
     std::string out_;
     std::string err_;
     pid_t pid_ = -1;
     bool reaped_ = false;
+    int exit_code_ = -1;
 };
 
 // In a child process after fork(): runs `argv` (argv[0] found on PATH unless it names a file);
@@ -61,19 +63,38 @@ class Child {
 // The dpscope built with the tests, with `args`: the argv of a Child or of exec_or_exit.
 std::vector<std::string> dpscope_argv(const std::vector<std::string>& args);
 
+// `args` of dpscope capturing on a pty the test writes into (sniff), with --idle-gap-ms 0: a
+// thread of the test writing the pty, or relaying into it, can pause anywhere, within a telegram
+// too, for as long as a loaded machine keeps it waiting, and an idle gap would cut the telegram
+// off. Only the tests of the gap itself keep one (tty_source_test, with a clock of its own).
+std::vector<std::string> without_idle_gap(std::vector<std::string> args);
+
 // Whether the program on the slave side has put the line into raw mode (sniff configures the
 // port after opening its outputs): the master shares the slave's settings.
-bool wait_for_raw_mode(const PseudoTerminal& pty, double seconds);
+bool wait_for_raw_mode(const PseudoTerminal& pty, double seconds = kPatienceSeconds);
 
-// Copies what arrives on one pty's master to another's until stopped and quiet: `simulate
-// --device` plays onto the slave end of the first, the program under test (sniff, the extcap)
-// captures on the slave end of the second (a null-modem cable between two ports).
+// The whole records in the pcap file at `path` so far (a file being written may end in part of
+// one); 0 when it does not exist or has no file header yet.
+std::size_t pcap_records(const std::string& path);
+// The same, over the files a rotating writer makes of `path` (rotated_file_name(path, 1), 2, ...).
+std::size_t rotated_pcap_records(const std::string& path);
+// Waits until the pcap file at `path` (rotated: its rotated files) holds `records` whole records:
+// the capturing program has read, framed and written every telegram played to it. Then a signal
+// that stops it races with nothing. Whether they arrived within the patience.
+bool wait_for_records(const std::string& path, std::size_t records, bool rotated = false);
+
+// Copies what arrives on one pty's master to another's until stopped: `simulate --device` plays
+// onto the slave end of the first, the program under test (sniff, the extcap) captures on the
+// slave end of the second (a null-modem cable between two ports).
 class Relay {
   public:
     Relay(int from, int to);
     ~Relay() { stop(); }
     Relay(const Relay&) = delete;
     Relay& operator=(const Relay&) = delete;
+    // Once the program writing into `from` has ended: copies the rest, then ends. The event is
+    // the master's read failing (EIO), which it does only when the slave end is closed and
+    // everything written into it has been read, not a quiet time.
     void stop();
 
   private:

@@ -48,6 +48,7 @@ using test::Session;
 using test::simulate;
 using test::slurp;
 using test::Telegrams;
+using test::without_idle_gap;
 
 // dpscope running as a child process, standard output and error in files (standard input the
 // test's own, as it always was here).
@@ -104,11 +105,14 @@ SimulatorOptions faulty_session() {
 TEST(SniffTest, EveryTelegramArrivesIntactAndInOrderAndTheFindingsMatch) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("capture.pcap");
-    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-T", "jsonl"});
+    // --timeout-ms: the reference has no times and finds no time-out; live, a request still open
+    // at the stop is judged by the stop's wall-clock time, however late a loaded machine makes it.
+    Sniffer sniffer(without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap,
+                                      "-T", "jsonl", "--timeout-ms", "3600000"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     Session session = simulate(faulty_session());
     play(pty, session, true);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_TRUE(test::wait_for_records(pcap, session.expected.size())) << sniffer.err();
     sniffer.signal(SIGINT);
     ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
 
@@ -140,7 +144,8 @@ TEST(SniffTest, EveryTelegramArrivesIntactAndInOrderAndTheFindingsMatch) {
 TEST(SniffTest, PacedAt12MbitNothingIsLost) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("paced.pcap");
-    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "12000000", "-w", pcap, "-q"});
+    Sniffer sniffer(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "12000000", "-w", pcap, "-q"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.seed = 4;
@@ -151,16 +156,16 @@ TEST(SniffTest, PacedAt12MbitNothingIsLost) {
     auto start = std::chrono::steady_clock::now();
     play(pty, session, false);
     auto played = std::chrono::steady_clock::now() - start;
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    EXPECT_TRUE(test::wait_for_records(pcap, session.expected.size())) << sniffer.err();
     sniffer.signal(SIGTERM);
     ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
     Capture capture = read_capture(pcap);
     ASSERT_EQ(capture.telegrams, session.expected);
-    // Played at the pace of the timestamps: about 0.3 s.
+    // Played at the pace of the timestamps (about 0.3 s), not at once. (How much longer it took
+    // depends on the machine's load: not judged.)
     double scheduled = static_cast<double>(session.times.back() - session.times.front()) / 1e9;
     double seconds = std::chrono::duration<double>(played).count();
     EXPECT_GE(seconds, scheduled * 0.95);
-    EXPECT_LT(seconds, scheduled + 2.0);
     // The summary (-q) counts the same telegrams.
     EXPECT_NE(sniffer.out().find("telegrams: " + std::to_string(session.expected.size())),
               std::string::npos)
@@ -182,7 +187,9 @@ TEST(SniffTest, SigintInTheMiddleOfATelegramKeepsAValidCompleteFile) {
     const std::vector<std::uint8_t>& next = session.played[whole];
     ASSERT_GT(next.size(), 4u);
     pty.write(std::vector<std::uint8_t>(next.begin(), next.begin() + 4));  // half a telegram
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    // The whole ones written, the half one is in the port's buffers (written before them) or
+    // read: the stop takes what the driver still holds.
+    EXPECT_TRUE(test::wait_for_records(pcap, whole)) << sniffer.err();
     sniffer.signal(SIGINT);
     ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
     Capture capture = read_capture(pcap);
@@ -198,13 +205,15 @@ TEST(SniffTest, SigintInTheMiddleOfATelegramKeepsAValidCompleteFile) {
 TEST(SniffTest, DeviceVanishingEndsWithExitCode5AndAValidFile) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("vanished.pcap");
-    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q"});
+    Sniffer sniffer(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 20;
     Session session = simulate(options);
     play(pty, session, true);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    // A hang-up discards what the port has not handed out yet: unplugged once all was read.
+    EXPECT_TRUE(test::wait_for_records(pcap, session.expected.size())) << sniffer.err();
     pty.close_master();  // the adapter is unplugged
     EXPECT_EQ(sniffer.wait(), 5) << sniffer.err();
     EXPECT_NE(sniffer.err().find("the device went away"), std::string::npos) << sniffer.err();
@@ -217,7 +226,8 @@ TEST(SniffTest, DeviceVanishingEndsWithExitCode5AndAValidFile) {
 TEST(SniffTest, StopsAfterCountAndAfterDuration) {
     {
         PseudoTerminal pty;
-        Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-c", "10"});
+        Sniffer sniffer(
+            without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-c", "10"}));
         ASSERT_TRUE(sniffer.ready()) << sniffer.err();
         SimulatorOptions options;
         options.cycles = 20;
@@ -233,22 +243,21 @@ TEST(SniffTest, StopsAfterCountAndAfterDuration) {
         ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
         double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        EXPECT_GE(seconds, 0.5);
-        EXPECT_LT(seconds, 5.0);
+        EXPECT_GE(seconds, 0.5);  // (an ignored --duration: wait() gives up, -1)
     }
 }
 
 TEST(SniffTest, RotationLosesNothingAtTheSeams) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("rotated.pcap");
-    Sniffer sniffer(
-        {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q", "--rotate-size", "2000"});
+    Sniffer sniffer(without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap,
+                                      "-q", "--rotate-size", "2000"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 40;
     Session session = simulate(options);
     play(pty, session, true);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_TRUE(test::wait_for_records(pcap, session.expected.size(), true)) << sniffer.err();
     sniffer.signal(SIGINT);
     ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
     Telegrams all;
@@ -271,17 +280,18 @@ TEST(SniffTest, RotationLosesNothingAtTheSeams) {
 TEST(SniffTest, RotationByTimeSpan) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("timed.pcap");
-    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q",
-                     "--rotate-seconds", "0.25"});
+    Sniffer sniffer(without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap,
+                                      "-q", "--rotate-seconds", "0.25"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 500;  // 1 s of bus time, played at its pace
     Session session = simulate(options);
     play(pty, session, false);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_TRUE(test::wait_for_records(pcap, session.expected.size(), true)) << sniffer.err();
     sniffer.signal(SIGINT);
     ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
     Telegrams all;
+    std::vector<std::int64_t> times;
     unsigned files = 0;
     for (unsigned index = 1;; ++index) {
         std::string name = rotated_file_name(pcap, index);
@@ -292,28 +302,41 @@ TEST(SniffTest, RotationByTimeSpan) {
         ASSERT_FALSE(part.times.empty()) << name;
         EXPECT_LT(part.times.back() - part.times.front(), 250'000'000) << name;
         all.insert(all.end(), part.telegrams.begin(), part.telegrams.end());
+        times.insert(times.end(), part.times.begin(), part.times.end());
         std::remove(name.c_str());
     }
-    EXPECT_GE(files, 4u);
-    EXPECT_LE(files, 8u);
     EXPECT_EQ(all, session.expected);
+    // As many files as the rule makes of the times captured (the times are when the telegrams
+    // arrived, so a loaded machine stretches them): a file starts with the first telegram 0.25 s
+    // or more after the start of the one before, so neighbouring starts are at least 0.25 s and
+    // at most 0.25 s plus the longest pause between two telegrams apart.
+    ASSERT_FALSE(times.empty());
+    std::int64_t longest_pause = 0;
+    for (std::size_t i = 1; i < times.size(); ++i)
+        longest_pause = std::max(longest_pause, times[i] - times[i - 1]);
+    const std::int64_t span = times.back() - times.front();
+    EXPECT_GT(files, 1u);
+    EXPECT_LE(files, span / 250'000'000 + 1) << span;
+    EXPECT_GE(files, span / (250'000'000 + longest_pause)) << span << ", " << longest_pause;
 }
 
-// `simulate --device` writes into a tty: here the slave side of a pty, read on the master.
-std::vector<std::uint8_t> read_until_quiet(int fd) {
+// `simulate --device` writes into a tty: here the slave side of a pty, read on the master once
+// the simulator has ended. Everything it wrote, then the end: the master's read fails (EIO) only
+// when the slave side is closed and nothing written into it is left unread.
+std::vector<std::uint8_t> read_to_the_end(int fd) {
     std::vector<std::uint8_t> got;
     fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
-    for (int quiet = 0; quiet < 50;) {
+    bool ended = test::wait_until([&] {
         std::uint8_t buffer[4096];
-        ssize_t n = read(fd, buffer, sizeof buffer);
-        if (n > 0) {
-            got.insert(got.end(), buffer, buffer + n);
-            quiet = 0;
-        } else {
-            ++quiet;
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        for (;;) {
+            ssize_t n = read(fd, buffer, sizeof buffer);
+            if (n > 0)
+                got.insert(got.end(), buffer, buffer + n);
+            else
+                return n < 0 && errno == EIO;
         }
-    }
+    });
+    EXPECT_TRUE(ended) << "the device still had no end after " << got.size() << " bytes";
     return got;
 }
 
@@ -325,7 +348,7 @@ TEST(SniffTest, SimulatePlaysOntoADeviceAndReplaysACapture) {
         ASSERT_EQ(played.exit_code, 0) << played.err;
         auto raw = test::run_dpscope({"simulate", "-w", "-", "-F", "raw", "--cycles", "20"});
         std::vector<std::uint8_t> expected(raw.out.begin(), raw.out.end());
-        EXPECT_EQ(read_until_quiet(pty.master), expected);
+        EXPECT_EQ(read_to_the_end(pty.master), expected);
         EXPECT_NE(played.err.find("played "), std::string::npos) << played.err;
     }
     {
@@ -340,7 +363,7 @@ TEST(SniffTest, SimulatePlaysOntoADeviceAndReplaysACapture) {
         std::vector<std::uint8_t> expected;
         for (const auto& t : capture.telegrams)
             expected.insert(expected.end(), t.begin(), t.end());
-        EXPECT_EQ(read_until_quiet(pty.master), expected);
+        EXPECT_EQ(read_to_the_end(pty.master), expected);
         // Replayed at the pace of its timestamps (123 ms), not at once.
         double span = static_cast<double>(capture.times.back() - capture.times.front()) / 1e9;
         EXPECT_GE(seconds, span);
@@ -352,14 +375,15 @@ TEST(SniffTest, SimulatePlaysOntoADeviceAndReplaysACapture) {
 
 TEST(SniffTest, PcapToStandardOutputWithUser0LinkType) {
     PseudoTerminal pty;
-    Sniffer sniffer(
-        {"sniff", "-i", pty.slave, "--baud", "500000", "-w", "-", "--linktype", "user0"});
+    Sniffer sniffer(without_idle_gap(
+        {"sniff", "-i", pty.slave, "--baud", "500000", "-w", "-", "--linktype", "user0"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 10;
     Session session = simulate(options);
     play(pty, session, true);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_TRUE(test::wait_for_records(sniffer.out_path(), session.expected.size()))
+        << sniffer.err();
     sniffer.signal(SIGINT);
     ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
     std::string path = test::temp_path("stdout.pcap");
@@ -376,7 +400,8 @@ TEST(SniffTest, FullDiskStopsWithExitCode4AndAValidFile) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("full.pcap");
     // A file size limit makes writes fail as on a full disk.
-    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q"}, 3000);
+    Sniffer sniffer(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q"}), 3000);
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 30;  // about 7 KB: more than the limit, less than the pty buffers hold
@@ -395,12 +420,15 @@ TEST(SniffTest, FullDiskStopsWithExitCode4AndAValidFile) {
 
 TEST(SniffTest, ReportAtTheEnd) {
     PseudoTerminal pty;
-    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "--report"});
+    const std::string pcap = test::temp_path("report.pcap");  // to see when all has arrived
+    Sniffer sniffer(without_idle_gap(
+        {"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "--report", "-w", pcap}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options = faulty_session();
     options.cycles = 200;
-    play(pty, simulate(options), true);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    Session session = simulate(options);
+    play(pty, session, true);
+    EXPECT_TRUE(test::wait_for_records(pcap, session.expected.size())) << sniffer.err();
     sniffer.signal(SIGINT);
     EXPECT_EQ(sniffer.wait(), 1) << sniffer.err();  // errors found, --fail-on error
     std::string out = sniffer.out();
@@ -444,8 +472,13 @@ TEST(SniffTest, DpV1SlavesAreDecodedAndTrackedLive) {
     ASSERT_EQ(test::run_dpscope(write).exit_code, 0);
 
     PseudoTerminal bus, adapter;
-    Sniffer sniffer({"sniff", "-i", adapter.slave, "--baud", "1500000", "-w", pcap, "--report"});
+    // --timeout-ms: a request still open at the stop is judged live by the stop's wall-clock
+    // time, however late a loaded machine makes it, and by `dpscope report` at the last telegram.
+    const std::vector<std::string> patient = {"--timeout-ms", "3600000"};
+    Sniffer sniffer(without_idle_gap({"sniff", "-i", adapter.slave, "--baud", "1500000", "-w", pcap,
+                                      "--report", patient[0], patient[1]}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    Capture expected = read_capture(reference);
     {
         Relay relay(bus.master, adapter.master);
         std::vector<std::string> play = {"simulate", "--device", bus.slave,
@@ -454,14 +487,13 @@ TEST(SniffTest, DpV1SlavesAreDecodedAndTrackedLive) {
         auto played = test::run_dpscope(play);
         ASSERT_EQ(played.exit_code, 0) << played.err;
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_TRUE(test::wait_for_records(pcap, expected.telegrams.size())) << sniffer.err();
     sniffer.signal(SIGINT);
     EXPECT_EQ(sniffer.wait(), 1) << sniffer.err();  // errors found, --fail-on error
     const std::string out = sniffer.out();
 
     // Every telegram arrived, the DP-V1 ones among them.
     Capture capture = read_capture(pcap);
-    Capture expected = read_capture(reference);
     EXPECT_EQ(capture.status, InputStatus::Ok);
     ASSERT_EQ(capture.telegrams, expected.telegrams);
     auto decoded = test::run_dpscope({"decode", pcap});
@@ -477,7 +509,7 @@ TEST(SniffTest, DpV1SlavesAreDecodedAndTrackedLive) {
     // The report at the end: the same per-slave sections (the DP-V1 ones included) and the
     // same findings as `dpscope report` on the written capture.
     // (At the port's rate, as the live report's bus-health section has it.)
-    auto offline = test::run_dpscope({"report", "--baud", "1500000", pcap});
+    auto offline = test::run_dpscope({"report", "--baud", "1500000", patient[0], patient[1], pcap});
     EXPECT_EQ(offline.exit_code, 1) << offline.err;
     std::vector<std::string> live_report = lines_from(out, "Slave ");
     ASSERT_GT(live_report.size(), 40u) << out;
@@ -539,12 +571,13 @@ TEST(SniffTest, FcDrivesAreDecodedAndTrackedLive) {
     ASSERT_EQ(written.exit_code, 0) << written.err;
 
     PseudoTerminal bus, adapter;
-    // --idle-gap-ms 500: the master's next command follows the cut response within a few ms, but
-    // a pty on a loaded machine can hold bytes back for tens; the line is never idle that long.
-    Sniffer sniffer({"sniff", "-i", adapter.slave, "--bus", "fc", "--baud", "115200",
-                     "--idle-gap-ms", "500", "-w", pcap, "--report"});
+    // No idle gap: the master's next command follows the cut response within a few ms, but the
+    // relay on a loaded machine can hold bytes back for any time, a telegram's last ones too.
+    Sniffer sniffer(without_idle_gap(
+        {"sniff", "-i", adapter.slave, "--bus", "fc", "--baud", "115200", "-w", pcap, "--report"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     EXPECT_NE(sniffer.err().find("at 115200 baud 8E1"), std::string::npos) << sniffer.err();
+    Capture expected = read_capture(reference);
     {
         Relay relay(bus.master, adapter.master);
         // In real time (no --as-fast-as-possible): the response times are the session's.
@@ -553,7 +586,8 @@ TEST(SniffTest, FcDrivesAreDecodedAndTrackedLive) {
         auto played = test::run_dpscope(play);
         ASSERT_EQ(played.exit_code, 0) << played.err;
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    // All but the response cut short (below).
+    EXPECT_TRUE(test::wait_for_records(pcap, expected.telegrams.size() - 1)) << sniffer.err();
     sniffer.signal(SIGINT);
     EXPECT_EQ(sniffer.wait(), 1) << sniffer.err();  // errors found, --fail-on error
     const std::string out = sniffer.out();
@@ -563,7 +597,6 @@ TEST(SniffTest, FcDrivesAreDecodedAndTrackedLive) {
     // stream nothing ends it, the framer takes the next command's first bytes for its rest, finds
     // the BCC wrong and skips its bytes (a simulated capture has its own record for it).
     Capture capture = read_capture(pcap);
-    Capture expected = read_capture(reference);
     EXPECT_EQ(capture.status, InputStatus::Ok);
     EXPECT_EQ(capture.link_type, kLinkTypeUser0);
     ASSERT_EQ(capture.telegrams.size() + 1, expected.telegrams.size());
@@ -611,8 +644,10 @@ TEST(SniffTest, FcDrivesAreDecodedAndTrackedLive) {
     // ... and the findings of the simulated session (`dpscope report` of the reference), kind by
     // kind, where they do not depend on the times. The cut response is no malformed_telegram
     // live: its command went unanswered (fc_no_response) before the master's next telegram.
-    // fc_late_response depends on the times: the injected late answer (45 to 90 ms) is found,
-    // but on a loaded machine a 2 to 8 ms answer can reach sniff late too, so more may be.
+    // fc_late_response depends on the times, and live they are when the bytes reached sniff:
+    // on a loaded machine a 2 to 8 ms answer can reach it late, and the injected late answer
+    // (45 to 90 ms) together with its command, on time. So drive 17's answers are judged
+    // against the times the capture holds, computed here.
     auto simulated = test::run_dpscope({"report", "--baud", "115200", reference});
     EXPECT_EQ(simulated.exit_code, 1) << simulated.err;
     std::map<std::string, int> live_kinds = finding_kinds(out);
@@ -627,12 +662,29 @@ TEST(SniffTest, FcDrivesAreDecodedAndTrackedLive) {
         EXPECT_EQ(live_kinds[kind], reference_kinds[kind]) << kind << "\n" << out;
     EXPECT_EQ(live_kinds["fc_no_response"], reference_kinds["fc_no_response"] + 1) << out;
     EXPECT_EQ(live_kinds["malformed_telegram"], 0) << out;
-    EXPECT_GE(live_kinds["fc_late_response"], 1) << out;
-    bool injected_late_found = false;
+    const auto fc_address = [](const std::vector<std::uint8_t>& t) {
+        return t.size() < 3 ? -1 : (t[2] & 0x80) != 0 ? t[2] & 0x7F : t[2] & 0x1F;
+    };
+    const auto intact = [](const std::vector<std::uint8_t>& t) {
+        std::uint8_t bcc = 0;
+        for (std::uint8_t b : t)
+            bcc ^= b;
+        return bcc == 0;  // the BCC makes the XOR of the whole telegram 0
+    };
+    bool late_in_capture = false;  // a command to drive 17 answered more than 20 ms after it
+    for (std::size_t i = 1; i < capture.telegrams.size(); ++i) {
+        const auto& command = capture.telegrams[i - 1];
+        const auto& answer = capture.telegrams[i];
+        if (fc_address(command) != 17 || fc_address(answer) != 17 || !intact(answer)) continue;
+        const std::int64_t on_the_wire =
+            static_cast<std::int64_t>(command.size()) * 11 * 1'000'000'000 / 115200;
+        late_in_capture |= capture.times[i] - capture.times[i - 1] - on_the_wire > 20'000'000;
+    }
+    bool late_found = false;
     for (const std::string& l : lines_from(out, "Findings ("))
-        injected_late_found |= l.find(" fc_late_response ") != std::string::npos &&
-                               l.find(" 0 / 17 ") != std::string::npos;
-    EXPECT_TRUE(injected_late_found) << out;
+        late_found |= l.find(" fc_late_response ") != std::string::npos &&
+                      l.find(" 0 / 17 ") != std::string::npos;
+    EXPECT_EQ(late_found, late_in_capture) << out;
     std::remove(pcap.c_str());
     std::remove(reference.c_str());
 }
@@ -659,12 +711,13 @@ TEST(SniffTest, Vlt2000DrivesAreDecodedAndTrackedLive) {
     ASSERT_EQ(written.exit_code, 0) << written.err;
 
     PseudoTerminal bus, adapter;
-    // --idle-gap-ms 500: a pty on a loaded machine can hold bytes back for tens of ms; the line is
-    // never idle that long within a telegram.
-    Sniffer sniffer({"sniff", "-i", adapter.slave, "--bus", "vlt2000", "--baud", "115200",
-                     "--idle-gap-ms", "500", "-w", pcap, "--report"});
+    // No idle gap: the relay on a loaded machine can hold bytes back for any time, within a
+    // telegram too.
+    Sniffer sniffer(without_idle_gap({"sniff", "-i", adapter.slave, "--bus", "vlt2000", "--baud",
+                                      "115200", "-w", pcap, "--report"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     EXPECT_NE(sniffer.err().find("at 115200 baud 8N1"), std::string::npos) << sniffer.err();
+    Capture expected = read_capture(reference);
     {
         Relay relay(bus.master, adapter.master);
         std::vector<std::string> play = {"simulate", "--device", bus.slave};
@@ -672,7 +725,8 @@ TEST(SniffTest, Vlt2000DrivesAreDecodedAndTrackedLive) {
         auto played = test::run_dpscope(play);
         ASSERT_EQ(played.exit_code, 0) << played.err;
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    // All but the reply cut short (below).
+    EXPECT_TRUE(test::wait_for_records(pcap, expected.telegrams.size() - 1)) << sniffer.err();
     sniffer.signal(SIGINT);
     EXPECT_EQ(sniffer.wait(), 1) << sniffer.err();  // errors found, --fail-on error
     const std::string out = sniffer.out();
@@ -682,7 +736,6 @@ TEST(SniffTest, Vlt2000DrivesAreDecodedAndTrackedLive) {
     // stream nothing ends it, its 22nd character is the next command's and no '>', and the framer
     // skips it up to that command's '<' (a simulated capture has its own record for it).
     Capture capture = read_capture(pcap);
-    Capture expected = read_capture(reference);
     EXPECT_EQ(capture.status, InputStatus::Ok);
     EXPECT_EQ(capture.link_type, kLinkTypeUser0);
     ASSERT_EQ(capture.telegrams.size() + 1, expected.telegrams.size());
@@ -758,15 +811,18 @@ TEST(SniffTest, Vlt2000DrivesAreDecodedAndTrackedLive) {
 }
 
 // Plays a faulty session into a sniffer started with `args` (after -i and --baud) and stops it.
+// (A -w file of its own tells when every telegram has arrived.)
 int sniff_faulty_session(std::vector<std::string> args, std::string& out, std::string& err) {
     PseudoTerminal pty;
-    args.insert(args.begin(), {"sniff", "-i", pty.slave, "--baud", "1500000"});
-    Sniffer sniffer(args);
+    const std::string pcap = test::temp_path("faulty.pcap");
+    args.insert(args.begin(), {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap});
+    Sniffer sniffer(without_idle_gap(args));
     EXPECT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options = faulty_session();
     options.cycles = 100;
-    play(pty, simulate(options), true);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    Session session = simulate(options);
+    play(pty, session, true);
+    EXPECT_TRUE(test::wait_for_records(pcap, session.expected.size())) << sniffer.err();
     sniffer.signal(SIGINT);
     int exit_code = sniffer.wait();
     out = sniffer.out();
@@ -848,6 +904,7 @@ TEST(SniffTest, NumericOptionsAreCheckedAgainstTheirRange) {
         std::vector<std::string> args;
         std::string message;
     };
+    const std::string x = test::temp_path("x.pcap");  // never written: every case is refused
     const std::string seconds = "must be a number from 0.001 to 315360000 seconds, not ";
     const std::string size =
         "must be a size from 512 bytes to 16T (a whole number of bytes, or with k, M, G or T), "
@@ -858,13 +915,13 @@ TEST(SniffTest, NumericOptionsAreCheckedAgainstTheirRange) {
         {{"--duration", "1e300"}, "--duration: " + seconds + "'1e300'"},
         {{"--duration", "1e-300"}, "--duration: " + seconds + "'1e-300'"},
         {{"--duration", "inf"}, "--duration: " + seconds + "'inf'"},
-        {{"-w", "x.pcap", "--rotate-seconds", "inf"}, "--rotate-seconds: " + seconds + "'inf'"},
-        {{"-w", "x.pcap", "--rotate-seconds", "0"}, "--rotate-seconds: " + seconds + "'0'"},
-        {{"-w", "x.pcap", "--rotate-size", "0"}, "--rotate-size: " + size + "0"},
-        {{"-w", "x.pcap", "--rotate-size", "-5"}, "--rotate-size: " + size + "-5"},
-        {{"-w", "x.pcap", "--rotate-size", "1e30"}, "--rotate-size: " + size + "1e30"},
-        {{"-w", "x.pcap", "--rotate-size", "17T"}, "--rotate-size: " + size + "17T"},
-        {{"-w", "x.pcap", "--rotate-size", "5X"}, "--rotate-size: " + size + "5X"},
+        {{"-w", x, "--rotate-seconds", "inf"}, "--rotate-seconds: " + seconds + "'inf'"},
+        {{"-w", x, "--rotate-seconds", "0"}, "--rotate-seconds: " + seconds + "'0'"},
+        {{"-w", x, "--rotate-size", "0"}, "--rotate-size: " + size + "0"},
+        {{"-w", x, "--rotate-size", "-5"}, "--rotate-size: " + size + "-5"},
+        {{"-w", x, "--rotate-size", "1e30"}, "--rotate-size: " + size + "1e30"},
+        {{"-w", x, "--rotate-size", "17T"}, "--rotate-size: " + size + "17T"},
+        {{"-w", x, "--rotate-size", "5X"}, "--rotate-size: " + size + "5X"},
         {{"--idle-gap-ms", "-1"},
          "--idle-gap-ms: must be a whole number from 0 to 60000 ms, not '-1'"},
         {{"--idle-gap-ms", "1e30"}, "--idle-gap-ms: must be a whole number from 0 to 60000 ms"},
@@ -891,7 +948,7 @@ TEST(SniffTest, NumericOptionsAreCheckedAgainstTheirRange) {
             std::string::npos)
             << result.err;
     }
-    EXPECT_FALSE(std::filesystem::exists(test::source_dir() + "/x.pcap"));
+    EXPECT_FALSE(std::filesystem::exists(x));
 }
 
 TEST(SniffTest, ThePortIsLeftAsItWasFoundOnEveryWayOut) {
@@ -924,7 +981,7 @@ TEST(SniffTest, ThePortIsLeftAsItWasFoundOnEveryWayOut) {
         ASSERT_TRUE(sniffer.ready()) << sniffer.err();
         EXPECT_FALSE(same_settings(settings_of(pty.slave), before)) << way.name;
         play(pty, session, true);
-        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        // A signal ends the run wherever it finds it, reading or between reads.
         if (way.signal_number != 0) sniffer.signal(way.signal_number);
         EXPECT_EQ(sniffer.wait(), way.exit_code) << way.name << ": " << sniffer.err();
         EXPECT_TRUE(same_settings(settings_of(pty.slave), before)) << way.name;
@@ -961,7 +1018,8 @@ TEST(SniffTest, ThePortIsLeftAsItWasFoundOnEveryWayOut) {
 TEST(SniffTest, ASecondSnifferOnThePortIsRefusedAndTheFirstCapturesOn) {
     PseudoTerminal pty;
     const std::string pcap = test::temp_path("first.pcap");
-    Sniffer first({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "-w", pcap});
+    Sniffer first(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "-w", pcap}));
     ASSERT_TRUE(first.ready()) << first.err();
     // Even with the same -w file: refused before that file is touched.
     auto second =
@@ -977,7 +1035,7 @@ TEST(SniffTest, ASecondSnifferOnThePortIsRefusedAndTheFirstCapturesOn) {
     options.cycles = 30;
     Session session = simulate(options);
     play(pty, session, true);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_TRUE(test::wait_for_records(pcap, session.expected.size())) << first.err();
     first.signal(SIGINT);
     ASSERT_EQ(first.wait(), 0) << first.err();
     EXPECT_EQ(read_capture(pcap).telegrams, session.expected);
@@ -1026,7 +1084,7 @@ TEST(SniffTest, FcBusDefaultsTo9600Baud8E1AndWritesATaggedUser0Capture) {
         bytes.insert(bytes.end(), t.begin(), t.end());
     }
     pty.write(bytes);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_TRUE(test::wait_for_records(pcap, 2)) << sniffer.err();
     sniffer.signal(SIGINT);
     ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
     EXPECT_EQ(test::lines_of(sniffer.out()).size(), 2u) << sniffer.out();
@@ -1050,7 +1108,7 @@ TEST(SniffTest, Vlt2000BusDefaultsTo9600Baud8N1AndWritesATaggedUser0Capture) {
     // A command and its reply (the VLT 3000 manual's example), with noise between them.
     const std::string line = "<01UOGD@0516+00080007>\x01<01UGHK@0516+00080007>";
     pty.write(std::vector<std::uint8_t>(line.begin(), line.end()));
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_TRUE(test::wait_for_records(pcap, 2)) << sniffer.err();
     sniffer.signal(SIGINT);
     ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
     EXPECT_EQ(test::lines_of(sniffer.out()).size(), 2u) << sniffer.out();
@@ -1187,7 +1245,6 @@ class TerminalSniffer {
             test::exec_or_exit(test::dpscope_argv(args));
         }
         close(slave);
-        started_ = std::chrono::steady_clock::now();
         reader_ = std::thread([this] {
             char buffer[4096];
             for (;;) {
@@ -1198,12 +1255,8 @@ class TerminalSniffer {
                 }
                 ssize_t n = read(master_, buffer, sizeof buffer);
                 if (n <= 0) break;  // EIO: the sniffer has closed the terminal
-                auto now = std::chrono::steady_clock::now();
                 std::lock_guard<std::mutex> lock(mutex_);
-                std::string chunk(buffer, static_cast<std::size_t>(n));
-                for (std::size_t at = 0; (at = chunk.find("\x1b[J", at)) != std::string::npos; ++at)
-                    redraws_.push_back(now);
-                out_ += chunk;
+                out_.append(buffer, static_cast<std::size_t>(n));
             }
         });
     }
@@ -1218,37 +1271,22 @@ class TerminalSniffer {
         std::remove(err_.c_str());
     }
     bool ready() const {
-        for (int i = 0; i < 500; ++i) {
-            if (err().find("capturing on") != std::string::npos) return true;
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        }
-        return false;
+        return test::wait_until([&] { return err().find("capturing on") != std::string::npos; });
     }
     void signal(int number) const { kill(pid_, number); }
-    int wait(int seconds = 20) {
-        for (int i = 0; i < seconds * 100; ++i) {
-            int status = 0;
-            if (waitpid(pid_, &status, WNOHANG) == pid_) {
-                reaped_ = true;
-                ended_ = std::chrono::steady_clock::now();
-                stop_ = true;
-                if (reader_.joinable()) reader_.join();
-                return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        }
-        return -1;
+    int wait() {
+        int status = 0;
+        if (!test::wait_until([&] { return waitpid(pid_, &status, WNOHANG) == pid_; })) return -1;
+        reaped_ = true;
+        stop_ = true;
+        if (reader_.joinable()) reader_.join();
+        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     }
     std::string out() {
         std::lock_guard<std::mutex> lock(mutex_);
         return out_;
     }
     std::string err() const { return slurp(err_); }
-    std::vector<std::chrono::steady_clock::time_point> redraws() {
-        std::lock_guard<std::mutex> lock(mutex_);
-        return redraws_;
-    }
-    double seconds() const { return std::chrono::duration<double>(ended_ - started_).count(); }
 
   private:
     std::string err_;
@@ -1259,20 +1297,19 @@ class TerminalSniffer {
     std::thread reader_;
     std::mutex mutex_;
     std::string out_;
-    std::vector<std::chrono::steady_clock::time_point> redraws_;
-    std::chrono::steady_clock::time_point started_, ended_;
 };
 
 TEST(SniffTest, StatsOnATerminalRedrawTheStationTableAtMost4TimesASecond) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("stats.pcap");
-    TerminalSniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "--stats"});
+    TerminalSniffer sniffer(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "--stats"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 600;  // 1.2 s of bus time, played at its pace
     Session session = without_answers(simulate(options), 5, {{1000, 1100}});
     play(pty, session, false);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_TRUE(test::wait_for_records(pcap, session.expected.size())) << sniffer.err();
     sniffer.signal(SIGINT);
     ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
     Capture capture = read_capture(pcap);
@@ -1291,10 +1328,14 @@ TEST(SniffTest, StatsOnATerminalRedrawTheStationTableAtMost4TimesASecond) {
     // events); the table has a line per station once they are heard.
     std::size_t frames = 0;
     bool stations_shown = false;
+    std::vector<double> drawn_at;  // the time in each heading: "N telegrams in S s", by sniff
     for (std::size_t at = out.find("\x1b[J"), next; at != std::string::npos; at = next) {
         next = out.find("\x1b[J", at + 1);
+        std::string frame = out.substr(at, next == std::string::npos ? next : next - at);
+        const std::size_t in = frame.find(" telegrams in ");
+        EXPECT_NE(in, std::string::npos) << frame;
+        if (in != std::string::npos) drawn_at.push_back(std::stod(frame.substr(in + 14)));
         if (next == std::string::npos) break;  // the last: the statistics follow it
-        std::string frame = out.substr(at, next - at);
         ++frames;
         const std::size_t drawn =
             static_cast<std::size_t>(std::count(frame.begin(), frame.end(), '\n'));
@@ -1303,17 +1344,13 @@ TEST(SniffTest, StatsOnATerminalRedrawTheStationTableAtMost4TimesASecond) {
         EXPECT_GE(drawn, 3u) << frame;
         if (frame.find("\n   3 slave ") != std::string::npos) stations_shown = true;
     }
-    EXPECT_GE(frames, 1u);
+    EXPECT_GE(frames, 2u);  // redrawn during the capture, not only at its end
     EXPECT_TRUE(stations_shown) << out;
-    // At most 4 redraws a second (and the last one at the stop), at least one per second.
-    std::vector<std::chrono::steady_clock::time_point> redraws = sniffer.redraws();
-    const double seconds = sniffer.seconds();
-    EXPECT_GE(static_cast<double>(redraws.size()), seconds) << seconds;
-    EXPECT_LE(static_cast<double>(redraws.size()), seconds * 4 + 2) << seconds;
-    // Read back as they came, neighbours are a quarter of a second apart (less what the
-    // reading adds, averaged over four).
-    for (std::size_t i = 4; i + 1 < redraws.size(); ++i)
-        EXPECT_GE(redraws[i] - redraws[i - 4], std::chrono::milliseconds(900)) << i;
+    // At most 4 redraws a second, by sniff's own clock as its headings give it (to 0.1 s: a
+    // quarter of a second between two is at least 0.2 there); the last one, at the stop, may
+    // follow at once. (The times the test reads them at would be the scheduler's.)
+    for (std::size_t i = 1; i + 1 < drawn_at.size(); ++i)
+        EXPECT_GE(drawn_at[i] - drawn_at[i - 1], 0.2 - 1e-9) << i << "\n" << out;
     // The final statistics, as from the written capture.
     std::string expected = reference_stats(pcap, pty.slave, 1'500'000);
     ASSERT_FALSE(expected.empty());
@@ -1325,13 +1362,14 @@ TEST(SniffTest, StatsOnATerminalRedrawTheStationTableAtMost4TimesASecond) {
 TEST(SniffTest, StatsOffATerminalPrintAPlainLinePerHealthEvent) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("events.pcap");
-    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "--stats", "-w", pcap});
+    Sniffer sniffer(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "--stats", "-w", pcap}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 300;
     Session session = without_answers(simulate(options), 5, {{400, 500}});
     play(pty, session, true);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_TRUE(test::wait_for_records(pcap, session.expected.size())) << sniffer.err();
     sniffer.signal(SIGINT);
     ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
     std::string out = sniffer.out();
@@ -1360,15 +1398,17 @@ TEST(SniffTest, AlarmRunsOncePerKindAndStationWithinTheMinute) {
     // Each alarm writes its variables to a file of its own (they may run at the same time).
     std::string dir = test::temp_path("alarms");
     std::filesystem::create_directories(dir);
-    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "--alarm",
-                     "env | grep ^DPSCOPE_ | sort > " + dir + "/alarm.$$"});
+    const std::string pcap = test::temp_path("alarms.pcap");  // to see when all has arrived
+    Sniffer sniffer(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "-w", pcap,
+                          "--alarm", "env | grep ^DPSCOPE_ | sort > " + dir + "/alarm.$$"}));
     ASSERT_TRUE(sniffer.ready()) << sniffer.err();
     SimulatorOptions options;
     options.cycles = 400;
     // Station 5 stops answering twice: lost, back, lost again within the minute.
     Session session = without_answers(simulate(options), 5, {{400, 500}, {900, 1000}});
     play(pty, session, true);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_TRUE(test::wait_for_records(pcap, session.expected.size())) << sniffer.err();
     sniffer.signal(SIGINT);
     ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
     // One file per alarm, each variable once.

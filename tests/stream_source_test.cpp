@@ -524,7 +524,10 @@ TEST(StreamSourceTest, HexFromStandardInputIsDecodedLineByLine) {
         while (opened && opened.value()->next(record)) {
         }
     });
-    bool in_time = first_telegram.wait_for(std::chrono::seconds(2)) == std::future_status::ready;
+    // Its line came long before the input ends (the patience only bounds a reader that would
+    // wait for the end: then it is not ready).
+    bool in_time = first_telegram.wait_for(std::chrono::duration<double>(test::kPatienceSeconds)) ==
+                   std::future_status::ready;
     close(fds[1]);  // the end of the input releases the reader either way
     reader.join();
     dup2(saved, STDIN_FILENO);

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -15,6 +16,7 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <thread>
 
 #include "capture/hex_log.hpp"
 #include "formats/output.hpp"
@@ -67,6 +69,17 @@ std::vector<std::uint8_t> hex(std::string_view text) {
 
 std::string source_dir() { return DPSCOPE_SOURCE_DIR; }
 std::string dpscope_executable() { return DPSCOPE_EXECUTABLE; }
+
+bool wait_until(const std::function<bool()>& done, double seconds) {
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                              std::chrono::duration<double>(seconds));
+    while (!done()) {
+        if (std::chrono::steady_clock::now() >= deadline) return done();
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return true;
+}
 
 namespace {
 

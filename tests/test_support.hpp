@@ -33,6 +33,14 @@ std::vector<std::uint8_t> fc_parameter(std::uint8_t address, std::uint8_t ak, st
 std::string source_dir();
 std::string dpscope_executable();
 
+// How long a test waits for what takes milliseconds on an idle machine: a child process saying
+// it is ready, a file growing, a line arriving. It only bounds a hang; on a loaded machine all of
+// it takes longer, and no test decides pass or fail by how long something took.
+constexpr double kPatienceSeconds = 120;
+
+// Checks `done` every 10 ms until it holds or `seconds` have passed; whether it holds.
+bool wait_until(const std::function<bool()>& done, double seconds = kPatienceSeconds);
+
 // The current test's own temporary folder (made on first use under $TEST_TMPDIR, else /tmp;
 // no other test, in this process or another, writes there). It and everything in it are removed
 // when the test process ends, unless DPSCOPE_KEEP_TEST_FILES is set.

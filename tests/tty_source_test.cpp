@@ -8,10 +8,8 @@
 #include <termios.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cstring>
 #include <filesystem>
-#include <thread>
 #include <vector>
 
 #include "capture/serial_port.hpp"
@@ -212,17 +210,22 @@ TEST(TtySourceTest, WithoutParityMarkingBytesPassUnchanged) {
     EXPECT_EQ(source.parity_errors(), 0u);
 }
 
+// The silence is the clock's (the test's), not however long the scheduler keeps the test waiting.
 TEST(TtySourceTest, IdleGapCutsOffAnIncompleteTelegram) {
     Pipe pipe;
     Collected c;
-    TtySource source(nullptr, pipe.read_end, "pipe", options(true, 30), fdl_framing_rules());
+    TtySourceOptions o = options(true, 30);
+    o.clock = fake_clock;
+    TtySource source(nullptr, pipe.read_end, "pipe", o, fdl_framing_rules());
     source.on_issue([&](const InputIssue& issue) { c.issues.push_back(issue); });
-    pipe.write(hex("68 07 07 68 83 82"));  // half a telegram, then silence
+    const std::int64_t t0 = 1'700'000'000'000'000'000;
+    read_at(pipe, source, c, hex("68 07 07 68 83 82"), t0);  // half a telegram, then silence
+    g_fake_now = t0 + 29'000'000;                            // not yet the gap
     drain(source, c, 2);
-    std::this_thread::sleep_for(std::chrono::milliseconds(60));
+    EXPECT_EQ(source.idle_gaps(), 0u);
+    g_fake_now = t0 + 60'000'000;
     drain(source, c, 2);
-    pipe.write(kSd1);
-    drain(source, c);
+    read_at(pipe, source, c, kSd1, t0 + 61'000'000);
     ASSERT_EQ(c.telegrams.size(), 1u);
     EXPECT_EQ(c.telegrams[0], kSd1);
     EXPECT_EQ(source.idle_gaps(), 1u);
@@ -235,12 +238,12 @@ TEST(TtySourceTest, IdleGapCutsOffAnIncompleteTelegram) {
 TEST(TtySourceTest, WithoutIdleGapATelegramMayPause) {
     Pipe pipe;
     Collected c;
-    TtySource source(nullptr, pipe.read_end, "pipe", options(true, 0), fdl_framing_rules());
-    pipe.write(hex("10 03 02"));
-    drain(source, c, 2);
-    std::this_thread::sleep_for(std::chrono::milliseconds(40));
-    pipe.write(hex("49 4E 16"));
-    drain(source, c);
+    TtySourceOptions o = options(true, 0);
+    o.clock = fake_clock;
+    TtySource source(nullptr, pipe.read_end, "pipe", o, fdl_framing_rules());
+    const std::int64_t t0 = 1'700'000'000'000'000'000;
+    read_at(pipe, source, c, hex("10 03 02"), t0);
+    read_at(pipe, source, c, hex("49 4E 16"), t0 + 40'000'000);  // after a pause of 40 ms
     ASSERT_EQ(c.telegrams.size(), 1u);
     EXPECT_EQ(c.telegrams[0], kSd1);
 }
@@ -306,14 +309,12 @@ TEST(SerialPortTest, RawModeCarriesEveryByteUnchanged) {
         all[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(i);
     ASSERT_EQ(write(pty.master, all.data(), all.size()), 256);
     std::vector<std::uint8_t> got;
-    for (int tries = 0; tries < 100 && got.size() < 256; ++tries) {
+    test::wait_until([&] {
         std::uint8_t buffer[512];
-        ssize_t n = read(port->fd(), buffer, sizeof buffer);
-        if (n > 0)
-            got.insert(got.end(), buffer, buffer + n);
-        else
-            std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
+        ssize_t n = read(port->fd(), buffer, sizeof buffer);  // the port is non-blocking
+        if (n > 0) got.insert(got.end(), buffer, buffer + n);
+        return got.size() >= all.size();
+    });
     EXPECT_EQ(got, all);  // no CR/LF translation, no echo, no signals (for_writing: no PARMRK)
 }
 
