@@ -193,14 +193,27 @@ TEST(Vlt2000DecoderTest, FailedReplyCarriesItsReasonCode) {
     EXPECT_EQ(t.vlt2000.reason, 0);
     EXPECT_EQ(vlt2000_reason_text(0), "parameter does not exist");
     EXPECT_EQ(vlt2000_reason_text(4), "read only, e.g. factory set-up selected");
-    EXPECT_EQ(vlt2000_reason_text(5), "");
-    EXPECT_EQ(error_text_or_unknown(Dialect::Vlt2000, 99), kUnknownReasonCode);
+    EXPECT_EQ(error_text_or_unknown(Dialect::Vlt2000, 42), kUnknownReasonCode);
     // Without digits in bytes 17-18 there is no reason code (the VLT 2000: "unknown parameter").
     const Telegram plain = bytes_of(vlt("02RGH@@0999+000xx9"));
     const Vlt2000Telegram& p = decoder.decode(span_of(plain), 4 * kMs, 3).vlt2000;
     EXPECT_TRUE(p.failed);
     EXPECT_FALSE(p.has_reason);
     EXPECT_TRUE(p.problems.empty());
+}
+
+// Every reason code the VLT 3000 and VLT 3500 manuals list has its text: 00-04 [P:VLT3000 p80],
+// 05-08 and 99 [P:VLT3500 p92]; any other number has none.
+TEST(Vlt2000DecoderTest, EveryDocumentedReasonCodeHasItsText) {
+    EXPECT_EQ(vlt2000_reason_text(5), "cannot be changed while the motor is running");
+    EXPECT_EQ(vlt2000_reason_text(6), "value outside the parameter's range");
+    EXPECT_EQ(vlt2000_reason_text(7), "illegal value in byte 19, the decimal position");
+    EXPECT_EQ(vlt2000_reason_text(8), "value read is above 99999");
+    EXPECT_EQ(vlt2000_reason_text(99), "other fault");
+    for (std::uint32_t reason : {9u, 10u, 42u, 98u, 100u})
+        EXPECT_EQ(vlt2000_reason_text(reason), "");
+    EXPECT_EQ(error_text_or_unknown(Dialect::Vlt2000, 99), "other fault");
+    EXPECT_EQ(error_text_or_unknown(Dialect::Vlt2000, 9), kUnknownReasonCode);
 }
 
 TEST(Vlt2000DecoderTest, QuestionMarksSwitchTheChecksumOff) {

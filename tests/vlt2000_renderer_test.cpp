@@ -52,7 +52,7 @@ std::string wrong_checksum(std::string_view head) {
 //   3/4 R 999 to drive 02 and the failed reply, reason 00; 5/6 U 101 = -23.750 and its reply;
 //   7/8 I 621 index 3 and its reply, both with "??"; 9 a C broadcast (0x0400); 10 a wrong
 //   checksum (to drive 05: a command wrong only in its checksum may be answered); 11 cut short; 12
-//   a letter in the parameter; 13 a failed reply with reason 07 (unknown); 14 a failed reply
+//   a letter in the parameter; 13 a failed reply with reason 42 (unknown); 14 a failed reply
 //   without a reason code; 15 decimal position 7; 16 groups kept (P) to drive 04; 17 an unknown
 //   letter; 18 no address.
 std::vector<std::string> session() {
@@ -69,7 +69,7 @@ std::vector<std::string> session() {
         wrong_checksum("<05R@@@@0516+000000"),
         "<01R@@@@05",
         vlt("<01R@@@@05x6+000000"),
-        vlt("<01R@@@@0999+000079"),
+        vlt("<01R@@@@0999+000429"),
         vlt("<01R@@@@0999+000xx9"),
         vlt("<01U@@@@0101+123457"),
         vlt("<04UPPD@0516+000800"),
@@ -166,7 +166,7 @@ TEST(Vlt2000RendererTest, TextOneLinePerTelegram) {
     EXPECT_TRUE(
         contains(l[11], "req CTW=0x0000 (data not valid: no change) [vlt2000_field_invalid]"))
         << l[11];
-    EXPECT_TRUE(contains(l[12], "parameter 999 failed: reason 07 (unknown reason code)")) << l[12];
+    EXPECT_TRUE(contains(l[12], "parameter 999 failed: reason 42 (unknown reason code)")) << l[12];
     EXPECT_TRUE(contains(l[13], "parameter 999 failed: no reason code given")) << l[13];
     EXPECT_TRUE(
         contains(l[14],
@@ -388,7 +388,7 @@ TEST(Vlt2000RendererTest, JsonlCommonKeysAndTheVlt2000Object) {
     EXPECT_TRUE(j[11]["vlt2000"]["parameter"].is_null());
     EXPECT_EQ(j[11]["problems"].items[0]["offset"].integer(), 10);
 
-    EXPECT_EQ(j[12]["vlt2000"]["reason"].integer(), 7);
+    EXPECT_EQ(j[12]["vlt2000"]["reason"].integer(), 42);
     EXPECT_EQ(j[12]["vlt2000"]["reason_text"].string(), "unknown reason code");
     EXPECT_TRUE(j[13]["vlt2000"]["reason"].is_null());
     EXPECT_EQ(j[13]["vlt2000"]["reason_text"].string(), "no reason code given");
@@ -526,7 +526,7 @@ TEST(Vlt2000RendererTest, SummaryCountsLettersFailuresChecksumsAndAddresses) {
     EXPECT_EQ(summary.vlt2000_broadcasts(), 1u);
     EXPECT_EQ(summary.vlt2000_failed(), 3u);
     EXPECT_EQ(summary.vlt2000_failed_by_reason(0), 1u);
-    EXPECT_EQ(summary.vlt2000_failed_by_reason(7), 1u);
+    EXPECT_EQ(summary.vlt2000_failed_by_reason(42), 1u);
     EXPECT_EQ(summary.vlt2000_failed_by_reason(100), 1u);
     EXPECT_EQ(summary.vlt2000_checksum_errors(), 1u);
     EXPECT_EQ(summary.vlt2000_checksum_disabled(), 2u);
@@ -545,7 +545,7 @@ TEST(Vlt2000RendererTest, SummaryCountsLettersFailuresChecksumsAndAddresses) {
              "    unknown letter            1  (1 command, 0 replies)\n",
              "  failed replies (decimal position 9): 3\n"
              "    reason 00 parameter does not exist",
-             "    reason 07 unknown reason code",
+             "    reason 42 unknown reason code",
              "    no reason code given",
              "  checksums: 1 wrong, 2 not checked (\"??\")\n",
              "    vlt2000_checksum_mismatch",
