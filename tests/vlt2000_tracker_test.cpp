@@ -495,7 +495,7 @@ TEST(Vlt2000TrackerTest, ChecksumErrorsAreReportedAndTheTelegramIgnored) {
     EXPECT_EQ(found[0].request_frame, 0u);
     EXPECT_EQ(found[0].slave, 1);
     EXPECT_TRUE(found[0].has_stations);
-    EXPECT_NE(found[0].message.find("byte 19: checksum"), std::string::npos) << found[0].message;
+    EXPECT_NE(found[0].message.find("byte 20: checksum"), std::string::npos) << found[0].message;
     EXPECT_EQ(run.station(1)->checksum_errors, 1u);
     EXPECT_EQ(run.station(1)->commands, 0u);
     EXPECT_EQ(run.station(1)->telegrams, 0u);
@@ -590,7 +590,7 @@ TEST(Vlt2000TrackerTest, MalformedTelegramsAreReportedAndOtherwiseIgnored) {
     found = run.feed(with_checksum(bad));
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, FindingKind::MalformedTelegram);
-    EXPECT_NE(found[0].message.find("vlt2000_field_invalid: byte 9"), std::string::npos)
+    EXPECT_NE(found[0].message.find("vlt2000_field_invalid: byte 10"), std::string::npos)
         << found[0].message;
     // No address: no station to name, a bus finding.
     std::string no_address = vlt(1, 'R', 102);
