@@ -165,8 +165,9 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_option("--dialect", values.dialects,
                    "Parameter-channel code tables: vlt (Danfoss VLT 5000, the default), ge (GE "
                    "AF-600/AF-650: RC 9-12 not used, errors 130/131) or profidrive (PROFIdrive "
-                   "PKW with EEPROM variants). NAME sets it for every slave, ADDR=NAME for one; "
-                   "repeatable")
+                   "PKW with EEPROM variants); for DP-V1 parameter access vlt and ge also take "
+                   "Danfoss's request IDs 0x42/0x51/0x52 and axis 0 only. NAME sets it for every "
+                   "slave, ADDR=NAME for one; repeatable")
         ->type_name("NAME|ADDR=NAME")
         ->allow_extra_args(false);
     app.add_option("--pcd-profile", values.pcd_profile,

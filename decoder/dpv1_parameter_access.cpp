@@ -244,6 +244,33 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
     if (t.has_time() && t.time_ns + timeout_ns_ < next_deadline_ns_)
         next_deadline_ns_ = t.time_ns + timeout_ns_;
 
+    // The request ID and the attributes: codes of the dialect's table [S003].
+    const bool danfoss = danfoss_family(t.dp.dialect);
+    Inconsistencies unknown;
+    if (!profidrive_request_id_defined(m.id, t.dp.dialect)) {
+        if (profidrive_request_id_defined(m.id, Dialect::Vlt))
+            unknown.add(
+                "request ID 0x{:02X} is a Danfoss one, none of 0x01, 0x02 ({}; a Danfoss drive is "
+                "decoded with --dialect {}=vlt)",
+                m.id, dialect_name(t.dp.dialect), ch.slave);
+        else
+            unknown.add("request ID 0x{:02X} is none of {} ({})", m.id,
+                        danfoss ? "0x01, 0x02, 0x42, 0x51, 0x52" : "0x01, 0x02",
+                        dialect_name(t.dp.dialect));
+    }
+    for (const ProfidriveAddress& address : m.addresses)
+        if (profidrive_attribute_name(address.attribute).empty())
+            unknown.add(
+                "PNU {}: attribute 0x{:02X} is none of 0x10 (value), 0x20 (description), 0x30 "
+                "(text)",
+                address.pnu, address.attribute);
+    if (!unknown.text.empty()) {
+        Finding& f = ch.add(out, FindingKind::Dpv1UnknownCode, t, 0);
+        f.pnu = tx.first_pnu();
+        f.message = fmt::format("parameter request ({}): {}",
+                                request_text(m.reference, m.id, m.addresses), unknown.text);
+    }
+
     // The request's own lengths.
     Inconsistencies found;
     check_dpv1_length(pdu, found);
@@ -251,10 +278,21 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
     if (m.reference == 0) found.add("request reference 0 (0x01 to 0xFF allowed)");
     if (m.count == 0)
         found.add("0 parameters (at least 1)");
-    else if (m.count > kMaxDanfossParameters && danfoss_family(t.dp.dialect))
+    else if (m.count > kMaxDanfossParameters && danfoss)
         found.add("{} parameters, more than the {} Danfoss allows", m.count, kMaxDanfossParameters);
     if (m.addresses.size() < m.count)
         found.add("{} parameters announced, {} addresses present", m.count, m.addresses.size());
+    // A Danfoss drive has axis 0 only ("always 0") [S003]; a PROFIdrive drive any.
+    if (danfoss && m.axis != 0)
+        found.add(
+            "axis {} (a Danfoss drive has axis 0 only; another drive is decoded with --dialect "
+            "{}=profidrive)",
+            m.axis, ch.slave);
+    // No value block of a response holds more than 234 elements [S003], on any drive.
+    for (const ProfidriveAddress& address : m.addresses)
+        if (address.elements > profidrive::kMaxElements)
+            found.add("PNU {}: {} elements, more than the {} a DP-V1 telegram carries", address.pnu,
+                      address.elements, profidrive::kMaxElements);
     if (tx.change && m.addresses.size() == m.count) {
         if (m.blocks.size() < m.count)
             found.add("{} value blocks for {} parameters", m.blocks.size(), m.count);
@@ -420,7 +458,9 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
     if (m.reference != tx->reference)
         add(FindingKind::Dpv1ReferenceMismatch).message = fmt::format(
             "response reference {} to the request of frame {} ({})", m.reference, tx->frame, about);
-    if (!profidrive_response_answers(m.id, tx->id))
+    // The answer to a request ID no table has cannot be judged (dpv1_unknown_code named it).
+    const bool id_known = !profidrive_request_id_name(tx->id).empty();
+    if (id_known && !profidrive_response_answers(m.id, tx->id))
         add(FindingKind::Dpv1UnexpectedResponseId).message =
             fmt::format("response ID {} does not answer the request of frame {} ({})",
                         response_id_text(m.id), tx->frame, about);
@@ -471,7 +511,7 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
     if (size > profidrive::kMaxData)
         found.add("response of {} bytes, more than the {} a parameter response may have", size,
                   profidrive::kMaxData);
-    if (!profidrive_response_answers(m.id, tx->id)) {
+    if (!id_known || !profidrive_response_answers(m.id, tx->id)) {
         // Not an answer to this request: its blocks cannot be judged against it.
     } else if (tx->change && !negative) {
         std::size_t length = std::min<std::size_t>(pdu.length, pdu.data.size());
@@ -502,6 +542,14 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
                 found.add("PNU {}: {} values for {} elements", address.pnu, block.count,
                           std::max<std::uint8_t>(address.elements, 1));
             }
+            // Danfoss 0x51 answers every value as a double word, whatever its type [S003].
+            if (block.complete && !tx->change && tx->id == profidrive::kRequestValueDoubleWord &&
+                !block.is_error() && address.attribute == profidrive::kAttributeValue &&
+                profidrive_format_size(block.format) != 4)
+                found.add(
+                    "PNU {}: format 0x{:02X} in the answer to a double-word read (4-byte values, "
+                    "such as format 0x43, expected)",
+                    address.pnu, block.format);
         }
         if (m.trailing > 0) found.add("{} bytes after the last value block", m.trailing);
     }

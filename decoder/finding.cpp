@@ -62,6 +62,8 @@ constexpr FindingKindInfo kCatalogue[] = {
      "requests are in range, and lengths and value blocks agree with the request"},
     {FindingKind::Dpv1ErrorPdu, "dpv1_error_pdu", Severity::Note, Dpv1ParameterAccess,
      "DP-V1 requests are accepted (error PDUs other than state conflict)"},
+    {FindingKind::Dpv1UnknownCode, "dpv1_unknown_code", Severity::Warning, Dpv1ParameterAccess,
+     "parameter requests use request IDs and attributes the dialect defines"},
     {FindingKind::FcStackedRequest, "fc_stacked_request", Severity::Error, FcProtocol,
      "the master waits for a drive's response before its next command to that drive"},
     {FindingKind::FcNoResponse, "fc_no_response", Severity::Error, FcProtocol,

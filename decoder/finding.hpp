@@ -43,6 +43,7 @@ enum class FindingKind : std::uint8_t {
     Dpv1NegativeResponse,
     Dpv1LengthError,
     Dpv1ErrorPdu,
+    Dpv1UnknownCode,
     FcStackedRequest,
     FcNoResponse,
     FcLateResponse,

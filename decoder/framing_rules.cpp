@@ -7,7 +7,9 @@
 
 namespace dpscope {
 
-FramingRules::FramingRules(bool (*can_start_telegram)(std::uint8_t)) noexcept {
+FramingRules::FramingRules(bool (*can_start_telegram)(std::uint8_t),
+                           std::uint8_t first_byte_number) noexcept
+    : first_byte_number_(first_byte_number) {
     for (std::size_t byte = 0; byte < starts_.size(); ++byte)
         starts_[byte] = can_start_telegram(static_cast<std::uint8_t>(byte));
 }
@@ -28,7 +30,7 @@ std::string FramingRules::describe_skip(const SkippedBytes& skipped) const {
         skipped.reason == ProblemKind::Truncated)
         return fmt::format("skipped {}: {}", bytes, what);
     return fmt::format("skipped {}: {} (byte {} of the candidate telegram)", bytes, what,
-                       skipped.reason_offset);
+                       skipped.reason_offset + first_byte_number_);
 }
 
 std::unique_ptr<FramerCore> FramingRules::make_framer_core() const {

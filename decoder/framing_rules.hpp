@@ -77,7 +77,8 @@ class FramingRules {
     virtual std::string_view protocol_name() const noexcept = 0;
 
     // "skipped 5 bytes: no start delimiter"; "skipped 7 bytes: LEr differs from LE (byte 2 of
-    // the candidate telegram)". The caller says where (offset, line).
+    // the candidate telegram)", the byte numbered as the protocol's messages number it (from 0,
+    // or from 1 for VLT 2000). The caller says where (offset, line).
     std::string describe_skip(const SkippedBytes& skipped) const;
 
     // The engine of a StreamFramer over these rules. The default calls judge() through the vtable
@@ -87,8 +88,10 @@ class FramingRules {
     virtual std::unique_ptr<FramerCore> make_framer_core() const;
 
   protected:
-    // `can_start_telegram` is asked once for every byte value, here.
-    explicit FramingRules(bool (*can_start_telegram)(std::uint8_t)) noexcept;
+    // `can_start_telegram` is asked once for every byte value, here. `first_byte_number`: the
+    // number describe_skip gives a candidate's first byte (Problem::first_byte).
+    explicit FramingRules(bool (*can_start_telegram)(std::uint8_t),
+                          std::uint8_t first_byte_number = 0) noexcept;
 
     // The words for a reason judge() gives ("LE outside 3..249"). The framer's own reasons have
     // words here: BadStartDelimiter "no start delimiter" (a byte that may not start a telegram),
@@ -97,6 +100,7 @@ class FramingRules {
 
   private:
     std::array<bool, 256> starts_{};
+    std::uint8_t first_byte_number_ = 0;
 };
 
 }  // namespace dpscope

@@ -136,79 +136,83 @@ std::string problem_message(const Problem& p) {
             // The FC decoder names what it wanted (STX 0x02), the VLT 2000 decoder its '<'; FDL
             // has five start delimiters.
             if (p.expected == 0x02)
-                return fmt::format("byte {}: 0x{:02X} is not STX 0x{:02X}", p.offset, p.actual,
-                                   p.expected);
+                return fmt::format("byte {}: 0x{:02X} is not STX 0x{:02X}", p.byte_number(),
+                                   p.actual, p.expected);
             if (p.expected != 0)
-                return fmt::format("byte {}: {} is not {} (0x{:02X})", p.offset,
+                return fmt::format("byte {}: {} is not {} (0x{:02X})", p.byte_number(),
                                    quoted_char(p.actual), quoted_char(p.expected), p.expected);
             return fmt::format(
                 "byte {}: 0x{:02X} is not a start delimiter (SD1 0x10, SD2 0x68, "
                 "SD3 0xA2, SD4 0xDC, SC 0xE5)",
-                p.offset, p.actual);
+                p.byte_number(), p.actual);
         case ProblemKind::Truncated:
             return fmt::format("telegram truncated: needs {} bytes, has {}", p.expected, p.actual);
         case ProblemKind::LengthMismatch:
-            return fmt::format("byte {}: LEr {} differs from LE {}", p.offset, p.actual,
+            return fmt::format("byte {}: LEr {} differs from LE {}", p.byte_number(), p.actual,
                                p.expected);
         case ProblemKind::LengthOutOfRange:
-            return fmt::format("byte {}: LE {} outside 4..249", p.offset, p.actual);
+            return fmt::format("byte {}: LE {} outside 4..249", p.byte_number(), p.actual);
         case ProblemKind::StartDelimiterRepeat:
             return fmt::format("byte {}: repeated start delimiter is 0x{:02X}, expected 0x68",
-                               p.offset, p.actual);
+                               p.byte_number(), p.actual);
         case ProblemKind::FcsMismatch:
             return fmt::format("byte {}: FCS 0x{:02X} wrong, checksum of the data is 0x{:02X}",
-                               p.offset, p.actual, p.expected);
+                               p.byte_number(), p.actual, p.expected);
         case ProblemKind::BadEndDelimiter:
             // The VLT 2000 decoder names what it wanted ('>' 0x3E); FDL's is ED 0x16.
             if (p.expected != 0)
-                return fmt::format("byte {}: end delimiter is {}, expected {} (0x{:02X})", p.offset,
-                                   quoted_char(p.actual), quoted_char(p.expected), p.expected);
-            return fmt::format("byte {}: end delimiter is 0x{:02X}, expected 0x16", p.offset,
+                return fmt::format("byte {}: end delimiter is {}, expected {} (0x{:02X})",
+                                   p.byte_number(), quoted_char(p.actual), quoted_char(p.expected),
+                                   p.expected);
+            return fmt::format("byte {}: end delimiter is 0x{:02X}, expected 0x16", p.byte_number(),
                                p.actual);
         case ProblemKind::TrailingBytes:
-            return fmt::format("byte {}: {} after the end of the telegram", p.offset,
+            return fmt::format("byte {}: {} after the end of the telegram", p.byte_number(),
                                counted(p.actual, "byte", "bytes"));
         case ProblemKind::InvalidAddress:
             return fmt::format("byte {}: address 0x{:02X} has bit 7 set, not allowed in a token",
-                               p.offset, p.actual);
+                               p.byte_number(), p.actual);
         case ProblemKind::AddressExtensionShort:
             return fmt::format("byte {}: address extension announced but the data unit ends",
-                               p.offset);
+                               p.byte_number());
         case ProblemKind::ServiceDataShort:
-            return fmt::format("byte {}: service data has {} bytes, needs at least {}", p.offset,
-                               p.actual, p.expected);
+            return fmt::format("byte {}: service data has {} bytes, needs at least {}",
+                               p.byte_number(), p.actual, p.expected);
         case ProblemKind::CfgIdentifierTruncated:
             return fmt::format("byte {}: identifier announces {} more bytes, only {} present",
-                               p.offset, p.expected, p.actual);
+                               p.byte_number(), p.expected, p.actual);
         case ProblemKind::DiagBlockTruncated:
-            return fmt::format("byte {}: diagnosis block of {} bytes, only {} present", p.offset,
-                               p.expected, p.actual);
+            return fmt::format("byte {}: diagnosis block of {} bytes, only {} present",
+                               p.byte_number(), p.expected, p.actual);
         case ProblemKind::ReservedFrameControl:
             return fmt::format(
                 "byte {}: frame control 0x{:02X} has the reserved bit 7 set (only the clock value "
                 "request 0xC0 sets it)",
-                p.offset, p.actual);
+                p.byte_number(), p.actual);
         case ProblemKind::LgeInvalid:
             return fmt::format(
                 "byte {}: LGE {} is no FC block length (6 process, 14 parameter, 10..255 text)",
-                p.offset, p.actual);
+                p.byte_number(), p.actual);
         case ProblemKind::BccMismatch:
             return fmt::format("byte {}: BCC 0x{:02X} wrong, XOR of the telegram is 0x{:02X}",
-                               p.offset, p.actual, p.expected);
+                               p.byte_number(), p.actual, p.expected);
         case ProblemKind::AdrInvalid:
-            return fmt::format("byte {}: address byte 0x{:02X} names no address", p.offset,
+            return fmt::format("byte {}: address byte 0x{:02X} names no address", p.byte_number(),
                                p.actual);
         case ProblemKind::Vlt2000CharacterInvalid:
-            return fmt::format("byte {}: 0x{:02X} is not printable ASCII", p.offset, p.actual);
+            return fmt::format("byte {}: 0x{:02X} is not printable ASCII", p.byte_number(),
+                               p.actual);
         case ProblemKind::Vlt2000FieldInvalid:
-            return fmt::format("byte {}: {} is not a digit ({})", p.offset, quoted_char(p.actual),
-                               vlt2000_field_at(p.offset));
+            return fmt::format("byte {}: {} is not a digit ({})", p.byte_number(),
+                               quoted_char(p.actual), vlt2000_field_at(p.offset));
         case ProblemKind::Vlt2000LetterUnknown:
-            return fmt::format("byte {}: control letter {} is none of U, R, C, I", p.offset,
+            return fmt::format("byte {}: control letter {} is none of U, R, C, I", p.byte_number(),
                                quoted_char(p.actual));
         case ProblemKind::Vlt2000ChecksumMismatch:
-            return fmt::format("byte {}: checksum {:02} wrong, the sum of bytes 1-18 ends in {:02}",
-                               p.offset, p.actual, p.expected);
+            // The characters after '<' to the decimal position: offsets 1-18.
+            return fmt::format(
+                "byte {}: checksum {:02} wrong, the sum of bytes {}-{} ends in {:02}",
+                p.byte_number(), p.actual, 1 + p.first_byte, 18 + p.first_byte, p.expected);
         case ProblemKind::Count: break;
     }
     return "unknown problem";

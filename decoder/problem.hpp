@@ -82,12 +82,19 @@ std::string_view problem_component_name(ProblemComponent component);
 
 struct Problem {
     ProblemKind kind = ProblemKind::Truncated;
-    std::uint16_t offset = 0;    // byte offset in the telegram where the check failed
+    std::uint16_t offset = 0;    // byte offset in the telegram where the check failed (0-based)
     std::uint32_t expected = 0;  // what the check wanted (meaning depends on kind)
     std::uint32_t actual = 0;    // what the telegram had
+    // The number the message gives the telegram's first byte: 0 (the offset itself: PROFIBUS, FC)
+    // or 1, where the protocol's manual numbers the bytes from 1 (VLT 2000: bytes 1-22 [S004]).
+    std::uint8_t first_byte = 0;
+
+    // The byte number a message names: offset + first_byte.
+    std::uint32_t byte_number() const noexcept { return std::uint32_t{offset} + first_byte; }
 };
 
-// One line a person understands, e.g. "FCS mismatch at byte 12: expected 0x3A, got 0x3B".
+// One line a person understands, e.g. "byte 12: FCS 0x3B wrong, checksum of the data is 0x3A";
+// the byte numbered as Problem::first_byte says.
 std::string problem_message(const Problem& problem);
 
 // A fixed-capacity list: a telegram rarely has more than two problems, and the decoder must not
@@ -96,10 +103,15 @@ class ProblemList {
   public:
     static constexpr std::size_t kCapacity = 6;
 
+    constexpr ProblemList() noexcept = default;
+    // `first_byte`: the Problem::first_byte of every problem added (1 for VLT 2000 telegrams).
+    constexpr explicit ProblemList(std::uint8_t first_byte) noexcept : first_byte_(first_byte) {}
+
     void add(ProblemKind kind, std::size_t offset, std::uint32_t expected = 0,
              std::uint32_t actual = 0) noexcept {
         if (count_ < kCapacity) {
-            items_[count_++] = Problem{kind, static_cast<std::uint16_t>(offset), expected, actual};
+            items_[count_++] =
+                Problem{kind, static_cast<std::uint16_t>(offset), expected, actual, first_byte_};
         } else {
             ++dropped_;
         }
@@ -121,6 +133,7 @@ class ProblemList {
     std::array<Problem, kCapacity> items_;  // only the first count_ are meaningful
     std::uint8_t count_ = 0;
     std::uint8_t dropped_ = 0;
+    std::uint8_t first_byte_ = 0;
 };
 
 }  // namespace dpscope

@@ -148,6 +148,17 @@ std::string_view profidrive_request_id_name(std::uint8_t request_id) {
     }
 }
 
+bool profidrive_request_id_defined(std::uint8_t request_id, Dialect dialect) noexcept {
+    switch (request_id) {
+        case profidrive::kRequestValue:
+        case profidrive::kChangeValue: return true;
+        case profidrive::kChangeValueNonVolatile:
+        case profidrive::kRequestValueDoubleWord:
+        case profidrive::kChangeValueDoubleWord: return danfoss_family(dialect);
+        default: return false;
+    }
+}
+
 std::string_view profidrive_response_id_name(std::uint8_t response_id) {
     switch (response_id) {
         case 0x01: return "request parameter (+)";

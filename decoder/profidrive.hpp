@@ -36,6 +36,9 @@ inline constexpr std::uint8_t kFormatZero = 0x40;
 inline constexpr std::uint8_t kFormatError = 0x44;
 // The most data a parameter request or response carries (error 0x15 beyond).
 inline constexpr std::size_t kMaxData = 240;
+// The most elements one parameter address asks for: "quantity 1-234" [S003], what one value
+// block of a response holds (240 - 4 header - 2 block header bytes of one-byte values).
+inline constexpr std::uint8_t kMaxElements = 234;
 }  // namespace profidrive
 
 // "request parameter value", "change parameter value", "change parameter value
@@ -45,6 +48,9 @@ std::string_view profidrive_request_id_name(std::uint8_t request_id);
 // "request parameter (+)", "change parameter (+)", "request parameter (-)", "change parameter
 // (-)"; "" for others.
 std::string_view profidrive_response_id_name(std::uint8_t response_id);
+// Whether a request ID is one the dialect defines [S003]: 0x01 and 0x02 everywhere, Danfoss's
+// 0x42, 0x51 and 0x52 on the Danfoss-built dialects (vlt, ge) only.
+bool profidrive_request_id_defined(std::uint8_t request_id, Dialect dialect) noexcept;
 // "value", "description", "text"; "" for others.
 std::string_view profidrive_attribute_name(std::uint8_t attribute);
 // "Integer16", "Unsigned32", "FloatingPoint32", "VisibleString", "N2", "V2", "Zero", "Error",

@@ -147,6 +147,8 @@ const Vlt2000Bit& vlt2000_status_bit(unsigned bit) noexcept {
     return bit < kStatusBits.size() ? kStatusBits[bit] : kNoBit;
 }
 
+// Reason codes: 00-04 [P:VLT3000 p80], 05-08 and 99 [P:VLT3500 p92] (the VLT 3000 lists the same
+// codes); the texts in dpscope's words (docs/protocol/vlt2000.md, "Reply").
 std::string_view vlt2000_reason_text(std::uint32_t reason) noexcept {
     switch (reason) {
         case 0: return "parameter does not exist";
@@ -154,6 +156,11 @@ std::string_view vlt2000_reason_text(std::uint32_t reason) noexcept {
         case 2: return "index does not exist";
         case 3: return "index read on a parameter without index";
         case 4: return "read only, e.g. factory set-up selected";
+        case 5: return "cannot be changed while the motor is running";
+        case 6: return "value outside the parameter's range";
+        case 7: return "illegal value in byte 19, the decimal position";
+        case 8: return "value read is above 99999";
+        case 99: return "other fault";
         default: return "";
     }
 }

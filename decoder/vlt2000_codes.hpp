@@ -41,8 +41,8 @@ struct Vlt2000Bit {
 const Vlt2000Bit& vlt2000_control_bit(unsigned bit) noexcept;
 const Vlt2000Bit& vlt2000_status_bit(unsigned bit) noexcept;
 
-// The text of a failed command's reason code (VLT 3000 [P:VLT3000 p80]: 00..04); "" for the codes
-// whose text is not known (05..08, 99, others).
+// The text of a failed command's reason code (VLT 3000 [P:VLT3000 p80] and VLT 3500 [P:VLT3500
+// p92]: 00..08 and 99); "" for any other number.
 std::string_view vlt2000_reason_text(std::uint32_t reason) noexcept;
 
 // How a reply's code answers a command's code: the same letter is the answer, 7 (failed) answers

@@ -8,7 +8,8 @@ namespace {
 bool is_start(std::uint8_t byte) { return byte == kVlt2000Start; }
 }  // namespace
 
-Vlt2000FramingRules::Vlt2000FramingRules() noexcept : FramingRules(is_start) {}
+Vlt2000FramingRules::Vlt2000FramingRules() noexcept
+    : FramingRules(is_start, kVlt2000FirstByteNumber) {}
 
 std::unique_ptr<FramerCore> Vlt2000FramingRules::make_framer_core() const {
     return std::make_unique<FramerFor<Vlt2000FramingRules>>(*this);

@@ -1,7 +1,8 @@
 // The VLT 2000 serial telegram payload of a decoded telegram (docs/protocol/vlt2000.md): 22 ASCII
 // characters
 //   <  AA  L  wwww  pppp  s  vvvvv  d  cc  >
-//   0  1-2 3  4-7   8-11  12 13-17  18 19-20 21   (byte offsets; the manuals count from 1)
+//   0  1-2 3  4-7   8-11  12 13-17  18 19-20 21   (byte offsets; messages and labels count from
+//                                                 1 as the manuals: offset + 1)
 // start '<', address (two digits, 00 = broadcast), control letter (U, R, C, I), the control word
 // (to the drive) or status word (from it) at 4 bits per character, parameter number, sign, value
 // (five digits), digits after the decimal point (9: the command failed), checksum (two digits, or
@@ -20,6 +21,9 @@ namespace dpscope {
 inline constexpr std::size_t kVlt2000TelegramSize = 22;
 inline constexpr std::uint8_t kVlt2000Start = '<';
 inline constexpr std::uint8_t kVlt2000Stop = '>';
+// The number the manual gives the '<' [S004]: messages and labels name a byte by offset + 1
+// ("byte 19" is the decimal position at offset 18).
+inline constexpr std::uint8_t kVlt2000FirstByteNumber = 1;
 // Byte offsets (0-based) of the fields.
 inline constexpr std::size_t kVlt2000AddressAt = 1;
 inline constexpr std::size_t kVlt2000LetterAt = 3;
@@ -73,7 +77,8 @@ struct Vlt2000Telegram {
     std::uint8_t checksum_computed = 0;
     bool checksum_ok = false;  // as sent and as computed agree (false when disabled)
 
-    ProblemList problems;
+    // Messages number the bytes 1-22 as the manual does [S004]; offsets stay 0-based.
+    ProblemList problems{kVlt2000FirstByteNumber};
 
     // The value as a signed whole number (digits with the sign).
     std::int64_t signed_digits() const noexcept {

@@ -89,7 +89,9 @@ std::string vlt2000_value_text(const Vlt2000Telegram& v) {
 }
 
 std::string vlt2000_value_note(const Vlt2000Telegram& v) {
-    if (!v.has_decimals) return "no decimal position (byte 18 is not a digit): the digits as sent";
+    if (!v.has_decimals)
+        return fmt::format("no decimal position (byte {} is not a digit): the digits as sent",
+                           kVlt2000DecimalsAt + kVlt2000FirstByteNumber);
     if (v.decimals > 5 && !v.failed)
         return fmt::format("decimal position {} is out of range (0-5): the digits as sent",
                            v.decimals);

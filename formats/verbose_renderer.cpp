@@ -1,6 +1,7 @@
 // The whole field tree of each telegram, like tshark -V; an FC protocol telegram field by field
 // (STX, LGE, ADR, PKE, IND, PWE or text, PCD 1 bits, PCD 2, BCC); a VLT 2000 telegram field by
-// field with the byte offsets of each ([4-7] the control or status word, all 16 bits).
+// field with the byte numbers of each as the manual counts them, from 1 ([5-8] the control or
+// status word, all 16 bits).
 #include <algorithm>
 #include <iterator>
 #include <span>
@@ -197,7 +198,8 @@ class VerboseRenderer final : public TelegramRenderer {
     }
 
     // The VLT 2000 telegram field by field, from what Vlt2000Decoder stored; each field with its
-    // byte offsets ("[4-7]") and as far as the record reaches.
+    // byte numbers as the manual counts them, from 1 ("[5-8]": offsets 4-7), and as far as the
+    // record reaches.
     void render_vlt2000(const DecodedTelegram& t) {
         const Vlt2000Telegram& v = t.vlt2000;
         TextBuffer& b = out_.buffer();
@@ -219,22 +221,22 @@ class VerboseRenderer final : public TelegramRenderer {
         b.push_back('\n');
         if (size == 0) return;
         if (t.bytes[0] != kVlt2000Start) {
-            field(1, "[0] Start: {} (not '<')", chars(t, 0, 1));
+            field(1, "[1] Start: {} (not '<')", chars(t, 0, 1));
             return;
         }
-        field(1, "[0] Start: '<'");
+        field(1, "[1] Start: '<'");
         if (!has(kVlt2000AddressAt, 2)) return;
         if (t.has_roles)
-            field(1, "[1-2] Address: {:02}{}", v.address,
+            field(1, "[2-3] Address: {:02}{}", v.address,
                   v.broadcast ? " (broadcast: every drive acts, none replies)" : "");
         else
-            field(1, "[1-2] Address: {} (not two digits)", chars(t, kVlt2000AddressAt, 2));
+            field(1, "[2-3] Address: {} (not two digits)", chars(t, kVlt2000AddressAt, 2));
         if (!has(kVlt2000LetterAt, 1)) return;
-        field(1, "[3] Control letter: {} ({}{})", chars(t, kVlt2000LetterAt, 1),
+        field(1, "[4] Control letter: {} ({}{})", chars(t, kVlt2000LetterAt, 1),
               vlt2000_letter_name(v.letter),
               v.letter == Vlt2000Letter::Unknown ? ": not U, R, C or I" : "");
         if (!has(kVlt2000WordAt, 4)) return;
-        field(1, "[4-7] {} word: {} = 0x{:04X} ({})", request ? "Control" : "Status",
+        field(1, "[5-8] {} word: {} = 0x{:04X} ({})", request ? "Control" : "Status",
               chars(t, kVlt2000WordAt, 4), v.word, request ? "to the drive" : "from the drive");
         for (unsigned bit = 0; bit < 16; ++bit) {
             if (vlt2000_bit_kept(v, bit)) {
@@ -248,62 +250,62 @@ class VerboseRenderer final : public TelegramRenderer {
         const bool control = v.letter == Vlt2000Letter::Control;
         const std::string_view ignored = control ? " (ignored with C)" : "";
         if (v.has_parameter)
-            field(1, "[8-11] Parameter: {}{}", v.parameter, ignored);
+            field(1, "[9-12] Parameter: {}{}", v.parameter, ignored);
         else
-            field(1, "[8-11] Parameter: {} (not four digits)", chars(t, kVlt2000ParameterAt, 4));
+            field(1, "[9-12] Parameter: {} (not four digits)", chars(t, kVlt2000ParameterAt, 4));
         if (!has(kVlt2000SignAt, 1)) return;
         if (v.letter == Vlt2000Letter::ReadIndex && !v.index.empty()) {
             if (v.has_index_number)
-                field(1, "[12-17] Index: {} = {}", chars(t, kVlt2000SignAt, 6), v.index_number);
+                field(1, "[13-18] Index: {} = {}", chars(t, kVlt2000SignAt, 6), v.index_number);
             else
-                field(1, "[12-17] Index: {} (not a number)", chars(t, kVlt2000SignAt, 6));
+                field(1, "[13-18] Index: {} (not a number)", chars(t, kVlt2000SignAt, 6));
         } else {
-            field(1, "[12] Sign: {} ({}){}", chars(t, kVlt2000SignAt, 1),
+            field(1, "[13] Sign: {} ({}){}", chars(t, kVlt2000SignAt, 1),
                   v.negative ? "negative" : "positive", ignored);
             if (!has(kVlt2000ValueAt, 5)) return;
             if (v.failed) {
-                field(1, "[13-17] Value: {} (none: the command failed)",
+                field(1, "[14-18] Value: {} (none: the command failed)",
                       chars(t, kVlt2000ValueAt, 5));
             } else if (v.has_value) {
                 const std::string note = vlt2000_value_note(v);
                 line(1, "");
-                fmt::format_to(it, "[13-17] Value: {:05} = {}", v.digits, vlt2000_value_text(v));
+                fmt::format_to(it, "[14-18] Value: {:05} = {}", v.digits, vlt2000_value_text(v));
                 if (!note.empty()) fmt::format_to(it, " ({})", note);
                 append(b, ignored);
                 b.push_back('\n');
             } else {
-                field(1, "[13-17] Value: {} (not five digits)", chars(t, kVlt2000ValueAt, 5));
+                field(1, "[14-18] Value: {} (not five digits)", chars(t, kVlt2000ValueAt, 5));
             }
         }
         if (v.failed) {
             if (v.has_reason)
-                field(2, "[16-17] Reason code: {:02} = {}", v.reason, vlt2000_reason_or_unknown(v));
+                field(2, "[17-18] Reason code: {:02} = {}", v.reason, vlt2000_reason_or_unknown(v));
             else
-                field(2, "[16-17] Reason code: {} ({})", chars(t, kVlt2000ReasonAt, 2),
+                field(2, "[17-18] Reason code: {} ({})", chars(t, kVlt2000ReasonAt, 2),
                       vlt2000_reason_or_unknown(v));
         }
         if (!has(kVlt2000DecimalsAt, 1)) return;
         if (!v.has_decimals)
-            field(1, "[18] Decimal position: {} (not a digit)", chars(t, kVlt2000DecimalsAt, 1));
+            field(1, "[19] Decimal position: {} (not a digit)", chars(t, kVlt2000DecimalsAt, 1));
         else if (v.failed)
-            field(1, "[18] Decimal position: 9 (unknown parameter or the command failed)");
+            field(1, "[19] Decimal position: 9 (unknown parameter or the command failed)");
         else if (v.decimals > 5)
-            field(1, "[18] Decimal position: {} (out of range 0-5)", v.decimals);
+            field(1, "[19] Decimal position: {} (out of range 0-5)", v.decimals);
         else
-            field(1, "[18] Decimal position: {}", v.decimals);
+            field(1, "[19] Decimal position: {}", v.decimals);
         if (has(kVlt2000ChecksumAt, 2)) {
-            line(1, "[19-20] Checksum: ");
+            line(1, "[20-21] Checksum: ");
             append_vlt2000_checksum(b, t);
             b.push_back('\n');
         } else {
-            field(1, "[19-20] Checksum: missing (telegram cut short)");
+            field(1, "[20-21] Checksum: missing (telegram cut short)");
             return;
         }
         if (!has(kVlt2000StopAt, 1)) return;
         if (t.bytes[kVlt2000StopAt] == kVlt2000Stop)
-            field(1, "[21] Stop: '>'");
+            field(1, "[22] Stop: '>'");
         else
-            field(1, "[21] Stop: {} (not '>')", chars(t, kVlt2000StopAt, 1));
+            field(1, "[22] Stop: {} (not '>')", chars(t, kVlt2000StopAt, 1));
     }
 
     static std::string_view sap_label(std::uint8_t value, bool slave_side) {

@@ -17,6 +17,8 @@ using Parameter = Dpv1ParameterModel::Parameter;
 
 constexpr std::uint8_t kSlot = 0;
 constexpr std::uint8_t kReadMax = 240;  // the most a Read accepts: the PROFIdrive maximum
+// An attribute none of the tables has (value 0x10, description 0x20, text 0x30 [S003]).
+constexpr std::uint8_t kUnknownAttribute = 0x40;
 // Error numbers of a format-0x44 block.
 constexpr std::uint16_t kErrorUnknownPnu = 0x00, kErrorReadOnly = 0x01, kErrorLimits = 0x02,
                         kErrorSubindex = 0x03, kErrorNoTexts = 0x0F, kErrorAddress = 0x16,
@@ -236,6 +238,8 @@ Dpv1ParameterModel::Request Dpv1ParameterModel::choose_request(ChannelEnvironmen
             r.items.push_back(read_item(env, *p, env.random(3) == 0));
     } else if (shape == Shape::ArrayRead || (shape == Shape::Any && choice >= 50 && choice < 62)) {
         r.items.push_back(read_item(env, pick(env, array), true));
+    } else if (shape == Shape::UnknownAttribute) {
+        r.items.push_back({kUnknownAttribute, 1, pick(env, any).pnu, 0, 0, {}});
     } else if (shape == Shape::StandardChange) {
         r.id = profidrive::kChangeValue;
         r.items.push_back(change_item(env, pick(env, writable)));
@@ -378,6 +382,10 @@ std::vector<std::uint8_t> Dpv1ParameterModel::answer(ChannelEnvironment& env,
             } else {
                 append_block(blocks, profidrive::kFormatZero, 0, {});
             }
+        } else if (profidrive_attribute_name(item.attribute).empty()) {
+            // An attribute the drive does not have: illegal parameter address [P:MCA101 p30].
+            error = kErrorAddress;
+            append_error_block(blocks, *error, std::nullopt);
         } else if (item.attribute == profidrive::kAttributeDescription) {
             if (item.subindex != 1) {
                 error = kErrorSubindex;
@@ -467,6 +475,8 @@ bool Dpv1ParameterModel::master_request(ChannelEnvironment& env, std::vector<std
             shape = Shape::MultiRead;
         else if (env.inject(FaultKind::Dpv1LengthError))
             shape = Shape::ArrayRead;
+        else if (env.inject(FaultKind::Dpv1UnknownCode))
+            shape = Shape::UnknownAttribute;
         write = choose_request(env, shape);
     }
     if (write) {

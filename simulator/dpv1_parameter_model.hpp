@@ -60,7 +60,14 @@ class Dpv1ParameterModel {
 
   private:
     // What the master asks next; the faults that shape a request are taken here.
-    enum class Shape : std::uint8_t { Any, MultiRead, ArrayRead, StandardChange, Refused };
+    enum class Shape : std::uint8_t {
+        Any,
+        MultiRead,
+        ArrayRead,
+        StandardChange,
+        Refused,
+        UnknownAttribute,  // dpv1_unknown_code: a read with an attribute no dialect defines
+    };
     Request choose_request(ChannelEnvironment& env, Shape shape);
     Item read_item(ChannelEnvironment& env, const Parameter& p, bool whole_array);
     Item change_item(ChannelEnvironment& env, const Parameter& p);

@@ -46,6 +46,7 @@ constexpr FaultInfo kFaults[] = {
     {FaultKind::Dpv1NegativeResponse, FindingKind::Dpv1NegativeResponse, {}, false, true},
     {FaultKind::Dpv1LengthError, FindingKind::Dpv1LengthError, {}, false, true},
     {FaultKind::Dpv1ErrorPdu, FindingKind::Dpv1ErrorPdu, {}, false, true},
+    {FaultKind::Dpv1UnknownCode, FindingKind::Dpv1UnknownCode, {}, false, true},
     {FaultKind::FcStackedRequest, FindingKind::FcStackedRequest, {}, false, false, Protocol::Fc},
     {FaultKind::FcNoResponse, FindingKind::FcNoResponse, {}, false, false, Protocol::Fc},
     {FaultKind::FcLateResponse, FindingKind::FcLateResponse, {}, false, false, Protocol::Fc},

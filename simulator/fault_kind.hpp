@@ -43,6 +43,7 @@ enum class FaultKind : std::uint8_t {
     Dpv1NegativeResponse,        // a negative parameter response with an error number
     Dpv1LengthError,             // a response whose value blocks do not fit the request
     Dpv1ErrorPdu,                // a DP-V1 error PDU (access, invalid index)
+    Dpv1UnknownCode,             // a request with an attribute no dialect defines, refused
     FcStackedRequest,            // FC: a second command to a drive before its response
     FcNoResponse,                // FC: a drive does not answer
     FcLateResponse,              // FC: a drive answers after its documented response time

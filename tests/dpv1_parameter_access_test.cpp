@@ -78,7 +78,14 @@ ByteVector error_pdu(std::uint8_t function, std::uint8_t code_1) {
 // Master 1 and slave 5 talking DP-V1 on SAP 51, 1 ms between telegrams.
 class Dpv1Bus {
   public:
-    explicit Dpv1Bus(TrackerOptions options = {}) : tracker_(options) {}
+    explicit Dpv1Bus(TrackerOptions options = {}, DecoderOptions decoder = {})
+        : decoder_(decoder), tracker_(options) {}
+    // Slave 5 decoded with `dialect` (--dialect 5=NAME).
+    static DecoderOptions dialect(Dialect d) {
+        DecoderOptions options;
+        options.station_dialect[kSlave] = d;
+        return options;
+    }
 
     std::uint64_t request(const ByteVector& du) {
         send(build_telegram({kSlave, kMaster, request_fc(FdlFunction::SrdHigh, fcb_, true), kSap,
@@ -186,9 +193,10 @@ std::string messages(const std::vector<Finding>& findings) {
 
 TEST(Dpv1ParameterAccessTest, CleanSessionHasNoFindings) {
     Dpv1Bus bus;
-    // The worked example: reference 5, read PNU 12 subindex 4 of drive object 1; Word 3.
-    bus.transaction(parameter_request(5, 0x01, {{12, 1, 4}}, {}, 1),
-                    parameter_response(5, 0x01, 1, {0x42, 0x01, 0x00, 0x03}, 1), 2);
+    // The worked example (ABB's, with axis 0 as a Danfoss drive has it): reference 5, read PNU 12
+    // subindex 4; Word 3.
+    bus.transaction(parameter_request(5, 0x01, {{12, 1, 4}}),
+                    parameter_response(5, 0x01, 1, {0x42, 0x01, 0x00, 0x03}), 2);
     // Three parameters in one request, a value, a string and an array read (subindex 2..4).
     bus.transaction(
         parameter_request(6, 0x01, {{20, 0, 8}, {30, 0, 0}, {40, 3, 2}}),
@@ -290,7 +298,8 @@ TEST(Dpv1ParameterAccessTest, ChangeAnsweredAsAReadIsAnUnexpectedResponseId) {
 }
 
 TEST(Dpv1ParameterAccessTest, ParameterCountOrAxisNotMirrored) {
-    Dpv1Bus bus;
+    // A PROFIdrive drive, which may have another axis than 0.
+    Dpv1Bus bus({}, Dpv1Bus::dialect(Dialect::Profidrive));
     std::uint64_t count = bus.transaction(
         parameter_request(3, 0x01, {{12}}),
         parameter_response(3, 0x01, 2, {0x06, 0x01, 0x00, 0x05, 0x06, 0x01, 0x00, 0x06}));
@@ -899,6 +908,136 @@ TEST(Dpv1ParameterAccessTest, ErrorBlockWithOtherThanOneOrTwoValuesIsALengthErro
     EXPECT_EQ(bus.findings[3].message,
               "parameter response to the request of frame 5 (reference 2, request parameter "
               "value, PNU 13): PNU 13: error block with 3 values");
+}
+
+// ---- the ranges and codes of seed 003 (#27 point 18) -------------------------------------------
+
+// A Danfoss 0x51 read answers every value as a double word, whatever its type [S003], as 0x52
+// sends them: a value block of another size is a length error; an error block is not.
+TEST(Dpv1ParameterAccessTest, DoubleWordReadAnsweredWithOtherThanFourByteValuesIsALengthError) {
+    Dpv1Bus bus;
+    bus.transaction(parameter_request(1, 0x51, {{12}}),
+                    parameter_response(1, 0x01, 1, {0x43, 0x01, 0, 0, 0, 5}));
+    bus.transaction(parameter_request(2, 0x51, {{13, 2, 0}}),
+                    parameter_response(2, 0x01, 1, {0x07, 0x02, 0, 0, 0, 5, 0, 0, 0, 6}));
+    std::uint64_t refused = bus.transaction(parameter_request(3, 0x51, {{9999}}),
+                                            parameter_response(3, 0x81, 1, {0x44, 0x01, 0, 0}));
+    std::uint64_t word = bus.transaction(parameter_request(4, 0x51, {{14}, {15}}),
+                                         parameter_response(4, 0x01, 2,
+                                                            {0x42, 0x01, 0x00, 0x05,  // Word
+                                                             0x43, 0x01, 0, 0, 0, 6}));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1NegativeResponse, refused, Severity::Note},
+                                   {FindingKind::Dpv1LengthError, word, Severity::Error}});
+    ASSERT_EQ(bus.findings.size(), 2u);
+    EXPECT_EQ(bus.findings[1].message,
+              "parameter response to the request of frame 13 (reference 4, request parameter "
+              "value (double word), PNUs 14, 15): PNU 14: format 0x42 in the answer to a "
+              "double-word read (4-byte values, such as format 0x43, expected)");
+    EXPECT_EQ(bus.findings[1].pnu, 14);
+}
+
+// The number of elements: at most 234, what one value block of a DP-V1 telegram holds [S003]
+// (which prints the range as 0x01-0xFA, but the quantity as 1-234: 0xEA). On every dialect.
+TEST(Dpv1ParameterAccessTest, RequestForMoreThan234ElementsIsALengthError) {
+    for (Dialect dialect : {Dialect::Vlt, Dialect::Ge, Dialect::Profidrive}) {
+        SCOPED_TRACE(dialect_name(dialect));
+        const std::uint8_t axis = dialect == Dialect::Profidrive ? 1 : 0;
+        Dpv1Bus bus({}, Dpv1Bus::dialect(dialect));
+        // 234 one-byte elements fill the 240 bytes of the response: fine.
+        ByteVector values{0x05, 234};
+        for (int i = 0; i < 234; ++i)
+            values.push_back(static_cast<std::uint8_t>(i));
+        bus.transaction(parameter_request(1, 0x01, {{12, 234, 0}}, {}, axis),
+                        parameter_response(1, 0x01, 1, values, axis));
+        // 235: no response can carry them; refused with error 0x16 (illegal parameter address).
+        std::uint64_t more = bus.request(
+            pdu(0x5F, parameter_request(2, 0x01, {{13, 235, 0}, {14, 0xFA, 0}}, {}, axis)));
+        bus.response(write_response(16));
+        bus.request(read_request());
+        std::uint64_t refused = bus.response(
+            pdu(0x5E,
+                parameter_response(2, 0x81, 2, {0x44, 0x01, 0, 0x16, 0x44, 0x01, 0, 0x16}, axis)));
+        bus.finish();
+        expect_findings(bus.findings,
+                        {{FindingKind::Dpv1LengthError, more, Severity::Error},
+                         {FindingKind::Dpv1NegativeResponse, refused, Severity::Note}});
+        ASSERT_EQ(bus.findings.size(), 2u);
+        EXPECT_EQ(bus.findings[0].message,
+                  "parameter request (reference 2, request parameter value, PNUs 13, 14): PNU 13: "
+                  "235 elements, more than the 234 a DP-V1 telegram carries; PNU 14: 250 "
+                  "elements, more than the 234 a DP-V1 telegram carries");
+    }
+}
+
+// A Danfoss drive (vlt, and ge, built on the same option) has axis 0 only [S003]; the PROFIdrive
+// dialect takes any axis (ABB's drive object 1 [P:FPBA p110]).
+TEST(Dpv1ParameterAccessTest, AxisOtherThanZeroOnADanfossDriveIsALengthError) {
+    for (Dialect dialect : {Dialect::Vlt, Dialect::Ge}) {
+        SCOPED_TRACE(dialect_name(dialect));
+        Dpv1Bus bus({}, Dpv1Bus::dialect(dialect));
+        std::uint64_t write =
+            bus.request(pdu(0x5F, parameter_request(5, 0x01, {{12, 1, 4}}, {}, 1)));
+        bus.response(write_response(10));
+        bus.request(read_request());
+        bus.response(pdu(0x5E, parameter_response(5, 0x01, 1, {0x42, 0x01, 0x00, 0x03}, 1)));
+        bus.finish();
+        expect_findings(bus.findings, {{FindingKind::Dpv1LengthError, write, Severity::Error}});
+        ASSERT_EQ(bus.findings.size(), 1u);
+        EXPECT_EQ(bus.findings[0].message,
+                  "parameter request (reference 5, request parameter value, PNU 12): axis 1 (a "
+                  "Danfoss drive has axis 0 only; another drive is decoded with --dialect "
+                  "5=profidrive)");
+    }
+    // ABB's worked example [P:FPBA p110], decoded as PROFIdrive: clean.
+    Dpv1Bus abb({}, Dpv1Bus::dialect(Dialect::Profidrive));
+    abb.transaction(parameter_request(5, 0x01, {{12, 1, 4}}, {}, 1),
+                    parameter_response(5, 0x01, 1, {0x42, 0x01, 0x00, 0x03}, 1));
+    abb.finish();
+    EXPECT_TRUE(abb.findings.empty()) << messages(abb.findings);
+}
+
+// Request IDs and attributes are those of seed 003's table: 0x01, 0x02 and Danfoss's 0x42, 0x51,
+// 0x52 (vlt, ge; the PROFIdrive dialect knows only 0x01 and 0x02); attributes 0x10, 0x20, 0x30.
+// Another is a dpv1_unknown_code on the Write; its response is not judged against it.
+TEST(Dpv1ParameterAccessTest, RequestIdOrAttributeOutsideTheTablesIsAnUnknownCode) {
+    Dpv1Bus bus;
+    std::uint64_t id = bus.transaction(parameter_request(1, 0x03, {{12}}),
+                                       parameter_response(1, 0x81, 1, {0x44, 0x01, 0x00, 0x66}));
+    std::uint64_t attribute =
+        bus.transaction(parameter_request(2, 0x01, {{13, 0, 0, 0x40}}),
+                        parameter_response(2, 0x81, 1, {0x44, 0x01, 0x00, 0x16}));
+    bus.transaction(parameter_request(3, 0x42, {{14}}, {0x43, 0x01, 0, 0, 0, 1}),
+                    parameter_response(3, 0x02, 1));
+    bus.finish();
+    expect_findings(bus.findings, {{FindingKind::Dpv1UnknownCode, id - 3, Severity::Warning},
+                                   {FindingKind::Dpv1NegativeResponse, id, Severity::Note},
+                                   {FindingKind::Dpv1UnknownCode, attribute - 3, Severity::Warning},
+                                   {FindingKind::Dpv1NegativeResponse, attribute, Severity::Note}});
+    ASSERT_EQ(bus.findings.size(), 4u);
+    EXPECT_EQ(bus.findings[0].message,
+              "parameter request (reference 1, request ID 0x03, PNU 12): request ID 0x03 is none "
+              "of 0x01, 0x02, 0x42, 0x51, 0x52 (vlt)");
+    EXPECT_EQ(bus.findings[2].message,
+              "parameter request (reference 2, request parameter value, PNU 13): PNU 13: "
+              "attribute 0x40 is none of 0x10 (value), 0x20 (description), 0x30 (text)");
+    EXPECT_EQ(bus.findings[0].pnu, 12);
+
+    // The Danfoss IDs on a PROFIdrive drive.
+    Dpv1Bus profidrive({}, Dpv1Bus::dialect(Dialect::Profidrive));
+    std::uint64_t danfoss =
+        profidrive.transaction(parameter_request(1, 0x51, {{12}}, {}, 1),
+                               parameter_response(1, 0x01, 1, {0x43, 0x01, 0, 0, 0, 5}, 1));
+    profidrive.transaction(parameter_request(2, 0x02, {{13}}, {0x42, 0x01, 0, 1}, 1),
+                           parameter_response(2, 0x02, 1, {}, 1));
+    profidrive.finish();
+    expect_findings(profidrive.findings,
+                    {{FindingKind::Dpv1UnknownCode, danfoss - 3, Severity::Warning}});
+    ASSERT_EQ(profidrive.findings.size(), 1u);
+    EXPECT_EQ(profidrive.findings[0].message,
+              "parameter request (reference 1, request parameter value (double word), PNU 12): "
+              "request ID 0x51 is a Danfoss one, none of 0x01, 0x02 (profidrive; a Danfoss drive "
+              "is decoded with --dialect 5=vlt)");
 }
 
 }  // namespace

@@ -51,6 +51,7 @@ TEST(FindingTest, NamesAndSeveritiesAreTheDocumentedOnes) {
         {"dpv1_negative_response", Severity::Note},
         {"dpv1_length_error", Severity::Error},
         {"dpv1_error_pdu", Severity::Note},
+        {"dpv1_unknown_code", Severity::Warning},
         {"fc_stacked_request", Severity::Error},
         {"fc_no_response", Severity::Error},
         {"fc_late_response", Severity::Warning},

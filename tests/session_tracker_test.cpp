@@ -182,6 +182,9 @@ const FaultScenario kFaultScenarios[] = {
     FaultScenario{"dpv1_negative_response", 120, {{"dpv1_negative_response", 1}}},
     FaultScenario{"dpv1_length_error", 120, {{"dpv1_length_error", 1}}},
     FaultScenario{"dpv1_error_pdu", 120, {{"dpv1_error_pdu", 1}}},
+    // A read with an attribute no table has, refused by the drive (error 0x16).
+    FaultScenario{
+        "dpv1_unknown_code", 120, {{"dpv1_unknown_code", 1}, {"dpv1_negative_response", 1}}},
 };
 
 INSTANTIATE_TEST_SUITE_P(SessionTrackerTest, FaultScenarioTest,

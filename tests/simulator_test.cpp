@@ -466,9 +466,10 @@ TEST(SimulatorTest, ParseFaultSpecInvalid) {
         << unknown;
     EXPECT_NE(unknown.find("fdl_no_response, dpv1_stacked_request, "), std::string::npos)
         << unknown;
-    EXPECT_NE(unknown.find(", dpv1_error_pdu, station_lost, resync, answer_not_asked, "
-                           "answer_wrong_kind, answer_short_ack, diag_fault, repeats, refusal)"),
-              std::string::npos)
+    EXPECT_NE(
+        unknown.find(", dpv1_error_pdu, dpv1_unknown_code, station_lost, resync, answer_not_asked, "
+                     "answer_wrong_kind, answer_short_ack, diag_fault, repeats, refusal)"),
+        std::string::npos)
         << unknown;
     EXPECT_EQ(unknown.find("fc_"), std::string::npos) << unknown;
     EXPECT_EQ(unknown.find("vlt2000_"), std::string::npos) << unknown;
@@ -993,6 +994,7 @@ struct Dpv1Pending {
     std::int64_t write_time = 0;
     std::size_t polls = 0;
     bool awaiting_echo = false;
+    bool unknown_attribute = false;  // dpv1_unknown_code: its refusal is part of that anomaly
 };
 
 Dpv1Tally tally_dpv1(const std::vector<Telegram>& telegrams) {
@@ -1048,7 +1050,12 @@ Dpv1Tally tally_dpv1(const std::vector<Telegram>& telegrams) {
                 if (message->count >= 2 && !message->is_change_request()) ++tally.multi_reads;
                 if (message->id == profidrive::kChangeValue) ++tally.change_02;
                 if (message->id == profidrive::kChangeValueNonVolatile) ++tally.change_42;
+                p.unknown_attribute = false;
                 for (const ProfidriveAddress& a : message->addresses) {
+                    if (profidrive_attribute_name(a.attribute).empty()) {
+                        anomaly(FaultKind::Dpv1UnknownCode, i + 1);
+                        p.unknown_attribute = true;
+                    }
                     if (a.elements > 1) ++tally.arrays;
                     if (a.attribute == profidrive::kAttributeDescription) ++tally.descriptions;
                     if (a.attribute == profidrive::kAttributeText) ++tally.texts;
@@ -1104,7 +1111,12 @@ Dpv1Tally tally_dpv1(const std::vector<Telegram>& telegrams) {
             if (block.format == 0x08) ++tally.floats;
             if (block.format == 0x09 || block.format == 0x0A) ++tally.strings;
         }
-        if (message->reference != p.reference) {
+        if (p.unknown_attribute) {
+            // Refused with error 0x16 (illegal parameter address), and nothing else.
+            if (!message->negative() || message->blocks.size() != 1 ||
+                message->blocks[0].error_number() != 0x16)
+                ++tally.problems;
+        } else if (message->reference != p.reference) {
             anomaly(FaultKind::Dpv1ReferenceMismatch, i + 1);
         } else if (!profidrive_response_answers(message->id, p.id)) {
             anomaly(FaultKind::Dpv1UnexpectedResponseId, i + 1);

@@ -193,14 +193,27 @@ TEST(Vlt2000DecoderTest, FailedReplyCarriesItsReasonCode) {
     EXPECT_EQ(t.vlt2000.reason, 0);
     EXPECT_EQ(vlt2000_reason_text(0), "parameter does not exist");
     EXPECT_EQ(vlt2000_reason_text(4), "read only, e.g. factory set-up selected");
-    EXPECT_EQ(vlt2000_reason_text(5), "");
-    EXPECT_EQ(error_text_or_unknown(Dialect::Vlt2000, 99), kUnknownReasonCode);
+    EXPECT_EQ(error_text_or_unknown(Dialect::Vlt2000, 42), kUnknownReasonCode);
     // Without digits in bytes 17-18 there is no reason code (the VLT 2000: "unknown parameter").
     const Telegram plain = bytes_of(vlt("02RGH@@0999+000xx9"));
     const Vlt2000Telegram& p = decoder.decode(span_of(plain), 4 * kMs, 3).vlt2000;
     EXPECT_TRUE(p.failed);
     EXPECT_FALSE(p.has_reason);
     EXPECT_TRUE(p.problems.empty());
+}
+
+// Every reason code the VLT 3000 and VLT 3500 manuals list has its text: 00-04 [P:VLT3000 p80],
+// 05-08 and 99 [P:VLT3500 p92]; any other number has none.
+TEST(Vlt2000DecoderTest, EveryDocumentedReasonCodeHasItsText) {
+    EXPECT_EQ(vlt2000_reason_text(5), "cannot be changed while the motor is running");
+    EXPECT_EQ(vlt2000_reason_text(6), "value outside the parameter's range");
+    EXPECT_EQ(vlt2000_reason_text(7), "illegal value in byte 19, the decimal position");
+    EXPECT_EQ(vlt2000_reason_text(8), "value read is above 99999");
+    EXPECT_EQ(vlt2000_reason_text(99), "other fault");
+    for (std::uint32_t reason : {9u, 10u, 42u, 98u, 100u})
+        EXPECT_EQ(vlt2000_reason_text(reason), "");
+    EXPECT_EQ(error_text_or_unknown(Dialect::Vlt2000, 99), "other fault");
+    EXPECT_EQ(error_text_or_unknown(Dialect::Vlt2000, 9), kUnknownReasonCode);
 }
 
 TEST(Vlt2000DecoderTest, QuestionMarksSwitchTheChecksumOff) {
@@ -224,7 +237,7 @@ TEST(Vlt2000DecoderTest, WrongChecksumIsAProblemUnlessIgnored) {
     EXPECT_EQ(p.offset, kVlt2000ChecksumAt);
     EXPECT_EQ(p.expected, 7u);
     EXPECT_EQ(p.actual, 8u);
-    EXPECT_EQ(problem_message(p), "byte 19: checksum 08 wrong, the sum of bytes 1-18 ends in 07");
+    EXPECT_EQ(problem_message(p), "byte 20: checksum 08 wrong, the sum of bytes 2-19 ends in 07");
     EXPECT_FALSE(t.vlt2000.checksum_ok);
 
     Vlt2000DecoderOptions options;
@@ -306,14 +319,14 @@ TEST(Vlt2000DecoderTest, NonDigitsUnknownLetterAndEndDelimiterAreProblems) {
     ASSERT_FALSE(a.problems().empty());
     EXPECT_EQ(a.problems()[0].kind, ProblemKind::Vlt2000FieldInvalid);
     EXPECT_EQ(a.problems()[0].offset, 2);
-    EXPECT_EQ(problem_message(a.problems()[0]), "byte 2: 'x' is not a digit (address)");
+    EXPECT_EQ(problem_message(a.problems()[0]), "byte 3: 'x' is not a digit (address)");
     EXPECT_FALSE(a.has_roles);
 
     const Telegram letter = bytes_of(vlt("01X@@@@0516+000000"));
     const DecodedTelegram& l = decoder.decode(span_of(letter), 0, 2);
     ASSERT_EQ(l.problems().size(), 1u);
     EXPECT_EQ(l.problems()[0].kind, ProblemKind::Vlt2000LetterUnknown);
-    EXPECT_EQ(problem_message(l.problems()[0]), "byte 3: control letter 'X' is none of U, R, C, I");
+    EXPECT_EQ(problem_message(l.problems()[0]), "byte 4: control letter 'X' is none of U, R, C, I");
 
     const Telegram parameter = bytes_of(vlt("01R@@@@05a6+000000"));
     EXPECT_EQ(decoder.decode(span_of(parameter), 0, 3).problems()[0].offset, 10);
@@ -328,7 +341,7 @@ TEST(Vlt2000DecoderTest, NonDigitsUnknownLetterAndEndDelimiterAreProblems) {
     ASSERT_EQ(e.problems().size(), 1u);
     EXPECT_EQ(e.problems()[0].kind, ProblemKind::BadEndDelimiter);
     EXPECT_EQ(problem_message(e.problems()[0]),
-              "byte 21: end delimiter is '!', expected '>' (0x3E)");
+              "byte 22: end delimiter is '!', expected '>' (0x3E)");
 }
 
 // Found by fuzz_vlt2000_decoder (fuzz/corpus/fuzz_vlt2000_decoder/regression-control-character):
@@ -348,7 +361,7 @@ TEST(Vlt2000DecoderTest, CharacterOutsidePrintableAsciiIsAProblem) {
     const DecodedTelegram& s = decoder.decode(span_of(sign), kNoTime, 2);
     ASSERT_EQ(s.problems().size(), 1u);
     EXPECT_EQ(s.problems()[0].offset, 12);
-    EXPECT_EQ(problem_message(s.problems()[0]), "byte 12: 0xA2 is not printable ASCII");
+    EXPECT_EQ(problem_message(s.problems()[0]), "byte 13: 0xA2 is not printable ASCII");
     // The framing rules reject the same bytes.
     EXPECT_EQ(vlt2000_framing_rules().judge(span_of(sign), true).status, FramingStatus::Invalid);
 }
@@ -377,12 +390,41 @@ TEST(Vlt2000DecoderTest, WrongStartAndTrailingBytes) {
     const DecodedTelegram& s = decoder.decode(span_of(start), 0, 1);
     ASSERT_EQ(s.problems().size(), 1u);
     EXPECT_EQ(s.problems()[0].kind, ProblemKind::BadStartDelimiter);
-    EXPECT_EQ(problem_message(s.problems()[0]), "byte 0: '(' is not '<' (0x3C)");
+    EXPECT_EQ(problem_message(s.problems()[0]), "byte 1: '(' is not '<' (0x3C)");
     Telegram longer = bytes_of("<01UOGD@0516+00080007>");
     longer.push_back('\r');
     const DecodedTelegram& l = decoder.decode(span_of(longer), 0, 2);
     ASSERT_EQ(l.problems().size(), 1u);
     EXPECT_EQ(l.problems()[0].kind, ProblemKind::TrailingBytes);
+    EXPECT_EQ(l.problems()[0].offset, kVlt2000TelegramSize);
+    EXPECT_EQ(problem_message(l.problems()[0]), "byte 23: 1 byte after the end of the telegram");
+}
+
+// Messages number a telegram's bytes 1-22 as the VLT 2000 manual does [S004] (byte 19 is the
+// decimal position, bytes 20-21 the checksum); a problem's offset stays the 0-based position in
+// the record, as for every bus.
+TEST(Vlt2000DecoderTest, MessagesNumberTheBytesAsTheManual) {
+    Vlt2000Decoder decoder;
+    const Telegram decimals = bytes_of(vlt("01U@@@@0516+00000x"));
+    const Problem p = decoder.decode(span_of(decimals), 0, 1).problems()[0];
+    EXPECT_EQ(p.offset, kVlt2000DecimalsAt);
+    EXPECT_EQ(problem_message(p), "byte 19: 'x' is not a digit (decimal position)");
+    const Telegram checksum = bytes_of("<01UOGD@0516+0008000x>");
+    EXPECT_EQ(problem_message(decoder.decode(span_of(checksum), 0, 2).problems()[0]),
+              "byte 21: 'x' is not a digit (checksum)");
+    const Telegram parameter = bytes_of(vlt("01R@@@@05a6+000000"));
+    EXPECT_EQ(problem_message(decoder.decode(span_of(parameter), 0, 3).problems()[0]),
+              "byte 11: 'a' is not a digit (parameter number)");
+    // Other buses keep 0-based byte numbers.
+    EXPECT_EQ(problem_message(Problem{ProblemKind::TrailingBytes, 13, 0, 2}),
+              "byte 13: 2 bytes after the end of the telegram");
+    // The framer's words for a candidate it skips count the same way.
+    const Telegram no_stop = bytes_of("<01UOGD@0516+00080007!<");
+    const FramingVerdict verdict = vlt2000_framing_rules().judge(span_of(no_stop), true);
+    ASSERT_EQ(verdict.status, FramingStatus::Invalid);
+    EXPECT_EQ(vlt2000_framing_rules().describe_skip(
+                  SkippedBytes{0, 22, verdict.reason, verdict.reason_offset}),
+              "skipped 22 bytes: no '>' at the telegram's end (byte 22 of the candidate telegram)");
 }
 
 TEST(Vlt2000DecoderTest, SingleBitErrorsAreAlwaysNoticed) {

@@ -52,7 +52,7 @@ std::string wrong_checksum(std::string_view head) {
 //   3/4 R 999 to drive 02 and the failed reply, reason 00; 5/6 U 101 = -23.750 and its reply;
 //   7/8 I 621 index 3 and its reply, both with "??"; 9 a C broadcast (0x0400); 10 a wrong
 //   checksum (to drive 05: a command wrong only in its checksum may be answered); 11 cut short; 12
-//   a letter in the parameter; 13 a failed reply with reason 07 (unknown); 14 a failed reply
+//   a letter in the parameter; 13 a failed reply with reason 42 (unknown); 14 a failed reply
 //   without a reason code; 15 decimal position 7; 16 groups kept (P) to drive 04; 17 an unknown
 //   letter; 18 no address.
 std::vector<std::string> session() {
@@ -69,7 +69,7 @@ std::vector<std::string> session() {
         wrong_checksum("<05R@@@@0516+000000"),
         "<01R@@@@05",
         vlt("<01R@@@@05x6+000000"),
-        vlt("<01R@@@@0999+000079"),
+        vlt("<01R@@@@0999+000429"),
         vlt("<01R@@@@0999+000xx9"),
         vlt("<01U@@@@0101+123457"),
         vlt("<04UPPD@0516+000800"),
@@ -166,7 +166,7 @@ TEST(Vlt2000RendererTest, TextOneLinePerTelegram) {
     EXPECT_TRUE(
         contains(l[11], "req CTW=0x0000 (data not valid: no change) [vlt2000_field_invalid]"))
         << l[11];
-    EXPECT_TRUE(contains(l[12], "parameter 999 failed: reason 07 (unknown reason code)")) << l[12];
+    EXPECT_TRUE(contains(l[12], "parameter 999 failed: reason 42 (unknown reason code)")) << l[12];
     EXPECT_TRUE(contains(l[13], "parameter 999 failed: no reason code given")) << l[13];
     EXPECT_TRUE(
         contains(l[14],
@@ -197,31 +197,36 @@ TEST(Vlt2000RendererTest, ValueTextAppliesTheDecimalPoint) {
     EXPECT_EQ(value_of(vlt("<01U@@@@0516 123451")), "1234.5");  // anything but '-' is '+'
     EXPECT_EQ(value_of(vlt("<01U@@@@0516+999996")),
               "99999 (decimal position 6 is out of range (0-5): the digits as sent)");
+    // Byte 19 is the decimal position, numbered as the manual numbers it [S004].
+    EXPECT_TRUE(value_of(vlt("<01U@@@@0516+12345x"))
+                    .starts_with("12345 (no decimal position (byte 19 is not a digit): the digits "
+                                 "as sent)"))
+        << value_of(vlt("<01U@@@@0516+12345x"));
 }
 
-TEST(Vlt2000RendererTest, VerboseFieldsWithTheirByteOffsets) {
+TEST(Vlt2000RendererTest, VerboseFieldsWithTheirByteNumbersAsTheManual) {
     const std::string text =
         render(OutputFormat::Verbose, {vlt("<01UOGD@0516+000800"), vlt("<01UGHK@0516+000800")});
     for (std::string_view expected : {
              "Frame 1: 22 bytes, 2024-01-01T00:00:00.000000000Z\n"
              "    Bytes: 3C 30 31 55 4F 47 44 40 30 35 31 36 2B 30 30 30 38 30 30 30 37 3E\n"
              "VLT 2000 telegram: U update command to drive 01\n"
-             "    [0] Start: '<'\n"
-             "    [1-2] Address: 01\n"
-             "    [3] Control letter: \"U\" (update)\n"
-             "    [4-7] Control word: \"OGD@\" = 0x047F (to the drive)\n"
+             "    [1] Start: '<'\n"
+             "    [2-3] Address: 01\n"
+             "    [4] Control letter: \"U\" (update)\n"
+             "    [5-8] Control word: \"OGD@\" = 0x047F (to the drive)\n"
              "        bit  0 = 1: ON1\n",
              "        bit  6 = 1: start\n        bit  7 = 0: no function\n",
              "        bit 10 = 1: data valid\n",
              "        bit 15 = 0: no function\n"
-             "    [8-11] Parameter: 516\n"
-             "    [12] Sign: \"+\" (positive)\n"
-             "    [13-17] Value: 00080 = 80\n"
-             "    [18] Decimal position: 0\n"
-             "    [19-20] Checksum: 07 (correct)\n"
-             "    [21] Stop: '>'\n\n",
+             "    [9-12] Parameter: 516\n"
+             "    [13] Sign: \"+\" (positive)\n"
+             "    [14-18] Value: 00080 = 80\n"
+             "    [19] Decimal position: 0\n"
+             "    [20-21] Checksum: 07 (correct)\n"
+             "    [22] Stop: '>'\n\n",
              "VLT 2000 telegram: U update reply from drive 01, answers frame 1\n",
-             "    [4-7] Status word: \"GHK@\" = 0x0B87 (from the drive)\n"
+             "    [5-8] Status word: \"GHK@\" = 0x0B87 (from the drive)\n"
              "        bit  0 = 1: control ready\n"
              "        bit  1 = 1: VLT ready\n"
              "        bit  2 = 1: enabled\n"
@@ -239,23 +244,23 @@ TEST(Vlt2000RendererTest, VerboseFailureIndexKeptGroupsAndDamage) {
     const std::string failed = render(OutputFormat::Verbose, {vlt("<02R@@@@0999+000019")});
     EXPECT_TRUE(contains(failed, "VLT 2000 telegram: R read reply from drive 02\n")) << failed;
     EXPECT_TRUE(contains(failed,
-                         "    [13-17] Value: \"00001\" (none: the command failed)\n"
-                         "        [16-17] Reason code: 01 = no read/write access\n"
-                         "    [18] Decimal position: 9 (unknown parameter or the command "
+                         "    [14-18] Value: \"00001\" (none: the command failed)\n"
+                         "        [17-18] Reason code: 01 = no read/write access\n"
+                         "    [19] Decimal position: 9 (unknown parameter or the command "
                          "failed)\n"))
         << failed;
 
     const std::string index = render(OutputFormat::Verbose, {unchecked("<03I@@@@0621+000030")});
     EXPECT_TRUE(contains(index,
-                         "    [12-17] Index: \"+00003\" = 3\n"
-                         "    [18] Decimal position: 0\n"
-                         "    [19-20] Checksum: ?? (not checked; computed "))
+                         "    [13-18] Index: \"+00003\" = 3\n"
+                         "    [19] Decimal position: 0\n"
+                         "    [20-21] Checksum: ?? (not checked; computed "))
         << index;
     EXPECT_FALSE(contains(index, "Sign")) << index;
 
     const std::string kept = render(OutputFormat::Verbose, {vlt("<01UPPD@0516+000800")});
     EXPECT_TRUE(contains(kept,
-                         "    [4-7] Control word: \"PPD@\" = 0x0400 (to the drive)\n"
+                         "    [5-8] Control word: \"PPD@\" = 0x0400 (to the drive)\n"
                          "        bits 0-3: group kept (P)\n"
                          "        bits 4-7: group kept (P)\n"
                          "        bit  8 = 0: no function\n"))
@@ -264,26 +269,26 @@ TEST(Vlt2000RendererTest, VerboseFailureIndexKeptGroupsAndDamage) {
     const std::string control = render(OutputFormat::Verbose, {vlt("<00C@@D@0000+000000")});
     EXPECT_TRUE(contains(control, "C control command to every drive (broadcast, address 00)"))
         << control;
-    EXPECT_TRUE(contains(control, "[8-11] Parameter: 0 (ignored with C)")) << control;
+    EXPECT_TRUE(contains(control, "[9-12] Parameter: 0 (ignored with C)")) << control;
 
     const std::string cut = render(OutputFormat::Verbose, {"<01R@@@@05"});
-    EXPECT_TRUE(contains(cut, "    [4-7] Control word: \"@@@@\" = 0x0000 (to the drive)\n")) << cut;
-    EXPECT_FALSE(contains(cut, "[8-11]")) << cut;
+    EXPECT_TRUE(contains(cut, "    [5-8] Control word: \"@@@@\" = 0x0000 (to the drive)\n")) << cut;
+    EXPECT_FALSE(contains(cut, "[9-12]")) << cut;
     EXPECT_TRUE(contains(cut, "Problems\n    truncated (error)")) << cut;
 
     const std::string bad = render(OutputFormat::Verbose, {wrong_checksum("<01R@@@@0516+000000")});
-    EXPECT_TRUE(contains(bad, "    [19-20] Checksum: ")) << bad;
+    EXPECT_TRUE(contains(bad, "    [20-21] Checksum: ")) << bad;
     EXPECT_TRUE(contains(bad, " (wrong: computed ")) << bad;
     EXPECT_TRUE(contains(bad, "vlt2000_checksum_mismatch (error)")) << bad;
 
     const std::string letter = render(OutputFormat::Verbose, {vlt("<01R@@@@05x6+000000")});
-    EXPECT_TRUE(contains(letter, "    [8-11] Parameter: \"05x6\" (not four digits)\n")) << letter;
+    EXPECT_TRUE(contains(letter, "    [9-12] Parameter: \"05x6\" (not four digits)\n")) << letter;
 
     const std::string start = render(OutputFormat::Verbose, {"x01R"});
-    EXPECT_TRUE(contains(start, "VLT 2000 telegram\n    [0] Start: \"x\" (not '<')\n")) << start;
+    EXPECT_TRUE(contains(start, "VLT 2000 telegram\n    [1] Start: \"x\" (not '<')\n")) << start;
 
     const std::string address = render(OutputFormat::Verbose, {vlt("<ABR@@@@0516+000000")});
-    EXPECT_TRUE(contains(address, "    [1-2] Address: \"AB\" (not two digits)\n")) << address;
+    EXPECT_TRUE(contains(address, "    [2-3] Address: \"AB\" (not two digits)\n")) << address;
 }
 
 TEST(Vlt2000RendererTest, JsonlCommonKeysAndTheVlt2000Object) {
@@ -388,7 +393,7 @@ TEST(Vlt2000RendererTest, JsonlCommonKeysAndTheVlt2000Object) {
     EXPECT_TRUE(j[11]["vlt2000"]["parameter"].is_null());
     EXPECT_EQ(j[11]["problems"].items[0]["offset"].integer(), 10);
 
-    EXPECT_EQ(j[12]["vlt2000"]["reason"].integer(), 7);
+    EXPECT_EQ(j[12]["vlt2000"]["reason"].integer(), 42);
     EXPECT_EQ(j[12]["vlt2000"]["reason_text"].string(), "unknown reason code");
     EXPECT_TRUE(j[13]["vlt2000"]["reason"].is_null());
     EXPECT_EQ(j[13]["vlt2000"]["reason_text"].string(), "no reason code given");
@@ -526,7 +531,7 @@ TEST(Vlt2000RendererTest, SummaryCountsLettersFailuresChecksumsAndAddresses) {
     EXPECT_EQ(summary.vlt2000_broadcasts(), 1u);
     EXPECT_EQ(summary.vlt2000_failed(), 3u);
     EXPECT_EQ(summary.vlt2000_failed_by_reason(0), 1u);
-    EXPECT_EQ(summary.vlt2000_failed_by_reason(7), 1u);
+    EXPECT_EQ(summary.vlt2000_failed_by_reason(42), 1u);
     EXPECT_EQ(summary.vlt2000_failed_by_reason(100), 1u);
     EXPECT_EQ(summary.vlt2000_checksum_errors(), 1u);
     EXPECT_EQ(summary.vlt2000_checksum_disabled(), 2u);
@@ -545,7 +550,7 @@ TEST(Vlt2000RendererTest, SummaryCountsLettersFailuresChecksumsAndAddresses) {
              "    unknown letter            1  (1 command, 0 replies)\n",
              "  failed replies (decimal position 9): 3\n"
              "    reason 00 parameter does not exist",
-             "    reason 07 unknown reason code",
+             "    reason 42 unknown reason code",
              "    no reason code given",
              "  checksums: 1 wrong, 2 not checked (\"??\")\n",
              "    vlt2000_checksum_mismatch",

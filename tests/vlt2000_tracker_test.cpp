@@ -454,9 +454,9 @@ TEST(Vlt2000TrackerTest, AFailedCommandIsANoteWithItsReasonCode) {
     EXPECT_NE(found[0].message.find("reason code 04 (read only"), std::string::npos)
         << found[0].message;
     run.feed(vlt(1, 'U', 1, 3), 20);
-    found = run.feed(failed(1, 'U', 1, 7), 22);
+    found = run.feed(failed(1, 'U', 1, 42), 22);
     ASSERT_EQ(found.size(), 1u);
-    EXPECT_NE(found[0].message.find("reason code 07 (unknown reason code)"), std::string::npos)
+    EXPECT_NE(found[0].message.find("reason code 42 (unknown reason code)"), std::string::npos)
         << found[0].message;
     run.feed(vlt(1, 'R', 998), 30);
     found = run.feed(failed(1, 'R', 998), 31);
@@ -470,7 +470,7 @@ TEST(Vlt2000TrackerTest, AFailedCommandIsANoteWithItsReasonCode) {
     const Vlt2000StationStats* one = run.station(1);
     EXPECT_EQ(one->failed, 4u);
     EXPECT_EQ(one->failures_by_reason,
-              (std::map<std::uint8_t, std::uint64_t>{{0, 1}, {4, 1}, {7, 1}}));
+              (std::map<std::uint8_t, std::uint64_t>{{0, 1}, {4, 1}, {42, 1}}));
     EXPECT_EQ(one->failures_without_reason, 1u);
     EXPECT_EQ(one->answered, 4u);
     EXPECT_EQ(one->findings[at(FindingKind::Vlt2000CommandFailed)], 4u);
@@ -495,7 +495,7 @@ TEST(Vlt2000TrackerTest, ChecksumErrorsAreReportedAndTheTelegramIgnored) {
     EXPECT_EQ(found[0].request_frame, 0u);
     EXPECT_EQ(found[0].slave, 1);
     EXPECT_TRUE(found[0].has_stations);
-    EXPECT_NE(found[0].message.find("byte 19: checksum"), std::string::npos) << found[0].message;
+    EXPECT_NE(found[0].message.find("byte 20: checksum"), std::string::npos) << found[0].message;
     EXPECT_EQ(run.station(1)->checksum_errors, 1u);
     EXPECT_EQ(run.station(1)->commands, 0u);
     EXPECT_EQ(run.station(1)->telegrams, 0u);
@@ -590,7 +590,7 @@ TEST(Vlt2000TrackerTest, MalformedTelegramsAreReportedAndOtherwiseIgnored) {
     found = run.feed(with_checksum(bad));
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, FindingKind::MalformedTelegram);
-    EXPECT_NE(found[0].message.find("vlt2000_field_invalid: byte 9"), std::string::npos)
+    EXPECT_NE(found[0].message.find("vlt2000_field_invalid: byte 10"), std::string::npos)
         << found[0].message;
     // No address: no station to name, a bus finding.
     std::string no_address = vlt(1, 'R', 102);

@@ -297,7 +297,8 @@ int finding_group(FindingKind kind) {
         case FindingKind::FcCommandRejected:
         case FindingKind::Vlt2000CommandFailed: return PI_RESPONSE_CODE;
         case FindingKind::ConfigMismatch:
-        case FindingKind::UnknownCode: return PI_PROTOCOL;
+        case FindingKind::UnknownCode:
+        case FindingKind::Dpv1UnknownCode: return PI_PROTOCOL;
         default: return PI_SEQUENCE;
     }
 }
