@@ -84,6 +84,7 @@ Result<std::unique_ptr<PendingOutputFile>> PendingOutputFile::open(const std::st
     }
     out->target_ = target;
     out->temporary_ = pattern;
+    out->target_existed_ = exists;
     return out;
 }
 
@@ -91,17 +92,19 @@ PendingOutputFile::~PendingOutputFile() {
     if (!done_) discard();
 }
 
+Result<void> PendingOutputFile::close_stream() {
+    if (!file_) return {};
+    const bool closed = to_stdout_ ? std::fflush(file_) == 0 : std::fclose(file_) == 0;
+    file_ = nullptr;
+    if (closed) return {};
+    Error error{fmt::format("{}: write failed: {}", name_, std::strerror(errno))};
+    if (!temporary_.empty()) ::unlink(temporary_.c_str());
+    return error;
+}
+
 Result<void> PendingOutputFile::commit() {
     done_ = true;
-    if (file_) {
-        const bool closed = to_stdout_ ? std::fflush(file_) == 0 : std::fclose(file_) == 0;
-        file_ = nullptr;
-        if (!closed) {
-            Error error{fmt::format("{}: write failed: {}", name_, std::strerror(errno))};
-            if (!temporary_.empty()) ::unlink(temporary_.c_str());
-            return error;
-        }
-    }
+    if (Result<void> closed = close_stream(); !closed) return closed;
     if (temporary_.empty()) return {};
     if (::rename(temporary_.c_str(), target_.c_str()) != 0) {
         Error error{fmt::format("{}: cannot replace the file: {}", name_, std::strerror(errno))};
@@ -109,6 +112,27 @@ Result<void> PendingOutputFile::commit() {
         return error;
     }
     return {};
+}
+
+Result<std::string> PendingOutputFile::keep_beside(const std::vector<std::string>& inputs) {
+    if (temporary_.empty()) {
+        if (Result<void> written = commit(); !written) return Error{written.error()};
+        return std::string();
+    }
+    const std::string partial = target_ + ".partial";
+    if (!check_not_an_input(inputs, partial, name_)) {
+        discard();
+        return Error{
+            fmt::format("{}: cannot keep what was written: {} is the input", name_, partial)};
+    }
+    done_ = true;
+    if (Result<void> closed = close_stream(); !closed) return Error{closed.error()};
+    if (::rename(temporary_.c_str(), partial.c_str()) != 0) {
+        Error error{fmt::format("{}: cannot write {}: {}", name_, partial, std::strerror(errno))};
+        ::unlink(temporary_.c_str());
+        return error;
+    }
+    return partial;
 }
 
 void PendingOutputFile::discard() noexcept {

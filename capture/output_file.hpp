@@ -2,8 +2,10 @@
 //
 // PendingOutputFile writes to a temporary file beside its target and renames it into place only
 // when the command commits, so a run that fails (unusable input, write error) leaves an existing
-// file as it was. Targets that are not regular files (/dev/null, a FIFO, a terminal) are written
-// directly: they cannot be replaced by a rename and hold nothing to lose. "-" is standard output.
+// file as it was; a run that wrote its output whole but did not succeed (damaged input) keeps it
+// beside the target as TARGET.partial (keep_beside). Targets that are not regular files (/dev/null,
+// a FIFO, a terminal) are written directly: they cannot be replaced by a rename and hold nothing to
+// lose. "-" is standard output.
 //
 // check_not_an_input() refuses an output that is one of the inputs (compared by device and inode,
 // so symbolic and hard links are seen through).
@@ -43,17 +45,27 @@ class PendingOutputFile {
     // Closes the stream (unless released) and moves the temporary file into place. An error
     // when the close or the rename failed; the target is then as it was.
     Result<void> commit();
+    // Closes the stream and moves the temporary file to TARGET.partial beside the target, which
+    // stays as it was; an existing TARGET.partial is replaced. Returns that path ("" for stdout
+    // and devices, written directly); an error when the close or the rename failed, or when
+    // that path is one of `inputs` (the temporary file is then removed).
+    Result<std::string> keep_beside(const std::vector<std::string>& inputs);
     // Closes and removes the temporary file; the target stays as it was. The destructor does
     // this when commit() was not called.
     void discard() noexcept;
+    // A file was at the target when open() ran (the file a commit replaces).
+    bool target_existed() const noexcept { return target_existed_; }
 
   private:
     PendingOutputFile() = default;
+    // Closes the stream (flushes standard output); on failure removes the temporary file.
+    Result<void> close_stream();
     FILE* file_ = nullptr;
     std::string name_;
     std::string target_;     // where commit() renames to ("" when written directly)
     std::string temporary_;  // the temporary file ("" when written directly)
     bool to_stdout_ = false;
+    bool target_existed_ = false;
     bool done_ = false;
 };
 

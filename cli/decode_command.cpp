@@ -170,22 +170,21 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             print_error(fmt::format("{}{}", closed.error(), capture_file->left_as_it_was()));
             write_failed = true;
         }
-        if (write_failed) {
-            capture_file->discard();
-            return kExitOutputError;
-        }
-        if (Result<void> committed = capture_file->commit(); !committed) {
-            print_error(committed.error());
-            return kExitOutputError;
-        }
     }
+    int exit_code = source.status() == InputStatus::Damaged ? kExitDamagedInput : kExitOk;
     if (!out.flush()) {
         print_error(fmt::format("cannot write the output to {}: {}",
                                 text_stream == stdout ? "standard output" : "standard error",
                                 std::strerror(errno)));
-        return kExitOutputError;
+        exit_code = kExitOutputError;
     }
-    return source.status() == InputStatus::Damaged ? kExitDamagedInput : kExitOk;
+    if (write_failed) exit_code = kExitOutputError;
+    if (capture_file)
+        // Replaced only by a run that succeeds; what a damaged input gave goes beside it.
+        exit_code = finish_staged_output(
+            *capture_file, exit_code,
+            exit_code == kExitDamagedInput ? "the input ended in damage" : "", "-w", {input_path});
+    return exit_code;
 }
 
 struct DecodeCommand {

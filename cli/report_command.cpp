@@ -112,7 +112,7 @@ int run_report(const ReportCommand& command) {
     settings->health.baud = command.options.baud;  // 0: the bus load is unknown
     // Written beside OUT and moved into place only once the report is complete: an unusable
     // input or a write error leaves an existing OUT as it was.
-    return write_staged_output(command.output, [&](Output& out) {
+    return write_staged_output(command.output, path, [&](Output& out, std::string&) {
         Output diagnostics(stderr);
         report_input_issues(source, diagnostics);
         const ReportFormat format =
@@ -171,9 +171,10 @@ void add_report_command(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember({"text", "json", "markdown", "html", "junit"}))
         ->default_str("text");
     sub->add_option("-w,--write", command->output,
-                    "Write the report to FILE; - is standard output. An existing FILE is "
-                    "replaced only once the report is complete (an unusable input or a write "
-                    "error leaves it as it was), and never when it is the input")
+                    "Write the report to FILE; - is standard output. FILE is written (an existing "
+                    "one replaced) only by a run that exits 0 or 1; a damaged input (exit code 3) "
+                    "writes the report to FILE.partial and leaves FILE as it was; an unusable "
+                    "input or a write error writes nothing; never when FILE is the input")
         ->check(output_file_name())
         ->type_name("FILE")
         ->default_str("-");

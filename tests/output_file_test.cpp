@@ -1,0 +1,238 @@
+// Staged file outputs (capture/output_file.hpp) and what the commands do with them: an existing
+// file is replaced only by a run that succeeds (exit code 0 or 1); the output of a run that did
+// not is left beside it as FILE.partial.
+#include "capture/output_file.hpp"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tests/test_support.hpp"
+
+namespace dpscope {
+namespace {
+
+using test::CommandResult;
+using test::lines_of;
+using test::run_dpscope;
+
+std::string content(const std::string& path) {
+    std::vector<std::uint8_t> bytes = test::read_file(path);
+    return std::string(bytes.begin(), bytes.end());
+}
+
+bool exists(const std::string& path) {
+    struct stat info {};
+    return ::lstat(path.c_str(), &info) == 0;
+}
+
+// A copy of a sample in the test's folder.
+std::string copy_of(const std::string& relative, std::string_view name) {
+    std::string path = test::temp_path(name);
+    test::write_file(path, test::read_file(test::source_dir() + "/" + relative));
+    return path;
+}
+
+// The names in the test's folder that are dpscope's staging files.
+std::vector<std::string> staging_files() {
+    std::vector<std::string> found;
+    for (const auto& entry : std::filesystem::directory_iterator(test::temp_folder()))
+        if (entry.path().filename().string().find(".dpscope-") != std::string::npos)
+            found.push_back(entry.path().filename().string());
+    return found;
+}
+
+// ---- a run that does not succeed leaves an existing file as it was ----------------------------
+
+TEST(OutputFileTest, DecodeOfADamagedCaptureLeavesTheFileAndWritesThePartialBeside) {
+    const std::string keep = copy_of("samples/faults.pcap", "keep.pcap");
+    const std::string before = content(keep);
+    CommandResult r = run_dpscope({"decode", "samples/truncated.pcap", "-w", keep});
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    EXPECT_TRUE(content(keep) == before) << "a run that exits 3 replaced the file";
+    // What was read is kept beside it, and standard error says where.
+    ASSERT_TRUE(exists(keep + ".partial"));
+    CommandResult partial = run_dpscope({"decode", keep + ".partial"});
+    EXPECT_EQ(partial.exit_code, 0) << partial.err;
+    EXPECT_EQ(lines_of(partial.out).size(), 101u);
+    EXPECT_NE(r.err.find("dpscope: warning: -w " + keep +
+                         ": the input ended in damage (exit code "
+                         "3), so " +
+                         keep + " is left as it was; what was written is in " + keep + ".partial"),
+              std::string::npos)
+        << r.err;
+    EXPECT_TRUE(staging_files().empty());
+
+    // Without a file to keep, the output of a damaged input goes beside the name all the same:
+    // a file under the name given always comes from a run that succeeded.
+    const std::string fresh = test::temp_path("fresh.pcap");
+    CommandResult f = run_dpscope({"decode", "samples/truncated.pcap", "-w", fresh});
+    EXPECT_EQ(f.exit_code, 3);
+    EXPECT_FALSE(exists(fresh));
+    EXPECT_TRUE(exists(fresh + ".partial"));
+    EXPECT_NE(
+        f.err.find("so " + fresh + " is not made; what was written is in " + fresh + ".partial"),
+        std::string::npos)
+        << f.err;
+}
+
+TEST(OutputFileTest, ReportAndStatsOfADamagedCaptureLeaveTheFile) {
+    for (const std::string command : {"report", "stats"}) {
+        const std::string out = test::temp_path(command + ".txt");
+        test::write_text_file(out, "the previous output\n");
+        CommandResult r = run_dpscope({command, "samples/truncated.pcap", "-w", out});
+        EXPECT_EQ(r.exit_code, 3) << command << ": " << r.err;
+        EXPECT_EQ(content(out), "the previous output\n") << command;
+        EXPECT_FALSE(content(out + ".partial").empty()) << command;
+        EXPECT_NE(r.err.find("what was written is in " + out + ".partial"), std::string::npos)
+            << r.err;
+    }
+    EXPECT_TRUE(staging_files().empty());
+}
+
+TEST(OutputFileTest, AReportThatFailsItsGateStillReplacesTheFile) {
+    // Exit code 1 is a result, not a failed run: the report is the one asked for.
+    const std::string out = test::temp_path("report.txt");
+    test::write_text_file(out, "the previous output\n");
+    CommandResult r = run_dpscope({"report", "samples/faults.pcap", "-w", out});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(content(out).find("conformance report"), std::string::npos);
+    EXPECT_FALSE(exists(out + ".partial"));
+}
+
+TEST(OutputFileTest, SimulateWithAFaultNotInjectedLeavesTheFile) {
+    const std::string keep = copy_of("samples/faults.pcap", "keep.pcap");
+    const std::string before = content(keep);
+    CommandResult r = run_dpscope({"simulate", "-w", keep, "-c", "20", "--fault", "fcs_error@900"});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_TRUE(content(keep) == before) << "the file was replaced";
+    ASSERT_TRUE(exists(keep + ".partial"));
+    EXPECT_EQ(lines_of(run_dpscope({"decode", keep + ".partial"}).out).size(), 20u);
+    EXPECT_NE(r.err.find("dpscope: warning: -w " + keep +
+                         ": a --fault was not injected (exit "
+                         "code 2), so " +
+                         keep + " is left as it was; what was written is in " + keep + ".partial"),
+              std::string::npos)
+        << r.err;
+}
+
+// dpscope ARGS with standard input from `stdin_fd`, standard output and error on pipes.
+class Running {
+  public:
+    Running(const std::vector<std::string>& args, int stdin_fd) {
+        int out_pipe[2], err_pipe[2];
+        EXPECT_EQ(::pipe2(out_pipe, O_CLOEXEC), 0);
+        EXPECT_EQ(::pipe2(err_pipe, O_CLOEXEC), 0);
+        pid_ = ::fork();
+        if (pid_ == 0) {
+            ::dup2(stdin_fd, 0);
+            ::dup2(out_pipe[1], 1);
+            ::dup2(err_pipe[1], 2);
+            std::string exe = test::dpscope_executable();
+            std::vector<std::string> copy = args;
+            std::vector<char*> argv{exe.data()};
+            for (std::string& a : copy)
+                argv.push_back(a.data());
+            argv.push_back(nullptr);
+            ::execv(exe.c_str(), argv.data());
+            ::_exit(127);
+        }
+        ::close(out_pipe[1]);
+        ::close(err_pipe[1]);
+        out_ = out_pipe[0];
+        err_ = err_pipe[0];
+    }
+    ~Running() {
+        if (pid_ > 0) {
+            ::kill(pid_, SIGKILL);
+            ::waitpid(pid_, nullptr, 0);
+        }
+        ::close(out_);
+        ::close(err_);
+    }
+    Running(const Running&) = delete;
+    Running& operator=(const Running&) = delete;
+
+    void signal(int number) const { ::kill(pid_, number); }
+    // What standard output (or error) says within 10 s, up to and including `want`.
+    std::string out_until(std::string_view want) const { return read_until(out_, want); }
+    std::string err_until(std::string_view want) const { return read_until(err_, want); }
+    // The wait status once it has ended (standard output and error are drained meanwhile).
+    int wait() {
+        int status = 0;
+        ::waitpid(pid_, &status, 0);
+        pid_ = -1;
+        return status;
+    }
+
+  private:
+    static std::string read_until(int fd, std::string_view want) {
+        std::string got;
+        const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+        while (got.find(want) == std::string::npos) {
+            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                end - std::chrono::steady_clock::now());
+            pollfd p{fd, POLLIN, 0};
+            if (left.count() <= 0 || ::poll(&p, 1, static_cast<int>(left.count())) <= 0) break;
+            char buffer[4096];
+            ssize_t n = ::read(fd, buffer, sizeof buffer);
+            if (n <= 0) break;
+            got.append(buffer, static_cast<std::size_t>(n));
+        }
+        return got;
+    }
+
+    pid_t pid_ = -1;
+    int out_ = -1;
+    int err_ = -1;
+};
+
+TEST(OutputFileTest, HexThatEndsInAReadErrorLeavesTheFile) {
+    // Standard input is a TCP connection that is reset after a telegram was read: the next read
+    // fails (ECONNRESET), and hex exits 3.
+    const std::string keep = copy_of("samples/faults.pcap", "keep.pcap");
+    const std::string before = content(keep);
+    int listener = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    ASSERT_GE(listener, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t length = sizeof address;
+    ASSERT_EQ(::bind(listener, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+    ASSERT_EQ(::listen(listener, 1), 0);
+    ASSERT_EQ(::getsockname(listener, reinterpret_cast<sockaddr*>(&address), &length), 0);
+    int reader = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    ASSERT_EQ(::connect(reader, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+    int writer = ::accept4(listener, nullptr, nullptr, SOCK_CLOEXEC);
+    ASSERT_GE(writer, 0);
+    ::close(listener);
+    Running hex({"hex", "--bus", "profibus", "-l", "-P", "-w", keep}, reader);
+    ::close(reader);
+    const std::string line = "10 03 02 49 4E 16\n";
+    ASSERT_EQ(::write(writer, line.data(), line.size()), static_cast<ssize_t>(line.size()));
+    EXPECT_NE(hex.out_until("FDL_Status").find("FDL_Status"), std::string::npos);
+    linger reset{1, 0};
+    ::setsockopt(writer, SOL_SOCKET, SO_LINGER, &reset, sizeof reset);
+    ::close(writer);
+    const int status = hex.wait();
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 3) << hex.err_until("never said");
+    EXPECT_TRUE(content(keep) == before) << "the file was replaced";
+    EXPECT_TRUE(exists(keep + ".partial"));
+    EXPECT_TRUE(staging_files().empty());
+}
+
+}  // namespace
+}  // namespace dpscope
