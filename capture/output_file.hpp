@@ -56,6 +56,14 @@ class PendingOutputFile {
     // A file was at the target when open() ran (the file a commit replaces).
     bool target_existed() const noexcept { return target_existed_; }
 
+    // For a handler of a signal that ends the process: removes every temporary file of this
+    // process's outputs not yet committed or discarded (their targets stay as they were).
+    // Async-signal-safe. The first staged output installs a handler that does this and then ends
+    // the process by the signal, for SIGINT, SIGTERM, SIGHUP, SIGQUIT and SIGPIPE where their
+    // action is the default one; a command that handles one of them itself (sniff) calls this
+    // where its handler ends the process.
+    static void remove_all_after_signal() noexcept;
+
   private:
     PendingOutputFile() = default;
     // Closes the stream (flushes standard output); on failure removes the temporary file.
@@ -67,6 +75,7 @@ class PendingOutputFile {
     bool to_stdout_ = false;
     bool target_existed_ = false;
     bool done_ = false;
+    int slot_ = -1;  // where remove_all_after_signal() finds the temporary file (-1: nowhere)
 };
 
 // Do paths `a` and `b` name the same file? By device and inode when both exist (so links are

@@ -42,10 +42,11 @@ namespace {
 std::atomic<bool> g_stop_requested{false};
 
 // The first signal ends the capture cleanly; a second one ends the process at once, with the
-// serial port put back as it was found.
+// serial port put back as it was found and the staged report and statistics files removed.
 extern "C" void request_stop(int signal_number) {
     if (g_stop_requested.exchange(true)) {
         SerialPort::restore_all_after_signal();
+        PendingOutputFile::remove_all_after_signal();
         ::signal(signal_number, SIG_DFL);
         ::raise(signal_number);
     }

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/pty_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -232,6 +233,91 @@ TEST(OutputFileTest, HexThatEndsInAReadErrorLeavesTheFile) {
     EXPECT_TRUE(content(keep) == before) << "the file was replaced";
     EXPECT_TRUE(exists(keep + ".partial"));
     EXPECT_TRUE(staging_files().empty());
+}
+
+// ---- a signal removes the staging file -------------------------------------------------------
+
+// Waits (up to 10 s) until a staging file is in the test's folder.
+bool staging_file_appears() {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (staging_files().empty()) {
+        if (std::chrono::steady_clock::now() > end) return false;
+        ::usleep(5'000);
+    }
+    return true;
+}
+
+// A pcap header and a few records of samples/faults.pcap: a capture whose end has not come yet.
+std::vector<std::uint8_t> start_of_capture() {
+    std::vector<std::uint8_t> bytes = test::read_file(test::source_dir() + "/samples/faults.pcap");
+    bytes.resize(24 + 3 * 22);  // the header and the first three records (6-byte telegrams)
+    return bytes;
+}
+
+TEST(OutputFileTest, ASignalRemovesTheStagingFileAndLeavesTheTarget) {
+    struct Case {
+        std::vector<std::string> args;
+        int signal;
+    };
+    const std::string keep = copy_of("samples/faults.pcap", "keep.out");
+    const std::string before = content(keep);
+    const std::vector<Case> cases = {
+        {{"decode", "-w", keep, "-"}, SIGINT},
+        {{"decode", "-w", keep, "-"}, SIGTERM},
+        {{"decode", "-w", keep, "-"}, SIGHUP},
+        {{"report", "-w", keep, "-"}, SIGINT},
+        {{"stats", "-w", keep, "-"}, SIGTERM},
+        {{"hex", "--bus", "profibus", "-w", keep}, SIGHUP},
+        {{"simulate", "-w", keep, "--cycles", "1000000000"}, SIGINT},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.args[0] + " " + std::to_string(c.signal));
+        int in[2];
+        ASSERT_EQ(::pipe2(in, O_CLOEXEC), 0);
+        Running running(c.args, in[0]);
+        ::close(in[0]);
+        // The input stays open: the command waits for more while its output is staged.
+        if (c.args[0] == "hex") {
+            const std::string line = "10 03 02 49 4E 16\n";
+            ASSERT_EQ(::write(in[1], line.data(), line.size()), static_cast<ssize_t>(line.size()));
+        } else {
+            const std::vector<std::uint8_t> bytes = start_of_capture();
+            ASSERT_EQ(::write(in[1], bytes.data(), bytes.size()),
+                      static_cast<ssize_t>(bytes.size()));
+        }
+        ASSERT_TRUE(staging_file_appears());
+        running.signal(c.signal);
+        const int status = running.wait();
+        ::close(in[1]);
+        EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == c.signal) << status;
+        EXPECT_EQ(staging_files(), std::vector<std::string>{});
+        for (const std::string& left : staging_files())  // the next case starts clean
+            std::filesystem::remove(test::temp_folder() + "/" + left);
+        EXPECT_TRUE(content(keep) == before) << "the file was replaced";
+        EXPECT_FALSE(exists(keep + ".partial"));
+    }
+}
+
+TEST(OutputFileTest, SniffEndedAtOnceRemovesItsStagedReportAndStatistics) {
+    // A second signal ends sniff at once (the first asks for a clean stop): the report and the
+    // statistics, staged until the end, are not left behind as hidden files.
+    test::PseudoTerminal pty;
+    const std::string report = test::temp_path("report.txt");
+    const std::string stats = test::temp_path("stats.txt");
+    test::write_text_file(report, "the previous report\n");
+    test::Child sniff(test::dpscope_argv({"sniff", "-i", pty.slave, "--baud", "9600", "-q",
+                                          "--report-file", report, "--stats-file", stats}));
+    ASSERT_TRUE(sniff.err_says("capturing on")) << sniff.err();
+    EXPECT_EQ(staging_files().size(), 2u);
+    sniff.signal(SIGINT);
+    sniff.signal(SIGTERM);  // another signal: both are delivered
+    const int code = sniff.wait();
+    EXPECT_TRUE(code == 128 + SIGINT || code == 128 + SIGTERM || code == 0) << code << sniff.err();
+    EXPECT_EQ(staging_files(), std::vector<std::string>{});
+    if (code != 0) {
+        EXPECT_EQ(content(report), "the previous report\n");
+        EXPECT_FALSE(exists(stats));
+    }
 }
 
 }  // namespace
