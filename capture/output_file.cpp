@@ -128,8 +128,8 @@ Result<std::unique_ptr<PendingOutputFile>> PendingOutputFile::open(const std::st
         return out;
     }
     out->name_ = path;
-    // A symbolic link is followed: the file it names is replaced, the link stays.
-    std::string target = path;
+    // A symbolic link is followed: the file it names is replaced (or made), the link stays.
+    std::string target = link_target(path);
     struct stat info {};
     bool exists = ::stat(path.c_str(), &info) == 0;
     if (exists) {
@@ -233,14 +233,34 @@ void PendingOutputFile::discard() noexcept {
     unregister_staged(slot_);
 }
 
+std::string link_target(const std::string& path) {
+    std::string current = path;
+    for (int hops = 0; hops < 40; ++hops) {
+        struct stat info {};
+        if (::lstat(current.c_str(), &info) != 0 || !S_ISLNK(info.st_mode)) break;
+        std::string target(PATH_MAX, '\0');
+        const ssize_t length = ::readlink(current.c_str(), target.data(), target.size());
+        if (length <= 0 || static_cast<std::size_t>(length) >= target.size()) break;
+        target.resize(static_cast<std::size_t>(length));
+        current = target.front() == '/' || current.find('/') == std::string::npos
+                      ? target
+                      : directory_of(current) + "/" + target;
+    }
+    return current;
+}
+
 bool same_file(const std::string& a, const std::string& b) {
     struct stat info_a {};
     struct stat info_b {};
-    if (::stat(a.c_str(), &info_a) == 0 && ::stat(b.c_str(), &info_b) == 0)
+    const bool a_exists = ::stat(a.c_str(), &info_a) == 0;
+    const bool b_exists = ::stat(b.c_str(), &info_b) == 0;
+    if (a_exists && b_exists)
         return info_a.st_dev == info_b.st_dev && info_a.st_ino == info_b.st_ino;
+    if (a_exists != b_exists) return false;
+    // Neither exists yet: where each would be made, after the links that lead there.
     std::error_code error_a, error_b;
-    auto canonical_a = std::filesystem::weakly_canonical(a, error_a);
-    auto canonical_b = std::filesystem::weakly_canonical(b, error_b);
+    auto canonical_a = std::filesystem::weakly_canonical(link_target(a), error_a);
+    auto canonical_b = std::filesystem::weakly_canonical(link_target(b), error_b);
     if (error_a || error_b) return a == b;
     return canonical_a == canonical_b;
 }

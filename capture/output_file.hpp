@@ -78,8 +78,15 @@ class PendingOutputFile {
     int slot_ = -1;  // where remove_all_after_signal() finds the temporary file (-1: nowhere)
 };
 
+// The path of the file `path` names once the symbolic links of its last component are followed,
+// whether or not that file exists (a link's relative target is read from the link's folder);
+// `path` itself when it is no link. A loop of links ends after 40 of them.
+std::string link_target(const std::string& path);
+
 // Do paths `a` and `b` name the same file? By device and inode when both exist (so links are
-// seen through, and devices compare too); otherwise by their canonical paths.
+// seen through, and devices compare too); otherwise by their canonical paths after following
+// links, also links to a file that does not exist yet (a report file linked to the capture sniff
+// is about to write).
 bool same_file(const std::string& a, const std::string& b);
 
 // An error when `output` is one of `inputs` (naming `output_option`, the file and the input).

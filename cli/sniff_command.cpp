@@ -142,9 +142,11 @@ CLI::Validator rotate_size_range() {
         "512 to 16T", "size");
 }
 
-// Is `path` one of the files -w `output` writes (stem-NNNNN.ext when rotating)?
-bool is_capture_file(const std::string& path, const std::string& output, bool rotating) {
-    if (!rotating) return same_file(path, output);
+// Is `path` one of the files -w `output` writes (stem-NNNNN.ext when rotating)? Also through a
+// link, to a file that does not exist yet.
+bool is_capture_file(const std::string& given, const std::string& output, bool rotating) {
+    if (!rotating) return same_file(given, output);
+    const std::string path = link_target(given);
     // The index in stem-NNNNN.ext: the digits after the last '-' of the name.
     std::size_t slash = path.rfind('/');
     std::size_t dash = path.rfind('-');

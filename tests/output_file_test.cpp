@@ -320,5 +320,76 @@ TEST(OutputFileTest, SniffEndedAtOnceRemovesItsStagedReportAndStatistics) {
     }
 }
 
+// ---- links to files that do not exist yet ------------------------------------------------------
+
+TEST(OutputFileTest, SameFileFollowsALinkToAFileThatDoesNotExistYet) {
+    const std::string capture = test::temp_path("capture.pcap");
+    const std::string link = test::temp_path("report.txt");
+    ASSERT_EQ(::symlink(capture.c_str(), link.c_str()), 0);
+    EXPECT_TRUE(same_file(link, capture));
+    EXPECT_TRUE(same_file(capture, link));
+    // Relative to the link's folder, and through a chain of links.
+    const std::string relative = test::temp_path("relative.txt");
+    ASSERT_EQ(::symlink(std::filesystem::path(capture).filename().c_str(), relative.c_str()), 0);
+    EXPECT_TRUE(same_file(relative, capture));
+    const std::string chain = test::temp_path("chain.txt");
+    ASSERT_EQ(::symlink(relative.c_str(), chain.c_str()), 0);
+    EXPECT_TRUE(same_file(chain, link));
+    EXPECT_FALSE(same_file(chain, test::temp_path("other.pcap")));
+    // A loop of links is no file and the same as nothing else.
+    const std::string loop_a = test::temp_path("loop-a");
+    const std::string loop_b = test::temp_path("loop-b");
+    ASSERT_EQ(::symlink(loop_b.c_str(), loop_a.c_str()), 0);
+    ASSERT_EQ(::symlink(loop_a.c_str(), loop_b.c_str()), 0);
+    EXPECT_FALSE(same_file(loop_a, capture));
+}
+
+TEST(OutputFileTest, SniffRefusesAReportOrStatisticsFileLinkedToTheCaptureToBe) {
+    test::PseudoTerminal pty;
+    const std::string capture = test::temp_path("capture.pcap");
+    const std::string link = test::temp_path("link.txt");
+    ASSERT_EQ(::symlink(capture.c_str(), link.c_str()), 0);
+    for (const std::string option : {"--report-file", "--stats-file"}) {
+        CommandResult r = run_dpscope({"sniff", "-i", pty.slave, "--baud", "9600", "--duration",
+                                       "0.2", "-w", capture, option, link});
+        EXPECT_EQ(r.exit_code, 2) << option << ": " << r.err;
+        EXPECT_NE(r.err.find(option + " " + link + ": it is the capture file of -w " + capture),
+                  std::string::npos)
+            << r.err;
+        EXPECT_FALSE(exists(capture)) << option;
+    }
+    // One of the rotated files: stem-00001.pcap.
+    const std::string rotated = test::temp_path("rotated.txt");
+    const std::string first = capture.substr(0, capture.size() - 5) + "-00001.pcap";
+    ASSERT_EQ(::symlink(first.c_str(), rotated.c_str()), 0);
+    CommandResult r = run_dpscope({"sniff", "-i", pty.slave, "--baud", "9600", "--duration", "0.2",
+                                   "-w", capture, "--rotate-size", "1M", "--report-file", rotated});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    // The report file and the statistics file linked to one file that does not exist yet.
+    const std::string shared = test::temp_path("both.txt");
+    const std::string report = test::temp_path("report.txt");
+    ASSERT_EQ(::symlink(shared.c_str(), report.c_str()), 0);
+    const std::string stats = test::temp_path("stats.txt");
+    ASSERT_EQ(::symlink(shared.c_str(), stats.c_str()), 0);
+    CommandResult both = run_dpscope({"sniff", "-i", pty.slave, "--baud", "9600", "--duration",
+                                      "0.2", "--report-file", report, "--stats-file", stats});
+    EXPECT_EQ(both.exit_code, 2) << both.err;
+    EXPECT_NE(both.err.find("it is the report file too"), std::string::npos) << both.err;
+}
+
+TEST(OutputFileTest, AnOutputThroughALinkToNoFileYetCreatesTheFileTheLinkNames) {
+    // The link stays and names the report, as for a link to a file that exists.
+    const std::string target = test::temp_path("target.txt");
+    const std::string link = test::temp_path("link.txt");
+    ASSERT_EQ(::symlink(target.c_str(), link.c_str()), 0);
+    CommandResult r =
+        run_dpscope({"report", "--fail-on", "never", "-w", link, "samples/faults.pcap"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    struct stat info {};
+    ASSERT_EQ(::lstat(link.c_str(), &info), 0);
+    EXPECT_TRUE(S_ISLNK(info.st_mode));
+    EXPECT_NE(content(target).find("conformance report"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace dpscope
