@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "capture/bus_tag.hpp"
@@ -283,6 +284,9 @@ class PcapWriter final : public CaptureWriter {
         pcap_close(dead_);
     }
 
+    // The file header could not be written (a full disk): no capture file to write into.
+    const std::string& header_error() const noexcept { return error_; }
+
   protected:
     bool write_record(Bytes telegram, std::int64_t time_ns, std::string_view) override {
         if (!dumper_ || !error_.empty()) return false;
@@ -373,12 +377,13 @@ class PcapWriter final : public CaptureWriter {
 class RotatingWriter final : public CaptureWriter {
   public:
     RotatingWriter(std::string path, CaptureFormat format, int link_type, RotationOptions rotation,
-                   Protocol bus)
+                   Protocol bus, FILE* first)
         : path_(std::move(path)),
           format_(format),
           link_type_(link_type),
           rotation_(rotation),
-          bus_(bus) {}
+          bus_(bus),
+          first_(first) {}
 
     // Closes the current file (if any) and starts the next one.
     Result<void> open_next() {
@@ -387,7 +392,9 @@ class RotatingWriter final : public CaptureWriter {
         }
         ++index_;
         std::string name = rotated_file_name(path_, index_);
-        WriterResult opened = open_capture_writer(name, format_, link_type_, bus_);
+        FILE* first = std::exchange(first_, nullptr);
+        WriterResult opened = first ? open_capture_writer(first, name, format_, link_type_, bus_)
+                                    : open_capture_writer(name, format_, link_type_, bus_);
         if (!opened) return Error{opened.error()};
         current_ = std::move(opened).value();
         // pcapng: the section and interface blocks (with the bus tag of a USER0 interface).
@@ -448,6 +455,7 @@ class RotatingWriter final : public CaptureWriter {
     int link_type_;
     RotationOptions rotation_;
     Protocol bus_;
+    FILE* first_;  // the first file, opened by the caller (nullptr: opened here)
     std::unique_ptr<CaptureWriter> current_;
     std::uint64_t bytes_ = 0;
     std::uint64_t records_ = 0;
@@ -467,12 +475,14 @@ std::string rotated_file_name(const std::string& path, unsigned index) {
 }
 
 WriterResult open_rotating_writer(const std::string& path, CaptureFormat format, int link_type,
-                                  RotationOptions rotation, Protocol bus) {
+                                  RotationOptions rotation, Protocol bus, FILE* first) {
     if (rotation.max_bytes == 0 && rotation.max_ns == 0)
-        return open_capture_writer(path, format, link_type, bus);
+        return first ? open_capture_writer(first, path == "-" ? "<stdout>" : path, format,
+                                           link_type, bus)
+                     : open_capture_writer(path, format, link_type, bus);
     if (path == "-") return Error{"cannot rotate standard output: give -w a file name"};
-    auto writer = std::make_unique<RotatingWriter>(path, format, link_type, rotation, bus);
-    if (Result<void> first = writer->open_next(); !first) return Error{first.error()};
+    auto writer = std::make_unique<RotatingWriter>(path, format, link_type, rotation, bus, first);
+    if (Result<void> opened = writer->open_next(); !opened) return Error{opened.error()};
     return writer;
 }
 
@@ -521,7 +531,9 @@ WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat for
                 if (target != stdout) std::fclose(target);
                 return Error{std::move(error)};
             }
-            return std::make_unique<PcapWriter>(dead, dumper, std::move(name), tag_at, bus);
+            auto writer = std::make_unique<PcapWriter>(dead, dumper, std::move(name), tag_at, bus);
+            if (!writer->header_error().empty()) return Error{writer->header_error()};
+            return writer;
         }
         case CaptureFormat::Pcapng:
             return std::make_unique<PcapngWriter>(file, std::move(name), link_type, bus);

@@ -326,18 +326,27 @@ int run_sniff(const SniffCommand& command) {
         return kExitUsage;
     }
     std::unique_ptr<SerialPort> port = std::move(claimed).value();
-    // A -w file this run creates is removed again if the port cannot be set up (the capture file
-    // is not staged: it must be a valid pcap at every moment of the capture).
-    std::string created_capture;
+    // The -w file (the first one of a rotation) starts staged, with its pcap header written
+    // beside it, and is moved into place once the port is set up: a port that fails or a full
+    // disk leaves an existing file as it was and makes no empty one. From then on it is written
+    // where it is, a valid pcap at every moment of the capture.
+    std::unique_ptr<PendingOutputFile> capture_file;
     std::unique_ptr<CaptureWriter> writer;
     if (!command.output.empty()) {
         const bool rotating = command.rotate_size > 0 || command.rotate_seconds > 0;
         const std::string first = rotating ? rotated_file_name(command.output, 1) : command.output;
-        if (!pcap_to_stdout && ::access(first.c_str(), F_OK) != 0) created_capture = first;
+        Result<std::unique_ptr<PendingOutputFile>> staged = PendingOutputFile::open(first);
+        if (!staged) {
+            print_error(staged.error());
+            return kExitOutputError;
+        }
+        capture_file = std::move(staged).value();
         RotationOptions rotation{command.rotate_size,
                                  static_cast<std::int64_t>(command.rotate_seconds * 1e9)};
-        WriterResult opened = open_rotating_writer(command.output, CaptureFormat::Pcap, *link_type,
-                                                   rotation, settings->protocol->protocol);
+        WriterResult opened =
+            open_rotating_writer(command.output, CaptureFormat::Pcap, *link_type, rotation,
+                                 settings->protocol->protocol, capture_file->file());
+        capture_file->release_file();  // the writer closes it
         if (!opened) {
             print_error(opened.error());
             return kExitOutputError;
@@ -370,10 +379,16 @@ int run_sniff(const SniffCommand& command) {
     if (Result<void> configured = port->configure(); !configured) {
         print_error(configured.error());
         writer.reset();
-        report_file.reset();  // discards the staged report: an existing file stays as it was
+        capture_file.reset();  // discards the staged files: existing ones stay as they were
+        report_file.reset();
         stats_file.reset();
-        if (!created_capture.empty()) std::remove(created_capture.c_str());
         return kExitUsage;
+    }
+    if (capture_file) {
+        if (Result<void> placed = capture_file->commit(); !placed) {
+            print_error(placed.error());
+            return kExitOutputError;  // the port is put back as it was found
+        }
     }
     FILE* text_stream = pcap_to_stdout || report_to_stdout || stats_to_stdout ? stderr : stdout;
     const bool extcap = command.extcap;
