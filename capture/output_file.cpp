@@ -161,7 +161,12 @@ Result<std::unique_ptr<PendingOutputFile>> PendingOutputFile::open(const std::st
     if (fd < 0) {
         return Error{fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno))};
     }
-    // mkstemp makes the file private; give it the mode the target has, or a new file's mode.
+    // The file replaced keeps its owner where that is permitted (root replacing a user's file;
+    // a group the user is in), and mkstemp makes the file private: give it the mode the target
+    // has (after the owner, which may clear set-ID bits), or a new file's mode.
+    if (exists && (info.st_uid != ::geteuid() || info.st_gid != ::getegid())) {
+        if (::fchown(fd, info.st_uid, info.st_gid) != 0) (void)::fchown(fd, -1, info.st_gid);
+    }
     ::fchmod(fd, exists ? (info.st_mode & 07777) : creation_mode());
     out->file_ = ::fdopen(fd, "wb");
     if (!out->file_) {

@@ -329,7 +329,7 @@ int run_sniff(const SniffCommand& command) {
     // The -w file (the first one of a rotation) starts staged, with its pcap header written
     // beside it, and is moved into place once the port is set up: a port that fails or a full
     // disk leaves an existing file as it was and makes no empty one. From then on it is written
-    // where it is, a valid pcap at every moment of the capture.
+    // where it is, a valid pcap of every whole record written whenever the capture ends by itself.
     std::unique_ptr<PendingOutputFile> capture_file;
     std::unique_ptr<CaptureWriter> writer;
     if (!command.output.empty()) {

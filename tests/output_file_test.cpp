@@ -444,5 +444,37 @@ TEST(OutputFileTest, SniffOnAFullDiskLeavesNoEmptyCaptureFile) {
     EXPECT_TRUE(staging_files().empty());
 }
 
+// ---- the owner of a file replaced ---------------------------------------------------------------
+
+TEST(OutputFileTest, AReplacedFileKeepsItsOwner) {
+    if (::geteuid() != 0) GTEST_SKIP() << "only root can give a file to another user";
+    const uid_t nobody_uid = 65534;
+    const gid_t nogroup_gid = 65534;
+    const std::string out = test::temp_path("report.txt");
+    test::write_text_file(out, "old\n");
+    ASSERT_EQ(::chown(out.c_str(), nobody_uid, nogroup_gid), 0);
+    // Directly and through a symbolic link.
+    const std::string link = test::temp_path("link.txt");
+    ASSERT_EQ(::symlink(out.c_str(), link.c_str()), 0);
+    for (const std::string& name : {out, link}) {
+        CommandResult r =
+            run_dpscope({"report", "--fail-on", "never", "-w", name, "samples/faults.pcap"});
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        struct stat info {};
+        ASSERT_EQ(::stat(out.c_str(), &info), 0);
+        EXPECT_EQ(info.st_uid, nobody_uid) << name;
+        EXPECT_EQ(info.st_gid, nogroup_gid) << name;
+        EXPECT_NE(content(out).find("conformance report"), std::string::npos);
+    }
+    // A new file is the user's own.
+    const std::string fresh = test::temp_path("fresh.txt");
+    ASSERT_EQ(
+        run_dpscope({"report", "--fail-on", "never", "-w", fresh, "samples/faults.pcap"}).exit_code,
+        0);
+    struct stat info {};
+    ASSERT_EQ(::stat(fresh.c_str(), &info), 0);
+    EXPECT_EQ(info.st_uid, ::geteuid());
+}
+
 }  // namespace
 }  // namespace dpscope
