@@ -257,7 +257,9 @@ class PcapWriter final : public CaptureWriter {
   public:
     // `tag_at`: where the file header starts in a seekable file whose header gets the bus tag
     // `bus` written over it (-1: none, or a tag stream does it).
-    PcapWriter(pcap_t* dead, pcap_dumper_t* dumper, std::string name, long tag_at, Protocol bus)
+    // `staged`: a write error throws the file away; nothing is cut back or said of it.
+    PcapWriter(pcap_t* dead, pcap_dumper_t* dumper, std::string name, long tag_at, Protocol bus,
+               bool staged)
         : dead_(dead), dumper_(dumper), name_(std::move(name)) {
         // The file header is written at once, so that a full disk is named with its reason now
         // (errno is gone by the time a later record finds the stream's error flag set).
@@ -267,7 +269,7 @@ class PcapWriter final : public CaptureWriter {
             committed_ = -1;
             return;
         }
-        if (!is_regular(file)) committed_ = -1;
+        if (!is_regular(file) || staged) committed_ = -1;
         if (tag_at >= 0) {
             // libpcap writes the header in the host's byte order (the file may be write-only,
             // so it is not read back).
@@ -363,7 +365,7 @@ class PcapWriter final : public CaptureWriter {
     }
 
     pcap_t* dead_;
-    // Bytes flushed as whole records; -1 for pipes (cannot be cut back).
+    // Bytes flushed as whole records; -1 for pipes (cannot be cut back) and staged files.
     long committed_ = static_cast<long>(kPcapFileHeaderBytes);
     long position_ = static_cast<long>(kPcapFileHeaderBytes);  // where the next record starts
     std::vector<long> boundaries_;                             // record ends since the last flush
@@ -496,7 +498,7 @@ WriterResult open_capture_writer(const std::string& path, CaptureFormat format, 
 }
 
 WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format, int link_type,
-                                 Protocol bus) {
+                                 Protocol bus, bool staged) {
     switch (format) {
         case CaptureFormat::Pcap: {
             // USER0 is shared by the buses: the header records which (capture/bus_tag.hpp). A
@@ -531,7 +533,8 @@ WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat for
                 if (target != stdout) std::fclose(target);
                 return Error{std::move(error)};
             }
-            auto writer = std::make_unique<PcapWriter>(dead, dumper, std::move(name), tag_at, bus);
+            auto writer =
+                std::make_unique<PcapWriter>(dead, dumper, std::move(name), tag_at, bus, staged);
             if (!writer->header_error().empty()) return Error{writer->header_error()};
             return writer;
         }

@@ -63,9 +63,11 @@ using WriterResult = Result<std::unique_ptr<CaptureWriter>>;
 WriterResult open_capture_writer(const std::string& path, CaptureFormat format, int link_type,
                                  Protocol bus = Protocol::ProfibusDp);
 // The same into an open stream, which the writer then owns and closes (standard output is
-// flushed, not closed). `name` is what messages call it.
+// flushed, not closed). `name` is what messages call it. `staged`: the stream is a staged file
+// that a write error throws away (capture/output_file.hpp), so a failed write neither cuts it
+// back nor says what it keeps.
 WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format, int link_type,
-                                 Protocol bus = Protocol::ProfibusDp);
+                                 Protocol bus = Protocol::ProfibusDp, bool staged = false);
 
 struct RotationOptions {
     std::uint64_t max_bytes = 0;  // start a new file before one grows past this (0: no limit)

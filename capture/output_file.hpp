@@ -37,9 +37,11 @@ class PendingOutputFile {
     bool is_stdout() const noexcept { return to_stdout_; }
     // Written to a temporary file that commit() renames (false for stdout and devices).
     bool is_staged() const noexcept { return !temporary_.empty(); }
-    // What a failed write leaves: "; the output file is left as it was" when staged, else "".
+    // What a failed write leaves, to follow its message: "; the file is left as it was" (or
+    // "; no file is made" when there was none) when staged, else "".
     std::string_view left_as_it_was() const noexcept {
-        return is_staged() ? "; the output file is left as it was" : "";
+        if (!is_staged()) return "";
+        return target_existed_ ? "; the file is left as it was" : "; no file is made";
     }
 
     // Closes the stream (unless released) and moves the temporary file into place. An error

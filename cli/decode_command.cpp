@@ -65,10 +65,10 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         capture_file = std::move(file).value();
         WriterResult opened =
             open_capture_writer(capture_file->file(), capture_file->name(), settings.write_format,
-                                *link_type, settings.protocol->protocol);
+                                *link_type, settings.protocol->protocol, capture_file->is_staged());
         capture_file->release_file();  // the writer closes it
         if (!opened) {
-            print_error(opened.error());
+            print_error(fmt::format("{}{}", opened.error(), capture_file->left_as_it_was()));
             return kExitOutputError;
         }
         writer = std::move(opened).value();

@@ -408,11 +408,11 @@ int run_simulate(const SimulateCommand& command) {
         return kExitOutputError;
     }
     std::unique_ptr<PendingOutputFile> file = std::move(opened_file).value();
-    WriterResult opened =
-        open_capture_writer(file->file(), file->name(), format, link_type, options.bus);
+    WriterResult opened = open_capture_writer(file->file(), file->name(), format, link_type,
+                                              options.bus, file->is_staged());
     file->release_file();  // the writer closes it
     if (!opened) {
-        print_error(opened.error());
+        print_error(fmt::format("{}{}", opened.error(), file->left_as_it_was()));
         return kExitOutputError;
     }
     Simulator simulator(options);

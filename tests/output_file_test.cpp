@@ -476,5 +476,41 @@ TEST(OutputFileTest, AReplacedFileKeepsItsOwner) {
     EXPECT_EQ(info.st_uid, ::geteuid());
 }
 
+// ---- one message for a full disk ----------------------------------------------------------------
+
+TEST(OutputFileTest, AFullDiskUnderAStagedOutputSaysOneThing) {
+    // A file size limit of 2048 bytes fails a write as a full disk does. The staged output is
+    // thrown away, so nothing is said of what it kept.
+    const std::string keep = copy_of("samples/faults.pcap", "keep.pcap");
+    const std::string before = content(keep);
+    const std::string fresh = test::temp_path("fresh.pcap");
+    const int no_input = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+    struct Case {
+        std::vector<std::string> args;
+        std::string said;
+    };
+    const std::vector<Case> cases = {
+        {{"decode", "samples/faults.pcap", "-w", keep},
+         "dpscope: error: " + keep +
+             ": write failed: File too large; the file is left as it was\n"},
+        {{"decode", "samples/faults.pcap", "-F", "pcapng", "-w", keep},
+         "dpscope: error: " + keep +
+             ": write failed: File too large; the file is left as it was\n"},
+        {{"simulate", "--cycles", "1000", "-w", fresh},
+         "dpscope: error: " + fresh + ": write failed: File too large; no file is made\n"},
+    };
+    for (const Case& c : cases) {
+        Running run(c.args, no_input, 2048);
+        const std::string err = run.err_until("never said");
+        const int status = run.wait();
+        EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 4) << status;
+        EXPECT_EQ(err, c.said);
+    }
+    ::close(no_input);
+    EXPECT_TRUE(content(keep) == before) << "the file was replaced";
+    EXPECT_FALSE(exists(fresh));
+    EXPECT_TRUE(staging_files().empty());
+}
+
 }  // namespace
 }  // namespace dpscope
