@@ -33,6 +33,7 @@
 #include "cli/pipeline.hpp"
 #include "cli/version.hpp"
 #include "formats/report.hpp"
+#include "formats/report_model.hpp"
 #include "formats/stats.hpp"
 
 namespace dpscope::cli {
@@ -603,7 +604,11 @@ int run_sniff(const SniffCommand& command) {
                 output_failed = true;
             }
         }
-        if (!log.lost().empty()) print_warning(fmt::format("{}", log.lost()));
+        // A report that cannot list every finding says so itself; the run exits 4.
+        if (const std::string lost = report::not_listed_text(context); !lost.empty()) {
+            print_error(fmt::format("{}; the report says so", lost));
+            output_failed = true;
+        }
         if (fails) exit_code = kExitFindings;
     }
     if (!out.flush()) output_failed = true;

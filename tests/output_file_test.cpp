@@ -135,8 +135,9 @@ class Running {
   public:
     // `file_size_limit`: RLIMIT_FSIZE of the child (standard output and error are pipes, which it
     // does not limit).
+    // `env`: NAME=VALUE set in the child.
     Running(const std::vector<std::string>& args, int stdin_fd,
-            rlim_t file_size_limit = RLIM_INFINITY) {
+            rlim_t file_size_limit = RLIM_INFINITY, std::vector<std::string> env = {}) {
         int out_pipe[2], err_pipe[2];
         EXPECT_EQ(::pipe2(out_pipe, O_CLOEXEC), 0);
         EXPECT_EQ(::pipe2(err_pipe, O_CLOEXEC), 0);
@@ -147,6 +148,8 @@ class Running {
             ::dup2(err_pipe[1], 2);
             const rlimit limit{file_size_limit, file_size_limit};
             ::setrlimit(RLIMIT_FSIZE, &limit);
+            for (std::string& setting : env)
+                ::putenv(setting.data());
             std::string exe = test::dpscope_executable();
             std::vector<std::string> copy = args;
             std::vector<char*> argv{exe.data()};
@@ -510,6 +513,81 @@ TEST(OutputFileTest, AFullDiskUnderAStagedOutputSaysOneThing) {
     EXPECT_TRUE(content(keep) == before) << "the file was replaced";
     EXPECT_FALSE(exists(fresh));
     EXPECT_TRUE(staging_files().empty());
+}
+
+// ---- a report that cannot list every finding ----------------------------------------------------
+
+// The line of `text` that starts with `start` ("" when there is none).
+std::string line_starting(const std::string& text, const std::string& start) {
+    for (const std::string& line : lines_of(text))
+        if (line.rfind(start, 0) == 0) return line;
+    return "";
+}
+
+TEST(OutputFileTest, AReportThatCannotListEveryFindingSaysSoAndExits4) {
+    // 9,046 findings: more than the 4096 kept in memory, so the report spills them into a file in
+    // the temporary folder, $TMPDIR.
+    const std::string capture = test::temp_path("many.pcap");
+    ASSERT_EQ(
+        run_dpscope({"simulate", "-w", capture, "--cycles", "3000", "--fault", "fcs_error=0.5"})
+            .exit_code,
+        0);
+    CommandResult whole = run_dpscope({"report", capture});
+    ASSERT_EQ(whole.exit_code, 1) << whole.err;
+    const std::string counts = line_starting(whole.out, "  findings ");
+    ASSERT_EQ(counts, "  findings       4523 errors, 0 warnings, 4523 notes");
+    EXPECT_EQ(whole.out.find("could not be listed"), std::string::npos);
+
+    const int no_input = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+    const std::string missing = "TMPDIR=" + test::temp_folder() + "/no-such-folder";
+    const std::string folder = "TMPDIR=" + test::temp_folder();
+    struct Case {
+        std::string name;
+        std::vector<std::string> args;
+        rlim_t file_size_limit;
+        std::string tmpdir;
+    };
+    const std::vector<Case> cases = {
+        {"a TMPDIR that does not exist", {"report", capture}, RLIM_INFINITY, missing},
+        // The spill file may hold 100 kB: the write that goes past fails as on a full disk.
+        {"a spill file that fills up", {"report", capture}, 100'000, folder},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        Running report(c.args, no_input, c.file_size_limit, {c.tmpdir});
+        const std::string out = report.out_until("never said");
+        const std::string err = report.err_until("never said");
+        const int status = report.wait();
+        EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 4) << status << err;
+        EXPECT_EQ(line_starting(out, "  findings "), counts) << "the counts changed";
+        EXPECT_NE(out.find("findings could not be listed"), std::string::npos) << out;
+        EXPECT_NE(err.find("findings could not be listed"), std::string::npos) << err;
+    }
+
+    // JSON: the counts, and what is not listed and why.
+    Running json({"report", "-T", "json", capture}, no_input, RLIM_INFINITY, {missing});
+    const std::string out = json.out_until("never said");
+    const int status = json.wait();
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 4) << status;
+    EXPECT_NE(out.find("\"findings\":{\"error\":4523,\"warning\":0,\"note\":4523}"),
+              std::string::npos);
+    EXPECT_NE(out.find("\"findings_not_listed\":{\"count\":4950,\"reason\":\"cannot make a "
+                       "temporary file in "),
+              std::string::npos)
+        << out.substr(out.size() > 400 ? out.size() - 400 : 0);
+    CommandResult complete = run_dpscope({"report", "-T", "json", capture});
+    EXPECT_NE(complete.out.find("\"findings_not_listed\":null}"), std::string::npos);
+
+    // Written with -w: an existing file stays, the report goes beside it.
+    const std::string keep = test::temp_path("report.txt");
+    test::write_text_file(keep, "the previous report\n");
+    Running written({"report", capture, "-w", keep}, no_input, RLIM_INFINITY, {missing});
+    const std::string said = written.err_until("never said");
+    const int written_status = written.wait();
+    EXPECT_TRUE(WIFEXITED(written_status) && WEXITSTATUS(written_status) == 4) << said;
+    EXPECT_EQ(content(keep), "the previous report\n");
+    EXPECT_NE(content(keep + ".partial").find("findings could not be listed"), std::string::npos);
+    ::close(no_input);
 }
 
 }  // namespace
