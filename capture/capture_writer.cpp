@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "capture/bus_tag.hpp"
@@ -256,7 +257,9 @@ class PcapWriter final : public CaptureWriter {
   public:
     // `tag_at`: where the file header starts in a seekable file whose header gets the bus tag
     // `bus` written over it (-1: none, or a tag stream does it).
-    PcapWriter(pcap_t* dead, pcap_dumper_t* dumper, std::string name, long tag_at, Protocol bus)
+    // `staged`: a write error throws the file away; nothing is cut back or said of it.
+    PcapWriter(pcap_t* dead, pcap_dumper_t* dumper, std::string name, long tag_at, Protocol bus,
+               bool staged)
         : dead_(dead), dumper_(dumper), name_(std::move(name)) {
         // The file header is written at once, so that a full disk is named with its reason now
         // (errno is gone by the time a later record finds the stream's error flag set).
@@ -266,7 +269,7 @@ class PcapWriter final : public CaptureWriter {
             committed_ = -1;
             return;
         }
-        if (!is_regular(file)) committed_ = -1;
+        if (!is_regular(file) || staged) committed_ = -1;
         if (tag_at >= 0) {
             // libpcap writes the header in the host's byte order (the file may be write-only,
             // so it is not read back).
@@ -282,6 +285,9 @@ class PcapWriter final : public CaptureWriter {
         close_file();
         pcap_close(dead_);
     }
+
+    // The file header could not be written (a full disk): no capture file to write into.
+    const std::string& header_error() const noexcept { return error_; }
 
   protected:
     bool write_record(Bytes telegram, std::int64_t time_ns, std::string_view) override {
@@ -359,7 +365,7 @@ class PcapWriter final : public CaptureWriter {
     }
 
     pcap_t* dead_;
-    // Bytes flushed as whole records; -1 for pipes (cannot be cut back).
+    // Bytes flushed as whole records; -1 for pipes (cannot be cut back) and staged files.
     long committed_ = static_cast<long>(kPcapFileHeaderBytes);
     long position_ = static_cast<long>(kPcapFileHeaderBytes);  // where the next record starts
     std::vector<long> boundaries_;                             // record ends since the last flush
@@ -373,12 +379,13 @@ class PcapWriter final : public CaptureWriter {
 class RotatingWriter final : public CaptureWriter {
   public:
     RotatingWriter(std::string path, CaptureFormat format, int link_type, RotationOptions rotation,
-                   Protocol bus)
+                   Protocol bus, FILE* first)
         : path_(std::move(path)),
           format_(format),
           link_type_(link_type),
           rotation_(rotation),
-          bus_(bus) {}
+          bus_(bus),
+          first_(first) {}
 
     // Closes the current file (if any) and starts the next one.
     Result<void> open_next() {
@@ -387,7 +394,9 @@ class RotatingWriter final : public CaptureWriter {
         }
         ++index_;
         std::string name = rotated_file_name(path_, index_);
-        WriterResult opened = open_capture_writer(name, format_, link_type_, bus_);
+        FILE* first = std::exchange(first_, nullptr);
+        WriterResult opened = first ? open_capture_writer(first, name, format_, link_type_, bus_)
+                                    : open_capture_writer(name, format_, link_type_, bus_);
         if (!opened) return Error{opened.error()};
         current_ = std::move(opened).value();
         // pcapng: the section and interface blocks (with the bus tag of a USER0 interface).
@@ -448,6 +457,7 @@ class RotatingWriter final : public CaptureWriter {
     int link_type_;
     RotationOptions rotation_;
     Protocol bus_;
+    FILE* first_;  // the first file, opened by the caller (nullptr: opened here)
     std::unique_ptr<CaptureWriter> current_;
     std::uint64_t bytes_ = 0;
     std::uint64_t records_ = 0;
@@ -467,12 +477,14 @@ std::string rotated_file_name(const std::string& path, unsigned index) {
 }
 
 WriterResult open_rotating_writer(const std::string& path, CaptureFormat format, int link_type,
-                                  RotationOptions rotation, Protocol bus) {
+                                  RotationOptions rotation, Protocol bus, FILE* first) {
     if (rotation.max_bytes == 0 && rotation.max_ns == 0)
-        return open_capture_writer(path, format, link_type, bus);
+        return first ? open_capture_writer(first, path == "-" ? "<stdout>" : path, format,
+                                           link_type, bus)
+                     : open_capture_writer(path, format, link_type, bus);
     if (path == "-") return Error{"cannot rotate standard output: give -w a file name"};
-    auto writer = std::make_unique<RotatingWriter>(path, format, link_type, rotation, bus);
-    if (Result<void> first = writer->open_next(); !first) return Error{first.error()};
+    auto writer = std::make_unique<RotatingWriter>(path, format, link_type, rotation, bus, first);
+    if (Result<void> opened = writer->open_next(); !opened) return Error{opened.error()};
     return writer;
 }
 
@@ -486,7 +498,7 @@ WriterResult open_capture_writer(const std::string& path, CaptureFormat format, 
 }
 
 WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format, int link_type,
-                                 Protocol bus) {
+                                 Protocol bus, bool staged) {
     switch (format) {
         case CaptureFormat::Pcap: {
             // USER0 is shared by the buses: the header records which (capture/bus_tag.hpp). A
@@ -521,7 +533,10 @@ WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat for
                 if (target != stdout) std::fclose(target);
                 return Error{std::move(error)};
             }
-            return std::make_unique<PcapWriter>(dead, dumper, std::move(name), tag_at, bus);
+            auto writer =
+                std::make_unique<PcapWriter>(dead, dumper, std::move(name), tag_at, bus, staged);
+            if (!writer->header_error().empty()) return Error{writer->header_error()};
+            return writer;
         }
         case CaptureFormat::Pcapng:
             return std::make_unique<PcapngWriter>(file, std::move(name), link_type, bus);

@@ -55,16 +55,19 @@ class CaptureWriter {
 // A writer, or why none could be opened (naming the file).
 using WriterResult = Result<std::unique_ptr<CaptureWriter>>;
 
-// `path` "-" writes to standard output. `link_type` is used by pcap and pcapng. A pcap writer
+// `path` "-" writes to standard output. `link_type` is used by pcap and pcapng. A pcap file whose
+// header cannot be written (disk full) is an error here, not at the first record. A pcap writer
 // whose write fails (disk full) cuts the file back to the last flushed record, so it stays a
 // valid capture of what came before. A pcap or pcapng capture of link type USER0, which several
 // buses share, records `bus` in its header (capture/bus_tag.hpp), also on standard output.
 WriterResult open_capture_writer(const std::string& path, CaptureFormat format, int link_type,
                                  Protocol bus = Protocol::ProfibusDp);
 // The same into an open stream, which the writer then owns and closes (standard output is
-// flushed, not closed). `name` is what messages call it.
+// flushed, not closed). `name` is what messages call it. `staged`: the stream is a staged file
+// that a write error throws away (capture/output_file.hpp), so a failed write neither cuts it
+// back nor says what it keeps.
 WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format, int link_type,
-                                 Protocol bus = Protocol::ProfibusDp);
+                                 Protocol bus = Protocol::ProfibusDp, bool staged = false);
 
 struct RotationOptions {
     std::uint64_t max_bytes = 0;  // start a new file before one grows past this (0: no limit)
@@ -72,9 +75,12 @@ struct RotationOptions {
 };
 
 // With rotation, FILE is written as stem-00001.ext, stem-00002.ext, ... (see
-// rotated_file_name); without, this is open_capture_writer.
+// rotated_file_name); without, this is open_capture_writer. `first`: the first file already open
+// (FILE itself, or stem-00001.ext when rotating; the writer owns it), as a caller that stages it
+// opens it; nullptr opens it here.
 WriterResult open_rotating_writer(const std::string& path, CaptureFormat format, int link_type,
-                                  RotationOptions rotation, Protocol bus = Protocol::ProfibusDp);
+                                  RotationOptions rotation, Protocol bus = Protocol::ProfibusDp,
+                                  FILE* first = nullptr);
 std::string rotated_file_name(const std::string& path, unsigned index);
 
 }  // namespace dpscope

@@ -96,9 +96,10 @@ void add_write_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_option("-w,--write", values.write,
                    "Write the telegrams shown (after -c, --station, --pnu) to FILE as a capture "
                    "instead of printing them (- is standard output); with pcapng, telegrams with "
-                   "findings carry them as packet comments. An existing FILE is replaced only "
-                   "when the input could be read (an unusable input or a write error leaves it "
-                   "as it was), and never when it is the input")
+                   "findings carry them as packet comments. FILE is written (an existing one "
+                   "replaced) only by a run that exits 0; a damaged input (exit code 3) writes "
+                   "what was read to FILE.partial and leaves FILE as it was; an unusable input "
+                   "or a write error writes nothing; never when FILE is the input")
         ->check(output_file_name())
         ->type_name("FILE");
     app.add_option("-F,--write-format", values.write_format,
@@ -394,6 +395,31 @@ bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
         if (!match) return false;
     }
     return true;
+}
+
+int finish_staged_output(PendingOutputFile& file, int exit_code, std::string_view partial_why,
+                         std::string_view option, const std::vector<std::string>& inputs) {
+    if (exit_code == kExitOk || exit_code == kExitFindings) {
+        if (Result<void> committed = file.commit(); !committed) {
+            print_error(committed.error());
+            return kExitOutputError;
+        }
+        return exit_code;
+    }
+    if (partial_why.empty()) {
+        file.discard();
+        return exit_code;
+    }
+    Result<std::string> kept = file.keep_beside(inputs);
+    if (!kept) {
+        print_error(kept.error());
+        return kExitOutputError;
+    }
+    if (kept->empty()) return exit_code;  // standard output or a device: written as it came
+    print_warning(fmt::format("{} {}: {} (exit code {}), so {} is {}; what was written is in {}",
+                              option, file.name(), partial_why, exit_code, file.name(),
+                              file.target_existed() ? "left as it was" : "not made", *kept));
+    return exit_code;
 }
 
 void report_input_issues(TelegramSource& source, Output& out) {

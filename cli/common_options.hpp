@@ -48,7 +48,9 @@ inline constexpr std::string_view kExitCodeHelp =
     "reached it), or the input holds no telegram (without --allow-empty); 2 bad usage or "
     "unusable input (cannot open, unknown format, unsupported link type); 3 the input ended in "
     "damage (truncated record, read error) after what was decoded; 4 output could not be "
-    "opened or written (no such directory, disk full); 5 the capture device failed (sniff).";
+    "opened or written (no such directory, disk full); 5 the capture device failed (sniff). "
+    "Only a run that exits 0 or 1 writes or replaces a -w FILE of decode, hex, report, stats "
+    "and simulate; on 3 the output goes to FILE.partial.";
 
 // Decimal digits only (no sign, fraction, exponent or hex) that fit in T; false otherwise.
 template <typename T>

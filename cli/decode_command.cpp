@@ -65,10 +65,10 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         capture_file = std::move(file).value();
         WriterResult opened =
             open_capture_writer(capture_file->file(), capture_file->name(), settings.write_format,
-                                *link_type, settings.protocol->protocol);
+                                *link_type, settings.protocol->protocol, capture_file->is_staged());
         capture_file->release_file();  // the writer closes it
         if (!opened) {
-            print_error(opened.error());
+            print_error(fmt::format("{}{}", opened.error(), capture_file->left_as_it_was()));
             return kExitOutputError;
         }
         writer = std::move(opened).value();
@@ -178,24 +178,23 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             print_error(fmt::format("{}{}", closed.error(), capture_file->left_as_it_was()));
             write_failed = true;
         }
-        if (write_failed) {
-            capture_file->discard();
-            return kExitOutputError;
-        }
-        if (Result<void> committed = capture_file->commit(); !committed) {
-            print_error(committed.error());
-            return kExitOutputError;
-        }
     }
+    int exit_code = source.status() == InputStatus::Damaged ? kExitDamagedInput : kExitOk;
     if (!out.flush()) {
         print_error(fmt::format("cannot write the output to {}: {}",
                                 text_stream == stdout ? "standard output" : "standard error",
                                 std::strerror(errno)));
-        return kExitOutputError;
+        exit_code = kExitOutputError;
     }
-    if (source.status() == InputStatus::Damaged) return kExitDamagedInput;
-    if (read == 0) return empty_input_exit(source, settings.allow_empty);
-    return kExitOk;
+    if (exit_code == kExitOk && read == 0)
+        exit_code = empty_input_exit(source, settings.allow_empty);
+    if (write_failed) exit_code = kExitOutputError;
+    if (capture_file)
+        // Replaced only by a run that succeeds; what a damaged input gave goes beside it.
+        exit_code = finish_staged_output(
+            *capture_file, exit_code,
+            exit_code == kExitDamagedInput ? "the input ended in damage" : "", "-w", {input_path});
+    return exit_code;
 }
 
 struct DecodeCommand {

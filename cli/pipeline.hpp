@@ -205,12 +205,23 @@ inline ReportContext report_context(const Pipeline& pipeline, const TelegramSour
     return context;
 }
 
-// Runs `write(out)` with `out` on PATH (- is standard output) staged as a PendingOutputFile: the
-// file is moved into place only when `write` returns neither kExitUsage nor kExitOutputError, so
-// an unusable input or a write error leaves an existing file as it was. Returns write's exit
-// code, or kExitOutputError when the file cannot be opened or moved into place.
+// Ends a staged output by the run's exit code: 0 and 1 (the result asked for) move it into
+// place. Any other code leaves an existing file as it was: an output written whole (`partial_why`
+// says why the run did not succeed, "the input ended in damage") goes beside it as FILE.partial,
+// with a warning naming both; one that is not (`partial_why` empty: an unusable input, a write
+// error) is discarded. `option` names the output in messages ("-w"), `inputs` are the run's
+// inputs (a FILE.partial that is one of them is not written). Returns the exit code, or
+// kExitOutputError when the file cannot be moved.
+int finish_staged_output(PendingOutputFile& file, int exit_code, std::string_view partial_why,
+                         std::string_view option, const std::vector<std::string>& inputs);
+
+// Runs `write(out, partial_why)` with `out` on PATH (- is standard output) staged as a
+// PendingOutputFile and ends it with finish_staged_output: an existing file is replaced only when
+// `write` returns 0 or 1; `write` sets `partial_why` when its output is whole though it returns
+// another code (3, damaged input, needs none: it is set for it). Returns write's exit code, or
+// kExitOutputError when the file cannot be opened or moved into place.
 template <class Write>
-int write_staged_output(const std::string& path, Write&& write) {
+int write_staged_output(const std::string& path, const std::string& input, Write&& write) {
     Result<std::unique_ptr<PendingOutputFile>> opened = PendingOutputFile::open(path);
     if (!opened) {
         print_error(opened.error());
@@ -218,19 +229,14 @@ int write_staged_output(const std::string& path, Write&& write) {
     }
     std::unique_ptr<PendingOutputFile> file = std::move(opened).value();
     int exit_code = kExitOk;
+    std::string partial_why;
     {
         Output out(file->file());
-        exit_code = write(out);
+        exit_code = write(out, partial_why);
     }
-    if (exit_code == kExitUsage || exit_code == kExitOutputError) {
-        file->discard();
-        return exit_code;
-    }
-    if (Result<void> committed = file->commit(); !committed) {
-        print_error(committed.error());
-        return kExitOutputError;
-    }
-    return exit_code;
+    if (exit_code == kExitDamagedInput && partial_why.empty())
+        partial_why = "the input ended in damage";
+    return finish_staged_output(*file, exit_code, partial_why, "-w", {input});
 }
 
 // Reports input problems on standard error (after flushing `out`, so messages and output keep

@@ -52,9 +52,11 @@ bool station_in_capture(const Pipeline& pipeline, unsigned station) {
                        [station](const ChannelStats* s) { return s->slave == station; });
 }
 
-// Renders the report of what `pipeline` read from `source` and returns the exit code.
+// Renders the report of what `pipeline` read from `source` and returns the exit code; sets
+// `partial_why` when the report is whole but the run did not succeed.
 int write_report(const ReportCommand& command, ReportFormat format, const Pipeline& pipeline,
-                 const TelegramSource& source, const FindingLog& log, Output& out) {
+                 const TelegramSource& source, const FindingLog& log, Output& out,
+                 std::string& partial_why) {
     ReportContext context = report_context(
         pipeline, source, log, fail_on_from_name(command.fail_on).value_or(FailOn::Error));
     context.allow_empty = command.allow_empty;
@@ -67,11 +69,17 @@ int write_report(const ReportCommand& command, ReportFormat format, const Pipeli
         }
     }
     const bool fails = render_report(format, context, out);
-    if (!log.lost().empty()) print_warning(fmt::format("{}", log.lost()));
     if (!out.flush()) {
         print_error(fmt::format("cannot write the report to {}: {}",
                                 command.output == "-" ? "standard output" : command.output,
                                 std::strerror(errno)));
+        return kExitOutputError;
+    }
+    // A report that cannot list every finding (a full temporary folder) says so itself, and is
+    // no success: its counts are exact, its list is not.
+    if (const std::string lost = report::not_listed_text(context); !lost.empty()) {
+        print_error(fmt::format("{}; the report says so", lost));
+        partial_why = "the report could not list every finding";
         return kExitOutputError;
     }
     if (fails) return kExitFindings;
@@ -112,7 +120,7 @@ int run_report(const ReportCommand& command) {
     settings->health.baud = command.options.baud;  // 0: the bus load is unknown
     // Written beside OUT and moved into place only once the report is complete: an unusable
     // input or a write error leaves an existing OUT as it was.
-    return write_staged_output(command.output, [&](Output& out) {
+    return write_staged_output(command.output, path, [&](Output& out, std::string& partial_why) {
         Output diagnostics(stderr);
         report_input_issues(source, diagnostics);
         const ReportFormat format =
@@ -140,7 +148,7 @@ int run_report(const ReportCommand& command) {
             print_error(found.error());
             return kExitUsage;
         }
-        return write_report(command, format, pipeline, source, log, out);
+        return write_report(command, format, pipeline, source, log, out, partial_why);
     });
 }
 
@@ -171,9 +179,10 @@ void add_report_command(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember({"text", "json", "markdown", "html", "junit"}))
         ->default_str("text");
     sub->add_option("-w,--write", command->output,
-                    "Write the report to FILE; - is standard output. An existing FILE is "
-                    "replaced only once the report is complete (an unusable input or a write "
-                    "error leaves it as it was), and never when it is the input")
+                    "Write the report to FILE; - is standard output. FILE is written (an existing "
+                    "one replaced) only by a run that exits 0 or 1; a damaged input (exit code 3) "
+                    "writes the report to FILE.partial and leaves FILE as it was; an unusable "
+                    "input or a write error writes nothing; never when FILE is the input")
         ->check(output_file_name())
         ->type_name("FILE")
         ->default_str("-");

@@ -22,6 +22,7 @@
 #include "capture/tty_player.hpp"
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
+#include "cli/pipeline.hpp"
 #include "simulator/simulator.hpp"
 
 namespace dpscope::cli {
@@ -407,11 +408,11 @@ int run_simulate(const SimulateCommand& command) {
         return kExitOutputError;
     }
     std::unique_ptr<PendingOutputFile> file = std::move(opened_file).value();
-    WriterResult opened =
-        open_capture_writer(file->file(), file->name(), format, link_type, options.bus);
+    WriterResult opened = open_capture_writer(file->file(), file->name(), format, link_type,
+                                              options.bus, file->is_staged());
     file->release_file();  // the writer closes it
     if (!opened) {
-        print_error(opened.error());
+        print_error(fmt::format("{}{}", opened.error(), file->left_as_it_was()));
         return kExitOutputError;
     }
     Simulator simulator(options);
@@ -426,11 +427,11 @@ int run_simulate(const SimulateCommand& command) {
         file->discard();
         return kExitOutputError;
     }
-    if (Result<void> committed = file->commit(); !committed) {
-        print_error(committed.error());
-        return kExitOutputError;
-    }
+    // A fault given that the session ended before: the session is not the one asked for, and
+    // goes beside an existing file.
     int exit_code = report_injections(simulator);
+    exit_code = finish_staged_output(
+        *file, exit_code, exit_code == kExitOk ? "" : "a --fault was not injected", "-w", {});
     if (command.list_injections) fmt::print(stderr, "wrote {} telegrams\n", simulator.telegrams());
     return exit_code;
 }
@@ -481,8 +482,10 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->type_name("SPEC")
         ->allow_extra_args(false);
     sub->add_option("-w,--write", command->output,
-                    "Output file; - writes to standard output. An existing file is replaced only "
-                    "once the session is written whole")
+                    "Output file; - writes to standard output. FILE is written (an existing one "
+                    "replaced) only by a run that exits 0; a --fault the session ended before "
+                    "(exit code 2) writes the session to FILE.partial and leaves FILE as it was; a "
+                    "write error writes nothing")
         ->check(output_file_name())
         ->type_name("FILE");
     sub->add_option("--device", command->device,

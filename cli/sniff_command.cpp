@@ -33,6 +33,7 @@
 #include "cli/pipeline.hpp"
 #include "cli/version.hpp"
 #include "formats/report.hpp"
+#include "formats/report_model.hpp"
 #include "formats/stats.hpp"
 
 namespace dpscope::cli {
@@ -42,10 +43,11 @@ namespace {
 std::atomic<bool> g_stop_requested{false};
 
 // The first signal ends the capture cleanly; a second one ends the process at once, with the
-// serial port put back as it was found.
+// serial port put back as it was found and the staged report and statistics files removed.
 extern "C" void request_stop(int signal_number) {
     if (g_stop_requested.exchange(true)) {
         SerialPort::restore_all_after_signal();
+        PendingOutputFile::remove_all_after_signal();
         ::signal(signal_number, SIG_DFL);
         ::raise(signal_number);
     }
@@ -141,9 +143,11 @@ CLI::Validator rotate_size_range() {
         "512 to 16T", "size");
 }
 
-// Is `path` one of the files -w `output` writes (stem-NNNNN.ext when rotating)?
-bool is_capture_file(const std::string& path, const std::string& output, bool rotating) {
-    if (!rotating) return same_file(path, output);
+// Is `path` one of the files -w `output` writes (stem-NNNNN.ext when rotating)? Also through a
+// link, to a file that does not exist yet.
+bool is_capture_file(const std::string& given, const std::string& output, bool rotating) {
+    if (!rotating) return same_file(given, output);
+    const std::string path = link_target(given);
     // The index in stem-NNNNN.ext: the digits after the last '-' of the name.
     std::size_t slash = path.rfind('/');
     std::size_t dash = path.rfind('-');
@@ -323,18 +327,27 @@ int run_sniff(const SniffCommand& command) {
         return kExitUsage;
     }
     std::unique_ptr<SerialPort> port = std::move(claimed).value();
-    // A -w file this run creates is removed again if the port cannot be set up (the capture file
-    // is not staged: it must be a valid pcap at every moment of the capture).
-    std::string created_capture;
+    // The -w file (the first one of a rotation) starts staged, with its pcap header written
+    // beside it, and is moved into place once the port is set up: a port that fails or a full
+    // disk leaves an existing file as it was and makes no empty one. From then on it is written
+    // where it is, a valid pcap of every whole record written whenever the capture ends by itself.
+    std::unique_ptr<PendingOutputFile> capture_file;
     std::unique_ptr<CaptureWriter> writer;
     if (!command.output.empty()) {
         const bool rotating = command.rotate_size > 0 || command.rotate_seconds > 0;
         const std::string first = rotating ? rotated_file_name(command.output, 1) : command.output;
-        if (!pcap_to_stdout && ::access(first.c_str(), F_OK) != 0) created_capture = first;
+        Result<std::unique_ptr<PendingOutputFile>> staged = PendingOutputFile::open(first);
+        if (!staged) {
+            print_error(staged.error());
+            return kExitOutputError;
+        }
+        capture_file = std::move(staged).value();
         RotationOptions rotation{command.rotate_size,
                                  static_cast<std::int64_t>(command.rotate_seconds * 1e9)};
-        WriterResult opened = open_rotating_writer(command.output, CaptureFormat::Pcap, *link_type,
-                                                   rotation, settings->protocol->protocol);
+        WriterResult opened =
+            open_rotating_writer(command.output, CaptureFormat::Pcap, *link_type, rotation,
+                                 settings->protocol->protocol, capture_file->file());
+        capture_file->release_file();  // the writer closes it
         if (!opened) {
             print_error(opened.error());
             return kExitOutputError;
@@ -367,10 +380,16 @@ int run_sniff(const SniffCommand& command) {
     if (Result<void> configured = port->configure(); !configured) {
         print_error(configured.error());
         writer.reset();
-        report_file.reset();  // discards the staged report: an existing file stays as it was
+        capture_file.reset();  // discards the staged files: existing ones stay as they were
+        report_file.reset();
         stats_file.reset();
-        if (!created_capture.empty()) std::remove(created_capture.c_str());
         return kExitUsage;
+    }
+    if (capture_file) {
+        if (Result<void> placed = capture_file->commit(); !placed) {
+            print_error(placed.error());
+            return kExitOutputError;  // the port is put back as it was found
+        }
     }
     FILE* text_stream = pcap_to_stdout || report_to_stdout || stats_to_stdout ? stderr : stdout;
     const bool extcap = command.extcap;
@@ -585,7 +604,11 @@ int run_sniff(const SniffCommand& command) {
                 output_failed = true;
             }
         }
-        if (!log.lost().empty()) print_warning(fmt::format("{}", log.lost()));
+        // A report that cannot list every finding says so itself; the run exits 4.
+        if (const std::string lost = report::not_listed_text(context); !lost.empty()) {
+            print_error(fmt::format("{}; the report says so", lost));
+            output_failed = true;
+        }
         if (fails) exit_code = kExitFindings;
     }
     if (!out.flush()) output_failed = true;

@@ -102,7 +102,7 @@ int run_stats(const StatsCommand& command) {
     }
     // Written beside OUT and moved into place only once the statistics are complete: an unusable
     // input or a write error leaves an existing OUT as it was.
-    return write_staged_output(command.output, [&](Output& out) {
+    return write_staged_output(command.output, path, [&](Output& out, std::string&) {
         Output diagnostics(stderr);
         report_input_issues(source, diagnostics);
         Pipeline pipeline(*settings);
@@ -159,9 +159,10 @@ void add_stats_command(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember({"text", "json", "markdown", "html", "csv"}))
         ->default_str("text");
     sub->add_option("-w,--write", command->output,
-                    "Write the statistics to FILE; - is standard output. An existing FILE is "
-                    "replaced only once the statistics are complete (an unusable input or a write "
-                    "error leaves it as it was), and never when it is the input")
+                    "Write the statistics to FILE; - is standard output. FILE is written (an "
+                    "existing one replaced) only by a run that exits 0 or 1; a damaged input (exit "
+                    "code 3) writes them to FILE.partial and leaves FILE as it was; an unusable "
+                    "input or a write error writes nothing; never when FILE is the input")
         ->check(output_file_name())
         ->type_name("FILE")
         ->default_str("-");

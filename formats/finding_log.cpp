@@ -1,6 +1,12 @@
 #include "formats/finding_log.hpp"
 
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 
 namespace dpscope {
@@ -21,30 +27,70 @@ struct SpilledFinding {
     std::uint8_t flags;  // bit 0: has_stations, bit 1: has pnu
 };
 
+// Kind, severity and stations in one key: kind << 19 | severity << 17 | has_stations << 16 |
+// master << 8 | slave.
+std::uint32_t tally_key(const Finding& f) {
+    const std::uint32_t stations =
+        f.has_stations ? (1u << 16 | static_cast<std::uint32_t>(f.master) << 8 | f.slave) : 0u;
+    return static_cast<std::uint32_t>(f.kind) << 19 | static_cast<std::uint32_t>(f.severity) << 17 |
+           stations;
+}
+
+// Writes all of `bytes` at the file's end; false (errno set) when a write failed.
+bool write_all(int fd, const std::vector<char>& bytes) {
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            if (n == 0) errno = ENOSPC;
+            return false;
+        }
+        done += static_cast<std::size_t>(n);
+    }
+    return true;
+}
+
 }  // namespace
 
+std::string default_spill_folder() {
+    const char* folder = std::getenv("TMPDIR");
+    return folder && *folder ? std::string(folder) : std::string("/tmp");
+}
+
+FindingLog::FindingLog(std::string spill_folder) : spill_folder_(std::move(spill_folder)) {}
+
 FindingLog::~FindingLog() {
-    if (spill_) std::fclose(spill_);
+    if (spill_fd_ >= 0) ::close(spill_fd_);
 }
 
 void FindingLog::append(std::span<const Finding> findings) {
     for (const Finding& f : findings) {
-        memory_.push_back(f);
         ++count_;
+        ++tallies_[tally_key(f)];
+        if (spill_failed_ && memory_.size() >= kKeepInMemory) {
+            ++unlisted_;
+            continue;
+        }
+        memory_.push_back(f);
+        if (memory_.size() >= kKeepInMemory && !spill_failed_) spill();
     }
-    if (memory_.size() >= kKeepInMemory) spill();
 }
 
 void FindingLog::spill() {
-    if (!spill_ && lost_.empty()) {
-        spill_ = std::tmpfile();
-        if (!spill_) lost_ = std::string("cannot create a temporary file: ") + std::strerror(errno);
+    if (spill_fd_ < 0) {
+        // An anonymous file: made, then unlinked at once, so nothing is left behind.
+        std::string pattern = spill_folder_ + "/dpscope-findings-XXXXXX";
+        spill_fd_ = ::mkostemp(pattern.data(), O_CLOEXEC);
+        if (spill_fd_ < 0) {
+            lost_ = fmt::format("cannot make a temporary file in {}: {}", spill_folder_,
+                                std::strerror(errno));
+            spill_failed_ = true;
+            return;
+        }
+        ::unlink(pattern.c_str());
     }
-    if (!spill_) {
-        // Keep what fits; the rest is counted but cannot be listed.
-        memory_.resize(kKeepInMemory);
-        return;
-    }
+    std::vector<char> bytes;
     for (const Finding& f : memory_) {
         SpilledFinding s{f.frame,
                          f.request_frame,
@@ -56,44 +102,86 @@ void FindingLog::spill() {
                          f.master,
                          f.slave,
                          static_cast<std::uint8_t>((f.has_stations ? 1 : 0) | (f.pnu ? 2 : 0))};
-        if (std::fwrite(&s, sizeof s, 1, spill_) != 1 ||
-            std::fwrite(f.message.data(), 1, f.message.size(), spill_) != f.message.size()) {
-            lost_ = std::string("cannot write the temporary file: ") + std::strerror(errno);
-            break;
-        }
+        const char* raw = reinterpret_cast<const char*>(&s);
+        bytes.insert(bytes.end(), raw, raw + sizeof s);
+        bytes.insert(bytes.end(), f.message.begin(), f.message.end());
     }
+    if (!write_all(spill_fd_, bytes)) {
+        // Cut the file back to its whole records; the findings of this batch stay in memory
+        // (after those in the file: capture order), later ones are only counted.
+        lost_ = fmt::format("cannot write the temporary file in {}: {}", spill_folder_,
+                            std::strerror(errno));
+        spill_failed_ = true;
+        if (::ftruncate(spill_fd_, static_cast<off_t>(spilled_bytes_)) != 0) {
+            // The file cannot be cut back: its records are read up to spilled_bytes_ only.
+        }
+        return;
+    }
+    spilled_bytes_ += bytes.size();
+    spilled_ += memory_.size();
     memory_.clear();
 }
 
 void FindingLog::for_each(const std::function<void(const Finding&)>& f) const {
-    if (spill_) {
-        std::fflush(spill_);
-        std::rewind(spill_);
-        SpilledFinding s{};
+    if (spilled_bytes_ > 0) {
+        // Read back in chunks; a record may span two of them.
+        std::vector<char> chunk(1 << 16);
+        std::vector<char> pending;
+        std::uint64_t offset = 0;
+        std::uint64_t given = 0;
         Finding finding;
-        while (std::fread(&s, sizeof s, 1, spill_) == 1) {
-            finding.frame = s.frame;
-            finding.request_frame = s.request_frame;
-            finding.time_ns = s.time_ns;
-            finding.kind = static_cast<FindingKind>(s.kind);
-            finding.severity = static_cast<Severity>(s.severity);
-            finding.master = s.master;
-            finding.slave = s.slave;
-            finding.has_stations = (s.flags & 1) != 0;
-            finding.pnu = (s.flags & 2) ? std::optional<std::uint16_t>(s.pnu) : std::nullopt;
-            finding.message.resize(s.message_length);
-            if (std::fread(finding.message.data(), 1, s.message_length, spill_) !=
-                s.message_length) {
-                if (lost_.empty()) lost_ = "cannot read the temporary file of findings back";
-                std::fseek(spill_, 0, SEEK_END);
+        while (offset < spilled_bytes_) {
+            const std::size_t want = static_cast<std::size_t>(
+                std::min<std::uint64_t>(chunk.size(), spilled_bytes_ - offset));
+            const ssize_t got = ::pread(spill_fd_, chunk.data(), want, static_cast<off_t>(offset));
+            if (got <= 0) {
+                if (got < 0 && errno == EINTR) continue;
+                lost_ = fmt::format("cannot read the temporary file of findings back: {}",
+                                    got < 0 ? std::strerror(errno) : "it is shorter than written");
+                unreadable_ = spilled_ - given;
                 return;
             }
-            f(finding);
+            offset += static_cast<std::uint64_t>(got);
+            pending.insert(pending.end(), chunk.begin(), chunk.begin() + got);
+            std::size_t at = 0;
+            while (pending.size() - at >= sizeof(SpilledFinding)) {
+                SpilledFinding s{};
+                std::memcpy(&s, pending.data() + at, sizeof s);
+                if (pending.size() - at - sizeof s < s.message_length) break;
+                finding.frame = s.frame;
+                finding.request_frame = s.request_frame;
+                finding.time_ns = s.time_ns;
+                finding.kind = static_cast<FindingKind>(s.kind);
+                finding.severity = static_cast<Severity>(s.severity);
+                finding.master = s.master;
+                finding.slave = s.slave;
+                finding.has_stations = (s.flags & 1) != 0;
+                finding.pnu = (s.flags & 2) ? std::optional<std::uint16_t>(s.pnu) : std::nullopt;
+                const char* message = pending.data() + at + sizeof s;
+                finding.message.assign(message, s.message_length);
+                at += sizeof s + s.message_length;
+                ++given;
+                f(finding);
+            }
+            pending.erase(pending.begin(), pending.begin() + static_cast<std::ptrdiff_t>(at));
         }
-        std::fseek(spill_, 0, SEEK_END);
+        unreadable_ = 0;
     }
     for (const Finding& finding : memory_)
         f(finding);
+}
+
+void FindingLog::for_each_tally(const std::function<void(const FindingTally&)>& f) const {
+    for (const auto& [key, count] : tallies_) {
+        FindingTally tally;
+        tally.kind = static_cast<FindingKind>(key >> 19);
+        tally.severity = static_cast<Severity>((key >> 17) & 3);
+        tally.has_stations = (key >> 16 & 1) != 0;
+        tally.master = static_cast<std::uint8_t>(key >> 8);
+        tally.slave = static_cast<std::uint8_t>(key);
+        tally.count = count;
+        f(tally);
+    }
 }
 
 }  // namespace dpscope

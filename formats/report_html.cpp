@@ -157,6 +157,8 @@ void write_html(const ReportContext& c, const ReportModel& m, Output& out) {
                            counted(rows - kHtmlFindingRows, "more finding", "more findings"),
                            kHtmlFindingRows);
     }
+    if (const std::string lost = not_listed_text(c); !lost.empty())
+        fmt::format_to(it, "<p class=\"meta\">{}</p>\n", xml(lost));
     append(b, "</section>\n</body>\n</html>\n");
     out.end_record();
 }

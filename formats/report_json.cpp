@@ -93,6 +93,16 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
         out.end_record();
     });
     w.end_array();
+    // What the list lacks (a full temporary folder), after listing: null when it is complete.
+    w.key("findings_not_listed");
+    if (c.findings->unlisted() == 0 && c.findings->lost().empty()) {
+        w.null();
+    } else {
+        w.begin_object();
+        count("count", c.findings->unlisted());
+        w.key("reason").string(c.findings->lost());
+        w.end_object();
+    }
     w.end_object();
     out.put('\n');
     out.end_record();

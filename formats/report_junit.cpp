@@ -113,16 +113,23 @@ void write_junit(const ReportContext& c, const ReportModel& m, Output& out) {
     auto fails = [&](const Finding& f) {
         return f.severity == Severity::Error || severity_fails(f.severity, c.fail_on);
     };
-    c.findings->for_each([&](const Finding& f) {
+    // Counted from the log's tallies, exact also when it cannot list every finding.
+    c.findings->for_each_tally([&](const FindingTally& t) {
+        Finding f;
+        f.kind = t.kind;
+        f.severity = t.severity;
+        f.has_stations = t.has_stations;
+        f.master = t.master;
+        f.slave = t.slave;
         if (!shows(c, f)) return;
         auto s = std::find_if(suites.begin(), suites.end(),
                               [&](const Suite& suite) { return in_suite(suite, f); });
         if (s == suites.end()) return;
         auto kind = static_cast<std::size_t>(f.kind);
         if (fails(f)) {
-            ++s->failing[kind];
+            s->failing[kind] += t.count;
         } else {
-            ++s->others[kind];
+            s->others[kind] += t.count;
             s->other_severity[kind] = f.severity;
         }
     });
@@ -159,10 +166,24 @@ void write_junit(const ReportContext& c, const ReportModel& m, Output& out) {
     total_failed += static_cast<std::size_t>(
         std::count_if(health.begin(), health.end(),
                       [](const HealthCase& h) { return h.judgement->verdict == Verdict::Bad; }));
+    // Findings the log could not keep (a full temporary folder): an error of the report itself.
+    const std::string lost = not_listed_text(c);
+    if (!lost.empty()) ++total_tests;
     fmt::format_to(it,
                    "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-                   "<testsuites name=\"dpscope {}\" tests=\"{}\" failures=\"{}\" errors=\"0\">\n",
-                   xml(c.input.name), total_tests, total_failed);
+                   "<testsuites name=\"dpscope {}\" tests=\"{}\" failures=\"{}\" errors=\"{}\">\n",
+                   xml(c.input.name), total_tests, total_failed, lost.empty() ? 0 : 1);
+    if (!lost.empty()) {
+        fmt::format_to(it,
+                       "  <testsuite name=\"report\" tests=\"1\" failures=\"0\" errors=\"1\" "
+                       "skipped=\"0\">\n"
+                       "    <testcase classname=\"dpscope.report\" name=\"findings_listed: every "
+                       "finding of the capture is listed\">\n"
+                       "      <error type=\"findings_not_listed\" message=\"{}\"/>\n"
+                       "    </testcase>\n  </testsuite>\n",
+                       xml(lost));
+        out.end_record();
+    }
     if (m.nothing_checked) {
         std::string reason = "nothing checked: " + nothing_checked_reason(c);
         fmt::format_to(it,

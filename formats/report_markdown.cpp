@@ -69,9 +69,8 @@ void write_markdown(const ReportContext& c, const ReportModel& m, Output& out) {
                            md_escape(unlisted_text(kind, listed)));
             first_unlisted = false;
         }
-    if (!c.findings->lost().empty())
-        fmt::format_to(it, "\nSome findings could not be listed: {}\n",
-                       md_escape(c.findings->lost()));
+    if (const std::string lost = not_listed_text(c); !lost.empty())
+        fmt::format_to(it, "\n{}\n", md_escape(lost));
     out.end_record();
 }
 

@@ -124,13 +124,14 @@ ReportModel build_report_model(const ReportContext& c) {
                                      [](const auto& section) { return section->checked(); });
     if (m.nothing_checked && !c.allow_empty) m.fails = true;
     const FindingKind checksum_kind = bus_wording(c).checksum_kind;
-    c.findings->for_each([&](const Finding& f) {
-        if (!shows(c, f)) return;
-        ++m.shown;
-        ++m.by_severity[static_cast<std::size_t>(f.severity)];
-        if (f.kind == checksum_kind) ++m.fcs_errors;
-        if (severity_fails(f.severity, c.fail_on)) m.fails = true;
-        if (!f.has_stations) m.has_bus_findings = true;
+    // Counted from the log's tallies, exact also when it cannot list every finding.
+    c.findings->for_each_tally([&](const FindingTally& t) {
+        if (t.has_stations && !shows_slave(c, t.slave)) return;
+        m.shown += t.count;
+        m.by_severity[static_cast<std::size_t>(t.severity)] += t.count;
+        if (t.kind == checksum_kind) m.fcs_errors += t.count;
+        if (severity_fails(t.severity, c.fail_on)) m.fails = true;
+        if (!t.has_stations) m.has_bus_findings = true;
     });
     return m;
 }
@@ -270,6 +271,13 @@ std::string findings_by_kind_text(const FindingCounts& counts) {
 
 std::string station_label(const Finding& f) {
     return f.has_stations ? fmt::format("{} / {}", f.master, f.slave) : std::string("-");
+}
+
+std::string not_listed_text(const ReportContext& c) {
+    if (c.findings->unlisted() == 0 && c.findings->lost().empty()) return "";
+    return fmt::format("{} not be listed: {}",
+                       counted(c.findings->unlisted(), "finding could", "findings could"),
+                       c.findings->lost());
 }
 
 std::string unlisted_text(FindingKind kind, const FindingCounts& listed) {

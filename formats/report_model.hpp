@@ -203,5 +203,8 @@ std::string station_label(const Finding& f);
 // "1200 more stacked_request findings not listed: at most 1000 per kind, the JSON report lists
 // them all", for the kinds the text and Markdown reports cut short.
 std::string unlisted_text(FindingKind kind, const FindingCounts& listed);
+// "4950 findings could not be listed: <why>" when the finding log could not keep them all (a
+// full temporary folder), "" when it lists every finding. Final once the findings were listed.
+std::string not_listed_text(const ReportContext& c);
 
 }  // namespace dpscope::report

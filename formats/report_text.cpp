@@ -68,8 +68,8 @@ void write_text(const ReportContext& c, const ReportModel& m, Output& out) {
     for (FindingKind kind : kAllKinds)
         if (listed[static_cast<std::size_t>(kind)] > kListedPerKind)
             fmt::format_to(it, "  ({})\n", unlisted_text(kind, listed));
-    if (!c.findings->lost().empty())
-        fmt::format_to(it, "  (some findings could not be listed: {})\n", c.findings->lost());
+    if (const std::string lost = not_listed_text(c); !lost.empty())
+        fmt::format_to(it, "  ({})\n", lost);
     out.end_record();
 }
 

@@ -319,7 +319,9 @@ TEST(ReportTest, JsonHasTheDocumentedTopLevelSummaryAndStationKeys) {
     ASSERT_TRUE(report);
     EXPECT_EQ(report->keys(),
               (std::vector<std::string>{"dpscope", "input", "options", "result", "nothing_checked",
-                                        "summary", "stations", "bus", "findings"}));
+                                        "summary", "stations", "bus", "findings",
+                                        "findings_not_listed"}));
+    EXPECT_TRUE((*report)["findings_not_listed"].is_null());
     EXPECT_EQ((*report)["dpscope"].string(), "7.8.9-test");
     EXPECT_EQ((*report)["input"].keys(),
               (std::vector<std::string>{"file", "format", "damaged", "bytes_skipped", "first_time",

@@ -47,12 +47,13 @@ mkdir -p "$WORK_DIR"
 converted="$WORK_DIR/$name.$mode.pcapng"
 errors="$WORK_DIR/$name.$mode.stderr"
 
-# The conversion: decode's own exit code says whether the input was whole (3: truncated); the
-# converted capture is written in every case, so it is not judged here.
-rm -f "$converted"
+# The conversion: decode's own exit code says whether the input was whole (3: truncated); what
+# was read is converted in every case (on 3 into "$converted.partial"), so it is not judged here.
+rm -f "$converted" "$converted.partial"
 status=0
 "$DPSCOPE" decode "${decode_args[@]}" "$sample" -w "$converted" --linktype user0 -F pcapng \
     >/dev/null 2>"$errors" || status=$?
+if [ "$status" = 3 ] && [ -s "$converted.partial" ]; then mv "$converted.partial" "$converted"; fi
 [ -s "$converted" ] || fail "$sample: dpscope decode wrote no capture (exit $status): $(cat "$errors")"
 
 tshark() {
