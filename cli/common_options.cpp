@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -523,10 +524,34 @@ Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t t
     }
 }
 
+namespace {
+
+std::atomic<std::uint64_t> g_dropped_standard_error{0};
+
+}  // namespace
+
+bool write_standard_error(std::string_view text) noexcept {
+    if (std::fwrite(text.data(), 1, text.size(), stderr) == text.size() && std::fflush(stderr) == 0)
+        return true;
+    std::clearerr(stderr);  // the next message is tried again (a disk may have room by then)
+    count_dropped_standard_error_message();
+    return false;
+}
+
+std::uint64_t dropped_standard_error_messages() noexcept {
+    return g_dropped_standard_error.load(std::memory_order_relaxed);
+}
+
+void count_dropped_standard_error_message() noexcept {
+    g_dropped_standard_error.fetch_add(1, std::memory_order_relaxed);
+}
+
 void print_diagnostic(Severity severity, std::string_view message) {
     clear_progress_line();
     std::fflush(stdout);
-    fmt::print(stderr, "dpscope: {}: {}\n", severity_name(severity), message);
+    // fmt::print would throw std::system_error on a failed write: a closed standard error must
+    // never end a command.
+    write_standard_error(fmt::format("dpscope: {}: {}\n", severity_name(severity), message));
 }
 
 void print_error(std::string_view message) { print_diagnostic(Severity::Error, message); }

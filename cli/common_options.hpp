@@ -192,6 +192,16 @@ void print_error(std::string_view message);
 void print_warning(std::string_view message);
 void print_diagnostic(Severity severity, std::string_view message);
 
+// Writes `text` to standard error and never throws: a write that fails (standard error a pipe
+// whose reader has gone, a full disk) drops the text and counts it. Every message goes through
+// it (print_diagnostic too), so a closed standard error never ends a command early (sniff's
+// capture runs on; docs/decisions.md, "A closed standard error"). False when dropped.
+bool write_standard_error(std::string_view text) noexcept;
+// Messages dropped so far because standard error could not be written.
+std::uint64_t dropped_standard_error_messages() noexcept;
+// Counts one more dropped message (output of the caller's own on standard error that failed).
+void count_dropped_standard_error_message() noexcept;
+
 // --- Bus health (issue 12): the thresholds of the verdict (stats, report, sniff --stats) -------
 struct HealthOptionValues {
     std::string config;                   // --health-config FILE ("" none)

@@ -222,6 +222,9 @@ Result<void> check_report_options(const SniffCommand& command) {
 }  // namespace
 
 int run_sniff(const SniffCommand& command) {
+    // A closed pipe is a write error, from the first message on (standard error's reader may
+    // have gone before the capture starts), not a SIGPIPE that ends the process.
+    ::signal(SIGPIPE, SIG_IGN);
     Result<DecodeSettings> settings = resolve_decode_options(command.options, "text");
     if (!settings) {
         print_error(settings.error());
@@ -376,9 +379,9 @@ int run_sniff(const SniffCommand& command) {
     const bool extcap = command.extcap;
     if (!extcap) {
         if (!port->note().empty()) print_warning(fmt::format("{}", port->note()));
-        std::fprintf(stderr, "dpscope: capturing on %s at %u baud %s%s; Ctrl-C stops\n",
-                     command.device.c_str(), port->baud(), port->frame().c_str(),
-                     port->low_latency() ? ", low latency" : "");
+        write_standard_error(fmt::format("dpscope: capturing on {} at {} baud {}{}; Ctrl-C stops\n",
+                                         command.device, port->baud(), port->frame(),
+                                         port->low_latency() ? ", low latency" : ""));
     }
     const int fd = port->fd();
     TtySourceOptions tty_options;
@@ -402,6 +405,10 @@ int run_sniff(const SniffCommand& command) {
 
     Output out(text_stream, settings->line_buffered || isatty(fileno(text_stream)) != 0);
     const char* text_stream_name = text_stream == stdout ? "standard output" : "standard error";
+    // The live output on standard error (-w -, --report-file -, --stats-file -) is dropped
+    // when standard error cannot be written, as every message there is; the capture runs on.
+    const bool text_on_stderr = text_stream == stderr;
+    bool live_output_dropped = false;
     report_input_issues(source, out);
     Pipeline pipeline(
         *settings, report && report_format_from_name(command.report_format) == ReportFormat::Html);
@@ -484,9 +491,13 @@ int run_sniff(const SniffCommand& command) {
                 if (Result<void> flushed = writer->flush(); !flushed)
                     stop_on_write_error(flushed.error());
             }
-            if (!out.flush() && !output_failed)
-                stop_on_write_error(
-                    fmt::format("{}: write failed: {}", text_stream_name, std::strerror(errno)));
+            if (!out.flush() && !output_failed) {
+                if (!text_on_stderr)
+                    stop_on_write_error(fmt::format("{}: write failed: {}", text_stream_name,
+                                                    std::strerror(errno)));
+                else if (!live_output_dropped)
+                    live_output_dropped = true;
+            }
             last_flush = now;
             // A quiet bus writes nothing that could fail: the fifo is watched as well.
             if (!stopping && reader_watch.reader_gone()) {
@@ -518,15 +529,11 @@ int run_sniff(const SniffCommand& command) {
     if (live) live->after_finish(telegrams, seconds);
     out.flush();
     if (!extcap)
-        std::fprintf(
-            stderr,
-            "dpscope: %llu telegrams, %llu bytes in %.1f s; %llu bytes skipped, %llu parity "
-            "errors, %llu telegrams cut off by line idle time\n",
-            static_cast<unsigned long long>(telegrams),
-            static_cast<unsigned long long>(source.bytes_read()), seconds,
-            static_cast<unsigned long long>(source.bytes_skipped()),
-            static_cast<unsigned long long>(source.parity_errors()),
-            static_cast<unsigned long long>(source.idle_gaps()));
+        write_standard_error(
+            fmt::format("dpscope: {} telegrams, {} bytes in {:.1f} s; {} bytes skipped, {} parity "
+                        "errors, {} telegrams cut off by line idle time\n",
+                        telegrams, source.bytes_read(), seconds, source.bytes_skipped(),
+                        source.parity_errors(), source.idle_gaps()));
     if (settings->quiet)
         pipeline.summary().render_text(out, describe_input(source), pipeline.decoder());
     if (stats) {
@@ -560,7 +567,7 @@ int run_sniff(const SniffCommand& command) {
     if (alarms) {
         alarms->finish(kAlarmWaitAtEndMs);
         if (std::string said = alarms->summary(); !said.empty())
-            std::fprintf(stderr, "dpscope: %s\n", said.c_str());
+            write_standard_error(fmt::format("dpscope: {}\n", said));
     }
     int exit_code = kExitOk;
     if (report) {
@@ -588,7 +595,21 @@ int run_sniff(const SniffCommand& command) {
         if (!log.lost().empty()) print_warning(fmt::format("{}", log.lost()));
         if (fails) exit_code = kExitFindings;
     }
-    if (!out.flush()) output_failed = true;
+    if (!out.flush()) {
+        if (!text_on_stderr) output_failed = true;
+        live_output_dropped = text_on_stderr;
+    }
+    // Standard error could not be written (its reader gone, a full disk): the capture ran to its
+    // end; what was dropped is said once more (standard error may take it by now) and the exit
+    // code is 4, an output that could not be written.
+    if (const std::uint64_t dropped = dropped_standard_error_messages();
+        (dropped > 0 || live_output_dropped) && !reader_left) {
+        print_error(fmt::format(
+            "standard error could not be written: {} dropped{}",
+            dropped == 1 ? std::string("1 message") : fmt::format("{} messages", dropped),
+            live_output_dropped ? ", and the live output with them" : ""));
+        output_failed = true;
+    }
     if (output_failed && !reader_left) return kExitOutputError;
     if (source.status() == InputStatus::Damaged) return kExitDeviceError;
     return exit_code;
@@ -718,7 +739,9 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
         "(Danfoss VLT 2000 ASCII telegram: 9600 baud 8N1 unless they say otherwise)");
     sub->footer(std::string(kExitCodeHelp) +
                 " For sniff: on 4 and 5 what was captured before is written and the file is a "
-                "valid pcap; with --report, 1 when a finding reaches --fail-on.");
+                "valid pcap; a closed standard error does not stop the capture, its messages are "
+                "dropped and the exit code is 4; with --report, 1 when a finding reaches "
+                "--fail-on.");
     sub->callback([command, &exit_code] { exit_code = run_sniff(*command); });
 }
 

@@ -1451,5 +1451,81 @@ TEST(SniffTest, StatsFileHoldsTheStatisticsInTheFormatAsked) {
     EXPECT_NE(err.find("telegrams: "), std::string::npos) << err;
 }
 
+// dpscope sniff with standard error a pipe whose reader has gone (closed before the start):
+// standard output into the file `out`. Waits on events only: the port in raw mode, the exit.
+struct ClosedStderrRun {
+    int exit_code = -1;  // -1: did not end in time
+    std::string out;
+};
+
+ClosedStderrRun sniff_with_closed_stderr(const std::vector<std::string>& args, PseudoTerminal& pty,
+                                         const Session& session) {
+    ClosedStderrRun run;
+    const std::string out = test::temp_path("closed-stderr-out");
+    int fds[2];
+    if (pipe2(fds, O_CLOEXEC) != 0) return run;
+    close(fds[0]);  // nobody reads standard error
+    pid_t child = fork();
+    if (child == 0) {
+        int out_fd = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int null = open("/dev/null", O_RDONLY);
+        dup2(out_fd, STDOUT_FILENO);
+        dup2(fds[1], STDERR_FILENO);
+        dup2(null, STDIN_FILENO);
+        setenv("TZ", "UTC", 1);
+        test::exec_or_exit(test::dpscope_argv(args));
+    }
+    close(fds[1]);
+    if (test::wait_for_raw_mode(pty, 20)) play(pty, session, true);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    int status = 0;
+    while (waitpid(child, &status, WNOHANG) != child) {
+        if (std::chrono::steady_clock::now() > deadline) {
+            kill(child, SIGKILL);
+            waitpid(child, &status, 0);
+            run.out = slurp(out);
+            return run;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    run.out = slurp(out);
+    return run;
+}
+
+// A closed standard error (the program reading it ended) never stops a capture: every message
+// is dropped (counted), the capture runs to its end, the file holds every telegram, and the exit
+// code is 4 (an output could not be written), not an abort (134) or SIGPIPE (141).
+TEST(SniffTest, AClosedStandardErrorNeverStopsTheCapture) {
+    Session session = simulate(20);
+    const std::string count = std::to_string(session.expected.size());
+    {
+        // The pty's parity note is the first message, before "capturing on".
+        PseudoTerminal pty;
+        const std::string pcap = test::temp_path("closed-stderr.pcap");
+        ClosedStderrRun run = sniff_with_closed_stderr(
+            {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-c", count}, pty, session);
+        EXPECT_EQ(run.exit_code, 4);
+        EXPECT_GE(test::lines_of(run.out).size(), session.expected.size()) << run.out;
+        Capture capture = read_capture(pcap);
+        EXPECT_EQ(capture.status, InputStatus::Ok);
+        EXPECT_EQ(capture.telegrams.size(), session.expected.size());
+        EXPECT_TRUE(capture.telegrams == session.expected);
+    }
+    {
+        // -w -: the pcap on standard output, the live decode on the closed standard error.
+        PseudoTerminal pty;
+        ClosedStderrRun run = sniff_with_closed_stderr(
+            {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", "-", "-c", count}, pty, session);
+        EXPECT_EQ(run.exit_code, 4);
+        const std::string pcap = test::temp_path("closed-stderr-stdout.pcap");
+        test::write_text_file(pcap, run.out);
+        Capture capture = read_capture(pcap);
+        EXPECT_EQ(capture.status, InputStatus::Ok);
+        EXPECT_EQ(capture.telegrams.size(), session.expected.size());
+        EXPECT_TRUE(capture.telegrams == session.expected);
+    }
+}
+
 }  // namespace
 }  // namespace dpscope
