@@ -190,6 +190,31 @@ TEST(TtySourceTest, ParityMarksAreCountedAndRemoved) {
         << c.issues[0].message;
 }
 
+// The bytes counted (sniff's "N telegrams, M bytes") are the line's, not the PARMRK escapes the
+// driver adds: FF FF is one byte, FF 00 X one byte.
+TEST(TtySourceTest, BytesReadCountsTheLineNotTheParityMarks) {
+    Pipe pipe;
+    Collected c;
+    TtySource source(nullptr, pipe.read_end, "pipe", options(true, 0), fdl_framing_rules());
+    source.on_issue([&](const InputIssue& issue) { c.issues.push_back(issue); });
+    pipe.write(hex("10 03 FF 00 02 49 4E 16 FF FF E5"));  // 8 bytes on the line, 11 read
+    drain(source, c);
+    EXPECT_EQ(source.bytes_read(), 8u);
+    pipe.write(hex("10 03 FF"));  // an escape split across reads
+    drain(source, c, 2);
+    pipe.write(hex("00 02 49 4E 16"));
+    drain(source, c);
+    EXPECT_EQ(source.bytes_read(), 14u);
+    pipe.close_writer();
+    drain(source, c);
+    ASSERT_EQ(c.telegrams.size(), 3u);
+    ASSERT_FALSE(c.issues.empty());
+    EXPECT_NE(c.issues.back().message.find("the device went away (hang-up; unplugged?) after 14 "
+                                           "bytes"),
+              std::string::npos)
+        << c.issues.back().message;
+}
+
 TEST(TtySourceTest, ParityMarkSplitAcrossReads) {
     Pipe pipe;
     Collected c;
