@@ -46,6 +46,7 @@ std::atomic<bool> g_stop_requested{false};
 extern "C" void request_stop(int signal_number) {
     if (g_stop_requested.exchange(true)) {
         SerialPort::restore_all_after_signal();
+        AlarmRunner::end_all_after_signal();
         ::signal(signal_number, SIG_DFL);
         ::raise(signal_number);
     }
@@ -158,8 +159,10 @@ bool is_capture_file(const std::string& path, const std::string& output, bool ro
     return same_file(path, rotated_file_name(output, static_cast<unsigned>(index)));
 }
 
-// How long the end of the capture waits for --alarm commands still running.
+// How long the end of the capture waits for --alarm commands still running, and how long
+// those still running then have between SIGTERM and SIGKILL.
 constexpr int kAlarmWaitAtEndMs = 5000;
+constexpr int kAlarmEndGraceMs = 1000;
 
 // Checks --stats, --stats-file, --stats-format and --alarm against the bus, each other, -w and
 // the report.
@@ -566,6 +569,7 @@ int run_sniff(const SniffCommand& command) {
     }
     if (alarms) {
         alarms->finish(kAlarmWaitAtEndMs);
+        alarms->end_running(kAlarmEndGraceMs);
         if (std::string said = alarms->summary(); !said.empty())
             write_standard_error(fmt::format("dpscope: {}\n", said));
     }
@@ -725,7 +729,8 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
                     "(address or segment), DPSCOPE_ROLE, DPSCOPE_TIME (ISO 8601 UTC), "
                     "DPSCOPE_FRAME, DPSCOPE_VERDICT and DPSCOPE_REASONS in its environment; at "
                     "most once per event kind and station a minute; the capture never waits "
-                    "for it")
+                    "for it; at most 16 run at once (more are skipped and counted), and those "
+                    "still running 5 s after the capture ends are ended")
         ->type_name("CMD");
     sub->add_flag("--no-low-latency", command->no_low_latency,
                   "Do not ask the driver for low-latency mode (ASYNC_LOW_LATENCY)");

@@ -1402,6 +1402,37 @@ TEST(SniffTest, AlarmRunsOncePerKindAndStationWithinTheMinute) {
     std::filesystem::remove_all(dir);
 }
 
+// Alarm commands that hang are ended when the capture ends: none is left running (the shell
+// nor what it started), and the end says how many were ended.
+TEST(SniffTest, AlarmCommandsStillRunningAreEndedWhenTheCaptureEnds) {
+    PseudoTerminal pty;
+    const std::string pids = test::temp_path("alarm-pids.txt");
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "--alarm",
+                     "echo $$ >> " + pids + "; sleep 300; echo"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options;
+    options.cycles = 400;
+    // Station 5 stops answering: lost (and its verdict turns bad).
+    Session session = without_answers(simulate(options), 5, {{400, 500}});
+    play(pty, session, true);
+    // The first alarm command has started.
+    std::vector<std::string> started;
+    for (int i = 0; i < 2000 && started.empty(); ++i) {
+        started = test::lines_of(slurp(pids));
+        if (started.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_FALSE(started.empty()) << sniffer.err();
+    sniffer.signal(SIGINT);
+    ASSERT_EQ(sniffer.wait(30), 0) << sniffer.err();
+    started = test::lines_of(slurp(pids));
+    for (const std::string& line : started)
+        EXPECT_EQ(test::live_processes_in_group(static_cast<pid_t>(std::stol(line))), 0u) << line;
+    EXPECT_NE(sniffer.err().find(std::to_string(started.size()) +
+                                 " ended at the end (still running after the wait)"),
+              std::string::npos)
+        << sniffer.err();
+}
+
 TEST(SniffTest, StatsOptionsThatCannotWorkAreUsageErrors) {
     PseudoTerminal pty;
     auto fc = test::run_dpscope({"sniff", "-i", pty.slave, "--bus", "fc", "--stats"});
