@@ -36,11 +36,15 @@ std::optional<SerialParity> serial_parity_from_name(std::string_view name) {
     return std::nullopt;
 }
 
+std::string serial_frame_name(SerialParity parity, unsigned stop_bits) {
+    const char letter = parity == SerialParity::Even  ? 'E'
+                        : parity == SerialParity::Odd ? 'O'
+                                                      : 'N';
+    return fmt::format("8{}{}", letter, stop_bits == 2 ? 2 : 1);
+}
+
 std::string SerialPort::frame() const {
-    const char letter = settings_.parity == SerialParity::Even  ? 'E'
-                        : settings_.parity == SerialParity::Odd ? 'O'
-                                                                : 'N';
-    return fmt::format("8{}{}", letter, settings_.stop_bits == 2 ? 2 : 1);
+    return serial_frame_name(settings_.parity, settings_.stop_bits);
 }
 
 namespace {

@@ -140,9 +140,18 @@ struct DecodeSettings {
     int link_type = kLinkTypeProfibusDl;
     bool link_type_given = false;  // --linktype; otherwise the bus's default (capture_link_type)
     bool print = true;             // render the decode (false with -w unless -P)
+    // The line the capture was made on, as far as it is known: --baud (baud_given), or what the
+    // capture records (open_input), or the port (sniff). -w records it in the capture written.
+    std::uint32_t baud_given = 0;
+    LineSettings line;
 
     bool filtering() const noexcept { return !stations.empty() || !pnus.empty(); }
 };
+
+// The line the capture was made on: the time a telegram takes on it (the FC and VLT 2000
+// trackers' response times), the bus load of the bus-health tracker, and what -w records. What
+// `line` does not know (a baud rate of 0, an unknown frame) is left as it was.
+void use_line(DecodeSettings& settings, const LineSettings& line);
 
 // The link type a capture of `protocol` is written with: `given` (--linktype) or the bus's
 // default (PROFIBUS 257 PROFIBUS_DL, FC protocol 147 USER0). An error when the link type is

@@ -65,7 +65,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         capture_file = std::move(file).value();
         WriterResult opened =
             open_capture_writer(capture_file->file(), capture_file->name(), settings.write_format,
-                                *link_type, settings.protocol->protocol);
+                                *link_type, settings.protocol->protocol, settings.line);
         capture_file->release_file();  // the writer closes it
         if (!opened) {
             print_error(opened.error());

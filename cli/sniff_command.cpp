@@ -339,8 +339,11 @@ int run_sniff(const SniffCommand& command) {
         if (!pcap_to_stdout && ::access(first.c_str(), F_OK) != 0) created_capture = first;
         RotationOptions rotation{command.rotate_size,
                                  static_cast<std::int64_t>(command.rotate_seconds * 1e9)};
+        // The line as asked (the port, set up later, reads it back within 1 %): decode,
+        // report and stats read the capture at its rate without --baud.
+        const LineSettings line{baud, parity, command.stop_bits};
         WriterResult opened = open_rotating_writer(command.output, CaptureFormat::Pcap, *link_type,
-                                                   rotation, settings->protocol->protocol);
+                                                   rotation, settings->protocol->protocol, line);
         if (!opened) {
             print_error(opened.error());
             return kExitOutputError;

@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "capture/bus_tag.hpp"
 #include "capture/capture_writer.hpp"
 #include "capture/telegram_source.hpp"
 #include "decoder/bus_decoder.hpp"
@@ -1039,6 +1040,72 @@ TEST(SniffTest, FcBusDefaultsTo9600Baud8E1AndWritesATaggedUser0Capture) {
     EXPECT_EQ(decoded.exit_code, 0) << decoded.err;
     EXPECT_EQ(decoded.err, "");
     EXPECT_EQ(test::lines_of(decoded.out).size(), 2u);
+}
+
+// sniff -w records the line it captured on (baud rate, parity, stop bits), and decode, report
+// and stats read the capture back at that rate without --baud: a command and its answer, sent
+// back to back at 19200 baud 8O2 (12 bits a character), are no "response before the command
+// ended", as they would be at the default 9600 baud 8E1.
+TEST(SniffTest, ACaptureRecordsItsLineAndIsReadBackAtItsRate) {
+    PseudoTerminal pty;
+    const std::string pcap = test::temp_path("fc-19200.pcap");
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--bus", "fc", "--baud", "19200", "--parity", "odd",
+                     "--stop-bits", "2", "-w", pcap, "-q"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    std::vector<std::uint8_t> bytes = test::fc_parameter(1, 1, 414);
+    const std::vector<std::uint8_t> response = test::fc_parameter(1, 1, 414, 0, 1500, 0x0607);
+    bytes.insert(bytes.end(), response.begin(), response.end());
+    pty.write(bytes);
+    // Both records are in the file (flushed when the line is idle).
+    const std::uintmax_t whole = 24 + 2 * (16 + 16);
+    for (int i = 0; i < 2000 && std::filesystem::file_size(pcap) < whole; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    ASSERT_EQ(std::filesystem::file_size(pcap), whole);
+    sniffer.signal(SIGINT);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    EXPECT_EQ(sniffer.err().find("began before"), std::string::npos) << sniffer.err();
+    const std::vector<std::uint8_t> file = test::read_file(pcap);
+    const CaptureLabel label = read_capture_label(Bytes(file.data(), file.size()));
+    EXPECT_EQ(label.line, (LineSettings{19200, SerialParity::Odd, 2}));
+    const test::CommandResult recorded = test::run_dpscope({"report", pcap});
+    EXPECT_EQ(recorded.exit_code, 0) << recorded.err;
+    EXPECT_EQ(recorded.err, "");
+    EXPECT_EQ(recorded.out, test::run_dpscope({"report", "--baud", "19200", pcap}).out);
+    EXPECT_NE(recorded.out.find("1 answered"), std::string::npos) << recorded.out;
+    // The drive's latency is the same as with --baud 19200, and decode agrees too.
+    const std::string latency = recorded.out.substr(recorded.out.find("latency ms"));
+    EXPECT_EQ(latency.substr(0, latency.find('\n')),
+              "latency ms     min 0.000  mean 0.000  p95 0.000  max 0.000");
+    const test::CommandResult decoded = test::run_dpscope({"decode", pcap});
+    EXPECT_EQ(decoded.err, "");
+    EXPECT_EQ(decoded.out, test::run_dpscope({"decode", "--baud", "19200", pcap}).out);
+}
+
+// simulate --replay plays a capture on the line it records (sniff -w), unless --baud says
+// otherwise (with a warning when they differ).
+TEST(SniffTest, SimulateReplaysACaptureOnTheLineItRecords) {
+    const std::string pcap = test::temp_path("fc-19200-8o2.pcap");
+    {
+        WriterResult opened = open_capture_writer(pcap, CaptureFormat::Pcap, kLinkTypeUser0,
+                                                  Protocol::Fc, {19200, SerialParity::Odd, 2});
+        ASSERT_TRUE(opened) << opened.error();
+        const std::vector<std::uint8_t> command = test::fc_parameter(1, 1, 414);
+        ASSERT_TRUE((*opened)->write(Bytes(command.data(), command.size()), 1'000'000'000));
+        ASSERT_TRUE((*opened)->close());
+    }
+    for (const bool given : {false, true}) {
+        PseudoTerminal pty;
+        std::vector<std::string> args = {"simulate", "--bus",    "fc", "--device",
+                                         pty.slave,  "--replay", pcap, "-v"};
+        if (given) args.insert(args.end(), {"--baud", "9600"});
+        const test::CommandResult played = test::run_dpscope(args);
+        ASSERT_EQ(played.exit_code, 0) << played.err;
+        EXPECT_NE(played.err.find(given ? "at 9600 baud 8O2" : "at 19200 baud 8O2"),
+                  std::string::npos)
+            << played.err;
+        EXPECT_EQ(played.err.find("warning") != std::string::npos, given) << played.err;
+        EXPECT_EQ(read_until_quiet(pty.master).size(), 16u);
+    }
 }
 
 TEST(SniffTest, Vlt2000BusDefaultsTo9600Baud8N1AndWritesATaggedUser0Capture) {
