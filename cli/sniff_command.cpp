@@ -659,7 +659,9 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
         ->default_str("1");
     sub->add_option("-w,--write", command->output,
                     "Write the telegrams to FILE as pcap, flushed at least every 100 ms; - writes "
-                    "pcap to standard output (the decoded output then goes to standard error)")
+                    "pcap to standard output (the decoded output then goes to standard error). The "
+                    "capture records the line (baud rate, parity, stop bits), which decode, report "
+                    "and stats then use without --baud")
         ->check(output_file_name())
         ->type_name("FILE");
     sub->add_option("--linktype", command->link_type,
