@@ -17,7 +17,9 @@ constexpr std::uint32_t kPcapngInterface = 1;
 constexpr std::uint32_t kPcapngObsoletePacket = 2;
 constexpr std::uint32_t kPcapngSimplePacket = 3;
 constexpr std::uint32_t kPcapngEnhancedPacket = 6;
+constexpr std::uint16_t kOptComment = 1;
 constexpr std::uint16_t kIfDescription = 3;
+constexpr std::uint16_t kIfSpeed = 8;
 constexpr std::uint8_t kStx = 0x02;
 
 // A 16- or 32-bit word of `head` at `at` in the given byte order; nullopt past its end.
@@ -31,6 +33,37 @@ std::optional<std::uint32_t> word(Bytes head, std::size_t at, std::size_t size, 
     return v;
 }
 
+// The line in a pcap tag word (bits 4-31, see bus_tag.hpp); what is 0 or out of range stays
+// unknown.
+LineSettings line_of_pcap_tag_word(std::uint32_t tag) {
+    LineSettings line;
+    const std::uint32_t baud = tag >> 8;
+    if (baud >= kMinLineBaud && baud <= kMaxLineBaud) line.baud = baud;
+    const std::uint32_t parity = (tag >> 4) & 3;
+    const std::uint32_t stop_bits = (tag >> 6) & 3;
+    if (parity != 0 && (stop_bits == 1 || stop_bits == 2)) {
+        line.parity = parity == 1   ? SerialParity::None
+                      : parity == 2 ? SerialParity::Odd
+                                    : SerialParity::Even;
+        line.stop_bits = stop_bits;
+    }
+    return line;
+}
+
+// The frame of a pcapng comment "dpscope frame=8E1" into `line` (left as it is otherwise).
+void read_frame_comment(std::string_view text, LineSettings& line) {
+    if (!text.starts_with(kPcapngFramePrefix)) return;
+    text.remove_prefix(kPcapngFramePrefix.size());
+    if (text.size() != 3 || text[0] != '8' || (text[2] != '1' && text[2] != '2')) return;
+    std::optional<SerialParity> parity = text[1] == 'E'   ? std::optional(SerialParity::Even)
+                                         : text[1] == 'O' ? std::optional(SerialParity::Odd)
+                                         : text[1] == 'N' ? std::optional(SerialParity::None)
+                                                          : std::nullopt;
+    if (!parity) return;
+    line.parity = parity;
+    line.stop_bits = static_cast<unsigned>(text[2] - '0');
+}
+
 void read_pcap_label(Bytes head, CaptureLabel& label) {
     // The magic in the file's byte order: A1B2C3D4 or A1B23C4D when read big-endian.
     std::optional<std::uint32_t> magic = word(head, 0, 4, true);
@@ -38,8 +71,11 @@ void read_pcap_label(Bytes head, CaptureLabel& label) {
     const bool big = *magic == 0xA1B2C3D4 || *magic == 0xA1B23C4D;
     if (std::optional<std::uint32_t> link = word(head, 20, 4, big))
         label.link_type = static_cast<int>(*link & 0x0FFFFFFF);  // upper bits: FCS flags
-    if (head.size() >= 16 && std::memcmp(head.data() + 8, kPcapBusTagMagic, 4) == 0)
-        label.tagged = protocol_of_pcap_bus_number(*word(head, 12, 4, big));
+    if (head.size() >= 16 && std::memcmp(head.data() + 8, kPcapBusTagMagic, 4) == 0) {
+        const std::uint32_t tag = *word(head, 12, 4, big);
+        label.tagged = protocol_of_pcap_bus_number(tag & 0xF);
+        if (label.tagged) label.line = line_of_pcap_tag_word(tag);
+    }
     // The first record: a 16-byte header (captured length at 8) and its data.
     std::optional<std::uint32_t> captured = word(head, 24 + 8, 4, big);
     if (captured && *captured > 0 && head.size() > 40) label.first_byte = head[40];
@@ -65,11 +101,18 @@ void read_pcapng_label(Bytes head, CaptureLabel& label) {
                 std::optional<std::uint32_t> size = word(head, option + 2, 2, big);
                 if (!code || !size || *code == 0) break;
                 if (option + 4 + *size > head.size()) break;
-                if (*code == kIfDescription) {
-                    std::string_view text(reinterpret_cast<const char*>(head.data() + option + 4),
-                                          *size);
-                    if (text.starts_with(kPcapngBusTagPrefix))
-                        label.tagged = protocol_from_name(text.substr(kPcapngBusTagPrefix.size()));
+                std::string_view text(reinterpret_cast<const char*>(head.data() + option + 4),
+                                      *size);
+                if (*code == kIfDescription && text.starts_with(kPcapngBusTagPrefix))
+                    label.tagged = protocol_from_name(text.substr(kPcapngBusTagPrefix.size()));
+                if (*code == kOptComment) read_frame_comment(text, label.line);
+                if (*code == kIfSpeed && *size == 8) {
+                    // A 64-bit number in the section's byte order: bits per second, the baud.
+                    const std::uint64_t first = *word(head, option + 4, 4, big);
+                    const std::uint64_t second = *word(head, option + 8, 4, big);
+                    const std::uint64_t speed = big ? first << 32 | second : second << 32 | first;
+                    if (speed >= kMinLineBaud && speed <= kMaxLineBaud)
+                        label.line.baud = static_cast<std::uint32_t>(speed);
                 }
                 option += 4 + (*size + 3) / 4 * 4;
             }
@@ -124,6 +167,7 @@ std::vector<std::uint8_t> hex_bytes(Bytes head, bool complete) {
 BusChoice choose_by_label(const CaptureLabel& label, bool complete) {
     BusChoice choice;
     choice.tagged = label.tagged;
+    choice.line = label.line;
     if (label.tagged) {
         choice.protocol = &capture_protocol(*label.tagged);
         choice.reason = "the capture records its bus (dpscope's tag)";
@@ -180,10 +224,27 @@ std::optional<Protocol> protocol_of_pcap_bus_number(std::uint32_t number) noexce
     }
 }
 
-void put_pcap_bus_tag(std::uint8_t* header, Protocol protocol) noexcept {
+std::string describe_line(const LineSettings& line) {
+    if (!line.frame_known()) return fmt::format("{} baud", line.baud);
+    return fmt::format("{} baud {}", line.baud, serial_frame_name(*line.parity, line.stop_bits));
+}
+
+std::uint32_t pcap_tag_word(Protocol protocol, const LineSettings& line) noexcept {
+    std::uint32_t word = pcap_bus_number(protocol);
+    if (line.baud >= kMinLineBaud && line.baud <= kMaxLineBaud) word |= line.baud << 8;
+    if (line.frame_known() && (line.stop_bits == 1 || line.stop_bits == 2)) {
+        const std::uint32_t parity = *line.parity == SerialParity::None  ? 1
+                                     : *line.parity == SerialParity::Odd ? 2
+                                                                         : 3;
+        word |= parity << 4 | line.stop_bits << 6;
+    }
+    return word;
+}
+
+void put_pcap_bus_tag(std::uint8_t* header, Protocol protocol, const LineSettings& line) noexcept {
     const bool big = header[0] == 0xA1;
     std::memcpy(header + 8, kPcapBusTagMagic, 4);
-    const std::uint32_t number = pcap_bus_number(protocol);
+    const std::uint32_t number = pcap_tag_word(protocol, line);
     for (std::size_t i = 0; i < 4; ++i) {
         const std::size_t shift = 8 * (big ? 3 - i : i);
         header[12 + i] = static_cast<std::uint8_t>(number >> shift);

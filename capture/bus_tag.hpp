@@ -3,10 +3,15 @@
 // --bus (docs/decisions.md, "The bus recorded in USER0 captures" and "Choosing the bus").
 //
 // pcap: the file header's fields thiszone (bytes 8-11) and sigfigs (bytes 12-15), which the pcap
-// specification has writers fill with 0 and readers ignore, hold the ASCII magic "dpsc" and the
-// bus number (1 PROFIBUS DP, 2 FC protocol, 3 VLT 2000) as a 32-bit word in the file's byte order.
+// specification has writers fill with 0 and readers ignore, hold the ASCII magic "dpsc" and a
+// 32-bit word in the file's byte order: bits 0-3 the bus number (1 PROFIBUS DP, 2 FC protocol,
+// 3 VLT 2000), and the line the capture was made on where it is known (0: unknown): bits 4-5
+// the parity (1 none, 2 odd, 3 even), bits 6-7 the stop bits (1 or 2), bits 8-31 the baud rate.
+// Files of dpscope before the line was recorded hold the bus number alone.
 // pcapng: the first interface description block carries the option if_description (code 3)
-// "dpscope bus=profibus", "dpscope bus=fc" or "dpscope bus=vlt2000".
+// "dpscope bus=profibus", "dpscope bus=fc" or "dpscope bus=vlt2000", and the line as if_speed
+// (code 8, bits per second: the baud rate) and an opt_comment (code 1) "dpscope frame=8E1".
+// (docs/decisions.md, "The line recorded in a capture".)
 #pragma once
 
 #include <cstdint>
@@ -16,6 +21,7 @@
 
 #include "capture/capture_protocol.hpp"
 #include "capture/input_format.hpp"
+#include "capture/serial_port.hpp"
 #include "decoder/byte_reader.hpp"
 
 namespace dpscope {
@@ -25,13 +31,38 @@ inline constexpr std::uint8_t kPcapBusTagMagic[4] = {'d', 'p', 's', 'c'};
 // pcapng if_description of a tagged interface: the prefix, then the protocol name ("fc").
 inline constexpr std::string_view kPcapngBusTagPrefix = "dpscope bus=";
 
+// pcapng opt_comment of an interface whose character frame is known: the prefix, then "8E1".
+inline constexpr std::string_view kPcapngFramePrefix = "dpscope frame=";
+
+// The serial line a capture was made on, as far as it is known: the baud rate (0: unknown), the
+// parity and the stop bits (unknown when not recorded).
+struct LineSettings {
+    std::uint32_t baud = 0;
+    std::optional<SerialParity> parity;
+    unsigned stop_bits = 0;  // 1 or 2; 0: unknown
+    bool known() const noexcept { return baud != 0; }
+    bool frame_known() const noexcept { return parity.has_value() && stop_bits != 0; }
+    bool operator==(const LineSettings&) const = default;
+};
+
+// Baud rates a capture may record (sniff's --baud range); others are not read as a line.
+inline constexpr std::uint32_t kMinLineBaud = 300;
+inline constexpr std::uint32_t kMaxLineBaud = 16'000'000;
+
+// "19200 baud 8E1", or "19200 baud" when the frame is not known.
+std::string describe_line(const LineSettings& line);
+
 // The bus number written into a pcap header (1 PROFIBUS DP, 2 FC protocol, 3 VLT 2000), and
 // back.
 std::uint32_t pcap_bus_number(Protocol protocol) noexcept;
 std::optional<Protocol> protocol_of_pcap_bus_number(std::uint32_t number) noexcept;
 
+// The 32-bit word of the pcap tag (bytes 12-15): the bus number and the line, as above.
+std::uint32_t pcap_tag_word(Protocol protocol, const LineSettings& line) noexcept;
+
 // Writes the tag into the 24-byte pcap file header `header` (whose magic gives the byte order).
-void put_pcap_bus_tag(std::uint8_t* header, Protocol protocol) noexcept;
+void put_pcap_bus_tag(std::uint8_t* header, Protocol protocol,
+                      const LineSettings& line = {}) noexcept;
 
 // The if_description text of an interface of `protocol`: "dpscope bus=fc".
 std::string pcapng_bus_description(Protocol protocol);
@@ -40,6 +71,7 @@ std::string pcapng_bus_description(Protocol protocol);
 struct CaptureLabel {
     int link_type = -1;              // of a pcap file, or of the first pcapng interface; -1 unknown
     std::optional<Protocol> tagged;  // the bus dpscope recorded, if any
+    LineSettings line;               // the line the capture records (pcap tag, pcapng if_speed)
     std::optional<std::uint8_t> first_byte;  // of the first record (needs the head to reach it)
 };
 
@@ -68,6 +100,8 @@ struct BusChoice {
     bool need_more = false;
     // The bus the capture's tag names (pcap, pcapng).
     std::optional<Protocol> tagged;
+    // The line the capture records (pcap, pcapng): baud 0 when it records none.
+    LineSettings line;
 };
 
 // Chooses the bus of a capture of input kind `format` (pcap, pcapng, raw, hex or text) from its

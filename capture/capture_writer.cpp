@@ -117,41 +117,72 @@ class HexWriter final : public StdioWriter {
     std::string line_;
 };
 
+// Little-endian words appended to a block.
+void put16(std::vector<std::uint8_t>& block, std::uint16_t v) {
+    block.push_back(static_cast<std::uint8_t>(v));
+    block.push_back(static_cast<std::uint8_t>(v >> 8));
+}
+void put32(std::vector<std::uint8_t>& block, std::uint32_t v) {
+    put16(block, static_cast<std::uint16_t>(v));
+    put16(block, static_cast<std::uint16_t>(v >> 16));
+}
+void put64(std::vector<std::uint8_t>& block, std::uint64_t v) {
+    put32(block, static_cast<std::uint32_t>(v));
+    put32(block, static_cast<std::uint32_t>(v >> 32));
+}
+// An option with a text value, padded to 32 bits.
+void put_text_option(std::vector<std::uint8_t>& block, std::uint16_t code, std::string_view text) {
+    put16(block, code);
+    put16(block, static_cast<std::uint16_t>(text.size()));
+    block.insert(block.end(), text.begin(), text.end());
+    block.resize(block.size() + (((text.size() + 3) & ~std::size_t{3}) - text.size()), 0);
+}
+
+// The section header and interface description blocks a pcapng capture starts with: link type,
+// snapshot length, if_tsresol = 9 (ns); for USER0 the bus as if_description; a known line as
+// if_speed (the baud rate, bits per second) and, its frame known, the comment "dpscope
+// frame=8E1".
+std::vector<std::uint8_t> pcapng_header(int link_type, Protocol bus, const LineSettings& line) {
+    std::vector<std::uint8_t> header;
+    // Section header block: type, length, byte-order magic, version 1.0, unknown length.
+    for (std::uint32_t word : {0x0A0D0D0Au, 28u, 0x1A2B3C4Du, 0x00000001u})
+        put32(header, word);
+    put64(header, ~0ULL);
+    put32(header, 28);
+    std::vector<std::uint8_t> options;
+    put16(options, 9);  // option if_tsresol
+    put16(options, 1);  // option length
+    put32(options, 9);  // value 9 and three padding bytes
+    if (link_type == kLinkTypeUser0) put_text_option(options, 3, pcapng_bus_description(bus));
+    if (line.known()) {
+        put16(options, 8);  // option if_speed
+        put16(options, 8);
+        put64(options, line.baud);
+        if (line.frame_known())
+            put_text_option(options, 1,
+                            fmt::format("{}{}", kPcapngFramePrefix,
+                                        serial_frame_name(*line.parity, line.stop_bits)));
+    }
+    put32(options, 0);  // opt_endofopt
+    const auto length = static_cast<std::uint32_t>(20 + options.size());
+    put32(header, 1);
+    put32(header, length);
+    put16(header, static_cast<std::uint16_t>(link_type));
+    put16(header, 0);
+    put32(header, 65535);
+    header.insert(header.end(), options.begin(), options.end());
+    put32(header, length);
+    return header;
+}
+
 class PcapngWriter final : public StdioWriter {
   public:
-    PcapngWriter(FILE* file, std::string name, int link_type, Protocol bus)
+    PcapngWriter(FILE* file, std::string name, int link_type, Protocol bus,
+                 const LineSettings& line)
         : StdioWriter(file, std::move(name)) {
-        // Section header block: type, length, byte-order magic, version 1.0, unknown length.
-        for (std::uint32_t word : {0x0A0D0D0Au, 28u, 0x1A2B3C4Du, 0x00000001u})
-            u32(word);
-        u64(~0ULL);
-        u32(28);
-        // Interface description block: link type, snapshot length, if_tsresol = 9 (ns), and for
-        // USER0 the bus as if_description.
-        const std::string description =
-            link_type == kLinkTypeUser0 ? pcapng_bus_description(bus) : std::string();
-        const std::size_t description_padded = (description.size() + 3) & ~std::size_t{3};
-        const auto length =
-            static_cast<std::uint32_t>(32 + (description.empty() ? 0 : 4 + description_padded));
-        u32(1);
-        u32(length);
-        u16(static_cast<std::uint16_t>(link_type));
-        u16(0);
-        u32(65535);
-        u16(9);  // option if_tsresol
-        u16(1);  // option length
-        u32(9);  // value 9 and three padding bytes
-        if (!description.empty()) {
-            u16(3);  // option if_description
-            u16(static_cast<std::uint16_t>(description.size()));
-            block_.insert(block_.end(), description.begin(), description.end());
-            block_.resize(block_.size() + (description_padded - description.size()), 0);
-        }
-        u32(0);  // opt_endofopt
-        u32(length);
-        put(block_.data(), block_.size());
-        header_bytes_ = block_.size();
-        block_.clear();
+        const std::vector<std::uint8_t> header = pcapng_header(link_type, bus, line);
+        put(header.data(), header.size());
+        header_bytes_ = header.size();
     }
 
     std::size_t header_bytes() const noexcept { return header_bytes_; }
@@ -188,18 +219,8 @@ class PcapngWriter final : public StdioWriter {
     }
 
   private:
-    void u16(std::uint16_t v) {
-        block_.push_back(static_cast<std::uint8_t>(v));
-        block_.push_back(static_cast<std::uint8_t>(v >> 8));
-    }
-    void u32(std::uint32_t v) {
-        u16(static_cast<std::uint16_t>(v));
-        u16(static_cast<std::uint16_t>(v >> 16));
-    }
-    void u64(std::uint64_t v) {
-        u32(static_cast<std::uint32_t>(v));
-        u32(static_cast<std::uint32_t>(v >> 32));
-    }
+    void u16(std::uint16_t v) { put16(block_, v); }
+    void u32(std::uint32_t v) { put32(block_, v); }
 
     std::vector<std::uint8_t> block_;
     std::size_t header_bytes_ = 0;
@@ -214,6 +235,7 @@ struct TagCookie {
     std::uint64_t position = 0;
     std::uint8_t header[kPcapFileHeaderBytes] = {};
     Protocol bus = Protocol::ProfibusDp;
+    LineSettings line;
 };
 
 ssize_t tag_write(void* cookie, const char* data, std::size_t size) {
@@ -227,7 +249,7 @@ ssize_t tag_write(void* cookie, const char* data, std::size_t size) {
             tag->header[tag->position + i] = static_cast<std::uint8_t>(data[i]);
         std::uint8_t tagged[kPcapFileHeaderBytes];
         std::memcpy(tagged, tag->header, sizeof tagged);
-        put_pcap_bus_tag(tagged, tag->bus);
+        put_pcap_bus_tag(tagged, tag->bus, tag->line);
         for (std::size_t i = 0; i < size && tag->position + i < kPcapFileHeaderBytes; ++i) {
             const std::size_t at = tag->position + i;
             if (at >= 8 && at < 16) patched[i] = static_cast<char>(tagged[at]);
@@ -255,11 +277,11 @@ class PcapWriter final : public CaptureWriter {
     static constexpr std::size_t kMaxUnflushedRecords = 4096;
 
   public:
-    // `tag_at`: where the file header starts in a seekable file whose header gets the bus tag
-    // `bus` written over it (-1: none, or a tag stream does it).
+    // `tag_at`: where the file header starts in a seekable file whose header gets the tag of
+    // `bus` and `line` written over it (-1: none, or a tag stream does it).
     // `staged`: a write error throws the file away; nothing is cut back or said of it.
     PcapWriter(pcap_t* dead, pcap_dumper_t* dumper, std::string name, long tag_at, Protocol bus,
-               bool staged)
+               const LineSettings& line, bool staged)
         : dead_(dead), dumper_(dumper), name_(std::move(name)) {
         // The file header is written at once, so that a full disk is named with its reason now
         // (errno is gone by the time a later record finds the stream's error flag set).
@@ -276,7 +298,7 @@ class PcapWriter final : public CaptureWriter {
             std::uint8_t header[kPcapFileHeaderBytes] = {};
             const std::uint32_t magic = 0xA1B23C4D;  // nanosecond magic
             std::memcpy(header, &magic, sizeof magic);
-            put_pcap_bus_tag(header, bus);
+            put_pcap_bus_tag(header, bus, line);
             if (::pwrite(fileno(file), header + 8, 8, tag_at + 8) != 8)
                 error_ = fmt::format("{}: write failed: {}", name_, std::strerror(errno));
         }
@@ -379,12 +401,13 @@ class PcapWriter final : public CaptureWriter {
 class RotatingWriter final : public CaptureWriter {
   public:
     RotatingWriter(std::string path, CaptureFormat format, int link_type, RotationOptions rotation,
-                   Protocol bus, FILE* first)
+                   Protocol bus, const LineSettings& line, FILE* first)
         : path_(std::move(path)),
           format_(format),
           link_type_(link_type),
           rotation_(rotation),
           bus_(bus),
+          line_(line),
           first_(first) {}
 
     // Closes the current file (if any) and starts the next one.
@@ -395,17 +418,15 @@ class RotatingWriter final : public CaptureWriter {
         ++index_;
         std::string name = rotated_file_name(path_, index_);
         FILE* first = std::exchange(first_, nullptr);
-        WriterResult opened = first ? open_capture_writer(first, name, format_, link_type_, bus_)
-                                    : open_capture_writer(name, format_, link_type_, bus_);
+        WriterResult opened = first
+                                  ? open_capture_writer(first, name, format_, link_type_, bus_, line_)
+                                  : open_capture_writer(name, format_, link_type_, bus_, line_);
         if (!opened) return Error{opened.error()};
         current_ = std::move(opened).value();
-        // pcapng: the section and interface blocks (with the bus tag of a USER0 interface).
-        bytes_ = format_ == CaptureFormat::Pcap ? kPcapFileHeaderBytes
-                 : format_ == CaptureFormat::Pcapng
-                     ? 60 + (link_type_ == kLinkTypeUser0
-                                 ? 4 + ((pcapng_bus_description(bus_).size() + 3) & ~std::size_t{3})
-                                 : 0)
-                     : 0;
+        // pcapng: the section and interface blocks (with the bus tag and the line).
+        bytes_ = format_ == CaptureFormat::Pcap     ? kPcapFileHeaderBytes
+                 : format_ == CaptureFormat::Pcapng ? pcapng_header(link_type_, bus_, line_).size()
+                                                    : 0;
         file_start_ns_ = kNoTime;
         records_ = 0;
         return {};
@@ -457,6 +478,7 @@ class RotatingWriter final : public CaptureWriter {
     int link_type_;
     RotationOptions rotation_;
     Protocol bus_;
+    LineSettings line_;
     FILE* first_;  // the first file, opened by the caller (nullptr: opened here)
     std::unique_ptr<CaptureWriter> current_;
     std::uint64_t bytes_ = 0;
@@ -477,41 +499,46 @@ std::string rotated_file_name(const std::string& path, unsigned index) {
 }
 
 WriterResult open_rotating_writer(const std::string& path, CaptureFormat format, int link_type,
-                                  RotationOptions rotation, Protocol bus, FILE* first) {
+                                  RotationOptions rotation, Protocol bus,
+                                  const LineSettings& line, FILE* first) {
     if (rotation.max_bytes == 0 && rotation.max_ns == 0)
         return first ? open_capture_writer(first, path == "-" ? "<stdout>" : path, format,
-                                           link_type, bus)
-                     : open_capture_writer(path, format, link_type, bus);
+                                           link_type, bus, line)
+                     : open_capture_writer(path, format, link_type, bus, line);
     if (path == "-") return Error{"cannot rotate standard output: give -w a file name"};
-    auto writer = std::make_unique<RotatingWriter>(path, format, link_type, rotation, bus, first);
+    auto writer =
+        std::make_unique<RotatingWriter>(path, format, link_type, rotation, bus, line, first);
     if (Result<void> opened = writer->open_next(); !opened) return Error{opened.error()};
     return writer;
 }
 
 WriterResult open_capture_writer(const std::string& path, CaptureFormat format, int link_type,
-                                 Protocol bus) {
-    if (path == "-") return open_capture_writer(stdout, "<stdout>", format, link_type, bus);
+                                 Protocol bus, const LineSettings& line) {
+    if (path == "-") return open_capture_writer(stdout, "<stdout>", format, link_type, bus, line);
     FILE* file = std::fopen(path.c_str(), "wb");
     if (!file)
         return Error{fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno))};
-    return open_capture_writer(file, path, format, link_type, bus);
+    return open_capture_writer(file, path, format, link_type, bus, line);
 }
 
 WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format, int link_type,
-                                 Protocol bus, bool staged) {
+                                 Protocol bus, const LineSettings& line, bool staged) {
     switch (format) {
         case CaptureFormat::Pcap: {
-            // USER0 is shared by the buses: the header records which (capture/bus_tag.hpp). A
-            // seekable file gets it written over libpcap's header; anything else is written
-            // through a stream that sets it on the way.
-            const bool tagged = link_type == kLinkTypeUser0;
+            // USER0 is shared by the buses: the header records which (capture/bus_tag.hpp), and
+            // the line where it is known, for any link type. A seekable file gets the tag
+            // written over libpcap's header; anything else is written through a stream that
+            // sets it on the way.
+            const bool tagged = link_type == kLinkTypeUser0 || line.known();
+            // Link type 257 is PROFIBUS whatever the caller's bus.
+            if (link_type == kLinkTypeProfibusDl) bus = Protocol::ProfibusDp;
             long tag_at = -1;
             FILE* target = file;
             if (tagged) {
                 std::fflush(file);
                 tag_at = is_regular(file) ? ::lseek(fileno(file), 0, SEEK_CUR) : -1;
                 if (tag_at < 0) {
-                    auto* cookie = new TagCookie{file, 0, {}, bus};
+                    auto* cookie = new TagCookie{file, 0, {}, bus, line};
                     target =
                         fopencookie(cookie, "wb",
                                     cookie_io_functions_t{nullptr, tag_write, nullptr, tag_close});
@@ -533,13 +560,13 @@ WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat for
                 if (target != stdout) std::fclose(target);
                 return Error{std::move(error)};
             }
-            auto writer =
-                std::make_unique<PcapWriter>(dead, dumper, std::move(name), tag_at, bus, staged);
+            auto writer = std::make_unique<PcapWriter>(dead, dumper, std::move(name), tag_at, bus,
+                                                       line, staged);
             if (!writer->header_error().empty()) return Error{writer->header_error()};
             return writer;
         }
         case CaptureFormat::Pcapng:
-            return std::make_unique<PcapngWriter>(file, std::move(name), link_type, bus);
+            return std::make_unique<PcapngWriter>(file, std::move(name), link_type, bus, line);
         case CaptureFormat::Raw: return std::make_unique<RawWriter>(file, std::move(name));
         case CaptureFormat::Hex: return std::make_unique<HexWriter>(file, std::move(name));
     }

@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "capture/bus_tag.hpp"
 #include "decoder/byte_reader.hpp"
 #include "decoder/result.hpp"
 #include "decoder/telegram.hpp"
@@ -59,15 +60,19 @@ using WriterResult = Result<std::unique_ptr<CaptureWriter>>;
 // header cannot be written (disk full) is an error here, not at the first record. A pcap writer
 // whose write fails (disk full) cuts the file back to the last flushed record, so it stays a
 // valid capture of what came before. A pcap or pcapng capture of link type USER0, which several
-// buses share, records `bus` in its header (capture/bus_tag.hpp), also on standard output.
+// buses share, records `bus` in its header (capture/bus_tag.hpp), also on standard output; a
+// pcap or pcapng capture of any link type records `line` when its baud rate is known (pcap: in
+// the same tag, pcapng: if_speed and a comment naming the frame).
 WriterResult open_capture_writer(const std::string& path, CaptureFormat format, int link_type,
-                                 Protocol bus = Protocol::ProfibusDp);
+                                 Protocol bus = Protocol::ProfibusDp,
+                                 const LineSettings& line = {});
 // The same into an open stream, which the writer then owns and closes (standard output is
 // flushed, not closed). `name` is what messages call it. `staged`: the stream is a staged file
 // that a write error throws away (capture/output_file.hpp), so a failed write neither cuts it
 // back nor says what it keeps.
 WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat format, int link_type,
-                                 Protocol bus = Protocol::ProfibusDp, bool staged = false);
+                                 Protocol bus = Protocol::ProfibusDp,
+                                 const LineSettings& line = {}, bool staged = false);
 
 struct RotationOptions {
     std::uint64_t max_bytes = 0;  // start a new file before one grows past this (0: no limit)
@@ -80,7 +85,7 @@ struct RotationOptions {
 // opens it; nullptr opens it here.
 WriterResult open_rotating_writer(const std::string& path, CaptureFormat format, int link_type,
                                   RotationOptions rotation, Protocol bus = Protocol::ProfibusDp,
-                                  FILE* first = nullptr);
+                                  const LineSettings& line = {}, FILE* first = nullptr);
 std::string rotated_file_name(const std::string& path, unsigned index);
 
 }  // namespace dpscope

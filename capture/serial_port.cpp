@@ -36,11 +36,15 @@ std::optional<SerialParity> serial_parity_from_name(std::string_view name) {
     return std::nullopt;
 }
 
+std::string serial_frame_name(SerialParity parity, unsigned stop_bits) {
+    const char letter = parity == SerialParity::Even  ? 'E'
+                        : parity == SerialParity::Odd ? 'O'
+                                                      : 'N';
+    return fmt::format("8{}{}", letter, stop_bits == 2 ? 2 : 1);
+}
+
 std::string SerialPort::frame() const {
-    const char letter = settings_.parity == SerialParity::Even  ? 'E'
-                        : settings_.parity == SerialParity::Odd ? 'O'
-                                                                : 'N';
-    return fmt::format("8{}{}", letter, settings_.stop_bits == 2 ? 2 : 1);
+    return serial_frame_name(settings_.parity, settings_.stop_bits);
 }
 
 namespace {
@@ -84,16 +88,38 @@ void release_lock_file(Slot& slot) noexcept {
 
 bool process_alive(pid_t pid) { return kill(pid, 0) == 0 || errno == EPERM; }
 
+// What kind of file `mode` is, for a message: "a FIFO", "a folder".
+std::string_view file_kind(mode_t mode) {
+    if (S_ISFIFO(mode)) return "a FIFO";
+    if (S_ISLNK(mode)) return "a symbolic link";
+    if (S_ISDIR(mode)) return "a folder";
+    if (S_ISSOCK(mode)) return "a socket";
+    if (S_ISCHR(mode)) return "a character device";
+    if (S_ISBLK(mode)) return "a block device";
+    return "not a plain file";
+}
+
 // The process holding the UUCP lock file at `path`: its PID; 0 when the lock is stale (the
-// process is gone, or the file is unreadable and older than a few seconds); -1 when the file is
-// fresh but holds no PID yet (another program is writing it).
-pid_t lock_owner(const std::string& path) {
-    int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+// process is gone, or the file is unreadable and older than a few seconds) or gone; -1 when the
+// file is fresh but holds no PID yet (another program is writing it). The lock folder is writable
+// by everyone: anything but a regular file there (a FIFO, whose opening would wait for a writer
+// forever; a symbolic link; a folder) is no lock file and is refused, naming what it is. It is
+// opened without following a link and without waiting, and checked again once open.
+Result<pid_t> lock_owner(const std::string& path) {
+    struct stat info {};
+    if (::lstat(path.c_str(), &info) != 0) return 0;
+    if (!S_ISREG(info.st_mode))
+        return Error{fmt::format("is not a regular file ({})", file_kind(info.st_mode))};
+    int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0 && errno == ELOOP) return Error{"is not a regular file (a symbolic link)"};
     if (fd < 0) return 0;
+    if (fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+        ::close(fd);
+        return Error{fmt::format("is not a regular file ({})", file_kind(info.st_mode))};
+    }
     char text[64] = {};
     ssize_t n = ::read(fd, text, sizeof text - 1);
-    struct stat info {};
-    bool fresh = fstat(fd, &info) == 0 && std::time(nullptr) - info.st_mtime < 5;
+    bool fresh = std::time(nullptr) - info.st_mtime < 5;
     ::close(fd);
     pid_t pid = 0;
     if (n == static_cast<ssize_t>(sizeof(int))) {  // the old binary format
@@ -156,11 +182,14 @@ Result<void> SerialPort::take_lock_file(const std::string& name) {
     Slot& slot = g_slots[slot_];
     if (path.size() >= sizeof slot.lock_path) return {};
     // Written whole under a temporary name, then linked into place: no one sees half a lock.
-    std::string temp = fmt::format("{}/LTMP.{}", dir, getpid());
-    int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    // The name is made afresh (mkostemp: O_CREAT | O_EXCL), so nothing planted under a name
+    // known in advance (LTMP.PID) is opened, followed or written through.
+    std::string temp = fmt::format("{}/LTMP.XXXXXX", dir);
+    int fd = ::mkostemp(temp.data(), O_CLOEXEC);
     if (fd < 0) return {};
     std::string content = fmt::format("{:>10}\n", getpid());
     bool written =
+        ::fchmod(fd, 0644) == 0 &&  // others read the PID in it
         ::write(fd, content.data(), content.size()) == static_cast<ssize_t>(content.size());
     ::close(fd);
     for (int attempt = 0; written && attempt < 3; ++attempt) {
@@ -172,7 +201,15 @@ Result<void> SerialPort::take_lock_file(const std::string& name) {
             return {};
         }
         if (errno != EEXIST) break;  // a file system without hard links: no lock file
-        pid_t owner = lock_owner(path);
+        Result<pid_t> checked = lock_owner(path);
+        if (!checked) {
+            unlink(temp.c_str());
+            return Error{fmt::format(
+                "{}: lock file {} {}: not a lock file, and not removed; remove it if no program "
+                "uses it",
+                device_, path, checked.error())};
+        }
+        const pid_t owner = *checked;
         if (owner != 0) {
             unlink(temp.c_str());
             if (owner < 0)

@@ -28,6 +28,9 @@ enum class SerialParity { Even, Odd, None };
 std::string_view serial_parity_name(SerialParity parity);
 std::optional<SerialParity> serial_parity_from_name(std::string_view name);
 
+// The character frame as serial programs write it: "8E1", "8O1", "8N2" (8 data bits always).
+std::string serial_frame_name(SerialParity parity, unsigned stop_bits);
+
 struct SerialSettings {
     std::string device;
     std::uint32_t baud = 1'500'000;

@@ -308,7 +308,11 @@ OpenResult open_source_of(const std::string& path, InputFormat format,
         classic_pcap = detect_input_format(replay->head) == InputFormat::Pcap;
         pcapng = detect_input_format(replay->head) == InputFormat::Pcapng;
         if (format == InputFormat::Auto) format = detect_input_format(replay->head);
-        if (choice) choice->tagged = read_capture_label(replay->head).tagged;
+        if (choice) {
+            const CaptureLabel label = read_capture_label(replay->head);
+            choice->tagged = label.tagged;
+            choice->line = label.line;
+        }
     }
     // A text log holds VLT 2000 telegrams ('<' ... '>'): no other bus's framing reads it.
     if (format == InputFormat::Text && chosen->protocol != Protocol::Vlt2000) {

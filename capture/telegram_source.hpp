@@ -165,7 +165,8 @@ OpenResult open_source(const std::string& path, InputFormat format, const Captur
 // bytes (choose_bus in capture/bus_tag.hpp: up to 64 KiB of a byte stream, the header and first
 // record of a pcap or pcapng file; a stream still arriving is read only until they decide), and
 // `choice` says which bus and why. With a `protocol`, the source is of that bus and
-// choice.tagged is what a pcap or pcapng file's tag names, if it has one.
+// choice.tagged is what a pcap or pcapng file's tag names, if it has one. Either way
+// choice.line is the line the file records, if it records one.
 OpenResult open_source(const std::string& path, InputFormat format, const CaptureProtocol* protocol,
                        BusChoice& choice, const SourceOptions& options = {});
 

@@ -78,7 +78,7 @@ FramedSource::Fill TtySource::fill() {
             set_status(InputStatus::Damaged);
             report(Severity::Error,
                    fmt::format("{}: the device went away (hang-up; unplugged?) after {} bytes",
-                               name(), bytes_read_));
+                               name(), stream_offset_));
         }
         return Fill::End;
     }
@@ -91,7 +91,6 @@ bool TtySource::read_available(bool& hangup) {
     if (n > 0) {
         std::int64_t arrival = options_.clock();
         ++reads_;
-        bytes_read_ += static_cast<std::uint64_t>(n);
         unescape_and_feed(raw_.data(), static_cast<std::size_t>(n), arrival);
         last_data_ns_ = arrival;
         gap_marked_ = false;
@@ -109,7 +108,7 @@ bool TtySource::read_available(bool& hangup) {
     if (status() != InputStatus::Damaged) {
         set_status(InputStatus::Damaged);
         report(Severity::Error, fmt::format("{}: read error after {} bytes: {}", name(),
-                                            bytes_read_, std::strerror(errno)));
+                                            stream_offset_, std::strerror(errno)));
     }
     hangup = true;
     return false;

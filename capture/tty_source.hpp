@@ -52,7 +52,9 @@ class TtySource final : public FramedSource {
     // as at the end of input, and poll() reports End once every telegram is handed out.
     void request_stop() noexcept { stop_requested_ = true; }
 
-    std::uint64_t bytes_read() const noexcept { return bytes_read_; }
+    // Bytes received on the line: the PARMRK escapes the driver adds are not counted (FF FF is
+    // one byte, FF 00 X one byte).
+    std::uint64_t bytes_read() const noexcept { return stream_offset_; }
     std::uint64_t reads() const noexcept { return reads_; }
     std::uint64_t parity_errors() const noexcept { return parity_errors_; }
     std::uint64_t idle_gaps() const noexcept { return idle_gaps_; }
@@ -87,7 +89,6 @@ class TtySource final : public FramedSource {
     bool gap_marked_ = true;
     bool stop_requested_ = false;
     enum class Escape { None, SawFF, SawFF00 } escape_ = Escape::None;
-    std::uint64_t bytes_read_ = 0;
     std::uint64_t reads_ = 0;
     std::uint64_t parity_errors_ = 0;
     std::uint64_t idle_gaps_ = 0;

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -35,7 +36,32 @@ std::string joined(const std::vector<std::string>& parts, std::string_view separ
     return text;
 }
 
+// The commands running, where a signal handler can reach them without locking or allocating:
+// a shell's PID (its process group) from its start until it is reaped, so that the PID cannot
+// have been taken by another process.
+constexpr std::size_t kRegisteredGroups = 64;
+std::atomic<pid_t> g_running_groups[kRegisteredGroups];
+
+void register_group(pid_t pid) noexcept {
+    for (std::atomic<pid_t>& slot : g_running_groups) {
+        pid_t empty = 0;
+        if (slot.compare_exchange_strong(empty, pid)) return;
+    }
+}
+
+void unregister_group(pid_t pid) noexcept {
+    for (std::atomic<pid_t>& slot : g_running_groups) {
+        pid_t expected = pid;
+        if (slot.compare_exchange_strong(expected, 0)) return;
+    }
+}
+
 }  // namespace
+
+void AlarmRunner::end_all_after_signal() noexcept {
+    for (std::atomic<pid_t>& slot : g_running_groups)
+        if (const pid_t pid = slot.load(); pid > 0) ::kill(-pid, SIGTERM);
+}
 
 AlarmEvent describe_health_event(const HealthEvent& e, const BusHealth& health) {
     AlarmEvent event;
@@ -142,11 +168,13 @@ std::uint64_t AlarmThrottle::suppressed_total() const noexcept {
     return total;
 }
 
-AlarmRunner::AlarmRunner(std::string command, Clock clock, Warn warn, std::int64_t interval_ns)
+AlarmRunner::AlarmRunner(std::string command, Clock clock, Warn warn, std::int64_t interval_ns,
+                         std::size_t max_running)
     : command_(std::move(command)),
       clock_(std::move(clock)),
       warn_(std::move(warn)),
-      throttle_(interval_ns) {}
+      throttle_(interval_ns),
+      max_running_(std::max<std::size_t>(1, max_running)) {}
 
 AlarmRunner::~AlarmRunner() = default;
 
@@ -156,8 +184,17 @@ void AlarmRunner::failure(std::string_view what) {
 }
 
 bool AlarmRunner::raise(const AlarmEvent& e) {
-    if (!raises_alarm(e.kind) || !throttle_.admit(e.kind, e.address, clock_())) return false;
+    if (!raises_alarm(e.kind)) return false;
     reap();
+    if (running_.size() >= max_running_) {
+        if (skipped_++ == 0 && warn_)
+            warn_(fmt::format(
+                "--alarm: {} commands are still running, the most at once; alarms are skipped "
+                "until one ends (further ones are only counted)",
+                running_.size()));
+        return false;
+    }
+    if (!throttle_.admit(e.kind, e.address, clock_())) return false;
     // The environment: ours without any DPSCOPE_ variable the event sets, then the event's.
     std::vector<std::string> added = alarm_environment(e);
     std::vector<char*> envp;
@@ -188,7 +225,11 @@ bool AlarmRunner::raise(const AlarmEvent& e) {
     sigemptyset(&none);
     posix_spawnattr_setsigdefault(&attributes, &defaults);
     posix_spawnattr_setsigmask(&attributes, &none);
-    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
+    // A process group of its own: end_running() ends the shell with what it started (a shell
+    // that runs `sleep 300; echo` stays the sleep's parent).
+    posix_spawnattr_setpgroup(&attributes, 0);
+    posix_spawnattr_setflags(
+        &attributes, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETPGROUP);
     std::string shell = "/bin/sh";
     std::string dash_c = "-c";
     std::vector<char*> argv = {shell.data(), dash_c.data(), command_.data(), nullptr};
@@ -202,6 +243,7 @@ bool AlarmRunner::raise(const AlarmEvent& e) {
     }
     ++started_;
     running_.push_back(pid);
+    register_group(pid);
     return true;
 }
 
@@ -213,7 +255,7 @@ void AlarmRunner::reap() {
             ++i;
             continue;
         }
-        running_.erase(running_.begin() + static_cast<std::ptrdiff_t>(i));
+        forget(i);
         if (done < 0) continue;  // not our child any more (reaped elsewhere)
         if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
             failure(
@@ -234,9 +276,48 @@ std::size_t AlarmRunner::finish(int timeout_ms) {
     return running_.size();
 }
 
+void AlarmRunner::forget(std::size_t index) {
+    unregister_group(running_[index]);
+    running_.erase(running_.begin() + static_cast<std::ptrdiff_t>(index));
+}
+
+std::size_t AlarmRunner::end_running(int grace_ms) {
+    reap();
+    if (running_.empty()) return 0;
+    // Each command's process group is its shell's PID, which stays taken (the shell is not
+    // reaped before the SIGKILL below, only waited for with WNOWAIT): no other group is hit.
+    for (pid_t pid : running_)
+        ::kill(-pid, SIGTERM);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(grace_ms);
+    for (;;) {
+        bool all_exited = true;
+        for (pid_t pid : running_) {
+            siginfo_t info{};
+            if (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
+                info.si_pid == 0)
+                all_exited = false;
+        }
+        if (all_exited || std::chrono::steady_clock::now() >= deadline) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    // What is left of each group (the shell, or a command that ignored SIGTERM after the shell
+    // ended) is killed, then the shells are reaped.
+    const std::size_t ended = running_.size();
+    while (!running_.empty()) {
+        const pid_t pid = running_.back();
+        ::kill(-pid, SIGKILL);
+        int status = 0;
+        while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        }
+        forget(running_.size() - 1);
+    }
+    ended_ += ended;
+    return ended;
+}
+
 std::string AlarmRunner::summary() const {
     const std::uint64_t suppressed = throttle_.suppressed_total();
-    if (started_ == 0 && suppressed == 0 && failed_ == 0) return {};
+    if (started_ == 0 && suppressed == 0 && failed_ == 0 && skipped_ == 0) return {};
     std::string text = fmt::format("alarms: {} run", started_);
     if (suppressed > 0) {
         std::vector<std::string> kinds;
@@ -249,7 +330,12 @@ std::string AlarmRunner::summary() const {
             "{} s ({})",
             suppressed, throttle_.interval_ns() / 1'000'000'000, joined(kinds, ", "));
     }
+    if (skipped_ > 0)
+        text +=
+            fmt::format(", {} skipped at the limit of {} running at once", skipped_, max_running_);
     if (failed_ > 0) text += fmt::format(", {} failed", failed_);
+    if (ended_ > 0)
+        text += fmt::format(", {} ended at the end (still running after the wait)", ended_);
     if (!running_.empty())
         text += fmt::format(", {} still running (not waited for)", running_.size());
     return text;

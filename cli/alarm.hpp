@@ -81,24 +81,33 @@ class AlarmThrottle {
     std::array<std::uint64_t, kKinds> suppressed_{};
 };
 
+// Alarm commands running at once, at most: a command that hangs (or a bus where every station
+// is lost at once) must not pile up processes without a limit (docs/decisions.md, "Bus health:
+// sniff").
+inline constexpr std::size_t kMaxRunningAlarms = 16;
+
 // Runs the alarm command through /bin/sh -c with the event's variables added to the environment,
 // its standard input from /dev/null and its standard output onto standard error (standard output
-// may carry the pcap of -w -), no descriptor of ours inherited. Never waits during the capture.
+// may carry the pcap of -w -), no descriptor of ours inherited, in a process group of its own (so
+// that it can be ended with what it started). Never waits during the capture.
 class AlarmRunner {
   public:
     using Clock = std::function<std::int64_t()>;
     using Warn = std::function<void(std::string_view)>;
 
     // `clock`: the throttle's time (monotonic nanoseconds; injected by tests). `warn`: where
-    // the one warning about a failing command goes.
+    // the one warning about a failing command, and the one about skipped alarms, go.
+    // `max_running`: commands running at once, at most.
     AlarmRunner(std::string command, Clock clock, Warn warn,
-                std::int64_t interval_ns = AlarmThrottle::kDefaultIntervalNs);
-    ~AlarmRunner();  // leaves commands still running alone (finish() waited for them)
+                std::int64_t interval_ns = AlarmThrottle::kDefaultIntervalNs,
+                std::size_t max_running = kMaxRunningAlarms);
+    ~AlarmRunner();  // leaves commands still running alone (end_running() ends them)
     AlarmRunner(const AlarmRunner&) = delete;
     AlarmRunner& operator=(const AlarmRunner&) = delete;
 
-    // Starts the command for `e` unless its kind raises no alarm or the throttle holds it back.
-    // Returns whether it was started.
+    // Starts the command for `e` unless its kind raises no alarm, `max_running` commands are
+    // still running (skipped and counted; the throttle's minute is not used up) or the throttle
+    // holds it back. Returns whether it was started.
     bool raise(const AlarmEvent& e);
     // Collects the commands that have ended (waitpid WNOHANG); the first that failed (exit code
     // not 0, killed, or not started) is warned about, the rest counted.
@@ -106,26 +115,39 @@ class AlarmRunner {
     // The end of the capture: waits up to `timeout_ms` for the commands still running, then
     // reaps. Returns how many are still running.
     std::size_t finish(int timeout_ms);
+    // Ends the commands still running with their process groups: SIGTERM, and SIGKILL to what
+    // is left after `grace_ms`. Returns how many were ended (not counted as failed).
+    std::size_t end_running(int grace_ms);
 
     std::uint64_t started() const noexcept { return started_; }
     std::uint64_t failed() const noexcept { return failed_; }
+    std::uint64_t skipped() const noexcept { return skipped_; }
+    std::uint64_t ended() const noexcept { return ended_; }
     std::size_t running() const noexcept { return running_.size(); }
     const AlarmThrottle& throttle() const noexcept { return throttle_; }
     // What the end of the capture says about the alarms ("" when nothing is worth saying):
     // "alarms: 2 run, 3 suppressed by the once-a-minute limit (station_lost 2, verdict_bad 1)";
-    // failures and commands left running are added.
+    // skipped alarms, failures, commands ended at the end and commands left running are added.
     std::string summary() const;
+
+    // For a handler of a signal that ends the process at once: sends SIGTERM to the process
+    // group of every alarm command still running (of every runner). Async-signal-safe.
+    static void end_all_after_signal() noexcept;
 
   private:
     void failure(std::string_view what);
+    void forget(std::size_t index);  // running_[index] is reaped: no longer listed
 
     std::string command_;
     Clock clock_;
     Warn warn_;
     AlarmThrottle throttle_;
+    std::size_t max_running_;
     std::vector<pid_t> running_;
     std::uint64_t started_ = 0;
     std::uint64_t failed_ = 0;
+    std::uint64_t skipped_ = 0;
+    std::uint64_t ended_ = 0;
 };
 
 }  // namespace dpscope::cli

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -133,7 +134,9 @@ void add_line_options(CLI::App& app, DecodeOptionValues& values) {
                    "telegram's time is when its first byte came, so the time a command takes on "
                    "the line (11 bits a byte for FC, 10 for VLT 2000) is not counted in the "
                    "drive's response time; default 9600. PROFIBUS (report): the bus load and idle "
-                   "time of the bus-health section need it; without it they are unknown")
+                   "time of the bus-health section need it; without it they are unknown. Default: "
+                   "the line the capture records (sniff -w); a --baud given wins, with a warning "
+                   "when they differ")
         ->check(whole_number(300, 12'000'000, " baud"))
         ->type_name("BAUD");
 }
@@ -234,14 +237,15 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     settings.quiet = values.quiet;
     settings.line_buffered = values.line_buffered;
     settings.allow_empty = values.allow_empty;
-    settings.baud_given = values.baud != 0;
     settings.count = values.count;
     settings.tracker.timeout_ns = static_cast<std::int64_t>(values.timeout_ms) * 1'000'000;
     settings.tracker.strict = values.strict;
     settings.fc_tracker.timeout_ns = settings.tracker.timeout_ns;
     settings.fc_tracker.response_ns = static_cast<std::int64_t>(values.fc_response_ms) * 1'000'000;
-    settings.fc_tracker.line_baud = values.baud != 0 ? values.baud : kFcDefaultLineBaud;
-    settings.vlt2000_tracker.line_baud = values.baud != 0 ? values.baud : kVlt2000DefaultLineBaud;
+    settings.fc_tracker.line_baud = kFcDefaultLineBaud;
+    settings.vlt2000_tracker.line_baud = kVlt2000DefaultLineBaud;
+    settings.baud_given = values.baud;
+    use_line(settings, LineSettings{values.baud, std::nullopt, 0});
     if (!values.bus.empty()) {
         settings.protocol = &capture_protocol(*protocol_from_name(values.bus));
         settings.bus_given = true;
@@ -511,6 +515,42 @@ void warn_profibus_options(const DecodeSettings& settings, const std::string& in
     warn(Protocol::Vlt2000, vlt2000);
 }
 
+void use_line(DecodeSettings& settings, const LineSettings& line) {
+    if (line.known()) {
+        settings.line.baud = line.baud;
+        settings.fc_tracker.line_baud = line.baud;
+        settings.vlt2000_tracker.line_baud = line.baud;
+        settings.health.baud = line.baud;
+    }
+    if (line.frame_known()) {
+        settings.line.parity = line.parity;
+        settings.line.stop_bits = line.stop_bits;
+        const unsigned bits = character_bits(*line.parity, line.stop_bits);
+        settings.fc_tracker.character_bits = bits;
+        settings.vlt2000_tracker.character_bits = bits;
+        settings.health.character_bits = bits;
+    }
+}
+
+namespace {
+
+// The line a capture records (sniff -w), used where --baud does not say otherwise.
+void use_recorded_line(DecodeSettings& settings, const LineSettings& recorded,
+                       const std::string& input) {
+    LineSettings line = recorded;
+    if (settings.baud_given != 0) {
+        if (recorded.known() && recorded.baud != settings.baud_given)
+            print_warning(fmt::format(
+                "{}: the capture records its line as {}, but --baud says {}; timed at {} baud, "
+                "as --baud says",
+                input, describe_line(recorded), settings.baud_given, settings.baud_given));
+        line.baud = settings.baud_given;
+    }
+    use_line(settings, line);
+}
+
+}  // namespace
+
 OpenResult open_input(const std::string& path, InputFormat format, DecodeSettings& settings) {
     BusChoice choice;
     OpenResult opened =
@@ -519,6 +559,7 @@ OpenResult open_input(const std::string& path, InputFormat format, DecodeSetting
     settings.protocol = choice.protocol;
     say_bus_choice(settings, choice, (*opened)->name());
     warn_profibus_options(settings, (*opened)->name());
+    use_recorded_line(settings, choice.line, (*opened)->name());
     return opened;
 }
 
@@ -572,10 +613,34 @@ int empty_input_exit(const TelegramSource& source, bool allow_empty) {
     return kExitFindings;
 }
 
+namespace {
+
+std::atomic<std::uint64_t> g_dropped_standard_error{0};
+
+}  // namespace
+
+bool write_standard_error(std::string_view text) noexcept {
+    if (std::fwrite(text.data(), 1, text.size(), stderr) == text.size() && std::fflush(stderr) == 0)
+        return true;
+    std::clearerr(stderr);  // the next message is tried again (a disk may have room by then)
+    count_dropped_standard_error_message();
+    return false;
+}
+
+std::uint64_t dropped_standard_error_messages() noexcept {
+    return g_dropped_standard_error.load(std::memory_order_relaxed);
+}
+
+void count_dropped_standard_error_message() noexcept {
+    g_dropped_standard_error.fetch_add(1, std::memory_order_relaxed);
+}
+
 void print_diagnostic(Severity severity, std::string_view message) {
     clear_progress_line();
     std::fflush(stdout);
-    fmt::print(stderr, "dpscope: {}: {}\n", severity_name(severity), message);
+    // fmt::print would throw std::system_error on a failed write: a closed standard error must
+    // never end a command.
+    write_standard_error(fmt::format("dpscope: {}: {}\n", severity_name(severity), message));
 }
 
 void print_error(std::string_view message) { print_diagnostic(Severity::Error, message); }

@@ -147,10 +147,19 @@ struct DecodeSettings {
     bool link_type_given = false;  // --linktype; otherwise the bus's default (capture_link_type)
     bool print = true;             // render the decode (false with -w unless -P)
     bool allow_empty = false;      // --allow-empty: an input without telegrams exits 0
-    bool baud_given = false;       // --baud (decode, hex, report)
+    // The line the capture was made on, as far as it is known: --baud (baud_given, 0 none), or
+    // what the capture records (open_input), or the port (sniff). -w records it in the capture
+    // written.
+    std::uint32_t baud_given = 0;
+    LineSettings line;
 
     bool filtering() const noexcept { return !stations.empty() || !pnus.empty(); }
 };
+
+// The line the capture was made on: the time a telegram takes on it (the FC and VLT 2000
+// trackers' response times), the bus load of the bus-health tracker, and what -w records. What
+// `line` does not know (a baud rate of 0, an unknown frame) is left as it was.
+void use_line(DecodeSettings& settings, const LineSettings& line);
 
 // The link type a capture of `protocol` is written with: `given` (--linktype) or the bus's
 // default (PROFIBUS 257 PROFIBUS_DL, FC protocol 147 USER0). An error when the link type is
@@ -199,6 +208,16 @@ inline bool show(TelegramRenderer* renderer, const DecodeSettings& settings,
 void print_error(std::string_view message);
 void print_warning(std::string_view message);
 void print_diagnostic(Severity severity, std::string_view message);
+
+// Writes `text` to standard error and never throws: a write that fails (standard error a pipe
+// whose reader has gone, a full disk) drops the text and counts it. Every message goes through
+// it (print_diagnostic too), so a closed standard error never ends a command early (sniff's
+// capture runs on; docs/decisions.md, "A closed standard error"). False when dropped.
+bool write_standard_error(std::string_view text) noexcept;
+// Messages dropped so far because standard error could not be written.
+std::uint64_t dropped_standard_error_messages() noexcept;
+// Counts one more dropped message (output of the caller's own on standard error that failed).
+void count_dropped_standard_error_message() noexcept;
 
 // --- Bus health (issue 12): the thresholds of the verdict (stats, report, sniff --stats) -------
 // The largest --health-config file read: the thresholds fit in 2 KiB with comments.

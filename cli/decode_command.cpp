@@ -65,7 +65,8 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         capture_file = std::move(file).value();
         WriterResult opened =
             open_capture_writer(capture_file->file(), capture_file->name(), settings.write_format,
-                                *link_type, settings.protocol->protocol, capture_file->is_staged());
+                                *link_type, settings.protocol->protocol, settings.line,
+                                capture_file->is_staged());
         capture_file->release_file();  // the writer closes it
         if (!opened) {
             print_error(fmt::format("{}{}", opened.error(), capture_file->left_as_it_was()));
@@ -75,8 +76,9 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     }
     // --baud times the serial buses' commands on the line; a PROFIBUS decode has no use for it
     // (report and stats take it for the bus load), so it is said, as for the other options of
-    // another bus.
-    if (settings.baud_given && settings.protocol->protocol == Protocol::ProfibusDp)
+    // another bus. With -w it is not ignored: the capture written records the line.
+    if (settings.baud_given && settings.protocol->protocol == Protocol::ProfibusDp &&
+        settings.write.empty())
         print_warning(fmt::format(
             "{}: --baud applies to the FC protocol and VLT 2000 in decode (for PROFIBUS, report "
             "and stats use it for the bus load); this capture is PROFIBUS DP: ignored",

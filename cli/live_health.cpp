@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cli/common_options.hpp"
 #include "formats/stats.hpp"
 
 namespace dpscope::cli {
@@ -59,7 +60,7 @@ void LiveHealth::handle(const HealthEvent& event) {
             out_.put('\n');
             out_.end_record();
             break;
-        case Show::StandardError: std::fprintf(stderr, "%s\n", line.c_str()); break;
+        case Show::StandardError: write_standard_error(line + "\n"); break;
         case Show::Nothing: break;
     }
     if (alarms_) alarms_->raise(described);

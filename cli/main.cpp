@@ -1,7 +1,10 @@
 // dpscope: a protocol analyzer for drive parameter channels on PROFIBUS DP.
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <csignal>
 #include <exception>
 #include <string>
@@ -11,8 +14,27 @@
 #include "cli/parse_errors.hpp"
 #include "cli/version.hpp"
 
+namespace {
+
+// Standard input, output or error closed when dpscope starts (`2>&-`): /dev/null takes its
+// place, so that no file dpscope opens (a -w capture) gets descriptor 2 and messages written
+// into it.
+void open_missing_standard_streams() {
+    for (int fd = 0; fd <= 2; ++fd) {
+        if (::fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
+        const int null = ::open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
+        if (null >= 0 && null != fd) {
+            ::dup2(null, fd);
+            ::close(null);
+        }
+    }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     using namespace dpscope::cli;
+    open_missing_standard_streams();
     // Wireshark runs dpscope as an extcap capture interface: its own options, not a subcommand.
     if (is_extcap_call(argc, argv)) return run_extcap(argc, argv);
     CLI::App app{

@@ -266,7 +266,9 @@ void say_bus_choice(const DecodeSettings& settings, const BusChoice& choice,
                     const std::string& input);
 
 // Opens `path` for decode and report: with --bus as it says, without it choosing the bus from
-// the capture and setting settings.protocol; says the choice (say_bus_choice).
+// the capture and setting settings.protocol; says the choice (say_bus_choice). The line the
+// capture records (sniff -w) is used unless --baud was given, which wins, with a warning when
+// they differ (use_line).
 OpenResult open_input(const std::string& path, InputFormat format, DecodeSettings& settings);
 
 }  // namespace dpscope::cli

@@ -117,7 +117,8 @@ int run_report(const ReportCommand& command) {
     // The bus-health section of a PROFIBUS capture (the Pipeline keeps no tracker for another).
     settings->track_health = settings->protocol->protocol == Protocol::ProfibusDp;
     settings->health.thresholds = *thresholds;
-    settings->health.baud = command.options.baud;  // 0: the bus load is unknown
+    // settings->health.baud: --baud, else the line the capture records, else 0 (the bus load
+    // is unknown); set by resolve_decode_options and open_input.
     // Written beside OUT and moved into place only once the report is complete: an unusable
     // input or a write error leaves an existing OUT as it was.
     return write_staged_output(command.output, path, [&](Output& out, std::string& partial_why) {

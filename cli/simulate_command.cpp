@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "capture/bus_tag.hpp"
 #include "capture/capture_writer.hpp"
 #include "capture/output_file.hpp"
 #include "capture/pcap_source.hpp"
@@ -102,19 +103,16 @@ int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
     // 8E1 for PROFIBUS and the FC protocol, 8N1 for the VLT 2000.
     SerialSettings serial{command.device, command.baud, false, true};
     if (command.bus == "vlt2000") serial.parity = SerialParity::None;
-    Result<std::unique_ptr<SerialPort>> port = SerialPort::open(serial);
-    if (!port) {
-        print_error(port.error());
-        return kExitUsage;
-    }
     std::unique_ptr<TelegramSource> replay;
     if (!command.replay.empty()) {
         // The simulator makes the --bus protocol; a capture played in its place is one too.
+        BusChoice choice;
         OpenResult opened = open_source(
             command.replay, InputFormat::Auto,
             command.bus == "profibus"
-                ? profibus_dp_protocol()
-                : capture_protocol(protocol_from_name(command.bus).value_or(Protocol::Fc)));
+                ? &profibus_dp_protocol()
+                : &capture_protocol(protocol_from_name(command.bus).value_or(Protocol::Fc)),
+            choice);
         if (!opened) {
             print_error(opened.error());
             return kExitUsage;
@@ -122,6 +120,24 @@ int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
         replay = std::move(opened).value();
         replay->on_issue(
             [](const InputIssue& issue) { print_diagnostic(issue.severity, issue.message); });
+        // A capture that records its line (sniff -w) is played on that line unless --baud says
+        // otherwise (docs/decisions.md, "The line recorded in a capture").
+        const LineSettings& line = choice.line;
+        if (line.known() && !command.baud_given) serial.baud = line.baud;
+        if (line.known() && command.baud_given && line.baud != command.baud)
+            print_warning(fmt::format(
+                "{}: the capture records its line as {}, but --baud says {}; played at {} baud, "
+                "as --baud says",
+                command.replay, describe_line(line), command.baud, command.baud));
+        if (line.frame_known()) {
+            serial.parity = *line.parity;
+            serial.stop_bits = line.stop_bits;
+        }
+    }
+    Result<std::unique_ptr<SerialPort>> port = SerialPort::open(serial);
+    if (!port) {
+        print_error(port.error());
+        return kExitUsage;
     }
     TelegramGenerator next = [&](std::vector<std::uint8_t>& bytes, std::int64_t& time) {
         if (!replay) return simulator->next(bytes, time);
@@ -148,9 +164,12 @@ int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
     // Stopped by a signal, the session is cut short on purpose: nothing to say of its faults.
     if (simulator && !g_stop_playing.load()) exit_code = report_injections(*simulator);
     if (command.list_injections)
-        fmt::print(stderr, "played {} telegrams ({} bytes) in {:.3f} s (scheduled {:.3f} s)\n",
-                   stats.telegrams, stats.bytes, static_cast<double>(stats.wall_ns) / 1e9,
-                   static_cast<double>(stats.scheduled_ns) / 1e9);
+        fmt::print(
+            stderr,
+            "played {} telegrams ({} bytes) in {:.3f} s (scheduled {:.3f} s) at {} baud {}\n",
+            stats.telegrams, stats.bytes, static_cast<double>(stats.wall_ns) / 1e9,
+            static_cast<double>(stats.scheduled_ns) / 1e9, serial.baud,
+            serial_frame_name(serial.parity, serial.stop_bits));
     return exit_code;
 }
 
@@ -408,8 +427,9 @@ int run_simulate(const SimulateCommand& command) {
         return kExitOutputError;
     }
     std::unique_ptr<PendingOutputFile> file = std::move(opened_file).value();
+    // No line recorded: the samples made with it stay as they are (docs/decisions.md).
     WriterResult opened = open_capture_writer(file->file(), file->name(), format, link_type,
-                                              options.bus, file->is_staged());
+                                              options.bus, LineSettings{}, file->is_staged());
     file->release_file();  // the writer closes it
     if (!opened) {
         print_error(fmt::format("{}{}", opened.error(), file->left_as_it_was()));
@@ -495,7 +515,8 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
         ->type_name("PATH");
     sub->add_option("--replay", command->replay,
                     "With --device: play this capture (any input format dpscope reads) with its "
-                    "recorded timing instead of a simulated session")
+                    "recorded timing instead of a simulated session, on the line it records "
+                    "(sniff -w: baud rate, parity, stop bits) unless --baud")
         ->type_name("FILE");
     sub->add_flag("--as-fast-as-possible", command->as_fast_as_possible,
                   "With --device: do not wait for the telegrams' times, write as fast as the "

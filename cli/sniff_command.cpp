@@ -48,6 +48,7 @@ extern "C" void request_stop(int signal_number) {
     if (g_stop_requested.exchange(true)) {
         SerialPort::restore_all_after_signal();
         PendingOutputFile::remove_all_after_signal();
+        AlarmRunner::end_all_after_signal();
         ::signal(signal_number, SIG_DFL);
         ::raise(signal_number);
     }
@@ -162,8 +163,10 @@ bool is_capture_file(const std::string& given, const std::string& output, bool r
     return same_file(path, rotated_file_name(output, static_cast<unsigned>(index)));
 }
 
-// How long the end of the capture waits for --alarm commands still running.
+// How long the end of the capture waits for --alarm commands still running, and how long
+// those still running then have between SIGTERM and SIGKILL.
 constexpr int kAlarmWaitAtEndMs = 5000;
+constexpr int kAlarmEndGraceMs = 1000;
 
 // Checks --stats, --stats-file, --stats-format and --alarm against the bus, each other, -w and
 // the report.
@@ -226,6 +229,9 @@ Result<void> check_report_options(const SniffCommand& command) {
 }  // namespace
 
 int run_sniff(const SniffCommand& command) {
+    // A closed pipe is a write error, from the first message on (standard error's reader may
+    // have gone before the capture starts), not a SIGPIPE that ends the process.
+    ::signal(SIGPIPE, SIG_IGN);
     Result<DecodeSettings> settings = resolve_decode_options(command.options, "text");
     if (!settings) {
         print_error(settings.error());
@@ -344,9 +350,12 @@ int run_sniff(const SniffCommand& command) {
         capture_file = std::move(staged).value();
         RotationOptions rotation{command.rotate_size,
                                  static_cast<std::int64_t>(command.rotate_seconds * 1e9)};
+        // The line as asked (the port, set up later, reads it back within 1 %): decode,
+        // report and stats read the capture at its rate without --baud.
+        const LineSettings line{baud, parity, command.stop_bits};
         WriterResult opened =
             open_rotating_writer(command.output, CaptureFormat::Pcap, *link_type, rotation,
-                                 settings->protocol->protocol, capture_file->file());
+                                 settings->protocol->protocol, line, capture_file->file());
         capture_file->release_file();  // the writer closes it
         if (!opened) {
             print_error(opened.error());
@@ -395,9 +404,9 @@ int run_sniff(const SniffCommand& command) {
     const bool extcap = command.extcap;
     if (!extcap) {
         if (!port->note().empty()) print_warning(fmt::format("{}", port->note()));
-        std::fprintf(stderr, "dpscope: capturing on %s at %u baud %s%s; Ctrl-C stops\n",
-                     command.device.c_str(), port->baud(), port->frame().c_str(),
-                     port->low_latency() ? ", low latency" : "");
+        write_standard_error(fmt::format("dpscope: capturing on {} at {} baud {}{}; Ctrl-C stops\n",
+                                         command.device, port->baud(), port->frame(),
+                                         port->low_latency() ? ", low latency" : ""));
     }
     const int fd = port->fd();
     TtySourceOptions tty_options;
@@ -421,6 +430,10 @@ int run_sniff(const SniffCommand& command) {
 
     Output out(text_stream, settings->line_buffered || isatty(fileno(text_stream)) != 0);
     const char* text_stream_name = text_stream == stdout ? "standard output" : "standard error";
+    // The live output on standard error (-w -, --report-file -, --stats-file -) is dropped
+    // when standard error cannot be written, as every message there is; the capture runs on.
+    const bool text_on_stderr = text_stream == stderr;
+    bool live_output_dropped = false;
     report_input_issues(source, out);
     Pipeline pipeline(
         *settings, report && report_format_from_name(command.report_format) == ReportFormat::Html);
@@ -503,9 +516,13 @@ int run_sniff(const SniffCommand& command) {
                 if (Result<void> flushed = writer->flush(); !flushed)
                     stop_on_write_error(flushed.error());
             }
-            if (!out.flush() && !output_failed)
-                stop_on_write_error(
-                    fmt::format("{}: write failed: {}", text_stream_name, std::strerror(errno)));
+            if (!out.flush() && !output_failed) {
+                if (!text_on_stderr)
+                    stop_on_write_error(fmt::format("{}: write failed: {}", text_stream_name,
+                                                    std::strerror(errno)));
+                else if (!live_output_dropped)
+                    live_output_dropped = true;
+            }
             last_flush = now;
             // A quiet bus writes nothing that could fail: the fifo is watched as well.
             if (!stopping && reader_watch.reader_gone()) {
@@ -537,15 +554,11 @@ int run_sniff(const SniffCommand& command) {
     if (live) live->after_finish(telegrams, seconds);
     out.flush();
     if (!extcap)
-        std::fprintf(
-            stderr,
-            "dpscope: %llu telegrams, %llu bytes in %.1f s; %llu bytes skipped, %llu parity "
-            "errors, %llu telegrams cut off by line idle time\n",
-            static_cast<unsigned long long>(telegrams),
-            static_cast<unsigned long long>(source.bytes_read()), seconds,
-            static_cast<unsigned long long>(source.bytes_skipped()),
-            static_cast<unsigned long long>(source.parity_errors()),
-            static_cast<unsigned long long>(source.idle_gaps()));
+        write_standard_error(
+            fmt::format("dpscope: {} telegrams, {} bytes in {:.1f} s; {} bytes skipped, {} parity "
+                        "errors, {} telegrams cut off by line idle time\n",
+                        telegrams, source.bytes_read(), seconds, source.bytes_skipped(),
+                        source.parity_errors(), source.idle_gaps()));
     if (settings->quiet)
         pipeline.summary().render_text(out, describe_input(source), pipeline.decoder());
     if (stats) {
@@ -578,8 +591,9 @@ int run_sniff(const SniffCommand& command) {
     }
     if (alarms) {
         alarms->finish(kAlarmWaitAtEndMs);
+        alarms->end_running(kAlarmEndGraceMs);
         if (std::string said = alarms->summary(); !said.empty())
-            std::fprintf(stderr, "dpscope: %s\n", said.c_str());
+            write_standard_error(fmt::format("dpscope: {}\n", said));
     }
     int exit_code = kExitOk;
     if (report) {
@@ -611,7 +625,21 @@ int run_sniff(const SniffCommand& command) {
         }
         if (fails) exit_code = kExitFindings;
     }
-    if (!out.flush()) output_failed = true;
+    if (!out.flush()) {
+        if (!text_on_stderr) output_failed = true;
+        live_output_dropped = text_on_stderr;
+    }
+    // Standard error could not be written (its reader gone, a full disk): the capture ran to its
+    // end; what was dropped is said once more (standard error may take it by now) and the exit
+    // code is 4, an output that could not be written.
+    if (const std::uint64_t dropped = dropped_standard_error_messages();
+        (dropped > 0 || live_output_dropped) && !reader_left) {
+        print_error(fmt::format(
+            "standard error could not be written: {} dropped{}",
+            dropped == 1 ? std::string("1 message") : fmt::format("{} messages", dropped),
+            live_output_dropped ? ", and the live output with them" : ""));
+        output_failed = true;
+    }
     if (output_failed && !reader_left) return kExitOutputError;
     if (source.status() == InputStatus::Damaged) return kExitDeviceError;
     return exit_code;
@@ -654,7 +682,9 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
         ->default_str("1");
     sub->add_option("-w,--write", command->output,
                     "Write the telegrams to FILE as pcap, flushed at least every 100 ms; - writes "
-                    "pcap to standard output (the decoded output then goes to standard error)")
+                    "pcap to standard output (the decoded output then goes to standard error). The "
+                    "capture records the line (baud rate, parity, stop bits), which decode, report "
+                    "and stats then use without --baud")
         ->check(output_file_name())
         ->type_name("FILE");
     sub->add_option("--linktype", command->link_type,
@@ -727,7 +757,8 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
                     "(address or segment), DPSCOPE_ROLE, DPSCOPE_TIME (ISO 8601 UTC), "
                     "DPSCOPE_FRAME, DPSCOPE_VERDICT and DPSCOPE_REASONS in its environment; at "
                     "most once per event kind and station a minute; the capture never waits "
-                    "for it")
+                    "for it; at most 16 run at once (more are skipped and counted), and those "
+                    "still running 5 s after the capture ends are ended")
         ->type_name("CMD");
     sub->add_flag("--no-low-latency", command->no_low_latency,
                   "Do not ask the driver for low-latency mode (ASYNC_LOW_LATENCY)");
@@ -741,7 +772,9 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
         "(Danfoss VLT 2000 ASCII telegram: 9600 baud 8N1 unless they say otherwise)");
     sub->footer(std::string(kExitCodeHelp) +
                 " For sniff: on 4 and 5 what was captured before is written and the file is a "
-                "valid pcap; with --report, 1 when a finding reaches --fail-on.");
+                "valid pcap; a closed standard error does not stop the capture, its messages are "
+                "dropped and the exit code is 4; with --report, 1 when a finding reaches "
+                "--fail-on.");
     sub->callback([command, &exit_code] { exit_code = run_sniff(*command); });
 }
 

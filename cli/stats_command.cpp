@@ -80,7 +80,8 @@ int run_stats(const StatsCommand& command) {
     }
     settings->track_health = true;
     settings->health.thresholds = *thresholds;
-    settings->health.baud = command.options.baud;  // 0: the bus load is unknown
+    // settings->health.baud: --baud, else the line the capture records, else 0 (the bus load
+    // is unknown); set by resolve_decode_options and open_input.
     if (Result<void> distinct = check_not_an_input({path}, command.output, "-w"); !distinct) {
         print_error(distinct.error());
         return kExitUsage;
@@ -173,7 +174,8 @@ void add_stats_command(CLI::App& app, int& exit_code) {
     sub->add_option("--baud", command->options.baud,
                     "The line's baud rate when the capture was made (PROFIBUS: 9600 to 12000000, "
                     "e.g. 1500000): the bus load and idle time need it; without it they are "
-                    "unknown")
+                    "unknown. Default: the line the capture records (sniff -w); a --baud given "
+                    "wins, with a warning when they differ")
         ->check(whole_number(9600, 12'000'000, " baud"))
         ->type_name("BAUD");
     add_allow_empty_option(*sub, command->allow_empty);

@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <future>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -158,6 +160,16 @@ bool release(const std::string& fifo) {
     return written;
 }
 
+// Waits until `path` holds `lines` lines (the commands run on their own; at most the patience).
+std::vector<std::string> wait_for_lines(const std::string& path, std::size_t lines) {
+    std::vector<std::string> got;
+    test::wait_until([&] {
+        got = test::lines_of(file_text(path));
+        return got.size() >= lines;
+    });
+    return got;
+}
+
 TEST(AlarmTest, RunnerRunsTheCommandWithTheEventInItsEnvironmentOncePerMinute) {
     std::string path = test::temp_path("alarms.txt");
     std::int64_t now = 0;
@@ -238,6 +250,66 @@ TEST(AlarmTest, NeverWaitsForASlowCommandDuringTheCapture) {
     EXPECT_NE(runner.summary().find("1 still running"), std::string::npos) << runner.summary();
     EXPECT_TRUE(release(fifo));
     EXPECT_EQ(runner.finish(kPatienceMs), 0u);
+}
+
+// Alarm commands that hang do not pile up: at most `max_running` run at once, an alarm beyond
+// that is skipped (counted, one warning) without using up its station's minute, and at the end
+// the commands still running are ended with their process group (the shell and what it
+// started), first with SIGTERM, after the grace period with SIGKILL.
+TEST(AlarmTest, HangingCommandsAreCappedAndEndedAtTheEnd) {
+    const std::string pids = test::temp_path("pids.txt");
+    std::int64_t now = 0;
+    std::vector<std::string> warnings;
+    // The shell stays the sleep's parent (a command follows it): the pair seen piling up.
+    AlarmRunner runner(
+        "echo $$ >> " + pids + "; sleep 300; echo", [&] { return now; },
+        [&](std::string_view w) { warnings.emplace_back(w); }, AlarmThrottle::kDefaultIntervalNs,
+        2);
+    EXPECT_TRUE(runner.raise(lost_event(5)));
+    EXPECT_TRUE(runner.raise(lost_event(6)));
+    EXPECT_FALSE(runner.raise(lost_event(7)));  // two are running: skipped
+    EXPECT_FALSE(runner.raise(lost_event(8)));
+    EXPECT_EQ(runner.running(), 2u);
+    EXPECT_EQ(runner.skipped(), 2u);
+    EXPECT_EQ(runner.started(), 2u);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_EQ(warnings[0],
+              "--alarm: 2 commands are still running, the most at once; alarms are skipped "
+              "until one ends (further ones are only counted)");
+    std::vector<std::string> started = wait_for_lines(pids, 2);
+    ASSERT_EQ(started.size(), 2u);
+    std::vector<pid_t> groups;
+    for (const std::string& line : started)
+        groups.push_back(static_cast<pid_t>(std::stol(line)));
+    for (pid_t group : groups)
+        EXPECT_EQ(test::live_processes_in_group(group), 2u);  // the shell and its sleep
+    EXPECT_EQ(runner.finish(0), 2u);
+    EXPECT_EQ(runner.end_running(2000), 2u);
+    EXPECT_EQ(runner.running(), 0u);
+    for (pid_t group : groups)
+        EXPECT_EQ(test::live_processes_in_group(group), 0u) << group;
+    EXPECT_EQ(runner.failed(), 0u);  // ended by us, not failed
+    EXPECT_EQ(runner.summary(),
+              "alarms: 2 run, 2 skipped at the limit of 2 running at once, 2 ended at the end "
+              "(still running after the wait)");
+    // The skipped station's alarm goes out once there is room.
+    EXPECT_TRUE(runner.raise(lost_event(7)));
+    EXPECT_EQ(runner.end_running(2000), 1u);
+}
+
+// A command that ignores SIGTERM is killed after the grace period.
+TEST(AlarmTest, ACommandIgnoringSigtermIsKilledAfterTheGracePeriod) {
+    const std::string pids = test::temp_path("pids.txt");
+    std::int64_t now = 0;
+    AlarmRunner runner(
+        "trap '' TERM; echo $$ >> " + pids + "; sleep 300; echo", [&] { return now; }, nullptr);
+    EXPECT_TRUE(runner.raise(lost_event(5)));
+    std::vector<std::string> started = wait_for_lines(pids, 1);
+    ASSERT_EQ(started.size(), 1u);
+    const auto group = static_cast<pid_t>(std::stol(started[0]));
+    EXPECT_EQ(runner.end_running(100), 1u);
+    EXPECT_EQ(test::live_processes_in_group(group), 0u);
+    EXPECT_EQ(runner.running(), 0u);
 }
 
 TEST(AlarmTest, TheCommandInheritsNoDescriptorAndWritesNothingOnStandardOutput) {

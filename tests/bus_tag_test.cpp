@@ -164,6 +164,158 @@ TEST(BusTagTest, TagIsWrittenIntoAPipeToo) {
     EXPECT_EQ(got[40], 0x02);
 }
 
+// The line a capture was made on (sniff -w) is recorded beside the bus: in a pcap's tag (any
+// link type once the line is known), in pcapng as if_speed and a comment naming the frame.
+TEST(BusTagTest, CapturesRecordTheLineTheyWereMadeOn) {
+    const LineSettings line{19200, SerialParity::Odd, 2};
+    auto write_with_line = [&](CaptureFormat format, int link_type, Protocol bus,
+                               const LineSettings& with) {
+        const std::string path =
+            test::temp_path(format == CaptureFormat::Pcap ? "line.pcap" : "line.pcapng");
+        WriterResult opened = open_capture_writer(path, format, link_type, bus, with);
+        EXPECT_TRUE(opened) << opened.error();
+        const std::vector<std::uint8_t> stream = fc_stream(1);
+        EXPECT_TRUE((*opened)->write(Bytes(stream.data(), 16), 1'000'000'000));
+        EXPECT_TRUE((*opened)->close());
+        return path;
+    };
+    for (CaptureFormat format : {CaptureFormat::Pcap, CaptureFormat::Pcapng}) {
+        const std::string path = write_with_line(format, kLinkTypeUser0, Protocol::Fc, line);
+        CaptureLabel label = read_capture_label(bytes_of(test::read_file(path)));
+        ASSERT_TRUE(label.tagged);
+        EXPECT_EQ(*label.tagged, Protocol::Fc);
+        EXPECT_EQ(label.line, line) << capture_format_name(format);
+        EXPECT_EQ(describe_line(label.line), "19200 baud 8O2");
+        // libpcap (and so tcpdump and Wireshark) reads it as before.
+        char errbuf[PCAP_ERRBUF_SIZE] = {};
+        pcap_t* handle = pcap_open_offline(path.c_str(), errbuf);
+        ASSERT_NE(handle, nullptr) << errbuf;
+        pcap_pkthdr* header = nullptr;
+        const u_char* data = nullptr;
+        EXPECT_EQ(pcap_next_ex(handle, &header, &data), 1);
+        pcap_close(handle);
+    }
+    // PROFIBUS (link type 257): tagged once the line is known, and a PROFIBUS tag whatever bus
+    // the caller names.
+    const std::string dl = write_with_line(CaptureFormat::Pcap, kLinkTypeProfibusDl, Protocol::Fc,
+                                           {1'500'000, SerialParity::Even, 1});
+    CaptureLabel label = read_capture_label(bytes_of(test::read_file(dl)));
+    ASSERT_TRUE(label.tagged);
+    EXPECT_EQ(*label.tagged, Protocol::ProfibusDp);
+    EXPECT_EQ(label.line, (LineSettings{1'500'000, SerialParity::Even, 1}));
+    // Only the baud rate known (decode --baud): the frame stays unknown.
+    const std::string baud_only = write_with_line(CaptureFormat::Pcapng, kLinkTypeUser0,
+                                                  Protocol::Fc, {38400, std::nullopt, 0});
+    label = read_capture_label(bytes_of(test::read_file(baud_only)));
+    EXPECT_EQ(label.line, (LineSettings{38400, std::nullopt, 0}));
+    EXPECT_EQ(describe_line(label.line), "38400 baud");
+}
+
+TEST(BusTagTest, ThePcapTagWordHoldsBusAndLineInEitherByteOrder) {
+    const LineSettings line{12'000'000, SerialParity::None, 1};
+    EXPECT_EQ(pcap_tag_word(Protocol::Vlt2000, line), 3u | 1u << 4 | 1u << 6 | 12'000'000u << 8);
+    for (bool big : {false, true}) {
+        std::uint8_t header[24] = {};
+        const std::uint8_t magic[4] = {0xA1, 0xB2, 0x3C, 0x4D};
+        for (int i = 0; i < 4; ++i)
+            header[i] = magic[big ? i : 3 - i];
+        header[big ? 23 : 20] = 147;
+        put_pcap_bus_tag(header, Protocol::Vlt2000, line);
+        CaptureLabel label = read_capture_label(Bytes(header, sizeof header));
+        ASSERT_TRUE(label.tagged) << big;
+        EXPECT_EQ(*label.tagged, Protocol::Vlt2000);
+        EXPECT_EQ(label.line, line) << big;
+        // A tag as dpscope wrote it before the line was recorded: the bus alone.
+        put_pcap_bus_tag(header, Protocol::Fc);
+        label = read_capture_label(Bytes(header, sizeof header));
+        ASSERT_TRUE(label.tagged);
+        EXPECT_EQ(*label.tagged, Protocol::Fc);
+        EXPECT_FALSE(label.line.known());
+        EXPECT_FALSE(label.line.frame_known());
+    }
+}
+
+TEST(BusTagTest, TheLineIsWrittenIntoAPipeToo) {
+    int fds[2];
+    ASSERT_EQ(pipe(fds), 0);
+    FILE* in = fdopen(fds[1], "wb");
+    const LineSettings line{9600, SerialParity::Even, 1};
+    WriterResult opened =
+        open_capture_writer(in, "<pipe>", CaptureFormat::Pcap, kLinkTypeUser0, Protocol::Fc, line);
+    ASSERT_TRUE(opened) << opened.error();
+    ASSERT_TRUE((*opened)->close());
+    std::vector<std::uint8_t> got(4096);
+    std::size_t n = 0;
+    for (ssize_t r; (r = read(fds[0], got.data() + n, got.size() - n)) > 0;)
+        n += static_cast<std::size_t>(r);
+    close(fds[0]);
+    got.resize(n);
+    CaptureLabel label = read_capture_label(bytes_of(got));
+    EXPECT_EQ(label.line, line);
+}
+
+// An FC capture made at 19200 baud 8E1: a 16-byte command takes 9.2 ms on the line, the drive
+// answers 12 ms after it began (2.8 ms after its end). Read without --baud it is timed at the
+// rate it records, as with --baud 19200; --baud 9600 wins, with a warning; decode -w keeps it.
+TEST(BusTagTest, DecodeReportAndStatsReadTheLineACaptureRecords) {
+    const std::string pcap = test::temp_path("fc-19200.pcap");
+    {
+        WriterResult opened = open_capture_writer(pcap, CaptureFormat::Pcap, kLinkTypeUser0,
+                                                  Protocol::Fc, {19200, SerialParity::Even, 1});
+        ASSERT_TRUE(opened) << opened.error();
+        const std::vector<std::uint8_t> command = test::fc_parameter(1, 1, 414);
+        const std::vector<std::uint8_t> response = test::fc_parameter(1, 1, 414, 0, 1500, 0x0607);
+        ASSERT_EQ(command.size(), 16u);
+        std::int64_t t = 1'700'000'000'000'000'000;
+        for (int i = 0; i < 20; ++i, t += 100'000'000) {
+            ASSERT_TRUE((*opened)->write(bytes_of(command), t));
+            ASSERT_TRUE((*opened)->write(bytes_of(response), t + 12'000'000));
+        }
+        ASSERT_TRUE((*opened)->close());
+    }
+    test::CommandResult recorded = run_dpscope({"report", pcap});
+    test::CommandResult given = run_dpscope({"report", "--baud", "19200", pcap});
+    EXPECT_EQ(recorded.err, "");
+    EXPECT_EQ(given.err, "");
+    EXPECT_EQ(recorded.out, given.out);
+    EXPECT_NE(recorded.out.find("mean 2.833"), std::string::npos) << recorded.out;
+    test::CommandResult other = run_dpscope({"report", "--baud", "9600", pcap});
+    EXPECT_NE(other.err.find(pcap + ": the capture records its line as 19200 baud 8E1, but --baud "
+                                    "says 9600; timed at 9600 baud, as --baud says"),
+              std::string::npos)
+        << other.err;
+    EXPECT_NE(other.out, recorded.out);
+    // decode -w carries the line into the capture it writes, pcap and pcapng.
+    for (const char* format : {"pcap", "pcapng"}) {
+        const std::string out = test::temp_path(std::string("copy.") + format);
+        test::CommandResult w = run_dpscope({"decode", pcap, "-w", out, "-F", format});
+        ASSERT_EQ(w.exit_code, 0) << w.err;
+        CaptureLabel label = read_capture_label(bytes_of(test::read_file(out)));
+        EXPECT_EQ(label.line, (LineSettings{19200, SerialParity::Even, 1})) << format;
+        const std::string copied = run_dpscope({"report", out}).out;
+        EXPECT_EQ(copied.substr(copied.find("Checks:")),
+                  recorded.out.substr(recorded.out.find("Checks:")))
+            << format;
+    }
+    // PROFIBUS: stats gives the bus load at the rate recorded, not "unknown (give --baud)".
+    const std::string dl = test::temp_path("profibus-line.pcap");
+    {
+        WriterResult opened =
+            open_capture_writer(dl, CaptureFormat::Pcap, kLinkTypeProfibusDl, Protocol::ProfibusDp,
+                                {19200, SerialParity::Even, 1});
+        ASSERT_TRUE(opened) << opened.error();
+        const std::vector<std::uint8_t> stream = profibus_stream(10);
+        for (std::size_t at = 0; at < stream.size(); at += 6)
+            ASSERT_TRUE((*opened)->write(
+                Bytes(stream.data() + at, 6),
+                1'700'000'000'000'000'000 + static_cast<std::int64_t>(at) * 1'000'000));
+        ASSERT_TRUE((*opened)->close());
+    }
+    test::CommandResult stats = run_dpscope({"stats", dl});
+    EXPECT_NE(stats.out.find("at 19200 baud"), std::string::npos) << stats.out << stats.err;
+    EXPECT_EQ(stats.out.find("give --baud"), std::string::npos) << stats.out;
+}
+
 TEST(BusTagTest, UntaggedUser0IsChosenByItsFirstRecord) {
     // Untagged: as another tool writes USER0 (the reserved fields zero).
     for (auto [bus, records, size] :

@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "capture/bus_tag.hpp"
 #include "capture/capture_writer.hpp"
 #include "capture/telegram_source.hpp"
 #include "decoder/bus_decoder.hpp"
@@ -1099,6 +1100,71 @@ TEST(SniffTest, FcBusDefaultsTo9600Baud8E1AndWritesATaggedUser0Capture) {
     EXPECT_EQ(test::lines_of(decoded.out).size(), 2u);
 }
 
+// sniff -w records the line it captured on (baud rate, parity, stop bits), and decode, report
+// and stats read the capture back at that rate without --baud: a command and its answer, sent
+// back to back at 19200 baud 8O2 (12 bits a character), are no "response before the command
+// ended", as they would be at the default 9600 baud 8E1.
+TEST(SniffTest, ACaptureRecordsItsLineAndIsReadBackAtItsRate) {
+    PseudoTerminal pty;
+    const std::string pcap = test::temp_path("fc-19200.pcap");
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--bus", "fc", "--baud", "19200", "--parity", "odd",
+                     "--stop-bits", "2", "-w", pcap, "-q"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    std::vector<std::uint8_t> bytes = test::fc_parameter(1, 1, 414);
+    const std::vector<std::uint8_t> response = test::fc_parameter(1, 1, 414, 0, 1500, 0x0607);
+    bytes.insert(bytes.end(), response.begin(), response.end());
+    pty.write(bytes);
+    // Both records are in the file (flushed when the line is idle).
+    const std::uintmax_t whole = 24 + 2 * (16 + 16);
+    ASSERT_TRUE(test::wait_for_records(pcap, 2)) << sniffer.err();
+    ASSERT_EQ(std::filesystem::file_size(pcap), whole);
+    sniffer.signal(SIGINT);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    EXPECT_EQ(sniffer.err().find("began before"), std::string::npos) << sniffer.err();
+    const std::vector<std::uint8_t> file = test::read_file(pcap);
+    const CaptureLabel label = read_capture_label(Bytes(file.data(), file.size()));
+    EXPECT_EQ(label.line, (LineSettings{19200, SerialParity::Odd, 2}));
+    const test::CommandResult recorded = test::run_dpscope({"report", pcap});
+    EXPECT_EQ(recorded.exit_code, 0) << recorded.err;
+    EXPECT_EQ(recorded.err, "");
+    EXPECT_EQ(recorded.out, test::run_dpscope({"report", "--baud", "19200", pcap}).out);
+    EXPECT_NE(recorded.out.find("1 answered"), std::string::npos) << recorded.out;
+    // The drive's latency is the same as with --baud 19200, and decode agrees too.
+    const std::string latency = recorded.out.substr(recorded.out.find("latency ms"));
+    EXPECT_EQ(latency.substr(0, latency.find('\n')),
+              "latency ms     min 0.000  mean 0.000  p95 0.000  max 0.000");
+    const test::CommandResult decoded = test::run_dpscope({"decode", pcap});
+    EXPECT_EQ(decoded.err, "");
+    EXPECT_EQ(decoded.out, test::run_dpscope({"decode", "--baud", "19200", pcap}).out);
+}
+
+// simulate --replay plays a capture on the line it records (sniff -w), unless --baud says
+// otherwise (with a warning when they differ).
+TEST(SniffTest, SimulateReplaysACaptureOnTheLineItRecords) {
+    const std::string pcap = test::temp_path("fc-19200-8o2.pcap");
+    {
+        WriterResult opened = open_capture_writer(pcap, CaptureFormat::Pcap, kLinkTypeUser0,
+                                                  Protocol::Fc, {19200, SerialParity::Odd, 2});
+        ASSERT_TRUE(opened) << opened.error();
+        const std::vector<std::uint8_t> command = test::fc_parameter(1, 1, 414);
+        ASSERT_TRUE((*opened)->write(Bytes(command.data(), command.size()), 1'000'000'000));
+        ASSERT_TRUE((*opened)->close());
+    }
+    for (const bool given : {false, true}) {
+        PseudoTerminal pty;
+        std::vector<std::string> args = {"simulate", "--bus",    "fc", "--device",
+                                         pty.slave,  "--replay", pcap, "-v"};
+        if (given) args.insert(args.end(), {"--baud", "9600"});
+        const test::CommandResult played = test::run_dpscope(args);
+        ASSERT_EQ(played.exit_code, 0) << played.err;
+        EXPECT_NE(played.err.find(given ? "at 9600 baud 8O2" : "at 19200 baud 8O2"),
+                  std::string::npos)
+            << played.err;
+        EXPECT_EQ(played.err.find("warning") != std::string::npos, given) << played.err;
+        EXPECT_EQ(read_to_the_end(pty.master).size(), 16u);
+    }
+}
+
 TEST(SniffTest, Vlt2000BusDefaultsTo9600Baud8N1AndWritesATaggedUser0Capture) {
     PseudoTerminal pty;
     const std::string pcap = test::temp_path("vlt2000-live.pcap");
@@ -1442,6 +1508,37 @@ TEST(SniffTest, AlarmRunsOncePerKindAndStationWithinTheMinute) {
     std::filesystem::remove_all(dir);
 }
 
+// Alarm commands that hang are ended when the capture ends: none is left running (the shell
+// nor what it started), and the end says how many were ended.
+TEST(SniffTest, AlarmCommandsStillRunningAreEndedWhenTheCaptureEnds) {
+    PseudoTerminal pty;
+    const std::string pids = test::temp_path("alarm-pids.txt");
+    Sniffer sniffer({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "--alarm",
+                     "echo $$ >> " + pids + "; sleep 300; echo"});
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options;
+    options.cycles = 400;
+    // Station 5 stops answering: lost (and its verdict turns bad).
+    Session session = without_answers(simulate(options), 5, {{400, 500}});
+    play(pty, session, true);
+    // The first alarm command has started.
+    std::vector<std::string> started;
+    test::wait_until([&] {
+        started = test::lines_of(slurp(pids));
+        return !started.empty();
+    });
+    ASSERT_FALSE(started.empty()) << sniffer.err();
+    sniffer.signal(SIGINT);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    started = test::lines_of(slurp(pids));
+    for (const std::string& line : started)
+        EXPECT_EQ(test::live_processes_in_group(static_cast<pid_t>(std::stol(line))), 0u) << line;
+    EXPECT_NE(sniffer.err().find(std::to_string(started.size()) +
+                                 " ended at the end (still running after the wait)"),
+              std::string::npos)
+        << sniffer.err();
+}
+
 TEST(SniffTest, StatsOptionsThatCannotWorkAreUsageErrors) {
     PseudoTerminal pty;
     auto fc = test::run_dpscope({"sniff", "-i", pty.slave, "--bus", "fc", "--stats"});
@@ -1489,6 +1586,84 @@ TEST(SniffTest, StatsFileHoldsTheStatisticsInTheFormatAsked) {
         << err;
     EXPECT_EQ(out.find("telegrams: "), std::string::npos) << out;  // the -q summary is elsewhere
     EXPECT_NE(err.find("telegrams: "), std::string::npos) << err;
+}
+
+// dpscope sniff with standard error a pipe whose reader has gone (closed before the start):
+// standard output into the file `out`. Waits on events only: the port in raw mode, the exit.
+struct ClosedStderrRun {
+    int exit_code = -1;  // -1: did not end in time
+    std::string out;
+};
+
+ClosedStderrRun sniff_with_closed_stderr(const std::vector<std::string>& args, PseudoTerminal& pty,
+                                         const Session& session) {
+    ClosedStderrRun run;
+    const std::string out = test::temp_path("closed-stderr-out");
+    int fds[2];
+    if (pipe2(fds, O_CLOEXEC) != 0) return run;
+    close(fds[0]);  // nobody reads standard error
+    pid_t child = fork();
+    if (child == 0) {
+        int out_fd = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int null = open("/dev/null", O_RDONLY);
+        dup2(out_fd, STDOUT_FILENO);
+        dup2(fds[1], STDERR_FILENO);
+        dup2(null, STDIN_FILENO);
+        setenv("TZ", "UTC", 1);
+        test::exec_or_exit(test::dpscope_argv(args));
+    }
+    close(fds[1]);
+    if (test::wait_for_raw_mode(pty)) play(pty, session, true);
+    // Only a bound for a run that hangs (the loaded machine's patience).
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::seconds(static_cast<int>(test::kPatienceSeconds));
+    int status = 0;
+    while (waitpid(child, &status, WNOHANG) != child) {
+        if (std::chrono::steady_clock::now() > deadline) {
+            kill(child, SIGKILL);
+            waitpid(child, &status, 0);
+            run.out = slurp(out);
+            return run;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    run.out = slurp(out);
+    return run;
+}
+
+// A closed standard error (the program reading it ended) never stops a capture: every message
+// is dropped (counted), the capture runs to its end, the file holds every telegram, and the exit
+// code is 4 (an output could not be written), not an abort (134) or SIGPIPE (141).
+TEST(SniffTest, AClosedStandardErrorNeverStopsTheCapture) {
+    Session session = simulate(20);
+    const std::string count = std::to_string(session.expected.size());
+    {
+        // The pty's parity note is the first message, before "capturing on".
+        PseudoTerminal pty;
+        const std::string pcap = test::temp_path("closed-stderr.pcap");
+        ClosedStderrRun run = sniff_with_closed_stderr(
+            {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-c", count}, pty, session);
+        EXPECT_EQ(run.exit_code, 4);
+        EXPECT_GE(test::lines_of(run.out).size(), session.expected.size()) << run.out;
+        Capture capture = read_capture(pcap);
+        EXPECT_EQ(capture.status, InputStatus::Ok);
+        EXPECT_EQ(capture.telegrams.size(), session.expected.size());
+        EXPECT_TRUE(capture.telegrams == session.expected);
+    }
+    {
+        // -w -: the pcap on standard output, the live decode on the closed standard error.
+        PseudoTerminal pty;
+        ClosedStderrRun run = sniff_with_closed_stderr(
+            {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", "-", "-c", count}, pty, session);
+        EXPECT_EQ(run.exit_code, 4);
+        const std::string pcap = test::temp_path("closed-stderr-stdout.pcap");
+        test::write_text_file(pcap, run.out);
+        Capture capture = read_capture(pcap);
+        EXPECT_EQ(capture.status, InputStatus::Ok);
+        EXPECT_EQ(capture.telegrams.size(), session.expected.size());
+        EXPECT_TRUE(capture.telegrams == session.expected);
+    }
 }
 
 }  // namespace

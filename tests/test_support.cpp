@@ -241,6 +241,22 @@ bool same_settings(const termios& a, const termios& b) {
     return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
+std::size_t live_processes_in_group(pid_t group) {
+    std::size_t live = 0;
+    for (const auto& entry : std::filesystem::directory_iterator("/proc")) {
+        const std::string stat = slurp(entry.path().string() + "/stat");
+        // pid (comm) state ppid pgrp ...: comm may hold spaces and parentheses.
+        const std::size_t close = stat.rfind(')');
+        if (close == std::string::npos) continue;
+        std::istringstream rest(stat.substr(close + 1));
+        char state = 0;
+        long parent = 0;
+        long pgrp = 0;
+        if (rest >> state >> parent >> pgrp && pgrp == group && state != 'Z') ++live;
+    }
+    return live;
+}
+
 PseudoTerminal::PseudoTerminal() {
     int slave_fd = -1;
     char name[128] = {};

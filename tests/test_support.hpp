@@ -1,6 +1,7 @@
 // Helpers shared by the test files.
 #pragma once
 
+#include <sys/types.h>
 #include <termios.h>
 
 #include <cstdint>
@@ -72,6 +73,9 @@ std::vector<std::string> lines_of(const std::string& text);
 // The terminal settings of `path` as another program sees them (opened afresh, non-blocking).
 termios settings_of(const std::string& path);
 bool same_settings(const termios& a, const termios& b);
+
+// Processes of the process group `group` that are alive (zombies not counted), from /proc.
+std::size_t live_processes_in_group(pid_t group);
 
 // A pseudo-terminal pair: tests write into `master`; the code under test opens `slave` (a path)
 // as its serial port. The master is close-on-exec, so a child process (dpscope sniff) does not

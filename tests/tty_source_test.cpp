@@ -4,10 +4,13 @@
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <termios.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <vector>
@@ -184,6 +187,31 @@ TEST(TtySourceTest, ParityMarksAreCountedAndRemoved) {
                                        "(byte 0x02)"),
               std::string::npos)
         << c.issues[0].message;
+}
+
+// The bytes counted (sniff's "N telegrams, M bytes") are the line's, not the PARMRK escapes the
+// driver adds: FF FF is one byte, FF 00 X one byte.
+TEST(TtySourceTest, BytesReadCountsTheLineNotTheParityMarks) {
+    Pipe pipe;
+    Collected c;
+    TtySource source(nullptr, pipe.read_end, "pipe", options(true, 0), fdl_framing_rules());
+    source.on_issue([&](const InputIssue& issue) { c.issues.push_back(issue); });
+    pipe.write(hex("10 03 FF 00 02 49 4E 16 FF FF E5"));  // 8 bytes on the line, 11 read
+    drain(source, c);
+    EXPECT_EQ(source.bytes_read(), 8u);
+    pipe.write(hex("10 03 FF"));  // an escape split across reads
+    drain(source, c, 2);
+    pipe.write(hex("00 02 49 4E 16"));
+    drain(source, c);
+    EXPECT_EQ(source.bytes_read(), 14u);
+    pipe.close_writer();
+    drain(source, c);
+    ASSERT_EQ(c.telegrams.size(), 3u);
+    ASSERT_FALSE(c.issues.empty());
+    EXPECT_NE(c.issues.back().message.find("the device went away (hang-up; unplugged?) after 14 "
+                                           "bytes"),
+              std::string::npos)
+        << c.issues.back().message;
 }
 
 TEST(TtySourceTest, ParityMarkSplitAcrossReads) {
@@ -419,6 +447,99 @@ TEST(SerialPortTest, AStaleLockFileIsReplacedAndALiveOneIsNot) {
     std::string error = refusal({pty.slave, 1'500'000, true, false, dir});
     EXPECT_NE(error.find("is in use by process " + live), std::string::npos) << error;
     EXPECT_TRUE(std::filesystem::exists(lock));
+    std::filesystem::remove_all(dir);
+}
+
+// SerialPort::claim in a child process (a claim that blocks must not hang the test): what it
+// said, or that it did not return within `seconds`. `prepare` runs in the child first.
+struct ClaimOutcome {
+    bool returned = false;
+    bool claimed = false;
+    std::string error;
+};
+
+ClaimOutcome claim_in_child(const SerialSettings& settings, const std::string& said,
+                            void (*prepare)(const std::string& dir) = nullptr,
+                            double seconds = test::kPatienceSeconds) {
+    ClaimOutcome outcome;
+    pid_t child = fork();
+    if (child == 0) {
+        if (prepare) prepare(settings.lock_dir);
+        auto claimed = SerialPort::claim(settings);
+        FILE* out = std::fopen(said.c_str(), "w");
+        if (out) {
+            std::fputs(claimed ? "" : claimed.error().c_str(), out);
+            std::fclose(out);
+        }
+        _exit(claimed ? 0 : 1);
+    }
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::milliseconds(static_cast<int>(seconds * 1000));
+    int status = 0;
+    for (;;) {
+        pid_t done = waitpid(child, &status, WNOHANG);
+        if (done == child) break;
+        if (std::chrono::steady_clock::now() > deadline) {
+            kill(child, SIGKILL);
+            waitpid(child, &status, 0);
+            return outcome;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    outcome.returned = WIFEXITED(status);
+    outcome.claimed = outcome.returned && WEXITSTATUS(status) == 0;
+    outcome.error = test::slurp(said);
+    return outcome;
+}
+
+// /run/lock is writable by everyone: what another user plants there (a FIFO, a symbolic link, a
+// folder) is refused as a lock file, and never waited on, followed or removed.
+TEST(SerialPortTest, ALockFileThatIsNoRegularFileIsRefusedWithoutWaiting) {
+    PseudoTerminal pty;
+    const std::string dir = make_lock_dir();
+    const std::string lock = lock_path(dir, pty.slave);
+    const std::string said = test::temp_path("said");
+    // A FIFO: opening it for reading would wait for a writer forever.
+    ASSERT_EQ(mkfifo(lock.c_str(), 0666), 0);
+    ClaimOutcome fifo = claim_in_child({pty.slave, 9600, true, false, dir}, said);
+    ASSERT_TRUE(fifo.returned) << "claim() blocked on a FIFO planted as the lock file";
+    EXPECT_FALSE(fifo.claimed);
+    EXPECT_NE(fifo.error.find("lock file " + lock + " is not a regular file (a FIFO)"),
+              std::string::npos)
+        << fifo.error;
+    EXPECT_TRUE(std::filesystem::is_fifo(lock));  // not removed as stale
+    std::filesystem::remove(lock);
+    // A symbolic link to another file, holding a PID that is gone: not followed, the file
+    // it points at is left as it was.
+    const std::string target = test::temp_path("target");
+    test::write_text_file(target, "         1\n");
+    std::filesystem::create_symlink(target, lock);
+    ClaimOutcome link = claim_in_child({pty.slave, 9600, true, false, dir}, said);
+    ASSERT_TRUE(link.returned);
+    EXPECT_FALSE(link.claimed);
+    EXPECT_NE(link.error.find("lock file " + lock + " is not a regular file (a symbolic link)"),
+              std::string::npos)
+        << link.error;
+    EXPECT_TRUE(std::filesystem::is_symlink(lock));
+    EXPECT_EQ(test::slurp(target), "         1\n");
+    std::filesystem::remove(lock);
+    // A folder.
+    std::filesystem::create_directory(lock);
+    ClaimOutcome folder = claim_in_child({pty.slave, 9600, true, false, dir}, said);
+    ASSERT_TRUE(folder.returned);
+    EXPECT_FALSE(folder.claimed);
+    EXPECT_NE(folder.error.find("is not a regular file (a folder)"), std::string::npos)
+        << folder.error;
+    std::filesystem::remove(lock);
+    // A FIFO planted under the name of the temporary file the lock is written into first
+    // (LTMP.PID, the PID is easy to guess): not opened, the lock is still taken.
+    ClaimOutcome temp =
+        claim_in_child({pty.slave, 9600, true, false, dir}, said, [](const std::string& in) {
+            const std::string name = in + "/LTMP." + std::to_string(getpid());
+            mkfifo(name.c_str(), 0666);
+        });
+    ASSERT_TRUE(temp.returned) << "claim() blocked on a FIFO planted as its temporary file";
+    EXPECT_TRUE(temp.claimed) << temp.error;
     std::filesystem::remove_all(dir);
 }
 
