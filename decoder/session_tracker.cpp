@@ -36,6 +36,15 @@ std::optional<Dialect> DialectEvidence::hint() const noexcept {
 
 namespace {
 
+// Every problem of error severity is data cut short (service_data_short): the FDL telegram
+// itself is whole.
+bool only_cut_short(const DecodedTelegram& t) {
+    for (const Problem& p : t.problems())
+        if (problem_severity(p.kind) == Severity::Error && p.kind != ProblemKind::ServiceDataShort)
+            return false;
+    return true;
+}
+
 // The PROFIBUS DP parameter channel: the response lags one cycle, the PKE has an SPM bit.
 ParameterChannelPolicy dp_policy(const TrackerOptions& options) {
     ParameterChannelPolicy policy;
@@ -89,8 +98,8 @@ std::uint64_t SessionTracker::transactions() const noexcept {
     return total;
 }
 
-void SessionTracker::count(std::size_t from) {
-    for (std::size_t i = from; i < current_.size(); ++i) {
+void SessionTracker::count(std::size_t from, std::size_t to) {
+    for (std::size_t i = from; i < to; ++i) {
         const Finding& f = current_[i];
         ++by_severity_[static_cast<std::size_t>(f.severity)];
         const auto kind = static_cast<std::size_t>(f.kind);
@@ -117,17 +126,29 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
         dpv1_.advance(now_ns_, t.frame, current_);
     }
     check_reply_missing(t, current_);
+    const std::size_t damage = current_.size();
     const bool intact = check_intact(t, current_);
+    const bool dpv1 = t.dp.service_data.kind() == DpServiceData::Kind::Dpv1 && t.dp.fdl.fcs_ok;
+    // A DP-V1 telegram with a correct FCS whose only defect is data cut short: its
+    // malformed_telegram waits for the DP-V1 tracker, whose length rule may say the same.
+    const bool held = !intact && dpv1 && t.has_roles && only_cut_short(t);
     // Counted before the telegram's own channel is made: channels are made in the order their
-    // first finding or telegram came, the order the engine checks them for time-outs in.
-    if (!current_.empty()) count(0);  // most telegrams have no finding: no call then
+    // first finding or telegram came, the order the engine checks them for time-outs in (a held
+    // finding is the telegram's own channel's).
+    if (!current_.empty()) count(0, held ? damage : current_.size());
     if (!t.has_roles) return current_;
-    const std::size_t counted = current_.size();
+    const std::size_t counted = held ? damage : current_.size();
     Channel& ch = channel(t.master, t.slave);
     track_channel(ch, t, intact);
-    if (t.dp.service_data.kind() == DpServiceData::Kind::Dpv1 && t.dp.fdl.fcs_ok)
-        dpv1_.track(t, current_);
-    if (current_.size() > counted) count(counted);
+    const std::size_t dpv1_from = current_.size();
+    if (dpv1) dpv1_.track(t, current_);
+    // One defect, one finding: the DP-V1 one (docs/decisions.md, "DP-V1 data cut short").
+    if (held && std::any_of(current_.begin() + static_cast<std::ptrdiff_t>(dpv1_from),
+                            current_.end(), [&](const Finding& f) {
+                                return f.kind == FindingKind::Dpv1LengthError && f.frame == t.frame;
+                            }))
+        current_.erase(current_.begin() + static_cast<std::ptrdiff_t>(damage));
+    if (current_.size() > counted) count(counted, current_.size());
     return current_;
 }
 
@@ -172,7 +193,7 @@ std::span<const Finding> SessionTracker::finish(std::int64_t end_ns) {
         engine_.advance(now_ns_, last_frame_, current_);
         dpv1_.advance(now_ns_, last_frame_, current_);
     }
-    count(0);
+    count(0, current_.size());
     return current_;
 }
 

@@ -14,7 +14,8 @@
 //  - The slave's response lags one cycle, and the PKE has an SPM bit (the PPO's layout).
 //  - A telegram with a bad FCS, or malformed, is reported and otherwise ignored; except that a
 //    DP-V1 telegram with a correct FCS still goes to the DP-V1 tracker, whose length rule says
-//    in DP-V1 terms what a PROFIdrive message cut short or too long is.
+//    in DP-V1 terms what a PROFIdrive message cut short or too long is. Where it does, for data
+//    cut short, that dpv1_length_error is the one finding (no malformed_telegram beside it).
 #pragma once
 
 #include <array>
@@ -119,9 +120,9 @@ class SessionTracker {
     };
 
     Channel& channel(std::uint8_t master, std::uint8_t slave);
-    // Counts the findings from current_[from] on, per severity and per channel (making the
-    // channel of each in the order found).
-    void count(std::size_t from);
+    // Counts the findings current_[from] to current_[to - 1], per severity and per channel
+    // (making the channel of each in the order found).
+    void count(std::size_t from, std::size_t to);
     void track_channel(Channel& ch, const DecodedTelegram& t, bool intact);
 
     TrackerOptions options_;
