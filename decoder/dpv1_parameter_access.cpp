@@ -110,6 +110,9 @@ struct Dpv1ParameterAccessTracker::Channel {
     std::uint8_t index = 0;
     std::uint8_t length = 0;  // a Read's: the most the master accepts
     std::uint64_t frame = 0;
+    // A parameter request was written on the channel: before the first, a parameter response
+    // may answer a request made before the capture, and is no orphan.
+    bool written = false;
 
     Transaction* find(std::uint8_t slot_number, std::uint8_t index_number) {
         for (Transaction& tx : open)
@@ -192,6 +195,7 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
                                                const Dpv1Pdu& pdu, const ProfidriveMessage& m,
                                                FindingList& out) {
     Dpv1Stats& stats = *ch.stats;
+    ch.written = true;
     if (Transaction* open = ch.find(pdu.slot, pdu.index)) {
         // The same Write again before its Write response: a repeat, not a new request.
         if (open->state == Transaction::State::Written && !open->timed_out &&
@@ -380,6 +384,7 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
     Dpv1Stats& stats = *ch.stats;
     Transaction* tx = ch.find(pdu.slot, pdu.index);
     if (!tx) {
+        if (!ch.written) return;  // its request may have come before the capture: not judged
         Finding& f = ch.add(out, FindingKind::Dpv1OrphanResponse, t, 0);
         if (!m.addresses.empty()) f.pnu = m.addresses.front().pnu;
         f.message = m.has_header ? fmt::format(

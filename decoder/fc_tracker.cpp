@@ -145,10 +145,21 @@ void FcTracker::close_pending() {
     pending_.active = false;
 }
 
+bool FcTracker::pending_judged() const noexcept {
+    // The capture began with it: a tap clipped onto a running bus often starts with a drive's
+    // response, which nothing before it marks as one (docs/decisions.md). It is not judged,
+    // unless its AK says it is a command.
+    return pending_.frame != first_addressed_frame_ || pending_.certain;
+}
+
 void FcTracker::check_deadline(std::int64_t now_ns, std::uint64_t frame) {
     if (!pending_.active || pending_.time_ns == kNoTime ||
         now_ns <= pending_.time_ns + pending_.wire_ns + options_.timeout_ns)
         return;
+    if (!pending_judged()) {
+        close_pending();
+        return;
+    }
     Finding& f = add_finding(current_, FindingKind::FcNoResponse, frame, now_ns, pending_.frame,
                              true, kMaster, pending_.address);
     if (pending_.pkw) f.pnu = pending_.pnu;
@@ -203,17 +214,15 @@ void FcTracker::command(FcStationStats& st, const DecodedTelegram& t) {
     // The master moved on: the command it sent before is left unanswered.
     if (pending_.active) {
         const std::string pending_text = what_pending(pending_.pkw, pending_.ak, pending_.pnu);
-        if (!fc.broadcast && t.slave == pending_.address) {
+        if (!pending_judged()) {
+            // The capture's first telegram, perhaps a response: neither unanswered nor stacked on.
+        } else if (!fc.broadcast && t.slave == pending_.address) {
             Finding& f = add_finding(current_, FindingKind::FcStackedRequest, t.frame, t.time_ns,
                                      pending_.frame, true, kMaster, t.slave);
             if (pending_.pkw) f.pnu = pending_.pnu;
             f.message = fmt::format(
                 "new command {} to drive {} while the command {} from frame {} was unanswered",
                 describe_command(t), t.slave, pending_text, pending_.frame);
-        } else if (pending_.frame == first_addressed_frame_ && !pending_.certain) {
-            // The capture began with it: a tap clipped onto a running bus often starts with a
-            // drive's response, which nothing before it marks as one (docs/decisions.md). It is
-            // not judged.
         } else {
             Finding& f = add_finding(current_, FindingKind::FcNoResponse, t.frame, t.time_ns,
                                      pending_.frame, true, kMaster, pending_.address);
@@ -228,6 +237,7 @@ void FcTracker::command(FcStationStats& st, const DecodedTelegram& t) {
     }
 
     ++st.commands;
+    if (!fc.broadcast) commanded_.set(t.slave & 0x7F);
     if (fc.broadcast) ++st.broadcasts;
     if (fc.block == FcBlock::Process) ++st.process_commands;
     if (fc.has_pkw) {
@@ -266,6 +276,8 @@ void FcTracker::response(FcStationStats& st, const DecodedTelegram& t) {
     const FcTelegram& fc = t.fc;
     ++st.responses;
     if (!pending_.active || t.slave != pending_.address) {
+        // Before the first command to the drive, its command may have come before the capture.
+        if (!commanded_.test(t.slave & 0x7F)) return;
         Finding& f = add_finding(current_, FindingKind::FcMismatchedResponse, t.frame, t.time_ns,
                                  pending_.active ? pending_.frame : 0, true, kMaster, t.slave);
         if (fc.has_pkw) f.pnu = fc.pkw.pnu;

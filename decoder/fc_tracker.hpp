@@ -11,7 +11,9 @@
 //    anything answers it, or when the capture ends past that time-out; a new command to the same
 //    drive first is fc_stacked_request; an answer later than --fc-response-ms is
 //    fc_late_response; a response from a drive no command is pending for is
-//    fc_mismatched_response. Broadcasts expect no answer;
+//    fc_mismatched_response. Broadcasts expect no answer. What came before the capture is not
+//    judged: the capture's first telegram (perhaps a response) neither way, unless its AK says
+//    it is a command, and no response from a drive before the first command to it;
 //  - the parameter channel of parameter and text blocks, through the parameter-channel engine with
 //    the FC policy (no SPM bit, no lag, no cyclic repetition; Dialect::Fc code tables) and the FC
 //    kinds: fc_mismatched_response (PNU or index differ), fc_unexpected_response_type,
@@ -21,6 +23,7 @@
 #pragma once
 
 #include <array>
+#include <bitset>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -137,6 +140,9 @@ class FcTracker {
     void command(FcStationStats& st, const DecodedTelegram& t);
     void response(FcStationStats& st, const DecodedTelegram& t);
     void close_pending();
+    // Whether the pending command may be judged unanswered or stacked on: not when it is the
+    // capture's first telegram, which may have been a response (unless its AK says otherwise).
+    bool pending_judged() const noexcept;
     void check_deadline(std::int64_t now_ns, std::uint64_t frame);
 
     FcTrackerOptions options_;
@@ -150,8 +156,11 @@ class FcTracker {
     std::array<std::uint64_t, 3> by_severity_{};
     std::int64_t now_ns_ = kNoTime;
     std::uint64_t last_frame_ = 0;
-    std::uint64_t first_addressed_frame_ = 0;
-    std::uint64_t early_responses_ = 0;  // the first telegram to or from a drive
+    std::uint64_t first_addressed_frame_ = 0;  // the first telegram to or from a drive
+    std::uint64_t early_responses_ = 0;
+    // The drives a command went to: a response from another one is not judged (its command may
+    // have come before the capture).
+    std::bitset<kStationCount> commanded_;
     std::int32_t subject_pnu_ = -1;
 };
 

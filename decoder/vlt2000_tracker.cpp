@@ -266,6 +266,7 @@ void Vlt2000Tracker::command(Vlt2000StationStats& st, const DecodedTelegram& t) 
     }
 
     ++st.commands;
+    if (!v.broadcast) commanded_.set(t.slave & 0x7F);
     if (v.letter != Vlt2000Letter::Unknown) ++st.commands_by_letter[letter_row(v.letter)];
     if (v.broadcast) ++st.broadcasts;
     if (v.has_parameter && v.letter != Vlt2000Letter::Control &&
@@ -310,6 +311,8 @@ void Vlt2000Tracker::reply(Vlt2000StationStats& st, const DecodedTelegram& t) {
     if (!pending_.active && t.request_frame != 0 && t.request_frame == damaged_command_frame_)
         return;  // the reply to a command with a wrong checksum, which was the finding
     if (!pending_.active || t.slave != pending_.address) {
+        // Before the first command to the drive, its command may have come before the capture.
+        if (!commanded_.test(t.slave & 0x7F)) return;
         Finding& f =
             add_finding(current_, FindingKind::Vlt2000MismatchedResponse, t.frame, t.time_ns,
                         pending_.active ? pending_.frame : 0, true, kMaster, t.slave);

@@ -12,7 +12,8 @@
 //    the same drive first is vlt2000_stacked_request (the capture's first telegram, which may
 //    have been a reply, is judged neither way); a reply from a drive no command is pending
 //    for, or with another control letter or parameter (a C command's parameter is ignored), is
-//    vlt2000_mismatched_response; a reply to a broadcast is vlt2000_unexpected_reply; a reply
+//    vlt2000_mismatched_response (not before the first command to that drive: its command may
+//    have come before the capture); a reply to a broadcast is vlt2000_unexpected_reply; a reply
 //    with decimal position 9 is vlt2000_command_failed (a note, with the reason code);
 //  - the parameter channel through the parameter-channel engine with the VLT 2000 policy (no SPM
 //    bit, no lag, no cyclic repetition; Dialect::Vlt2000: the letters as codes 1..4, a failed
@@ -23,6 +24,7 @@
 #pragma once
 
 #include <array>
+#include <bitset>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -162,6 +164,9 @@ class Vlt2000Tracker {
     std::int64_t now_ns_ = kNoTime;
     std::uint64_t last_frame_ = 0;
     std::uint64_t first_addressed_frame_ = 0;
+    // The drives a command went to: a reply from another one is not judged (its command may
+    // have come before the capture).
+    std::bitset<kStationCount> commanded_;
     std::int32_t subject_pnu_ = -1;
 };
 

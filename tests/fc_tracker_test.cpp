@@ -113,18 +113,22 @@ TEST(FcTrackerTest, BroadcastsExpectNoAnswer) {
 
 TEST(FcTrackerTest, StackedCommandNamesTheFirst) {
     FcRun run;
+    // An exchange first (the capture's first telegram is not judged, see
+    // ACaptureStartingWithAResponseIsNotJudgedForIt).
+    run.feed(fc_process(3), -1);
+    run.feed(fc_process(3, 0x0607), -1);
     run.feed(fc_parameter(3, 1, 414), 0);
     std::vector<Finding> found = run.feed(fc_parameter(3, 14, 415, 0, 7), 5);
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, FindingKind::FcStackedRequest);
-    EXPECT_EQ(found[0].frame, 2u);
-    EXPECT_EQ(found[0].request_frame, 1u);
+    EXPECT_EQ(found[0].frame, 4u);
+    EXPECT_EQ(found[0].request_frame, 3u);
     EXPECT_EQ(found[0].slave, 3);
     EXPECT_EQ(found[0].pnu, 414);
     EXPECT_NE(found[0].message.find("AK 14"), std::string::npos) << found[0].message;
     // The answer to the second command is its answer, not a mismatch for the first.
     EXPECT_TRUE(run.feed(fc_parameter(3, 1, 415, 0, 7, 0x0607), 8).empty());
-    EXPECT_EQ(run.station(3)->answered, 1u);
+    EXPECT_EQ(run.station(3)->answered, 2u);
 }
 
 TEST(FcTrackerTest, NoResponseWhenTheMasterMovesOnOrTheTimeOutPasses) {
@@ -182,13 +186,19 @@ TEST(FcTrackerTest, LateResponseFollowsTheOption) {
 
 TEST(FcTrackerTest, ResponseFromAnotherDriveIsMismatched) {
     FcRun run;
+    // Drives 2 and 4 have been commanded before (nothing before that is judged, see
+    // ResponseBeforeTheFirstCommandToItsDriveIsNotJudged).
+    for (std::uint8_t drive : {std::uint8_t{2}, std::uint8_t{4}}) {
+        run.feed(fc_process(drive), -1);
+        run.feed(fc_process(drive, 0x0607), -1);
+    }
     run.feed(fc_parameter(1, 1, 414), 0);
     // AK 7 is only a response: from drive 2 while drive 1 is asked.
     std::vector<Finding> found = run.feed(fc_parameter(2, 7, 414, 0, 0, 0x0607), 3);
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, FindingKind::FcMismatchedResponse);
     EXPECT_EQ(found[0].slave, 2);
-    EXPECT_EQ(found[0].request_frame, 1u);
+    EXPECT_EQ(found[0].request_frame, 5u);
     // Drive 1 still answers its command.
     EXPECT_TRUE(run.feed(fc_parameter(1, 1, 414, 0, 5, 0x0607), 6).empty());
     // An AK 7 with no command pending at all.
@@ -365,12 +375,44 @@ TEST(FcTrackerTest, ACaptureStartingWithAResponseIsNotJudgedForIt) {
     std::vector<Finding> found = run.feed(fc_process(2), 210);
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, FindingKind::FcNoResponse);
+    // Nor is it a stacked command when the master's next command goes to the same drive, nor
+    // unanswered when the time-out passes.
+    FcRun same;
+    same.feed(fc_process(1, 0x0607), 0);
+    same.feed(fc_parameter(1, 1, 414), 10);
+    same.feed(fc_parameter(1, 1, 414, 0, 5, 0x0607), 15);
+    same.finish(5000);
+    EXPECT_TRUE(same.all.empty()) << same.all[0].message;
+    FcRun alone;
+    alone.feed(fc_process(1, 0x0607), 0);
+    alone.finish(5000);
+    EXPECT_TRUE(alone.all.empty()) << alone.all[0].message;
     // A first command whose AK only a command has is judged from the start.
     FcRun certain;
     certain.feed(fc_parameter(1, 14, 202, 0, 5), 0);
     found = certain.feed(fc_process(2), 10);
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, FindingKind::FcNoResponse);
+}
+
+// A response (AK 7 marks one wherever it comes) from a drive the capture has not yet seen a
+// command to: its command may have come before the capture began. Nothing before the first
+// command to a drive is judged; after it, the same response is a mismatched one.
+TEST(FcTrackerTest, ResponseBeforeTheFirstCommandToItsDriveIsNotJudged) {
+    FcRun run;
+    run.feed(fc_parameter(4, 7, 414, 0, 0, 0x0607), 0);  // no command pending
+    run.feed(fc_parameter(1, 1, 414), 10);
+    run.feed(fc_parameter(2, 7, 414, 0, 0, 0x0607), 13);  // while drive 1 is asked
+    run.feed(fc_parameter(1, 1, 414, 0, 5, 0x0607), 16);
+    run.finish(5000);
+    EXPECT_TRUE(run.all.empty()) << run.all[0].message;
+    EXPECT_EQ(run.station(4)->responses, 1u);
+    EXPECT_EQ(run.station(2)->responses, 1u);
+    run.feed(fc_process(4), 6000);
+    run.feed(fc_process(4, 0x0607), 6004);
+    std::vector<Finding> found = run.feed(fc_parameter(4, 7, 414, 0, 0, 0x0607), 6010);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcMismatchedResponse);
 }
 
 }  // namespace

@@ -364,21 +364,27 @@ TEST(Vlt2000TrackerTest, ACaptureStartingWithAReplyIsNotJudgedForIt) {
 
 TEST(Vlt2000TrackerTest, AFailedReplyFromAnotherDriveIsMismatched) {
     Vlt2000Run run;
+    // Drives 2 and 5 have been commanded before (nothing before that is judged, see
+    // AReplyBeforeTheFirstCommandToItsDriveIsNotJudged).
+    for (int drive : {2, 5}) {
+        run.feed(vlt(drive, 'C', 0));
+        run.feed(vlt(drive, 'C', 0, 0, 0, {}, "GH@@"));
+    }
     run.feed(vlt(1, 'R', 102), 0);
     std::vector<Finding> found = run.feed(failed(2, 'R', 102, 0), 2);
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, FindingKind::Vlt2000MismatchedResponse);
-    EXPECT_EQ(found[0].frame, 2u);
-    EXPECT_EQ(found[0].request_frame, 1u);
+    EXPECT_EQ(found[0].frame, 6u);
+    EXPECT_EQ(found[0].request_frame, 5u);
     EXPECT_EQ(found[0].slave, 2);
     EXPECT_EQ(found[0].pnu, 102);
     EXPECT_NE(found[0].message.find("reply R (read) parameter 102 from drive 02 while the command "
-                                    "to drive 01 from frame 1 was pending"),
+                                    "to drive 01 from frame 5 was pending"),
               std::string::npos)
         << found[0].message;
-    EXPECT_EQ(run.station(2)->replies, 1u);
+    EXPECT_EQ(run.station(2)->replies, 2u);
     EXPECT_EQ(run.station(2)->failed, 1u);
-    EXPECT_EQ(run.station(2)->answered, 0u);
+    EXPECT_EQ(run.station(2)->answered, 1u);
     // The command still waits for drive 1.
     EXPECT_TRUE(run.feed(vlt(1, 'R', 102, 5, 0, {}, "GH@@"), 4).empty());
     EXPECT_EQ(run.station(1)->answered, 1u);
@@ -391,6 +397,26 @@ TEST(Vlt2000TrackerTest, AFailedReplyFromAnotherDriveIsMismatched) {
     EXPECT_EQ(found[0].request_frame, 0u);
     EXPECT_NE(found[0].message.find("from drive 05 but no command was pending"), std::string::npos)
         << found[0].message;
+}
+
+// A failed reply (decimal position 9 marks one wherever it comes) from a drive the capture has
+// not yet seen a command to: its command may have come before the capture began. Nothing before
+// the first command to a drive is judged; after it, the same reply is a mismatched one.
+TEST(Vlt2000TrackerTest, AReplyBeforeTheFirstCommandToItsDriveIsNotJudged) {
+    Vlt2000Run run;
+    run.feed(failed(5, 'U', 516, 4), 0);  // nothing pending
+    run.feed(vlt(1, 'R', 102), 10);
+    run.feed(failed(2, 'R', 102, 0), 12);  // while drive 1 is asked
+    run.feed(vlt(1, 'R', 102, 5, 0, {}, "GH@@"), 14);
+    run.finish(5000);
+    EXPECT_TRUE(run.all.empty()) << run.all[0].message;
+    EXPECT_EQ(run.station(5)->replies, 1u);
+    EXPECT_EQ(run.station(2)->replies, 1u);
+    run.feed(vlt(5, 'C', 0), 6000);
+    run.feed(vlt(5, 'C', 0, 0, 0, {}, "GH@@"), 6004);
+    std::vector<Finding> found = run.feed(failed(5, 'U', 516, 4), 6010);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::Vlt2000MismatchedResponse);
 }
 
 TEST(Vlt2000TrackerTest, AReplyWithAnotherLetterOrParameterIsMismatched) {
