@@ -14,6 +14,7 @@
 
 #include "capture/bus_tag.hpp"
 #include "capture/pcap_source.hpp"
+#include "decoder/counted.hpp"
 #include "decoder/time.hpp"
 
 namespace dpscope {
@@ -353,8 +354,8 @@ class PcapWriter final : public CaptureWriter {
             for (long boundary : boundaries_)
                 if (boundary <= info.st_size) keep = boundary;
         if (::ftruncate(fileno(file), keep) == 0)
-            error_ +=
-                fmt::format("; the file keeps the {} bytes of whole records written before", keep);
+            error_ += fmt::format("; the file keeps the {} of whole records written before",
+                                  counted(static_cast<std::uint64_t>(keep), "byte", "bytes"));
         return false;
     }
 

@@ -10,6 +10,8 @@
 #include <cstring>
 #include <ctime>
 
+#include "decoder/counted.hpp"
+
 namespace dpscope {
 
 namespace {
@@ -77,8 +79,8 @@ FramedSource::Fill TtySource::fill() {
         if (status() != InputStatus::Damaged) {
             set_status(InputStatus::Damaged);
             report(Severity::Error,
-                   fmt::format("{}: the device went away (hang-up; unplugged?) after {} bytes",
-                               name(), bytes_read_));
+                   fmt::format("{}: the device went away (hang-up; unplugged?) after {}", name(),
+                               counted(bytes_read_, "byte", "bytes")));
         }
         return Fill::End;
     }
@@ -108,8 +110,9 @@ bool TtySource::read_available(bool& hangup) {
     }
     if (status() != InputStatus::Damaged) {
         set_status(InputStatus::Damaged);
-        report(Severity::Error, fmt::format("{}: read error after {} bytes: {}", name(),
-                                            bytes_read_, std::strerror(errno)));
+        report(Severity::Error,
+               fmt::format("{}: read error after {}: {}", name(),
+                           counted(bytes_read_, "byte", "bytes"), std::strerror(errno)));
     }
     hangup = true;
     return false;

@@ -496,9 +496,10 @@ Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t t
         case InputFormat::Raw:
             if (skipped == 0) return Error{fmt::format("{}: the input is empty", source.name())};
             return Error{
-                fmt::format("{}: no {} telegram in its {} bytes read as a raw byte stream; is it a "
+                fmt::format("{}: no {} telegram in its {} read as a raw byte stream; is it a "
                             "capture?{}",
-                            source.name(), protocol.framing.protocol_name(), skipped, hint)};
+                            source.name(), protocol.framing.protocol_name(),
+                            counted(skipped, "byte", "bytes"), hint)};
         case InputFormat::Hex:
             if (skipped == 0 && source.issue_count(IssueKind::HexSyntax) > 0)
                 return Error{fmt::format(

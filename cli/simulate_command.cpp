@@ -22,6 +22,7 @@
 #include "capture/tty_player.hpp"
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
+#include "decoder/counted.hpp"
 #include "simulator/simulator.hpp"
 
 namespace dpscope::cli {
@@ -147,8 +148,9 @@ int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
     // Stopped by a signal, the session is cut short on purpose: nothing to say of its faults.
     if (simulator && !g_stop_playing.load()) exit_code = report_injections(*simulator);
     if (command.list_injections)
-        fmt::print(stderr, "played {} telegrams ({} bytes) in {:.3f} s (scheduled {:.3f} s)\n",
-                   stats.telegrams, stats.bytes, static_cast<double>(stats.wall_ns) / 1e9,
+        fmt::print(stderr, "played {} ({}) in {:.3f} s (scheduled {:.3f} s)\n",
+                   counted(stats.telegrams, "telegram", "telegrams"),
+                   counted(stats.bytes, "byte", "bytes"), static_cast<double>(stats.wall_ns) / 1e9,
                    static_cast<double>(stats.scheduled_ns) / 1e9);
     return exit_code;
 }

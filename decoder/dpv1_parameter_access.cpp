@@ -67,7 +67,8 @@ struct Inconsistencies {
 // The DP-V1 length byte against the data that follows it.
 void check_dpv1_length(const Dpv1Pdu& pdu, Inconsistencies& found) {
     if (pdu.length != pdu.data.size())
-        found.add("DP-V1 length {} but {} data bytes", pdu.length, pdu.data.size());
+        found.add("DP-V1 length {} but {}", pdu.length,
+                  counted(pdu.data.size(), "data byte", "data bytes"));
 }
 
 }  // namespace
@@ -282,7 +283,7 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
                     address.pnu, block.format);
         }
     }
-    if (m.trailing > 0) found.add("{} bytes after the request", m.trailing);
+    if (m.trailing > 0) found.add("{} after the request", counted(m.trailing, "byte", "bytes"));
     if (!found.text.empty()) {
         Finding& f = ch.add(out, FindingKind::Dpv1LengthError, t, 0);
         f.pnu = tx.first_pnu();
@@ -313,7 +314,9 @@ void Dpv1ParameterAccessTracker::response(Channel& ch, const DecodedTelegram& t,
         if (pdu.length != tx->dpv1_length)
             found.add("Write response echoes length {}, the request had {}", pdu.length,
                       tx->dpv1_length);
-        if (!pdu.data.empty()) found.add("Write response carries {} data bytes", pdu.data.size());
+        if (!pdu.data.empty())
+            found.add("Write response carries {}",
+                      counted(pdu.data.size(), "data byte", "data bytes"));
         if (!found.text.empty()) {
             Finding& f = ch.add(out, FindingKind::Dpv1LengthError, t, tx->frame);
             f.pnu = tx->first_pnu();
@@ -417,8 +420,9 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
 
     if (!m.has_header) {
         add(FindingKind::Dpv1LengthError).message = fmt::format(
-            "parameter response of {} bytes has no complete header (request of frame {}: {})",
-            std::min<std::size_t>(pdu.length, pdu.data.size()), tx->frame, about);
+            "parameter response of {} has no complete header (request of frame {}: {})",
+            counted(std::min<std::size_t>(pdu.length, pdu.data.size()), "byte", "bytes"), tx->frame,
+            about);
         ch.close(tx);
         return;
     }
@@ -472,7 +476,8 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
     // refused with error 0x15 [P:MCA101 p30]).
     const std::size_t size = std::max<std::size_t>(pdu.length, pdu.data.size());
     if (read_max >= 0 && size > static_cast<std::size_t>(read_max))
-        found.add("response of {} bytes, more than the {} its Read accepts", size, read_max);
+        found.add("response of {}, more than the {} its Read accepts",
+                  counted(size, "byte", "bytes"), read_max);
     if (size > profidrive::kMaxData)
         found.add("response of {} bytes, more than the {} a parameter response may have", size,
                   profidrive::kMaxData);
@@ -508,7 +513,8 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
                           std::max<std::uint8_t>(address.elements, 1));
             }
         }
-        if (m.trailing > 0) found.add("{} bytes after the last value block", m.trailing);
+        if (m.trailing > 0)
+            found.add("{} after the last value block", counted(m.trailing, "byte", "bytes"));
     }
     if (!found.text.empty())
         add(FindingKind::Dpv1LengthError).message = fmt::format(

@@ -107,12 +107,18 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
             header = true;
         }
         fmt::format_to(it, "    {:>3}: ", a);
-        if (station.ppo.known() || decoder.options().station_ppo[a] != 0)
-            append_ppo_long(b, decoder.layout_for(static_cast<std::uint8_t>(a), 0));
+        const bool layout_known = station.ppo.known() || decoder.options().station_ppo[a] != 0;
+        const PpoLayout layout = decoder.layout_for(static_cast<std::uint8_t>(a), 0);
+        if (layout_known)
+            append_ppo_long(b, layout);
         else
             append(b, "PPO guessed from each Data_Exchange length");
         const Dialect dialect = decoder.options().dialect_of(static_cast<std::uint8_t>(a));
-        fmt::format_to(it, "; dialect {}", dialect_name(dialect));
+        // The dialect names the parameter channel's code tables: none without a PCV.
+        if (pcv_seen_[a] || (layout_known && layout.has_pcv))
+            fmt::format_to(it, "; dialect {}", dialect_name(dialect));
+        else
+            append(b, "; no parameter channel");
         if (station.has_ident) fmt::format_to(it, "; ident 0x{:04X}", station.ident);
         fmt::format_to(
             it, "; {}\n",

@@ -59,6 +59,7 @@ class Summary {
         if (t.has_roles) slave_seen_[t.slave & 0x7F] = true;
         if (t.dp.service == Service::DataExchange && t.has_roles) {
             ++data_exchange_[t.slave & 0x7F];
+            if (t.dp.ppo.has_pcv) pcv_seen_[t.slave & 0x7F] = true;
             dialects_[t.slave & 0x7F].add(t);
         }
     }
@@ -211,6 +212,7 @@ class Summary {
     // Per kind, by the severity each finding had (options and rules can change the default).
     std::array<std::array<std::uint64_t, 3>, kFindingKindCount> findings_by_severity_{};
     std::array<std::uint64_t, kStationCount> data_exchange_{};
+    std::array<bool, kStationCount> pcv_seen_{};    // a Data_Exchange layout with a PCV
     std::array<bool, kStationCount> slave_seen_{};  // a telegram to or from it was added
     std::array<DialectEvidence, kStationCount> dialects_{};
     std::int64_t first_time_ = kNoTime;

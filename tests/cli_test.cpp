@@ -219,6 +219,15 @@ TEST(CliTest, InputWithoutAnyTelegramIsUsageError) {
                                       "stream"),
               std::string::npos)
         << r.err;
+    // One byte is "1 byte" (#27 point 15).
+    TempFile one("one.raw");
+    test::write_file(one.path, {'x'});
+    CommandResult single = run_dpscope({"decode", "--input-format", "raw", one.path});
+    EXPECT_EQ(single.exit_code, 2);
+    EXPECT_NE(single.err.find(one.path + ": no PROFIBUS telegram in its 1 byte read as a raw byte "
+                                         "stream"),
+              std::string::npos)
+        << single.err;
     CommandResult forced = run_dpscope({"decode", "--input-format", "hex", kPpo1});
     EXPECT_EQ(forced.exit_code, 2);
     EXPECT_NE(forced.err.find("no hex bytes in the text"), std::string::npos) << forced.err;

@@ -2257,6 +2257,29 @@ SimulatorOptions profidrive_slave(std::uint64_t cycles) {
     return options;
 }
 
+// A PPO 3 slave (2 PCD words, no parameter channel) has no dialect in any format: the dialect
+// names the parameter channel's code tables.
+TEST(ReportTest, SlaveWithoutAParameterChannelHasNoDialectInEveryFormat) {
+    auto analysis = analyse_simulation(one_slave(3, 3, 50));
+    const ReportContext context = context_of(*analysis);
+    std::string text = render(ReportFormat::Text, context);
+    EXPECT_NE(text.find("  layout         PPO 3 (2 PCD words, 4 bytes each way) from Chk_Cfg; no "
+                        "parameter channel; ident 0x"),
+              std::string::npos)
+        << text;
+    EXPECT_EQ(text.find("dialect"), std::string::npos) << text;
+    std::string markdown = render(ReportFormat::Markdown, context);
+    EXPECT_NE(markdown.find("| 3 | 2 | PPO3 | - |"), std::string::npos) << markdown;
+    std::string html = render(ReportFormat::Html, context);
+    EXPECT_NE(html.find("<tr><th>Dialect</th><td>none (no parameter channel)</td></tr>"),
+              std::string::npos);
+    EXPECT_NE(html.find("<td>PPO3</td><td>-</td>"), std::string::npos);
+    auto report = json_report(context);
+    ASSERT_TRUE(report);
+    EXPECT_TRUE((*report)["stations"][0]["dialect"].is_null());
+    EXPECT_TRUE((*report)["stations"][0]["dialect_hint"].is_null());
+}
+
 TEST(ReportTest, ProfidriveSlaveDecodedAsVltGetsOneDialectHintInEveryFormat) {
     auto analysis = analyse_simulation(profidrive_slave(2000));  // decoded as vlt (the default)
     ASSERT_GT(analysis->station(3).findings[static_cast<std::size_t>(FindingKind::UnknownCode)],

@@ -218,8 +218,8 @@ TEST(SummaryTest, RenderText) {
               "  slaves:\n"
               "      3: PPO 1 (PCV + 2 PCD words, 12 bytes each way) from Chk_Cfg; dialect vlt; "
               "ident 0x0402; 2 Data_Exchange telegrams\n"
-              "      6: PPO guessed from each Data_Exchange length; dialect vlt; 2 Data_Exchange "
-              "telegrams\n");
+              "      6: PPO guessed from each Data_Exchange length; no parameter channel; 2 "
+              "Data_Exchange telegrams\n");
 }
 
 TEST(SummaryTest, RenderTextNotesDamageAndSkippedBytes) {
@@ -257,10 +257,28 @@ TEST(SummaryTest, SlaveLayoutGivenByOption) {
     Counted c{Summary{}, BusDecoder(options)};
     count(c, {{data_exchange(6, 2, true, std::vector<std::uint8_t>(12, 0)), kT0}});
     std::string text = render_text(c, InputSummary{"x", "pcap", 0, false});
-    EXPECT_NE(text.find("      6: PPO 4 (6 PCD words, 12 bytes each way) given by --ppo; dialect "
-                        "profidrive; 1 Data_Exchange telegram\n"),
+    EXPECT_NE(text.find("      6: PPO 4 (6 PCD words, 12 bytes each way) given by --ppo; no "
+                        "parameter channel; 1 Data_Exchange telegram\n"),
               std::string::npos)
         << text;
+}
+
+// An I/O slave (ET200S and the like) configured with one byte each way: no parameter channel,
+// so no dialect, and "1 byte".
+TEST(SummaryTest, SlaveWithoutAParameterChannelHasNoDialect) {
+    Counted c;
+    count(c, {{build_telegram(
+                   {4, 2, request_fc(FdlFunction::SrdHigh, true, true), 62, 62, Bytes(hex("30"))}),
+               kT0},
+              {hex("E5"), kT0 + kMs},
+              {data_exchange(4, 2, true, {0x5A}), kT0 + 2 * kMs},
+              {data_exchange(2, 4, false, {0xA5}), kT0 + 3 * kMs}});
+    std::string text = render_text(c, InputSummary{"x", "pcap", 0, false});
+    EXPECT_NE(text.find("      4: no standard PPO (0 PCD words, 1 byte each way) from Chk_Cfg; no "
+                        "parameter channel; 2 Data_Exchange telegrams\n"),
+              std::string::npos)
+        << text;
+    EXPECT_EQ(text.find("dialect"), std::string::npos) << text;
 }
 
 // Data_Exchange between master 2 and slave 3 (PPO 1 by option) with RC `rc` and PNU 207.
