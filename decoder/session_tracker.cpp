@@ -7,29 +7,82 @@ namespace dpscope {
 
 // ---- DialectEvidence ---------------------------------------------------------------------------
 
+void DialectEvidence::note_dialect(Dialect dialect) noexcept {
+    if (decoded_ == dialect) return;
+    // The dialect changed: the codes and error numbers counted start again (the ident stays).
+    const bool has_ident = has_ident_;
+    const std::uint16_t ident = ident_;
+    const bool pcv_seen = pcv_seen_;
+    *this = DialectEvidence{};
+    decoded_ = dialect;
+    has_ident_ = has_ident;
+    ident_ = ident;
+    pcv_seen_ = pcv_seen;
+}
+
 void DialectEvidence::add(const DecodedTelegram& t) noexcept {
-    if (t.dp.service != Service::DataExchange || !t.dp.has_pcv || !t.dp.fdl.fcs_ok) return;
+    if (!t.dp.fdl.fcs_ok) return;
+    if (t.dp.service != Service::DataExchange) {
+        if (const SetPrm* prm = t.dp.service_data.set_prm(); prm && t.problems().empty()) {
+            has_ident_ = true;
+            ident_ = prm->ident;
+        } else if (const SlaveDiag* diag = t.dp.service_data.slave_diag();
+                   diag && t.direction == Direction::Response && t.problems().empty()) {
+            has_ident_ = true;
+            ident_ = diag->ident;
+        }
+        return;
+    }
+    if (!t.dp.has_pcv) return;
+    note_dialect(t.dp.dialect);
+    pcv_seen_ = true;
     const bool request = t.direction == Direction::Request;
     auto defines = [&](Dialect dialect) {
         return request ? request_code(dialect, t.dp.pcv.rc).defined
                        : response_code(dialect, t.dp.pcv.rc).kind != ResponseKind::Undefined;
     };
-    if (defines(t.dp.dialect)) return;
-    if (decoded_ != t.dp.dialect) *this = DialectEvidence{};  // the dialect changed: start again
-    decoded_ = t.dp.dialect;
-    ++undefined_;
+    if (!defines(t.dp.dialect)) {
+        ++undefined_;
+        for (Dialect other : kDialects)
+            if (other != decoded_ && defines(other))
+                ++other_defines_[static_cast<std::size_t>(other)];
+        return;
+    }
+    // A rejection's error number (bytes 7-8).
+    if (request || response_code(t.dp.dialect, t.dp.pcv.rc).kind != ResponseKind::Rejected) return;
+    const auto error = static_cast<std::uint16_t>(t.dp.pcv.pva & 0xFFFF);
+    if (!error_text(t.dp.dialect, error).empty()) return;
+    ++undefined_errors_;
+    const auto named = error_numbers_.begin() + static_cast<std::ptrdiff_t>(named_errors_);
+    if (std::find(error_numbers_.begin(), named, error) == named) {
+        if (named_errors_ < kNamedErrors)
+            error_numbers_[named_errors_++] = error;
+        else
+            more_errors_ = true;
+    }
     for (Dialect other : kDialects)
-        if (other != decoded_ && defines(other)) ++other_defines_[static_cast<std::size_t>(other)];
+        if (other != decoded_ && response_code(other, t.dp.pcv.rc).kind == ResponseKind::Rejected &&
+            !error_text(other, error).empty())
+            ++other_defines_error_[static_cast<std::size_t>(other)];
 }
 
-std::optional<Dialect> DialectEvidence::hint() const noexcept {
-    if (undefined_ < kMinimum) return std::nullopt;
+std::pair<std::optional<Dialect>, DialectEvidence::Basis> DialectEvidence::judge() const noexcept {
+    // The ident hints only for a slave with a parameter channel (whose dialect is named).
+    if (has_ident_ && pcv_seen_)
+        if (std::optional<Dialect> named = dialect_of_ident(ident_); named && *named != decoded_)
+            return {named, Basis::Ident};
     // The first dialect in kDialects order that defines every one of them: vlt before ge (vlt
     // defines all ge does and RC 9..12 besides), then profidrive.
-    for (Dialect other : kDialects)
-        if (other != decoded_ && other_defines_[static_cast<std::size_t>(other)] == undefined_)
-            return other;
-    return std::nullopt;
+    if (undefined_ >= kMinimum)
+        for (Dialect other : kDialects)
+            if (other != decoded_ && other_defines_[static_cast<std::size_t>(other)] == undefined_)
+                return {other, Basis::Codes};
+    if (undefined_errors_ > 0)
+        for (Dialect other : kDialects)
+            if (other != decoded_ &&
+                other_defines_error_[static_cast<std::size_t>(other)] == undefined_errors_)
+                return {other, Basis::Errors};
+    return {std::nullopt, Basis::None};
 }
 
 // ---- SessionTracker -----------------------------------------------------------------------------

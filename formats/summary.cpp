@@ -34,11 +34,38 @@ std::string dialect_hint_text(std::uint8_t slave, Dialect decoded,
                               const DialectEvidence& evidence) {
     std::optional<Dialect> hint = evidence.hint();
     if (!hint) return {};
+    const std::string option =
+        fmt::format("decode with --dialect {}={}", slave, dialect_name(*hint));
+    switch (evidence.basis()) {
+        case DialectEvidence::Basis::Ident:
+            return fmt::format("its ident number 0x{:04X} is the {}'s (the {} dialect); {}",
+                               evidence.ident(), drive_of_ident(evidence.ident()),
+                               dialect_name(*hint), option);
+        case DialectEvidence::Basis::Errors: {
+            std::span<const std::uint16_t> numbers = evidence.undefined_error_numbers();
+            std::string list;
+            for (std::size_t i = 0; i < numbers.size(); ++i)
+                list += fmt::format("{}{}",
+                                    i == 0 ? ""
+                                    : i + 1 == numbers.size() && !evidence.more_error_numbers()
+                                        ? " and "
+                                        : ", ",
+                                    numbers[i]);
+            if (evidence.more_error_numbers()) list += ", ...";
+            return fmt::format(
+                "its error numbers fit the {} dialect ({} {}, which {} does not define, in {}); {}",
+                dialect_name(*hint), numbers.size() == 1 ? "error" : "errors", list,
+                dialect_name(decoded),
+                counted(evidence.undefined_errors(), "rejection telegram", "rejection telegrams"),
+                option);
+        }
+        case DialectEvidence::Basis::Codes:
+        case DialectEvidence::Basis::None: break;
+    }
     return fmt::format(
-        "its parameter-channel codes fit the {} dialect ({} carry codes {} does not define); "
-        "decode with --dialect {}={}",
+        "its parameter-channel codes fit the {} dialect ({} carry codes {} does not define); {}",
         dialect_name(*hint), counted(evidence.undefined(), "telegram", "telegrams"),
-        dialect_name(decoded), slave, dialect_name(*hint));
+        dialect_name(decoded), option);
 }
 
 void Summary::render_text(Output& out, const InputSummary& input, const BusDecoder& decoder) const {

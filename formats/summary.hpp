@@ -61,6 +61,9 @@ class Summary {
             ++data_exchange_[t.slave & 0x7F];
             if (t.dp.ppo.has_pcv) pcv_seen_[t.slave & 0x7F] = true;
             dialects_[t.slave & 0x7F].add(t);
+        } else if (t.has_roles &&
+                   (t.dp.service == Service::SetPrm || t.dp.service == Service::SlaveDiag)) {
+            dialects_[t.slave & 0x7F].add(t);  // the ident number
         }
     }
 

@@ -311,6 +311,81 @@ TEST(SummaryTest, DialectHintAfterTenCodesAllDefinedByTheOtherDialect) {
     EXPECT_FALSE(c.summary.dialect_evidence(3).hint());
 }
 
+// A rejection (RC 7) of slave 3 with error number `error` in bytes 7-8.
+std::vector<std::uint8_t> rejection(std::uint16_t error) {
+    std::vector<std::uint8_t> du(12, 0);
+    du[0] = 0x70;
+    du[1] = 207;
+    du[6] = static_cast<std::uint8_t>(error >> 8);
+    du[7] = static_cast<std::uint8_t>(error & 0xFF);
+    return data_exchange(2, 3, false, du);
+}
+
+// A GE AF-600/AF-650 decoded with the default dialect uses the vlt codes, so its codes never
+// give it away; its fault numbers 130 and 131 do [S002]: vlt does not define them, ge does. One
+// rejection is enough (a short capture), and the hint says what it rests on.
+TEST(SummaryTest, DialectHintFromAnErrorNumberOnlyTheOtherDialectDefines) {
+    DecoderOptions options;
+    options.station_ppo[3] = 1;
+    Counted c{Summary{}, BusDecoder(options)};
+    count(c, {{rejection(2), kT0}});  // defined by vlt: nothing to hint
+    EXPECT_FALSE(c.summary.dialect_evidence(3).hint());
+    count(c, {{pcv_telegram(true, 1), kT0 + kMs}, {rejection(130), kT0 + 2 * kMs}});
+    ASSERT_EQ(c.summary.dialect_evidence(3).hint(), Dialect::Ge);
+    EXPECT_NE(render_text(c, InputSummary{"x", "pcap", 0, false})
+                  .find("         hint: its error numbers fit the ge dialect (error 130, which vlt "
+                        "does not define, in 1 rejection telegram); decode with --dialect 3=ge\n"),
+              std::string::npos)
+        << render_text(c, InputSummary{"x", "pcap", 0, false});
+    // An error number no dialect defines takes the hint back.
+    count(c, {{rejection(999), kT0 + 3 * kMs}});
+    EXPECT_FALSE(c.summary.dialect_evidence(3).hint());
+    // Decoded as ge, 130 is defined: nothing to hint.
+    DecoderOptions ge = options;
+    ge.station_dialect[3] = Dialect::Ge;
+    Counted right{Summary{}, BusDecoder(ge)};
+    count(right, {{rejection(130), kT0}, {rejection(131), kT0 + kMs}});
+    EXPECT_FALSE(right.summary.dialect_evidence(3).hint());
+}
+
+// The ident number from Set_Prm (or a Slave_Diag answer) names the drive: a documented one hints
+// its dialect at once, whatever the codes. 0x0402 is the Danfoss VLT 5000/6000's
+// (docs/protocol/ppo.md); an ident the sources do not name hints nothing.
+TEST(SummaryTest, DialectHintFromADocumentedIdentNumber) {
+    DecoderOptions options;
+    options.station_dialect[3] = Dialect::Profidrive;
+    Counted c{Summary{}, BusDecoder(options)};
+    const std::vector<Input> start = {
+        {build_telegram({3, 2, request_fc(FdlFunction::SrdHigh, true, true), 61, 62,
+                         Bytes(hex("88 0A 0A 0B 04 02 00"))}),
+         kT0},
+        {hex("E5"), kT0 + kMs},
+        {build_telegram(
+             {3, 2, request_fc(FdlFunction::SrdHigh, false, true), 62, 62, Bytes(hex("F3 F1"))}),
+         kT0 + 2 * kMs},
+        {hex("E5"), kT0 + 3 * kMs},
+        {pcv_telegram(true, 1), kT0 + 4 * kMs}};
+    count(c, start);
+    ASSERT_EQ(c.summary.dialect_evidence(3).hint(), Dialect::Vlt);
+    EXPECT_NE(
+        render_text(c, InputSummary{"x", "pcap", 0, false})
+            .find("         hint: its ident number 0x0402 is the Danfoss VLT 5000/6000's (the "
+                  "vlt dialect); decode with --dialect 3=vlt\n"),
+        std::string::npos)
+        << render_text(c, InputSummary{"x", "pcap", 0, false});
+    // Decoded as vlt: nothing to hint.
+    Counted vlt;
+    count(vlt, start);
+    EXPECT_FALSE(vlt.summary.dialect_evidence(3).hint());
+    // An ident no source names (dpscope's simulator gives its ge slaves 0x6002, made up).
+    std::vector<Input> other = start;
+    other[0].bytes = build_telegram({3, 2, request_fc(FdlFunction::SrdHigh, true, true), 61, 62,
+                                     Bytes(hex("88 0A 0A 0B 60 02 00"))});
+    Counted unknown{Summary{}, BusDecoder(options)};
+    count(unknown, other);
+    EXPECT_FALSE(unknown.summary.dialect_evidence(3).hint());
+}
+
 TEST(SummaryTest, NoDialectHintForDefinedCodesOrDamagedTelegrams) {
     DecoderOptions options;
     options.station_ppo[3] = 1;
