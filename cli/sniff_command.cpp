@@ -528,7 +528,8 @@ int run_sniff(const SniffCommand& command) {
             static_cast<unsigned long long>(source.parity_errors()),
             static_cast<unsigned long long>(source.idle_gaps()));
     if (settings->quiet)
-        pipeline.summary().render_text(out, describe_input(source), pipeline.decoder());
+        pipeline.summary().render_text(out, describe_input(source), pipeline.decoder(),
+                                       pipeline.drive_trackers());
     if (stats) {
         StatsContext context{describe_input(source), &pipeline.health()->health(),
                              std::string(kVersion)};

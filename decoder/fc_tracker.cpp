@@ -157,6 +157,7 @@ void FcTracker::check_deadline(std::int64_t now_ns, std::uint64_t frame) {
         now_ns <= pending_.time_ns + pending_.wire_ns + options_.timeout_ns)
         return;
     if (!pending_judged()) {
+        ++station(pending_.address).not_judged;
         close_pending();
         return;
     }
@@ -184,9 +185,25 @@ std::span<const Finding> FcTracker::track(const DecodedTelegram& t) {
         if (!answers_pending) check_deadline(t.time_ns, t.frame);
     }
     if (!check_intact(t)) {
+        // Counted by its direction, as decode -q counts it: a damaged command is dropped by the
+        // drive (its outcome: damaged), a damaged response answers nothing.
+        if (t.has_roles) {
+            FcStationStats& st = station(t.slave);
+            if (t.direction == Direction::Request) {
+                ++st.commands;
+                ++st.damaged_commands;
+                ++(t.fc.broadcast ? st.broadcasts : st.damaged);
+            } else {
+                ++st.responses;
+                ++st.damaged_responses;
+            }
+        }
         // A damaged answer from the drive the command went to: it answered; the BCC error (or
-        // malformed_telegram) is the finding.
-        if (answers_pending) close_pending();
+        // malformed_telegram) is the finding, the command's outcome "damaged".
+        if (answers_pending) {
+            ++station(pending_.address).damaged;
+            close_pending();
+        }
         count(0);
         return current_;
     }
@@ -216,7 +233,9 @@ void FcTracker::command(FcStationStats& st, const DecodedTelegram& t) {
         const std::string pending_text = what_pending(pending_.pkw, pending_.ak, pending_.pnu);
         if (!pending_judged()) {
             // The capture's first telegram, perhaps a response: neither unanswered nor stacked on.
+            ++station(pending_.address).not_judged;
         } else if (!fc.broadcast && t.slave == pending_.address) {
+            ++st.abandoned;
             Finding& f = add_finding(current_, FindingKind::FcStackedRequest, t.frame, t.time_ns,
                                      pending_.frame, true, kMaster, t.slave);
             if (pending_.pkw) f.pnu = pending_.pnu;
@@ -342,6 +361,11 @@ std::span<const Finding> FcTracker::finish(std::int64_t end_ns) {
     completed_.clear();
     if (end_ns != kNoTime && (now_ns_ == kNoTime || end_ns > now_ns_)) now_ns_ = end_ns;
     if (now_ns_ != kNoTime) check_deadline(now_ns_, last_frame_);
+    // Still waiting within its time-out when the capture ended: not judged (open). finish() may
+    // come again with a later end, which may time it out.
+    for (const auto& st : stations_)
+        st->open = 0;
+    if (pending_.active) station(pending_.address).open = 1;
     count(0);
     return current_;
 }

@@ -64,14 +64,25 @@ struct FcStationStats {
     static constexpr std::size_t kMaxParameters = 256;
 
     std::uint8_t address = 0;
-    std::uint64_t telegrams = 0;                     // intact telegrams to or from it
-    std::uint64_t commands = 0;                      // every block kind, broadcasts included
-    std::uint64_t process_commands = 0;              // process blocks
-    std::array<std::uint64_t, 16> commands_by_ak{};  // parameter and text blocks, by AK
-    std::uint64_t broadcasts = 0;
-    std::uint64_t responses = 0;  // every response from it, answering or not
-    std::uint64_t answered = 0;   // commands answered: the transactions
-    std::uint64_t no_responses = 0;
+    std::uint64_t telegrams = 0;  // intact telegrams to or from it
+    // Every command (every block kind, broadcasts included, damaged ones too: decode -q counts
+    // the same) has one outcome, so commands = broadcasts + answered + no_responses + abandoned +
+    // damaged + not_judged + open (commands_outcomes()).
+    std::uint64_t commands = 0;
+    std::uint64_t damaged_commands = 0;              // of those, damaged (bad BCC, cut short)
+    std::uint64_t process_commands = 0;              // intact process blocks
+    std::array<std::uint64_t, 16> commands_by_ak{};  // intact parameter and text blocks, by AK
+    std::uint64_t broadcasts = 0;                    // nobody answers them
+    std::uint64_t answered = 0;                      // answered: the transactions
+    std::uint64_t no_responses = 0;                  // unanswered (fc_no_response)
+    std::uint64_t abandoned = 0;   // the master sent the drive a new command first (stacked)
+    std::uint64_t damaged = 0;     // the command or its answer damaged
+    std::uint64_t not_judged = 0;  // the capture began with it (perhaps a response)
+    // The capture ended while it waited for its answer, within its time-out (0 or 1; set by
+    // finish()); not judged either.
+    std::uint64_t open = 0;
+    std::uint64_t responses = 0;  // every response from it, answering or not, damaged too
+    std::uint64_t damaged_responses = 0;
     std::uint64_t late = 0;
     LogHistogram latency_ns;  // command -> response, where both carry a time
     std::uint64_t latency_sum_ns = 0;
@@ -87,6 +98,12 @@ struct FcStationStats {
     std::uint64_t mean_latency_ns() const noexcept {
         return latency_ns.count() ? latency_sum_ns / latency_ns.count() : 0;
     }
+    // The commands by outcome, added up: always equal to commands.
+    std::uint64_t commands_outcomes() const noexcept {
+        return broadcasts + answered + no_responses + abandoned + damaged + not_judged_total();
+    }
+    // Not judged: at the capture's start or end.
+    std::uint64_t not_judged_total() const noexcept { return not_judged + open; }
 };
 
 class FcTracker {
@@ -100,7 +117,7 @@ class FcTracker {
     // concern an earlier command: their request_frame says which); valid until the next call.
     std::span<const Finding> track(const DecodedTelegram& t);
     // The end of the capture at `end_ns` (default: the last telegram's time): a command still
-    // unanswered past the time-out then is reported.
+    // unanswered past the time-out then is reported; one within it is not judged.
     std::span<const Finding> finish(std::int64_t end_ns = kNoTime);
     // The command -> response pairs the last track() completed; valid until the next call.
     std::span<const CompletedTransaction> completed() const noexcept { return completed_; }

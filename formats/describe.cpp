@@ -98,6 +98,15 @@ void append_ppo_short(TextBuffer& out, const PpoLayout& layout) {
         fmt::format_to(std::back_inserter(out), "{}w", layout.output_bytes / 2);
 }
 
+std::string command_outcomes_text(std::uint64_t answered, std::uint64_t unanswered,
+                                  std::uint64_t abandoned, std::uint64_t damaged,
+                                  std::uint64_t not_judged) {
+    std::string text = fmt::format("{} answered, {} unanswered, {} abandoned, {} damaged", answered,
+                                   unanswered, abandoned, damaged);
+    if (not_judged) text += fmt::format(", {} not judged", not_judged);
+    return text;
+}
+
 std::string cfg_units(std::uint64_t units, bool words) {
     return words ? counted(units, "word", "words") : counted(units, "byte", "bytes");
 }

@@ -4,6 +4,7 @@
 #include <iterator>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include "decoder/fc_codes.hpp"
 #include "decoder/vlt2000_codes.hpp"
@@ -68,7 +69,8 @@ std::string dialect_hint_text(std::uint8_t slave, Dialect decoded,
         dialect_name(decoded), option);
 }
 
-void Summary::render_text(Output& out, const InputSummary& input, const BusDecoder& decoder) const {
+void Summary::render_text(Output& out, const InputSummary& input, const BusDecoder& decoder,
+                          DriveTrackers trackers) const {
     TextBuffer& b = out.buffer();
     auto it = std::back_inserter(b);
     fmt::format_to(it, "Summary of {} ({})\n", input.name, input.format);
@@ -115,12 +117,12 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
         }
 
     if (fc_telegrams_ > 0) {
-        render_fc_drives(b);
+        render_fc_drives(b, trackers.fc);
         out.end_record();
         return;
     }
     if (vlt2000_telegrams_ > 0) {
-        render_vlt2000_addresses(b);
+        render_vlt2000_addresses(b, trackers.vlt2000);
         out.end_record();
         return;
     }
@@ -205,7 +207,35 @@ void Summary::render_fc_counts(TextBuffer& b) const {
     by_ak("parameter responses", fc_responses_, false);
 }
 
-void Summary::render_fc_drives(TextBuffer& b) const {
+namespace {
+
+// The tracker's counts of drive `address`, or null.
+template <class Tracker>
+auto drive_stats(const Tracker* tracker, std::size_t address) {
+    using Stats = std::remove_pointer_t<typename decltype(tracker->stations())::value_type>;
+    const Stats* found = nullptr;
+    if (tracker)
+        for (const Stats* s : tracker->stations())
+            if (s->address == address) found = s;
+    return found;
+}
+
+// " (119 answered, 0 unanswered, 1 abandoned, 1 damaged)" from the tracker's counts, or "".
+template <class Stats>
+std::string outcomes_of(const Stats* s) {
+    if (!s) return {};
+    return fmt::format(" ({})", command_outcomes_text(s->answered, s->no_responses, s->abandoned,
+                                                      s->damaged, s->not_judged_total()));
+}
+
+// " (1 damaged)" or "".
+std::string damaged_of(std::uint64_t damaged) {
+    return damaged ? fmt::format(" ({} damaged)", damaged) : std::string();
+}
+
+}  // namespace
+
+void Summary::render_fc_drives(TextBuffer& b, const FcTracker* tracker) const {
     auto it = std::back_inserter(b);
     bool header = false;
     for (std::size_t a = 0; a < kStationCount; ++a) {
@@ -214,9 +244,11 @@ void Summary::render_fc_drives(TextBuffer& b) const {
             append(b, "  drives:\n");
             header = true;
         }
-        fmt::format_to(it, "    {:>3}: {}, {}\n", a,
-                       counted(fc_drive_requests_[a], "request", "requests"),
-                       counted(fc_drive_responses_[a], "response", "responses"));
+        const FcStationStats* s = drive_stats(tracker, a);
+        fmt::format_to(it, "    {:>3}: {}{}, {}{}\n", a,
+                       counted(fc_drive_requests_[a], "command", "commands"), outcomes_of(s),
+                       counted(fc_drive_responses_[a], "response", "responses"),
+                       damaged_of(s ? s->damaged_responses : 0));
     }
 }
 
@@ -266,8 +298,9 @@ void Summary::render_vlt2000_counts(TextBuffer& b) const {
                    vlt2000_checksum_disabled_);
 }
 
-// Per address (00: broadcasts) its commands and replies, failures and checksums.
-void Summary::render_vlt2000_addresses(TextBuffer& b) const {
+// Per address (00: broadcasts) its commands (by outcome, with the tracker) and replies, failures
+// and checksums.
+void Summary::render_vlt2000_addresses(TextBuffer& b, const Vlt2000Tracker* tracker) const {
     auto it = std::back_inserter(b);
     bool header = false;
     for (std::size_t a = 0; a < kStationCount; ++a) {
@@ -277,9 +310,11 @@ void Summary::render_vlt2000_addresses(TextBuffer& b) const {
             header = true;
         }
         const Vlt2000AddressCounts& counts = vlt2000_addresses_[a];
-        fmt::format_to(it, "    {:02}{}: {}, {}", a, a == 0 ? " (broadcast)" : "",
-                       counted(counts.commands, "command", "commands"),
-                       counted(counts.replies, "reply", "replies"));
+        const Vlt2000StationStats* s = a == 0 ? nullptr : drive_stats(tracker, a);
+        fmt::format_to(it, "    {:02}{}: {}{}, {}{}", a, a == 0 ? " (broadcast)" : "",
+                       counted(counts.commands, "command", "commands"), outcomes_of(s),
+                       counted(counts.replies, "reply", "replies"),
+                       damaged_of(s ? s->damaged_replies : 0));
         if (counts.failed) fmt::format_to(it, ", {} failed", counts.failed);
         if (counts.checksum_errors)
             fmt::format_to(it, ", {}",

@@ -467,3 +467,82 @@ TEST(FcTrackerTest, TrailingBytesAloneLeaveTheTelegramIntact) {
 
 }  // namespace
 }  // namespace dpscope
+
+namespace dpscope {
+namespace {
+
+// Every command to a drive has one outcome, so the counts add up (#27 point 12): commands =
+// broadcasts + answered + unanswered + abandoned + damaged + not judged. Damaged telegrams count
+// among the commands and responses (as decode -q counts them), and are the outcome "damaged".
+void feed_every_outcome(FcRun& run) {
+    run.feed(fc_process(1, 0x0607), 0);  // 1: the capture begins with drive 1's answer: not judged
+    run.feed(fc_process(2), 10);         // 2: answered by 3
+    run.feed(fc_process(2, 0x0607), 14);
+    run.feed(fc_process(2), 20);  // 4: unanswered: the master moves on to drive 1
+    run.feed(fc_parameter(1, 1, 414),
+             30);  // 5: abandoned: a new command to drive 1 before its answer
+    run.feed(fc_parameter(1, 14, 415, 0, 7), 40);  // 6: its answer (7) is damaged
+    std::vector<std::uint8_t> answer = fc_parameter(1, 1, 415, 0, 7, 0x0607);
+    answer.back() ^= 0x10;
+    run.feed(answer, 44);
+    std::vector<std::uint8_t> command = fc_process(2);  // 8: a damaged command (the drive drops it)
+    command.back() ^= 0x10;
+    run.feed(command, 50);
+    run.feed(fc_process(0), 60);  // 9: a broadcast
+    run.feed(fc_process(2), 70);  // 10: still waiting for its answer when the capture ends
+}
+
+void expect_outcomes_add_up(const FcRun& run) {
+    for (const FcStationStats* s : run.tracker.stations()) {
+        SCOPED_TRACE(s->address);
+        EXPECT_EQ(s->commands, s->broadcasts + s->answered + s->no_responses + s->abandoned +
+                                   s->damaged + s->not_judged + s->open);
+        EXPECT_EQ(s->commands, s->commands_outcomes());
+    }
+}
+
+TEST(FcTrackerTest, EveryCommandHasOneOutcomeAndTheCountsAddUp) {
+    FcRun run;
+    feed_every_outcome(run);
+    run.finish();  // at the last telegram: command 10 is within its time-out
+    expect_outcomes_add_up(run);
+    const FcStationStats* one = run.station(1);
+    ASSERT_NE(one, nullptr);
+    EXPECT_EQ(one->commands, 3u);
+    EXPECT_EQ(one->answered, 0u);
+    EXPECT_EQ(one->no_responses, 0u);
+    EXPECT_EQ(one->abandoned, 1u);
+    EXPECT_EQ(one->damaged, 1u);
+    EXPECT_EQ(one->not_judged, 1u);
+    EXPECT_EQ(one->open, 0u);
+    EXPECT_EQ(one->responses, 1u);
+    EXPECT_EQ(one->damaged_responses, 1u);
+    EXPECT_EQ(one->damaged_commands, 0u);
+    const FcStationStats* two = run.station(2);
+    ASSERT_NE(two, nullptr);
+    EXPECT_EQ(two->commands, 4u);
+    EXPECT_EQ(two->answered, 1u);
+    EXPECT_EQ(two->no_responses, 1u);
+    EXPECT_EQ(two->abandoned, 0u);
+    EXPECT_EQ(two->damaged, 1u);
+    EXPECT_EQ(two->not_judged, 0u);
+    EXPECT_EQ(two->open, 1u);
+    EXPECT_EQ(two->damaged_commands, 1u);
+    EXPECT_EQ(two->responses, 1u);
+    const FcStationStats* broadcasts = run.station(0);
+    ASSERT_NE(broadcasts, nullptr);
+    EXPECT_EQ(broadcasts->commands, 1u);
+    EXPECT_EQ(broadcasts->broadcasts, 1u);
+
+    // Past the time-out at the end, the last command is unanswered instead.
+    FcRun late;
+    feed_every_outcome(late);
+    late.finish(5000);
+    expect_outcomes_add_up(late);
+    EXPECT_EQ(late.station(2)->no_responses, 2u);
+    EXPECT_EQ(late.station(2)->not_judged, 0u);
+    EXPECT_EQ(late.station(2)->open, 0u);
+}
+
+}  // namespace
+}  // namespace dpscope

@@ -10,8 +10,14 @@
 #include <vector>
 
 #include "decoder/bus_decoder.hpp"
+#include "decoder/fc_decoder.hpp"
+#include "decoder/fc_tracker.hpp"
 #include "decoder/telegram_builder.hpp"
+#include "decoder/vlt2000_decoder.hpp"
+#include "decoder/vlt2000_tracker.hpp"
+#include "simulator/fc_bus_model.hpp"
 #include "simulator/simulator.hpp"
+#include "simulator/vlt2000_bus_model.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -442,6 +448,135 @@ TEST(SummaryTest, SimulatedSessionTotalsAddUp) {
     EXPECT_NE(text.find("    fcs_mismatch                        1\n"), std::string::npos);
     EXPECT_NE(text.find("      4: PPO 2 (PCV + 6 PCD words, 20 bytes each way) from Chk_Cfg; "
                         "dialect vlt; ident 0x0402; 240 Data_Exchange telegrams\n"),
+              std::string::npos)
+        << text;
+}
+
+// FC and VLT 2000 sessions with every fault of their bus: per drive, the tracker's commands add
+// up to their outcomes, and decode -q's counts (the summary's, per telegram) equal the report's
+// (the tracker's): commands = requests, responses and replies with the damaged ones (#27 point 12).
+template <class Decoder, class Tracker, class Check>
+void run_simulated_bus(Protocol bus, bool (*applies)(FaultKind), Check check) {
+    SimulatorOptions options;
+    options.bus = bus;
+    options.seed = 7;
+    options.cycles = 400;
+    options.baud = 0;
+    for (std::size_t i = 0; i < kFaultKindCount; ++i) {
+        const auto kind = static_cast<FaultKind>(i);
+        if (applies(kind)) options.faults.push_back({kind, 0.02, {}, {}});
+    }
+    Simulator simulator(options);
+    Decoder decoder;
+    Tracker tracker;
+    Summary summary;
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns = 0;
+    std::uint64_t frame = 0;
+    while (simulator.next(bytes, time_ns)) {
+        const DecodedTelegram& t = decoder.decode(Bytes(bytes), time_ns, ++frame);
+        summary.add(t);
+        summary.add_findings(tracker.track(t));
+    }
+    tracker.finish();
+    ASSERT_GT(simulator.injection_count(), 20u);
+    check(tracker, summary);
+}
+
+TEST(SummaryTest, FcDriveCountsAddUpAndAgreeWithTheReport) {
+    run_simulated_bus<FcDecoder, FcTracker>(
+        Protocol::Fc, fault_applies_to_fc, [](const FcTracker& tracker, const Summary& summary) {
+            std::uint64_t damaged = 0;
+            for (const FcStationStats* s : tracker.stations()) {
+                SCOPED_TRACE(s->address);
+                EXPECT_EQ(s->commands, s->commands_outcomes());
+                damaged += s->damaged;
+                if (s->address == 0) continue;  // the broadcasts: not a drive of the summary
+                EXPECT_EQ(summary.fc_drive_requests(s->address), s->commands);
+                EXPECT_EQ(summary.fc_drive_responses(s->address), s->responses);
+            }
+            EXPECT_GT(damaged, 0u);
+        });
+}
+
+TEST(SummaryTest, Vlt2000DriveCountsAddUpAndAgreeWithTheReport) {
+    run_simulated_bus<Vlt2000Decoder, Vlt2000Tracker>(
+        Protocol::Vlt2000, fault_applies_to_vlt2000,
+        [](const Vlt2000Tracker& tracker, const Summary& summary) {
+            std::uint64_t damaged = 0;
+            for (const Vlt2000StationStats* s : tracker.stations()) {
+                SCOPED_TRACE(s->address);
+                EXPECT_EQ(s->commands, s->commands_outcomes());
+                damaged += s->damaged;
+                EXPECT_EQ(summary.vlt2000_address(s->address).commands, s->commands);
+                EXPECT_EQ(summary.vlt2000_address(s->address).replies, s->replies);
+                EXPECT_EQ(summary.vlt2000_address(s->address).failed, s->failed);
+            }
+            EXPECT_GT(damaged, 0u);
+        });
+}
+
+// decode -q names each drive's commands by outcome, as the report does, and its responses with
+// the damaged ones (#27 point 12).
+TEST(SummaryTest, FcDrivesShowTheirCommandsByOutcome) {
+    FcDecoder decoder;
+    FcTracker tracker;
+    Summary summary;
+    std::uint64_t frame = 0;
+    auto feed = [&](std::vector<std::uint8_t> bytes, std::int64_t ms) {
+        const DecodedTelegram& t = decoder.decode(Bytes(bytes), ms * kMs, ++frame);
+        summary.add(t);
+        summary.add_findings(tracker.track(t));
+    };
+    feed(test::fc_process(2), 0);
+    feed(test::fc_process(2, 0x0607), 4);
+    feed(test::fc_process(2), 10);  // unanswered
+    feed(test::fc_parameter(1, 1, 414), 20);
+    std::vector<std::uint8_t> answer = test::fc_parameter(1, 1, 414, 0, 5, 0x0607);
+    answer.back() ^= 0x10;  // damaged
+    feed(answer, 24);
+    feed(test::fc_parameter(1, 1, 415), 30);  // the capture ends before its answer
+    summary.add_findings(tracker.finish());
+    BusDecoder dp;
+    const std::string text = test::output_text([&](Output& out) {
+        summary.render_text(out, InputSummary{"fc.pcap", "pcap", 0, false}, dp,
+                            DriveTrackers{&tracker, nullptr});
+    });
+    EXPECT_NE(text.find("  drives:\n"
+                        "      1: 2 commands (0 answered, 0 unanswered, 0 abandoned, 1 damaged, 1 "
+                        "not judged), 1 response (1 damaged)\n"
+                        "      2: 2 commands (1 answered, 1 unanswered, 0 abandoned, 0 damaged), 1 "
+                        "response\n"),
+              std::string::npos)
+        << text;
+    // Without the tracker (decode -q --pnu: the telegrams about a parameter), the counts alone.
+    const std::string alone = test::output_text([&](Output& out) {
+        summary.render_text(out, InputSummary{"fc.pcap", "pcap", 0, false}, dp);
+    });
+    EXPECT_NE(alone.find("      1: 2 commands, 1 response\n"), std::string::npos) << alone;
+}
+
+TEST(SummaryTest, Vlt2000AddressesShowTheirCommandsByOutcome) {
+    Vlt2000Decoder decoder;
+    Vlt2000Tracker tracker;
+    Summary summary;
+    std::uint64_t frame = 0;
+    auto feed = [&](std::string_view text, std::int64_t ms) {
+        std::vector<std::uint8_t> bytes(text.begin(), text.end());
+        const DecodedTelegram& t = decoder.decode(Bytes(bytes), ms * kMs, ++frame);
+        summary.add(t);
+        summary.add_findings(tracker.track(t));
+    };
+    // The manual's example command (§7.5), the capture ending before its reply.
+    feed("<01UOGD@0516+00080007>", 0);
+    summary.add_findings(tracker.finish());
+    BusDecoder dp;
+    const std::string text = test::output_text([&](Output& out) {
+        summary.render_text(out, InputSummary{"vlt.pcap", "pcap", 0, false}, dp,
+                            DriveTrackers{nullptr, &tracker});
+    });
+    EXPECT_NE(text.find("    01: 1 command (0 answered, 0 unanswered, 0 abandoned, 0 damaged, 1 "
+                        "not judged), 0 replies"),
               std::string::npos)
         << text;
 }
