@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "capture/hex_log.hpp"
+#include "decoder/counted.hpp"
 #include "decoder/stream_framer.hpp"
 
 namespace dpscope {
@@ -320,19 +321,20 @@ BusChoice choose_bus(Bytes head, InputFormat format, bool complete) {
         choice.need_more = true;
         return choice;
     }
-    const std::string_view what = format == InputFormat::Hex ? "hex bytes" : "bytes";
+    const std::string what = format == InputFormat::Hex
+                                 ? counted(stream.size(), "hex byte", "hex bytes")
+                                 : counted(stream.size(), "byte", "bytes");
     if (!qualifies(best_count)) {
-        choice.reason = fmt::format("no bus frames half of the first {} {}", stream.size(), what);
+        choice.reason = fmt::format("no bus frames half of the first {}", what);
         return choice;
     }
     choice.protocol = best;
-    choice.reason = fmt::format(
-        "{} framed in the first {} {}, {} by {} framing",
-        best_count.telegrams == 1 ? std::string("1 telegram")
-                                  : fmt::format("{} telegrams", best_count.telegrams),
-        stream.size(), what,
-        second_count.bytes == 0 ? std::string("none") : fmt::format("{} bytes", second_count.bytes),
-        second ? second->framing.protocol_name() : std::string_view("other"));
+    choice.reason =
+        fmt::format("{} framed in the first {}, {} by {} framing",
+                    counted(best_count.telegrams, "telegram", "telegrams"), what,
+                    second_count.bytes == 0 ? std::string("none")
+                                            : counted(second_count.bytes, "byte", "bytes"),
+                    second ? second->framing.protocol_name() : std::string_view("other"));
     // A byte stream names no bus: the choice is always said (issue #10: "say which was chosen").
     (void)qualified;
     choice.say = true;

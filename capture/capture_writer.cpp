@@ -15,6 +15,7 @@
 
 #include "capture/bus_tag.hpp"
 #include "capture/pcap_source.hpp"
+#include "decoder/counted.hpp"
 #include "decoder/time.hpp"
 
 namespace dpscope {
@@ -381,8 +382,8 @@ class PcapWriter final : public CaptureWriter {
             for (long boundary : boundaries_)
                 if (boundary <= info.st_size) keep = boundary;
         if (::ftruncate(fileno(file), keep) == 0)
-            error_ +=
-                fmt::format("; the file keeps the {} bytes of whole records written before", keep);
+            error_ += fmt::format("; the file keeps the {} of whole records written before",
+                                  counted(static_cast<std::uint64_t>(keep), "byte", "bytes"));
         return false;
     }
 
@@ -418,9 +419,9 @@ class RotatingWriter final : public CaptureWriter {
         ++index_;
         std::string name = rotated_file_name(path_, index_);
         FILE* first = std::exchange(first_, nullptr);
-        WriterResult opened = first
-                                  ? open_capture_writer(first, name, format_, link_type_, bus_, line_)
-                                  : open_capture_writer(name, format_, link_type_, bus_, line_);
+        WriterResult opened =
+            first ? open_capture_writer(first, name, format_, link_type_, bus_, line_)
+                  : open_capture_writer(name, format_, link_type_, bus_, line_);
         if (!opened) return Error{opened.error()};
         current_ = std::move(opened).value();
         // pcapng: the section and interface blocks (with the bus tag and the line).
@@ -499,8 +500,8 @@ std::string rotated_file_name(const std::string& path, unsigned index) {
 }
 
 WriterResult open_rotating_writer(const std::string& path, CaptureFormat format, int link_type,
-                                  RotationOptions rotation, Protocol bus,
-                                  const LineSettings& line, FILE* first) {
+                                  RotationOptions rotation, Protocol bus, const LineSettings& line,
+                                  FILE* first) {
     if (rotation.max_bytes == 0 && rotation.max_ns == 0)
         return first ? open_capture_writer(first, path == "-" ? "<stdout>" : path, format,
                                            link_type, bus, line)

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <ctime>
 
+#include "decoder/counted.hpp"
 #include "decoder/time.hpp"
 
 namespace dpscope {
@@ -43,7 +44,7 @@ Result<void> write_all(int fd, const std::vector<std::uint8_t>& data) {
             ::poll(&descriptor, 1, 100);
             continue;
         }
-        return Error{fmt::format("write failed after {} bytes: {}", done,
+        return Error{fmt::format("write failed after {}: {}", counted(done, "byte", "bytes"),
                                  n < 0 ? std::strerror(errno) : "device closed")};
     }
     return {};

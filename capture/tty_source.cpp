@@ -10,6 +10,8 @@
 #include <cstring>
 #include <ctime>
 
+#include "decoder/counted.hpp"
+
 namespace dpscope {
 
 namespace {
@@ -77,8 +79,8 @@ FramedSource::Fill TtySource::fill() {
         if (status() != InputStatus::Damaged) {
             set_status(InputStatus::Damaged);
             report(Severity::Error,
-                   fmt::format("{}: the device went away (hang-up; unplugged?) after {} bytes",
-                               name(), stream_offset_));
+                   fmt::format("{}: the device went away (hang-up; unplugged?) after {}", name(),
+                               counted(stream_offset_, "byte", "bytes")));
         }
         return Fill::End;
     }
@@ -107,8 +109,9 @@ bool TtySource::read_available(bool& hangup) {
     }
     if (status() != InputStatus::Damaged) {
         set_status(InputStatus::Damaged);
-        report(Severity::Error, fmt::format("{}: read error after {} bytes: {}", name(),
-                                            stream_offset_, std::strerror(errno)));
+        report(Severity::Error,
+               fmt::format("{}: read error after {}: {}", name(),
+                           counted(stream_offset_, "byte", "bytes"), std::strerror(errno)));
     }
     hangup = true;
     return false;

@@ -70,8 +70,11 @@ void add_display_options(CLI::App& app, DecodeOptionValues& values,
     app.add_flag("-V,--verbose", values.verbose, "Same as -T verbose: the whole field tree");
     app.add_flag("-q,--quiet", values.quiet,
                  "Decode everything but print only a summary: telegrams by frame type and "
-                 "service, problems and findings by kind, and the PPO layout of each slave "
-                 "(with --station/--pnu: of the telegrams those select). Not with -T/-V");
+                 "service, problems and findings by kind, and the PPO layout of each slave; "
+                 "FC and VLT 2000: each drive's commands by outcome (answered, unanswered, "
+                 "abandoned, damaged, not judged), as the report counts them, and its responses "
+                 "(with --station/--pnu: of the telegrams those select; with --pnu no outcomes). "
+                 "Not with -T/-V");
     app.add_flag("-l,--line-buffered", values.line_buffered,
                  "Write each telegram's output as soon as it is decoded, also into a pipe (as "
                  "tcpdump -l); on a terminal that is always done");
@@ -576,9 +579,10 @@ Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t t
         case InputFormat::Raw:
             if (skipped == 0) return Error{fmt::format("{}: the input is empty", source.name())};
             return Error{
-                fmt::format("{}: no {} telegram in its {} bytes read as a raw byte stream; is it a "
+                fmt::format("{}: no {} telegram in its {} read as a raw byte stream; is it a "
                             "capture?{}",
-                            source.name(), protocol.framing.protocol_name(), skipped, hint)};
+                            source.name(), protocol.framing.protocol_name(),
+                            counted(skipped, "byte", "bytes"), hint)};
         case InputFormat::Hex:
             if (skipped == 0 && source.issue_count(IssueKind::HexSyntax) > 0)
                 return Error{fmt::format(

@@ -63,10 +63,9 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             return kExitOutputError;
         }
         capture_file = std::move(file).value();
-        WriterResult opened =
-            open_capture_writer(capture_file->file(), capture_file->name(), settings.write_format,
-                                *link_type, settings.protocol->protocol, settings.line,
-                                capture_file->is_staged());
+        WriterResult opened = open_capture_writer(
+            capture_file->file(), capture_file->name(), settings.write_format, *link_type,
+            settings.protocol->protocol, settings.line, capture_file->is_staged());
         capture_file->release_file();  // the writer closes it
         if (!opened) {
             print_error(fmt::format("{}{}", opened.error(), capture_file->left_as_it_was()));
@@ -170,9 +169,14 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             InputSummary input = describe_input(source);
             input.name += settings.stations.empty() ? "" : ", telegrams of the --station list";
             input.name += settings.pnus.empty() ? "" : ", telegrams about the --pnu list";
-            shown_summary.render_text(out, input, pipeline.decoder());
+            // A drive's commands by outcome are its own, whatever --station selects; of the
+            // telegrams about a --pnu, the counts alone.
+            shown_summary.render_text(
+                out, input, pipeline.decoder(),
+                settings.pnus.empty() ? pipeline.drive_trackers() : DriveTrackers{});
         } else {
-            pipeline.summary().render_text(out, describe_input(source), pipeline.decoder());
+            pipeline.summary().render_text(out, describe_input(source), pipeline.decoder(),
+                                           pipeline.drive_trackers());
         }
     }
     if (writer) {

@@ -102,6 +102,11 @@ class Pipeline {
     const FcTracker& fc_tracker() const noexcept { return fc_.tracker; }
     const Vlt2000Tracker& vlt2000_tracker() const noexcept { return vlt2000_.tracker; }
     const Vlt2000Decoder& vlt2000_decoder() const noexcept { return vlt2000_.decoder; }
+    // The capture's drive tracker (FC or VLT 2000), for the summary's commands by outcome.
+    DriveTrackers drive_trackers() const noexcept {
+        return DriveTrackers{protocol_ == Protocol::Fc ? &fc_.tracker : nullptr,
+                             protocol_ == Protocol::Vlt2000 ? &vlt2000_.tracker : nullptr};
+    }
     // The parameter number the last telegram's parameter channel is about (-1: none), from the
     // protocol's tracker.
     std::int32_t subject_pnu() const noexcept {

@@ -24,6 +24,7 @@
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
 #include "cli/pipeline.hpp"
+#include "decoder/counted.hpp"
 #include "simulator/simulator.hpp"
 
 namespace dpscope::cli {
@@ -164,12 +165,11 @@ int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
     // Stopped by a signal, the session is cut short on purpose: nothing to say of its faults.
     if (simulator && !g_stop_playing.load()) exit_code = report_injections(*simulator);
     if (command.list_injections)
-        fmt::print(
-            stderr,
-            "played {} telegrams ({} bytes) in {:.3f} s (scheduled {:.3f} s) at {} baud {}\n",
-            stats.telegrams, stats.bytes, static_cast<double>(stats.wall_ns) / 1e9,
-            static_cast<double>(stats.scheduled_ns) / 1e9, serial.baud,
-            serial_frame_name(serial.parity, serial.stop_bits));
+        fmt::print(stderr, "played {} ({}) in {:.3f} s (scheduled {:.3f} s) at {} baud {}\n",
+                   counted(stats.telegrams, "telegram", "telegrams"),
+                   counted(stats.bytes, "byte", "bytes"), static_cast<double>(stats.wall_ns) / 1e9,
+                   static_cast<double>(stats.scheduled_ns) / 1e9, serial.baud,
+                   serial_frame_name(serial.parity, serial.stop_bits));
     return exit_code;
 }
 

@@ -560,7 +560,8 @@ int run_sniff(const SniffCommand& command) {
                         telegrams, source.bytes_read(), seconds, source.bytes_skipped(),
                         source.parity_errors(), source.idle_gaps()));
     if (settings->quiet)
-        pipeline.summary().render_text(out, describe_input(source), pipeline.decoder());
+        pipeline.summary().render_text(out, describe_input(source), pipeline.decoder(),
+                                       pipeline.drive_trackers());
     if (stats) {
         StatsContext context{describe_input(source), &pipeline.health()->health(),
                              std::string(kVersion)};

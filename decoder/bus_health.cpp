@@ -243,7 +243,8 @@ class StationTable {
 
       private:
         void skip_empty() {
-            while (at_ < kStationCount && !(*entries_)[at_]) ++at_;
+            while (at_ < kStationCount && !(*entries_)[at_])
+                ++at_;
         }
         Slots* entries_;
         std::size_t at_;
@@ -307,6 +308,9 @@ struct BusHealthTracker::State {
     StationTable<Master> masters;
     // Frame count per master -> slave link: bit 0 valid, bit 1 the last FCB.
     std::array<std::array<std::uint8_t, kStationCount>, kStationCount> link_fcb{};
+    // The links (master -> slave) an intact request was seen on: before it, nothing the slave
+    // sends that master is judged (a capture may begin with the answer to a request before it).
+    std::array<std::bitset<kStationCount>, kStationCount> link_asked{};
     Pending pending;
     bool token_waiting = false;
     std::uint8_t token_holder = 0;
@@ -548,6 +552,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
         State::Master& m = s.masters[fdl.sa];
         ++m.health.requests;
         if (fdl.da == kBroadcastAddress) return s.events;
+        s.link_asked[fdl.sa].set(fdl.da);
         const std::uint8_t function = fdl.fc.function();
         const bool fdl_status = function == static_cast<std::uint8_t>(FdlFunction::FdlStatus);
         State::Slot& slot = s.slots[fdl.da];
@@ -622,7 +627,10 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
         if (!fdl.has_addresses || fdl.type == FrameType::ShortAck) return s.events;
         State::Slot& sender = s.slots[fdl.sa];
         Impl::heard(s, sender, t);
-        ++sender.health.illegal_answers[static_cast<std::size_t>(IllegalAnswer::NotAsked)];
+        // Before the first request from that master to it, the answer's request may have come
+        // before the capture: not judged.
+        if (fdl.da != kBroadcastAddress && s.link_asked[fdl.da].test(fdl.sa))
+            ++sender.health.illegal_answers[static_cast<std::size_t>(IllegalAnswer::NotAsked)];
         return s.events;
     }
 

@@ -342,6 +342,33 @@ const ResponseCode& response_code(Dialect dialect, std::uint8_t rc) noexcept {
     return kVltResponses[rc & 0x0F];
 }
 
+namespace {
+
+struct IdentEntry {
+    std::uint16_t ident;
+    Dialect dialect;
+    std::string_view drive;
+};
+
+// The ident numbers the sources name (docs/protocol/ppo.md, "Ident numbers").
+constexpr IdentEntry kIdents[] = {
+    {0x0402, Dialect::Vlt, "Danfoss VLT 5000/6000"},  // [P:VLT5000-GSD]
+};
+
+}  // namespace
+
+std::optional<Dialect> dialect_of_ident(std::uint16_t ident) noexcept {
+    for (const IdentEntry& entry : kIdents)
+        if (entry.ident == ident) return entry.dialect;
+    return std::nullopt;
+}
+
+std::string_view drive_of_ident(std::uint16_t ident) noexcept {
+    for (const IdentEntry& entry : kIdents)
+        if (entry.ident == ident) return entry.drive;
+    return {};
+}
+
 std::string_view error_text(Dialect dialect, std::uint16_t number) noexcept {
     switch (dialect) {
         case Dialect::Ge: return find_error(kGeErrors, number);

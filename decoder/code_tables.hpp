@@ -43,6 +43,13 @@ std::string_view dialect_name(Dialect dialect);  // "vlt", "ge", "profidrive", "
 // One of kDialects by name ("fc" is none of them).
 std::optional<Dialect> dialect_from_name(std::string_view name);
 
+// The dialect of a PROFIBUS ident number (Set_Prm, Slave_Diag) the sources name, and the drive
+// it names: 0x0402, the Danfoss VLT 5000/6000 (vlt) [P:VLT5000-GSD]. The GE AF-600/AF-650's is
+// in no source dpscope has (docs/protocol/ppo.md, "Ident numbers"). Others: nullopt.
+std::optional<Dialect> dialect_of_ident(std::uint16_t ident) noexcept;
+// "Danfoss VLT 5000/6000" for an ident dialect_of_ident() knows, else "".
+std::string_view drive_of_ident(std::uint16_t ident) noexcept;
+
 // A Danfoss-built drive: vlt, and ge (GE's AF-600/AF-650 use Danfoss's PCA tables [S002] and the
 // Danfoss FC control word, docs/protocol/process-data.md). Everything but the PCV code tables
 // (PCD profile, Danfoss bits 11..15, DP-V1 limits and error numbers) treats ge like vlt.

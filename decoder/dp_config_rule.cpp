@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "decoder/counted.hpp"
+
 namespace dpscope {
 
 void check_announced_lengths(ConfigCheckState& state, const DecodedTelegram& t, FindingList& out) {
@@ -21,8 +23,8 @@ void check_announced_lengths(ConfigCheckState& state, const DecodedTelegram& t, 
     reported = actual + 1;
     add_finding(out, FindingKind::ConfigMismatch, t.frame, t.time_ns, 0, t.has_roles, t.master,
                 t.slave)
-        .message = fmt::format("Data_Exchange {} carries {} bytes; the {} in frame {} announced {}",
-                               request ? "request" : "response", actual,
+        .message = fmt::format("Data_Exchange {} carries {}; the {} in frame {} announced {}",
+                               request ? "request" : "response", counted(actual, "byte", "bytes"),
                                ppo.source == PpoSource::ChkCfg ? "Chk_Cfg" : "Get_Cfg response",
                                t.dp.ppo_cfg_frame, expected);
 }

@@ -67,7 +67,8 @@ struct Inconsistencies {
 // The DP-V1 length byte against the data that follows it.
 void check_dpv1_length(const Dpv1Pdu& pdu, Inconsistencies& found) {
     if (pdu.length != pdu.data.size())
-        found.add("DP-V1 length {} but {} data bytes", pdu.length, pdu.data.size());
+        found.add("DP-V1 length {} but {}", pdu.length,
+                  counted(pdu.data.size(), "data byte", "data bytes"));
 }
 
 }  // namespace
@@ -110,6 +111,9 @@ struct Dpv1ParameterAccessTracker::Channel {
     std::uint8_t index = 0;
     std::uint8_t length = 0;  // a Read's: the most the master accepts
     std::uint64_t frame = 0;
+    // A parameter request was written on the channel: before the first, a parameter response
+    // may answer a request made before the capture, and is no orphan.
+    bool written = false;
 
     Transaction* find(std::uint8_t slot_number, std::uint8_t index_number) {
         for (Transaction& tx : open)
@@ -192,6 +196,7 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
                                                const Dpv1Pdu& pdu, const ProfidriveMessage& m,
                                                FindingList& out) {
     Dpv1Stats& stats = *ch.stats;
+    ch.written = true;
     if (Transaction* open = ch.find(pdu.slot, pdu.index)) {
         // The same Write again before its Write response: a repeat, not a new request.
         if (open->state == Transaction::State::Written && !open->timed_out &&
@@ -316,7 +321,7 @@ void Dpv1ParameterAccessTracker::write_request(Channel& ch, const DecodedTelegra
                     address.pnu, block.format);
         }
     }
-    if (m.trailing > 0) found.add("{} bytes after the request", m.trailing);
+    if (m.trailing > 0) found.add("{} after the request", counted(m.trailing, "byte", "bytes"));
     if (!found.text.empty()) {
         Finding& f = ch.add(out, FindingKind::Dpv1LengthError, t, 0);
         f.pnu = tx.first_pnu();
@@ -347,7 +352,9 @@ void Dpv1ParameterAccessTracker::response(Channel& ch, const DecodedTelegram& t,
         if (pdu.length != tx->dpv1_length)
             found.add("Write response echoes length {}, the request had {}", pdu.length,
                       tx->dpv1_length);
-        if (!pdu.data.empty()) found.add("Write response carries {} data bytes", pdu.data.size());
+        if (!pdu.data.empty())
+            found.add("Write response carries {}",
+                      counted(pdu.data.size(), "data byte", "data bytes"));
         if (!found.text.empty()) {
             Finding& f = ch.add(out, FindingKind::Dpv1LengthError, t, tx->frame);
             f.pnu = tx->first_pnu();
@@ -418,6 +425,7 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
     Dpv1Stats& stats = *ch.stats;
     Transaction* tx = ch.find(pdu.slot, pdu.index);
     if (!tx) {
+        if (!ch.written) return;  // its request may have come before the capture: not judged
         Finding& f = ch.add(out, FindingKind::Dpv1OrphanResponse, t, 0);
         if (!m.addresses.empty()) f.pnu = m.addresses.front().pnu;
         f.message = m.has_header ? fmt::format(
@@ -450,8 +458,9 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
 
     if (!m.has_header) {
         add(FindingKind::Dpv1LengthError).message = fmt::format(
-            "parameter response of {} bytes has no complete header (request of frame {}: {})",
-            std::min<std::size_t>(pdu.length, pdu.data.size()), tx->frame, about);
+            "parameter response of {} has no complete header (request of frame {}: {})",
+            counted(std::min<std::size_t>(pdu.length, pdu.data.size()), "byte", "bytes"), tx->frame,
+            about);
         ch.close(tx);
         return;
     }
@@ -507,7 +516,8 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
     // refused with error 0x15 [P:MCA101 p30]).
     const std::size_t size = std::max<std::size_t>(pdu.length, pdu.data.size());
     if (read_max >= 0 && size > static_cast<std::size_t>(read_max))
-        found.add("response of {} bytes, more than the {} its Read accepts", size, read_max);
+        found.add("response of {}, more than the {} its Read accepts",
+                  counted(size, "byte", "bytes"), read_max);
     if (size > profidrive::kMaxData)
         found.add("response of {} bytes, more than the {} a parameter response may have", size,
                   profidrive::kMaxData);
@@ -551,7 +561,8 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
                     "such as format 0x43, expected)",
                     address.pnu, block.format);
         }
-        if (m.trailing > 0) found.add("{} bytes after the last value block", m.trailing);
+        if (m.trailing > 0)
+            found.add("{} after the last value block", counted(m.trailing, "byte", "bytes"));
     }
     if (!found.text.empty())
         add(FindingKind::Dpv1LengthError).message = fmt::format(

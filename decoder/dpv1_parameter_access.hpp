@@ -18,6 +18,8 @@
 //    response is paired with the last DP-V1 request of the same function on the channel, not
 //    with the FDL request it follows. Telegrams without a DP-V1 PDU are no part of it.
 //  - A Write repeated unchanged before its Write response (an FDL retry) is the same request.
+//  - A parameter response before the first parameter request written on the channel is not
+//    judged (a capture may begin while a request made before it is under way).
 #pragma once
 
 #include <array>

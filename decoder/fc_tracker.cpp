@@ -145,10 +145,22 @@ void FcTracker::close_pending() {
     pending_.active = false;
 }
 
+bool FcTracker::pending_judged() const noexcept {
+    // The capture began with it: a tap clipped onto a running bus often starts with a drive's
+    // response, which nothing before it marks as one (docs/decisions.md). It is not judged,
+    // unless its AK says it is a command.
+    return pending_.frame != first_addressed_frame_ || pending_.certain;
+}
+
 void FcTracker::check_deadline(std::int64_t now_ns, std::uint64_t frame) {
     if (!pending_.active || pending_.time_ns == kNoTime ||
         now_ns <= pending_.time_ns + pending_.wire_ns + options_.timeout_ns)
         return;
+    if (!pending_judged()) {
+        ++station(pending_.address).not_judged;
+        close_pending();
+        return;
+    }
     Finding& f = add_finding(current_, FindingKind::FcNoResponse, frame, now_ns, pending_.frame,
                              true, kMaster, pending_.address);
     if (pending_.pkw) f.pnu = pending_.pnu;
@@ -173,9 +185,25 @@ std::span<const Finding> FcTracker::track(const DecodedTelegram& t) {
         if (!answers_pending) check_deadline(t.time_ns, t.frame);
     }
     if (!check_intact(t)) {
+        // Counted by its direction, as decode -q counts it: a damaged command is dropped by the
+        // drive (its outcome: damaged), a damaged response answers nothing.
+        if (t.has_roles) {
+            FcStationStats& st = station(t.slave);
+            if (t.direction == Direction::Request) {
+                ++st.commands;
+                ++st.damaged_commands;
+                ++(t.fc.broadcast ? st.broadcasts : st.damaged);
+            } else {
+                ++st.responses;
+                ++st.damaged_responses;
+            }
+        }
         // A damaged answer from the drive the command went to: it answered; the BCC error (or
-        // malformed_telegram) is the finding.
-        if (answers_pending) close_pending();
+        // malformed_telegram) is the finding, the command's outcome "damaged".
+        if (answers_pending) {
+            ++station(pending_.address).damaged;
+            close_pending();
+        }
         count(0);
         return current_;
     }
@@ -203,17 +231,17 @@ void FcTracker::command(FcStationStats& st, const DecodedTelegram& t) {
     // The master moved on: the command it sent before is left unanswered.
     if (pending_.active) {
         const std::string pending_text = what_pending(pending_.pkw, pending_.ak, pending_.pnu);
-        if (!fc.broadcast && t.slave == pending_.address) {
+        if (!pending_judged()) {
+            // The capture's first telegram, perhaps a response: neither unanswered nor stacked on.
+            ++station(pending_.address).not_judged;
+        } else if (!fc.broadcast && t.slave == pending_.address) {
+            ++st.abandoned;
             Finding& f = add_finding(current_, FindingKind::FcStackedRequest, t.frame, t.time_ns,
                                      pending_.frame, true, kMaster, t.slave);
             if (pending_.pkw) f.pnu = pending_.pnu;
             f.message = fmt::format(
                 "new command {} to drive {} while the command {} from frame {} was unanswered",
                 describe_command(t), t.slave, pending_text, pending_.frame);
-        } else if (pending_.frame == first_addressed_frame_ && !pending_.certain) {
-            // The capture began with it: a tap clipped onto a running bus often starts with a
-            // drive's response, which nothing before it marks as one (docs/decisions.md). It is
-            // not judged.
         } else {
             Finding& f = add_finding(current_, FindingKind::FcNoResponse, t.frame, t.time_ns,
                                      pending_.frame, true, kMaster, pending_.address);
@@ -228,6 +256,7 @@ void FcTracker::command(FcStationStats& st, const DecodedTelegram& t) {
     }
 
     ++st.commands;
+    if (!fc.broadcast) commanded_.set(t.slave & 0x7F);
     if (fc.broadcast) ++st.broadcasts;
     if (fc.block == FcBlock::Process) ++st.process_commands;
     if (fc.has_pkw) {
@@ -266,6 +295,8 @@ void FcTracker::response(FcStationStats& st, const DecodedTelegram& t) {
     const FcTelegram& fc = t.fc;
     ++st.responses;
     if (!pending_.active || t.slave != pending_.address) {
+        // Before the first command to the drive, its command may have come before the capture.
+        if (!commanded_.test(t.slave & 0x7F)) return;
         Finding& f = add_finding(current_, FindingKind::FcMismatchedResponse, t.frame, t.time_ns,
                                  pending_.active ? pending_.frame : 0, true, kMaster, t.slave);
         if (fc.has_pkw) f.pnu = fc.pkw.pnu;
@@ -330,6 +361,11 @@ std::span<const Finding> FcTracker::finish(std::int64_t end_ns) {
     completed_.clear();
     if (end_ns != kNoTime && (now_ns_ == kNoTime || end_ns > now_ns_)) now_ns_ = end_ns;
     if (now_ns_ != kNoTime) check_deadline(now_ns_, last_frame_);
+    // Still waiting within its time-out when the capture ended: not judged (open). finish() may
+    // come again with a later end, which may time it out.
+    for (const auto& st : stations_)
+        st->open = 0;
+    if (pending_.active) station(pending_.address).open = 1;
     count(0);
     return current_;
 }

@@ -11,7 +11,9 @@
 //    anything answers it, or when the capture ends past that time-out; a new command to the same
 //    drive first is fc_stacked_request; an answer later than --fc-response-ms is
 //    fc_late_response; a response from a drive no command is pending for is
-//    fc_mismatched_response. Broadcasts expect no answer;
+//    fc_mismatched_response. Broadcasts expect no answer. What came before the capture is not
+//    judged: the capture's first telegram (perhaps a response) neither way, unless its AK says
+//    it is a command, and no response from a drive before the first command to it;
 //  - the parameter channel of parameter and text blocks, through the parameter-channel engine with
 //    the FC policy (no SPM bit, no lag, no cyclic repetition; Dialect::Fc code tables) and the FC
 //    kinds: fc_mismatched_response (PNU or index differ), fc_unexpected_response_type,
@@ -21,6 +23,7 @@
 #pragma once
 
 #include <array>
+#include <bitset>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -61,14 +64,25 @@ struct FcStationStats {
     static constexpr std::size_t kMaxParameters = 256;
 
     std::uint8_t address = 0;
-    std::uint64_t telegrams = 0;                     // intact telegrams to or from it
-    std::uint64_t commands = 0;                      // every block kind, broadcasts included
-    std::uint64_t process_commands = 0;              // process blocks
-    std::array<std::uint64_t, 16> commands_by_ak{};  // parameter and text blocks, by AK
-    std::uint64_t broadcasts = 0;
-    std::uint64_t responses = 0;  // every response from it, answering or not
-    std::uint64_t answered = 0;   // commands answered: the transactions
-    std::uint64_t no_responses = 0;
+    std::uint64_t telegrams = 0;  // intact telegrams to or from it
+    // Every command (every block kind, broadcasts included, damaged ones too: decode -q counts
+    // the same) has one outcome, so commands = broadcasts + answered + no_responses + abandoned +
+    // damaged + not_judged + open (commands_outcomes()).
+    std::uint64_t commands = 0;
+    std::uint64_t damaged_commands = 0;              // of those, damaged (bad BCC, cut short)
+    std::uint64_t process_commands = 0;              // intact process blocks
+    std::array<std::uint64_t, 16> commands_by_ak{};  // intact parameter and text blocks, by AK
+    std::uint64_t broadcasts = 0;                    // nobody answers them
+    std::uint64_t answered = 0;                      // answered: the transactions
+    std::uint64_t no_responses = 0;                  // unanswered (fc_no_response)
+    std::uint64_t abandoned = 0;   // the master sent the drive a new command first (stacked)
+    std::uint64_t damaged = 0;     // the command or its answer damaged
+    std::uint64_t not_judged = 0;  // the capture began with it (perhaps a response)
+    // The capture ended while it waited for its answer, within its time-out (0 or 1; set by
+    // finish()); not judged either.
+    std::uint64_t open = 0;
+    std::uint64_t responses = 0;  // every response from it, answering or not, damaged too
+    std::uint64_t damaged_responses = 0;
     std::uint64_t late = 0;
     LogHistogram latency_ns;  // command -> response, where both carry a time
     std::uint64_t latency_sum_ns = 0;
@@ -84,6 +98,12 @@ struct FcStationStats {
     std::uint64_t mean_latency_ns() const noexcept {
         return latency_ns.count() ? latency_sum_ns / latency_ns.count() : 0;
     }
+    // The commands by outcome, added up: always equal to commands.
+    std::uint64_t commands_outcomes() const noexcept {
+        return broadcasts + answered + no_responses + abandoned + damaged + not_judged_total();
+    }
+    // Not judged: at the capture's start or end.
+    std::uint64_t not_judged_total() const noexcept { return not_judged + open; }
 };
 
 class FcTracker {
@@ -97,7 +117,7 @@ class FcTracker {
     // concern an earlier command: their request_frame says which); valid until the next call.
     std::span<const Finding> track(const DecodedTelegram& t);
     // The end of the capture at `end_ns` (default: the last telegram's time): a command still
-    // unanswered past the time-out then is reported.
+    // unanswered past the time-out then is reported; one within it is not judged.
     std::span<const Finding> finish(std::int64_t end_ns = kNoTime);
     // The command -> response pairs the last track() completed; valid until the next call.
     std::span<const CompletedTransaction> completed() const noexcept { return completed_; }
@@ -137,6 +157,9 @@ class FcTracker {
     void command(FcStationStats& st, const DecodedTelegram& t);
     void response(FcStationStats& st, const DecodedTelegram& t);
     void close_pending();
+    // Whether the pending command may be judged unanswered or stacked on: not when it is the
+    // capture's first telegram, which may have been a response (unless its AK says otherwise).
+    bool pending_judged() const noexcept;
     void check_deadline(std::int64_t now_ns, std::uint64_t frame);
 
     FcTrackerOptions options_;
@@ -150,8 +173,11 @@ class FcTracker {
     std::array<std::uint64_t, 3> by_severity_{};
     std::int64_t now_ns_ = kNoTime;
     std::uint64_t last_frame_ = 0;
-    std::uint64_t first_addressed_frame_ = 0;
-    std::uint64_t early_responses_ = 0;  // the first telegram to or from a drive
+    std::uint64_t first_addressed_frame_ = 0;  // the first telegram to or from a drive
+    std::uint64_t early_responses_ = 0;
+    // The drives a command went to: a response from another one is not judged (its command may
+    // have come before the capture).
+    std::bitset<kStationCount> commanded_;
     std::int32_t subject_pnu_ = -1;
 };
 

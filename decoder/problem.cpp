@@ -146,7 +146,8 @@ std::string problem_message(const Problem& p) {
                 "SD3 0xA2, SD4 0xDC, SC 0xE5)",
                 p.byte_number(), p.actual);
         case ProblemKind::Truncated:
-            return fmt::format("telegram truncated: needs {} bytes, has {}", p.expected, p.actual);
+            return fmt::format("telegram truncated: needs {}, has {}",
+                               counted(p.expected, "byte", "bytes"), p.actual);
         case ProblemKind::LengthMismatch:
             return fmt::format("byte {}: LEr {} differs from LE {}", p.byte_number(), p.actual,
                                p.expected);
@@ -176,14 +177,14 @@ std::string problem_message(const Problem& p) {
             return fmt::format("byte {}: address extension announced but the data unit ends",
                                p.byte_number());
         case ProblemKind::ServiceDataShort:
-            return fmt::format("byte {}: service data has {} bytes, needs at least {}",
-                               p.byte_number(), p.actual, p.expected);
+            return fmt::format("byte {}: service data has {}, needs at least {}", p.byte_number(),
+                               counted(p.actual, "byte", "bytes"), p.expected);
         case ProblemKind::CfgIdentifierTruncated:
-            return fmt::format("byte {}: identifier announces {} more bytes, only {} present",
-                               p.byte_number(), p.expected, p.actual);
+            return fmt::format("byte {}: identifier announces {} more, only {} present",
+                               p.byte_number(), counted(p.expected, "byte", "bytes"), p.actual);
         case ProblemKind::DiagBlockTruncated:
-            return fmt::format("byte {}: diagnosis block of {} bytes, only {} present",
-                               p.byte_number(), p.expected, p.actual);
+            return fmt::format("byte {}: diagnosis block of {}, only {} present", p.byte_number(),
+                               counted(p.expected, "byte", "bytes"), p.actual);
         case ProblemKind::ReservedFrameControl:
             return fmt::format(
                 "byte {}: frame control 0x{:02X} has the reserved bit 7 set (only the clock value "

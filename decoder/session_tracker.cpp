@@ -7,34 +7,96 @@ namespace dpscope {
 
 // ---- DialectEvidence ---------------------------------------------------------------------------
 
+void DialectEvidence::note_dialect(Dialect dialect) noexcept {
+    if (decoded_ == dialect) return;
+    // The dialect changed: the codes and error numbers counted start again (the ident stays).
+    const bool has_ident = has_ident_;
+    const std::uint16_t ident = ident_;
+    const bool pcv_seen = pcv_seen_;
+    *this = DialectEvidence{};
+    decoded_ = dialect;
+    has_ident_ = has_ident;
+    ident_ = ident;
+    pcv_seen_ = pcv_seen;
+}
+
 void DialectEvidence::add(const DecodedTelegram& t) noexcept {
-    if (t.dp.service != Service::DataExchange || !t.dp.has_pcv || !t.dp.fdl.fcs_ok) return;
+    if (!t.dp.fdl.fcs_ok) return;
+    if (t.dp.service != Service::DataExchange) {
+        if (const SetPrm* prm = t.dp.service_data.set_prm(); prm && t.problems().empty()) {
+            has_ident_ = true;
+            ident_ = prm->ident;
+        } else if (const SlaveDiag* diag = t.dp.service_data.slave_diag();
+                   diag && t.direction == Direction::Response && t.problems().empty()) {
+            has_ident_ = true;
+            ident_ = diag->ident;
+        }
+        return;
+    }
+    if (!t.dp.has_pcv) return;
+    note_dialect(t.dp.dialect);
+    pcv_seen_ = true;
     const bool request = t.direction == Direction::Request;
     auto defines = [&](Dialect dialect) {
         return request ? request_code(dialect, t.dp.pcv.rc).defined
                        : response_code(dialect, t.dp.pcv.rc).kind != ResponseKind::Undefined;
     };
-    if (defines(t.dp.dialect)) return;
-    if (decoded_ != t.dp.dialect) *this = DialectEvidence{};  // the dialect changed: start again
-    decoded_ = t.dp.dialect;
-    ++undefined_;
+    if (!defines(t.dp.dialect)) {
+        ++undefined_;
+        for (Dialect other : kDialects)
+            if (other != decoded_ && defines(other))
+                ++other_defines_[static_cast<std::size_t>(other)];
+        return;
+    }
+    // A rejection's error number (bytes 7-8).
+    if (request || response_code(t.dp.dialect, t.dp.pcv.rc).kind != ResponseKind::Rejected) return;
+    const auto error = static_cast<std::uint16_t>(t.dp.pcv.pva & 0xFFFF);
+    if (!error_text(t.dp.dialect, error).empty()) return;
+    ++undefined_errors_;
+    const auto named = error_numbers_.begin() + static_cast<std::ptrdiff_t>(named_errors_);
+    if (std::find(error_numbers_.begin(), named, error) == named) {
+        if (named_errors_ < kNamedErrors)
+            error_numbers_[named_errors_++] = error;
+        else
+            more_errors_ = true;
+    }
     for (Dialect other : kDialects)
-        if (other != decoded_ && defines(other)) ++other_defines_[static_cast<std::size_t>(other)];
+        if (other != decoded_ && response_code(other, t.dp.pcv.rc).kind == ResponseKind::Rejected &&
+            !error_text(other, error).empty())
+            ++other_defines_error_[static_cast<std::size_t>(other)];
 }
 
-std::optional<Dialect> DialectEvidence::hint() const noexcept {
-    if (undefined_ < kMinimum) return std::nullopt;
+std::pair<std::optional<Dialect>, DialectEvidence::Basis> DialectEvidence::judge() const noexcept {
+    // The ident hints only for a slave with a parameter channel (whose dialect is named).
+    if (has_ident_ && pcv_seen_)
+        if (std::optional<Dialect> named = dialect_of_ident(ident_); named && *named != decoded_)
+            return {named, Basis::Ident};
     // The first dialect in kDialects order that defines every one of them: vlt before ge (vlt
     // defines all ge does and RC 9..12 besides), then profidrive.
-    for (Dialect other : kDialects)
-        if (other != decoded_ && other_defines_[static_cast<std::size_t>(other)] == undefined_)
-            return other;
-    return std::nullopt;
+    if (undefined_ >= kMinimum)
+        for (Dialect other : kDialects)
+            if (other != decoded_ && other_defines_[static_cast<std::size_t>(other)] == undefined_)
+                return {other, Basis::Codes};
+    if (undefined_errors_ > 0)
+        for (Dialect other : kDialects)
+            if (other != decoded_ &&
+                other_defines_error_[static_cast<std::size_t>(other)] == undefined_errors_)
+                return {other, Basis::Errors};
+    return {std::nullopt, Basis::None};
 }
 
 // ---- SessionTracker -----------------------------------------------------------------------------
 
 namespace {
+
+// Every problem of error severity is data cut short (service_data_short): the FDL telegram
+// itself is whole.
+bool only_cut_short(const DecodedTelegram& t) {
+    for (const Problem& p : t.problems())
+        if (problem_severity(p.kind) == Severity::Error && p.kind != ProblemKind::ServiceDataShort)
+            return false;
+    return true;
+}
 
 // The PROFIBUS DP parameter channel: the response lags one cycle, the PKE has an SPM bit.
 ParameterChannelPolicy dp_policy(const TrackerOptions& options) {
@@ -89,8 +151,8 @@ std::uint64_t SessionTracker::transactions() const noexcept {
     return total;
 }
 
-void SessionTracker::count(std::size_t from) {
-    for (std::size_t i = from; i < current_.size(); ++i) {
+void SessionTracker::count(std::size_t from, std::size_t to) {
+    for (std::size_t i = from; i < to; ++i) {
         const Finding& f = current_[i];
         ++by_severity_[static_cast<std::size_t>(f.severity)];
         const auto kind = static_cast<std::size_t>(f.kind);
@@ -117,17 +179,29 @@ std::span<const Finding> SessionTracker::track(const DecodedTelegram& t) {
         dpv1_.advance(now_ns_, t.frame, current_);
     }
     check_reply_missing(t, current_);
+    const std::size_t damage = current_.size();
     const bool intact = check_intact(t, current_);
+    const bool dpv1 = t.dp.service_data.kind() == DpServiceData::Kind::Dpv1 && t.dp.fdl.fcs_ok;
+    // A DP-V1 telegram with a correct FCS whose only defect is data cut short: its
+    // malformed_telegram waits for the DP-V1 tracker, whose length rule may say the same.
+    const bool held = !intact && dpv1 && t.has_roles && only_cut_short(t);
     // Counted before the telegram's own channel is made: channels are made in the order their
-    // first finding or telegram came, the order the engine checks them for time-outs in.
-    if (!current_.empty()) count(0);  // most telegrams have no finding: no call then
+    // first finding or telegram came, the order the engine checks them for time-outs in (a held
+    // finding is the telegram's own channel's).
+    if (!current_.empty()) count(0, held ? damage : current_.size());
     if (!t.has_roles) return current_;
-    const std::size_t counted = current_.size();
+    const std::size_t counted = held ? damage : current_.size();
     Channel& ch = channel(t.master, t.slave);
     track_channel(ch, t, intact);
-    if (t.dp.service_data.kind() == DpServiceData::Kind::Dpv1 && t.dp.fdl.fcs_ok)
-        dpv1_.track(t, current_);
-    if (current_.size() > counted) count(counted);
+    const std::size_t dpv1_from = current_.size();
+    if (dpv1) dpv1_.track(t, current_);
+    // One defect, one finding: the DP-V1 one (docs/decisions.md, "DP-V1 data cut short").
+    if (held && std::any_of(current_.begin() + static_cast<std::ptrdiff_t>(dpv1_from),
+                            current_.end(), [&](const Finding& f) {
+                                return f.kind == FindingKind::Dpv1LengthError && f.frame == t.frame;
+                            }))
+        current_.erase(current_.begin() + static_cast<std::ptrdiff_t>(damage));
+    if (current_.size() > counted) count(counted, current_.size());
     return current_;
 }
 
@@ -172,7 +246,7 @@ std::span<const Finding> SessionTracker::finish(std::int64_t end_ns) {
         engine_.advance(now_ns_, last_frame_, current_);
         dpv1_.advance(now_ns_, last_frame_, current_);
     }
-    count(0);
+    count(0, current_.size());
     return current_;
 }
 

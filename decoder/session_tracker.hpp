@@ -14,7 +14,8 @@
 //  - The slave's response lags one cycle, and the PKE has an SPM bit (the PPO's layout).
 //  - A telegram with a bad FCS, or malformed, is reported and otherwise ignored; except that a
 //    DP-V1 telegram with a correct FCS still goes to the DP-V1 tracker, whose length rule says
-//    in DP-V1 terms what a PROFIdrive message cut short or too long is.
+//    in DP-V1 terms what a PROFIdrive message cut short or too long is. Where it does, for data
+//    cut short, that dpv1_length_error is the one finding (no malformed_telegram beside it).
 #pragma once
 
 #include <array>
@@ -22,6 +23,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "decoder/channel_index.hpp"
@@ -39,27 +41,60 @@ struct TrackerOptions {
     bool strict = false;                      // RC 8 after a read is an unexpected answer
 };
 
-// What the parameter-channel codes of one slave say about its dialect: a slave decoded with
-// the wrong code tables (a PROFIdrive drive decoded as vlt) shows codes its dialect does not
-// define but another one does. The rule (docs/decisions.md): at least kMinimum telegrams with
-// a code the decoded dialect does not define, every one of them a code another dialect defines
-// (the first such in kDialects order). Only intact Data_Exchange telegrams with a parameter
-// channel count.
+// What one slave's telegrams say about its dialect: a slave decoded with the wrong code tables
+// shows it (docs/decisions.md, "Dialect hint"). In this order, the first that applies:
+//  - Ident: its ident number (Set_Prm, or a Slave_Diag answer) is one the sources name for a
+//    dialect other than the decoded one (dialect_of_ident(): the Danfoss VLT 5000/6000's).
+//  - Codes: at least kMinimum telegrams with a code the decoded dialect does not define, every
+//    one of them a code another dialect defines (a PROFIdrive drive decoded as vlt).
+//  - Errors: rejections (RC 7) with an error number the decoded dialect does not define, every
+//    one of them defined by another dialect (a GE AF-600 decoded as vlt: fault numbers 130,
+//    131); one is enough.
+// The other dialect is the first such in kDialects order. Only intact telegrams count: Set_Prm
+// requests and Slave_Diag answers for the ident, Data_Exchange telegrams with a parameter channel
+// for codes and error numbers.
 class DialectEvidence {
   public:
     static constexpr std::uint64_t kMinimum = 10;
+    enum class Basis : std::uint8_t { None, Ident, Codes, Errors };
 
     void add(const DecodedTelegram& t) noexcept;
     // Telegrams whose code the decoded dialect does not define.
     std::uint64_t undefined() const noexcept { return undefined_; }
-    // The dialect to decode the slave with instead, or nullopt.
-    std::optional<Dialect> hint() const noexcept;
+    // Rejection telegrams whose error number the decoded dialect does not define, and the first
+    // kNamedErrors distinct such numbers.
+    static constexpr std::size_t kNamedErrors = 4;
+    std::uint64_t undefined_errors() const noexcept { return undefined_errors_; }
+    std::span<const std::uint16_t> undefined_error_numbers() const noexcept {
+        return std::span<const std::uint16_t>(error_numbers_.data(), named_errors_);
+    }
+    // More distinct numbers than kNamedErrors were seen.
+    bool more_error_numbers() const noexcept { return more_errors_; }
+    bool has_ident() const noexcept { return has_ident_; }
+    std::uint16_t ident() const noexcept { return ident_; }
+    // The dialect the telegrams with a PCV were decoded with (vlt before the first).
+    Dialect decoded() const noexcept { return decoded_; }
+    // The dialect to decode the slave with instead, or nullopt; and what that rests on.
+    std::optional<Dialect> hint() const noexcept { return judge().first; }
+    Basis basis() const noexcept { return judge().second; }
 
   private:
+    std::pair<std::optional<Dialect>, Basis> judge() const noexcept;
+    void note_dialect(Dialect dialect) noexcept;
+
     Dialect decoded_ = Dialect::Vlt;
     std::uint64_t undefined_ = 0;
     // Of those, the codes each other dialect defines (indexed by Dialect).
     std::array<std::uint64_t, std::size(kDialects)> other_defines_{};
+    std::uint64_t undefined_errors_ = 0;
+    std::array<std::uint16_t, kNamedErrors> error_numbers_{};
+    std::size_t named_errors_ = 0;
+    bool more_errors_ = false;
+    // Of those, the error numbers each other dialect defines (indexed by Dialect).
+    std::array<std::uint64_t, std::size(kDialects)> other_defines_error_{};
+    bool has_ident_ = false;
+    std::uint16_t ident_ = 0;
+    bool pcv_seen_ = false;  // an intact Data_Exchange telegram with a parameter channel
 };
 
 // One channel: the engine's counts and the DP carrier's.
@@ -119,9 +154,9 @@ class SessionTracker {
     };
 
     Channel& channel(std::uint8_t master, std::uint8_t slave);
-    // Counts the findings from current_[from] on, per severity and per channel (making the
-    // channel of each in the order found).
-    void count(std::size_t from);
+    // Counts the findings current_[from] to current_[to - 1], per severity and per channel
+    // (making the channel of each in the order found).
+    void count(std::size_t from, std::size_t to);
     void track_channel(Channel& ch, const DecodedTelegram& t, bool intact);
 
     TrackerOptions options_;

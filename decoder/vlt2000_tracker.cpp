@@ -147,6 +147,7 @@ void Vlt2000Tracker::check_deadline(std::int64_t now_ns, std::uint64_t frame) {
         now_ns <= pending_.time_ns + options_.timeout_ns)
         return;
     if (!pending_judged()) {
+        ++station(pending_.address).not_judged;
         close_pending();
         return;
     }
@@ -197,8 +198,25 @@ std::span<const Finding> Vlt2000Tracker::track(const DecodedTelegram& t) {
         if (!answers_pending) check_deadline(t.time_ns, t.frame);
     }
     if (!check_intact(t, answers_pending)) {
-        if (answers_pending) close_pending();
-        if (t.has_roles && t.direction == Direction::Request) damaged_command_frame_ = t.frame;
+        // Counted by its direction, as decode -q counts it: a damaged command's outcome is
+        // "damaged" (a reply to it is no finding of its own), a damaged reply answers nothing.
+        if (t.has_roles) {
+            Vlt2000StationStats& st = station(t.slave);
+            if (t.direction == Direction::Request) {
+                damaged_command_frame_ = t.frame;
+                ++st.commands;
+                ++st.damaged_commands;
+                ++(v.broadcast ? st.broadcasts : st.damaged);
+            } else {
+                ++st.replies;
+                ++st.damaged_replies;
+            }
+        }
+        // A damaged reply from the drive the command went to ends the wait: "damaged".
+        if (answers_pending) {
+            ++station(pending_.address).damaged;
+            close_pending();
+        }
         count();
         return current_;
     }
@@ -245,7 +263,9 @@ void Vlt2000Tracker::command(Vlt2000StationStats& st, const DecodedTelegram& t) 
                 : std::optional<std::uint16_t>(pending_.parameter);
         if (!pending_judged()) {
             // The capture's first telegram, perhaps a reply: neither unanswered nor stacked on.
+            ++station(pending_.address).not_judged;
         } else if (!v.broadcast && t.slave == pending_.address) {
+            ++st.abandoned;
             Finding& f = add_finding(current_, FindingKind::Vlt2000StackedRequest, t.frame,
                                      t.time_ns, pending_.frame, true, kMaster, t.slave);
             f.pnu = pnu;
@@ -266,6 +286,7 @@ void Vlt2000Tracker::command(Vlt2000StationStats& st, const DecodedTelegram& t) 
     }
 
     ++st.commands;
+    if (!v.broadcast) commanded_.set(t.slave & 0x7F);
     if (v.letter != Vlt2000Letter::Unknown) ++st.commands_by_letter[letter_row(v.letter)];
     if (v.broadcast) ++st.broadcasts;
     if (v.has_parameter && v.letter != Vlt2000Letter::Control &&
@@ -310,6 +331,8 @@ void Vlt2000Tracker::reply(Vlt2000StationStats& st, const DecodedTelegram& t) {
     if (!pending_.active && t.request_frame != 0 && t.request_frame == damaged_command_frame_)
         return;  // the reply to a command with a wrong checksum, which was the finding
     if (!pending_.active || t.slave != pending_.address) {
+        // Before the first command to the drive, its command may have come before the capture.
+        if (!commanded_.test(t.slave & 0x7F)) return;
         Finding& f =
             add_finding(current_, FindingKind::Vlt2000MismatchedResponse, t.frame, t.time_ns,
                         pending_.active ? pending_.frame : 0, true, kMaster, t.slave);
@@ -381,6 +404,11 @@ std::span<const Finding> Vlt2000Tracker::finish(std::int64_t end_ns) {
     completed_.clear();
     if (end_ns != kNoTime && (now_ns_ == kNoTime || end_ns > now_ns_)) now_ns_ = end_ns;
     if (now_ns_ != kNoTime) check_deadline(now_ns_, last_frame_);
+    // Still waiting within its time-out when the capture ended: not judged (open). finish() may
+    // come again with a later end, which may time it out.
+    for (const auto& st : stations_)
+        st->open = 0;
+    if (pending_.active) station(pending_.address).open = 1;
     count();
     return current_;
 }

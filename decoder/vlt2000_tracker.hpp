@@ -12,7 +12,8 @@
 //    the same drive first is vlt2000_stacked_request (the capture's first telegram, which may
 //    have been a reply, is judged neither way); a reply from a drive no command is pending
 //    for, or with another control letter or parameter (a C command's parameter is ignored), is
-//    vlt2000_mismatched_response; a reply to a broadcast is vlt2000_unexpected_reply; a reply
+//    vlt2000_mismatched_response (not before the first command to that drive: its command may
+//    have come before the capture); a reply to a broadcast is vlt2000_unexpected_reply; a reply
 //    with decimal position 9 is vlt2000_command_failed (a note, with the reason code);
 //  - the parameter channel through the parameter-channel engine with the VLT 2000 policy (no SPM
 //    bit, no lag, no cyclic repetition; Dialect::Vlt2000: the letters as codes 1..4, a failed
@@ -23,6 +24,7 @@
 #pragma once
 
 #include <array>
+#include <bitset>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -62,14 +64,25 @@ struct Vlt2000StationStats {
     static constexpr std::size_t kMaxReasons = 100;  // reason codes 00..99
 
     std::uint8_t address = 0;
-    std::uint64_t telegrams = 0;                        // intact telegrams to or from it
-    std::uint64_t commands = 0;                         // every letter, broadcasts included
-    std::array<std::uint64_t, 4> commands_by_letter{};  // U, R, C, I (Vlt2000Letter order)
-    std::uint64_t broadcasts = 0;
-    std::uint64_t replies = 0;   // every reply from it, answering or not
-    std::uint64_t answered = 0;  // commands answered: the transactions
-    std::uint64_t no_responses = 0;
-    std::uint64_t failed = 0;                                  // replies with decimal position 9
+    std::uint64_t telegrams = 0;  // intact telegrams to or from it
+    // Every command (every letter, broadcasts included, damaged ones too: decode -q counts the
+    // same) has one outcome, so commands = broadcasts + answered + no_responses + abandoned +
+    // damaged + not_judged + open (commands_outcomes()).
+    std::uint64_t commands = 0;
+    std::uint64_t damaged_commands = 0;                 // of those, damaged (checksum, cut short)
+    std::array<std::uint64_t, 4> commands_by_letter{};  // intact ones: U, R, C, I
+    std::uint64_t broadcasts = 0;                       // nobody replies to them
+    std::uint64_t answered = 0;                         // answered: the transactions
+    std::uint64_t no_responses = 0;                     // unanswered (vlt2000_no_response)
+    std::uint64_t abandoned = 0;   // the master sent the drive a new command first (stacked)
+    std::uint64_t damaged = 0;     // the command or its reply damaged
+    std::uint64_t not_judged = 0;  // the capture began with it (perhaps a reply)
+    // The capture ended while it waited for its reply, within its time-out (0 or 1; set by
+    // finish()); not judged either.
+    std::uint64_t open = 0;
+    std::uint64_t replies = 0;  // every reply from it, answering or not, damaged too
+    std::uint64_t damaged_replies = 0;
+    std::uint64_t failed = 0;  // intact replies with decimal position 9
     std::map<std::uint8_t, std::uint64_t> failures_by_reason;  // reason code -> count
     std::uint64_t failures_without_reason = 0;
     std::uint64_t checksum_errors = 0;
@@ -88,6 +101,12 @@ struct Vlt2000StationStats {
     std::uint64_t mean_latency_ns() const noexcept {
         return latency_ns.count() ? latency_sum_ns / latency_ns.count() : 0;
     }
+    // The commands by outcome, added up: always equal to commands.
+    std::uint64_t commands_outcomes() const noexcept {
+        return broadcasts + answered + no_responses + abandoned + damaged + not_judged_total();
+    }
+    // Not judged: at the capture's start or end.
+    std::uint64_t not_judged_total() const noexcept { return not_judged + open; }
 };
 
 class Vlt2000Tracker {
@@ -102,7 +121,7 @@ class Vlt2000Tracker {
     // call.
     std::span<const Finding> track(const DecodedTelegram& t);
     // The end of the capture at `end_ns` (default: the last telegram's time): a command still
-    // unanswered past the time-out then is reported.
+    // unanswered past the time-out then is reported; one within it is not judged.
     std::span<const Finding> finish(std::int64_t end_ns = kNoTime);
     // The command -> reply pairs the last track() completed; valid until the next call.
     std::span<const CompletedTransaction> completed() const noexcept { return completed_; }
@@ -162,6 +181,9 @@ class Vlt2000Tracker {
     std::int64_t now_ns_ = kNoTime;
     std::uint64_t last_frame_ = 0;
     std::uint64_t first_addressed_frame_ = 0;
+    // The drives a command went to: a reply from another one is not judged (its command may
+    // have come before the capture).
+    std::bitset<kStationCount> commanded_;
     std::int32_t subject_pnu_ = -1;
 };
 

@@ -98,6 +98,19 @@ void append_ppo_short(TextBuffer& out, const PpoLayout& layout) {
         fmt::format_to(std::back_inserter(out), "{}w", layout.output_bytes / 2);
 }
 
+std::string command_outcomes_text(std::uint64_t answered, std::uint64_t unanswered,
+                                  std::uint64_t abandoned, std::uint64_t damaged,
+                                  std::uint64_t not_judged) {
+    std::string text = fmt::format("{} answered, {} unanswered, {} abandoned, {} damaged", answered,
+                                   unanswered, abandoned, damaged);
+    if (not_judged) text += fmt::format(", {} not judged", not_judged);
+    return text;
+}
+
+std::string cfg_units(std::uint64_t units, bool words) {
+    return words ? counted(units, "word", "words") : counted(units, "byte", "bytes");
+}
+
 void append_ppo_long(TextBuffer& out, const PpoLayout& layout) {
     auto words = [&](std::uint16_t bytes) {
         return (bytes - (layout.has_pcv ? kPcvBytes : 0)) / 2;
@@ -112,11 +125,13 @@ void append_ppo_long(TextBuffer& out, const PpoLayout& layout) {
     }
     if (layout.has_pcv) append(out, "PCV + ");
     if (layout.output_bytes == layout.input_bytes)
-        fmt::format_to(std::back_inserter(out), "{} PCD words, {} bytes each way)",
-                       words(layout.output_bytes), layout.output_bytes);
+        fmt::format_to(std::back_inserter(out), "{}, {} each way)",
+                       counted(words(layout.output_bytes), "PCD word", "PCD words"),
+                       counted(layout.output_bytes, "byte", "bytes"));
     else
-        fmt::format_to(std::back_inserter(out), "{} PCD words out, {} in; {} bytes out, {} in)",
-                       words(layout.output_bytes), words(layout.input_bytes), layout.output_bytes,
+        fmt::format_to(std::back_inserter(out), "{} out, {} in; {} out, {} in)",
+                       counted(words(layout.output_bytes), "PCD word", "PCD words"),
+                       words(layout.input_bytes), counted(layout.output_bytes, "byte", "bytes"),
                        layout.input_bytes);
     switch (layout.source) {
         case PpoSource::ChkCfg: append(out, " from Chk_Cfg"); break;
@@ -265,7 +280,8 @@ void append_profidrive_summary(TextBuffer& out, const ProfidriveMessage& m, Dial
             }
         }
     }
-    if (m.trailing > 0) fmt::format_to(it, " +{} bytes after the message", m.trailing);
+    if (m.trailing > 0)
+        fmt::format_to(it, " +{} after the message", counted(m.trailing, "byte", "bytes"));
 }
 
 void append_dpv1_summary(TextBuffer& out, const DecodedTelegram& t) {
@@ -407,8 +423,8 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
                 if (!first_any && !second_any) append(out, "OK");
                 append(out, "]");
                 if (!diag->extended.empty())
-                    fmt::format_to(std::back_inserter(out), " +{} ext bytes",
-                                   diag->extended.size());
+                    fmt::format_to(std::back_inserter(out), " +{}",
+                                   counted(diag->extended.size(), "ext byte", "ext bytes"));
                 return;
             }
             break;
@@ -427,7 +443,8 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
                 // "DP-V1" only when DPV1_Enable is set; status bytes without it are DP-V0 mode.
                 if (prm->dpv1_enabled()) append(out, " DP-V1");
                 if (!prm->user_prm.empty())
-                    fmt::format_to(std::back_inserter(out), " user {} bytes", prm->user_prm.size());
+                    fmt::format_to(std::back_inserter(out), " user {}",
+                                   counted(prm->user_prm.size(), "byte", "bytes"));
                 return;
             }
             break;

@@ -36,8 +36,16 @@ void append_hex(TextBuffer& out, Bytes bytes, std::string_view separator = " ");
 void append_frame_control(TextBuffer& out, FrameControl fc);
 // "PPO1", "PPO1/4?" (from length, ambiguous), "PPO2?" (from length), "PCV+8w", "10w".
 void append_ppo_short(TextBuffer& out, const PpoLayout& layout);
-// "PPO 1 (PCV + 2 PCD words, 12 bytes each way) from Chk_Cfg".
+// "PPO 1 (PCV + 2 PCD words, 12 bytes each way) from Chk_Cfg"; "1 byte", "1 PCD word".
 void append_ppo_long(TextBuffer& out, const PpoLayout& layout);
+// A configuration module's length: "1 byte", "4 words".
+std::string cfg_units(std::uint64_t units, bool words);
+// A drive's commands by outcome (FC, VLT 2000): "119 answered, 0 unanswered, 1 abandoned, 1
+// damaged", and ", 2 not judged" when there are such; with the broadcasts they add up to the
+// commands (FcStationStats::commands_outcomes()).
+std::string command_outcomes_text(std::uint64_t answered, std::uint64_t unanswered,
+                                  std::uint64_t abandoned, std::uint64_t damaged,
+                                  std::uint64_t not_judged);
 // "RC=1 Request parameter value PNU=520 IND=0 PVA=0" (+ "SPM=1", error text).
 void append_pcv_summary(TextBuffer& out, const DecodedTelegram& t);
 // "CTW=0x047F MRV=50.00%".

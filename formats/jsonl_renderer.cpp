@@ -131,8 +131,9 @@ class JsonlRenderer final : public TelegramRenderer {
             w.string(ppo_source_name(t.dp.ppo.source));
         else
             w.null();
+        // The dialect names the parameter channel's code tables: none without a PCV.
         w.key("dialect");
-        if (data_exchange)
+        if (data_exchange && t.dp.ppo.has_pcv)
             w.string(dialect_name(t.dp.dialect));
         else
             w.null();

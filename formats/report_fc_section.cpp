@@ -59,12 +59,11 @@ class FcSection final : public StationSection {
         const FcStationStats& s = s_;
         auto it = std::back_inserter(b);
         fmt::format_to(it, "\n{} (FC protocol)\n", title());
-        fmt::format_to(it, "  commands       {}: {} process, parameter/text {}; {}\n", s.commands,
-                       s.process_commands, commands_by_ak_text(s),
-                       counted(s.broadcasts, "broadcast", "broadcasts"));
-        if (!broadcast())
-            fmt::format_to(it, "  responses      {}; {} answered, {} unanswered, {}\n", s.responses,
-                           s.answered, s.no_responses, late_text());
+        fmt::format_to(it, "  commands       {}\n", commands_text());
+        if (!broadcast()) {
+            fmt::format_to(it, "  outcome        {}\n", outcomes_text());
+            fmt::format_to(it, "  responses      {}; {}\n", responses_text(), late_text());
+        }
         fmt::format_to(it, "  latency ms     {}\n", latency_text());
         fmt::format_to(it, "  parameters     {}\n", parameters_text(s));
         if (!s.channel.rejections.empty()) {
@@ -82,23 +81,23 @@ class FcSection final : public StationSection {
 
     void write_markdown_row(const ReportContext& /*c*/, TextBuffer& b) const override {
         const FcStationStats& s = s_;
-        fmt::format_to(std::back_inserter(b), "| {} | {} | {} | {} | {} | {} | {} | {} |\n",
-                       broadcast() ? std::string("broadcast") : fmt::format("{}", s.address),
-                       s.commands, s.answered, s.no_responses, s.late, latency_text(),
-                       s.channel.transactions.rejected,
-                       md_escape(findings_by_kind_text(findings_)));
+        fmt::format_to(
+            std::back_inserter(b), "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            broadcast() ? std::string("broadcast") : fmt::format("{}", s.address), s.commands,
+            s.answered, s.no_responses, s.abandoned, s.damaged, s.not_judged_total(), s.late,
+            latency_text(), s.channel.transactions.rejected,
+            md_escape(findings_by_kind_text(findings_)));
     }
 
     void write_markdown(const ReportContext& /*c*/, TextBuffer& b) const override {
         const FcStationStats& s = s_;
         auto it = std::back_inserter(b);
         fmt::format_to(it, "\n### {} (FC protocol)\n\n", title());
-        fmt::format_to(it, "- Commands: {} ({} process; parameter/text {}; {})\n", s.commands,
-                       s.process_commands, commands_by_ak_text(s),
-                       counted(s.broadcasts, "broadcast", "broadcasts"));
-        if (!broadcast())
-            fmt::format_to(it, "- Responses: {}; {} answered, {} unanswered, {}\n", s.responses,
-                           s.answered, s.no_responses, late_text());
+        fmt::format_to(it, "- Commands: {}\n", commands_text());
+        if (!broadcast()) {
+            fmt::format_to(it, "- Outcome: {}\n", outcomes_text());
+            fmt::format_to(it, "- Responses: {}; {}\n", responses_text(), late_text());
+        }
         fmt::format_to(it, "- Latency ms: {}\n", latency_text());
         fmt::format_to(it, "- Parameters: {}\n", parameters_text(s));
         for (const auto& [key, count] : s.channel.rejections)
@@ -124,6 +123,7 @@ class FcSection final : public StationSection {
         w.key("broadcast").boolean(broadcast());
         count("telegrams", s.telegrams);
         count("commands", s.commands);
+        count("damaged_commands", s.damaged_commands);
         count("process_commands", s.process_commands);
         w.key("commands_by_ak").begin_object();
         for (std::size_t ak = 0; ak < s.commands_by_ak.size(); ++ak)
@@ -131,8 +131,12 @@ class FcSection final : public StationSection {
         w.end_object();
         count("broadcasts", s.broadcasts);
         count("responses", s.responses);
+        count("damaged_responses", s.damaged_responses);
         count("transactions", s.answered);
         count("no_responses", s.no_responses);
+        count("abandoned", s.abandoned);
+        count("damaged", s.damaged);
+        count("not_judged", s.not_judged_total());
         w.key("late").optional_integer(s.timed(), static_cast<std::int64_t>(s.late));
         w.key("latency_ms");
         if (l.any) {
@@ -183,8 +187,7 @@ class FcSection final : public StationSection {
         const FcStationStats& s = s_;
         html_drive_row(b, fmt::format("drive-{}", s.address),
                        broadcast() ? std::string("broadcast") : fmt::format("{}", s.address),
-                       s.commands, s.answered, s.no_responses, latency_,
-                       severity_totals(findings_, by_severity_));
+                       DriveOutcomes::of(s), latency_, severity_totals(findings_, by_severity_));
     }
 
     void write_html(const ReportContext& c, TextBuffer& b) const override {
@@ -194,14 +197,11 @@ class FcSection final : public StationSection {
                        "<section class=\"station\" id=\"drive-{}\">\n<h2>{} (FC protocol)</h2>\n"
                        "<table class=\"kv\">\n",
                        s.address, title());
-        html_kv(
-            b, "Commands",
-            fmt::format("{}: {} process; parameter/text {}; {}", s.commands, s.process_commands,
-                        commands_by_ak_text(s), counted(s.broadcasts, "broadcast", "broadcasts")));
-        if (!broadcast())
-            html_kv(b, "Responses",
-                    fmt::format("{}; {} answered, {} unanswered, {}", s.responses, s.answered,
-                                s.no_responses, late_text()));
+        html_kv(b, "Commands", commands_text());
+        if (!broadcast()) {
+            html_kv(b, "Outcome", outcomes_text());
+            html_kv(b, "Responses", fmt::format("{}; {}", responses_text(), late_text()));
+        }
         html_kv(b, "Latency (ms)", latency_text());
         append(b, "</table>\n");
         if (!broadcast()) {
@@ -245,9 +245,33 @@ class FcSection final : public StationSection {
         return fmt::format("dpscope.fc.drive_{}", s_.address);
     }
     std::string junit_note(FindingKind /*kind*/) const override { return {}; }
+    std::vector<std::pair<std::string, std::uint64_t>> junit_properties() const override {
+        return drive_properties(DriveOutcomes::of(s_), "responses", s_.responses);
+    }
 
   private:
     bool broadcast() const { return s_.address == 0; }
+    // "121: 77 process, parameter/text AK 1 x18, AK 2 x4; 0 broadcasts" (", 1 damaged" after the
+    // AKs when commands were damaged).
+    std::string commands_text() const {
+        const FcStationStats& s = s_;
+        return fmt::format(
+            "{}: {} process, parameter/text {}{}; {}", s.commands, s.process_commands,
+            commands_by_ak_text(s),
+            s.damaged_commands ? fmt::format(", {} damaged", s.damaged_commands) : std::string(),
+            counted(s.broadcasts, "broadcast", "broadcasts"));
+    }
+    std::string outcomes_text() const {
+        const FcStationStats& s = s_;
+        return command_outcomes_text(s.answered, s.no_responses, s.abandoned, s.damaged,
+                                     s.not_judged_total());
+    }
+    // "120 (1 damaged)", or "119".
+    std::string responses_text() const {
+        return s_.damaged_responses
+                   ? fmt::format("{} ({} damaged)", s_.responses, s_.damaged_responses)
+                   : fmt::format("{}", s_.responses);
+    }
     std::string title() const {
         return broadcast() ? std::string("Broadcasts") : fmt::format("Drive {}", s_.address);
     }

@@ -206,6 +206,16 @@ void write_junit(const ReportContext& c, const ReportModel& m, Output& out) {
                        "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" "
                        "skipped=\"{}\">\n",
                        xml(s.name), cases(s, false), failed_cases(s), cases(s, true));
+        if (s.section) {
+            const auto properties = s.section->junit_properties();
+            if (!properties.empty()) {
+                append(b, "    <properties>\n");
+                for (const auto& [name, value] : properties)
+                    fmt::format_to(it, "      <property name=\"{}\" value=\"{}\"/>\n", xml(name),
+                                   value);
+                append(b, "    </properties>\n");
+            }
+        }
         for (FindingKind kind : kAllKinds) {
             if (!covers(s, kind)) continue;
             auto k = static_cast<std::size_t>(kind);

@@ -275,17 +275,27 @@ std::string DriveLatency::text(bool broadcast, bool timed) const {
 }
 
 void html_drive_row(TextBuffer& b, std::string_view anchor, std::string_view label,
-                    std::uint64_t commands, std::uint64_t answered, std::uint64_t unanswered,
-                    const DriveLatency& l, const std::array<std::uint64_t, 3>& severities) {
+                    const DriveOutcomes& o, const DriveLatency& l,
+                    const std::array<std::uint64_t, 3>& severities) {
     fmt::format_to(std::back_inserter(b),
                    "<tr><td class=\"n\"><a href=\"#{}\">{}</a></td><td class=\"n\">{}"
                    "</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>"
+                   "<td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>"
                    "<td class=\"n\">{}</td><td class=\"n error\">{}</td><td class=\"n "
                    "warning\">{}</td><td class=\"n note\">{}</td></tr>\n",
-                   anchor, label, commands, answered, unanswered,
-                   l.any ? fmt::format("{:.3f}", l.mean_ms) : "-",
+                   anchor, label, o.commands, o.answered, o.unanswered, o.abandoned, o.damaged,
+                   o.not_judged, l.any ? fmt::format("{:.3f}", l.mean_ms) : "-",
                    l.any ? fmt::format("{:.3f}", l.p95_ms) : "-", severities[2], severities[1],
                    severities[0]);
+}
+
+std::vector<std::pair<std::string, std::uint64_t>> drive_properties(const DriveOutcomes& o,
+                                                                    std::string_view responses_name,
+                                                                    std::uint64_t responses) {
+    return {{"commands", o.commands},     {"broadcasts", o.broadcasts},
+            {"transactions", o.answered}, {"no_responses", o.unanswered},
+            {"abandoned", o.abandoned},   {"damaged", o.damaged},
+            {"not_judged", o.not_judged}, {std::string(responses_name), responses}};
 }
 
 }  // namespace dpscope::report

@@ -8,6 +8,8 @@
 #include <iterator>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "formats/report_model.hpp"
 
@@ -64,11 +66,35 @@ struct DriveLatency {
     std::string text(bool broadcast, bool timed) const;
 };
 
-// HTML: one row of a serial bus's drives table: the address (linked to `anchor`, shown as
-// `label`), commands, answered, unanswered, mean and p95 reply time, findings by severity.
+// A drive's commands by outcome (FC, VLT 2000), read from its tracker's counts.
+struct DriveOutcomes {
+    std::uint64_t commands = 0;
+    std::uint64_t broadcasts = 0;
+    std::uint64_t answered = 0;
+    std::uint64_t unanswered = 0;
+    std::uint64_t abandoned = 0;
+    std::uint64_t damaged = 0;
+    std::uint64_t not_judged = 0;
+
+    template <class Stats>
+    static DriveOutcomes of(const Stats& s) {
+        return {s.commands,  s.broadcasts, s.answered,          s.no_responses,
+                s.abandoned, s.damaged,    s.not_judged_total()};
+    }
+};
+
+// HTML: one row of a serial bus's drives table (kDriveHtmlTable's columns): the address (linked
+// to `anchor`, shown as `label`), commands, answered, unanswered, abandoned, damaged, not judged,
+// mean and p95 reply time, findings by severity.
 void html_drive_row(TextBuffer& b, std::string_view anchor, std::string_view label,
-                    std::uint64_t commands, std::uint64_t answered, std::uint64_t unanswered,
-                    const DriveLatency& latency, const std::array<std::uint64_t, 3>& severities);
+                    const DriveOutcomes& outcomes, const DriveLatency& latency,
+                    const std::array<std::uint64_t, 3>& severities);
+
+// JUnit: a drive suite's <properties>: its commands by outcome and its responses (or replies),
+// named as in the JSON report.
+std::vector<std::pair<std::string, std::uint64_t>> drive_properties(const DriveOutcomes& outcomes,
+                                                                    std::string_view responses_name,
+                                                                    std::uint64_t responses);
 
 // HTML: a station's latency histogram as inline SVG (`who`: "slave 3", in its label), or a line
 // saying why there is none (`answered`: anything was answered).

@@ -65,7 +65,8 @@ const BusWording kDpWording{
 // The drive buses' HTML summary table (the same columns for FC and VLT 2000).
 constexpr std::string_view kDriveHtmlTable =
     "<tr><th class=\"n\">address</th><th class=\"n\">commands</th><th class=\"n\">answered"
-    "</th><th class=\"n\">unanswered</th><th class=\"n\">mean ms</th><th class=\"n\">p95 ms"
+    "</th><th class=\"n\">unanswered</th><th class=\"n\">abandoned</th><th class=\"n\">damaged"
+    "</th><th class=\"n\">not judged</th><th class=\"n\">mean ms</th><th class=\"n\">p95 ms"
     "</th><th class=\"n\">errors</th><th class=\"n\">warnings</th><th class=\"n\">notes</th>"
     "</tr>\n";
 
@@ -77,9 +78,9 @@ const BusWording kFcWording{
     "bcc_errors",
     "drive",
     "drives",
-    "## Drives\n\n| address | commands | answered | unanswered | late | latency ms (min / mean / "
-    "p95 / max) | rejected | findings |\n"
-    "|---|---:|---:|---:|---:|---|---:|---|\n",
+    "## Drives\n\n| address | commands | answered | unanswered | abandoned | damaged | not judged "
+    "| late | latency ms (min / mean / p95 / max) | rejected | findings |\n"
+    "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---|\n",
     kDriveHtmlTable,
     "FC protocol: the capture holds commands to drives",
 };
@@ -92,9 +93,9 @@ const BusWording kVlt2000Wording{
     "checksum_errors",
     "drive",
     "drives",
-    "## Drives\n\n| address | commands | answered | unanswered | failed | latency ms (min / mean / "
-    "p95 / max) | checksum errors | findings |\n"
-    "|---|---:|---:|---:|---:|---|---:|---|\n",
+    "## Drives\n\n| address | commands | answered | unanswered | abandoned | damaged | not judged "
+    "| failed | latency ms (min / mean / p95 / max) | checksum errors | findings |\n"
+    "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---|\n",
     kDriveHtmlTable,
     "VLT 2000: the capture holds commands answered by drives",
 };

@@ -25,6 +25,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "formats/describe.hpp"
@@ -81,6 +82,11 @@ class StationSection {
     virtual std::string junit_suite_name() const = 0;
     virtual std::string junit_classname() const = 0;
     virtual std::string junit_note(FindingKind kind) const = 0;
+    // JUnit: the suite's <properties> (name, value), e.g. a drive's commands by outcome; none by
+    // default.
+    virtual std::vector<std::pair<std::string, std::uint64_t>> junit_properties() const {
+        return {};
+    }
 };
 
 // The cyclic parameter channel (PCV) of a DP slave, as the session tracker counted it, with its

@@ -87,6 +87,7 @@ class PcvSection final : public StationSection {
         has_ident_ = config.has_ident;
         ident_ = config.ident;
         timed_ = stats.first_time_ns != kNoTime;
+        channel_ = stats.ppo.has_pcv || stats.parameter_telegrams > 0;
         dialect_hint_ =
             dialect_hint_text(stats.slave, stats.dialect, c.summary->dialect_evidence(stats.slave));
         const LogHistogram& ns = stats.latency_ns;
@@ -119,7 +120,9 @@ class PcvSection final : public StationSection {
         const Latency& l = latency_;
         auto it = std::back_inserter(b);
         fmt::format_to(it, "\nSlave {} (master {})\n", s.slave, s.master);
-        fmt::format_to(it, "  layout         {}; dialect {}", ppo_text(s), dialect_name(s.dialect));
+        fmt::format_to(it, "  layout         {}; {}", ppo_text(s),
+                       channel_ ? fmt::format("dialect {}", dialect_name(s.dialect))
+                                : std::string("no parameter channel"));
         if (has_ident_) fmt::format_to(it, "; ident 0x{:04X}", ident_);
         b.push_back('\n');
         if (!dialect_hint_.empty()) fmt::format_to(it, "  dialect hint   {}\n", dialect_hint_);
@@ -167,7 +170,7 @@ class PcvSection final : public StationSection {
                                           : "-";
         fmt::format_to(std::back_inserter(b),
                        "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", s.slave, s.master,
-                       md_escape(ppo_type_label(s.ppo)), dialect_name(s.dialect),
+                       md_escape(ppo_type_label(s.ppo)), channel_ ? dialect_name(s.dialect) : "-",
                        s.transactions.total(), s.transactions.rejected,
                        timed_ ? fmt::format("{}", s.timeouts) : "not judged", ms, cycles,
                        md_escape(findings_by_kind_text(findings_)));
@@ -207,7 +210,11 @@ class PcvSection final : public StationSection {
         w.key("slave").integer(s.slave);
         w.key("ppo_type").optional_integer(s.ppo.known() && s.ppo.type != 0, s.ppo.type);
         w.key("ppo_source").string(ppo_source_name(s.ppo.source));
-        w.key("dialect").string(dialect_name(s.dialect));
+        w.key("dialect");
+        if (channel_)
+            w.string(dialect_name(s.dialect));
+        else
+            w.null();
         w.key("dialect_hint");
         if (std::optional<Dialect> hint = c.summary->dialect_evidence(s.slave).hint())
             w.string(dialect_name(*hint));
@@ -270,7 +277,7 @@ class PcvSection final : public StationSection {
                        "<td class=\"n\">{}</td><td class=\"n error\">{}</td><td class=\"n "
                        "warning\">{}</td><td class=\"n note\">{}</td></tr>\n",
                        s.slave, s.master, s.slave, s.master, xml(ppo_type_label(s.ppo)),
-                       dialect_name(s.dialect), s.transactions.total(),
+                       channel_ ? dialect_name(s.dialect) : "-", s.transactions.total(),
                        l.any ? fmt::format("{:.3f}", l.median_ms) : "-",
                        l.any ? fmt::format("{:.3f}", l.p95_ms) : "-", severities[2], severities[1],
                        severities[0]);
@@ -285,7 +292,7 @@ class PcvSection final : public StationSection {
                        "</h2>\n<table class=\"kv\">\n",
                        s.slave, s.master, s.slave, s.master);
         html_kv(b, "Layout", ppo_text(s));
-        html_kv(b, "Dialect", dialect_name(s.dialect));
+        html_kv(b, "Dialect", channel_ ? dialect_name(s.dialect) : "none (no parameter channel)");
         if (!dialect_hint_.empty()) html_kv(b, "Dialect hint", dialect_hint_);
         if (has_ident_) html_kv(b, "Ident number", fmt::format("0x{:04X}", ident_));
         html_kv(b, "Data_Exchange",
@@ -369,7 +376,10 @@ class PcvSection final : public StationSection {
     const FindingSeverityCounts& by_severity_;
     bool has_ident_ = false;
     std::uint16_t ident_ = 0;
-    bool timed_ = false;        // its telegrams carry timestamps: time-outs and ms latency judged
+    bool timed_ = false;  // its telegrams carry timestamps: time-outs and ms latency judged
+    // Its layout has a parameter channel (or a telegram carried one): only then is there a
+    // dialect (the channel's code tables) to name.
+    bool channel_ = false;
     std::string dialect_hint_;  // "" or the hint that its codes fit another dialect
     Latency latency_;
 };

@@ -91,8 +91,8 @@ class Vlt2000Section final : public StationSection {
         const Vlt2000StationStats& s = s_;
         auto it = std::back_inserter(b);
         fmt::format_to(it, "\n{} (VLT 2000)\n", title());
-        fmt::format_to(it, "  commands       {}: {}; {}\n", s.commands, commands_by_letter_text(s),
-                       counted(s.broadcasts, "broadcast", "broadcasts"));
+        fmt::format_to(it, "  commands       {}\n", commands_text());
+        if (!broadcast()) fmt::format_to(it, "  outcome        {}\n", outcomes_text());
         fmt::format_to(it, "  replies        {}\n", replies_text());
         fmt::format_to(it, "  failed         {}: {}\n", s.failed, failures_text(s));
         fmt::format_to(it, "  checksums      {}\n", checksums_text(s));
@@ -103,18 +103,19 @@ class Vlt2000Section final : public StationSection {
 
     void write_markdown_row(const ReportContext& /*c*/, TextBuffer& b) const override {
         const Vlt2000StationStats& s = s_;
-        fmt::format_to(std::back_inserter(b), "| {} | {} | {} | {} | {} | {} | {} | {} |\n",
-                       broadcast() ? std::string("broadcast") : fmt::format("{:02}", s.address),
-                       s.commands, s.answered, s.no_responses, s.failed, latency_text(),
-                       s.checksum_errors, md_escape(findings_by_kind_text(findings_)));
+        fmt::format_to(
+            std::back_inserter(b), "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            broadcast() ? std::string("broadcast") : fmt::format("{:02}", s.address), s.commands,
+            s.answered, s.no_responses, s.abandoned, s.damaged, s.not_judged_total(), s.failed,
+            latency_text(), s.checksum_errors, md_escape(findings_by_kind_text(findings_)));
     }
 
     void write_markdown(const ReportContext& /*c*/, TextBuffer& b) const override {
         const Vlt2000StationStats& s = s_;
         auto it = std::back_inserter(b);
         fmt::format_to(it, "\n### {} (VLT 2000)\n\n", title());
-        fmt::format_to(it, "- Commands: {} ({}; {})\n", s.commands, commands_by_letter_text(s),
-                       counted(s.broadcasts, "broadcast", "broadcasts"));
+        fmt::format_to(it, "- Commands: {}\n", commands_text());
+        if (!broadcast()) fmt::format_to(it, "- Outcome: {}\n", outcomes_text());
         fmt::format_to(it, "- Replies: {}\n", replies_text());
         fmt::format_to(it, "- Failed: {}\n", s.failed);
         for (const auto& [reason, count] : s.failures_by_reason)
@@ -145,6 +146,7 @@ class Vlt2000Section final : public StationSection {
         w.key("broadcast").boolean(broadcast());
         count("telegrams", s.telegrams);
         count("commands", s.commands);
+        count("damaged_commands", s.damaged_commands);
         w.key("commands_by_letter").begin_object();
         for (Vlt2000Letter letter : kLetters) {
             const char name[] = {static_cast<char>(vlt2000_letter_char(letter)), '\0'};
@@ -153,8 +155,12 @@ class Vlt2000Section final : public StationSection {
         w.end_object();
         count("broadcasts", s.broadcasts);
         count("replies", s.replies);
+        count("damaged_replies", s.damaged_replies);
         count("transactions", s.answered);
         count("no_responses", s.no_responses);
+        count("abandoned", s.abandoned);
+        count("damaged", s.damaged);
+        count("not_judged", s.not_judged_total());
         count("failed", s.failed);
         w.key("failures").begin_array();
         for (const auto& [reason, n] : s.failures_by_reason) {
@@ -207,8 +213,7 @@ class Vlt2000Section final : public StationSection {
         const Vlt2000StationStats& s = s_;
         html_drive_row(b, fmt::format("drive-{:02}", s.address),
                        broadcast() ? std::string("broadcast") : fmt::format("{:02}", s.address),
-                       s.commands, s.answered, s.no_responses, latency_,
-                       severity_totals(findings_, by_severity_));
+                       DriveOutcomes::of(s), latency_, severity_totals(findings_, by_severity_));
     }
 
     void write_html(const ReportContext& c, TextBuffer& b) const override {
@@ -218,9 +223,8 @@ class Vlt2000Section final : public StationSection {
                        "<section class=\"station\" id=\"drive-{:02}\">\n<h2>{} (VLT 2000)</h2>\n"
                        "<table class=\"kv\">\n",
                        s.address, title());
-        html_kv(b, "Commands",
-                fmt::format("{}: {}; {}", s.commands, commands_by_letter_text(s),
-                            counted(s.broadcasts, "broadcast", "broadcasts")));
+        html_kv(b, "Commands", commands_text());
+        if (!broadcast()) html_kv(b, "Outcome", outcomes_text());
         html_kv(b, "Replies", replies_text());
         html_kv(b, "Failed", fmt::format("{}", s.failed));
         html_kv(b, "Checksums", checksums_text(s));
@@ -272,20 +276,41 @@ class Vlt2000Section final : public StationSection {
         return fmt::format("dpscope.vlt2000.drive_{:02}", s_.address);
     }
     std::string junit_note(FindingKind /*kind*/) const override { return {}; }
+    std::vector<std::pair<std::string, std::uint64_t>> junit_properties() const override {
+        return drive_properties(DriveOutcomes::of(s_), "replies", s_.replies);
+    }
 
   private:
     bool broadcast() const { return s_.address == 0; }
+    // "81: U 11, R 25, C 33, I 12; 0 broadcasts" (", 1 damaged" after the letters when commands
+    // were damaged).
+    std::string commands_text() const {
+        const Vlt2000StationStats& s = s_;
+        return fmt::format(
+            "{}: {}{}; {}", s.commands, commands_by_letter_text(s),
+            s.damaged_commands ? fmt::format(", {} damaged", s.damaged_commands) : std::string(),
+            counted(s.broadcasts, "broadcast", "broadcasts"));
+    }
+    std::string outcomes_text() const {
+        const Vlt2000StationStats& s = s_;
+        return command_outcomes_text(s.answered, s.no_responses, s.abandoned, s.damaged,
+                                     s.not_judged_total());
+    }
     std::string title() const {
         return broadcast() ? std::string("Broadcasts") : fmt::format("Drive {:02}", s_.address);
     }
     std::string title_lower() const {
         return broadcast() ? std::string("broadcasts") : fmt::format("drive {:02}", s_.address);
     }
-    // "4; 3 answered, 1 unanswered"; for the broadcasts, which nobody answers, the replies alone.
+    // "80 (1 damaged)", "79"; for the broadcasts, which nobody answers, "1 (nobody replies to a
+    // broadcast)".
     std::string replies_text() const {
-        if (broadcast()) return fmt::format("{} (nobody replies to a broadcast)", s_.replies);
-        return fmt::format("{}; {} answered, {} unanswered", s_.replies, s_.answered,
-                           s_.no_responses);
+        const std::string damaged =
+            s_.damaged_replies ? fmt::format(", {} damaged", s_.damaged_replies) : std::string();
+        if (broadcast())
+            return fmt::format("{} (nobody replies to a broadcast{})", s_.replies, damaged);
+        return s_.damaged_replies ? fmt::format("{} ({} damaged)", s_.replies, s_.damaged_replies)
+                                  : fmt::format("{}", s_.replies);
     }
     std::string latency_text() const { return latency_.text(broadcast(), s_.timed()); }
 

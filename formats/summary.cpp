@@ -4,6 +4,7 @@
 #include <iterator>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include "decoder/fc_codes.hpp"
 #include "decoder/vlt2000_codes.hpp"
@@ -34,14 +35,42 @@ std::string dialect_hint_text(std::uint8_t slave, Dialect decoded,
                               const DialectEvidence& evidence) {
     std::optional<Dialect> hint = evidence.hint();
     if (!hint) return {};
+    const std::string option =
+        fmt::format("decode with --dialect {}={}", slave, dialect_name(*hint));
+    switch (evidence.basis()) {
+        case DialectEvidence::Basis::Ident:
+            return fmt::format("its ident number 0x{:04X} is the {}'s (the {} dialect); {}",
+                               evidence.ident(), drive_of_ident(evidence.ident()),
+                               dialect_name(*hint), option);
+        case DialectEvidence::Basis::Errors: {
+            std::span<const std::uint16_t> numbers = evidence.undefined_error_numbers();
+            std::string list;
+            for (std::size_t i = 0; i < numbers.size(); ++i)
+                list += fmt::format("{}{}",
+                                    i == 0 ? ""
+                                    : i + 1 == numbers.size() && !evidence.more_error_numbers()
+                                        ? " and "
+                                        : ", ",
+                                    numbers[i]);
+            if (evidence.more_error_numbers()) list += ", ...";
+            return fmt::format(
+                "its error numbers fit the {} dialect ({} {}, which {} does not define, in {}); {}",
+                dialect_name(*hint), numbers.size() == 1 ? "error" : "errors", list,
+                dialect_name(decoded),
+                counted(evidence.undefined_errors(), "rejection telegram", "rejection telegrams"),
+                option);
+        }
+        case DialectEvidence::Basis::Codes:
+        case DialectEvidence::Basis::None: break;
+    }
     return fmt::format(
-        "its parameter-channel codes fit the {} dialect ({} carry codes {} does not define); "
-        "decode with --dialect {}={}",
+        "its parameter-channel codes fit the {} dialect ({} carry codes {} does not define); {}",
         dialect_name(*hint), counted(evidence.undefined(), "telegram", "telegrams"),
-        dialect_name(decoded), slave, dialect_name(*hint));
+        dialect_name(decoded), option);
 }
 
-void Summary::render_text(Output& out, const InputSummary& input, const BusDecoder& decoder) const {
+void Summary::render_text(Output& out, const InputSummary& input, const BusDecoder& decoder,
+                          DriveTrackers trackers) const {
     TextBuffer& b = out.buffer();
     auto it = std::back_inserter(b);
     fmt::format_to(it, "Summary of {} ({})\n", input.name, input.format);
@@ -88,12 +117,12 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
         }
 
     if (fc_telegrams_ > 0) {
-        render_fc_drives(b);
+        render_fc_drives(b, trackers.fc);
         out.end_record();
         return;
     }
     if (vlt2000_telegrams_ > 0) {
-        render_vlt2000_addresses(b);
+        render_vlt2000_addresses(b, trackers.vlt2000);
         out.end_record();
         return;
     }
@@ -107,12 +136,18 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
             header = true;
         }
         fmt::format_to(it, "    {:>3}: ", a);
-        if (station.ppo.known() || decoder.options().station_ppo[a] != 0)
-            append_ppo_long(b, decoder.layout_for(static_cast<std::uint8_t>(a), 0));
+        const bool layout_known = station.ppo.known() || decoder.options().station_ppo[a] != 0;
+        const PpoLayout layout = decoder.layout_for(static_cast<std::uint8_t>(a), 0);
+        if (layout_known)
+            append_ppo_long(b, layout);
         else
             append(b, "PPO guessed from each Data_Exchange length");
         const Dialect dialect = decoder.options().dialect_of(static_cast<std::uint8_t>(a));
-        fmt::format_to(it, "; dialect {}", dialect_name(dialect));
+        // The dialect names the parameter channel's code tables: none without a PCV.
+        if (pcv_seen_[a] || (layout_known && layout.has_pcv))
+            fmt::format_to(it, "; dialect {}", dialect_name(dialect));
+        else
+            append(b, "; no parameter channel");
         if (station.has_ident) fmt::format_to(it, "; ident 0x{:04X}", station.ident);
         fmt::format_to(
             it, "; {}\n",
@@ -172,7 +207,35 @@ void Summary::render_fc_counts(TextBuffer& b) const {
     by_ak("parameter responses", fc_responses_, false);
 }
 
-void Summary::render_fc_drives(TextBuffer& b) const {
+namespace {
+
+// The tracker's counts of drive `address`, or null.
+template <class Tracker>
+auto drive_stats(const Tracker* tracker, std::size_t address) {
+    using Stats = std::remove_pointer_t<typename decltype(tracker->stations())::value_type>;
+    const Stats* found = nullptr;
+    if (tracker)
+        for (const Stats* s : tracker->stations())
+            if (s->address == address) found = s;
+    return found;
+}
+
+// " (119 answered, 0 unanswered, 1 abandoned, 1 damaged)" from the tracker's counts, or "".
+template <class Stats>
+std::string outcomes_of(const Stats* s) {
+    if (!s) return {};
+    return fmt::format(" ({})", command_outcomes_text(s->answered, s->no_responses, s->abandoned,
+                                                      s->damaged, s->not_judged_total()));
+}
+
+// " (1 damaged)" or "".
+std::string damaged_of(std::uint64_t damaged) {
+    return damaged ? fmt::format(" ({} damaged)", damaged) : std::string();
+}
+
+}  // namespace
+
+void Summary::render_fc_drives(TextBuffer& b, const FcTracker* tracker) const {
     auto it = std::back_inserter(b);
     bool header = false;
     for (std::size_t a = 0; a < kStationCount; ++a) {
@@ -181,9 +244,11 @@ void Summary::render_fc_drives(TextBuffer& b) const {
             append(b, "  drives:\n");
             header = true;
         }
-        fmt::format_to(it, "    {:>3}: {}, {}\n", a,
-                       counted(fc_drive_requests_[a], "request", "requests"),
-                       counted(fc_drive_responses_[a], "response", "responses"));
+        const FcStationStats* s = drive_stats(tracker, a);
+        fmt::format_to(it, "    {:>3}: {}{}, {}{}\n", a,
+                       counted(fc_drive_requests_[a], "command", "commands"), outcomes_of(s),
+                       counted(fc_drive_responses_[a], "response", "responses"),
+                       damaged_of(s ? s->damaged_responses : 0));
     }
 }
 
@@ -233,8 +298,9 @@ void Summary::render_vlt2000_counts(TextBuffer& b) const {
                    vlt2000_checksum_disabled_);
 }
 
-// Per address (00: broadcasts) its commands and replies, failures and checksums.
-void Summary::render_vlt2000_addresses(TextBuffer& b) const {
+// Per address (00: broadcasts) its commands (by outcome, with the tracker) and replies, failures
+// and checksums.
+void Summary::render_vlt2000_addresses(TextBuffer& b, const Vlt2000Tracker* tracker) const {
     auto it = std::back_inserter(b);
     bool header = false;
     for (std::size_t a = 0; a < kStationCount; ++a) {
@@ -244,9 +310,11 @@ void Summary::render_vlt2000_addresses(TextBuffer& b) const {
             header = true;
         }
         const Vlt2000AddressCounts& counts = vlt2000_addresses_[a];
-        fmt::format_to(it, "    {:02}{}: {}, {}", a, a == 0 ? " (broadcast)" : "",
-                       counted(counts.commands, "command", "commands"),
-                       counted(counts.replies, "reply", "replies"));
+        const Vlt2000StationStats* s = a == 0 ? nullptr : drive_stats(tracker, a);
+        fmt::format_to(it, "    {:02}{}: {}{}, {}{}", a, a == 0 ? " (broadcast)" : "",
+                       counted(counts.commands, "command", "commands"), outcomes_of(s),
+                       counted(counts.replies, "reply", "replies"),
+                       damaged_of(s ? s->damaged_replies : 0));
         if (counts.failed) fmt::format_to(it, ", {} failed", counts.failed);
         if (counts.checksum_errors)
             fmt::format_to(it, ", {}",

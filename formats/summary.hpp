@@ -1,8 +1,9 @@
 // Counts kept while decoding (cheap enough for every telegram) and the summary `decode -q`
 // prints: telegrams by frame type and service, problems by kind, findings by kind, and per
 // slave the PPO layout in use; for an FC protocol capture telegrams by block and by AK, and per
-// drive its requests and responses; for a VLT 2000 capture telegrams by letter, failures by reason,
-// checksum errors and per address its commands and replies.
+// drive its commands (by outcome, from the FC tracker) and responses; for a VLT 2000 capture
+// telegrams by letter, failures by reason, checksum errors and per address its commands (by
+// outcome, from the VLT 2000 tracker) and replies.
 #pragma once
 
 #include <array>
@@ -11,8 +12,10 @@
 #include <string>
 
 #include "decoder/bus_decoder.hpp"
+#include "decoder/fc_tracker.hpp"
 #include "decoder/finding.hpp"
 #include "decoder/session_tracker.hpp"
+#include "decoder/vlt2000_tracker.hpp"
 #include "formats/output.hpp"
 
 namespace dpscope {
@@ -28,6 +31,13 @@ struct InputSummary {
 // decoded with ("" when there is none): "its parameter-channel codes fit the profidrive dialect
 // (2041 telegrams carry codes vlt does not define); decode with --dialect 3=profidrive".
 std::string dialect_hint_text(std::uint8_t slave, Dialect decoded, const DialectEvidence& evidence);
+
+// The drive buses' trackers, whose per-drive commands by outcome the summary names (the same
+// counts as the report's); null: the telegram counts alone (a summary of the --pnu selection).
+struct DriveTrackers {
+    const FcTracker* fc = nullptr;
+    const Vlt2000Tracker* vlt2000 = nullptr;
+};
 
 class Summary {
   public:
@@ -59,7 +69,11 @@ class Summary {
         if (t.has_roles) slave_seen_[t.slave & 0x7F] = true;
         if (t.dp.service == Service::DataExchange && t.has_roles) {
             ++data_exchange_[t.slave & 0x7F];
+            if (t.dp.ppo.has_pcv) pcv_seen_[t.slave & 0x7F] = true;
             dialects_[t.slave & 0x7F].add(t);
+        } else if (t.has_roles &&
+                   (t.dp.service == Service::SetPrm || t.dp.service == Service::SlaveDiag)) {
+            dialects_[t.slave & 0x7F].add(t);  // the ident number
         }
     }
 
@@ -100,6 +114,13 @@ class Summary {
         return fc_blocks_[static_cast<std::size_t>(block)];
     }
     std::uint64_t fc_commands(std::uint8_t ak) const noexcept { return fc_commands_[ak & 0x0F]; }
+    // A drive's telegrams by direction, damaged ones too (the broadcasts are no drive's).
+    std::uint64_t fc_drive_requests(std::uint8_t address) const noexcept {
+        return fc_drive_requests_[address & 0x7F];
+    }
+    std::uint64_t fc_drive_responses(std::uint8_t address) const noexcept {
+        return fc_drive_responses_[address & 0x7F];
+    }
     std::uint64_t fc_responses(std::uint8_t ak) const noexcept { return fc_responses_[ak & 0x0F]; }
 
     // VLT 2000 telegrams counted (by letter and direction, failures, checksums, per address).
@@ -131,7 +152,8 @@ class Summary {
 
     // The text summary: PROFIBUS frame types and services, or, for an FC capture, FC blocks,
     // AKs and drives, or, for a VLT 2000 capture, letters, failures, checksums and addresses.
-    void render_text(Output& out, const InputSummary& input, const BusDecoder& decoder) const;
+    void render_text(Output& out, const InputSummary& input, const BusDecoder& decoder,
+                     DriveTrackers trackers = {}) const;
 
   private:
     void add_fc(const DecodedTelegram& t) noexcept {
@@ -167,7 +189,13 @@ class Summary {
             ++(request ? vlt2000_commands_ : vlt2000_replies_)[letter];
             if (request && v.broadcast) ++vlt2000_broadcasts_;
         }
-        if (v.failed) {
+        // What a reply says is read from intact ones only (as the report does): a damaged one
+        // is counted, its content not trusted.
+        bool intact = true;
+        for (const Problem& p : v.problems)
+            intact = intact && problem_severity(p.kind) != Severity::Error;
+        const bool failed = v.failed && intact;
+        if (failed) {
             ++vlt2000_failed_;
             ++vlt2000_reasons_[v.has_reason ? v.reason : kVlt2000NoReason];
         }
@@ -190,16 +218,16 @@ class Summary {
             slave_seen_[t.slave & 0x7F] = true;
             Vlt2000AddressCounts& counts = vlt2000_addresses_[t.slave & 0x7F];
             ++(request ? counts.commands : counts.replies);
-            if (v.failed) ++counts.failed;
+            if (failed) ++counts.failed;
             if (checksum_error) ++counts.checksum_errors;
             if (v.checksum_disabled) ++counts.checksum_disabled;
         }
     }
     void render_vlt2000_counts(fmt::memory_buffer& b) const;
-    void render_vlt2000_addresses(fmt::memory_buffer& b) const;
+    void render_vlt2000_addresses(fmt::memory_buffer& b, const Vlt2000Tracker* tracker) const;
     void render_dp_counts(fmt::memory_buffer& b) const;
     void render_fc_counts(fmt::memory_buffer& b) const;
-    void render_fc_drives(fmt::memory_buffer& b) const;
+    void render_fc_drives(fmt::memory_buffer& b, const FcTracker* tracker) const;
 
     std::uint64_t telegrams_ = 0;
     std::uint64_t with_problems_ = 0;
@@ -211,6 +239,7 @@ class Summary {
     // Per kind, by the severity each finding had (options and rules can change the default).
     std::array<std::array<std::uint64_t, 3>, kFindingKindCount> findings_by_severity_{};
     std::array<std::uint64_t, kStationCount> data_exchange_{};
+    std::array<bool, kStationCount> pcv_seen_{};    // a Data_Exchange layout with a PCV
     std::array<bool, kStationCount> slave_seen_{};  // a telegram to or from it was added
     std::array<DialectEvidence, kStationCount> dialects_{};
     std::int64_t first_time_ = kNoTime;

@@ -23,7 +23,7 @@ class VerboseRenderer final : public TelegramRenderer {
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
         TextBuffer& b = out_.buffer();
         auto it = std::back_inserter(b);
-        fmt::format_to(it, "Frame {}: {} bytes", t.frame, t.bytes.size());
+        fmt::format_to(it, "Frame {}: {}", t.frame, counted(t.bytes.size(), "byte", "bytes"));
         if (t.has_time()) {
             append(b, ", ");
             append_iso_time(b, t.time_ns);
@@ -352,7 +352,9 @@ class VerboseRenderer final : public TelegramRenderer {
             append_frame_control(b, f.fc);
             append(b, ")\n");
         }
-        if (!f.du.empty()) field(1, "Data unit: {} bytes from byte {}", f.du.size(), f.du_offset);
+        if (!f.du.empty())
+            field(1, "Data unit: {} from byte {}", counted(f.du.size(), "byte", "bytes"),
+                  f.du_offset);
         if (f.has_fcs) {
             if (f.fcs_ok)
                 field(1, "FCS: 0x{:02X} (correct)", f.fcs);
@@ -464,9 +466,8 @@ class VerboseRenderer final : public TelegramRenderer {
                 }
                 if (!pdu.data.empty()) {
                     line(2, "");
-                    fmt::format_to(std::back_inserter(b),
-                                   "Data ({} bytes from byte {}): ", pdu.data.size(),
-                                   pdu.data_offset);
+                    fmt::format_to(std::back_inserter(b), "Data ({} from byte {}): ",
+                                   counted(pdu.data.size(), "byte", "bytes"), pdu.data_offset);
                     append_hex(b, pdu.data);
                     b.push_back('\n');
                 }
@@ -564,7 +565,7 @@ class VerboseRenderer final : public TelegramRenderer {
             if (!block.complete) field(3, "(block cut short)");
             if (block.padded) field(3, "Pad byte");
         }
-        if (m.trailing > 0) field(2, "{} bytes after the message", m.trailing);
+        if (m.trailing > 0) field(2, "{} after the message", counted(m.trailing, "byte", "bytes"));
     }
 
     void render_data_exchange(const DecodedTelegram& t) {
@@ -572,7 +573,8 @@ class VerboseRenderer final : public TelegramRenderer {
         line(1, "PPO: ");
         append_ppo_long(b, t.dp.ppo);
         b.push_back('\n');
-        field(1, "Dialect: {}; control/status word profile: {}{}", dialect_name(t.dp.dialect),
+        field(1, "Dialect: {}; control/status word profile: {}{}",
+              t.dp.ppo.has_pcv ? dialect_name(t.dp.dialect) : "none (no parameter channel)",
               pcd_profile_name(t.dp.pcd_profile),
               t.dp.pcd_profile == PcdProfile::Profidrive && t.dp.danfoss_pcd() ? " (Danfoss)" : "");
         bool request = t.direction == Direction::Request;
@@ -642,7 +644,7 @@ class VerboseRenderer final : public TelegramRenderer {
             field(1, "Master address: {}", diag.master_address);
         field(1, "Ident number: 0x{:04X}", diag.ident);
         if (diag.extended.empty()) return;
-        field(1, "Extended diagnosis: {} bytes", diag.extended.size());
+        field(1, "Extended diagnosis: {}", counted(diag.extended.size(), "byte", "bytes"));
         for (const DiagBlock& block : blocks) {
             TextBuffer& b = out_.buffer();
             switch (block.type) {
@@ -690,8 +692,8 @@ class VerboseRenderer final : public TelegramRenderer {
                     fmt::format_to(it, " (DP-V1: {}, slot {})",
                                    dpv1_alarm_or_status_text(block.data[0]), block.data[1]);
                 else
-                    fmt::format_to(it, " (DP-V1, but {} bytes: too short for an alarm or status)",
-                                   block.data.size());
+                    fmt::format_to(it, " (DP-V1, but {}: too short for an alarm or status)",
+                                   counted(block.data.size(), "byte", "bytes"));
                 return;
             case SlaveDpv1::Unknown:
                 append(out_.buffer(), " (DP-V1 or manufacturer-specific: no Set_Prm seen");
@@ -750,17 +752,16 @@ class VerboseRenderer final : public TelegramRenderer {
             }
             std::string lengths;
             if (m.output_units)
-                lengths +=
-                    fmt::format(" out {} {}{}", m.output_units, m.output_words ? "words" : "bytes",
-                                m.output_consistent ? " consistent" : "");
+                lengths += fmt::format(" out {}{}", cfg_units(m.output_units, m.output_words),
+                                       m.output_consistent ? " consistent" : "");
             if (m.input_units)
-                lengths +=
-                    fmt::format(" in {} {}{}", m.input_units, m.input_words ? "words" : "bytes",
-                                m.input_consistent ? " consistent" : "");
+                lengths += fmt::format(" in {}{}", cfg_units(m.input_units, m.input_words),
+                                       m.input_consistent ? " consistent" : "");
             field(2, "module {}: 0x{:02X} {}{}{}{}", number++, m.identifier,
                   m.special ? "special format," : "", cfg_direction_name(m.direction), lengths,
                   m.manufacturer_bytes
-                      ? fmt::format(", {} manufacturer bytes", m.manufacturer_bytes)
+                      ? fmt::format(", {}", counted(m.manufacturer_bytes, "manufacturer byte",
+                                                    "manufacturer bytes"))
                       : std::string());
         }
         line(1, "Layout: ");

@@ -382,6 +382,10 @@ TEST_F(BusHealthTest, ResyncOnReturnThroughSetPrm) {
 
 TEST_F(BusHealthTest, NotAskedAnswers) {
     start_up(3);
+    exchange(4);
+    exchange(5);
+    feed(status_request(3, 2));  // master 2 has asked station 3 something before
+    feed(build_telegram({2, 3, response_fc(FdlStatus::Ok), std::nullopt, std::nullopt, {}}));
     feed(data(4));  // nothing waits
     feed(dx(3));
     feed(data(5));  // another station than the one asked
@@ -746,8 +750,46 @@ TEST_F(BusHealthTest, RatesNeedATelegramInTheBase) {
     EXPECT_TRUE(tracker().health().segment.judgement.reasons.empty());
 }
 
+// A capture clipped onto a running bus (or sniff started on one) may begin with a response whose
+// request came before it: nothing a slave sends to a master before the first request seen from
+// that master to that slave is judged illegal (docs/bus-health.md, "Illegal answers").
+TEST_F(BusHealthTest, NothingBeforeTheFirstRequestOnTheLinkIsAnIllegalAnswer) {
+    feed(data(3));  // the capture's first telegram: the answer to a poll before it
+    exchange(3);
+    exchange(3);
+    tracker().judge();
+    EXPECT_EQ(station(3)->judgement.verdict, Verdict::Good);
+    // Station 4 answers master 1 while station 3 is asked, before master 1 ever asked it; and
+    // station 3 answers master 2, which has asked it nothing yet.
+    feed(dx(3));
+    feed(data(4));
+    feed(data(3, 2));
+    exchange(4);
+    exchange(3);
+    tracker().finish();
+    ASSERT_NE(station(3), nullptr);
+    ASSERT_NE(station(4), nullptr);
+    EXPECT_EQ(station(3)->illegal_answers_total(), 0u);
+    EXPECT_EQ(station(4)->illegal_answers_total(), 0u);
+    for (int address : {3, 4})
+        for (const VerdictReason& reason :
+             station(static_cast<std::uint8_t>(address))->judgement.reasons)
+            EXPECT_NE(reason.threshold, HealthThreshold::IllegalAnswersWeak) << address;
+    EXPECT_EQ(station(4)->judgement.verdict, Verdict::Good);
+    // Heard all the same: station 3 sent five telegrams, station 4 two.
+    EXPECT_EQ(station(3)->telegrams_sent, 5u);
+    EXPECT_EQ(station(4)->telegrams_sent, 2u);
+    // Once the link has carried a request, the same answers are judged.
+    feed(data(4));
+    feed(data(3));
+    tracker().finish();
+    EXPECT_EQ(station(3)->illegal_answers[0], 1u);
+    EXPECT_EQ(station(4)->illegal_answers[0], 1u);
+}
+
 TEST_F(BusHealthTest, IllegalAnswersBadFromTen) {
     start_up(3);
+    exchange(5);
     for (int i = 0; i < 9; ++i)
         feed(data(5));
     tracker().judge();

@@ -228,6 +228,15 @@ TEST(CliTest, InputWithoutAnyTelegramIsUsageError) {
                                       "stream"),
               std::string::npos)
         << r.err;
+    // One byte is "1 byte" (#27 point 15).
+    TempFile one("one.raw");
+    test::write_file(one.path, {'x'});
+    CommandResult single = run_dpscope({"decode", "--input-format", "raw", one.path});
+    EXPECT_EQ(single.exit_code, 2);
+    EXPECT_NE(single.err.find(one.path + ": no PROFIBUS telegram in its 1 byte read as a raw byte "
+                                         "stream"),
+              std::string::npos)
+        << single.err;
     CommandResult forced = run_dpscope({"decode", "--input-format", "hex", kPpo1});
     EXPECT_EQ(forced.exit_code, 2);
     EXPECT_NE(forced.err.find("no hex bytes in the text"), std::string::npos) << forced.err;
@@ -653,9 +662,12 @@ TEST(CliTest, VltSlaveWithSpontaneousMessagesDecodedAsGeGetsAVltHint) {
     CommandResult made = run_dpscope({"simulate", "-w", capture.path, "--slave", "3:1", "--cycles",
                                       "400", "--fault", "spontaneous_message=0.2"});
     ASSERT_EQ(made.exit_code, 0) << made.err;
-    // RC 9..12 are not used in ge; vlt (first in order) and profidrive both define them.
+    // The simulated vlt slave's ident number, 0x0402, is the VLT 5000/6000's, which is the
+    // evidence named first (its RC 9..12, not used in ge, would point to vlt as well).
     CommandResult ge = run_dpscope({"decode", "-q", "--dialect", "3=ge", capture.path});
-    EXPECT_NE(ge.out.find("its parameter-channel codes fit the vlt dialect ("), std::string::npos)
+    EXPECT_NE(ge.out.find("hint: its ident number 0x0402 is the Danfoss VLT 5000/6000's (the vlt "
+                          "dialect)"),
+              std::string::npos)
         << ge.out;
     EXPECT_NE(ge.out.find("decode with --dialect 3=vlt"), std::string::npos) << ge.out;
     CommandResult vlt = run_dpscope({"decode", "-q", capture.path});

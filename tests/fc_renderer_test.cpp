@@ -441,7 +441,7 @@ TEST(FcRendererTest, SummaryCountsBlocksAndAks) {
           "    AK 14 Write parameter value in RAM and EEPROM (word)",
           "  parameter responses:\n    AK  1 Parameter value transferred (word)",
           "    AK  7 Command cannot be performed                                     2\n",
-          "    bcc_mismatch", "  drives:\n      1: 8 requests, 6 responses\n"})
+          "    bcc_mismatch", "  drives:\n      1: 8 commands, 6 responses\n"})
         EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n---\n" << text;
 }
 

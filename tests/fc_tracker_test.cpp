@@ -113,18 +113,22 @@ TEST(FcTrackerTest, BroadcastsExpectNoAnswer) {
 
 TEST(FcTrackerTest, StackedCommandNamesTheFirst) {
     FcRun run;
+    // An exchange first (the capture's first telegram is not judged, see
+    // ACaptureStartingWithAResponseIsNotJudgedForIt).
+    run.feed(fc_process(3), -1);
+    run.feed(fc_process(3, 0x0607), -1);
     run.feed(fc_parameter(3, 1, 414), 0);
     std::vector<Finding> found = run.feed(fc_parameter(3, 14, 415, 0, 7), 5);
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, FindingKind::FcStackedRequest);
-    EXPECT_EQ(found[0].frame, 2u);
-    EXPECT_EQ(found[0].request_frame, 1u);
+    EXPECT_EQ(found[0].frame, 4u);
+    EXPECT_EQ(found[0].request_frame, 3u);
     EXPECT_EQ(found[0].slave, 3);
     EXPECT_EQ(found[0].pnu, 414);
     EXPECT_NE(found[0].message.find("AK 14"), std::string::npos) << found[0].message;
     // The answer to the second command is its answer, not a mismatch for the first.
     EXPECT_TRUE(run.feed(fc_parameter(3, 1, 415, 0, 7, 0x0607), 8).empty());
-    EXPECT_EQ(run.station(3)->answered, 1u);
+    EXPECT_EQ(run.station(3)->answered, 2u);
 }
 
 TEST(FcTrackerTest, NoResponseWhenTheMasterMovesOnOrTheTimeOutPasses) {
@@ -182,13 +186,19 @@ TEST(FcTrackerTest, LateResponseFollowsTheOption) {
 
 TEST(FcTrackerTest, ResponseFromAnotherDriveIsMismatched) {
     FcRun run;
+    // Drives 2 and 4 have been commanded before (nothing before that is judged, see
+    // ResponseBeforeTheFirstCommandToItsDriveIsNotJudged).
+    for (std::uint8_t drive : {std::uint8_t{2}, std::uint8_t{4}}) {
+        run.feed(fc_process(drive), -1);
+        run.feed(fc_process(drive, 0x0607), -1);
+    }
     run.feed(fc_parameter(1, 1, 414), 0);
     // AK 7 is only a response: from drive 2 while drive 1 is asked.
     std::vector<Finding> found = run.feed(fc_parameter(2, 7, 414, 0, 0, 0x0607), 3);
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, FindingKind::FcMismatchedResponse);
     EXPECT_EQ(found[0].slave, 2);
-    EXPECT_EQ(found[0].request_frame, 1u);
+    EXPECT_EQ(found[0].request_frame, 5u);
     // Drive 1 still answers its command.
     EXPECT_TRUE(run.feed(fc_parameter(1, 1, 414, 0, 5, 0x0607), 6).empty());
     // An AK 7 with no command pending at all.
@@ -365,12 +375,44 @@ TEST(FcTrackerTest, ACaptureStartingWithAResponseIsNotJudgedForIt) {
     std::vector<Finding> found = run.feed(fc_process(2), 210);
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, FindingKind::FcNoResponse);
+    // Nor is it a stacked command when the master's next command goes to the same drive, nor
+    // unanswered when the time-out passes.
+    FcRun same;
+    same.feed(fc_process(1, 0x0607), 0);
+    same.feed(fc_parameter(1, 1, 414), 10);
+    same.feed(fc_parameter(1, 1, 414, 0, 5, 0x0607), 15);
+    same.finish(5000);
+    EXPECT_TRUE(same.all.empty()) << same.all[0].message;
+    FcRun alone;
+    alone.feed(fc_process(1, 0x0607), 0);
+    alone.finish(5000);
+    EXPECT_TRUE(alone.all.empty()) << alone.all[0].message;
     // A first command whose AK only a command has is judged from the start.
     FcRun certain;
     certain.feed(fc_parameter(1, 14, 202, 0, 5), 0);
     found = certain.feed(fc_process(2), 10);
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, FindingKind::FcNoResponse);
+}
+
+// A response (AK 7 marks one wherever it comes) from a drive the capture has not yet seen a
+// command to: its command may have come before the capture began. Nothing before the first
+// command to a drive is judged; after it, the same response is a mismatched one.
+TEST(FcTrackerTest, ResponseBeforeTheFirstCommandToItsDriveIsNotJudged) {
+    FcRun run;
+    run.feed(fc_parameter(4, 7, 414, 0, 0, 0x0607), 0);  // no command pending
+    run.feed(fc_parameter(1, 1, 414), 10);
+    run.feed(fc_parameter(2, 7, 414, 0, 0, 0x0607), 13);  // while drive 1 is asked
+    run.feed(fc_parameter(1, 1, 414, 0, 5, 0x0607), 16);
+    run.finish(5000);
+    EXPECT_TRUE(run.all.empty()) << run.all[0].message;
+    EXPECT_EQ(run.station(4)->responses, 1u);
+    EXPECT_EQ(run.station(2)->responses, 1u);
+    run.feed(fc_process(4), 6000);
+    run.feed(fc_process(4, 0x0607), 6004);
+    std::vector<Finding> found = run.feed(fc_parameter(4, 7, 414, 0, 0, 0x0607), 6010);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::FcMismatchedResponse);
 }
 
 }  // namespace
@@ -421,6 +463,85 @@ TEST(FcTrackerTest, TrailingBytesAloneLeaveTheTelegramIntact) {
     EXPECT_EQ(one->answered, 1u);
     EXPECT_EQ(one->latency_ns.min(), 4u * kMs);
     EXPECT_EQ(run.tracker.transactions(), 1u);
+}
+
+}  // namespace
+}  // namespace dpscope
+
+namespace dpscope {
+namespace {
+
+// Every command to a drive has one outcome, so the counts add up (#27 point 12): commands =
+// broadcasts + answered + unanswered + abandoned + damaged + not judged. Damaged telegrams count
+// among the commands and responses (as decode -q counts them), and are the outcome "damaged".
+void feed_every_outcome(FcRun& run) {
+    run.feed(fc_process(1, 0x0607), 0);  // 1: the capture begins with drive 1's answer: not judged
+    run.feed(fc_process(2), 10);         // 2: answered by 3
+    run.feed(fc_process(2, 0x0607), 14);
+    run.feed(fc_process(2), 20);  // 4: unanswered: the master moves on to drive 1
+    run.feed(fc_parameter(1, 1, 414),
+             30);  // 5: abandoned: a new command to drive 1 before its answer
+    run.feed(fc_parameter(1, 14, 415, 0, 7), 40);  // 6: its answer (7) is damaged
+    std::vector<std::uint8_t> answer = fc_parameter(1, 1, 415, 0, 7, 0x0607);
+    answer.back() ^= 0x10;
+    run.feed(answer, 44);
+    std::vector<std::uint8_t> command = fc_process(2);  // 8: a damaged command (the drive drops it)
+    command.back() ^= 0x10;
+    run.feed(command, 50);
+    run.feed(fc_process(0), 60);  // 9: a broadcast
+    run.feed(fc_process(2), 70);  // 10: still waiting for its answer when the capture ends
+}
+
+void expect_outcomes_add_up(const FcRun& run) {
+    for (const FcStationStats* s : run.tracker.stations()) {
+        SCOPED_TRACE(s->address);
+        EXPECT_EQ(s->commands, s->broadcasts + s->answered + s->no_responses + s->abandoned +
+                                   s->damaged + s->not_judged + s->open);
+        EXPECT_EQ(s->commands, s->commands_outcomes());
+    }
+}
+
+TEST(FcTrackerTest, EveryCommandHasOneOutcomeAndTheCountsAddUp) {
+    FcRun run;
+    feed_every_outcome(run);
+    run.finish();  // at the last telegram: command 10 is within its time-out
+    expect_outcomes_add_up(run);
+    const FcStationStats* one = run.station(1);
+    ASSERT_NE(one, nullptr);
+    EXPECT_EQ(one->commands, 3u);
+    EXPECT_EQ(one->answered, 0u);
+    EXPECT_EQ(one->no_responses, 0u);
+    EXPECT_EQ(one->abandoned, 1u);
+    EXPECT_EQ(one->damaged, 1u);
+    EXPECT_EQ(one->not_judged, 1u);
+    EXPECT_EQ(one->open, 0u);
+    EXPECT_EQ(one->responses, 1u);
+    EXPECT_EQ(one->damaged_responses, 1u);
+    EXPECT_EQ(one->damaged_commands, 0u);
+    const FcStationStats* two = run.station(2);
+    ASSERT_NE(two, nullptr);
+    EXPECT_EQ(two->commands, 4u);
+    EXPECT_EQ(two->answered, 1u);
+    EXPECT_EQ(two->no_responses, 1u);
+    EXPECT_EQ(two->abandoned, 0u);
+    EXPECT_EQ(two->damaged, 1u);
+    EXPECT_EQ(two->not_judged, 0u);
+    EXPECT_EQ(two->open, 1u);
+    EXPECT_EQ(two->damaged_commands, 1u);
+    EXPECT_EQ(two->responses, 1u);
+    const FcStationStats* broadcasts = run.station(0);
+    ASSERT_NE(broadcasts, nullptr);
+    EXPECT_EQ(broadcasts->commands, 1u);
+    EXPECT_EQ(broadcasts->broadcasts, 1u);
+
+    // Past the time-out at the end, the last command is unanswered instead.
+    FcRun late;
+    feed_every_outcome(late);
+    late.finish(5000);
+    expect_outcomes_add_up(late);
+    EXPECT_EQ(late.station(2)->no_responses, 2u);
+    EXPECT_EQ(late.station(2)->not_judged, 0u);
+    EXPECT_EQ(late.station(2)->open, 0u);
 }
 
 }  // namespace

@@ -102,6 +102,11 @@ golden_case(ge_text samples/expected/ge.txt decode --dialect ge samples/ge.pcap)
 golden_case(ge_jsonl samples/expected/ge.jsonl decode -T jsonl --dialect ge samples/ge.pcap)
 golden_case(report_ge_text samples/expected/report.ge.txt report --dialect ge samples/ge.pcap)
 golden_case(report_ge_json samples/expected/report.ge.json report -T json --dialect ge samples/ge.pcap)
+# The same decoded with the default dialect: each slave gets the hint to decode it as ge, from
+# its fault number 130 or 131 (#27 point 14); in a capture cut after the first rejection (-c 90),
+# slave 3 from that one telegram.
+golden_case(ge_summary samples/expected/ge.summary.txt decode -q samples/ge.pcap)
+golden_case(ge_short_summary samples/expected/ge.short.summary.txt decode -q -c 90 samples/ge.pcap)
 golden_case(decode_faults_findings_jsonl samples/expected/faults.findings.jsonl decode -T jsonl --station 5 -c 120 samples/faults.pcap)
 # DP-V1 parameter access (slave 4 speaks the PROFIdrive dialect): every decode and report format.
 golden_case(dpv1_text samples/expected/dpv1.txt decode --dialect 4=profidrive samples/dpv1.pcap)

@@ -498,7 +498,7 @@ TEST(RendererTest, TimesBeforeTheEpoch) {
     std::vector<Input> in = {{hex("E5"), -1'500'000'000, {}}};
     std::vector<std::string> verbose = split_lines(render(OutputFormat::Verbose, in));
     ASSERT_FALSE(verbose.empty());
-    EXPECT_EQ(verbose[0], "Frame 1: 1 bytes, 1969-12-31T23:59:58.500000000Z");
+    EXPECT_EQ(verbose[0], "Frame 1: 1 byte, 1969-12-31T23:59:58.500000000Z");
     std::vector<Json> lines = jsonl(in);
     ASSERT_EQ(lines.size(), 1u);
     std::string csv_text = render(OutputFormat::Csv, in);
@@ -751,6 +751,46 @@ bool contains(const std::vector<std::string>& lines, std::string_view wanted) {
     for (const std::string& line : lines)
         if (line == wanted) return true;
     return false;
+}
+
+// An I/O slave configured with one byte each way (Chk_Cfg 0x30: no PPO, no parameter channel):
+// no dialect is named for it (jsonl dialect null, verbose "none"), and one byte is "1 byte".
+std::vector<Input> io_slave_session() {
+    std::vector<Input> in;
+    auto add = [&](std::vector<std::uint8_t> bytes) {
+        in.push_back({std::move(bytes), kT0 + static_cast<std::int64_t>(in.size()) * 100'000, {}});
+    };
+    add(request(62, {0x30}));             // 1 Chk_Cfg: 1 byte in and out
+    add(hex("E5"));                       // 2 SC
+    add(request(std::nullopt, {0x5A}));   // 3 Data_Exchange: 1 byte out
+    add(response(std::nullopt, {0xA5}));  // 4 Data_Exchange: 1 byte in
+    return in;
+}
+
+TEST(RendererTest, SlaveWithoutAParameterChannelHasNoDialectAndOneByteIsSingular) {
+    std::vector<Json> lines = jsonl(io_slave_session());
+    ASSERT_EQ(lines.size(), 4u);
+    for (std::size_t i : {2u, 3u}) {
+        EXPECT_EQ(lines[i]["service"].string(), "Data_Exchange");
+        EXPECT_TRUE(lines[i]["pcv"].is_null());
+        EXPECT_TRUE(lines[i]["dialect"].is_null()) << i;
+        EXPECT_EQ(lines[i]["ppo_source"].string(), "chk_cfg");
+    }
+    std::vector<std::string> block = verbose_block(io_slave_session(), 3);
+    ASSERT_FALSE(block.empty());
+    for (std::string_view line : {
+             "    Data unit: 1 byte from byte 7",
+             "    PPO: no standard PPO (0 PCD words, 1 byte each way) from Chk_Cfg",
+             "    Dialect: none (no parameter channel); control/status word profile: fc",
+         })
+        EXPECT_TRUE(contains(block, line)) << line << "\n" << block[0];
+    std::vector<std::string> config = verbose_block(io_slave_session(), 1);
+    EXPECT_TRUE(std::any_of(config.begin(), config.end(), [](const std::string& line) {
+        return line.find("out 1 byte in 1 byte") != std::string::npos;
+    })) << config.size();
+    std::vector<std::string> ack = verbose_block(io_slave_session(), 2);
+    ASSERT_FALSE(ack.empty());
+    EXPECT_EQ(ack[0], "Frame 2: 1 byte, 2024-01-01T00:00:00.000100000Z");
 }
 
 TEST(RendererTest, VerboseFieldTreeOfADataExchange) {
@@ -1043,8 +1083,10 @@ TEST(RendererTest, ProfidriveHighBitsAreDeviceSpecificUnlessDanfoss) {
     DecoderOptions generic;
     generic.dialect = Dialect::Profidrive;
     std::vector<std::string> block = verbose_block(in, 1, generic);
-    EXPECT_TRUE(
-        contains(block, "    Dialect: profidrive; control/status word profile: profidrive"));
+    // PPO 3 has no parameter channel: no dialect named (it still chooses the PCD words' names).
+    EXPECT_TRUE(contains(block,
+                         "    Dialect: none (no parameter channel); control/status word profile: "
+                         "profidrive"));
     EXPECT_TRUE(contains(block, "            bit 10 = 1: data valid"));
     EXPECT_TRUE(contains(block, "            bit 11 = 1: device-specific bit 11"));
     EXPECT_TRUE(contains(block, "            bit 15 = 1: device-specific bit 15"));
@@ -1052,8 +1094,9 @@ TEST(RendererTest, ProfidriveHighBitsAreDeviceSpecificUnlessDanfoss) {
     DecoderOptions danfoss;  // vlt slave in the Danfoss PROFIdrive profile
     danfoss.pcd_profile = PcdProfile::Profidrive;
     block = verbose_block(in, 1, danfoss);
-    EXPECT_TRUE(
-        contains(block, "    Dialect: vlt; control/status word profile: profidrive (Danfoss)"));
+    EXPECT_TRUE(contains(block,
+                         "    Dialect: none (no parameter channel); control/status word profile: "
+                         "profidrive (Danfoss)"));
     EXPECT_TRUE(contains(block, "            bit 11 = 1: slow down"));
     EXPECT_TRUE(contains(block, "            bit 15 = 1: reverse"));
 

@@ -2292,6 +2292,29 @@ SimulatorOptions profidrive_slave(std::uint64_t cycles) {
     return options;
 }
 
+// A PPO 3 slave (2 PCD words, no parameter channel) has no dialect in any format: the dialect
+// names the parameter channel's code tables.
+TEST(ReportTest, SlaveWithoutAParameterChannelHasNoDialectInEveryFormat) {
+    auto analysis = analyse_simulation(one_slave(3, 3, 50));
+    const ReportContext context = context_of(*analysis);
+    std::string text = render(ReportFormat::Text, context);
+    EXPECT_NE(text.find("  layout         PPO 3 (2 PCD words, 4 bytes each way) from Chk_Cfg; no "
+                        "parameter channel; ident 0x"),
+              std::string::npos)
+        << text;
+    EXPECT_EQ(text.find("dialect"), std::string::npos) << text;
+    std::string markdown = render(ReportFormat::Markdown, context);
+    EXPECT_NE(markdown.find("| 3 | 2 | PPO3 | - |"), std::string::npos) << markdown;
+    std::string html = render(ReportFormat::Html, context);
+    EXPECT_NE(html.find("<tr><th>Dialect</th><td>none (no parameter channel)</td></tr>"),
+              std::string::npos);
+    EXPECT_NE(html.find("<td>PPO3</td><td>-</td>"), std::string::npos);
+    auto report = json_report(context);
+    ASSERT_TRUE(report);
+    EXPECT_TRUE((*report)["stations"][0]["dialect"].is_null());
+    EXPECT_TRUE((*report)["stations"][0]["dialect_hint"].is_null());
+}
+
 TEST(ReportTest, ProfidriveSlaveDecodedAsVltGetsOneDialectHintInEveryFormat) {
     auto analysis = analyse_simulation(profidrive_slave(2000));  // decoded as vlt (the default)
     ASSERT_GT(analysis->station(3).findings[static_cast<std::size_t>(FindingKind::UnknownCode)],
@@ -2428,8 +2451,10 @@ TEST(ReportTest, FcSectionInText) {
                         "broadcasts\n"),
               std::string::npos)
         << text;
-    EXPECT_NE(text.find("  responses      2; 2 answered, 1 unanswered, 0 late (over 20 ms)\n"),
-              std::string::npos);
+    EXPECT_NE(text.find("  outcome        2 answered, 1 unanswered, 0 abandoned, 0 damaged\n"
+                        "  responses      2; 0 late (over 20 ms)\n"),
+              std::string::npos)
+        << text;
     EXPECT_NE(
         text.find(
             "  parameters     PNU 302 (0 reads, 1 write), PNU 414 (1 read, 0 writes), PNU 415 (1 "
@@ -2468,6 +2493,19 @@ TEST(ReportTest, FcSectionInJson) {
     EXPECT_EQ(one["commands"].integer(), 3);
     EXPECT_EQ(one["commands_by_ak"]["14"].integer(), 1);
     EXPECT_EQ(one["no_responses"].integer(), 1);
+    // Every command has one outcome: commands = transactions + no_responses + abandoned +
+    // damaged + not_judged (+ broadcasts).
+    EXPECT_EQ(one["transactions"].integer(), 2);
+    EXPECT_EQ(one["abandoned"].integer(), 0);
+    EXPECT_EQ(one["damaged"].integer(), 0);
+    EXPECT_EQ(one["not_judged"].integer(), 0);
+    EXPECT_EQ(one["damaged_commands"].integer(), 0);
+    EXPECT_EQ(one["damaged_responses"].integer(), 0);
+    for (const Json& station : r["stations"].items)
+        EXPECT_EQ(station["commands"].integer(),
+                  station["broadcasts"].integer() + station["transactions"].integer() +
+                      station["no_responses"].integer() + station["abandoned"].integer() +
+                      station["damaged"].integer() + station["not_judged"].integer());
     EXPECT_EQ(one["late"].integer(), 0);
     EXPECT_EQ(one["findings"].keys(), fc_kind_names());
     EXPECT_EQ(one["findings"]["fc_command_rejected"].integer(), 1);
@@ -2490,6 +2528,13 @@ TEST(ReportTest, FcSectionInMarkdownAndHtml) {
     EXPECT_NE(md.find("| telegrams | bytes skipped | BCC errors |"), std::string::npos);
     EXPECT_NE(md.find("## Drives\n"), std::string::npos);
     EXPECT_NE(md.find("\n### Drive 1 (FC protocol)\n"), std::string::npos);
+    EXPECT_NE(md.find("| address | commands | answered | unanswered | abandoned | damaged | not "
+                      "judged | late |"),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find("- Outcome: 2 answered, 1 unanswered, 0 abandoned, 0 damaged\n"),
+              std::string::npos)
+        << md;
     EXPECT_NE(md.find("- Rejected: PNU 302 fault code 2 (Upper or lower limit is exceeded), 1x\n"),
               std::string::npos);
     EXPECT_EQ(md.find("## Slaves"), std::string::npos);
@@ -2497,6 +2542,19 @@ TEST(ReportTest, FcSectionInMarkdownAndHtml) {
     auto doc = parse_xml(html, true);
     ASSERT_TRUE(doc) << html;
     EXPECT_NE(html.find("<h2>Drive 1 (FC protocol)</h2>"), std::string::npos);
+    EXPECT_NE(html.find("<th class=\"n\">abandoned</th><th class=\"n\">damaged</th><th "
+                        "class=\"n\">not judged</th>"),
+              std::string::npos)
+        << html;
+    EXPECT_NE(html.find("<tr><td class=\"n\"><a href=\"#drive-1\">1</a></td><td class=\"n\">3</td>"
+                        "<td class=\"n\">2</td><td class=\"n\">1</td><td class=\"n\">0</td>"
+                        "<td class=\"n\">0</td><td class=\"n\">0</td>"),
+              std::string::npos)
+        << html;
+    EXPECT_NE(html.find("<th>Outcome</th><td>2 answered, 1 unanswered, 0 abandoned, 0 "
+                        "damaged</td>"),
+              std::string::npos)
+        << html;
     EXPECT_NE(html.find("<td class=\"n\">302</td><td class=\"n\">2</td><td>Upper or lower limit "
                         "is exceeded</td>"),
               std::string::npos);
@@ -2526,6 +2584,19 @@ TEST(ReportTest, JunitFcSuitePerAddressWithACasePerFcRule) {
     EXPECT_EQ(suites[1]->elements("testcase")[0]->attribute("classname"), "dpscope.fc.drive_1");
     EXPECT_EQ(suites[2]->attribute("failures"), "0");  // a late answer is a warning
     EXPECT_EQ(root->attribute("failures"), "1");
+    // The drive's commands by outcome, as in the JSON report.
+    ASSERT_EQ(suites[1]->elements("properties").size(), 1u);
+    std::map<std::string, std::string> properties;
+    for (const XmlNode* p : suites[1]->elements("properties")[0]->elements("property"))
+        properties[p->attribute("name")] = p->attribute("value");
+    EXPECT_EQ(properties, (std::map<std::string, std::string>{{"commands", "3"},
+                                                              {"broadcasts", "0"},
+                                                              {"transactions", "2"},
+                                                              {"no_responses", "1"},
+                                                              {"abandoned", "0"},
+                                                              {"damaged", "0"},
+                                                              {"not_judged", "0"},
+                                                              {"responses", "2"}}));
 }
 
 TEST(ReportTest, ProfibusReportsListNoFcKinds) {
@@ -2669,7 +2740,8 @@ TEST(ReportTest, Vlt2000SectionInText) {
               std::string::npos);
     EXPECT_NE(text.find("\nDrive 01 (VLT 2000)\n"
                         "  commands       4: U 1, R 3; 0 broadcasts\n"
-                        "  replies        3; 3 answered, 1 unanswered\n"
+                        "  outcome        3 answered, 1 unanswered, 0 abandoned, 0 damaged\n"
+                        "  replies        3\n"
                         "  failed         2: reason 04 (read only, e.g. factory set-up selected) "
                         "1x, no reason code 1x\n"
                         "  checksums      0 checksum errors, 0 telegrams with the check off "
@@ -2683,8 +2755,9 @@ TEST(ReportTest, Vlt2000SectionInText) {
               std::string::npos)
         << text;
     EXPECT_NE(text.find("\nDrive 02 (VLT 2000)\n"
-                        "  commands       3: R 1, C 2; 0 broadcasts\n"
-                        "  replies        3; 3 answered, 0 unanswered\n"
+                        "  commands       4: R 1, C 2, 1 damaged; 0 broadcasts\n"
+                        "  outcome        3 answered, 0 unanswered, 0 abandoned, 1 damaged\n"
+                        "  replies        3\n"
                         "  failed         0: none\n"
                         "  checksums      1 checksum error, 2 telegrams with the check off "
                         "(\"??\")\n"),
@@ -2704,11 +2777,16 @@ const std::vector<std::string> kVlt2000StationKeys = {"bus",
                                                       "broadcast",
                                                       "telegrams",
                                                       "commands",
+                                                      "damaged_commands",
                                                       "commands_by_letter",
                                                       "broadcasts",
                                                       "replies",
+                                                      "damaged_replies",
                                                       "transactions",
                                                       "no_responses",
+                                                      "abandoned",
+                                                      "damaged",
+                                                      "not_judged",
                                                       "failed",
                                                       "failures",
                                                       "failures_without_reason",
@@ -2784,6 +2862,16 @@ TEST(ReportTest, Vlt2000SectionInJson) {
     EXPECT_EQ(one["findings"]["vlt2000_command_failed"].integer(), 2);
     EXPECT_EQ(one["findings"]["vlt2000_no_response"].integer(), 1);
     const Json& two = r["stations"][2];
+    // Every command has one outcome: the damaged C is counted, its outcome "damaged".
+    EXPECT_EQ(two["commands"].integer(), 4);
+    EXPECT_EQ(two["damaged_commands"].integer(), 1);
+    EXPECT_EQ(two["transactions"].integer(), 3);
+    EXPECT_EQ(two["no_responses"].integer(), 0);
+    EXPECT_EQ(two["abandoned"].integer(), 0);
+    EXPECT_EQ(two["damaged"].integer(), 1);
+    EXPECT_EQ(two["not_judged"].integer(), 0);
+    EXPECT_EQ(two["replies"].integer(), 3);
+    EXPECT_EQ(two["damaged_replies"].integer(), 0);
     EXPECT_EQ(two["checksum_errors"].integer(), 1);
     EXPECT_EQ(two["checksum_disabled"].integer(), 2);
     EXPECT_EQ(number_of(two["latency_ms"]["max"]), 20.0);
@@ -2803,13 +2891,21 @@ TEST(ReportTest, Vlt2000SectionInMarkdownAndHtml) {
         << md;
     EXPECT_NE(md.find("- Checks: time-out 1000 ms, checksums checked\n"), std::string::npos);
     EXPECT_NE(md.find("| telegrams | bytes skipped | bad checksums |"), std::string::npos);
-    EXPECT_NE(md.find("## Drives\n\n| address | commands | answered | unanswered | failed |"),
+    EXPECT_NE(md.find("## Drives\n\n| address | commands | answered | unanswered | abandoned | "
+                      "damaged | not judged | failed |"),
               std::string::npos);
-    EXPECT_NE(md.find("| 01 | 4 | 3 | 1 | 2 | min 1.000  mean 3.000  p95 "), std::string::npos)
+    EXPECT_NE(md.find("| 01 | 4 | 3 | 1 | 0 | 0 | 0 | 2 | min 1.000  mean 3.000  p95 "),
+              std::string::npos)
         << md;
-    EXPECT_NE(md.find("| broadcast | 1 | 0 | 0 | 0 | - | 0 | none |\n"), std::string::npos) << md;
-    EXPECT_NE(md.find("\n### Drive 01 (VLT 2000)\n\n- Commands: 4 (U 1, R 3; 0 broadcasts)\n"),
-              std::string::npos);
+    EXPECT_NE(md.find("| 02 | 4 | 3 | 0 | 0 | 1 | 0 | 0 | "), std::string::npos) << md;
+    EXPECT_NE(md.find("| broadcast | 1 | 0 | 0 | 0 | 0 | 0 | 0 | - | 0 | none |\n"),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find("\n### Drive 01 (VLT 2000)\n\n- Commands: 4: U 1, R 3; 0 broadcasts\n"
+                      "- Outcome: 3 answered, 1 unanswered, 0 abandoned, 0 damaged\n"
+                      "- Replies: 3\n"),
+              std::string::npos)
+        << md;
     EXPECT_NE(md.find("- Failed: reason code 04 (read only, e.g. factory set-up selected), 1x\n"
                       "- Failed: no reason code, 1x\n"),
               std::string::npos);
@@ -2871,6 +2967,19 @@ TEST(ReportTest, JunitVlt2000SuitePerAddressWithACasePerRule) {
     EXPECT_EQ(suites[2]->attribute("failures"), "1");  // vlt2000_checksum_error
     EXPECT_EQ(suites[0]->attribute("failures"), "0");
     EXPECT_EQ(root->attribute("failures"), "2");
+    // Drive 02's commands by outcome, as in the JSON report: its damaged C is "damaged".
+    ASSERT_EQ(suites[2]->elements("properties").size(), 1u);
+    std::map<std::string, std::string> properties;
+    for (const XmlNode* p : suites[2]->elements("properties")[0]->elements("property"))
+        properties[p->attribute("name")] = p->attribute("value");
+    EXPECT_EQ(properties, (std::map<std::string, std::string>{{"commands", "4"},
+                                                              {"broadcasts", "0"},
+                                                              {"transactions", "3"},
+                                                              {"no_responses", "0"},
+                                                              {"abandoned", "0"},
+                                                              {"damaged", "1"},
+                                                              {"not_judged", "0"},
+                                                              {"replies", "3"}}));
     EXPECT_EQ(root->attribute("tests"), std::to_string(3 * kinds.size()));
     // The notes are below the failure threshold, said in the case.
     const XmlNode& failed = *suites[1]->elements("testcase")[static_cast<std::size_t>(

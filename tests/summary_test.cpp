@@ -10,8 +10,14 @@
 #include <vector>
 
 #include "decoder/bus_decoder.hpp"
+#include "decoder/fc_decoder.hpp"
+#include "decoder/fc_tracker.hpp"
 #include "decoder/telegram_builder.hpp"
+#include "decoder/vlt2000_decoder.hpp"
+#include "decoder/vlt2000_tracker.hpp"
+#include "simulator/fc_bus_model.hpp"
 #include "simulator/simulator.hpp"
+#include "simulator/vlt2000_bus_model.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -218,8 +224,8 @@ TEST(SummaryTest, RenderText) {
               "  slaves:\n"
               "      3: PPO 1 (PCV + 2 PCD words, 12 bytes each way) from Chk_Cfg; dialect vlt; "
               "ident 0x0402; 2 Data_Exchange telegrams\n"
-              "      6: PPO guessed from each Data_Exchange length; dialect vlt; 2 Data_Exchange "
-              "telegrams\n");
+              "      6: PPO guessed from each Data_Exchange length; no parameter channel; 2 "
+              "Data_Exchange telegrams\n");
 }
 
 TEST(SummaryTest, RenderTextNotesDamageAndSkippedBytes) {
@@ -257,10 +263,28 @@ TEST(SummaryTest, SlaveLayoutGivenByOption) {
     Counted c{Summary{}, BusDecoder(options)};
     count(c, {{data_exchange(6, 2, true, std::vector<std::uint8_t>(12, 0)), kT0}});
     std::string text = render_text(c, InputSummary{"x", "pcap", 0, false});
-    EXPECT_NE(text.find("      6: PPO 4 (6 PCD words, 12 bytes each way) given by --ppo; dialect "
-                        "profidrive; 1 Data_Exchange telegram\n"),
+    EXPECT_NE(text.find("      6: PPO 4 (6 PCD words, 12 bytes each way) given by --ppo; no "
+                        "parameter channel; 1 Data_Exchange telegram\n"),
               std::string::npos)
         << text;
+}
+
+// An I/O slave (ET200S and the like) configured with one byte each way: no parameter channel,
+// so no dialect, and "1 byte".
+TEST(SummaryTest, SlaveWithoutAParameterChannelHasNoDialect) {
+    Counted c;
+    count(c, {{build_telegram(
+                   {4, 2, request_fc(FdlFunction::SrdHigh, true, true), 62, 62, Bytes(hex("30"))}),
+               kT0},
+              {hex("E5"), kT0 + kMs},
+              {data_exchange(4, 2, true, {0x5A}), kT0 + 2 * kMs},
+              {data_exchange(2, 4, false, {0xA5}), kT0 + 3 * kMs}});
+    std::string text = render_text(c, InputSummary{"x", "pcap", 0, false});
+    EXPECT_NE(text.find("      4: no standard PPO (0 PCD words, 1 byte each way) from Chk_Cfg; no "
+                        "parameter channel; 2 Data_Exchange telegrams\n"),
+              std::string::npos)
+        << text;
+    EXPECT_EQ(text.find("dialect"), std::string::npos) << text;
 }
 
 // Data_Exchange between master 2 and slave 3 (PPO 1 by option) with RC `rc` and PNU 207.
@@ -291,6 +315,81 @@ TEST(SummaryTest, DialectHintAfterTenCodesAllDefinedByTheOtherDialect) {
     count(c, {{pcv_telegram(false, 13), kT0 + 10 * kMs}});
     EXPECT_EQ(c.summary.dialect_evidence(3).undefined(), 11u);
     EXPECT_FALSE(c.summary.dialect_evidence(3).hint());
+}
+
+// A rejection (RC 7) of slave 3 with error number `error` in bytes 7-8.
+std::vector<std::uint8_t> rejection(std::uint16_t error) {
+    std::vector<std::uint8_t> du(12, 0);
+    du[0] = 0x70;
+    du[1] = 207;
+    du[6] = static_cast<std::uint8_t>(error >> 8);
+    du[7] = static_cast<std::uint8_t>(error & 0xFF);
+    return data_exchange(2, 3, false, du);
+}
+
+// A GE AF-600/AF-650 decoded with the default dialect uses the vlt codes, so its codes never
+// give it away; its fault numbers 130 and 131 do [S002]: vlt does not define them, ge does. One
+// rejection is enough (a short capture), and the hint says what it rests on.
+TEST(SummaryTest, DialectHintFromAnErrorNumberOnlyTheOtherDialectDefines) {
+    DecoderOptions options;
+    options.station_ppo[3] = 1;
+    Counted c{Summary{}, BusDecoder(options)};
+    count(c, {{rejection(2), kT0}});  // defined by vlt: nothing to hint
+    EXPECT_FALSE(c.summary.dialect_evidence(3).hint());
+    count(c, {{pcv_telegram(true, 1), kT0 + kMs}, {rejection(130), kT0 + 2 * kMs}});
+    ASSERT_EQ(c.summary.dialect_evidence(3).hint(), Dialect::Ge);
+    EXPECT_NE(render_text(c, InputSummary{"x", "pcap", 0, false})
+                  .find("         hint: its error numbers fit the ge dialect (error 130, which vlt "
+                        "does not define, in 1 rejection telegram); decode with --dialect 3=ge\n"),
+              std::string::npos)
+        << render_text(c, InputSummary{"x", "pcap", 0, false});
+    // An error number no dialect defines takes the hint back.
+    count(c, {{rejection(999), kT0 + 3 * kMs}});
+    EXPECT_FALSE(c.summary.dialect_evidence(3).hint());
+    // Decoded as ge, 130 is defined: nothing to hint.
+    DecoderOptions ge = options;
+    ge.station_dialect[3] = Dialect::Ge;
+    Counted right{Summary{}, BusDecoder(ge)};
+    count(right, {{rejection(130), kT0}, {rejection(131), kT0 + kMs}});
+    EXPECT_FALSE(right.summary.dialect_evidence(3).hint());
+}
+
+// The ident number from Set_Prm (or a Slave_Diag answer) names the drive: a documented one hints
+// its dialect at once, whatever the codes. 0x0402 is the Danfoss VLT 5000/6000's
+// (docs/protocol/ppo.md); an ident the sources do not name hints nothing.
+TEST(SummaryTest, DialectHintFromADocumentedIdentNumber) {
+    DecoderOptions options;
+    options.station_dialect[3] = Dialect::Profidrive;
+    Counted c{Summary{}, BusDecoder(options)};
+    const std::vector<Input> start = {
+        {build_telegram({3, 2, request_fc(FdlFunction::SrdHigh, true, true), 61, 62,
+                         Bytes(hex("88 0A 0A 0B 04 02 00"))}),
+         kT0},
+        {hex("E5"), kT0 + kMs},
+        {build_telegram(
+             {3, 2, request_fc(FdlFunction::SrdHigh, false, true), 62, 62, Bytes(hex("F3 F1"))}),
+         kT0 + 2 * kMs},
+        {hex("E5"), kT0 + 3 * kMs},
+        {pcv_telegram(true, 1), kT0 + 4 * kMs}};
+    count(c, start);
+    ASSERT_EQ(c.summary.dialect_evidence(3).hint(), Dialect::Vlt);
+    EXPECT_NE(
+        render_text(c, InputSummary{"x", "pcap", 0, false})
+            .find("         hint: its ident number 0x0402 is the Danfoss VLT 5000/6000's (the "
+                  "vlt dialect); decode with --dialect 3=vlt\n"),
+        std::string::npos)
+        << render_text(c, InputSummary{"x", "pcap", 0, false});
+    // Decoded as vlt: nothing to hint.
+    Counted vlt;
+    count(vlt, start);
+    EXPECT_FALSE(vlt.summary.dialect_evidence(3).hint());
+    // An ident no source names (dpscope's simulator gives its ge slaves 0x6002, made up).
+    std::vector<Input> other = start;
+    other[0].bytes = build_telegram({3, 2, request_fc(FdlFunction::SrdHigh, true, true), 61, 62,
+                                     Bytes(hex("88 0A 0A 0B 60 02 00"))});
+    Counted unknown{Summary{}, BusDecoder(options)};
+    count(unknown, other);
+    EXPECT_FALSE(unknown.summary.dialect_evidence(3).hint());
 }
 
 TEST(SummaryTest, NoDialectHintForDefinedCodesOrDamagedTelegrams) {
@@ -349,6 +448,135 @@ TEST(SummaryTest, SimulatedSessionTotalsAddUp) {
     EXPECT_NE(text.find("    fcs_mismatch                        1\n"), std::string::npos);
     EXPECT_NE(text.find("      4: PPO 2 (PCV + 6 PCD words, 20 bytes each way) from Chk_Cfg; "
                         "dialect vlt; ident 0x0402; 240 Data_Exchange telegrams\n"),
+              std::string::npos)
+        << text;
+}
+
+// FC and VLT 2000 sessions with every fault of their bus: per drive, the tracker's commands add
+// up to their outcomes, and decode -q's counts (the summary's, per telegram) equal the report's
+// (the tracker's): commands = requests, responses and replies with the damaged ones (#27 point 12).
+template <class Decoder, class Tracker, class Check>
+void run_simulated_bus(Protocol bus, bool (*applies)(FaultKind), Check check) {
+    SimulatorOptions options;
+    options.bus = bus;
+    options.seed = 7;
+    options.cycles = 400;
+    options.baud = 0;
+    for (std::size_t i = 0; i < kFaultKindCount; ++i) {
+        const auto kind = static_cast<FaultKind>(i);
+        if (applies(kind)) options.faults.push_back({kind, 0.02, {}, {}});
+    }
+    Simulator simulator(options);
+    Decoder decoder;
+    Tracker tracker;
+    Summary summary;
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns = 0;
+    std::uint64_t frame = 0;
+    while (simulator.next(bytes, time_ns)) {
+        const DecodedTelegram& t = decoder.decode(Bytes(bytes), time_ns, ++frame);
+        summary.add(t);
+        summary.add_findings(tracker.track(t));
+    }
+    tracker.finish();
+    ASSERT_GT(simulator.injection_count(), 20u);
+    check(tracker, summary);
+}
+
+TEST(SummaryTest, FcDriveCountsAddUpAndAgreeWithTheReport) {
+    run_simulated_bus<FcDecoder, FcTracker>(
+        Protocol::Fc, fault_applies_to_fc, [](const FcTracker& tracker, const Summary& summary) {
+            std::uint64_t damaged = 0;
+            for (const FcStationStats* s : tracker.stations()) {
+                SCOPED_TRACE(s->address);
+                EXPECT_EQ(s->commands, s->commands_outcomes());
+                damaged += s->damaged;
+                if (s->address == 0) continue;  // the broadcasts: not a drive of the summary
+                EXPECT_EQ(summary.fc_drive_requests(s->address), s->commands);
+                EXPECT_EQ(summary.fc_drive_responses(s->address), s->responses);
+            }
+            EXPECT_GT(damaged, 0u);
+        });
+}
+
+TEST(SummaryTest, Vlt2000DriveCountsAddUpAndAgreeWithTheReport) {
+    run_simulated_bus<Vlt2000Decoder, Vlt2000Tracker>(
+        Protocol::Vlt2000, fault_applies_to_vlt2000,
+        [](const Vlt2000Tracker& tracker, const Summary& summary) {
+            std::uint64_t damaged = 0;
+            for (const Vlt2000StationStats* s : tracker.stations()) {
+                SCOPED_TRACE(s->address);
+                EXPECT_EQ(s->commands, s->commands_outcomes());
+                damaged += s->damaged;
+                EXPECT_EQ(summary.vlt2000_address(s->address).commands, s->commands);
+                EXPECT_EQ(summary.vlt2000_address(s->address).replies, s->replies);
+                EXPECT_EQ(summary.vlt2000_address(s->address).failed, s->failed);
+            }
+            EXPECT_GT(damaged, 0u);
+        });
+}
+
+// decode -q names each drive's commands by outcome, as the report does, and its responses with
+// the damaged ones (#27 point 12).
+TEST(SummaryTest, FcDrivesShowTheirCommandsByOutcome) {
+    FcDecoder decoder;
+    FcTracker tracker;
+    Summary summary;
+    std::uint64_t frame = 0;
+    auto feed = [&](std::vector<std::uint8_t> bytes, std::int64_t ms) {
+        const DecodedTelegram& t = decoder.decode(Bytes(bytes), ms * kMs, ++frame);
+        summary.add(t);
+        summary.add_findings(tracker.track(t));
+    };
+    feed(test::fc_process(2), 0);
+    feed(test::fc_process(2, 0x0607), 4);
+    feed(test::fc_process(2), 10);  // unanswered
+    feed(test::fc_parameter(1, 1, 414), 20);
+    std::vector<std::uint8_t> answer = test::fc_parameter(1, 1, 414, 0, 5, 0x0607);
+    answer.back() ^= 0x10;  // damaged
+    feed(answer, 24);
+    feed(test::fc_parameter(1, 1, 415), 30);  // the capture ends before its answer
+    summary.add_findings(tracker.finish());
+    BusDecoder dp;
+    const std::string text = test::output_text([&](Output& out) {
+        summary.render_text(out, InputSummary{"fc.pcap", "pcap", 0, false}, dp,
+                            DriveTrackers{&tracker, nullptr});
+    });
+    EXPECT_NE(text.find("  drives:\n"
+                        "      1: 2 commands (0 answered, 0 unanswered, 0 abandoned, 1 damaged, 1 "
+                        "not judged), 1 response (1 damaged)\n"
+                        "      2: 2 commands (1 answered, 1 unanswered, 0 abandoned, 0 damaged), 1 "
+                        "response\n"),
+              std::string::npos)
+        << text;
+    // Without the tracker (decode -q --pnu: the telegrams about a parameter), the counts alone.
+    const std::string alone = test::output_text([&](Output& out) {
+        summary.render_text(out, InputSummary{"fc.pcap", "pcap", 0, false}, dp);
+    });
+    EXPECT_NE(alone.find("      1: 2 commands, 1 response\n"), std::string::npos) << alone;
+}
+
+TEST(SummaryTest, Vlt2000AddressesShowTheirCommandsByOutcome) {
+    Vlt2000Decoder decoder;
+    Vlt2000Tracker tracker;
+    Summary summary;
+    std::uint64_t frame = 0;
+    auto feed = [&](std::string_view text, std::int64_t ms) {
+        std::vector<std::uint8_t> bytes(text.begin(), text.end());
+        const DecodedTelegram& t = decoder.decode(Bytes(bytes), ms * kMs, ++frame);
+        summary.add(t);
+        summary.add_findings(tracker.track(t));
+    };
+    // The manual's example command (§7.5), the capture ending before its reply.
+    feed("<01UOGD@0516+00080007>", 0);
+    summary.add_findings(tracker.finish());
+    BusDecoder dp;
+    const std::string text = test::output_text([&](Output& out) {
+        summary.render_text(out, InputSummary{"vlt.pcap", "pcap", 0, false}, dp,
+                            DriveTrackers{nullptr, &tracker});
+    });
+    EXPECT_NE(text.find("    01: 1 command (0 answered, 0 unanswered, 0 abandoned, 0 damaged, 1 "
+                        "not judged), 0 replies"),
               std::string::npos)
         << text;
 }

@@ -364,21 +364,27 @@ TEST(Vlt2000TrackerTest, ACaptureStartingWithAReplyIsNotJudgedForIt) {
 
 TEST(Vlt2000TrackerTest, AFailedReplyFromAnotherDriveIsMismatched) {
     Vlt2000Run run;
+    // Drives 2 and 5 have been commanded before (nothing before that is judged, see
+    // AReplyBeforeTheFirstCommandToItsDriveIsNotJudged).
+    for (int drive : {2, 5}) {
+        run.feed(vlt(drive, 'C', 0));
+        run.feed(vlt(drive, 'C', 0, 0, 0, {}, "GH@@"));
+    }
     run.feed(vlt(1, 'R', 102), 0);
     std::vector<Finding> found = run.feed(failed(2, 'R', 102, 0), 2);
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, FindingKind::Vlt2000MismatchedResponse);
-    EXPECT_EQ(found[0].frame, 2u);
-    EXPECT_EQ(found[0].request_frame, 1u);
+    EXPECT_EQ(found[0].frame, 6u);
+    EXPECT_EQ(found[0].request_frame, 5u);
     EXPECT_EQ(found[0].slave, 2);
     EXPECT_EQ(found[0].pnu, 102);
     EXPECT_NE(found[0].message.find("reply R (read) parameter 102 from drive 02 while the command "
-                                    "to drive 01 from frame 1 was pending"),
+                                    "to drive 01 from frame 5 was pending"),
               std::string::npos)
         << found[0].message;
-    EXPECT_EQ(run.station(2)->replies, 1u);
+    EXPECT_EQ(run.station(2)->replies, 2u);
     EXPECT_EQ(run.station(2)->failed, 1u);
-    EXPECT_EQ(run.station(2)->answered, 0u);
+    EXPECT_EQ(run.station(2)->answered, 1u);
     // The command still waits for drive 1.
     EXPECT_TRUE(run.feed(vlt(1, 'R', 102, 5, 0, {}, "GH@@"), 4).empty());
     EXPECT_EQ(run.station(1)->answered, 1u);
@@ -391,6 +397,26 @@ TEST(Vlt2000TrackerTest, AFailedReplyFromAnotherDriveIsMismatched) {
     EXPECT_EQ(found[0].request_frame, 0u);
     EXPECT_NE(found[0].message.find("from drive 05 but no command was pending"), std::string::npos)
         << found[0].message;
+}
+
+// A failed reply (decimal position 9 marks one wherever it comes) from a drive the capture has
+// not yet seen a command to: its command may have come before the capture began. Nothing before
+// the first command to a drive is judged; after it, the same reply is a mismatched one.
+TEST(Vlt2000TrackerTest, AReplyBeforeTheFirstCommandToItsDriveIsNotJudged) {
+    Vlt2000Run run;
+    run.feed(failed(5, 'U', 516, 4), 0);  // nothing pending
+    run.feed(vlt(1, 'R', 102), 10);
+    run.feed(failed(2, 'R', 102, 0), 12);  // while drive 1 is asked
+    run.feed(vlt(1, 'R', 102, 5, 0, {}, "GH@@"), 14);
+    run.finish(5000);
+    EXPECT_TRUE(run.all.empty()) << run.all[0].message;
+    EXPECT_EQ(run.station(5)->replies, 1u);
+    EXPECT_EQ(run.station(2)->replies, 1u);
+    run.feed(vlt(5, 'C', 0), 6000);
+    run.feed(vlt(5, 'C', 0, 0, 0, {}, "GH@@"), 6004);
+    std::vector<Finding> found = run.feed(failed(5, 'U', 516, 4), 6010);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].kind, FindingKind::Vlt2000MismatchedResponse);
 }
 
 TEST(Vlt2000TrackerTest, AReplyWithAnotherLetterOrParameterIsMismatched) {
@@ -487,7 +513,8 @@ TEST(Vlt2000TrackerTest, AFailedCommandIsANoteWithItsReasonCode) {
 TEST(Vlt2000TrackerTest, ChecksumErrorsAreReportedAndTheTelegramIgnored) {
     Vlt2000Run run;
     run.warm_up();
-    // A damaged command: reported, not counted, nothing waits for it.
+    // A damaged command: reported, counted as a damaged command (its outcome), nothing waits for
+    // it.
     std::vector<Finding> found = run.feed(damaged(vlt(1, 'R', 102)));
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].kind, FindingKind::Vlt2000ChecksumError);
@@ -497,7 +524,9 @@ TEST(Vlt2000TrackerTest, ChecksumErrorsAreReportedAndTheTelegramIgnored) {
     EXPECT_TRUE(found[0].has_stations);
     EXPECT_NE(found[0].message.find("byte 20: checksum"), std::string::npos) << found[0].message;
     EXPECT_EQ(run.station(1)->checksum_errors, 1u);
-    EXPECT_EQ(run.station(1)->commands, 0u);
+    EXPECT_EQ(run.station(1)->commands, 1u);
+    EXPECT_EQ(run.station(1)->damaged_commands, 1u);
+    EXPECT_EQ(run.station(1)->damaged, 1u);
     EXPECT_EQ(run.station(1)->telegrams, 0u);
     EXPECT_TRUE(run.feed(vlt(2, 'R', 102)).empty());
 
@@ -509,7 +538,9 @@ TEST(Vlt2000TrackerTest, ChecksumErrorsAreReportedAndTheTelegramIgnored) {
     EXPECT_TRUE(run.feed(vlt(3, 'C', 0)).empty()) << "no vlt2000_no_response for drive 2";
     EXPECT_EQ(run.station(2)->no_responses, 0u);
     EXPECT_EQ(run.station(2)->answered, 0u);
-    EXPECT_EQ(run.station(2)->replies, 0u);
+    EXPECT_EQ(run.station(2)->damaged, 1u);
+    EXPECT_EQ(run.station(2)->replies, 1u);
+    EXPECT_EQ(run.station(2)->damaged_replies, 1u);
     EXPECT_EQ(run.station(2)->checksum_errors, 1u);
     EXPECT_EQ(run.station(2)->findings[at(FindingKind::Vlt2000ChecksumError)], 1u);
 }
@@ -526,7 +557,9 @@ TEST(Vlt2000TrackerTest, TheReplyToACommandWithAWrongChecksumIsNoFindingOfItsOwn
     EXPECT_TRUE(run.feed(vlt(1, 'C', 0)).empty());
     EXPECT_TRUE(run.feed(vlt(1, 'C', 0, 0, 0, {}, "GH@@")).empty());
     EXPECT_TRUE(run.finish(100'000).empty());
-    EXPECT_EQ(run.station(4)->commands, 0u);
+    EXPECT_EQ(run.station(4)->commands, 1u);
+    EXPECT_EQ(run.station(4)->damaged, 1u);  // its outcome: the command was damaged
+    EXPECT_EQ(run.station(4)->answered, 0u);
     EXPECT_EQ(run.station(4)->replies, 1u);
     EXPECT_EQ(run.station(4)->no_responses, 0u);
 }
@@ -601,7 +634,8 @@ TEST(Vlt2000TrackerTest, MalformedTelegramsAreReportedAndOtherwiseIgnored) {
     EXPECT_FALSE(found[0].has_stations);
     EXPECT_EQ(run.tracker.bus().findings[at(FindingKind::MalformedTelegram)], 1u);
     EXPECT_EQ(run.station(1)->telegrams, 0u);
-    EXPECT_EQ(run.station(1)->commands, 0u);
+    EXPECT_EQ(run.station(1)->commands, 3u);  // the three with its address, damaged
+    EXPECT_EQ(run.station(1)->damaged, 3u);
     EXPECT_EQ(run.station(1)->findings[at(FindingKind::MalformedTelegram)], 3u);
     // The exchange after them is clean.
     EXPECT_TRUE(run.feed(vlt(1, 'R', 102)).empty());
@@ -664,6 +698,74 @@ TEST(Vlt2000TrackerTest, KindsAreTheVlt2000ComponentsAndMalformedTelegram) {
                       finding_component(kind) == FindingComponent::Vlt2000Protocol)
             << finding_kind_name(kind);
     }
+}
+
+}  // namespace
+}  // namespace dpscope
+
+namespace dpscope {
+namespace {
+
+// Every command to a drive has one outcome, so the counts add up (#27 point 12): commands =
+// broadcasts + answered + unanswered + abandoned + damaged + not judged. Damaged telegrams count
+// among the commands and replies (as decode -q counts them), and are the outcome "damaged".
+void feed_every_outcome(Vlt2000Run& run) {
+    run.feed(vlt(1, 'R', 102, 5, 0, {}, "GH@@"), 0);  // 1: drive 1's reply begins the capture
+    run.feed(vlt(2, 'R', 102), 10);                   // 2: answered by 3
+    run.feed(vlt(2, 'R', 102, 5, 0, {}, "GH@@"), 14);
+    run.feed(vlt(2, 'C', 0), 20);       // 4: unanswered: the master moves on to drive 1
+    run.feed(vlt(1, 'R', 103), 30);     // 5: abandoned: a new command to drive 1 before its reply
+    run.feed(vlt(1, 'U', 103, 7), 40);  // 6: its reply (7) is damaged
+    run.feed(damaged(vlt(1, 'U', 103, 7, 0, {}, "GH@@")), 44);
+    run.feed(damaged(vlt(2, 'C', 0)), 50);  // 8: a damaged command
+    run.feed(vlt(0, 'C', 0), 60);           // 9: a broadcast
+    run.feed(vlt(2, 'R', 104), 70);         // 10: still waiting for its reply when the capture ends
+}
+
+void expect_outcomes_add_up(const Vlt2000Run& run) {
+    for (const Vlt2000StationStats* s : run.tracker.stations()) {
+        SCOPED_TRACE(s->address);
+        EXPECT_EQ(s->commands, s->broadcasts + s->answered + s->no_responses + s->abandoned +
+                                   s->damaged + s->not_judged + s->open);
+        EXPECT_EQ(s->commands, s->commands_outcomes());
+    }
+}
+
+TEST(Vlt2000TrackerTest, EveryCommandHasOneOutcomeAndTheCountsAddUp) {
+    Vlt2000Run run;
+    feed_every_outcome(run);
+    run.finish();
+    expect_outcomes_add_up(run);
+    const Vlt2000StationStats* one = run.station(1);
+    ASSERT_NE(one, nullptr);
+    EXPECT_EQ(one->commands, 3u);
+    EXPECT_EQ(one->abandoned, 1u);
+    EXPECT_EQ(one->damaged, 1u);
+    EXPECT_EQ(one->not_judged, 1u);
+    EXPECT_EQ(one->open, 0u);
+    EXPECT_EQ(one->answered, 0u);
+    EXPECT_EQ(one->replies, 1u);
+    EXPECT_EQ(one->damaged_replies, 1u);
+    const Vlt2000StationStats* two = run.station(2);
+    ASSERT_NE(two, nullptr);
+    EXPECT_EQ(two->commands, 4u);
+    EXPECT_EQ(two->answered, 1u);
+    EXPECT_EQ(two->no_responses, 1u);
+    EXPECT_EQ(two->damaged, 1u);
+    EXPECT_EQ(two->damaged_commands, 1u);
+    EXPECT_EQ(two->not_judged, 0u);
+    EXPECT_EQ(two->open, 1u);
+    EXPECT_EQ(two->replies, 1u);
+    EXPECT_EQ(run.station(0)->commands, 1u);
+    EXPECT_EQ(run.station(0)->broadcasts, 1u);
+
+    Vlt2000Run late;
+    feed_every_outcome(late);
+    late.finish(5000);
+    expect_outcomes_add_up(late);
+    EXPECT_EQ(late.station(2)->no_responses, 2u);
+    EXPECT_EQ(late.station(2)->not_judged, 0u);
+    EXPECT_EQ(late.station(2)->open, 0u);
 }
 
 }  // namespace

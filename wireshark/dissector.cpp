@@ -729,14 +729,14 @@ void add_cfg(const Tree& tree, const DecodedTelegram& t, std::span<const CfgModu
             text = fmt::format("{}{}", m.special ? "special format, " : "",
                                cfg_direction_name(m.direction));
             if (m.output_units)
-                text +=
-                    fmt::format(" out {} {}{}", m.output_units, m.output_words ? "words" : "bytes",
-                                m.output_consistent ? " consistent" : "");
+                text += fmt::format(" out {}{}", cfg_units(m.output_units, m.output_words),
+                                    m.output_consistent ? " consistent" : "");
             if (m.input_units)
-                text += fmt::format(" in {} {}{}", m.input_units, m.input_words ? "words" : "bytes",
+                text += fmt::format(" in {}{}", cfg_units(m.input_units, m.input_words),
                                     m.input_consistent ? " consistent" : "");
             if (m.manufacturer_bytes)
-                text += fmt::format(", {} manufacturer bytes", m.manufacturer_bytes);
+                text += fmt::format(", {}", counted(m.manufacturer_bytes, "manufacturer byte",
+                                                    "manufacturer bytes"));
         }
         sub.uint(hf_cfg_module, m.offset, 1, m.identifier,
                  fmt::format("{}: 0x{:02X} {}", number++, m.identifier, text));
@@ -908,7 +908,9 @@ void add_dp(const Tree& top, const DecodedTelegram& t) {
             if (t.dp.ppo_cfg_frame != 0)
                 tree.generated(tree.uint(hf_ppo_cfg_frame, 0, 0,
                                          static_cast<std::uint32_t>(t.dp.ppo_cfg_frame)));
-            tree.string(hf_dialect, 0, 0, std::string(dialect_name(t.dp.dialect)));
+            // The dialect names the parameter channel's code tables: none without a PCV.
+            if (t.dp.ppo.has_pcv)
+                tree.string(hf_dialect, 0, 0, std::string(dialect_name(t.dp.dialect)));
             tree.string(hf_pcd_profile, 0, 0, std::string(pcd_profile_name(t.dp.pcd_profile)),
                         fmt::format("{}{}", pcd_profile_name(t.dp.pcd_profile),
                                     t.dp.pcd_profile == PcdProfile::Profidrive && t.dp.danfoss_pcd()
