@@ -44,6 +44,13 @@ void TelegramSource::report(Severity severity, std::string message, IssueKind ki
     if (issue_handler_) issue_handler_(InputIssue{severity, std::move(message), kind});
 }
 
+void TelegramSource::count_hidden(IssueKind kind, std::uint64_t issues, std::uint64_t bytes) {
+    Counted& counted = counted_[static_cast<std::size_t>(kind)];
+    counted.issues += issues;
+    counted.hidden += issues;
+    counted.hidden_bytes += bytes;
+}
+
 void TelegramSource::finish_reporting() {
     if (reporting_finished_) return;
     reporting_finished_ = true;

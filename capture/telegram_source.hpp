@@ -79,6 +79,10 @@ class TelegramSource {
     virtual int link_type() const { return 0; }
     // Bytes skipped by the stream framer (raw and hex inputs).
     virtual std::uint64_t bytes_skipped() const { return 0; }
+    // Memory the source holds for its input now, in bytes: read buffers, bytes not framed yet,
+    // telegrams and messages framed and not handed out yet (capacities, not sizes). Bounded by a
+    // constant whatever the input (tests check it; docs/decisions.md, "Memory of the readers").
+    virtual std::size_t buffered_bytes() const { return 0; }
     // How far the reading has got: bytes of the input consumed so far (what the source has
     // buffered ahead of the telegram handed out last is not counted). 0 when not known (standard
     // input, bytes in memory). Costs a library call: ask now and then, not per telegram.
@@ -110,6 +114,9 @@ class TelegramSource {
     // kinds) are counted, with `bytes` summed, and summed up by finish_reporting().
     void report(Severity severity, std::string message, IssueKind kind = IssueKind::Other,
                 std::uint64_t bytes = 0);
+    // `issues` issues of a repeating kind, with `bytes` summed, that come after the first
+    // kMaxIssuesShown of their kind: counted as report() counts them, without a message.
+    void count_hidden(IssueKind kind, std::uint64_t issues, std::uint64_t bytes);
     // The counted issues, one message per kind; once.
     void finish_reporting();
     void set_status(InputStatus status) noexcept { status_ = status; }

@@ -20,23 +20,6 @@ namespace {
 
 bool printable(std::uint8_t c) { return c >= 0x20 && c <= 0x7E; }
 
-// The time stamp at the start of a line's leading text, as a hex log reads it.
-std::optional<std::int64_t> leading_time(std::string_view prefix) {
-    std::string_view tokens[2];
-    std::size_t found = 0;
-    std::size_t i = 0;
-    while (found < 2 && i < prefix.size()) {
-        while (i < prefix.size() && (prefix[i] == ' ' || prefix[i] == '\t' || prefix[i] == '\r'))
-            ++i;
-        const std::size_t start = i;
-        while (i < prefix.size() && prefix[i] != ' ' && prefix[i] != '\t' && prefix[i] != '\r')
-            ++i;
-        if (i > start) tokens[found++] = prefix.substr(start, i - start);
-    }
-    if (found == 0) return std::nullopt;
-    return parse_timestamp(tokens[0], tokens[1]);
-}
-
 class TextLogSource final : public FramedSource {
   public:
     TextLogSource(FILE* file, std::string name, const FramingRules& rules)
@@ -96,7 +79,7 @@ class TextLogSource final : public FramedSource {
     void start(std::uint64_t column) {
         if (!prefix_done_) {
             prefix_done_ = true;
-            line_time_ = leading_time(prefix_).value_or(kNoTime);
+            line_time_ = parse_leading_timestamp(prefix_).value_or(kNoTime);
         }
         pending_[0] = kVlt2000Start;
         pending_size_ = 1;
@@ -138,6 +121,27 @@ class TextLogSource final : public FramedSource {
         for (std::size_t i = 1; i < pending_size_ && next_start == 0; ++i)
             if (pending_[i] == kVlt2000Start) next_start = i;
         const std::size_t skipped = next_start != 0 ? next_start : pending_size_;
+        if (hides(IssueKind::SkippedBytes))
+            defer_report(Severity::Warning, IssueKind::SkippedBytes, {}, skipped);
+        else
+            report_broken(why, skipped, next_start);
+        // The characters after the '<' again, from the next '<' on (none before it starts one).
+        const std::size_t size = pending_size_;
+        const std::uint64_t column = pending_column_;
+        std::array<std::uint8_t, kVlt2000TelegramSize> rest{};
+        std::copy(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(size),
+                  rest.begin());
+        pending_size_ = 0;
+        if (next_start == 0) return;
+        for (std::size_t i = next_start; i < size; ++i) {
+            if (pending_size_ > 0)
+                append(rest[i]);
+            else if (rest[i] == kVlt2000Start)
+                start(column + i);
+        }
+    }
+
+    void report_broken(Broken why, std::size_t skipped, std::size_t next_start) {
         std::string shown;
         for (std::size_t i = 0; i < pending_size_; ++i) {
             const std::uint8_t c = pending_[i];
@@ -173,23 +177,10 @@ class TextLogSource final : public FramedSource {
                         line_, pending_column_, skipped, skipped == 1 ? "character" : "characters",
                         shown, rules_.protocol_name(), reason),
             skipped);
-        // The characters after the '<' again, from the next '<' on (none before it starts one).
-        const std::size_t size = pending_size_;
-        const std::uint64_t column = pending_column_;
-        std::array<std::uint8_t, kVlt2000TelegramSize> rest{};
-        std::copy(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(size),
-                  rest.begin());
-        pending_size_ = 0;
-        if (next_start == 0) return;
-        for (std::size_t i = next_start; i < size; ++i) {
-            if (pending_size_ > 0)
-                append(rest[i]);
-            else if (rest[i] == kVlt2000Start)
-                start(column + i);
-        }
     }
 
     std::int64_t time_at(std::uint64_t /*offset*/) override { return current_time_; }
+    std::size_t reader_bytes() const override { return chunk_.capacity() + prefix_.capacity(); }
 
     std::string where(std::uint64_t offset) const override {
         return fmt::format("line {}, column {}", current_line_,

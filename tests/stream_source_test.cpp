@@ -702,6 +702,109 @@ TEST(StreamSourceTest, StopAfterReportsNothingPastTheLastTelegram) {
     EXPECT_FALSE(opened.value()->next(record));  // and stays stopped
 }
 
+// ---- bounded memory (issue #27 point 2) ----------------------------------------------------
+
+// What a source may hold in memory at any time, whatever the input: a few read buffers and what
+// one of them frames.
+constexpr std::size_t kMostBufferedBytes = 1 << 20;
+
+struct BufferedRead {
+    std::size_t records = 0;
+    std::size_t most_buffered = 0;
+    std::vector<InputIssue> issues;
+};
+
+// Reads `path` to its end (or `limit` telegrams), noting the most memory the source held.
+BufferedRead read_buffered(const std::string& path, InputFormat format,
+                           const CaptureProtocol& protocol = profibus_dp_protocol(),
+                           std::size_t limit = 0) {
+    BufferedRead result;
+    OpenResult opened = open_source(path, format, protocol);
+    EXPECT_TRUE(opened) << opened.error();
+    if (!opened) return result;
+    TelegramSource& source = *opened.value();
+    source.on_issue([&](const InputIssue& issue) {
+        result.issues.push_back(issue);
+        result.most_buffered = std::max(result.most_buffered, source.buffered_bytes());
+    });
+    source.stop_after(limit);
+    Record record;
+    while (source.next(record)) {
+        ++result.records;
+        result.most_buffered = std::max(result.most_buffered, source.buffered_bytes());
+    }
+    result.most_buffered = std::max(result.most_buffered, source.buffered_bytes());
+    return result;
+}
+
+constexpr std::size_t kTenMegabytes = 10'000'000;
+
+TEST(StreamSourceTest, HexLogOfOneLongLineIsReadInBoundedMemory) {
+    // A 10 MB hex log written as one line (a terminal program that logs without line breaks).
+    const std::string telegram = "68 07 07 68 83 82 7D 3E 3E F3 F1 E2 16 ";
+    std::string text = "12:00:00.5 ";
+    std::size_t count = 0;
+    while (text.size() < kTenMegabytes) {
+        text += telegram;
+        ++count;
+    }
+    text += "\n";
+    TempFile file("one-line.txt");
+    test::write_text_file(file.path, text);
+    for (InputFormat format : {InputFormat::Hex, InputFormat::Auto}) {
+        SCOPED_TRACE(input_format_name(format));
+        BufferedRead r = read_buffered(file.path, format);
+        EXPECT_EQ(r.records, count);
+        EXPECT_TRUE(r.issues.empty());
+        EXPECT_LE(r.most_buffered, kMostBufferedBytes);
+    }
+}
+
+TEST(StreamSourceTest, CompactHexStringOfOneLongLineIsReadInBoundedMemory) {
+    // The same as one compact hex string: a single token of 10 MB.
+    std::string text;
+    std::size_t count = 0;
+    while (text.size() < kTenMegabytes) {
+        text += "6807076883827D3E3EF3F1E216";
+        ++count;
+    }
+    TempFile file("compact.txt");
+    test::write_text_file(file.path, text + "\n");
+    BufferedRead r = read_buffered(file.path, InputFormat::Hex);
+    EXPECT_EQ(r.records, count);
+    EXPECT_TRUE(r.issues.empty());
+    EXPECT_LE(r.most_buffered, kMostBufferedBytes);
+}
+
+TEST(StreamSourceTest, ZerosReadAsHexAreReadInBoundedMemory) {
+    // `decode --input-format hex /dev/zero`: one line without end that holds no hex byte.
+    TempFile file("zeros.txt");
+    test::write_file(file.path, std::vector<std::uint8_t>(kTenMegabytes, 0));
+    BufferedRead r = read_buffered(file.path, InputFormat::Hex);
+    EXPECT_EQ(r.records, 0u);
+    EXPECT_LE(r.most_buffered, kMostBufferedBytes);
+}
+
+TEST(StreamSourceTest, RawZerosAreReadInBoundedMemory) {
+    TempFile file("zeros.raw");
+    test::write_file(file.path, std::vector<std::uint8_t>(kTenMegabytes, 0));
+    BufferedRead r = read_buffered(file.path, InputFormat::Raw);
+    EXPECT_EQ(r.records, 0u);
+    EXPECT_LE(r.most_buffered, kMostBufferedBytes);
+}
+
+TEST(StreamSourceTest, HexLogOfManyBadLinesIsReadInBoundedMemory) {
+    // Lines that each hold a bad compact string and no byte: nothing is framed, so a detected
+    // log is judged only when enough lines are held back; they must not pile up unjudged.
+    std::string text;
+    while (text.size() < kTenMegabytes)
+        text += "TX 68070G\n";
+    TempFile file("bad-lines.txt");
+    test::write_text_file(file.path, text);
+    BufferedRead r = read_buffered(file.path, InputFormat::Auto);
+    EXPECT_LE(r.most_buffered, kMostBufferedBytes);
+}
+
 TEST(StreamSourceTest, TimesGoingBackwardsOrJumpingAreReportedOncePerKind) {
     TempFile file("times.txt");
     test::write_text_file(file.path,

@@ -216,6 +216,27 @@ TEST(TextLogTest, ARawDumpWithoutLineBreaksIsReadAsOneLongLine) {
         << r.issues[0];
 }
 
+TEST(TextLogTest, OneLongLineOfTelegramsOrBrokenStartsIsReadInBoundedMemory) {
+    // 10 MB on one line, of telegrams or of '<' that start none (each a warning, most counted):
+    // the source holds a read buffer and what one of them frames, whatever the line's length.
+    for (const std::string& unit : {kRequest + kReply, std::string("<<<<<<<<")}) {
+        std::string dump;
+        while (dump.size() < 10'000'000)
+            dump += unit;
+        const std::string path = test::temp_path("long.txt");
+        test::write_text_file(path, dump);
+        OpenResult opened = open_source(path, InputFormat::Text, vlt2000_protocol());
+        ASSERT_TRUE(opened) << opened.error();
+        TelegramSource& source = **opened;
+        std::size_t most = 0;
+        source.on_issue([&](const InputIssue&) { most = std::max(most, source.buffered_bytes()); });
+        Record record;
+        while (source.next(record))
+            most = std::max(most, source.buffered_bytes());
+        EXPECT_LE(most, std::size_t{1} << 20) << unit;
+    }
+}
+
 TEST(TextLogTest, AnEmptyOrTelegramLessTextHasNoTelegrams) {
     ReadResult empty = read_text("", InputFormat::Text);
     EXPECT_TRUE(empty.telegrams.empty());
