@@ -109,6 +109,7 @@ FramedCount count_framed(Bytes stream, const CaptureProtocol& protocol, bool com
 // The bytes of a hex log's whole lines (all of it when `complete`).
 std::vector<std::uint8_t> hex_bytes(Bytes head, bool complete) {
     std::vector<std::uint8_t> bytes;
+    head = without_bom(head);
     std::string_view text(reinterpret_cast<const char*>(head.data()), head.size());
     while (!text.empty()) {
         std::size_t end = text.find('\n');

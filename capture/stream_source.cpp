@@ -89,10 +89,11 @@ bool FramedSource::judge() {
     const std::uint64_t skipped = framer_.bytes_skipped();
     if (decided < kMinJudgedBytes || skipped * 2 <= decided) return true;
     set_unusable(fmt::format(
-        "{}: not {} {}: {} of {} {} bytes ({:.1f} %) form no telegram; {} decodes it anyway",
+        "{}: not {} {}: {} of {} {} bytes ({:.1f} %) form no telegram; {} decodes it anyway{}{}",
         name(), article_for(framer_.rules().protocol_name()), judged_what_, skipped,
         finished_ ? "its" : "its first", decided,
-        100.0 * static_cast<double>(skipped) / static_cast<double>(decided), judged_forced_));
+        100.0 * static_cast<double>(skipped) / static_cast<double>(decided), judged_forced_,
+        looks_like_text() ? "; " : "", looks_like_text() ? text_input_hint() : ""));
     return false;
 }
 
@@ -189,12 +190,14 @@ class RawSource final : public FramedSource {
     }
     ~RawSource() override { std::fclose(file_); }
     InputFormat format() const override { return InputFormat::Raw; }
+    bool looks_like_text() const override { return text_like_; }
 
   private:
     Fill fill() override {
         std::size_t got = regular_ ? std::fread(chunk_.data(), 1, chunk_.size(), file_)
                                    : read_available(file_, chunk_.data(), chunk_.size());
         if (got > 0) {
+            if (offset_ == 0) text_like_ = dpscope::looks_like_text(Bytes(chunk_.data(), got));
             feed(Bytes(chunk_.data(), got));
             offset_ += got;
             return Fill::Fed;
@@ -213,6 +216,7 @@ class RawSource final : public FramedSource {
     bool regular_ = false;  // a plain file: read whole chunks
     std::vector<std::uint8_t> chunk_ = std::vector<std::uint8_t>(1 << 16);
     std::uint64_t offset_ = 0;
+    bool text_like_ = false;  // the first chunk looked like text
 };
 
 // Reads a hex log a piece at a time (capture/hex_log.hpp, kHexLogPieceChars): a line that fits
@@ -391,6 +395,9 @@ class HexSource final : public FramedSource {
             bytes_.clear();
             HexLogLine parsed;
             std::string_view text = piece->text;
+            // A byte order mark starts the text, not the first line's time stamp.
+            if (line_number_ == 1 && piece->first && text.starts_with(kUtf8Bom))
+                text.remove_prefix(kUtf8Bom.size());
             if (piece->token_part) {
                 parsed = long_token_.part(text, piece->token_start, piece->token_end, bytes_);
             } else if (piece->first && piece->last) {

@@ -79,6 +79,9 @@ class TelegramSource {
     virtual int link_type() const { return 0; }
     // Bytes skipped by the stream framer (raw and hex inputs).
     virtual std::uint64_t bytes_skipped() const { return 0; }
+    // Did the input's first bytes look like text (capture/input_format.hpp, looks_like_text)?
+    // Raw inputs only: messages then name the input formats for text.
+    virtual bool looks_like_text() const { return false; }
     // Memory the source holds for its input now, in bytes: read buffers, bytes not framed yet,
     // telegrams and messages framed and not handed out yet (capacities, not sizes). Bounded by a
     // constant whatever the input (tests check it; docs/decisions.md, "Memory of the readers").

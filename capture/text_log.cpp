@@ -46,7 +46,13 @@ class TextLogSource final : public FramedSource {
                 broken(Broken::InputEnd);
             return Fill::End;
         }
-        for (std::size_t i = 0; i < got; ++i)
+        std::size_t from = 0;
+        if (!started_) {
+            // A byte order mark starts the text, not the first line's time stamp.
+            started_ = true;
+            if (without_bom(Bytes(chunk_.data(), got)).size() < got) from = kUtf8Bom.size();
+        }
+        for (std::size_t i = from; i < got; ++i)
             take(chunk_[i]);
         return Fill::Fed;
     }
@@ -190,6 +196,7 @@ class TextLogSource final : public FramedSource {
     FILE* file_;
     const FramingRules& rules_;
     bool regular_ = false;
+    bool started_ = false;  // the first chunk was read
     std::vector<std::uint8_t> chunk_ = std::vector<std::uint8_t>(1 << 16);
     std::uint64_t line_ = 1;
     std::uint64_t column_ = 0;  // of the last character taken, 1-based

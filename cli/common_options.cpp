@@ -497,8 +497,10 @@ Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t t
             if (skipped == 0) return Error{fmt::format("{}: the input is empty", source.name())};
             return Error{
                 fmt::format("{}: no {} telegram in its {} bytes read as a raw byte stream; is it a "
-                            "capture?{}",
-                            source.name(), protocol.framing.protocol_name(), skipped, hint)};
+                            "capture?{}{}{}",
+                            source.name(), protocol.framing.protocol_name(), skipped,
+                            source.looks_like_text() ? " I" : "",
+                            source.looks_like_text() ? text_input_hint().substr(1) : "", hint)};
         case InputFormat::Hex:
             if (skipped == 0 && source.issue_count(IssueKind::HexSyntax) > 0)
                 return Error{fmt::format(

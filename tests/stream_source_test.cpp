@@ -702,6 +702,85 @@ TEST(StreamSourceTest, StopAfterReportsNothingPastTheLastTelegram) {
     EXPECT_FALSE(opened.value()->next(record));  // and stays stopped
 }
 
+TEST(StreamSourceTest, HexLogWithAByteOrderMarkKeepsItsFirstTimestamp) {
+    // Issue #27 point 5: the BOM was glued to the first line's timestamp, which was lost.
+    TempFile file("bom.txt");
+    test::write_text_file(file.path,
+                          "\xEF\xBB\xBF"
+                          "1704067200.000000001 10 03 02 49 4E 16\n"
+                          "Log \xC2\xB5s \xB5 \xE2\x80\x94 1704067200.5 (comment)\n"
+                          "1704067200.000500000 DC 02 02\n");
+    for (InputFormat format : {InputFormat::Hex, InputFormat::Auto}) {
+        SCOPED_TRACE(input_format_name(format));
+        ReadResult r = read_all(file.path, format);
+        EXPECT_EQ(r.format, InputFormat::Hex);
+        EXPECT_TRUE(r.issues.empty());
+        ASSERT_EQ(r.records.size(), 2u);
+        EXPECT_EQ(r.data[0], kSd1);
+        EXPECT_EQ(r.records[0].time_ns, 1'704'067'200'000'000'001);
+        EXPECT_EQ(r.data[1], kToken);
+        EXPECT_EQ(r.records[1].time_ns, 1'704'067'200'000'500'000);
+    }
+}
+
+TEST(StreamSourceTest, TextReadAsARawStreamSaysWhichInputFormatToTry) {
+    // A hex log with colour escapes is detected as a raw stream (ESC is a control byte) and
+    // refused; the message says it looks like text and names the input formats for text.
+    std::string text;
+    for (int i = 0; i < 40; ++i)
+        text += "\x1B[32m12:00:01.5 10 03 02 49 4E 16\x1B[0m\n";
+    TempFile file("colour.log");
+    test::write_text_file(file.path, text);
+    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_dp_protocol());
+    ASSERT_TRUE(opened);
+    ReadResult r = drain(*opened.value());
+    EXPECT_EQ(r.status, InputStatus::Unusable);
+    const std::string& reason = opened.value()->unusable_reason();
+    EXPECT_NE(reason.find("not a PROFIBUS byte stream"), std::string::npos) << reason;
+    EXPECT_NE(reason.find("it looks like text: --input-format hex reads a log of hex bytes, "
+                          "--input-format text a log of VLT 2000 telegrams"),
+              std::string::npos)
+        << reason;
+    // A short one is not judged; reading no telegram, the command line says the same.
+    test::write_text_file(file.path, "\x1B[32mhello, this is no capture\x1B[0m\n");
+    test::CommandResult cli = test::run_dpscope({"decode", file.path});
+    EXPECT_EQ(cli.exit_code, 2);
+    EXPECT_NE(cli.err.find("read as a raw byte stream; is it a capture? It looks like text: "
+                           "--input-format hex reads a log of hex bytes, --input-format text a "
+                           "log of VLT 2000 telegrams"),
+              std::string::npos)
+        << cli.err;
+    // A real raw stream gets no such hint.
+    test::write_file(file.path, random_bytes(300));
+    cli = test::run_dpscope({"decode", "--input-format", "raw", file.path});
+    EXPECT_EQ(cli.err.find("looks like text"), std::string::npos) << cli.err;
+}
+
+TEST(StreamSourceTest, ALongRunWithoutATelegramIsNotedAsItGrows) {
+    // Issue #27 point 23: a forced raw (or hex) reading of zeros ran silently until stopped. A run
+    // of skipped bytes still going on is noted at 1 MiB, 2, 4 ... MiB; the run itself is
+    // reported where it ends, as always.
+    TempFile file("zeros");
+    test::write_file(file.path, concat({std::vector<std::uint8_t>((5u << 20) + 100, 0), kSd1}));
+    ReadResult raw = read_all(file.path, InputFormat::Raw);
+    ASSERT_EQ(raw.records.size(), 1u);
+    ASSERT_EQ(raw.issues.size(), 4u);
+    EXPECT_EQ(raw.issues[0].message, file.path +
+                                         ": byte offset 0: 1 MiB read so far without a PROFIBUS "
+                                         "telegram; still reading (the run of skipped bytes is "
+                                         "reported where it ends)");
+    EXPECT_NE(raw.issues[1].message.find("byte offset 0: 2 MiB read so far"), std::string::npos);
+    EXPECT_NE(raw.issues[2].message.find("byte offset 0: 4 MiB read so far"), std::string::npos);
+    EXPECT_EQ(raw.issues[3].message,
+              file.path + ": byte offset 0: skipped 5242980 bytes: no start delimiter");
+    // A hex reading of the same file: one line without a hex byte.
+    ReadResult hex_read = read_all(file.path, InputFormat::Hex);
+    ASSERT_EQ(hex_read.issues.size(), 3u);
+    EXPECT_EQ(hex_read.issues[0].message,
+              file.path + ": line 1: 1 MiB of text read so far without a hex byte; still reading");
+    EXPECT_NE(hex_read.issues[2].message.find("line 1: 4 MiB of text"), std::string::npos);
+}
+
 // ---- bounded memory (issue #27 point 2) ----------------------------------------------------
 
 // What a source may hold in memory at any time, whatever the input: a few read buffers and what

@@ -237,6 +237,22 @@ TEST(TextLogTest, OneLongLineOfTelegramsOrBrokenStartsIsReadInBoundedMemory) {
     }
 }
 
+TEST(TextLogTest, AByteOrderMarkOrNonAsciiTextKeepsTheTimes) {
+    // Issue #27 point 5: a BOM before the first time stamp, a header in UTF-8 or Latin-1: the log
+    // is still detected as a text log, and every line keeps its time.
+    for (const std::string& head : {std::string("\xEF\xBB\xBF"), std::string("Log \xC2\xB5s\n"),
+                                    std::string("Log \xB5s, Latin-1\n")}) {
+        SCOPED_TRACE(head);
+        ReadResult r =
+            read_text(head + "12:00:00.5 " + kRequest + "\n12:00:00.75 " + kReply + "\n");
+        EXPECT_EQ(r.format, InputFormat::Text);
+        ASSERT_EQ(r.telegrams.size(), 2u);
+        EXPECT_EQ(r.times[0], 12 * 3600 * 1'000'000'000LL + 500'000'000);
+        EXPECT_EQ(r.times[1], 12 * 3600 * 1'000'000'000LL + 750'000'000);
+        EXPECT_TRUE(r.issues.empty());
+    }
+}
+
 TEST(TextLogTest, AnEmptyOrTelegramLessTextHasNoTelegrams) {
     ReadResult empty = read_text("", InputFormat::Text);
     EXPECT_TRUE(empty.telegrams.empty());
