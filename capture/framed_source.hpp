@@ -91,6 +91,11 @@ class FramedSource : public TelegramSource, private StreamFramer::Sink {
     std::uint64_t oldest_needed_offset() const noexcept;
     // The line was idle: a telegram cannot continue across the gap.
     void mark_gap() { framer_.mark_gap(*this); }
+    // A record the input delimits itself (a line of a hex capture), handed out as it is, in
+    // stream order with the telegrams framed so far; not framed.
+    void hand_out(Bytes record, std::uint64_t offset, std::int64_t time_ns);
+    // The input is of a kind that is not judged (dpscope's own hex capture).
+    void stop_judging() noexcept { judged_ = true; }
     std::size_t pending_bytes() const noexcept { return framer_.pending(); }
 
   private:

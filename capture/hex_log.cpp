@@ -206,6 +206,25 @@ std::optional<std::int64_t> parse_timestamp(std::string_view first, std::string_
     return std::nullopt;
 }
 
+std::string hex_capture_header(Protocol bus) {
+    return fmt::format("{} bus={}, one record a line\n", kHexCaptureHeader, protocol_name(bus));
+}
+
+bool is_hex_capture_header(std::string_view line) { return line.starts_with(kHexCaptureHeader); }
+
+std::optional<Protocol> hex_capture_bus(std::string_view line) {
+    if (!is_hex_capture_header(line)) return std::nullopt;
+    line.remove_prefix(kHexCaptureHeader.size());
+    const std::size_t at = line.find("bus=");
+    if (at == std::string_view::npos) return std::nullopt;
+    line.remove_prefix(at + 4);
+    std::size_t end = 0;
+    while (end < line.size() &&
+           ((line[end] >= 'a' && line[end] <= 'z') || (line[end] >= '0' && line[end] <= '9')))
+        ++end;
+    return protocol_from_name(line.substr(0, end));
+}
+
 std::optional<std::int64_t> parse_leading_timestamp(std::string_view text) {
     std::string_view tokens[2];
     std::size_t found = 0;

@@ -24,8 +24,23 @@
 #include <vector>
 
 #include "decoder/result.hpp"
+#include "decoder/telegram.hpp"
 
 namespace dpscope {
+
+// The first line of a hex capture that dpscope writes (-F hex): "# dpscope hex capture:
+// bus=NAME, one record a line". A hex log that starts with it (after a byte order mark) is read
+// one record a line, the line's bytes as they are, damaged or not, so that a capture written
+// with -F hex reads back with the same records and frame numbers; any other hex log is a byte
+// stream that the framer cuts into telegrams (docs/decisions.md, "Hex captures: one record a
+// line").
+inline constexpr std::string_view kHexCaptureHeader = "# dpscope hex capture:";
+// The header line of a capture of `bus`, with its line end.
+std::string hex_capture_header(Protocol bus);
+// Is `line` such a header? (Its bus may be one this build does not know.)
+bool is_hex_capture_header(std::string_view line);
+// The bus a header line names, if any.
+std::optional<Protocol> hex_capture_bus(std::string_view line);
 
 // A token that should be a hex byte but is none.
 struct HexLogError {

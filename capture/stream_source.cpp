@@ -154,6 +154,11 @@ void FramedSource::note_long_skip() {
                              article_for(framer_.rules().protocol_name())));
 }
 
+void FramedSource::hand_out(Bytes record, std::uint64_t offset, std::int64_t time_ns) {
+    entries_.push_back(Entry{arena_.size(), record.size(), offset, time_ns, false});
+    arena_.insert(arena_.end(), record.begin(), record.end());
+}
+
 void FramedSource::on_telegram(Bytes telegram, std::uint64_t offset) {
     entries_.push_back(Entry{arena_.size(), telegram.size(), offset, time_at(offset), false});
     arena_.insert(arena_.end(), telegram.begin(), telegram.end());
@@ -398,9 +403,15 @@ class HexSource final : public FramedSource {
             // A byte order mark starts the text, not the first line's time stamp.
             if (line_number_ == 1 && piece->first && text.starts_with(kUtf8Bom))
                 text.remove_prefix(kUtf8Bom.size());
+            if (line_number_ == 1 && piece->first && is_hex_capture_header(text)) {
+                // dpscope's own hex capture: one record a line, nothing to judge.
+                records_ = true;
+                stop_judging();
+                continue;
+            }
             if (piece->token_part) {
                 parsed = long_token_.part(text, piece->token_start, piece->token_end, bytes_);
-            } else if (piece->first && piece->last) {
+            } else if (piece->first && piece->last && !records_) {
                 while (!text.empty() && text.back() == '\r')
                     text.remove_suffix(1);
                 parsed = parse_hex_log_line(text, bytes_);
@@ -412,6 +423,10 @@ class HexSource final : public FramedSource {
             if (piece->first)
                 line_time_ = parsed.time_ns ? *parsed.time_ns
                                             : parse_leading_timestamp(text).value_or(kNoTime);
+            if (records_) {
+                if (take_record_piece(parsed, piece->last)) return Fill::Fed;
+                continue;
+            }
             if (parsed.repeat_marker) {
                 repeat_pending_ = true;
                 continue;
@@ -430,6 +445,51 @@ class HexSource final : public FramedSource {
             feed_line(parsed);
             return Fill::Fed;
         }
+    }
+
+    // A piece of a line of a hex capture (records_): its bytes join the line's record, which is
+    // handed out whole when the line ends (a line with no byte and no time is none). True when
+    // something was handed out or reported.
+    bool take_record_piece(const HexLogLine& parsed, bool line_end) {
+        bool told = false;
+        if (parsed.error) {
+            report_bad_record(parsed);
+            told = true;
+        }
+        const std::size_t room = kMaxHexRecordBytes - std::min(record_.size(), kMaxHexRecordBytes);
+        if (bytes_.size() > room && !record_cut_) {
+            record_cut_ = true;
+            defer_report(Severity::Warning, IssueKind::Other,
+                         fmt::format("{}: line {}: the record is longer than {} bytes; the rest "
+                                     "of the line is left out",
+                                     name(), line_number_, kMaxHexRecordBytes));
+            told = true;
+        }
+        record_.insert(record_.end(), bytes_.begin(),
+                       bytes_.begin() + static_cast<std::ptrdiff_t>(std::min(bytes_.size(), room)));
+        record_error_ = record_error_ || parsed.error.has_value();
+        if (!line_end) return told;
+        if (!record_.empty() || record_error_ || line_time_ != kNoTime) {
+            hand_out(Bytes(record_.data(), record_.size()), stream_offset_, line_time_);
+            stream_offset_ += record_.size();
+            told = true;
+        }
+        record_.clear();
+        record_error_ = false;
+        record_cut_ = false;
+        return told;
+    }
+
+    void report_bad_record(const HexLogLine& parsed) {
+        if (hides(IssueKind::HexSyntax)) {
+            defer_report(Severity::Warning, IssueKind::HexSyntax, {});
+            return;
+        }
+        defer_report(Severity::Warning, IssueKind::HexSyntax,
+                     fmt::format("{}: line {}, column {}: '{}' {}; the line's record is read "
+                                 "without it",
+                                 name(), line_number_, parsed.error->column,
+                                 shown_token(parsed.error->token), parsed.error->what));
     }
 
     // A long stretch of a line without a hex byte (a forced hex reading of a binary file, or of
@@ -555,8 +615,8 @@ class HexSource final : public FramedSource {
     }
 
     std::size_t reader_bytes() const override {
-        return reader_.capacity() + bytes_.capacity() + lines_.size() * sizeof(Line) +
-               last_dump_bytes_.capacity() + repeated_.capacity() +
+        return reader_.capacity() + bytes_.capacity() + record_.capacity() +
+               lines_.size() * sizeof(Line) + last_dump_bytes_.capacity() + repeated_.capacity() +
                held_line_.breaks.capacity() * sizeof(std::size_t);
     }
 
@@ -574,6 +634,12 @@ class HexSource final : public FramedSource {
     std::int64_t line_time_ = kNoTime;
     std::uint64_t text_without_bytes_ = 0;  // characters of the line since its last hex byte
     std::uint64_t next_text_note_ = kFirstLongSkipNote;
+    // A hex capture written by dpscope: one record a line (hex_log.hpp, kHexCaptureHeader).
+    static constexpr std::size_t kMaxHexRecordBytes = 65535;  // as a pcap's snapshot length
+    bool records_ = false;
+    std::vector<std::uint8_t> record_;  // the line's record so far
+    bool record_error_ = false;         // the line has a bad token
+    bool record_cut_ = false;           // the line's record was cut at kMaxHexRecordBytes
     std::uint64_t stream_offset_ = 0;
     std::vector<std::uint8_t> bytes_;
     std::deque<Line> lines_;

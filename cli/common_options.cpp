@@ -99,8 +99,9 @@ void add_write_options(CLI::App& app, DecodeOptionValues& values) {
         ->check(output_file_name())
         ->type_name("FILE");
     app.add_option("-F,--write-format", values.write_format,
-                   "Capture format for -w: pcap (default), pcapng, raw (bytes only), hex (a hex "
-                   "log with timestamps)")
+                   "Capture format for -w: pcap (default), pcapng, raw (bytes only; a damaged "
+                   "telegram does not read back as it was, which is warned), hex (one record a "
+                   "line with its timestamp, read back record by record)")
         ->check(CLI::IsMember({"pcap", "pcapng", "raw", "hex"}))
         ->type_name("FORMAT");
     app.add_option("--linktype", values.link_type,

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "cli/common_options.hpp"
 #include "cli/pipeline.hpp"
 #include "cli/progress.hpp"
+#include "decoder/stream_framer.hpp"
 
 namespace dpscope::cli {
 
@@ -35,6 +37,34 @@ std::string findings_comment(std::span<const Finding> findings) {
     }
     return comment;
 }
+
+// A raw stream keeps no record boundaries: a record that the protocol's framing, given it
+// alone, does not find again as one telegram (a damaged one, or two in one record) is not read
+// back as it was written, and the frames after it are numbered differently.
+class RawRoundTrip final : private FramingSink {
+  public:
+    explicit RawRoundTrip(const FramingRules& rules) : framer_(rules) {}
+    bool survives(Bytes record) {
+        telegrams_ = 0;
+        length_ = 0;
+        skipped_ = false;
+        framer_.feed(record, *this);
+        framer_.finish(*this);
+        return telegrams_ == 1 && length_ == record.size() && !skipped_;
+    }
+
+  private:
+    void on_telegram(Bytes telegram, std::uint64_t) override {
+        ++telegrams_;
+        length_ = telegram.size();
+    }
+    void on_skipped(const SkippedBytes&) override { skipped_ = true; }
+
+    StreamFramer framer_;
+    std::size_t telegrams_ = 0;
+    std::size_t length_ = 0;
+    bool skipped_ = false;
+};
 
 // Decodes every telegram of `source`, renders those that pass the filters (and with -w writes
 // them as a capture), and returns the exit code. Input problems are reported on standard error
@@ -93,6 +123,10 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     Record record;
     std::uint64_t read = 0;
     std::span<const Finding> findings;
+    // -F raw: the first record that a raw stream cannot keep is named (once).
+    std::optional<RawRoundTrip> raw_round_trip;
+    if (writer && settings.write_format == CaptureFormat::Raw)
+        raw_round_trip.emplace(settings.protocol->framing);
     source.stop_after(settings.count);
     // Not over a decode printed on the same terminal (its lines would be overwritten).
     ProgressMeter progress =
@@ -128,6 +162,16 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             if (!written) {
                 print_error(fmt::format("{}{}", written.error(), capture_file->left_as_it_was()));
                 write_failed = true;
+            }
+            if (raw_round_trip && !raw_round_trip->survives(record.bytes)) {
+                print_warning(fmt::format(
+                    "{}: frame {} will not read back as it was written: a raw stream keeps no "
+                    "record boundaries, so reading it back skips or splits a damaged telegram "
+                    "(this one and any later) and numbers the frames after it differently (-F "
+                    "hex or pcap keep every record)",
+                    settings.write == "-" ? std::string("standard output") : settings.write,
+                    record.number));
+                raw_round_trip.reset();
             }
         }
     }

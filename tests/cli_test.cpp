@@ -905,8 +905,9 @@ TEST(CliTest, SimulateFcWritesUser0CapturesOfFcTelegrams) {
                                      "3", "--cycles", "1", "--drive", "4"});
     EXPECT_EQ(hex.exit_code, 0) << hex.err;
     std::vector<std::string> lines = lines_of(hex.out);
-    ASSERT_EQ(lines.size(), 2u) << hex.out;
-    EXPECT_NE(lines[0].find(" 02 06 84 04 7F 20 00 DB"), std::string::npos) << lines[0];
+    ASSERT_EQ(lines.size(), 3u) << hex.out;  // the header line, then one record a line
+    EXPECT_EQ(lines[0], "# dpscope hex capture: bus=fc, one record a line");
+    EXPECT_NE(lines[1].find(" 02 06 84 04 7F 20 00 DB"), std::string::npos) << lines[1];
     CommandResult raw = run_dpscope(
         {"simulate", "--bus", "fc", "-w", "-", "-F", "raw", "--cycles", "1", "--drive", "4"});
     EXPECT_EQ(raw.exit_code, 0) << raw.err;
@@ -971,8 +972,9 @@ TEST(CliTest, SimulateVlt2000WritesUser0CapturesOfVlt2000Telegrams) {
                                      "--seed", "3", "--cycles", "1", "--drive", "4"});
     EXPECT_EQ(hex.exit_code, 0) << hex.err;
     std::vector<std::string> lines = lines_of(hex.out);
-    ASSERT_EQ(lines.size(), 2u) << hex.out;
-    EXPECT_NE(lines[0].find(" 3C 30 34 "), std::string::npos) << lines[0];  // "<04"
+    ASSERT_EQ(lines.size(), 3u) << hex.out;  // the header line, then one record a line
+    EXPECT_EQ(lines[0], "# dpscope hex capture: bus=vlt2000, one record a line");
+    EXPECT_NE(lines[1].find(" 3C 30 34 "), std::string::npos) << lines[1];  // "<04"
     CommandResult raw = run_dpscope(
         {"simulate", "--bus", "vlt2000", "-w", "-", "-F", "raw", "--cycles", "1", "--drive", "4"});
     EXPECT_EQ(raw.exit_code, 0) << raw.err;
