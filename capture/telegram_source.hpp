@@ -163,6 +163,9 @@ struct SourceOptions {
     // The most bytes one "*" line of a hex dump may stand for; 1 to kMaxHexRepeatBytes (the
     // fuzz target fuzz_capture_file lowers it, so that a run stays short).
     std::uint64_t max_hex_repeat_bytes = kMaxHexRepeatBytes;
+    // A forced hex input whose first bytes are a text log of VLT 2000 telegrams is read as that
+    // text log (`dpscope hex` on standard input).
+    bool hex_may_be_text = false;
 };
 
 // Opens `path` ("-" for standard input), detecting the format from the content unless `format`

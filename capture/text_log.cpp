@@ -22,8 +22,13 @@ bool printable(std::uint8_t c) { return c >= 0x20 && c <= 0x7E; }
 
 class TextLogSource final : public FramedSource {
   public:
-    TextLogSource(FILE* file, std::string name, const FramingRules& rules)
-        : FramedSource(std::move(name), rules), file_(file), rules_(rules) {
+    TextLogSource(FILE* file, std::string name, const FramingRules& rules, std::string line_word,
+                  std::unique_ptr<std::string> text = nullptr)
+        : FramedSource(std::move(name), rules),
+          text_(std::move(text)),
+          file_(file),
+          rules_(rules),
+          line_word_(std::move(line_word)) {
         struct stat info {};
         regular_ = fileno(file) >= 0 && ::fstat(fileno(file), &info) == 0 && S_ISREG(info.st_mode);
     }
@@ -39,8 +44,8 @@ class TextLogSource final : public FramedSource {
         if (got == 0) {
             if (std::ferror(file_)) {
                 set_status(InputStatus::Damaged);
-                report(Severity::Error, fmt::format("{}: line {}: read error: {}", name(), line_,
-                                                    std::strerror(errno)));
+                report(Severity::Error, fmt::format("{}: {} {}: read error: {}", name(), line_word_,
+                                                    line_, std::strerror(errno)));
             }
             while (pending_size_ > 0)
                 broken(Broken::InputEnd);
@@ -159,8 +164,8 @@ class TextLogSource final : public FramedSource {
         std::string reason;
         switch (why) {
             case Broken::LineEnd:
-                reason = fmt::format("the line ends after {} of its {} characters", pending_size_,
-                                     kVlt2000TelegramSize);
+                reason = fmt::format("the {} ends after {} of its {} characters", line_word_,
+                                     pending_size_, kVlt2000TelegramSize);
                 break;
             case Broken::InputEnd:
                 reason = fmt::format("the input ends after {} of its {} characters", pending_size_,
@@ -177,24 +182,26 @@ class TextLogSource final : public FramedSource {
         }
         if (next_start != 0)
             reason += fmt::format("; another '<' at column {}", pending_column_ + next_start);
-        defer_report(
-            Severity::Warning, IssueKind::SkippedBytes,
-            fmt::format("{}: line {}, column {}: skipped {} {}: '{}' is no {} telegram: {}", name(),
-                        line_, pending_column_, skipped, skipped == 1 ? "character" : "characters",
-                        shown, rules_.protocol_name(), reason),
-            skipped);
+        defer_report(Severity::Warning, IssueKind::SkippedBytes,
+                     fmt::format("{}: {} {}, column {}: skipped {} {}: '{}' is no {} telegram: {}",
+                                 name(), line_word_, line_, pending_column_, skipped,
+                                 skipped == 1 ? "character" : "characters", shown,
+                                 rules_.protocol_name(), reason),
+                     skipped);
     }
 
     std::int64_t time_at(std::uint64_t /*offset*/) override { return current_time_; }
     std::size_t reader_bytes() const override { return chunk_.capacity() + prefix_.capacity(); }
 
     std::string where(std::uint64_t offset) const override {
-        return fmt::format("line {}, column {}", current_line_,
+        return fmt::format("{} {}, column {}", line_word_, current_line_,
                            current_column_ + (offset - current_start_));
     }
 
+    std::unique_ptr<std::string> text_;  // the buffer file_ reads, if the source holds it
     FILE* file_;
     const FramingRules& rules_;
+    std::string line_word_;  // what messages call a line: "line", "argument"
     bool regular_ = false;
     bool started_ = false;  // the first chunk was read
     std::vector<std::uint8_t> chunk_ = std::vector<std::uint8_t>(1 << 16);
@@ -218,7 +225,19 @@ class TextLogSource final : public FramedSource {
 
 std::unique_ptr<TelegramSource> make_text_source(FILE* file, std::string name,
                                                  const FramingRules& rules) {
-    return std::make_unique<TextLogSource>(file, std::move(name), rules);
+    return std::make_unique<TextLogSource>(file, std::move(name), rules, "line");
+}
+
+OpenResult make_memory_text_source(std::string name, std::string_view text,
+                                   const FramingRules& rules, std::string line_word) {
+    // A read-only stream over a copy the source holds (fmemopen takes no empty buffer: an empty
+    // text reads as one empty line).
+    auto copy = std::make_unique<std::string>(text.empty() ? std::string_view("\n") : text);
+    FILE* file = fmemopen(copy->data(), copy->size(), "r");
+    if (!file)
+        return Error{fmt::format("{}: cannot set up reading: {}", name, std::strerror(errno))};
+    return std::unique_ptr<TelegramSource>(std::make_unique<TextLogSource>(
+        file, std::move(name), rules, std::move(line_word), std::move(copy)));
 }
 
 }  // namespace dpscope

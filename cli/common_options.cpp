@@ -473,10 +473,11 @@ void warn_profibus_options(const DecodeSettings& settings, const std::string& in
     warn(Protocol::Vlt2000, vlt2000);
 }
 
-OpenResult open_input(const std::string& path, InputFormat format, DecodeSettings& settings) {
+OpenResult open_input(const std::string& path, InputFormat format, DecodeSettings& settings,
+                      const SourceOptions& options) {
     BusChoice choice;
-    OpenResult opened =
-        open_source(path, format, settings.bus_given ? settings.protocol : nullptr, choice);
+    OpenResult opened = open_source(path, format, settings.bus_given ? settings.protocol : nullptr,
+                                    choice, options);
     if (!opened) return opened;
     settings.protocol = choice.protocol;
     say_bus_choice(settings, choice, (*opened)->name());
@@ -520,8 +521,9 @@ Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t t
                 return Error{fmt::format("{}: no {} telegram ('<' ... '>') in the text",
                                          source.name(), protocol.framing.protocol_name())};
             return Error{fmt::format(
-                "{}: no {} telegram in the text, only {} characters of broken ones (named above)",
-                source.name(), protocol.framing.protocol_name(), skipped)};
+                "{}: no {} telegram in the text, only {} {} of broken ones (named above)",
+                source.name(), protocol.framing.protocol_name(), skipped,
+                skipped == 1 ? "character" : "characters")};
         default: return {};
     }
 }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <bitset>
 #include <cerrno>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include "capture/hex_log.hpp"
 #include "capture/output_file.hpp"
 #include "capture/telegram_source.hpp"
+#include "capture/text_log.hpp"
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
 #include "cli/pipeline.hpp"
@@ -232,6 +234,45 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     return source.status() == InputStatus::Damaged ? kExitDamagedInput : kExitOk;
 }
 
+// `dpscope hex` with VLT 2000 telegrams typed as they are sent ('<01UOGD@0516+00080007>'), one
+// or more an argument: read as a text log of one line an argument ("argument N, column C" in
+// messages), and decoded as VLT 2000. Every argument must hold a telegram's '<'.
+int decode_typed_vlt2000(const std::vector<std::string>& arguments, DecodeSettings& settings) {
+    std::size_t first = 0;
+    for (std::size_t i = 0; i < arguments.size(); ++i)
+        if (arguments[i].find('<') != std::string::npos) {
+            first = i;
+            break;
+        }
+    for (std::size_t i = 0; i < arguments.size(); ++i)
+        if (arguments[i].find('<') == std::string::npos) {
+            print_error(fmt::format(
+                "hex: argument {}: '{}' holds no VLT 2000 telegram ('<' ... '>') but argument {} "
+                "does; give hex bytes or VLT 2000 telegrams",
+                i + 1, arguments[i], first + 1));
+            return kExitUsage;
+        }
+    if (settings.bus_given && settings.protocol->protocol != Protocol::Vlt2000) {
+        print_error(
+            fmt::format("hex: argument {}: '{}' is a VLT 2000 telegram; --bus {} cannot "
+                        "read it",
+                        first + 1, arguments[first], protocol_name(settings.protocol->protocol)));
+        return kExitUsage;
+    }
+    // The telegram's form names its bus: no note.
+    settings.protocol = &vlt2000_protocol();
+    std::string text;
+    for (const std::string& argument : arguments)
+        text += argument + "\n";
+    OpenResult source =
+        make_memory_text_source("<command line>", text, settings.protocol->framing, "argument");
+    if (!source) {
+        print_error(source.error());
+        return kExitUsage;
+    }
+    return run_decoding(**source, settings, "");
+}
+
 struct DecodeCommand {
     DecodeOptionValues options;
     std::string file;
@@ -305,11 +346,14 @@ void add_hex_command(CLI::App& app, int& exit_code) {
     auto command = std::make_shared<HexCommand>();
     CLI::App* sub = app.add_subcommand(
         "hex",
-        "Decode telegrams typed as hex bytes, e.g. 'dpscope hex 10 03 02 49 4E 16'. Without "
+        "Decode telegrams typed as hex bytes, e.g. 'dpscope hex 10 03 02 49 4E 16', or VLT 2000 "
+        "telegrams as they are sent, e.g. 'dpscope hex \"<01UOGD@0516+00080007>\"'. Without "
         "BYTES, reads a hex log from standard input (one line at a time; leading text such as "
-        "timestamps or TX/RX is ignored). Telegrams are found by the same framer as raw input.");
+        "timestamps or TX/RX is ignored), or a VLT 2000 terminal log piped in. Telegrams are "
+        "found by the same framer as raw input.");
     sub->add_option("bytes", command->bytes,
-                    "Hex bytes: 68 or 0x68 or 680707 or 68:07:07, in one or more arguments")
+                    "Hex bytes: 68 or 0x68 or 680707 or 68:07:07, in one or more arguments; or "
+                    "VLT 2000 telegrams '<...>' (quoted for the shell), one or more an argument")
         ->type_name("BYTES");
     add_display_options(*sub, command->options, "verbose");
     add_write_options(*sub, command->options);
@@ -331,15 +375,23 @@ void add_hex_command(CLI::App& app, int& exit_code) {
                              "more a line; end with Ctrl-D (or give BYTES as arguments)\n");
             // A log typed at a terminal is not held back to choose the bus: PROFIBUS unless
             // --bus says otherwise.
+            // A log piped in may be a VLT 2000 terminal log ('<' ... '>'), read as one.
+            SourceOptions piped;
+            piped.hex_may_be_text = true;
             OpenResult opened = isatty(STDIN_FILENO)
                                     ? open_source("-", InputFormat::Hex, *settings->protocol)
-                                    : open_input("-", InputFormat::Hex, *settings);
+                                    : open_input("-", InputFormat::Hex, *settings, piped);
             if (!opened) {
                 print_error(opened.error());
                 exit_code = kExitUsage;
                 return;
             }
             exit_code = run_decoding(*opened.value(), *settings, "-");
+            return;
+        }
+        if (std::any_of(command->bytes.begin(), command->bytes.end(),
+                        [](const std::string& a) { return a.find('<') != std::string::npos; })) {
+            exit_code = decode_typed_vlt2000(command->bytes, *settings);
             return;
         }
         std::vector<std::uint8_t> bytes;

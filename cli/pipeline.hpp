@@ -251,6 +251,7 @@ void say_bus_choice(const DecodeSettings& settings, const BusChoice& choice,
 
 // Opens `path` for decode and report: with --bus as it says, without it choosing the bus from
 // the capture and setting settings.protocol; says the choice (say_bus_choice).
-OpenResult open_input(const std::string& path, InputFormat format, DecodeSettings& settings);
+OpenResult open_input(const std::string& path, InputFormat format, DecodeSettings& settings,
+                      const SourceOptions& options = {});
 
 }  // namespace dpscope::cli
