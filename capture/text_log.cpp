@@ -62,7 +62,20 @@ class TextLogSource final : public FramedSource {
         return Fill::Fed;
     }
 
+    // A long stretch of text without a telegram (a forced text reading of a binary file, or of
+    // /dev/zero) is noted as it grows, at 1 MiB, 2, 4 ... MiB, as a raw stream's run of skipped
+    // bytes is (FramedSource::note_long_skip).
+    void note_text_without_telegram() {
+        next_text_note_ *= 2;
+        defer_report(Severity::Warning, IssueKind::Other,
+                     fmt::format("{}: {} {}: {} MiB of text read since {} {} without a {} "
+                                 "telegram; still reading",
+                                 name(), line_word_, line_, text_without_telegram_ >> 20,
+                                 line_word_, text_start_line_, rules_.protocol_name()));
+    }
+
     void take(std::uint8_t c) {
+        if (++text_without_telegram_ >= next_text_note_) note_text_without_telegram();
         if (c == '\n') {
             while (pending_size_ > 0)
                 broken(Broken::LineEnd);
@@ -123,6 +136,10 @@ class TextLogSource final : public FramedSource {
         stream_offset_ += pending_size_;
         pending_size_ = 0;
         mark_gap();
+        // A new stretch of text starts after the telegram.
+        text_without_telegram_ = 0;
+        text_start_line_ = line_;
+        next_text_note_ = kFirstLongSkipNote;
     }
 
     // The candidate in pending_ is no telegram: reported, and its characters after the '<'
@@ -219,6 +236,10 @@ class TextLogSource final : public FramedSource {
     std::uint64_t current_column_ = 0;
     std::uint64_t current_start_ = 0;
     std::int64_t current_time_ = kNoTime;
+    // Characters read since the last telegram, from the line it ended on.
+    std::uint64_t text_without_telegram_ = 0;
+    std::uint64_t text_start_line_ = 1;
+    std::uint64_t next_text_note_ = kFirstLongSkipNote;
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 // memory. Telegrams are framed from the stream; skipped bytes are reported with their place.
 #include "capture/stream_source.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -779,6 +780,66 @@ TEST(StreamSourceTest, ALongRunWithoutATelegramIsNotedAsItGrows) {
     EXPECT_EQ(hex_read.issues[0].message,
               file.path + ": line 1: 1 MiB of text read so far without a hex byte; still reading");
     EXPECT_NE(hex_read.issues[2].message.find("line 1: 4 MiB of text"), std::string::npos);
+}
+
+TEST(StreamSourceTest, ALongRunIsNotedOnTheCommandLineAtDoublingSizes) {
+    // Issue #27 point 23: `decode --input-format raw` on 20 MiB of zeros between two telegrams
+    // notes the run at 1, 2, 4, 8 and 16 MiB, naming where it starts (byte 6, after the first
+    // telegram), and reports the run where it ends.
+    TempFile file("zeros20");
+    const std::size_t run = 20u << 20;
+    test::write_file(file.path, concat({kSd1, std::vector<std::uint8_t>(run, 0), kSd1}));
+    test::CommandResult r =
+        test::run_dpscope({"decode", "--input-format", "raw", "-T", "jsonl", file.path});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(test::lines_of(r.out).size(), 2u) << r.out;
+    std::vector<std::string> expected;
+    for (int mib : {1, 2, 4, 8, 16})
+        expected.push_back(
+            fmt::format("dpscope: warning: {}: byte offset 6: {} MiB read so far "
+                        "without a PROFIBUS telegram; still reading (the run of "
+                        "skipped bytes is reported where it ends)",
+                        file.path, mib));
+    expected.push_back(
+        fmt::format("dpscope: warning: {}: byte offset 6: skipped {} bytes: no start delimiter",
+                    file.path, run));
+    EXPECT_EQ(test::lines_of(r.err), expected) << r.err;
+    // With -c 1 the first telegram ends the reading: the run after it is never read, so never
+    // noted. With -c 2 the whole run is read, and noted the same way.
+    r = test::run_dpscope({"decode", "--input-format", "raw", "-c", "1", "-q", file.path});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.find("read so far"), std::string::npos) << r.err;
+    r = test::run_dpscope({"decode", "--input-format", "raw", "-c", "2", "-T", "jsonl", file.path});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(test::lines_of(r.err), expected) << r.err;
+}
+
+TEST(StreamSourceTest, ALongStretchOfTextWithoutATelegramIsNoted) {
+    // Issue #27 point 23: a text (VLT 2000) log, or a forced text reading of a binary file, of
+    // megabytes without a telegram was read in silence. Noted at 1, 2 ... MiB of characters
+    // after the last telegram, naming the line reached and the line the stretch started on.
+    TempFile file("stretch.log");
+    std::string text = "<01UOGD@0516+00080007>\n";
+    const std::string filler(63, 'x');
+    for (int i = 0; i < 3 * 16384; ++i)  // 3 MiB of lines of 64 characters
+        text += filler + "\n";
+    text += "<01UGHK@0516+00080007>\n";
+    test::write_text_file(file.path, text);
+    OpenResult opened = open_source(file.path, InputFormat::Text, vlt2000_protocol());
+    ASSERT_TRUE(opened) << opened.error();
+    ReadResult read = drain(*opened.value());
+    EXPECT_EQ(read.records.size(), 2u);
+    std::vector<std::string> messages;
+    for (const InputIssue& issue : read.issues)
+        messages.push_back(issue.message);
+    // The stretch counts the first line's end: its 1 MiB-th character is the last x of line
+    // 16385, its 2 MiB-th the last x of line 32769.
+    EXPECT_EQ(messages,
+              (std::vector<std::string>{
+                  file.path + ": line 16385: 1 MiB of text read since line 1 without a VLT 2000 "
+                              "telegram; still reading",
+                  file.path + ": line 32769: 2 MiB of text read since line 1 without a VLT 2000 "
+                              "telegram; still reading"}));
 }
 
 // ---- bounded memory (issue #27 point 2) ----------------------------------------------------
