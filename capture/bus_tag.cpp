@@ -153,6 +153,7 @@ FramedCount count_framed(Bytes stream, const CaptureProtocol& protocol, bool com
 // The bytes of a hex log's whole lines (all of it when `complete`).
 std::vector<std::uint8_t> hex_bytes(Bytes head, bool complete) {
     std::vector<std::uint8_t> bytes;
+    head = without_bom(head);
     std::string_view text(reinterpret_cast<const char*>(head.data()), head.size());
     while (!text.empty()) {
         std::size_t end = text.find('\n');
@@ -261,6 +262,13 @@ CaptureLabel read_capture_label(Bytes head) {
     switch (detect_input_format(head)) {
         case InputFormat::Pcap: read_pcap_label(head, label); break;
         case InputFormat::Pcapng: read_pcapng_label(head, label); break;
+        case InputFormat::Hex: {
+            // A hex capture written by dpscope names its bus in its first line.
+            const Bytes text = without_bom(head);
+            std::string_view line(reinterpret_cast<const char*>(text.data()), text.size());
+            label.tagged = hex_capture_bus(line.substr(0, line.find('\n')));
+            break;
+        }
         default: break;
     }
     return label;
@@ -286,6 +294,13 @@ BusChoice choose_bus(Bytes head, InputFormat format, bool complete) {
     std::vector<std::uint8_t> text_bytes;
     Bytes stream = head.first(std::min(head.size(), kBusChoiceBytes));
     if (format == InputFormat::Hex) {
+        if (const CaptureLabel label = read_capture_label(head); label.tagged) {
+            BusChoice choice;
+            choice.tagged = label.tagged;
+            choice.protocol = &capture_protocol(*label.tagged);
+            choice.reason = "the capture records its bus (dpscope's tag)";
+            return choice;
+        }
         text_bytes = hex_bytes(stream, complete);
         stream = Bytes(text_bytes.data(), text_bytes.size());
     }

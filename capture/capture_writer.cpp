@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "capture/bus_tag.hpp"
+#include "capture/hex_log.hpp"
 #include "capture/pcap_source.hpp"
 #include "decoder/counted.hpp"
 #include "decoder/time.hpp"
@@ -97,7 +98,11 @@ class RawWriter final : public StdioWriter {
 
 class HexWriter final : public StdioWriter {
   public:
-    using StdioWriter::StdioWriter;
+    // The first line says that the capture is read one record a line, and names its bus.
+    HexWriter(FILE* file, std::string name, Protocol bus) : StdioWriter(file, std::move(name)) {
+        const std::string header = hex_capture_header(bus);
+        put(header.data(), header.size());
+    }
 
   protected:
     bool write_record(Bytes telegram, std::int64_t time_ns, std::string_view) override {
@@ -569,7 +574,7 @@ WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat for
         case CaptureFormat::Pcapng:
             return std::make_unique<PcapngWriter>(file, std::move(name), link_type, bus, line);
         case CaptureFormat::Raw: return std::make_unique<RawWriter>(file, std::move(name));
-        case CaptureFormat::Hex: return std::make_unique<HexWriter>(file, std::move(name));
+        case CaptureFormat::Hex: return std::make_unique<HexWriter>(file, std::move(name), bus);
     }
     return Error{fmt::format("{}: no writer for this capture format", name)};
 }

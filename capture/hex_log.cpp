@@ -206,6 +206,41 @@ std::optional<std::int64_t> parse_timestamp(std::string_view first, std::string_
     return std::nullopt;
 }
 
+std::string hex_capture_header(Protocol bus) {
+    return fmt::format("{} bus={}, one record a line\n", kHexCaptureHeader, protocol_name(bus));
+}
+
+bool is_hex_capture_header(std::string_view line) { return line.starts_with(kHexCaptureHeader); }
+
+std::optional<Protocol> hex_capture_bus(std::string_view line) {
+    if (!is_hex_capture_header(line)) return std::nullopt;
+    line.remove_prefix(kHexCaptureHeader.size());
+    const std::size_t at = line.find("bus=");
+    if (at == std::string_view::npos) return std::nullopt;
+    line.remove_prefix(at + 4);
+    std::size_t end = 0;
+    while (end < line.size() &&
+           ((line[end] >= 'a' && line[end] <= 'z') || (line[end] >= '0' && line[end] <= '9')))
+        ++end;
+    return protocol_from_name(line.substr(0, end));
+}
+
+std::optional<std::int64_t> parse_leading_timestamp(std::string_view text) {
+    std::string_view tokens[2];
+    std::size_t found = 0;
+    std::size_t i = 0;
+    while (found < 2 && i < text.size()) {
+        while (i < text.size() && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r'))
+            ++i;
+        const std::size_t start = i;
+        while (i < text.size() && text[i] != ' ' && text[i] != '\t' && text[i] != '\r')
+            ++i;
+        if (i > start) tokens[found++] = text.substr(start, i - start);
+    }
+    if (found == 0) return std::nullopt;
+    return parse_timestamp(tokens[0], tokens[1]);
+}
+
 namespace {
 
 bool is_alnum(char c) { return is_digit(c) || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
@@ -323,7 +358,8 @@ std::string token_problem(std::string_view token) {
 
 }  // namespace
 
-HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& bytes) {
+HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& bytes,
+                              LinePiece piece) {
     HexLogLine result;
     std::size_t first = 0;
     while (first < line.size() && (line[first] == ' ' || line[first] == '\t'))
@@ -332,11 +368,12 @@ HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& 
     while (!trimmed.empty() &&
            (trimmed.back() == ' ' || trimmed.back() == '\t' || trimmed.back() == '\r'))
         trimmed.remove_suffix(1);
-    if (trimmed == "*") {
+    const bool whole = piece == LinePiece::Whole;
+    if (whole && trimmed == "*") {
         result.repeat_marker = true;
         return result;
     }
-    if (first == 0 && parse_dump_line(line, result, bytes)) return result;
+    if (whole && first == 0 && parse_dump_line(line, result, bytes)) return result;
     std::vector<std::string_view> tokens = split_log_tokens(line);
     std::vector<TokenKind> kinds;
     kinds.reserve(tokens.size());
@@ -389,7 +426,7 @@ HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& 
         std::string_view run = strip_prefix_0x(strip_punctuation(tokens.back()));
         // A line holding nothing but 7 or 8 hex digits is the closing offset line of hexdump,
         // not data.
-        bool hexdump_offset = tokens.size() == 1 && (run.size() == 7 || run.size() == 8);
+        bool hexdump_offset = whole && tokens.size() == 1 && (run.size() == 7 || run.size() == 8);
         std::size_t beyond_hex = 0;
         bool alnum = true;
         for (char c : run) {
@@ -406,9 +443,75 @@ HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& 
         }
     }
     result.byte_count = bytes.size() - before;
-    if (first_data_token > 0 && first_data_token < tokens.size())
+    if (piece != LinePiece::Later && first_data_token > 0 && first_data_token < tokens.size())
         result.time_ns = parse_timestamp(tokens[0], first_data_token > 1 ? tokens[1] : "");
     return result;
+}
+
+HexLogLine LongHexToken::part(std::string_view text, bool first, bool last,
+                              std::vector<std::uint8_t>& bytes) {
+    HexLogLine result;
+    const std::size_t before = bytes.size();
+    std::size_t start = 0;
+    if (first) {
+        nibble_ = 0;
+        if (text.size() >= 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X')) start = 2;
+    }
+    const bool any_hex = std::any_of(text.begin() + static_cast<std::ptrdiff_t>(start), text.end(),
+                                     [](char c) { return is_hex(c); });
+    if (!any_hex) {
+        // Text (or a run of zero bytes): nothing here; a digit waiting before it is left over.
+        if (nibble_ != 0 && !text.empty())
+            add_error(result, text, text.substr(0, 1),
+                      "follows a hex string with an odd number of digits", 0);
+        nibble_ = 0;
+        return result;
+    }
+    for (std::size_t i = start; i < text.size();) {
+        if (is_hex(text[i])) {
+            if (nibble_ == 0) {
+                nibble_ = text[i];
+            } else {
+                bytes.push_back(
+                    static_cast<std::uint8_t>(hex_value(nibble_) << 4 | hex_value(text[i])));
+                nibble_ = 0;
+            }
+            ++i;
+            continue;
+        }
+        std::size_t end = i;
+        while (end < text.size() && !is_hex(text[end]))
+            ++end;
+        add_error(result, text, text.substr(i, end - i),
+                  nibble_ != 0 ? "is no hex digit (in a compact hex string, after an odd "
+                                 "number of digits)"
+                               : "is no hex digit (in a compact hex string)",
+                  bytes.size() - before);
+        nibble_ = 0;
+        i = end;
+    }
+    if (last && nibble_ != 0) {
+        add_error(result, text, text.substr(text.size() - 1),
+                  "is left over: the compact hex string has an odd number of digits",
+                  bytes.size() - before);
+        nibble_ = 0;
+    }
+    result.byte_count = bytes.size() - before;
+    return result;
+}
+
+std::string shown_token(std::string_view token) {
+    constexpr std::size_t kShownChars = 24;
+    std::string shown;
+    for (std::size_t i = 0; i < token.size() && i < kShownChars; ++i) {
+        const auto c = static_cast<unsigned char>(token[i]);
+        if (c >= 0x20 && c < 0x7F && c != '\'' && c != '\\')
+            shown.push_back(static_cast<char>(c));
+        else
+            shown += fmt::format("\\x{:02X}", c);
+    }
+    if (token.size() > kShownChars) shown += "...";
+    return shown;
 }
 
 Result<std::vector<std::uint8_t>> parse_hex_bytes(std::string_view text) {

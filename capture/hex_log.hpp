@@ -24,8 +24,23 @@
 #include <vector>
 
 #include "decoder/result.hpp"
+#include "decoder/telegram.hpp"
 
 namespace dpscope {
+
+// The first line of a hex capture that dpscope writes (-F hex): "# dpscope hex capture:
+// bus=NAME, one record a line". A hex log that starts with it (after a byte order mark) is read
+// one record a line, the line's bytes as they are, damaged or not, so that a capture written
+// with -F hex reads back with the same records and frame numbers; any other hex log is a byte
+// stream that the framer cuts into telegrams (docs/decisions.md, "Hex captures: one record a
+// line").
+inline constexpr std::string_view kHexCaptureHeader = "# dpscope hex capture:";
+// The header line of a capture of `bus`, with its line end.
+std::string hex_capture_header(Protocol bus);
+// Is `line` such a header? (Its bus may be one this build does not know.)
+bool is_hex_capture_header(std::string_view line);
+// The bus a header line names, if any.
+std::optional<Protocol> hex_capture_bus(std::string_view line);
 
 // A token that should be a hex byte but is none.
 struct HexLogError {
@@ -45,12 +60,46 @@ struct HexLogLine {
     bool repeat_marker = false;                // a "*" line of hexdump -C or xxd -a
 };
 
-// Appends the line's bytes to `bytes`.
-HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& bytes);
+// A line longer than kHexLogPieceChars is read a piece at a time (memory stays bounded whatever
+// the length of a line): pieces of whole tokens, cut after a separator, each read like a line of
+// its own (the longest run of byte tokens, or a compact string); only the first piece may give
+// the line's time, and a long line is no dump line. A token longer than a piece is a compact hex
+// string read in parts (LongHexToken).
+inline constexpr std::size_t kHexLogPieceChars = 64 * 1024;
+
+enum class LinePiece {
+    Whole,  // a whole line
+    First,  // the first piece of a long line
+    Later,  // a later piece of a long line
+};
+
+// Appends the line's (or piece's) bytes to `bytes`; columns count from the piece's start.
+HexLogLine parse_hex_log_line(std::string_view line, std::vector<std::uint8_t>& bytes,
+                              LinePiece piece = LinePiece::Whole);
+
+// A compact hex string longer than a piece, read in parts: pairs of hex digits are bytes; a
+// character that is no hex digit is an error (one per run of them), and the bytes before and
+// after it are framed apart; a digit left over at the end is an error. A part without any hex
+// digit is text and holds nothing (a run of zero bytes read as a hex log).
+class LongHexToken {
+  public:
+    // `first`: the token's first part ("0x" is stripped); `last`: the token ends after it.
+    HexLogLine part(std::string_view text, bool first, bool last, std::vector<std::uint8_t>& bytes);
+
+  private:
+    char nibble_ = 0;  // a hex digit waiting for its pair (0: none)
+};
+
+// A token as a message shows it: at most 24 characters (then "..."), with every byte that is not
+// printable ASCII, a quote or a backslash written as \xNN.
+std::string shown_token(std::string_view token);
 
 // Strict: every token (separated by white space or commas) must be hex: "68", "0x68", "680707",
 // "68:07:07". On failure the error names the offending token.
 Result<std::vector<std::uint8_t>> parse_hex_bytes(std::string_view text);
+
+// The timestamp that starts `text` (its first one or two tokens), if any.
+std::optional<std::int64_t> parse_leading_timestamp(std::string_view text);
 
 // A timestamp token as described above, in nanoseconds since the epoch (time of day: since
 // midnight of 1970-01-01).

@@ -1,5 +1,6 @@
 #include "capture/input_format.hpp"
 
+#include <algorithm>
 #include <cstdint>
 
 namespace dpscope {
@@ -31,6 +32,50 @@ bool is_hex_digit(std::uint8_t c) {
     return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
 }
 
+struct TextCount {
+    std::size_t controls = 0;  // control bytes other than tab, CR and LF
+    std::size_t not_utf8 = 0;  // bytes beyond ASCII that are no part of a UTF-8 character
+};
+
+// The length of the UTF-8 character starting at `at` (2 to 4), 0 when none starts there (also
+// when `text` ends inside it: a head cut off there counts it as one byte that is no UTF-8).
+std::size_t utf8_length(Bytes text, std::size_t at) {
+    const std::uint8_t lead = text[at];
+    std::size_t length = 0;
+    if (lead >= 0xC2 && lead <= 0xDF)
+        length = 2;
+    else if (lead >= 0xE0 && lead <= 0xEF)
+        length = 3;
+    else if (lead >= 0xF0 && lead <= 0xF4)
+        length = 4;
+    else
+        return 0;
+    for (std::size_t i = 1; i < length; ++i) {
+        if (at + i >= text.size() || (text[at + i] & 0xC0) != 0x80) return 0;
+    }
+    return length;
+}
+
+TextCount count_text(Bytes text) {
+    TextCount count;
+    for (std::size_t i = 0; i < text.size();) {
+        const std::uint8_t c = text[i];
+        if (c < 0x80) {
+            if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7F) ++count.controls;
+            ++i;
+            continue;
+        }
+        const std::size_t length = utf8_length(text, i);
+        if (length == 0) {
+            ++count.not_utf8;
+            ++i;
+        } else {
+            i += length;
+        }
+    }
+    return count;
+}
+
 // Does the first line that is not empty look like a line of `xxd` ("00000010: 8382 ...") or
 // `hexdump -C` ("00000010  83 82 ...")? Their character column can hold a whole VLT 2000 telegram
 // (xxd -c 32), which makes a hex dump no text log.
@@ -47,6 +92,26 @@ bool starts_like_hex_dump(Bytes head) {
 }
 
 }  // namespace
+
+Bytes without_bom(Bytes text) {
+    if (text.size() >= kUtf8Bom.size() &&
+        std::equal(kUtf8Bom.begin(), kUtf8Bom.end(), text.begin(),
+                   [](char a, std::uint8_t b) { return static_cast<std::uint8_t>(a) == b; }))
+        return text.subspan(kUtf8Bom.size());
+    return text;
+}
+
+bool looks_like_text(Bytes head) {
+    head = without_bom(head);
+    if (head.empty()) return false;
+    const TextCount count = count_text(head);
+    return (count.controls + count.not_utf8) * 10 <= head.size();
+}
+
+std::string_view text_input_hint() {
+    return "it looks like text: --input-format hex reads a log of hex bytes, --input-format text "
+           "a log of VLT 2000 telegrams ('<' ... '>')";
+}
 
 bool has_vlt2000_telegram_shape(Bytes text) {
     // '<', the two address digits, 18 printable characters, '>' (22 in all); a '<' among them
@@ -81,14 +146,12 @@ InputFormat detect_input_format(Bytes head) {
             default: break;
         }
     }
-    bool text = !head.empty();
+    head = without_bom(head);
+    const TextCount count = count_text(head);
+    const bool text = !head.empty() && count.controls == 0 && count.not_utf8 <= head.size() / 32;
     bool hex_pair = false;
-    for (std::size_t i = 0; i < head.size() && text; ++i) {
-        std::uint8_t c = head[i];
-        bool printable = (c >= 0x20 && c < 0x7F) || c == '\t' || c == '\n' || c == '\r';
-        text = printable;
-        if (i + 1 < head.size() && is_hex_digit(c) && is_hex_digit(head[i + 1])) hex_pair = true;
-    }
+    for (std::size_t i = 0; i + 1 < head.size() && text && !hex_pair; ++i)
+        hex_pair = is_hex_digit(head[i]) && is_hex_digit(head[i + 1]);
     if (text && has_vlt2000_telegram_shape(head) && !starts_like_hex_dump(head))
         return InputFormat::Text;
     return text && hex_pair ? InputFormat::Hex : InputFormat::Raw;

@@ -126,6 +126,13 @@ class PcapngSource final : public TelegramSource {
 
     InputFormat format() const override { return InputFormat::Pcapng; }
     int link_type() const override { return link_type_; }
+    std::size_t buffered_bytes() const override {
+        std::size_t messages = 0;
+        for (const Pending& p : pending_)
+            messages += p.message.capacity();
+        return block_.capacity() + interfaces_.capacity() * sizeof(Interface) +
+               pending_.capacity() * sizeof(Pending) + messages;
+    }
 
     // Reads up to the first packet dpscope decodes. An error when the file is no pcapng or none
     // of its interfaces has a link type of the protocol.
@@ -151,6 +158,9 @@ class PcapngSource final : public TelegramSource {
         std::string message;
     };
 
+    // Interfaces kept per section: the packets of those described after them are skipped
+    // (docs/decisions.md, "Memory of the readers"); a capture has a handful.
+    static constexpr std::size_t kMaxInterfaces = 4096;
     static constexpr std::uint32_t kSectionHeader = 0x0A0D0D0A;
     static constexpr std::uint32_t kInterfaceDescription = 1;
     static constexpr std::uint32_t kObsoletePacket = 2;
@@ -207,7 +217,8 @@ class PcapngSource final : public TelegramSource {
     bool swap_ = false;              // the section's byte order is not the host's
     bool in_section_ = false;
     std::vector<Interface> interfaces_;
-    int link_type_ = 0;  // of the first interface of the protocol
+    std::uint64_t interfaces_beyond_ = 0;  // described after the first kMaxInterfaces
+    int link_type_ = 0;                    // of the first interface of the protocol
     bool decodable_seen_ = false;
     int first_link_type_ = -1;
     std::uint64_t packets_ = 0;  // packet blocks, of every interface (Wireshark's frame numbers)
@@ -215,14 +226,18 @@ class PcapngSource final : public TelegramSource {
     bool have_pending_packet_ = false;
     bool finished_ = false;
     std::vector<Pending> pending_;
-    std::string damage_;  // what stopped the reading
+    std::uint64_t pending_of_kind_[kIssueKinds] = {};  // issues met while opening, by kind
+    std::string damage_;                               // what stopped the reading
     Record pending_record_;
 };
 
 void PcapngSource::issue(Severity severity, IssueKind kind, std::string message) {
-    if (opening_)
+    if (opening_) {
+        // Those only counted keep no message: kept as a count (read_next() passes them on).
+        const std::size_t k = static_cast<std::size_t>(kind);
+        if (kind != IssueKind::Other && pending_of_kind_[k]++ >= kMaxIssuesShown) return;
         pending_.push_back(Pending{severity, kind, std::move(message)});
-    else
+    } else
         report(severity, std::move(message), kind);
 }
 
@@ -321,10 +336,19 @@ bool PcapngSource::take_section_header() {
     }
     in_section_ = true;
     interfaces_.clear();  // interface ids count from 0 in each section
+    interfaces_beyond_ = 0;
     return true;
 }
 
 void PcapngSource::take_interface() {
+    if (interfaces_.size() >= kMaxInterfaces) {
+        if (interfaces_beyond_++ == 0)
+            issue(Severity::Warning, IssueKind::Interface,
+                  fmt::format("{}: {}: the section describes more than {} interfaces; the "
+                              "packets of those after the {}th are skipped",
+                              name(), at_block(), kMaxInterfaces, kMaxInterfaces));
+        return;
+    }
     Interface interface;
     interface.block_offset = block_offset_;
     const std::size_t body_end = block_.size() - 4;
@@ -468,6 +492,7 @@ bool PcapngSource::take_packet(Record& record) {
     }
     ++packets_;
     if (interface_id >= interfaces_.size()) {
+        if (interface_id - interfaces_.size() < interfaces_beyond_) return false;  // named
         issue(Severity::Warning, IssueKind::Interface,
               fmt::format("{}: {}: packet of interface {}, but the section describes {}; skipped",
                           name(), where, interface_id, interfaces_.size()));
@@ -544,6 +569,10 @@ bool PcapngSource::read_next(Record& record) {
         for (Pending& p : pending_)
             report(p.severity, std::move(p.message), p.kind);
         pending_.clear();
+        pending_.shrink_to_fit();
+        for (std::size_t k = 0; k < kIssueKinds; ++k)
+            if (pending_of_kind_[k] > kMaxIssuesShown)
+                count_hidden(static_cast<IssueKind>(k), pending_of_kind_[k] - kMaxIssuesShown, 0);
     }
     if (have_pending_packet_) {
         have_pending_packet_ = false;

@@ -44,6 +44,13 @@ void TelegramSource::report(Severity severity, std::string message, IssueKind ki
     if (issue_handler_) issue_handler_(InputIssue{severity, std::move(message), kind});
 }
 
+void TelegramSource::count_hidden(IssueKind kind, std::uint64_t issues, std::uint64_t bytes) {
+    Counted& counted = counted_[static_cast<std::size_t>(kind)];
+    counted.issues += issues;
+    counted.hidden += issues;
+    counted.hidden_bytes += bytes;
+}
+
 void TelegramSource::finish_reporting() {
     if (reporting_finished_) return;
     reporting_finished_ = true;
@@ -193,12 +200,21 @@ Result<std::vector<std::uint8_t>> read_head(int fd, const std::string& name) {
 
 namespace {
 
+// The input kind of `head`: `format` when forced; detected when Auto; with `hex_or_text`, Text
+// when detected so and Hex otherwise (SourceOptions::hex_may_be_text).
+InputFormat kind_of(Bytes head, InputFormat format, bool hex_or_text) {
+    if (hex_or_text)
+        return detect_input_format(head) == InputFormat::Text ? InputFormat::Text
+                                                              : InputFormat::Hex;
+    return format == InputFormat::Auto ? detect_input_format(head) : format;
+}
+
 // Reads the first bytes until they choose the bus (see choose_bus): the whole input or
 // kBusChoiceBytes, or less of a stream still arriving once they decide. `format`: forced, or
-// Auto (detected from the bytes).
+// Auto (detected from the bytes), or Hex or Text (`hex_or_text`).
 Result<std::vector<std::uint8_t>> read_head_for_bus(int fd, const std::string& name,
-                                                    InputFormat format, BusChoice& choice,
-                                                    bool live) {
+                                                    InputFormat format, bool hex_or_text,
+                                                    BusChoice& choice, bool live) {
     // A regular file smaller than kBusChoiceBytes needs no more than its size (and one byte more,
     // so that the read that finds its end is the same as with a full-size buffer).
     std::size_t capacity = kBusChoiceBytes;
@@ -220,10 +236,7 @@ Result<std::vector<std::uint8_t>> read_head_for_bus(int fd, const std::string& n
             if (ready < 0 && errno == EINTR) continue;
             if (ready <= 0) {
                 choice = choose_bus(Bytes(head.data(), got),
-                                    format == InputFormat::Auto
-                                        ? detect_input_format(Bytes(head.data(), got))
-                                        : format,
-                                    true);
+                                    kind_of(Bytes(head.data(), got), format, hex_or_text), true);
                 break;
             }
         }
@@ -238,8 +251,7 @@ Result<std::vector<std::uint8_t>> read_head_for_bus(int fd, const std::string& n
         }
         Bytes bytes(head.data(), got);
         if (got < 4 && !end) continue;
-        InputFormat kind = format == InputFormat::Auto ? detect_input_format(bytes) : format;
-        choice = choose_bus(bytes, kind, end);
+        choice = choose_bus(bytes, kind_of(bytes, format, hex_or_text), end);
         if (end || !choice.need_more) break;
     }
     head.resize(got);
@@ -278,7 +290,10 @@ OpenResult open_source_of(const std::string& path, InputFormat format,
         std::fclose(file);
         return Error{fmt::format("{}: is a directory, not a capture file", name)};
     }
-    const bool detected = format == InputFormat::Auto;
+    // `dpscope hex` on standard input: a hex log, or a VLT 2000 text log (SourceOptions).
+    const bool hex_or_text = format == InputFormat::Hex && options.hex_may_be_text;
+    if (hex_or_text) format = InputFormat::Auto;
+    const bool detected = format == InputFormat::Auto && !hex_or_text;
     auto* replay = new ReplayCookie;
     replay->rest = file;
     // A forced format needs no look at the content (and a typed hex log must not wait for 4 KiB).
@@ -286,8 +301,8 @@ OpenResult open_source_of(const std::string& path, InputFormat format,
     bool pcapng = false;
     if (!chosen) {
         // The bus is chosen from the first bytes, whatever the format.
-        Result<std::vector<std::uint8_t>> head =
-            read_head_for_bus(fileno(file), name, format, *choice, !S_ISREG(info.st_mode));
+        Result<std::vector<std::uint8_t>> head = read_head_for_bus(
+            fileno(file), name, format, hex_or_text, *choice, !S_ISREG(info.st_mode));
         if (!head) {
             replay_close(replay);
             return Error{head.error()};
@@ -296,7 +311,7 @@ OpenResult open_source_of(const std::string& path, InputFormat format,
         chosen = choice->protocol;
         classic_pcap = detect_input_format(replay->head) == InputFormat::Pcap;
         pcapng = detect_input_format(replay->head) == InputFormat::Pcapng;
-        if (format == InputFormat::Auto) format = detect_input_format(replay->head);
+        format = kind_of(replay->head, format, hex_or_text);
     } else if (format == InputFormat::Auto || format == InputFormat::Pcap ||
                format == InputFormat::Pcapng) {
         Result<std::vector<std::uint8_t>> head = read_head(fileno(file), name);
@@ -307,7 +322,7 @@ OpenResult open_source_of(const std::string& path, InputFormat format,
         replay->head = std::move(head).value();
         classic_pcap = detect_input_format(replay->head) == InputFormat::Pcap;
         pcapng = detect_input_format(replay->head) == InputFormat::Pcapng;
-        if (format == InputFormat::Auto) format = detect_input_format(replay->head);
+        format = kind_of(replay->head, format, hex_or_text);
         if (choice) {
             const CaptureLabel label = read_capture_label(replay->head);
             choice->tagged = label.tagged;

@@ -79,6 +79,13 @@ class TelegramSource {
     virtual int link_type() const { return 0; }
     // Bytes skipped by the stream framer (raw and hex inputs).
     virtual std::uint64_t bytes_skipped() const { return 0; }
+    // Did the input's first bytes look like text (capture/input_format.hpp, looks_like_text)?
+    // Raw inputs only: messages then name the input formats for text.
+    virtual bool looks_like_text() const { return false; }
+    // Memory the source holds for its input now, in bytes: read buffers, bytes not framed yet,
+    // telegrams and messages framed and not handed out yet (capacities, not sizes). Bounded by a
+    // constant whatever the input (tests check it; docs/decisions.md, "Memory of the readers").
+    virtual std::size_t buffered_bytes() const { return 0; }
     // How far the reading has got: bytes of the input consumed so far (what the source has
     // buffered ahead of the telegram handed out last is not counted). 0 when not known (standard
     // input, bytes in memory). Costs a library call: ask now and then, not per telegram.
@@ -110,6 +117,9 @@ class TelegramSource {
     // kinds) are counted, with `bytes` summed, and summed up by finish_reporting().
     void report(Severity severity, std::string message, IssueKind kind = IssueKind::Other,
                 std::uint64_t bytes = 0);
+    // `issues` issues of a repeating kind, with `bytes` summed, that come after the first
+    // kMaxIssuesShown of their kind: counted as report() counts them, without a message.
+    void count_hidden(IssueKind kind, std::uint64_t issues, std::uint64_t bytes);
     // The counted issues, one message per kind; once.
     void finish_reporting();
     void set_status(InputStatus status) noexcept { status_ = status; }
@@ -153,6 +163,9 @@ struct SourceOptions {
     // The most bytes one "*" line of a hex dump may stand for; 1 to kMaxHexRepeatBytes (the
     // fuzz target fuzz_capture_file lowers it, so that a run stays short).
     std::uint64_t max_hex_repeat_bytes = kMaxHexRepeatBytes;
+    // A forced hex input whose first bytes are a text log of VLT 2000 telegrams is read as that
+    // text log (`dpscope hex` on standard input).
+    bool hex_may_be_text = false;
 };
 
 // Opens `path` ("-" for standard input), detecting the format from the content unless `format`

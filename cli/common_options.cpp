@@ -107,8 +107,9 @@ void add_write_options(CLI::App& app, DecodeOptionValues& values) {
         ->check(output_file_name())
         ->type_name("FILE");
     app.add_option("-F,--write-format", values.write_format,
-                   "Capture format for -w: pcap (default), pcapng, raw (bytes only), hex (a hex "
-                   "log with timestamps)")
+                   "Capture format for -w: pcap (default), pcapng, raw (bytes only; a damaged "
+                   "telegram does not read back as it was, which is warned), hex (one record a "
+                   "line with its timestamp, read back record by record)")
         ->check(CLI::IsMember({"pcap", "pcapng", "raw", "hex"}))
         ->type_name("FORMAT");
     app.add_option("--linktype", values.link_type,
@@ -554,10 +555,11 @@ void use_recorded_line(DecodeSettings& settings, const LineSettings& recorded,
 
 }  // namespace
 
-OpenResult open_input(const std::string& path, InputFormat format, DecodeSettings& settings) {
+OpenResult open_input(const std::string& path, InputFormat format, DecodeSettings& settings,
+                      const SourceOptions& options) {
     BusChoice choice;
-    OpenResult opened =
-        open_source(path, format, settings.bus_given ? settings.protocol : nullptr, choice);
+    OpenResult opened = open_source(path, format, settings.bus_given ? settings.protocol : nullptr,
+                                    choice, options);
     if (!opened) return opened;
     settings.protocol = choice.protocol;
     say_bus_choice(settings, choice, (*opened)->name());
@@ -580,9 +582,10 @@ Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t t
             if (skipped == 0) return Error{fmt::format("{}: the input is empty", source.name())};
             return Error{
                 fmt::format("{}: no {} telegram in its {} read as a raw byte stream; is it a "
-                            "capture?{}",
+                            "capture?{}{}{}",
                             source.name(), protocol.framing.protocol_name(),
-                            counted(skipped, "byte", "bytes"), hint)};
+                            counted(skipped, "byte", "bytes"), source.looks_like_text() ? " I" : "",
+                            source.looks_like_text() ? text_input_hint().substr(1) : "", hint)};
         case InputFormat::Hex:
             if (skipped == 0 && source.issue_count(IssueKind::HexSyntax) > 0)
                 return Error{fmt::format(
@@ -601,8 +604,9 @@ Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t t
                 return Error{fmt::format("{}: no {} telegram ('<' ... '>') in the text",
                                          source.name(), protocol.framing.protocol_name())};
             return Error{fmt::format(
-                "{}: no {} telegram in the text, only {} characters of broken ones (named above)",
-                source.name(), protocol.framing.protocol_name(), skipped)};
+                "{}: no {} telegram in the text, only {} {} of broken ones (named above)",
+                source.name(), protocol.framing.protocol_name(), skipped,
+                skipped == 1 ? "character" : "characters")};
         default: return {};
     }
 }

@@ -3,12 +3,14 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <bitset>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,10 +18,12 @@
 #include "capture/hex_log.hpp"
 #include "capture/output_file.hpp"
 #include "capture/telegram_source.hpp"
+#include "capture/text_log.hpp"
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
 #include "cli/pipeline.hpp"
 #include "cli/progress.hpp"
+#include "decoder/stream_framer.hpp"
 
 namespace dpscope::cli {
 
@@ -35,6 +39,34 @@ std::string findings_comment(std::span<const Finding> findings) {
     }
     return comment;
 }
+
+// A raw stream keeps no record boundaries: a record that the protocol's framing, given it
+// alone, does not find again as one telegram (a damaged one, or two in one record) is not read
+// back as it was written, and the frames after it are numbered differently.
+class RawRoundTrip final : private FramingSink {
+  public:
+    explicit RawRoundTrip(const FramingRules& rules) : framer_(rules) {}
+    bool survives(Bytes record) {
+        telegrams_ = 0;
+        length_ = 0;
+        skipped_ = false;
+        framer_.feed(record, *this);
+        framer_.finish(*this);
+        return telegrams_ == 1 && length_ == record.size() && !skipped_;
+    }
+
+  private:
+    void on_telegram(Bytes telegram, std::uint64_t) override {
+        ++telegrams_;
+        length_ = telegram.size();
+    }
+    void on_skipped(const SkippedBytes&) override { skipped_ = true; }
+
+    StreamFramer framer_;
+    std::size_t telegrams_ = 0;
+    std::size_t length_ = 0;
+    bool skipped_ = false;
+};
 
 // Decodes every telegram of `source`, renders those that pass the filters (and with -w writes
 // them as a capture), and returns the exit code. Input problems are reported on standard error
@@ -102,6 +134,10 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     Record record;
     std::uint64_t read = 0;
     std::span<const Finding> findings;
+    // -F raw: the first record that a raw stream cannot keep is named (once).
+    std::optional<RawRoundTrip> raw_round_trip;
+    if (writer && settings.write_format == CaptureFormat::Raw)
+        raw_round_trip.emplace(settings.protocol->framing);
     source.stop_after(settings.count);
     // Not over a decode printed on the same terminal (its lines would be overwritten).
     ProgressMeter progress =
@@ -137,6 +173,16 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             if (!written) {
                 print_error(fmt::format("{}{}", written.error(), capture_file->left_as_it_was()));
                 write_failed = true;
+            }
+            if (raw_round_trip && !raw_round_trip->survives(record.bytes)) {
+                print_warning(fmt::format(
+                    "{}: frame {} will not read back as it was written: a raw stream keeps no "
+                    "record boundaries, so reading it back skips or splits a damaged telegram "
+                    "(this one and any later) and numbers the frames after it differently (-F "
+                    "hex or pcap keep every record)",
+                    settings.write == "-" ? std::string("standard output") : settings.write,
+                    record.number));
+                raw_round_trip.reset();
             }
         }
     }
@@ -201,6 +247,45 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             *capture_file, exit_code,
             exit_code == kExitDamagedInput ? "the input ended in damage" : "", "-w", {input_path});
     return exit_code;
+}
+
+// `dpscope hex` with VLT 2000 telegrams typed as they are sent ('<01UOGD@0516+00080007>'), one
+// or more an argument: read as a text log of one line an argument ("argument N, column C" in
+// messages), and decoded as VLT 2000. Every argument must hold a telegram's '<'.
+int decode_typed_vlt2000(const std::vector<std::string>& arguments, DecodeSettings& settings) {
+    std::size_t first = 0;
+    for (std::size_t i = 0; i < arguments.size(); ++i)
+        if (arguments[i].find('<') != std::string::npos) {
+            first = i;
+            break;
+        }
+    for (std::size_t i = 0; i < arguments.size(); ++i)
+        if (arguments[i].find('<') == std::string::npos) {
+            print_error(fmt::format(
+                "hex: argument {}: '{}' holds no VLT 2000 telegram ('<' ... '>') but argument {} "
+                "does; give hex bytes or VLT 2000 telegrams",
+                i + 1, arguments[i], first + 1));
+            return kExitUsage;
+        }
+    if (settings.bus_given && settings.protocol->protocol != Protocol::Vlt2000) {
+        print_error(
+            fmt::format("hex: argument {}: '{}' is a VLT 2000 telegram; --bus {} cannot "
+                        "read it",
+                        first + 1, arguments[first], protocol_name(settings.protocol->protocol)));
+        return kExitUsage;
+    }
+    // The telegram's form names its bus: no note.
+    settings.protocol = &vlt2000_protocol();
+    std::string text;
+    for (const std::string& argument : arguments)
+        text += argument + "\n";
+    OpenResult source =
+        make_memory_text_source("<command line>", text, settings.protocol->framing, "argument");
+    if (!source) {
+        print_error(source.error());
+        return kExitUsage;
+    }
+    return run_decoding(**source, settings, "");
 }
 
 struct DecodeCommand {
@@ -277,11 +362,14 @@ void add_hex_command(CLI::App& app, int& exit_code) {
     auto command = std::make_shared<HexCommand>();
     CLI::App* sub = app.add_subcommand(
         "hex",
-        "Decode telegrams typed as hex bytes, e.g. 'dpscope hex 10 03 02 49 4E 16'. Without "
+        "Decode telegrams typed as hex bytes, e.g. 'dpscope hex 10 03 02 49 4E 16', or VLT 2000 "
+        "telegrams as they are sent, e.g. 'dpscope hex \"<01UOGD@0516+00080007>\"'. Without "
         "BYTES, reads a hex log from standard input (one line at a time; leading text such as "
-        "timestamps or TX/RX is ignored). Telegrams are found by the same framer as raw input.");
+        "timestamps or TX/RX is ignored), or a VLT 2000 terminal log piped in. Telegrams are "
+        "found by the same framer as raw input.");
     sub->add_option("bytes", command->bytes,
-                    "Hex bytes: 68 or 0x68 or 680707 or 68:07:07, in one or more arguments")
+                    "Hex bytes: 68 or 0x68 or 680707 or 68:07:07, in one or more arguments; or "
+                    "VLT 2000 telegrams '<...>' (quoted for the shell), one or more an argument")
         ->type_name("BYTES");
     add_display_options(*sub, command->options, "verbose");
     add_write_options(*sub, command->options);
@@ -304,15 +392,23 @@ void add_hex_command(CLI::App& app, int& exit_code) {
                              "more a line; end with Ctrl-D (or give BYTES as arguments)\n");
             // A log typed at a terminal is not held back to choose the bus: PROFIBUS unless
             // --bus says otherwise.
+            // A log piped in may be a VLT 2000 terminal log ('<' ... '>'), read as one.
+            SourceOptions piped;
+            piped.hex_may_be_text = true;
             OpenResult opened = isatty(STDIN_FILENO)
                                     ? open_source("-", InputFormat::Hex, *settings->protocol)
-                                    : open_input("-", InputFormat::Hex, *settings);
+                                    : open_input("-", InputFormat::Hex, *settings, piped);
             if (!opened) {
                 print_error(opened.error());
                 exit_code = kExitUsage;
                 return;
             }
             exit_code = run_decoding(*opened.value(), *settings, "-");
+            return;
+        }
+        if (std::any_of(command->bytes.begin(), command->bytes.end(),
+                        [](const std::string& a) { return a.find('<') != std::string::npos; })) {
+            exit_code = decode_typed_vlt2000(command->bytes, *settings);
             return;
         }
         std::vector<std::uint8_t> bytes;

@@ -274,6 +274,7 @@ void say_bus_choice(const DecodeSettings& settings, const BusChoice& choice,
 // the capture and setting settings.protocol; says the choice (say_bus_choice). The line the
 // capture records (sniff -w) is used unless --baud was given, which wins, with a warning when
 // they differ (use_line).
-OpenResult open_input(const std::string& path, InputFormat format, DecodeSettings& settings);
+OpenResult open_input(const std::string& path, InputFormat format, DecodeSettings& settings,
+                      const SourceOptions& options = {});
 
 }  // namespace dpscope::cli

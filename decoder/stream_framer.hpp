@@ -53,6 +53,11 @@ class FramerCore {
     std::uint64_t bytes_skipped() const noexcept { return bytes_skipped_; }
     std::uint64_t telegrams() const noexcept { return telegrams_; }
     std::size_t pending() const noexcept { return buffer_.size() - start_; }
+    // The memory of the undecided bytes' buffer.
+    std::size_t buffer_capacity() const noexcept { return buffer_.capacity(); }
+    // The run of skipped bytes not reported yet (count 0: none): it goes on until a telegram or
+    // a gap ends it.
+    const SkippedBytes& skipping() const noexcept { return run_; }
 
   protected:
     // Decides what it can of the undecided bytes; `at_end`: nothing follows them.
@@ -155,6 +160,8 @@ class StreamFramer {
     std::uint64_t bytes_skipped() const noexcept { return core_->bytes_skipped(); }
     std::uint64_t telegrams() const noexcept { return core_->telegrams(); }
     std::size_t pending() const noexcept { return core_->pending(); }
+    std::size_t buffer_capacity() const noexcept { return core_->buffer_capacity(); }
+    const SkippedBytes& skipping() const noexcept { return core_->skipping(); }
 
   private:
     std::unique_ptr<FramerCore> core_;

@@ -282,12 +282,12 @@ TEST(AlarmTest, HangingCommandsAreCappedAndEndedAtTheEnd) {
     for (const std::string& line : started)
         groups.push_back(static_cast<pid_t>(std::stol(line)));
     for (pid_t group : groups)
-        EXPECT_EQ(test::live_processes_in_group(group), 2u);  // the shell and its sleep
+        EXPECT_TRUE(test::wait_for_processes_in_group(group, 2));  // the shell and its sleep
     EXPECT_EQ(runner.finish(0), 2u);
     EXPECT_EQ(runner.end_running(2000), 2u);
     EXPECT_EQ(runner.running(), 0u);
     for (pid_t group : groups)
-        EXPECT_EQ(test::live_processes_in_group(group), 0u) << group;
+        EXPECT_TRUE(test::wait_for_processes_in_group(group, 0)) << group;
     EXPECT_EQ(runner.failed(), 0u);  // ended by us, not failed
     EXPECT_EQ(runner.summary(),
               "alarms: 2 run, 2 skipped at the limit of 2 running at once, 2 ended at the end "
@@ -308,7 +308,7 @@ TEST(AlarmTest, ACommandIgnoringSigtermIsKilledAfterTheGracePeriod) {
     ASSERT_EQ(started.size(), 1u);
     const auto group = static_cast<pid_t>(std::stol(started[0]));
     EXPECT_EQ(runner.end_running(100), 1u);
-    EXPECT_EQ(test::live_processes_in_group(group), 0u);
+    EXPECT_TRUE(test::wait_for_processes_in_group(group, 0));
     EXPECT_EQ(runner.running(), 0u);
 }
 

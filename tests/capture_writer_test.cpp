@@ -77,6 +77,10 @@ ReadBack read_back(const std::string& path) {
     return result;
 }
 
+std::vector<std::string> lines_of_file(const std::string& path) {
+    return test::lines_of(test::slurp(path));
+}
+
 void expect_same(const std::vector<Telegram>& got, const std::vector<Telegram>& want,
                  bool with_times) {
     ASSERT_EQ(got.size(), want.size());
@@ -185,6 +189,7 @@ TEST(CaptureWriterTest, HexLineFormat) {
               {kTelegrams[0], {hex("E5"), kNoTime}, {hex("DC 02 02"), kT0 + 61'000'000'007}});
     std::vector<std::uint8_t> bytes = test::read_file(file.path);
     EXPECT_EQ(std::string(bytes.begin(), bytes.end()),
+              "# dpscope hex capture: bus=profibus, one record a line\n"
               "1704067200.000000001 10 03 02 49 4E 16\n"
               "E5\n"
               "1704067261.000000007 DC 02 02\n");
@@ -192,6 +197,50 @@ TEST(CaptureWriterTest, HexLineFormat) {
     ASSERT_EQ(r.telegrams.size(), 3u);
     EXPECT_EQ(r.telegrams[1].time_ns, kNoTime);
     EXPECT_EQ(r.telegrams[2].time_ns, kT0 + 61'000'000'007);
+}
+
+TEST(CaptureWriterTest, HexCaptureIsReadBackOneRecordALineDamagedOrNot) {
+    // Issue #27 point 4: a hex capture read back as a stream lost its damaged telegrams (the
+    // framer skipped or split them) and renumbered every later frame. dpscope's hex capture is
+    // read one record a line, whatever the bytes.
+    const std::vector<Telegram> records = {
+        {hex("10 03 02 49 4E 16"), kT0},
+        {hex("68 07 08 68 83 82 7D 3E 3E F3 F1 E2 16"), kT0 + 1'000},  // LEr differs from LE
+        {hex("01 02"), kNoTime},                                       // no telegram at all
+        {hex("68 07 07 68 83 82 7D"), kT0 + 3'000},                    // cut short
+        {hex("10 03 02 49 4E 16 DC 02 02"), kT0 + 4'000},              // two in one record
+        {hex("DC 02 02"), kT0 + 5'000},
+    };
+    TempFile file("records.txt");
+    write_all(file.path, CaptureFormat::Hex, kLinkTypeProfibusDl, records);
+    ReadBack r = read_back(file.path);
+    EXPECT_EQ(r.format, InputFormat::Hex);
+    EXPECT_EQ(r.status, InputStatus::Ok);
+    EXPECT_EQ(r.issues, 0u);
+    expect_same(r.telegrams, records, true);
+    // The same lines without the first line are a hand-made log: framed as a stream.
+    std::string text = test::slurp(file.path);
+    test::write_text_file(file.path, text.substr(text.find('\n') + 1));
+    ReadBack stream = read_back(file.path);
+    EXPECT_EQ(stream.telegrams.size(), 4u);  // the damaged ones are skipped, two are split
+}
+
+TEST(CaptureWriterTest, HexCaptureNamesItsBus) {
+    TempFile file("fc.txt");
+    WriterResult opened =
+        open_capture_writer(file.path, CaptureFormat::Hex, kLinkTypeUser0, Protocol::Fc);
+    ASSERT_TRUE(opened) << opened.error();
+    const std::vector<std::uint8_t> telegram = test::fc_process(4);
+    ASSERT_TRUE(opened.value()->write(Bytes(telegram.data(), telegram.size()), kT0));
+    ASSERT_TRUE(opened.value()->close());
+    EXPECT_EQ(lines_of_file(file.path).front(), "# dpscope hex capture: bus=fc, one record a line");
+    BusChoice choice;
+    OpenResult source = open_source(file.path, InputFormat::Auto, nullptr, choice);
+    ASSERT_TRUE(source) << source.error();
+    EXPECT_EQ(choice.protocol->protocol, Protocol::Fc);
+    ASSERT_TRUE(choice.tagged.has_value());
+    EXPECT_EQ(*choice.tagged, Protocol::Fc);
+    EXPECT_FALSE(choice.say);  // the capture says it
 }
 
 TEST(CaptureWriterTest, UnknownTimeIsZeroInPcapAndReadsBackUnknown) {

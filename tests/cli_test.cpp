@@ -866,6 +866,83 @@ TEST(CliTest, HexSkippedBytesAreReported) {
         << r.err;
 }
 
+TEST(CliTest, HexTakesTypedVlt2000Telegrams) {
+    // Issue #27 point 9: `dpscope hex '<01UOGD@0516+00080007>'` said the argument is not hex
+    // bytes. A typed VLT 2000 telegram is decoded as one, without --bus and without a note.
+    CommandResult one = run_dpscope({"hex", "-T", "jsonl", "<01UOGD@0516+00080007>"});
+    EXPECT_EQ(one.exit_code, 0) << one.err;
+    EXPECT_TRUE(one.err.empty()) << one.err;
+    ASSERT_EQ(lines_of(one.out).size(), 1u) << one.out;
+    EXPECT_NE(one.out.find("\"vlt2000\":{\"complete\":true,\"address\":1,"), std::string::npos)
+        << one.out;
+    // A command and its reply, as two arguments or on one with text around them.
+    for (std::vector<std::string> args :
+         {std::vector<std::string>{"<01UOGD@0516+00080007>", "<01UGHK@0516+00080007>"},
+          std::vector<std::string>{"TX <01UOGD@0516+00080007> RX <01UGHK@0516+00080007>"}}) {
+        std::vector<std::string> full = {"hex", "-T", "jsonl"};
+        full.insert(full.end(), args.begin(), args.end());
+        CommandResult two = run_dpscope(full);
+        EXPECT_EQ(two.exit_code, 0) << two.err;
+        std::vector<std::string> lines = lines_of(two.out);
+        ASSERT_EQ(lines.size(), 2u) << two.out;
+        EXPECT_NE(lines[1].find("\"request_frame\":1,"), std::string::npos) << lines[1];
+    }
+    // With --bus vlt2000 the same; with another bus, or mixed with hex bytes, a usage error.
+    EXPECT_EQ(run_dpscope({"hex", "--bus", "vlt2000", "<01UOGD@0516+00080007>"}).exit_code, 0);
+    CommandResult fc = run_dpscope({"hex", "--bus", "fc", "<01UOGD@0516+00080007>"});
+    EXPECT_EQ(fc.exit_code, 2);
+    EXPECT_NE(fc.err.find("dpscope: error: hex: argument 1: '<01UOGD@0516+00080007>' is a VLT "
+                          "2000 telegram; --bus fc cannot read it"),
+              std::string::npos)
+        << fc.err;
+    CommandResult mixed = run_dpscope({"hex", "<01UOGD@0516+00080007>", "10 03 02 49 4E 16"});
+    EXPECT_EQ(mixed.exit_code, 2);
+    EXPECT_NE(mixed.err.find("dpscope: error: hex: argument 2: '10 03 02 49 4E 16' holds no VLT "
+                             "2000 telegram ('<' ... '>') but argument 1 does; give hex bytes or "
+                             "VLT 2000 telegrams"),
+              std::string::npos)
+        << mixed.err;
+    // A broken telegram is named by its argument and column.
+    CommandResult broken = run_dpscope({"hex", "<01UOGD@0516+0008>"});
+    EXPECT_EQ(broken.exit_code, 2);
+    EXPECT_NE(broken.err.find("dpscope: warning: <command line>: argument 1, column 1: skipped 18 "
+                              "characters: '<01UOGD@0516+0008>' is no VLT 2000 telegram: the "
+                              "argument ends after 18 of its 22 characters"),
+              std::string::npos)
+        << broken.err;
+    EXPECT_NE(broken.err.find("dpscope: error: <command line>: no VLT 2000 telegram in the text, "
+                              "only 18 characters of broken ones (named above)"),
+              std::string::npos)
+        << broken.err;
+    // Next to a good one, in a later argument, at the column where it starts.
+    CommandResult later = run_dpscope({"hex", "-T", "jsonl", "<01UOGD@0516+00080007>",
+                                       "RX <01UGHK@0516+0008\x07"
+                                       "007>"});
+    EXPECT_EQ(later.exit_code, 0) << later.err;
+    EXPECT_EQ(lines_of(later.out).size(), 1u) << later.out;
+    EXPECT_NE(later.err.find("dpscope: warning: <command line>: argument 2, column 4: skipped 18 "
+                             "characters: '<01UGHK@0516+0008\\x07' is no VLT 2000 telegram: "
+                             "character 18 is 0x07, not printable ASCII"),
+              std::string::npos)
+        << later.err;
+}
+
+TEST(CliTest, HexReadsAVlt2000LogPipedIn) {
+    // A VLT 2000 terminal log piped into `dpscope hex` is read as the text log it is.
+    CommandResult r = run_dpscope({"hex", "-T", "jsonl"},
+                                  "12:00:00.5 TX <01UOGD@0516+00080007>\n"
+                                  "12:00:00.75 RX <01UGHK@0516+00080007>\n");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::vector<std::string> lines = lines_of(r.out);
+    ASSERT_EQ(lines.size(), 2u) << r.out << r.err;
+    EXPECT_NE(lines[0].find("\"time\":43200.500000000,"), std::string::npos) << lines[0];
+    EXPECT_NE(lines[1].find("\"request_frame\":1,"), std::string::npos) << lines[1];
+    // A hex log piped in stays a hex log, also when its bytes are VLT 2000 characters.
+    CommandResult bytes = run_dpscope({"hex", "-T", "text"}, "10 03 02 49 4E 16\n");
+    EXPECT_EQ(bytes.exit_code, 0) << bytes.err;
+    EXPECT_EQ(lines_of(bytes.out).size(), 1u) << bytes.out;
+}
+
 TEST(CliTest, BadHexArgumentIsUsageErrorNamingIt) {
     CommandResult r = run_dpscope({"hex", "10", "zz", "02"});
     EXPECT_EQ(r.exit_code, 2);
@@ -1045,8 +1122,9 @@ TEST(CliTest, SimulateFcWritesUser0CapturesOfFcTelegrams) {
                                      "3", "--cycles", "1", "--drive", "4"});
     EXPECT_EQ(hex.exit_code, 0) << hex.err;
     std::vector<std::string> lines = lines_of(hex.out);
-    ASSERT_EQ(lines.size(), 2u) << hex.out;
-    EXPECT_NE(lines[0].find(" 02 06 84 04 7F 20 00 DB"), std::string::npos) << lines[0];
+    ASSERT_EQ(lines.size(), 3u) << hex.out;  // the header line, then one record a line
+    EXPECT_EQ(lines[0], "# dpscope hex capture: bus=fc, one record a line");
+    EXPECT_NE(lines[1].find(" 02 06 84 04 7F 20 00 DB"), std::string::npos) << lines[1];
     CommandResult raw = run_dpscope(
         {"simulate", "--bus", "fc", "-w", "-", "-F", "raw", "--cycles", "1", "--drive", "4"});
     EXPECT_EQ(raw.exit_code, 0) << raw.err;
@@ -1111,8 +1189,9 @@ TEST(CliTest, SimulateVlt2000WritesUser0CapturesOfVlt2000Telegrams) {
                                      "--seed", "3", "--cycles", "1", "--drive", "4"});
     EXPECT_EQ(hex.exit_code, 0) << hex.err;
     std::vector<std::string> lines = lines_of(hex.out);
-    ASSERT_EQ(lines.size(), 2u) << hex.out;
-    EXPECT_NE(lines[0].find(" 3C 30 34 "), std::string::npos) << lines[0];  // "<04"
+    ASSERT_EQ(lines.size(), 3u) << hex.out;  // the header line, then one record a line
+    EXPECT_EQ(lines[0], "# dpscope hex capture: bus=vlt2000, one record a line");
+    EXPECT_NE(lines[1].find(" 3C 30 34 "), std::string::npos) << lines[1];  // "<04"
     CommandResult raw = run_dpscope(
         {"simulate", "--bus", "vlt2000", "-w", "-", "-F", "raw", "--cycles", "1", "--drive", "4"});
     EXPECT_EQ(raw.exit_code, 0) << raw.err;

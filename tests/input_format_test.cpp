@@ -99,6 +99,46 @@ TEST(InputFormatTest, NonPrintableByteMakesItRaw) {
     EXPECT_EQ(detect_text("68 07 \xE5"), InputFormat::Raw);
 }
 
+TEST(InputFormatTest, AByteOrderMarkAndNonAsciiTextOutsideTheBytesAreText) {
+    // Issue #27 point 5: a UTF-8 BOM (as Windows editors write it), a UTF-8 header ("Log µs"),
+    // or one Latin-1 byte in a longer log do not make a hex log or VLT 2000 log a raw stream.
+    EXPECT_EQ(detect_text("\xEF\xBB\xBF"
+                          "12:00:01.5 10 03 02 49 4E 16\n"),
+              InputFormat::Hex);
+    EXPECT_EQ(detect_text("Log \xC2\xB5s\n12:00:01.5 10 03 02 49 4E 16\n"), InputFormat::Hex);
+    EXPECT_EQ(detect_text("Log \xB5s (Latin-1)\n12:00:01.5 10 03 02 49 4E 16\n"), InputFormat::Hex);
+    EXPECT_EQ(detect_text("\xEF\xBB\xBF"
+                          "12:00:01.5 <01UOGD@0516+00080007>\n"),
+              InputFormat::Text);
+    EXPECT_EQ(detect_text("Log \xC2\xB5s\n<01UOGD@0516+00080007>\n"), InputFormat::Text);
+    EXPECT_EQ(detect_text("Protokoll \xFC"
+                          "ber RS-485\n<01UOGD@0516+00080007>\n"),
+              InputFormat::Text);
+    // A UTF-8 character cut off by the end of a longer head is still text.
+    EXPECT_EQ(detect_text("12:00:01.5 10 03 02 49 4E 16 TX 10 03 02 49 4E 16 \xC2"),
+              InputFormat::Hex);
+}
+
+TEST(InputFormatTest, BinaryWithBytesAboveAsciiStaysRaw) {
+    // PROFIBUS tokens between masters 0x31 and 0x32 carry no control byte, but 0xDC starts no
+    // UTF-8 sequence there: one byte in three is no text.
+    std::vector<std::uint8_t> tokens;
+    for (int i = 0; i < 100; ++i)
+        tokens.insert(tokens.end(), {0xDC, 0x31, 0x32, 0xDC, 0x32, 0x31});
+    EXPECT_EQ(detect(tokens), InputFormat::Raw);
+    EXPECT_FALSE(looks_like_text(Bytes(tokens.data(), tokens.size())));
+}
+
+TEST(InputFormatTest, TextWithControlCharactersLooksLikeText) {
+    // A terminal log with colour escapes is no hex log to detection (ESC is a control byte), but
+    // it looks like text, so that messages can point to --input-format hex.
+    const std::string log = "\x1B[32m12:00:01.5 10 03 02 49 4E 16\x1B[0m\n";
+    const Bytes bytes(reinterpret_cast<const std::uint8_t*>(log.data()), log.size());
+    EXPECT_EQ(detect_input_format(bytes), InputFormat::Raw);
+    EXPECT_TRUE(looks_like_text(bytes));
+    EXPECT_FALSE(looks_like_text(hex("68 07 07 68 83 82 7D 3E 3E F3 F1 E2 16")));
+}
+
 TEST(InputFormatTest, EmptyHeadIsRaw) { EXPECT_EQ(detect({}), InputFormat::Raw); }
 
 }  // namespace

@@ -263,6 +263,42 @@ TEST(PcapSourceTest, PcapngSkipsPacketsOfAnInterfaceWithAnotherLinkTypeWithOneWa
                            "are skipped");
 }
 
+TEST(PcapSourceTest, PcapngWithVeryManyInterfacesIsReadInBoundedMemory) {
+    // 200,000 interface descriptions (of a link type dpscope does not decode, each a warning
+    // before the first packet), then a PROFIBUS interface and packets of interfaces past the
+    // limit: the source keeps the first 4096 interfaces and 10 messages of each kind, whatever
+    // the number of blocks (issue #27 point 2).
+    TempFile file("many-interfaces.pcapng");
+    PcapngBuilder b;
+    b.interface(257);
+    for (int i = 0; i < 200'000; ++i)
+        b.interface(1);
+    b.packet(0, kT0Us, kSd1).packet(150'000, kT0Us + 1, kSd2).packet(0, kT0Us + 2, kToken);
+    test::write_file(file.path, b.bytes());
+    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_dp_protocol());
+    ASSERT_TRUE(opened) << opened.error();
+    TelegramSource& source = *opened.value();
+    std::vector<InputIssue> issues;
+    source.on_issue([&](const InputIssue& issue) { issues.push_back(issue); });
+    std::size_t most = source.buffered_bytes();
+    std::vector<std::vector<std::uint8_t>> data;
+    Record record;
+    while (source.next(record)) {
+        data.emplace_back(record.bytes.begin(), record.bytes.end());
+        most = std::max(most, source.buffered_bytes());
+    }
+    EXPECT_LE(most, std::size_t{1} << 20);
+    EXPECT_EQ(source.status(), InputStatus::Ok);
+    ASSERT_EQ(data.size(), 2u);
+    EXPECT_EQ(data[0], kSd1);
+    EXPECT_EQ(data[1], kToken);
+    EXPECT_EQ(source.issue_count(IssueKind::Interface), 4095u + 1u);
+    ASSERT_EQ(issues.size(), kMaxIssuesShown + 1);
+    EXPECT_NE(issues.back().message.find("4086 more warnings about interfaces not shown"),
+              std::string::npos)
+        << issues.back().message;
+}
+
 TEST(PcapSourceTest, PcapngWithNoInterfaceDpscopeDecodesIsUnusable) {
     TempFile file("ethernet.pcapng");
     PcapngBuilder b;

@@ -1532,7 +1532,8 @@ TEST(SniffTest, AlarmCommandsStillRunningAreEndedWhenTheCaptureEnds) {
     ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
     started = test::lines_of(slurp(pids));
     for (const std::string& line : started)
-        EXPECT_EQ(test::live_processes_in_group(static_cast<pid_t>(std::stol(line))), 0u) << line;
+        EXPECT_TRUE(test::wait_for_processes_in_group(static_cast<pid_t>(std::stol(line)), 0))
+            << line;
     EXPECT_NE(sniffer.err().find(std::to_string(started.size()) +
                                  " ended at the end (still running after the wait)"),
               std::string::npos)

@@ -2,6 +2,7 @@
 // memory. Telegrams are framed from the stream; skipped bytes are reported with their place.
 #include "capture/stream_source.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -703,6 +704,248 @@ TEST(StreamSourceTest, StopAfterReportsNothingPastTheLastTelegram) {
     EXPECT_EQ(r.skipped, 2u);
     Record record;
     EXPECT_FALSE(opened.value()->next(record));  // and stays stopped
+}
+
+TEST(StreamSourceTest, HexLogWithAByteOrderMarkKeepsItsFirstTimestamp) {
+    // Issue #27 point 5: the BOM was glued to the first line's timestamp, which was lost.
+    TempFile file("bom.txt");
+    test::write_text_file(file.path,
+                          "\xEF\xBB\xBF"
+                          "1704067200.000000001 10 03 02 49 4E 16\n"
+                          "Log \xC2\xB5s \xB5 \xE2\x80\x94 1704067200.5 (comment)\n"
+                          "1704067200.000500000 DC 02 02\n");
+    for (InputFormat format : {InputFormat::Hex, InputFormat::Auto}) {
+        SCOPED_TRACE(input_format_name(format));
+        ReadResult r = read_all(file.path, format);
+        EXPECT_EQ(r.format, InputFormat::Hex);
+        EXPECT_TRUE(r.issues.empty());
+        ASSERT_EQ(r.records.size(), 2u);
+        EXPECT_EQ(r.data[0], kSd1);
+        EXPECT_EQ(r.records[0].time_ns, 1'704'067'200'000'000'001);
+        EXPECT_EQ(r.data[1], kToken);
+        EXPECT_EQ(r.records[1].time_ns, 1'704'067'200'000'500'000);
+    }
+}
+
+TEST(StreamSourceTest, TextReadAsARawStreamSaysWhichInputFormatToTry) {
+    // A hex log with colour escapes is detected as a raw stream (ESC is a control byte) and
+    // refused; the message says it looks like text and names the input formats for text.
+    std::string text;
+    for (int i = 0; i < 40; ++i)
+        text += "\x1B[32m12:00:01.5 10 03 02 49 4E 16\x1B[0m\n";
+    TempFile file("colour.log");
+    test::write_text_file(file.path, text);
+    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_dp_protocol());
+    ASSERT_TRUE(opened);
+    ReadResult r = drain(*opened.value());
+    EXPECT_EQ(r.status, InputStatus::Unusable);
+    const std::string& reason = opened.value()->unusable_reason();
+    EXPECT_NE(reason.find("not a PROFIBUS byte stream"), std::string::npos) << reason;
+    EXPECT_NE(reason.find("it looks like text: --input-format hex reads a log of hex bytes, "
+                          "--input-format text a log of VLT 2000 telegrams"),
+              std::string::npos)
+        << reason;
+    // A short one is not judged; reading no telegram, the command line says the same.
+    test::write_text_file(file.path, "\x1B[32mhello, this is no capture\x1B[0m\n");
+    test::CommandResult cli = test::run_dpscope({"decode", file.path});
+    EXPECT_EQ(cli.exit_code, 2);
+    EXPECT_NE(cli.err.find("read as a raw byte stream; is it a capture? It looks like text: "
+                           "--input-format hex reads a log of hex bytes, --input-format text a "
+                           "log of VLT 2000 telegrams"),
+              std::string::npos)
+        << cli.err;
+    // A real raw stream gets no such hint.
+    test::write_file(file.path, random_bytes(300));
+    cli = test::run_dpscope({"decode", "--input-format", "raw", file.path});
+    EXPECT_EQ(cli.err.find("looks like text"), std::string::npos) << cli.err;
+}
+
+TEST(StreamSourceTest, ALongRunWithoutATelegramIsNotedAsItGrows) {
+    // Issue #27 point 23: a forced raw (or hex) reading of zeros ran silently until stopped. A run
+    // of skipped bytes still going on is noted at 1 MiB, 2, 4 ... MiB; the run itself is
+    // reported where it ends, as always.
+    TempFile file("zeros");
+    test::write_file(file.path, concat({std::vector<std::uint8_t>((5u << 20) + 100, 0), kSd1}));
+    ReadResult raw = read_all(file.path, InputFormat::Raw);
+    ASSERT_EQ(raw.records.size(), 1u);
+    ASSERT_EQ(raw.issues.size(), 4u);
+    EXPECT_EQ(raw.issues[0].message, file.path +
+                                         ": byte offset 0: 1 MiB read so far without a PROFIBUS "
+                                         "telegram; still reading (the run of skipped bytes is "
+                                         "reported where it ends)");
+    EXPECT_NE(raw.issues[1].message.find("byte offset 0: 2 MiB read so far"), std::string::npos);
+    EXPECT_NE(raw.issues[2].message.find("byte offset 0: 4 MiB read so far"), std::string::npos);
+    EXPECT_EQ(raw.issues[3].message,
+              file.path + ": byte offset 0: skipped 5242980 bytes: no start delimiter");
+    // A hex reading of the same file: one line without a hex byte.
+    ReadResult hex_read = read_all(file.path, InputFormat::Hex);
+    ASSERT_EQ(hex_read.issues.size(), 3u);
+    EXPECT_EQ(hex_read.issues[0].message,
+              file.path + ": line 1: 1 MiB of text read so far without a hex byte; still reading");
+    EXPECT_NE(hex_read.issues[2].message.find("line 1: 4 MiB of text"), std::string::npos);
+}
+
+TEST(StreamSourceTest, ALongRunIsNotedOnTheCommandLineAtDoublingSizes) {
+    // Issue #27 point 23: `decode --input-format raw` on 20 MiB of zeros between two telegrams
+    // notes the run at 1, 2, 4, 8 and 16 MiB, naming where it starts (byte 6, after the first
+    // telegram), and reports the run where it ends.
+    TempFile file("zeros20");
+    const std::size_t run = 20u << 20;
+    test::write_file(file.path, concat({kSd1, std::vector<std::uint8_t>(run, 0), kSd1}));
+    test::CommandResult r =
+        test::run_dpscope({"decode", "--input-format", "raw", "-T", "jsonl", file.path});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(test::lines_of(r.out).size(), 2u) << r.out;
+    std::vector<std::string> expected;
+    for (int mib : {1, 2, 4, 8, 16})
+        expected.push_back(
+            fmt::format("dpscope: warning: {}: byte offset 6: {} MiB read so far "
+                        "without a PROFIBUS telegram; still reading (the run of "
+                        "skipped bytes is reported where it ends)",
+                        file.path, mib));
+    expected.push_back(
+        fmt::format("dpscope: warning: {}: byte offset 6: skipped {} bytes: no start delimiter",
+                    file.path, run));
+    EXPECT_EQ(test::lines_of(r.err), expected) << r.err;
+    // With -c 1 the first telegram ends the reading: the run after it is never read, so never
+    // noted. With -c 2 the whole run is read, and noted the same way.
+    r = test::run_dpscope({"decode", "--input-format", "raw", "-c", "1", "-q", file.path});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.find("read so far"), std::string::npos) << r.err;
+    r = test::run_dpscope({"decode", "--input-format", "raw", "-c", "2", "-T", "jsonl", file.path});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(test::lines_of(r.err), expected) << r.err;
+}
+
+TEST(StreamSourceTest, ALongStretchOfTextWithoutATelegramIsNoted) {
+    // Issue #27 point 23: a text (VLT 2000) log, or a forced text reading of a binary file, of
+    // megabytes without a telegram was read in silence. Noted at 1, 2 ... MiB of characters
+    // after the last telegram, naming the line reached and the line the stretch started on.
+    TempFile file("stretch.log");
+    std::string text = "<01UOGD@0516+00080007>\n";
+    const std::string filler(63, 'x');
+    for (int i = 0; i < 3 * 16384; ++i)  // 3 MiB of lines of 64 characters
+        text += filler + "\n";
+    text += "<01UGHK@0516+00080007>\n";
+    test::write_text_file(file.path, text);
+    OpenResult opened = open_source(file.path, InputFormat::Text, vlt2000_protocol());
+    ASSERT_TRUE(opened) << opened.error();
+    ReadResult read = drain(*opened.value());
+    EXPECT_EQ(read.records.size(), 2u);
+    std::vector<std::string> messages;
+    for (const InputIssue& issue : read.issues)
+        messages.push_back(issue.message);
+    // The stretch counts the first line's end: its 1 MiB-th character is the last x of line
+    // 16385, its 2 MiB-th the last x of line 32769.
+    EXPECT_EQ(messages,
+              (std::vector<std::string>{
+                  file.path + ": line 16385: 1 MiB of text read since line 1 without a VLT 2000 "
+                              "telegram; still reading",
+                  file.path + ": line 32769: 2 MiB of text read since line 1 without a VLT 2000 "
+                              "telegram; still reading"}));
+}
+
+// ---- bounded memory (issue #27 point 2) ----------------------------------------------------
+
+// What a source may hold in memory at any time, whatever the input: a few read buffers and what
+// one of them frames.
+constexpr std::size_t kMostBufferedBytes = 1 << 20;
+
+struct BufferedRead {
+    std::size_t records = 0;
+    std::size_t most_buffered = 0;
+    std::vector<InputIssue> issues;
+};
+
+// Reads `path` to its end (or `limit` telegrams), noting the most memory the source held.
+BufferedRead read_buffered(const std::string& path, InputFormat format,
+                           const CaptureProtocol& protocol = profibus_dp_protocol(),
+                           std::size_t limit = 0) {
+    BufferedRead result;
+    OpenResult opened = open_source(path, format, protocol);
+    EXPECT_TRUE(opened) << opened.error();
+    if (!opened) return result;
+    TelegramSource& source = *opened.value();
+    source.on_issue([&](const InputIssue& issue) {
+        result.issues.push_back(issue);
+        result.most_buffered = std::max(result.most_buffered, source.buffered_bytes());
+    });
+    source.stop_after(limit);
+    Record record;
+    while (source.next(record)) {
+        ++result.records;
+        result.most_buffered = std::max(result.most_buffered, source.buffered_bytes());
+    }
+    result.most_buffered = std::max(result.most_buffered, source.buffered_bytes());
+    return result;
+}
+
+constexpr std::size_t kTenMegabytes = 10'000'000;
+
+TEST(StreamSourceTest, HexLogOfOneLongLineIsReadInBoundedMemory) {
+    // A 10 MB hex log written as one line (a terminal program that logs without line breaks).
+    const std::string telegram = "68 07 07 68 83 82 7D 3E 3E F3 F1 E2 16 ";
+    std::string text = "12:00:00.5 ";
+    std::size_t count = 0;
+    while (text.size() < kTenMegabytes) {
+        text += telegram;
+        ++count;
+    }
+    text += "\n";
+    TempFile file("one-line.txt");
+    test::write_text_file(file.path, text);
+    for (InputFormat format : {InputFormat::Hex, InputFormat::Auto}) {
+        SCOPED_TRACE(input_format_name(format));
+        BufferedRead r = read_buffered(file.path, format);
+        EXPECT_EQ(r.records, count);
+        EXPECT_TRUE(r.issues.empty());
+        EXPECT_LE(r.most_buffered, kMostBufferedBytes);
+    }
+}
+
+TEST(StreamSourceTest, CompactHexStringOfOneLongLineIsReadInBoundedMemory) {
+    // The same as one compact hex string: a single token of 10 MB.
+    std::string text;
+    std::size_t count = 0;
+    while (text.size() < kTenMegabytes) {
+        text += "6807076883827D3E3EF3F1E216";
+        ++count;
+    }
+    TempFile file("compact.txt");
+    test::write_text_file(file.path, text + "\n");
+    BufferedRead r = read_buffered(file.path, InputFormat::Hex);
+    EXPECT_EQ(r.records, count);
+    EXPECT_TRUE(r.issues.empty());
+    EXPECT_LE(r.most_buffered, kMostBufferedBytes);
+}
+
+TEST(StreamSourceTest, ZerosReadAsHexAreReadInBoundedMemory) {
+    // `decode --input-format hex /dev/zero`: one line without end that holds no hex byte.
+    TempFile file("zeros.txt");
+    test::write_file(file.path, std::vector<std::uint8_t>(kTenMegabytes, 0));
+    BufferedRead r = read_buffered(file.path, InputFormat::Hex);
+    EXPECT_EQ(r.records, 0u);
+    EXPECT_LE(r.most_buffered, kMostBufferedBytes);
+}
+
+TEST(StreamSourceTest, RawZerosAreReadInBoundedMemory) {
+    TempFile file("zeros.raw");
+    test::write_file(file.path, std::vector<std::uint8_t>(kTenMegabytes, 0));
+    BufferedRead r = read_buffered(file.path, InputFormat::Raw);
+    EXPECT_EQ(r.records, 0u);
+    EXPECT_LE(r.most_buffered, kMostBufferedBytes);
+}
+
+TEST(StreamSourceTest, HexLogOfManyBadLinesIsReadInBoundedMemory) {
+    // Lines that each hold a bad compact string and no byte: nothing is framed, so a detected
+    // log is judged only when enough lines are held back; they must not pile up unjudged.
+    std::string text;
+    while (text.size() < kTenMegabytes)
+        text += "TX 68070G\n";
+    TempFile file("bad-lines.txt");
+    test::write_text_file(file.path, text);
+    BufferedRead r = read_buffered(file.path, InputFormat::Auto);
+    EXPECT_LE(r.most_buffered, kMostBufferedBytes);
 }
 
 TEST(StreamSourceTest, TimesGoingBackwardsOrJumpingAreReportedOncePerKind) {

@@ -257,6 +257,10 @@ std::size_t live_processes_in_group(pid_t group) {
     return live;
 }
 
+bool wait_for_processes_in_group(pid_t group, std::size_t count) {
+    return wait_until([&] { return live_processes_in_group(group) == count; });
+}
+
 PseudoTerminal::PseudoTerminal() {
     int slave_fd = -1;
     char name[128] = {};

@@ -76,6 +76,9 @@ bool same_settings(const termios& a, const termios& b);
 
 // Processes of the process group `group` that are alive (zombies not counted), from /proc.
 std::size_t live_processes_in_group(pid_t group);
+// Waits (at most the patience) until process group `group` has `count` live processes: a
+// process sent SIGKILL, or a shell's child about to start, takes a moment. Whether it did.
+bool wait_for_processes_in_group(pid_t group, std::size_t count);
 
 // A pseudo-terminal pair: tests write into `master`; the code under test opens `slave` (a path)
 // as its serial port. The master is close-on-exec, so a child process (dpscope sniff) does not

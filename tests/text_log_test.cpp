@@ -216,6 +216,43 @@ TEST(TextLogTest, ARawDumpWithoutLineBreaksIsReadAsOneLongLine) {
         << r.issues[0];
 }
 
+TEST(TextLogTest, OneLongLineOfTelegramsOrBrokenStartsIsReadInBoundedMemory) {
+    // 10 MB on one line, of telegrams or of '<' that start none (each a warning, most counted):
+    // the source holds a read buffer and what one of them frames, whatever the line's length.
+    for (const std::string& unit : {kRequest + kReply, std::string("<<<<<<<<")}) {
+        std::string dump;
+        while (dump.size() < 10'000'000)
+            dump += unit;
+        const std::string path = test::temp_path("long.txt");
+        test::write_text_file(path, dump);
+        OpenResult opened = open_source(path, InputFormat::Text, vlt2000_protocol());
+        ASSERT_TRUE(opened) << opened.error();
+        TelegramSource& source = **opened;
+        std::size_t most = 0;
+        source.on_issue([&](const InputIssue&) { most = std::max(most, source.buffered_bytes()); });
+        Record record;
+        while (source.next(record))
+            most = std::max(most, source.buffered_bytes());
+        EXPECT_LE(most, std::size_t{1} << 20) << unit;
+    }
+}
+
+TEST(TextLogTest, AByteOrderMarkOrNonAsciiTextKeepsTheTimes) {
+    // Issue #27 point 5: a BOM before the first time stamp, a header in UTF-8 or Latin-1: the log
+    // is still detected as a text log, and every line keeps its time.
+    for (const std::string& head : {std::string("\xEF\xBB\xBF"), std::string("Log \xC2\xB5s\n"),
+                                    std::string("Log \xB5s, Latin-1\n")}) {
+        SCOPED_TRACE(head);
+        ReadResult r =
+            read_text(head + "12:00:00.5 " + kRequest + "\n12:00:00.75 " + kReply + "\n");
+        EXPECT_EQ(r.format, InputFormat::Text);
+        ASSERT_EQ(r.telegrams.size(), 2u);
+        EXPECT_EQ(r.times[0], 12 * 3600 * 1'000'000'000LL + 500'000'000);
+        EXPECT_EQ(r.times[1], 12 * 3600 * 1'000'000'000LL + 750'000'000);
+        EXPECT_TRUE(r.issues.empty());
+    }
+}
+
 TEST(TextLogTest, AnEmptyOrTelegramLessTextHasNoTelegrams) {
     ReadResult empty = read_text("", InputFormat::Text);
     EXPECT_TRUE(empty.telegrams.empty());
