@@ -2,6 +2,11 @@
 // `dpscope stats` (formats/stats.cpp) and the bus-health section of the conformance report
 // (formats/report_*.cpp): one function per piece, so that the tables, the JSON objects and the
 // charts read the same in both. They only render: every figure and verdict comes from BusHealth.
+//
+// One file per format: formats/health_json.cpp, health_text.cpp, health_markdown.cpp,
+// health_csv.cpp, health_html.cpp and health_charts.cpp (the SVG charts), over the tables and
+// cells they share (formats/health_tables.*, private to them); the shared words below are in
+// formats/health_render.cpp.
 #pragma once
 
 #include <string>

@@ -12,7 +12,9 @@
 // The parts: simulator/fault_kind.hpp (the fault catalogue), simulator/fault_spec.hpp (what the
 // user asks for: `--slave`, `--fault`), simulator/parameter_channel_model.hpp (the PCV of each
 // slave, both ends), and here the DP bus model that runs them: timing at the baud rate, FDL
-// telegrams, start-up, the cycle, token and gap polls, process data, and the link faults.
+// telegrams, start-up, the cycle, token and gap polls, process data, and the link faults
+// (simulator/simulator.cpp: the session, its clock, cycles and faults armed;
+// simulator/dp_bus_model.cpp: the DP telegrams; simulator/session_span.cpp: its length).
 #pragma once
 
 #include <cstdint>
