@@ -3,14 +3,12 @@
 // conflicts; --pnu by transaction; -q with filters; -l and the hex prompt on a terminal.
 #include <fcntl.h>
 #include <gtest/gtest.h>
-#include <poll.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -20,6 +18,7 @@
 
 #include "decoder/text_encoding.hpp"
 #include "tests/json_parser.hpp"
+#include "tests/pty_support.hpp"
 #include "tests/test_support.hpp"
 #include "tests/xml_parser.hpp"
 
@@ -380,10 +379,6 @@ TEST(CliOutputTest, NumericOptionsNameTheirRange) {
 
 // ---- -l and the terminal -----------------------------------------------------------------------
 
-// How long a test waits for a line (it comes within milliseconds on an idle machine; this only
-// bounds a program that would hold it back until its input ends).
-constexpr int kPatienceMs = static_cast<int>(test::kPatienceSeconds * 1000);
-
 // dpscope ARGS with standard input from `stdin_fd`; its standard output and error are pipes.
 struct Child {
     pid_t pid = -1;
@@ -398,15 +393,7 @@ struct Child {
             ::dup2(stdin_fd, 0);
             ::dup2(out_pipe[1], 1);
             ::dup2(err_pipe[1], 2);
-            std::vector<char*> argv;
-            std::string exe = test::dpscope_executable();
-            argv.push_back(exe.data());
-            std::vector<std::string> copy = args;
-            for (std::string& a : copy)
-                argv.push_back(a.data());
-            argv.push_back(nullptr);
-            ::execv(exe.c_str(), argv.data());
-            ::_exit(127);
+            test::exec_or_exit(test::dpscope_argv(args));
         }
         ::close(out_pipe[1]);
         ::close(err_pipe[1]);
@@ -421,23 +408,6 @@ struct Child {
         ::close(out);
         ::close(err);
     }
-    // What arrives on `fd` within `ms` milliseconds, until `want` is seen.
-    static std::string read_for(int fd, int ms, std::string_view want) {
-        std::string got;
-        auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
-        while (got.find(want) == std::string::npos) {
-            auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                end - std::chrono::steady_clock::now());
-            if (left.count() <= 0) break;
-            pollfd p{fd, POLLIN, 0};
-            if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) break;
-            char buffer[4096];
-            ssize_t n = ::read(fd, buffer, sizeof buffer);
-            if (n <= 0) break;
-            got.append(buffer, static_cast<std::size_t>(n));
-        }
-        return got;
-    }
 };
 
 TEST(CliOutputTest, LineBufferedOutputReachesAPipeBeforeTheInputEnds) {
@@ -448,7 +418,7 @@ TEST(CliOutputTest, LineBufferedOutputReachesAPipeBeforeTheInputEnds) {
     const std::string line = "10 03 02 49 4E 16\n";
     ASSERT_EQ(::write(in[1], line.data(), line.size()), static_cast<ssize_t>(line.size()));
     // The input stays open: without -l the line would wait in the output buffer until the end.
-    std::string out = Child::read_for(child.out, kPatienceMs, "\n");
+    std::string out = test::read_until(child.out, "\n");
     EXPECT_NE(out.find("SD1 FDL_Status"), std::string::npos) << out;
     ::close(in[1]);
 }
@@ -459,7 +429,7 @@ TEST(CliOutputTest, HexOnATerminalSaysItWaitsForInput) {
     ASSERT_GE(slave, 0);
     Child child({"hex"}, slave);
     ::close(slave);
-    std::string err = Child::read_for(child.err, kPatienceMs, "Ctrl-D");
+    std::string err = test::read_until(child.err, "Ctrl-D");
     EXPECT_NE(err.find("dpscope hex: reading a hex log from the terminal"), std::string::npos)
         << err;
 }
@@ -472,7 +442,7 @@ TEST(CliOutputTest, LineBufferedRawInputOnAPipeIsDecodedAsItArrives) {
     const std::vector<std::uint8_t> bytes = test::hex("10 03 02 49 4E 16 10 03 02 49 4E 16");
     ASSERT_EQ(::write(in[1], bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
     // 12 bytes, not the 64 KiB a whole read buffer holds: they are decoded at once.
-    std::string out = Child::read_for(child.out, kPatienceMs, "\n");
+    std::string out = test::read_until(child.out, "\n");
     EXPECT_NE(out.find("SD1 FDL_Status"), std::string::npos) << out;
     ::close(in[1]);
 }

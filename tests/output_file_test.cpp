@@ -7,7 +7,6 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
-#include <poll.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/socket.h>
@@ -15,7 +14,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -150,14 +148,7 @@ class Running {
             ::setrlimit(RLIMIT_FSIZE, &limit);
             for (std::string& setting : env)
                 ::putenv(setting.data());
-            std::string exe = test::dpscope_executable();
-            std::vector<std::string> copy = args;
-            std::vector<char*> argv{exe.data()};
-            for (std::string& a : copy)
-                argv.push_back(a.data());
-            argv.push_back(nullptr);
-            ::execv(exe.c_str(), argv.data());
-            ::_exit(127);
+            test::exec_or_exit(test::dpscope_argv(args));
         }
         ::close(out_pipe[1]);
         ::close(err_pipe[1]);
@@ -176,9 +167,10 @@ class Running {
     Running& operator=(const Running&) = delete;
 
     void signal(int number) const { ::kill(pid_, number); }
-    // What standard output (or error) says within 10 s, up to and including `want`.
-    std::string out_until(std::string_view want) const { return read_until(out_, want); }
-    std::string err_until(std::string_view want) const { return read_until(err_, want); }
+    // What standard output (or error) says, up to and including `want` (or to its end); waits at
+    // most the patience.
+    std::string out_until(std::string_view want) const { return test::read_until(out_, want); }
+    std::string err_until(std::string_view want) const { return test::read_until(err_, want); }
     // The wait status once it has ended (standard output and error are drained meanwhile).
     int wait() {
         int status = 0;
@@ -188,22 +180,6 @@ class Running {
     }
 
   private:
-    static std::string read_until(int fd, std::string_view want) {
-        std::string got;
-        const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-        while (got.find(want) == std::string::npos) {
-            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                end - std::chrono::steady_clock::now());
-            pollfd p{fd, POLLIN, 0};
-            if (left.count() <= 0 || ::poll(&p, 1, static_cast<int>(left.count())) <= 0) break;
-            char buffer[4096];
-            ssize_t n = ::read(fd, buffer, sizeof buffer);
-            if (n <= 0) break;
-            got.append(buffer, static_cast<std::size_t>(n));
-        }
-        return got;
-    }
-
     pid_t pid_ = -1;
     int out_ = -1;
     int err_ = -1;
@@ -246,14 +222,9 @@ TEST(OutputFileTest, HexThatEndsInAReadErrorLeavesTheFile) {
 
 // ---- a signal removes the staging file -------------------------------------------------------
 
-// Waits (up to 10 s) until a staging file is in the test's folder.
+// Waits (at most the patience) until a staging file is in the test's folder.
 bool staging_file_appears() {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-    while (staging_files().empty()) {
-        if (std::chrono::steady_clock::now() > end) return false;
-        ::usleep(5'000);
-    }
-    return true;
+    return test::wait_until([] { return !staging_files().empty(); });
 }
 
 // A pcap header and a few records of samples/faults.pcap: a capture whose end has not come yet.

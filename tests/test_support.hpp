@@ -42,6 +42,10 @@ constexpr double kPatienceSeconds = 120;
 // Checks `done` every 10 ms until it holds or `seconds` have passed; whether it holds.
 bool wait_until(const std::function<bool()>& done, double seconds = kPatienceSeconds);
 
+// What arrives on the descriptor `fd` (a child's pipe) until `want` is in it, the pipe ends, or
+// `seconds` have passed; all that arrived. Waits on the descriptor, not on a clock.
+std::string read_until(int fd, std::string_view want, double seconds = kPatienceSeconds);
+
 // The current test's own temporary folder (made on first use under $TEST_TMPDIR, else /tmp;
 // no other test, in this process or another, writes there). It and everything in it are removed
 // when the test process ends, unless DPSCOPE_KEEP_TEST_FILES is set.
