@@ -1615,18 +1615,13 @@ ClosedStderrRun sniff_with_closed_stderr(const std::vector<std::string>& args, P
     }
     close(fds[1]);
     if (test::wait_for_raw_mode(pty)) play(pty, session, true);
-    // Only a bound for a run that hangs (the loaded machine's patience).
-    const auto deadline = std::chrono::steady_clock::now() +
-                          std::chrono::seconds(static_cast<int>(test::kPatienceSeconds));
+    // The patience only bounds a run that hangs.
     int status = 0;
-    while (waitpid(child, &status, WNOHANG) != child) {
-        if (std::chrono::steady_clock::now() > deadline) {
-            kill(child, SIGKILL);
-            waitpid(child, &status, 0);
-            run.out = slurp(out);
-            return run;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (!test::wait_until([&] { return waitpid(child, &status, WNOHANG) == child; })) {
+        kill(child, SIGKILL);
+        waitpid(child, &status, 0);
+        run.out = slurp(out);
+        return run;
     }
     run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     run.out = slurp(out);

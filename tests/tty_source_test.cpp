@@ -9,7 +9,6 @@
 #include <termios.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -473,18 +472,11 @@ ClaimOutcome claim_in_child(const SerialSettings& settings, const std::string& s
         }
         _exit(claimed ? 0 : 1);
     }
-    const auto deadline = std::chrono::steady_clock::now() +
-                          std::chrono::milliseconds(static_cast<int>(seconds * 1000));
     int status = 0;
-    for (;;) {
-        pid_t done = waitpid(child, &status, WNOHANG);
-        if (done == child) break;
-        if (std::chrono::steady_clock::now() > deadline) {
-            kill(child, SIGKILL);
-            waitpid(child, &status, 0);
-            return outcome;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (!test::wait_until([&] { return waitpid(child, &status, WNOHANG) == child; }, seconds)) {
+        kill(child, SIGKILL);
+        waitpid(child, &status, 0);
+        return outcome;
     }
     outcome.returned = WIFEXITED(status);
     outcome.claimed = outcome.returned && WEXITSTATUS(status) == 0;
