@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <vector>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/fdl_framing_rules.hpp"
-#include "decoder/stream_framer.hpp"
+#include "core/stream_framer.hpp"
 #include "formats/output.hpp"
 #include "formats/renderer.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/fdl_framing_rules.hpp"
 #include "simulator/simulator.hpp"
 
 namespace {

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "capture/hex_log.hpp"
-#include "decoder/counted.hpp"
-#include "decoder/stream_framer.hpp"
+#include "core/counted.hpp"
+#include "core/stream_framer.hpp"
 
 namespace dpscope {
 

@@ -22,7 +22,7 @@
 #include "capture/capture_protocol.hpp"
 #include "capture/input_format.hpp"
 #include "capture/serial_port.hpp"
-#include "decoder/byte_reader.hpp"
+#include "core/byte_reader.hpp"
 
 namespace dpscope {
 

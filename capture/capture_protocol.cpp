@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <array>
 
-#include "decoder/fc_framing_rules.hpp"
-#include "decoder/fdl_framing_rules.hpp"
-#include "decoder/vlt2000_framing_rules.hpp"
+#include "protocols/fc/fc_framing_rules.hpp"
+#include "protocols/profibus/fdl_framing_rules.hpp"
+#include "protocols/vlt2000/vlt2000_framing_rules.hpp"
 
 namespace dpscope {
 

@@ -4,16 +4,16 @@
 // pcap and pcapng readers (the serial source gets its framing rules); none of them names a
 // protocol itself.
 //
-// PROFIBUS DP, the Danfoss FC protocol and the VLT 2000 telegram today. Another adds its framing rules in decoder/ and a
-// CaptureProtocol here, and is listed in capture_protocols().
+// PROFIBUS DP, the Danfoss FC protocol and the VLT 2000 telegram today. Another adds its framing
+// rules in decoder/ and a CaptureProtocol here, and is listed in capture_protocols().
 #pragma once
 
 #include <span>
 #include <string>
 #include <string_view>
 
-#include "decoder/framing_rules.hpp"
-#include "decoder/telegram.hpp"
+#include "core/framing_rules.hpp"
+#include "core/telegram.hpp"
 
 namespace dpscope {
 
@@ -28,7 +28,7 @@ struct PcapLinkType {
 };
 
 struct CaptureProtocol {
-    Protocol protocol;            // the decoder's name for it (decoder/telegram.hpp)
+    Protocol protocol;            // the decoder's name for it (core/telegram.hpp)
     const FramingRules& framing;  // raw, hex and serial input; static, outlives every source
     // The pcap link types whose records are its telegrams, in the order messages list them; the
     // first is the link type of an empty pcapng capture. (Its name for people, in messages, is
@@ -39,14 +39,15 @@ struct CaptureProtocol {
     bool carried_by(int link_type) const noexcept;
 };
 
-// PROFIBUS DP: FDL framing (decoder/fdl_framing_rules.hpp), link types 257 and 147.
+// PROFIBUS DP: FDL framing (protocols/profibus/fdl_framing_rules.hpp), link types 257 and 147.
 const CaptureProtocol& profibus_dp_protocol() noexcept;
 
-// The Danfoss FC protocol on RS-485: FC framing (decoder/fc_framing_rules.hpp), link type USER0.
+// The Danfoss FC protocol on RS-485: FC framing (protocols/fc/fc_framing_rules.hpp), link type
+// USER0.
 const CaptureProtocol& fc_protocol() noexcept;
 
-// The VLT 2000 serial telegram: VLT 2000 framing (decoder/vlt2000_framing_rules.hpp), link type
-// USER0.
+// The VLT 2000 serial telegram: VLT 2000 framing (protocols/vlt2000/vlt2000_framing_rules.hpp),
+// link type USER0.
 const CaptureProtocol& vlt2000_protocol() noexcept;
 
 // The capture protocol of a decoder protocol.

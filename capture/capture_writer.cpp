@@ -16,8 +16,8 @@
 #include "capture/bus_tag.hpp"
 #include "capture/hex_log.hpp"
 #include "capture/pcap_source.hpp"
-#include "decoder/counted.hpp"
-#include "decoder/time.hpp"
+#include "core/counted.hpp"
+#include "core/time.hpp"
 
 namespace dpscope {
 

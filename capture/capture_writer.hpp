@@ -10,9 +10,9 @@
 #include <string_view>
 
 #include "capture/bus_tag.hpp"
-#include "decoder/byte_reader.hpp"
-#include "decoder/result.hpp"
-#include "decoder/telegram.hpp"
+#include "core/byte_reader.hpp"
+#include "core/result.hpp"
+#include "core/telegram.hpp"
 
 namespace dpscope {
 

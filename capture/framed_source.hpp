@@ -1,5 +1,5 @@
 // A telegram source over a byte stream split by the StreamFramer with a protocol's framing rules
-// (decoder/framing_rules.hpp): raw dumps, hex logs, bytes in memory and serial ports share it.
+// (core/framing_rules.hpp): raw dumps, hex logs, bytes in memory and serial ports share it.
 // Subclasses feed bytes (fill); this class hands the framed telegrams out one by one with their
 // stream offsets and times, and reports skipped bytes in stream order with them (so nothing is
 // reported about bytes after the last telegram handed out).
@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "capture/telegram_source.hpp"
-#include "decoder/stream_framer.hpp"
+#include "core/stream_framer.hpp"
 
 namespace dpscope {
 

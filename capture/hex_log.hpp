@@ -23,8 +23,8 @@
 #include <string_view>
 #include <vector>
 
-#include "decoder/result.hpp"
-#include "decoder/telegram.hpp"
+#include "core/result.hpp"
+#include "core/telegram.hpp"
 
 namespace dpscope {
 

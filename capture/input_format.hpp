@@ -4,7 +4,7 @@
 #include <optional>
 #include <string_view>
 
-#include "decoder/byte_reader.hpp"
+#include "core/byte_reader.hpp"
 
 namespace dpscope {
 

@@ -17,7 +17,7 @@
 #include <string_view>
 #include <vector>
 
-#include "decoder/result.hpp"
+#include "core/result.hpp"
 
 namespace dpscope {
 

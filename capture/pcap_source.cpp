@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "decoder/counted.hpp"
+#include "core/counted.hpp"
 
 namespace dpscope {
 

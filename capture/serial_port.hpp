@@ -15,7 +15,7 @@
 #include <string>
 #include <string_view>
 
-#include "decoder/result.hpp"
+#include "core/result.hpp"
 
 namespace dpscope {
 

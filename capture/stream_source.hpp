@@ -8,7 +8,7 @@
 #include <string>
 
 #include "capture/telegram_source.hpp"
-#include "decoder/framing_rules.hpp"
+#include "core/framing_rules.hpp"
 
 namespace dpscope {
 

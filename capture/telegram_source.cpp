@@ -13,7 +13,7 @@
 #include "capture/pcap_source.hpp"
 #include "capture/stream_source.hpp"
 #include "capture/text_log.hpp"
-#include "decoder/counted.hpp"
+#include "core/counted.hpp"
 
 namespace dpscope {
 

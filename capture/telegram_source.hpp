@@ -12,10 +12,10 @@
 #include "capture/bus_tag.hpp"
 #include "capture/capture_protocol.hpp"
 #include "capture/input_format.hpp"
-#include "decoder/byte_reader.hpp"
-#include "decoder/problem.hpp"
-#include "decoder/result.hpp"
-#include "decoder/time.hpp"
+#include "core/byte_reader.hpp"
+#include "core/problem.hpp"
+#include "core/result.hpp"
+#include "core/time.hpp"
 
 namespace dpscope {
 

@@ -12,7 +12,7 @@
 #include "capture/framed_source.hpp"
 #include "capture/hex_log.hpp"
 #include "capture/stream_source.hpp"
-#include "decoder/vlt2000_telegram.hpp"
+#include "protocols/vlt2000/vlt2000_telegram.hpp"
 
 namespace dpscope {
 

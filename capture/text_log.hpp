@@ -1,6 +1,6 @@
 // A text log of VLT 2000 telegrams: the 22-character ASCII telegrams ('<' ... '>',
-// decoder/vlt2000_telegram.hpp) as engineers copy them from a terminal, one or more a line, or a
-// raw dump of them without line breaks (one long line).
+// protocols/vlt2000/vlt2000_telegram.hpp) as engineers copy them from a terminal, one or more a
+// line, or a raw dump of them without line breaks (one long line).
 //
 // Only the telegrams are data: on a line, a '<' starts a telegram that must be followed by 20
 // printable ASCII characters and '>' on the same line; whatever else is on the line (a time
@@ -25,7 +25,7 @@
 #include <string_view>
 
 #include "capture/telegram_source.hpp"
-#include "decoder/framing_rules.hpp"
+#include "core/framing_rules.hpp"
 
 namespace dpscope {
 

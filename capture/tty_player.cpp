@@ -8,8 +8,8 @@
 #include <cstring>
 #include <ctime>
 
-#include "decoder/counted.hpp"
-#include "decoder/time.hpp"
+#include "core/counted.hpp"
+#include "core/time.hpp"
 
 namespace dpscope {
 

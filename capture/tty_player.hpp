@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "decoder/result.hpp"
+#include "core/result.hpp"
 
 namespace dpscope {
 

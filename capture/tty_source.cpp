@@ -10,7 +10,7 @@
 #include <cstring>
 #include <ctime>
 
-#include "decoder/counted.hpp"
+#include "core/counted.hpp"
 
 namespace dpscope {
 

@@ -14,7 +14,7 @@
 #include <string_view>
 #include <vector>
 
-#include "decoder/bus_health.hpp"
+#include "protocols/profibus/health/bus_health.hpp"
 
 namespace dpscope::cli {
 

@@ -15,15 +15,15 @@
 #include "capture/capture_protocol.hpp"
 #include "capture/capture_writer.hpp"
 #include "capture/pcap_source.hpp"
-#include "decoder/bus_decoder.hpp"
-#include "decoder/bus_health.hpp"
-#include "decoder/fc_decoder.hpp"
-#include "decoder/fc_tracker.hpp"
-#include "decoder/result.hpp"
-#include "decoder/session_tracker.hpp"
-#include "decoder/vlt2000_decoder.hpp"
-#include "decoder/vlt2000_tracker.hpp"
+#include "core/result.hpp"
 #include "formats/renderer.hpp"
+#include "protocols/fc/fc_decoder.hpp"
+#include "protocols/fc/fc_tracker.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/health/bus_health.hpp"
+#include "protocols/profibus/session_tracker.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 namespace dpscope::cli {
 
@@ -130,8 +130,8 @@ struct DecodeSettings {
     FcTrackerOptions fc_tracker;
     Vlt2000DecoderOptions vlt2000_decoder;
     Vlt2000TrackerOptions vlt2000_tracker;
-    // PROFIBUS bus health (decoder/bus_health.hpp): kept when track_health is set (stats, report,
-    // sniff --stats); its baud rate is the line's when known.
+    // PROFIBUS bus health (protocols/profibus/health/bus_health.hpp): kept when track_health is set
+    // (stats, report, sniff --stats); its baud rate is the line's when known.
     bool track_health = false;
     BusHealthOptions health;
     OutputFormat format = OutputFormat::Text;
@@ -227,7 +227,7 @@ struct HealthOptionValues {
     std::vector<std::string> thresholds;  // --threshold NAME=VALUE, in the order given
 };
 // --health-config FILE and --threshold NAME=VALUE (repeatable); the help lists the thresholds
-// with their defaults and ranges (decoder/health_thresholds.hpp).
+// with their defaults and ranges (protocols/profibus/health/health_thresholds.hpp).
 void add_health_options(CLI::App& app, HealthOptionValues& values);
 // The defaults, then the settings file, then each --threshold in order. The error names the file
 // (and line), or the --threshold with its value and range; a file that cannot be read is named

@@ -23,7 +23,7 @@
 #include "cli/common_options.hpp"
 #include "cli/pipeline.hpp"
 #include "cli/progress.hpp"
-#include "decoder/stream_framer.hpp"
+#include "core/stream_framer.hpp"
 
 namespace dpscope::cli {
 

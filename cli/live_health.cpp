@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "cli/common_options.hpp"
-#include "formats/stats.hpp"
+#include "protocols/profibus/health/stats_render.hpp"
 
 namespace dpscope::cli {
 

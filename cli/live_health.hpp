@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "cli/alarm.hpp"
-#include "decoder/bus_health.hpp"
 #include "formats/output.hpp"
+#include "protocols/profibus/health/bus_health.hpp"
 
 namespace dpscope::cli {
 

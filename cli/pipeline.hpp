@@ -9,16 +9,16 @@
 #include "capture/telegram_source.hpp"
 #include "cli/common_options.hpp"
 #include "cli/version.hpp"
-#include "decoder/bus_health.hpp"
-#include "decoder/counted.hpp"
-#include "decoder/fc_tracker.hpp"
-#include "decoder/session_tracker.hpp"
-#include "decoder/text_encoding.hpp"
-#include "decoder/vlt2000_tracker.hpp"
+#include "core/counted.hpp"
+#include "core/text_encoding.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/report.hpp"
 #include "formats/report_timeline.hpp"
 #include "formats/summary.hpp"
+#include "protocols/fc/fc_tracker.hpp"
+#include "protocols/profibus/health/bus_health.hpp"
+#include "protocols/profibus/session_tracker.hpp"
+#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 namespace dpscope::cli {
 

@@ -24,7 +24,7 @@
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
 #include "cli/pipeline.hpp"
-#include "decoder/counted.hpp"
+#include "core/counted.hpp"
 #include "simulator/simulator.hpp"
 
 namespace dpscope::cli {

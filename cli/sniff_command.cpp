@@ -34,7 +34,7 @@
 #include "cli/version.hpp"
 #include "formats/report.hpp"
 #include "formats/report_model.hpp"
-#include "formats/stats.hpp"
+#include "protocols/profibus/health/stats_render.hpp"
 
 namespace dpscope::cli {
 

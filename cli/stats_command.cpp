@@ -14,7 +14,7 @@
 #include "cli/pipeline.hpp"
 #include "cli/progress.hpp"
 #include "cli/version.hpp"
-#include "formats/stats.hpp"
+#include "protocols/profibus/health/stats_render.hpp"
 
 namespace dpscope::cli {
 

@@ -5,6 +5,8 @@
 
 #include "formats/describe.hpp"
 #include "formats/renderer.hpp"
+#include "protocols/fc/fc_describe.hpp"
+#include "protocols/vlt2000/vlt2000_describe.hpp"
 
 namespace dpscope {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "decoder/finding.hpp"
+#include "core/finding.hpp"
 
 namespace dpscope {
 

@@ -4,7 +4,7 @@
 #include <array>
 #include <cstdint>
 
-#include "decoder/finding.hpp"
+#include "core/finding.hpp"
 #include "formats/json_writer.hpp"
 
 namespace dpscope::json {

@@ -2,7 +2,7 @@
 
 #include <iterator>
 
-#include "decoder/text_encoding.hpp"
+#include "core/text_encoding.hpp"
 
 namespace dpscope::json {
 

@@ -6,11 +6,13 @@
 #include <iterator>
 #include <vector>
 
-#include "decoder/dp_payload.hpp"
-#include "decoder/pcd.hpp"
 #include "formats/describe.hpp"
 #include "formats/json.hpp"
 #include "formats/renderer.hpp"
+#include "protocols/fc/fc_describe.hpp"
+#include "protocols/profibus/dp_payload.hpp"
+#include "protocols/profibus/pcd.hpp"
+#include "protocols/vlt2000/vlt2000_describe.hpp"
 
 namespace dpscope {
 

@@ -7,9 +7,9 @@
 #include <span>
 #include <string_view>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/finding.hpp"
+#include "core/finding.hpp"
 #include "formats/output.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
 
 namespace dpscope {
 

@@ -13,14 +13,14 @@
 #include <string_view>
 #include <vector>
 
-#include "decoder/bus_health.hpp"
-#include "decoder/fc_tracker.hpp"
-#include "decoder/session_tracker.hpp"
-#include "decoder/vlt2000_tracker.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/output.hpp"
 #include "formats/report_timeline.hpp"
 #include "formats/summary.hpp"
+#include "protocols/fc/fc_tracker.hpp"
+#include "protocols/profibus/health/bus_health.hpp"
+#include "protocols/profibus/session_tracker.hpp"
+#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 namespace dpscope {
 
@@ -45,8 +45,8 @@ struct ReportContext {
     const FcTracker* fc_tracker = nullptr;    // the FC protocol (set for an FC capture)
     const Vlt2000Tracker* vlt2000_tracker = nullptr;  // VLT 2000 (set for a VLT 2000 capture)
     const ChannelTimelines* timelines = nullptr;      // the HTML report's (none: empty timelines)
-    // PROFIBUS: the bus-health statistics (decoder/bus_health.hpp), reported in a section of
-    // their own; null: no such section.
+    // PROFIBUS: the bus-health statistics (protocols/profibus/health/bus_health.hpp), reported in a
+    // section of their own; null: no such section.
     const BusHealth* health = nullptr;
     // --vlt2000-checksum check: a VLT 2000 telegram's wrong checksum is a finding (the report's
     // checks say whether it was judged).

@@ -1,9 +1,9 @@
 // The HTML report: one self-contained file with inline SVG.
 #include <iterator>
 
-#include "formats/health_render.hpp"
 #include "formats/report_markup.hpp"
 #include "formats/report_model.hpp"
+#include "protocols/profibus/health/health_render.hpp"
 
 namespace dpscope::report {
 

@@ -1,7 +1,7 @@
 // The JSON report (schema in README.md, stable): one object, the findings all listed.
-#include "formats/health_render.hpp"
 #include "formats/json.hpp"
 #include "formats/report_model.hpp"
+#include "protocols/profibus/health/health_render.hpp"
 
 namespace dpscope::report {
 

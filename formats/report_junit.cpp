@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <iterator>
 
-#include "formats/health_render.hpp"
 #include "formats/report_markup.hpp"
 #include "formats/report_model.hpp"
+#include "protocols/profibus/health/health_render.hpp"
 
 namespace dpscope::report {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <iterator>
 
-#include "decoder/text_encoding.hpp"
+#include "core/text_encoding.hpp"
 
 namespace dpscope::report {
 

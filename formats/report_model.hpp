@@ -7,9 +7,11 @@
 //   header and verdict, summary, one section per station, the bus section, then the findings in
 //   capture order.
 // - The per-station sections are StationSection objects, one class per channel kind: PcvSection
-//   (report_pcv_section.cpp), the cyclic parameter channel (PCV) of a DP slave, and Dpv1Section
-//   (report_dpv1_section.cpp), its DP-V1 parameter access, which follows the PCV section of the
-//   same slave; FcSection (report_fc_section.cpp) and Vlt2000Section (report_vlt2000_section.cpp),
+//   (protocols/profibus/pcv_report_section.cpp), the cyclic parameter channel (PCV) of a DP
+//   slave, and Dpv1Section (protocols/profibus/dpv1/dpv1_report_section.cpp), its DP-V1
+//   parameter access, which follows the PCV section of the same slave; FcSection
+//   (protocols/fc/fc_report_section.cpp) and Vlt2000Section
+//   (protocols/vlt2000/vlt2000_report_section.cpp),
 //   a drive address of an FC or VLT 2000 capture. Each section covers the finding kinds of its
 //   rules. What differs by bus (sections, kinds, bus findings, wording) is chosen by report_bus():
 //   a switch, or the bus's row of BusWording. Every format asks the section

@@ -8,9 +8,9 @@
 #include <map>
 #include <span>
 
-#include "decoder/finding.hpp"
-#include "decoder/parameter_channel_engine.hpp"
-#include "decoder/time.hpp"
+#include "core/finding.hpp"
+#include "core/parameter_channel_engine.hpp"
+#include "core/time.hpp"
 
 namespace dpscope {
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <type_traits>
 
-#include "decoder/fc_codes.hpp"
-#include "decoder/vlt2000_codes.hpp"
 #include "formats/describe.hpp"
+#include "protocols/fc/fc_codes.hpp"
+#include "protocols/vlt2000/vlt2000_codes.hpp"
 
 namespace dpscope {
 

@@ -11,12 +11,12 @@
 #include <span>
 #include <string>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/fc_tracker.hpp"
-#include "decoder/finding.hpp"
-#include "decoder/session_tracker.hpp"
-#include "decoder/vlt2000_tracker.hpp"
+#include "core/finding.hpp"
 #include "formats/output.hpp"
+#include "protocols/fc/fc_tracker.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/session_tracker.hpp"
+#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 namespace dpscope {
 

@@ -8,9 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "decoder/dp_payload.hpp"
 #include "formats/describe.hpp"
 #include "formats/renderer.hpp"
+#include "protocols/fc/fc_describe.hpp"
+#include "protocols/profibus/dp_payload.hpp"
+#include "protocols/vlt2000/vlt2000_describe.hpp"
 
 namespace dpscope {
 

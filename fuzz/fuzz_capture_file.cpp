@@ -27,15 +27,15 @@
 #include <string>
 
 #include "capture/telegram_source.hpp"
-#include "decoder/bus_decoder.hpp"
-#include "decoder/fc_decoder.hpp"
-#include "decoder/fc_tracker.hpp"
-#include "decoder/fdl.hpp"
-#include "decoder/session_tracker.hpp"
-#include "decoder/vlt2000_decoder.hpp"
-#include "decoder/vlt2000_telegram.hpp"
-#include "decoder/vlt2000_tracker.hpp"
 #include "fuzz/support/fuzz_input.hpp"
+#include "protocols/fc/fc_decoder.hpp"
+#include "protocols/fc/fc_tracker.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/fdl.hpp"
+#include "protocols/profibus/session_tracker.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_telegram.hpp"
+#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 namespace {
 

@@ -20,14 +20,14 @@
 #include <cstdint>
 #include <vector>
 
-#include "decoder/fc_codes.hpp"
-#include "decoder/fc_decoder.hpp"
-#include "decoder/fc_framing_rules.hpp"
-#include "decoder/fc_telegram.hpp"
 #include "fuzz/support/checksum_repair.hpp"
 #include "fuzz/support/decoded_check.hpp"
 #include "fuzz/support/fuzz_input.hpp"
-#include "simulator/fc_bus_model.hpp"
+#include "protocols/fc/fc_bus_model.hpp"
+#include "protocols/fc/fc_codes.hpp"
+#include "protocols/fc/fc_decoder.hpp"
+#include "protocols/fc/fc_framing_rules.hpp"
+#include "protocols/fc/fc_telegram.hpp"
 
 namespace {
 

@@ -7,8 +7,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "decoder/fc_framing_rules.hpp"
 #include "fuzz/support/framer_check.hpp"
+#include "protocols/fc/fc_framing_rules.hpp"
 
 namespace {
 

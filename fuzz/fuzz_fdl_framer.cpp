@@ -7,8 +7,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "decoder/fdl_framing_rules.hpp"
 #include "fuzz/support/framer_check.hpp"
+#include "protocols/profibus/fdl_framing_rules.hpp"
 
 namespace {
 

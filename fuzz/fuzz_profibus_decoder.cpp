@@ -1,7 +1,7 @@
 // Feeds ONE PROFIBUS telegram to a BusDecoder (FDL, the DP service, DP-V1, PROFIdrive, the PPO
 // split and the PCV), after a context the input's 2-byte header chooses, built with
-// decoder/telegram_builder.hpp for the stations the telegram names: a Chk_Cfg announcing a PPO
-// type, a Set_Prm enabling DP-V1, a PROFIdrive parameter request written on index 47, and the
+// protocols/profibus/telegram_builder.hpp for the stations the telegram names: a Chk_Cfg announcing
+// a PPO type, a Set_Prm enabling DP-V1, a PROFIdrive parameter request written on index 47, and the
 // request the telegram may answer (Data_Exchange, a DP-V1 Read, Slave_Diag, Get_Cfg, Set_Prm, or
 // the telegram itself). So a mutated response reaches the PPO/PCV split, the DP-V1 Read response
 // and the PROFIdrive response named after its request. A custom mutator repairs the FDL framing
@@ -24,16 +24,16 @@
 #include <string>
 #include <vector>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/dp_service.hpp"
-#include "decoder/dpv1.hpp"
-#include "decoder/fdl.hpp"
-#include "decoder/fdl_framing_rules.hpp"
-#include "decoder/profidrive.hpp"
-#include "decoder/telegram_builder.hpp"
 #include "fuzz/support/checksum_repair.hpp"
 #include "fuzz/support/decoded_check.hpp"
 #include "fuzz/support/fuzz_input.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/dp_service.hpp"
+#include "protocols/profibus/dpv1/dpv1.hpp"
+#include "protocols/profibus/dpv1/profidrive.hpp"
+#include "protocols/profibus/fdl.hpp"
+#include "protocols/profibus/fdl_framing_rules.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
 
 namespace {
 

@@ -17,18 +17,18 @@
 #include <string_view>
 #include <type_traits>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/fc_decoder.hpp"
-#include "decoder/fc_tracker.hpp"
-#include "decoder/session_tracker.hpp"
-#include "decoder/vlt2000_decoder.hpp"
-#include "decoder/vlt2000_tracker.hpp"
 #include "formats/output.hpp"
 #include "formats/renderer.hpp"
 #include "formats/summary.hpp"
 #include "fuzz/support/fuzz_input.hpp"
 #include "fuzz/support/json_check.hpp"
 #include "fuzz/support/telegram_script.hpp"
+#include "protocols/fc/fc_decoder.hpp"
+#include "protocols/fc/fc_tracker.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/session_tracker.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 namespace {
 

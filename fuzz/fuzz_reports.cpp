@@ -5,9 +5,9 @@
 // then either the conformance report (formats/report.hpp) is rendered in one input-chosen format
 // (text, JSON, Markdown, HTML, JUnit XML: their PCV, DP-V1, FC, VLT 2000 and bus-health sections)
 // with an input-chosen --fail-on, --allow-empty and --station filter, or, for PROFIBUS when the
-// input says so, the bus-health statistics (formats/stats.hpp) in one input-chosen StatsFormat
-// and the live table at an input-chosen width. One output a run (not all of them) keeps each run
-// fast; the corpus holds inputs for every one. JSON output must parse
+// input says so, the bus-health statistics (protocols/profibus/health/stats_render.hpp) in one
+// input-chosen StatsFormat and the live table at an input-chosen width. One output a run (not all
+// of them) keeps each run fast; the corpus holds inputs for every one. JSON output must parse
 // (fuzz/support/json_check.hpp); no output may hold a NUL.
 //
 // Input layout: byte 0 the report format (bits 0-2, mod 5), --fail-on (bits 3-4), --allow-empty
@@ -20,22 +20,22 @@
 #include <span>
 #include <string_view>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/bus_health.hpp"
-#include "decoder/fc_decoder.hpp"
-#include "decoder/fc_tracker.hpp"
-#include "decoder/session_tracker.hpp"
-#include "decoder/vlt2000_decoder.hpp"
-#include "decoder/vlt2000_tracker.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/output.hpp"
 #include "formats/report.hpp"
 #include "formats/report_timeline.hpp"
-#include "formats/stats.hpp"
 #include "formats/summary.hpp"
 #include "fuzz/support/fuzz_input.hpp"
 #include "fuzz/support/json_check.hpp"
 #include "fuzz/support/telegram_script.hpp"
+#include "protocols/fc/fc_decoder.hpp"
+#include "protocols/fc/fc_tracker.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/health/bus_health.hpp"
+#include "protocols/profibus/health/stats_render.hpp"
+#include "protocols/profibus/session_tracker.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 namespace {
 

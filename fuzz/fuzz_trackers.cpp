@@ -17,15 +17,15 @@
 #include <span>
 #include <type_traits>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/bus_health.hpp"
-#include "decoder/fc_decoder.hpp"
-#include "decoder/fc_tracker.hpp"
-#include "decoder/session_tracker.hpp"
-#include "decoder/vlt2000_decoder.hpp"
-#include "decoder/vlt2000_tracker.hpp"
 #include "fuzz/support/fuzz_input.hpp"
 #include "fuzz/support/telegram_script.hpp"
+#include "protocols/fc/fc_decoder.hpp"
+#include "protocols/fc/fc_tracker.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/health/bus_health.hpp"
+#include "protocols/profibus/session_tracker.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 namespace {
 

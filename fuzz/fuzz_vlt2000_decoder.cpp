@@ -19,14 +19,14 @@
 #include <cstdint>
 #include <vector>
 
-#include "decoder/vlt2000_codes.hpp"
-#include "decoder/vlt2000_decoder.hpp"
-#include "decoder/vlt2000_framing_rules.hpp"
-#include "decoder/vlt2000_telegram.hpp"
 #include "fuzz/support/checksum_repair.hpp"
 #include "fuzz/support/decoded_check.hpp"
 #include "fuzz/support/fuzz_input.hpp"
-#include "simulator/vlt2000_bus_model.hpp"
+#include "protocols/vlt2000/vlt2000_bus_model.hpp"
+#include "protocols/vlt2000/vlt2000_codes.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_framing_rules.hpp"
+#include "protocols/vlt2000/vlt2000_telegram.hpp"
 
 namespace {
 

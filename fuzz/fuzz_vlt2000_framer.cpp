@@ -7,8 +7,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "decoder/vlt2000_framing_rules.hpp"
 #include "fuzz/support/framer_check.hpp"
+#include "protocols/vlt2000/vlt2000_framing_rules.hpp"
 
 namespace {
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <string_view>
 
-#include "decoder/finding.hpp"
-#include "decoder/telegram.hpp"
+#include "core/finding.hpp"
+#include "core/telegram.hpp"
 
 namespace dpscope {
 

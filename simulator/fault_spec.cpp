@@ -6,7 +6,7 @@
 #include <charconv>
 #include <cstdlib>
 
-#include "decoder/ppo.hpp"
+#include "protocols/profibus/ppo.hpp"
 
 namespace dpscope {
 

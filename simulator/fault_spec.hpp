@@ -9,8 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "decoder/code_tables.hpp"
-#include "decoder/result.hpp"
+#include "core/code_tables.hpp"
+#include "core/result.hpp"
 #include "simulator/fault_kind.hpp"
 
 namespace dpscope {

@@ -1,14 +1,14 @@
 // The simulated session (simulator/simulator.hpp): the options resolved per bus, the seeded
 // random numbers, the bus clock and the queue of telegrams, the cycles, the FC and VLT 2000 bus
 // models' view of the session, and the faults armed per cycle and taken. The PROFIBUS DP
-// telegrams: simulator/dp_bus_model.cpp; the session's length: simulator/session_span.cpp.
+// telegrams: protocols/profibus/dp_bus_model.cpp; the session's length: simulator/session_span.cpp.
 #include "simulator/simulator.hpp"
 
 #include <algorithm>
 #include <limits>
 
-#include "decoder/dp_service.hpp"
-#include "decoder/telegram_builder.hpp"
+#include "protocols/profibus/dp_service.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
 #include "simulator/session_defaults.hpp"
 
 namespace dpscope {

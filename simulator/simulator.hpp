@@ -4,17 +4,17 @@
 // Seeded and reproducible: the same options give the same bytes on every platform.
 //
 // A slave given as DP-V1 also gets PROFIdrive parameter access over MSAC_C1 after the cyclic
-// exchanges of each cycle (simulator/dpv1_parameter_model.hpp).
+// exchanges of each cycle (protocols/profibus/dpv1/dpv1_parameter_model.hpp).
 //
 // Faults can be injected: link-level (bad FCS, garbage bytes, a truncated telegram, a missing
 // response, a retry) and every handshake fault the session tracker detects.
 //
 // The parts: simulator/fault_kind.hpp (the fault catalogue), simulator/fault_spec.hpp (what the
-// user asks for: `--slave`, `--fault`), simulator/parameter_channel_model.hpp (the PCV of each
-// slave, both ends), and here the DP bus model that runs them: timing at the baud rate, FDL
+// user asks for: `--slave`, `--fault`), protocols/profibus/parameter_channel_model.hpp (the PCV of
+// each slave, both ends), and here the DP bus model that runs them: timing at the baud rate, FDL
 // telegrams, start-up, the cycle, token and gap polls, process data, and the link faults
 // (simulator/simulator.cpp: the session, its clock, cycles and faults armed;
-// simulator/dp_bus_model.cpp: the DP telegrams; simulator/session_span.cpp: its length).
+// protocols/profibus/dp_bus_model.cpp: the DP telegrams; simulator/session_span.cpp: its length).
 #pragma once
 
 #include <cstdint>
@@ -25,20 +25,20 @@
 #include <string>
 #include <vector>
 
-#include "decoder/ppo.hpp"
-#include "decoder/telegram.hpp"
-#include "simulator/dpv1_parameter_model.hpp"
+#include "core/telegram.hpp"
+#include "protocols/fc/fc_bus_model.hpp"
+#include "protocols/profibus/dpv1/dpv1_parameter_model.hpp"
+#include "protocols/profibus/parameter_channel_model.hpp"
+#include "protocols/profibus/ppo.hpp"
+#include "protocols/vlt2000/vlt2000_bus_model.hpp"
 #include "simulator/fault_spec.hpp"
-#include "simulator/fc_bus_model.hpp"
-#include "simulator/parameter_channel_model.hpp"
-#include "simulator/vlt2000_bus_model.hpp"
 
 namespace dpscope {
 
 struct SimulatorOptions {
     // The bus: PROFIBUS DP (slaves, start-up, Data_Exchange), the Danfoss FC protocol (drives
-    // polled by a master, simulator/fc_bus_model.hpp; no start-up, no token) or the VLT 2000
-    // serial telegram (simulator/vlt2000_bus_model.hpp, likewise).
+    // polled by a master, protocols/fc/fc_bus_model.hpp; no start-up, no token) or the VLT 2000
+    // serial telegram (protocols/vlt2000/vlt2000_bus_model.hpp, likewise).
     Protocol bus = Protocol::ProfibusDp;
     std::uint64_t seed = 1;
     std::uint32_t baud = 1'500'000;  // 0: 1500000 on PROFIBUS, 9600 on an FC or VLT 2000 bus

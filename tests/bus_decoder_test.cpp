@@ -1,7 +1,7 @@
 // BusDecoder: responses named after their request, unpaired responses, unanswered requests, PPO
 // layout from configuration / option / length, dialects and profiles per station, PCV/PCD split,
 // station configuration and problems in the service data.
-#include "decoder/bus_decoder.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "decoder/telegram_builder.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/bus_health.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/health/bus_health.hpp"
 #include "simulator/simulator.hpp"
 
 namespace dpscope {

@@ -1,6 +1,6 @@
 // Bus health: hand-built telegram sequences decoded through BusDecoder and fed to the tracker,
 // with exact counters asserted for every rule of docs/bus-health.md.
-#include "decoder/bus_health.hpp"
+#include "protocols/profibus/health/bus_health.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <optional>
 #include <vector>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/telegram_builder.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
 #include "simulator/simulator.hpp"
 
 namespace dpscope {

@@ -10,8 +10,8 @@
 
 #include "capture/capture_writer.hpp"
 #include "capture/telegram_source.hpp"
-#include "decoder/fc_framing_rules.hpp"
-#include "decoder/vlt2000_framing_rules.hpp"
+#include "protocols/fc/fc_framing_rules.hpp"
+#include "protocols/vlt2000/vlt2000_framing_rules.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

@@ -1,6 +1,6 @@
 // ByteReader: big-endian reads, bounds checks that leave the cursor alone, offsets and
 // sub-readers.
-#include "decoder/byte_reader.hpp"
+#include "core/byte_reader.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <set>
 
 #include "capture/pcap_source.hpp"
-#include "decoder/fdl_framing_rules.hpp"
+#include "protocols/profibus/fdl_framing_rules.hpp"
 
 namespace dpscope {
 namespace {

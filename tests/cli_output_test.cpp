@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "decoder/text_encoding.hpp"
+#include "core/text_encoding.hpp"
 #include "tests/json_parser.hpp"
 #include "tests/pty_support.hpp"
 #include "tests/test_support.hpp"

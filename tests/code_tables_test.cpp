@@ -2,7 +2,7 @@
 // dialects (seed 000 VLT 5000, seed 002 GE AF-600, docs/protocol/parameter-channel.md), RC 7 error
 // numbers, the pairing rules and the worked examples (same file, "Pairing requests with
 // responses", "Worked examples").
-#include "decoder/code_tables.hpp"
+#include "core/code_tables.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "decoder/fc_codes.hpp"
+#include "protocols/fc/fc_codes.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <string>
 
-#include "decoder/finding.hpp"
-#include "decoder/health_thresholds.hpp"
+#include "core/finding.hpp"
+#include "protocols/profibus/health/health_thresholds.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

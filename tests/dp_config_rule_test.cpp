@@ -1,13 +1,13 @@
 // The PROFIBUS DP configuration rule on decoded telegrams, apart from the session tracker: the
 // Data_Exchange lengths against the layout Chk_Cfg or Get_Cfg announced (config_mismatch).
-#include "decoder/dp_config_rule.hpp"
+#include "protocols/profibus/dp_config_rule.hpp"
 
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/telegram_builder.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
 
 namespace dpscope {
 namespace {

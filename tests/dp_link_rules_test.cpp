@@ -1,13 +1,13 @@
 // The PROFIBUS link rules on decoded telegrams, apart from the session tracker: fcs_error,
 // malformed_telegram, fdl_retry (the frame count bit) and fdl_no_response.
-#include "decoder/dp_link_rules.hpp"
+#include "protocols/profibus/dp_link_rules.hpp"
 
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/telegram_builder.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
 
 namespace dpscope {
 namespace {

@@ -1,6 +1,6 @@
 // DP management payloads: Slave_Diag with extended diagnosis, Set_Prm (DP-V0 and DP-V1),
 // Chk_Cfg identifiers (compact and special format), Global_Control and Set_Slave_Add.
-#include "decoder/dp_payload.hpp"
+#include "protocols/profibus/dp_payload.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // DP services: requests classified from the telegram, responses without their request classified
 // from their SAPs, and the SAP and service names.
-#include "decoder/dp_service.hpp"
+#include "protocols/profibus/dp_service.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "decoder/telegram_builder.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

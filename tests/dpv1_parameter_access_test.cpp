@@ -3,16 +3,16 @@
 // BusDecoder and tracked by SessionTracker. A clean session with single and multi-parameter
 // reads, a change, arrays with subindices, state-conflict polls and link-level polls has no
 // finding; each dpv1_* rule is shown with its exact findings.
-#include "decoder/dpv1_parameter_access.hpp"
+#include "protocols/profibus/dpv1/dpv1_parameter_access.hpp"
 
 #include <gtest/gtest.h>
 
 #include <initializer_list>
 #include <vector>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/session_tracker.hpp"
-#include "decoder/telegram_builder.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/session_tracker.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
 
 namespace dpscope {
 namespace {

@@ -1,7 +1,7 @@
 // DP-V1 PDUs: function numbers and their names, Read/Write requests and responses, negative
 // responses split into Error_Decode, class, code and Error_Code_2, Initiate, Abort, Alarm_Ack,
 // Idle, Data_Transport; cut-short PDUs give problems at their offsets and never crash.
-#include "decoder/dpv1.hpp"
+#include "protocols/profibus/dpv1/dpv1.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,16 +2,16 @@
 // formats, every block, the FC PKE layout, text blocks, fault codes), its request/response
 // inference, the code tables, and truncated and corrupted telegrams. The worked examples are
 // those of ../shared/protocol.md §4.6 and §5.5 (docs/protocol/fc-protocol.md).
-#include "decoder/fc_decoder.hpp"
+#include "protocols/fc/fc_decoder.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "decoder/fc_codes.hpp"
-#include "decoder/fc_framing_rules.hpp"
-#include "decoder/stream_framer.hpp"
+#include "core/stream_framer.hpp"
+#include "protocols/fc/fc_codes.hpp"
+#include "protocols/fc/fc_framing_rules.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

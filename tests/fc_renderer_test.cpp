@@ -9,10 +9,10 @@
 #include <string_view>
 #include <vector>
 
-#include "decoder/fc_decoder.hpp"
-#include "decoder/fc_framing_rules.hpp"
 #include "formats/renderer.hpp"
 #include "formats/summary.hpp"
+#include "protocols/fc/fc_decoder.hpp"
+#include "protocols/fc/fc_framing_rules.hpp"
 #include "tests/json_parser.hpp"
 #include "tests/test_support.hpp"
 

@@ -10,9 +10,9 @@
 
 #include "capture/capture_protocol.hpp"
 #include "capture/telegram_source.hpp"
-#include "decoder/fc_codes.hpp"
-#include "decoder/fc_decoder.hpp"
-#include "decoder/fc_framing_rules.hpp"
+#include "protocols/fc/fc_codes.hpp"
+#include "protocols/fc/fc_decoder.hpp"
+#include "protocols/fc/fc_framing_rules.hpp"
 #include "simulator/simulator.hpp"
 #include "tests/test_support.hpp"
 

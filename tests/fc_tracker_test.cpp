@@ -1,15 +1,15 @@
-// The FC tracker (decoder/fc_tracker.hpp) on hand-made FC telegrams decoded by FcDecoder: clean
-// exchanges with no findings, latency and the per-address counts, broadcasts, each rule with its
-// frames and message, time-outs at the end, bounded memory. (One scenario per FC fault, exactly
+// The FC tracker (protocols/fc/fc_tracker.hpp) on hand-made FC telegrams decoded by FcDecoder:
+// clean exchanges with no findings, latency and the per-address counts, broadcasts, each rule with
+// its frames and message, time-outs at the end, bounded memory. (One scenario per FC fault, exactly
 // its findings: SessionTrackerTest.FcScenariosGiveExactlyTheExpectedFindings.)
-#include "decoder/fc_tracker.hpp"
+#include "protocols/fc/fc_tracker.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "decoder/fc_decoder.hpp"
+#include "protocols/fc/fc_decoder.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

@@ -1,12 +1,12 @@
 // FDL framing rules: which bytes start a telegram, the verdict on every frame type (whole, cut off,
 // malformed), the FCS rule for SD1/SD3 and the words for skipped bytes.
-#include "decoder/fdl_framing_rules.hpp"
+#include "protocols/profibus/fdl_framing_rules.hpp"
 
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "decoder/fdl.hpp"
+#include "protocols/profibus/fdl.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

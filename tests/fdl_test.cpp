@@ -1,5 +1,5 @@
 // FDL layer: every frame type valid, truncated and corrupted; frame control; address extension.
-#include "decoder/fdl.hpp"
+#include "protocols/profibus/fdl.hpp"
 
 #include <gtest/gtest.h>
 

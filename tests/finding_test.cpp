@@ -1,6 +1,6 @@
 // The finding catalogue: one row per kind, names and default severities fixed (they are in every
 // output format), every kind in exactly one component.
-#include "decoder/finding.hpp"
+#include "core/finding.hpp"
 
 #include <gtest/gtest.h>
 

@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "decoder/fdl.hpp"
-#include "decoder/fdl_framing_rules.hpp"
-#include "decoder/stream_framer.hpp"
-#include "decoder/telegram_builder.hpp"
+#include "core/stream_framer.hpp"
+#include "protocols/profibus/fdl.hpp"
+#include "protocols/profibus/fdl_framing_rules.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
 
 namespace dpscope {
 namespace {

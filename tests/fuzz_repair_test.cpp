@@ -7,16 +7,16 @@
 #include <random>
 #include <vector>
 
-#include "decoder/fc_decoder.hpp"
-#include "decoder/fc_framing_rules.hpp"
-#include "decoder/fdl.hpp"
-#include "decoder/fdl_framing_rules.hpp"
-#include "decoder/telegram_builder.hpp"
-#include "decoder/vlt2000_decoder.hpp"
-#include "decoder/vlt2000_framing_rules.hpp"
 #include "fuzz/support/checksum_repair.hpp"
-#include "simulator/fc_bus_model.hpp"
-#include "simulator/vlt2000_bus_model.hpp"
+#include "protocols/fc/fc_bus_model.hpp"
+#include "protocols/fc/fc_decoder.hpp"
+#include "protocols/fc/fc_framing_rules.hpp"
+#include "protocols/profibus/fdl.hpp"
+#include "protocols/profibus/fdl_framing_rules.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
+#include "protocols/vlt2000/vlt2000_bus_model.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_framing_rules.hpp"
 
 namespace dpscope {
 namespace {

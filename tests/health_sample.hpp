@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "decoder/bus_health.hpp"
+#include "protocols/profibus/health/bus_health.hpp"
 
 namespace dpscope::test {
 

@@ -1,6 +1,6 @@
 // The bus-health threshold catalogue: defaults, ranges, the --threshold text and the settings
 // file reader (comments, sections, errors naming file:line).
-#include "decoder/health_thresholds.hpp"
+#include "protocols/profibus/health/health_thresholds.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The parameter-channel engine on its own: samples fed by hand, no FDL bytes. A pair, a stacked
 // request, an orphan, a time-out, the spontaneous-message handshake with and without an SPM bit,
 // and the one-cycle lag as a policy.
-#include "decoder/parameter_channel_engine.hpp"
+#include "core/parameter_channel_engine.hpp"
 
 #include <gtest/gtest.h>
 

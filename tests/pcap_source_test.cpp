@@ -14,7 +14,7 @@
 
 #include "capture/capture_writer.hpp"
 #include "capture/telegram_source.hpp"
-#include "decoder/fdl_framing_rules.hpp"
+#include "protocols/profibus/fdl_framing_rules.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

@@ -1,6 +1,6 @@
 // Process data words: the Danfoss control and status word bit tables for the PROFIdrive profile
 // and the FC profile, and reference scaling (docs/protocol/process-data.md).
-#include "decoder/pcd.hpp"
+#include "protocols/profibus/pcd.hpp"
 
 #include <gtest/gtest.h>
 

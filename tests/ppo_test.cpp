@@ -1,6 +1,6 @@
 // PPO types from configuration identifiers, from the Data_Exchange length and by number
 // (docs/protocol/ppo.md, "Identifier bytes per PPO", "Inferring the PPO type").
-#include "decoder/ppo.hpp"
+#include "protocols/profibus/ppo.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The problem catalogue: one row per kind, names fixed (they are in jsonl, csv and the summary),
 // every kind in exactly one component.
-#include "decoder/problem.hpp"
+#include "core/problem.hpp"
 
 #include <gtest/gtest.h>
 

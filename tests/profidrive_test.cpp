@@ -2,7 +2,7 @@
 // addresses, change requests with value blocks and pad bytes, positive and negative responses
 // with 0x44 error blocks and 0x40 zero blocks, every value format as text and as numbers, error
 // texts of both dialects, the worked examples of the protocol notes, cut-short and corrupted data.
-#include "decoder/profidrive.hpp"
+#include "protocols/profibus/dpv1/profidrive.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

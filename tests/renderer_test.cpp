@@ -12,9 +12,9 @@
 #include <string_view>
 #include <vector>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/telegram_builder.hpp"
 #include "formats/json.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
 #include "simulator/simulator.hpp"
 #include "tests/json_parser.hpp"
 #include "tests/test_support.hpp"

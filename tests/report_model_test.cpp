@@ -9,10 +9,10 @@
 #include <memory>
 #include <string>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/session_tracker.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/summary.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/session_tracker.hpp"
 #include "tests/json_parser.hpp"
 #include "tests/test_support.hpp"
 

@@ -1,4 +1,4 @@
-#include "decoder/result.hpp"
+#include "core/result.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // multi-slave session with none, and hand-built telegram sequences for the cyclic rules: the
 // one-cycle lag, stale repeats, RC 7 with PNU 0, identical consecutive requests, spontaneous
 // messages, time-outs and latency.
-#include "decoder/session_tracker.hpp"
+#include "protocols/profibus/session_tracker.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -11,12 +11,12 @@
 #include <set>
 #include <vector>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/fc_decoder.hpp"
-#include "decoder/fc_tracker.hpp"
-#include "decoder/telegram_builder.hpp"
-#include "decoder/vlt2000_decoder.hpp"
-#include "decoder/vlt2000_tracker.hpp"
+#include "protocols/fc/fc_decoder.hpp"
+#include "protocols/fc/fc_tracker.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_tracker.hpp"
 #include "simulator/simulator.hpp"
 #include "tests/test_support.hpp"
 

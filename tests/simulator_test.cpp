@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "capture/telegram_source.hpp"
-#include "decoder/bus_decoder.hpp"
-#include "decoder/dp_payload.hpp"
-#include "decoder/profidrive.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/dp_payload.hpp"
+#include "protocols/profibus/dpv1/profidrive.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

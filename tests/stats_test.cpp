@@ -1,9 +1,9 @@
-// `dpscope stats` renderers (formats/stats.hpp, formats/health_render.hpp) over a BusHealth built
-// by hand with known numbers (tests/health_sample.hpp): every format's content, escaping of
-// hostile text, the JSON schema through a strict parser, the HTML through an XML parser, the CSV
-// through an RFC 4180 reader; an empty capture, one without times, one without a baud rate; the
-// live table and its truncation.
-#include "formats/stats.hpp"
+// `dpscope stats` renderers (protocols/profibus/health/stats_render.hpp,
+// protocols/profibus/health/health_render.hpp) over a BusHealth built by hand with known numbers
+// (tests/health_sample.hpp): every format's content, escaping of hostile text, the JSON schema
+// through a strict parser, the HTML through an XML parser, the CSV through an RFC 4180 reader; an
+// empty capture, one without times, one without a baud rate; the live table and its truncation.
+#include "protocols/profibus/health/stats_render.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "formats/health_render.hpp"
+#include "protocols/profibus/health/health_render.hpp"
 #include "tests/health_sample.hpp"
 #include "tests/json_parser.hpp"
 #include "tests/test_support.hpp"

@@ -1,13 +1,13 @@
 // StreamFramer: chunked input of every size, resynchronisation after garbage, the FCS rules for
 // SD1/SD2/SD3, gaps, the end of input and the counters; framing by another protocol's rules.
-#include "decoder/stream_framer.hpp"
+#include "core/stream_framer.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "decoder/fdl_framing_rules.hpp"
+#include "protocols/profibus/fdl_framing_rules.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

@@ -9,15 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/fc_decoder.hpp"
-#include "decoder/fc_tracker.hpp"
-#include "decoder/telegram_builder.hpp"
-#include "decoder/vlt2000_decoder.hpp"
-#include "decoder/vlt2000_tracker.hpp"
-#include "simulator/fc_bus_model.hpp"
+#include "protocols/fc/fc_bus_model.hpp"
+#include "protocols/fc/fc_decoder.hpp"
+#include "protocols/fc/fc_tracker.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
+#include "protocols/vlt2000/vlt2000_bus_model.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_tracker.hpp"
 #include "simulator/simulator.hpp"
-#include "simulator/vlt2000_bus_model.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

@@ -1,13 +1,13 @@
 // Telegram builder: frame type chosen by data length, FCS, round trips through parse_fdl and
 // the FDL framing rules, and the PCV byte layout.
-#include "decoder/telegram_builder.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "decoder/fdl_framing_rules.hpp"
+#include "protocols/profibus/fdl_framing_rules.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

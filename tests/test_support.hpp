@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "decoder/byte_reader.hpp"
+#include "core/byte_reader.hpp"
 
 namespace dpscope {
 class Output;
@@ -22,7 +22,7 @@ namespace dpscope::test {
 std::vector<std::uint8_t> hex(std::string_view text);
 
 // The repository's root directory and the dpscope executable built with the tests.
-// Danfoss FC protocol telegrams, built by hand with their BCC (decoder/fc_framing_rules.hpp):
+// Danfoss FC protocol telegrams, built by hand with their BCC (protocols/fc/fc_framing_rules.hpp):
 // the address byte in the 1-126 format (0x80 | address; address 0: the broadcast 0x80).
 std::vector<std::uint8_t> fc_process(std::uint8_t address, std::uint16_t pcd1 = 0x047F,
                                      std::uint16_t pcd2 = 0x2000);

@@ -1,6 +1,6 @@
 // Text from outside (file names, settings lines) made valid UTF-8 without control characters,
 // and the writers that put such text into UTF-8 outputs (JSON, XML/HTML, Markdown).
-#include "decoder/text_encoding.hpp"
+#include "core/text_encoding.hpp"
 
 #include <gtest/gtest.h>
 

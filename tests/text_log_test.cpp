@@ -13,7 +13,7 @@
 #include "capture/bus_tag.hpp"
 #include "capture/input_format.hpp"
 #include "capture/telegram_source.hpp"
-#include "decoder/vlt2000_telegram.hpp"
+#include "protocols/vlt2000/vlt2000_telegram.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

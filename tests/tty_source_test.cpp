@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "capture/serial_port.hpp"
-#include "decoder/fdl_framing_rules.hpp"
+#include "protocols/profibus/fdl_framing_rules.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {

@@ -3,16 +3,16 @@
 // command/reply inference, the code tables, truncated and corrupted telegrams, and the framing
 // rules in a byte stream. The worked examples are those of ../shared/protocol.md §7.5 and the
 // seed's value example (docs/protocol/vlt2000.md).
-#include "decoder/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "decoder/stream_framer.hpp"
-#include "decoder/vlt2000_codes.hpp"
-#include "decoder/vlt2000_framing_rules.hpp"
+#include "core/stream_framer.hpp"
+#include "protocols/vlt2000/vlt2000_codes.hpp"
+#include "protocols/vlt2000/vlt2000_framing_rules.hpp"
 
 namespace dpscope {
 namespace {

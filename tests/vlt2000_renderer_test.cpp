@@ -9,9 +9,9 @@
 #include <string_view>
 #include <vector>
 
-#include "decoder/vlt2000_decoder.hpp"
 #include "formats/renderer.hpp"
 #include "formats/summary.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
 #include "tests/json_parser.hpp"
 #include "tests/test_support.hpp"
 

@@ -11,8 +11,8 @@
 
 #include "capture/capture_protocol.hpp"
 #include "capture/telegram_source.hpp"
-#include "decoder/vlt2000_codes.hpp"
-#include "decoder/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_codes.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
 #include "simulator/simulator.hpp"
 #include "tests/test_support.hpp"
 

@@ -1,8 +1,8 @@
-// The VLT 2000 tracker (decoder/vlt2000_tracker.hpp) on hand-made 22-character telegrams decoded
-// by Vlt2000Decoder: clean exchanges with their latency and per-address counts, broadcasts, each
-// rule with its frames, parameter and message, time-outs by the next telegram, by --timeout-ms
+// The VLT 2000 tracker (protocols/vlt2000/vlt2000_tracker.hpp) on hand-made 22-character telegrams
+// decoded by Vlt2000Decoder: clean exchanges with their latency and per-address counts, broadcasts,
+// each rule with its frames, parameter and message, time-outs by the next telegram, by --timeout-ms
 // and at the end, the capture's first telegram, damaged telegrams, bounded memory.
-#include "decoder/vlt2000_tracker.hpp"
+#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "decoder/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
 
 namespace dpscope {
 namespace {

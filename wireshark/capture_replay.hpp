@@ -19,14 +19,14 @@
 #include <unordered_map>
 #include <vector>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/fc_decoder.hpp"
-#include "decoder/fc_tracker.hpp"
-#include "decoder/finding.hpp"
-#include "decoder/session_tracker.hpp"
-#include "decoder/telegram.hpp"
-#include "decoder/vlt2000_decoder.hpp"
-#include "decoder/vlt2000_tracker.hpp"
+#include "core/finding.hpp"
+#include "core/telegram.hpp"
+#include "protocols/fc/fc_decoder.hpp"
+#include "protocols/fc/fc_tracker.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/session_tracker.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 namespace dpscope {
 

@@ -23,12 +23,12 @@
 
 #include "capture/bus_tag.hpp"
 #include "formats/describe.hpp"
+#include "protocols/fc/fc_tree.hpp"
+#include "protocols/profibus/profibus_tree.hpp"
+#include "protocols/vlt2000/vlt2000_tree.hpp"
 #include "wireshark/capture_replay.hpp"
 #include "wireshark/dissector_fields.hpp"
-#include "wireshark/fc_tree.hpp"
-#include "wireshark/profibus_tree.hpp"
 #include "wireshark/tree.hpp"
-#include "wireshark/vlt2000_tree.hpp"
 
 extern "C" {
 WS_DLL_PUBLIC_DEF extern const gchar plugin_version[];

@@ -11,8 +11,8 @@
 #include <epan/expert.h>
 #include <epan/proto.h>
 
-#include "decoder/finding.hpp"
-#include "decoder/problem.hpp"
+#include "core/finding.hpp"
+#include "core/problem.hpp"
 
 // Every field: X(id, name, abbrev (the display-filter name), type, display, blurb). Its id is
 // hf_<id>, registered from this table.

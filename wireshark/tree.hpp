@@ -13,8 +13,8 @@
 #include <string>
 #include <utility>
 
-#include "decoder/pcd.hpp"
 #include "formats/describe.hpp"
+#include "protocols/profibus/pcd.hpp"
 #include "wireshark/dissector_fields.hpp"
 
 namespace dpscope::wireshark {

@@ -38,10 +38,10 @@ inline void end_fdl_telegram(std::uint8_t* data, std::size_t first, std::size_t 
 
 }  // namespace repair_detail
 
-// PROFIBUS FDL (decoder/fdl.hpp). By the first byte: SD2 0x68 gets LE = LEr = the data length
-// (size - 6, brought into 4..249), the repeated SD, the FCS (sum of DA..DU mod 256) and ED 0x16;
-// SD1 0x10 is made 6 bytes and SD3 0xA2 14, each with its FCS and ED. SD4, SC and a telegram with
-// no start delimiter are left as they are.
+// PROFIBUS FDL (protocols/profibus/fdl.hpp). By the first byte: SD2 0x68 gets LE = LEr = the data
+// length (size - 6, brought into 4..249), the repeated SD, the FCS (sum of DA..DU mod 256) and ED
+// 0x16; SD1 0x10 is made 6 bytes and SD3 0xA2 14, each with its FCS and ED. SD4, SC and a telegram
+// with no start delimiter are left as they are.
 inline std::size_t repair_fdl_telegram(std::uint8_t* data, std::size_t size,
                                        std::size_t max_size) noexcept {
     if (size == 0) return size;
@@ -70,7 +70,7 @@ inline std::size_t repair_fdl_telegram(std::uint8_t* data, std::size_t size,
     return size;
 }
 
-// Danfoss FC (decoder/fc_telegram.hpp): STX 0x02, LGE = size - 2 brought to a block length (6,
+// Danfoss FC (protocols/fc/fc_telegram.hpp): STX 0x02, LGE = size - 2 brought to a block length (6,
 // or 10..255: a size of 8 or 12..257; 9..11 bytes become 8), and the BCC (XOR of STX..the last
 // data byte). The address byte is left as it is.
 inline std::size_t repair_fc_telegram(std::uint8_t* data, std::size_t size,
@@ -88,9 +88,9 @@ inline std::size_t repair_fc_telegram(std::uint8_t* data, std::size_t size,
     return size;
 }
 
-// VLT 2000 (decoder/vlt2000_telegram.hpp): 22 characters, '<' first, '>' last, and the checksum
-// (offsets 19-20: the last two decimal digits of the sum of offsets 1..18) unless it reads "??"
-// (not checked). A telegram cut short is padded with '0'; the fields between are left as they
+// VLT 2000 (protocols/vlt2000/vlt2000_telegram.hpp): 22 characters, '<' first, '>' last, and the
+// checksum (offsets 19-20: the last two decimal digits of the sum of offsets 1..18) unless it reads
+// "??" (not checked). A telegram cut short is padded with '0'; the fields between are left as they
 // are, printable or not.
 inline std::size_t repair_vlt2000_telegram(std::uint8_t* data, std::size_t size,
                                            std::size_t max_size) noexcept {

@@ -12,10 +12,10 @@
 #include <cstdlib>
 #include <functional>
 
-#include "decoder/framing_rules.hpp"
-#include "decoder/problem.hpp"
-#include "decoder/telegram.hpp"
-#include "decoder/time.hpp"
+#include "core/framing_rules.hpp"
+#include "core/problem.hpp"
+#include "core/telegram.hpp"
+#include "core/time.hpp"
 
 namespace dpscope::fuzz {
 

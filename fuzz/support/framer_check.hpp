@@ -22,8 +22,8 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "decoder/framing_rules.hpp"
-#include "decoder/stream_framer.hpp"
+#include "core/framing_rules.hpp"
+#include "core/stream_framer.hpp"
 #include "fuzz/support/fuzz_input.hpp"
 
 namespace dpscope::fuzz {

@@ -1,9 +1,9 @@
 // The event script of the structure-aware targets (fuzz_trackers, fuzz_renderers, fuzz_reports):
 // the input is read as a sequence of events from which well-formed telegrams are BUILT (with
-// decoder/telegram_builder.hpp and the simulator's FC and VLT 2000 builders), so that every
-// mutation changes what happens on the bus (a station, a code, a PNU, a time step) rather than a
-// checksum. A few events damage a telegram on purpose (a flipped byte, a cut, garbage), so the
-// trackers' link rules are reached too.
+// protocols/profibus/telegram_builder.hpp and the simulator's FC and VLT 2000 builders), so that
+// every mutation changes what happens on the bus (a station, a code, a PNU, a time step) rather
+// than a checksum. A few events damage a telegram on purpose (a flipped byte, a cut, garbage), so
+// the trackers' link rules are reached too.
 //
 // Input layout (FuzzInput; past the end every choice is 0):
 //   byte 0  bus: 0 PROFIBUS DP, 1 Danfoss FC, 2 VLT 2000 (mod 3)
@@ -25,20 +25,20 @@
 #include <string_view>
 #include <vector>
 
-#include "decoder/bus_decoder.hpp"
-#include "decoder/code_tables.hpp"
-#include "decoder/dp_service.hpp"
-#include "decoder/fc_decoder.hpp"
-#include "decoder/fc_tracker.hpp"
-#include "decoder/fdl.hpp"
-#include "decoder/session_tracker.hpp"
-#include "decoder/telegram_builder.hpp"
-#include "decoder/time.hpp"
-#include "decoder/vlt2000_decoder.hpp"
-#include "decoder/vlt2000_tracker.hpp"
+#include "core/code_tables.hpp"
+#include "core/time.hpp"
 #include "fuzz/support/fuzz_input.hpp"
-#include "simulator/fc_bus_model.hpp"
-#include "simulator/vlt2000_bus_model.hpp"
+#include "protocols/fc/fc_bus_model.hpp"
+#include "protocols/fc/fc_decoder.hpp"
+#include "protocols/fc/fc_tracker.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/dp_service.hpp"
+#include "protocols/profibus/fdl.hpp"
+#include "protocols/profibus/session_tracker.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
+#include "protocols/vlt2000/vlt2000_bus_model.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 namespace dpscope::fuzz {
 

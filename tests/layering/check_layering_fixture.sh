@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Proves that check_layering.sh catches violations: run on fixture/ (a tree with forbidden
-# includes, allowed ones, a commented-out one and an unusual spelling), it must exit 1 and name
+# includes, allowed ones, a commented-out one and an unusual spelling; a protocol folder whose
+# files take their layer from the end of their names), it must exit 1 and name
 # exactly the violations listed in fixture.expected, file, line and include.
 # Usage: check_layering_fixture.sh
 set -uo pipefail

@@ -1,0 +1,326 @@
+// The bus-health tracker (protocols/profibus/health/bus_health.hpp) fed one telegram at a time: the
+// segment's counts and times, the request waiting for its reply and the answer to it, frame counts
+// and repeats, damaged telegrams, illegal and negative answers, diagnosis; and the end of the
+// capture. The stations' states, the masters and the verdicts:
+// protocols/profibus/health/bus_health_stations.cpp,
+// protocols/profibus/health/bus_health_masters.cpp and
+// protocols/profibus/health/bus_health_verdicts.cpp.
+#include <algorithm>
+#include <memory>
+
+#include "protocols/profibus/health/bus_health_state.hpp"
+
+namespace dpscope {
+
+namespace {
+
+bool is_damaged(const DecodedTelegram& t) {
+    if (t.dp.fdl.fcs_ok && t.problems().empty()) return false;
+    if (!t.dp.fdl.fcs_ok) return true;
+    for (const Problem& p : t.problems())
+        if (problem_severity(p.kind) == Severity::Error) return true;
+    return false;
+}
+
+bool is_data_frame(FrameType type) { return type == FrameType::Sd2 || type == FrameType::Sd3; }
+
+bool status_is_refusal(std::uint8_t status) {
+    return status == static_cast<std::uint8_t>(FdlStatus::UserError) ||
+           status == static_cast<std::uint8_t>(FdlStatus::NoResource) ||
+           status == static_cast<std::uint8_t>(FdlStatus::NoService);
+}
+
+// The SRD statuses that carry (or stand for) response data: DL, NR, DH, RDL, RDH.
+bool status_is_srd_data(std::uint8_t status) {
+    switch (static_cast<FdlStatus>(status)) {
+        case FdlStatus::DataLow:
+        case FdlStatus::NoResponseData:
+        case FdlStatus::DataHigh:
+        case FdlStatus::NotReceivedDataLow:
+        case FdlStatus::NotReceivedDataHigh: return true;
+        default: return false;
+    }
+}
+
+int negative_index(std::uint8_t status) {
+    switch (static_cast<FdlStatus>(status)) {
+        case FdlStatus::UserError: return static_cast<int>(NegativeAnswer::UE);
+        case FdlStatus::NoResource: return static_cast<int>(NegativeAnswer::RR);
+        case FdlStatus::NoService: return static_cast<int>(NegativeAnswer::RS);
+        case FdlStatus::NoResponseData: return static_cast<int>(NegativeAnswer::NR);
+        case FdlStatus::DataHigh: return static_cast<int>(NegativeAnswer::DH);
+        case FdlStatus::NotReceivedDataHigh: return static_cast<int>(NegativeAnswer::RDH);
+        default: return -1;
+    }
+}
+
+bool data_always_due(Service service) {
+    return service == Service::SlaveDiag || service == Service::GetCfg ||
+           service == Service::RdInp || service == Service::RdOutp;
+}
+
+}  // namespace
+
+BusHealthTracker::BusHealthTracker(BusHealthOptions options)
+    : options_(options), state_(std::make_unique<State>()) {
+    health_.thresholds = options_.thresholds;
+    health_.segment.baud = options_.baud;
+    health_.segment.character_bits = options_.character_bits;
+    state_->events.reserve(8);
+    state_->lost_cycles =
+        static_cast<std::uint64_t>(health_.thresholds.get(HealthThreshold::LostCycles));
+    if (options_.baud != 0)
+        state_->ns_per_byte =
+            static_cast<double>(options_.character_bits) * 1e9 / static_cast<double>(options_.baud);
+}
+
+BusHealthTracker::~BusHealthTracker() = default;
+
+std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t) {
+    using Impl = BusHealthTrackerImpl;
+    State& s = *state_;
+    if (!s.events.empty()) s.events.clear();
+    if (t.protocol != Protocol::ProfibusDp) return {};
+    SegmentHealth& seg = health_.segment;
+    const FdlTelegram& fdl = t.dp.fdl;
+    const std::uint64_t lost_cycles = s.lost_cycles;
+
+    ++seg.telegrams;
+    seg.bytes += t.bytes.size();
+    s.last_frame = t.frame;
+    if (t.time_ns != kNoTime) {
+        s.last_time_ns = t.time_ns;
+        if (seg.first_ns == kNoTime) seg.first_ns = t.time_ns;
+    }
+    if (s.ns_per_byte != 0) {
+        const double duration_ns = static_cast<double>(t.bytes.size()) * s.ns_per_byte;
+        seg.busy_ns += duration_ns;
+        if (t.time_ns != kNoTime) {
+            const std::int64_t end = t.time_ns + static_cast<std::int64_t>(duration_ns + 0.5);
+            if (seg.end_ns == kNoTime || end > seg.end_ns) seg.end_ns = end;
+        }
+    } else if (t.time_ns != kNoTime && (seg.end_ns == kNoTime || t.time_ns > seg.end_ns)) {
+        seg.end_ns = t.time_ns;
+    }
+
+    const bool damaged = is_damaged(t);
+    const bool addressed = fdl.has_addresses && fdl.type != FrameType::ShortAck;
+    const bool is_request = fdl.type == FrameType::Sd4 || (fdl.has_fc && fdl.fc.is_request());
+
+    // The token passed last: taken when this telegram is its receiver's own.
+    if (s.token_waiting) Impl::check_token_taken(s, t, damaged, addressed, lost_cycles);
+
+    // The request waiting for a reply: is this its answer, a damaged one in its place, or
+    // something else (then the request went unanswered)?
+    bool is_answer = false;
+    State::Pending asked = s.pending;
+    if (s.pending.active) {
+        s.pending.active = false;
+        if (damaged && !is_request) {
+            // In the place of the answer: the station asked.
+            ++seg.damaged;
+            State::Slot& slot = s.slots[asked.slave];
+            if (slot.listed)
+                ++slot.health.fcs_errors;
+            else
+                ++seg.unattributed_damaged;
+            return s.events;
+        }
+        if (!damaged && !is_request &&
+            (fdl.type == FrameType::ShortAck ||
+             (fdl.has_addresses && fdl.da == asked.master && fdl.sa == asked.slave))) {
+            is_answer = true;
+        } else {
+            State::Slot& slot = s.slots[asked.slave];
+            if (asked.counted) ++slot.health.no_answers;
+        }
+    }
+
+    if (damaged) {
+        ++seg.damaged;
+        std::uint8_t address = kBroadcastAddress;
+        if (fdl.has_addresses && fdl.type != FrameType::ShortAck)
+            address = is_request ? fdl.da : fdl.sa;
+        if (address != kBroadcastAddress && s.slots[address].listed) {
+            ++s.slots[address].health.fcs_errors;
+        } else {
+            ++seg.unattributed_damaged;
+        }
+        // A damaged SRD/SDA request keeps its FCB for the link: the master repeats it.
+        if (is_request && fdl.has_fc && fdl.has_addresses && fdl.da != kBroadcastAddress &&
+            (function_is_srd(fdl.fc.function()) || function_is_sda(fdl.fc.function())) &&
+            fdl.fc.fcv()) {
+            s.link_fcb[fdl.sa][fdl.da] = static_cast<std::uint8_t>(1 | (fdl.fc.fcb() ? 2 : 0));
+        }
+        return s.events;
+    }
+
+    if (fdl.type == FrameType::Invalid) return s.events;
+
+    if (fdl.type == FrameType::Sd4) {
+        Impl::token_passed(s, t);
+        return s.events;
+    }
+
+    if (is_request) {
+        if (!fdl.has_addresses || !fdl.has_fc) return s.events;
+        State::Slot& sender = s.slots[fdl.sa];
+        Impl::heard(s, sender, t);
+        Impl::master_sends(s, sender, t);
+        State::Master& m = s.masters[fdl.sa];
+        ++m.health.requests;
+        if (fdl.da == kBroadcastAddress) return s.events;
+        s.link_asked[fdl.sa].set(fdl.da);
+        const std::uint8_t function = fdl.fc.function();
+        const bool fdl_status = function == static_cast<std::uint8_t>(FdlFunction::FdlStatus);
+        State::Slot& slot = s.slots[fdl.da];
+        if (!fdl_status) Impl::list(slot, t);
+
+        // Frame count: the repeat rule of fdl_retry.
+        bool repeat = false;
+        std::uint8_t& link = s.link_fcb[fdl.sa][fdl.da];
+        if (fdl_status) {
+            link = 0;
+        } else if (function_is_srd(function) || function_is_sda(function)) {
+            if (!fdl.fc.fcv()) {
+                link = 0;
+            } else {
+                const bool fcb = fdl.fc.fcb();
+                repeat = (link & 1) != 0 && ((link & 2) != 0) == fcb;
+                link = static_cast<std::uint8_t>(1 | (fcb ? 2 : 0));
+            }
+        }
+        const bool expects = function_expects_reply(function) && !fdl.fc.is_reserved();
+        if (slot.listed) {
+            StationHealth& h = slot.health;
+            ++h.requests;
+            if (t.dp.service == Service::SlaveDiag) ++h.diag_requests;
+            if (expects) ++h.replies_due;
+            if (repeat) {
+                ++h.repeats;
+                ++slot.cycle_repeats;
+                h.max_repeats_per_cycle = std::max(h.max_repeats_per_cycle, slot.cycle_repeats);
+            } else if (expects) {
+                Impl::close_cycle(s, slot, t, lost_cycles);
+                slot.cycle_open = true;
+                slot.cycle_answered = false;
+                slot.cycle_repeats = 0;
+            }
+        }
+        if (expects)
+            s.pending = State::Pending{true, fdl.sa, fdl.da, function, t.dp.service, slot.listed};
+
+        // The master's poll cycle.
+        if (t.dp.service == Service::DataExchange && !repeat) Impl::master_polls(m, t, fdl.da);
+        return s.events;
+    }
+
+    // A response.
+    if (!is_answer) {
+        if (fdl.type == FrameType::ShortAck) ++seg.unasked_short_acks;
+        if (!fdl.has_addresses || fdl.type == FrameType::ShortAck) return s.events;
+        State::Slot& sender = s.slots[fdl.sa];
+        Impl::heard(s, sender, t);
+        // Before the first request from that master to it, the answer's request may have come
+        // before the capture: not judged.
+        if (fdl.da != kBroadcastAddress && s.link_asked[fdl.da].test(fdl.sa))
+            ++sender.health.illegal_answers[static_cast<std::size_t>(IllegalAnswer::NotAsked)];
+        return s.events;
+    }
+
+    State::Slot& slot = s.slots[asked.slave];
+    StationHealth& h = slot.health;
+    if (!slot.listed) {
+        Impl::list(slot, t);
+        ++h.requests;  // the FDL_Status request it answered, now that it is a station
+        ++h.replies_due;
+    }
+    Impl::heard(s, slot, t);
+    ++h.answers;
+    slot.answered = true;
+    slot.cycle_answered = true;
+    slot.unanswered_cycles = 0;
+
+    const bool short_ack = fdl.type == FrameType::ShortAck;
+    const std::uint8_t status = fdl.has_fc ? fdl.fc.function() : 0;
+    const bool data = is_data_frame(fdl.type);
+    if (fdl.has_fc) {
+        const int negative = negative_index(status);
+        if (negative >= 0) ++h.negative_answers[static_cast<std::size_t>(negative)];
+    }
+
+    // Illegal answers: wrong kind, then a short acknowledge where data was due.
+    const bool fdl_status = asked.function == static_cast<std::uint8_t>(FdlFunction::FdlStatus);
+    bool wrong_kind = false;
+    if (function_is_sda(asked.function)) {
+        wrong_kind = data || (fdl.type == FrameType::Sd1 && status_is_srd_data(status));
+    } else if (fdl_status) {
+        wrong_kind = data;
+    } else if (function_is_srd(asked.function)) {
+        wrong_kind =
+            fdl.type == FrameType::Sd1 && status == static_cast<std::uint8_t>(FdlStatus::Ok);
+    }
+    const bool no_data = short_ack || (fdl.type == FrameType::Sd1 && !status_is_refusal(status));
+    if (wrong_kind) {
+        ++h.illegal_answers[static_cast<std::size_t>(IllegalAnswer::WrongKind)];
+    } else if (no_data && (data_always_due(asked.service) ||
+                           (asked.service == Service::DataExchange && slot.exchange_data_seen))) {
+        ++h.illegal_answers[static_cast<std::size_t>(IllegalAnswer::ShortAck)];
+    }
+
+    // FDL_Status answers name the station type.
+    if (fdl_status && fdl.type == FrameType::Sd1 && fdl.has_fc && fdl.fc.station_type() != 0)
+        Impl::make_master(s, slot, t);
+
+    // Diagnosis.
+    if (asked.service == Service::SlaveDiag) {
+        if (const SlaveDiag* diag = t.dp.service_data.slave_diag(); diag != nullptr && data) {
+            ++h.diag_answers;
+            // Before Set_Prm a slave reports Station_Not_Ready / Prm_Fault by design: the
+            // start-up's diagnosis shows no fault.
+            if (slot.parameterised) {
+                const std::uint8_t s1 = diag->station_status_1;
+                const std::uint8_t s2 = diag->station_status_2;
+                const bool bits[kDiagFaultCount] = {(s1 & 0x02) != 0, (s1 & 0x04) != 0,
+                                                    (s1 & 0x08) != 0, (s1 & 0x40) != 0,
+                                                    (s2 & 0x02) != 0};
+                bool fault = false;
+                for (std::size_t i = 0; i < kDiagFaultCount; ++i)
+                    if (bits[i]) {
+                        ++h.diag_fault_bits[i];
+                        fault = true;
+                    }
+                if (fault) ++h.diag_faults;
+            }
+        }
+    }
+
+    // The station's state, from its answer.
+    Impl::state_from_answer(s, slot, asked.service, data, t, lost_cycles);
+    return s.events;
+}
+
+void BusHealthTracker::finish(std::int64_t end_ns) {
+    using Impl = BusHealthTrackerImpl;
+    State& s = *state_;
+    if (!s.finished) {
+        s.finished = true;
+        const std::uint64_t lost_cycles =
+            static_cast<std::uint64_t>(health_.thresholds.get(HealthThreshold::LostCycles));
+        DecodedTelegram end;
+        end.time_ns = end_ns != kNoTime ? end_ns : health_.segment.end_ns;
+        end.frame = s.last_frame;
+        for (State::Slot& slot : s.slots) {
+            if (!slot.listed || !slot.cycle_open) continue;
+            // A poll still waiting for its reply when the capture ended is not judged.
+            if (s.pending.active && s.pending.slave == slot.health.address) continue;
+            Impl::close_cycle(s, slot, end, lost_cycles);
+        }
+        if (end_ns != kNoTime && health_.segment.first_ns != kNoTime &&
+            end_ns >= health_.segment.first_ns)
+            health_.segment.end_ns = end_ns;
+    }
+    judge();
+}
+
+}  // namespace dpscope

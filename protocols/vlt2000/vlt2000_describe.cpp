@@ -1,0 +1,209 @@
+// The wording of VLT 2000 serial telegrams, shared by the renderers. Everything here reads what
+// Vlt2000Decoder stored in DecodedTelegram::vlt2000; nothing parses the characters again, except
+// for showing those of a field that is not what it should be.
+#include <algorithm>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "formats/describe.hpp"
+#include "protocols/fc/fc_describe.hpp"
+#include "protocols/vlt2000/vlt2000_codes.hpp"
+#include "protocols/vlt2000/vlt2000_describe.hpp"
+
+namespace dpscope {
+
+bool vlt2000_has_letter(const DecodedTelegram& t) {
+    return t.has_roles && t.bytes.size() > kVlt2000LetterAt;
+}
+
+std::string vlt2000_letter_text(const DecodedTelegram& t) {
+    if (!vlt2000_has_letter(t)) return "none";
+    const Vlt2000Telegram& v = t.vlt2000;
+    const std::string_view name = vlt2000_letter_name(v.letter);
+    if (v.letter_char > 0x20 && v.letter_char < 0x7F)
+        return fmt::format("{} {}", static_cast<char>(v.letter_char), name);
+    return fmt::format("0x{:02X} {}", v.letter_char, name);
+}
+
+std::string_view vlt2000_word_name(Direction direction) {
+    return direction == Direction::Request ? "control" : "status";
+}
+
+std::string_view vlt2000_word_short_name(Direction direction) {
+    return direction == Direction::Request ? "CTW" : "STW";
+}
+
+bool vlt2000_bit_kept(const Vlt2000Telegram& v, unsigned bit) {
+    return bit < 16 && ((v.word_keep >> (bit / 4)) & 1u) != 0;
+}
+
+std::string_view vlt2000_bit_meaning(const Vlt2000Telegram& v, Direction direction, unsigned bit) {
+    if (vlt2000_bit_kept(v, bit)) return "group kept (P)";
+    const Vlt2000Bit& meaning =
+        direction == Direction::Request ? vlt2000_control_bit(bit) : vlt2000_status_bit(bit);
+    return (v.word >> bit) & 1u ? meaning.when_1 : meaning.when_0;
+}
+
+void append_vlt2000_word(TextBuffer& out, const Vlt2000Telegram& v, Direction direction) {
+    auto it = std::back_inserter(out);
+    fmt::format_to(it, "{}=0x{:04X} (", vlt2000_word_short_name(direction), v.word);
+    std::string kept;
+    for (unsigned group = 0; group < 4; ++group)
+        if ((v.word_keep >> group) & 1u)
+            fmt::format_to(std::back_inserter(kept), "{}bits {}-{} group kept (P)",
+                           kept.empty() ? "" : ", ", 4 * group, 4 * group + 3);
+    // The meanings of the bits that are 1, and of those that are 0 where 0 is worth naming (an
+    // OFF, a stop, "out of frequency range"), each meaning once. A control word without "data
+    // valid" (bit 10) acts on nothing: its other 0 bits are not named.
+    const bool control = direction == Direction::Request;
+    const bool acts = !control || ((v.word >> 10) & 1u) != 0;
+    std::vector<std::string_view> named;
+    std::string bits;
+    for (unsigned bit = 0; bit < 16; ++bit) {
+        if (vlt2000_bit_kept(v, bit)) continue;
+        const bool set = ((v.word >> bit) & 1u) != 0;
+        const Vlt2000Bit& row = control ? vlt2000_control_bit(bit) : vlt2000_status_bit(bit);
+        if (!set && !(row.notable_0 && (acts || bit == 10))) continue;
+        const std::string_view meaning = vlt2000_bit_meaning(v, direction, bit);
+        const std::string_view separator = bits.empty() ? "" : ", ";
+        if (meaning == "no function") {
+            fmt::format_to(std::back_inserter(bits), "{}bit {} (no function)", separator, bit);
+        } else if (std::find(named.begin(), named.end(), meaning) == named.end()) {
+            fmt::format_to(std::back_inserter(bits), "{}{}", separator, meaning);
+            named.push_back(meaning);
+        }
+    }
+    append(out, kept);
+    if (!kept.empty() && !bits.empty()) append(out, "; ");
+    append(out, bits);
+    if (kept.empty() && bits.empty()) append(out, "no bit set");
+    out.push_back(')');
+}
+
+std::string vlt2000_value_text(const Vlt2000Telegram& v) {
+    const bool with_point = v.has_decimals && v.decimals > 0 && v.decimals <= 5;
+    const char* sign = v.negative && v.digits != 0 ? "-" : "";
+    if (!with_point) return fmt::format("{}{}", sign, v.digits);
+    std::string digits = fmt::format("{:0{}}", v.digits, v.decimals + 1);
+    digits.insert(digits.size() - v.decimals, 1, '.');
+    return fmt::format("{}{}", sign, digits);
+}
+
+std::string vlt2000_value_note(const Vlt2000Telegram& v) {
+    if (!v.has_decimals)
+        return fmt::format("no decimal position (byte {} is not a digit): the digits as sent",
+                           kVlt2000DecimalsAt + kVlt2000FirstByteNumber);
+    if (v.decimals > 5 && !v.failed)
+        return fmt::format("decimal position {} is out of range (0-5): the digits as sent",
+                           v.decimals);
+    return {};
+}
+
+std::string_view vlt2000_reason_or_unknown(const Vlt2000Telegram& v) {
+    if (!v.has_reason) return "no reason code given";
+    const std::string_view text = vlt2000_reason_text(v.reason);
+    return text.empty() ? "unknown reason code" : text;
+}
+
+bool vlt2000_carries_value(const Vlt2000Telegram& v) {
+    return v.letter != Vlt2000Letter::Control && !v.failed &&
+           !(v.letter == Vlt2000Letter::ReadIndex && !v.index.empty());
+}
+
+void append_vlt2000_index(TextBuffer& out, const Vlt2000Telegram& v) {
+    append_fc_text(out, v.index);
+}
+
+bool vlt2000_checksum_judged_wrong(const DecodedTelegram& t) {
+    const ProblemList& problems = t.vlt2000.problems;
+    return std::any_of(problems.begin(), problems.end(), [](const Problem& p) {
+        return p.kind == ProblemKind::Vlt2000ChecksumMismatch;
+    });
+}
+
+void append_vlt2000_checksum(TextBuffer& out, const DecodedTelegram& t) {
+    const Vlt2000Telegram& v = t.vlt2000;
+    auto it = std::back_inserter(out);
+    if (t.bytes.size() < kVlt2000ChecksumAt + 2 || t.bytes.empty() || t.bytes[0] != kVlt2000Start) {
+        append(out, "missing (telegram cut short)");
+        return;
+    }
+    if (v.checksum_disabled) {
+        fmt::format_to(it, "?? (not checked; computed {:02})", v.checksum_computed);
+    } else if (!v.has_checksum) {
+        append(out, "\"");
+        append_fc_text(out, t.bytes.subspan(kVlt2000ChecksumAt, 2));
+        fmt::format_to(it, "\" (not two digits; computed {:02})", v.checksum_computed);
+    } else if (v.checksum_ok) {
+        fmt::format_to(it, "{:02} (correct)", v.checksum);
+    } else {
+        fmt::format_to(
+            it, "{:02} (wrong: computed {:02}{})", v.checksum, v.checksum_computed,
+            vlt2000_checksum_judged_wrong(t) ? "" : "; not judged, --vlt2000-checksum ignore");
+    }
+}
+
+void append_vlt2000_detail(TextBuffer& out, const DecodedTelegram& t) {
+    const Vlt2000Telegram& v = t.vlt2000;
+    auto it = std::back_inserter(out);
+    if (!t.has_roles) {  // no address: the characters there are
+        const Bytes shown = t.bytes.first(std::min<std::size_t>(t.bytes.size(), 24));
+        out.push_back('"');
+        append_fc_text(out, shown);
+        out.push_back('"');
+        if (t.bytes.size() > shown.size()) append(out, " ...");
+        return;
+    }
+    bool first = true;
+    const auto space = [&] {
+        if (!first) out.push_back(' ');
+        first = false;
+    };
+    if (v.has_word) {
+        space();
+        append_vlt2000_word(out, v, t.direction);
+    }
+    // A C telegram's parameter and value are ignored by the drive.
+    if (v.has_parameter && v.letter != Vlt2000Letter::Control) {
+        space();
+        fmt::format_to(it, "parameter {}", v.parameter);
+        if (v.letter == Vlt2000Letter::ReadIndex && !v.index.empty()) {
+            if (v.has_index_number) {
+                fmt::format_to(it, " index {}", v.index_number);
+            } else {
+                append(out, " index \"");
+                append_vlt2000_index(out, v);
+                out.push_back('"');
+            }
+        }
+        if (v.failed) {
+            append(out, " failed: ");
+            if (v.has_reason)
+                fmt::format_to(it, "reason {:02} ({})", v.reason, vlt2000_reason_or_unknown(v));
+            else
+                append(out, vlt2000_reason_or_unknown(v));
+        } else if (v.has_value && vlt2000_carries_value(v) &&
+                   !(t.direction == Direction::Request && v.letter == Vlt2000Letter::Read)) {
+            // A read command's value is not used: the drive fills it in.
+            fmt::format_to(it, " = {}", vlt2000_value_text(v));
+            const std::string note = vlt2000_value_note(v);
+            if (!note.empty()) fmt::format_to(it, " ({})", note);
+        }
+    } else if (v.failed) {
+        space();
+        fmt::format_to(it, "failed: ");
+        if (v.has_reason)
+            fmt::format_to(it, "reason {:02} ({})", v.reason, vlt2000_reason_or_unknown(v));
+        else
+            append(out, vlt2000_reason_or_unknown(v));
+    }
+    // The checksum only when it is not right (a wrong one is also a problem on the line).
+    if (v.complete && !v.checksum_ok) {
+        space();
+        append(out, "checksum ");
+        append_vlt2000_checksum(out, t);
+    }
+}
+
+}  // namespace dpscope
