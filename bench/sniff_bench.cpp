@@ -142,7 +142,7 @@ Result run(const std::string& dpscope, std::uint64_t telegrams, Pace pace, bool 
     r.cpu_seconds = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
                     static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1e6;
     dpscope::OpenResult opened =
-        dpscope::open_source(pcap, dpscope::InputFormat::Auto, dpscope::profibus_dp_protocol());
+        dpscope::open_source(pcap, dpscope::InputFormat::Auto, dpscope::profibus_protocol());
     dpscope::Record record;
     while (opened && opened.value()->next(record))
         ++r.captured;

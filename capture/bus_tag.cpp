@@ -21,7 +21,6 @@ constexpr std::uint32_t kPcapngEnhancedPacket = 6;
 constexpr std::uint16_t kOptComment = 1;
 constexpr std::uint16_t kIfDescription = 3;
 constexpr std::uint16_t kIfSpeed = 8;
-constexpr std::uint8_t kStx = 0x02;
 
 // A 16- or 32-bit word of `head` at `at` in the given byte order; nullopt past its end.
 std::optional<std::uint32_t> word(Bytes head, std::size_t at, std::size_t size, bool big) {
@@ -142,7 +141,7 @@ struct FramedCount : FramingSink {
     void on_skipped(const SkippedBytes&) override {}
 };
 
-FramedCount count_framed(Bytes stream, const CaptureProtocol& protocol, bool complete) {
+FramedCount count_framed(Bytes stream, const ProtocolDescriptor& protocol, bool complete) {
     FramedCount count;
     StreamFramer framer(protocol.framing);
     framer.feed(stream, count);
@@ -171,7 +170,7 @@ BusChoice choose_by_label(const CaptureLabel& label, bool complete) {
     choice.tagged = label.tagged;
     choice.line = label.line;
     if (label.tagged) {
-        choice.protocol = &capture_protocol(*label.tagged);
+        choice.protocol = &protocol_descriptor(*label.tagged);
         choice.reason = "the capture records its bus (dpscope's tag)";
         return choice;
     }
@@ -189,14 +188,13 @@ BusChoice choose_by_label(const CaptureLabel& label, bool complete) {
         choice.reason = "a USER0 capture without a bus tag or records";
         return choice;
     }
-    const Protocol protocol = protocol_of_untagged_user0(*label.first_byte);
-    choice.protocol = &capture_protocol(protocol);
-    if (protocol == Protocol::Fc) {
-        choice.reason =
-            "a USER0 capture without a bus tag whose first record starts with STX (0x02)";
-        choice.say = true;
-    } else if (protocol == Protocol::Vlt2000) {
-        choice.reason = "a USER0 capture without a bus tag whose first record starts with '<'";
+    const ProtocolDescriptor& protocol =
+        protocol_descriptor(protocol_of_untagged_user0(*label.first_byte));
+    choice.protocol = &protocol;
+    if (protocol.lead_byte) {
+        choice.reason = fmt::format(
+            "a USER0 capture without a bus tag whose first record starts with {}",
+            protocol.lead_byte_text);
         choice.say = true;
     } else {
         choice.reason =
@@ -209,21 +207,13 @@ BusChoice choose_by_label(const CaptureLabel& label, bool complete) {
 }  // namespace
 
 std::uint32_t pcap_bus_number(Protocol protocol) noexcept {
-    switch (protocol) {
-        case Protocol::Fc: return 2;
-        case Protocol::Vlt2000: return 3;
-        case Protocol::ProfibusDp: break;
-    }
-    return 1;
+    return protocol_descriptor(protocol).pcap_bus_number;
 }
 
 std::optional<Protocol> protocol_of_pcap_bus_number(std::uint32_t number) noexcept {
-    switch (number) {
-        case 1: return Protocol::ProfibusDp;
-        case 2: return Protocol::Fc;
-        case 3: return Protocol::Vlt2000;
-        default: return std::nullopt;
-    }
+    for (const ProtocolDescriptor* descriptor : protocol_table())
+        if (descriptor->pcap_bus_number == number) return descriptor->protocol;
+    return std::nullopt;
 }
 
 std::string describe_line(const LineSettings& line) {
@@ -275,19 +265,20 @@ CaptureLabel read_capture_label(Bytes head) {
 }
 
 Protocol protocol_of_untagged_user0(std::uint8_t first_byte) noexcept {
-    if (first_byte == kStx) return Protocol::Fc;
-    if (first_byte == kVlt2000Start) return Protocol::Vlt2000;
-    return Protocol::ProfibusDp;
+    for (const ProtocolDescriptor* descriptor : protocol_table())
+        if (descriptor->lead_byte == first_byte) return descriptor->protocol;
+    return protocol_table().front()->protocol;
 }
 
 BusChoice choose_bus(Bytes head, InputFormat format, bool complete) {
     if (head.size() >= kBusChoiceBytes) complete = true;
     if (format == InputFormat::Pcap || format == InputFormat::Pcapng)
         return choose_by_label(read_capture_label(head), complete);
-    if (format == InputFormat::Text) {
+    if (const ProtocolDescriptor* owner = text_log_protocol();
+        owner && format == InputFormat::Text) {
         BusChoice choice;
-        choice.protocol = &vlt2000_protocol();
-        choice.reason = "a text log of ASCII telegrams ('<' ... '>')";
+        choice.protocol = owner;
+        choice.reason = fmt::format("a text log of ASCII telegrams ({})", owner->text_log_shape);
         choice.say = true;
         return choice;
     }
@@ -297,7 +288,7 @@ BusChoice choose_bus(Bytes head, InputFormat format, bool complete) {
         if (const CaptureLabel label = read_capture_label(head); label.tagged) {
             BusChoice choice;
             choice.tagged = label.tagged;
-            choice.protocol = &capture_protocol(*label.tagged);
+            choice.protocol = &protocol_descriptor(*label.tagged);
             choice.reason = "the capture records its bus (dpscope's tag)";
             return choice;
         }
@@ -309,12 +300,12 @@ BusChoice choose_bus(Bytes head, InputFormat format, bool complete) {
     const auto qualifies = [&](const FramedCount& count) {
         return count.bytes > 0 && count.bytes * 2 >= stream.size();
     };
-    const CaptureProtocol* best = nullptr;
+    const ProtocolDescriptor* best = nullptr;
     FramedCount best_count;
-    const CaptureProtocol* second = nullptr;
+    const ProtocolDescriptor* second = nullptr;
     FramedCount second_count;
     unsigned qualified = 0;
-    for (const CaptureProtocol* protocol : capture_protocols()) {
+    for (const ProtocolDescriptor* protocol : protocol_table()) {
         FramedCount count = count_framed(stream, *protocol, complete);
         if (qualifies(count)) ++qualified;
         // Strictly more bytes wins: a tie stays with the bus listed first (PROFIBUS).

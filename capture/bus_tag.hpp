@@ -19,7 +19,7 @@
 #include <string>
 #include <string_view>
 
-#include "capture/capture_protocol.hpp"
+#include "core/protocol_descriptor.hpp"
 #include "capture/input_format.hpp"
 #include "capture/serial_port.hpp"
 #include "core/byte_reader.hpp"
@@ -87,7 +87,7 @@ Protocol protocol_of_untagged_user0(std::uint8_t first_byte) noexcept;
 
 // The bus chosen for a capture, and why.
 struct BusChoice {
-    const CaptureProtocol* protocol = &profibus_dp_protocol();
+    const ProtocolDescriptor* protocol = &profibus_protocol();
     // Why, for a note on standard error: "41 telegrams framed in the first 700 bytes".
     std::string reason;
     // The choice was not obvious from the capture (a byte stream, an untagged USER0 capture) and

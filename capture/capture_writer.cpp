@@ -536,8 +536,9 @@ WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat for
             // written over libpcap's header; anything else is written through a stream that
             // sets it on the way.
             const bool tagged = link_type == kLinkTypeUser0 || line.known();
-            // Link type 257 is PROFIBUS whatever the caller's bus.
-            if (link_type == kLinkTypeProfibusDl) bus = Protocol::ProfibusDp;
+            // A link type of one bus (257: PROFIBUS) is that bus whatever the caller's.
+            if (const ProtocolDescriptor* owner = only_protocol_of_link_type(link_type))
+                bus = owner->protocol;
             long tag_at = -1;
             FILE* target = file;
             if (tagged) {

@@ -14,7 +14,7 @@
 namespace dpscope {
 
 std::string link_type_name(int link_type) {
-    for (const CaptureProtocol* protocol : capture_protocols())
+    for (const ProtocolDescriptor* protocol : protocol_table())
         for (const PcapLinkType& type : protocol->link_types)
             if (type.value == link_type) return std::string(type.name);
     const char* name = pcap_datalink_val_to_name(link_type);
@@ -86,7 +86,7 @@ class PcapSource final : public TelegramSource {
 
 // The protocol's link types as messages list them: "257 (PROFIBUS_DL) and 147 (USER0)", or
 // without the parentheses "257 PROFIBUS_DL and 147 USER0".
-std::string listed_link_types(const CaptureProtocol& protocol, bool name_in_parentheses) {
+std::string listed_link_types(const ProtocolDescriptor& protocol, bool name_in_parentheses) {
     std::string list;
     const std::size_t count = protocol.link_types.size();
     for (std::size_t i = 0; i < count; ++i) {
@@ -99,10 +99,10 @@ std::string listed_link_types(const CaptureProtocol& protocol, bool name_in_pare
 }
 
 std::string unsupported_link_type(const std::string& name, int link_type,
-                                  const CaptureProtocol& protocol) {
+                                  const ProtocolDescriptor& protocol) {
     // A link type another bus is carried by (257 is PROFIBUS only): the capture is of that bus,
     // and the bus option chose another; name the real problem.
-    for (const CaptureProtocol* other : capture_protocols()) {
+    for (const ProtocolDescriptor* other : protocol_table()) {
         if (other->protocol == protocol.protocol || !other->carried_by(link_type)) continue;
         return fmt::format(
             "{}: link type {} ({}) is a {} capture, but --bus {} reads {} telegrams from captures "
@@ -120,7 +120,7 @@ std::string unsupported_link_type(const std::string& name, int link_type,
 // checked against the file and its copy at the block's end; messages name the byte offset.
 class PcapngSource final : public TelegramSource {
   public:
-    PcapngSource(FILE* file, std::string name, const CaptureProtocol& protocol)
+    PcapngSource(FILE* file, std::string name, const ProtocolDescriptor& protocol)
         : TelegramSource(std::move(name)), protocol_(protocol), file_(file) {}
     ~PcapngSource() override { std::fclose(file_); }
 
@@ -208,7 +208,7 @@ class PcapngSource final : public TelegramSource {
         return fmt::format("byte offset {}", block_offset_);
     }
 
-    const CaptureProtocol& protocol_;
+    const ProtocolDescriptor& protocol_;
     FILE* file_;
     std::vector<std::uint8_t> block_;  // the whole current block
     std::uint32_t block_type_ = 0;
@@ -600,14 +600,14 @@ bool PcapngSource::read_next(Record& record) {
 }  // namespace
 
 OpenResult open_pcapng_source(FILE* file, const std::string& name,
-                              const CaptureProtocol& protocol) {
+                              const ProtocolDescriptor& protocol) {
     auto source = std::make_unique<PcapngSource>(file, name, protocol);
     if (Result<void> opened = source->open(); !opened) return Error{opened.error()};
     return source;
 }
 
 OpenResult open_pcap_source(FILE* file, const std::string& name, bool classic_pcap,
-                            const CaptureProtocol& protocol) {
+                            const ProtocolDescriptor& protocol) {
     char errbuf[PCAP_ERRBUF_SIZE] = {};
     pcap_t* handle =
         pcap_fopen_offline_with_tstamp_precision(file, PCAP_TSTAMP_PRECISION_NANO, errbuf);

@@ -1,6 +1,6 @@
 // pcap captures read through libpcap, pcapng captures by dpscope's own block reader (any number
 // of interfaces and link types; packets of interfaces with other link types are skipped with a
-// warning). The link types decoded are those of the capture's protocol (capture_protocol.hpp:
+// warning). The link types decoded are those of the capture's protocol (core/protocol_descriptor.hpp:
 // for PROFIBUS DP 257 PROFIBUS_DL and 147 USER0, one telegram per record).
 #pragma once
 
@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "capture/capture_protocol.hpp"
+#include "core/protocol_descriptor.hpp"
 #include "capture/telegram_source.hpp"
 
 namespace dpscope {
@@ -22,12 +22,12 @@ inline constexpr std::uint64_t kPcapRecordHeaderBytes = 16;
 // one of `protocol`'s. `classic_pcap`: the file starts with a pcap (not pcapng) header, so record
 // byte offsets can be counted and named in messages.
 OpenResult open_pcap_source(FILE* file, const std::string& name, bool classic_pcap,
-                            const CaptureProtocol& protocol);
+                            const ProtocolDescriptor& protocol);
 
 // Takes ownership of `file`, positioned at the start of a pcapng file. An error when it is no
 // pcapng file or none of its interfaces has a link type of `protocol`. Records carry the byte
 // offset of their block.
-OpenResult open_pcapng_source(FILE* file, const std::string& name, const CaptureProtocol& protocol);
+OpenResult open_pcapng_source(FILE* file, const std::string& name, const ProtocolDescriptor& protocol);
 
 // The name a protocol gives the link type ("PROFIBUS_DL", "USER0"), or libpcap's name for it.
 std::string link_type_name(int link_type);

@@ -260,7 +260,7 @@ Result<std::vector<std::uint8_t>> read_head_for_bus(int fd, const std::string& n
 
 // The source of `format` reading `stream` (which it then owns).
 OpenResult open_stream(FILE* stream, const std::string& name, InputFormat format, bool detected,
-                       bool classic_pcap, bool pcapng, const CaptureProtocol& protocol,
+                       bool classic_pcap, bool pcapng, const ProtocolDescriptor& protocol,
                        const SourceOptions& options) {
     const FramingRules& rules = protocol.framing;
     switch (format) {
@@ -279,7 +279,7 @@ OpenResult open_stream(FILE* stream, const std::string& name, InputFormat format
 }
 
 OpenResult open_source_of(const std::string& path, InputFormat format,
-                          const CaptureProtocol* chosen, BusChoice* choice,
+                          const ProtocolDescriptor* chosen, BusChoice* choice,
                           const SourceOptions& options) {
     bool from_stdin = path == "-";
     std::string name = from_stdin ? std::string("<stdin>") : path;
@@ -330,15 +330,16 @@ OpenResult open_source_of(const std::string& path, InputFormat format,
         }
     }
     // A text log holds VLT 2000 telegrams ('<' ... '>'): no other bus's framing reads it.
-    if (format == InputFormat::Text && chosen->protocol != Protocol::Vlt2000) {
+    if (const ProtocolDescriptor* owner = text_log_protocol();
+        owner && format == InputFormat::Text && chosen != owner) {
         replay_close(replay);
         return Error{fmt::format(
-            "{}: a text log of telegrams ('<' ... '>'{}) is VLT 2000 traffic; --bus {} cannot "
-            "read it (--input-format hex reads a log of hex bytes, raw a byte stream)",
-            name, detected ? ", as detected from its content" : "",
-            protocol_name(chosen->protocol))};
+            "{}: a text log of telegrams ({}{}) is {} traffic; --bus {} cannot read it "
+            "(--input-format hex reads a log of hex bytes, raw a byte stream)",
+            name, owner->text_log_shape, detected ? ", as detected from its content" : "",
+            owner->traffic_name, chosen->name)};
     }
-    const CaptureProtocol& protocol = *chosen;
+    const ProtocolDescriptor& protocol = *chosen;
     // A regular file goes back to its start and is read as it is: glibc reads a plain file's
     // small records (libpcap's 16-byte headers) much faster than through a cookie stream.
     FILE* stream = nullptr;
@@ -366,12 +367,12 @@ OpenResult open_source_of(const std::string& path, InputFormat format,
 
 }  // namespace
 
-OpenResult open_source(const std::string& path, InputFormat format, const CaptureProtocol& protocol,
+OpenResult open_source(const std::string& path, InputFormat format, const ProtocolDescriptor& protocol,
                        const SourceOptions& options) {
     return open_source_of(path, format, &protocol, nullptr, options);
 }
 
-OpenResult open_source(const std::string& path, InputFormat format, const CaptureProtocol* protocol,
+OpenResult open_source(const std::string& path, InputFormat format, const ProtocolDescriptor* protocol,
                        BusChoice& choice, const SourceOptions& options) {
     choice = BusChoice{};
     if (protocol) choice.protocol = protocol;
@@ -379,7 +380,7 @@ OpenResult open_source(const std::string& path, InputFormat format, const Captur
 }
 
 std::unique_ptr<TelegramSource> memory_source(std::string display_name, Bytes bytes,
-                                              const CaptureProtocol& protocol) {
+                                              const ProtocolDescriptor& protocol) {
     return make_memory_source(std::move(display_name), bytes, protocol.framing);
 }
 

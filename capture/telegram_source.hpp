@@ -10,7 +10,7 @@
 #include <string>
 
 #include "capture/bus_tag.hpp"
-#include "capture/capture_protocol.hpp"
+#include "core/protocol_descriptor.hpp"
 #include "capture/input_format.hpp"
 #include "core/byte_reader.hpp"
 #include "core/problem.hpp"
@@ -171,7 +171,7 @@ struct SourceOptions {
 // Opens `path` ("-" for standard input), detecting the format from the content unless `format`
 // forces one. `protocol` is what the capture carries: a byte stream is framed by its rules, and
 // a pcap or pcapng file must have one of its link types.
-OpenResult open_source(const std::string& path, InputFormat format, const CaptureProtocol& protocol,
+OpenResult open_source(const std::string& path, InputFormat format, const ProtocolDescriptor& protocol,
                        const SourceOptions& options = {});
 
 // The same, where the bus may be left to the capture: `protocol` null chooses it from the first
@@ -180,12 +180,12 @@ OpenResult open_source(const std::string& path, InputFormat format, const Captur
 // `choice` says which bus and why. With a `protocol`, the source is of that bus and
 // choice.tagged is what a pcap or pcapng file's tag names, if it has one. Either way
 // choice.line is the line the file records, if it records one.
-OpenResult open_source(const std::string& path, InputFormat format, const CaptureProtocol* protocol,
+OpenResult open_source(const std::string& path, InputFormat format, const ProtocolDescriptor* protocol,
                        BusChoice& choice, const SourceOptions& options = {});
 
 // A source over bytes already in memory (e.g. `dpscope hex` arguments), framed as a raw stream
 // of `protocol`.
 std::unique_ptr<TelegramSource> memory_source(std::string display_name, Bytes bytes,
-                                              const CaptureProtocol& protocol);
+                                              const ProtocolDescriptor& protocol);
 
 }  // namespace dpscope

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cerrno>
 #include <charconv>
@@ -48,6 +49,13 @@ CLI::Validator finite_number(double min, double max, std::string_view unit) {
             return fmt::format("must be a number from {}, not '{}'", range, text);
         },
         range, "number");
+}
+
+std::vector<std::string> bus_names() {
+    std::vector<std::string> names;
+    for (const ProtocolDescriptor* descriptor : protocol_table())
+        names.emplace_back(descriptor->name);
+    return names;
 }
 
 CLI::Validator output_file_name() {
@@ -156,7 +164,7 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
                    "PROFIBUS; a USER0 pcap written by dpscope names its bus; a raw or hex byte "
                    "stream is tried with each bus's framing, and the choice is said on standard "
                    "error)")
-        ->check(CLI::IsMember({"profibus", "fc", "vlt2000"}))
+        ->check(CLI::IsMember(bus_names()))
         ->type_name("BUS");
     app.add_option("--fc-pnu-bits", values.fc_pnu_bits,
                    "FC protocol: PKE bits holding the PNU: 12 (FC series, the default) or 11 "
@@ -211,14 +219,28 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
                  "unexpected response type, not only unusual");
 }
 
-Result<int> capture_link_type(const CaptureProtocol& protocol, std::optional<int> given) {
-    if (!given)
-        return protocol.protocol == Protocol::ProfibusDp ? kLinkTypeProfibusDl : kLinkTypeUser0;
-    if (*given == kLinkTypeProfibusDl && protocol.protocol != Protocol::ProfibusDp)
+namespace {
+
+// "USER0" -> "user0": a link type as --linktype names it.
+std::string lower_case(std::string_view text) {
+    std::string lower(text);
+    for (char& c : lower)
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return lower;
+}
+
+}  // namespace
+
+Result<int> capture_link_type(const ProtocolDescriptor& protocol, std::optional<int> given) {
+    if (!given) return protocol.written_link_type().value;
+    if (const ProtocolDescriptor* owner = only_protocol_of_link_type(*given);
+        owner && owner != &protocol)
         return Error{fmt::format(
-            "--linktype profibus: link type 257 (PROFIBUS_DL) is PROFIBUS only; a capture of {} is "
-            "written as user0 (147), which records its bus",
-            protocol.framing.protocol_name())};
+            "--linktype {}: link type {} ({}) is {} only; a capture of {} is written as {} ({}), "
+            "which records its bus",
+            owner->name, *given, owner->written_link_type().name,
+            owner->framing.protocol_name(), protocol.framing.protocol_name(),
+            lower_case(protocol.written_link_type().name), protocol.written_link_type().value)};
     return *given;
 }
 
@@ -251,7 +273,7 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     settings.baud_given = values.baud;
     use_line(settings, LineSettings{values.baud, std::nullopt, 0});
     if (!values.bus.empty()) {
-        settings.protocol = &capture_protocol(*protocol_from_name(values.bus));
+        settings.protocol = &protocol_descriptor(*protocol_from_name(values.bus));
         settings.bus_given = true;
     }
     settings.fc_decoder.pnu_bits = static_cast<std::uint8_t>(values.fc_pnu_bits);
@@ -352,7 +374,7 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
 
 std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept {
     std::bitset<kStationCount> stations;
-    if (t.protocol != Protocol::ProfibusDp) {
+    if (!protocol_descriptor(t.protocol).masters_addressed) {
         // The FC and VLT 2000 masters have no address: a telegram is about its drive, a broadcast
         // about address 0 (the report's "Broadcasts" section).
         if (t.has_roles) stations.set(t.slave & 0x7F);
@@ -364,22 +386,14 @@ std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept {
 }
 
 bool addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
-    // An FC telegram's PKW names its PNU (a response echoes its request's).
-    if (t.protocol == Protocol::Fc) return t.fc.has_pkw && t.fc.pkw.pnu == pnu;
-    // A VLT 2000 telegram names its parameter (a C telegram's is ignored).
-    if (t.protocol == Protocol::Vlt2000)
-        return t.vlt2000.has_parameter && t.vlt2000.letter != Vlt2000Letter::Control &&
-               t.vlt2000.parameter == pnu;
-    const ProfidriveMessage* message = t.dp.service_data.profidrive();
-    if (!message) return false;
-    return std::any_of(message->addresses.begin(), message->addresses.end(),
-                       [&](const ProfidriveAddress& a) { return a.pnu == pnu; });
+    return protocol_descriptor(t.protocol).addresses_pnu(t, pnu);
 }
 
 bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
                    std::span<const Finding> findings, std::int32_t subject_pnu) noexcept {
     if (!settings.stations.empty()) {
         const std::bitset<kStationCount> ends = stations_of(t);
+        const bool masters_addressed = protocol_descriptor(t.protocol).masters_addressed;
         bool match =
             std::any_of(settings.stations.begin(), settings.stations.end(), [&](std::uint8_t a) {
                 return ends.test(a & 0x7F) ||
@@ -387,7 +401,7 @@ bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
                            // The FC and VLT 2000 masters have no address: a finding is about
                            // its drive.
                            return f.has_stations &&
-                                  ((f.master == a && t.protocol == Protocol::ProfibusDp) ||
+                                  ((f.master == a && masters_addressed) ||
                                    f.slave == a);
                        });
             });
@@ -458,14 +472,7 @@ void warn_ppo_overrides(const BusDecoder& decoder) {
 namespace {
 
 // The bus as messages name it: "the FC protocol (RS-485)", "PROFIBUS DP".
-std::string bus_title(Protocol protocol) {
-    switch (protocol) {
-        case Protocol::Fc: return "the FC protocol (RS-485)";
-        case Protocol::Vlt2000: return "the VLT 2000 telegram";
-        case Protocol::ProfibusDp: break;
-    }
-    return "PROFIBUS DP";
-}
+std::string bus_title(Protocol protocol) { return std::string(protocol_descriptor(protocol).title); }
 
 }  // namespace
 
@@ -489,34 +496,33 @@ void say_bus_choice(const DecodeSettings& settings, const BusChoice& choice,
 void warn_profibus_options(const DecodeSettings& settings, const std::string& input) {
     const Protocol bus = settings.protocol->protocol;
     // The options given (not at their defaults) that belong to each bus.
-    std::vector<std::string_view> profibus;
-    std::vector<std::string_view> fc;
-    std::vector<std::string_view> vlt2000;
+    std::array<std::vector<std::string_view>, kProtocolCount> given_for;
+    const auto given = [&](Protocol owner, std::string_view option) {
+        given_for[static_cast<std::size_t>(owner)].push_back(option);
+    };
     const DecoderOptions& dp = settings.decoder;
     if (std::any_of(dp.station_ppo.begin(), dp.station_ppo.end(),
                     [](std::uint8_t ppo) { return ppo != 0; }))
-        profibus.push_back("--ppo");
+        given(Protocol::ProfibusDp, "--ppo");
     if (dp.dialect != Dialect::Vlt ||
         std::any_of(dp.station_dialect.begin(), dp.station_dialect.end(),
                     [](const std::optional<Dialect>& d) { return d.has_value(); }))
-        profibus.push_back("--dialect");
-    if (dp.pcd_profile) profibus.push_back("--pcd-profile");
-    if (settings.tracker.strict) profibus.push_back("--strict");
-    if (settings.fc_decoder.pnu_bits != FcDecoderOptions{}.pnu_bits) fc.push_back("--fc-pnu-bits");
+        given(Protocol::ProfibusDp, "--dialect");
+    if (dp.pcd_profile) given(Protocol::ProfibusDp, "--pcd-profile");
+    if (settings.tracker.strict) given(Protocol::ProfibusDp, "--strict");
+    if (settings.fc_decoder.pnu_bits != FcDecoderOptions{}.pnu_bits)
+        given(Protocol::Fc, "--fc-pnu-bits");
     if (settings.fc_tracker.response_ns != FcTrackerOptions{}.response_ns)
-        fc.push_back("--fc-response-ms");
-    if (!settings.vlt2000_decoder.check_checksum) vlt2000.push_back("--vlt2000-checksum");
-    const auto warn = [&](Protocol owner, const std::vector<std::string_view>& given) {
-        if (owner == bus || given.empty()) return;
-        print_warning(fmt::format(
-            "{}: {} {} to {}; this capture is {}: ignored", input, fmt::join(given, ", "),
-            given.size() == 1 ? "applies" : "apply",
-            owner == Protocol::ProfibusDp ? std::string("PROFIBUS DP") : bus_title(owner),
-            bus_title(bus)));
-    };
-    warn(Protocol::ProfibusDp, profibus);
-    warn(Protocol::Fc, fc);
-    warn(Protocol::Vlt2000, vlt2000);
+        given(Protocol::Fc, "--fc-response-ms");
+    if (!settings.vlt2000_decoder.check_checksum) given(Protocol::Vlt2000, "--vlt2000-checksum");
+    for (const ProtocolDescriptor* owner : protocol_table()) {
+        const auto& options = given_for[static_cast<std::size_t>(owner->protocol)];
+        if (owner->protocol == bus || options.empty()) continue;
+        print_warning(fmt::format("{}: {} {} to {}; this capture is {}: ignored", input,
+                                  fmt::join(options, ", "),
+                                  options.size() == 1 ? "applies" : "apply", owner->title,
+                                  bus_title(bus)));
+    }
 }
 
 void use_line(DecodeSettings& settings, const LineSettings& line) {
@@ -569,7 +575,7 @@ OpenResult open_input(const std::string& path, InputFormat format, DecodeSetting
 }
 
 Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t telegrams,
-                                   const CaptureProtocol& protocol, bool bus_given) {
+                                   const ProtocolDescriptor& protocol, bool bus_given) {
     if (source.status() == InputStatus::Unusable) return Error{source.unusable_reason()};
     if (telegrams > 0 || source.status() == InputStatus::Damaged) return {};
     // Without --bus: the bus was chosen by the capture; name the option that chooses it.

@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "capture/capture_protocol.hpp"
+#include "core/protocol_descriptor.hpp"
 #include "capture/capture_writer.hpp"
 #include "capture/pcap_source.hpp"
 #include "core/result.hpp"
@@ -74,6 +74,8 @@ CLI::Validator finite_number(double min, double max, std::string_view unit = "")
 
 // A file name for an output (-w, --report-file): not empty ("-" is standard output).
 CLI::Validator output_file_name();
+// The values --bus takes: every protocol's name, in the order of the registration list.
+std::vector<std::string> bus_names();
 
 // -c N: one telegram up to 2^63 - 1 (more than any capture holds).
 inline constexpr std::uint64_t kMaxCount = 9'223'372'036'854'775'807ULL;
@@ -122,7 +124,7 @@ void add_allow_empty_option(CLI::App& app, bool& allow_empty);
 struct DecodeSettings {
     // What the capture carries; every source of the command is opened with it. Chosen once:
     // by --bus, or (bus_given false) from the capture before it is decoded.
-    const CaptureProtocol* protocol = &profibus_dp_protocol();
+    const ProtocolDescriptor* protocol = &profibus_protocol();
     bool bus_given = false;
     DecoderOptions decoder;
     FcDecoderOptions fc_decoder;
@@ -164,7 +166,7 @@ void use_line(DecodeSettings& settings, const LineSettings& line);
 // The link type a capture of `protocol` is written with: `given` (--linktype) or the bus's
 // default (PROFIBUS 257 PROFIBUS_DL, FC protocol 147 USER0). An error when the link type is
 // 257, which is PROFIBUS only, for another bus.
-Result<int> capture_link_type(const CaptureProtocol& protocol, std::optional<int> given);
+Result<int> capture_link_type(const ProtocolDescriptor& protocol, std::optional<int> given);
 
 // Validates the values; the error names the bad option.
 // `default_format`: the -T default of the subcommand (-q conflicts with any other).

@@ -257,7 +257,7 @@ void warn_ppo_overrides(const BusDecoder& decoder);
 // (which may rightly hold none: empty_input_exit()). An unusable input gives its reason.
 // `bus_given` false: the bus was chosen from the capture, and the error suggests --bus.
 Result<void> check_telegrams_found(const TelegramSource& source, std::uint64_t telegrams,
-                                   const CaptureProtocol& protocol, bool bus_given = true);
+                                   const ProtocolDescriptor& protocol, bool bus_given = true);
 
 // The exit code of a decode, hex or stats run that read no telegram from a capture without
 // records (check_telegrams_found() passed; a byte stream without telegrams is no capture):

@@ -111,8 +111,8 @@ int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
         OpenResult opened = open_source(
             command.replay, InputFormat::Auto,
             command.bus == "profibus"
-                ? &profibus_dp_protocol()
-                : &capture_protocol(protocol_from_name(command.bus).value_or(Protocol::Fc)),
+                ? &profibus_protocol()
+                : &protocol_descriptor(protocol_from_name(command.bus).value_or(Protocol::Fc)),
             choice);
         if (!opened) {
             print_error(opened.error());

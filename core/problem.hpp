@@ -130,10 +130,13 @@ class ProblemList {
     }
 
   private:
-    std::array<Problem, kCapacity> items_;  // only the first count_ are meaningful
+    std::array<Problem, kCapacity> items_{};  // only the first count_ are meaningful
     std::uint8_t count_ = 0;
     std::uint8_t dropped_ = 0;
     std::uint8_t first_byte_ = 0;
 };
+// No problem: what a telegram of no protocol has.
+inline constexpr ProblemList kNoProblems{};
+
 
 }  // namespace dpscope

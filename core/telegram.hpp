@@ -12,21 +12,23 @@
 #include "core/byte_reader.hpp"
 #include "core/problem.hpp"
 #include "core/time.hpp"
-#include "protocols/fc/fc_telegram.hpp"
-#include "protocols/profibus/dp_telegram.hpp"
-#include "protocols/vlt2000/vlt2000_telegram.hpp"
+#include "protocols/protocol_list.hpp"
 
 namespace dpscope {
 
 // Station addresses are 0..127 (the header's master and slave).
 inline constexpr std::size_t kStationCount = 128;
 
-// The protocols dpscope decodes. One per capture.
+// The protocols dpscope decodes, one per capture, as protocols/protocol_list.hpp registers them.
 enum class Protocol : std::uint8_t {
-    ProfibusDp,  // PROFIBUS DP: the payload is `dp`
-    Fc,          // the Danfoss FC protocol on RS-485: the payload is `fc`
-    Vlt2000,     // the VLT 2000 serial telegram (ASCII; VLT 3000, 3500): the payload is `vlt2000`
+#define DPSCOPE_PROTOCOL_ENUM(Enum, name, Payload, member) Enum,
+    DPSCOPE_PROTOCOLS(DPSCOPE_PROTOCOL_ENUM)
+#undef DPSCOPE_PROTOCOL_ENUM
 };
+inline constexpr std::size_t kProtocolCount = 0
+#define DPSCOPE_PROTOCOL_COUNT(Enum, name, Payload, member) +1
+    DPSCOPE_PROTOCOLS(DPSCOPE_PROTOCOL_COUNT);
+#undef DPSCOPE_PROTOCOL_COUNT
 
 // "profibus", "fc", "vlt2000": the name --bus takes and captures record.
 std::string_view protocol_name(Protocol protocol) noexcept;
@@ -46,19 +48,18 @@ struct DecodedTelegram {
     std::uint64_t request_frame = 0;  // response: the request it answers (0: not in capture)
 
     // The payload: the member `protocol` names is the one that holds this telegram.
-    Protocol protocol = Protocol::ProfibusDp;
-    DpTelegram dp;
-    FcTelegram fc;
-    Vlt2000Telegram vlt2000;
+    Protocol protocol{};
+#define DPSCOPE_PROTOCOL_PAYLOAD(Enum, name, Payload, member) Payload member;
+    DPSCOPE_PROTOCOLS(DPSCOPE_PROTOCOL_PAYLOAD)
+#undef DPSCOPE_PROTOCOL_PAYLOAD
 
-    // Every problem found at any layer, with byte offsets.
+    // Every problem found at any layer, with byte offsets (each payload's payload_problems()).
     const ProblemList& problems() const noexcept {
-        switch (protocol) {
-            case Protocol::Fc: return fc.problems;
-            case Protocol::Vlt2000: return vlt2000.problems;
-            case Protocol::ProfibusDp: break;
-        }
-        return dp.fdl.problems;
+#define DPSCOPE_PROTOCOL_PROBLEMS(Enum, name, Payload, member) \
+    if (protocol == Protocol::Enum) return payload_problems(member);
+        DPSCOPE_PROTOCOLS(DPSCOPE_PROTOCOL_PROBLEMS)
+#undef DPSCOPE_PROTOCOL_PROBLEMS
+        return kNoProblems;
     }
     bool has_time() const noexcept { return time_ns != kNoTime; }
 };

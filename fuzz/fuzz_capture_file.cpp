@@ -118,7 +118,7 @@ void read_records(dpscope::TelegramSource& source, dpscope::Protocol protocol,
 }
 
 void read_all(const std::string& path, dpscope::InputFormat format,
-              const dpscope::CaptureProtocol* protocol, std::size_t file_size) {
+              const dpscope::ProtocolDescriptor* protocol, std::size_t file_size) {
     dpscope::BusChoice choice;
     dpscope::SourceOptions options;
     options.max_hex_repeat_bytes = 16 * 1024;
@@ -159,10 +159,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     dpscope::fuzz::FuzzInput in(data, size);
     const std::uint8_t choice = in.byte();
     const InputFormat format = kFormats[(choice & 7) % std::size(kFormats)];
-    const dpscope::CaptureProtocol* protocols[] = {nullptr, &dpscope::profibus_dp_protocol(),
+    const dpscope::ProtocolDescriptor* protocols[] = {nullptr, &dpscope::profibus_protocol(),
                                                    &dpscope::fc_protocol(),
                                                    &dpscope::vlt2000_protocol()};
-    const dpscope::CaptureProtocol* protocol = protocols[(choice >> 3) & 3];
+    const dpscope::ProtocolDescriptor* protocol = protocols[(choice >> 3) & 3];
     const std::span<const std::uint8_t> file = in.rest();
     const TempFile& temp = temp_file();
     temp.write(file.data(), file.size());

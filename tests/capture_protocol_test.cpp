@@ -1,6 +1,6 @@
 // The protocol a capture carries, as the capture layer sees it: PROFIBUS DP's framing rules and
 // pcap link types, and the list of every protocol dpscope reads.
-#include "capture/capture_protocol.hpp"
+#include "core/protocol_descriptor.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 namespace dpscope {
 namespace {
 
-TEST(CaptureProtocolTest, ProfibusDpIsFramedByFdlAndCarriedByLinkTypes257And147) {
-    const CaptureProtocol& dp = profibus_dp_protocol();
+TEST(ProtocolDescriptorTest, ProfibusDpIsFramedByFdlAndCarriedByLinkTypes257And147) {
+    const ProtocolDescriptor& dp = profibus_protocol();
     EXPECT_EQ(dp.protocol, Protocol::ProfibusDp);
     EXPECT_EQ(dp.framing.protocol_name(), "PROFIBUS");
     EXPECT_EQ(&dp.framing, &fdl_framing_rules());
@@ -24,23 +24,23 @@ TEST(CaptureProtocolTest, ProfibusDpIsFramedByFdlAndCarriedByLinkTypes257And147)
     EXPECT_EQ(dp.link_types[1].name, "USER0");
 }
 
-TEST(CaptureProtocolTest, CarriedByOnlyItsOwnLinkTypes) {
-    const CaptureProtocol& dp = profibus_dp_protocol();
+TEST(ProtocolDescriptorTest, CarriedByOnlyItsOwnLinkTypes) {
+    const ProtocolDescriptor& dp = profibus_protocol();
     EXPECT_TRUE(dp.carried_by(257));
     EXPECT_TRUE(dp.carried_by(147));
     for (int other : {0, 1, 148, 256, 258, -1})
         EXPECT_FALSE(dp.carried_by(other)) << other;
 }
 
-TEST(CaptureProtocolTest, EveryProtocolIsListedOnceWithLinkTypesNoOtherClaims) {
-    auto protocols = capture_protocols();
+TEST(ProtocolDescriptorTest, EveryProtocolIsListedOnceWithLinkTypesNoOtherClaims) {
+    auto protocols = protocol_table();
     ASSERT_FALSE(protocols.empty());
-    EXPECT_EQ(protocols[0], &profibus_dp_protocol());
+    EXPECT_EQ(protocols[0], &profibus_protocol());
     std::set<Protocol> seen_protocols;
     // USER0 is the link type of every bus without one of its own (the bus is recorded in the
     // file); every other link type belongs to one protocol.
     std::set<int> seen_link_types;
-    for (const CaptureProtocol* protocol : protocols) {
+    for (const ProtocolDescriptor* protocol : protocols) {
         EXPECT_TRUE(seen_protocols.insert(protocol->protocol).second)
             << protocol->framing.protocol_name();
         EXPECT_FALSE(protocol->link_types.empty()) << protocol->framing.protocol_name();

@@ -63,7 +63,7 @@ struct ReadBack {
 
 ReadBack read_back(const std::string& path) {
     ReadBack result;
-    OpenResult opened = open_source(path, InputFormat::Auto, profibus_dp_protocol());
+    OpenResult opened = open_source(path, InputFormat::Auto, profibus_protocol());
     EXPECT_TRUE(opened) << opened.error();
     if (!opened) return result;
     opened.value()->on_issue([&](const InputIssue&) { ++result.issues; });

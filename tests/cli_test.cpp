@@ -40,7 +40,7 @@ std::string file_content(const std::string& path) {
 }
 
 std::size_t records_in(const std::string& path) {
-    OpenResult opened = open_source(path, InputFormat::Auto, profibus_dp_protocol());
+    OpenResult opened = open_source(path, InputFormat::Auto, profibus_protocol());
     EXPECT_TRUE(opened) << opened.error();
     if (!opened) return 0;
     Record record;
@@ -972,7 +972,7 @@ TEST(CliTest, SimulateThenDecodeRoundTrip) {
     options.slaves = {{3, 1, Dialect::Vlt}};
     options.cycles = 30;
     Simulator simulator(options);
-    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_dp_protocol());
+    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_protocol());
     ASSERT_TRUE(opened) << opened.error();
     Record record;
     std::vector<std::uint8_t> bytes;
@@ -1313,7 +1313,7 @@ TEST(CliTest, SimulateStartDatesTheCapture) {
     CommandResult r =
         run_dpscope({"simulate", "-w", file.path, "--start", "2000000000.5", "--cycles", "5"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_dp_protocol());
+    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_protocol());
     ASSERT_TRUE(opened) << opened.error();
     Record record;
     ASSERT_TRUE(opened.value()->next(record));

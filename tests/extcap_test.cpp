@@ -316,7 +316,7 @@ TEST(ExtcapTest, CapturesIntoAFifoLiveAndEndsOnSigterm) {
     EXPECT_EQ(capture.out(), "");
     const std::string pcap = test::temp_path("from-fifo.pcap");
     test::write_text_file(pcap, reader.bytes());
-    Capture got = read_capture(pcap, profibus_dp_protocol());
+    Capture got = read_capture(pcap, profibus_protocol());
     EXPECT_EQ(got.status, InputStatus::Ok);
     EXPECT_EQ(got.link_type, 147);
     EXPECT_EQ(got.telegrams, session.played);
@@ -361,7 +361,7 @@ TEST(ExtcapTest, CapturesIntoAFileWithTheBusTagAndEndsCompleteOnSigterm) {
     // Read with the FC protocol asked for: the file's own tag says PROFIBUS.
     auto decoded = test::run_dpscope({"decode", "-q", pcap});
     EXPECT_EQ(decoded.exit_code, 0) << decoded.err;
-    Capture got = read_capture(pcap, profibus_dp_protocol());
+    Capture got = read_capture(pcap, profibus_protocol());
     EXPECT_EQ(got.status, InputStatus::Ok);
     EXPECT_EQ(got.link_type, 147);
     EXPECT_EQ(got.telegrams, session.played);
@@ -408,7 +408,7 @@ TEST(ExtcapTest, TsharkCapturesOnTheExtcapInterface) {
     std::vector<std::string> write = {"simulate", "-w", reference};
     write.insert(write.end(), session.begin(), session.end());
     ASSERT_EQ(test::run_dpscope(write).exit_code, 0);
-    Capture expected = read_capture(reference, profibus_dp_protocol());
+    Capture expected = read_capture(reference, profibus_protocol());
     ASSERT_GT(expected.telegrams.size(), 50u);
 
     PseudoTerminal bus, adapter;
@@ -433,7 +433,7 @@ TEST(ExtcapTest, TsharkCapturesOnTheExtcapInterface) {
         ASSERT_EQ(played.exit_code, 0) << played.err;
     }
     ASSERT_EQ(capture.wait(), 0) << capture.err();
-    Capture got = read_capture(out.string(), profibus_dp_protocol());
+    Capture got = read_capture(out.string(), profibus_protocol());
     EXPECT_EQ(got.status, InputStatus::Ok);
     EXPECT_EQ(got.link_type, 147);
     EXPECT_EQ(got.telegrams, expected.telegrams);

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "capture/capture_protocol.hpp"
+#include "core/protocol_descriptor.hpp"
 #include "capture/telegram_source.hpp"
 #include "protocols/fc/fc_codes.hpp"
 #include "protocols/fc/fc_decoder.hpp"
@@ -389,7 +389,7 @@ TEST(FcSimulatorTest, SamplesDecode) {
     for (const char* name : {"fc-clean.pcap", "fc.pcap"}) {
         SCOPED_TRACE(name);
         OpenResult opened = open_source(test::source_dir() + "/samples/" + name, InputFormat::Auto,
-                                        capture_protocol(Protocol::Fc));
+                                        protocol_descriptor(Protocol::Fc));
         ASSERT_TRUE(opened) << opened.error();
         FcDecoder decoder;
         Record record;

@@ -67,7 +67,7 @@ struct ReadResult {
 
 ReadResult read_all(const std::string& path, InputFormat format = InputFormat::Auto) {
     ReadResult result;
-    OpenResult opened = open_source(path, format, profibus_dp_protocol());
+    OpenResult opened = open_source(path, format, profibus_protocol());
     EXPECT_TRUE(opened) << opened.error();
     if (!opened) return result;
     EXPECT_TRUE(opened.error().empty()) << opened.error();
@@ -84,7 +84,7 @@ ReadResult read_all(const std::string& path, InputFormat format = InputFormat::A
 }
 
 std::string open_error(const std::string& path, InputFormat format = InputFormat::Auto) {
-    OpenResult opened = open_source(path, format, profibus_dp_protocol());
+    OpenResult opened = open_source(path, format, profibus_protocol());
     EXPECT_FALSE(opened) << path;
     return opened.error();
 }
@@ -275,7 +275,7 @@ TEST(PcapSourceTest, PcapngWithVeryManyInterfacesIsReadInBoundedMemory) {
         b.interface(1);
     b.packet(0, kT0Us, kSd1).packet(150'000, kT0Us + 1, kSd2).packet(0, kT0Us + 2, kToken);
     test::write_file(file.path, b.bytes());
-    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_dp_protocol());
+    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_protocol());
     ASSERT_TRUE(opened) << opened.error();
     TelegramSource& source = *opened.value();
     std::vector<InputIssue> issues;
@@ -526,7 +526,18 @@ TEST(PcapSourceTest, UnsupportedLinkTypeNamesFileNumberAndName) {
 // A protocol carried by Ethernet frames, for the tests below: the readers take the link types
 // from the protocol they are given, not from a list of their own.
 const PcapLinkType kEthernetOnly[] = {{1, "EN10MB"}};
-const CaptureProtocol kEthernetProtocol{Protocol::ProfibusDp, fdl_framing_rules(), kEthernetOnly};
+const ProtocolDescriptor kEthernetProtocol{.protocol = Protocol::ProfibusDp,
+                                           .name = "ethernet-test",
+                                           .title = "a test protocol on Ethernet",
+                                           .framing = fdl_framing_rules(),
+                                           .link_types = kEthernetOnly,
+                                           .pcap_bus_number = 0,
+                                           .lead_byte = std::nullopt,
+                                           .lead_byte_text = {},
+                                           .text_log_shape = {},
+                                           .traffic_name = {},
+                                           .masters_addressed = true,
+                                           .addresses_pnu = nullptr};
 
 TEST(PcapSourceTest, TheProtocolGivenChoosesTheLinkTypes) {
     TempFile file("ethernet-for-test-protocol.pcap");

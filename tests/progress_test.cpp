@@ -114,7 +114,7 @@ TEST(ProgressTest, TicksReadThePositionOnlyEveryFourThousandTelegrams) {
     int clock_reads = 0;
     Screen screen;
     std::unique_ptr<TelegramSource> source =
-        memory_source("memory", Bytes(), profibus_dp_protocol());
+        memory_source("memory", Bytes(), profibus_protocol());
     ProgressMeter meter(1000, true, screen.writer(), [&] {
         ++clock_reads;
         return now;
@@ -264,7 +264,7 @@ TEST(ProgressTest, NotShownWhenStandardErrorIsNoTerminal) {
     // Nor in this process (standard error of the tests is not the meter's business when it is
     // redirected): for_source asks isatty.
     if (isatty(STDERR_FILENO) == 0) {
-        OpenResult opened = open_source(capture, InputFormat::Auto, profibus_dp_protocol());
+        OpenResult opened = open_source(capture, InputFormat::Auto, profibus_protocol());
         ASSERT_TRUE(opened) << opened.error();
         EXPECT_GT((*opened)->input_size(), 0u);
         EXPECT_FALSE(ProgressMeter::for_source(**opened).shown());
@@ -273,7 +273,7 @@ TEST(ProgressTest, NotShownWhenStandardErrorIsNoTerminal) {
 
 TEST(ProgressTest, SourcePositionFollowsTheReading) {
     const std::string& capture = capture_of_many_telegrams();
-    OpenResult opened = open_source(capture, InputFormat::Auto, profibus_dp_protocol());
+    OpenResult opened = open_source(capture, InputFormat::Auto, profibus_protocol());
     ASSERT_TRUE(opened) << opened.error();
     TelegramSource& source = **opened;
     const std::uint64_t size = source.input_size();
@@ -291,7 +291,7 @@ TEST(ProgressTest, SourcePositionFollowsTheReading) {
     }
     EXPECT_EQ(source.bytes_read(), size);
     // Bytes in memory and standard input have no known size.
-    EXPECT_EQ(memory_source("memory", Bytes(), profibus_dp_protocol())->input_size(), 0u);
+    EXPECT_EQ(memory_source("memory", Bytes(), profibus_protocol())->input_size(), 0u);
 }
 
 }  // namespace

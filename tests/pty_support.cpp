@@ -215,7 +215,7 @@ void play(const PseudoTerminal& pty, const Session& s, bool as_fast_as_possible,
     ASSERT_TRUE(played) << played.error();
 }
 
-Capture read_capture(const std::string& path, const CaptureProtocol& protocol) {
+Capture read_capture(const std::string& path, const ProtocolDescriptor& protocol) {
     Capture c;
     OpenResult opened = open_source(path, InputFormat::Auto, protocol);
     EXPECT_TRUE(opened) << opened.error();

@@ -13,7 +13,7 @@
 #include <thread>
 #include <vector>
 
-#include "capture/capture_protocol.hpp"
+#include "core/protocol_descriptor.hpp"
 #include "capture/telegram_source.hpp"
 #include "simulator/simulator.hpp"
 #include "tests/test_support.hpp"
@@ -126,6 +126,6 @@ struct Capture {
 };
 
 Capture read_capture(const std::string& path,
-                     const CaptureProtocol& protocol = profibus_dp_protocol());
+                     const ProtocolDescriptor& protocol = profibus_protocol());
 
 }  // namespace dpscope::test

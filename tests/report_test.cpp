@@ -134,7 +134,7 @@ struct Analysis {
 std::unique_ptr<Analysis> analyse_file(const std::string& relative) {
     auto analysis = std::make_unique<Analysis>();
     OpenResult opened =
-        open_source(test::source_dir() + "/" + relative, InputFormat::Auto, profibus_dp_protocol());
+        open_source(test::source_dir() + "/" + relative, InputFormat::Auto, profibus_protocol());
     EXPECT_TRUE(opened) << opened.error();
     if (!opened) return analysis;
     TelegramSource& source = *opened.value();

@@ -1321,7 +1321,7 @@ TEST(SimulatorTest, SessionsWithoutDpv1AreUnchanged) {
         SCOPED_TRACE(c.sample);
         std::vector<Telegram> telegrams = run(c.options);
         OpenResult opened = open_source(test::source_dir() + "/" + c.sample, InputFormat::Auto,
-                                        profibus_dp_protocol());
+                                        profibus_protocol());
         ASSERT_TRUE(opened) << opened.error();
         Record record;
         std::size_t n = 0;

@@ -1272,7 +1272,7 @@ std::string reference_stats(const std::string& pcap, const std::string& device,
     options.baud = baud;
     BusHealthTracker tracker(options);
     BusDecoder decoder;
-    OpenResult opened = open_source(pcap, InputFormat::Auto, profibus_dp_protocol());
+    OpenResult opened = open_source(pcap, InputFormat::Auto, profibus_protocol());
     EXPECT_TRUE(opened) << opened.error();
     if (!opened) return {};
     Record record;

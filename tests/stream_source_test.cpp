@@ -68,7 +68,7 @@ ReadResult drain(TelegramSource& source) {
 }
 
 ReadResult read_all(const std::string& path, InputFormat format) {
-    OpenResult opened = open_source(path, format, profibus_dp_protocol());
+    OpenResult opened = open_source(path, format, profibus_protocol());
     EXPECT_TRUE(opened) << opened.error();
     if (!opened) return {};
     return drain(*opened.value());
@@ -388,7 +388,7 @@ TEST(StreamSourceTest, DumpRepeatIsFramedAChunkAtATime) {
     const std::string line =
         "  10 03 02 49 4e 16 10 03  02 49 4e 16 e5 e5 e5 e5  |...IN...IN.....|\n";
     test::write_text_file(file.path, "00000000" + line + "*\n00100000" + line + "00100010\n");
-    OpenResult opened = open_source(file.path, InputFormat::Hex, profibus_dp_protocol());
+    OpenResult opened = open_source(file.path, InputFormat::Hex, profibus_protocol());
     ASSERT_TRUE(opened) << opened.error();
     auto* source = dynamic_cast<FramedSource*>(opened.value().get());
     ASSERT_NE(source, nullptr);
@@ -443,7 +443,7 @@ TEST(StreamSourceTest, DumpRepeatLongerThanTheLimitIsNamed) {
         SourceOptions options;
         options.max_hex_repeat_bytes = limit;
         OpenResult opened =
-            open_source(file.path, InputFormat::Hex, profibus_dp_protocol(), options);
+            open_source(file.path, InputFormat::Hex, profibus_protocol(), options);
         ASSERT_TRUE(opened) << opened.error();
         ReadResult r = drain(*opened.value());
         bool named = false;
@@ -516,7 +516,7 @@ TEST(StreamSourceTest, HexFromStandardInputIsDecodedLineByLine) {
     std::promise<std::vector<std::uint8_t>> first;
     std::future<std::vector<std::uint8_t>> first_telegram = first.get_future();
     std::thread reader([&first] {
-        OpenResult opened = open_source("-", InputFormat::Hex, profibus_dp_protocol());
+        OpenResult opened = open_source("-", InputFormat::Hex, profibus_protocol());
         std::vector<std::uint8_t> bytes;
         Record record;
         if (opened && opened.value()->next(record))
@@ -545,7 +545,7 @@ TEST(StreamSourceTest, HexFromStandardInputIsDecodedLineByLine) {
 TEST(StreamSourceTest, MemorySourceFramesBytes) {
     std::vector<std::uint8_t> bytes = concat({kSd1, hex("00 01"), kAck});
     auto source =
-        memory_source("<command line>", Bytes(bytes.data(), bytes.size()), profibus_dp_protocol());
+        memory_source("<command line>", Bytes(bytes.data(), bytes.size()), profibus_protocol());
     ASSERT_TRUE(source);
     EXPECT_EQ(source->name(), "<command line>");
     ReadResult r = drain(*source);
@@ -561,7 +561,7 @@ TEST(StreamSourceTest, MemorySourceFramesBytes) {
 
 TEST(StreamSourceTest, MemorySourceCopiesItsBytes) {
     std::vector<std::uint8_t> bytes = kSd1;
-    auto source = memory_source("mem", Bytes(bytes.data(), bytes.size()), profibus_dp_protocol());
+    auto source = memory_source("mem", Bytes(bytes.data(), bytes.size()), profibus_protocol());
     bytes.assign(bytes.size(), 0x00);
     ReadResult r = drain(*source);
     ASSERT_EQ(r.records.size(), 1u);
@@ -571,13 +571,13 @@ TEST(StreamSourceTest, MemorySourceCopiesItsBytes) {
 TEST(StreamSourceTest, MemorySourceTruncatedAndEmpty) {
     std::vector<std::uint8_t> cut = hex("68 07 07 68 83");
     ReadResult r =
-        drain(*memory_source("mem", Bytes(cut.data(), cut.size()), profibus_dp_protocol()));
+        drain(*memory_source("mem", Bytes(cut.data(), cut.size()), profibus_protocol()));
     EXPECT_TRUE(r.records.empty());
     EXPECT_EQ(r.skipped, 5u);
     ASSERT_EQ(r.issues.size(), 1u);
     EXPECT_EQ(r.issues[0].message,
               "mem: byte 0: skipped 5 bytes: telegram cut off (gap or end of input)");
-    ReadResult empty = drain(*memory_source("mem", Bytes(), profibus_dp_protocol()));
+    ReadResult empty = drain(*memory_source("mem", Bytes(), profibus_protocol()));
     EXPECT_TRUE(empty.records.empty());
     EXPECT_TRUE(empty.issues.empty());
 }
@@ -593,7 +593,7 @@ TEST(StreamSourceTest, RandomBytesDetectedAsRawAreNoProfibusStream) {
     // Decided over the first 64 KiB, before anything is handed out or warned about.
     EXPECT_TRUE(r.records.empty());
     EXPECT_TRUE(r.issues.empty());
-    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_dp_protocol());
+    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_protocol());
     ASSERT_TRUE(opened);
     Record record;
     EXPECT_FALSE(opened.value()->next(record));
@@ -653,7 +653,7 @@ TEST(StreamSourceTest, ShortInputIsJudgedWholeFromMinimumSize) {
     std::vector<std::uint8_t> noise(600 - kSd1.size() - kSd2.size(), 0x01);
     TempFile file("short.raw");
     test::write_file(file.path, concat({kSd1, noise, kSd2}));
-    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_dp_protocol());
+    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_protocol());
     ASSERT_TRUE(opened);
     ReadResult r = drain(*opened.value());
     EXPECT_EQ(r.status, InputStatus::Unusable);
@@ -675,7 +675,7 @@ TEST(StreamSourceTest, HexLogMostlySkippedIsNoProfibusLogUnlessForced) {
     text += "10 03 02 49 4E 16\n";
     TempFile file("numbers.txt");
     test::write_text_file(file.path, text);
-    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_dp_protocol());
+    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_protocol());
     ASSERT_TRUE(opened);
     ReadResult r = drain(*opened.value());
     EXPECT_EQ(r.status, InputStatus::Unusable);
@@ -692,7 +692,7 @@ TEST(StreamSourceTest, StopAfterReportsNothingPastTheLastTelegram) {
     TempFile file("count.raw");
     test::write_file(file.path,
                      concat({kSd1, hex("01 02"), kSd2, hex("03 04 05"), kToken, hex("06"), kAck}));
-    OpenResult opened = open_source(file.path, InputFormat::Raw, profibus_dp_protocol());
+    OpenResult opened = open_source(file.path, InputFormat::Raw, profibus_protocol());
     ASSERT_TRUE(opened);
     opened.value()->stop_after(2);
     ReadResult r = drain(*opened.value());
@@ -735,7 +735,7 @@ TEST(StreamSourceTest, TextReadAsARawStreamSaysWhichInputFormatToTry) {
         text += "\x1B[32m12:00:01.5 10 03 02 49 4E 16\x1B[0m\n";
     TempFile file("colour.log");
     test::write_text_file(file.path, text);
-    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_dp_protocol());
+    OpenResult opened = open_source(file.path, InputFormat::Auto, profibus_protocol());
     ASSERT_TRUE(opened);
     ReadResult r = drain(*opened.value());
     EXPECT_EQ(r.status, InputStatus::Unusable);
@@ -859,7 +859,7 @@ struct BufferedRead {
 
 // Reads `path` to its end (or `limit` telegrams), noting the most memory the source held.
 BufferedRead read_buffered(const std::string& path, InputFormat format,
-                           const CaptureProtocol& protocol = profibus_dp_protocol(),
+                           const ProtocolDescriptor& protocol = profibus_protocol(),
                            std::size_t limit = 0) {
     BufferedRead result;
     OpenResult opened = open_source(path, format, protocol);

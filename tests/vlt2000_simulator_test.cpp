@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "capture/capture_protocol.hpp"
+#include "core/protocol_descriptor.hpp"
 #include "capture/telegram_source.hpp"
 #include "protocols/vlt2000/vlt2000_codes.hpp"
 #include "protocols/vlt2000/vlt2000_decoder.hpp"
@@ -477,7 +477,7 @@ TEST(Vlt2000SimulatorTest, SamplesDecode) {
     for (const char* name : {"vlt2000-clean.pcap", "vlt2000.pcap"}) {
         SCOPED_TRACE(name);
         OpenResult opened = open_source(test::source_dir() + "/samples/" + name, InputFormat::Auto,
-                                        capture_protocol(Protocol::Vlt2000));
+                                        protocol_descriptor(Protocol::Vlt2000));
         ASSERT_TRUE(opened) << opened.error();
         Vlt2000Decoder decoder;
         Record record;

@@ -14,7 +14,7 @@ void make_seeds_fuzz_fdl_framer(SeedWriter& writer) {
          {"bus-health.pcap", "dpv1.pcap", "faults.pcap", "ge.pcap", "midstream.pcap", "ppo1.pcap",
           "ppo2.pcap", "ppo3.pcap", "ppo4.pcap", "ppo5.pcapng", "profidrive.pcap", "timeouts.pcap",
           "truncated.pcap", "user0.pcap"}) {
-        const Telegrams telegrams = sample_telegrams(writer, sample, profibus_dp_protocol());
+        const Telegrams telegrams = sample_telegrams(writer, sample, profibus_protocol());
         add_stream_pieces(writer, std::string(sample), telegrams, 900);
     }
     // The raw serial stream as it is (garbage and cut telegrams included), in pieces.

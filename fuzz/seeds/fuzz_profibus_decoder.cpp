@@ -24,7 +24,7 @@ void make_seeds_fuzz_profibus_decoder(SeedWriter& writer) {
           "ppo2.pcap", "ppo3.pcap", "ppo4.pcap", "ppo5.pcapng", "profidrive.pcap", "timeouts.pcap",
           "truncated.pcap", "user0.pcap", "serial.raw"})
         add_single_telegrams(writer, sample,
-                             sample_telegrams(writer, sample, profibus_dp_protocol()), headers, 12,
+                             sample_telegrams(writer, sample, profibus_protocol()), headers, 12,
                              seen);
     const std::vector<Telegrams> sessions = simulated_sessions(
         Protocol::ProfibusDp, {"3:1", "4:2:profidrive:dpv1", "5:5:ge", "6:4:dpv1"}, 200);

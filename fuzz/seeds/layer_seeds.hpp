@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "capture/capture_protocol.hpp"
+#include "core/protocol_descriptor.hpp"
 #include "capture/telegram_source.hpp"
 #include "seed_writer.hpp"
 #include "simulator/fault_kind.hpp"
@@ -26,7 +26,7 @@ using Telegrams = std::vector<std::vector<std::uint8_t>>;
 
 // Every record of samples/NAME, read as a capture of `protocol`.
 inline Telegrams sample_telegrams(const SeedWriter& writer, const std::string& name,
-                                  const CaptureProtocol& protocol) {
+                                  const ProtocolDescriptor& protocol) {
     const std::string path = (writer.source_dir() / "samples" / name).string();
     OpenResult opened = open_source(path, InputFormat::Auto, protocol);
     if (!opened) throw std::runtime_error("cannot open " + path);

@@ -74,4 +74,7 @@ struct FcTelegram {
     void reset() noexcept { *this = FcTelegram{}; }
 };
 
+// Every problem found in an FC telegram (DecodedTelegram::problems()).
+inline const ProblemList& payload_problems(const FcTelegram& fc) noexcept { return fc.problems; }
+
 }  // namespace dpscope

@@ -170,4 +170,9 @@ struct DpTelegram {
     }
 };
 
+// Every problem found at any layer of a DP telegram (DecodedTelegram::problems()).
+inline const ProblemList& payload_problems(const DpTelegram& dp) noexcept {
+    return dp.fdl.problems;
+}
+
 }  // namespace dpscope

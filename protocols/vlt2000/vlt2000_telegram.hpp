@@ -90,6 +90,11 @@ struct Vlt2000Telegram {
     void reset() noexcept { *this = Vlt2000Telegram{}; }
 };
 
+// Every problem found in a VLT 2000 telegram (DecodedTelegram::problems()).
+inline const ProblemList& payload_problems(const Vlt2000Telegram& v) noexcept {
+    return v.problems;
+}
+
 std::string_view vlt2000_letter_name(Vlt2000Letter letter) noexcept;  // "update", ..., "unknown"
 
 // The checksum of a telegram [P:VLT3500 p86]: the sum of the character codes of bytes 2..19

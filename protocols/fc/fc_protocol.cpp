@@ -1,0 +1,40 @@
+// The Danfoss FC protocol as the shared code sees it (core/protocol_descriptor.hpp).
+#include <array>
+
+#include "core/protocol_descriptor.hpp"
+#include "protocols/fc/fc_framing_rules.hpp"
+
+namespace dpscope {
+
+namespace {
+
+// The FC protocol has no link type of its own: dpscope writes it as USER0 and records the bus in
+// the file (capture/bus_tag.hpp).
+constexpr std::array<PcapLinkType, 1> kFcLinkTypes{{{kLinkTypeUser0, "USER0"}}};
+
+// An FC telegram's PKW names its PNU (a response echoes its request's).
+bool fc_addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
+    return t.fc.has_pkw && t.fc.pkw.pnu == pnu;
+}
+
+}  // namespace
+
+const ProtocolDescriptor& fc_protocol() noexcept {
+    static const ProtocolDescriptor descriptor{
+        .protocol = Protocol::Fc,
+        .name = "fc",
+        .title = "the FC protocol (RS-485)",
+        .framing = fc_framing_rules(),
+        .link_types = kFcLinkTypes,
+        .pcap_bus_number = 2,
+        .lead_byte = kFcStx,
+        .lead_byte_text = "STX (0x02)",
+        .text_log_shape = {},
+        .traffic_name = {},
+        .masters_addressed = false,
+        .addresses_pnu = fc_addresses_pnu,
+    };
+    return descriptor;
+}
+
+}  // namespace dpscope

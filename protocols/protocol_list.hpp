@@ -1,0 +1,28 @@
+// The registration table: every protocol dpscope decodes, one line each. Everything else about a
+// protocol lives in its folder under protocols/ and is found from this line by name:
+//
+//   X(Enum, name, Payload, member)
+//     Enum     its value of `Protocol` (core/telegram.hpp); the first line is the default bus
+//     name     what --bus takes and captures record; also the prefix of what its folder provides
+//     Payload  its payload type, the member `member` of DecodedTelegram
+//
+// What a protocol's folder provides, each in the file of its role (CONTRIBUTING.md, "Adding a
+// protocol"); a line here without one of them fails to link, naming the function:
+//   const ProtocolDescriptor& <name>_protocol();   decoder layer: <name>_protocol.cpp
+//   const ProtocolRendering& <name>_rendering();   formats layer: <name>_describe.cpp
+//   const BusReport& <name>_bus_report();          formats layer: <name>_report_section.cpp
+// The per-layer tables are made from this list: protocols/protocol_table.cpp (the descriptors),
+// formats/protocol_renderings.cpp (renderers and report sections).
+#pragma once
+
+#include "protocols/fc/fc_telegram.hpp"
+#include "protocols/profibus/dp_telegram.hpp"
+#include "protocols/vlt2000/vlt2000_telegram.hpp"
+
+// PROFIBUS DP (FDL, DP-V0 with the PPO parameter channel, DP-V1/PROFIdrive): the payload `dp`.
+// The Danfoss FC protocol on RS-485: the payload `fc`.
+// The VLT 2000 serial telegram (ASCII; VLT 3000, 3500): the payload `vlt2000`.
+#define DPSCOPE_PROTOCOLS(X)                    \
+    X(ProfibusDp, profibus, DpTelegram, dp)     \
+    X(Fc, fc, FcTelegram, fc)                   \
+    X(Vlt2000, vlt2000, Vlt2000Telegram, vlt2000)

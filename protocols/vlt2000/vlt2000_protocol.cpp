@@ -1,0 +1,40 @@
+// The VLT 2000 serial telegram as the shared code sees it (core/protocol_descriptor.hpp).
+#include <array>
+
+#include "core/protocol_descriptor.hpp"
+#include "protocols/vlt2000/vlt2000_framing_rules.hpp"
+
+namespace dpscope {
+
+namespace {
+
+// No link type of its own: dpscope writes it as USER0 and records the bus in the file.
+constexpr std::array<PcapLinkType, 1> kVlt2000LinkTypes{{{kLinkTypeUser0, "USER0"}}};
+
+// A VLT 2000 telegram names its parameter (a C telegram's is ignored).
+bool vlt2000_addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
+    return t.vlt2000.has_parameter && t.vlt2000.letter != Vlt2000Letter::Control &&
+           t.vlt2000.parameter == pnu;
+}
+
+}  // namespace
+
+const ProtocolDescriptor& vlt2000_protocol() noexcept {
+    static const ProtocolDescriptor descriptor{
+        .protocol = Protocol::Vlt2000,
+        .name = "vlt2000",
+        .title = "the VLT 2000 telegram",
+        .framing = vlt2000_framing_rules(),
+        .link_types = kVlt2000LinkTypes,
+        .pcap_bus_number = 3,
+        .lead_byte = kVlt2000Start,
+        .lead_byte_text = "'<'",
+        .text_log_shape = "'<' ... '>'",
+        .traffic_name = "VLT 2000",
+        .masters_addressed = false,
+        .addresses_pnu = vlt2000_addresses_pnu,
+    };
+    return descriptor;
+}
+
+}  // namespace dpscope
