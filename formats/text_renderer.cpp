@@ -9,9 +9,8 @@
 #include <iterator>
 
 #include "formats/describe.hpp"
+#include "formats/protocol_rendering.hpp"
 #include "formats/renderer.hpp"
-#include "protocols/fc/fc_describe.hpp"
-#include "protocols/vlt2000/vlt2000_describe.hpp"
 
 namespace dpscope {
 
@@ -45,77 +44,11 @@ void append_relative_time(TextBuffer& b, std::int64_t relative_ns) {
                    kTimeColumn);
 }
 
-// source → destination, frame type, service, req|rsp, detail.
-void append_dp_columns(TextBuffer& b, const DecodedTelegram& t) {
-    auto it = std::back_inserter(b);
-    if (t.dp.fdl.has_addresses) {
-        fmt::format_to(it, "{:>3} → {:<3} ", t.dp.fdl.sa, t.dp.fdl.da);
-    } else if (t.has_roles) {
-        fmt::format_to(it, "{:>3} → {:<3} ", t.slave, t.master);
-    } else {
-        append(b, "  ? → ?   ");
-    }
-    fmt::format_to(it, "{:<3} {:<14} {} ",
-                   t.dp.fdl.type == FrameType::Invalid ? "bad" : frame_type_name(t.dp.fdl.type),
-                   service_name(t.dp.service), t.direction == Direction::Request ? "req" : "rsp");
-    if (t.dp.fdl.type == FrameType::Invalid)
-        append_hex(b, t.bytes.first(std::min<std::size_t>(t.bytes.size(), 16)));
-    else
-        append_service_detail(b, t);
-}
-
-// The FC master has no address ("M"); a broadcast goes to "all". The frame type column says
-// "FC", the service column the block.
-void append_fc_columns(TextBuffer& b, const DecodedTelegram& t) {
-    auto it = std::back_inserter(b);
-    if (!t.has_roles) {
-        append(b, "  ? → ?   ");
-    } else {
-        const std::string drive =
-            t.fc.broadcast ? std::string("all") : fmt::format("{}", t.fc.address);
-        if (t.direction == Direction::Request)
-            fmt::format_to(it, "{:>3} → {:<3} ", "M", drive);
-        else
-            fmt::format_to(it, "{:>3} → {:<3} ", drive, "M");
-    }
-    fmt::format_to(it, "{:<3} {:<14} {} ", t.has_roles ? "FC" : "bad", fc_block_name(t.fc.block),
-                   t.direction == Direction::Request ? "req" : "rsp");
-    append_fc_detail(b, t);
-}
-
-// The VLT 2000 master has no address either ("M"); a drive is shown by its two-digit address
-// as the telegram carries it, a broadcast (00) goes to "all".
-void append_vlt2000_columns(TextBuffer& b, const DecodedTelegram& t) {
-    auto it = std::back_inserter(b);
-    if (!t.has_roles) {
-        append(b, "  ? → ?   ");
-    } else {
-        // A reply with address 00 (nobody should send one) comes from "00".
-        const std::string drive = t.vlt2000.broadcast && t.direction == Direction::Request
-                                      ? std::string("all")
-                                      : fmt::format("{:02}", t.vlt2000.address);
-        if (t.direction == Direction::Request)
-            fmt::format_to(it, "{:>3} → {:<3} ", "M", drive);
-        else
-            fmt::format_to(it, "{:>3} → {:<3} ", drive, "M");
-    }
-    fmt::format_to(it, "{:<3} {:<14} {} ", t.has_roles ? "VLT" : "bad",
-                   t.has_roles ? vlt2000_letter_text(t) : std::string("-"),
-                   t.direction == Direction::Request ? "req" : "rsp");
-    append_vlt2000_detail(b, t);
-}
-
 }  // namespace
 
 void append_telegram_columns(TextBuffer& b, const DecodedTelegram& t,
                              std::span<const Finding> findings) {
-    if (t.protocol == Protocol::Fc) {
-        append_fc_columns(b, t);
-    } else if (t.protocol == Protocol::Vlt2000) {
-        append_vlt2000_columns(b, t);
-    } else {
-        append_dp_columns(b, t);
-    }
+    protocol_rendering(t.protocol).text_columns(b, t);
     if (!t.problems().empty()) {
         append(b, " [");
         bool first = true;

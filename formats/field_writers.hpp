@@ -1,0 +1,75 @@
+// Small field writers the telegram renderers share with every protocol's part of them
+// (protocols/<name>/*_render.cpp): JSON values for the jsonl format, fields for the csv format.
+#pragma once
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <iterator>
+#include <span>
+#include <string_view>
+
+#include "formats/describe.hpp"
+#include "formats/json_writer.hpp"
+
+namespace dpscope {
+
+// ---- jsonl
+
+// Names of the set bits as an array of strings.
+inline void flag_array(JsonWriter& w, std::uint8_t value, std::span<const FlagBit> flags) {
+    w.begin_array();
+    for (const FlagBit& flag : flags)
+        if (value & flag.mask) w.string(flag.name);
+    w.end_array();
+}
+
+// The bytes as one string of hex digits ("0a1b").
+inline void hex_string(JsonWriter& w, Bytes bytes) {
+    w.raw_value([bytes](TextBuffer& b) {
+        b.push_back('"');
+        append_hex(b, bytes, "");
+        b.push_back('"');
+    });
+}
+
+inline void optional_text(JsonWriter& w, bool present, std::string_view text) {
+    if (present)
+        w.string(text);
+    else
+        w.null();
+}
+
+inline void optional_boolean(JsonWriter& w, bool present, bool value) {
+    if (present)
+        w.boolean(value);
+    else
+        w.null();
+}
+
+inline void optional_string(JsonWriter& w, std::string_view text) {
+    if (text.empty())
+        w.null();
+    else
+        w.string(text);
+}
+
+// ---- csv
+
+// A CSV field in quotes, quotes inside doubled (RFC 4180).
+inline void csv_quoted(TextBuffer& b, std::string_view text) {
+    b.push_back('"');
+    for (char c : text) {
+        if (c == '"') b.push_back('"');
+        b.push_back(c);
+    }
+    b.push_back('"');
+}
+
+// A number field followed by its comma; empty when not present.
+inline void csv_optional(TextBuffer& b, bool present, unsigned value) {
+    if (present) fmt::format_to(std::back_inserter(b), "{}", value);
+    b.push_back(',');
+}
+
+}  // namespace dpscope

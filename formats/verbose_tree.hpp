@@ -1,0 +1,53 @@
+// The verbose format's field tree (like tshark -V), as every protocol writes its part of it: one
+// field a line, indented four spaces a level. A protocol's verbose writer derives from it
+// (protocols/<name>/*_render.cpp) and is reached through ProtocolRendering::verbose.
+#pragma once
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <iterator>
+#include <span>
+#include <string_view>
+#include <utility>
+
+#include "formats/describe.hpp"
+
+namespace dpscope {
+
+class VerboseTree {
+  public:
+    explicit VerboseTree(TextBuffer& buffer) noexcept : buffer_(buffer) {}
+
+    TextBuffer& buffer() noexcept { return buffer_; }
+
+    // The indentation of `level`, then `text` (no line end).
+    void line(int level, std::string_view text) {
+        TextBuffer& b = buffer_;
+        for (int i = 0; i < level; ++i)
+            append(b, "    ");
+        append(b, text);
+    }
+
+    // A whole line at `level`.
+    template <typename... Args>
+    void field(int level, fmt::format_string<Args...> format, Args&&... args) {
+        line(level, "");
+        fmt::format_to(std::back_inserter(buffer_), format, std::forward<Args>(args)...);
+        buffer_.push_back('\n');
+    }
+
+    // "name: 0x05 (flag, flag)": a byte and the names of its set bits.
+    void flags_field(int level, std::string_view name, std::uint8_t value,
+                     std::span<const FlagBit> flags, std::uint8_t ignore = 0) {
+        line(level, "");
+        fmt::format_to(std::back_inserter(buffer_), "{}: 0x{:02X} (", name, value);
+        append_flags(buffer_, value, flags, "none", ignore);
+        append(buffer_, ")\n");
+    }
+
+  private:
+    TextBuffer& buffer_;
+};
+
+}  // namespace dpscope

@@ -1,0 +1,453 @@
+// The jsonl keys of a PROFIBUS DP telegram between "len" and "problems": the FDL and DP keys, the
+// PCV and PCD, the service's own objects, DP-V1 and PROFIdrive (README.md, the jsonl schema).
+#include <algorithm>
+#include <iterator>
+#include <vector>
+
+#include "formats/describe.hpp"
+#include "formats/field_writers.hpp"
+#include "formats/json.hpp"
+#include "protocols/profibus/dp_payload.hpp"
+#include "protocols/profibus/pcd.hpp"
+#include "protocols/profibus/profibus_render.hpp"
+
+namespace dpscope {
+
+namespace {
+
+void render_pcv(JsonWriter& w, const DecodedTelegram& t) {
+    const Pcv& pcv = t.dp.pcv;
+    const bool request = t.direction == Direction::Request;
+    ValueWidth width;
+    bool known;
+    bool rejected = false;
+    if (request) {
+        const RequestCode& code = request_code(t.dp.dialect, pcv.rc);
+        width = code.width;
+        known = code.defined;
+    } else {
+        const ResponseCode& code = response_code(t.dp.dialect, pcv.rc);
+        width = code.width;
+        known = code.kind != ResponseKind::Undefined;
+        rejected = code.kind == ResponseKind::Rejected;
+    }
+    w.begin_object();
+    w.key("pca").integer(pcv.pca);
+    w.key("rc").integer(pcv.rc);
+    w.key("spm").integer(pcv.spm ? 1 : 0);
+    w.key("pnu").integer(pcv.pnu);
+    w.key("ind").integer(pcv.ind);
+    w.key("ind_low").integer(pcv.ind_low);
+    w.key("pva").integer(pcv_value(pcv, width));
+    w.key("pva_raw").integer(pcv.pva);
+    w.key("width");
+    if (width == ValueWidth::Word)
+        w.string("word");
+    else if (width == ValueWidth::DoubleWord)
+        w.string("dword");
+    else
+        w.null();
+    w.key("meaning").string(t.dp.pcv_meaning(t.direction));
+    w.key("code_known").boolean(known);
+    w.key("error");
+    if (rejected) {
+        auto error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
+        w.integer(error);
+        w.key("error_text").string(error_text_or_unknown(t.dp.dialect, error));
+    } else {
+        w.null();
+        w.key("error_text").null();
+    }
+    w.end_object();
+}
+
+void render_number(JsonWriter& w, const ProfidriveNumber& n) {
+    if (!n.is_real) {
+        w.integer(n.integer);
+        return;
+    }
+    w.raw_value([&n](TextBuffer& b) {
+        if (n.single)
+            fmt::format_to(std::back_inserter(b), "{}", static_cast<float>(n.real));
+        else
+            fmt::format_to(std::back_inserter(b), "{}", n.real);
+    });
+}
+
+void render_profidrive(JsonWriter& w, const ProfidriveMessage& m, Dialect dialect) {
+    w.begin_object();
+    w.key("response").boolean(m.is_response);
+    w.key("reference").optional_integer(m.has_header, m.reference);
+    std::string_view id_name =
+        m.is_response ? profidrive_response_id_name(m.id) : profidrive_request_id_name(m.id);
+    w.key(m.is_response ? "response_id" : "request_id").optional_integer(m.has_header, m.id);
+    w.key("id_name");
+    if (m.has_header)
+        optional_string(w, id_name);
+    else
+        w.null();
+    w.key("negative").boolean(m.negative());
+    w.key("axis").optional_integer(m.has_header, m.axis);
+    w.key("count").optional_integer(m.has_header, m.count);
+    if (m.is_response) {
+        w.key("request_frame")
+            .optional_integer(m.has_request, static_cast<std::int64_t>(m.request_frame));
+    }
+    w.key("parameters").begin_array();
+    std::size_t parameters = std::max(m.addresses.size(), m.blocks.size());
+    for (std::size_t k = 0; k < parameters; ++k) {
+        w.begin_object();
+        bool address = k < m.addresses.size();
+        const ProfidriveAddress a = address ? m.addresses[k] : ProfidriveAddress{};
+        w.key("attribute").optional_integer(address, a.attribute);
+        w.key("attribute_name");
+        if (address)
+            optional_string(w, profidrive_attribute_name(a.attribute));
+        else
+            w.null();
+        w.key("elements").optional_integer(address, a.elements);
+        w.key("pnu").optional_integer(address, a.pnu);
+        w.key("subindex").optional_integer(address, a.subindex);
+        bool has_block = k < m.blocks.size();
+        const ProfidriveValueBlock* block = has_block ? &m.blocks[k] : nullptr;
+        w.key("format").optional_integer(has_block, has_block ? block->format : 0);
+        w.key("format_name");
+        if (block)
+            w.string(profidrive_format_name(block->format));
+        else
+            w.null();
+        w.key("value_count").optional_integer(has_block, has_block ? block->count : 0);
+        w.key("values");
+        bool values = block && !block->is_error() && block->format != profidrive::kFormatZero;
+        if (values) {
+            std::string text;
+            append_profidrive_values(*block, text);
+            w.string(text);
+        } else {
+            w.null();
+        }
+        w.key("numbers");
+        std::size_t count = values ? profidrive_value_count(*block) : 0;
+        if (values && count > 0 && profidrive_number(*block, 0)) {
+            w.begin_array();
+            for (std::size_t i = 0; i < count; ++i) {
+                if (auto n = profidrive_number(*block, i))
+                    render_number(w, *n);
+                else
+                    w.null();
+            }
+            w.end_array();
+        } else {
+            w.null();
+        }
+        w.key("complete");
+        if (block)
+            w.boolean(block->complete);
+        else
+            w.null();
+        w.key("error");
+        if (block && block->is_error() && block->values.size() >= 2) {
+            w.begin_object();
+            w.key("number").integer(block->error_number());
+            w.key("text").string(profidrive_error_text(block->error_number(), dialect));
+            w.key("info").optional_integer(block->has_error_info(), block->error_info());
+            w.end_object();
+        } else {
+            w.null();
+        }
+        w.end_object();
+    }
+    w.end_array();
+    w.key("trailing").integer(m.trailing);
+    w.end_object();
+}
+
+void render_dpv1(JsonWriter& w, const DecodedTelegram& t, const Dpv1Pdu& pdu) {
+    using Layout = Dpv1Pdu::Layout;
+    w.begin_object();
+    bool has_function = pdu.layout != Layout::None;
+    w.key("function").optional_integer(has_function, pdu.function);
+    w.key("function_name");
+    if (has_function)
+        optional_string(w, dpv1_function_name(pdu.function));
+    else
+        w.null();
+    w.key("negative").boolean(pdu.negative());
+    w.key("complete").boolean(pdu.complete);
+    bool addressed = pdu.layout == Layout::Addressed && pdu.complete;
+    bool alarm = addressed && pdu.base_function() == dpv1_function::kAlarmAck;
+    w.key("slot").optional_integer(addressed, pdu.slot);
+    w.key("index").optional_integer(addressed && !alarm, pdu.index);
+    w.key("length").optional_integer(addressed && !alarm, pdu.length);
+    w.key("data_length")
+        .optional_integer(addressed || pdu.layout == Layout::Unknown,
+                          static_cast<std::int64_t>(pdu.data.size()));
+    w.key("alarm_type").optional_integer(alarm, pdu.index);
+    w.key("specifier").optional_integer(alarm, pdu.length);
+    bool error = pdu.layout == Layout::Error && pdu.complete;
+    w.key("error_decode").optional_integer(error, pdu.error_decode);
+    w.key("error_decode_name");
+    if (error)
+        optional_string(w, dpv1_error_decode_name(pdu.error_decode));
+    else
+        w.null();
+    w.key("error_code_1").optional_integer(error, pdu.error_code_1);
+    w.key("error_class").optional_integer(error, pdu.error_code_1 >> 4);
+    w.key("error_class_name");
+    if (error)
+        optional_string(w, dpv1_error_class_name(pdu.error_code_1));
+    else
+        w.null();
+    w.key("error_code").optional_integer(error, pdu.error_code_1 & 0x0F);
+    w.key("error_code_name");
+    if (error)
+        w.string(dpv1_error_code_name(pdu.error_code_1));
+    else
+        w.null();
+    w.key("error_code_2").optional_integer(error, pdu.error_code_2);
+    w.key("initiate");
+    if (pdu.layout == Layout::Initiate && pdu.complete) {
+        const Dpv1Initiate& i = pdu.initiate;
+        bool request = t.direction == Direction::Request;
+        w.begin_object();
+        w.key("send_timeout").optional_integer(request, i.send_timeout);
+        w.key("max_len_data_unit").optional_integer(!request, i.max_len_data_unit);
+        w.key("features_supported").integer(i.features_supported);
+        w.key("profile_features_supported").integer(i.profile_features_supported);
+        w.key("profile_ident_number").integer(i.profile_ident_number);
+        w.key("s_type").optional_integer(i.has_addresses, i.s_type);
+        w.key("s_len").optional_integer(i.has_addresses, i.s_len);
+        w.key("d_type").optional_integer(i.has_addresses, i.d_type);
+        w.key("d_len").optional_integer(i.has_addresses, i.d_len);
+        w.key("s_addr");
+        hex_string(w, i.s_addr);
+        w.key("d_addr");
+        hex_string(w, i.d_addr);
+        w.end_object();
+    } else {
+        w.null();
+    }
+    w.key("abort");
+    if (pdu.layout == Layout::Abort && pdu.complete) {
+        w.begin_object();
+        w.key("subnet").integer(pdu.abort.subnet);
+        w.key("instance").integer(pdu.abort.instance());
+        w.key("instance_name").string(dpv1_abort_instance_name(pdu.abort.instance_reason));
+        w.key("reason").integer(pdu.abort.reason());
+        w.key("reason_name").string(dpv1_abort_reason_name(pdu.abort.instance_reason));
+        w.end_object();
+    } else {
+        w.null();
+    }
+    w.end_object();
+}
+
+void render_service_objects(JsonWriter& w, const DecodedTelegram& t) {
+    const DpServiceData& data = t.dp.service_data;
+
+    w.key("diag");
+    if (const SlaveDiag* diag = data.slave_diag()) {
+        w.begin_object();
+        w.key("ident").integer(diag->ident);
+        w.key("master").optional_integer(diag->master_address != kNoMasterAddress,
+                                         diag->master_address);
+        w.key("station_status").begin_array();
+        w.integer(diag->station_status_1);
+        w.integer(diag->station_status_2);
+        w.integer(diag->station_status_3);
+        w.end_array();
+        w.key("flags").begin_array();
+        for (const FlagBit& flag : station_status_1_flags())
+            if (diag->station_status_1 & flag.mask) w.string(flag.name);
+        for (const FlagBit& flag : station_status_2_flags())
+            if ((diag->station_status_2 & flag.mask) && flag.mask != kDiagAlwaysOne)
+                w.string(flag.name);
+        for (const FlagBit& flag : station_status_3_flags())
+            if (diag->station_status_3 & flag.mask) w.string(flag.name);
+        w.end_array();
+        w.key("ext");
+        if (diag->extended.empty())
+            w.null();
+        else
+            hex_string(w, diag->extended);
+        w.key("dpv1");
+        if (t.dp.slave_dpv1 == SlaveDpv1::Unknown)
+            w.null();
+        else
+            w.boolean(t.dp.slave_dpv1 == SlaveDpv1::Enabled);
+        w.end_object();
+    } else {
+        w.null();
+    }
+
+    w.key("prm");
+    if (const SetPrm* prm = data.set_prm()) {
+        w.begin_object();
+        w.key("ident").integer(prm->ident);
+        w.key("station_status").integer(prm->station_status);
+        w.key("flags");
+        flag_array(w, prm->station_status, set_prm_station_flags());
+        w.key("wd_fact_1").integer(prm->wd_fact_1);
+        w.key("wd_fact_2").integer(prm->wd_fact_2);
+        w.key("watchdog_ms").optional_integer(prm->watchdog_on(), prm->watchdog_ms());
+        w.key("watchdog_ms_alt")
+            .optional_integer(prm->watchdog_on() && prm->watchdog_base_uncertain(),
+                              prm->watchdog_ms_10ms_base());
+        w.key("min_tsdr").integer(prm->min_tsdr);
+        w.key("group").integer(prm->group_ident);
+        w.key("dpv1_status");
+        if (prm->has_dpv1_status) {
+            w.begin_array();
+            for (std::size_t i = 0; i < 3; ++i)
+                w.integer(prm->dpv1_status[i]);
+            w.end_array();
+        } else {
+            w.null();
+        }
+        w.key("user_prm");
+        hex_string(w, prm->user_prm);
+        w.end_object();
+    } else {
+        w.null();
+    }
+
+    w.key("cfg");
+    // An empty configuration is null, as when there is none.
+    const std::vector<CfgModule>* modules = data.cfg_modules();
+    if (modules && !t.dp.fdl.du.empty()) {
+        w.begin_object();
+        w.key("bytes").begin_array();
+        for (std::uint8_t byte : t.dp.fdl.du)
+            w.integer(byte);
+        w.end_array();
+        w.key("modules").begin_array();
+        for (const CfgModule& m : *modules) {
+            bool use_output = m.output_units != 0;
+            w.begin_object();
+            w.key("identifier").integer(m.identifier);
+            w.key("special").boolean(m.special);
+            w.key("dir").string(cfg_direction_name(m.direction));
+            w.key("out_bytes").integer(m.output_bytes());
+            w.key("in_bytes").integer(m.input_bytes());
+            w.key("unit").string((use_output ? m.output_words : m.input_words) ? "word"
+                                                                               : "byte");
+            w.key("consistent").boolean(use_output ? m.output_consistent : m.input_consistent);
+            w.key("manufacturer_bytes").integer(m.manufacturer_bytes);
+            w.end_object();
+        }
+        w.end_array();
+        PpoLayout layout = ppo_from_cfg(*modules, PpoSource::ChkCfg);
+        w.key("ppo").optional_integer(layout.type != 0, layout.type);
+        w.key("has_pcv").boolean(layout.has_pcv);
+        w.end_object();
+    } else {
+        w.null();
+    }
+
+    w.key("global_control");
+    // Only a request's: a response's bytes in this layout (DpServiceData) are not shown here.
+    const GlobalControl* gc =
+        t.direction == Direction::Request ? data.global_control() : nullptr;
+    if (gc) {
+        w.begin_object();
+        w.key("command").integer(gc->command);
+        w.key("flags");
+        flag_array(w, gc->command, global_control_flags());
+        w.key("group").integer(gc->group_select);
+        w.end_object();
+    } else {
+        w.null();
+    }
+
+    // Only on DP-V1 lines (MSAC_C1, MSAC_C2): other lines keep the schema they had.
+    if (t.dp.service == Service::MsacC1 || t.dp.service == Service::MsacC2) {
+        w.key("dpv1");
+        if (const Dpv1Pdu* pdu = data.dpv1())
+            render_dpv1(w, t, *pdu);
+        else
+            w.null();
+        w.key("profidrive");
+        if (const ProfidriveMessage* m = data.profidrive())
+            render_profidrive(w, *m, t.dp.dialect);
+        else
+            w.null();
+    }
+}
+
+}  // namespace
+
+// The PROFIBUS keys between "len" and "problems".
+void profibus_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
+    const FdlTelegram& f = t.dp.fdl;
+    const bool valid = f.type != FrameType::Invalid;
+    const bool data_exchange = t.dp.service == Service::DataExchange;
+    w.key("sd");
+    if (valid)
+        w.string(frame_type_name(f.type));
+    else
+        w.null();
+    w.key("da").optional_integer(f.has_addresses, f.da);
+    w.key("sa").optional_integer(f.has_addresses, f.sa);
+    w.key("dsap").optional_integer(f.has_dsap, f.dsap);
+    w.key("ssap").optional_integer(f.has_ssap, f.ssap);
+    w.key("fc");
+    if (f.has_fc) {
+        w.begin_object();
+        w.key("raw").integer(f.fc.raw);
+        if (f.fc.is_request()) {
+            w.key("request").boolean(true);
+            w.key("fcb").boolean(f.fc.fcb());
+            w.key("fcv").boolean(f.fc.fcv());
+            w.key("function").string(request_function_name(f.fc));
+        } else {
+            w.key("request").boolean(false);
+            w.key("station").string(station_type_name(f.fc.station_type()));
+            w.key("status").string(response_status_name(f.fc.function()));
+        }
+        w.end_object();
+    } else {
+        w.null();
+    }
+    w.key("fcs_ok").boolean(f.fcs_ok);
+    w.key("service").string(service_name(t.dp.service));
+    w.key("direction").string(direction_name(t.direction));
+    w.key("master").optional_integer(t.has_roles, t.master);
+    w.key("slave").optional_integer(t.has_roles, t.slave);
+    w.key("request_frame")
+        .optional_integer(t.request_frame != 0, static_cast<std::int64_t>(t.request_frame));
+    w.key("ppo").optional_integer(data_exchange && t.dp.ppo.type != 0, t.dp.ppo.type);
+    w.key("ppo_source");
+    if (data_exchange)
+        w.string(ppo_source_name(t.dp.ppo.source));
+    else
+        w.null();
+    // The dialect names the parameter channel's code tables: none without a PCV.
+    w.key("dialect");
+    if (data_exchange && t.dp.ppo.has_pcv)
+        w.string(dialect_name(t.dp.dialect));
+    else
+        w.null();
+    w.key("pcv");
+    if (t.dp.has_pcv)
+        render_pcv(w, t);
+    else
+        w.null();
+    w.key("pcd");
+    if (data_exchange) {
+        w.begin_array();
+        ByteReader reader(t.dp.pcd);
+        while (auto word = reader.u16_be())
+            w.integer(*word);
+        w.end_array();
+    } else {
+        w.null();
+    }
+    render_service_objects(w, t);
+    w.key("data");
+    if (!f.du.empty())
+        hex_string(w, f.du);
+    else
+        w.null();
+}
+
+}  // namespace dpscope

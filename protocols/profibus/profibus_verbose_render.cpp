@@ -1,0 +1,497 @@
+// The verbose tree (like tshark -V) of a PROFIBUS telegram: the FDL frame, then its DP service
+// field by field (Data_Exchange with the PPO's PCV and PCD, diagnosis, parameters, configuration,
+// DP-V1 and PROFIdrive parameter access).
+#include <algorithm>
+#include <iterator>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "formats/describe.hpp"
+#include "formats/verbose_tree.hpp"
+#include "protocols/profibus/dp_payload.hpp"
+#include "protocols/profibus/profibus_render.hpp"
+
+namespace dpscope {
+
+namespace {
+
+class ProfibusVerboseTree final : public VerboseTree {
+  public:
+    using VerboseTree::VerboseTree;
+
+  private:
+    static std::string_view sap_label(std::uint8_t value, bool slave_side) {
+        std::string_view name = sap_name(value, slave_side);
+        return name.empty() ? "no DP meaning" : name;
+    }
+
+  public:
+    void render_fdl(const DecodedTelegram& t) {
+        const FdlTelegram& f = t.dp.fdl;
+        TextBuffer& b = buffer();
+        auto it = std::back_inserter(b);
+        append(b, "PROFIBUS FDL\n");
+        if (f.type == FrameType::Invalid) {
+            field(1, "Start delimiter: 0x{:02X} (not a start delimiter)",
+                  t.bytes.empty() ? 0 : t.bytes[0]);
+            return;
+        }
+        field(1, "Start delimiter: {} (0x{:02X})", frame_type_name(f.type), t.bytes[0]);
+        if (f.type == FrameType::Sd2) {
+            field(
+                1, "Length: LE {}, LEr {}", f.length_field,
+                f.has_length_repeat ? fmt::format("{}", f.length_repeat) : std::string("missing"));
+        }
+        if (f.has_addresses) {
+            line(1, "");
+            fmt::format_to(it, "Destination address: {}{}", f.da,
+                           f.da == kBroadcastAddress ? " (broadcast)" : "");
+            // The slave's SAP is the DSAP of a request and the SSAP of a response.
+            bool request = f.has_fc && f.fc.is_request();
+            if (f.has_dsap)
+                fmt::format_to(it, ", DSAP {} ({})", f.dsap, sap_label(f.dsap, request));
+            if (f.has_dest_segment) fmt::format_to(it, ", segment {}", f.dest_segment);
+            b.push_back('\n');
+            line(1, "");
+            fmt::format_to(it, "Source address: {}", f.sa);
+            if (f.has_ssap)
+                fmt::format_to(it, ", SSAP {} ({})", f.ssap, sap_label(f.ssap, !request));
+            if (f.has_source_segment) fmt::format_to(it, ", segment {}", f.source_segment);
+            b.push_back('\n');
+        }
+        if (f.has_fc) {
+            line(1, "");
+            fmt::format_to(it, "Frame control: 0x{:02X} (", f.fc.raw);
+            append_frame_control(b, f.fc);
+            append(b, ")\n");
+        }
+        if (!f.du.empty())
+            field(1, "Data unit: {} from byte {}", counted(f.du.size(), "byte", "bytes"),
+                  f.du_offset);
+        if (f.has_fcs) {
+            if (f.fcs_ok)
+                field(1, "FCS: 0x{:02X} (correct)", f.fcs);
+            else
+                field(1, "FCS: 0x{:02X} (wrong)", f.fcs);
+        }
+        if (f.type == FrameType::Sd1 || f.type == FrameType::Sd2 || f.type == FrameType::Sd3) {
+            if (t.bytes.size() >= f.size && f.size > 0)
+                field(1, "End delimiter: 0x{:02X}", t.bytes[f.size - 1]);
+        }
+    }
+
+    void render_dp(const DecodedTelegram& t) {
+        if (t.dp.fdl.type == FrameType::Invalid) return;
+        TextBuffer& b = buffer();
+        auto it = std::back_inserter(b);
+        fmt::format_to(it, "PROFIBUS DP: {} {}", service_name(t.dp.service),
+                       direction_name(t.direction));
+        if (t.has_roles && t.dp.service != Service::Token)
+            fmt::format_to(it, ", master {} / slave {}", t.master, t.slave);
+        if (t.request_frame != 0) fmt::format_to(it, ", answers frame {}", t.request_frame);
+        b.push_back('\n');
+        const DpServiceData& data = t.dp.service_data;
+        switch (t.dp.service) {
+            case Service::DataExchange: render_data_exchange(t); break;
+            case Service::SlaveDiag:
+                if (const SlaveDiag* diag = data.slave_diag())
+                    render_diag(*diag, data.diag_blocks(), t.dp.slave_dpv1);
+                break;
+            case Service::SetPrm:
+                if (const SetPrm* prm = data.set_prm()) render_prm(*prm);
+                break;
+            case Service::ChkCfg:
+            case Service::GetCfg:
+                if (const std::vector<CfgModule>* modules = data.cfg_modules();
+                    modules && !t.dp.fdl.du.empty())
+                    render_cfg(t, *modules);
+                break;
+            case Service::GlobalControl:
+                if (const GlobalControl* gc = data.global_control()) {
+                    flags_field(1, "Control command", gc->command, global_control_flags());
+                    field(1, "Group select: 0x{:02X}{}", gc->group_select,
+                          gc->group_select == 0 ? " (all slaves)" : "");
+                }
+                break;
+            case Service::SetSlaveAdd:
+                if (const SetSlaveAdd* ssa = data.set_slave_add()) {
+                    field(1, "New slave address: {}", ssa->new_address);
+                    field(1, "Ident number: 0x{:04X}", ssa->ident);
+                    field(1, "No_Add_Chg: {}", ssa->no_add_chg);
+                    if (!ssa->rem_slave_data.empty()) {
+                        line(1, "Rem_Slave_Data: ");
+                        append_hex(b, ssa->rem_slave_data);
+                        b.push_back('\n');
+                    }
+                }
+                break;
+            case Service::MsacC1:
+            case Service::MsacC2:
+                if (const Dpv1Pdu* pdu = data.dpv1()) {
+                    render_dpv1(t, *pdu);
+                    break;
+                }
+                [[fallthrough]];
+            default:
+                if (!t.dp.fdl.du.empty()) {
+                    line(1, "Data: ");
+                    append_hex(b, t.dp.fdl.du);
+                    b.push_back('\n');
+                }
+                break;
+        }
+    }
+
+    void render_dpv1(const DecodedTelegram& t, const Dpv1Pdu& pdu) {
+        TextBuffer& b = buffer();
+        if (pdu.layout == Dpv1Pdu::Layout::None) {
+            field(1, "DP-V1 PDU: none (empty data unit: a link-level poll)");
+            return;
+        }
+        std::string_view name = dpv1_function_name(pdu.function);
+        field(1, "DP-V1 function: 0x{:02X} ({}){}", pdu.function,
+              name.empty() ? "not defined by DP-V1" : name,
+              pdu.negative() ? ", negative response" : "");
+        if (!pdu.complete) field(2, "PDU cut short: the fields below are those read");
+        switch (pdu.layout) {
+            case Dpv1Pdu::Layout::Error: {
+                std::string_view decode = dpv1_error_decode_name(pdu.error_decode);
+                field(2, "Error_Decode: 0x{:02X} ({})", pdu.error_decode,
+                      decode.empty() ? "unknown" : decode);
+                std::string_view error_class = dpv1_error_class_name(pdu.error_code_1);
+                field(2, "Error_Code_1: 0x{:02X}", pdu.error_code_1);
+                field(3, "Error class: {} ({})", pdu.error_code_1 >> 4,
+                      error_class.empty() ? "reserved" : error_class);
+                field(3, "Error code: {} ({})", pdu.error_code_1 & 0x0F,
+                      dpv1_error_code_name(pdu.error_code_1));
+                field(2, "Error_Code_2: 0x{:02X}", pdu.error_code_2);
+                break;
+            }
+            case Dpv1Pdu::Layout::Addressed:
+                field(2, "Slot: {}", pdu.slot);
+                if (pdu.base_function() == dpv1_function::kAlarmAck) {
+                    field(2, "Alarm type: {}", pdu.index);
+                    field(2, "Specifier: 0x{:02X}", pdu.length);
+                } else {
+                    field(2, "Index: {}{}", pdu.index,
+                          pdu.index == kProfidriveIndex ? " (PROFIdrive parameter channel)" : "");
+                    field(2, "Length: {}", pdu.length);
+                }
+                if (!pdu.data.empty()) {
+                    line(2, "");
+                    fmt::format_to(std::back_inserter(b), "Data ({} from byte {}): ",
+                                   counted(pdu.data.size(), "byte", "bytes"), pdu.data_offset);
+                    append_hex(b, pdu.data);
+                    b.push_back('\n');
+                }
+                break;
+            case Dpv1Pdu::Layout::Initiate: {
+                const Dpv1Initiate& i = pdu.initiate;
+                if (t.direction == Direction::Request)
+                    field(2, "Send_Timeout: {} ({} ms)", i.send_timeout, i.send_timeout * 10);
+                else
+                    field(2, "Max_Len_Data_Unit: {}", i.max_len_data_unit);
+                field(2, "Features_Supported: 0x{:04X}", i.features_supported);
+                field(2, "Profile_Features_Supported: 0x{:04X}", i.profile_features_supported);
+                field(2, "Profile_Ident_Number: 0x{:04X}", i.profile_ident_number);
+                if (i.has_addresses) {
+                    field(2, "S_Type: {}, S_Len: {}", i.s_type, i.s_len);
+                    line(2, "S_Addr: ");
+                    append_hex(b, i.s_addr);
+                    b.push_back('\n');
+                    field(2, "D_Type: {}, D_Len: {}", i.d_type, i.d_len);
+                    line(2, "D_Addr: ");
+                    append_hex(b, i.d_addr);
+                    b.push_back('\n');
+                }
+                break;
+            }
+            case Dpv1Pdu::Layout::Abort:
+                field(2, "Subnet: {}", pdu.abort.subnet);
+                field(2, "Instance_Reason_Code: 0x{:02X}", pdu.abort.instance_reason);
+                field(3, "Instance: {} ({})", pdu.abort.instance(),
+                      dpv1_abort_instance_name(pdu.abort.instance_reason));
+                field(3, "Reason code: {} ({})", pdu.abort.reason(),
+                      dpv1_abort_reason_name(pdu.abort.instance_reason));
+                break;
+            case Dpv1Pdu::Layout::Unknown:
+                if (!pdu.data.empty()) {
+                    line(2, "Data: ");
+                    append_hex(b, pdu.data);
+                    b.push_back('\n');
+                }
+                break;
+            case Dpv1Pdu::Layout::Idle:
+            case Dpv1Pdu::Layout::None: break;
+        }
+        if (const ProfidriveMessage* m = t.dp.service_data.profidrive())
+            render_profidrive(*m, t.dp.dialect);
+    }
+
+    void render_profidrive(const ProfidriveMessage& m, Dialect dialect) {
+        field(1, "PROFIdrive parameter {}", m.is_response ? "response" : "request");
+        if (!m.has_header) {
+            field(2, "header cut short");
+            return;
+        }
+        field(2, "Request reference: {}", m.reference);
+        std::string_view id_name =
+            m.is_response ? profidrive_response_id_name(m.id) : profidrive_request_id_name(m.id);
+        field(2, "{} ID: 0x{:02X} ({})", m.is_response ? "Response" : "Request", m.id,
+              id_name.empty() ? "not defined" : id_name);
+        field(2, "Axis: {}", m.axis);
+        field(2, "Number of parameters: {}", m.count);
+        if (m.is_response) {
+            if (m.has_request)
+                field(2, "Answers the request in frame {} (ref {}, ID 0x{:02X})", m.request_frame,
+                      m.request_reference, m.request_id);
+            else
+                field(2, "Request not in the capture: parameter numbers unknown");
+        }
+        std::size_t parameters = std::max(m.addresses.size(), m.blocks.size());
+        for (std::size_t k = 0; k < parameters; ++k) {
+            field(2, "Parameter {}", k + 1);
+            if (k < m.addresses.size()) {
+                const ProfidriveAddress& a = m.addresses[k];
+                std::string_view attribute = profidrive_attribute_name(a.attribute);
+                field(3, "Attribute: 0x{:02X} ({})", a.attribute,
+                      attribute.empty() ? "not defined" : attribute);
+                field(3, "Number of elements: {}", a.elements);
+                field(3, "Parameter number: {}", a.pnu);
+                field(3, "Subindex: {}", a.subindex);
+            }
+            if (k >= m.blocks.size()) continue;
+            const ProfidriveValueBlock& block = m.blocks[k];
+            field(3, "Format: 0x{:02X} ({})", block.format, profidrive_format_name(block.format));
+            field(3, "Number of values: {}", block.count);
+            if (block.is_error()) {
+                if (block.values.size() >= 2)
+                    field(3, "Error number: 0x{:02X} ({})", block.error_number(),
+                          profidrive_error_text(block.error_number(), dialect));
+                if (block.has_error_info())
+                    field(3, "Additional information: {}", block.error_info());
+            } else if (block.format != profidrive::kFormatZero) {
+                std::string values;
+                append_profidrive_values(block, values);
+                field(3, "Values: {}", values);
+            }
+            if (!block.complete) field(3, "(block cut short)");
+            if (block.padded) field(3, "Pad byte");
+        }
+        if (m.trailing > 0) field(2, "{} after the message", counted(m.trailing, "byte", "bytes"));
+    }
+
+    void render_data_exchange(const DecodedTelegram& t) {
+        TextBuffer& b = buffer();
+        line(1, "PPO: ");
+        append_ppo_long(b, t.dp.ppo);
+        b.push_back('\n');
+        field(1, "Dialect: {}; control/status word profile: {}{}",
+              t.dp.ppo.has_pcv ? dialect_name(t.dp.dialect) : "none (no parameter channel)",
+              pcd_profile_name(t.dp.pcd_profile),
+              t.dp.pcd_profile == PcdProfile::Profidrive && t.dp.danfoss_pcd() ? " (Danfoss)" : "");
+        bool request = t.direction == Direction::Request;
+        if (t.dp.has_pcv) {
+            const Pcv& pcv = t.dp.pcv;
+            field(1, "PCV (parameter channel), bytes {}-{}", t.dp.fdl.du_offset,
+                  t.dp.fdl.du_offset + kPcvBytes - 1);
+            field(2, "PCA: 0x{:04X}", pcv.pca);
+            bool defined =
+                request ? request_code(t.dp.dialect, pcv.rc).defined
+                        : response_code(t.dp.dialect, pcv.rc).kind != ResponseKind::Undefined;
+            field(3, "RC: {} = {}{}", pcv.rc, t.dp.pcv_meaning(t.direction),
+                  defined ? "" : " (not defined by the dialect)");
+            field(3, "SPM: {}", pcv.spm ? 1 : 0);
+            field(3, "PNU: {}", pcv.pnu);
+            field(2, "IND: {} (byte 4: 0x{:02X})", pcv.ind, pcv.ind_low);
+            ValueWidth width = request ? request_code(t.dp.dialect, pcv.rc).width
+                                       : response_code(t.dp.dialect, pcv.rc).width;
+            bool rejected =
+                !request && response_code(t.dp.dialect, pcv.rc).kind == ResponseKind::Rejected;
+            if (rejected) {
+                auto error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
+                field(2, "PVA: 0x{:08X}", pcv.pva);
+                field(2, "Error number: {} = {}", error,
+                      error_text_or_unknown(t.dp.dialect, error));
+            } else if (width == ValueWidth::Word) {
+                field(2, "PVA: 0x{:08X}, word value {}", pcv.pva, pcv_value(pcv, width));
+            } else if (width == ValueWidth::DoubleWord) {
+                field(2, "PVA: 0x{:08X}, double word value {}", pcv.pva, pcv.pva);
+            } else {
+                field(2, "PVA: 0x{:08X} (the code carries no value)", pcv.pva);
+            }
+        }
+        ByteReader reader(t.dp.pcd, t.dp.pcd_offset);
+        if (reader.empty()) return;
+        field(1, "PCD ({} words)", reader.remaining() / 2);
+        const WordBits& bits = request ? control_word_bits(t.dp.pcd_profile, t.dp.danfoss_pcd())
+                                       : status_word_bits(t.dp.pcd_profile, t.dp.danfoss_pcd());
+        for (std::size_t index = 0;; ++index) {
+            auto word = reader.u16_be();
+            if (!word) break;
+            std::string_view name = pcd_word_name(t.direction, index);
+            if (index == 0) {
+                field(2, "PCD 1 {}: 0x{:04X}", name, *word);
+                for (int bit = 0; bit < 16; ++bit) {
+                    bool set = (*word >> bit) & 1;
+                    const WordBit& meaning = bits[static_cast<std::size_t>(bit)];
+                    field(3, "bit {:>2} = {}: {}", bit, set ? 1 : 0,
+                          set ? meaning.when_1 : meaning.when_0);
+                }
+            } else if (index == 1) {
+                field(2, "PCD 2 {}: 0x{:04X} = {:.2f} %", name, *word, reference_percent(*word));
+            } else {
+                field(2, "PCD {}: 0x{:04X} ({})", index + 1, *word, *word);
+            }
+        }
+        if (!reader.empty()) field(2, "odd trailing byte: 0x{:02X}", *reader.u8());
+    }
+
+    void render_diag(const SlaveDiag& diag, std::span<const DiagBlock> blocks, SlaveDpv1 dpv1) {
+        flags_field(1, "Station status 1", diag.station_status_1, station_status_1_flags());
+        flags_field(1, "Station status 2", diag.station_status_2, station_status_2_flags());
+        flags_field(1, "Station status 3", diag.station_status_3, station_status_3_flags());
+        if (diag.master_address == kNoMasterAddress)
+            field(1, "Master address: 255 (not parameterised)");
+        else
+            field(1, "Master address: {}", diag.master_address);
+        field(1, "Ident number: 0x{:04X}", diag.ident);
+        if (diag.extended.empty()) return;
+        field(1, "Extended diagnosis: {}", counted(diag.extended.size(), "byte", "bytes"));
+        for (const DiagBlock& block : blocks) {
+            TextBuffer& b = buffer();
+            switch (block.type) {
+                case DiagBlockType::Channel:
+                    field(2, "channel-related: module {}, channel {}, {}, {}: error {} ({})",
+                          block.module, block.channel, channel_io_text(block.io),
+                          channel_type_text(block.channel_type), block.error_type,
+                          channel_error_text(block.error_type));
+                    break;
+                case DiagBlockType::Revision: field(2, "revision number {}", block.revision); break;
+                case DiagBlockType::Identifier: {
+                    line(2, "identifier-related: modules with diagnosis:");
+                    bool any = false;
+                    for (std::size_t i = 0; i < block.data.size(); ++i)
+                        for (int bit = 0; bit < 8; ++bit)
+                            if ((block.data[i] >> bit) & 1) {
+                                fmt::format_to(std::back_inserter(b), " {}", i * 8 + bit);
+                                any = true;
+                            }
+                    if (!any) append(b, " none");
+                    b.push_back('\n');
+                    break;
+                }
+                case DiagBlockType::Device:
+                    line(2, "device-related: ");
+                    append_hex(b, block.data);
+                    render_device_block(block, dpv1);
+                    b.push_back('\n');
+                    break;
+            }
+        }
+    }
+
+    // A device-related block is a DP-V1 alarm or status (type, slot, specifier) only when the
+    // slave's Set_Prm enabled DP-V1; otherwise its bytes are manufacturer-specific.
+    void render_device_block(const DiagBlock& block, SlaveDpv1 dpv1) {
+        auto it = std::back_inserter(buffer());
+        bool fits = block.data.size() >= 3;
+        switch (dpv1) {
+            case SlaveDpv1::Disabled:
+                append(buffer(), " (manufacturer-specific: Set_Prm did not enable DP-V1)");
+                return;
+            case SlaveDpv1::Enabled:
+                if (fits)
+                    fmt::format_to(it, " (DP-V1: {}, slot {})",
+                                   dpv1_alarm_or_status_text(block.data[0]), block.data[1]);
+                else
+                    fmt::format_to(it, " (DP-V1, but {}: too short for an alarm or status)",
+                                   counted(block.data.size(), "byte", "bytes"));
+                return;
+            case SlaveDpv1::Unknown:
+                append(buffer(), " (DP-V1 or manufacturer-specific: no Set_Prm seen");
+                if (fits)
+                    fmt::format_to(it, "; as DP-V1: {}, slot {}",
+                                   dpv1_alarm_or_status_text(block.data[0]), block.data[1]);
+                buffer().push_back(')');
+                return;
+        }
+    }
+
+    void render_prm(const SetPrm& prm) {
+        flags_field(1, "Station status", prm.station_status, set_prm_station_flags());
+        std::string watchdog = " (off)";
+        if (prm.watchdog_on() && prm.watchdog_base_uncertain())
+            watchdog = fmt::format(
+                " = {} ms with WD_Base_1ms, or {} ms if the bytes read as DPV1_Status are "
+                "User_Prm_Data (10 ms base)",
+                prm.watchdog_ms(), prm.watchdog_ms_10ms_base());
+        else if (prm.watchdog_on())
+            watchdog = fmt::format(" = {} ms", prm.watchdog_ms());
+        field(1, "Watchdog: factors {} x {}{}", prm.wd_fact_1, prm.wd_fact_2, watchdog);
+        field(1, "min TSDR: {} bit times", prm.min_tsdr);
+        field(1, "Ident number: 0x{:04X}", prm.ident);
+        field(1, "Group ident: 0x{:02X}", prm.group_ident);
+        if (prm.has_dpv1_status) {
+            flags_field(1, "DPV1_Status_1", prm.dpv1_status[0], dpv1_status_1_flags());
+            flags_field(1, "DPV1_Status_2", prm.dpv1_status[1], dpv1_status_2_flags());
+            line(1, "");
+            fmt::format_to(std::back_inserter(buffer()),
+                           "DPV1_Status_3: 0x{:02X} (Alarm_Mode {} = {}", prm.dpv1_status[2],
+                           prm.dpv1_status[2] & 0x07, dpv1_alarm_mode_text(prm.dpv1_status[2]));
+            TextBuffer flags;
+            if (append_flags(flags, prm.dpv1_status[2], dpv1_status_3_flags(), "")) {
+                append(buffer(), "; ");
+                buffer().append(flags.data(), flags.data() + flags.size());
+            }
+            append(buffer(), ")\n");
+        }
+        if (!prm.user_prm.empty()) {
+            line(1, "User_Prm_Data: ");
+            append_hex(buffer(), prm.user_prm);
+            buffer().push_back('\n');
+        }
+    }
+
+    void render_cfg(const DecodedTelegram& t, std::span<const CfgModule> modules) {
+        line(1, "Identifier bytes: ");
+        append_hex(buffer(), t.dp.fdl.du);
+        buffer().push_back('\n');
+        std::size_t number = 1;
+        for (const CfgModule& m : modules) {
+            if (m.free_place) {
+                field(2, "module {}: 0x00 free place", number++);
+                continue;
+            }
+            std::string lengths;
+            if (m.output_units)
+                lengths += fmt::format(" out {}{}", cfg_units(m.output_units, m.output_words),
+                                       m.output_consistent ? " consistent" : "");
+            if (m.input_units)
+                lengths += fmt::format(" in {}{}", cfg_units(m.input_units, m.input_words),
+                                       m.input_consistent ? " consistent" : "");
+            field(2, "module {}: 0x{:02X} {}{}{}{}", number++, m.identifier,
+                  m.special ? "special format," : "", cfg_direction_name(m.direction), lengths,
+                  m.manufacturer_bytes
+                      ? fmt::format(", {}", counted(m.manufacturer_bytes, "manufacturer byte",
+                                                    "manufacturer bytes"))
+                      : std::string());
+        }
+        line(1, "Layout: ");
+        append_ppo_long(buffer(),
+                        ppo_from_cfg(modules, t.dp.service == Service::ChkCfg ? PpoSource::ChkCfg
+                                                                              : PpoSource::GetCfg));
+        buffer().push_back('\n');
+    }
+};
+
+}  // namespace
+
+void profibus_verbose(TextBuffer& b, const DecodedTelegram& t) {
+    ProfibusVerboseTree tree(b);
+    tree.render_fdl(t);
+    tree.render_dp(t);
+}
+
+}  // namespace dpscope

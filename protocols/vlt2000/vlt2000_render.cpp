@@ -1,0 +1,322 @@
+// A VLT 2000 telegram in the telegram formats (formats/protocol_rendering.hpp): the text line's
+// columns (the master "M", the drive's two-digit address or "all", frame type "VLT", the control
+// letter with its name as the service), the csv columns that apply to it, the jsonl "vlt2000"
+// object (README.md), and the verbose tree field by field with the byte numbers of each as the
+// manual counts them, from 1 ([5-8] the control or status word, all 16 bits).
+#include <algorithm>
+#include <iterator>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "formats/describe.hpp"
+#include "formats/field_writers.hpp"
+#include "formats/protocol_rendering.hpp"
+#include "formats/verbose_tree.hpp"
+#include "protocols/fc/fc_describe.hpp"
+#include "protocols/vlt2000/vlt2000_describe.hpp"
+
+namespace dpscope {
+
+namespace {
+
+// ---- text
+
+// The VLT 2000 master has no address either ("M"); a drive is shown by its two-digit address
+// as the telegram carries it, a broadcast (00) goes to "all".
+void vlt2000_text_columns(TextBuffer& b, const DecodedTelegram& t) {
+    auto it = std::back_inserter(b);
+    if (!t.has_roles) {
+        append(b, "  ? → ?   ");
+    } else {
+        // A reply with address 00 (nobody should send one) comes from "00".
+        const std::string drive = t.vlt2000.broadcast && t.direction == Direction::Request
+                                      ? std::string("all")
+                                      : fmt::format("{:02}", t.vlt2000.address);
+        if (t.direction == Direction::Request)
+            fmt::format_to(it, "{:>3} → {:<3} ", "M", drive);
+        else
+            fmt::format_to(it, "{:>3} → {:<3} ", drive, "M");
+    }
+    fmt::format_to(it, "{:<3} {:<14} {} ", t.has_roles ? "VLT" : "bad",
+                   t.has_roles ? vlt2000_letter_text(t) : std::string("-"),
+                   t.direction == Direction::Request ? "req" : "rsp");
+    append_vlt2000_detail(b, t);
+}
+
+// ---- csv
+
+// The same columns for a VLT 2000 telegram (README.md): sd, da, sa, dsap, ssap, fc, ppo, rc
+// and spm stay empty; service is the control letter with its name ("U update"); slave the
+// drive's address (0: broadcast); fcs_ok whether the checksum is right or "??" (not checked);
+// pnu the parameter (not for C), ind the index of an I telegram, pva the value with its
+// decimal point, meaning the letter's name, error and error_text a failed reply's reason code
+// and its text; pcd the control or status word in hex.
+void vlt2000_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
+    auto it = std::back_inserter(b);
+    const Vlt2000Telegram& v = t.vlt2000;
+    fmt::format_to(it, "{},", t.frame);
+    if (t.has_time()) append_epoch_seconds(b, t.time_ns);
+    fmt::format_to(it, ",{},,,,,,,", t.bytes.size());
+    if (vlt2000_has_letter(t)) csv_quoted(b, vlt2000_letter_text(t));
+    fmt::format_to(it, ",{},", direction_name(t.direction));
+    csv_optional(b, t.has_roles, t.master);
+    csv_optional(b, t.has_roles, t.slave);
+    csv_optional(b, t.request_frame != 0, static_cast<unsigned>(t.request_frame));
+    fmt::format_to(it, "{},,,,", v.checksum_ok || v.checksum_disabled ? "true" : "false");
+    csv_optional(b, v.has_parameter && v.letter != Vlt2000Letter::Control, v.parameter);
+    csv_optional(b, v.letter == Vlt2000Letter::ReadIndex && v.has_index_number, v.index_number);
+    if (v.has_value && vlt2000_carries_value(v)) append(b, vlt2000_value_text(v));
+    b.push_back(',');
+    if (vlt2000_has_letter(t)) csv_quoted(b, vlt2000_letter_name(v.letter));
+    b.push_back(',');
+    csv_optional(b, v.failed && v.has_reason, v.reason);
+    if (v.failed) csv_quoted(b, vlt2000_reason_or_unknown(v));
+    b.push_back(',');
+    if (v.has_word) fmt::format_to(it, "{:04X}", v.word);
+    b.push_back(',');
+    TextBuffer detail;
+    append_vlt2000_detail(detail, t);
+    csv_quoted(b, std::string_view(detail.data(), detail.size()));
+    b.push_back(',');
+}
+
+// ---- jsonl
+
+// The VLT 2000 keys between "len" and "problems": the common header keys and the "vlt2000"
+// object (README.md, "VLT 2000 telegrams"); no FDL or DP key.
+void vlt2000_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
+    const Vlt2000Telegram& v = t.vlt2000;
+    w.key("direction").string(direction_name(t.direction));
+    w.key("master").optional_integer(t.has_roles, t.master);
+    w.key("slave").optional_integer(t.has_roles, t.slave);
+    w.key("request_frame")
+        .optional_integer(t.request_frame != 0, static_cast<std::int64_t>(t.request_frame));
+    w.key("vlt2000").begin_object();
+    w.key("complete").boolean(v.complete);
+    w.key("address").optional_integer(t.has_roles, v.address);
+    w.key("broadcast");
+    optional_boolean(w, t.has_roles, v.broadcast);
+    const bool letter = vlt2000_has_letter(t);
+    w.key("letter");
+    if (letter) {
+        TextBuffer chars;  // as append_fc_text writes it: \xNN for what is not printable
+        append_fc_text(chars, t.bytes.subspan(kVlt2000LetterAt, 1));
+        w.string(std::string_view(chars.data(), chars.size()));
+    } else
+        w.null();
+    w.key("letter_name");
+    optional_text(w, letter, vlt2000_letter_name(v.letter));
+    w.key("word_name");
+    optional_text(w, v.has_word, vlt2000_word_name(t.direction));
+    w.key("word").optional_integer(v.has_word, v.word);
+    // The meaning of each bit 0..15 in the state it has ("group kept (P)" for a kept group).
+    w.key("word_bits");
+    if (v.has_word) {
+        w.begin_array();
+        for (unsigned bit = 0; bit < 16; ++bit)
+            w.string(vlt2000_bit_meaning(v, t.direction, bit));
+        w.end_array();
+    } else {
+        w.null();
+    }
+    w.key("word_kept");
+    if (v.has_word) {
+        w.begin_array();
+        for (unsigned group = 0; group < 4; ++group)
+            if ((v.word_keep >> group) & 1u) w.integer(group);
+        w.end_array();
+    } else {
+        w.null();
+    }
+    w.key("parameter").optional_integer(v.has_parameter, v.parameter);
+    const bool value = v.has_value && vlt2000_carries_value(v);
+    w.key("negative");
+    optional_boolean(w, value, v.negative);
+    w.key("digits").optional_integer(value, v.digits);
+    w.key("value_text");
+    const std::string text = value ? vlt2000_value_text(v) : std::string();
+    optional_text(w, value, text);
+    w.key("value");
+    if (value)
+        w.number_text(text);
+    else
+        w.null();
+    const std::string note = value ? vlt2000_value_note(v) : std::string();
+    w.key("value_note");
+    optional_text(w, !note.empty(), note);
+    w.key("decimals").optional_integer(v.has_decimals, v.decimals);
+    const bool index = v.letter == Vlt2000Letter::ReadIndex && !v.index.empty();
+    w.key("index");
+    if (index) {
+        TextBuffer chars;
+        append_vlt2000_index(chars, v);
+        w.string(std::string_view(chars.data(), chars.size()));
+    } else {
+        w.null();
+    }
+    w.key("index_number").optional_integer(index && v.has_index_number, v.index_number);
+    w.key("failed");
+    optional_boolean(w, v.has_decimals, v.failed);
+    w.key("reason").optional_integer(v.failed && v.has_reason, v.reason);
+    w.key("reason_text");
+    optional_text(w, v.failed, vlt2000_reason_or_unknown(v));
+    const bool checksum_there =
+        t.bytes.size() >= kVlt2000ChecksumAt + 2 && t.bytes[0] == kVlt2000Start;
+    w.key("checksum").optional_integer(v.has_checksum, v.checksum);
+    w.key("checksum_computed").optional_integer(checksum_there, v.checksum_computed);
+    w.key("checksum_disabled");
+    optional_boolean(w, checksum_there, v.checksum_disabled);
+    w.key("checksum_ok");
+    optional_boolean(w, v.has_checksum, v.checksum_ok);
+    w.end_object();
+}
+
+// ---- verbose
+
+class Vlt2000VerboseTree final : public VerboseTree {
+  public:
+    using VerboseTree::VerboseTree;
+
+  private:
+    // The characters of bytes [at, at + count) as sent, quoted ('"' and '\\' escaped, other bytes
+    // \xNN).
+    std::string chars(const DecodedTelegram& t, std::size_t at, std::size_t count) {
+        TextBuffer text;
+        text.push_back('"');
+        append_fc_text(text, t.bytes.subspan(at, count));
+        text.push_back('"');
+        return std::string(text.data(), text.size());
+    }
+
+  public:
+    // The VLT 2000 telegram field by field, from what Vlt2000Decoder stored; each field with its
+    // byte numbers as the manual counts them, from 1 ("[5-8]": offsets 4-7), and as far as the
+    // record reaches.
+    void render_vlt2000(const DecodedTelegram& t) {
+        const Vlt2000Telegram& v = t.vlt2000;
+        TextBuffer& b = buffer();
+        auto it = std::back_inserter(b);
+        const bool request = t.direction == Direction::Request;
+        const std::size_t size = t.bytes.size();
+        const auto has = [&](std::size_t at, std::size_t count) { return at + count <= size; };
+        append(b, "VLT 2000 telegram");
+        if (t.has_roles) {
+            fmt::format_to(it, ": {} {}", vlt2000_letter_text(t), request ? "command" : "reply");
+            if (v.broadcast && request)
+                append(b, " to every drive (broadcast, address 00)");
+            else if (v.broadcast)
+                append(b, " from address 00 (a broadcast; nobody should reply)");
+            else
+                fmt::format_to(it, " {} drive {:02}", request ? "to" : "from", v.address);
+            if (t.request_frame != 0) fmt::format_to(it, ", answers frame {}", t.request_frame);
+        }
+        b.push_back('\n');
+        if (size == 0) return;
+        if (t.bytes[0] != kVlt2000Start) {
+            field(1, "[1] Start: {} (not '<')", chars(t, 0, 1));
+            return;
+        }
+        field(1, "[1] Start: '<'");
+        if (!has(kVlt2000AddressAt, 2)) return;
+        if (t.has_roles)
+            field(1, "[2-3] Address: {:02}{}", v.address,
+                  v.broadcast ? " (broadcast: every drive acts, none replies)" : "");
+        else
+            field(1, "[2-3] Address: {} (not two digits)", chars(t, kVlt2000AddressAt, 2));
+        if (!has(kVlt2000LetterAt, 1)) return;
+        field(1, "[4] Control letter: {} ({}{})", chars(t, kVlt2000LetterAt, 1),
+              vlt2000_letter_name(v.letter),
+              v.letter == Vlt2000Letter::Unknown ? ": not U, R, C or I" : "");
+        if (!has(kVlt2000WordAt, 4)) return;
+        field(1, "[5-8] {} word: {} = 0x{:04X} ({})", request ? "Control" : "Status",
+              chars(t, kVlt2000WordAt, 4), v.word, request ? "to the drive" : "from the drive");
+        for (unsigned bit = 0; bit < 16; ++bit) {
+            if (vlt2000_bit_kept(v, bit)) {
+                if (bit % 4 == 0) field(2, "bits {}-{}: group kept (P)", bit, bit + 3);
+                continue;
+            }
+            field(2, "bit {:>2} = {}: {}", bit, (v.word >> bit) & 1u,
+                  vlt2000_bit_meaning(v, t.direction, bit));
+        }
+        if (!has(kVlt2000ParameterAt, 4)) return;
+        const bool control = v.letter == Vlt2000Letter::Control;
+        const std::string_view ignored = control ? " (ignored with C)" : "";
+        if (v.has_parameter)
+            field(1, "[9-12] Parameter: {}{}", v.parameter, ignored);
+        else
+            field(1, "[9-12] Parameter: {} (not four digits)", chars(t, kVlt2000ParameterAt, 4));
+        if (!has(kVlt2000SignAt, 1)) return;
+        if (v.letter == Vlt2000Letter::ReadIndex && !v.index.empty()) {
+            if (v.has_index_number)
+                field(1, "[13-18] Index: {} = {}", chars(t, kVlt2000SignAt, 6), v.index_number);
+            else
+                field(1, "[13-18] Index: {} (not a number)", chars(t, kVlt2000SignAt, 6));
+        } else {
+            field(1, "[13] Sign: {} ({}){}", chars(t, kVlt2000SignAt, 1),
+                  v.negative ? "negative" : "positive", ignored);
+            if (!has(kVlt2000ValueAt, 5)) return;
+            if (v.failed) {
+                field(1, "[14-18] Value: {} (none: the command failed)",
+                      chars(t, kVlt2000ValueAt, 5));
+            } else if (v.has_value) {
+                const std::string note = vlt2000_value_note(v);
+                line(1, "");
+                fmt::format_to(it, "[14-18] Value: {:05} = {}", v.digits, vlt2000_value_text(v));
+                if (!note.empty()) fmt::format_to(it, " ({})", note);
+                append(b, ignored);
+                b.push_back('\n');
+            } else {
+                field(1, "[14-18] Value: {} (not five digits)", chars(t, kVlt2000ValueAt, 5));
+            }
+        }
+        if (v.failed) {
+            if (v.has_reason)
+                field(2, "[17-18] Reason code: {:02} = {}", v.reason, vlt2000_reason_or_unknown(v));
+            else
+                field(2, "[17-18] Reason code: {} ({})", chars(t, kVlt2000ReasonAt, 2),
+                      vlt2000_reason_or_unknown(v));
+        }
+        if (!has(kVlt2000DecimalsAt, 1)) return;
+        if (!v.has_decimals)
+            field(1, "[19] Decimal position: {} (not a digit)", chars(t, kVlt2000DecimalsAt, 1));
+        else if (v.failed)
+            field(1, "[19] Decimal position: 9 (unknown parameter or the command failed)");
+        else if (v.decimals > 5)
+            field(1, "[19] Decimal position: {} (out of range 0-5)", v.decimals);
+        else
+            field(1, "[19] Decimal position: {}", v.decimals);
+        if (has(kVlt2000ChecksumAt, 2)) {
+            line(1, "[20-21] Checksum: ");
+            append_vlt2000_checksum(b, t);
+            b.push_back('\n');
+        } else {
+            field(1, "[20-21] Checksum: missing (telegram cut short)");
+            return;
+        }
+        if (!has(kVlt2000StopAt, 1)) return;
+        if (t.bytes[kVlt2000StopAt] == kVlt2000Stop)
+            field(1, "[22] Stop: '>'");
+        else
+            field(1, "[22] Stop: {} (not '>')", chars(t, kVlt2000StopAt, 1));
+    }
+};
+
+void vlt2000_verbose(TextBuffer& b, const DecodedTelegram& t) {
+    Vlt2000VerboseTree(b).render_vlt2000(t);
+}
+
+}  // namespace
+
+const ProtocolRendering& vlt2000_rendering() noexcept {
+    static const ProtocolRendering rendering{
+        .protocol = Protocol::Vlt2000,
+        .text_columns = vlt2000_text_columns,
+        .verbose = vlt2000_verbose,
+        .jsonl_keys = vlt2000_jsonl_keys,
+        .csv_columns = vlt2000_csv_columns,
+    };
+    return rendering;
+}
+
+}  // namespace dpscope
