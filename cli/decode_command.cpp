@@ -108,7 +108,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     // --baud times the serial buses' commands on the line; a PROFIBUS decode has no use for it
     // (report and stats take it for the bus load), so it is said, as for the other options of
     // another bus. With -w it is not ignored: the capture written records the line.
-    if (settings.baud_given && settings.protocol->protocol == Protocol::ProfibusDp &&
+    if (settings.baud_given && !settings.protocol->timed_by_line &&
         settings.write.empty())
         print_warning(fmt::format(
             "{}: --baud applies to the FC protocol and VLT 2000 in decode (for PROFIBUS, report "
@@ -130,7 +130,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     bool write_failed = false;
     // What the capture holds of the --station and --pnu lists, to name filters that match nothing.
     std::bitset<kStationCount> stations_seen;
-    std::bitset<65536> pnus_seen;
+    PnuSet pnus_seen;
     Record record;
     std::uint64_t read = 0;
     std::span<const Finding> findings;
@@ -151,14 +151,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             stations_seen |= stations_of(t);
             if (t.dp.has_pcv && subject_pnu >= 0)
                 pnus_seen.set(static_cast<std::size_t>(subject_pnu));
-            if (t.protocol == Protocol::Fc && t.fc.has_pkw) pnus_seen.set(t.fc.pkw.pnu);
-            // A VLT 2000 telegram names its parameter (a C telegram's is ignored).
-            if (t.protocol == Protocol::Vlt2000 && t.vlt2000.has_parameter &&
-                t.vlt2000.letter != Vlt2000Letter::Control)
-                pnus_seen.set(t.vlt2000.parameter);
-            if (const ProfidriveMessage* message = t.dp.service_data.profidrive())
-                for (const ProfidriveAddress& a : message->addresses)
-                    pnus_seen.set(a.pnu);
+            protocol_descriptor(t.protocol).mark_pnus(t, pnus_seen);
         }
         if (!show(renderer.get(), settings, t, findings, subject_pnu)) continue;
         if (settings.filtering()) {
@@ -267,7 +260,7 @@ int decode_typed_vlt2000(const std::vector<std::string>& arguments, DecodeSettin
                 i + 1, arguments[i], first + 1));
             return kExitUsage;
         }
-    if (settings.bus_given && settings.protocol->protocol != Protocol::Vlt2000) {
+    if (settings.bus_given && settings.protocol != text_log_protocol()) {
         print_error(
             fmt::format("hex: argument {}: '{}' is a VLT 2000 telegram; --bus {} cannot "
                         "read it",

@@ -55,7 +55,7 @@ class Pipeline {
           fc_(settings.fc_decoder, settings.fc_tracker),
           vlt2000_(settings.vlt2000_decoder, settings.vlt2000_tracker),
           keep_timelines_(keep_timelines) {
-        if (settings.track_health && protocol_ == Protocol::ProfibusDp)
+        if (settings.track_health && settings.protocol->has_bus_health)
             health_.emplace(settings.health);
     }
 

@@ -115,7 +115,7 @@ int run_report(const ReportCommand& command) {
     }
     TelegramSource& source = *opened.value();
     // The bus-health section of a PROFIBUS capture (the Pipeline keeps no tracker for another).
-    settings->track_health = settings->protocol->protocol == Protocol::ProfibusDp;
+    settings->track_health = settings->protocol->has_bus_health;
     settings->health.thresholds = *thresholds;
     // settings->health.baud: --baud, else the line the capture records, else 0 (the bus load
     // is unknown); set by resolve_decode_options and open_input.

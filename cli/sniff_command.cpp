@@ -170,13 +170,14 @@ constexpr int kAlarmEndGraceMs = 1000;
 
 // Checks --stats, --stats-file, --stats-format and --alarm against the bus, each other, -w and
 // the report.
-Result<void> check_stats_options(const SniffCommand& command, Protocol protocol) {
+Result<void> check_stats_options(const SniffCommand& command,
+                                 const ProtocolDescriptor& protocol) {
     const std::string& file = command.stats_file;
     const bool stats = command.stats || !file.empty();
-    if ((stats || !command.alarm.empty()) && protocol != Protocol::ProfibusDp)
+    if ((stats || !command.alarm.empty()) && !protocol.has_bus_health)
         return Error{fmt::format(
             "{}: bus health is PROFIBUS statistics (FDL/DP link layer); the {} bus has none",
-            stats ? "--stats" : "--alarm", protocol == Protocol::Fc ? "FC protocol" : "VLT 2000")};
+            stats ? "--stats" : "--alarm", protocol.traffic_name)};
     if (command.stats_format != "text" && file.empty())
         return Error{fmt::format(
             "--stats-format {}: the statistics would be mixed into the live output on standard "
@@ -285,7 +286,7 @@ int run_sniff(const SniffCommand& command) {
         print_error(usage.error());
         return kExitUsage;
     }
-    if (Result<void> usage = check_stats_options(command, settings->protocol->protocol); !usage) {
+    if (Result<void> usage = check_stats_options(command, *settings->protocol); !usage) {
         print_error(usage.error());
         return kExitUsage;
     }

@@ -32,16 +32,6 @@ struct StatsCommand {
     bool allow_empty = false;
 };
 
-// The bus of a capture as the PROFIBUS-only error names it.
-std::string_view bus_noun(Protocol protocol) {
-    switch (protocol) {
-        case Protocol::Fc: return "an FC protocol";
-        case Protocol::Vlt2000: return "a VLT 2000";
-        case Protocol::ProfibusDp: break;
-    }
-    return "a PROFIBUS DP";
-}
-
 // Renders the statistics and returns the exit code.
 int write_stats(const StatsCommand& command, const Pipeline& pipeline, const TelegramSource& source,
                 Output& out) {
@@ -93,12 +83,12 @@ int run_stats(const StatsCommand& command) {
         return kExitUsage;
     }
     TelegramSource& source = *opened.value();
-    if (settings->protocol->protocol != Protocol::ProfibusDp) {
+    if (!settings->protocol->has_bus_health) {
         print_error(fmt::format(
             "{}: {} capture; bus health (stats) is PROFIBUS-only: it judges the FDL/DP link "
             "layer (token, polls, retries, live list); dpscope report gives the figures of each "
             "drive",
-            source.name(), bus_noun(settings->protocol->protocol)));
+            source.name(), settings->protocol->capture_noun));
         return kExitUsage;
     }
     // Written beside OUT and moved into place only once the statistics are complete: an unusable

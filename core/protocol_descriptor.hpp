@@ -7,6 +7,7 @@
 // instead of switching on Protocol.
 #pragma once
 
+#include <bitset>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -28,10 +29,15 @@ struct PcapLinkType {
     std::string_view name;  // as libpcap names it: "PROFIBUS_DL"
 };
 
+// One bit per parameter number (PNU) 0..65535.
+using PnuSet = std::bitset<65536>;
+
 struct ProtocolDescriptor {
     Protocol protocol;       // its value in DecodedTelegram::protocol
     std::string_view name;   // what --bus takes and captures record: "profibus", "fc"
     std::string_view title;  // in messages: "PROFIBUS DP", "the FC protocol (RS-485)"
+    // In messages about a capture of it: "{} capture" ("a PROFIBUS DP", "an FC protocol").
+    std::string_view capture_noun;
     // Raw, hex and serial input; static, outlives every source. (framing.protocol_name() is the
     // name messages about link types use.)
     const FramingRules& framing;
@@ -46,15 +52,24 @@ struct ProtocolDescriptor {
     std::optional<std::uint8_t> lead_byte;
     std::string_view lead_byte_text;
     // Its telegrams are ASCII text shaped like this (e.g. "'<' ... '>'"), and a text log of them
-    // is its traffic; empty: a text log is not this protocol's. `traffic_name` names that traffic
-    // in messages ("VLT 2000").
+    // is its traffic; empty: a text log is not this protocol's.
     std::string_view text_log_shape;
+    // Its traffic or bus in messages: "the {} bus", "{} traffic" ("FC protocol", "VLT 2000").
     std::string_view traffic_name;
+    // Whether the bus-health statistics (protocols/profibus/health/) judge its link layer:
+    // dpscope stats, sniff --stats and --alarm, the report's bus-health section.
+    bool has_bus_health = false;
+    // Whether its tracker times commands and responses by the line's baud rate (--baud), as the
+    // serial drive buses do; PROFIBUS uses --baud only for the bus load of the bus health.
+    bool timed_by_line = false;
     // Whether its masters have station addresses (PROFIBUS); otherwise a telegram and a finding
     // are about their drive alone (FC, VLT 2000).
     bool masters_addressed = false;
     // Whether the telegram names parameter `pnu` (--pnu).
     bool (*addresses_pnu)(const DecodedTelegram& t, std::uint16_t pnu) noexcept = nullptr;
+    // Marks in `seen` each parameter number the telegram names (what --pnu can select; the
+    // cyclic PCV's number comes from the tracker, which knows which request a response answers).
+    void (*mark_pnus)(const DecodedTelegram& t, PnuSet& seen) noexcept = nullptr;
 
     // Are the records of a capture with this link type telegrams of the protocol?
     bool carried_by(int link_type) const noexcept;

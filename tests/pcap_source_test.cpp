@@ -529,6 +529,7 @@ const PcapLinkType kEthernetOnly[] = {{1, "EN10MB"}};
 const ProtocolDescriptor kEthernetProtocol{.protocol = Protocol::ProfibusDp,
                                            .name = "ethernet-test",
                                            .title = "a test protocol on Ethernet",
+                                           .capture_noun = "an Ethernet test",
                                            .framing = fdl_framing_rules(),
                                            .link_types = kEthernetOnly,
                                            .pcap_bus_number = 0,
@@ -536,8 +537,11 @@ const ProtocolDescriptor kEthernetProtocol{.protocol = Protocol::ProfibusDp,
                                            .lead_byte_text = {},
                                            .text_log_shape = {},
                                            .traffic_name = {},
+                                           .has_bus_health = false,
+                                           .timed_by_line = false,
                                            .masters_addressed = true,
-                                           .addresses_pnu = nullptr};
+                                           .addresses_pnu = nullptr,
+                                           .mark_pnus = nullptr};
 
 TEST(PcapSourceTest, TheProtocolGivenChoosesTheLinkTypes) {
     TempFile file("ethernet-for-test-protocol.pcap");

@@ -17,6 +17,10 @@ bool fc_addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
     return t.fc.has_pkw && t.fc.pkw.pnu == pnu;
 }
 
+void fc_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
+    if (t.fc.has_pkw) seen.set(t.fc.pkw.pnu);
+}
+
 }  // namespace
 
 const ProtocolDescriptor& fc_protocol() noexcept {
@@ -24,15 +28,19 @@ const ProtocolDescriptor& fc_protocol() noexcept {
         .protocol = Protocol::Fc,
         .name = "fc",
         .title = "the FC protocol (RS-485)",
+        .capture_noun = "an FC protocol",
         .framing = fc_framing_rules(),
         .link_types = kFcLinkTypes,
         .pcap_bus_number = 2,
         .lead_byte = kFcStx,
         .lead_byte_text = "STX (0x02)",
         .text_log_shape = {},
-        .traffic_name = {},
+        .traffic_name = "FC protocol",
+        .has_bus_health = false,
+        .timed_by_line = true,
         .masters_addressed = false,
         .addresses_pnu = fc_addresses_pnu,
+        .mark_pnus = fc_mark_pnus,
     };
     return descriptor;
 }

@@ -22,6 +22,12 @@ bool profibus_addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcep
                        [&](const ProfidriveAddress& a) { return a.pnu == pnu; });
 }
 
+void profibus_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
+    if (const ProfidriveMessage* message = t.dp.service_data.profidrive())
+        for (const ProfidriveAddress& a : message->addresses)
+            seen.set(a.pnu);
+}
+
 }  // namespace
 
 const ProtocolDescriptor& profibus_protocol() noexcept {
@@ -29,15 +35,19 @@ const ProtocolDescriptor& profibus_protocol() noexcept {
         .protocol = Protocol::ProfibusDp,
         .name = "profibus",
         .title = "PROFIBUS DP",
+        .capture_noun = "a PROFIBUS DP",
         .framing = fdl_framing_rules(),
         .link_types = kProfibusLinkTypes,
         .pcap_bus_number = 1,
         .lead_byte = std::nullopt,  // what an untagged USER0 capture is when no other bus fits
         .lead_byte_text = {},
         .text_log_shape = {},
-        .traffic_name = {},
+        .traffic_name = "PROFIBUS DP",
+        .has_bus_health = true,
+        .timed_by_line = false,
         .masters_addressed = true,
         .addresses_pnu = profibus_addresses_pnu,
+        .mark_pnus = profibus_mark_pnus,
     };
     return descriptor;
 }

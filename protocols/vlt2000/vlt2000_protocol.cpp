@@ -17,6 +17,11 @@ bool vlt2000_addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept
            t.vlt2000.parameter == pnu;
 }
 
+void vlt2000_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
+    if (t.vlt2000.has_parameter && t.vlt2000.letter != Vlt2000Letter::Control)
+        seen.set(t.vlt2000.parameter);
+}
+
 }  // namespace
 
 const ProtocolDescriptor& vlt2000_protocol() noexcept {
@@ -24,6 +29,7 @@ const ProtocolDescriptor& vlt2000_protocol() noexcept {
         .protocol = Protocol::Vlt2000,
         .name = "vlt2000",
         .title = "the VLT 2000 telegram",
+        .capture_noun = "a VLT 2000",
         .framing = vlt2000_framing_rules(),
         .link_types = kVlt2000LinkTypes,
         .pcap_bus_number = 3,
@@ -31,8 +37,11 @@ const ProtocolDescriptor& vlt2000_protocol() noexcept {
         .lead_byte_text = "'<'",
         .text_log_shape = "'<' ... '>'",
         .traffic_name = "VLT 2000",
+        .has_bus_health = false,
+        .timed_by_line = true,
         .masters_addressed = false,
         .addresses_pnu = vlt2000_addresses_pnu,
+        .mark_pnus = vlt2000_mark_pnus,
     };
     return descriptor;
 }
