@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cstdlib>
 
+#include "core/protocol_descriptor.hpp"
 #include "protocols/profibus/ppo.hpp"
 
 namespace dpscope {
@@ -113,12 +114,11 @@ bool has_parameter_channel(const SimulatedSlave& slave) {
 Result<void> check_faults(const std::vector<FaultSpec>& faults,
                           const std::vector<SimulatedSlave>& slaves, std::uint64_t cycles) {
     for (const FaultSpec& spec : faults) {
-        if (fault_bus(spec.kind) == Protocol::Fc)
-            return Error{
-                fmt::format("fault {}: an FC protocol fault; give --bus fc", describe_fault(spec))};
-        if (fault_bus(spec.kind) == Protocol::Vlt2000)
-            return Error{fmt::format("fault {}: a VLT 2000 fault; give --bus vlt2000",
-                                     describe_fault(spec))};
+        // A fault of another bus names the --bus that takes it.
+        if (const ProtocolDescriptor& bus = protocol_descriptor(fault_bus(spec.kind));
+            bus.protocol != Protocol::ProfibusDp)
+            return Error{fmt::format("fault {}: {} fault; give --bus {}", describe_fault(spec),
+                                     bus.capture_noun, bus.name)};
         const bool needs_pcv = fault_needs_parameter_channel(spec.kind);
         const bool needs_dpv1 = fault_needs_dpv1(spec.kind);
         const bool needs_spontaneous = fault_needs_spontaneous_messages(spec.kind);

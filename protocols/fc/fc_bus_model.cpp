@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 
+#include "core/protocol_descriptor.hpp"
 #include "protocols/fc/fc_framing_rules.hpp"
 
 namespace dpscope {
@@ -92,7 +93,7 @@ Result<void> check_fc_faults(const std::vector<FaultSpec>& faults,
                 "fault {}: {} fault; an FC bus takes the fc_* faults, garbage and "
                 "malformed_telegram",
                 describe_fault(spec),
-                fault_bus(spec.kind) == Protocol::Vlt2000 ? "a VLT 2000" : "a PROFIBUS DP")};
+                protocol_descriptor(fault_bus(spec.kind)).capture_noun)};
         if (spec.slave && std::none_of(drives.begin(), drives.end(), [&](const SimulatedDrive& d) {
                 return d.address == *spec.slave;
             }))

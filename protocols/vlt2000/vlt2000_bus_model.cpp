@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <charconv>
 
+#include "core/protocol_descriptor.hpp"
+
 namespace dpscope {
 
 namespace {
@@ -76,7 +78,7 @@ Result<void> check_vlt2000_faults(const std::vector<FaultSpec>& faults,
                 "fault {}: {} fault; a VLT 2000 bus takes the vlt2000_* faults, garbage and "
                 "malformed_telegram",
                 describe_fault(spec),
-                fault_bus(spec.kind) == Protocol::Fc ? "an FC protocol" : "a PROFIBUS DP")};
+                protocol_descriptor(fault_bus(spec.kind)).capture_noun)};
         if (spec.slave && std::find(drives.begin(), drives.end(), *spec.slave) == drives.end())
             return Error{fmt::format("fault {}: drive {} is not simulated", describe_fault(spec),
                                      *spec.slave)};
