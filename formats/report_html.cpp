@@ -62,7 +62,7 @@ void write_html(const ReportContext& c, const ReportModel& m, Output& out) {
                    "<title>dpscope report: {}</title>\n<style>{}</style>\n</head>\n<body>\n",
                    xml(c.input.name), kHtmlStyle);
     append(b, "<h1>dpscope conformance report</h1>\n");
-    if (report_bus(c) == Protocol::ProfibusDp)
+    if (report_of(c).checks_rc8_rule)
         fmt::format_to(it,
                        "<p class=\"meta\">{} ({}) &middot; dpscope {} &middot; {} "
                        "&middot; RC 8 rule {}</p>\n",

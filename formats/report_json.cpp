@@ -29,15 +29,7 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
     const BusWording& bus = bus_wording(c);
     if (!bus.option.empty()) w.key("bus").string(bus.option);
     w.key("timeout_ms").integer(options.timeout_ns / 1'000'000);
-    switch (report_bus(c)) {
-        case Protocol::Fc:
-            w.key("fc_response_ms").integer(c.fc_tracker->options().response_ns / 1'000'000);
-            break;
-        case Protocol::Vlt2000:
-            w.key("vlt2000_checksum").string(c.vlt2000_checksum ? "check" : "ignore");
-            break;
-        case Protocol::ProfibusDp: break;
-    }
+    if (const auto write_options = report_of(c).write_json_options) write_options(c, w);
     w.key("strict").boolean(options.strict);
     w.key("fail_on").string(fail_on_name(c.fail_on));
     w.key("allow_empty").boolean(c.allow_empty);

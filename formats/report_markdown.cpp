@@ -17,7 +17,7 @@ void write_markdown(const ReportContext& c, const ReportModel& m, Output& out) {
                    counted(c.summary->telegrams(), "telegram", "telegrams"),
                    c.input.damaged ? " (ended in damage)" : "");
     if (const std::string bus = bus_text(c); !bus.empty()) fmt::format_to(it, "- Bus: {}\n", bus);
-    if (report_bus(c) == Protocol::ProfibusDp)
+    if (report_of(c).checks_rc8_rule)
         fmt::format_to(it, "- Checks: {}; RC 8 after a read: {}\n", timeout_rule_text(c, m),
                        options.strict ? "strict" : "lenient");
     else

@@ -83,6 +83,15 @@ struct DriveOutcomes {
     }
 };
 
+// HTML: the header row of a serial bus's drives table (FC, VLT 2000: their BusWording's
+// html_table), the columns of html_drive_row().
+inline constexpr std::string_view kDriveHtmlTable =
+    "<tr><th class=\"n\">address</th><th class=\"n\">commands</th><th class=\"n\">answered"
+    "</th><th class=\"n\">unanswered</th><th class=\"n\">abandoned</th><th class=\"n\">damaged"
+    "</th><th class=\"n\">not judged</th><th class=\"n\">mean ms</th><th class=\"n\">p95 ms"
+    "</th><th class=\"n\">errors</th><th class=\"n\">warnings</th><th class=\"n\">notes</th>"
+    "</tr>\n";
+
 // HTML: one row of a serial bus's drives table (kDriveHtmlTable's columns): the address (linked
 // to `anchor`, shown as `label`), commands, answered, unanswered, abandoned, damaged, not judged,
 // mean and p95 reply time, findings by severity.

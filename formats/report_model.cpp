@@ -13,110 +13,12 @@ bool shows(const ReportContext& c, const Finding& f) {
     return !f.has_stations || shows_slave(c, f.slave);
 }
 
-namespace {
-
-// The cyclic and DP-V1 sections of the PROFIBUS DP slaves.
-void add_dp_sections(const ReportContext& c, const ChannelTimelines& timelines, ReportModel& m) {
-    for (const ChannelStats* stats : c.tracker->channels()) {
-        if (!shows_slave(c, stats->slave)) continue;
-        bool dp_findings = false, dpv1_findings = false;
-        for (FindingKind kind : kAllKinds)
-            if (stats->findings[static_cast<std::size_t>(kind)] > 0)
-                (is_dp_kind(kind) ? dp_findings : dpv1_findings) = true;
-        const bool dpv1 = stats->dpv1.telegrams > 0 || dpv1_findings;
-        // The cyclic channel's section, unless the slave only talked DP-V1.
-        if (!dpv1 || stats->data_exchange > 0 || stats->parameter_telegrams > 0 || dp_findings)
-            m.stations.push_back(
-                make_pcv_section(c, *stats, timelines.of(stats->master, stats->slave)));
-        if (dpv1) m.stations.push_back(make_dpv1_section(*stats));
-        ++m.slaves;
-    }
-}
-
-// A section per drive address (FcStationStats, Vlt2000StationStats), in address order.
-template <typename Stats, typename Make>
-void add_drive_sections(const ReportContext& c, const std::vector<const Stats*>& drives,
-                        const ChannelTimelines& timelines, Make make, ReportModel& m) {
-    for (const Stats* stats : drives) {
-        if (!shows_slave(c, stats->address)) continue;
-        m.stations.push_back(make(c, *stats, timelines.of(0, stats->address)));
-        ++m.slaves;
-    }
-}
-
-// The buses' rows of BusWording.
-const BusWording kDpWording{
-    "",
-    "",
-    FindingKind::FcsError,
-    "FCS errors",
-    "fcs_errors",
-    "slave",
-    "slaves",
-    "## Slaves\n\n| slave | master | PPO | dialect | transactions | rejected | time-outs | latency "
-    "ms (min / median / p95 / max) | latency cycles | findings |\n"
-    "|---:|---:|---|---|---:|---:|---:|---|---|---|\n",
-    "<tr><th class=\"n\">slave</th><th class=\"n\">master</th><th>PPO</th><th>dialect</th><th "
-    "class=\"n\">transactions</th><th class=\"n\">median ms</th><th class=\"n\">p95 ms</th><th "
-    "class=\"n\">errors</th><th class=\"n\">warnings</th><th class=\"n\">notes</th></tr>\n",
-    "parameter channel: the capture holds Data_Exchange telegrams with a parameter channel",
-};
-
-// The drive buses' HTML summary table (the same columns for FC and VLT 2000).
-constexpr std::string_view kDriveHtmlTable =
-    "<tr><th class=\"n\">address</th><th class=\"n\">commands</th><th class=\"n\">answered"
-    "</th><th class=\"n\">unanswered</th><th class=\"n\">abandoned</th><th class=\"n\">damaged"
-    "</th><th class=\"n\">not judged</th><th class=\"n\">mean ms</th><th class=\"n\">p95 ms"
-    "</th><th class=\"n\">errors</th><th class=\"n\">warnings</th><th class=\"n\">notes</th>"
-    "</tr>\n";
-
-const BusWording kFcWording{
-    "Danfoss FC protocol (RS-485)",
-    "fc",
-    FindingKind::FcBccError,
-    "BCC errors",
-    "bcc_errors",
-    "drive",
-    "drives",
-    "## Drives\n\n| address | commands | answered | unanswered | abandoned | damaged | not judged "
-    "| late | latency ms (min / mean / p95 / max) | rejected | findings |\n"
-    "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---|\n",
-    kDriveHtmlTable,
-    "FC protocol: the capture holds commands to drives",
-};
-
-const BusWording kVlt2000Wording{
-    "Danfoss VLT 2000 serial telegram (ASCII)",
-    "vlt2000",
-    FindingKind::Vlt2000ChecksumError,
-    "bad checksums",
-    "checksum_errors",
-    "drive",
-    "drives",
-    "## Drives\n\n| address | commands | answered | unanswered | abandoned | damaged | not judged "
-    "| failed | latency ms (min / mean / p95 / max) | checksum errors | findings |\n"
-    "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---|\n",
-    kDriveHtmlTable,
-    "VLT 2000: the capture holds commands answered by drives",
-};
-
-}  // namespace
-
 ReportModel build_report_model(const ReportContext& c) {
     ReportModel m;
     // The sections, one per station and channel kind.
     static const ChannelTimelines kNoTimelines;
     const ChannelTimelines& timelines = c.timelines ? *c.timelines : kNoTimelines;
-    switch (report_bus(c)) {
-        case Protocol::Fc:
-            add_drive_sections(c, c.fc_tracker->stations(), timelines, make_fc_section, m);
-            break;
-        case Protocol::Vlt2000:
-            add_drive_sections(c, c.vlt2000_tracker->stations(), timelines, make_vlt2000_section,
-                               m);
-            break;
-        case Protocol::ProfibusDp: add_dp_sections(c, timelines, m); break;
-    }
+    report_of(c).add_sections(c, timelines, m);
 
     for (const auto& section : m.stations)
         m.transactions += section->transactions();
@@ -137,50 +39,20 @@ ReportModel build_report_model(const ReportContext& c) {
     return m;
 }
 
-bool is_dp_kind(FindingKind kind) {
-    const FindingComponent component = finding_component(kind);
-    return component != FindingComponent::Dpv1ParameterAccess &&
-           component != FindingComponent::FcProtocol &&
-           component != FindingComponent::Vlt2000Protocol;
+const BusReport& report_of(const ReportContext& c) noexcept {
+    const BusReport& bus = bus_report(c.protocol);
+    return bus.tracked(c) ? bus : *bus_report_table().front();
 }
 
-Protocol report_bus(const ReportContext& c) {
-    switch (c.protocol) {
-        case Protocol::Fc: return c.fc_tracker ? Protocol::Fc : Protocol::ProfibusDp;
-        case Protocol::Vlt2000: return c.vlt2000_tracker ? Protocol::Vlt2000 : Protocol::ProfibusDp;
-        case Protocol::ProfibusDp: break;
-    }
-    return Protocol::ProfibusDp;
-}
+const BusWording& bus_wording(Protocol bus) { return bus_report(bus).wording; }
 
-const BusWording& bus_wording(Protocol bus) {
-    switch (bus) {
-        case Protocol::Fc: return kFcWording;
-        case Protocol::Vlt2000: return kVlt2000Wording;
-        case Protocol::ProfibusDp: break;
-    }
-    return kDpWording;
-}
-
-const BusWording& bus_wording(const ReportContext& c) { return bus_wording(report_bus(c)); }
+const BusWording& bus_wording(const ReportContext& c) { return report_of(c).wording; }
 
 bool is_bus_kind(const ReportContext& c, FindingKind kind) {
-    switch (report_bus(c)) {
-        case Protocol::Fc: return is_fc_finding_kind(kind);
-        case Protocol::Vlt2000: return is_vlt2000_finding_kind(kind);
-        case Protocol::ProfibusDp: break;
-    }
-    return is_dp_kind(kind);
+    return report_of(c).is_bus_kind(kind);
 }
 
-const BusStats& bus_stats(const ReportContext& c) {
-    switch (report_bus(c)) {
-        case Protocol::Fc: return c.fc_tracker->bus();
-        case Protocol::Vlt2000: return c.vlt2000_tracker->bus();
-        case Protocol::ProfibusDp: break;
-    }
-    return c.tracker->bus();
-}
+const BusStats& bus_stats(const ReportContext& c) { return report_of(c).bus_stats(c); }
 
 std::string_view checksum_errors_label(const ReportContext& c) {
     return bus_wording(c).checksum_label;
@@ -189,23 +61,7 @@ std::string_view checksum_errors_label(const ReportContext& c) {
 std::string bus_text(const ReportContext& c) { return std::string(bus_wording(c).name); }
 
 std::string checks_text(const ReportContext& c, const ReportModel& m) {
-    switch (report_bus(c)) {
-        case Protocol::Fc:
-            return m.timed ? fmt::format("time-out {} ms, drive response time {} ms",
-                                         c.fc_tracker->options().timeout_ns / 1'000'000,
-                                         c.fc_tracker->options().response_ns / 1'000'000)
-                           : std::string("time-outs and response times not judged (no timestamps)");
-        case Protocol::Vlt2000:
-            return fmt::format(
-                "{}, {}",
-                m.timed ? fmt::format("time-out {} ms",
-                                      c.vlt2000_tracker->options().timeout_ns / 1'000'000)
-                        : std::string(kNoTimestamps),
-                c.vlt2000_checksum ? "checksums checked"
-                                   : "checksums not checked (--vlt2000-checksum ignore)");
-        case Protocol::ProfibusDp: break;
-    }
-    return timeout_rule_text(c, m);
+    return report_of(c).checks_text(c, m);
 }
 
 double to_ms(std::uint64_t ns) { return static_cast<double>(ns) / 1e6; }
@@ -218,17 +74,7 @@ std::string findings_text(const ReportModel& m) {
 
 std::string nothing_checked_reason(const ReportContext& c) {
     if (c.summary->telegrams() == 0) return "no telegrams";
-    const bool all = c.stations.empty();
-    switch (report_bus(c)) {
-        case Protocol::Fc:
-            return all ? "no command to a drive" : "no command to the selected drives";
-        case Protocol::Vlt2000:
-            return all ? "no command answered by a drive"
-                       : "no command answered by the selected drives";
-        case Protocol::ProfibusDp: break;
-    }
-    return all ? "no Data_Exchange telegram with a parameter channel"
-               : "no Data_Exchange telegram with a parameter channel from the selected slaves";
+    return std::string(report_of(c).nothing_checked_reason(c));
 }
 
 std::string verdict_text(const ReportContext& c, const ReportModel& m) {

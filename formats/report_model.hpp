@@ -13,11 +13,13 @@
 //   (protocols/fc/fc_report_section.cpp) and Vlt2000Section
 //   (protocols/vlt2000/vlt2000_report_section.cpp),
 //   a drive address of an FC or VLT 2000 capture. Each section covers the finding kinds of its
-//   rules. What differs by bus (sections, kinds, bus findings, wording) is chosen by report_bus():
-//   a switch, or the bus's row of BusWording. Every format asks the section
-//   for its own part (write_text(), write_json(), ...), so a new channel kind (DP-V1 acyclic, FC
-//   protocol) is one new StationSection class plus the line in build_report_model() that makes its
-//   sections; the five writers stay as they are.
+//   rules. Every format asks the section for its own part (write_text(), write_json(), ...).
+// - What differs by bus (its sections, finding kinds, bus findings, checks and wording) is the
+//   bus's BusReport, one per protocol in its report-section file (<name>_bus_report()), in a
+//   table made from the registration list (formats/bus_reports.cpp); report_of() looks up the
+//   capture's. So a new protocol is its StationSection class and its BusReport; a new channel
+//   kind of a bus is one more StationSection class its BusReport's add_sections makes. The five
+//   writers stay as they are.
 // - Wording used by more than one writer lives here (verdict, filter, relative times, findings
 //   by kind); escaping for Markdown, HTML and XML in report_markup.hpp.
 #pragma once
@@ -25,6 +27,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -91,34 +94,11 @@ class StationSection {
     }
 };
 
-// The cyclic parameter channel (PCV) of a DP slave, as the session tracker counted it, with its
-// timeline.
-std::unique_ptr<StationSection> make_pcv_section(const ReportContext& c, const ChannelStats& stats,
-                                                 const Timeline& timeline);
-
 // DP-V1 parameter access of a DP slave (PROFIdrive over MSAC_C1/MSAC_C2), as the session
-// tracker counted it.
+// tracker counted it (the PROFIBUS sections add it after the slave's cyclic section).
 std::unique_ptr<StationSection> make_dpv1_section(const ChannelStats& stats);
 
-// One drive address of an FC capture (address 0: the broadcasts), as the FC tracker counted it.
-std::unique_ptr<StationSection> make_fc_section(const ReportContext& c, const FcStationStats& stats,
-                                                const Timeline& timeline);
-
-// One drive address of a VLT 2000 capture (address 00: the broadcasts), as the VLT 2000 tracker
-// counted it.
-std::unique_ptr<StationSection> make_vlt2000_section(const ReportContext& c,
-                                                     const Vlt2000StationStats& stats,
-                                                     const Timeline& timeline);
-
-// The PROFIBUS bus suite's and the cyclic channel's kinds: all but the DP-V1 parameter-access,
-// the FC protocol and the VLT 2000 ones.
-bool is_dp_kind(FindingKind kind);
-
-// The bus the report is about: the capture's protocol when its tracker is there, else PROFIBUS DP.
-// Everything that differs by bus switches on it, or reads the bus's BusWording.
-Protocol report_bus(const ReportContext& c);
-
-// What the writers say differently per bus: one row per bus (report_model.cpp).
+// What the writers say differently per bus: its BusReport's row.
 struct BusWording {
     // The header line naming the bus ("" for PROFIBUS DP, whose reports have always been
     // without it) and the JSON options.bus ("": not written).
@@ -138,19 +118,6 @@ struct BusWording {
     // JUnit: the name of the test case that says nothing was checked.
     std::string_view nothing_checked_case;
 };
-const BusWording& bus_wording(Protocol bus);
-const BusWording& bus_wording(const ReportContext& c);
-
-// The kinds the capture's bus suite and bus legend list: the PROFIBUS ones (is_dp_kind), or the
-// FC or VLT 2000 tracker's. A report lists only its own bus's kinds.
-bool is_bus_kind(const ReportContext& c, FindingKind kind);
-// The findings no station can be named for, from the capture's tracker.
-const BusStats& bus_stats(const ReportContext& c);
-// "FCS errors", "BCC errors" or "checksum errors": the checksum findings the summary counts.
-std::string_view checksum_errors_label(const ReportContext& c);
-// The header line naming the bus of a capture other than PROFIBUS DP ("" for PROFIBUS DP, whose
-// reports have always been without it).
-std::string bus_text(const ReportContext& c);
 
 struct ReportModel {
     std::vector<std::unique_ptr<StationSection>> stations;  // the sections reported, in order
@@ -178,6 +145,79 @@ bool shows(const ReportContext& c, const Finding& f);
 // The slave is reported: no station filter, or it is selected.
 bool shows_slave(const ReportContext& c, std::uint8_t slave);
 
+// What the report does and says differently per bus, one per protocol: <name>_bus_report() in
+// the protocol's report-section file (protocols/<name>/*_report_section.cpp), listed in
+// bus_report_table(). Shared code looks the bus up (report_of()) instead of switching on it.
+struct BusReport {
+    Protocol protocol;
+    BusWording wording;
+    // The context carries the bus's tracker. A report of a capture whose bus has none is of the
+    // first protocol of the table (PROFIBUS DP, whose tracker is always there).
+    bool (*tracked)(const ReportContext& c) noexcept = nullptr;
+    // Adds the sections of the stations reported (shows_slave()) to the model, in report order,
+    // and counts those stations in m.slaves.
+    void (*add_sections)(const ReportContext& c, const ChannelTimelines& timelines,
+                         ReportModel& m) = nullptr;
+    // The kinds the bus suite and bus legend list: a report lists only its own bus's kinds.
+    bool (*is_bus_kind)(FindingKind kind) noexcept = nullptr;
+    // The findings no station can be named for, from the bus's tracker.
+    const BusStats& (*bus_stats)(const ReportContext& c) = nullptr;
+    // The checks the bus's tracker applies: "time-out 1000 ms, drive response time 20 ms".
+    std::string (*checks_text)(const ReportContext& c, const ReportModel& m) = nullptr;
+    // Why nothing was checked in a capture with telegrams: "no command to a drive".
+    std::string_view (*nothing_checked_reason)(const ReportContext& c) = nullptr;
+    // Writes the bus's own options into the JSON report's "options", after "timeout_ms"
+    // ("fc_response_ms"); null: it has none there.
+    void (*write_json_options)(const ReportContext& c, JsonWriter& w) = nullptr;
+    // The bus's checks are the time-out and the RC 8 rule (an RC 8 answer to a read: unusual, or
+    // with --strict an unexpected response), which each writer words itself from
+    // timeout_rule_text() and --strict (the HTML one without naming the bus); otherwise the
+    // writers say checks_text().
+    bool checks_rc8_rule = false;
+};
+
+// Every bus's BusReport, in the order of the registration list (protocols/protocol_list.hpp);
+// the first is the default bus.
+std::span<const BusReport* const> bus_report_table() noexcept;
+// The BusReport of a protocol.
+const BusReport& bus_report(Protocol protocol) noexcept;
+// The BusReport of the bus the report is about: the capture's protocol when its tracker is
+// there, else the first of the table (PROFIBUS DP).
+const BusReport& report_of(const ReportContext& c) noexcept;
+
+// Each bus's BusReport, by the name its line in protocols/protocol_list.hpp gives it:
+// profibus_bus_report(), fc_bus_report(), ... (defined in the protocol's report-section file).
+#define DPSCOPE_BUS_REPORT(Enum, name, Payload, member) \
+    const BusReport& name##_bus_report() noexcept;
+DPSCOPE_PROTOCOLS(DPSCOPE_BUS_REPORT)
+#undef DPSCOPE_BUS_REPORT
+
+// The bus's wording: of a protocol (the command line names its stations with it), or of the bus
+// the report is about.
+const BusWording& bus_wording(Protocol bus);
+const BusWording& bus_wording(const ReportContext& c);
+// The kinds the capture's bus suite and bus legend list (BusReport::is_bus_kind).
+bool is_bus_kind(const ReportContext& c, FindingKind kind);
+// The findings no station can be named for, from the capture's tracker.
+const BusStats& bus_stats(const ReportContext& c);
+// "FCS errors", "BCC errors" or "checksum errors": the checksum findings the summary counts.
+std::string_view checksum_errors_label(const ReportContext& c);
+// The header line naming the bus of a capture other than PROFIBUS DP ("" for PROFIBUS DP, whose
+// reports have always been without it).
+std::string bus_text(const ReportContext& c);
+
+// A section per drive address of a drive bus (FcStationStats, Vlt2000StationStats), in address
+// order: `make(c, stats, timeline)` makes one.
+template <typename Stats, typename Make>
+void add_drive_sections(const ReportContext& c, const std::vector<const Stats*>& drives,
+                        const ChannelTimelines& timelines, Make make, ReportModel& m) {
+    for (const Stats* stats : drives) {
+        if (!shows_slave(c, stats->address)) continue;
+        m.stations.push_back(make(c, *stats, timelines.of(0, stats->address)));
+        ++m.slaves;
+    }
+}
+
 // The writers, one file each.
 void write_text(const ReportContext& c, const ReportModel& m, Output& out);
 void write_json(const ReportContext& c, const ReportModel& m, Output& out);
@@ -192,9 +232,9 @@ double to_ms(std::uint64_t ns);
 std::string findings_text(const ReportModel& m);
 // Why nothing was checked: "no telegrams", "no Data_Exchange telegram with a parameter channel".
 std::string nothing_checked_reason(const ReportContext& c);
-// The checks the protocol's tracker applies: "time-out 1000 ms, drive response time 20 ms" for
-// FC, "time-out 1000 ms, checksums checked" for VLT 2000 (for PROFIBUS DP the writers say it with
-// timeout_rule_text and the RC 8 rule).
+// The checks the bus's tracker applies (BusReport::checks_text): "time-out 1000 ms, drive
+// response time 20 ms" for FC, "time-out 1000 ms, checksums checked" for VLT 2000 (for PROFIBUS
+// DP the writers say it with timeout_rule_text and the RC 8 rule: BusReport::checks_rc8_rule).
 std::string checks_text(const ReportContext& c, const ReportModel& m);
 // "FAIL: 1 error, 0 warnings, 0 notes (fail on error)".
 std::string verdict_text(const ReportContext& c, const ReportModel& m);

@@ -24,7 +24,7 @@ void write_text(const ReportContext& c, const ReportModel& m, Output& out) {
     if (c.input.damaged)
         append(b, "         the input ended in damage; the report covers what was read\n");
     if (const std::string bus = bus_text(c); !bus.empty()) fmt::format_to(it, "Bus:     {}\n", bus);
-    if (report_bus(c) == Protocol::ProfibusDp)
+    if (report_of(c).checks_rc8_rule)
         fmt::format_to(it, "Checks:  {}; RC 8 after a read is {}\n", timeout_rule_text(c, m),
                        options.strict ? "an unexpected response (strict)" : "unusual, a warning");
     else

@@ -8,11 +8,13 @@
 //
 // What a protocol's folder provides, each in the file of its role (CONTRIBUTING.md, "Adding a
 // protocol"); a line here without one of them fails to link, naming the function:
-//   const ProtocolDescriptor& <name>_protocol();   decoder layer: <name>_protocol.cpp
-//   const ProtocolRendering& <name>_rendering();   formats layer: <name>_describe.cpp
-//   const BusReport& <name>_bus_report();          formats layer: <name>_report_section.cpp
-// The per-layer tables are made from this list: protocols/protocol_table.cpp (the descriptors),
-// formats/protocol_renderings.cpp (renderers and report sections).
+//   ProtocolDescriptor <name>_protocol()   decoder layer   <name>_protocol.cpp
+//   ProtocolRendering <name>_rendering()   formats layer   <name>_render.cpp
+//   BusReport <name>_bus_report()          formats layer   <name>_report_section.cpp
+// (each returns a const reference to its record). The per-layer tables are made from this list:
+// protocols/protocol_table.cpp (the descriptors, core/protocol_descriptor.hpp),
+// formats/protocol_renderings.cpp (the telegram formats, formats/protocol_rendering.hpp) and
+// formats/bus_reports.cpp (the report, formats/report_model.hpp).
 #pragma once
 
 #include "protocols/fc/fc_telegram.hpp"

@@ -1,6 +1,8 @@
 // The report's section for one drive address of a Danfoss FC protocol capture (address 0: the
 // broadcasts): commands by kind and AK, responses, latency, parameters accessed, rejections with
-// their fault texts and findings by kind, in every format, as the FC tracker counted them.
+// their fault texts and findings by kind, in every format, as the FC tracker counted them. And
+// what an FC report does and says as its own (fc_bus_report()): a section per drive address,
+// the protocol's kinds and options, its wording.
 #include <algorithm>
 #include <iterator>
 
@@ -293,11 +295,67 @@ class FcSection final : public StationSection {
     DriveLatency latency_;
 };
 
-}  // namespace
-
+// One drive address of an FC capture (address 0: the broadcasts), with its timeline.
 std::unique_ptr<StationSection> make_fc_section(const ReportContext& c, const FcStationStats& stats,
                                                 const Timeline& timeline) {
     return std::make_unique<FcSection>(c, stats, timeline);
+}
+
+void add_fc_sections(const ReportContext& c, const ChannelTimelines& timelines, ReportModel& m) {
+    add_drive_sections(c, c.fc_tracker->stations(), timelines, make_fc_section, m);
+}
+
+bool fc_tracked(const ReportContext& c) noexcept { return c.fc_tracker != nullptr; }
+
+const BusStats& fc_bus_stats(const ReportContext& c) { return c.fc_tracker->bus(); }
+
+std::string fc_checks_text(const ReportContext& c, const ReportModel& m) {
+    return m.timed ? fmt::format("time-out {} ms, drive response time {} ms",
+                                 c.fc_tracker->options().timeout_ns / 1'000'000,
+                                 c.fc_tracker->options().response_ns / 1'000'000)
+                   : std::string("time-outs and response times not judged (no timestamps)");
+}
+
+std::string_view fc_nothing_checked_reason(const ReportContext& c) {
+    return c.stations.empty() ? "no command to a drive" : "no command to the selected drives";
+}
+
+void fc_write_json_options(const ReportContext& c, JsonWriter& w) {
+    w.key("fc_response_ms").integer(c.fc_tracker->options().response_ns / 1'000'000);
+}
+
+}  // namespace
+
+const BusReport& fc_bus_report() noexcept {
+    static const BusReport report{
+        .protocol = Protocol::Fc,
+        .wording =
+            {
+                .name = "Danfoss FC protocol (RS-485)",
+                .option = "fc",
+                .checksum_kind = FindingKind::FcBccError,
+                .checksum_label = "BCC errors",
+                .checksum_key = "bcc_errors",
+                .station = "drive",
+                .stations = "drives",
+                .markdown_table =
+                    "## Drives\n\n| address | commands | answered | unanswered | abandoned | "
+                    "damaged | not judged | late | latency ms (min / mean / p95 / max) | "
+                    "rejected | findings |\n"
+                    "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---|\n",
+                .html_table = kDriveHtmlTable,
+                .nothing_checked_case = "FC protocol: the capture holds commands to drives",
+            },
+        .tracked = fc_tracked,
+        .add_sections = add_fc_sections,
+        .is_bus_kind = is_fc_finding_kind,
+        .bus_stats = fc_bus_stats,
+        .checks_text = fc_checks_text,
+        .nothing_checked_reason = fc_nothing_checked_reason,
+        .write_json_options = fc_write_json_options,
+        .checks_rc8_rule = false,
+    };
+    return report;
 }
 
 }  // namespace dpscope::report

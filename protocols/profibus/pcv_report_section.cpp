@@ -1,6 +1,7 @@
 // The report's section for the cyclic parameter channel (PCV) of a DP slave: PPO layout,
 // dialect, transactions, latency, parameters accessed, rejections and findings by kind, in
-// every format.
+// every format. And what a PROFIBUS DP report does and says as its own (profibus_bus_report()):
+// a slave's cyclic and DP-V1 sections, the bus's kinds and wording.
 #include <algorithm>
 #include <iterator>
 
@@ -11,6 +12,15 @@
 namespace dpscope::report {
 
 namespace {
+
+// The PROFIBUS bus suite's and the cyclic channel's kinds: all but the DP-V1 parameter-access,
+// the FC protocol and the VLT 2000 ones.
+bool is_dp_kind(FindingKind kind) noexcept {
+    const FindingComponent component = finding_component(kind);
+    return component != FindingComponent::Dpv1ParameterAccess &&
+           component != FindingComponent::FcProtocol &&
+           component != FindingComponent::Vlt2000Protocol;
+}
 
 struct Latency {
     bool any = false;
@@ -384,11 +394,78 @@ class PcvSection final : public StationSection {
     Latency latency_;
 };
 
+// The cyclic and DP-V1 sections of the PROFIBUS DP slaves.
+void add_profibus_sections(const ReportContext& c, const ChannelTimelines& timelines,
+                           ReportModel& m) {
+    for (const ChannelStats* stats : c.tracker->channels()) {
+        if (!shows_slave(c, stats->slave)) continue;
+        bool dp_findings = false, dpv1_findings = false;
+        for (FindingKind kind : kAllKinds)
+            if (stats->findings[static_cast<std::size_t>(kind)] > 0)
+                (is_dp_kind(kind) ? dp_findings : dpv1_findings) = true;
+        const bool dpv1 = stats->dpv1.telegrams > 0 || dpv1_findings;
+        // The cyclic channel's section, unless the slave only talked DP-V1.
+        if (!dpv1 || stats->data_exchange > 0 || stats->parameter_telegrams > 0 || dp_findings)
+            m.stations.push_back(
+                std::make_unique<PcvSection>(c, *stats, timelines.of(stats->master, stats->slave)));
+        if (dpv1) m.stations.push_back(make_dpv1_section(*stats));
+        ++m.slaves;
+    }
+}
+
+bool profibus_tracked(const ReportContext& c) noexcept { return c.tracker != nullptr; }
+
+const BusStats& profibus_bus_stats(const ReportContext& c) { return c.tracker->bus(); }
+
+// The writers word PROFIBUS DP's checks themselves (checks_rc8_rule); this is their time-out.
+std::string profibus_checks_text(const ReportContext& c, const ReportModel& m) {
+    return timeout_rule_text(c, m);
+}
+
+std::string_view profibus_nothing_checked_reason(const ReportContext& c) {
+    return c.stations.empty()
+               ? "no Data_Exchange telegram with a parameter channel"
+               : "no Data_Exchange telegram with a parameter channel from the selected slaves";
+}
+
 }  // namespace
 
-std::unique_ptr<StationSection> make_pcv_section(const ReportContext& c, const ChannelStats& stats,
-                                                 const Timeline& timeline) {
-    return std::make_unique<PcvSection>(c, stats, timeline);
+const BusReport& profibus_bus_report() noexcept {
+    static const BusReport report{
+        .protocol = Protocol::ProfibusDp,
+        .wording =
+            {
+                .name = "",
+                .option = "",
+                .checksum_kind = FindingKind::FcsError,
+                .checksum_label = "FCS errors",
+                .checksum_key = "fcs_errors",
+                .station = "slave",
+                .stations = "slaves",
+                .markdown_table =
+                    "## Slaves\n\n| slave | master | PPO | dialect | transactions | rejected | "
+                    "time-outs | latency ms (min / median / p95 / max) | latency cycles | "
+                    "findings |\n"
+                    "|---:|---:|---|---|---:|---:|---:|---|---|---|\n",
+                .html_table =
+                    "<tr><th class=\"n\">slave</th><th class=\"n\">master</th><th>PPO</th>"
+                    "<th>dialect</th><th class=\"n\">transactions</th><th class=\"n\">median "
+                    "ms</th><th class=\"n\">p95 ms</th><th class=\"n\">errors</th><th "
+                    "class=\"n\">warnings</th><th class=\"n\">notes</th></tr>\n",
+                .nothing_checked_case =
+                    "parameter channel: the capture holds Data_Exchange telegrams with a "
+                    "parameter channel",
+            },
+        .tracked = profibus_tracked,
+        .add_sections = add_profibus_sections,
+        .is_bus_kind = is_dp_kind,
+        .bus_stats = profibus_bus_stats,
+        .checks_text = profibus_checks_text,
+        .nothing_checked_reason = profibus_nothing_checked_reason,
+        .write_json_options = nullptr,
+        .checks_rc8_rule = true,
+    };
+    return report;
 }
 
 }  // namespace dpscope::report

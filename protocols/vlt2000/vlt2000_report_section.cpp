@@ -2,6 +2,8 @@
 // commands by control letter, replies, answered and unanswered commands, failed commands by reason
 // code with its text, checksum errors and telegrams with the check switched off, latency,
 // parameters accessed and findings by kind, in every format, as the VLT 2000 tracker counted them.
+// And what a VLT 2000 report does and says as its own (vlt2000_bus_report()): a section per drive
+// address, the protocol's kinds and options, its wording.
 #include <algorithm>
 #include <iterator>
 
@@ -321,12 +323,72 @@ class Vlt2000Section final : public StationSection {
     DriveLatency latency_;
 };
 
-}  // namespace
-
+// One drive address of a VLT 2000 capture (address 00: the broadcasts), with its timeline.
 std::unique_ptr<StationSection> make_vlt2000_section(const ReportContext& /*c*/,
                                                      const Vlt2000StationStats& stats,
                                                      const Timeline& timeline) {
     return std::make_unique<Vlt2000Section>(stats, timeline);
+}
+
+void add_vlt2000_sections(const ReportContext& c, const ChannelTimelines& timelines,
+                          ReportModel& m) {
+    add_drive_sections(c, c.vlt2000_tracker->stations(), timelines, make_vlt2000_section, m);
+}
+
+bool vlt2000_tracked(const ReportContext& c) noexcept { return c.vlt2000_tracker != nullptr; }
+
+const BusStats& vlt2000_bus_stats(const ReportContext& c) { return c.vlt2000_tracker->bus(); }
+
+std::string vlt2000_checks_text(const ReportContext& c, const ReportModel& m) {
+    return fmt::format(
+        "{}, {}",
+        m.timed ? fmt::format("time-out {} ms", c.vlt2000_tracker->options().timeout_ns / 1'000'000)
+                : std::string(kNoTimestamps),
+        c.vlt2000_checksum ? "checksums checked"
+                           : "checksums not checked (--vlt2000-checksum ignore)");
+}
+
+std::string_view vlt2000_nothing_checked_reason(const ReportContext& c) {
+    return c.stations.empty() ? "no command answered by a drive"
+                              : "no command answered by the selected drives";
+}
+
+void vlt2000_write_json_options(const ReportContext& c, JsonWriter& w) {
+    w.key("vlt2000_checksum").string(c.vlt2000_checksum ? "check" : "ignore");
+}
+
+}  // namespace
+
+const BusReport& vlt2000_bus_report() noexcept {
+    static const BusReport report{
+        .protocol = Protocol::Vlt2000,
+        .wording =
+            {
+                .name = "Danfoss VLT 2000 serial telegram (ASCII)",
+                .option = "vlt2000",
+                .checksum_kind = FindingKind::Vlt2000ChecksumError,
+                .checksum_label = "bad checksums",
+                .checksum_key = "checksum_errors",
+                .station = "drive",
+                .stations = "drives",
+                .markdown_table =
+                    "## Drives\n\n| address | commands | answered | unanswered | abandoned | "
+                    "damaged | not judged | failed | latency ms (min / mean / p95 / max) | "
+                    "checksum errors | findings |\n"
+                    "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---|\n",
+                .html_table = kDriveHtmlTable,
+                .nothing_checked_case = "VLT 2000: the capture holds commands answered by drives",
+            },
+        .tracked = vlt2000_tracked,
+        .add_sections = add_vlt2000_sections,
+        .is_bus_kind = is_vlt2000_finding_kind,
+        .bus_stats = vlt2000_bus_stats,
+        .checks_text = vlt2000_checks_text,
+        .nothing_checked_reason = vlt2000_nothing_checked_reason,
+        .write_json_options = vlt2000_write_json_options,
+        .checks_rc8_rule = false,
+    };
+    return report;
 }
 
 }  // namespace dpscope::report
