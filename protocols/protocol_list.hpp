@@ -11,10 +11,12 @@
 //   ProtocolDescriptor <name>_protocol()   decoder layer   <name>_protocol.cpp
 //   ProtocolRendering <name>_rendering()   formats layer   <name>_render.cpp
 //   BusReport <name>_bus_report()          formats layer   <name>_report_section.cpp
+//   ProtocolTree <name>_tree()             wireshark layer <name>_tree.cpp
 // (each returns a const reference to its record). The per-layer tables are made from this list:
 // protocols/protocol_table.cpp (the descriptors, core/protocol_descriptor.hpp),
-// formats/protocol_renderings.cpp (the telegram formats, formats/protocol_rendering.hpp) and
-// formats/bus_reports.cpp (the report, formats/report_model.hpp).
+// formats/protocol_renderings.cpp (the telegram formats, formats/protocol_rendering.hpp),
+// formats/bus_reports.cpp (the report, formats/report_model.hpp) and
+// wireshark/protocol_trees.cpp (the plugin, wireshark/protocol_tree.hpp).
 #pragma once
 
 #include "protocols/fc/fc_telegram.hpp"

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cstring>
-#include <optional>
+#include <iterator>
+#include <variant>
 
 namespace dpscope {
 
@@ -30,45 +31,69 @@ struct CaptureReplay::Stored {
     Bytes bytes;
 };
 
-struct CaptureReplay::DecoderState {
-    std::optional<BusDecoder> dp;
-    std::optional<FcDecoder> fc;
-    std::optional<Vlt2000Decoder> vlt2000;
+namespace {
 
-    DecoderState(Protocol protocol, const ReplayOptions& options) {
-        switch (protocol) {
-            case Protocol::Fc: fc.emplace(options.fc_decoder); return;
-            case Protocol::Vlt2000: vlt2000.emplace(options.vlt2000_decoder); return;
-            case Protocol::ProfibusDp: break;
-        }
-        dp.emplace(options.decoder);
-    }
+// A decoder and a tracker of any bus; a capture's are of its bus, and std::visit calls them.
+using AnyDecoder = std::variant<BusDecoder, FcDecoder, Vlt2000Decoder>;
+using AnyTracker = std::variant<SessionTracker, FcTracker, Vlt2000Tracker>;
+
+// Makes a `Decoder` or `Tracker` with its options, the member `options` of ReplayOptions.
+template <class Decoder, auto options>
+AnyDecoder make_decoder(const ReplayOptions& replay) {
+    return AnyDecoder(std::in_place_type<Decoder>, replay.*options);
+}
+template <class Tracker, auto options>
+AnyTracker make_tracker(const ReplayOptions& replay) {
+    return AnyTracker(std::in_place_type<Tracker>, replay.*options);
+}
+
+// Each bus's decoder and tracker, made from its options: a line per protocol, looked up by the
+// capture's protocol (ReplayOptions names each bus's options, so the line names them too).
+struct ReplayLane {
+    Protocol protocol;
+    AnyDecoder (*decoder)(const ReplayOptions&);
+    AnyTracker (*tracker)(const ReplayOptions&);
+};
+constexpr ReplayLane kLanes[] = {
+    {Protocol::ProfibusDp, make_decoder<BusDecoder, &ReplayOptions::decoder>,
+     make_tracker<SessionTracker, &ReplayOptions::tracker>},
+    {Protocol::Fc, make_decoder<FcDecoder, &ReplayOptions::fc_decoder>,
+     make_tracker<FcTracker, &ReplayOptions::fc_tracker>},
+    {Protocol::Vlt2000, make_decoder<Vlt2000Decoder, &ReplayOptions::vlt2000_decoder>,
+     make_tracker<Vlt2000Tracker, &ReplayOptions::vlt2000_tracker>},
+};
+static_assert(std::size(kLanes) == kProtocolCount, "every protocol needs its line in kLanes");
+
+// The lane of a protocol (the first, PROFIBUS's, for a value that names none).
+const ReplayLane& lane_of(Protocol protocol) noexcept {
+    for (const ReplayLane& lane : kLanes)
+        if (lane.protocol == protocol) return lane;
+    return kLanes[0];
+}
+
+}  // namespace
+
+struct CaptureReplay::DecoderState {
+    AnyDecoder decoder;
+
+    DecoderState(Protocol protocol, const ReplayOptions& options)
+        : decoder(lane_of(protocol).decoder(options)) {}
 
     const DecodedTelegram& decode(Bytes bytes, std::int64_t time_ns, std::uint64_t frame) {
-        if (fc) return fc->decode(bytes, time_ns, frame);
-        if (vlt2000) return vlt2000->decode(bytes, time_ns, frame);
-        return dp->decode(bytes, time_ns, frame);
+        return std::visit(
+            [&](auto& d) -> const DecodedTelegram& { return d.decode(bytes, time_ns, frame); },
+            decoder);
     }
 };
 
 struct CaptureReplay::Trackers {
-    std::optional<SessionTracker> dp;
-    std::optional<FcTracker> fc;
-    std::optional<Vlt2000Tracker> vlt2000;
+    AnyTracker tracker;
 
-    Trackers(Protocol protocol, const ReplayOptions& options) {
-        switch (protocol) {
-            case Protocol::Fc: fc.emplace(options.fc_tracker); return;
-            case Protocol::Vlt2000: vlt2000.emplace(options.vlt2000_tracker); return;
-            case Protocol::ProfibusDp: break;
-        }
-        dp.emplace(options.tracker);
-    }
+    Trackers(Protocol protocol, const ReplayOptions& options)
+        : tracker(lane_of(protocol).tracker(options)) {}
 
     std::span<const Finding> track(const DecodedTelegram& t) {
-        if (fc) return fc->track(t);
-        if (vlt2000) return vlt2000->track(t);
-        return dp->track(t);
+        return std::visit([&](auto& tr) { return tr.track(t); }, tracker);
     }
 };
 

@@ -4,8 +4,9 @@
 // Wireshark's tree, columns and expert info; it parses no byte itself. This file holds the
 // preferences, the capture's state, the columns, the parts of the tree every protocol has (the
 // request/response link, problems and findings), the dissector and its registration. The
-// registration table is dissector_fields.hpp; each protocol's subtree has a file of its own
-// (profibus_tree.cpp, fc_tree.cpp, vlt2000_tree.cpp).
+// registration table is dissector_fields.hpp; what differs by protocol (columns, subtree) is each
+// protocol's record in the table of protocol trees (wireshark/protocol_tree.hpp), filled in by
+// its own file (profibus_tree.cpp, fc_tree.cpp, vlt2000_tree.cpp).
 #include <wireshark.h>
 // wireshark.h first: it sets up what the epan headers need.
 #include <epan/expert.h>
@@ -22,12 +23,11 @@
 #include <vector>
 
 #include "capture/bus_tag.hpp"
+#include "core/protocol_descriptor.hpp"
 #include "formats/describe.hpp"
-#include "protocols/fc/fc_tree.hpp"
-#include "protocols/profibus/profibus_tree.hpp"
-#include "protocols/vlt2000/vlt2000_tree.hpp"
 #include "wireshark/capture_replay.hpp"
 #include "wireshark/dissector_fields.hpp"
+#include "wireshark/protocol_tree.hpp"
 #include "wireshark/tree.hpp"
 
 extern "C" {
@@ -49,13 +49,30 @@ dissector_handle_t dpscope_handle = nullptr;
 
 // ---- preferences ------------------------------------------------------------------------------
 
-enum BusPreference { kBusAuto, kBusProfibus, kBusFc, kBusVlt2000 };
-const enum_val_t kBusValues[] = {
-    {"auto", "From the capture (dpscope's tag, else the first byte)", kBusAuto},
-    {"profibus", "PROFIBUS DP", kBusProfibus},
-    {"fc", "Danfoss FC protocol", kBusFc},
-    {"vlt2000", "VLT 2000 serial telegram", kBusVlt2000},
-    {nullptr, nullptr, 0}};
+// The bus preference: 0 "auto", then protocol k of the table of protocol trees as value k + 1,
+// named as --bus names it (the name is what a preferences file stores). Wireshark keeps pointers
+// to the array and to its strings, so both live as long as the program; the names are copied, as
+// a string_view need not end in a NUL.
+constexpr gint kBusAuto = 0;
+const enum_val_t* bus_values() {
+    struct Values {
+        std::vector<std::string> names;
+        std::vector<enum_val_t> list;
+        Values() {
+            const auto trees = protocol_trees();
+            for (const ProtocolTree* tree : trees)
+                names.emplace_back(protocol_name(tree->protocol));
+            list.push_back(
+                {"auto", "From the capture (dpscope's tag, else the first byte)", kBusAuto});
+            for (std::size_t k = 0; k < trees.size(); ++k)
+                list.push_back(
+                    {names[k].c_str(), trees[k]->bus_description, static_cast<gint>(k + 1)});
+            list.push_back({nullptr, nullptr, 0});
+        }
+    };
+    static const Values values;
+    return values.list.data();
+}
 const enum_val_t kDialectValues[] = {{"vlt", "vlt (Danfoss VLT 5000)", 0},
                                      {"ge", "ge (GE AF-600/AF-650)", 1},
                                      {"profidrive", "profidrive (PROFIdrive PKW)", 2},
@@ -109,14 +126,12 @@ std::unique_ptr<CaptureReplay> capture;
 void forget_capture() { capture.reset(); }
 
 // The bus of the capture: the preference, else the tag of a pcapng interface dpscope wrote, else
-// the first telegram's first byte (dpscope's rule for an untagged USER0 capture).
+// the first telegram's first byte (dpscope's rule for an untagged USER0 capture; an empty first
+// telegram is of the default bus, the first of the table).
 Protocol choose_protocol(packet_info* pinfo, tvbuff_t* tvb) {
-    switch (prefs.bus) {
-        case kBusProfibus: return Protocol::ProfibusDp;
-        case kBusFc: return Protocol::Fc;
-        case kBusVlt2000: return Protocol::Vlt2000;
-        default: break;
-    }
+    const auto trees = protocol_trees();
+    if (prefs.bus > kBusAuto && static_cast<std::size_t>(prefs.bus) <= trees.size())
+        return trees[static_cast<std::size_t>(prefs.bus) - 1]->protocol;
     if (pinfo->rec && (pinfo->rec->presence_flags & WTAP_HAS_INTERFACE_ID)) {
         const char* description = epan_get_interface_description(
             pinfo->epan, pinfo->rec->rec_header.packet_header.interface_id);
@@ -127,7 +142,7 @@ Protocol choose_protocol(packet_info* pinfo, tvbuff_t* tvb) {
                     return *tagged;
         }
     }
-    if (tvb_captured_length(tvb) == 0) return Protocol::ProfibusDp;
+    if (tvb_captured_length(tvb) == 0) return protocol_table().front()->protocol;
     return protocol_of_untagged_user0(tvb_get_guint8(tvb, 0));
 }
 
@@ -202,40 +217,12 @@ std::string info_text(const DecodedTelegram& t, std::span<const Finding> finding
     return info;
 }
 
-std::string_view protocol_column(Protocol protocol) {
-    switch (protocol) {
-        case Protocol::Fc: return "FC";
-        case Protocol::Vlt2000: return "VLT 2000";
-        case Protocol::ProfibusDp: break;
-    }
-    return "PROFIBUS";
-}
-
-// Source and destination as the text line has them: station addresses, "M" for the FC and VLT 2000
-// master, "all" for a broadcast.
+// Source and destination as the text line has them (the protocol's record words them).
 void set_address_columns(packet_info* pinfo, const DecodedTelegram& t) {
-    std::string source;
-    std::string destination;
-    if (t.protocol == Protocol::ProfibusDp) {
-        if (t.dp.fdl.has_addresses) {
-            source = fmt::format("{}", t.dp.fdl.sa);
-            destination = fmt::format("{}", t.dp.fdl.da);
-        } else if (t.has_roles) {
-            source = fmt::format("{}", t.slave);
-            destination = fmt::format("{}", t.master);
-        }
-    } else if (t.has_roles) {
-        const bool broadcast = t.protocol == Protocol::Fc ? t.fc.broadcast : t.vlt2000.broadcast;
-        const std::string drive =
-            broadcast && t.direction == Direction::Request ? std::string("all")
-            : t.protocol == Protocol::Fc                   ? fmt::format("{}", t.fc.address)
-                                         : fmt::format("{:02}", t.vlt2000.address);
-        source = t.direction == Direction::Request ? "M" : drive;
-        destination = t.direction == Direction::Request ? drive : "M";
-    }
-    if (!source.empty()) {
-        col_add_str(pinfo->cinfo, COL_DEF_SRC, source.c_str());
-        col_add_str(pinfo->cinfo, COL_DEF_DST, destination.c_str());
+    const AddressColumns columns = protocol_tree(t.protocol).address_columns(t);
+    if (!columns.source.empty()) {
+        col_add_str(pinfo->cinfo, COL_DEF_SRC, columns.source.c_str());
+        col_add_str(pinfo->cinfo, COL_DEF_DST, columns.destination.c_str());
     }
 }
 
@@ -256,29 +243,24 @@ int dissect_dpscope(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) 
                                    : capture->first_pass(frame, bytes, time_ns);
     const std::span<const Finding> findings = capture->findings(frame);
 
-    col_set_str(pinfo->cinfo, COL_PROTOCOL, protocol_column(capture->protocol()).data());
+    const ProtocolTree& capture_bus = protocol_tree(capture->protocol());
+    col_set_str(pinfo->cinfo, COL_PROTOCOL, capture_bus.column);
     set_address_columns(pinfo, t);
     col_clear(pinfo->cinfo, COL_INFO);
     col_add_str(pinfo->cinfo, COL_INFO, info_text(t, findings).c_str());
 
     proto_item* top_item = proto_tree_add_item(tree, proto_dpscope, tvb, 0, -1, ENC_NA);
-    proto_item_append_text(top_item, ": %s", protocol_column(capture->protocol()).data());
+    proto_item_append_text(top_item, ": %s", capture_bus.column);
     Tree top(proto_item_add_subtree(top_item, ett[kEttTop]), tvb);
     top.string(hf_bus, 0, 0, std::string(protocol_name(capture->protocol())));
     top.string(hf_direction, 0, 0, std::string(direction_name(t.direction)));
+    const ProtocolTree& telegram_bus = protocol_tree(t.protocol);
     if (t.has_roles) {
-        if (t.protocol == Protocol::ProfibusDp) top.uint(hf_master, 0, 0, t.master);
+        if (telegram_bus.shows_master) top.uint(hf_master, 0, 0, t.master);
         top.uint(hf_slave, 0, 0, t.slave);
     }
     add_link(top, t);
-    switch (t.protocol) {
-        case Protocol::Fc: add_fc(top, t); break;
-        case Protocol::Vlt2000: add_vlt2000(top, t); break;
-        case Protocol::ProfibusDp:
-            add_fdl(top, t);
-            add_dp(top, t);
-            break;
-    }
+    telegram_bus.add_subtree(top, t);
     add_problems_and_findings(top, pinfo, t, findings);
     return static_cast<int>(length);
 }
@@ -291,7 +273,7 @@ void register_dpscope() {
     module_t* module = prefs_register_protocol(proto_dpscope, forget_capture);
     prefs_register_enum_preference(module, "bus", "Bus",
                                    "The bus the USER0 capture carries (dpscope --bus)", &prefs.bus,
-                                   kBusValues, FALSE);
+                                   bus_values(), FALSE);
     prefs_register_enum_preference(module, "dialect", "Parameter-channel dialect",
                                    "Code tables of the PROFIBUS parameter channel (--dialect)",
                                    &prefs.dialect, kDialectValues, FALSE);

@@ -1,6 +1,5 @@
-// The FC protocol subtree.
-#include "protocols/fc/fc_tree.hpp"
-
+// The FC protocol in the dissector: its subtree (STX, LGE, ADR, the PKW with PKE, IND and PWE or
+// text, PCD 1 and 2, BCC), its columns and its record in the table of protocol trees.
 #include <fmt/format.h>
 
 #include <string>
@@ -10,8 +9,10 @@
 #include "formats/describe.hpp"
 #include "protocols/fc/fc_describe.hpp"
 #include "protocols/profibus/pcd.hpp"
+#include "wireshark/protocol_tree.hpp"
 
 namespace dpscope::wireshark {
+namespace {
 
 void add_fc(const Tree& top, const DecodedTelegram& t) {
     const FcTelegram& fc = t.fc;
@@ -112,6 +113,25 @@ void add_fc(const Tree& top, const DecodedTelegram& t) {
                                           fc.bcc_computed));
         tree.boolean(hf_fc_bcc_ok, at, 1, fc.bcc_ok);
     }
+}
+
+// The drive's address as the text line writes it.
+AddressColumns fc_address_columns(const DecodedTelegram& t) {
+    return drive_address_columns(t, t.fc.broadcast, fmt::format("{}", t.fc.address));
+}
+
+}  // namespace
+
+const ProtocolTree& fc_tree() noexcept {
+    static const ProtocolTree tree{
+        .protocol = Protocol::Fc,
+        .column = "FC",
+        .bus_description = "Danfoss FC protocol",
+        .shows_master = false,
+        .add_subtree = add_fc,
+        .address_columns = fc_address_columns,
+    };
+    return tree;
 }
 
 }  // namespace dpscope::wireshark

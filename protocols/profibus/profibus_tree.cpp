@@ -1,7 +1,6 @@
 // The PROFIBUS subtrees: the FDL telegram, the DP service with its PPO, PCV and PCD, diagnosis,
-// parameters and configuration, and DP-V1 with its PROFIdrive parameter access.
-#include "protocols/profibus/profibus_tree.hpp"
-
+// parameters and configuration, and DP-V1 with its PROFIdrive parameter access; the columns and
+// PROFIBUS's record in the table of protocol trees.
 #include <fmt/format.h>
 
 #include <optional>
@@ -15,6 +14,7 @@
 #include "protocols/profibus/dp_payload.hpp"
 #include "protocols/profibus/dpv1/profidrive.hpp"
 #include "protocols/profibus/pcd.hpp"
+#include "wireshark/protocol_tree.hpp"
 
 namespace dpscope::wireshark {
 namespace {
@@ -34,8 +34,7 @@ std::string hex_text(Bytes bytes) {
     return buffer_text(b);
 }
 
-}  // namespace
-
+// The FDL telegram: start delimiter, lengths, addresses, frame control, SAPs, FCS.
 void add_fdl(const Tree& top, const DecodedTelegram& t) {
     const FdlTelegram& f = t.dp.fdl;
     Tree tree = top.text(0, f.size > 0 ? f.size : t.bytes.size(), kEttFdl, "PROFIBUS FDL");
@@ -90,8 +89,6 @@ void add_fdl(const Tree& top, const DecodedTelegram& t) {
         t.bytes.size() >= f.size && f.size > 0)
         tree.uint(hf_fdl_ed, f.size - 1u, 1, t.bytes[f.size - 1]);
 }
-
-namespace {
 
 void add_pcv(const Tree& tree, const DecodedTelegram& t) {
     const bool request = t.direction == Direction::Request;
@@ -430,8 +427,8 @@ void add_dpv1(const Tree& tree, const DecodedTelegram& t, const Dpv1Pdu& pdu) {
         add_profidrive(tree, t, *m, pdu.data_offset);
 }
 
-}  // namespace
-
+// The DP service and its data: PPO, PCV and PCD of a Data_Exchange, diagnosis, parameters,
+// configuration, Global_Control, Set_Slave_Add, DP-V1 with its PROFIdrive parameter access.
 void add_dp(const Tree& top, const DecodedTelegram& t) {
     if (t.dp.fdl.type == FrameType::Invalid) return;
     std::string title =
@@ -503,6 +500,35 @@ void add_dp(const Tree& top, const DecodedTelegram& t) {
                 tree.bytes(hf_dp_data, t.dp.fdl.du_offset, t.dp.fdl.du.size());
             break;
     }
+}
+
+// The FDL telegram, then the DP service it carries.
+void add_profibus(const Tree& top, const DecodedTelegram& t) {
+    add_fdl(top, t);
+    add_dp(top, t);
+}
+
+// The FDL addresses; a telegram without them (the short acknowledgement) goes from the slave to
+// the master of the request it answers.
+AddressColumns profibus_address_columns(const DecodedTelegram& t) {
+    if (t.dp.fdl.has_addresses)
+        return {fmt::format("{}", t.dp.fdl.sa), fmt::format("{}", t.dp.fdl.da)};
+    if (t.has_roles) return {fmt::format("{}", t.slave), fmt::format("{}", t.master)};
+    return {};
+}
+
+}  // namespace
+
+const ProtocolTree& profibus_tree() noexcept {
+    static const ProtocolTree tree{
+        .protocol = Protocol::ProfibusDp,
+        .column = "PROFIBUS",
+        .bus_description = "PROFIBUS DP",
+        .shows_master = true,
+        .add_subtree = add_profibus,
+        .address_columns = profibus_address_columns,
+    };
+    return tree;
 }
 
 }  // namespace dpscope::wireshark

@@ -1,6 +1,6 @@
-// The VLT 2000 subtree.
-#include "protocols/vlt2000/vlt2000_tree.hpp"
-
+// The VLT 2000 telegram in the dissector: its subtree (start, address, control letter,
+// control/status word, parameter, value, decimal position, checksum, stop), its columns and its
+// record in the table of protocol trees.
 #include <fmt/format.h>
 
 #include <charconv>
@@ -9,6 +9,7 @@
 #include "formats/describe.hpp"
 #include "protocols/fc/fc_describe.hpp"
 #include "protocols/vlt2000/vlt2000_describe.hpp"
+#include "wireshark/protocol_tree.hpp"
 
 namespace dpscope::wireshark {
 namespace {
@@ -19,8 +20,6 @@ std::string chars_text(Bytes bytes) {
     append_fc_text(b, bytes);
     return buffer_text(b);
 }
-
-}  // namespace
 
 void add_vlt2000(const Tree& top, const DecodedTelegram& t) {
     const Vlt2000Telegram& v = t.vlt2000;
@@ -115,6 +114,25 @@ void add_vlt2000(const Tree& top, const DecodedTelegram& t) {
             hf_vlt_stop, kVlt2000StopAt, 1, stop,
             stop == kVlt2000Stop ? std::string("'>'") : fmt::format("0x{:02X} (not '>')", stop));
     }
+}
+
+// The drive's address as the text line writes it: two digits.
+AddressColumns vlt2000_address_columns(const DecodedTelegram& t) {
+    return drive_address_columns(t, t.vlt2000.broadcast, fmt::format("{:02}", t.vlt2000.address));
+}
+
+}  // namespace
+
+const ProtocolTree& vlt2000_tree() noexcept {
+    static const ProtocolTree tree{
+        .protocol = Protocol::Vlt2000,
+        .column = "VLT 2000",
+        .bus_description = "VLT 2000 serial telegram",
+        .shows_master = false,
+        .add_subtree = add_vlt2000,
+        .address_columns = vlt2000_address_columns,
+    };
+    return tree;
 }
 
 }  // namespace dpscope::wireshark
