@@ -1,7 +1,7 @@
 // Comma-separated values, one row a telegram, with a header row. Fields that could hold a comma
 // or a quote are quoted (RFC 4180). Both buses share the header; an FC protocol row fills the
 // columns that apply to it, and so does a VLT 2000 row (README.md). Each protocol's columns are
-// written by its ProtocolRendering::csv_columns (protocols/<name>/*_render.cpp).
+// written by its <name>_csv_columns (formats/protocol_rendering.hpp).
 #include <iterator>
 
 #include "formats/describe.hpp"
@@ -25,7 +25,7 @@ class CsvRenderer final : public TelegramRenderer {
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
         TextBuffer& b = out_.buffer();
         auto it = std::back_inserter(b);
-        protocol_rendering(t.protocol).csv_columns(b, t);
+        render_csv_columns(b, t);
         bool first = true;
         for (const Problem& p : t.problems()) {
             if (!first) b.push_back(' ');

@@ -2,7 +2,7 @@
 // not apply); the schema is documented in README.md per bus and is stable. FC protocol lines
 // carry the common keys and an "fc_protocol" object instead of the FDL/DP keys, VLT 2000 lines the
 // common keys and a "vlt2000" object. Each protocol's keys are written by its
-// ProtocolRendering::jsonl_keys (protocols/<name>/*_render.cpp).
+// <name>_jsonl_keys (formats/protocol_rendering.hpp).
 #include "formats/describe.hpp"
 #include "formats/json.hpp"
 #include "formats/protocol_rendering.hpp"
@@ -23,7 +23,7 @@ class JsonlRenderer final : public TelegramRenderer {
         w.key("time");
         json::time(w, t.time_ns);
         w.key("len").integer(static_cast<std::int64_t>(t.bytes.size()));
-        protocol_rendering(t.protocol).jsonl_keys(w, t);
+        render_jsonl_keys(w, t);
         w.key("problems").begin_array();
         for (const Problem& p : t.problems()) {
             w.begin_object();

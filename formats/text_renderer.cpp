@@ -48,7 +48,7 @@ void append_relative_time(TextBuffer& b, std::int64_t relative_ns) {
 
 void append_telegram_columns(TextBuffer& b, const DecodedTelegram& t,
                              std::span<const Finding> findings) {
-    protocol_rendering(t.protocol).text_columns(b, t);
+    render_text_columns(b, t);
     if (!t.problems().empty()) {
         append(b, " [");
         bool first = true;

@@ -1,5 +1,5 @@
 // The whole field tree of each telegram, like tshark -V: the frame, its bytes, the protocol's
-// fields (each protocol's ProtocolRendering::verbose, in its folder), problems and findings.
+// fields (each protocol's <name>_verbose, in its folder), problems and findings.
 #include <iterator>
 
 #include "formats/describe.hpp"
@@ -28,7 +28,7 @@ class VerboseRenderer final : public TelegramRenderer {
         tree.line(1, "Bytes: ");
         append_hex(b, t.bytes);
         b.push_back('\n');
-        protocol_rendering(t.protocol).verbose(b, t);
+        render_verbose(b, t);
         if (!t.problems().empty()) {
             append(b, "Problems\n");
             for (const Problem& p : t.problems()) {

@@ -1,6 +1,7 @@
 // The verbose format's field tree (like tshark -V), as every protocol writes its part of it: one
 // field a line, indented four spaces a level. A protocol's verbose writer derives from it
-// (protocols/<name>/*_render.cpp) and is reached through ProtocolRendering::verbose.
+// (protocols/<name>/*_render.cpp) and is reached through its <name>_verbose
+// (formats/protocol_rendering.hpp).
 #pragma once
 
 #include <fmt/format.h>

@@ -9,12 +9,13 @@
 // What a protocol's folder provides, each in the file of its role (CONTRIBUTING.md, "Adding a
 // protocol"); a line here without one of them fails to link, naming the function:
 //   ProtocolDescriptor <name>_protocol()   decoder layer   <name>_protocol.cpp
-//   ProtocolRendering <name>_rendering()   formats layer   <name>_render.cpp
+//   <name>_text_columns, <name>_verbose,   formats layer   <name>_render.cpp
+//   <name>_jsonl_keys, <name>_csv_columns
 //   BusReport <name>_bus_report()          formats layer   <name>_report_section.cpp
 //   ProtocolTree <name>_tree()             wireshark layer <name>_tree.cpp
-// (each returns a const reference to its record). The per-layer tables are made from this list:
+// (the records are returned as const references). The per-layer tables are made from this list:
 // protocols/protocol_table.cpp (the descriptors, core/protocol_descriptor.hpp),
-// formats/protocol_renderings.cpp (the telegram formats, formats/protocol_rendering.hpp),
+// formats/protocol_rendering.hpp (the telegram formats: direct calls, so that they inline),
 // formats/bus_reports.cpp (the report, formats/report_model.hpp) and
 // wireshark/protocol_trees.cpp (the plugin, wireshark/protocol_tree.hpp).
 #pragma once

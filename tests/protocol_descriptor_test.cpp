@@ -10,7 +10,6 @@
 
 #include "capture/bus_tag.hpp"
 #include "capture/pcap_source.hpp"
-#include "formats/protocol_rendering.hpp"
 #include "formats/report_model.hpp"
 #include "protocols/profibus/fdl_framing_rules.hpp"
 
@@ -121,12 +120,6 @@ TEST(ProtocolDescriptorTest, EveryProtocolHasARecordInEveryLayersTable) {
     const auto reports = report::bus_report_table();
     ASSERT_EQ(reports.size(), kProtocolCount);
     for (const ProtocolDescriptor* d : protocol_table()) {
-        const ProtocolRendering& rendering = protocol_rendering(d->protocol);
-        EXPECT_EQ(rendering.protocol, d->protocol) << d->name;
-        EXPECT_NE(rendering.text_columns, nullptr) << d->name;
-        EXPECT_NE(rendering.verbose, nullptr) << d->name;
-        EXPECT_NE(rendering.jsonl_keys, nullptr) << d->name;
-        EXPECT_NE(rendering.csv_columns, nullptr) << d->name;
         EXPECT_EQ(reports[static_cast<std::size_t>(d->protocol)]->protocol, d->protocol)
             << d->name;
     }

@@ -16,8 +16,6 @@
 
 namespace dpscope {
 
-namespace {
-
 // ---- text
 
 // The FC master has no address ("M"); a broadcast goes to "all". The frame type column says
@@ -205,6 +203,8 @@ void fc_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
 
 // ---- verbose
 
+namespace {
+
 class FcVerboseTree final : public VerboseTree {
   public:
     using VerboseTree::VerboseTree;
@@ -305,19 +305,8 @@ class FcVerboseTree final : public VerboseTree {
     }
 };
 
-void fc_verbose(TextBuffer& b, const DecodedTelegram& t) { FcVerboseTree(b).render_fc(t); }
-
 }  // namespace
 
-const ProtocolRendering& fc_rendering() noexcept {
-    static const ProtocolRendering rendering{
-        .protocol = Protocol::Fc,
-        .text_columns = fc_text_columns,
-        .verbose = fc_verbose,
-        .jsonl_keys = fc_jsonl_keys,
-        .csv_columns = fc_csv_columns,
-    };
-    return rendering;
-}
+void fc_verbose(TextBuffer& b, const DecodedTelegram& t) { FcVerboseTree(b).render_fc(t); }
 
 }  // namespace dpscope

@@ -9,7 +9,7 @@
 #include "formats/json.hpp"
 #include "protocols/profibus/dp_payload.hpp"
 #include "protocols/profibus/pcd.hpp"
-#include "protocols/profibus/profibus_render.hpp"
+#include "formats/protocol_rendering.hpp"
 
 namespace dpscope {
 

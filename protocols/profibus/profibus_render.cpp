@@ -9,11 +9,8 @@
 #include "formats/field_writers.hpp"
 #include "formats/protocol_rendering.hpp"
 #include "protocols/profibus/dp_payload.hpp"
-#include "protocols/profibus/profibus_render.hpp"
 
 namespace dpscope {
-
-namespace {
 
 // ---- text
 
@@ -90,19 +87,6 @@ void profibus_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
     if (f.type != FrameType::Invalid) append_service_detail(detail, t);
     csv_quoted(b, std::string_view(detail.data(), detail.size()));
     b.push_back(',');
-}
-
-}  // namespace
-
-const ProtocolRendering& profibus_rendering() noexcept {
-    static const ProtocolRendering rendering{
-        .protocol = Protocol::ProfibusDp,
-        .text_columns = profibus_text_columns,
-        .verbose = profibus_verbose,
-        .jsonl_keys = profibus_jsonl_keys,
-        .csv_columns = profibus_csv_columns,
-    };
-    return rendering;
 }
 
 }  // namespace dpscope

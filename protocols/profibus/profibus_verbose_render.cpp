@@ -10,7 +10,7 @@
 #include "formats/describe.hpp"
 #include "formats/verbose_tree.hpp"
 #include "protocols/profibus/dp_payload.hpp"
-#include "protocols/profibus/profibus_render.hpp"
+#include "formats/protocol_rendering.hpp"
 
 namespace dpscope {
 

@@ -18,8 +18,6 @@
 
 namespace dpscope {
 
-namespace {
-
 // ---- text
 
 // The VLT 2000 master has no address either ("M"); a drive is shown by its two-digit address
@@ -174,6 +172,8 @@ void vlt2000_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
 
 // ---- verbose
 
+namespace {
+
 class Vlt2000VerboseTree final : public VerboseTree {
   public:
     using VerboseTree::VerboseTree;
@@ -302,21 +302,10 @@ class Vlt2000VerboseTree final : public VerboseTree {
     }
 };
 
-void vlt2000_verbose(TextBuffer& b, const DecodedTelegram& t) {
-    Vlt2000VerboseTree(b).render_vlt2000(t);
-}
-
 }  // namespace
 
-const ProtocolRendering& vlt2000_rendering() noexcept {
-    static const ProtocolRendering rendering{
-        .protocol = Protocol::Vlt2000,
-        .text_columns = vlt2000_text_columns,
-        .verbose = vlt2000_verbose,
-        .jsonl_keys = vlt2000_jsonl_keys,
-        .csv_columns = vlt2000_csv_columns,
-    };
-    return rendering;
+void vlt2000_verbose(TextBuffer& b, const DecodedTelegram& t) {
+    Vlt2000VerboseTree(b).render_vlt2000(t);
 }
 
 }  // namespace dpscope
