@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "core/byte_reader.hpp"
@@ -29,6 +30,15 @@ inline constexpr std::size_t kProtocolCount = 0
 #define DPSCOPE_PROTOCOL_COUNT(Enum, name, Payload, member) +1
     DPSCOPE_PROTOCOLS(DPSCOPE_PROTOCOL_COUNT);
 #undef DPSCOPE_PROTOCOL_COUNT
+
+// The record of `protocol` in one of the per-layer tables made from the registration list (the
+// descriptors, the report's buses, the plugin's trees): a table is in the enum's order, and a
+// value that names no protocol gets the first record (the default bus).
+template <class Record>
+const Record& protocol_record(std::span<const Record* const> table, Protocol protocol) noexcept {
+    const auto index = static_cast<std::size_t>(protocol);
+    return *table[index < table.size() ? index : 0];
+}
 
 // "profibus", "fc", "vlt2000": the name --bus takes and captures record.
 std::string_view protocol_name(Protocol protocol) noexcept;

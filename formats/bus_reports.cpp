@@ -16,9 +16,7 @@ std::span<const BusReport* const> bus_report_table() noexcept {
 }
 
 const BusReport& bus_report(Protocol protocol) noexcept {
-    const auto table = bus_report_table();
-    const auto index = static_cast<std::size_t>(protocol);
-    return *table[index < table.size() ? index : 0];
+    return protocol_record(bus_report_table(), protocol);
 }
 
 }  // namespace dpscope::report

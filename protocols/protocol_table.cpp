@@ -22,9 +22,7 @@ std::span<const ProtocolDescriptor* const> protocol_table() noexcept {
 }
 
 const ProtocolDescriptor& protocol_descriptor(Protocol protocol) noexcept {
-    const auto table = protocol_table();
-    const auto index = static_cast<std::size_t>(protocol);
-    return *table[index < table.size() ? index : 0];
+    return protocol_record(protocol_table(), protocol);
 }
 
 const ProtocolDescriptor* protocol_by_name(std::string_view name) noexcept {

@@ -16,9 +16,7 @@ std::span<const ProtocolTree* const> protocol_trees() noexcept {
 }
 
 const ProtocolTree& protocol_tree(Protocol protocol) noexcept {
-    const auto table = protocol_trees();
-    const auto index = static_cast<std::size_t>(protocol);
-    return *table[index < table.size() ? index : 0];
+    return protocol_record(protocol_trees(), protocol);
 }
 
 AddressColumns drive_address_columns(const DecodedTelegram& t, bool broadcast,
