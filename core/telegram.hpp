@@ -40,7 +40,8 @@ const Record& protocol_record(std::span<const Record* const> table, Protocol pro
     return *table[index < table.size() ? index : 0];
 }
 
-// "profibus", "fc", "vlt2000": the name --bus takes and captures record.
+// "profibus", "fc", "vlt2000": the name --bus takes and captures record (the descriptor's name;
+// both are defined with the table, protocols/protocol_table.cpp).
 std::string_view protocol_name(Protocol protocol) noexcept;
 std::optional<Protocol> protocol_from_name(std::string_view name) noexcept;
 
