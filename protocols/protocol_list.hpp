@@ -18,6 +18,10 @@
 // formats/protocol_rendering.hpp (the telegram formats: direct calls, so that they inline),
 // formats/bus_reports.cpp (the report, formats/report_model.hpp) and
 // wireshark/protocol_trees.cpp (the plugin, wireshark/protocol_tree.hpp).
+// Not yet found from this line: the decoder-and-tracker lanes (cli/pipeline.hpp,
+// wireshark/capture_replay.cpp), the decode -q summary's counts and the simulator's choice of bus
+// model; a new protocol still adds its part there (CONTRIBUTING.md, the end of "Adding a
+// protocol").
 #pragma once
 
 #include "protocols/fc/fc_telegram.hpp"
