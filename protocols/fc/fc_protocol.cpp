@@ -1,5 +1,6 @@
 // The Danfoss FC protocol as the shared code sees it (core/protocol_descriptor.hpp).
 #include <array>
+#include <optional>
 
 #include "core/protocol_descriptor.hpp"
 #include "protocols/fc/fc_framing_rules.hpp"
@@ -12,13 +13,19 @@ namespace {
 // the file (capture/bus_tag.hpp).
 constexpr std::array<PcapLinkType, 1> kFcLinkTypes{{{kLinkTypeUser0, "USER0"}}};
 
-// An FC telegram's PKW names its PNU (a response echoes its request's).
+// The parameter an FC telegram names: its PKW's PNU (a response echoes its request's); none
+// without a PKW.
+std::optional<std::uint16_t> fc_named_pnu(const DecodedTelegram& t) noexcept {
+    if (!t.fc.has_pkw) return std::nullopt;
+    return t.fc.pkw.pnu;
+}
+
 bool fc_addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
-    return t.fc.has_pkw && t.fc.pkw.pnu == pnu;
+    return fc_named_pnu(t) == pnu;
 }
 
 void fc_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
-    if (t.fc.has_pkw) seen.set(t.fc.pkw.pnu);
+    if (const auto pnu = fc_named_pnu(t)) seen.set(*pnu);
 }
 
 }  // namespace

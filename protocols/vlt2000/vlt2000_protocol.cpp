@@ -1,5 +1,6 @@
 // The VLT 2000 serial telegram as the shared code sees it (core/protocol_descriptor.hpp).
 #include <array>
+#include <optional>
 
 #include "core/protocol_descriptor.hpp"
 #include "protocols/vlt2000/vlt2000_framing_rules.hpp"
@@ -11,15 +12,19 @@ namespace {
 // No link type of its own: dpscope writes it as USER0 and records the bus in the file.
 constexpr std::array<PcapLinkType, 1> kVlt2000LinkTypes{{{kLinkTypeUser0, "USER0"}}};
 
-// A VLT 2000 telegram names its parameter (a C telegram's is ignored).
+// The parameter a VLT 2000 telegram names (a C telegram's is ignored); none without one.
+std::optional<std::uint16_t> vlt2000_named_pnu(const DecodedTelegram& t) noexcept {
+    if (!t.vlt2000.has_parameter || t.vlt2000.letter == Vlt2000Letter::Control)
+        return std::nullopt;
+    return t.vlt2000.parameter;
+}
+
 bool vlt2000_addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
-    return t.vlt2000.has_parameter && t.vlt2000.letter != Vlt2000Letter::Control &&
-           t.vlt2000.parameter == pnu;
+    return vlt2000_named_pnu(t) == pnu;
 }
 
 void vlt2000_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
-    if (t.vlt2000.has_parameter && t.vlt2000.letter != Vlt2000Letter::Control)
-        seen.set(t.vlt2000.parameter);
+    if (const auto pnu = vlt2000_named_pnu(t)) seen.set(*pnu);
 }
 
 }  // namespace
