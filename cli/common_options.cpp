@@ -264,23 +264,18 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     settings.line_buffered = values.line_buffered;
     settings.allow_empty = values.allow_empty;
     settings.count = values.count;
-    settings.tracker.timeout_ns = static_cast<std::int64_t>(values.timeout_ms) * 1'000'000;
-    settings.tracker.strict = values.strict;
-    settings.fc_tracker.timeout_ns = settings.tracker.timeout_ns;
-    settings.fc_tracker.response_ns = static_cast<std::int64_t>(values.fc_response_ms) * 1'000'000;
-    settings.fc_tracker.line_baud = kFcDefaultLineBaud;
-    settings.vlt2000_tracker.line_baud = kVlt2000DefaultLineBaud;
+    settings.lanes.timeout_ns = static_cast<std::int64_t>(values.timeout_ms) * 1'000'000;
+    settings.lanes.tracker.strict = values.strict;
+    settings.lanes.fc_tracker.response_ns =
+        static_cast<std::int64_t>(values.fc_response_ms) * 1'000'000;
     settings.baud_given = values.baud;
     use_line(settings, LineSettings{values.baud, std::nullopt, 0});
     if (!values.bus.empty()) {
         settings.protocol = &protocol_descriptor(*protocol_from_name(values.bus));
         settings.bus_given = true;
     }
-    settings.fc_decoder.pnu_bits = static_cast<std::uint8_t>(values.fc_pnu_bits);
-    settings.fc_decoder.response_window_ns = settings.tracker.timeout_ns;
-    settings.vlt2000_decoder.response_window_ns = settings.tracker.timeout_ns;
-    settings.vlt2000_tracker.timeout_ns = settings.tracker.timeout_ns;
-    settings.vlt2000_decoder.check_checksum = values.vlt2000_checksum != "ignore";
+    settings.lanes.fc_decoder.pnu_bits = static_cast<std::uint8_t>(values.fc_pnu_bits);
+    settings.lanes.vlt2000_decoder.check_checksum = values.vlt2000_checksum != "ignore";
     for (unsigned station : values.stations)
         settings.stations.push_back(static_cast<std::uint8_t>(station));
     for (unsigned pnu : values.pnus)
@@ -295,7 +290,7 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
             return Error{fmt::format(
                 "--ppo {}: expected ADDR=TYPE with ADDR from 0 to 126 and TYPE from 1 to 5", item)};
         }
-        std::uint8_t& ppo = settings.decoder.station_ppo[address];
+        std::uint8_t& ppo = settings.lanes.decoder.station_ppo[address];
         if (ppo != 0 && ppo != type) {
             return Error{
                 fmt::format("--ppo {}: slave {} was already given PPO {}; give one type a slave",
@@ -314,14 +309,14 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
                                      kDialectNameList)};
         }
         if (eq == std::string::npos) {
-            if (dialect_for_all && settings.decoder.dialect != *dialect) {
+            if (dialect_for_all && settings.lanes.decoder.dialect != *dialect) {
                 return Error{
                     fmt::format("--dialect {}: the dialect for every slave was already given "
                                 "as {}; give it once (ADDR=NAME sets one slave)",
-                                item, dialect_name(settings.decoder.dialect))};
+                                item, dialect_name(settings.lanes.decoder.dialect))};
             }
             dialect_for_all = true;
-            settings.decoder.dialect = *dialect;
+            settings.lanes.decoder.dialect = *dialect;
             continue;
         }
         unsigned address = 0;
@@ -329,7 +324,7 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
             return Error{fmt::format("--dialect {}: '{}' is not a station address from 0 to 126",
                                      item, item.substr(0, eq))};
         }
-        std::optional<Dialect>& station = settings.decoder.station_dialect[address];
+        std::optional<Dialect>& station = settings.lanes.decoder.station_dialect[address];
         if (station && *station != *dialect) {
             return Error{
                 fmt::format("--dialect {}: slave {} was already given the {} dialect; give "
@@ -339,7 +334,7 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
         station = *dialect;
     }
     if (!values.pcd_profile.empty())
-        settings.decoder.pcd_profile = pcd_profile_from_name(values.pcd_profile);
+        settings.lanes.decoder.pcd_profile = pcd_profile_from_name(values.pcd_profile);
     settings.write = values.write;
     settings.write_format =
         capture_format_from_name(values.write_format).value_or(CaptureFormat::Pcap);
@@ -451,7 +446,10 @@ void report_input_issues(TelegramSource& source, Output& out) {
     });
 }
 
-void warn_ppo_overrides(const BusDecoder& decoder) {
+void warn_ppo_overrides(const TelegramDecoder& capture_decoder) {
+    const auto* profibus = dynamic_cast<const BusDecoder*>(&capture_decoder);
+    if (profibus == nullptr) return;  // --ppo is PROFIBUS's
+    const BusDecoder& decoder = *profibus;
     for (unsigned address = 0; address < kStationCount; ++address) {
         const StationConfig& station = decoder.station(static_cast<std::uint8_t>(address));
         if (station.overridden_cfg_frame == 0) continue;
@@ -500,7 +498,7 @@ void warn_profibus_options(const DecodeSettings& settings, const std::string& in
     const auto given = [&](Protocol owner, std::string_view option) {
         given_for[static_cast<std::size_t>(owner)].push_back(option);
     };
-    const DecoderOptions& dp = settings.decoder;
+    const DecoderOptions& dp = settings.lanes.decoder;
     if (std::any_of(dp.station_ppo.begin(), dp.station_ppo.end(),
                     [](std::uint8_t ppo) { return ppo != 0; }))
         given(Protocol::ProfibusDp, "--ppo");
@@ -509,12 +507,13 @@ void warn_profibus_options(const DecodeSettings& settings, const std::string& in
                     [](const std::optional<Dialect>& d) { return d.has_value(); }))
         given(Protocol::ProfibusDp, "--dialect");
     if (dp.pcd_profile) given(Protocol::ProfibusDp, "--pcd-profile");
-    if (settings.tracker.strict) given(Protocol::ProfibusDp, "--strict");
-    if (settings.fc_decoder.pnu_bits != FcDecoderOptions{}.pnu_bits)
+    if (settings.lanes.tracker.strict) given(Protocol::ProfibusDp, "--strict");
+    if (settings.lanes.fc_decoder.pnu_bits != FcDecoderOptions{}.pnu_bits)
         given(Protocol::Fc, "--fc-pnu-bits");
-    if (settings.fc_tracker.response_ns != FcTrackerOptions{}.response_ns)
+    if (settings.lanes.fc_tracker.response_ns != FcTrackerOptions{}.response_ns)
         given(Protocol::Fc, "--fc-response-ms");
-    if (!settings.vlt2000_decoder.check_checksum) given(Protocol::Vlt2000, "--vlt2000-checksum");
+    if (!settings.lanes.vlt2000_decoder.check_checksum)
+        given(Protocol::Vlt2000, "--vlt2000-checksum");
     for (const ProtocolDescriptor* owner : protocol_table()) {
         const auto& options = given_for[static_cast<std::size_t>(owner->protocol)];
         if (owner->protocol == bus || options.empty()) continue;
@@ -528,16 +527,14 @@ void warn_profibus_options(const DecodeSettings& settings, const std::string& in
 void use_line(DecodeSettings& settings, const LineSettings& line) {
     if (line.known()) {
         settings.line.baud = line.baud;
-        settings.fc_tracker.line_baud = line.baud;
-        settings.vlt2000_tracker.line_baud = line.baud;
+        settings.lanes.line_baud = line.baud;
         settings.health.baud = line.baud;
     }
     if (line.frame_known()) {
         settings.line.parity = line.parity;
         settings.line.stop_bits = line.stop_bits;
         const unsigned bits = character_bits(*line.parity, line.stop_bits);
-        settings.fc_tracker.character_bits = bits;
-        settings.vlt2000_tracker.character_bits = bits;
+        settings.lanes.character_bits = bits;
         settings.health.character_bits = bits;
     }
 }

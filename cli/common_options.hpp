@@ -12,29 +12,15 @@
 #include <string_view>
 #include <vector>
 
-#include "core/protocol_descriptor.hpp"
 #include "capture/capture_writer.hpp"
 #include "capture/pcap_source.hpp"
+#include "core/protocol_descriptor.hpp"
 #include "core/result.hpp"
 #include "formats/renderer.hpp"
-#include "protocols/fc/fc_decoder.hpp"
-#include "protocols/fc/fc_tracker.hpp"
-#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/lane_options.hpp"
 #include "protocols/profibus/health/bus_health.hpp"
-#include "protocols/profibus/session_tracker.hpp"
-#include "protocols/vlt2000/vlt2000_decoder.hpp"
-#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 namespace dpscope::cli {
-
-// The FC protocol's line rate unless --baud says otherwise (docs/protocol/fc-protocol.md).
-inline constexpr std::uint32_t kFcDefaultLineBaud = 9600;
-// The VLT 2000's line when sniff is given no --baud: 9600 baud (the values of its parameter 501
-// were not found; dpscope's choice, docs/decisions.md).
-inline constexpr std::uint32_t kVlt2000DefaultLineBaud = 9600;
-// The FC protocol's baud rates (par. 8-32 of the FC series): 2400 to 115200.
-inline constexpr std::uint32_t kFcMinBaud = 2400;
-inline constexpr std::uint32_t kFcMaxBaud = 115'200;
 
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFindings = 1;      // report: findings at or above --fail-on; no telegrams
@@ -126,12 +112,8 @@ struct DecodeSettings {
     // by --bus, or (bus_given false) from the capture before it is decoded.
     const ProtocolDescriptor* protocol = &profibus_protocol();
     bool bus_given = false;
-    DecoderOptions decoder;
-    FcDecoderOptions fc_decoder;
-    TrackerOptions tracker;
-    FcTrackerOptions fc_tracker;
-    Vlt2000DecoderOptions vlt2000_decoder;
-    Vlt2000TrackerOptions vlt2000_tracker;
+    // Every protocol's decoder and tracker options; the pipeline makes the capture's protocol's.
+    LaneOptions lanes;
     // PROFIBUS bus health (protocols/profibus/health/bus_health.hpp): kept when track_health is set
     // (stats, report, sniff --stats); its baud rate is the line's when known.
     bool track_health = false;

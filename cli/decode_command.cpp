@@ -210,12 +210,11 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             input.name += settings.pnus.empty() ? "" : ", telegrams about the --pnu list";
             // A drive's commands by outcome are its own, whatever --station selects; of the
             // telegrams about a --pnu, the counts alone.
-            shown_summary.render_text(
-                out, input, pipeline.decoder(),
-                settings.pnus.empty() ? pipeline.drive_trackers() : DriveTrackers{});
+            shown_summary.render_text(out, input, pipeline.decoder(),
+                                      settings.pnus.empty() ? &pipeline.tracker() : nullptr);
         } else {
             pipeline.summary().render_text(out, describe_input(source), pipeline.decoder(),
-                                           pipeline.drive_trackers());
+                                           &pipeline.tracker());
         }
     }
     if (writer) {

@@ -1,59 +1,36 @@
 // The decode -> track -> count chain every subcommand that reads telegrams runs.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <span>
-#include <type_traits>
+#include <string>
 
 #include "capture/output_file.hpp"
 #include "capture/telegram_source.hpp"
 #include "cli/common_options.hpp"
 #include "cli/version.hpp"
 #include "core/counted.hpp"
+#include "core/protocol_lane.hpp"
 #include "core/text_encoding.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/report.hpp"
 #include "formats/report_timeline.hpp"
 #include "formats/summary.hpp"
-#include "protocols/fc/fc_tracker.hpp"
 #include "protocols/profibus/health/bus_health.hpp"
-#include "protocols/profibus/session_tracker.hpp"
-#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 namespace dpscope::cli {
-
-// One bus's decoder and tracker: what the pipeline feeds for a capture of that bus.
-template <class Decoder, class Tracker>
-struct ProtocolLane {
-    Decoder decoder;
-    Tracker tracker;
-
-    template <class DecoderOptions, class TrackerOptions>
-    ProtocolLane(const DecoderOptions& decoder_options, const TrackerOptions& tracker_options)
-        : decoder(decoder_options), tracker(tracker_options) {}
-
-    const DecodedTelegram& feed(const Record& record, std::span<const Finding>& findings) {
-        const DecodedTelegram& t = decoder.decode(record.bytes, record.time_ns, record.number);
-        findings = tracker.track(t);
-        return t;
-    }
-};
-
-using DpLane = ProtocolLane<BusDecoder, SessionTracker>;
-using FcLane = ProtocolLane<FcDecoder, FcTracker>;
-using Vlt2000Lane = ProtocolLane<Vlt2000Decoder, Vlt2000Tracker>;
 
 class Pipeline {
   public:
     // `keep_timelines`: build the per-channel timelines (only the HTML report shows them; the
     // hot path of every other command skips them).
-    // The protocol is chosen once, from settings.protocol: its lane (decoder and tracker) is the
-    // one fed. A new bus is a lane here and a case in with_lane().
+    // The protocol is chosen once, from settings.protocol: its descriptor makes the decoder and
+    // the tracker that are fed (core/protocol_lane.hpp).
     explicit Pipeline(const DecodeSettings& settings, bool keep_timelines = false)
         : protocol_(settings.protocol->protocol),
-          dp_(settings.decoder, settings.tracker),
-          fc_(settings.fc_decoder, settings.fc_tracker),
-          vlt2000_(settings.vlt2000_decoder, settings.vlt2000_tracker),
+          decoder_(settings.protocol->make_decoder(settings.lanes)),
+          tracker_(settings.protocol->make_tracker(settings.lanes)),
           keep_timelines_(keep_timelines) {
         if (settings.track_health && settings.protocol->has_bus_health)
             health_.emplace(settings.health);
@@ -61,30 +38,20 @@ class Pipeline {
 
     // Decodes and tracks one record; `findings` receives what the tracker found at it.
     const DecodedTelegram& feed(const Record& record, std::span<const Finding>& findings) {
-        return with_lane([&](auto& lane) -> const DecodedTelegram& {
-            const DecodedTelegram& t = lane.feed(record, findings);
-            if constexpr (std::is_same_v<std::remove_cvref_t<decltype(lane)>, DpLane>)
-                if (health_) health_events_ = health_->observe(t);
-            summary_.add(t);
-            summary_.add_findings(findings);
-            if (keep_timelines_) timelines_.add(findings, lane.tracker.completed());
-            return t;
-        });
+        const DecodedTelegram& t = decoder_->decode(record.bytes, record.time_ns, record.number);
+        findings = tracker_->track(t);
+        if (health_) health_events_ = health_->observe(t);
+        summary_.add(t);
+        summary_.add_findings(findings);
+        if (keep_timelines_) timelines_.add(findings, tracker_->completed());
+        return t;
     }
     // The end of the input: findings still open past the time-out.
     // `end_ns`: when the capture ended, if later than its last telegram (a live capture's stop).
     std::span<const Finding> finish(std::int64_t end_ns = kNoTime) {
-        std::span<const Finding> findings =
-            with_lane([&](auto& lane) { return lane.tracker.finish(end_ns); });
-        if (protocol_ == Protocol::Fc)
-            warn_early_responses(fc_.tracker.early_responses(), fc_.tracker.options().line_baud,
-                                 fc_.tracker.options().character_bits);
-        if (protocol_ == Protocol::Vlt2000) {
-            warn_early_responses(vlt2000_.tracker.early_responses(),
-                                 vlt2000_.tracker.options().line_baud,
-                                 vlt2000_.tracker.options().character_bits);
-            warn_checksum_rule();
-        }
+        std::span<const Finding> findings = tracker_->finish(end_ns);
+        for (const std::string& warning : tracker_->end_warnings(summary_.telegrams()))
+            print_warning(warning);
         // Bus health ends with the last telegram, not at a live capture's stop: sniff's figures
         // then equal those of `dpscope stats` on the capture it wrote.
         if (health_) {
@@ -97,22 +64,12 @@ class Pipeline {
     }
 
     Protocol protocol() const noexcept { return protocol_; }
-    const BusDecoder& decoder() const noexcept { return dp_.decoder; }
-    const SessionTracker& tracker() const noexcept { return dp_.tracker; }
-    const FcTracker& fc_tracker() const noexcept { return fc_.tracker; }
-    const Vlt2000Tracker& vlt2000_tracker() const noexcept { return vlt2000_.tracker; }
-    const Vlt2000Decoder& vlt2000_decoder() const noexcept { return vlt2000_.decoder; }
-    // The capture's drive tracker (FC or VLT 2000), for the summary's commands by outcome.
-    DriveTrackers drive_trackers() const noexcept {
-        return DriveTrackers{protocol_ == Protocol::Fc ? &fc_.tracker : nullptr,
-                             protocol_ == Protocol::Vlt2000 ? &vlt2000_.tracker : nullptr};
-    }
+    // The capture's decoder and tracker (those of its protocol).
+    const TelegramDecoder& decoder() const noexcept { return *decoder_; }
+    const TelegramTracker& tracker() const noexcept { return *tracker_; }
     // The parameter number the last telegram's parameter channel is about (-1: none), from the
     // protocol's tracker.
-    std::int32_t subject_pnu() const noexcept {
-        return const_cast<Pipeline*>(this)->with_lane(
-            [](auto& lane) { return lane.tracker.subject_pnu(); });
-    }
+    std::int32_t subject_pnu() const noexcept { return tracker_->subject_pnu(); }
     const Summary& summary() const noexcept { return summary_; }
     // The bus-health statistics (PROFIBUS, with settings.track_health); null otherwise.
     const BusHealthTracker* health() const noexcept { return health_ ? &*health_ : nullptr; }
@@ -122,17 +79,6 @@ class Pipeline {
     const ChannelTimelines& timelines() const noexcept { return timelines_; }
 
   private:
-    // Responses that began before their command could have ended at the line's rate: the line
-    // was faster (FC, VLT 2000; the serial trackers count them).
-    static void warn_early_responses(std::uint64_t early, std::uint32_t baud, std::uint32_t bits) {
-        if (early == 0) return;
-        print_warning(fmt::format(
-            "{} began before {} command could have ended at {} baud ({} bits a byte): the "
-            "line was faster; the drives' response times are counted from the commands' last "
-            "bytes at that rate (0 for these); give the line's rate with --baud",
-            counted(early, "response", "responses"), early == 1 ? "its" : "their", baud, bits));
-    }
-
     // The telegrams need more time at the baud rate given than the capture lasts: the line was
     // faster (the bus load would read over 100 %, shown as 100).
     static void warn_line_rate(const SegmentHealth& segment) {
@@ -144,36 +90,9 @@ class Pipeline {
             segment.busy_ns / duration_ns * 100.0, segment.baud));
     }
 
-    // Most VLT 2000 telegrams with a wrong checksum: perhaps the drives compute it otherwise than
-    // the VLT 3000/3500 rule dpscope applies (docs/decisions.md); the option is named.
-    void warn_checksum_rule() const {
-        std::uint64_t wrong = 0;
-        for (const Vlt2000StationStats* st : vlt2000_.tracker.stations())
-            wrong += st->checksum_errors;
-        const std::uint64_t telegrams = summary_.telegrams();
-        if (wrong < 4 || wrong * 2 < telegrams) return;
-        print_warning(fmt::format(
-            "{} of {} telegrams have a wrong checksum by the VLT 3000/3500 rule (the sum of the 18 "
-            "characters after '<'); if the drives compute it otherwise, --vlt2000-checksum ignore "
-            "decodes them without it",
-            wrong, telegrams));
-    }
-
-    // Calls `f` with the lane of the capture's protocol.
-    template <class F>
-    std::invoke_result_t<F&, DpLane&> with_lane(F&& f) {
-        switch (protocol_) {
-            case Protocol::Fc: return f(fc_);
-            case Protocol::Vlt2000: return f(vlt2000_);
-            case Protocol::ProfibusDp: break;
-        }
-        return f(dp_);
-    }
-
     Protocol protocol_;
-    DpLane dp_;
-    FcLane fc_;
-    Vlt2000Lane vlt2000_;
+    std::unique_ptr<TelegramDecoder> decoder_;
+    std::unique_ptr<TelegramTracker> tracker_;
     std::optional<BusHealthTracker> health_;
     std::span<const HealthEvent> health_events_;
     Summary summary_;
@@ -199,9 +118,6 @@ inline ReportContext report_context(const Pipeline& pipeline, const TelegramSour
     context.decoder = &pipeline.decoder();
     context.protocol = pipeline.protocol();
     context.tracker = &pipeline.tracker();
-    context.fc_tracker = &pipeline.fc_tracker();
-    context.vlt2000_tracker = &pipeline.vlt2000_tracker();
-    context.vlt2000_checksum = pipeline.vlt2000_decoder().options().check_checksum;
     context.timelines = &pipeline.timelines();  // empty unless the pipeline kept them
     context.health = pipeline.health() ? &pipeline.health()->health() : nullptr;
     context.findings = &log;
@@ -250,7 +166,8 @@ void report_input_issues(TelegramSource& source, Output& out);
 
 // A warning for each slave whose --ppo contradicts the configuration (Chk_Cfg or Get_Cfg) in the
 // capture: the option wins, the warning says so.
-void warn_ppo_overrides(const BusDecoder& decoder);
+// (A capture of another bus has none.)
+void warn_ppo_overrides(const TelegramDecoder& decoder);
 
 // A byte stream (raw or hex) in which no telegram of `protocol` was found is no capture dpscope
 // reads: an error saying so, unless `telegrams` were found or the input is a pcap/pcapng file

@@ -38,18 +38,8 @@ struct ReportCommand {
 // The addresses `--station` can name in the capture: the slaves of a PROFIBUS DP capture, the
 // drive addresses of an FC or VLT 2000 one.
 bool station_in_capture(const Pipeline& pipeline, unsigned station) {
-    auto has_address = [station](const auto& drives) {
-        return std::any_of(drives.begin(), drives.end(),
-                           [station](const auto* s) { return s->address == station; });
-    };
-    switch (pipeline.protocol()) {
-        case Protocol::Fc: return has_address(pipeline.fc_tracker().stations());
-        case Protocol::Vlt2000: return has_address(pipeline.vlt2000_tracker().stations());
-        case Protocol::ProfibusDp: break;
-    }
-    const std::vector<const ChannelStats*> channels = pipeline.tracker().channels();
-    return std::any_of(channels.begin(), channels.end(),
-                       [station](const ChannelStats* s) { return s->slave == station; });
+    return station < kStationCount &&
+           pipeline.tracker().has_station(static_cast<std::uint8_t>(station));
 }
 
 // Renders the report of what `pipeline` read from `source` and returns the exit code; sets

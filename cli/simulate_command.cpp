@@ -227,11 +227,12 @@ int run_simulate(const SimulateCommand& command) {
     const bool vlt2000 = command.bus == "vlt2000";
     options.bus = fc ? Protocol::Fc : vlt2000 ? Protocol::Vlt2000 : Protocol::ProfibusDp;
     options.seed = command.seed;
-    options.baud = (fc || vlt2000) && !command.baud_given ? kFcDefaultLineBaud : command.baud;
-    if (fc && (options.baud < kFcMinBaud || options.baud > kFcMaxBaud)) {
+    options.baud =
+        (fc || vlt2000) && !command.baud_given ? fc_protocol().default_baud : command.baud;
+    if (fc && (options.baud < fc_protocol().min_baud || options.baud > fc_protocol().max_baud)) {
         print_error(fmt::format(
             "--baud: must be a whole number from {} to {} baud for the FC protocol, not '{}'",
-            kFcMinBaud, kFcMaxBaud, options.baud));
+            fc_protocol().min_baud, fc_protocol().max_baud, options.baud));
         return kExitUsage;
     }
     if (vlt2000 && (options.baud < kVlt2000MinBaud || options.baud > kVlt2000MaxBaud)) {

@@ -42,6 +42,26 @@ namespace {
 
 std::atomic<bool> g_stop_requested{false};
 
+// The buses whose line has a default rate, for the message that --baud is missing: "the FC
+// protocol, --bus fc, and the VLT 2000, --bus vlt2000, default to 9600".
+std::string buses_with_default_baud() {
+    std::vector<std::string> buses;
+    std::vector<std::uint32_t> rates;
+    for (const ProtocolDescriptor* p : protocol_table())
+        if (p->default_baud != 0) {
+            buses.push_back(fmt::format("the {}, --bus {}", p->traffic_name, p->name));
+            rates.push_back(p->default_baud);
+        }
+    std::string text;
+    for (std::size_t i = 0; i < buses.size(); ++i)
+        text += (i == 0 ? "" : i + 1 == buses.size() ? ", and " : ", ") + buses[i];
+    if (rates.empty()) return "no bus has a default rate";
+    const bool one_rate = std::all_of(rates.begin(), rates.end(),
+                                      [&](std::uint32_t r) { return r == rates.front(); });
+    return one_rate ? fmt::format("{}, default to {}", text, rates.front())
+                    : fmt::format("{}, have rates of their own", text);
+}
+
 // The first signal ends the capture cleanly; a second one ends the process at once, with the
 // serial port put back as it was found and the staged report and statistics files removed.
 extern "C" void request_stop(int signal_number) {
@@ -247,26 +267,23 @@ int run_sniff(const SniffCommand& command) {
     // The line: PROFIBUS runs at the baud rate given (8E1); the FC protocol at 2400 to 115200
     // baud, 9600 8E1 unless --baud, --parity and --stop-bits say otherwise; the VLT 2000 at 9600
     // 8N1 (its manual: 8 data bits, no parity, 1 stop bit) unless they say otherwise.
-    const bool fc = settings->protocol->protocol == Protocol::Fc;
-    const bool vlt2000 = settings->protocol->protocol == Protocol::Vlt2000;
-    std::uint32_t baud = command.baud;
-    if (fc && baud == 0) baud = kFcDefaultLineBaud;
-    if (vlt2000 && baud == 0) baud = kVlt2000DefaultLineBaud;
+    // Each bus's line is in its descriptor (default_baud, min_baud, max_baud, default_parity).
+    const ProtocolDescriptor& bus = *settings->protocol;
+    const std::uint32_t baud = command.baud != 0 ? command.baud : bus.default_baud;
     if (baud == 0) {
-        print_error(
-            "--baud is required for PROFIBUS (the FC protocol, --bus fc, and the VLT 2000, --bus "
-            "vlt2000, default to 9600)");
+        print_error(fmt::format("--baud is required for {} ({})", bus.traffic_name,
+                                buses_with_default_baud()));
         return kExitUsage;
     }
-    if (fc && (baud < kFcMinBaud || baud > kFcMaxBaud)) {
-        print_error(
-            fmt::format("--baud: must be a whole number from {} to {} baud for the FC "
-                        "protocol (--bus fc), not '{}'",
-                        kFcMinBaud, kFcMaxBaud, baud));
+    if (bus.min_baud != 0 && (baud < bus.min_baud || baud > bus.max_baud)) {
+        print_error(fmt::format(
+            "--baud: must be a whole number from {} to {} baud for the {} (--bus {}), not '{}'",
+            bus.min_baud, bus.max_baud, bus.traffic_name, bus.name, baud));
         return kExitUsage;
     }
-    const SerialParity parity = serial_parity_from_name(command.parity)
-                                    .value_or(vlt2000 ? SerialParity::None : SerialParity::Even);
+    const SerialParity parity =
+        serial_parity_from_name(command.parity)
+            .value_or(serial_parity_from_name(bus.default_parity).value_or(SerialParity::Even));
     Result<int> link_type =
         capture_link_type(*settings->protocol, command.link_type.empty()
                                                    ? std::nullopt
@@ -415,10 +432,8 @@ int run_sniff(const SniffCommand& command) {
     tty_options.parity_marked = port->parity_marked();
     tty_options.character_bits = character_bits(parity, command.stop_bits);
     // The tracker measures the drive's response time from a command's last byte.
-    settings->fc_tracker.line_baud = port->baud();
-    settings->fc_tracker.character_bits = tty_options.character_bits;
-    settings->vlt2000_tracker.line_baud = port->baud();
-    settings->vlt2000_tracker.character_bits = tty_options.character_bits;
+    settings->lanes.line_baud = port->baud();
+    settings->lanes.character_bits = tty_options.character_bits;
     tty_options.idle_gap_ns = static_cast<std::int64_t>(command.idle_gap_ms) * 1'000'000;
     // Bus health: the bus load at the port's rate and character (8E1: 11 bits).
     // The report at the end has its bus-health section too (PROFIBUS), as `dpscope report` has.
@@ -562,7 +577,7 @@ int run_sniff(const SniffCommand& command) {
                         source.parity_errors(), source.idle_gaps()));
     if (settings->quiet)
         pipeline.summary().render_text(out, describe_input(source), pipeline.decoder(),
-                                       pipeline.drive_trackers());
+                                       &pipeline.tracker());
     if (stats) {
         StatsContext context{describe_input(source), &pipeline.health()->health(),
                              std::string(kVersion)};

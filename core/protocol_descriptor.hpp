@@ -9,6 +9,7 @@
 
 #include <bitset>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -17,6 +18,10 @@
 #include "core/telegram.hpp"
 
 namespace dpscope {
+
+class TelegramDecoder;  // core/protocol_lane.hpp
+class TelegramTracker;
+struct LaneOptions;  // protocols/lane_options.hpp
 
 // pcap link types (LINKTYPE_*) dpscope reads: PROFIBUS_DL as Wireshark reads it, and USER0, which
 // other tools write PROFIBUS records in and dpscope writes every other bus in (recording the bus
@@ -62,6 +67,13 @@ struct ProtocolDescriptor {
     // Whether its tracker times commands and responses by the line's baud rate (--baud), as the
     // serial drive buses do; PROFIBUS uses --baud only for the bus load of the bus health.
     bool timed_by_line = false;
+    // The serial line it runs on unless the command line says otherwise (sniff): the baud rate
+    // (0: none, --baud must be given), the rates its devices support (0: not checked) and the
+    // parity ("even", "none").
+    std::uint32_t default_baud = 0;
+    std::uint32_t min_baud = 0;
+    std::uint32_t max_baud = 0;
+    std::string_view default_parity = "even";
     // Whether its masters have station addresses (PROFIBUS); otherwise a telegram and a finding
     // are about their drive alone (FC, VLT 2000).
     bool masters_addressed = false;
@@ -70,6 +82,10 @@ struct ProtocolDescriptor {
     // Marks in `seen` each parameter number the telegram names (what --pnu can select; the
     // cyclic PCV's number comes from the tracker, which knows which request a response answers).
     void (*mark_pnus)(const DecodedTelegram& t, PnuSet& seen) noexcept = nullptr;
+    // Its decoder and tracker, made with the options that are its own (protocols/
+    // lane_options.hpp): what the commands' pipeline and the Wireshark plugin feed.
+    std::unique_ptr<TelegramDecoder> (*make_decoder)(const LaneOptions& options) = nullptr;
+    std::unique_ptr<TelegramTracker> (*make_tracker)(const LaneOptions& options) = nullptr;
 
     // Are the records of a capture with this link type telegrams of the protocol?
     bool carried_by(int link_type) const noexcept;

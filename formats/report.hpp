@@ -13,14 +13,12 @@
 #include <string_view>
 #include <vector>
 
+#include "core/protocol_lane.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/output.hpp"
 #include "formats/report_timeline.hpp"
 #include "formats/summary.hpp"
-#include "protocols/fc/fc_tracker.hpp"
 #include "protocols/profibus/health/bus_health.hpp"
-#include "protocols/profibus/session_tracker.hpp"
-#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 namespace dpscope {
 
@@ -40,17 +38,15 @@ struct ReportContext {
     const Summary* summary = nullptr;
     // The capture's bus: its tracker's sections, bus findings and finding kinds are reported.
     Protocol protocol = Protocol::ProfibusDp;
-    const BusDecoder* decoder = nullptr;
-    const SessionTracker* tracker = nullptr;  // PROFIBUS DP (always set: its options are read)
-    const FcTracker* fc_tracker = nullptr;    // the FC protocol (set for an FC capture)
-    const Vlt2000Tracker* vlt2000_tracker = nullptr;  // VLT 2000 (set for a VLT 2000 capture)
+    // The capture's decoder and tracker, of that bus (core/protocol_lane.hpp): each protocol's
+    // report section reads its own (protocols/<name>/*_report_section.cpp). The tracker is
+    // always set (its time-out is read).
+    const TelegramDecoder* decoder = nullptr;
+    const TelegramTracker* tracker = nullptr;
     const ChannelTimelines* timelines = nullptr;      // the HTML report's (none: empty timelines)
     // PROFIBUS: the bus-health statistics (protocols/profibus/health/bus_health.hpp), reported in a
     // section of their own; null: no such section.
     const BusHealth* health = nullptr;
-    // --vlt2000-checksum check: a VLT 2000 telegram's wrong checksum is a finding (the report's
-    // checks say whether it was judged).
-    bool vlt2000_checksum = true;
     const FindingLog* findings = nullptr;
     FailOn fail_on = FailOn::Error;
     // --allow-empty: a capture in which nothing could be checked (no Data_Exchange telegram with

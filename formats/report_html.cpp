@@ -55,7 +55,7 @@ std::string_view html_style() { return kHtmlStyle; }
 void write_html(const ReportContext& c, const ReportModel& m, Output& out) {
     TextBuffer& b = out.buffer();
     auto it = std::back_inserter(b);
-    const TrackerOptions& options = c.tracker->options();
+    const TelegramTracker& tracker = *c.tracker;
     fmt::format_to(it,
                    "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
                    "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
@@ -67,7 +67,7 @@ void write_html(const ReportContext& c, const ReportModel& m, Output& out) {
                        "<p class=\"meta\">{} ({}) &middot; dpscope {} &middot; {} "
                        "&middot; RC 8 rule {}</p>\n",
                        xml(c.input.name), xml(c.input.format), xml(c.version),
-                       timeout_rule_text(c, m), options.strict ? "strict" : "lenient");
+                       timeout_rule_text(c, m), tracker.strict() ? "strict" : "lenient");
     else
         fmt::format_to(it,
                        "<p class=\"meta\">{} ({}) &middot; dpscope {} &middot; {} &middot; {}"

@@ -10,7 +10,7 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
     auto count = [&w](std::string_view key, std::uint64_t n) {
         w.key(key).integer(static_cast<std::int64_t>(n));
     };
-    const TrackerOptions& options = c.tracker->options();
+    const TelegramTracker& tracker = *c.tracker;
     w.begin_object();
     w.key("dpscope").string(c.version);
     w.key("input").begin_object();
@@ -28,9 +28,9 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
     // always been without them.
     const BusWording& bus = bus_wording(c);
     if (!bus.option.empty()) w.key("bus").string(bus.option);
-    w.key("timeout_ms").integer(options.timeout_ns / 1'000'000);
+    w.key("timeout_ms").integer(tracker.timeout_ns() / 1'000'000);
     if (const auto write_options = report_of(c).write_json_options) write_options(c, w);
-    w.key("strict").boolean(options.strict);
+    w.key("strict").boolean(tracker.strict());
     w.key("fail_on").string(fail_on_name(c.fail_on));
     w.key("allow_empty").boolean(c.allow_empty);
     w.key("stations");

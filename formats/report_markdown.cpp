@@ -10,7 +10,7 @@ namespace dpscope::report {
 void write_markdown(const ReportContext& c, const ReportModel& m, Output& out) {
     TextBuffer& b = out.buffer();
     auto it = std::back_inserter(b);
-    const TrackerOptions& options = c.tracker->options();
+    const TelegramTracker& tracker = *c.tracker;
     fmt::format_to(it, "# dpscope conformance report\n\n");
     fmt::format_to(it, "**{}**\n\n", verdict_text(c, m));
     fmt::format_to(it, "- Input: `{}` ({}), {}{}\n", c.input.name, c.input.format,
@@ -19,7 +19,7 @@ void write_markdown(const ReportContext& c, const ReportModel& m, Output& out) {
     if (const std::string bus = bus_text(c); !bus.empty()) fmt::format_to(it, "- Bus: {}\n", bus);
     if (report_of(c).checks_rc8_rule)
         fmt::format_to(it, "- Checks: {}; RC 8 after a read: {}\n", timeout_rule_text(c, m),
-                       options.strict ? "strict" : "lenient");
+                       tracker.strict() ? "strict" : "lenient");
     else
         fmt::format_to(it, "- Checks: {}\n", checks_text(c, m));
     if (!c.stations.empty())

@@ -87,7 +87,7 @@ std::string verdict_text(const ReportContext& c, const ReportModel& m) {
 }
 
 std::string timeout_rule_text(const ReportContext& c, const ReportModel& m) {
-    return m.timed ? fmt::format("time-out {} ms", c.tracker->options().timeout_ns / 1'000'000)
+    return m.timed ? fmt::format("time-out {} ms", c.tracker->timeout_ns() / 1'000'000)
                    : std::string(kNoTimestamps);
 }
 

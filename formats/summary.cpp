@@ -69,8 +69,9 @@ std::string dialect_hint_text(std::uint8_t slave, Dialect decoded,
         dialect_name(decoded), option);
 }
 
-void Summary::render_text(Output& out, const InputSummary& input, const BusDecoder& decoder,
-                          DriveTrackers trackers) const {
+void Summary::render_text(Output& out, const InputSummary& input,
+                          const TelegramDecoder& capture_decoder,
+                          const TelegramTracker* tracker) const {
     TextBuffer& b = out.buffer();
     auto it = std::back_inserter(b);
     fmt::format_to(it, "Summary of {} ({})\n", input.name, input.format);
@@ -93,7 +94,7 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
         render_fc_counts(b);
     } else if (vlt2000_telegrams_ > 0) {
         render_vlt2000_counts(b);
-    } else {
+    } else if (other_telegrams_ == 0) {
         render_dp_counts(b);
     }
     fmt::format_to(it, "  telegrams with problems: {}\n", with_problems_);
@@ -117,15 +118,21 @@ void Summary::render_text(Output& out, const InputSummary& input, const BusDecod
         }
 
     if (fc_telegrams_ > 0) {
-        render_fc_drives(b, trackers.fc);
+        render_fc_drives(b, dynamic_cast<const FcTracker*>(tracker));
         out.end_record();
         return;
     }
     if (vlt2000_telegrams_ > 0) {
-        render_vlt2000_addresses(b, trackers.vlt2000);
+        render_vlt2000_addresses(b, dynamic_cast<const Vlt2000Tracker*>(tracker));
         out.end_record();
         return;
     }
+    const auto* profibus = dynamic_cast<const BusDecoder*>(&capture_decoder);
+    if (other_telegrams_ > 0 || profibus == nullptr) {
+        out.end_record();
+        return;
+    }
+    const BusDecoder& decoder = *profibus;
     bool header = false;
     for (std::size_t a = 0; a < kStationCount; ++a) {
         const StationConfig& station = decoder.station(static_cast<std::uint8_t>(a));

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/finding.hpp"
+#include "core/protocol_lane.hpp"
 #include "formats/output.hpp"
 #include "protocols/fc/fc_tracker.hpp"
 #include "protocols/profibus/bus_decoder.hpp"
@@ -32,13 +33,6 @@ struct InputSummary {
 // (2041 telegrams carry codes vlt does not define); decode with --dialect 3=profidrive".
 std::string dialect_hint_text(std::uint8_t slave, Dialect decoded, const DialectEvidence& evidence);
 
-// The drive buses' trackers, whose per-drive commands by outcome the summary names (the same
-// counts as the report's); null: the telegram counts alone (a summary of the --pnu selection).
-struct DriveTrackers {
-    const FcTracker* fc = nullptr;
-    const Vlt2000Tracker* vlt2000 = nullptr;
-};
-
 class Summary {
   public:
     void add(const DecodedTelegram& t) noexcept {
@@ -48,6 +42,10 @@ class Summary {
         }
         if (t.protocol == Protocol::Vlt2000) {
             add_vlt2000(t);
+            return;
+        }
+        if (t.protocol != Protocol::ProfibusDp) {
+            add_other(t);
             return;
         }
         ++telegrams_;
@@ -151,11 +149,30 @@ class Summary {
     }
 
     // The text summary: PROFIBUS frame types and services, or, for an FC capture, FC blocks,
-    // AKs and drives, or, for a VLT 2000 capture, letters, failures, checksums and addresses.
-    void render_text(Output& out, const InputSummary& input, const BusDecoder& decoder,
-                     DriveTrackers trackers = {}) const;
+    // AKs and drives, or, for a VLT 2000 capture, letters, failures, checksums and addresses;
+    // for a bus it has no counts of its own for, what every bus has (telegrams, problems,
+    // findings). `decoder`: the capture's (a PROFIBUS one names each slave's layout); `tracker`:
+    // the capture's, whose per-drive commands by outcome the FC and VLT 2000 summaries name (the
+    // same counts as the report's); null: the telegram counts alone (the --pnu selection).
+    void render_text(Output& out, const InputSummary& input, const TelegramDecoder& decoder,
+                     const TelegramTracker* tracker = nullptr) const;
 
   private:
+    // A telegram of a bus without counts of its own here.
+    void add_other(const DecodedTelegram& t) noexcept {
+        ++telegrams_;
+        ++other_telegrams_;
+        if (!t.problems().empty()) {
+            ++with_problems_;
+            for (const Problem& p : t.problems())
+                ++problems_[static_cast<std::size_t>(p.kind)];
+        }
+        if (t.has_time()) {
+            if (first_time_ == kNoTime) first_time_ = t.time_ns;
+            last_time_ = t.time_ns;
+        }
+        if (t.has_roles) slave_seen_[t.slave & 0x7F] = true;
+    }
     void add_fc(const DecodedTelegram& t) noexcept {
         ++telegrams_;
         ++fc_telegrams_;
@@ -244,6 +261,7 @@ class Summary {
     std::array<DialectEvidence, kStationCount> dialects_{};
     std::int64_t first_time_ = kNoTime;
     std::int64_t last_time_ = kNoTime;
+    std::uint64_t other_telegrams_ = 0;  // add_other()
     std::uint64_t fc_telegrams_ = 0;
     std::array<std::uint64_t, 4> fc_blocks_{};
     std::uint64_t fc_requests_ = 0;

@@ -77,8 +77,7 @@ struct Choices {
 // Decodes and tracks the script as the report command's Pipeline does, then renders.
 template <class Decoder, class Tracker>
 void run_lane(const fuzz::TelegramScript& script, const Choices& choices, Decoder& decoder,
-              Tracker& tracker, const BusDecoder& dp_decoder, ReportContext& context,
-              BusHealthTracker* health) {
+              Tracker& tracker, ReportContext& context, BusHealthTracker* health) {
     Summary summary;
     FindingLog log;
     ChannelTimelines timelines;
@@ -103,10 +102,10 @@ void run_lane(const fuzz::TelegramScript& script, const Choices& choices, Decode
     context.input = InputSummary{"fuzz.raw", "raw", script.telegrams.size() % 5,
                                  script.telegrams.size() % 7 == 3};
     context.summary = &summary;
-    context.decoder = &dp_decoder;
+    context.decoder = &decoder;
+    context.tracker = &tracker;
     context.timelines = &timelines;
     context.health = health ? &health->health() : nullptr;
-    context.vlt2000_checksum = script.vlt2000_checksum;
     context.findings = &log;
     context.fail_on = choices.fail_on;
     context.allow_empty = choices.allow_empty;
@@ -142,34 +141,31 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     choices.width = width == 0 ? 0u : 20u + width;
     fuzz::build_telegram_script(in, script, kMaxTelegrams);
 
-    // Every tracker exists (the report reads the PROFIBUS one's options); the script's bus is fed.
-    BusDecoder dp_decoder(script.decoder_options());
-    SessionTracker dp_tracker(script.tracker_options());
-    FcTracker fc_tracker(script.fc_tracker_options());
-    Vlt2000Tracker vlt2000_tracker(script.vlt2000_tracker_options());
+    // The script's bus is fed; the report reads that bus's decoder and tracker.
     ReportContext context;
-    context.tracker = &dp_tracker;
-    context.fc_tracker = &fc_tracker;
-    context.vlt2000_tracker = &vlt2000_tracker;
     switch (script.bus) {
         case fuzz::ScriptBus::Profibus: {
             context.protocol = Protocol::ProfibusDp;
             BusHealthOptions options;
             options.baud = script.baud;
             BusHealthTracker health(options);
-            run_lane(script, choices, dp_decoder, dp_tracker, dp_decoder, context, &health);
+            BusDecoder decoder(script.decoder_options());
+            SessionTracker tracker(script.tracker_options());
+            run_lane(script, choices, decoder, tracker, context, &health);
             break;
         }
         case fuzz::ScriptBus::Fc: {
             context.protocol = Protocol::Fc;
             FcDecoder decoder(script.fc_decoder_options());
-            run_lane(script, choices, decoder, fc_tracker, dp_decoder, context, nullptr);
+            FcTracker tracker(script.fc_tracker_options());
+            run_lane(script, choices, decoder, tracker, context, nullptr);
             break;
         }
         case fuzz::ScriptBus::Vlt2000: {
             context.protocol = Protocol::Vlt2000;
             Vlt2000Decoder decoder(script.vlt2000_decoder_options());
-            run_lane(script, choices, decoder, vlt2000_tracker, dp_decoder, context, nullptr);
+            Vlt2000Tracker tracker(script.vlt2000_tracker_options());
+            run_lane(script, choices, decoder, tracker, context, nullptr);
             break;
         }
     }

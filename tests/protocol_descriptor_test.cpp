@@ -10,8 +10,12 @@
 
 #include "capture/bus_tag.hpp"
 #include "capture/pcap_source.hpp"
+#include "core/protocol_lane.hpp"
 #include "formats/report_model.hpp"
+#include "protocols/fc/fc_tracker.hpp"
+#include "protocols/lane_options.hpp"
 #include "protocols/profibus/fdl_framing_rules.hpp"
+#include "test_support.hpp"
 
 namespace dpscope {
 namespace {
@@ -85,7 +89,86 @@ TEST(ProtocolDescriptorTest, EveryProtocolIsDescribedWhole) {
         EXPECT_NE(d->addresses_pnu, nullptr) << d->name;
         EXPECT_NE(d->mark_pnus, nullptr) << d->name;
         EXPECT_EQ(d->lead_byte.has_value(), !d->lead_byte_text.empty()) << d->name;
+        EXPECT_NE(d->make_decoder, nullptr) << d->name;
+        EXPECT_NE(d->make_tracker, nullptr) << d->name;
+        EXPECT_EQ(d->min_baud == 0, d->max_baud == 0) << d->name;
+        EXPECT_LE(d->min_baud, d->max_baud) << d->name;
+        EXPECT_TRUE(d->default_parity == "even" || d->default_parity == "none") << d->name;
     }
+}
+
+// The lanes (core/protocol_lane.hpp): each protocol's factories make a decoder whose telegrams
+// are of that protocol and a tracker with the shared time-out; a telegram it cannot frame is
+// decoded with problems, tracked, and no station is made up from it.
+TEST(ProtocolDescriptorTest, EveryProtocolMakesItsDecoderAndTrackerFromTheSharedOptions) {
+    LaneOptions options;
+    options.timeout_ns = 250'000'000;
+    const std::vector<std::uint8_t> junk = test::hex("00 01 02 03");
+    for (const ProtocolDescriptor* d : protocol_table()) {
+        std::unique_ptr<TelegramDecoder> decoder = d->make_decoder(options);
+        std::unique_ptr<TelegramTracker> tracker = d->make_tracker(options);
+        ASSERT_NE(decoder, nullptr) << d->name;
+        ASSERT_NE(tracker, nullptr) << d->name;
+        EXPECT_EQ(tracker->timeout_ns(), 250'000'000) << d->name;
+        const DecodedTelegram& t = decoder->decode(Bytes(junk.data(), junk.size()), 1'000, 1);
+        EXPECT_EQ(t.protocol, d->protocol) << d->name;
+        EXPECT_FALSE(t.problems().empty()) << d->name;
+        (void)tracker->track(t);
+        (void)tracker->finish();
+        EXPECT_FALSE(tracker->has_station(0)) << d->name;
+        EXPECT_TRUE(tracker->end_warnings(1).empty()) << d->name;
+    }
+}
+
+// A decoder's clone decodes on exactly as the original: an FC response cloned after its request
+// is still decoded against it.
+TEST(ProtocolDescriptorTest, ACloneDecodesOnAsTheOriginal) {
+    std::unique_ptr<TelegramDecoder> original = fc_protocol().make_decoder(LaneOptions{});
+    const std::vector<std::uint8_t> request = test::fc_parameter(3, 1, 414);
+    const std::vector<std::uint8_t> response = test::fc_parameter(3, 1, 414, 0, 1500, 0x0607);
+    (void)original->decode(Bytes(request.data(), request.size()), 1'000'000, 1);
+    std::unique_ptr<TelegramDecoder> copy = original->clone();
+    const DecodedTelegram& a =
+        original->decode(Bytes(response.data(), response.size()), 5'000'000, 2);
+    const Direction direction = a.direction;
+    const std::uint64_t request_frame = a.request_frame;
+    const DecodedTelegram& b = copy->decode(Bytes(response.data(), response.size()), 5'000'000, 2);
+    EXPECT_EQ(direction, Direction::Response);
+    EXPECT_EQ(request_frame, 1u);
+    EXPECT_EQ(b.direction, direction);
+    EXPECT_EQ(b.request_frame, request_frame);
+}
+
+// The serial buses' trackers take the line from the shared options, or their own default; a
+// drive seen is a station of the capture, and a response earlier than the line allows is named
+// at the end.
+TEST(ProtocolDescriptorTest, TheLineComesFromTheSharedOptionsOrTheBussDefault) {
+    LaneOptions options;
+    std::unique_ptr<TelegramTracker> by_default = fc_protocol().make_tracker(options);
+    EXPECT_EQ(static_cast<const FcTracker&>(*by_default).options().line_baud,
+              fc_protocol().default_baud);
+    options.line_baud = 2400;
+    options.character_bits = 10;
+    std::unique_ptr<TelegramTracker> tracker = fc_protocol().make_tracker(options);
+    const auto& fc = static_cast<const FcTracker&>(*tracker);
+    EXPECT_EQ(fc.options().line_baud, 2400u);
+    EXPECT_EQ(fc.options().character_bits, 10u);
+
+    std::unique_ptr<TelegramDecoder> decoder = fc_protocol().make_decoder(options);
+    const std::vector<std::uint8_t> request = test::fc_parameter(3, 1, 414);
+    const std::vector<std::uint8_t> response = test::fc_parameter(3, 1, 414, 0, 1500, 0x0607);
+    // 16 bytes at 2400 baud take 67 ms: a response 1 ms after the request began is early.
+    (void)tracker->track(decoder->decode(Bytes(request.data(), request.size()), 1'000'000, 1));
+    (void)tracker->track(decoder->decode(Bytes(response.data(), response.size()), 2'000'000, 2));
+    (void)tracker->finish();
+    EXPECT_TRUE(tracker->has_station(3));
+    EXPECT_FALSE(tracker->has_station(4));
+    const std::vector<std::string> warnings = tracker->end_warnings(2);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("1 response began before its command could have ended at 2400 "
+                               "baud (10 bits a byte)"),
+              std::string::npos)
+        << warnings[0];
 }
 
 TEST(ProtocolDescriptorTest, BusNumbersLeadBytesAndTextLogsTellTheProtocolsApart) {

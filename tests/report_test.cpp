@@ -2412,9 +2412,8 @@ struct FcAnalysis {
         c.input = InputSummary{"fc.hex", "hex", 0, false};
         c.protocol = Protocol::Fc;
         c.summary = &summary;
-        c.decoder = &dp_decoder;
-        c.tracker = &dp_tracker;
-        c.fc_tracker = &tracker;
+        c.decoder = &decoder;
+        c.tracker = &tracker;
         c.timelines = &timelines;
         c.findings = &log;
         c.version = "7.8.9-test";
@@ -2423,8 +2422,6 @@ struct FcAnalysis {
 
     FcDecoder decoder;
     FcTracker tracker;
-    BusDecoder dp_decoder;
-    SessionTracker dp_tracker;
     Summary summary;
     ChannelTimelines timelines;
     FindingLog log;
@@ -2697,10 +2694,8 @@ struct Vlt2000Analysis {
         c.input = InputSummary{"vlt2000.pcap", "pcap", 0, false};
         c.protocol = Protocol::Vlt2000;
         c.summary = &summary;
-        c.decoder = &dp_decoder;
-        c.tracker = &dp_tracker;
-        c.fc_tracker = &fc_tracker;
-        c.vlt2000_tracker = &tracker;
+        c.decoder = &decoder;
+        c.tracker = &tracker;
         c.timelines = &timelines;
         c.findings = &log;
         c.version = "7.8.9-test";
@@ -2709,9 +2704,6 @@ struct Vlt2000Analysis {
 
     Vlt2000Decoder decoder;
     Vlt2000Tracker tracker;
-    BusDecoder dp_decoder;
-    SessionTracker dp_tracker;
-    FcTracker fc_tracker;
     Summary summary;
     ChannelTimelines timelines;
     FindingLog log;
@@ -2995,7 +2987,10 @@ TEST(ReportTest, Vlt2000ReportWithoutTimestampsAndWithoutChecksums) {
         telegram.second = -1;
     Vlt2000Analysis a(untimed);
     ReportContext c = a.context();
-    c.vlt2000_checksum = false;
+    Vlt2000DecoderOptions unchecked;  // --vlt2000-checksum ignore, as the report reads it
+    unchecked.check_checksum = false;
+    const Vlt2000Decoder decoder(unchecked);
+    c.decoder = &decoder;
     std::string text = render(ReportFormat::Text, c);
     EXPECT_NE(text.find("Checks:  time-outs not judged (no timestamps), checksums not checked "
                         "(--vlt2000-checksum ignore)\n"),

@@ -539,8 +539,7 @@ TEST(SummaryTest, FcDrivesShowTheirCommandsByOutcome) {
     summary.add_findings(tracker.finish());
     BusDecoder dp;
     const std::string text = test::output_text([&](Output& out) {
-        summary.render_text(out, InputSummary{"fc.pcap", "pcap", 0, false}, dp,
-                            DriveTrackers{&tracker, nullptr});
+        summary.render_text(out, InputSummary{"fc.pcap", "pcap", 0, false}, dp, &tracker);
     });
     EXPECT_NE(text.find("  drives:\n"
                         "      1: 2 commands (0 answered, 0 unanswered, 0 abandoned, 1 damaged, 1 "
@@ -572,8 +571,7 @@ TEST(SummaryTest, Vlt2000AddressesShowTheirCommandsByOutcome) {
     summary.add_findings(tracker.finish());
     BusDecoder dp;
     const std::string text = test::output_text([&](Output& out) {
-        summary.render_text(out, InputSummary{"vlt.pcap", "pcap", 0, false}, dp,
-                            DriveTrackers{nullptr, &tracker});
+        summary.render_text(out, InputSummary{"vlt.pcap", "pcap", 0, false}, dp, &tracker);
     });
     EXPECT_NE(text.find("    01: 1 command (0 answered, 0 unanswered, 0 abandoned, 0 damaged, 1 "
                         "not judged), 0 replies"),

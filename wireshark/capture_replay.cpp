@@ -2,25 +2,20 @@
 
 #include <algorithm>
 #include <cstring>
-#include <iterator>
-#include <variant>
+
+#include "core/protocol_descriptor.hpp"
+#include "core/protocol_lane.hpp"
 
 namespace dpscope {
 
 ReplayOptions replay_options(const ReplayChoices& choices) {
     ReplayOptions options;
-    const std::int64_t timeout_ns = static_cast<std::int64_t>(choices.timeout_ms) * 1'000'000;
+    options.timeout_ns = static_cast<std::int64_t>(choices.timeout_ms) * 1'000'000;
     options.decoder.dialect = choices.dialect;
-    options.tracker.timeout_ns = timeout_ns;
     options.tracker.strict = choices.strict;
-    options.fc_tracker.timeout_ns = timeout_ns;
     options.fc_tracker.response_ns = static_cast<std::int64_t>(choices.fc_response_ms) * 1'000'000;
-    options.fc_tracker.line_baud = choices.line_baud;
-    options.vlt2000_tracker.line_baud = choices.line_baud;
-    options.vlt2000_tracker.timeout_ns = timeout_ns;
+    options.line_baud = choices.line_baud;
     options.fc_decoder.pnu_bits = choices.fc_pnu_bits;
-    options.fc_decoder.response_window_ns = timeout_ns;
-    options.vlt2000_decoder.response_window_ns = timeout_ns;
     options.vlt2000_decoder.check_checksum = choices.vlt2000_checksum;
     return options;
 }
@@ -31,70 +26,25 @@ struct CaptureReplay::Stored {
     Bytes bytes;
 };
 
-namespace {
-
-// A decoder and a tracker of any bus; a capture's are of its bus, and std::visit calls them.
-using AnyDecoder = std::variant<BusDecoder, FcDecoder, Vlt2000Decoder>;
-using AnyTracker = std::variant<SessionTracker, FcTracker, Vlt2000Tracker>;
-
-// Makes a `Decoder` or `Tracker` with its options, the member `options` of ReplayOptions.
-template <class Decoder, auto options>
-AnyDecoder make_decoder(const ReplayOptions& replay) {
-    return AnyDecoder(std::in_place_type<Decoder>, replay.*options);
-}
-template <class Tracker, auto options>
-AnyTracker make_tracker(const ReplayOptions& replay) {
-    return AnyTracker(std::in_place_type<Tracker>, replay.*options);
-}
-
-// Each bus's decoder and tracker, made from its options: a line per protocol, looked up by the
-// capture's protocol (ReplayOptions names each bus's options, so the line names them too).
-struct ReplayLane {
-    Protocol protocol;
-    AnyDecoder (*decoder)(const ReplayOptions&);
-    AnyTracker (*tracker)(const ReplayOptions&);
-};
-constexpr ReplayLane kLanes[] = {
-    {Protocol::ProfibusDp, make_decoder<BusDecoder, &ReplayOptions::decoder>,
-     make_tracker<SessionTracker, &ReplayOptions::tracker>},
-    {Protocol::Fc, make_decoder<FcDecoder, &ReplayOptions::fc_decoder>,
-     make_tracker<FcTracker, &ReplayOptions::fc_tracker>},
-    {Protocol::Vlt2000, make_decoder<Vlt2000Decoder, &ReplayOptions::vlt2000_decoder>,
-     make_tracker<Vlt2000Tracker, &ReplayOptions::vlt2000_tracker>},
-};
-static_assert(std::size(kLanes) == kProtocolCount, "every protocol needs its line in kLanes");
-
-// The lane of a protocol (the first, PROFIBUS's, for a value that names none).
-const ReplayLane& lane_of(Protocol protocol) noexcept {
-    for (const ReplayLane& lane : kLanes)
-        if (lane.protocol == protocol) return lane;
-    return kLanes[0];
-}
-
-}  // namespace
-
 struct CaptureReplay::DecoderState {
-    AnyDecoder decoder;
+    std::unique_ptr<TelegramDecoder> decoder;
 
     DecoderState(Protocol protocol, const ReplayOptions& options)
-        : decoder(lane_of(protocol).decoder(options)) {}
+        : decoder(protocol_descriptor(protocol).make_decoder(options)) {}
+    DecoderState(const DecoderState& other) : decoder(other.decoder->clone()) {}
 
     const DecodedTelegram& decode(Bytes bytes, std::int64_t time_ns, std::uint64_t frame) {
-        return std::visit(
-            [&](auto& d) -> const DecodedTelegram& { return d.decode(bytes, time_ns, frame); },
-            decoder);
+        return decoder->decode(bytes, time_ns, frame);
     }
 };
 
 struct CaptureReplay::Trackers {
-    AnyTracker tracker;
+    std::unique_ptr<TelegramTracker> tracker;
 
     Trackers(Protocol protocol, const ReplayOptions& options)
-        : tracker(lane_of(protocol).tracker(options)) {}
+        : tracker(protocol_descriptor(protocol).make_tracker(options)) {}
 
-    std::span<const Finding> track(const DecodedTelegram& t) {
-        return std::visit([&](auto& tr) { return tr.track(t); }, tracker);
-    }
+    std::span<const Finding> track(const DecodedTelegram& t) { return tracker->track(t); }
 };
 
 CaptureReplay::CaptureReplay(Protocol protocol, const ReplayOptions& options)

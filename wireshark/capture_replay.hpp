@@ -21,24 +21,13 @@
 
 #include "core/finding.hpp"
 #include "core/telegram.hpp"
-#include "protocols/fc/fc_decoder.hpp"
-#include "protocols/fc/fc_tracker.hpp"
-#include "protocols/profibus/bus_decoder.hpp"
-#include "protocols/profibus/session_tracker.hpp"
-#include "protocols/vlt2000/vlt2000_decoder.hpp"
-#include "protocols/vlt2000/vlt2000_tracker.hpp"
+#include "protocols/lane_options.hpp"
 
 namespace dpscope {
 
-// The decoder and tracker options of every bus (the dissector's preferences set them).
-struct ReplayOptions {
-    DecoderOptions decoder;
-    TrackerOptions tracker;
-    FcDecoderOptions fc_decoder;
-    FcTrackerOptions fc_tracker;
-    Vlt2000DecoderOptions vlt2000_decoder;
-    Vlt2000TrackerOptions vlt2000_tracker;
-};
+// The decoder and tracker options of every bus (the dissector's preferences set them); the
+// capture's protocol makes its decoder and tracker from them (ProtocolDescriptor::make_decoder).
+using ReplayOptions = LaneOptions;
 
 // The choices the decoder and tracker options are made of, as `dpscope decode`'s options name
 // them; the defaults are decode's (--timeout-ms 1000, --fc-response-ms 20, 9600 baud for FC and

@@ -16,6 +16,7 @@
 #include <array>
 #include <cstdint>
 
+#include "core/protocol_lane.hpp"
 #include "core/telegram.hpp"
 #include "core/time.hpp"
 #include "protocols/fc/fc_telegram.hpp"
@@ -29,12 +30,15 @@ struct FcDecoderOptions {
     std::int64_t response_window_ns = 1'000'000'000;
 };
 
-class FcDecoder {
+class FcDecoder final : public TelegramDecoder {
   public:
     explicit FcDecoder(FcDecoderOptions options = {}) noexcept;
 
     // Decodes one telegram. The result refers to `bytes` and stays valid until the next call.
-    const DecodedTelegram& decode(Bytes bytes, std::int64_t time_ns, std::uint64_t frame);
+    const DecodedTelegram& decode(Bytes bytes, std::int64_t time_ns, std::uint64_t frame) override;
+    std::unique_ptr<TelegramDecoder> clone() const override {
+        return std::make_unique<FcDecoder>(*this);
+    }
 
     const FcDecoderOptions& options() const noexcept { return options_; }
 

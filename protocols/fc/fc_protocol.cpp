@@ -4,6 +4,7 @@
 
 #include "core/protocol_descriptor.hpp"
 #include "protocols/fc/fc_framing_rules.hpp"
+#include "protocols/lane_options.hpp"
 
 namespace dpscope {
 
@@ -12,6 +13,12 @@ namespace {
 // The FC protocol has no link type of its own: dpscope writes it as USER0 and records the bus in
 // the file (capture/bus_tag.hpp).
 constexpr std::array<PcapLinkType, 1> kFcLinkTypes{{{kLinkTypeUser0, "USER0"}}};
+
+// Its line unless --baud says otherwise (docs/protocol/fc-protocol.md): 9600 baud 8E1; the FC
+// series' baud rates (par. 8-32) are 2400 to 115200.
+constexpr std::uint32_t kFcDefaultLineBaud = 9600;
+constexpr std::uint32_t kFcMinBaud = 2400;
+constexpr std::uint32_t kFcMaxBaud = 115'200;
 
 // The parameter an FC telegram names: its PKW's PNU (a response echoes its request's); none
 // without a PKW.
@@ -26,6 +33,20 @@ bool fc_addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
 
 void fc_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
     if (const auto pnu = fc_named_pnu(t)) seen.set(*pnu);
+}
+
+std::unique_ptr<TelegramDecoder> fc_decoder(const LaneOptions& options) {
+    FcDecoderOptions decoder = options.fc_decoder;
+    decoder.response_window_ns = options.timeout_ns;
+    return std::make_unique<FcDecoder>(decoder);
+}
+
+std::unique_ptr<TelegramTracker> fc_tracker(const LaneOptions& options) {
+    FcTrackerOptions tracker = options.fc_tracker;
+    tracker.timeout_ns = options.timeout_ns;
+    tracker.line_baud = options.line_baud != 0 ? options.line_baud : kFcDefaultLineBaud;
+    if (options.character_bits != 0) tracker.character_bits = options.character_bits;
+    return std::make_unique<FcTracker>(tracker);
 }
 
 }  // namespace
@@ -45,9 +66,15 @@ const ProtocolDescriptor& fc_protocol() noexcept {
         .traffic_name = "FC protocol",
         .has_bus_health = false,
         .timed_by_line = true,
+        .default_baud = kFcDefaultLineBaud,
+        .min_baud = kFcMinBaud,
+        .max_baud = kFcMaxBaud,
+        .default_parity = "even",
         .masters_addressed = false,
         .addresses_pnu = fc_addresses_pnu,
         .mark_pnus = fc_mark_pnus,
+        .make_decoder = fc_decoder,
+        .make_tracker = fc_tracker,
     };
     return descriptor;
 }

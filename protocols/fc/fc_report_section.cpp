@@ -10,10 +10,16 @@
 #include "formats/report_markup.hpp"
 #include "formats/report_model.hpp"
 #include "protocols/fc/fc_codes.hpp"
+#include "protocols/fc/fc_tracker.hpp"
 
 namespace dpscope::report {
 
 namespace {
+
+// The capture's tracker, an FC one (fc_tracked(): the report is FC's only when it is).
+const FcTracker& fc_tracker(const ReportContext& c) noexcept {
+    return static_cast<const FcTracker&>(*c.tracker);
+}
 
 // "parameter AK 1 x3, AK 2 x1" or "none".
 std::string commands_by_ak_text(const FcStationStats& s) {
@@ -46,7 +52,7 @@ class FcSection final : public StationSection {
             if (covers(kind))
                 findings_[static_cast<std::size_t>(kind)] =
                     stats.findings[static_cast<std::size_t>(kind)];
-        response_ms_ = c.fc_tracker->options().response_ns / 1'000'000;
+        response_ms_ = fc_tracker(c).options().response_ns / 1'000'000;
         latency_ = DriveLatency::of(stats.latency_ns, stats.mean_latency_ns());
     }
 
@@ -302,17 +308,19 @@ std::unique_ptr<StationSection> make_fc_section(const ReportContext& c, const Fc
 }
 
 void add_fc_sections(const ReportContext& c, const ChannelTimelines& timelines, ReportModel& m) {
-    add_drive_sections(c, c.fc_tracker->stations(), timelines, make_fc_section, m);
+    add_drive_sections(c, fc_tracker(c).stations(), timelines, make_fc_section, m);
 }
 
-bool fc_tracked(const ReportContext& c) noexcept { return c.fc_tracker != nullptr; }
+bool fc_tracked(const ReportContext& c) noexcept {
+    return dynamic_cast<const FcTracker*>(c.tracker) != nullptr;
+}
 
-const BusStats& fc_bus_stats(const ReportContext& c) { return c.fc_tracker->bus(); }
+const BusStats& fc_bus_stats(const ReportContext& c) { return fc_tracker(c).bus(); }
 
 std::string fc_checks_text(const ReportContext& c, const ReportModel& m) {
     return m.timed ? fmt::format("time-out {} ms, drive response time {} ms",
-                                 c.fc_tracker->options().timeout_ns / 1'000'000,
-                                 c.fc_tracker->options().response_ns / 1'000'000)
+                                 fc_tracker(c).options().timeout_ns / 1'000'000,
+                                 fc_tracker(c).options().response_ns / 1'000'000)
                    : std::string("time-outs and response times not judged (no timestamps)");
 }
 
@@ -321,7 +329,7 @@ std::string_view fc_nothing_checked_reason(const ReportContext& c) {
 }
 
 void fc_write_json_options(const ReportContext& c, JsonWriter& w) {
-    w.key("fc_response_ms").integer(c.fc_tracker->options().response_ns / 1'000'000);
+    w.key("fc_response_ms").integer(fc_tracker(c).options().response_ns / 1'000'000);
 }
 
 }  // namespace

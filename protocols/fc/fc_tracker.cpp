@@ -96,6 +96,15 @@ std::vector<const FcStationStats*> FcTracker::stations() const {
     return out;
 }
 
+bool FcTracker::has_station(std::uint8_t address) const {
+    return std::any_of(stations_.begin(), stations_.end(),
+                       [address](const auto& s) { return s->address == address; });
+}
+
+std::vector<std::string> FcTracker::end_warnings(std::uint64_t) const {
+    return early_response_warning(early_responses_, options_.line_baud, options_.character_bits);
+}
+
 std::uint64_t FcTracker::transactions() const noexcept {
     std::uint64_t total = 0;
     for (const auto& st : stations_)

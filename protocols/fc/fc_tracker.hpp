@@ -33,6 +33,7 @@
 #include "core/finding.hpp"
 #include "core/log_histogram.hpp"
 #include "core/parameter_channel_engine.hpp"
+#include "core/protocol_lane.hpp"
 #include "core/telegram.hpp"
 
 namespace dpscope {
@@ -106,21 +107,21 @@ struct FcStationStats {
     std::uint64_t not_judged_total() const noexcept { return not_judged + open; }
 };
 
-class FcTracker {
+class FcTracker final : public TelegramTracker {
   public:
     explicit FcTracker(FcTrackerOptions options = {});
-    ~FcTracker();
+    ~FcTracker() override;
     FcTracker(const FcTracker&) = delete;
     FcTracker& operator=(const FcTracker&) = delete;
 
     // Feeds the next FC telegram in capture order. Returns the findings discovered at it (some
     // concern an earlier command: their request_frame says which); valid until the next call.
-    std::span<const Finding> track(const DecodedTelegram& t);
+    std::span<const Finding> track(const DecodedTelegram& t) override;
     // The end of the capture at `end_ns` (default: the last telegram's time): a command still
     // unanswered past the time-out then is reported; one within it is not judged.
-    std::span<const Finding> finish(std::int64_t end_ns = kNoTime);
+    std::span<const Finding> finish(std::int64_t end_ns = kNoTime) override;
     // The command -> response pairs the last track() completed; valid until the next call.
-    std::span<const CompletedTransaction> completed() const noexcept { return completed_; }
+    std::span<const CompletedTransaction> completed() const noexcept override { return completed_; }
     // Responses that began before their command could have ended at options().line_baud (their
     // response time is counted as 0): the line was faster than that.
     std::uint64_t early_responses() const noexcept { return early_responses_; }
@@ -136,7 +137,12 @@ class FcTracker {
     std::uint64_t transactions() const noexcept;
     // The parameter number the last telegram's PKW is about (-1: none); a rejection without
     // PNU is about the command it answers.
-    std::int32_t subject_pnu() const noexcept { return subject_pnu_; }
+    std::int32_t subject_pnu() const noexcept override { return subject_pnu_; }
+    // Whether the drive with this address was seen.
+    bool has_station(std::uint8_t address) const override;
+    std::int64_t timeout_ns() const noexcept override { return options_.timeout_ns; }
+    // Responses earlier than the line allows (early_responses()).
+    std::vector<std::string> end_warnings(std::uint64_t telegrams) const override;
 
   private:
     struct Pending {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/code_tables.hpp"
+#include "core/protocol_lane.hpp"
 #include "core/telegram.hpp"
 #include "core/time.hpp"
 #include "protocols/profibus/dp_payload.hpp"
@@ -57,12 +58,15 @@ struct StationConfig {
     std::uint8_t length12_type = 0;  // 0: no evidence yet
 };
 
-class BusDecoder {
+class BusDecoder final : public TelegramDecoder {
   public:
     explicit BusDecoder(DecoderOptions options = {});
 
     // Decodes one telegram. The result refers to `bytes` and stays valid until the next call.
-    const DecodedTelegram& decode(Bytes bytes, std::int64_t time_ns, std::uint64_t frame);
+    const DecodedTelegram& decode(Bytes bytes, std::int64_t time_ns, std::uint64_t frame) override;
+    std::unique_ptr<TelegramDecoder> clone() const override {
+        return std::make_unique<BusDecoder>(*this);
+    }
 
     const StationConfig& station(std::uint8_t address) const noexcept {
         return stations_[address & 0x7F];

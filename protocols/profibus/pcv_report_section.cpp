@@ -8,10 +8,25 @@
 #include "formats/json.hpp"
 #include "formats/report_markup.hpp"
 #include "formats/report_model.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/session_tracker.hpp"
 
 namespace dpscope::report {
 
 namespace {
+
+// The capture's tracker, a PROFIBUS one (profibus_tracked(): the report is PROFIBUS's only when
+// it is).
+const SessionTracker& profibus_tracker(const ReportContext& c) noexcept {
+    return static_cast<const SessionTracker&>(*c.tracker);
+}
+
+// What the decoder knows of a slave's configuration (none without a PROFIBUS decoder).
+const StationConfig& profibus_station(const ReportContext& c, std::uint8_t slave) noexcept {
+    static const StationConfig kUnknown{};
+    const auto* decoder = dynamic_cast<const BusDecoder*>(c.decoder);
+    return decoder ? decoder->station(slave) : kUnknown;
+}
 
 // The PROFIBUS bus suite's and the cyclic channel's kinds: all but the DP-V1 parameter-access,
 // the FC protocol and the VLT 2000 ones.
@@ -93,7 +108,7 @@ class PcvSection final : public StationSection {
             if (covers(kind))
                 findings_[static_cast<std::size_t>(kind)] =
                     stats.findings[static_cast<std::size_t>(kind)];
-        const StationConfig& config = c.decoder->station(stats.slave);
+        const StationConfig& config = profibus_station(c, stats.slave);
         has_ident_ = config.has_ident;
         ident_ = config.ident;
         timed_ = stats.first_time_ns != kNoTime;
@@ -397,7 +412,7 @@ class PcvSection final : public StationSection {
 // The cyclic and DP-V1 sections of the PROFIBUS DP slaves.
 void add_profibus_sections(const ReportContext& c, const ChannelTimelines& timelines,
                            ReportModel& m) {
-    for (const ChannelStats* stats : c.tracker->channels()) {
+    for (const ChannelStats* stats : profibus_tracker(c).channels()) {
         if (!shows_slave(c, stats->slave)) continue;
         bool dp_findings = false, dpv1_findings = false;
         for (FindingKind kind : kAllKinds)
@@ -413,9 +428,11 @@ void add_profibus_sections(const ReportContext& c, const ChannelTimelines& timel
     }
 }
 
-bool profibus_tracked(const ReportContext& c) noexcept { return c.tracker != nullptr; }
+bool profibus_tracked(const ReportContext& c) noexcept {
+    return dynamic_cast<const SessionTracker*>(c.tracker) != nullptr;
+}
 
-const BusStats& profibus_bus_stats(const ReportContext& c) { return c.tracker->bus(); }
+const BusStats& profibus_bus_stats(const ReportContext& c) { return profibus_tracker(c).bus(); }
 
 // The writers word PROFIBUS DP's checks themselves (checks_rc8_rule); this is their time-out.
 std::string profibus_checks_text(const ReportContext& c, const ReportModel& m) {

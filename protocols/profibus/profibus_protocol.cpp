@@ -3,6 +3,7 @@
 #include <array>
 
 #include "core/protocol_descriptor.hpp"
+#include "protocols/lane_options.hpp"
 #include "protocols/profibus/fdl_framing_rules.hpp"
 
 namespace dpscope {
@@ -28,6 +29,16 @@ void profibus_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
             seen.set(a.pnu);
 }
 
+std::unique_ptr<TelegramDecoder> profibus_decoder(const LaneOptions& options) {
+    return std::make_unique<BusDecoder>(options.decoder);
+}
+
+std::unique_ptr<TelegramTracker> profibus_tracker(const LaneOptions& options) {
+    TrackerOptions tracker = options.tracker;
+    tracker.timeout_ns = options.timeout_ns;
+    return std::make_unique<SessionTracker>(tracker);
+}
+
 }  // namespace
 
 const ProtocolDescriptor& profibus_protocol() noexcept {
@@ -48,6 +59,8 @@ const ProtocolDescriptor& profibus_protocol() noexcept {
         .masters_addressed = true,
         .addresses_pnu = profibus_addresses_pnu,
         .mark_pnus = profibus_mark_pnus,
+        .make_decoder = profibus_decoder,
+        .make_tracker = profibus_tracker,
     };
     return descriptor;
 }

@@ -131,6 +131,12 @@ SessionTracker::Channel& SessionTracker::channel(std::uint8_t master, std::uint8
     return *channels_[static_cast<std::size_t>(position)];
 }
 
+bool SessionTracker::has_station(std::uint8_t address) const {
+    const std::vector<const ChannelStats*> seen = channels();
+    return std::any_of(seen.begin(), seen.end(),
+                       [address](const ChannelStats* s) { return s->slave == address; });
+}
+
 std::vector<const ChannelStats*> SessionTracker::channels() const {
     std::vector<const ChannelStats*> out;
     for (const auto& ch : channels_)

@@ -29,6 +29,7 @@
 #include "core/channel_index.hpp"
 #include "core/finding.hpp"
 #include "core/parameter_channel_engine.hpp"
+#include "core/protocol_lane.hpp"
 #include "core/telegram.hpp"
 #include "protocols/profibus/dp_config_rule.hpp"
 #include "protocols/profibus/dp_link_rules.hpp"
@@ -114,21 +115,21 @@ struct ChannelStats : ParameterChannelStats {
     Dpv1Stats dpv1;  // DP-V1 parameter access (protocols/profibus/dpv1/dpv1_parameter_access.hpp)
 };
 
-class SessionTracker {
+class SessionTracker final : public TelegramTracker {
   public:
     explicit SessionTracker(TrackerOptions options = {});
-    ~SessionTracker();
+    ~SessionTracker() override;
     SessionTracker(const SessionTracker&) = delete;
     SessionTracker& operator=(const SessionTracker&) = delete;
 
     // Feeds the next telegram in capture order. Returns the findings discovered at it (some may
     // concern earlier telegrams: their request_frame says which); valid until the next call.
-    std::span<const Finding> track(const DecodedTelegram& t);
+    std::span<const Finding> track(const DecodedTelegram& t) override;
     // The end of the capture at `end_ns` (a live capture's stop time; default: the last
     // telegram's time): what is still open past the time-out then is reported.
-    std::span<const Finding> finish(std::int64_t end_ns = kNoTime);
+    std::span<const Finding> finish(std::int64_t end_ns = kNoTime) override;
     // The transactions the last track() completed; valid until the next call.
-    std::span<const CompletedTransaction> completed() const noexcept { return completed_; }
+    std::span<const CompletedTransaction> completed() const noexcept override { return completed_; }
 
     // Channels ordered by slave, then master.
     std::vector<const ChannelStats*> channels() const;
@@ -142,7 +143,11 @@ class SessionTracker {
     // The parameter number the last tracked telegram's parameter channel is about, -1 when it
     // carries none: the PCV's own PNU, except for a rejection (RC 7) or "no authority" (RC 8)
     // that leaves the PNU out (PNU 0): that one is about the request it answers.
-    std::int32_t subject_pnu() const noexcept { return subject_pnu_; }
+    std::int32_t subject_pnu() const noexcept override { return subject_pnu_; }
+    // Whether a channel of the slave with this address was seen.
+    bool has_station(std::uint8_t address) const override;
+    std::int64_t timeout_ns() const noexcept override { return options_.timeout_ns; }
+    bool strict() const noexcept override { return options_.strict; }
 
   private:
     struct Channel {

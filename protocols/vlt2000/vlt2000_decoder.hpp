@@ -17,6 +17,7 @@
 #include <array>
 #include <cstdint>
 
+#include "core/protocol_lane.hpp"
 #include "core/telegram.hpp"
 #include "core/time.hpp"
 #include "protocols/vlt2000/vlt2000_telegram.hpp"
@@ -32,12 +33,15 @@ struct Vlt2000DecoderOptions {
     bool check_checksum = true;
 };
 
-class Vlt2000Decoder {
+class Vlt2000Decoder final : public TelegramDecoder {
   public:
     explicit Vlt2000Decoder(Vlt2000DecoderOptions options = {}) noexcept;
 
     // Decodes one telegram. The result refers to `bytes` and stays valid until the next call.
-    const DecodedTelegram& decode(Bytes bytes, std::int64_t time_ns, std::uint64_t frame);
+    const DecodedTelegram& decode(Bytes bytes, std::int64_t time_ns, std::uint64_t frame) override;
+    std::unique_ptr<TelegramDecoder> clone() const override {
+        return std::make_unique<Vlt2000Decoder>(*this);
+    }
 
     const Vlt2000DecoderOptions& options() const noexcept { return options_; }
 

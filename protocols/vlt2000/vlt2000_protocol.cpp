@@ -3,11 +3,17 @@
 #include <optional>
 
 #include "core/protocol_descriptor.hpp"
+#include "protocols/lane_options.hpp"
 #include "protocols/vlt2000/vlt2000_framing_rules.hpp"
 
 namespace dpscope {
 
 namespace {
+
+// Its line unless --baud says otherwise: 9600 baud 8N1 (its manual: 8 data bits, no parity, 1
+// stop bit; the values of its parameter 501 were not found, so the rate is dpscope's choice,
+// docs/decisions.md).
+constexpr std::uint32_t kVlt2000DefaultLineBaud = 9600;
 
 // No link type of its own: dpscope writes it as USER0 and records the bus in the file.
 constexpr std::array<PcapLinkType, 1> kVlt2000LinkTypes{{{kLinkTypeUser0, "USER0"}}};
@@ -27,6 +33,20 @@ void vlt2000_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
     if (const auto pnu = vlt2000_named_pnu(t)) seen.set(*pnu);
 }
 
+std::unique_ptr<TelegramDecoder> vlt2000_decoder(const LaneOptions& options) {
+    Vlt2000DecoderOptions decoder = options.vlt2000_decoder;
+    decoder.response_window_ns = options.timeout_ns;
+    return std::make_unique<Vlt2000Decoder>(decoder);
+}
+
+std::unique_ptr<TelegramTracker> vlt2000_tracker(const LaneOptions& options) {
+    Vlt2000TrackerOptions tracker = options.vlt2000_tracker;
+    tracker.timeout_ns = options.timeout_ns;
+    tracker.line_baud = options.line_baud != 0 ? options.line_baud : kVlt2000DefaultLineBaud;
+    if (options.character_bits != 0) tracker.character_bits = options.character_bits;
+    return std::make_unique<Vlt2000Tracker>(tracker);
+}
+
 }  // namespace
 
 const ProtocolDescriptor& vlt2000_protocol() noexcept {
@@ -44,9 +64,13 @@ const ProtocolDescriptor& vlt2000_protocol() noexcept {
         .traffic_name = "VLT 2000",
         .has_bus_health = false,
         .timed_by_line = true,
+        .default_baud = kVlt2000DefaultLineBaud,
+        .default_parity = "none",
         .masters_addressed = false,
         .addresses_pnu = vlt2000_addresses_pnu,
         .mark_pnus = vlt2000_mark_pnus,
+        .make_decoder = vlt2000_decoder,
+        .make_tracker = vlt2000_tracker,
     };
     return descriptor;
 }

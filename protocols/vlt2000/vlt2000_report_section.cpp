@@ -12,10 +12,25 @@
 #include "formats/report_markup.hpp"
 #include "formats/report_model.hpp"
 #include "protocols/vlt2000/vlt2000_codes.hpp"
+#include "protocols/vlt2000/vlt2000_decoder.hpp"
+#include "protocols/vlt2000/vlt2000_tracker.hpp"
 
 namespace dpscope::report {
 
 namespace {
+
+// The capture's tracker, a VLT 2000 one (vlt2000_tracked(): the report is VLT 2000's only when it
+// is).
+const Vlt2000Tracker& vlt2000_tracker(const ReportContext& c) noexcept {
+    return static_cast<const Vlt2000Tracker&>(*c.tracker);
+}
+
+// --vlt2000-checksum check (the default): a wrong checksum is a finding; the report's checks say
+// whether it was judged.
+bool checksums_checked(const ReportContext& c) noexcept {
+    const auto* decoder = dynamic_cast<const Vlt2000Decoder*>(c.decoder);
+    return decoder == nullptr || decoder->options().check_checksum;
+}
 
 constexpr Vlt2000Letter kLetters[] = {Vlt2000Letter::Update, Vlt2000Letter::Read,
                                       Vlt2000Letter::Control, Vlt2000Letter::ReadIndex};
@@ -332,20 +347,22 @@ std::unique_ptr<StationSection> make_vlt2000_section(const ReportContext& /*c*/,
 
 void add_vlt2000_sections(const ReportContext& c, const ChannelTimelines& timelines,
                           ReportModel& m) {
-    add_drive_sections(c, c.vlt2000_tracker->stations(), timelines, make_vlt2000_section, m);
+    add_drive_sections(c, vlt2000_tracker(c).stations(), timelines, make_vlt2000_section, m);
 }
 
-bool vlt2000_tracked(const ReportContext& c) noexcept { return c.vlt2000_tracker != nullptr; }
+bool vlt2000_tracked(const ReportContext& c) noexcept {
+    return dynamic_cast<const Vlt2000Tracker*>(c.tracker) != nullptr;
+}
 
-const BusStats& vlt2000_bus_stats(const ReportContext& c) { return c.vlt2000_tracker->bus(); }
+const BusStats& vlt2000_bus_stats(const ReportContext& c) { return vlt2000_tracker(c).bus(); }
 
 std::string vlt2000_checks_text(const ReportContext& c, const ReportModel& m) {
     return fmt::format(
         "{}, {}",
-        m.timed ? fmt::format("time-out {} ms", c.vlt2000_tracker->options().timeout_ns / 1'000'000)
+        m.timed ? fmt::format("time-out {} ms", vlt2000_tracker(c).options().timeout_ns / 1'000'000)
                 : std::string(kNoTimestamps),
-        c.vlt2000_checksum ? "checksums checked"
-                           : "checksums not checked (--vlt2000-checksum ignore)");
+        checksums_checked(c) ? "checksums checked"
+                             : "checksums not checked (--vlt2000-checksum ignore)");
 }
 
 std::string_view vlt2000_nothing_checked_reason(const ReportContext& c) {
@@ -354,7 +371,7 @@ std::string_view vlt2000_nothing_checked_reason(const ReportContext& c) {
 }
 
 void vlt2000_write_json_options(const ReportContext& c, JsonWriter& w) {
-    w.key("vlt2000_checksum").string(c.vlt2000_checksum ? "check" : "ignore");
+    w.key("vlt2000_checksum").string(checksums_checked(c) ? "check" : "ignore");
 }
 
 }  // namespace

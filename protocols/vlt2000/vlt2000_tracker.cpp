@@ -88,6 +88,28 @@ std::vector<const Vlt2000StationStats*> Vlt2000Tracker::stations() const {
     return out;
 }
 
+bool Vlt2000Tracker::has_station(std::uint8_t address) const {
+    return std::any_of(stations_.begin(), stations_.end(),
+                       [address](const auto& s) { return s->address == address; });
+}
+
+// Besides the early replies: most telegrams with a wrong checksum by the VLT 3000/3500 rule,
+// perhaps because the drives compute it otherwise (docs/decisions.md); the option is named.
+std::vector<std::string> Vlt2000Tracker::end_warnings(std::uint64_t telegrams) const {
+    std::vector<std::string> warnings =
+        early_response_warning(early_responses_, options_.line_baud, options_.character_bits);
+    std::uint64_t wrong = 0;
+    for (const auto& st : stations_)
+        wrong += st->checksum_errors;
+    if (wrong >= 4 && wrong * 2 >= telegrams)
+        warnings.push_back(fmt::format(
+            "{} of {} telegrams have a wrong checksum by the VLT 3000/3500 rule (the sum of the 18 "
+            "characters after '<'); if the drives compute it otherwise, --vlt2000-checksum ignore "
+            "decodes them without it",
+            wrong, telegrams));
+    return warnings;
+}
+
 std::uint64_t Vlt2000Tracker::transactions() const noexcept {
     std::uint64_t total = 0;
     for (const auto& st : stations_)

@@ -34,6 +34,7 @@
 #include "core/finding.hpp"
 #include "core/log_histogram.hpp"
 #include "core/parameter_channel_engine.hpp"
+#include "core/protocol_lane.hpp"
 #include "core/telegram.hpp"
 
 namespace dpscope {
@@ -109,22 +110,22 @@ struct Vlt2000StationStats {
     std::uint64_t not_judged_total() const noexcept { return not_judged + open; }
 };
 
-class Vlt2000Tracker {
+class Vlt2000Tracker final : public TelegramTracker {
   public:
     explicit Vlt2000Tracker(Vlt2000TrackerOptions options = {});
-    ~Vlt2000Tracker();
+    ~Vlt2000Tracker() override;
     Vlt2000Tracker(const Vlt2000Tracker&) = delete;
     Vlt2000Tracker& operator=(const Vlt2000Tracker&) = delete;
 
     // Feeds the next VLT 2000 telegram in capture order. Returns the findings discovered at it
     // (some concern an earlier command: their request_frame says which); valid until the next
     // call.
-    std::span<const Finding> track(const DecodedTelegram& t);
+    std::span<const Finding> track(const DecodedTelegram& t) override;
     // The end of the capture at `end_ns` (default: the last telegram's time): a command still
     // unanswered past the time-out then is reported; one within it is not judged.
-    std::span<const Finding> finish(std::int64_t end_ns = kNoTime);
+    std::span<const Finding> finish(std::int64_t end_ns = kNoTime) override;
     // The command -> reply pairs the last track() completed; valid until the next call.
-    std::span<const CompletedTransaction> completed() const noexcept { return completed_; }
+    std::span<const CompletedTransaction> completed() const noexcept override { return completed_; }
     const Vlt2000TrackerOptions& options() const noexcept { return options_; }
     // Replies that began before their command could have ended at options().line_baud (their
     // reply time is counted as 0): the line was faster than that.
@@ -139,7 +140,12 @@ class Vlt2000Tracker {
     // Commands answered, over every address.
     std::uint64_t transactions() const noexcept;
     // The parameter number the last telegram is about (-1: none, and for a C telegram).
-    std::int32_t subject_pnu() const noexcept { return subject_pnu_; }
+    std::int32_t subject_pnu() const noexcept override { return subject_pnu_; }
+    // Whether the drive with this address was seen.
+    bool has_station(std::uint8_t address) const override;
+    std::int64_t timeout_ns() const noexcept override { return options_.timeout_ns; }
+    // Responses earlier than the line allows (early_responses()).
+    std::vector<std::string> end_warnings(std::uint64_t telegrams) const override;
 
   private:
     struct Pending {
