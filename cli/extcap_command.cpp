@@ -316,7 +316,7 @@ int run_extcap(int argc, char** argv) {
                    "of /dev/PORT)")
         ->type_name("DEVICE");
     app.add_option("--bus", command.bus, "The bus on the line: profibus, fc or vlt2000")
-        ->check(CLI::IsMember({"profibus", "fc", "vlt2000"}))
+        ->check(CLI::IsMember(bus_names()))
         ->type_name("BUS")
         ->default_str("profibus");
     app.add_option("--baud", command.baud,

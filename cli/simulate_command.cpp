@@ -101,19 +101,16 @@ int report_injections(const Simulator& simulator) {
 
 // Plays the simulated session (or a capture, with --replay) onto a tty.
 int play_onto_device(const SimulateCommand& command, Simulator* simulator) {
-    // 8E1 for PROFIBUS and the FC protocol, 8N1 for the VLT 2000.
+    // The bus's parity (8E1 for PROFIBUS and the FC protocol, 8N1 for the VLT 2000).
+    const ProtocolDescriptor& bus =
+        protocol_descriptor(protocol_from_name(command.bus).value_or(Protocol::ProfibusDp));
     SerialSettings serial{command.device, command.baud, false, true};
-    if (command.bus == "vlt2000") serial.parity = SerialParity::None;
+    serial.parity = serial_parity_from_name(bus.default_parity).value_or(SerialParity::Even);
     std::unique_ptr<TelegramSource> replay;
     if (!command.replay.empty()) {
         // The simulator makes the --bus protocol; a capture played in its place is one too.
         BusChoice choice;
-        OpenResult opened = open_source(
-            command.replay, InputFormat::Auto,
-            command.bus == "profibus"
-                ? &profibus_protocol()
-                : &protocol_descriptor(protocol_from_name(command.bus).value_or(Protocol::Fc)),
-            choice);
+        OpenResult opened = open_source(command.replay, InputFormat::Auto, &bus, choice);
         if (!opened) {
             print_error(opened.error());
             return kExitUsage;
@@ -223,16 +220,20 @@ int run_simulate(const SimulateCommand& command) {
         return kExitUsage;
     }
     SimulatorOptions options;
-    const bool fc = command.bus == "fc";
-    const bool vlt2000 = command.bus == "vlt2000";
-    options.bus = fc ? Protocol::Fc : vlt2000 ? Protocol::Vlt2000 : Protocol::ProfibusDp;
+    const ProtocolDescriptor& bus =
+        protocol_descriptor(protocol_from_name(command.bus).value_or(Protocol::ProfibusDp));
+    const bool fc = bus.protocol == Protocol::Fc;
+    const bool vlt2000 = bus.protocol == Protocol::Vlt2000;
+    const bool profibus = bus.protocol == Protocol::ProfibusDp;
+    options.bus = bus.protocol;
     options.seed = command.seed;
-    options.baud =
-        (fc || vlt2000) && !command.baud_given ? fc_protocol().default_baud : command.baud;
-    if (fc && (options.baud < fc_protocol().min_baud || options.baud > fc_protocol().max_baud)) {
-        print_error(fmt::format(
-            "--baud: must be a whole number from {} to {} baud for the FC protocol, not '{}'",
-            fc_protocol().min_baud, fc_protocol().max_baud, options.baud));
+    // A bus with a default line runs at it unless --baud says otherwise, within its rates.
+    options.baud = bus.default_baud != 0 && !command.baud_given ? bus.default_baud : command.baud;
+    if (bus.min_baud != 0 && (options.baud < bus.min_baud || options.baud > bus.max_baud)) {
+        print_error(
+            fmt::format("--baud: must be a whole number from {} to {} baud for the {}, "
+                        "not '{}'",
+                        bus.min_baud, bus.max_baud, bus.traffic_name, options.baud));
         return kExitUsage;
     }
     if (vlt2000 && (options.baud < kVlt2000MinBaud || options.baud > kVlt2000MaxBaud)) {
@@ -241,7 +242,7 @@ int run_simulate(const SimulateCommand& command) {
             kVlt2000MinBaud, kVlt2000MaxBaud, options.baud));
         return kExitUsage;
     }
-    if (!fc && !vlt2000 && options.baud < 9600) {
+    if (profibus && options.baud < 9600) {
         print_error(fmt::format(
             "--baud: must be a whole number from 9600 to 12000000 baud for PROFIBUS, not '{}'",
             options.baud));
@@ -347,7 +348,7 @@ int run_simulate(const SimulateCommand& command) {
         }
         options.slaves.push_back(*slave);
     }
-    if (!command.ring_masters.empty() && (fc || vlt2000)) {
+    if (!command.ring_masters.empty() && !profibus) {
         print_error(fmt::format(
             "--masters: a token ring is PROFIBUS; leave --masters out with --bus {}", command.bus));
         return kExitUsage;
@@ -417,8 +418,7 @@ int run_simulate(const SimulateCommand& command) {
     }
     CaptureFormat format =
         capture_format_from_name(command.output_format).value_or(CaptureFormat::Pcap);
-    int link_type =
-        fc || vlt2000 || command.link_type == "user0" ? kLinkTypeUser0 : kLinkTypeProfibusDl;
+    int link_type = command.link_type == "user0" ? kLinkTypeUser0 : bus.written_link_type().value;
     // Written beside the file and moved into place once complete: a write error (disk full)
     // leaves an existing file as it was.
     Result<std::unique_ptr<PendingOutputFile>> opened_file =
@@ -493,7 +493,7 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
                     "position 9, reason codes 00 to 04), and a broadcast (address 00) every 20 "
                     "cycles; the drives reply within 2 to 8 ms. No start-up and no token; pcap "
                     "and pcapng get link type user0 with the bus recorded")
-        ->check(CLI::IsMember({"profibus", "fc", "vlt2000"}))
+        ->check(CLI::IsMember(bus_names()))
         ->default_str("profibus");
     sub->add_option("--drive", command->drives,
                     "With --bus fc: ADDR[:FORMAT] adds a drive, FORMAT the address byte's format "

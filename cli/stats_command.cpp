@@ -177,7 +177,7 @@ void add_stats_command(CLI::App& app, int& exit_code) {
                     "The bus the capture carries; stats reads profibus only (the default for a "
                     "pcap of link type 257; a raw or hex byte stream is tried with each bus's "
                     "framing)")
-        ->check(CLI::IsMember({"profibus", "fc", "vlt2000"}))
+        ->check(CLI::IsMember(bus_names()))
         ->type_name("BUS");
     sub->add_option("--ppo", command->options.ppo,
                     "ADDR=TYPE: decode slave ADDR (0 to 126) as PPO TYPE (1 to 5) instead of "

@@ -46,6 +46,8 @@ struct ProtocolDescriptor {
     // Raw, hex and serial input; static, outlives every source. (framing.protocol_name() is the
     // name messages about link types use.)
     const FramingRules& framing;
+    // The most bytes a telegram of it has: no framer cuts a longer one from a byte stream.
+    std::size_t max_telegram_bytes = 0;
     // The pcap link types whose records are its telegrams, in the order messages list them; the
     // first is the one dpscope writes and the link type of an empty pcapng capture.
     std::span<const PcapLinkType> link_types;

@@ -23,19 +23,15 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <span>
 #include <string>
 
 #include "capture/telegram_source.hpp"
+#include "core/protocol_descriptor.hpp"
+#include "core/protocol_lane.hpp"
 #include "fuzz/support/fuzz_input.hpp"
-#include "protocols/fc/fc_decoder.hpp"
-#include "protocols/fc/fc_tracker.hpp"
-#include "protocols/profibus/bus_decoder.hpp"
-#include "protocols/profibus/fdl.hpp"
-#include "protocols/profibus/session_tracker.hpp"
-#include "protocols/vlt2000/vlt2000_decoder.hpp"
-#include "protocols/vlt2000/vlt2000_telegram.hpp"
-#include "protocols/vlt2000/vlt2000_tracker.hpp"
+#include "protocols/lane_options.hpp"
 
 namespace {
 
@@ -80,24 +76,13 @@ void check(bool ok) {
     if (!ok) __builtin_trap();
 }
 
-// The most bytes a telegram of `protocol` has: FDL SD2 with LE 249; FC STX, LGE 255 and the 255
-// bytes LGE counts; VLT 2000 its fixed size.
-std::size_t longest_telegram(dpscope::Protocol protocol) {
-    switch (protocol) {
-        case dpscope::Protocol::ProfibusDp: return dpscope::kMaxTelegramSize;
-        case dpscope::Protocol::Fc: return 2 + 255;
-        case dpscope::Protocol::Vlt2000: return dpscope::kVlt2000TelegramSize;
-    }
-    return 0;
-}
-
 // Pulls every record of `source`, decoding and tracking it with the bus's decoder and tracker.
-template <class Decoder, class Tracker>
-void read_records(dpscope::TelegramSource& source, dpscope::Protocol protocol,
+void read_records(dpscope::TelegramSource& source, const dpscope::ProtocolDescriptor& protocol,
                   std::size_t file_size) {
     using dpscope::InputFormat;
-    Decoder decoder;
-    Tracker tracker;
+    const dpscope::LaneOptions options;
+    std::unique_ptr<dpscope::TelegramDecoder> decoder = protocol.make_decoder(options);
+    std::unique_ptr<dpscope::TelegramTracker> tracker = protocol.make_tracker(options);
     dpscope::Record record;
     std::uint64_t last = 0;
     while (source.next(record)) {
@@ -105,12 +90,12 @@ void read_records(dpscope::TelegramSource& source, dpscope::Protocol protocol,
         const InputFormat format = source.format();
         const bool stream =
             format == InputFormat::Raw || format == InputFormat::Hex || format == InputFormat::Text;
-        if (stream) check(record.bytes.size() <= longest_telegram(protocol));
+        if (stream) check(record.bytes.size() <= protocol.max_telegram_bytes);
         if (format != InputFormat::Hex) check(record.bytes.size() <= file_size);
         last = record.number;
-        (void)tracker.track(decoder.decode(record.bytes, record.time_ns, record.number));
+        (void)tracker->track(decoder->decode(record.bytes, record.time_ns, record.number));
     }
-    (void)tracker.finish();
+    (void)tracker->finish();
     check(source.format() != dpscope::InputFormat::Auto);
     (void)source.name().size();
     (void)source.bytes_skipped();
@@ -131,20 +116,7 @@ void read_all(const std::string& path, dpscope::InputFormat format,
     std::size_t issue_bytes = 0;
     source.on_issue(
         [&issue_bytes](const dpscope::InputIssue& issue) { issue_bytes += issue.message.size(); });
-    switch (choice.protocol->protocol) {
-        case dpscope::Protocol::ProfibusDp:
-            read_records<dpscope::BusDecoder, dpscope::SessionTracker>(
-                source, choice.protocol->protocol, file_size);
-            break;
-        case dpscope::Protocol::Fc:
-            read_records<dpscope::FcDecoder, dpscope::FcTracker>(source, choice.protocol->protocol,
-                                                                 file_size);
-            break;
-        case dpscope::Protocol::Vlt2000:
-            read_records<dpscope::Vlt2000Decoder, dpscope::Vlt2000Tracker>(
-                source, choice.protocol->protocol, file_size);
-            break;
-    }
+    read_records(source, *choice.protocol, file_size);
     (void)source.link_type();
     (void)source.unusable_reason();
 }

@@ -1,6 +1,7 @@
-// Private to the simulator (simulator/simulator.cpp, simulator/session_span.cpp): what a session
-// takes when SimulatorOptions leaves it open, the slaves, the drives and the baud rates of the FC
-// and VLT 2000 buses. Not for other users: the simulator's interface is simulator/simulator.hpp.
+// Private to the simulator (simulator/simulator.cpp, simulator/session_span.cpp and the PROFIBUS
+// DP bus model): the slaves a PROFIBUS DP session takes when SimulatorOptions leaves them open,
+// and the length of such a session. Not for other users: the simulator's interface is
+// simulator/simulator.hpp. (The serial buses' defaults are in their bus models.)
 #pragma once
 
 #include <cstdint>
@@ -15,15 +16,7 @@ inline std::vector<SimulatedSlave> slaves_or_default(const SimulatorOptions& opt
     return {{3, 1, Dialect::Vlt}, {4, 2, Dialect::Vlt}, {5, 5, Dialect::Vlt}};
 }
 
-inline std::vector<SimulatedDrive> drives_or_default(const SimulatorOptions& options) {
-    return options.drives.empty() ? default_drives() : options.drives;
-}
-
-inline constexpr std::uint32_t kFcDefaultBaud = 9600;
-inline constexpr std::uint32_t kVlt2000DefaultBaud = 9600;
-
-inline std::vector<std::uint8_t> vlt2000_drives_or_default(const SimulatorOptions& options) {
-    return options.vlt2000_drives.empty() ? default_vlt2000_drives() : options.vlt2000_drives;
-}
+// session_span_bound_ns of a PROFIBUS DP session (simulator/session_span.cpp).
+std::int64_t profibus_session_span_bound_ns(const SimulatorOptions& options);
 
 }  // namespace dpscope::detail

@@ -1,75 +1,23 @@
-// session_span_bound_ns (simulator/simulator.hpp): at least the time a session of each bus
-// takes, from its options alone.
+// session_span_bound_ns (simulator/simulator.hpp): at least the time a session takes, from its
+// options alone; the bus's record says (SimulatedBus::span_bound_ns), and PROFIBUS DP's is here,
+// with the session that makes its traffic.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "simulator/bus_model.hpp"
 #include "simulator/session_defaults.hpp"
 #include "simulator/simulator.hpp"
 
 namespace dpscope {
 
-using detail::drives_or_default;
-using detail::kFcDefaultBaud;
-using detail::kVlt2000DefaultBaud;
 using detail::slaves_or_default;
-using detail::vlt2000_drives_or_default;
-
-namespace {
-
-// session_span_bound_ns of a VLT 2000 session.
-std::int64_t vlt2000_session_span_bound_ns(const SimulatorOptions& options) {
-    const double drives = static_cast<double>(vlt2000_drives_or_default(options).size());
-    const double baud = options.baud == 0 ? kVlt2000DefaultBaud : static_cast<double>(options.baud);
-    // A telegram is 22 characters of 10 bits (garbage is shorter). A poll: garbage, a command, a
-    // stacked one and the reply, each after a gap of at most the master's time-out (the longest
-    // wait).
-    constexpr double kTelegramBits = 22 * 10;
-    const double wait_ns = static_cast<double>(Vlt2000BusModel::kMasterTimeoutNs);
-    const double telegram_ns = kTelegramBits * 1e9 / baud + wait_ns;
-    const double poll_ns = 4 * telegram_ns;
-    // A cycle: every drive polled, a broadcast and a reply to it (twice with one drive). At
-    // least --cycle-us.
-    const double cycle_ns =
-        std::max(static_cast<double>(options.cycle_us) * 1e3, drives * poll_ns + 4 * telegram_ns);
-    double cycles = static_cast<double>(options.cycles);
-    if (options.max_telegrams != 0 &&
-        (options.cycles == 0 || options.max_telegrams < options.cycles))
-        cycles = static_cast<double>(options.max_telegrams);
-    // After a missing reply the session runs one cycle more.
-    const double span = (cycles + 1) * cycle_ns;
-    constexpr double kLargest = 9.2e18;
-    return span >= kLargest ? std::numeric_limits<std::int64_t>::max()
-                            : static_cast<std::int64_t>(std::ceil(span));
-}
-
-// session_span_bound_ns of an FC session.
-std::int64_t fc_session_span_bound_ns(const SimulatorOptions& options) {
-    const double drives = static_cast<double>(drives_or_default(options).size());
-    const double baud = options.baud == 0 ? kFcDefaultBaud : static_cast<double>(options.baud);
-    // A telegram is at most 257 bytes of 11 bits. A poll: garbage, a request, a stacked one and
-    // the answer, each after a gap of at most the master's time-out (the longest wait).
-    constexpr double kTelegramBits = 257 * 11;
-    const double wait_ns = static_cast<double>(FcBusModel::kMasterTimeoutNs);
-    const double poll_ns = 4 * (kTelegramBits * 1e9 / baud + wait_ns);
-    // A cycle: every drive polled, a broadcast (twice with one drive). At least --cycle-us.
-    const double cycle_ns = std::max(static_cast<double>(options.cycle_us) * 1e3,
-                                     drives * poll_ns + 2 * (kTelegramBits * 1e9 / baud + wait_ns));
-    double cycles = static_cast<double>(options.cycles);
-    if (options.max_telegrams != 0 &&
-        (options.cycles == 0 || options.max_telegrams < options.cycles))
-        cycles = static_cast<double>(options.max_telegrams);
-    const double span = cycles * cycle_ns;
-    constexpr double kLargest = 9.2e18;
-    return span >= kLargest ? std::numeric_limits<std::int64_t>::max()
-                            : static_cast<std::int64_t>(std::ceil(span));
-}
-
-}  // namespace
 
 std::int64_t session_span_bound_ns(const SimulatorOptions& options) {
-    if (options.bus == Protocol::Fc) return fc_session_span_bound_ns(options);
-    if (options.bus == Protocol::Vlt2000) return vlt2000_session_span_bound_ns(options);
+    return simulated_bus(options.bus).span_bound_ns(options);
+}
+
+std::int64_t detail::profibus_session_span_bound_ns(const SimulatorOptions& options) {
     const double slaves = static_cast<double>(slaves_or_default(options).size());
     const double baud = options.baud == 0 ? 1'500'000.0 : static_cast<double>(options.baud);
     // A telegram (or garbage record) is at most 64 bytes of 11 bits, after a gap of at most

@@ -13,19 +13,10 @@
 
 namespace dpscope {
 
-using detail::drives_or_default;
-using detail::kFcDefaultBaud;
-using detail::kVlt2000DefaultBaud;
 using detail::slaves_or_default;
-using detail::vlt2000_drives_or_default;
 
 Result<void> check_simulator_faults(const SimulatorOptions& options) {
-    if (options.bus == Protocol::Fc)
-        return check_fc_faults(options.faults, drives_or_default(options), options.cycles);
-    if (options.bus == Protocol::Vlt2000)
-        return check_vlt2000_faults(options.faults, vlt2000_drives_or_default(options),
-                                    options.cycles);
-    return check_faults(options.faults, slaves_or_default(options), options.cycles);
+    return simulated_bus(options.bus).check_faults(options);
 }
 
 std::vector<std::string> faults_not_injected(const SimulatorOptions& options,
@@ -37,33 +28,23 @@ std::vector<std::string> faults_not_injected(const SimulatorOptions& options,
 }
 
 Simulator::Simulator(SimulatorOptions options)
-    : options_(std::move(options)), once_faults_(options_.faults) {
+    : options_(std::move(options)),
+      bus_(&simulated_bus(options_.bus)),
+      once_faults_(options_.faults) {
     rng_state_ = options_.seed * 0x9E3779B97F4A7C15ULL + 0x2545F4914F6CDD1DULL;
     now_ = std::max<std::int64_t>(0, options_.start_time_ns);
-    if (options_.bus == Protocol::Fc) {
-        // An FC bus: the drives, and one address-only entry each for the faults.
-        options_.drives = drives_or_default(options_);
+    character_bits_ = bus_->character_bits;
+    if (bus_->make_model) {
+        // A bus of drives (FC, VLT 2000): its model, and one address-only entry per drive for
+        // the faults.
+        std::vector<std::uint8_t> drives;
+        model_ = bus_->make_model(options_, drives);
         options_.slaves.clear();
-        if (options_.baud == 0) options_.baud = kFcDefaultBaud;
-        for (const SimulatedDrive& drive : options_.drives) {
-            Slave entry;
-            entry.config.address = drive.address;
-            slaves_.push_back(entry);
-        }
-        fc_.emplace(options_.drives);
-        started_ = true;  // no start-up
-    } else if (options_.bus == Protocol::Vlt2000) {
-        // A VLT 2000 bus: likewise, 8N1.
-        options_.vlt2000_drives = vlt2000_drives_or_default(options_);
-        options_.slaves.clear();
-        if (options_.baud == 0) options_.baud = kVlt2000DefaultBaud;
-        character_bits_ = 10;
-        for (std::uint8_t address : options_.vlt2000_drives) {
+        for (std::uint8_t address : drives) {
             Slave entry;
             entry.config.address = address;
             slaves_.push_back(entry);
         }
-        vlt2000_.emplace(options_.vlt2000_drives);
         started_ = true;  // no start-up
     } else {
         options_.slaves = slaves_or_default(options_);
@@ -181,27 +162,10 @@ bool Simulator::next(std::vector<std::uint8_t>& bytes, std::int64_t& time_ns) {
     return true;
 }
 
-// The FC bus model's view of the session: its random numbers, faults and clock.
-class Simulator::FcEnvironment final : public FcBusEnvironment {
+// A bus model's view of the session: its random numbers, faults and clock.
+class Simulator::ModelEnvironment final : public BusEnvironment {
   public:
-    explicit FcEnvironment(Simulator& simulator) : simulator_(simulator) {}
-    std::uint64_t random(std::uint64_t bound) override { return simulator_.random(bound); }
-    bool inject(FaultKind kind, std::size_t drive) override {
-        return simulator_.inject(kind, drive);
-    }
-    void send(std::vector<std::uint8_t> bytes, std::int64_t gap_ns) override {
-        simulator_.emit_after(std::move(bytes), gap_ns);
-    }
-    void wait(std::int64_t ns) override { simulator_.advance(ns); }
-
-  private:
-    Simulator& simulator_;
-};
-
-// The VLT 2000 bus model's view of the session: its random numbers, faults and clock.
-class Simulator::Vlt2000Environment final : public Vlt2000BusEnvironment {
-  public:
-    explicit Vlt2000Environment(Simulator& simulator) : simulator_(simulator) {}
+    explicit ModelEnvironment(Simulator& simulator) : simulator_(simulator) {}
     std::uint64_t random(std::uint64_t bound) override { return simulator_.random(bound); }
     bool inject(FaultKind kind, std::size_t drive) override {
         return simulator_.inject(kind, drive);
@@ -218,14 +182,9 @@ class Simulator::Vlt2000Environment final : public Vlt2000BusEnvironment {
 void Simulator::generate_cycle() {
     const std::int64_t cycle_start = now_;
     arm_faults();
-    if (fc_ || vlt2000_) {
-        if (fc_) {
-            FcEnvironment environment(*this);
-            fc_->cycle(environment, cycle_);
-        } else {
-            Vlt2000Environment environment(*this);
-            vlt2000_->cycle(environment, cycle_);
-        }
+    if (model_) {
+        ModelEnvironment environment(*this);
+        model_->cycle(environment, cycle_);
         const std::int64_t cycle_ns = static_cast<std::int64_t>(options_.cycle_us) * 1000;
         if (now_ - cycle_start < cycle_ns) advance(cycle_ns - (now_ - cycle_start));
         ++cycle_;
@@ -279,8 +238,7 @@ void Simulator::arm_faults() {
         const FaultSpec& spec = options_.faults[j];
         auto eligible = [&](std::size_t i) {
             if (spec.slave && slaves_[i].config.address != *spec.slave) return false;
-            if (fc_) return fault_applies_to_fc(spec.kind);
-            if (vlt2000_) return fault_applies_to_vlt2000(spec.kind);
+            if (model_) return bus_->fault_applies(spec.kind);
             if (fault_needs_dpv1(spec.kind) && !slaves_[i].dpv1) return false;
             if (fault_needs_spontaneous_messages(spec.kind) &&
                 !has_spontaneous_messages(slaves_[i].config.dialect))
@@ -317,12 +275,11 @@ void Simulator::take(FaultKind kind, std::size_t slave, std::uint64_t& armed) {
         hold_open_until_ = std::max(
             hold_open_until_, later(now_, give_up + std::int64_t{options_.cycle_us} * 10'000));
     }
-    // A VLT 2000 drive that does not reply: one cycle more, so that the master's next command
-    // (which shows the reply missing) is in the capture.
-    if (kind == FaultKind::Vlt2000NoResponse)
-        hold_open_until_ = std::max(
-            hold_open_until_, later(now_, Vlt2000BusModel::kMasterTimeoutNs +
-                                              std::int64_t{options_.cycle_us} * 1000 + 1'000'000));
+    // The bus's own: a VLT 2000 drive that does not reply, one cycle more, so that the master's
+    // next command (which shows the reply missing) is in the capture.
+    if (bus_->runs_on_ns)
+        if (const std::int64_t runs_on = bus_->runs_on_ns(kind, options_); runs_on > 0)
+            hold_open_until_ = std::max(hold_open_until_, later(now_, runs_on));
 }
 
 }  // namespace dpscope

@@ -21,6 +21,7 @@
 #include <deque>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,6 +32,7 @@
 #include "protocols/profibus/parameter_channel_model.hpp"
 #include "protocols/profibus/ppo.hpp"
 #include "protocols/vlt2000/vlt2000_bus_model.hpp"
+#include "simulator/bus_model.hpp"
 #include "simulator/fault_spec.hpp"
 
 namespace dpscope {
@@ -126,8 +128,7 @@ class Simulator {
     void advance(std::int64_t ns);  // now_ += ns, stopping at the largest int64
     void emit(std::vector<std::uint8_t> bytes, std::uint64_t gap_bits);
     void emit_after(std::vector<std::uint8_t> bytes, std::int64_t gap_ns);
-    class FcEnvironment;       // the FC bus model's view of the session
-    class Vlt2000Environment;  // the VLT 2000 bus model's view of the session
+    class ModelEnvironment;  // a bus model's view of the session
     void generate_start_up();
     void generate_cycle();
     void exchange(std::size_t index);
@@ -158,9 +159,9 @@ class Simulator {
     // On an FC or VLT 2000 bus, one entry per drive with its address only (faults are armed per
     // entry).
     std::vector<Slave> slaves_;
-    std::optional<FcBusModel> fc_;            // the FC bus model (options_.bus == Protocol::Fc)
-    std::optional<Vlt2000BusModel> vlt2000_;  // options_.bus == Protocol::Vlt2000
-    std::uint64_t character_bits_ = 11;       // 8E1 (PROFIBUS, FC); 8N1 (VLT 2000): 10
+    const SimulatedBus* bus_;            // the bus's record (simulator/bus_model.hpp)
+    std::unique_ptr<BusModel> model_;    // a bus of drives: its model; null: PROFIBUS DP
+    std::uint64_t character_bits_ = 11;  // the bus's: 8E1 (PROFIBUS, FC); 8N1 (VLT 2000): 10
     std::deque<std::pair<std::vector<std::uint8_t>, std::int64_t>> queue_;
     // Faults armed and not taken yet, per kind and slave: armed_[kind * slaves + slave].
     std::vector<std::uint64_t> armed_;

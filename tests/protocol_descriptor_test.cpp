@@ -89,6 +89,7 @@ TEST(ProtocolDescriptorTest, EveryProtocolIsDescribedWhole) {
         EXPECT_NE(d->addresses_pnu, nullptr) << d->name;
         EXPECT_NE(d->mark_pnus, nullptr) << d->name;
         EXPECT_EQ(d->lead_byte.has_value(), !d->lead_byte_text.empty()) << d->name;
+        EXPECT_GT(d->max_telegram_bytes, 0u) << d->name;
         EXPECT_NE(d->make_decoder, nullptr) << d->name;
         EXPECT_NE(d->make_tracker, nullptr) << d->name;
         EXPECT_EQ(d->min_baud == 0, d->max_baud == 0) << d->name;

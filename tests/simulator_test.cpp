@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "capture/telegram_source.hpp"
+#include "core/protocol_descriptor.hpp"
+#include "simulator/bus_model.hpp"
 #include "protocols/profibus/bus_decoder.hpp"
 #include "protocols/profibus/dp_payload.hpp"
 #include "protocols/profibus/dpv1/profidrive.hpp"
@@ -79,6 +81,33 @@ std::vector<Decoded> decode_all(const std::vector<Telegram>& telegrams, BusDecod
 }
 
 // ---- reproducibility and timing --------------------------------------------------------------
+
+// The table of simulated buses (simulator/bus_model.hpp), made from the registration list: every
+// protocol has a record of its own with what the session asks; PROFIBUS DP is the session's own
+// traffic, every other bus a model whose drives get one fault entry each.
+TEST(SimulatorTest, EveryProtocolHasItsSimulatedBus) {
+    for (const ProtocolDescriptor* d : protocol_table()) {
+        const SimulatedBus& bus = simulated_bus(d->protocol);
+        EXPECT_EQ(bus.protocol, d->protocol) << d->name;
+        EXPECT_NE(bus.check_faults, nullptr) << d->name;
+        EXPECT_NE(bus.span_bound_ns, nullptr) << d->name;
+        EXPECT_TRUE(bus.character_bits == 10 || bus.character_bits == 11) << d->name;
+        EXPECT_EQ(bus.make_model == nullptr, d->protocol == Protocol::ProfibusDp) << d->name;
+        if (bus.make_model) {
+            EXPECT_NE(bus.fault_applies, nullptr) << d->name;
+            SimulatorOptions options;
+            options.bus = d->protocol;
+            options.baud = 0;
+            std::vector<std::uint8_t> drives;
+            std::unique_ptr<BusModel> model = bus.make_model(options, drives);
+            EXPECT_NE(model, nullptr) << d->name;
+            EXPECT_FALSE(drives.empty()) << d->name;
+            EXPECT_EQ(options.baud, d->default_baud) << d->name;  // what it left open, filled in
+            EXPECT_TRUE(bus.check_faults(options)) << d->name;
+            EXPECT_GT(bus.span_bound_ns(options), 0) << d->name;
+        }
+    }
+}
 
 TEST(SimulatorTest, SameSeedGivesIdenticalSessions) {
     std::vector<Telegram> a = run(small_session(7));

@@ -4,9 +4,13 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <limits>
+#include <memory>
 
 #include "core/protocol_descriptor.hpp"
 #include "protocols/fc/fc_framing_rules.hpp"
+#include "simulator/simulator.hpp"
 
 namespace dpscope {
 
@@ -127,17 +131,17 @@ FcBusModel::FcBusModel(std::vector<SimulatedDrive> drives) : drives_(std::move(d
     }
 }
 
-std::int64_t FcBusModel::between(FcBusEnvironment& env, std::int64_t low, std::int64_t high) {
+std::int64_t FcBusModel::between(BusEnvironment& env, std::int64_t low, std::int64_t high) {
     return low + static_cast<std::int64_t>(env.random(static_cast<std::uint64_t>(high - low) + 1));
 }
 
-void FcBusModel::cycle(FcBusEnvironment& env, std::uint64_t number) {
+void FcBusModel::cycle(BusEnvironment& env, std::uint64_t number) {
     for (std::size_t i = 0; i < state_.size(); ++i)
         poll(env, i);
     if (number % 50 == 49) broadcast(env, number);
 }
 
-void FcBusModel::broadcast(FcBusEnvironment& env, std::uint64_t number) {
+void FcBusModel::broadcast(BusEnvironment& env, std::uint64_t number) {
     // A broadcast process block (1-126 format, ADR 0x80) or a word write of 1-23 to every drive
     // (1-31 format, bit 5: ADR 0x20). Nobody answers.
     std::vector<std::uint8_t> data;
@@ -157,7 +161,7 @@ void FcBusModel::broadcast(FcBusEnvironment& env, std::uint64_t number) {
     env.send(build_fc_telegram(adr, data), between(env, kMasterGapMinNs, kMasterGapMaxNs));
 }
 
-FcBusModel::Command FcBusModel::plan(FcBusEnvironment& env) {
+FcBusModel::Command FcBusModel::plan(BusEnvironment& env) {
     const std::uint64_t roll = env.random(100);
     Command c;
     c.parameter = true;
@@ -304,7 +308,7 @@ std::vector<std::uint8_t> FcBusModel::response_bytes(const Drive& drive, const C
     return build_fc_telegram(drive.adr, data);
 }
 
-void FcBusModel::poll(FcBusEnvironment& env, std::size_t index) {
+void FcBusModel::poll(BusEnvironment& env, std::size_t index) {
     Drive& drive = state_[index];
     if (env.inject(FaultKind::Garbage, index)) {
         // Noise on the line: no byte is an STX, so no telegram starts inside it.
@@ -382,6 +386,66 @@ void FcBusModel::poll(FcBusEnvironment& env, std::size_t index) {
         static constexpr std::uint16_t kReferences[] = {0x1000, 0x2000, 0x3000, 0x4000};
         drive.reference = kReferences[env.random(std::size(kReferences))];
     }
+}
+
+// The FC bus in the simulated session (simulator/bus_model.hpp).
+namespace {
+
+constexpr std::uint32_t kFcDefaultSimulatedBaud = 9600;
+
+std::vector<SimulatedDrive> fc_drives_or_default(const SimulatorOptions& options) {
+    return options.drives.empty() ? default_drives() : options.drives;
+}
+
+std::unique_ptr<BusModel> make_fc_model(SimulatorOptions& options,
+                                        std::vector<std::uint8_t>& drives) {
+    options.drives = fc_drives_or_default(options);
+    if (options.baud == 0) options.baud = kFcDefaultSimulatedBaud;
+    for (const SimulatedDrive& drive : options.drives)
+        drives.push_back(drive.address);
+    return std::make_unique<FcBusModel>(options.drives);
+}
+
+Result<void> check_fc_session_faults(const SimulatorOptions& options) {
+    return check_fc_faults(options.faults, fc_drives_or_default(options), options.cycles);
+}
+
+// session_span_bound_ns of an FC session.
+std::int64_t fc_session_span_bound_ns(const SimulatorOptions& options) {
+    const double drives = static_cast<double>(fc_drives_or_default(options).size());
+    const double baud =
+        options.baud == 0 ? kFcDefaultSimulatedBaud : static_cast<double>(options.baud);
+    // A telegram is at most 257 bytes of 11 bits. A poll: garbage, a request, a stacked one and
+    // the answer, each after a gap of at most the master's time-out (the longest wait).
+    constexpr double kTelegramBits = 257 * 11;
+    const double wait_ns = static_cast<double>(FcBusModel::kMasterTimeoutNs);
+    const double poll_ns = 4 * (kTelegramBits * 1e9 / baud + wait_ns);
+    // A cycle: every drive polled, a broadcast (twice with one drive). At least --cycle-us.
+    const double cycle_ns = std::max(static_cast<double>(options.cycle_us) * 1e3,
+                                     drives * poll_ns + 2 * (kTelegramBits * 1e9 / baud + wait_ns));
+    double cycles = static_cast<double>(options.cycles);
+    if (options.max_telegrams != 0 &&
+        (options.cycles == 0 || options.max_telegrams < options.cycles))
+        cycles = static_cast<double>(options.max_telegrams);
+    const double span = cycles * cycle_ns;
+    constexpr double kLargest = 9.2e18;
+    return span >= kLargest ? std::numeric_limits<std::int64_t>::max()
+                            : static_cast<std::int64_t>(std::ceil(span));
+}
+
+}  // namespace
+
+const SimulatedBus& fc_simulated_bus() noexcept {
+    static const SimulatedBus bus{
+        .protocol = Protocol::Fc,
+        .make_model = make_fc_model,
+        .check_faults = check_fc_session_faults,
+        .span_bound_ns = fc_session_span_bound_ns,
+        .fault_applies = fault_applies_to_fc,
+        .runs_on_ns = nullptr,
+        .character_bits = 11,  // 8E1
+    };
+    return bus;
 }
 
 }  // namespace dpscope

@@ -9,7 +9,8 @@
 //
 // Faults (simulator/fault_kind.hpp, fault_is_fc, plus the shared garbage and malformed_telegram)
 // change one poll of one drive; docs/decisions.md ("FC simulator") says what each one sends.
-// Pure logic: the bus model hands its telegrams to an FcBusEnvironment (the Simulator).
+// Pure logic: the bus model hands its telegrams to a BusEnvironment (the Simulator,
+// simulator/bus_model.hpp).
 #pragma once
 
 #include <cstdint>
@@ -18,6 +19,7 @@
 
 #include "core/result.hpp"
 #include "protocols/fc/fc_telegram.hpp"
+#include "simulator/bus_model.hpp"
 #include "simulator/fault_kind.hpp"
 #include "simulator/fault_spec.hpp"
 
@@ -49,30 +51,16 @@ Result<void> check_fc_faults(const std::vector<FaultSpec>& faults,
 // Faults an FC session can inject: the fc_* kinds, garbage and malformed_telegram.
 bool fault_applies_to_fc(FaultKind kind) noexcept;
 
-// The FC bus as the bus model sees the simulator: random numbers, faults, the clock.
-class FcBusEnvironment {
-  public:
-    virtual std::uint64_t random(std::uint64_t bound) = 0;  // 0 <= r < bound
-    // Takes a fault of this kind armed for this drive (its index) and records its injection.
-    virtual bool inject(FaultKind kind, std::size_t drive) = 0;
-    // Leaves the line idle for gap_ns, then sends `bytes` (11 bits a character at the baud rate).
-    virtual void send(std::vector<std::uint8_t> bytes, std::int64_t gap_ns) = 0;
-    virtual void wait(std::int64_t ns) = 0;  // the line stays idle
-
-  protected:
-    ~FcBusEnvironment() = default;
-};
-
 // Building FC telegrams: STX, LGE, ADR, `data`, BCC.
 std::vector<std::uint8_t> build_fc_telegram(std::uint8_t adr,
                                             const std::vector<std::uint8_t>& data);
 
-class FcBusModel {
+class FcBusModel final : public BusModel {
   public:
     explicit FcBusModel(std::vector<SimulatedDrive> drives);
 
     // One cycle: the master polls every drive once (and sends a broadcast every fiftieth cycle).
-    void cycle(FcBusEnvironment& env, std::uint64_t number);
+    void cycle(BusEnvironment& env, std::uint64_t number) override;
 
     const std::vector<SimulatedDrive>& drives() const noexcept { return drives_; }
 
@@ -116,14 +104,14 @@ class FcBusModel {
         std::string_view text;  // AK 15
     };
 
-    void poll(FcBusEnvironment& env, std::size_t index);
-    void broadcast(FcBusEnvironment& env, std::uint64_t number);
-    static Command plan(FcBusEnvironment& env);
+    void poll(BusEnvironment& env, std::size_t index);
+    void broadcast(BusEnvironment& env, std::uint64_t number);
+    static Command plan(BusEnvironment& env);
     Answer perform(Drive& drive, const Command& command);
     std::vector<std::uint8_t> request_bytes(const Drive& drive, const Command& command) const;
     std::vector<std::uint8_t> response_bytes(const Drive& drive, const Command& command,
                                              const Answer& answer) const;
-    static std::int64_t between(FcBusEnvironment& env, std::int64_t low, std::int64_t high);
+    static std::int64_t between(BusEnvironment& env, std::int64_t low, std::int64_t high);
 
     std::vector<SimulatedDrive> drives_;
     std::vector<Drive> state_;

@@ -58,6 +58,7 @@ const ProtocolDescriptor& fc_protocol() noexcept {
         .title = "the FC protocol (RS-485)",
         .capture_noun = "an FC protocol",
         .framing = fc_framing_rules(),
+        .max_telegram_bytes = 2 + 255,  // STX, LGE and the 255 bytes LGE counts at most
         .link_types = kFcLinkTypes,
         .pcap_bus_number = 2,
         .lead_byte = kFcStx,

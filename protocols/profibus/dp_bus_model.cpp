@@ -8,6 +8,7 @@
 
 #include "protocols/profibus/dp_service.hpp"
 #include "protocols/profibus/telegram_builder.hpp"
+#include "simulator/session_defaults.hpp"
 #include "simulator/simulator.hpp"
 
 namespace dpscope {
@@ -435,6 +436,29 @@ void Simulator::exchange(std::size_t index) {
         static constexpr std::uint16_t kReferences[] = {0x1000, 0x2000, 0x3000, 0x4000};
         slave.reference = kReferences[random(std::size(kReferences))];
     }
+}
+
+// PROFIBUS DP in the simulated session (simulator/bus_model.hpp): the session makes its traffic
+// itself (no model), checks its faults against the slaves and judges which slave takes one.
+namespace {
+
+Result<void> check_profibus_session_faults(const SimulatorOptions& options) {
+    return check_faults(options.faults, detail::slaves_or_default(options), options.cycles);
+}
+
+}  // namespace
+
+const SimulatedBus& profibus_simulated_bus() noexcept {
+    static const SimulatedBus bus{
+        .protocol = Protocol::ProfibusDp,
+        .make_model = nullptr,
+        .check_faults = check_profibus_session_faults,
+        .span_bound_ns = detail::profibus_session_span_bound_ns,
+        .fault_applies = nullptr,
+        .runs_on_ns = nullptr,
+        .character_bits = 11,  // 8E1
+    };
+    return bus;
 }
 
 }  // namespace dpscope

@@ -48,6 +48,7 @@ const ProtocolDescriptor& profibus_protocol() noexcept {
         .title = "PROFIBUS DP",
         .capture_noun = "a PROFIBUS DP",
         .framing = fdl_framing_rules(),
+        .max_telegram_bytes = kMaxTelegramSize,  // SD2 with LE 249
         .link_types = kProfibusLinkTypes,
         .pcap_bus_number = 1,
         .lead_byte = std::nullopt,  // what an untagged USER0 capture is when no other bus fits

@@ -4,8 +4,12 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <limits>
+#include <memory>
 
 #include "core/protocol_descriptor.hpp"
+#include "simulator/simulator.hpp"
 
 namespace dpscope {
 
@@ -151,12 +155,11 @@ Vlt2000BusModel::Vlt2000BusModel(std::vector<std::uint8_t> drives) : drives_(std
     }
 }
 
-std::int64_t Vlt2000BusModel::between(Vlt2000BusEnvironment& env, std::int64_t low,
-                                      std::int64_t high) {
+std::int64_t Vlt2000BusModel::between(BusEnvironment& env, std::int64_t low, std::int64_t high) {
     return low + static_cast<std::int64_t>(env.random(static_cast<std::uint64_t>(high - low) + 1));
 }
 
-void Vlt2000BusModel::send(Vlt2000BusEnvironment& env, std::vector<std::uint8_t> bytes,
+void Vlt2000BusModel::send(BusEnvironment& env, std::vector<std::uint8_t> bytes,
                            std::int64_t gap_ns, bool broadcast) {
     last_broadcast_letter_ = broadcast && bytes.size() > kVlt2000LetterAt
                                  ? static_cast<char>(bytes[kVlt2000LetterAt])
@@ -164,7 +167,7 @@ void Vlt2000BusModel::send(Vlt2000BusEnvironment& env, std::vector<std::uint8_t>
     env.send(std::move(bytes), gap_ns);
 }
 
-void Vlt2000BusModel::cycle(Vlt2000BusEnvironment& env, std::uint64_t number) {
+void Vlt2000BusModel::cycle(BusEnvironment& env, std::uint64_t number) {
     for (std::size_t i = 0; i < state_.size(); ++i)
         poll(env, i);
     if (number % 20 == 19) broadcast(env, number);
@@ -177,7 +180,7 @@ std::uint16_t Vlt2000BusModel::status_of(const Drive& drive) const {
     return vlt2000_status_word(drive.control, running, drive.frequency == target, in_band);
 }
 
-void Vlt2000BusModel::broadcast(Vlt2000BusEnvironment& env, std::uint64_t number) {
+void Vlt2000BusModel::broadcast(BusEnvironment& env, std::uint64_t number) {
     // The run word to every drive, or a new bus reference (U 0516) for all; the other letter when
     // the telegram before was a broadcast with this one. Nobody replies.
     char letter = (number / 20) % 2 == 0 ? 'C' : 'U';
@@ -208,8 +211,7 @@ void Vlt2000BusModel::broadcast(Vlt2000BusEnvironment& env, std::uint64_t number
     }
 }
 
-Vlt2000BusModel::Command Vlt2000BusModel::plan(Vlt2000BusEnvironment& env,
-                                               const Drive& drive) const {
+Vlt2000BusModel::Command Vlt2000BusModel::plan(BusEnvironment& env, const Drive& drive) const {
     const std::uint64_t roll = env.random(100);
     Command c;
     if (roll < 40) {
@@ -379,7 +381,7 @@ std::vector<std::uint8_t> Vlt2000BusModel::reply_bytes(const Drive& drive, std::
     return vlt2000_telegram(f);
 }
 
-void Vlt2000BusModel::poll(Vlt2000BusEnvironment& env, std::size_t index) {
+void Vlt2000BusModel::poll(BusEnvironment& env, std::size_t index) {
     Drive& drive = state_[index];
     if (env.inject(FaultKind::Garbage, index)) {
         // Noise on the line: no '<', so no telegram starts inside it.
@@ -460,6 +462,76 @@ void Vlt2000BusModel::poll(Vlt2000BusEnvironment& env, std::size_t index) {
     if (drive.frequency > target)
         drive.frequency = drive.frequency > target + 40 ? drive.frequency - 40 : target;
     if (env.random(200) == 0) ++drive.hours;
+}
+
+// The VLT 2000 bus in the simulated session (simulator/bus_model.hpp).
+namespace {
+
+constexpr std::uint32_t kVlt2000DefaultSimulatedBaud = 9600;
+
+std::vector<std::uint8_t> vlt2000_drives_of(const SimulatorOptions& options) {
+    return options.vlt2000_drives.empty() ? default_vlt2000_drives() : options.vlt2000_drives;
+}
+
+std::unique_ptr<BusModel> make_vlt2000_model(SimulatorOptions& options,
+                                             std::vector<std::uint8_t>& drives) {
+    options.vlt2000_drives = vlt2000_drives_of(options);
+    if (options.baud == 0) options.baud = kVlt2000DefaultSimulatedBaud;
+    drives = options.vlt2000_drives;
+    return std::make_unique<Vlt2000BusModel>(options.vlt2000_drives);
+}
+
+Result<void> check_vlt2000_session_faults(const SimulatorOptions& options) {
+    return check_vlt2000_faults(options.faults, vlt2000_drives_of(options), options.cycles);
+}
+
+// A drive that does not reply: the session runs one cycle more, so that the master's next
+// command (which shows the reply missing) is in the capture.
+std::int64_t vlt2000_runs_on_ns(FaultKind kind, const SimulatorOptions& options) {
+    if (kind != FaultKind::Vlt2000NoResponse) return 0;
+    return Vlt2000BusModel::kMasterTimeoutNs + std::int64_t{options.cycle_us} * 1000 + 1'000'000;
+}
+
+// session_span_bound_ns of a VLT 2000 session.
+std::int64_t vlt2000_session_span_bound_ns(const SimulatorOptions& options) {
+    const double drives = static_cast<double>(vlt2000_drives_of(options).size());
+    const double baud =
+        options.baud == 0 ? kVlt2000DefaultSimulatedBaud : static_cast<double>(options.baud);
+    // A telegram is 22 characters of 10 bits (garbage is shorter). A poll: garbage, a command, a
+    // stacked one and the reply, each after a gap of at most the master's time-out (the longest
+    // wait).
+    constexpr double kTelegramBits = 22 * 10;
+    const double wait_ns = static_cast<double>(Vlt2000BusModel::kMasterTimeoutNs);
+    const double telegram_ns = kTelegramBits * 1e9 / baud + wait_ns;
+    const double poll_ns = 4 * telegram_ns;
+    // A cycle: every drive polled, a broadcast and a reply to it (twice with one drive). At
+    // least --cycle-us.
+    const double cycle_ns =
+        std::max(static_cast<double>(options.cycle_us) * 1e3, drives * poll_ns + 4 * telegram_ns);
+    double cycles = static_cast<double>(options.cycles);
+    if (options.max_telegrams != 0 &&
+        (options.cycles == 0 || options.max_telegrams < options.cycles))
+        cycles = static_cast<double>(options.max_telegrams);
+    // After a missing reply the session runs one cycle more.
+    const double span = (cycles + 1) * cycle_ns;
+    constexpr double kLargest = 9.2e18;
+    return span >= kLargest ? std::numeric_limits<std::int64_t>::max()
+                            : static_cast<std::int64_t>(std::ceil(span));
+}
+
+}  // namespace
+
+const SimulatedBus& vlt2000_simulated_bus() noexcept {
+    static const SimulatedBus bus{
+        .protocol = Protocol::Vlt2000,
+        .make_model = make_vlt2000_model,
+        .check_faults = check_vlt2000_session_faults,
+        .span_bound_ns = vlt2000_session_span_bound_ns,
+        .fault_applies = fault_applies_to_vlt2000,
+        .runs_on_ns = vlt2000_runs_on_ns,
+        .character_bits = 10,  // 8N1
+    };
+    return bus;
 }
 
 }  // namespace dpscope

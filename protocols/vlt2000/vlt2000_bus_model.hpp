@@ -10,7 +10,8 @@
 //
 // Faults (fault_applies_to_vlt2000: the vlt2000_* kinds, garbage and malformed_telegram) change
 // one poll of one drive; docs/decisions.md ("VLT 2000 simulator") says what each one sends.
-// Pure logic: the bus model hands its telegrams to a Vlt2000BusEnvironment (the Simulator).
+// Pure logic: the bus model hands its telegrams to a BusEnvironment (the Simulator,
+// simulator/bus_model.hpp).
 #pragma once
 
 #include <array>
@@ -21,6 +22,7 @@
 
 #include "core/result.hpp"
 #include "protocols/vlt2000/vlt2000_telegram.hpp"
+#include "simulator/bus_model.hpp"
 #include "simulator/fault_kind.hpp"
 #include "simulator/fault_spec.hpp"
 
@@ -76,26 +78,12 @@ std::optional<std::uint8_t> vlt2000_simulated_failure(char letter, std::uint16_t
 std::uint16_t vlt2000_status_word(std::uint16_t control, bool running, bool at_reference,
                                   bool in_band) noexcept;
 
-// The VLT 2000 bus as the bus model sees the simulator: random numbers, faults, the clock.
-class Vlt2000BusEnvironment {
-  public:
-    virtual std::uint64_t random(std::uint64_t bound) = 0;  // 0 <= r < bound
-    // Takes a fault of this kind armed for this drive (its index) and records its injection.
-    virtual bool inject(FaultKind kind, std::size_t drive) = 0;
-    // Leaves the line idle for gap_ns, then sends `bytes` (10 bits a character at the baud rate).
-    virtual void send(std::vector<std::uint8_t> bytes, std::int64_t gap_ns) = 0;
-    virtual void wait(std::int64_t ns) = 0;  // the line stays idle
-
-  protected:
-    ~Vlt2000BusEnvironment() = default;
-};
-
-class Vlt2000BusModel {
+class Vlt2000BusModel final : public BusModel {
   public:
     explicit Vlt2000BusModel(std::vector<std::uint8_t> drives);
 
     // One cycle: the master polls every drive once (and sends a broadcast every twentieth cycle).
-    void cycle(Vlt2000BusEnvironment& env, std::uint64_t number);
+    void cycle(BusEnvironment& env, std::uint64_t number) override;
 
     const std::vector<std::uint8_t>& drives() const noexcept { return drives_; }
 
@@ -135,18 +123,18 @@ class Vlt2000BusModel {
         std::uint32_t index = 0;  // letter I
     };
 
-    void poll(Vlt2000BusEnvironment& env, std::size_t index);
-    void broadcast(Vlt2000BusEnvironment& env, std::uint64_t number);
-    Command plan(Vlt2000BusEnvironment& env, const Drive& drive) const;
+    void poll(BusEnvironment& env, std::size_t index);
+    void broadcast(BusEnvironment& env, std::uint64_t number);
+    Command plan(BusEnvironment& env, const Drive& drive) const;
     Command perform(Drive& drive, const Command& command) const;
     std::vector<std::uint8_t> command_bytes(const Drive& drive, std::uint8_t address,
                                             const Command& command) const;
     std::vector<std::uint8_t> reply_bytes(const Drive& drive, std::uint8_t address,
                                           const Command& reply) const;
     std::uint16_t status_of(const Drive& drive) const;
-    void send(Vlt2000BusEnvironment& env, std::vector<std::uint8_t> bytes, std::int64_t gap_ns,
+    void send(BusEnvironment& env, std::vector<std::uint8_t> bytes, std::int64_t gap_ns,
               bool broadcast);
-    static std::int64_t between(Vlt2000BusEnvironment& env, std::int64_t low, std::int64_t high);
+    static std::int64_t between(BusEnvironment& env, std::int64_t low, std::int64_t high);
 
     std::vector<std::uint8_t> drives_;
     std::vector<Drive> state_;

@@ -56,6 +56,7 @@ const ProtocolDescriptor& vlt2000_protocol() noexcept {
         .title = "the VLT 2000 telegram",
         .capture_noun = "a VLT 2000",
         .framing = vlt2000_framing_rules(),
+        .max_telegram_bytes = kVlt2000TelegramSize,
         .link_types = kVlt2000LinkTypes,
         .pcap_bus_number = 3,
         .lead_byte = kVlt2000Start,
