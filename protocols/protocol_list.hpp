@@ -9,19 +9,23 @@
 // What a protocol's folder provides, each in the file of its role (CONTRIBUTING.md, "Adding a
 // protocol"); a line here without one of them fails to link, naming the function:
 //   ProtocolDescriptor <name>_protocol()   decoder layer   <name>_protocol.cpp
+//     (with its decoder and tracker factories, make_decoder and make_tracker: the lanes the
+//     commands' pipeline and the Wireshark plugin feed, core/protocol_lane.hpp)
 //   <name>_text_columns, <name>_verbose,   formats layer   <name>_render.cpp
 //   <name>_jsonl_keys, <name>_csv_columns
 //   BusReport <name>_bus_report()          formats layer   <name>_report_section.cpp
+//   SimulatedBus <name>_simulated_bus()    simulator layer <name>_bus_model.cpp
 //   ProtocolTree <name>_tree()             wireshark layer <name>_tree.cpp
 // (the records are returned as const references). The per-layer tables are made from this list:
 // protocols/protocol_table.cpp (the descriptors, core/protocol_descriptor.hpp),
 // formats/protocol_rendering.hpp (the telegram formats: direct calls, so that they inline),
-// formats/bus_reports.cpp (the report, formats/report_model.hpp) and
+// formats/bus_reports.cpp (the report, formats/report_model.hpp),
+// simulator/simulated_buses.cpp (the simulator, simulator/bus_model.hpp) and
 // wireshark/protocol_trees.cpp (the plugin, wireshark/protocol_tree.hpp).
-// Not yet found from this line: the decoder-and-tracker lanes (cli/pipeline.hpp,
-// wireshark/capture_replay.cpp), the decode -q summary's counts and the simulator's choice of bus
-// model; a new protocol still adds its part there (CONTRIBUTING.md, the end of "Adding a
-// protocol").
+// Adding a protocol is its folder and its line here (with its payload's include); issue 28
+// proved it with a toy fourth protocol (tests/toy_protocol/). What a protocol may still want
+// outside its folder is data, not code: rows in the problem and finding catalogues, its options
+// (protocols/lane_options.hpp and the command line), its filterable Wireshark fields.
 #pragma once
 
 #include "protocols/fc/fc_telegram.hpp"

@@ -1235,10 +1235,12 @@ TEST(SniffTest, FcLineOptionsAreChecked) {
         << link.err;
     auto no_baud = test::run_dpscope({"sniff", "-i", pty.slave});
     EXPECT_EQ(no_baud.exit_code, 2);
-    EXPECT_NE(no_baud.err.find("--baud is required for PROFIBUS DP (the FC protocol, --bus fc, and "
-                               "the VLT 2000, --bus vlt2000, default to 9600)"),
+    // The buses with a default line are named from the table of protocols.
+    EXPECT_NE(no_baud.err.find("--baud is required for PROFIBUS DP (the FC protocol, --bus fc, "),
               std::string::npos)
         << no_baud.err;
+    EXPECT_NE(no_baud.err.find("the VLT 2000, --bus vlt2000, "), std::string::npos) << no_baud.err;
+    EXPECT_NE(no_baud.err.find("default to 9600)"), std::string::npos) << no_baud.err;
 }
 
 // --- sniff --stats and --alarm ----------------------------------------------------------------
