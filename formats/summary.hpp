@@ -36,6 +36,17 @@ std::string dialect_hint_text(std::uint8_t slave, Dialect decoded, const Dialect
 class Summary {
   public:
     void add(const DecodedTelegram& t) noexcept {
+        // What every bus has, then the bus's own counts.
+        ++telegrams_;
+        if (!t.problems().empty()) {
+            ++with_problems_;
+            for (const Problem& p : t.problems())
+                ++problems_[static_cast<std::size_t>(p.kind)];
+        }
+        if (t.has_time()) {
+            if (first_time_ == kNoTime) first_time_ = t.time_ns;
+            last_time_ = t.time_ns;
+        }
         if (t.protocol == Protocol::Fc) {
             add_fc(t);
             return;
@@ -48,22 +59,12 @@ class Summary {
             add_other(t);
             return;
         }
-        ++telegrams_;
         ++frame_types_[static_cast<std::size_t>(t.dp.fdl.type)];
         auto service = static_cast<std::size_t>(t.dp.service);
         if (t.direction == Direction::Request)
             ++requests_[service];
         else
             ++responses_[service];
-        if (!t.problems().empty()) {
-            ++with_problems_;
-            for (const Problem& p : t.problems())
-                ++problems_[static_cast<std::size_t>(p.kind)];
-        }
-        if (t.has_time()) {
-            if (first_time_ == kNoTime) first_time_ = t.time_ns;
-            last_time_ = t.time_ns;
-        }
         if (t.has_roles) slave_seen_[t.slave & 0x7F] = true;
         if (t.dp.service == Service::DataExchange && t.has_roles) {
             ++data_exchange_[t.slave & 0x7F];
@@ -158,23 +159,12 @@ class Summary {
                      const TelegramTracker* tracker = nullptr) const;
 
   private:
-    // A telegram of a bus without counts of its own here.
+    // A telegram of a bus without counts of its own here (add() counted what every bus has).
     void add_other(const DecodedTelegram& t) noexcept {
-        ++telegrams_;
         ++other_telegrams_;
-        if (!t.problems().empty()) {
-            ++with_problems_;
-            for (const Problem& p : t.problems())
-                ++problems_[static_cast<std::size_t>(p.kind)];
-        }
-        if (t.has_time()) {
-            if (first_time_ == kNoTime) first_time_ = t.time_ns;
-            last_time_ = t.time_ns;
-        }
         if (t.has_roles) slave_seen_[t.slave & 0x7F] = true;
     }
     void add_fc(const DecodedTelegram& t) noexcept {
-        ++telegrams_;
         ++fc_telegrams_;
         const FcTelegram& fc = t.fc;
         ++fc_blocks_[static_cast<std::size_t>(fc.block)];
@@ -182,22 +172,12 @@ class Summary {
         ++(request ? fc_requests_ : fc_responses_total_);
         if (fc.has_pkw) ++(request ? fc_commands_ : fc_responses_)[fc.pkw.rc & 0x0F];
         if (fc.broadcast) ++fc_broadcasts_;
-        if (!t.problems().empty()) {
-            ++with_problems_;
-            for (const Problem& p : t.problems())
-                ++problems_[static_cast<std::size_t>(p.kind)];
-        }
-        if (t.has_time()) {
-            if (first_time_ == kNoTime) first_time_ = t.time_ns;
-            last_time_ = t.time_ns;
-        }
         if (t.has_roles && !fc.broadcast) {
             slave_seen_[t.slave & 0x7F] = true;
             ++(request ? fc_drive_requests_ : fc_drive_responses_)[t.slave & 0x7F];
         }
     }
     void add_vlt2000(const DecodedTelegram& t) noexcept {
-        ++telegrams_;
         ++vlt2000_telegrams_;
         const Vlt2000Telegram& v = t.vlt2000;
         const bool request = t.direction == Direction::Request;
@@ -222,15 +202,6 @@ class Summary {
             checksum_error = checksum_error || p.kind == ProblemKind::Vlt2000ChecksumMismatch;
         if (checksum_error) ++vlt2000_checksum_errors_;
         if (v.checksum_disabled) ++vlt2000_checksum_disabled_;
-        if (!t.problems().empty()) {
-            ++with_problems_;
-            for (const Problem& p : t.problems())
-                ++problems_[static_cast<std::size_t>(p.kind)];
-        }
-        if (t.has_time()) {
-            if (first_time_ == kNoTime) first_time_ = t.time_ns;
-            last_time_ = t.time_ns;
-        }
         if (t.has_roles) {
             slave_seen_[t.slave & 0x7F] = true;
             Vlt2000AddressCounts& counts = vlt2000_addresses_[t.slave & 0x7F];

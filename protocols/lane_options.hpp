@@ -39,4 +39,16 @@ struct LaneOptions {
     Vlt2000TrackerOptions vlt2000_tracker;
 };
 
+// A tracker's options timed by the line (ProtocolDescriptor::timed_by_line), with what the shared
+// options say: the time-out, the line's baud rate (`default_baud` when not known) and the bits a
+// character takes (the tracker's own framing when not known).
+template <class TimedTrackerOptions>
+TimedTrackerOptions on_the_line(TimedTrackerOptions tracker, const LaneOptions& options,
+                                std::uint32_t default_baud) {
+    tracker.timeout_ns = options.timeout_ns;
+    tracker.line_baud = options.line_baud != 0 ? options.line_baud : default_baud;
+    if (options.character_bits != 0) tracker.character_bits = options.character_bits;
+    return tracker;
+}
+
 }  // namespace dpscope

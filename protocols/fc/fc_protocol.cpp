@@ -42,11 +42,8 @@ std::unique_ptr<TelegramDecoder> fc_decoder(const LaneOptions& options) {
 }
 
 std::unique_ptr<TelegramTracker> fc_tracker(const LaneOptions& options) {
-    FcTrackerOptions tracker = options.fc_tracker;
-    tracker.timeout_ns = options.timeout_ns;
-    tracker.line_baud = options.line_baud != 0 ? options.line_baud : kFcDefaultLineBaud;
-    if (options.character_bits != 0) tracker.character_bits = options.character_bits;
-    return std::make_unique<FcTracker>(tracker);
+    return std::make_unique<FcTracker>(
+        on_the_line(options.fc_tracker, options, kFcDefaultLineBaud));
 }
 
 }  // namespace

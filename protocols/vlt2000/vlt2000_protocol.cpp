@@ -40,11 +40,8 @@ std::unique_ptr<TelegramDecoder> vlt2000_decoder(const LaneOptions& options) {
 }
 
 std::unique_ptr<TelegramTracker> vlt2000_tracker(const LaneOptions& options) {
-    Vlt2000TrackerOptions tracker = options.vlt2000_tracker;
-    tracker.timeout_ns = options.timeout_ns;
-    tracker.line_baud = options.line_baud != 0 ? options.line_baud : kVlt2000DefaultLineBaud;
-    if (options.character_bits != 0) tracker.character_bits = options.character_bits;
-    return std::make_unique<Vlt2000Tracker>(tracker);
+    return std::make_unique<Vlt2000Tracker>(
+        on_the_line(options.vlt2000_tracker, options, kVlt2000DefaultLineBaud));
 }
 
 }  // namespace
