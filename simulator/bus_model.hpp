@@ -68,6 +68,12 @@ struct SimulatedBus {
 // The record of a protocol.
 const SimulatedBus& simulated_bus(Protocol protocol) noexcept;
 
+// For the bounds of a session's length (SimulatedBus::span_bound_ns): the most cycles a session
+// of `options` runs (--cycles, or fewer when -c stops it first: every cycle writes a telegram at
+// least), and a length in nanoseconds as an int64, the largest one when it is beyond.
+double session_cycles_bound(const SimulatorOptions& options) noexcept;
+std::int64_t span_bound_of(double span_ns) noexcept;
+
 // Each protocol's record, by the name its line in protocols/protocol_list.hpp gives it.
 #define DPSCOPE_SIMULATED_BUS(Enum, name, Payload, member) \
     const SimulatedBus& name##_simulated_bus() noexcept;

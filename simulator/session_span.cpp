@@ -2,8 +2,6 @@
 // options alone; the bus's record says (SimulatedBus::span_bound_ns), and PROFIBUS DP's is here,
 // with the session that makes its traffic.
 #include <algorithm>
-#include <cmath>
-#include <limits>
 
 #include "simulator/bus_model.hpp"
 #include "simulator/session_defaults.hpp"
@@ -43,10 +41,7 @@ std::int64_t detail::profibus_session_span_bound_ns(const SimulatorOptions& opti
         std::max(static_cast<double>(options.cycle_us) * 1e3, cycle_bits * 1e9 / baud);
     cycle_ns += ring * std::max(static_cast<double>(options.token_hold_us) * 1e3, 40 * 1e9 / baud);
     // Every cycle writes one telegram at least (the token).
-    double cycles = static_cast<double>(options.cycles);
-    if (options.max_telegrams != 0 &&
-        (options.cycles == 0 || options.max_telegrams < options.cycles))
-        cycles = static_cast<double>(options.max_telegrams);
+    const double cycles = session_cycles_bound(options);
     // After a time-out fault the session runs on until the master has given up, plus ten cycles.
     // A slave lost (station_lost) in the last cycle is silent, then parameterised anew, after it.
     const double tail_ns =
@@ -54,9 +49,7 @@ std::int64_t detail::profibus_session_span_bound_ns(const SimulatorOptions& opti
         static_cast<double>(options.cycle_us) * 1e4 + cycle_ns +
         (health_faults ? static_cast<double>(kStationLostCycles + 1) * cycle_ns : 0.0);
     const double span = start_up_bits * 1e9 / baud + cycles * cycle_ns + tail_ns;
-    constexpr double kLargest = 9.2e18;  // below the largest int64 (9.22e18)
-    return span >= kLargest ? std::numeric_limits<std::int64_t>::max()
-                            : static_cast<std::int64_t>(std::ceil(span));
+    return span_bound_of(span);
 }
 
 }  // namespace dpscope

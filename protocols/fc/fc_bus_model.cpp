@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cmath>
-#include <limits>
 #include <memory>
 
 #include "core/protocol_descriptor.hpp"
@@ -391,8 +389,6 @@ void FcBusModel::poll(BusEnvironment& env, std::size_t index) {
 // The FC bus in the simulated session (simulator/bus_model.hpp).
 namespace {
 
-constexpr std::uint32_t kFcDefaultSimulatedBaud = 9600;
-
 std::vector<SimulatedDrive> fc_drives_or_default(const SimulatorOptions& options) {
     return options.drives.empty() ? default_drives() : options.drives;
 }
@@ -400,7 +396,7 @@ std::vector<SimulatedDrive> fc_drives_or_default(const SimulatorOptions& options
 std::unique_ptr<BusModel> make_fc_model(SimulatorOptions& options,
                                         std::vector<std::uint8_t>& drives) {
     options.drives = fc_drives_or_default(options);
-    if (options.baud == 0) options.baud = kFcDefaultSimulatedBaud;
+    if (options.baud == 0) options.baud = fc_protocol().default_baud;
     for (const SimulatedDrive& drive : options.drives)
         drives.push_back(drive.address);
     return std::make_unique<FcBusModel>(options.drives);
@@ -414,7 +410,7 @@ Result<void> check_fc_session_faults(const SimulatorOptions& options) {
 std::int64_t fc_session_span_bound_ns(const SimulatorOptions& options) {
     const double drives = static_cast<double>(fc_drives_or_default(options).size());
     const double baud =
-        options.baud == 0 ? kFcDefaultSimulatedBaud : static_cast<double>(options.baud);
+        options.baud == 0 ? fc_protocol().default_baud : static_cast<double>(options.baud);
     // A telegram is at most 257 bytes of 11 bits. A poll: garbage, a request, a stacked one and
     // the answer, each after a gap of at most the master's time-out (the longest wait).
     constexpr double kTelegramBits = 257 * 11;
@@ -423,14 +419,9 @@ std::int64_t fc_session_span_bound_ns(const SimulatorOptions& options) {
     // A cycle: every drive polled, a broadcast (twice with one drive). At least --cycle-us.
     const double cycle_ns = std::max(static_cast<double>(options.cycle_us) * 1e3,
                                      drives * poll_ns + 2 * (kTelegramBits * 1e9 / baud + wait_ns));
-    double cycles = static_cast<double>(options.cycles);
-    if (options.max_telegrams != 0 &&
-        (options.cycles == 0 || options.max_telegrams < options.cycles))
-        cycles = static_cast<double>(options.max_telegrams);
+    const double cycles = session_cycles_bound(options);
     const double span = cycles * cycle_ns;
-    constexpr double kLargest = 9.2e18;
-    return span >= kLargest ? std::numeric_limits<std::int64_t>::max()
-                            : static_cast<std::int64_t>(std::ceil(span));
+    return span_bound_of(span);
 }
 
 }  // namespace

@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cmath>
-#include <limits>
 #include <memory>
 
 #include "core/protocol_descriptor.hpp"
@@ -467,8 +465,6 @@ void Vlt2000BusModel::poll(BusEnvironment& env, std::size_t index) {
 // The VLT 2000 bus in the simulated session (simulator/bus_model.hpp).
 namespace {
 
-constexpr std::uint32_t kVlt2000DefaultSimulatedBaud = 9600;
-
 std::vector<std::uint8_t> vlt2000_drives_of(const SimulatorOptions& options) {
     return options.vlt2000_drives.empty() ? default_vlt2000_drives() : options.vlt2000_drives;
 }
@@ -476,7 +472,7 @@ std::vector<std::uint8_t> vlt2000_drives_of(const SimulatorOptions& options) {
 std::unique_ptr<BusModel> make_vlt2000_model(SimulatorOptions& options,
                                              std::vector<std::uint8_t>& drives) {
     options.vlt2000_drives = vlt2000_drives_of(options);
-    if (options.baud == 0) options.baud = kVlt2000DefaultSimulatedBaud;
+    if (options.baud == 0) options.baud = vlt2000_protocol().default_baud;
     drives = options.vlt2000_drives;
     return std::make_unique<Vlt2000BusModel>(options.vlt2000_drives);
 }
@@ -496,7 +492,7 @@ std::int64_t vlt2000_runs_on_ns(FaultKind kind, const SimulatorOptions& options)
 std::int64_t vlt2000_session_span_bound_ns(const SimulatorOptions& options) {
     const double drives = static_cast<double>(vlt2000_drives_of(options).size());
     const double baud =
-        options.baud == 0 ? kVlt2000DefaultSimulatedBaud : static_cast<double>(options.baud);
+        options.baud == 0 ? vlt2000_protocol().default_baud : static_cast<double>(options.baud);
     // A telegram is 22 characters of 10 bits (garbage is shorter). A poll: garbage, a command, a
     // stacked one and the reply, each after a gap of at most the master's time-out (the longest
     // wait).
@@ -508,15 +504,10 @@ std::int64_t vlt2000_session_span_bound_ns(const SimulatorOptions& options) {
     // least --cycle-us.
     const double cycle_ns =
         std::max(static_cast<double>(options.cycle_us) * 1e3, drives * poll_ns + 4 * telegram_ns);
-    double cycles = static_cast<double>(options.cycles);
-    if (options.max_telegrams != 0 &&
-        (options.cycles == 0 || options.max_telegrams < options.cycles))
-        cycles = static_cast<double>(options.max_telegrams);
+    const double cycles = session_cycles_bound(options);
     // After a missing reply the session runs one cycle more.
     const double span = (cycles + 1) * cycle_ns;
-    constexpr double kLargest = 9.2e18;
-    return span >= kLargest ? std::numeric_limits<std::int64_t>::max()
-                            : static_cast<std::int64_t>(std::ceil(span));
+    return span_bound_of(span);
 }
 
 }  // namespace

@@ -4,10 +4,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
 #include <memory>
 
+#include "core/protocol_descriptor.hpp"
 #include "simulator/bus_model.hpp"
 #include "simulator/fault_spec.hpp"
 #include "simulator/simulator.hpp"
@@ -42,7 +41,7 @@ class ToybusBusModel final : public BusModel {
 
 std::unique_ptr<BusModel> make_toybus_model(SimulatorOptions& options,
                                             std::vector<std::uint8_t>& drives) {
-    if (options.baud == 0) options.baud = 9600;
+    if (options.baud == 0) options.baud = toybus_protocol().default_baud;
     drives.assign(std::begin(kToybusDrives), std::end(kToybusDrives));
     return std::make_unique<ToybusBusModel>();
 }
@@ -57,18 +56,15 @@ Result<void> check_toybus_faults(const SimulatorOptions& options) {
 bool toybus_fault_applies(FaultKind) noexcept { return false; }
 
 std::int64_t toybus_span_bound_ns(const SimulatorOptions& options) {
-    const double baud = options.baud == 0 ? 9600.0 : static_cast<double>(options.baud);
+    const double baud =
+        options.baud == 0 ? toybus_protocol().default_baud : static_cast<double>(options.baud);
     const double telegram_ns = 16 * 10 * 1e9 / baud;
     const double poll_ns = 1e6 + telegram_ns + static_cast<double>(kResponseMaxNs) + telegram_ns;
     const double cycle_ns = std::max(static_cast<double>(options.cycle_us) * 1e3,
                                      static_cast<double>(std::size(kToybusDrives)) * poll_ns);
-    double cycles = static_cast<double>(options.cycles);
-    if (options.max_telegrams != 0 &&
-        (options.cycles == 0 || options.max_telegrams < options.cycles))
-        cycles = static_cast<double>(options.max_telegrams);
+    const double cycles = session_cycles_bound(options);
     const double span = cycles * cycle_ns;
-    return span >= 9.2e18 ? std::numeric_limits<std::int64_t>::max()
-                          : static_cast<std::int64_t>(std::ceil(span));
+    return span_bound_of(span);
 }
 
 }  // namespace
