@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "capture/gsd_files.hpp"
 #include "cli/pipeline.hpp"
 #include "cli/progress.hpp"
 
@@ -186,6 +187,19 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
                    "slave, ADDR=NAME for one; repeatable")
         ->type_name("NAME|ADDR=NAME")
         ->allow_extra_args(false);
+    app.add_option("--gsd", values.gsd_files,
+                   "PROFIBUS: a slave's GSD file (device description). FILE describes the slaves "
+                   "whose Ident_Number (in Set_Prm or Slave_Diag) is the file's; ADDR=FILE "
+                   "describes slave ADDR (0 to 126) whatever its ident. Adds vendor, model, "
+                   "module names, user parameters and diagnosis texts to the decode, and the "
+                   "GSD checks to the tracker (docs/gsd.md); repeatable")
+        ->type_name("FILE|ADDR=FILE")
+        ->allow_extra_args(false);
+    app.add_option("--gsd-dir", values.gsd_dirs,
+                   "PROFIBUS: read every GSD file in DIR (*.gsd and the language variants "
+                   "*.gse, *.gsg, *.gsf, ...), matched to slaves by Ident_Number; repeatable")
+        ->type_name("DIR")
+        ->allow_extra_args(false);
     app.add_option("--pcd-profile", values.pcd_profile,
                    "Control/status word profile: fc (Danfoss FC profile) or profidrive. Default: "
                    "fc for vlt and ge slaves, profidrive for profidrive slaves")
@@ -335,6 +349,19 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     }
     if (!values.pcd_profile.empty())
         settings.lanes.decoder.pcd_profile = pcd_profile_from_name(values.pcd_profile);
+    if (!values.gsd_files.empty() || !values.gsd_dirs.empty()) {
+        std::vector<GsdFileSpec> specs;
+        for (const std::string& item : values.gsd_files) {
+            Result<GsdFileSpec> spec = parse_gsd_file_spec(item);
+            if (!spec) return Error{spec.error()};
+            specs.push_back(std::move(*spec));
+        }
+        Result<LoadedGsdFiles> loaded = load_gsd_files(specs, values.gsd_dirs);
+        if (!loaded) return Error{loaded.error()};
+        for (const std::string& warning : loaded->warnings)
+            print_warning(warning);
+        settings.lanes.decoder.gsd = std::move(loaded->library);
+    }
     settings.write = values.write;
     settings.write_format =
         capture_format_from_name(values.write_format).value_or(CaptureFormat::Pcap);
@@ -507,6 +534,7 @@ void warn_profibus_options(const DecodeSettings& settings, const std::string& in
                     [](const std::optional<Dialect>& d) { return d.has_value(); }))
         given(Protocol::ProfibusDp, "--dialect");
     if (dp.pcd_profile) given(Protocol::ProfibusDp, "--pcd-profile");
+    if (dp.gsd) given(Protocol::ProfibusDp, "--gsd/--gsd-dir");
     if (settings.lanes.tracker.strict) given(Protocol::ProfibusDp, "--strict");
     if (settings.lanes.fc_decoder.pnu_bits != FcDecoderOptions{}.pnu_bits)
         given(Protocol::Fc, "--fc-pnu-bits");

@@ -76,6 +76,8 @@ struct DecodeOptionValues {
     std::vector<unsigned> pnus;
     std::vector<std::string> ppo;
     std::vector<std::string> dialects;
+    std::vector<std::string> gsd_files;  // --gsd FILE or ADDR=FILE
+    std::vector<std::string> gsd_dirs;   // --gsd-dir DIR
     std::string bus;  // --bus: "" = from the capture
     unsigned fc_pnu_bits = 12;
     std::string pcd_profile;

@@ -96,6 +96,26 @@ constexpr FindingKindInfo kCatalogue[] = {
     {FindingKind::Vlt2000ChecksumDisabled, "vlt2000_checksum_disabled", Severity::Note,
      Vlt2000Protocol,
      "telegrams carry a checksum (\"??\" switches the check off; once per address)"},
+    {FindingKind::GsdIdentMismatch, "gsd_ident_mismatch", Severity::Error, DeviceDescription,
+     "Set_Prm and Slave_Diag carry the Ident_Number of the slave's GSD file"},
+    {FindingKind::GsdUnknownModule, "gsd_unknown_module", Severity::Error, DeviceDescription,
+     "every Chk_Cfg / Get_Cfg identifier belongs to a module of the slave's GSD file"},
+    {FindingKind::GsdConfigLimit, "gsd_config_limit", Severity::Error, DeviceDescription,
+     "a configuration keeps to the GSD's Max_Module, Max_Input_Len, Max_Output_Len and "
+     "Max_Data_Len"},
+    {FindingKind::GsdUserPrmLength, "gsd_user_prm_length", Severity::Error, DeviceDescription,
+     "Set_Prm carries as many user parameter bytes as the GSD describes (User_Prm_Data_Len and "
+     "the modules' parameters)"},
+    {FindingKind::GsdUserPrmRange, "gsd_user_prm_range", Severity::Error, DeviceDescription,
+     "each user parameter of Set_Prm is one of the values its ExtUserPrmData allows"},
+    {FindingKind::GsdDiagTooLong, "gsd_diag_too_long", Severity::Warning, DeviceDescription,
+     "a Slave_Diag answer is no longer than the GSD's Max_Diag_Data_Len"},
+    {FindingKind::GsdLateResponse, "gsd_late_response", Severity::Warning, DeviceDescription,
+     "a slave answers within the GSD's MaxTsdr at the line's baud rate (needs times and the "
+     "baud rate; the first of a run reported)"},
+    {FindingKind::GsdPollInterval, "gsd_poll_interval", Severity::Warning, DeviceDescription,
+     "Data_Exchange requests to a slave are at least the GSD's Min_Slave_Intervall apart (the "
+     "first of a run reported)"},
 };
 
 static_assert(catalogue::one_row_per_kind_in_order(std::span<const FindingKindInfo>(kCatalogue),
@@ -105,8 +125,8 @@ static_assert(catalogue::names_unique(std::span<const FindingKindInfo>(kCatalogu
               "kCatalogue: every finding kind needs a name of its own");
 
 constexpr std::string_view kComponentNames[] = {
-    "parameter channel",      "PROFIBUS link", "DP configuration",
-    "DP-V1 parameter access", "FC protocol",   "VLT 2000",
+    "parameter channel", "PROFIBUS link", "DP configuration",       "DP-V1 parameter access",
+    "FC protocol",       "VLT 2000",      "GSD device description",
 };
 static_assert(std::size(kComponentNames) == kFindingComponentCount);
 

@@ -58,6 +58,14 @@ enum class FindingKind : std::uint8_t {
     Vlt2000CommandFailed,
     Vlt2000ChecksumError,
     Vlt2000ChecksumDisabled,
+    GsdIdentMismatch,
+    GsdUnknownModule,
+    GsdConfigLimit,
+    GsdUserPrmLength,
+    GsdUserPrmRange,
+    GsdDiagTooLong,
+    GsdLateResponse,
+    GsdPollInterval,
     Count
 };
 
@@ -72,7 +80,9 @@ enum class FindingComponent : std::uint8_t {
     DpConfiguration,   // PROFIBUS DP: Data_Exchange lengths against the Chk_Cfg configuration
     Dpv1ParameterAccess,  // PROFIdrive parameter access over DP-V1: Write, Read polls, response
     FcProtocol,  // the Danfoss FC protocol on RS-485: command -> response per drive address, BCC
-    Vlt2000Protocol,  // the VLT 2000 serial telegram: command -> reply per address, checksum
+    Vlt2000Protocol,    // the VLT 2000 serial telegram: command -> reply per address, checksum
+    DeviceDescription,  // PROFIBUS DP: a slave against its GSD file (--gsd): ident, modules,
+                        // parameters
     Count
 };
 

@@ -184,6 +184,44 @@ void append_cfg_summary(TextBuffer& out, Bytes identifiers, std::span<const CfgM
     append_ppo_short(out, ppo_from_cfg(modules, PpoSource::ChkCfg));
 }
 
+void append_gsd_device(TextBuffer& out, const DecodedTelegram& t) {
+    if (!t.dp.device) return;
+    append(out, " (");
+    append(out, gsd_device_title(*t.dp.device));
+    out.push_back(')');
+}
+
+void append_gsd_modules(TextBuffer& out, std::span<const GsdModuleMatch> matches) {
+    if (matches.empty()) return;
+    append(out, " [GSD ");
+    bool first = true;
+    for (const GsdModuleMatch& m : matches) {
+        if (!first) append(out, " + ");
+        first = false;
+        if (m.module)
+            fmt::format_to(std::back_inserter(out), "\"{}\"", m.module->name);
+        else
+            append(out, "no module");
+    }
+    out.push_back(']');
+}
+
+void append_gsd_value(TextBuffer& out, const GsdPrmValue& v) {
+    auto it = std::back_inserter(out);
+    if (v.text)
+        fmt::format_to(it, "{}={}", v.prm->name, v.text->text);
+    else
+        fmt::format_to(it, "{}={}", v.prm->name, v.value);
+    if (!v.in_range) append(out, " (not allowed)");
+}
+
+void append_gsd_diag_text(TextBuffer& out, const GsdDiagText& d) {
+    if (d.source == GsdDiagText::Source::Slot)
+        fmt::format_to(std::back_inserter(out), "slot {} \"{}\"", d.bit, d.text);
+    else
+        fmt::format_to(std::back_inserter(out), "\"{}\"", d.text);
+}
+
 namespace {
 
 // "PNU 12[4]", "PNU 12[4..7]" (several elements); "param 2" when the address is not known.
@@ -407,7 +445,9 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
                 return;
             }
             if (const SlaveDiag* diag = data.slave_diag()) {
-                fmt::format_to(std::back_inserter(out), "ident 0x{:04X} master ", diag->ident);
+                fmt::format_to(std::back_inserter(out), "ident 0x{:04X}", diag->ident);
+                append_gsd_device(out, t);
+                append(out, " master ");
                 if (diag->master_address == kNoMasterAddress)
                     append(out, "none");
                 else
@@ -425,12 +465,20 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
                 if (!diag->extended.empty())
                     fmt::format_to(std::back_inserter(out), " +{}",
                                    counted(diag->extended.size(), "ext byte", "ext bytes"));
+                const char* separator = ": ";
+                for (const GsdDiagText& d : data.gsd_diag()) {
+                    append(out, separator);
+                    separator = ", ";
+                    append_gsd_diag_text(out, d);
+                }
                 return;
             }
             break;
         case Service::SetPrm:
             if (const SetPrm* prm = data.set_prm()) {
-                fmt::format_to(std::back_inserter(out), "ident 0x{:04X} ", prm->ident);
+                fmt::format_to(std::back_inserter(out), "ident 0x{:04X}", prm->ident);
+                append_gsd_device(out, t);
+                out.push_back(' ');
                 if (prm->watchdog_on() && prm->watchdog_base_uncertain())
                     fmt::format_to(std::back_inserter(out),
                                    "WD {} ms (1 ms base) or {} ms (10 ms base) ",
@@ -445,12 +493,21 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
                 if (!prm->user_prm.empty())
                     fmt::format_to(std::back_inserter(out), " user {}",
                                    counted(prm->user_prm.size(), "byte", "bytes"));
+                if (const GsdPrmReading* reading = data.gsd_prm()) {
+                    const char* separator = ": ";
+                    for (const GsdPrmValue& v : reading->values) {
+                        append(out, separator);
+                        separator = ", ";
+                        append_gsd_value(out, v);
+                    }
+                }
                 return;
             }
             break;
         case Service::ChkCfg:
             if (const std::vector<CfgModule>* modules = data.cfg_modules()) {
                 append_cfg_summary(out, f.du, *modules);
+                append_gsd_modules(out, data.gsd_modules());
                 return;
             }
             break;
@@ -463,6 +520,7 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
             if (const std::vector<CfgModule>* modules = data.cfg_modules();
                 modules && !f.du.empty()) {
                 append_cfg_summary(out, f.du, *modules);
+                append_gsd_modules(out, data.gsd_modules());
                 return;
             }
             break;

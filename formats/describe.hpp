@@ -36,6 +36,13 @@ void append_hex(TextBuffer& out, Bytes bytes, std::string_view separator = " ");
 void append_frame_control(TextBuffer& out, FrameControl fc);
 // "PPO1", "PPO1/4?" (from length, ambiguous), "PPO2?" (from length), "PCV+8w", "10w".
 void append_ppo_short(TextBuffer& out, const PpoLayout& layout);
+// What a slave's GSD file adds (issue 29): " (Vendor Model)" after an ident; " [GSD "A" + "B"]"
+// after a configuration; "Name=text" for a user parameter ("(not allowed)" after one outside
+// its values); "\"text\"" or "slot 2 \"module\"" for a diagnosis text.
+void append_gsd_device(TextBuffer& out, const DecodedTelegram& t);
+void append_gsd_modules(TextBuffer& out, std::span<const GsdModuleMatch> matches);
+void append_gsd_value(TextBuffer& out, const GsdPrmValue& v);
+void append_gsd_diag_text(TextBuffer& out, const GsdDiagText& d);
 // "PPO 1 (PCV + 2 PCD words, 12 bytes each way) from Chk_Cfg"; "1 byte", "1 PCD word".
 void append_ppo_long(TextBuffer& out, const PpoLayout& layout);
 // A configuration module's length: "1 byte", "4 words".

@@ -58,6 +58,16 @@ enum class FaultKind : std::uint8_t {
     Vlt2000CommandFailed,        // VLT 2000: a reply with decimal position 9 and a reason code
     Vlt2000ChecksumError,        // VLT 2000: one telegram's checksum is wrong
     Vlt2000ChecksumDisabled,     // VLT 2000: a drive's telegrams carry "??" as checksum
+    // GSD faults (PROFIBUS DP: a slave against its GSD file; docs/gsd.md). Each but the last
+    // three makes the slave leave data exchange and the master parameterise it again, with:
+    GsdIdentMismatch,  // a Set_Prm with another ident (0x0100 flipped)
+    GsdUnknownModule,  // a Chk_Cfg with a free place (0x00) after the PPO's identifiers
+    GsdConfigLimit,    // a Chk_Cfg with the PPO's identifiers twice (two modules)
+    GsdUserPrmLength,  // a Set_Prm with one user parameter byte more
+    GsdUserPrmRange,   // a Set_Prm whose second user byte (DPV1_Status_2) is 0x01
+    GsdDiagTooLong,    // a Data_Exchange answered DH, the Slave_Diag with 14 ext diag bytes
+    GsdLateResponse,   // a Data_Exchange answered after 400 bit times
+    GsdPollInterval,   // a slave polled twice in a row (two Data_Exchange cycles back to back)
     // Bus-health faults (PROFIBUS DP link layer; docs/bus-health.md):
     StationLost,      // a slave silent for kStationLostCycles cycles, then re-parameterised
     Resync,           // a slave leaves data exchange (DH, Prm_Req) and is parameterised again

@@ -136,7 +136,17 @@ class Simulator {
     void arm_faults();
     // Bus-health faults: a slave that is silent (station_lost) or is parameterised anew.
     void silent_poll(std::size_t index);
-    void parameterise_again(std::size_t index);
+    // What a GSD fault changes in the parameterisation (GsdIdentMismatch ... GsdUserPrmRange).
+    enum class Reparameterisation : std::uint8_t {
+        AsBefore,
+        WrongIdent,
+        FreePlaceAdded,
+        ModulesTwice,
+        UserByteAdded,
+        UserByteOutOfRange
+    };
+    void parameterise_again(std::size_t index,
+                            Reparameterisation change = Reparameterisation::AsBefore);
     void request_srd(Slave& slave, std::optional<std::uint8_t> dsap, std::vector<std::uint8_t> du);
     void answer_sd2(Slave& slave, std::optional<std::uint8_t> ssap, std::vector<std::uint8_t> du,
                     FdlStatus status = FdlStatus::DataLow);

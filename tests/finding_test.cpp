@@ -66,6 +66,14 @@ TEST(FindingTest, NamesAndSeveritiesAreTheDocumentedOnes) {
         {"vlt2000_command_failed", Severity::Note},
         {"vlt2000_checksum_error", Severity::Error},
         {"vlt2000_checksum_disabled", Severity::Note},
+        {"gsd_ident_mismatch", Severity::Error},
+        {"gsd_unknown_module", Severity::Error},
+        {"gsd_config_limit", Severity::Error},
+        {"gsd_user_prm_length", Severity::Error},
+        {"gsd_user_prm_range", Severity::Error},
+        {"gsd_diag_too_long", Severity::Warning},
+        {"gsd_late_response", Severity::Warning},
+        {"gsd_poll_interval", Severity::Warning},
     };
     ASSERT_EQ(expected.size(), kFindingKindCount);
     for (std::size_t i = 0; i < kFindingKindCount; ++i) {

@@ -269,6 +269,7 @@ std::vector<std::string> dp_kind_names() {
     for (std::size_t i = 0; i < kFindingKindCount; ++i) {
         const FindingComponent component = finding_component(static_cast<FindingKind>(i));
         if (component != FindingComponent::Dpv1ParameterAccess &&
+            component != FindingComponent::DeviceDescription &&
             component != FindingComponent::FcProtocol &&
             component != FindingComponent::Vlt2000Protocol)
             names.emplace_back(finding_kind_name(static_cast<FindingKind>(i)));

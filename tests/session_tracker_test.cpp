@@ -11,6 +11,7 @@
 #include <set>
 #include <vector>
 
+#include "capture/gsd_files.hpp"
 #include "protocols/fc/fc_decoder.hpp"
 #include "protocols/fc/fc_tracker.hpp"
 #include "protocols/profibus/bus_decoder.hpp"
@@ -38,6 +39,8 @@ struct SimulatedRun {
     std::vector<Finding> findings;
     std::vector<Injection> injections;
     std::vector<ChannelStats> channels;
+    // Each channel's GSD checks (ChannelStats::gsd points into the tracker, gone after the run).
+    std::vector<std::optional<GsdCheckStats>> gsd;
     std::uint64_t transactions = 0;
 };
 
@@ -58,10 +61,22 @@ SimulatedRun simulate(SimulatorOptions options, DecoderOptions decoder_options =
     for (const Finding& f : tracker.finish())
         run.findings.push_back(f);
     run.injections = simulator.injections();
-    for (const ChannelStats* stats : tracker.channels())
+    for (const ChannelStats* stats : tracker.channels()) {
         run.channels.push_back(*stats);
+        run.channels.back().gsd = nullptr;
+        run.gsd.push_back(stats->gsd ? std::optional<GsdCheckStats>(*stats->gsd) : std::nullopt);
+    }
     run.transactions = tracker.transactions();
     return run;
+}
+
+// The sample GSD files (samples/gsd/): the VLT 5000 (0x0402) and the PROFIdrive drive (0x6001).
+std::shared_ptr<const GsdLibrary> sample_gsd_library() {
+    Result<LoadedGsdFiles> loaded = load_gsd_files(
+        {}, std::vector<std::string>{std::string(DPSCOPE_SOURCE_DIR) + "/samples/gsd"});
+    EXPECT_TRUE(loaded) << loaded.error();
+    EXPECT_TRUE(loaded && loaded->warnings.empty());
+    return loaded ? loaded->library : nullptr;
 }
 
 SimulatorOptions three_slaves(std::uint64_t cycles) {
@@ -122,8 +137,23 @@ TEST_P(FaultScenarioTest, ExactlyTheExpectedFindings) {
         ASSERT_TRUE(dpv1_slave) << dpv1_slave.error();
         options.slaves[1] = *dpv1_slave;
     }
+    DecoderOptions decoder;
+    TrackerOptions tracker;
+    if (std::optional<FindingKind> provokes = fault_finding_kind(fault->kind);
+        provokes && finding_component(*provokes) == FindingComponent::DeviceDescription) {
+        // The GSD faults: the slaves described by the sample GSD files, the line's rate known.
+        decoder.gsd = sample_gsd_library();
+        tracker.line_baud = options.baud;
+        if (fault->kind == FaultKind::GsdUserPrmRange) {
+            // The user parameters are the DP-V1 status bytes of the PROFIdrive sample drive.
+            Result<SimulatedSlave> dpv1_slave = parse_slave_spec("4:2:profidrive:dpv1");
+            ASSERT_TRUE(dpv1_slave) << dpv1_slave.error();
+            options.slaves[1] = *dpv1_slave;
+            decoder.station_dialect[4] = Dialect::Profidrive;
+        }
+    }
     options.faults.push_back(*fault);
-    SimulatedRun run = simulate(options);
+    SimulatedRun run = simulate(options, decoder, tracker);
     ASSERT_EQ(run.injections.size(), 1u) << "the fault was not injected";
     EXPECT_EQ(count_kinds(run.findings), scenario.expected);
     for (const Finding& f : run.findings) {
@@ -185,7 +215,43 @@ const FaultScenario kFaultScenarios[] = {
     // A read with an attribute no table has, refused by the drive (error 0x16).
     FaultScenario{
         "dpv1_unknown_code", 120, {{"dpv1_unknown_code", 1}, {"dpv1_negative_response", 1}}},
+    // GSD faults, the slaves checked against the sample GSD files (samples/gsd/).
+    FaultScenario{"gsd_ident_mismatch", 120, {{"gsd_ident_mismatch", 1}}},
+    FaultScenario{"gsd_unknown_module", 120, {{"gsd_unknown_module", 1}}},
+    // Two PPO modules: the Data_Exchange lengths then disagree with the configuration, both ways.
+    FaultScenario{"gsd_config_limit", 120, {{"gsd_config_limit", 1}, {"config_mismatch", 2}}},
+    FaultScenario{"gsd_user_prm_length", 120, {{"gsd_user_prm_length", 1}}},
+    FaultScenario{"gsd_user_prm_range", 120, {{"gsd_user_prm_range", 1}}},
+    FaultScenario{"gsd_diag_too_long", 120, {{"gsd_diag_too_long", 1}}},
+    FaultScenario{"gsd_late_response", 120, {{"gsd_late_response", 1}}},
+    FaultScenario{"gsd_poll_interval", 120, {{"gsd_poll_interval", 1}}},
 };
+
+TEST(SessionTrackerTest, CleanSessionKeepsToItsGsdFiles) {
+    SimulatorOptions options = three_slaves(200);
+    Result<SimulatedSlave> dpv1_slave = parse_slave_spec("4:2:profidrive:dpv1");
+    ASSERT_TRUE(dpv1_slave) << dpv1_slave.error();
+    options.slaves[1] = *dpv1_slave;
+    DecoderOptions decoder;
+    decoder.gsd = sample_gsd_library();
+    decoder.station_dialect[4] = Dialect::Profidrive;
+    TrackerOptions tracker;
+    tracker.line_baud = options.baud;
+    SimulatedRun run = simulate(options, decoder, tracker);
+    EXPECT_EQ(count_kinds(run.findings), Counts{});
+    ASSERT_EQ(run.gsd.size(), 3u);
+    for (const std::optional<GsdCheckStats>& gsd : run.gsd) {
+        ASSERT_TRUE(gsd);
+        ASSERT_NE(gsd->device, nullptr);
+        const std::size_t ident = static_cast<std::size_t>(FindingKind::GsdIdentMismatch) -
+                                  static_cast<std::size_t>(kFirstGsdKind);
+        EXPECT_GE(gsd->judged[ident], 3u);  // Slave_Diag, Set_Prm, Slave_Diag
+        for (std::uint64_t broken : gsd->broken)
+            EXPECT_EQ(broken, 0u);
+        EXPECT_GT(gsd->response_ns.count(), 200u);
+        EXPECT_GT(gsd->max_tsdr_ns, 0u);
+    }
+}
 
 INSTANTIATE_TEST_SUITE_P(SessionTrackerTest, FaultScenarioTest,
                          ::testing::ValuesIn(kFaultScenarios),

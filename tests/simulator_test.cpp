@@ -495,10 +495,12 @@ TEST(SimulatorTest, ParseFaultSpecInvalid) {
         << unknown;
     EXPECT_NE(unknown.find("fdl_no_response, dpv1_stacked_request, "), std::string::npos)
         << unknown;
-    EXPECT_NE(
-        unknown.find(", dpv1_error_pdu, dpv1_unknown_code, station_lost, resync, answer_not_asked, "
-                     "answer_wrong_kind, answer_short_ack, diag_fault, repeats, refusal)"),
-        std::string::npos)
+    EXPECT_NE(unknown.find(
+                  ", dpv1_error_pdu, dpv1_unknown_code, gsd_ident_mismatch, gsd_unknown_module, "
+                  "gsd_config_limit, gsd_user_prm_length, gsd_user_prm_range, gsd_diag_too_long, "
+                  "gsd_late_response, gsd_poll_interval, station_lost, resync, answer_not_asked, "
+                  "answer_wrong_kind, answer_short_ack, diag_fault, repeats, refusal)"),
+              std::string::npos)
         << unknown;
     EXPECT_EQ(unknown.find("fc_"), std::string::npos) << unknown;
     EXPECT_EQ(unknown.find("vlt2000_"), std::string::npos) << unknown;

@@ -39,7 +39,11 @@ bool carries_service_data(Service service, Direction direction, FrameType type) 
     }
 }
 
-BusDecoder::BusDecoder(DecoderOptions options) : options_(options) {}
+BusDecoder::BusDecoder(DecoderOptions options) : options_(std::move(options)) {
+    if (options_.gsd)
+        for (std::size_t a = 0; a < stations_.size(); ++a)
+            stations_[a].device = options_.gsd->forced(static_cast<std::uint8_t>(a));
+}
 
 void BusDecoder::layout_for(std::uint8_t slave, std::size_t du_length,
                             PpoLayout& layout) const noexcept {
@@ -105,6 +109,7 @@ const DecodedTelegram& BusDecoder::decode(Bytes bytes, std::int64_t time_ns, std
     t.dp.pcd_offset = 0;
     t.dp.service_data.reset();
     t.dp.slave_dpv1 = SlaveDpv1::Unknown;
+    t.dp.device = nullptr;
 
     if (t.dp.fdl.type == FrameType::Invalid) {
         t.direction = Direction::Request;
@@ -119,6 +124,7 @@ const DecodedTelegram& BusDecoder::decode(Bytes bytes, std::int64_t time_ns, std
     t.dp.dialect = options_.dialect_of(slave);
     t.dp.pcd_profile = options_.pcd_profile_of(slave);
     decode_service_data(t);
+    if (t.has_roles) t.dp.device = stations_[t.slave & 0x7F].device;
     return t;
 }
 
@@ -206,6 +212,7 @@ void BusDecoder::read_service_data(DecodedTelegram& t, StationConfig& station) {
                 modules, t.dp.service == Service::ChkCfg ? PpoSource::ChkCfg : PpoSource::GetCfg);
             station.cfg_frame = t.frame;
             note_ppo_override(station, t.slave, t.frame);
+            if (station.device) read_gsd(t, station);
             break;
         }
         case Service::SetPrm:
@@ -213,6 +220,8 @@ void BusDecoder::read_service_data(DecodedTelegram& t, StationConfig& station) {
                 data.store_set_prm(*prm);
                 station.has_ident = true;
                 station.ident = prm->ident;
+                match_gsd(station, prm->ident);
+                if (station.device) read_gsd(t, station);
                 // A damaged Set_Prm is dropped by the slave: its DP-V1 mode stays as it was.
                 if (t.dp.fdl.fcs_ok)
                     station.dpv1 = prm->dpv1_enabled() ? SlaveDpv1::Enabled : SlaveDpv1::Disabled;
@@ -223,6 +232,8 @@ void BusDecoder::read_service_data(DecodedTelegram& t, StationConfig& station) {
                 station.cfg_fault = (diag->station_status_1 & kDiagCfgFault) != 0;
                 parse_extended_diag(ByteReader(diag->extended, diag->extended_offset),
                                     data.store_slave_diag(*diag), problems);
+                match_gsd(station, diag->ident);
+                if (station.device) read_gsd(t, station);
             }
             break;
         case Service::GlobalControl:
@@ -235,6 +246,64 @@ void BusDecoder::read_service_data(DecodedTelegram& t, StationConfig& station) {
         case Service::MsacC1:
         case Service::MsacC2: read_dpv1(t, du); break;
         default: break;
+    }
+}
+
+void BusDecoder::match_gsd(StationConfig& station, std::uint16_t ident) const noexcept {
+    if (station.device || !options_.gsd) return;
+    station.device = options_.gsd->by_ident(ident);
+}
+
+void BusDecoder::read_gsd(DecodedTelegram& t, StationConfig& station) {
+    const GsdDevice& device = *station.device;
+    DpServiceData& data = t.dp.service_data;
+    if (const std::vector<CfgModule>* modules = data.cfg_modules()) {
+        // The identifier offsets, for the module runs to end on an identifier.
+        std::vector<std::uint16_t>& offsets = identifier_offsets_;
+        offsets.clear();
+        for (const CfgModule& m : *modules)
+            offsets.push_back(m.offset);
+        std::vector<GsdModuleMatch>& matches = data.store_gsd_modules();
+        match_gsd_modules(device, t.dp.fdl.du, t.dp.fdl.du_offset, offsets, matches);
+        station.gsd_modules_known = true;
+        station.gsd_modules.clear();
+        station.gsd_slots.clear();
+        for (const GsdModuleMatch& m : matches) {
+            station.gsd_modules.push_back(m.module);
+            station.gsd_slots.insert(station.gsd_slots.end(), m.identifiers, m.module);
+        }
+    } else if (data.set_prm()) {
+        // User_Prm_Data: every byte after the seven fixed ones.
+        constexpr std::size_t kFixed = 7;
+        const Bytes du = t.dp.fdl.du;
+        const Bytes user = du.size() > kFixed ? du.subspan(kFixed) : Bytes{};
+        read_gsd_user_prm(device, station.gsd_modules, station.gsd_modules_known, user,
+                          static_cast<std::uint16_t>(t.dp.fdl.du_offset + kFixed),
+                          data.store_gsd_prm());
+    } else if (data.slave_diag()) {
+        std::vector<GsdDiagText>& texts = data.store_gsd_diag();
+        auto slot_text = [&](std::uint16_t offset, std::uint32_t slot) {
+            const GsdModule* m =
+                slot < station.gsd_slots.size() ? station.gsd_slots[slot] : nullptr;
+            if (m)
+                texts.push_back(GsdDiagText{GsdDiagText::Source::Slot, offset, slot, 0, m->name});
+        };
+        for (const DiagBlock& block : data.diag_blocks()) {
+            const auto data_offset = static_cast<std::uint16_t>(block.offset + 1);
+            switch (block.type) {
+                case DiagBlockType::Device:
+                    name_gsd_diag_bits(device, block.data, data_offset, texts);
+                    break;
+                case DiagBlockType::Identifier:
+                    for (std::size_t bit = 0; bit < block.data.size() * 8; ++bit)
+                        if ((block.data[bit / 8] >> (bit % 8)) & 1u)
+                            slot_text(static_cast<std::uint16_t>(data_offset + bit / 8),
+                                      static_cast<std::uint32_t>(bit));
+                    break;
+                case DiagBlockType::Channel: slot_text(block.offset, block.module); break;
+                default: break;
+            }
+        }
     }
 }
 

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -31,6 +32,8 @@ struct DecoderOptions {
     std::array<std::uint8_t, kStationCount> station_ppo{};
     // When unset the profile follows the dialect: vlt, ge -> fc; profidrive -> profidrive.
     std::optional<PcdProfile> pcd_profile;
+    // The GSD files given (--gsd, --gsd-dir); null: none.
+    std::shared_ptr<const GsdLibrary> gsd;
 
     Dialect dialect_of(std::uint8_t station) const noexcept {
         return station_dialect[station & 0x7F].value_or(dialect);
@@ -56,6 +59,14 @@ struct StationConfig {
     // word has bit 10 set ("data valid" / "control by PLC"): in bytes 9-10 it points to PPO 1, in
     // bytes 1-2 (and not in 9-10) to PPO 4. The last request that told them apart decides.
     std::uint8_t length12_type = 0;  // 0: no evidence yet
+    // Its GSD file: forced for the address, else the first whose Ident_Number a Set_Prm or
+    // Slave_Diag of the slave carried. Null: none.
+    const GsdDevice* device = nullptr;
+    // Its configuration by that GSD (the last Chk_Cfg or Get_Cfg): the module of each run of
+    // identifiers in slot order (null: no module matched), and of each identifier (slot).
+    bool gsd_modules_known = false;
+    std::vector<const GsdModule*> gsd_modules;
+    std::vector<const GsdModule*> gsd_slots;
 };
 
 class BusDecoder final : public TelegramDecoder {
@@ -114,6 +125,10 @@ class BusDecoder final : public TelegramDecoder {
     KeptProfidriveRequest* kept_profidrive_request(const DecodedTelegram& t,
                                                    const Dpv1Pdu& pdu) noexcept;
     void learn_length12_type(const DecodedTelegram& t);
+    // The GSD of the slave that sent or was sent `ident` (when it has none yet).
+    void match_gsd(StationConfig& station, std::uint16_t ident) const noexcept;
+    // What the slave's GSD says about the service data just read.
+    void read_gsd(DecodedTelegram& t, StationConfig& station);
     // --ppo for this slave contradicts the configuration just learnt: remember the first time.
     void note_ppo_override(StationConfig& station, std::uint8_t slave,
                            std::uint64_t frame) const noexcept;
@@ -125,6 +140,7 @@ class BusDecoder final : public TelegramDecoder {
     bool has_pending_ = false;
     UnansweredRequest pending_;
     std::vector<KeptProfidriveRequest> profidrive_requests_;
+    std::vector<std::uint16_t> identifier_offsets_;  // read_gsd's, kept for its capacity
     DecodedTelegram current_;
 };
 

@@ -181,7 +181,7 @@ void Simulator::silent_poll(std::size_t index) {
     if (--slave.silent == 0) slave.reparameterise = true;
 }
 
-void Simulator::parameterise_again(std::size_t index) {
+void Simulator::parameterise_again(std::size_t index, Reparameterisation change) {
     // The slave answers the master's Slave_Diag: not parameterised (Station_Not_Ready, Prm_Req,
     // no master); the master parameterises and configures it, and checks its diagnosis again.
     Slave& slave = slaves_[index];
@@ -189,9 +189,20 @@ void Simulator::parameterise_again(std::size_t index) {
     const auto ident_lo = static_cast<std::uint8_t>(slave.ident);
     request_srd(slave, sap::kSlaveDiag, {});
     answer_sd2(slave, sap::kSlaveDiag, {0x02, 0x05, 0x00, kNoMasterAddress, ident_hi, ident_lo});
-    request_srd(slave, sap::kSetPrm, prm_bytes_of(slave.config, slave.ident));
+    std::vector<std::uint8_t> prm =
+        prm_bytes_of(slave.config,
+                     change == Reparameterisation::WrongIdent ? slave.ident ^ 0x0100 : slave.ident);
+    if (change == Reparameterisation::UserByteAdded) prm.push_back(0x00);
+    if (change == Reparameterisation::UserByteOutOfRange) {
+        prm.resize(std::max<std::size_t>(prm.size(), 10), 0x00);
+        prm[8] = 0x01;  // DPV1_Status_2: an alarm enabled
+    }
+    request_srd(slave, sap::kSetPrm, prm);
     answer_short_ack(slave);
-    request_srd(slave, sap::kChkCfg, cfg_bytes_of(slave.config.ppo_type));
+    std::vector<std::uint8_t> cfg = cfg_bytes_of(slave.config.ppo_type);
+    if (change == Reparameterisation::FreePlaceAdded) cfg.push_back(0x00);
+    if (change == Reparameterisation::ModulesTwice) cfg.insert(cfg.end(), cfg.begin(), cfg.end());
+    request_srd(slave, sap::kChkCfg, cfg);
     answer_short_ack(slave);
     request_srd(slave, sap::kSlaveDiag, {});
     answer_sd2(slave, sap::kSlaveDiag, {0x00, 0x0C, 0x00, options_.master, ident_hi, ident_lo});
@@ -338,6 +349,9 @@ void Simulator::exchange(std::size_t index) {
     Answer answer = Answer::Data;
     bool resync = false;
     bool answer_twice = false;
+    Reparameterisation change = Reparameterisation::AsBefore;
+    bool long_diagnosis = false;
+    bool late = false;
     if (first == Fate::Delivered) {
         if (inject(FaultKind::AnswerShortAck, index)) {
             answer = Answer::ShortAck;
@@ -348,6 +362,31 @@ void Simulator::exchange(std::size_t index) {
             resync = true;
         } else if (inject(FaultKind::DiagFault, index)) {
             answer = Answer::DataHigh;
+        } else if (inject(FaultKind::GsdIdentMismatch, index)) {
+            answer = Answer::DataHigh;
+            resync = true;
+            change = Reparameterisation::WrongIdent;
+        } else if (inject(FaultKind::GsdUnknownModule, index)) {
+            answer = Answer::DataHigh;
+            resync = true;
+            change = Reparameterisation::FreePlaceAdded;
+        } else if (inject(FaultKind::GsdConfigLimit, index)) {
+            answer = Answer::DataHigh;
+            resync = true;
+            change = Reparameterisation::ModulesTwice;
+        } else if (inject(FaultKind::GsdUserPrmLength, index)) {
+            answer = Answer::DataHigh;
+            resync = true;
+            change = Reparameterisation::UserByteAdded;
+        } else if (inject(FaultKind::GsdUserPrmRange, index)) {
+            answer = Answer::DataHigh;
+            resync = true;
+            change = Reparameterisation::UserByteOutOfRange;
+        } else if (inject(FaultKind::GsdDiagTooLong, index)) {
+            answer = Answer::DataHigh;
+            long_diagnosis = true;
+        } else if (inject(FaultKind::GsdLateResponse, index)) {
+            late = true;
         } else if (inject(FaultKind::AnswerNotAsked, index)) {
             answer_twice = true;
         }
@@ -356,7 +395,7 @@ void Simulator::exchange(std::size_t index) {
     switch (first) {
         case Fate::Delivered:
             switch (answer) {
-                case Answer::Data: emit(response_bytes, 30 + random(70)); break;
+                case Answer::Data: emit(response_bytes, late ? 400 : 30 + random(70)); break;
                 case Answer::ShortAck: {
                     std::vector<std::uint8_t> ack;
                     append_short_ack(ack);
@@ -414,14 +453,22 @@ void Simulator::exchange(std::size_t index) {
         // Diagnosis pending: the master asks for it before the next Data_Exchange.
         if (resync) {
             // The slave left data exchange (a watchdog, a restart): parameterised again.
-            parameterise_again(index);
+            parameterise_again(index, change);
         } else {
             const auto ident_hi = static_cast<std::uint8_t>(slave.ident >> 8);
             const auto ident_lo = static_cast<std::uint8_t>(slave.ident);
             request_srd(slave, sap::kSlaveDiag, {});
-            // Ext_Diag with a device-related block (header: length 3, two bytes).
-            answer_sd2(slave, sap::kSlaveDiag,
-                       {0x08, 0x0C, 0x00, master, ident_hi, ident_lo, 0x03, 0x01, 0x00});
+            // Ext_Diag with a device-related block (header: length 3, two bytes); with
+            // long_diagnosis one of 14 (header: length 14, thirteen bytes).
+            std::vector<std::uint8_t> diag = {0x08, 0x0C, 0x00, master, ident_hi, ident_lo};
+            if (long_diagnosis) {
+                diag.push_back(0x0E);
+                diag.insert(diag.end(), {0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+                                         0x00, 0x00, 0x00});
+            } else {
+                diag.insert(diag.end(), {0x03, 0x01, 0x00});
+            }
+            answer_sd2(slave, sap::kSlaveDiag, diag);
         }
     }
 
@@ -436,6 +483,8 @@ void Simulator::exchange(std::size_t index) {
         static constexpr std::uint16_t kReferences[] = {0x1000, 0x2000, 0x3000, 0x4000};
         slave.reference = kReferences[random(std::size(kReferences))];
     }
+    // The master polls the slave again at once: two polls closer than a cycle.
+    if (inject(FaultKind::GsdPollInterval, index)) exchange(index);
 }
 
 // PROFIBUS DP in the simulated session (simulator/bus_model.hpp): the session makes its traffic

@@ -15,6 +15,7 @@
 #include "protocols/profibus/dpv1/dpv1.hpp"
 #include "protocols/profibus/dpv1/profidrive.hpp"
 #include "protocols/profibus/fdl.hpp"
+#include "protocols/profibus/gsd/gsd_library.hpp"
 #include "protocols/profibus/pcd.hpp"
 #include "protocols/profibus/ppo.hpp"
 
@@ -84,9 +85,42 @@ class DpServiceData {
         return kind_ == Kind::Dpv1 && has_profidrive_ ? &profidrive_ : nullptr;
     }
 
+    // What the slave's GSD file says about the data (issue 29; empty, or null, unless the slave
+    // has a GSD): the module each run of Chk_Cfg / Get_Cfg identifiers stands for; the user
+    // parameters of a Set_Prm; the texts of a Slave_Diag's extended diagnosis.
+    std::span<const GsdModuleMatch> gsd_modules() const noexcept {
+        return kind_ == Kind::Cfg && has_gsd_ ? std::span<const GsdModuleMatch>(gsd_modules_)
+                                              : std::span<const GsdModuleMatch>();
+    }
+    const GsdPrmReading* gsd_prm() const noexcept {
+        return kind_ == Kind::SetPrm && has_gsd_ ? &gsd_prm_ : nullptr;
+    }
+    std::span<const GsdDiagText> gsd_diag() const noexcept {
+        return kind_ == Kind::SlaveDiag && has_gsd_ ? std::span<const GsdDiagText>(gsd_diag_)
+                                                    : std::span<const GsdDiagText>();
+    }
+
     // For the decoder. Each store makes its service's data the valid one; the returned vector
     // is emptied for the parser to append to.
-    void reset() noexcept { kind_ = Kind::None; }
+    void reset() noexcept {
+        kind_ = Kind::None;
+        has_gsd_ = false;
+    }
+    // After the store of the service's own data: its GSD reading, emptied to be filled.
+    std::vector<GsdModuleMatch>& store_gsd_modules() noexcept {
+        has_gsd_ = true;
+        gsd_modules_.clear();
+        return gsd_modules_;
+    }
+    GsdPrmReading& store_gsd_prm() noexcept {
+        has_gsd_ = true;
+        return gsd_prm_;
+    }
+    std::vector<GsdDiagText>& store_gsd_diag() noexcept {
+        has_gsd_ = true;
+        gsd_diag_.clear();
+        return gsd_diag_;
+    }
     std::vector<DiagBlock>& store_slave_diag(const SlaveDiag& diag) noexcept {
         kind_ = Kind::SlaveDiag;
         slave_diag_ = diag;
@@ -134,6 +168,10 @@ class DpServiceData {
     Dpv1Pdu dpv1_;
     bool has_profidrive_ = false;
     ProfidriveMessage profidrive_;
+    bool has_gsd_ = false;
+    std::vector<GsdModuleMatch> gsd_modules_;
+    GsdPrmReading gsd_prm_;
+    std::vector<GsdDiagText> gsd_diag_;
 };
 
 struct DpTelegram {
@@ -156,6 +194,9 @@ struct DpTelegram {
     DpServiceData service_data;
     // The slave's DP-V1 mode as its Set_Prm said (how its device-related diagnosis reads).
     SlaveDpv1 slave_dpv1 = SlaveDpv1::Unknown;
+    // The slave's GSD file (--gsd, --gsd-dir), matched by its Ident_Number or forced for its
+    // address; null when it has none.
+    const GsdDevice* device = nullptr;
 
     // The parameter value as the code says (word / double word) and the code's meaning; a
     // request's codes are request codes, a response's response codes.

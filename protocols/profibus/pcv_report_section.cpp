@@ -29,10 +29,11 @@ const StationConfig& profibus_station(const ReportContext& c, std::uint8_t slave
 }
 
 // The PROFIBUS bus suite's and the cyclic channel's kinds: all but the DP-V1 parameter-access,
-// the FC protocol and the VLT 2000 ones.
+// the GSD, the FC protocol and the VLT 2000 ones.
 bool is_dp_kind(FindingKind kind) noexcept {
     const FindingComponent component = finding_component(kind);
     return component != FindingComponent::Dpv1ParameterAccess &&
+           component != FindingComponent::DeviceDescription &&
            component != FindingComponent::FcProtocol &&
            component != FindingComponent::Vlt2000Protocol;
 }

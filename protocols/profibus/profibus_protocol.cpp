@@ -36,6 +36,7 @@ std::unique_ptr<TelegramDecoder> profibus_decoder(const LaneOptions& options) {
 std::unique_ptr<TelegramTracker> profibus_tracker(const LaneOptions& options) {
     TrackerOptions tracker = options.tracker;
     tracker.timeout_ns = options.timeout_ns;
+    tracker.line_baud = options.line_baud;
     return std::make_unique<SessionTracker>(tracker);
 }
 

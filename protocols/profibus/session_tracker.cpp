@@ -222,6 +222,13 @@ void SessionTracker::track_channel(Channel& ch, const DecodedTelegram& t, bool i
         return;
     }
     const bool retry = check_frame_count(ch.frame_count, t, current_);
+    if (t.dp.device) {
+        if (!ch.gsd) {
+            ch.gsd = std::make_unique<GsdCheckState>();
+            ch.stats.gsd = &ch.gsd->stats;
+        }
+        check_gsd(*ch.gsd, t, GsdLine{options_.line_baud}, retry, current_);
+    }
     if (t.dp.service != Service::DataExchange) return;
 
     ChannelStats& stats = ch.stats;

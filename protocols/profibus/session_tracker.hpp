@@ -34,12 +34,16 @@
 #include "protocols/profibus/dp_config_rule.hpp"
 #include "protocols/profibus/dp_link_rules.hpp"
 #include "protocols/profibus/dpv1/dpv1_parameter_access.hpp"
+#include "protocols/profibus/gsd/gsd_rules.hpp"
 
 namespace dpscope {
 
 struct TrackerOptions {
     std::int64_t timeout_ns = 1'000'000'000;  // --timeout-ms
     bool strict = false;                      // RC 8 after a read is an unexpected answer
+    // The line's baud rate (--baud, the capture's record; 0: not known): the GSD rules time a
+    // slave's answers against MaxTsdr at it.
+    std::uint32_t line_baud = 0;
 };
 
 // What one slave's telegrams say about its dialect: a slave decoded with the wrong code tables
@@ -113,6 +117,9 @@ struct ChannelStats : ParameterChannelStats {
     std::int64_t first_time_ns = kNoTime;
     std::int64_t last_time_ns = kNoTime;
     Dpv1Stats dpv1;  // DP-V1 parameter access (protocols/profibus/dpv1/dpv1_parameter_access.hpp)
+    // The slave against its GSD file (protocols/profibus/gsd/gsd_rules.hpp); null when the
+    // slave has none.
+    const GsdCheckStats* gsd = nullptr;
 };
 
 class SessionTracker final : public TelegramTracker {
@@ -154,6 +161,7 @@ class SessionTracker final : public TelegramTracker {
         ChannelStats stats;
         FrameCountState frame_count;
         ConfigCheckState config;
+        std::unique_ptr<GsdCheckState> gsd;  // made at the slave's first telegram with a GSD
         // A damaged request (bad FCS) was dropped by the slave: its retry is the cycle.
         bool damaged_request = false;
     };
