@@ -84,6 +84,10 @@ struct ProtocolDescriptor {
     // Marks in `seen` each parameter number the telegram names (what --pnu can select; the
     // cyclic PCV's number comes from the tracker, which knows which request a response answers).
     void (*mark_pnus)(const DecodedTelegram& t, PnuSet& seen) noexcept = nullptr;
+    // The drive family whose parameter database names its PNUs (drives/, docs/parameters.md):
+    // "fc", "vlt2000"; empty: each station's own (a PROFIBUS slave's by its dialect,
+    // drives/drive_family.hpp).
+    std::string_view drive_family = {};
     // Its decoder and tracker, made with the options that are its own (protocols/
     // lane_options.hpp): what the commands' pipeline and the Wireshark plugin feed.
     std::unique_ptr<TelegramDecoder> (*make_decoder)(const LaneOptions& options) = nullptr;

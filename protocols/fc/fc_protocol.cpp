@@ -71,6 +71,7 @@ const ProtocolDescriptor& fc_protocol() noexcept {
         .masters_addressed = false,
         .addresses_pnu = fc_addresses_pnu,
         .mark_pnus = fc_mark_pnus,
+        .drive_family = "fc",
         .make_decoder = fc_decoder,
         .make_tracker = fc_tracker,
     };

@@ -60,6 +60,7 @@ const ProtocolDescriptor& profibus_protocol() noexcept {
         .masters_addressed = true,
         .addresses_pnu = profibus_addresses_pnu,
         .mark_pnus = profibus_mark_pnus,
+        .drive_family = {},  // each slave's, by its dialect (drives/drive_family.hpp)
         .make_decoder = profibus_decoder,
         .make_tracker = profibus_tracker,
     };

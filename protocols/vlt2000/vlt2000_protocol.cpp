@@ -67,6 +67,7 @@ const ProtocolDescriptor& vlt2000_protocol() noexcept {
         .masters_addressed = false,
         .addresses_pnu = vlt2000_addresses_pnu,
         .mark_pnus = vlt2000_mark_pnus,
+        .drive_family = "vlt2000",
         .make_decoder = vlt2000_decoder,
         .make_tracker = vlt2000_tracker,
     };
