@@ -350,6 +350,16 @@ std::vector<std::string> families_in_play(const DecodeSettings& settings) {
     return families;
 }
 
+LaneOptions named_lanes(const DecodeSettings& settings) {
+    LaneOptions lanes = settings.lanes;
+    std::array<Dialect, kStationCount> dialects{};
+    for (std::size_t station = 0; station < kStationCount; ++station)
+        dialects[station] = lanes.decoder.dialect_of(static_cast<std::uint8_t>(station));
+    lanes.naming = std::make_shared<ParameterNaming>(
+        settings.parameters, settings.protocol->protocol, dialects, settings.drives);
+    return lanes;
+}
+
 Result<std::uint16_t> resolve_pnu_option(std::string_view text, const ParameterDatabase& database,
                                          std::span<const std::string> families) {
     const bool numeric = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {

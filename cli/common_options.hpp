@@ -188,6 +188,11 @@ std::vector<std::string> families_in_play(const DecodeSettings& settings);
 Result<std::uint16_t> resolve_pnu_option(std::string_view text, const ParameterDatabase& database,
                                          std::span<const std::string> families);
 
+// The lanes' options of the capture's bus (settings.protocol, chosen) with what names its PNUs:
+// each station's family by the family rule (--drive, the bus, the dialects) over
+// settings.parameters.
+LaneOptions named_lanes(const DecodeSettings& settings);
+
 // Validates the values; the error names the bad option.
 // `default_format`: the -T default of the subcommand (-q conflicts with any other).
 Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,

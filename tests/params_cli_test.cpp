@@ -174,5 +174,129 @@ TEST(ParamsCliTest, DriveIsCheckedLikeDialect) {
     EXPECT_EQ(same.exit_code, 0) << same.err;
 }
 
+// ---- names and values in the outputs (issue 29, docs/parameters.md "In the outputs") ---------
+
+// A family of the VLT 5000's plain numbers, for the PROFIBUS samples' PNUs.
+const std::string kPlainFamily =
+    "@family t5\n@source T = test sheet\n"
+    "207 | Ramp-up time | s | -2 | uint32 | 1 | T p. 1\n"
+    "518 | Frequency | Hz | -1 | int16 | 1 | T p. 2\n";
+
+TEST(ParamsCliTest, PcvTelegramsShowNamesAndValuesInTheirUnits) {
+    const std::string t5 = write_database("t5.params", kPlainFamily);
+    const std::vector<std::string> base = {"decode", "--params", t5, "--drive", "t5"};
+    auto run = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = base;
+        args.insert(args.end(), extra.begin(), extra.end());
+        return run_dpscope(args);
+    };
+    CommandResult text = run({"samples/ppo1.pcap"});
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    // A read request: the name, no value; its answer: the value in its unit after the raw one.
+    EXPECT_NE(text.out.find("RC=1 Request parameter value PNU=518 (Frequency) IND=0 PVA=0 |"),
+              std::string::npos)
+        << text.out;
+    EXPECT_NE(text.out.find("RC=1 Transmit parameter value (word) PNU=518 (Frequency) IND=0 "
+                            "PVA=500 (50.0 Hz) |"),
+              std::string::npos);
+    // Without the database, as before.
+    EXPECT_NE(run_dpscope({"decode", "--drive", "t5", "samples/ppo1.pcap"})
+                  .out.find("PNU=518 IND=0 PVA=500 |"),
+              std::string::npos);
+    CommandResult jsonl = run({"-T", "jsonl", "samples/ppo1.pcap"});
+    EXPECT_NE(jsonl.out.find("\"pnu\":518,\"ind\":0,\"ind_low\":0,\"pva\":500,\"pva_raw\":500,"
+                             "\"width\":\"word\",\"pnu_name\":\"Frequency\",\"value_scaled\":50.0,"
+                             "\"unit\":\"Hz\","),
+              std::string::npos);
+    EXPECT_NE(jsonl.out.find("\"pnu\":518,\"ind\":0,\"ind_low\":0,\"pva\":0,\"pva_raw\":0,"
+                             "\"width\":null,\"pnu_name\":\"Frequency\",\"value_scaled\":null,"
+                             "\"unit\":\"Hz\","),
+              std::string::npos);
+    CommandResult csv = run({"-T", "csv", "samples/ppo1.pcap"});
+    EXPECT_NE(csv.out.find(",\"Frequency\",50.0,\"Hz\"\n"), std::string::npos);
+    EXPECT_NE(csv.out.find(",\"Frequency\",,\"Hz\"\n"), std::string::npos);
+    CommandResult verbose = run({"-V", "-c", "60", "samples/ppo1.pcap"});
+    EXPECT_NE(verbose.out.find("PNU: 518\n                name: Frequency (t5: unit Hz, conversion "
+                               "index -1, int16, source T p. 2)\n"),
+              std::string::npos)
+        << verbose.out;
+    EXPECT_NE(verbose.out.find("word value 500\n            in its unit: 50.0 Hz (conversion "
+                               "index -1)\n"),
+              std::string::npos);
+    // The report names them in its tables.
+    CommandResult report =
+        run_dpscope({"report", "--params", t5, "--drive", "t5", "samples/ppo1.pcap"});
+    EXPECT_NE(report.out.find("207 (Ramp-up time) ("), std::string::npos) << report.out;
+    EXPECT_NE(report.out.find("518 (Frequency) ("), std::string::npos);
+    CommandResult json =
+        run_dpscope({"report", "-T", "json", "--params", t5, "--drive", "t5", "samples/ppo1.pcap"});
+    EXPECT_NE(json.out.find("{\"pnu\":518,\"pnu_name\":\"Frequency\",\"requests\":"),
+              std::string::npos);
+}
+
+TEST(ParamsCliTest, FcTelegramsShowNamesAndValuesInTheirUnits) {
+    const std::vector<std::string> base = {"decode",   "--bus",   "fc",       "--params",
+                                           kTestDrive, "--drive", "testdrive"};
+    auto run = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = base;
+        args.insert(args.end(), extra.begin(), extra.end());
+        args.push_back(kFcExamples);
+        return run_dpscope(args);
+    };
+    CommandResult text = run({});
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.out.find("AK=1 Parameter value transferred (word) PNU=414 (4-14 Motor Speed "
+                            "High Limit [Hz]) IND=0 PWE=10 (1.0 Hz) |"),
+              std::string::npos)
+        << text.out;
+    // No row: the FC series' number as before; a rejection: no value.
+    EXPECT_NE(text.out.find("PNU=415 (4-15) IND=0 fault 17"), std::string::npos);
+    CommandResult jsonl = run({"-T", "jsonl"});
+    EXPECT_NE(jsonl.out.find("\"width\":\"word\",\"pnu_name\":\"Motor Speed High Limit [Hz]\","
+                             "\"value_scaled\":1.0,\"unit\":\"Hz\""),
+              std::string::npos)
+        << jsonl.out;
+    CommandResult csv = run({"-T", "csv"});
+    EXPECT_NE(csv.out.find(",\"Motor Speed High Limit [Hz]\",1.0,\"Hz\"\n"), std::string::npos);
+    CommandResult report = run_dpscope(
+        {"report", "--bus", "fc", "--params", kTestDrive, "--drive", "testdrive", kFcExamples});
+    EXPECT_NE(report.out.find("PNU 414 (4-14 Motor Speed High Limit [Hz]) (1 read, 0 writes)"),
+              std::string::npos)
+        << report.out;
+}
+
+TEST(ParamsCliTest, Vlt2000AndProfidriveShowNamesAndValuesInTheirUnits) {
+    const std::string v2 = write_database(
+        "v2.params",
+        "@family v2\n@source T = t\n516 | Output frequency | Hz | - | int32 | 1 | T\n");
+    CommandResult vlt = run_dpscope({"decode", "--bus", "vlt2000", "--params", v2, "--drive", "v2",
+                                     "samples/vlt2000-examples.txt"});
+    ASSERT_EQ(vlt.exit_code, 0) << vlt.err;
+    // The value carries its own decimal point: the unit follows it.
+    EXPECT_NE(vlt.out.find("parameter 516 (Output frequency) = 80 Hz"), std::string::npos)
+        << vlt.out;
+    CommandResult vlt_json = run_dpscope({"decode", "--bus", "vlt2000", "-T", "jsonl", "--params",
+                                          v2, "--drive", "v2", "samples/vlt2000-examples.txt"});
+    EXPECT_NE(vlt_json.out.find("\"pnu_name\":\"Output frequency\",\"value_scaled\":80,"
+                                "\"unit\":\"Hz\""),
+              std::string::npos);
+    // DP-V1: each PROFIdrive parameter named, a whole value of the value attribute scaled.
+    CommandResult dpv1 = run_dpscope({"decode", "--dialect", "4=profidrive", "--params", kTestDrive,
+                                      "--drive", "3=testdrive", "samples/dpv1.pcap"});
+    ASSERT_EQ(dpv1.exit_code, 0) << dpv1.err;
+    EXPECT_NE(dpv1.out.find("PNU 342[0] (3-42 Ramp 1 Ramp Down Time) = 300 (3.00 s, "
+                            "Unsigned32)"),
+              std::string::npos)
+        << dpv1.out;
+    EXPECT_NE(dpv1.out.find("PNU 1540[0] (15-40 FC Type) = \"FC-302\" (VisibleString)"),
+              std::string::npos);
+    CommandResult dpv1_json =
+        run_dpscope({"decode", "--dialect", "4=profidrive", "-T", "jsonl", "--params", kTestDrive,
+                     "--drive", "3=testdrive", "samples/dpv1.pcap"});
+    EXPECT_NE(dpv1_json.out.find("\"pnu_name\":\"Ramp 1 Ramp Down Time\",\"value_scaled\":3.00,"
+                                 "\"unit\":\"s\""),
+              std::string::npos);
+}
+
 }  // namespace
 }  // namespace dpscope

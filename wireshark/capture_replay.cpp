@@ -47,11 +47,27 @@ struct CaptureReplay::Trackers {
     std::span<const Finding> track(const DecodedTelegram& t) { return tracker->track(t); }
 };
 
+namespace {
+
+// The options with what names the PNUs: the shipped parameter databases (the plugin reads no
+// --params files), each station's family by the family rule with the dialect chosen.
+ReplayOptions with_naming(Protocol protocol, ReplayOptions options) {
+    if (options.naming) return options;
+    std::array<Dialect, kStationCount> dialects{};
+    for (std::size_t station = 0; station < kStationCount; ++station)
+        dialects[station] = options.decoder.dialect_of(static_cast<std::uint8_t>(station));
+    options.naming = std::make_shared<ParameterNaming>(shipped_parameter_database(), protocol,
+                                                       dialects, DriveHints{});
+    return options;
+}
+
+}  // namespace
+
 CaptureReplay::CaptureReplay(Protocol protocol, const ReplayOptions& options)
     : protocol_(protocol),
-      options_(options),
-      decoder_(std::make_unique<DecoderState>(protocol, options)),
-      trackers_(std::make_unique<Trackers>(protocol, options)) {}
+      options_(with_naming(protocol, options)),
+      decoder_(std::make_unique<DecoderState>(protocol, options_)),
+      trackers_(std::make_unique<Trackers>(protocol, options_)) {}
 
 CaptureReplay::~CaptureReplay() = default;
 

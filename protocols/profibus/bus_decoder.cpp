@@ -39,7 +39,9 @@ bool carries_service_data(Service service, Direction direction, FrameType type) 
     }
 }
 
-BusDecoder::BusDecoder(DecoderOptions options) : options_(options) {}
+BusDecoder::BusDecoder(DecoderOptions options) : options_(std::move(options)) {
+    current_.naming = options_.naming.get();
+}
 
 void BusDecoder::layout_for(std::uint8_t slave, std::size_t du_length,
                             PpoLayout& layout) const noexcept {

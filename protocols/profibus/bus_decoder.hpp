@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct DecoderOptions {
     std::array<std::uint8_t, kStationCount> station_ppo{};
     // When unset the profile follows the dialect: vlt, ge -> fc; profidrive -> profidrive.
     std::optional<PcdProfile> pcd_profile;
+    // What names the PNUs (drives/parameter_naming.hpp): put on every telegram decoded
+    // (DecodedTelegram::naming); null: nothing. Set from LaneOptions::naming by the factory.
+    std::shared_ptr<const ParameterNaming> naming{};
 
     Dialect dialect_of(std::uint8_t station) const noexcept {
         return station_dialect[station & 0x7F].value_or(dialect);
