@@ -29,27 +29,12 @@ struct ParamsCommand {
     std::vector<std::string> params;
 };
 
-char lower(char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c; }
-
-bool contains_ignoring_case(std::string_view text, std::string_view part) {
-    return std::search(text.begin(), text.end(), part.begin(), part.end(),
-                       [](char x, char y) { return lower(x) == lower(y); }) != text.end();
-}
-
-// PATTERN: a part of the number as the family writes it ("16-1") or as a plain number ("161"),
-// or of the name, without regard to case; every row without a pattern.
-bool matches(const ParameterFamily& family, const ParameterRow& row, std::string_view pattern) {
-    return pattern.empty() || contains_ignoring_case(row.name, pattern) ||
-           family.format_pnu(row.pnu).find(pattern) != std::string::npos ||
-           std::to_string(row.pnu).find(pattern) != std::string::npos;
-}
-
 // The rows of a family that PATTERN selects.
 std::vector<const ParameterRow*> selected_rows(const ParameterFamily& family,
                                                std::string_view pattern) {
     std::vector<const ParameterRow*> rows;
     for (const ParameterRow& row : family.rows)
-        if (matches(family, row, pattern)) rows.push_back(&row);
+        if (matches_pattern(family, row, pattern)) rows.push_back(&row);
     return rows;
 }
 

@@ -328,6 +328,13 @@ Result<ParameterFile> parse_parameter_database(std::string_view text, std::strin
     return DatabaseParser(text, file_name).parse();
 }
 
+bool matches_pattern(const ParameterFamily& family, const ParameterRow& row,
+                     std::string_view pattern) {
+    return pattern.empty() || contains_ignoring_case(row.name, pattern) ||
+           family.format_pnu(row.pnu).find(pattern) != std::string::npos ||
+           std::to_string(row.pnu).find(pattern) != std::string::npos;
+}
+
 std::optional<std::uint16_t> parse_pnu_text(std::string_view text) noexcept {
     const std::size_t dash = text.find('-');
     if (dash == std::string_view::npos) {

@@ -113,6 +113,11 @@ struct ParameterFile {
 // @family before the first row).
 Result<ParameterFile> parse_parameter_database(std::string_view text, std::string_view file_name);
 
+// Whether `pattern` is a part of the row's name (without regard to case), of its number as the
+// family writes it ("16-1") or of its plain number ("161"); every row matches "".
+bool matches_pattern(const ParameterFamily& family, const ParameterRow& row,
+                     std::string_view pattern);
+
 // A PNU typed by a person: "1613", or "16-13" (group G, number NN: G * 100 + NN); nullopt when
 // `text` is neither or the PNU is above 65535.
 std::optional<std::uint16_t> parse_pnu_text(std::string_view text) noexcept;

@@ -136,15 +136,19 @@ void write_scaled(fmt::memory_buffer& out, const ScaledValue& value) {
 }  // namespace
 
 void parameter_jsonl_keys(JsonWriter& w, const TelegramParameterView& view) {
-    const ParameterRow* row = view.named.row;
+    parameter_jsonl_keys(w, view.named.row, view.value);
+}
+
+void parameter_jsonl_keys(JsonWriter& w, const ParameterRow* row,
+                          const std::optional<ScaledValue>& value) {
     w.key("pnu_name");
     if (row)
         w.string(row->name);
     else
         w.null();
     w.key("value_scaled");
-    if (view.value)
-        w.raw_value([&](fmt::memory_buffer& out) { write_scaled(out, *view.value); });
+    if (value)
+        w.raw_value([&](fmt::memory_buffer& out) { write_scaled(out, *value); });
     else
         w.null();
     w.key("unit");

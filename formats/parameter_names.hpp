@@ -65,6 +65,9 @@ void pnu_name_key(JsonWriter& w, const ParameterFamily* family, std::uint16_t pn
 // decimals; null when there is no value or it is not scaled) and "unit"; each null without a
 // row.
 void parameter_jsonl_keys(JsonWriter& w, const TelegramParameterView& view);
+// The same keys from a row (or none) and a value in its unit (or none).
+void parameter_jsonl_keys(JsonWriter& w, const ParameterRow* row,
+                          const std::optional<ScaledValue>& value);
 
 // csv: the last three columns, pnu_name, value_scaled and unit, each after a comma.
 void parameter_csv_columns(TextBuffer& b, const TelegramParameterView& view);

@@ -348,6 +348,15 @@ TEST(ParameterDatabaseTest, FindsParametersByName) {
     EXPECT_FALSE(db.find_by_name("  "));
 }
 
+TEST(ParameterDatabaseTest, APatternMatchesANumberAsWrittenOrPlainOrAPartOfAName) {
+    const ParameterFamily family = test_drive().family;
+    const ParameterRow& frequency = *family.find(1613);
+    for (const char* pattern : {"", "16-13", "16-1", "1613", "161", "FREQ", "quen", "3"})
+        EXPECT_TRUE(matches_pattern(family, frequency, pattern)) << pattern;
+    for (const char* pattern : {"16-14", "1614", "frequency [", "16 13", "-130"})
+        EXPECT_FALSE(matches_pattern(family, frequency, pattern)) << pattern;
+}
+
 TEST(ParameterDatabaseTest, ManyCandidatesAreListedUpToEight) {
     ParameterDatabase db;
     db.add(test_drive().family);

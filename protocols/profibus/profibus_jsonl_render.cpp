@@ -146,24 +146,8 @@ void render_profidrive(JsonWriter& w, const ProfidriveMessage& m, Dialect dialec
         }
         // The parameter's row in its drive's database (issue 29): name, the value in its unit
         // (one whole number of the value attribute), unit.
-        const NamedParameter named = profidrive_parameter(t, m, k);
-        w.key("pnu_name");
-        if (named.row)
-            w.string(named.row->name);
-        else
-            w.null();
-        w.key("value_scaled");
-        if (const std::optional<ScaledValue> value = profidrive_value_in_unit(t, m, k))
-            w.raw_value([&](TextBuffer& out) {
-                fmt::format_to(std::back_inserter(out), "{:.{}f}", value->value, value->decimals);
-            });
-        else
-            w.null();
-        w.key("unit");
-        if (named.row && !named.row->unit.empty())
-            w.string(named.row->unit);
-        else
-            w.null();
+        parameter_jsonl_keys(w, profidrive_parameter(t, m, k).row,
+                             profidrive_value_in_unit(t, m, k));
         w.key("complete");
         if (block)
             w.boolean(block->complete);
