@@ -276,10 +276,7 @@ Result<void> resolve_drive_options(const std::vector<std::string>& items, DriveH
     for (const std::string& item : items) {
         const std::size_t eq = item.find('=');
         const std::string family = eq == std::string::npos ? item : item.substr(eq + 1);
-        if (family.empty() || family.size() > 32 ||
-            !std::all_of(family.begin(), family.end(), [](char c) {
-                return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
-            }))
+        if (!is_family_id(family))
             return Error{fmt::format(
                 "--drive {}: '{}' is no drive family (lower-case letters, digits, '-', '_'; "
                 "dpscope params lists them)",
@@ -350,14 +347,10 @@ std::vector<std::string> families_in_play(const DecodeSettings& settings) {
     return families;
 }
 
-LaneOptions named_lanes(const DecodeSettings& settings) {
-    LaneOptions lanes = settings.lanes;
-    std::array<Dialect, kStationCount> dialects{};
-    for (std::size_t station = 0; station < kStationCount; ++station)
-        dialects[station] = lanes.decoder.dialect_of(static_cast<std::uint8_t>(station));
-    lanes.naming = std::make_shared<ParameterNaming>(
-        settings.parameters, settings.protocol->protocol, dialects, settings.drives);
-    return lanes;
+std::shared_ptr<const ParameterNaming> parameter_naming(const DecodeSettings& settings) {
+    return std::make_shared<ParameterNaming>(settings.parameters, settings.protocol->protocol,
+                                             settings.lanes.decoder.station_dialects(),
+                                             settings.drives);
 }
 
 Result<std::uint16_t> resolve_pnu_option(std::string_view text, const ParameterDatabase& database,

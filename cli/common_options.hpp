@@ -188,10 +188,9 @@ std::vector<std::string> families_in_play(const DecodeSettings& settings);
 Result<std::uint16_t> resolve_pnu_option(std::string_view text, const ParameterDatabase& database,
                                          std::span<const std::string> families);
 
-// The lanes' options of the capture's bus (settings.protocol, chosen) with what names its PNUs:
-// each station's family by the family rule (--drive, the bus, the dialects) over
-// settings.parameters.
-LaneOptions named_lanes(const DecodeSettings& settings);
+// What names the PNUs of a capture of the bus settings.protocol (chosen): each station's family
+// by the family rule (--drive, the bus, the dialects) over settings.parameters.
+std::shared_ptr<const ParameterNaming> parameter_naming(const DecodeSettings& settings);
 
 // Validates the values; the error names the bad option.
 // `default_format`: the -T default of the subcommand (-q conflicts with any other).

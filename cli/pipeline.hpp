@@ -29,7 +29,7 @@ class Pipeline {
     // the tracker that are fed (core/protocol_lane.hpp).
     explicit Pipeline(const DecodeSettings& settings, bool keep_timelines = false)
         : protocol_(settings.protocol->protocol),
-          naming_(named_lanes(settings).naming),
+          naming_(parameter_naming(settings)),
           decoder_(settings.protocol->make_decoder(lanes_with(settings.lanes, naming_))),
           tracker_(settings.protocol->make_tracker(settings.lanes)),
           keep_timelines_(keep_timelines) {

@@ -68,12 +68,6 @@ bool is_clean_text(std::string_view text) noexcept {
            });
 }
 
-bool is_family_id(std::string_view id) noexcept {
-    return !id.empty() && id.size() <= 32 && std::all_of(id.begin(), id.end(), [](char c) {
-        return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
-    });
-}
-
 bool is_source_key(std::string_view key) noexcept {
     return !key.empty() && key.size() <= 32 && std::all_of(key.begin(), key.end(), [](char c) {
         return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
@@ -326,6 +320,12 @@ std::string ParameterFamily::format_pnu(std::uint16_t pnu) const {
 
 Result<ParameterFile> parse_parameter_database(std::string_view text, std::string_view file_name) {
     return DatabaseParser(text, file_name).parse();
+}
+
+bool is_family_id(std::string_view id) noexcept {
+    return !id.empty() && id.size() <= 32 && std::all_of(id.begin(), id.end(), [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
+    });
 }
 
 bool matches_pattern(const ParameterFamily& family, const ParameterRow& row,

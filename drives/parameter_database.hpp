@@ -118,6 +118,9 @@ Result<ParameterFile> parse_parameter_database(std::string_view text, std::strin
 bool matches_pattern(const ParameterFamily& family, const ParameterRow& row,
                      std::string_view pattern);
 
+// Whether `id` can name a family: 1 to 32 lower-case letters, digits, '-' or '_'.
+bool is_family_id(std::string_view id) noexcept;
+
 // A PNU typed by a person: "1613", or "16-13" (group G, number NN: G * 100 + NN); nullopt when
 // `text` is neither or the PNU is above 65535.
 std::optional<std::uint16_t> parse_pnu_text(std::string_view text) noexcept;

@@ -53,11 +53,8 @@ namespace {
 // --params files), each station's family by the family rule with the dialect chosen.
 ReplayOptions with_naming(Protocol protocol, ReplayOptions options) {
     if (options.naming) return options;
-    std::array<Dialect, kStationCount> dialects{};
-    for (std::size_t station = 0; station < kStationCount; ++station)
-        dialects[station] = options.decoder.dialect_of(static_cast<std::uint8_t>(station));
-    options.naming = std::make_shared<ParameterNaming>(shipped_parameter_database(), protocol,
-                                                       dialects, DriveHints{});
+    options.naming = std::make_shared<ParameterNaming>(
+        shipped_parameter_database(), protocol, options.decoder.station_dialects(), DriveHints{});
     return options;
 }
 
