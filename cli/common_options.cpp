@@ -18,6 +18,7 @@
 #include "capture/gsd_files.hpp"
 #include "cli/pipeline.hpp"
 #include "cli/progress.hpp"
+#include "drives/shipped_databases.hpp"
 
 namespace dpscope::cli {
 
@@ -99,9 +100,12 @@ void add_display_options(CLI::App& app, DecodeOptionValues& values,
                    "parameter channel is about N (a request for N and its answer, also a "
                    "rejection that leaves the PNU out; PNUs 0-2047), DP-V1 telegrams whose "
                    "PROFIdrive request or response addresses N (0-65535), and those carrying a "
-                   "finding about N; repeat for more")
-        ->check(whole_number(0, 65535))
-        ->type_name("N")
+                   "finding about N; repeat for more. N is a number (1613), a group and number "
+                   "(16-13, the same PNU) or a parameter's name (Frequency: the whole name, "
+                   "else a part of one, without regard to case) that names one PNU in the "
+                   "parameter databases of the drives in play (--bus, --drive, --dialect; "
+                   "dpscope params lists them)")
+        ->type_name("N|G-NN|NAME")
         ->allow_extra_args(false);
 }
 
@@ -231,6 +235,26 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_flag("--strict", values.strict,
                  "Session tracker: RC 8 (no operating authority) after a read request is an "
                  "unexpected response type, not only unusual");
+    add_params_option(app, values.params);
+    app.add_option("--drive", values.drives,
+                   "The drive family whose parameter database names the PNUs (docs/"
+                   "parameters.md; dpscope params lists the families): FAMILY for every station, "
+                   "ADDR=FAMILY for one (0 to 126); repeatable. Default: the FC protocol's drives "
+                   "fc, VLT 2000's vlt2000, a PROFIBUS slave's by its --dialect (vlt: vlt5000, "
+                   "ge: af600, profidrive: fc)")
+        ->type_name("FAMILY|ADDR=FAMILY")
+        ->allow_extra_args(false);
+}
+
+void add_params_option(CLI::App& app, std::vector<std::string>& files) {
+    app.add_option("--params", files,
+                   "Read a drive parameter database from FILE beside the shipped ones "
+                   "(docs/parameters.md: one row a parameter); a family already known takes its "
+                   "rows, replacing those of the same PNU. A file that cannot be read or has an "
+                   "error is named with its line in a warning, and dpscope goes on without it; "
+                   "repeatable")
+        ->type_name("FILE")
+        ->allow_extra_args(false);
 }
 
 namespace {
@@ -256,6 +280,108 @@ Result<int> capture_link_type(const ProtocolDescriptor& protocol, std::optional<
             owner->framing.protocol_name(), protocol.framing.protocol_name(),
             lower_case(protocol.written_link_type().name), protocol.written_link_type().value)};
     return *given;
+}
+
+namespace {
+
+// --drive FAMILY and --drive ADDR=FAMILY into `hints`; a family no database holds is accepted
+// (its PNUs are then shown without names) but must be an id a database could have.
+Result<void> resolve_drive_options(const std::vector<std::string>& items, DriveHints& hints) {
+    for (const std::string& item : items) {
+        const std::size_t eq = item.find('=');
+        const std::string family = eq == std::string::npos ? item : item.substr(eq + 1);
+        if (!is_family_id(family))
+            return Error{fmt::format(
+                "--drive {}: '{}' is no drive family (lower-case letters, digits, '-', '_'; "
+                "dpscope params lists them)",
+                item, family)};
+        std::string* slot = &hints.all;
+        std::string whom = "every station";
+        if (eq != std::string::npos) {
+            unsigned address = 0;
+            if (!parse_whole_number(std::string_view(item).substr(0, eq), address) || address > 126)
+                return Error{fmt::format("--drive {}: '{}' is not a station address from 0 to 126",
+                                         item, item.substr(0, eq))};
+            slot = &hints.station[address];
+            whom = fmt::format("station {}", address);
+        }
+        if (!slot->empty() && *slot != family)
+            return Error{
+                fmt::format("--drive {}: {} was already given the family {}; give one "
+                            "family a station (ADDR=FAMILY sets one station)",
+                            item, whom, *slot)};
+        *slot = family;
+    }
+    return {};
+}
+
+}  // namespace
+
+std::shared_ptr<const ParameterDatabase> load_parameter_databases(
+    const std::vector<std::string>& files) {
+    auto database = std::make_shared<ParameterDatabase>();
+    const auto load = [&](std::string_view text, std::string_view name) {
+        Result<ParameterFile> parsed = parse_parameter_database(text, name);
+        if (!parsed) {
+            print_warning(fmt::format("{}; dpscope goes on without {}", parsed.error(), name));
+            return;
+        }
+        for (const std::string& warning : parsed->warnings)
+            print_warning(warning);
+        database->add(std::move(parsed->family));
+    };
+    for (const ShippedDatabase& shipped : shipped_databases())
+        load(shipped.text, shipped.file);
+    for (const std::string& file : files) {
+        Result<std::string> text =
+            read_small_file(file, kMaxParameterFileBytes, "--params", "a parameter database");
+        if (!text) {
+            print_warning(fmt::format("{}; dpscope goes on without it", text.error()));
+            continue;
+        }
+        load(*text, file);
+    }
+    return database;
+}
+
+std::vector<std::string> families_in_play(const DecodeSettings& settings) {
+    std::vector<std::string> families;
+    const auto add = [&](std::string_view family) {
+        if (std::find(families.begin(), families.end(), family) == families.end())
+            families.emplace_back(family);
+    };
+    for (const ProtocolDescriptor* bus : protocol_table()) {
+        if (settings.bus_given && bus != settings.protocol) continue;
+        for (std::size_t address = 0; address <= 126; ++address) {
+            const auto station = static_cast<std::uint8_t>(address);
+            add(drive_family(bus->protocol, settings.lanes.decoder.dialect_of(station),
+                             settings.drives.of(station)));
+        }
+    }
+    return families;
+}
+
+std::shared_ptr<const ParameterNaming> parameter_naming(const DecodeSettings& settings) {
+    return std::make_shared<ParameterNaming>(settings.parameters, settings.protocol->protocol,
+                                             settings.lanes.decoder.station_dialects(),
+                                             settings.drives);
+}
+
+Result<std::uint16_t> resolve_pnu_option(std::string_view text, const ParameterDatabase& database,
+                                         std::span<const std::string> families) {
+    const bool numeric = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+        return (c >= '0' && c <= '9') || c == '-';
+    });
+    if (numeric) {
+        if (std::optional<std::uint16_t> pnu = parse_pnu_text(text)) return *pnu;
+        return Error{fmt::format(
+            "--pnu {}: must be a whole number from 0 to 65535, a group and number from 0-00 to "
+            "655-35 (16-13), or a parameter's name",
+            text)};
+    }
+    Result<std::vector<NamedParameter>> found = database.find_by_name(text, families);
+    if (!found) return Error{fmt::format("--pnu {}: {}", text, found.error())};
+    return found->front().row->pnu;
 }
 
 Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
@@ -292,8 +418,6 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     settings.lanes.vlt2000_decoder.check_checksum = values.vlt2000_checksum != "ignore";
     for (unsigned station : values.stations)
         settings.stations.push_back(static_cast<std::uint8_t>(station));
-    for (unsigned pnu : values.pnus)
-        settings.pnus.push_back(static_cast<std::uint16_t>(pnu));
     for (const std::string& item : values.ppo) {
         auto eq = item.find('=');
         unsigned address = 0, type = 0;
@@ -361,6 +485,17 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
         for (const std::string& warning : loaded->warnings)
             print_warning(warning);
         settings.lanes.decoder.gsd = std::move(loaded->library);
+    }
+    if (Result<void> drives = resolve_drive_options(values.drives, settings.drives); !drives)
+        return Error{drives.error()};
+    settings.parameters = load_parameter_databases(values.params);
+    if (!values.pnus.empty()) {
+        const std::vector<std::string> families = families_in_play(settings);
+        for (const std::string& text : values.pnus) {
+            Result<std::uint16_t> pnu = resolve_pnu_option(text, *settings.parameters, families);
+            if (!pnu) return Error{pnu.error()};
+            settings.pnus.push_back(*pnu);
+        }
     }
     settings.write = values.write;
     settings.write_format =
@@ -725,51 +860,52 @@ void add_health_options(CLI::App& app, HealthOptionValues& values) {
         ->allow_extra_args(false);
 }
 
+Result<std::string> read_small_file(const std::string& path, std::size_t max_bytes,
+                                    std::string_view option, std::string_view what) {
+    // A settings file is a regular file of a few lines: a device (/dev/zero), FIFO or directory
+    // is refused before anything is read (opened without waiting, as a FIFO would wait for a
+    // writer), and a file is read up to max_bytes.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0)
+        return Error{fmt::format("{} {}: cannot read: {}", option, path, std::strerror(errno))};
+    struct stat info {};
+    if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+        ::close(fd);
+        return Error{fmt::format("{} {}: not a regular file; give {}", option, path, what)};
+    }
+    std::FILE* file = ::fdopen(fd, "rb");
+    if (file == nullptr) {
+        const int error = errno;
+        ::close(fd);
+        return Error{fmt::format("{} {}: cannot read: {}", option, path, std::strerror(error))};
+    }
+    std::string text;
+    char buffer[4096];
+    std::size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof buffer, file)) > 0) {
+        text.append(buffer, n);
+        if (text.size() > max_bytes) {
+            std::fclose(file);
+            return Error{fmt::format("{} {}: larger than {} KiB, too large for {}", option, path,
+                                     max_bytes / 1024, what)};
+        }
+    }
+    const bool failed = std::ferror(file) != 0;
+    const int error = errno;
+    std::fclose(file);
+    if (failed)
+        return Error{fmt::format("{} {}: cannot read: {}", option, path, std::strerror(error))};
+    return text;
+}
+
 Result<HealthThresholds> resolve_health_options(const HealthOptionValues& values) {
     HealthThresholds thresholds;
     if (!values.config.empty()) {
-        // A settings file is a regular file of a few lines: a device (/dev/zero), FIFO or
-        // directory is refused before anything is read (opened without waiting, as a FIFO
-        // would wait for a writer), and a file is read up to kMaxHealthConfigBytes.
-        const int fd = ::open(values.config.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-        if (fd < 0)
-            return Error{fmt::format("--health-config {}: cannot read: {}", values.config,
-                                     std::strerror(errno))};
-        struct stat info {};
-        if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
-            ::close(fd);
-            return Error{
-                fmt::format("--health-config {}: not a regular file; give a settings "
-                            "file of 'name = value' lines",
-                            values.config)};
-        }
-        std::FILE* file = ::fdopen(fd, "rb");
-        if (file == nullptr) {
-            const int error = errno;
-            ::close(fd);
-            return Error{fmt::format("--health-config {}: cannot read: {}", values.config,
-                                     std::strerror(error))};
-        }
-        std::string text;
-        char buffer[4096];
-        std::size_t n = 0;
-        while ((n = std::fread(buffer, 1, sizeof buffer, file)) > 0) {
-            text.append(buffer, n);
-            if (text.size() > kMaxHealthConfigBytes) {
-                std::fclose(file);
-                return Error{fmt::format(
-                    "--health-config {}: larger than {} KiB; a settings file holds a few lines "
-                    "of 'name = value'",
-                    values.config, kMaxHealthConfigBytes / 1024)};
-            }
-        }
-        const bool failed = std::ferror(file) != 0;
-        const int error = errno;
-        std::fclose(file);
-        if (failed)
-            return Error{fmt::format("--health-config {}: cannot read: {}", values.config,
-                                     std::strerror(error))};
-        if (Result<void> loaded = thresholds.load(text, values.config); !loaded)
+        Result<std::string> text =
+            read_small_file(values.config, kMaxHealthConfigBytes, "--health-config",
+                            "a settings file of 'name = value' lines");
+        if (!text) return Error{text.error()};
+        if (Result<void> loaded = thresholds.load(*text, values.config); !loaded)
             return Error{fmt::format("--health-config {}", loaded.error())};
     }
     for (const std::string& assignment : values.thresholds)

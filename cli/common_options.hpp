@@ -7,7 +7,9 @@
 #include <charconv>
 #include <cstdint>
 #include <cstdlib>
+#include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +18,8 @@
 #include "capture/pcap_source.hpp"
 #include "core/protocol_descriptor.hpp"
 #include "core/result.hpp"
+#include "drives/drive_family.hpp"
+#include "drives/parameter_database.hpp"
 #include "formats/renderer.hpp"
 #include "protocols/lane_options.hpp"
 #include "protocols/profibus/health/bus_health.hpp"
@@ -73,11 +77,13 @@ struct DecodeOptionValues {
     bool quiet = false;
     std::uint64_t count = 0;
     std::vector<unsigned> stations;
-    std::vector<unsigned> pnus;
+    std::vector<std::string> pnus;  // --pnu: 1613, 16-13 or a parameter's name
     std::vector<std::string> ppo;
     std::vector<std::string> dialects;
     std::vector<std::string> gsd_files;  // --gsd FILE or ADDR=FILE
     std::vector<std::string> gsd_dirs;   // --gsd-dir DIR
+    std::vector<std::string> params;  // --params FILE: parameter databases beside the shipped
+    std::vector<std::string> drives;  // --drive [ADDR=]FAMILY
     std::string bus;  // --bus: "" = from the capture
     unsigned fc_pnu_bits = 12;
     std::string pcd_profile;
@@ -96,8 +102,11 @@ struct DecodeOptionValues {
 };
 
 // How to decode and track: -c, --bus, --ppo, --dialect, --fc-pnu-bits, --pcd-profile,
-// --timeout-ms, --fc-response-ms, --strict.
+// --timeout-ms, --fc-response-ms, --strict; and how to name parameters: --params, --drive.
 void add_tracking_options(CLI::App& app, DecodeOptionValues& values);
+// --params FILE (repeatable): a parameter database read beside the shipped ones (decode, hex,
+// report, sniff through add_tracking_options; params).
+void add_params_option(CLI::App& app, std::vector<std::string>& files);
 // decode, hex and report: --baud, the line rate of a capture read from a file (sniff has its own
 // --baud for the port and sets the same setting).
 void add_line_options(CLI::App& app, DecodeOptionValues& values);
@@ -126,6 +135,10 @@ struct DecodeSettings {
     std::uint64_t count = 0;     // 0: no limit
     std::vector<std::uint8_t> stations;
     std::vector<std::uint16_t> pnus;
+    // The drive parameter databases (the shipped ones and --params files; never null) and the
+    // families --drive names (docs/parameters.md).
+    std::shared_ptr<const ParameterDatabase> parameters = std::make_shared<ParameterDatabase>();
+    DriveHints drives;
     // -w: where the telegrams shown go as a capture ("" none), its format and link type.
     std::string write;
     CaptureFormat write_format = CaptureFormat::Pcap;
@@ -151,6 +164,35 @@ void use_line(DecodeSettings& settings, const LineSettings& line);
 // default (PROFIBUS 257 PROFIBUS_DL, FC protocol 147 USER0). An error when the link type is
 // 257, which is PROFIBUS only, for another bus.
 Result<int> capture_link_type(const ProtocolDescriptor& protocol, std::optional<int> given);
+
+// The largest parameter database file read (--params): the shipped ones are a few dozen KiB.
+inline constexpr std::size_t kMaxParameterFileBytes = 16 * 1024 * 1024;
+
+// The whole of a regular file of at most `max_bytes` (a device, FIFO or directory is refused
+// before anything is read); the error is "OPTION FILE: why" (OPTION "--health-config"), naming
+// `what` the file must be ("a parameter database").
+Result<std::string> read_small_file(const std::string& path, std::size_t max_bytes,
+                                    std::string_view option, std::string_view what);
+
+// The shipped parameter databases, then each --params file in order (a family already loaded
+// takes its rows: docs/parameters.md). A file that cannot be read or parsed is named in a
+// warning ("FILE:LINE: what") and left out; dpscope goes on without it. So is a row's conversion
+// index without a known meaning (its values are not scaled).
+std::shared_ptr<const ParameterDatabase> load_parameter_databases(
+    const std::vector<std::string>& files);
+
+// The families whose databases may name the PNUs of a capture decoded with `settings` (its
+// --bus, else every bus; --drive, --dialect): what --pnu NAME is looked up in.
+std::vector<std::string> families_in_play(const DecodeSettings& settings);
+
+// --pnu TEXT: "1613", "16-13" or a parameter name unique in `families` of `database`; the error
+// names the option, its value and why.
+Result<std::uint16_t> resolve_pnu_option(std::string_view text, const ParameterDatabase& database,
+                                         std::span<const std::string> families);
+
+// What names the PNUs of a capture of the bus settings.protocol (chosen): each station's family
+// by the family rule (--drive, the bus, the dialects) over settings.parameters.
+std::shared_ptr<const ParameterNaming> parameter_naming(const DecodeSettings& settings);
 
 // Validates the values; the error names the bad option.
 // `default_format`: the -T default of the subcommand (-q conflicts with any other).

@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
     int exit_code = kExitOk;
     add_decode_command(app, exit_code);
     add_hex_command(app, exit_code);
+    add_params_command(app, exit_code);
     add_report_command(app, exit_code);
     add_simulate_command(app, exit_code);
     add_sniff_command(app, exit_code);
@@ -72,7 +73,8 @@ int main(int argc, char** argv) {
             known = known || sub->get_name() == argv[1];
         if (!known) {
             print_error(fmt::format(
-                "unknown subcommand '{}'; one of decode, hex, report, simulate, sniff, stats "
+                "unknown subcommand '{}'; one of decode, hex, params, report, simulate, sniff, "
+                "stats "
                 "(see --help)",
                 argv[1]));
             return kExitUsage;

@@ -29,7 +29,8 @@ class Pipeline {
     // the tracker that are fed (core/protocol_lane.hpp).
     explicit Pipeline(const DecodeSettings& settings, bool keep_timelines = false)
         : protocol_(settings.protocol->protocol),
-          decoder_(settings.protocol->make_decoder(settings.lanes)),
+          naming_(parameter_naming(settings)),
+          decoder_(settings.protocol->make_decoder(lanes_with(settings.lanes, naming_))),
           tracker_(settings.protocol->make_tracker(settings.lanes)),
           keep_timelines_(keep_timelines) {
         if (settings.track_health && settings.protocol->has_bus_health)
@@ -77,6 +78,8 @@ class Pipeline {
     // The health events (station lost, returned) the last feed() caused.
     std::span<const HealthEvent> health_events() const noexcept { return health_events_; }
     const ChannelTimelines& timelines() const noexcept { return timelines_; }
+    // What names the capture's PNUs (drives/parameter_naming.hpp).
+    const ParameterNaming& naming() const noexcept { return *naming_; }
 
   private:
     // The telegrams need more time at the baud rate given than the capture lasts: the line was
@@ -90,7 +93,14 @@ class Pipeline {
             segment.busy_ns / duration_ns * 100.0, segment.baud));
     }
 
+    static LaneOptions lanes_with(LaneOptions lanes,
+                                  std::shared_ptr<const ParameterNaming> naming) {
+        lanes.naming = std::move(naming);
+        return lanes;
+    }
+
     Protocol protocol_;
+    std::shared_ptr<const ParameterNaming> naming_;  // what names the PNUs (drives/)
     std::unique_ptr<TelegramDecoder> decoder_;
     std::unique_ptr<TelegramTracker> tracker_;
     std::optional<BusHealthTracker> health_;
@@ -116,6 +126,7 @@ inline ReportContext report_context(const Pipeline& pipeline, const TelegramSour
     context.input = describe_input(source);
     context.summary = &pipeline.summary();
     context.decoder = &pipeline.decoder();
+    context.naming = &pipeline.naming();
     context.protocol = pipeline.protocol();
     context.tracker = &pipeline.tracker();
     context.timelines = &pipeline.timelines();  // empty unless the pipeline kept them

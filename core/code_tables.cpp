@@ -41,6 +41,17 @@ std::uint32_t pcv_value(const Pcv& pcv, ValueWidth width) noexcept {
     return width == ValueWidth::Word ? (pcv.pva & 0xFFFF) : pcv.pva;
 }
 
+bool carries_parameter_value(Dialect dialect, bool request, std::uint8_t rc) noexcept {
+    if (request) {
+        const RequestCode& code = request_code(dialect, rc);
+        return code.defined && code.is_change && code.width != ValueWidth::None && rc != 5;
+    }
+    const ResponseCode& code = response_code(dialect, rc);
+    if (code.width == ValueWidth::None) return false;
+    return (code.kind == ResponseKind::Value && rc != 3 && rc != 6) ||
+           code.kind == ResponseKind::Spontaneous;
+}
+
 namespace {
 
 using W = ValueWidth;

@@ -132,6 +132,13 @@ struct ResponseCode {
 const RequestCode& request_code(Dialect dialect, std::uint8_t rc) noexcept;
 const ResponseCode& response_code(Dialect dialect, std::uint8_t rc) noexcept;
 
+// Whether a parameter channel's request (`request` true) or response with code `rc` carries a
+// parameter's value, which a parameter database may scale (drives/): a change of a value, a
+// value transmitted or reported spontaneously; not a description element (request 5, response
+// 3), an element count (response 6), an error number or a text. The PKW numbering every dialect
+// shares (PROFIdrive's, and the FC protocol's AK).
+bool carries_parameter_value(Dialect dialect, bool request, std::uint8_t rc) noexcept;
+
 // The text of an RC 7 error number, or "" when the dialect does not define it.
 std::string_view error_text(Dialect dialect, std::uint16_t number) noexcept;
 

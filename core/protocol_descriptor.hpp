@@ -37,6 +37,20 @@ struct PcapLinkType {
 // One bit per parameter number (PNU) 0..65535.
 using PnuSet = std::bitset<65536>;
 
+// The one parameter a telegram is about and the value it carries (ProtocolDescriptor::
+// parameter_of): what a parameter database names and scales in every output.
+struct TelegramParameter {
+    std::uint16_t pnu = 0;
+    // The value as a raw whole number (a PWE, a PVA), which the parameter's row reads by its type
+    // and scales by its conversion index.
+    bool has_raw = false;
+    std::uint32_t raw = 0;
+    // A value that carries its own decimal point (VLT 2000), already in the parameter's unit.
+    bool has_decimal = false;
+    double decimal = 0.0;
+    int decimals = 0;
+};
+
 struct ProtocolDescriptor {
     Protocol protocol;       // its value in DecodedTelegram::protocol
     std::string_view name;   // what --bus takes and captures record: "profibus", "fc"
@@ -84,6 +98,14 @@ struct ProtocolDescriptor {
     // Marks in `seen` each parameter number the telegram names (what --pnu can select; the
     // cyclic PCV's number comes from the tracker, which knows which request a response answers).
     void (*mark_pnus)(const DecodedTelegram& t, PnuSet& seen) noexcept = nullptr;
+    // The drive family whose parameter database names its PNUs (drives/, docs/parameters.md):
+    // "fc", "vlt2000"; empty: each station's own (a PROFIBUS slave's by its dialect,
+    // drives/drive_family.hpp).
+    std::string_view drive_family = {};
+    // The one parameter the telegram is about, with the value it carries; nullopt when it is
+    // about none (a process-data telegram, the idle PCV) or several (a DP-V1 request may address
+    // up to 39). Null: the protocol names no parameters.
+    std::optional<TelegramParameter> (*parameter_of)(const DecodedTelegram& t) noexcept = nullptr;
     // Its decoder and tracker, made with the options that are its own (protocols/
     // lane_options.hpp): what the commands' pipeline and the Wireshark plugin feed.
     std::unique_ptr<TelegramDecoder> (*make_decoder)(const LaneOptions& options) = nullptr;

@@ -45,6 +45,8 @@ const Record& protocol_record(std::span<const Record* const> table, Protocol pro
 std::string_view protocol_name(Protocol protocol) noexcept;
 std::optional<Protocol> protocol_from_name(std::string_view name) noexcept;
 
+class ParameterNaming;  // drives/parameter_naming.hpp
+
 struct DecodedTelegram {
     std::uint64_t frame = 0;         // 1-based record number
     std::int64_t time_ns = kNoTime;  // nanoseconds since the epoch; kNoTime when unknown
@@ -57,6 +59,9 @@ struct DecodedTelegram {
     std::uint8_t master = 0;
     std::uint8_t slave = 0;
     std::uint64_t request_frame = 0;  // response: the request it answers (0: not in capture)
+    // What names the PNUs of its drive (the slave) and scales their values: the naming its
+    // decoder was given for the capture (drives/parameter_naming.hpp); null: none.
+    const ParameterNaming* naming = nullptr;
 
     // The payload: the member `protocol` names is the one that holds this telegram.
     Protocol protocol{};

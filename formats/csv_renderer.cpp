@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "formats/describe.hpp"
+#include "formats/parameter_names.hpp"
 #include "formats/protocol_rendering.hpp"
 #include "formats/renderer.hpp"
 
@@ -14,7 +15,8 @@ namespace {
 
 constexpr std::string_view kHeader =
     "frame,time,len,sd,da,sa,dsap,ssap,fc,service,direction,master,slave,request_frame,fcs_ok,"
-    "ppo,rc,spm,pnu,ind,pva,meaning,error,error_text,pcd,detail,problems,findings\n";
+    "ppo,rc,spm,pnu,ind,pva,meaning,error,error_text,pcd,detail,problems,findings,pnu_name,"
+    "value_scaled,unit\n";
 
 class CsvRenderer final : public TelegramRenderer {
   public:
@@ -39,6 +41,8 @@ class CsvRenderer final : public TelegramRenderer {
             append(b, finding_kind_name(finding.kind));
             first = false;
         }
+        // The parameter's row in its database (issue 29), after every column of before.
+        parameter_csv_columns(b, parameter_view(t));
         b.push_back('\n');
         out_.end_record();
     }

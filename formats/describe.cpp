@@ -5,6 +5,8 @@
 #include <iterator>
 #include <vector>
 
+#include "formats/parameter_names.hpp"
+
 namespace dpscope {
 
 namespace {
@@ -147,7 +149,11 @@ void append_pcv_summary(TextBuffer& out, const DecodedTelegram& t) {
     bool request = t.direction == Direction::Request;
     fmt::format_to(std::back_inserter(out), "RC={} {}", pcv.rc, t.dp.pcv_meaning(t.direction));
     if (pcv.spm) append(out, " SPM=1");
-    fmt::format_to(std::back_inserter(out), " PNU={} IND={}", pcv.pnu, pcv.ind);
+    // The parameter's name and the value in its unit from its drive's database (issue 29).
+    const TelegramParameterView view = parameter_view(t);
+    fmt::format_to(std::back_inserter(out), " PNU={}", pcv.pnu);
+    append_parameter_name(out, view.named);
+    fmt::format_to(std::back_inserter(out), " IND={}", pcv.ind);
     if (!request && response_code(t.dp.dialect, pcv.rc).kind == ResponseKind::Rejected) {
         std::uint16_t error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
         fmt::format_to(std::back_inserter(out), " error {} ({})", error,
@@ -155,6 +161,7 @@ void append_pcv_summary(TextBuffer& out, const DecodedTelegram& t) {
         return;
     }
     fmt::format_to(std::back_inserter(out), " PVA={}", t.dp.pcv_value(t.direction));
+    append_view_value(out, view);
 }
 
 std::string_view pcd_word_name(Direction direction, std::size_t index) {
@@ -226,8 +233,9 @@ namespace {
 
 // "PNU 12[4]", "PNU 12[4..7]" (several elements); "param 2" when the address is not known.
 // `subindex` false: "PNU 918" (an error, whose information names the failing subindex).
+// With `t`, the parameter's name after it (issue 29): "PNU 1613[0] (16-13 Frequency)".
 void append_parameter_address(TextBuffer& out, const ProfidriveMessage& m, std::size_t k,
-                              bool subindex = true) {
+                              bool subindex = true, const DecodedTelegram* t = nullptr) {
     auto it = std::back_inserter(out);
     if (k >= m.addresses.size()) {
         fmt::format_to(it, "param {}", k + 1);
@@ -241,19 +249,54 @@ void append_parameter_address(TextBuffer& out, const ProfidriveMessage& m, std::
                        std::min(0xFFFF, a.subindex + a.elements - 1));  // subindexes end there
     else
         fmt::format_to(it, "PNU {}[{}]", a.pnu, a.subindex);
+    if (t) append_parameter_name(out, profidrive_parameter(*t, m, k));
 }
 
-void append_block_values(TextBuffer& out, const ProfidriveValueBlock& block) {
+// "500 (Integer16)"; with `t`, the value in its parameter's unit first: "500 (50.0 Hz,
+// Integer16)".
+void append_block_values(TextBuffer& out, const ProfidriveValueBlock& block,
+                         const DecodedTelegram* t = nullptr, const ProfidriveMessage* m = nullptr,
+                         std::size_t k = 0) {
     std::string values;
     append_profidrive_values(block, values);
     append(out, values.empty() ? std::string_view("(no values)") : std::string_view(values));
+    append(out, " (");
+    if (t && m) {
+        const NamedParameter named = profidrive_parameter(*t, *m, k);
+        if (const std::optional<ScaledValue> value = profidrive_value_in_unit(*t, *m, k)) {
+            append_scaled(out, *named.row, *value);
+            append(out, ", ");
+        }
+    }
     if (profidrive_format_size(block.format) < 0)  // a reserved format: name its number
-        fmt::format_to(std::back_inserter(out), " (format 0x{:02X}, reserved)", block.format);
+        fmt::format_to(std::back_inserter(out), "format 0x{:02X}, reserved)", block.format);
     else
-        fmt::format_to(std::back_inserter(out), " ({})", profidrive_format_name(block.format));
+        fmt::format_to(std::back_inserter(out), "{})", profidrive_format_name(block.format));
 }
 
 }  // namespace
+
+NamedParameter profidrive_parameter(const DecodedTelegram& t, const ProfidriveMessage& m,
+                                    std::size_t k) noexcept {
+    if (k >= m.addresses.size()) return {};
+    return named_parameter(t, m.addresses[k].pnu);
+}
+
+std::optional<ScaledValue> profidrive_value_in_unit(const DecodedTelegram& t,
+                                                    const ProfidriveMessage& m,
+                                                    std::size_t k) noexcept {
+    if (k >= m.addresses.size() || k >= m.blocks.size()) return std::nullopt;
+    if (m.addresses[k].attribute != profidrive::kAttributeValue) return std::nullopt;
+    const ProfidriveValueBlock& block = m.blocks[k];
+    if (block.is_error() || block.format == profidrive::kFormatZero ||
+        profidrive_value_count(block) != 1)
+        return std::nullopt;
+    const std::optional<ProfidriveNumber> number = profidrive_number(block, 0);
+    if (!number || number->is_real) return std::nullopt;
+    const NamedParameter named = named_parameter(t, m.addresses[k].pnu);
+    if (!named.row) return std::nullopt;
+    return scale_value(*named.row, number->integer);
+}
 
 void append_profidrive_block(TextBuffer& out, const ProfidriveValueBlock& block, Dialect dialect) {
     auto it = std::back_inserter(out);
@@ -274,7 +317,8 @@ void append_profidrive_block(TextBuffer& out, const ProfidriveValueBlock& block,
     append_block_values(out, block);
 }
 
-void append_profidrive_summary(TextBuffer& out, const ProfidriveMessage& m, Dialect dialect) {
+void append_profidrive_summary(TextBuffer& out, const ProfidriveMessage& m, Dialect dialect,
+                               const DecodedTelegram* t) {
     auto it = std::back_inserter(out);
     if (!m.has_header) {
         append(out, "PROFIdrive header cut short");
@@ -293,20 +337,20 @@ void append_profidrive_summary(TextBuffer& out, const ProfidriveMessage& m, Dial
         for (std::size_t k = 0; k < m.blocks.size(); ++k) {
             append(out, k ? ", " : " ");
             const ProfidriveValueBlock& block = m.blocks[k];
-            append_parameter_address(out, m, k, !block.is_error());
+            append_parameter_address(out, m, k, !block.is_error(), t);
             if (block.is_error() || block.format == profidrive::kFormatZero) {
                 append(out, ": ");
                 append_profidrive_block(out, block, dialect);
             } else {
                 append(out, " = ");
-                append_block_values(out, block);
+                append_block_values(out, block, t, &m, k);
             }
         }
     } else {
         if (!m.addresses.empty()) append(out, ":");
         for (std::size_t k = 0; k < m.addresses.size(); ++k) {
             append(out, k ? ", " : " ");
-            append_parameter_address(out, m, k);
+            append_parameter_address(out, m, k, true, t);
             std::string_view attribute = profidrive_attribute_name(m.addresses[k].attribute);
             if (attribute.empty())
                 fmt::format_to(it, " attribute 0x{:02X}", m.addresses[k].attribute);
@@ -314,7 +358,7 @@ void append_profidrive_summary(TextBuffer& out, const ProfidriveMessage& m, Dial
                 fmt::format_to(it, " {}", attribute);
             if (k < m.blocks.size()) {
                 append(out, " = ");
-                append_block_values(out, m.blocks[k]);
+                append_block_values(out, m.blocks[k], t, &m, k);
             }
         }
     }
@@ -372,7 +416,7 @@ void append_dpv1_summary(TextBuffer& out, const DecodedTelegram& t) {
             fmt::format_to(it, " slot {} idx {} len {}", pdu->slot, pdu->index, pdu->length);
             if (const ProfidriveMessage* m = t.dp.service_data.profidrive()) {
                 append(out, " | ");
-                append_profidrive_summary(out, *m, t.dp.dialect);
+                append_profidrive_summary(out, *m, t.dp.dialect, &t);
             } else if (!pdu->data.empty()) {
                 append(out, " data ");
                 append_hex(out, pdu->data.first(std::min<std::size_t>(pdu->data.size(), 16)));

@@ -4,12 +4,14 @@
 
 #include <fmt/format.h>
 
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 
 #include "core/counted.hpp"
 #include "core/finding.hpp"
+#include "drives/parameter_naming.hpp"
 #include "protocols/profibus/bus_decoder.hpp"
 #include "protocols/profibus/dp_payload.hpp"
 
@@ -62,7 +64,18 @@ void append_pcd_summary(TextBuffer& out, const DecodedTelegram& t);
 void append_dpv1_summary(TextBuffer& out, const DecodedTelegram& t);
 // "PROFIdrive req ref 5 request parameter value axis 0, 1 param: PNU 12[4] value"; a response
 // "... : PNU 12[4] = 3 (Word)" or "PNU 918: error 0x00 illegal or unknown parameter number".
-void append_profidrive_summary(TextBuffer& out, const ProfidriveMessage& m, Dialect dialect);
+// With `t` (the telegram that carries it), each parameter's name and a value in its unit from
+// the telegram's naming (issue 29): "PNU 1613[0] (16-13 Frequency) = 500 (50.0 Hz, Integer16)".
+void append_profidrive_summary(TextBuffer& out, const ProfidriveMessage& m, Dialect dialect,
+                               const DecodedTelegram* t = nullptr);
+// Parameter `k` of a PROFIdrive message in its drive's database (issue 29), and the value its
+// block carries in the parameter's unit: only for the value attribute and a block of one whole
+// number (a description, a text, an array, a real value or an error is not scaled).
+NamedParameter profidrive_parameter(const DecodedTelegram& t, const ProfidriveMessage& m,
+                                    std::size_t k) noexcept;
+std::optional<ScaledValue> profidrive_value_in_unit(const DecodedTelegram& t,
+                                                    const ProfidriveMessage& m,
+                                                    std::size_t k) noexcept;
 // One value block: "3, 4 (Word)", "error 0x03 invalid subindex (subindex 5)", "done (Zero)".
 void append_profidrive_block(TextBuffer& out, const ProfidriveValueBlock& block, Dialect dialect);
 // The detail column of the text format for any service.

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/protocol_lane.hpp"
+#include "drives/parameter_naming.hpp"
 #include "formats/finding_log.hpp"
 #include "formats/output.hpp"
 #include "formats/report_timeline.hpp"
@@ -43,6 +44,9 @@ struct ReportContext {
     // always set (its time-out is read).
     const TelegramDecoder* decoder = nullptr;
     const TelegramTracker* tracker = nullptr;
+    // What names the capture's PNUs in the sections' parameter tables (issue 29,
+    // drives/parameter_naming.hpp); null: numbers alone.
+    const ParameterNaming* naming = nullptr;
     const ChannelTimelines* timelines = nullptr;      // the HTML report's (none: empty timelines)
     // PROFIBUS: the bus-health statistics (protocols/profibus/health/bus_health.hpp), reported in a
     // section of their own; null: no such section.

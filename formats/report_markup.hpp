@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "formats/parameter_names.hpp"
 #include "formats/report_model.hpp"
 
 namespace dpscope::report {
@@ -36,8 +37,10 @@ std::array<std::uint64_t, 3> severity_totals(const FindingCounts& findings,
 // HTML "Parameters accessed": a table of PNUs with their reads and writes (`parameters` maps PNU ->
 // anything with `reads` and `writes`), or "None." when it is empty. Returns whether a table was
 // written (the caller then says what was not counted).
+// With `family`, each PNU's name after it (issue 29).
 template <typename ParameterMap>
-bool html_parameter_table(TextBuffer& b, const ParameterMap& parameters) {
+bool html_parameter_table(TextBuffer& b, const ParameterMap& parameters,
+                          const ParameterFamily* family = nullptr) {
     if (parameters.empty()) {
         fmt::format_to(std::back_inserter(b), "<p class=\"meta\">None.</p>\n");
         return false;
@@ -50,7 +53,7 @@ bool html_parameter_table(TextBuffer& b, const ParameterMap& parameters) {
         fmt::format_to(it,
                        "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td "
                        "class=\"n\">{}</td></tr>\n",
-                       pnu, access.reads, access.writes);
+                       xml(pnu_label(family, pnu)), access.reads, access.writes);
     fmt::format_to(it, "</table>\n");
     return true;
 }

@@ -33,6 +33,7 @@
 #include <utility>
 #include <vector>
 
+#include "drives/parameter_database.hpp"
 #include "formats/describe.hpp"
 #include "formats/json_writer.hpp"
 #include "formats/report.hpp"
@@ -96,7 +97,9 @@ class StationSection {
 
 // DP-V1 parameter access of a DP slave (PROFIdrive over MSAC_C1/MSAC_C2), as the session
 // tracker counted it (the PROFIBUS sections add it after the slave's cyclic section).
-std::unique_ptr<StationSection> make_dpv1_section(const ChannelStats& stats);
+// `family`: what names the slave's PNUs (issue 29); null: numbers alone.
+std::unique_ptr<StationSection> make_dpv1_section(const ChannelStats& stats,
+                                                  const ParameterFamily* family = nullptr);
 
 // What the writers say differently per bus: its BusReport's row.
 struct BusWording {

@@ -7,7 +7,9 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
+#include "drives/parameter_naming.hpp"
 #include "protocols/fc/fc_decoder.hpp"
 #include "protocols/fc/fc_tracker.hpp"
 #include "protocols/profibus/bus_decoder.hpp"
@@ -28,6 +30,10 @@ struct LaneOptions {
     // default_baud; the bits a character takes: the protocol's own framing).
     std::uint32_t line_baud = 0;
     std::uint32_t character_bits = 0;
+    // Every protocol: what names the PNUs of the capture's drives and scales their values
+    // (drives/parameter_naming.hpp; made for the capture's bus once it is known); each factory
+    // gives it to its decoder. Null: nothing is named.
+    std::shared_ptr<const ParameterNaming> naming{};
     // PROFIBUS DP.
     DecoderOptions decoder;
     TrackerOptions tracker;

@@ -127,8 +127,8 @@ TEST(CliTest, MissingSubcommandIsUsageError) {
     EXPECT_EQ(unknown.exit_code, 2);
     EXPECT_EQ(
         unknown.err,
-        "dpscope: error: unknown subcommand 'frob'; one of decode, hex, report, simulate, sniff, "
-        "stats (see --help)\n");
+        "dpscope: error: unknown subcommand 'frob'; one of decode, hex, params, report, simulate, "
+        "sniff, stats (see --help)\n");
 }
 
 // ---- decode ----------------------------------------------------------------------------------

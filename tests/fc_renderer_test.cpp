@@ -225,12 +225,12 @@ const std::vector<std::string> kFcJsonKeys = {"frame",    "time",    "len",     
                                               "problems", "findings"};
 
 const std::vector<std::string> kFcProtocolKeys = {
-    "lge",       "adr",       "address",  "address_format", "broadcast",  "block",
-    "complete",  "pke",       "ak",       "ak_name",        "ak_known",   "pnu",
-    "parameter", "index",     "ind_high", "text_mode",      "text",       "text_hex",
-    "pwe",       "pwe_raw",   "width",    "fault_code",     "fault_text", "pcd1",
-    "pcd1_word", "pcd1_bits", "pcd2",     "pcd2_percent",   "bcc",        "bcc_computed",
-    "bcc_ok"};
+    "lge",          "adr",        "address",      "address_format", "broadcast",    "block",
+    "complete",     "pke",        "ak",           "ak_name",        "ak_known",     "pnu",
+    "parameter",    "index",      "ind_high",     "text_mode",      "text",         "text_hex",
+    "pwe",          "pwe_raw",    "width",        "pnu_name",       "value_scaled", "unit",
+    "fault_code",   "fault_text", "pcd1",         "pcd1_word",      "pcd1_bits",    "pcd2",
+    "pcd2_percent", "bcc",        "bcc_computed", "bcc_ok"};
 
 std::vector<Json> jsonl() {
     std::vector<Json> out;
@@ -392,7 +392,7 @@ TEST(FcRendererTest, CsvRowsHaveTheHeaderColumns) {
     EXPECT_EQ(l[3],
               "3,1704067200.020000000,16,,,,,,,parameter,request,0,1,,true,,1,,414,0,0,"
               "\"Read parameter value\",,,047F 2000,\"ADR 0x81 (1-126) AK=1 Read parameter value "
-              "PNU=414 (4-14) IND=0 PWE=0 | CTW=0x047F MRV=50.00%\",,");
+              "PNU=414 (4-14) IND=0 PWE=0 | CTW=0x047F MRV=50.00%\",,,,,");
     EXPECT_NE(l[8].find(",response,0,1,7,true,,7,,415,0,,\"Command cannot be performed\",17,"
                         "\"Not applicable while running\",0F07 2000,"),
               std::string::npos)

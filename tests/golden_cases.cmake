@@ -145,6 +145,12 @@ foreach(format text json markdown csv html)
 endforeach()
 golden_case(report_bus_health_text samples/expected/report.bus-health.txt report --baud 1500000 samples/bus-health.pcap)
 golden_case(report_bus_health_junit samples/expected/report.bus-health.junit.xml report -T junit --baud 1500000 samples/bus-health.pcap)
+# Drive parameter databases (issue 29): dpscope params lists a family of the test database
+# (tests/params/testdrive.params) in each format, and the shipped FC series database.
+golden_case(params_testdrive_text samples/expected/params.testdrive.txt params --params tests/params/testdrive.params --family testdrive)
+golden_case(params_testdrive_json samples/expected/params.testdrive.json params --params tests/params/testdrive.params -T json --family testdrive motor)
+golden_case(params_testdrive_csv samples/expected/params.testdrive.csv params --params tests/params/testdrive.params -T csv 16-)
+golden_case(params_fc_text samples/expected/params.fc.txt params --family fc)
 
 add_custom_target(update-golden ${golden_update_commands}
     DEPENDS dpscope

@@ -138,9 +138,9 @@ const std::vector<std::string> kJsonKeys = {
     "diag",       "prm",      "cfg",           "global_control",
     "data",       "problems", "findings"};
 
-const std::vector<std::string> kPcvKeys = {"pca",        "rc",    "spm",       "pnu",   "ind",
-                                           "ind_low",    "pva",   "pva_raw",   "width", "meaning",
-                                           "code_known", "error", "error_text"};
+const std::vector<std::string> kPcvKeys = {
+    "pca",   "rc",       "spm",          "pnu",  "ind",     "ind_low",    "pva",   "pva_raw",
+    "width", "pnu_name", "value_scaled", "unit", "meaning", "code_known", "error", "error_text"};
 
 std::vector<Json> jsonl(const std::vector<Input>& inputs, DecoderOptions options = {}) {
     std::vector<Json> out;
@@ -601,7 +601,8 @@ TEST(RendererTest, TextDataExchangeResponseWithoutDataNamesItsStatus) {
 
 const std::string kCsvHeader =
     "frame,time,len,sd,da,sa,dsap,ssap,fc,service,direction,master,slave,request_frame,fcs_ok,"
-    "ppo,rc,spm,pnu,ind,pva,meaning,error,error_text,pcd,detail,problems,findings";
+    "ppo,rc,spm,pnu,ind,pva,meaning,error,error_text,pcd,detail,problems,findings,pnu_name,"
+    "value_scaled,unit";
 
 // RFC 4180 rows; fails the test on a stray quote.
 std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
@@ -651,7 +652,7 @@ TEST(RendererTest, CsvHeaderAndRowsWithTheSameColumnCount) {
     std::vector<std::vector<std::string>> rows = parse_csv(text);
     ASSERT_EQ(rows.size(), 13u);
     for (const auto& row : rows)
-        EXPECT_EQ(row.size(), 28u);
+        EXPECT_EQ(row.size(), 31u);
     const std::vector<std::string>& header = rows[0];
     auto column = [&](std::string_view name) {
         for (std::size_t i = 0; i < header.size(); ++i)
@@ -718,7 +719,7 @@ TEST(RendererTest, CsvProblemsAndFindings) {
     std::vector<std::vector<std::string>> rows = parse_csv(render(OutputFormat::Csv, in));
     ASSERT_EQ(rows.size(), 3u);
     for (const auto& row : rows)
-        ASSERT_EQ(row.size(), 28u);
+        ASSERT_EQ(row.size(), 31u);
     EXPECT_EQ(rows[1][1], "");  // no time
     EXPECT_EQ(rows[1][14], "false");
     EXPECT_EQ(rows[1][26], "fcs_mismatch@4 bad_end_delimiter@5");
@@ -1364,10 +1365,10 @@ TEST(RendererTest, JsonlDpv1AndProfidriveKeys) {
     EXPECT_EQ(request["count"].integer(), 1);
     EXPECT_EQ(request.find("request_frame"), nullptr);
     const Json& parameter = request["parameters"][0];
-    EXPECT_EQ(parameter.keys(),
-              (std::vector<std::string>{"attribute", "attribute_name", "elements", "pnu",
-                                        "subindex", "format", "format_name", "value_count",
-                                        "values", "numbers", "complete", "error"}));
+    EXPECT_EQ(parameter.keys(), (std::vector<std::string>{
+                                    "attribute", "attribute_name", "elements", "pnu", "subindex",
+                                    "format", "format_name", "value_count", "values", "numbers",
+                                    "pnu_name", "value_scaled", "unit", "complete", "error"}));
     EXPECT_EQ(parameter["attribute"].integer(), 0x10);
     EXPECT_EQ(parameter["attribute_name"].string(), "value");
     EXPECT_EQ(parameter["elements"].integer(), 1);

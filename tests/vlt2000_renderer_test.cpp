@@ -460,7 +460,7 @@ TEST(Vlt2000RendererTest, CsvRowsHaveTheHeaderColumns) {
               "1,1704067200.000000000,22,,,,,,,\"U update\",request,0,1,,true,,,,516,,80,"
               "\"update\",,,047F,\"CTW=0x047F (ON1, ON2, ON3, coasting possible, ramp (no quick "
               "stop), ramp (no hold), start, "
-              "data valid) parameter 516 = 80\",,");
+              "data valid) parameter 516 = 80\",,,,,");
     EXPECT_TRUE(contains(l[4],
                          ",\"R read\",response,0,2,3,true,,,,999,,,\"read\",0,"
                          "\"parameter does not exist\",0000,"))

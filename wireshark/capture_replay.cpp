@@ -47,11 +47,24 @@ struct CaptureReplay::Trackers {
     std::span<const Finding> track(const DecodedTelegram& t) { return tracker->track(t); }
 };
 
+namespace {
+
+// The options with what names the PNUs: the shipped parameter databases (the plugin reads no
+// --params files), each station's family by the family rule with the dialect chosen.
+ReplayOptions with_naming(Protocol protocol, ReplayOptions options) {
+    if (options.naming) return options;
+    options.naming = std::make_shared<ParameterNaming>(
+        shipped_parameter_database(), protocol, options.decoder.station_dialects(), DriveHints{});
+    return options;
+}
+
+}  // namespace
+
 CaptureReplay::CaptureReplay(Protocol protocol, const ReplayOptions& options)
     : protocol_(protocol),
-      options_(options),
-      decoder_(std::make_unique<DecoderState>(protocol, options)),
-      trackers_(std::make_unique<Trackers>(protocol, options)) {}
+      options_(with_naming(protocol, options)),
+      decoder_(std::make_unique<DecoderState>(protocol, options_)),
+      trackers_(std::make_unique<Trackers>(protocol, options_)) {}
 
 CaptureReplay::~CaptureReplay() = default;
 

@@ -24,6 +24,7 @@ std::string_view fc_address_format_name(FcAddressFormat format) noexcept {
 FcDecoder::FcDecoder(FcDecoderOptions options) noexcept
     : options_(options), layout_(options.pnu_bits == 11 ? kFcPkeLayout11 : kFcPkeLayout) {
     t_.protocol = Protocol::Fc;
+    t_.naming = options_.naming.get();
 }
 
 namespace {

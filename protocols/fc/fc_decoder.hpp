@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 
 #include "core/protocol_lane.hpp"
 #include "core/telegram.hpp"
@@ -28,6 +29,9 @@ struct FcDecoderOptions {
     std::uint8_t pnu_bits = 12;
     // A telegram later than this after a request is not its response (no time: no limit).
     std::int64_t response_window_ns = 1'000'000'000;
+    // What names the PNUs (drives/parameter_naming.hpp): put on every telegram decoded
+    // (DecodedTelegram::naming); null: nothing. Set from LaneOptions::naming by the factory.
+    std::shared_ptr<const ParameterNaming> naming{};
 };
 
 class FcDecoder final : public TelegramDecoder {

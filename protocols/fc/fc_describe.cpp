@@ -1,11 +1,13 @@
 // The wording of Danfoss FC protocol telegrams, shared by the renderers. Everything here reads
 // what FcDecoder stored in DecodedTelegram::fc; nothing parses bytes again.
+#include "protocols/fc/fc_describe.hpp"
+
 #include <algorithm>
 #include <iterator>
 
 #include "formats/describe.hpp"
+#include "formats/parameter_names.hpp"
 #include "protocols/fc/fc_codes.hpp"
-#include "protocols/fc/fc_describe.hpp"
 #include "protocols/profibus/pcd.hpp"
 
 namespace dpscope {
@@ -78,8 +80,14 @@ void append_fc_pkw(TextBuffer& out, const DecodedTelegram& t) {
     const FcTelegram& fc = t.fc;
     auto it = std::back_inserter(out);
     fmt::format_to(it, "AK={} {}", fc.pkw.rc, fc_ak_meaning(t));
-    fmt::format_to(it, " PNU={} ({}) IND={}", fc.pkw.pnu, fc_parameter_name(fc.pkw.pnu),
-                   fc.pkw.ind);
+    // The name as its database writes it (issue 29), else the FC series' group and number.
+    const TelegramParameterView view = parameter_view(t);
+    fmt::format_to(it, " PNU={}", fc.pkw.pnu);
+    if (view.named.row)
+        append_parameter_name(out, view.named);
+    else
+        fmt::format_to(it, " ({})", fc_parameter_name(fc.pkw.pnu));
+    fmt::format_to(it, " IND={}", fc.pkw.ind);
     if (fc.block == FcBlock::Text) {
         std::string_view mode = fc_text_mode_name(fc.ind_high);
         if (mode.empty())
@@ -97,6 +105,7 @@ void append_fc_pkw(TextBuffer& out, const DecodedTelegram& t) {
         return;
     }
     fmt::format_to(it, " PWE={}", pcv_value(fc.pkw, fc_ak_width(t)));
+    append_view_value(out, view);
 }
 
 }  // namespace

@@ -35,9 +35,26 @@ void fc_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
     if (const auto pnu = fc_named_pnu(t)) seen.set(*pnu);
 }
 
+std::optional<TelegramParameter> fc_parameter_of(const DecodedTelegram& t) noexcept {
+    const FcTelegram& fc = t.fc;
+    if (!t.has_roles || !fc.has_pkw) return std::nullopt;
+    TelegramParameter p;
+    p.pnu = fc.pkw.pnu;
+    const bool request = t.direction == Direction::Request;
+    if (fc.block == FcBlock::Parameter &&
+        carries_parameter_value(Dialect::Fc, request, fc.pkw.rc)) {
+        const ValueWidth width = request ? request_code(Dialect::Fc, fc.pkw.rc).width
+                                         : response_code(Dialect::Fc, fc.pkw.rc).width;
+        p.has_raw = true;
+        p.raw = pcv_value(fc.pkw, width);
+    }
+    return p;
+}
+
 std::unique_ptr<TelegramDecoder> fc_decoder(const LaneOptions& options) {
     FcDecoderOptions decoder = options.fc_decoder;
     decoder.response_window_ns = options.timeout_ns;
+    decoder.naming = options.naming;
     return std::make_unique<FcDecoder>(decoder);
 }
 
@@ -71,6 +88,8 @@ const ProtocolDescriptor& fc_protocol() noexcept {
         .masters_addressed = false,
         .addresses_pnu = fc_addresses_pnu,
         .mark_pnus = fc_mark_pnus,
+        .drive_family = "fc",
+        .parameter_of = fc_parameter_of,
         .make_decoder = fc_decoder,
         .make_tracker = fc_tracker,
     };

@@ -10,6 +10,7 @@
 
 #include "formats/describe.hpp"
 #include "formats/field_writers.hpp"
+#include "formats/parameter_names.hpp"
 #include "formats/protocol_rendering.hpp"
 #include "formats/verbose_tree.hpp"
 #include "protocols/fc/fc_describe.hpp"
@@ -161,6 +162,8 @@ void fc_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
         w.string("dword");
     else
         w.null();
+    // The parameter's row in its database (issue 29): name, value in its unit, unit.
+    parameter_jsonl_keys(w, parameter_view(t));
     w.key("fault_code").optional_integer(rejected, fc_fault_code(fc));
     w.key("fault_text");
     if (rejected)
@@ -254,6 +257,12 @@ class FcVerboseTree final : public VerboseTree {
                       ? ""
                       : (request ? " (not a defined command)" : " (not a defined response)"));
             field(2, "PNU: {} (parameter {})", pkw.pnu, fc_parameter_name(pkw.pnu));
+            const TelegramParameterView view = parameter_view(t);
+            if (view.named.row) {
+                TextBuffer details;
+                append_parameter_details(details, view.named);
+                field(3, "name: {}", std::string_view(details.data(), details.size()));
+            }
             field(1, "IND: 0x{:02X}{:02X}", fc.ind_high, pkw.ind_low);
             std::string_view mode = fc_text_mode_name(fc.ind_high);
             if (fc.block == FcBlock::Text && !mode.empty())
@@ -278,6 +287,11 @@ class FcVerboseTree final : public VerboseTree {
                     field(1, "PWE: 0x{:08X}, double word value {}", pkw.pva, pkw.pva);
                 else
                     field(1, "PWE: 0x{:08X} (the AK carries no value)", pkw.pva);
+                if (view.value && view.parameter.has_raw) {
+                    TextBuffer value;
+                    append_value_details(value, *view.named.row, *view.value);
+                    field(2, "in its unit: {}", std::string_view(value.data(), value.size()));
+                }
             }
         }
         if (fc.has_pcd) {

@@ -7,6 +7,7 @@
 #include <iterator>
 
 #include "formats/json.hpp"
+#include "formats/parameter_names.hpp"
 #include "formats/report_markup.hpp"
 #include "formats/report_model.hpp"
 #include "protocols/fc/fc_codes.hpp"
@@ -30,12 +31,12 @@ std::string commands_by_ak_text(const FcStationStats& s) {
     return text.empty() ? "none" : text;
 }
 
-std::string parameters_text(const FcStationStats& s) {
+std::string parameters_text(const FcStationStats& s, const ParameterFamily* family) {
     std::string text;
     for (const auto& [pnu, access] : s.parameters)
-        text += fmt::format("{}PNU {} ({} read{}, {} write{})", text.empty() ? "" : ", ", pnu,
-                            access.reads, access.reads == 1 ? "" : "s", access.writes,
-                            access.writes == 1 ? "" : "s");
+        text += fmt::format("{}PNU {} ({} read{}, {} write{})", text.empty() ? "" : ", ",
+                            pnu_label(family, pnu), access.reads, access.reads == 1 ? "" : "s",
+                            access.writes, access.writes == 1 ? "" : "s");
     if (s.parameters_not_counted)
         text += fmt::format("{}{} more accesses to further parameters", text.empty() ? "" : "; ",
                             s.parameters_not_counted);
@@ -54,6 +55,7 @@ class FcSection final : public StationSection {
                     stats.findings[static_cast<std::size_t>(kind)];
         response_ms_ = fc_tracker(c).options().response_ns / 1'000'000;
         latency_ = DriveLatency::of(stats.latency_ns, stats.mean_latency_ns());
+        family_ = c.naming ? c.naming->family(stats.address) : nullptr;
     }
 
     std::uint8_t master() const override { return 0; }
@@ -73,13 +75,14 @@ class FcSection final : public StationSection {
             fmt::format_to(it, "  responses      {}; {}\n", responses_text(), late_text());
         }
         fmt::format_to(it, "  latency ms     {}\n", latency_text());
-        fmt::format_to(it, "  parameters     {}\n", parameters_text(s));
+        fmt::format_to(it, "  parameters     {}\n", parameters_text(s, family_));
         if (!s.channel.rejections.empty()) {
             append(b, "  rejections    ");
             const char* separator = " ";
             for (const auto& [key, count] : s.channel.rejections) {
-                fmt::format_to(it, "{}PNU {} fault code {} ({}) {}x", separator, key.first,
-                               key.second, fault_text(key.second), count);
+                fmt::format_to(it, "{}PNU {} fault code {} ({}) {}x", separator,
+                               pnu_label(family_, key.first), key.second, fault_text(key.second),
+                               count);
                 separator = "; ";
             }
             b.push_back('\n');
@@ -107,10 +110,11 @@ class FcSection final : public StationSection {
             fmt::format_to(it, "- Responses: {}; {}\n", responses_text(), late_text());
         }
         fmt::format_to(it, "- Latency ms: {}\n", latency_text());
-        fmt::format_to(it, "- Parameters: {}\n", parameters_text(s));
+        fmt::format_to(it, "- Parameters: {}\n", parameters_text(s, family_));
         for (const auto& [key, count] : s.channel.rejections)
-            fmt::format_to(it, "- Rejected: PNU {} fault code {} ({}), {}x\n", key.first,
-                           key.second, md_escape(fault_text(key.second)), count);
+            fmt::format_to(it, "- Rejected: PNU {} fault code {} ({}), {}x\n",
+                           pnu_label(family_, key.first), key.second,
+                           md_escape(fault_text(key.second)), count);
         fmt::format_to(it, "- Findings: {}\n", md_escape(findings_by_kind_text(findings_)));
     }
 
@@ -167,6 +171,7 @@ class FcSection final : public StationSection {
         for (const auto& [pnu, access] : s.parameters) {
             w.begin_object();
             w.key("pnu").integer(pnu);
+            pnu_name_key(w, family_, pnu);
             count("reads", access.reads);
             count("writes", access.writes);
             w.end_object();
@@ -177,6 +182,7 @@ class FcSection final : public StationSection {
         for (const auto& [key, n] : s.channel.rejections) {
             w.begin_object();
             w.key("pnu").integer(key.first);
+            pnu_name_key(w, family_, key.first);
             w.key("fault_code").integer(key.second);
             w.key("fault_text").string(fault_text(key.second));
             count("count", n);
@@ -227,7 +233,7 @@ class FcSection final : public StationSection {
                "style=\"background:#2e90fa\"></i>notes</span></div>\n");
         svg_timeline(b, timeline_, title_lower(), c);
         append(b, "<h3>Parameters accessed</h3>\n");
-        if (html_parameter_table(b, s.parameters) && s.parameters_not_counted)
+        if (html_parameter_table(b, s.parameters, family_) && s.parameters_not_counted)
             fmt::format_to(it, "<p class=\"meta\">{} more accesses to further parameters.</p>\n",
                            s.parameters_not_counted);
         if (!s.channel.rejections.empty()) {
@@ -239,7 +245,8 @@ class FcSection final : public StationSection {
                 fmt::format_to(it,
                                "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td>"
                                "<td class=\"n\">{}</td></tr>\n",
-                               key.first, key.second, xml(fault_text(key.second)), count);
+                               xml(pnu_label(family_, key.first)), key.second,
+                               xml(fault_text(key.second)), count);
             append(b, "</table>\n");
         }
         html_findings_by_kind(b, findings_, by_severity_);
@@ -294,6 +301,7 @@ class FcSection final : public StationSection {
     std::string latency_text() const { return latency_.text(broadcast(), s_.timed()); }
 
     const FcStationStats& s_;
+    const ParameterFamily* family_ = nullptr;  // what names its PNUs (issue 29)
     const Timeline& timeline_;
     FindingCounts findings_{};
     const FindingSeverityCounts& by_severity_;

@@ -7,6 +7,7 @@
 
 #include "core/code_tables.hpp"
 #include "formats/describe.hpp"
+#include "formats/parameter_names.hpp"
 #include "protocols/fc/fc_describe.hpp"
 #include "protocols/profibus/pcd.hpp"
 #include "wireshark/protocol_tree.hpp"
@@ -56,8 +57,16 @@ void add_fc(const Tree& top, const DecodedTelegram& t) {
                              fc_ak_defined(t) ? ""
                              : request        ? " (not a defined command)"
                                               : " (not a defined response)"));
+        // The name and value in its unit from its drive's database (issue 29).
+        const TelegramParameterView view = parameter_view(t);
+        // "414 (parameter 4-14 Motor Speed High Limit [Hz])"; a family that writes its numbers
+        // otherwise names it apart: "518 (parameter 5-18) (Frequency)".
+        const bool grouped = view.named.row && view.named.family->numbering == PnuNumbering::Group;
         pke.uint(hf_fc_pnu, 3, 2, pkw.pnu,
-                 fmt::format("{} (parameter {})", pkw.pnu, fc_parameter_name(pkw.pnu)));
+                 grouped ? fmt::format("{} (parameter {} {})", pkw.pnu, fc_parameter_name(pkw.pnu),
+                                       view.named.row->name)
+                         : fmt::format("{} (parameter {}){}", pkw.pnu, fc_parameter_name(pkw.pnu),
+                                       parameter_name_text(view.named)));
         const std::uint16_t ind = static_cast<std::uint16_t>(fc.ind_high << 8 | pkw.ind_low);
         const std::string_view mode = fc_text_mode_name(fc.ind_high);
         Tree ind_tree = tree.sub(tree.uint(hf_fc_ind, 5, 2, ind,
@@ -87,8 +96,8 @@ void add_fc(const Tree& top, const DecodedTelegram& t) {
                     tree.uint(hf_fc_pwe, 7, 4, pkw.pva);
                     const bool word = width == ValueWidth::Word;
                     tree.uint(hf_fc_value, word ? 9 : 7, word ? 2 : 4, pcv_value(pkw, width),
-                              fmt::format("{} ({})", pcv_value(pkw, width),
-                                          word ? "word" : "double word"));
+                              fmt::format("{} ({}){}", pcv_value(pkw, width),
+                                          word ? "word" : "double word", view_value_text(view)));
                 }
             }
             pcd_at = 11;

@@ -43,6 +43,7 @@ BusDecoder::BusDecoder(DecoderOptions options) : options_(std::move(options)) {
     if (options_.gsd)
         for (std::size_t a = 0; a < stations_.size(); ++a)
             stations_[a].device = options_.gsd->forced(static_cast<std::uint8_t>(a));
+    current_.naming = options_.naming.get();
 }
 
 void BusDecoder::layout_for(std::uint8_t slave, std::size_t du_length,

@@ -34,9 +34,19 @@ struct DecoderOptions {
     std::optional<PcdProfile> pcd_profile;
     // The GSD files given (--gsd, --gsd-dir); null: none.
     std::shared_ptr<const GsdLibrary> gsd;
+    // What names the PNUs (drives/parameter_naming.hpp): put on every telegram decoded
+    // (DecodedTelegram::naming); null: nothing. Set from LaneOptions::naming by the factory.
+    std::shared_ptr<const ParameterNaming> naming{};
 
     Dialect dialect_of(std::uint8_t station) const noexcept {
         return station_dialect[station & 0x7F].value_or(dialect);
+    }
+    // Every station's dialect (dialect_of), indexed by address.
+    std::array<Dialect, kStationCount> station_dialects() const noexcept {
+        std::array<Dialect, kStationCount> dialects{};
+        for (std::size_t station = 0; station < kStationCount; ++station)
+            dialects[station] = dialect_of(static_cast<std::uint8_t>(station));
+        return dialects;
     }
     PcdProfile pcd_profile_of(std::uint8_t station) const noexcept {
         if (pcd_profile) return *pcd_profile;

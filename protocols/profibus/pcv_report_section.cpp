@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "formats/json.hpp"
+#include "formats/parameter_names.hpp"
 #include "formats/report_markup.hpp"
 #include "formats/report_model.hpp"
 #include "protocols/profibus/bus_decoder.hpp"
@@ -66,10 +67,10 @@ std::string outcomes_text(const TransactionCounts& t) {
                        t.positive, t.rejected, t.no_authority, t.mismatched, t.unexpected);
 }
 
-std::string parameters_text(const ChannelStats& s) {
+std::string parameters_text(const ChannelStats& s, const ParameterFamily* family) {
     std::string text;
     for (const auto& [pnu, count] : s.pnu_requests)
-        text += fmt::format("{}{} ({}x)", text.empty() ? "" : ", ", pnu, count);
+        text += fmt::format("{}{} ({}x)", text.empty() ? "" : ", ", pnu_label(family, pnu), count);
     return text.empty() ? "none" : text;
 }
 
@@ -109,6 +110,7 @@ class PcvSection final : public StationSection {
             if (covers(kind))
                 findings_[static_cast<std::size_t>(kind)] =
                     stats.findings[static_cast<std::size_t>(kind)];
+        family_ = c.naming ? c.naming->family(stats.slave) : nullptr;
         const StationConfig& config = profibus_station(c, stats.slave);
         has_ident_ = config.has_ident;
         ident_ = config.ident;
@@ -170,12 +172,13 @@ class PcvSection final : public StationSection {
         if (l.any_cycles)
             fmt::format_to(it, "  latency cycles min {}  median {}  p95 {}  max {}\n", l.min_cycles,
                            l.median_cycles, l.p95_cycles, l.max_cycles);
-        fmt::format_to(it, "  parameters     {}\n", parameters_text(s));
+        fmt::format_to(it, "  parameters     {}\n", parameters_text(s, family_));
         if (!s.rejections.empty()) {
             append(b, "  rejections    ");
             const char* separator = " ";
             for (const auto& [key, count] : s.rejections) {
-                fmt::format_to(it, "{}PNU {} error {} ({}) {}x", separator, key.first, key.second,
+                fmt::format_to(it, "{}PNU {} error {} ({}) {}x", separator,
+                               pnu_label(family_, key.first), key.second,
                                error_text_or_unknown(s.dialect, key.second), count);
                 separator = "; ";
             }
@@ -217,9 +220,10 @@ class PcvSection final : public StationSection {
                        outcomes_text(s.transactions));
         fmt::format_to(it, "- Unanswered: {}, {} abandoned; spontaneous messages: {}\n",
                        timeouts_text(), s.abandoned, s.spontaneous);
-        fmt::format_to(it, "- Parameters: {}\n", parameters_text(s));
+        fmt::format_to(it, "- Parameters: {}\n", parameters_text(s, family_));
         for (const auto& [key, count] : s.rejections) {
-            fmt::format_to(it, "- Rejected: PNU {} error {} ({}), {}x\n", key.first, key.second,
+            fmt::format_to(it, "- Rejected: PNU {} error {} ({}), {}x\n",
+                           pnu_label(family_, key.first), key.second,
                            md_escape(error_text_or_unknown(s.dialect, key.second)), count);
         }
         fmt::format_to(it, "- Findings: {}\n", md_escape(findings_by_kind_text(findings_)));
@@ -271,6 +275,7 @@ class PcvSection final : public StationSection {
         for (const auto& [pnu, n] : s.pnu_requests) {
             w.begin_object();
             w.key("pnu").integer(pnu);
+            pnu_name_key(w, family_, pnu);
             count("requests", n);
             w.end_object();
         }
@@ -279,6 +284,7 @@ class PcvSection final : public StationSection {
         for (const auto& [key, n] : s.rejections) {
             w.begin_object();
             w.key("pnu").integer(key.first);
+            pnu_name_key(w, family_, key.first);
             w.key("error").integer(key.second);
             w.key("error_text").string(error_text_or_unknown(s.dialect, key.second));
             count("count", n);
@@ -357,8 +363,8 @@ class PcvSection final : public StationSection {
                    "<table class=\"parameters\"><tr><th class=\"n\">PNU</th><th "
                    "class=\"n\">requests</th></tr>\n");
             for (const auto& [pnu, count] : s.pnu_requests)
-                fmt::format_to(it, "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td></tr>\n", pnu,
-                               count);
+                fmt::format_to(it, "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td></tr>\n",
+                               xml(pnu_label(family_, pnu)), count);
             append(b, "</table>\n");
         }
         if (!s.rejections.empty()) {
@@ -371,7 +377,7 @@ class PcvSection final : public StationSection {
                 fmt::format_to(it,
                                "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td>"
                                "<td class=\"n\">{}</td></tr>\n",
-                               key.first, key.second, xml(text), count);
+                               xml(pnu_label(family_, key.first)), key.second, xml(text), count);
             }
             append(b, "</table>\n");
         }
@@ -397,6 +403,7 @@ class PcvSection final : public StationSection {
     }
 
     const ChannelStats& s_;
+    const ParameterFamily* family_ = nullptr;  // what names its PNUs (issue 29)
     const Timeline& timeline_;
     FindingCounts findings_{};  // the kinds the section covers
     const FindingSeverityCounts& by_severity_;
@@ -424,7 +431,9 @@ void add_profibus_sections(const ReportContext& c, const ChannelTimelines& timel
         if (!dpv1 || stats->data_exchange > 0 || stats->parameter_telegrams > 0 || dp_findings)
             m.stations.push_back(
                 std::make_unique<PcvSection>(c, *stats, timelines.of(stats->master, stats->slave)));
-        if (dpv1) m.stations.push_back(make_dpv1_section(*stats));
+        if (dpv1)
+            m.stations.push_back(
+                make_dpv1_section(*stats, c.naming ? c.naming->family(stats->slave) : nullptr));
         ++m.slaves;
     }
 }

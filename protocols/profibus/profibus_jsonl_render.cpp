@@ -7,9 +7,10 @@
 #include "formats/describe.hpp"
 #include "formats/field_writers.hpp"
 #include "formats/json.hpp"
+#include "formats/parameter_names.hpp"
+#include "formats/protocol_rendering.hpp"
 #include "protocols/profibus/dp_payload.hpp"
 #include "protocols/profibus/pcd.hpp"
-#include "formats/protocol_rendering.hpp"
 
 namespace dpscope {
 
@@ -47,6 +48,8 @@ void render_pcv(JsonWriter& w, const DecodedTelegram& t) {
         w.string("dword");
     else
         w.null();
+    // The parameter's row in its drive's database (issue 29).
+    parameter_jsonl_keys(w, parameter_view(t));
     w.key("meaning").string(t.dp.pcv_meaning(t.direction));
     w.key("code_known").boolean(known);
     w.key("error");
@@ -74,7 +77,8 @@ void render_number(JsonWriter& w, const ProfidriveNumber& n) {
     });
 }
 
-void render_profidrive(JsonWriter& w, const ProfidriveMessage& m, Dialect dialect) {
+void render_profidrive(JsonWriter& w, const ProfidriveMessage& m, Dialect dialect,
+                       const DecodedTelegram& t) {
     w.begin_object();
     w.key("response").boolean(m.is_response);
     w.key("reference").optional_integer(m.has_header, m.reference);
@@ -140,6 +144,10 @@ void render_profidrive(JsonWriter& w, const ProfidriveMessage& m, Dialect dialec
         } else {
             w.null();
         }
+        // The parameter's row in its drive's database (issue 29): name, the value in its unit
+        // (one whole number of the value attribute), unit.
+        parameter_jsonl_keys(w, profidrive_parameter(t, m, k).row,
+                             profidrive_value_in_unit(t, m, k));
         w.key("complete");
         if (block)
             w.boolean(block->complete);
@@ -368,7 +376,7 @@ void render_service_objects(JsonWriter& w, const DecodedTelegram& t) {
             w.null();
         w.key("profidrive");
         if (const ProfidriveMessage* m = data.profidrive())
-            render_profidrive(w, *m, t.dp.dialect);
+            render_profidrive(w, *m, t.dp.dialect, t);
         else
             w.null();
     }

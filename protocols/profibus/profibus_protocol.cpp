@@ -29,8 +29,34 @@ void profibus_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
             seen.set(a.pnu);
 }
 
+// The cyclic PCV's parameter (PNU 0 with RC 0 is the idle channel: none); a DP-V1 telegram's
+// when its PROFIdrive request or response addresses one parameter (its values are not given:
+// their format is the PROFIdrive message's).
+std::optional<TelegramParameter> profibus_parameter_of(const DecodedTelegram& t) noexcept {
+    if (t.dp.has_pcv) {
+        const Pcv& pcv = t.dp.pcv;
+        if (pcv.rc == 0 && pcv.pnu == 0) return std::nullopt;
+        TelegramParameter p;
+        p.pnu = pcv.pnu;
+        if (carries_parameter_value(t.dp.dialect, t.direction == Direction::Request, pcv.rc)) {
+            p.has_raw = true;
+            p.raw = t.dp.pcv_value(t.direction);
+        }
+        return p;
+    }
+    if (const ProfidriveMessage* message = t.dp.service_data.profidrive();
+        message && message->addresses.size() == 1) {
+        TelegramParameter p;
+        p.pnu = message->addresses.front().pnu;
+        return p;
+    }
+    return std::nullopt;
+}
+
 std::unique_ptr<TelegramDecoder> profibus_decoder(const LaneOptions& options) {
-    return std::make_unique<BusDecoder>(options.decoder);
+    DecoderOptions decoder = options.decoder;
+    decoder.naming = options.naming;
+    return std::make_unique<BusDecoder>(std::move(decoder));
 }
 
 std::unique_ptr<TelegramTracker> profibus_tracker(const LaneOptions& options) {
@@ -61,6 +87,8 @@ const ProtocolDescriptor& profibus_protocol() noexcept {
         .masters_addressed = true,
         .addresses_pnu = profibus_addresses_pnu,
         .mark_pnus = profibus_mark_pnus,
+        .drive_family = {},  // each slave's, by its dialect (drives/drive_family.hpp)
+        .parameter_of = profibus_parameter_of,
         .make_decoder = profibus_decoder,
         .make_tracker = profibus_tracker,
     };

@@ -11,6 +11,7 @@
 
 #include "core/code_tables.hpp"
 #include "formats/describe.hpp"
+#include "formats/parameter_names.hpp"
 #include "protocols/profibus/dp_payload.hpp"
 #include "protocols/profibus/dpv1/profidrive.hpp"
 #include "protocols/profibus/pcd.hpp"
@@ -104,7 +105,10 @@ void add_pcv(const Tree& tree, const DecodedTelegram& t) {
              fmt::format("{} = {}{}", pcv.rc, t.dp.pcv_meaning(t.direction),
                          defined ? "" : " (not defined by the dialect)"));
     pca.boolean(hf_pcv_spm, at, 2, pcv.spm, pcv.spm ? "1" : "0");
-    pca.uint(hf_pcv_pnu, at, 2, pcv.pnu);
+    // The name and value in its unit from its drive's database (issue 29).
+    const TelegramParameterView view = parameter_view(t);
+    pca.uint(hf_pcv_pnu, at, 2, pcv.pnu,
+             fmt::format("{}{}", pcv.pnu, parameter_name_text(view.named)));
     sub.uint(hf_pcv_ind, at + 2, 2, pcv.ind,
              fmt::format("{} (byte 4: 0x{:02X})", pcv.ind, pcv.ind_low));
     const ValueWidth width = request ? request_code(t.dp.dialect, pcv.rc).width
@@ -123,7 +127,8 @@ void add_pcv(const Tree& tree, const DecodedTelegram& t) {
         sub.uint(hf_pcv_pva, at + 4, 4, pcv.pva);
         const bool word = width == ValueWidth::Word;
         sub.uint(hf_pcv_value, word ? at + 6 : at + 4, word ? 2 : 4, pcv_value(pcv, width),
-                 fmt::format("{} ({})", pcv_value(pcv, width), word ? "word" : "double word"));
+                 fmt::format("{} ({}){}", pcv_value(pcv, width), word ? "word" : "double word",
+                             view_value_text(view)));
     }
 }
 
@@ -315,7 +320,8 @@ void add_profidrive(const Tree& tree, const DecodedTelegram& t, const Profidrive
                    fmt::format("0x{:02X} ({})", a.attribute,
                                attribute.empty() ? "not defined" : attribute));
             p.uint(hf_pd_elements, a_at + 1, 1, a.elements);
-            p.uint(hf_pd_pnu, a_at + 2, 2, a.pnu);
+            p.uint(hf_pd_pnu, a_at + 2, 2, a.pnu,
+                   fmt::format("{}{}", a.pnu, parameter_name_text(profidrive_parameter(t, m, k))));
             p.uint(hf_pd_subindex, a_at + 4, 2, a.subindex);
         }
         if (k >= m.blocks.size()) continue;

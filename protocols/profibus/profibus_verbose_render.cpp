@@ -8,9 +8,10 @@
 #include <vector>
 
 #include "formats/describe.hpp"
+#include "formats/parameter_names.hpp"
+#include "formats/protocol_rendering.hpp"
 #include "formats/verbose_tree.hpp"
 #include "protocols/profibus/dp_payload.hpp"
-#include "formats/protocol_rendering.hpp"
 
 namespace dpscope {
 
@@ -226,10 +227,12 @@ class ProfibusVerboseTree final : public VerboseTree {
             case Dpv1Pdu::Layout::None: break;
         }
         if (const ProfidriveMessage* m = t.dp.service_data.profidrive())
-            render_profidrive(*m, t.dp.dialect);
+            render_profidrive(*m, t.dp.dialect, &t);
     }
 
-    void render_profidrive(const ProfidriveMessage& m, Dialect dialect) {
+    // With `t`, each parameter's name and a value in its unit (issue 29).
+    void render_profidrive(const ProfidriveMessage& m, Dialect dialect,
+                           const DecodedTelegram* t = nullptr) {
         field(1, "PROFIdrive parameter {}", m.is_response ? "response" : "request");
         if (!m.has_header) {
             field(2, "header cut short");
@@ -259,6 +262,14 @@ class ProfibusVerboseTree final : public VerboseTree {
                       attribute.empty() ? "not defined" : attribute);
                 field(3, "Number of elements: {}", a.elements);
                 field(3, "Parameter number: {}", a.pnu);
+                if (t) {
+                    const NamedParameter named = profidrive_parameter(*t, m, k);
+                    if (named.row) {
+                        TextBuffer details;
+                        append_parameter_details(details, named);
+                        field(4, "name: {}", std::string_view(details.data(), details.size()));
+                    }
+                }
                 field(3, "Subindex: {}", a.subindex);
             }
             if (k >= m.blocks.size()) continue;
@@ -275,6 +286,14 @@ class ProfibusVerboseTree final : public VerboseTree {
                 std::string values;
                 append_profidrive_values(block, values);
                 field(3, "Values: {}", values);
+                if (t) {
+                    if (const std::optional<ScaledValue> value =
+                            profidrive_value_in_unit(*t, m, k)) {
+                        TextBuffer text;
+                        append_value_details(text, *profidrive_parameter(*t, m, k).row, *value);
+                        field(4, "in its unit: {}", std::string_view(text.data(), text.size()));
+                    }
+                }
             }
             if (!block.complete) field(3, "(block cut short)");
             if (block.padded) field(3, "Pad byte");
@@ -304,6 +323,12 @@ class ProfibusVerboseTree final : public VerboseTree {
                   defined ? "" : " (not defined by the dialect)");
             field(3, "SPM: {}", pcv.spm ? 1 : 0);
             field(3, "PNU: {}", pcv.pnu);
+            const TelegramParameterView view = parameter_view(t);
+            if (view.named.row) {
+                TextBuffer details;
+                append_parameter_details(details, view.named);
+                field(4, "name: {}", std::string_view(details.data(), details.size()));
+            }
             field(2, "IND: {} (byte 4: 0x{:02X})", pcv.ind, pcv.ind_low);
             ValueWidth width = request ? request_code(t.dp.dialect, pcv.rc).width
                                        : response_code(t.dp.dialect, pcv.rc).width;
@@ -320,6 +345,11 @@ class ProfibusVerboseTree final : public VerboseTree {
                 field(2, "PVA: 0x{:08X}, double word value {}", pcv.pva, pcv.pva);
             } else {
                 field(2, "PVA: 0x{:08X} (the code carries no value)", pcv.pva);
+            }
+            if (view.value && view.parameter.has_raw) {
+                TextBuffer value;
+                append_value_details(value, *view.named.row, *view.value);
+                field(3, "in its unit: {}", std::string_view(value.data(), value.size()));
             }
         }
         ByteReader reader(t.dp.pcd, t.dp.pcd_offset);

@@ -161,6 +161,7 @@ void parse_vlt2000(Bytes bytes, Vlt2000Telegram& v, bool check_checksum) noexcep
 
 Vlt2000Decoder::Vlt2000Decoder(Vlt2000DecoderOptions options) noexcept : options_(options) {
     t_.protocol = Protocol::Vlt2000;
+    t_.naming = options_.naming.get();
 }
 
 Direction Vlt2000Decoder::direction_of(const Vlt2000Telegram& v) const noexcept {

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 
 #include "core/protocol_lane.hpp"
 #include "core/telegram.hpp"
@@ -31,6 +32,9 @@ struct Vlt2000DecoderOptions {
     // 3000/3500 rule is dpscope's reading (docs/protocol/vlt2000.md); with a drive that computes
     // it otherwise, `false` decodes its telegrams without a checksum problem.
     bool check_checksum = true;
+    // What names the PNUs (drives/parameter_naming.hpp): put on every telegram decoded
+    // (DecodedTelegram::naming); null: nothing. Set from LaneOptions::naming by the factory.
+    std::shared_ptr<const ParameterNaming> naming{};
 };
 
 class Vlt2000Decoder final : public TelegramDecoder {

@@ -1,15 +1,17 @@
 // The wording of VLT 2000 serial telegrams, shared by the renderers. Everything here reads what
 // Vlt2000Decoder stored in DecodedTelegram::vlt2000; nothing parses the characters again, except
 // for showing those of a field that is not what it should be.
+#include "protocols/vlt2000/vlt2000_describe.hpp"
+
 #include <algorithm>
 #include <iterator>
 #include <string>
 #include <vector>
 
 #include "formats/describe.hpp"
+#include "formats/parameter_names.hpp"
 #include "protocols/fc/fc_describe.hpp"
 #include "protocols/vlt2000/vlt2000_codes.hpp"
-#include "protocols/vlt2000/vlt2000_describe.hpp"
 
 namespace dpscope {
 
@@ -168,6 +170,8 @@ void append_vlt2000_detail(TextBuffer& out, const DecodedTelegram& t) {
     if (v.has_parameter && v.letter != Vlt2000Letter::Control) {
         space();
         fmt::format_to(it, "parameter {}", v.parameter);
+        const TelegramParameterView view = parameter_view(t);
+        append_parameter_name(out, view.named);
         if (v.letter == Vlt2000Letter::ReadIndex && !v.index.empty()) {
             if (v.has_index_number) {
                 fmt::format_to(it, " index {}", v.index_number);
@@ -187,6 +191,9 @@ void append_vlt2000_detail(TextBuffer& out, const DecodedTelegram& t) {
                    !(t.direction == Direction::Request && v.letter == Vlt2000Letter::Read)) {
             // A read command's value is not used: the drive fills it in.
             fmt::format_to(it, " = {}", vlt2000_value_text(v));
+            // The value carries its own decimal point: its database adds the unit (issue 29).
+            if (view.value && !view.named.row->unit.empty())
+                fmt::format_to(it, " {}", view.named.row->unit);
             const std::string note = vlt2000_value_note(v);
             if (!note.empty()) fmt::format_to(it, " ({})", note);
         }

@@ -33,9 +33,28 @@ void vlt2000_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
     if (const auto pnu = vlt2000_named_pnu(t)) seen.set(*pnu);
 }
 
+// Its parameter and the value it carries with its own decimal point: not a C telegram's, a failed
+// one's, an I telegram's index or a read command's (the drive fills that in).
+std::optional<TelegramParameter> vlt2000_parameter_of(const DecodedTelegram& t) noexcept {
+    const std::optional<std::uint16_t> pnu = vlt2000_named_pnu(t);
+    if (!pnu || !t.has_roles) return std::nullopt;
+    const Vlt2000Telegram& v = t.vlt2000;
+    TelegramParameter p;
+    p.pnu = *pnu;
+    const bool index = v.letter == Vlt2000Letter::ReadIndex && !v.index.empty();
+    const bool read_command = t.direction == Direction::Request && v.letter == Vlt2000Letter::Read;
+    if (v.has_value && !v.failed && !index && !read_command) {
+        p.has_decimal = true;
+        p.decimal = v.value();
+        p.decimals = v.has_decimals && v.decimals <= 5 ? v.decimals : 0;
+    }
+    return p;
+}
+
 std::unique_ptr<TelegramDecoder> vlt2000_decoder(const LaneOptions& options) {
     Vlt2000DecoderOptions decoder = options.vlt2000_decoder;
     decoder.response_window_ns = options.timeout_ns;
+    decoder.naming = options.naming;
     return std::make_unique<Vlt2000Decoder>(decoder);
 }
 
@@ -67,6 +86,8 @@ const ProtocolDescriptor& vlt2000_protocol() noexcept {
         .masters_addressed = false,
         .addresses_pnu = vlt2000_addresses_pnu,
         .mark_pnus = vlt2000_mark_pnus,
+        .drive_family = "vlt2000",
+        .parameter_of = vlt2000_parameter_of,
         .make_decoder = vlt2000_decoder,
         .make_tracker = vlt2000_tracker,
     };

@@ -11,6 +11,7 @@
 
 #include "formats/describe.hpp"
 #include "formats/field_writers.hpp"
+#include "formats/parameter_names.hpp"
 #include "formats/protocol_rendering.hpp"
 #include "formats/verbose_tree.hpp"
 #include "protocols/fc/fc_describe.hpp"
@@ -144,6 +145,9 @@ void vlt2000_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     w.key("value_note");
     optional_text(w, !note.empty(), note);
     w.key("decimals").optional_integer(v.has_decimals, v.decimals);
+    // The parameter's row in its database (issue 29): its name, the value (which carries its own
+    // decimal point) and the unit.
+    parameter_jsonl_keys(w, parameter_view(t));
     const bool index = v.letter == Vlt2000Letter::ReadIndex && !v.index.empty();
     w.key("index");
     if (index) {
@@ -246,6 +250,12 @@ class Vlt2000VerboseTree final : public VerboseTree {
             field(1, "[9-12] Parameter: {}{}", v.parameter, ignored);
         else
             field(1, "[9-12] Parameter: {} (not four digits)", chars(t, kVlt2000ParameterAt, 4));
+        const TelegramParameterView view = parameter_view(t);
+        if (view.named.row) {
+            TextBuffer details;
+            append_parameter_details(details, view.named);
+            field(2, "name: {}", std::string_view(details.data(), details.size()));
+        }
         if (!has(kVlt2000SignAt, 1)) return;
         if (v.letter == Vlt2000Letter::ReadIndex && !v.index.empty()) {
             if (v.has_index_number)
@@ -266,6 +276,8 @@ class Vlt2000VerboseTree final : public VerboseTree {
                 if (!note.empty()) fmt::format_to(it, " ({})", note);
                 append(b, ignored);
                 b.push_back('\n');
+                if (view.value && !view.named.row->unit.empty())
+                    field(2, "in its unit: {} {}", vlt2000_value_text(v), view.named.row->unit);
             } else {
                 field(1, "[14-18] Value: {} (not five digits)", chars(t, kVlt2000ValueAt, 5));
             }

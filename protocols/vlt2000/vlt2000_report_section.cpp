@@ -9,6 +9,7 @@
 
 #include "core/code_tables.hpp"
 #include "formats/json.hpp"
+#include "formats/parameter_names.hpp"
 #include "formats/report_markup.hpp"
 #include "formats/report_model.hpp"
 #include "protocols/vlt2000/vlt2000_codes.hpp"
@@ -73,12 +74,13 @@ std::string checksums_text(const Vlt2000StationStats& s) {
                        counted(s.checksum_disabled, "telegram", "telegrams"));
 }
 
-std::string parameters_text(const Vlt2000StationStats& s) {
+std::string parameters_text(const Vlt2000StationStats& s, const ParameterFamily* family) {
     std::string text;
     for (const auto& [parameter, access] : s.parameters)
-        text += fmt::format("{}{} ({} read{}, {} write{})", text.empty() ? "" : ", ", parameter,
-                            access.reads, access.reads == 1 ? "" : "s", access.writes,
-                            access.writes == 1 ? "" : "s");
+        text +=
+            fmt::format("{}{} ({} read{}, {} write{})", text.empty() ? "" : ", ",
+                        pnu_label(family, parameter), access.reads, access.reads == 1 ? "" : "s",
+                        access.writes, access.writes == 1 ? "" : "s");
     if (s.parameters_not_counted)
         text += fmt::format("{}{} more accesses to further parameters", text.empty() ? "" : "; ",
                             s.parameters_not_counted);
@@ -87,13 +89,15 @@ std::string parameters_text(const Vlt2000StationStats& s) {
 
 class Vlt2000Section final : public StationSection {
   public:
-    Vlt2000Section(const Vlt2000StationStats& stats, const Timeline& timeline)
+    Vlt2000Section(const ReportContext& c, const Vlt2000StationStats& stats,
+                   const Timeline& timeline)
         : s_(stats), timeline_(timeline), by_severity_(stats.findings_by_severity) {
         for (FindingKind kind : kAllKinds)
             if (covers(kind))
                 findings_[static_cast<std::size_t>(kind)] =
                     stats.findings[static_cast<std::size_t>(kind)];
         latency_ = DriveLatency::of(stats.latency_ns, stats.mean_latency_ns());
+        family_ = c.naming ? c.naming->family(stats.address) : nullptr;
     }
 
     std::uint8_t master() const override { return 0; }
@@ -114,7 +118,7 @@ class Vlt2000Section final : public StationSection {
         fmt::format_to(it, "  failed         {}: {}\n", s.failed, failures_text(s));
         fmt::format_to(it, "  checksums      {}\n", checksums_text(s));
         fmt::format_to(it, "  latency ms     {}\n", latency_text());
-        fmt::format_to(it, "  parameters     {}\n", parameters_text(s));
+        fmt::format_to(it, "  parameters     {}\n", parameters_text(s, family_));
         fmt::format_to(it, "  findings       {}\n", findings_by_kind_text(findings_));
     }
 
@@ -142,7 +146,7 @@ class Vlt2000Section final : public StationSection {
             fmt::format_to(it, "- Failed: no reason code, {}x\n", s.failures_without_reason);
         fmt::format_to(it, "- Checksums: {}\n", md_escape(checksums_text(s)));
         fmt::format_to(it, "- Latency ms: {}\n", latency_text());
-        fmt::format_to(it, "- Parameters: {}\n", parameters_text(s));
+        fmt::format_to(it, "- Parameters: {}\n", parameters_text(s, family_));
         fmt::format_to(it, "- Findings: {}\n", md_escape(findings_by_kind_text(findings_)));
     }
 
@@ -212,6 +216,7 @@ class Vlt2000Section final : public StationSection {
         for (const auto& [parameter, access] : s.parameters) {
             w.begin_object();
             w.key("pnu").integer(parameter);
+            pnu_name_key(w, family_, parameter);
             count("reads", access.reads);
             count("writes", access.writes);
             w.end_object();
@@ -262,7 +267,7 @@ class Vlt2000Section final : public StationSection {
                "style=\"background:#2e90fa\"></i>notes</span></div>\n");
         svg_timeline(b, timeline_, title_lower(), c);
         append(b, "<h3>Parameters accessed</h3>\n");
-        if (html_parameter_table(b, s.parameters) && s.parameters_not_counted)
+        if (html_parameter_table(b, s.parameters, family_) && s.parameters_not_counted)
             fmt::format_to(it, "<p class=\"meta\">{} more accesses to further parameters.</p>\n",
                            s.parameters_not_counted);
         if (s.failed > 0) {
@@ -332,6 +337,7 @@ class Vlt2000Section final : public StationSection {
     std::string latency_text() const { return latency_.text(broadcast(), s_.timed()); }
 
     const Vlt2000StationStats& s_;
+    const ParameterFamily* family_ = nullptr;  // what names its parameters (issue 29)
     const Timeline& timeline_;
     FindingCounts findings_{};
     const FindingSeverityCounts& by_severity_;
@@ -339,10 +345,10 @@ class Vlt2000Section final : public StationSection {
 };
 
 // One drive address of a VLT 2000 capture (address 00: the broadcasts), with its timeline.
-std::unique_ptr<StationSection> make_vlt2000_section(const ReportContext& /*c*/,
+std::unique_ptr<StationSection> make_vlt2000_section(const ReportContext& c,
                                                      const Vlt2000StationStats& stats,
                                                      const Timeline& timeline) {
-    return std::make_unique<Vlt2000Section>(stats, timeline);
+    return std::make_unique<Vlt2000Section>(c, stats, timeline);
 }
 
 void add_vlt2000_sections(const ReportContext& c, const ChannelTimelines& timelines,

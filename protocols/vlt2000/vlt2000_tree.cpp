@@ -7,6 +7,7 @@
 #include <string>
 
 #include "formats/describe.hpp"
+#include "formats/parameter_names.hpp"
 #include "protocols/fc/fc_describe.hpp"
 #include "protocols/vlt2000/vlt2000_describe.hpp"
 #include "wireshark/protocol_tree.hpp"
@@ -69,9 +70,11 @@ void add_vlt2000(const Tree& top, const DecodedTelegram& t) {
                      fmt::format("{}: {}", set ? 1 : 0, vlt2000_bit_meaning(v, t.direction, bit)));
     }
     if (!has(kVlt2000ParameterAt, 4)) return;
+    // The name and unit from its drive's database (issue 29).
+    const TelegramParameterView view = parameter_view(t);
     if (v.has_parameter)
         tree.uint(hf_vlt_parameter, kVlt2000ParameterAt, 4, v.parameter,
-                  fmt::format("{}{}", v.parameter,
+                  fmt::format("{}{}{}", v.parameter, parameter_name_text(view.named),
                               v.letter == Vlt2000Letter::Control ? " (ignored with C)" : ""));
     if (!has(kVlt2000SignAt, 1)) return;
     if (v.letter == Vlt2000Letter::ReadIndex && !v.index.empty()) {
@@ -88,7 +91,10 @@ void add_vlt2000(const Tree& top, const DecodedTelegram& t) {
         const std::string note = vlt2000_value_note(v);
         tree.real(
             hf_vlt_value, kVlt2000ValueAt, 5, number,
-            fmt::format("{:05} = {}{}", v.digits, text, note.empty() ? note : " (" + note + ")"));
+            fmt::format("{:05} = {}{}{}", v.digits, text,
+                        view.value && !view.named.row->unit.empty() ? " " + view.named.row->unit
+                                                                    : std::string(),
+                        note.empty() ? note : " (" + note + ")"));
     } else if (v.has_value && v.letter == Vlt2000Letter::Control) {
         tree.text(
             kVlt2000SignAt, 6, kEttVlt2000,

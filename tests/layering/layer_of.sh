@@ -4,7 +4,7 @@
 layer_of() {
     local path=$1 first=${1%%/*} name stem
     case $first in
-        core) echo decoder ;;
+        core | drives) echo decoder ;;
         capture | simulator | formats | wireshark | cli) echo "$first" ;;
         protocols)
             name=${path##*/}

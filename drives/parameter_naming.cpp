@@ -1,0 +1,39 @@
+#include "drives/parameter_naming.hpp"
+
+#include <string>
+#include <utility>
+
+#include "drives/shipped_databases.hpp"
+
+namespace dpscope {
+
+ParameterNaming::ParameterNaming(std::shared_ptr<const ParameterDatabase> database, Protocol bus,
+                                 const std::array<Dialect, kStationCount>& dialects,
+                                 const DriveHints& drives)
+    : database_(std::move(database)) {
+    for (std::size_t station = 0; station < kStationCount; ++station) {
+        const auto address = static_cast<std::uint8_t>(station);
+        families_[station] =
+            database_->family(drive_family(bus, dialects[station], drives.of(address)));
+    }
+}
+
+std::shared_ptr<const ParameterDatabase> shipped_parameter_database() {
+    static const std::shared_ptr<const ParameterDatabase> database = [] {
+        auto loaded = std::make_shared<ParameterDatabase>();
+        for (const ShippedDatabase& shipped : shipped_databases())
+            if (Result<ParameterFile> parsed = parse_parameter_database(shipped.text, shipped.file))
+                loaded->add(std::move(parsed->family));
+        return loaded;
+    }();
+    return database;
+}
+
+NamedParameter ParameterNaming::parameter(std::uint8_t station, std::uint16_t pnu) const noexcept {
+    const ParameterFamily* family = families_[station & 0x7F];
+    if (!family) return {};
+    const ParameterRow* row = family->find(pnu);
+    return row ? NamedParameter{family, row} : NamedParameter{};
+}
+
+}  // namespace dpscope

@@ -1,0 +1,49 @@
+// What names the PNUs of a capture's telegrams (issue 29): the drive family of each station,
+// resolved once per capture by the family rule (drives/drive_family.hpp) from the bus, the
+// PROFIBUS slaves' dialects and --drive, over the loaded databases. A decoder given one puts it
+// on every telegram it decodes (DecodedTelegram::naming), so that the renderings, the report and
+// the Wireshark plugin find a PNU's row with one array read and a binary search.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+
+#include "core/code_tables.hpp"
+#include "core/telegram.hpp"
+#include "drives/drive_family.hpp"
+#include "drives/parameter_database.hpp"
+
+namespace dpscope {
+
+class ParameterNaming {
+  public:
+    // `dialects`: each PROFIBUS slave's (ignored on the other buses).
+    ParameterNaming(std::shared_ptr<const ParameterDatabase> database, Protocol bus,
+                    const std::array<Dialect, kStationCount>& dialects, const DriveHints& drives);
+
+    // The family that names the PNUs of `station`'s drive; nullptr when no database holds it.
+    const ParameterFamily* family(std::uint8_t station) const noexcept {
+        return families_[station & 0x7F];
+    }
+    // The row of `pnu` for `station`'s drive: its family and row, both null when there is none.
+    NamedParameter parameter(std::uint8_t station, std::uint16_t pnu) const noexcept;
+    const ParameterDatabase& database() const noexcept { return *database_; }
+
+  private:
+    std::shared_ptr<const ParameterDatabase> database_;
+    std::array<const ParameterFamily*, kStationCount> families_{};
+};
+
+// The shipped databases (drives/shipped_databases.hpp), parsed once; a database that does not
+// parse is left out (a test keeps them free of errors). For what has no command line to name
+// --params files: the Wireshark plugin.
+std::shared_ptr<const ParameterDatabase> shipped_parameter_database();
+
+// The row naming `pnu` of the telegram's drive (its slave), by the naming its decoder was given;
+// both null when there is none.
+inline NamedParameter named_parameter(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
+    return t.naming ? t.naming->parameter(t.slave, pnu) : NamedParameter{};
+}
+
+}  // namespace dpscope
