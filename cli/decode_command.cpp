@@ -107,12 +107,14 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     }
     // --baud times the serial buses' commands on the line; a PROFIBUS decode has no use for it
     // (report and stats take it for the bus load), so it is said, as for the other options of
-    // another bus. With -w it is not ignored: the capture written records the line.
-    if (settings.baud_given && !settings.protocol->timed_by_line &&
-        settings.write.empty())
+    // another bus. With -w it is not ignored: the capture written records the line; with GSD
+    // files it times the slaves' answers against MaxTsdr (gsd_late_response).
+    if (settings.baud_given && !settings.protocol->timed_by_line && settings.write.empty() &&
+        !settings.lanes.decoder.gsd)
         print_warning(fmt::format(
             "{}: --baud applies to the FC protocol and VLT 2000 in decode (for PROFIBUS, report "
-            "and stats use it for the bus load); this capture is PROFIBUS DP: ignored",
+            "and stats use it for the bus load, and --gsd to time answers against MaxTsdr); "
+            "this capture is PROFIBUS DP: ignored",
             source.name()));
     // With -w -, the capture owns standard output; text goes to standard error.
     FILE* text_stream = settings.write == "-" ? stderr : stdout;

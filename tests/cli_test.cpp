@@ -842,8 +842,8 @@ TEST(CliTest, HexFromArguments) {
     CommandResult baud = run_dpscope({"hex", "--baud", "19200", "10 03 02 49 4E 16"});
     EXPECT_EQ(baud.err,
               "dpscope: warning: <command line>: --baud applies to the FC protocol and VLT 2000 "
-              "in decode (for PROFIBUS, report and stats use it for the bus load); this capture "
-              "is PROFIBUS DP: ignored\n");
+              "in decode (for PROFIBUS, report and stats use it for the bus load, and --gsd to "
+              "time answers against MaxTsdr); this capture is PROFIBUS DP: ignored\n");
     EXPECT_EQ(run_dpscope({"decode", "--baud", "19200", "samples/fc.pcap"}).err, "");
 }
 

@@ -118,6 +118,16 @@ golden_case(report_dpv1_json samples/expected/report.dpv1.json EXIT 1 report -T 
 golden_case(report_dpv1_markdown samples/expected/report.dpv1.md EXIT 1 report -T markdown --dialect 4=profidrive samples/dpv1.pcap)
 golden_case(report_dpv1_html samples/expected/report.dpv1.html EXIT 1 report -T html --dialect 4=profidrive samples/dpv1.pcap)
 golden_case(report_dpv1_junit samples/expected/report.dpv1.junit.xml EXIT 1 report -T junit --dialect 4=profidrive samples/dpv1.pcap)
+# Slaves described by GSD files (issue 29): vendor, modules, user parameters, diagnosis texts,
+# the GSD checks and the report's device part.
+golden_case(decode_gsd_text samples/expected/decode.gsd.txt decode --gsd-dir samples/gsd --baud 1500000 --dialect 4=profidrive -r samples/gsd.pcap)
+golden_case(decode_gsd_verbose samples/expected/decode.gsd.verbose.txt decode -V -c 40 --gsd-dir samples/gsd --baud 1500000 --dialect 4=profidrive -r samples/gsd.pcap)
+golden_case(decode_gsd_jsonl samples/expected/decode.gsd.jsonl decode -T jsonl -c 40 --gsd-dir samples/gsd --baud 1500000 --dialect 4=profidrive -r samples/gsd.pcap)
+golden_case(report_gsd_text samples/expected/report.gsd.txt EXIT 1 report --gsd-dir samples/gsd --baud 1500000 --dialect 4=profidrive samples/gsd.pcap)
+golden_case(report_gsd_json samples/expected/report.gsd.json EXIT 1 report -T json --gsd-dir samples/gsd --baud 1500000 --dialect 4=profidrive samples/gsd.pcap)
+golden_case(report_gsd_markdown samples/expected/report.gsd.md EXIT 1 report -T markdown --gsd-dir samples/gsd --baud 1500000 --dialect 4=profidrive samples/gsd.pcap)
+golden_case(report_gsd_html samples/expected/report.gsd.html EXIT 1 report -T html --gsd-dir samples/gsd --baud 1500000 --dialect 4=profidrive samples/gsd.pcap)
+golden_case(report_gsd_junit samples/expected/report.gsd.junit.xml EXIT 1 report -T junit --gsd-dir samples/gsd --baud 1500000 --dialect 4=profidrive samples/gsd.pcap)
 
 # Bus health (dpscope stats, issue 12): the capture with every link fault (FCS errors, garbage, a
 # slave silent, an FDL retry) in every stats format, simulated at 1500000 baud (scripts/

@@ -444,6 +444,7 @@ void configure(const std::string& sample, DecoderOptions& options, DriveHints& d
         options.station_dialect[4] = Dialect::Profidrive;
         drives.station[3] = drives.station[5] = "fc";
     }
+    if (sample == "gsd.pcap") options.station_dialect[4] = Dialect::Profidrive;
 }
 
 // The PNUs each sample's telegrams name, by the family the family rule gives their station:

@@ -10,6 +10,7 @@
 #include "formats/report_markup.hpp"
 #include "formats/report_model.hpp"
 #include "protocols/profibus/bus_decoder.hpp"
+#include "protocols/profibus/gsd/gsd_report_section.hpp"
 #include "protocols/profibus/session_tracker.hpp"
 
 namespace dpscope::report {
@@ -424,8 +425,12 @@ void add_profibus_sections(const ReportContext& c, const ChannelTimelines& timel
         if (!shows_slave(c, stats->slave)) continue;
         bool dp_findings = false, dpv1_findings = false;
         for (FindingKind kind : kAllKinds)
-            if (stats->findings[static_cast<std::size_t>(kind)] > 0)
-                (is_dp_kind(kind) ? dp_findings : dpv1_findings) = true;
+            if (stats->findings[static_cast<std::size_t>(kind)] > 0) {
+                if (is_dp_kind(kind))
+                    dp_findings = true;
+                else if (finding_component(kind) == FindingComponent::Dpv1ParameterAccess)
+                    dpv1_findings = true;
+            }
         const bool dpv1 = stats->dpv1.telegrams > 0 || dpv1_findings;
         // The cyclic channel's section, unless the slave only talked DP-V1.
         if (!dpv1 || stats->data_exchange > 0 || stats->parameter_telegrams > 0 || dp_findings)
@@ -434,6 +439,10 @@ void add_profibus_sections(const ReportContext& c, const ChannelTimelines& timel
         if (dpv1)
             m.stations.push_back(
                 make_dpv1_section(*stats, c.naming ? c.naming->family(stats->slave) : nullptr));
+        // The slave against its GSD file, when it has one (--gsd).
+        if (stats->gsd && stats->gsd->device)
+            m.stations.push_back(
+                make_gsd_section(*stats, profibus_station(c, stats->slave).gsd_modules));
         ++m.slaves;
     }
 }

@@ -250,6 +250,65 @@ void render_dpv1(JsonWriter& w, const DecodedTelegram& t, const Dpv1Pdu& pdu) {
     w.end_object();
 }
 
+// "gsd": the slave's GSD file and what it names in this telegram (issue 29; docs/gsd.md).
+void render_gsd(JsonWriter& w, const DecodedTelegram& t) {
+    const GsdDevice& device = *t.dp.device;
+    const DpServiceData& data = t.dp.service_data;
+    w.key("gsd").begin_object();
+    w.key("file").string(device.file);
+    w.key("vendor").string(device.vendor);
+    w.key("model").string(device.model);
+    w.key("ident").optional_integer(device.ident_number.has_value(),
+                                    device.ident_number.value_or(0));
+    w.key("modules").begin_array();
+    for (const GsdModuleMatch& m : data.gsd_modules()) {
+        w.begin_object();
+        w.key("slot").integer(m.first_identifier);
+        w.key("slots").integer(m.identifiers);
+        w.key("name");
+        if (m.module)
+            w.string(m.module->name);
+        else
+            w.null();
+        w.end_object();
+    }
+    w.end_array();
+    w.key("user_prm").begin_array();
+    if (const GsdPrmReading* prm = data.gsd_prm())
+        for (const GsdPrmValue& v : prm->values) {
+            w.begin_object();
+            w.key("name").string(v.prm->name);
+            w.key("module");
+            if (v.module)
+                w.string(v.module->name);
+            else
+                w.null();
+            w.key("byte").integer(v.offset);
+            w.key("value").integer(v.value);
+            w.key("text");
+            if (v.text)
+                w.string(v.text->text);
+            else
+                w.null();
+            w.key("allowed").boolean(v.in_range);
+            w.end_object();
+        }
+    w.end_array();
+    w.key("diag").begin_array();
+    for (const GsdDiagText& d : data.gsd_diag()) {
+        w.begin_object();
+        w.key("source").string(d.source == GsdDiagText::Source::Bit    ? "bit"
+                               : d.source == GsdDiagText::Source::Area ? "area"
+                                                                       : "slot");
+        w.key("bit").integer(d.bit);
+        w.key("byte").integer(d.offset);
+        w.key("text").string(d.text);
+        w.end_object();
+    }
+    w.end_array();
+    w.end_object();
+}
+
 void render_service_objects(JsonWriter& w, const DecodedTelegram& t) {
     const DpServiceData& data = t.dp.service_data;
 
@@ -366,6 +425,10 @@ void render_service_objects(JsonWriter& w, const DecodedTelegram& t) {
     } else {
         w.null();
     }
+
+    // Only on the management lines of a slave that has a GSD file (--gsd): what the file says.
+    if (t.dp.device && (data.set_prm() || data.slave_diag() || (modules && !t.dp.fdl.du.empty())))
+        render_gsd(w, t);
 
     // Only on DP-V1 lines (MSAC_C1, MSAC_C2): other lines keep the schema they had.
     if (t.dp.service == Service::MsacC1 || t.dp.service == Service::MsacC2) {

@@ -142,6 +142,66 @@ class ProfibusVerboseTree final : public VerboseTree {
                 }
                 break;
         }
+        render_gsd(t);
+    }
+
+    // What the slave's GSD file says about a management telegram's data (issue 29).
+    void render_gsd(const DecodedTelegram& t) {
+        const GsdDevice* device = t.dp.device;
+        const DpServiceData& data = t.dp.service_data;
+        const GsdPrmReading* prm = data.gsd_prm();
+        if (!device ||
+            (data.gsd_modules().empty() && !prm && data.gsd_diag().empty() && !data.slave_diag()))
+            return;
+        field(1, "GSD: {} ({}{})", device->file, gsd_device_title(*device),
+              device->ident_number ? fmt::format(", ident 0x{:04X}", *device->ident_number)
+                                   : std::string());
+        for (const GsdModuleMatch& m : data.gsd_modules()) {
+            line(2, m.module ? fmt::format("module \"{}\"", m.module->name)
+                             : std::string("no module of the GSD"));
+            auto it = std::back_inserter(buffer());
+            if (m.identifiers > 1)
+                fmt::format_to(it, ": slots {}-{} (", m.first_identifier,
+                               m.first_identifier + m.identifiers - 1);
+            else
+                fmt::format_to(it, ": slot {} (", m.first_identifier);
+            append_hex(buffer(), t.bytes.subspan(m.offset, m.length));
+            append(buffer(), ")\n");
+        }
+        if (prm) {
+            for (const GsdPrmValue& v : prm->values) {
+                line(2, "");
+                fmt::format_to(
+                    std::back_inserter(buffer()),
+                    "user parameter \"{}\" (byte {}{}): ", v.prm->name, v.offset,
+                    v.module ? fmt::format(", module \"{}\"", v.module->name) : std::string());
+                if (v.text)
+                    fmt::format_to(std::back_inserter(buffer()), "{} ({})", v.value, v.text->text);
+                else
+                    fmt::format_to(std::back_inserter(buffer()), "{}", v.value);
+                if (!v.in_range) append(buffer(), " (not allowed)");
+                buffer().push_back('\n');
+            }
+            const bool module_prms =
+                std::any_of(device->modules.begin(), device->modules.end(),
+                            [](const GsdModule& m) { return !m.prm_refs.empty(); });
+            if (!prm->modules_known && module_prms)
+                field(2, "module parameters not read: no configuration of the slave seen yet");
+        }
+        for (const GsdDiagText& d : data.gsd_diag()) {
+            line(2, "diagnosis ");
+            append_gsd_diag_text(buffer(), d);
+            auto it = std::back_inserter(buffer());
+            switch (d.source) {
+                case GsdDiagText::Source::Bit: fmt::format_to(it, " (bit {}", d.bit); break;
+                case GsdDiagText::Source::Area:
+                    fmt::format_to(it, " (bits from {} = {}", d.bit, d.value);
+                    break;
+                case GsdDiagText::Source::Slot: fmt::format_to(it, " ("); break;
+            }
+            fmt::format_to(it, "{}byte {})\n", d.source == GsdDiagText::Source::Slot ? "" : ", ",
+                           d.offset);
+        }
     }
 
     void render_dpv1(const DecodedTelegram& t, const Dpv1Pdu& pdu) {
