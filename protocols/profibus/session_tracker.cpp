@@ -111,7 +111,10 @@ ParameterChannelPolicy dp_policy(const TrackerOptions& options) {
 }  // namespace
 
 SessionTracker::SessionTracker(TrackerOptions options)
-    : options_(options), engine_(dp_policy(options)), dpv1_(options.timeout_ns) {}
+    : options_(options),
+      gsd_line_(gsd_line(options.line_baud)),
+      engine_(dp_policy(options)),
+      dpv1_(options.timeout_ns) {}
 
 SessionTracker::~SessionTracker() = default;
 
@@ -227,7 +230,7 @@ void SessionTracker::track_channel(Channel& ch, const DecodedTelegram& t, bool i
             ch.gsd = std::make_unique<GsdCheckState>();
             ch.stats.gsd = &ch.gsd->stats;
         }
-        check_gsd(*ch.gsd, t, GsdLine{options_.line_baud}, retry, current_);
+        check_gsd(*ch.gsd, t, gsd_line_, retry, current_);
     }
     if (t.dp.service != Service::DataExchange) return;
 

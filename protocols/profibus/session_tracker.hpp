@@ -173,6 +173,7 @@ class SessionTracker final : public TelegramTracker {
     void track_channel(Channel& ch, const DecodedTelegram& t, bool intact);
 
     TrackerOptions options_;
+    GsdLine gsd_line_;  // the line as the GSD rules time it (options_.line_baud)
     ParameterChannelEngine engine_;
     Dpv1ParameterAccessTracker dpv1_;
     ChannelIndex index_;  // (master, slave) -> position in channels_

@@ -156,7 +156,7 @@ void check_diag_length(GsdCheckState& state, const DecodedTelegram& t, FindingLi
             t.slave, counted(length, "byte", "bytes"), device.file, *device.max_diag_data_len);
 }
 
-void check_timing(GsdCheckState& state, const DecodedTelegram& t, GsdLine line, bool retry,
+void check_timing(GsdCheckState& state, const DecodedTelegram& t, const GsdLine& line, bool retry,
                   FindingList& out) {
     GsdCheckStats& stats = state.stats;
     const GsdDevice& device = *t.dp.device;
@@ -165,9 +165,9 @@ void check_timing(GsdCheckState& state, const DecodedTelegram& t, GsdLine line, 
         if (!t.dp.fdl.has_fc || !function_expects_reply(t.dp.fdl.fc.function())) return;
         state.request_frame = t.frame;
         state.request_end_ns =
-            t.has_time() && line.baud != 0
-                ? t.time_ns + static_cast<std::int64_t>(t.bytes.size() * kBitsPerCharacter *
-                                                        1'000'000'000ULL / line.baud)
+            t.has_time() && line.character_fs != 0
+                ? t.time_ns + static_cast<std::int64_t>(
+                                  (t.bytes.size() * line.character_fs + 500'000) / 1'000'000)
                 : kNoTime;
         // Polls: Data_Exchange requests, a retry no new one.
         if (t.dp.service != Service::DataExchange || retry || !t.has_time()) return;
@@ -198,13 +198,17 @@ void check_timing(GsdCheckState& state, const DecodedTelegram& t, GsdLine line, 
     if (t.request_frame == 0 || t.request_frame != state.request_frame) return;
     state.request_frame = 0;
     if (!t.has_time() || state.request_end_ns == kNoTime || line.baud == 0) return;
-    const std::optional<std::uint32_t> max_bits = device.max_tsdr_at(gsd_rate_name(line.baud));
     const auto answer =
         static_cast<std::uint64_t>(std::max<std::int64_t>(0, t.time_ns - state.request_end_ns));
     stats.response_ns.add(answer);
     stats.response_sum_ns += answer;
-    if (!max_bits) return;
-    stats.max_tsdr_ns = std::uint64_t{*max_bits} * 1'000'000'000ULL / line.baud;
+    if (!state.max_tsdr_read) {
+        // MaxTsdr at the line's rate, worked out once.
+        state.max_tsdr_read = true;
+        if (const std::optional<std::uint32_t> bits = device.max_tsdr_at(line.rate))
+            stats.max_tsdr_ns = std::uint64_t{*bits} * 1'000'000'000ULL / line.baud;
+    }
+    if (stats.max_tsdr_ns == 0) return;
     judged(stats, FindingKind::GsdLateResponse);
     if (answer <= stats.max_tsdr_ns) {
         state.late_run = false;
@@ -218,8 +222,9 @@ void check_timing(GsdCheckState& state, const DecodedTelegram& t, GsdLine line, 
     add(out, stats, FindingKind::GsdLateResponse, t, t.request_frame).message = fmt::format(
         "slave {} answered frame {} after {:.1f} us; its GSD {} gives MaxTsdr {} bit times at {} "
         "baud ({:.1f} us)",
-        t.slave, t.request_frame, static_cast<double>(answer) / 1e3, device.file, *max_bits,
-        line.baud, static_cast<double>(stats.max_tsdr_ns) / 1e3);
+        t.slave, t.request_frame, static_cast<double>(answer) / 1e3, device.file,
+        device.max_tsdr_at(line.rate).value_or(0), line.baud,
+        static_cast<double>(stats.max_tsdr_ns) / 1e3);
 }
 
 }  // namespace
@@ -241,7 +246,16 @@ std::string_view gsd_rate_name(std::uint32_t baud) noexcept {
     }
 }
 
-void check_gsd(GsdCheckState& state, const DecodedTelegram& t, GsdLine line, bool retry,
+GsdLine gsd_line(std::uint32_t baud) noexcept {
+    GsdLine line;
+    line.baud = baud;
+    if (baud == 0) return line;
+    line.character_fs = kBitsPerCharacter * 1'000'000'000'000'000ULL / baud;
+    line.rate = gsd_rate_name(baud);
+    return line;
+}
+
+void check_gsd(GsdCheckState& state, const DecodedTelegram& t, const GsdLine& line, bool retry,
                FindingList& out) {
     state.stats.device = t.dp.device;
     const DpServiceData& data = t.dp.service_data;

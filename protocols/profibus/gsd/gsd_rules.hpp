@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string_view>
 
 #include "core/finding_list.hpp"
 #include "core/log_histogram.hpp"
@@ -52,16 +53,21 @@ struct GsdCheckState {
     std::int64_t last_poll_ns = kNoTime;
     bool late_run = false;  // in a run of late answers (reported at its first)
     bool fast_run = false;  // in a run of polls too close
+    bool max_tsdr_read = false;  // stats.max_tsdr_ns is worked out (0: the GSD gives none)
 };
 
-// The line as the rules need it: its baud rate (0: not known, no timing rule).
+// The line as the rules need it: its baud rate (0: not known, no timing rule), and what follows
+// from it, worked out once (gsd_line()).
 struct GsdLine {
     std::uint32_t baud = 0;
+    std::uint64_t character_fs = 0;  // a character's time (11 bits) in femtoseconds
+    std::string_view rate;  // as MaxTsdr_<rate> writes it ("1.5M"); "" for no PROFIBUS rate
 };
+GsdLine gsd_line(std::uint32_t baud) noexcept;
 
 // Judges an intact telegram of a slave that has a GSD (t.dp.device). `retry`: a Data_Exchange
 // request repeated with the same FCB (no new poll).
-void check_gsd(GsdCheckState& state, const DecodedTelegram& t, GsdLine line, bool retry,
+void check_gsd(GsdCheckState& state, const DecodedTelegram& t, const GsdLine& line, bool retry,
                FindingList& out);
 
 // "12M", "1.5M", "187.5", "9.6": how a GSD writes the baud rate in MaxTsdr_<rate>; "" for a
