@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "capture/bus_tag.hpp"
+#include "capture/gsd_files.hpp"
 #include "core/protocol_descriptor.hpp"
 #include "formats/describe.hpp"
 #include "wireshark/capture_replay.hpp"
@@ -89,8 +90,30 @@ struct Preferences {
     guint baud = 9600;
     gboolean vlt2000_checksum = TRUE;
     gboolean strict = FALSE;
+    const char* gsd_folder = "";  // GSD files (issue 29): every *.gsd / *.gs? in it
 };
 Preferences prefs;
+
+// The GSD files of the gsd_folder preference, read again only when it names another folder; a
+// folder that cannot be read, or a file that does not parse, is a warning in Wireshark's log.
+std::shared_ptr<const GsdLibrary> gsd_library_of_preference() {
+    static std::string loaded_folder;
+    static std::shared_ptr<const GsdLibrary> library;
+    const std::string folder = prefs.gsd_folder ? prefs.gsd_folder : "";
+    if (folder == loaded_folder) return library;
+    loaded_folder = folder;
+    library.reset();
+    if (folder.empty()) return library;
+    Result<LoadedGsdFiles> loaded = load_gsd_files({}, std::vector<std::string>{folder});
+    if (!loaded) {
+        ws_warning("dpscope: preference gsd_folder: %s", loaded.error().c_str());
+        return library;
+    }
+    for (const std::string& warning : loaded->warnings)
+        ws_warning("dpscope: %s", warning.c_str());
+    library = std::move(loaded->library);
+    return library;
+}
 
 // The decoder and tracker options from the preferences, each range-checked as dpscope's command
 // line checks it; a value out of range is set back to its default with a warning.
@@ -114,7 +137,9 @@ ReplayOptions options_from_preferences() {
     choices.line_baud = prefs.baud;
     choices.fc_pnu_bits = static_cast<std::uint8_t>(prefs.fc_pnu_bits == 11 ? 11 : 12);
     choices.vlt2000_checksum = prefs.vlt2000_checksum;
-    return replay_options(choices);
+    ReplayOptions options = replay_options(choices);
+    options.decoder.gsd = gsd_library_of_preference();
+    return options;
 }
 
 // ---- the capture's state ----------------------------------------------------------------------
@@ -296,6 +321,11 @@ void register_dpscope() {
     prefs_register_bool_preference(module, "strict", "Strict",
                                    "RC 8 after a read request is an unexpected response (--strict)",
                                    &prefs.strict);
+    prefs_register_directory_preference(
+        module, "gsd_folder", "GSD folder",
+        "PROFIBUS: a folder of GSD files (*.gsd and the language variants), matched to slaves by "
+        "Ident_Number (--gsd-dir); empty: none",
+        &prefs.gsd_folder);
 
     dpscope_handle = register_dissector("dpscope", dissect_dpscope, proto_dpscope);
     register_init_routine(forget_capture);

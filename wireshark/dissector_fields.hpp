@@ -104,6 +104,16 @@
     X(ssa_address, "New slave address", "dpscope.ssa.address", FT_UINT8, BASE_DEC, NULL)           \
     X(ssa_ident, "Ident number", "dpscope.ssa.ident", FT_UINT16, BASE_HEX, NULL)                   \
     X(ssa_no_add_chg, "No_Add_Chg", "dpscope.ssa.no_add_chg", FT_UINT8, BASE_DEC, NULL)            \
+    X(gsd_file, "GSD file", "dpscope.gsd.file", FT_STRING, BASE_NONE,                              \
+      "The slave's GSD file (the gsd_folder preference), matched by ident")                        \
+    X(gsd_device, "Device", "dpscope.gsd.device", FT_STRING, BASE_NONE,                            \
+      "Vendor and model from the slave's GSD file")                                                \
+    X(gsd_module, "GSD module", "dpscope.gsd.module", FT_STRING, BASE_NONE,                        \
+      "The GSD module a run of Chk_Cfg/Get_Cfg identifiers stands for")                            \
+    X(gsd_prm, "User parameter", "dpscope.gsd.prm", FT_STRING, BASE_NONE,                          \
+      "A Set_Prm user parameter read by the GSD: name=value")                                      \
+    X(gsd_diag, "Diagnosis text", "dpscope.gsd.diag", FT_STRING, BASE_NONE,                        \
+      "A diagnosis text the GSD gives a bit, area or slot")                                        \
     X(dpv1_function, "DP-V1 function", "dpscope.dpv1.function", FT_UINT8, BASE_HEX, NULL)          \
     X(dpv1_negative, "Negative response", "dpscope.dpv1.negative", FT_BOOLEAN, BASE_NONE, NULL)    \
     X(dpv1_slot, "Slot", "dpscope.dpv1.slot", FT_UINT8, BASE_DEC, NULL)                            \
@@ -209,6 +219,7 @@ enum Subtree {
     kEttVlt2000,
     kEttProblems,
     kEttFindings,
+    kEttGsd,
     kEttCount
 };
 extern int ett[kEttCount];

@@ -219,6 +219,34 @@ void add_diag(const Tree& tree, const DecodedTelegram& t, const SlaveDiag& diag,
     }
 }
 
+// What the slave's GSD file says about a management telegram (issue 29; docs/gsd.md).
+void add_gsd(const Tree& tree, const DecodedTelegram& t) {
+    const GsdDevice* device = t.dp.device;
+    if (!device) return;
+    const DpServiceData& data = t.dp.service_data;
+    Tree gsd = tree.text(0, 0, kEttGsd, fmt::format("GSD: {}", gsd_device_title(*device)));
+    gsd.string(hf_gsd_file, 0, 0, device->file);
+    gsd.string(hf_gsd_device, 0, 0, gsd_device_title(*device));
+    for (const GsdModuleMatch& m : data.gsd_modules())
+        gsd.string(hf_gsd_module, m.offset, m.length,
+                   m.module ? m.module->name : std::string("no module of the GSD"),
+                   fmt::format("{} (slot {})",
+                               m.module ? m.module->name : std::string("no module of the GSD"),
+                               m.first_identifier));
+    if (const GsdPrmReading* prm = data.gsd_prm())
+        for (const GsdPrmValue& v : prm->values) {
+            TextBuffer b;
+            append_gsd_value(b, v);
+            const std::string text = fmt::to_string(b);
+            gsd.string(hf_gsd_prm, v.offset, 1, text);
+        }
+    for (const GsdDiagText& d : data.gsd_diag()) {
+        TextBuffer b;
+        append_gsd_diag_text(b, d);
+        gsd.string(hf_gsd_diag, d.offset, 1, std::string(d.text), fmt::to_string(b));
+    }
+}
+
 void add_prm(const Tree& tree, const DecodedTelegram& t, const SetPrm& prm) {
     const std::size_t at = t.dp.fdl.du_offset;
     tree.uint(hf_prm_status, at, 1, prm.station_status,
@@ -465,17 +493,24 @@ void add_dp(const Tree& top, const DecodedTelegram& t) {
             break;
         }
         case Service::SlaveDiag:
-            if (const SlaveDiag* diag = data.slave_diag())
+            if (const SlaveDiag* diag = data.slave_diag()) {
                 add_diag(tree, t, *diag, data.diag_blocks());
+                add_gsd(tree, t);
+            }
             break;
         case Service::SetPrm:
-            if (const SetPrm* prm = data.set_prm()) add_prm(tree, t, *prm);
+            if (const SetPrm* prm = data.set_prm()) {
+                add_prm(tree, t, *prm);
+                add_gsd(tree, t);
+            }
             break;
         case Service::ChkCfg:
         case Service::GetCfg:
             if (const std::vector<CfgModule>* modules = data.cfg_modules();
-                modules && !t.dp.fdl.du.empty())
+                modules && !t.dp.fdl.du.empty()) {
                 add_cfg(tree, t, *modules);
+                add_gsd(tree, t);
+            }
             break;
         case Service::GlobalControl:
             if (const GlobalControl* gc = data.global_control()) {

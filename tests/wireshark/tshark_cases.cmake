@@ -88,6 +88,10 @@ wireshark_case(fc_examples samples/fc-examples.hex fc_examples ak7,finding,comme
 wireshark_case(fc samples/fc.pcap fc ak7,finding,problem,comment,expert,expert_error)
 wireshark_case(ge samples/ge.pcap ge rc7,finding,comment,expert DECODE --dialect ge
                TSHARK -o dpscope.dialect:ge)
+# Slaves described by GSD files (issue 29): the gsd_folder preference.
+wireshark_case(gsd samples/gsd.pcap gsd finding,comment,expert
+               DECODE --gsd-dir samples/gsd --baud 1500000
+               TSHARK -o dpscope.gsd_folder:samples/gsd -o dpscope.baud:1500000)
 wireshark_case(midstream samples/midstream.pcap midstream -)
 foreach(ppo ppo1 ppo2 ppo3 ppo4)
     wireshark_case(${ppo} samples/${ppo}.pcap ${ppo} -)
