@@ -607,6 +607,15 @@ const GsdUserPrm* GsdDevice::user_prm(std::uint32_t reference) const noexcept {
 
 Result<GsdDevice> parse_gsd(std::string_view bytes, std::string_view file) {
     const std::string text = as_utf8(bytes);
+    // A file without the header anywhere is no GSD (random bytes, another format): said as such
+    // rather than as the first thing in it that does not parse.
+    constexpr std::string_view kHeader = "#profibus_dp";
+    const auto found =
+        std::search(text.begin(), text.end(), kHeader.begin(), kHeader.end(),
+                    [](char a, char b) { return (a >= 'A' && a <= 'Z' ? a + 32 : a) == b; });
+    if (found == text.end())
+        return Error{
+            fmt::format("{}:1: no \"#Profibus_DP\" line: not a PROFIBUS DP GSD file", file)};
     Result<std::vector<LogicalLine>> lines = logical_lines(text, file);
     if (!lines) return Error{lines.error()};
     // Any text may come before the "#Profibus_DP" line; the description starts after it.
