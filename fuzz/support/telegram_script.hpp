@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -121,16 +122,84 @@ struct TelegramScript {
     Bytes telegram_bytes(const ScriptedTelegram& t) const noexcept {
         return Bytes(bytes.data() + t.offset, t.size);
     }
+    // Every PROFIBUS slave is described by one GSD file (fuzz_gsd_device(), forced on every
+    // address), so that the GSD reading of the decoder and the GSD rules of the tracker run on
+    // every script; the tracker times answers at the script's line rate.
     DecoderOptions decoder_options() const {
         DecoderOptions o;
         o.dialect = dialect;
+        o.gsd = fuzz_gsd_library();
         return o;
     }
     TrackerOptions tracker_options() const {
         TrackerOptions o;
         o.timeout_ns = timeout_ns;
         o.strict = strict;
+        o.line_baud = baud;
         return o;
+    }
+    // A GSD file written for the fuzz targets: the PPO modules and more, user parameters over the
+    // DP-V1 status bytes and a module's, diagnosis bits and an area, limits and timing.
+    static std::shared_ptr<const GsdLibrary> fuzz_gsd_library() {
+        static const std::shared_ptr<const GsdLibrary> library = [] {
+            constexpr std::string_view kText = R"(#Profibus_DP
+Vendor_Name = "dpscope fuzz"
+Model_Name = "Fuzz device"
+Ident_Number = 0x0402
+Max_Module = 2
+Max_Input_Len = 28
+Max_Output_Len = 28
+Max_Data_Len = 40
+Max_Diag_Data_Len = 12
+User_Prm_Data_Len = 3
+Max_User_Prm_Data_Len = 6
+MaxTsdr_9.6 = 60
+MaxTsdr_19.2 = 60
+MaxTsdr_187.5 = 60
+MaxTsdr_1.5M = 150
+MaxTsdr_12M = 800
+Min_Slave_Intervall = 3
+PrmText = 1
+Text(0) = "off"
+Text(1) = "on"
+EndPrmText
+ExtUserPrmData = 1 "DP-V1"
+Bit(7) 1 0-1
+Prm_Text_Ref = 1
+EndExtUserPrmData
+ExtUserPrmData = 2 "Alarms"
+Unsigned8 0 0-3
+EndExtUserPrmData
+ExtUserPrmData = 3 "Gain"
+Signed16 0 -50-50
+EndExtUserPrmData
+Ext_User_Prm_Data_Ref(0) = 1
+Ext_User_Prm_Data_Ref(1) = 2
+Unit_Diag_Bit(0) = "Bit zero"
+Unit_Diag_Bit(9) = "Bit nine"
+Unit_Diag_Area = 2-4
+Value(1) = "One"
+Unit_Diag_Area_End
+Module = "PPO 1" 0xF3,0xF1
+Ext_User_Prm_Data_Ref(0) = 3
+EndModule
+Module = "PPO 2" 0xF3,0xF5
+EndModule
+Module = "PPO 3" 0xF1
+EndModule
+Module = "PPO 4" 0xF5
+EndModule
+Module = "PPO 5" 0xF3,0xF9
+EndModule
+)";
+            auto lib = std::make_shared<GsdLibrary>();
+            Result<GsdDevice> device = parse_gsd(kText, "fuzz.gsd");
+            if (!device) __builtin_trap();
+            const std::size_t index = lib->add(std::move(*device));
+            for (std::uint8_t a = 0; a < 128; ++a) lib->force(a, index);
+            return lib;
+        }();
+        return library;
     }
     FcDecoderOptions fc_decoder_options() const {
         FcDecoderOptions o;
