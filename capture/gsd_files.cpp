@@ -11,6 +11,8 @@
 #include <iterator>
 #include <sstream>
 
+#include "core/text_encoding.hpp"
+
 namespace dpscope {
 
 Result<GsdFileSpec> parse_gsd_file_spec(const std::string& text) {
@@ -35,9 +37,8 @@ Result<GsdFileSpec> parse_gsd_file_spec(const std::string& text) {
 bool is_gsd_file_name(std::string_view name) noexcept {
     if (name.size() < 5) return false;
     std::string_view ext = name.substr(name.size() - 4);
-    auto lower = [](char c) { return static_cast<char>(c >= 'A' && c <= 'Z' ? c + 32 : c); };
-    if (ext[0] != '.' || lower(ext[1]) != 'g' || lower(ext[2]) != 's') return false;
-    const char last = lower(ext[3]);
+    if (ext[0] != '.' || ascii_lower(ext[1]) != 'g' || ascii_lower(ext[2]) != 's') return false;
+    const char last = ascii_lower(ext[3]);
     return last >= 'a' && last <= 'z';
 }
 

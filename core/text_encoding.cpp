@@ -1,5 +1,7 @@
 #include "core/text_encoding.hpp"
 
+#include <algorithm>
+
 namespace dpscope {
 
 namespace {
@@ -83,6 +85,18 @@ std::string quoted_excerpt(std::string_view text, std::size_t max_bytes) {
     while (cut > 0 && continuation(static_cast<unsigned char>(text[cut])))
         --cut;
     return display_text(text.substr(0, cut)) + "...";
+}
+
+bool equal_ignoring_case(std::string_view a, std::string_view b) noexcept {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+               return ascii_lower(x) == ascii_lower(y);
+           });
+}
+
+bool contains_ignoring_case(std::string_view text, std::string_view part) noexcept {
+    return std::search(text.begin(), text.end(), part.begin(), part.end(), [](char x, char y) {
+               return ascii_lower(x) == ascii_lower(y);
+           }) != text.end();
 }
 
 }  // namespace dpscope

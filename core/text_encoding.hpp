@@ -29,4 +29,12 @@ std::string display_text(std::string_view text);
 // character boundary), followed by "..." when it was cut.
 std::string quoted_excerpt(std::string_view text, std::size_t max_bytes = 80);
 
+// ASCII letters without regard to case (keywords of GSD files, names in parameter databases,
+// file name extensions); other bytes compare as they are, whatever the locale.
+constexpr char ascii_lower(char c) noexcept {
+    return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c;
+}
+bool equal_ignoring_case(std::string_view a, std::string_view b) noexcept;
+bool contains_ignoring_case(std::string_view text, std::string_view part) noexcept;
+
 }  // namespace dpscope

@@ -65,13 +65,6 @@ std::string_view trim(std::string_view s) {
     return s;
 }
 
-bool same_word(std::string_view a, std::string_view b) {
-    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-               return std::tolower(static_cast<unsigned char>(x)) ==
-                      std::tolower(static_cast<unsigned char>(y));
-           });
-}
-
 // Splits the text into logical lines. An unterminated string is an error at its line.
 Result<std::vector<LogicalLine>> logical_lines(std::string_view text, std::string_view file) {
     std::vector<LogicalLine> lines;
@@ -276,48 +269,53 @@ class GsdParser {
             field = *n != 0;
             return {};
         };
-        if (same_word(k, "#Profibus_DP")) return {};
-        if (same_word(k, "GSD_Revision")) return set_count(device_.gsd_revision);
-        if (same_word(k, "Vendor_Name")) return set_string(device_.vendor);
-        if (same_word(k, "Model_Name")) return set_string(device_.model);
-        if (same_word(k, "Revision")) return set_string(device_.revision);
-        if (same_word(k, "Ident_Number")) {
+        if (equal_ignoring_case(k, "#Profibus_DP")) return {};
+        if (equal_ignoring_case(k, "GSD_Revision")) return set_count(device_.gsd_revision);
+        if (equal_ignoring_case(k, "Vendor_Name")) return set_string(device_.vendor);
+        if (equal_ignoring_case(k, "Model_Name")) return set_string(device_.model);
+        if (equal_ignoring_case(k, "Revision")) return set_string(device_.revision);
+        if (equal_ignoring_case(k, "Ident_Number")) {
             Result<std::uint32_t> n = count(s.value, k);
             if (!n) return Error{n.error()};
             if (*n > 0xFFFF) return error(fmt::format("Ident_Number: {} is not 16 bits", *n));
             device_.ident_number = static_cast<std::uint16_t>(*n);
             return {};
         }
-        if (same_word(k, "Slave_Family")) {
+        if (equal_ignoring_case(k, "Slave_Family")) {
             device_.slave_family = std::string(s.value);
             return {};
         }
-        if (same_word(k, "DPV1_Slave")) return set_flag(device_.dpv1_slave);
-        if (same_word(k, "Modular_Station")) return set_flag(device_.modular_station);
-        if (same_word(k, "Max_Module")) return set_count(device_.max_module);
-        if (same_word(k, "Max_Input_Len")) return set_count(device_.max_input_len);
-        if (same_word(k, "Max_Output_Len")) return set_count(device_.max_output_len);
-        if (same_word(k, "Max_Data_Len")) return set_count(device_.max_data_len);
-        if (same_word(k, "User_Prm_Data_Len")) return set_count(device_.user_prm_data_len);
-        if (same_word(k, "Max_User_Prm_Data_Len")) return set_count(device_.max_user_prm_data_len);
-        if (same_word(k, "Max_Diag_Data_Len")) return set_count(device_.max_diag_data_len);
-        if (same_word(k, "Min_Slave_Intervall")) return set_count(device_.min_slave_interval);
-        if (same_word(k, "Unit_Diag_Type")) return set_count(device_.unit_diag_type);
-        if (same_word(k, "User_Prm_Data")) {
+        if (equal_ignoring_case(k, "DPV1_Slave")) return set_flag(device_.dpv1_slave);
+        if (equal_ignoring_case(k, "Modular_Station")) return set_flag(device_.modular_station);
+        if (equal_ignoring_case(k, "Max_Module")) return set_count(device_.max_module);
+        if (equal_ignoring_case(k, "Max_Input_Len")) return set_count(device_.max_input_len);
+        if (equal_ignoring_case(k, "Max_Output_Len")) return set_count(device_.max_output_len);
+        if (equal_ignoring_case(k, "Max_Data_Len")) return set_count(device_.max_data_len);
+        if (equal_ignoring_case(k, "User_Prm_Data_Len"))
+            return set_count(device_.user_prm_data_len);
+        if (equal_ignoring_case(k, "Max_User_Prm_Data_Len"))
+            return set_count(device_.max_user_prm_data_len);
+        if (equal_ignoring_case(k, "Max_Diag_Data_Len"))
+            return set_count(device_.max_diag_data_len);
+        if (equal_ignoring_case(k, "Min_Slave_Intervall"))
+            return set_count(device_.min_slave_interval);
+        if (equal_ignoring_case(k, "Unit_Diag_Type")) return set_count(device_.unit_diag_type);
+        if (equal_ignoring_case(k, "User_Prm_Data")) {
             Result<std::vector<std::uint8_t>> b = bytes(s.value, k);
             if (!b) return Error{b.error()};
             device_.user_prm_data = std::move(*b);
             return {};
         }
-        if (k.size() > 8 && same_word(k.substr(0, 8), "MaxTsdr_")) {
+        if (k.size() > 8 && equal_ignoring_case(k.substr(0, 8), "MaxTsdr_")) {
             Result<std::uint32_t> n = count(s.value, k);
             if (!n) return Error{n.error()};
             device_.max_tsdr.push_back(GsdMaxTsdr{std::string(k.substr(8)), *n});
             return {};
         }
-        if (same_word(k, "Ext_User_Prm_Data_Ref") || same_word(k, "Ext_User_Prm_Data_Const"))
+        if (equal_ignoring_case(k, "Ext_User_Prm_Data_Ref") ||
+            equal_ignoring_case(k, "Ext_User_Prm_Data_Const"))
             return prm_assignment(s, device_.prm_refs, device_.prm_consts);
-        if (same_word(k, "Unit_Diag_Bit")) {
+        if (equal_ignoring_case(k, "Unit_Diag_Bit")) {
             if (!s.argument)
                 return error("Unit_Diag_Bit: the bit number in parentheses is missing");
             Result<std::uint32_t> bit = count(*s.argument, k);
@@ -327,7 +325,7 @@ class GsdParser {
             device_.unit_diag_bits.push_back(GsdValueText{*bit, std::move(*t)});
             return {};
         }
-        if (same_word(k, "Unit_Diag_Area")) {
+        if (equal_ignoring_case(k, "Unit_Diag_Area")) {
             Result<std::pair<std::int64_t, std::int64_t>> r = range(s.value, k);
             if (!r) return Error{r.error()};
             if (r->first < 0 || r->second < r->first)
@@ -338,14 +336,14 @@ class GsdParser {
             open(Block::DiagArea, "Unit_Diag_Area", "Unit_Diag_Area_End");
             return {};
         }
-        if (same_word(k, "PrmText")) {
+        if (equal_ignoring_case(k, "PrmText")) {
             Result<std::uint32_t> n = count(s.value, k);
             if (!n) return Error{n.error()};
             device_.prm_texts.push_back(GsdPrmText{*n, {}, line_});
             open(Block::PrmText, fmt::format("PrmText {}", *n), "EndPrmText");
             return {};
         }
-        if (same_word(k, "ExtUserPrmData")) {
+        if (equal_ignoring_case(k, "ExtUserPrmData")) {
             // ExtUserPrmData = n "name"
             const std::string_view v = s.value;
             const std::size_t quote = v.find('"');
@@ -364,7 +362,7 @@ class GsdParser {
             user_prm_typed_ = false;
             return {};
         }
-        if (same_word(k, "Module")) {
+        if (equal_ignoring_case(k, "Module")) {
             // Module = "name" bytes
             std::string_view rest;
             Result<std::string> name = string(s.value, k, &rest);
@@ -393,7 +391,7 @@ class GsdParser {
             return error(fmt::format("{}: the byte offset in parentheses is missing", k));
         Result<std::uint32_t> offset = count(*s.argument, k);
         if (!offset) return Error{offset.error()};
-        if (same_word(k, "Ext_User_Prm_Data_Ref")) {
+        if (equal_ignoring_case(k, "Ext_User_Prm_Data_Ref")) {
             Result<std::uint32_t> reference = count(s.value, k);
             if (!reference) return Error{reference.error()};
             refs.push_back(GsdPrmRef{*offset, *reference});
@@ -406,11 +404,11 @@ class GsdParser {
     }
 
     Result<void> in_prm_text(const Statement& s) {
-        if (same_word(s.keyword, "EndPrmText")) {
+        if (equal_ignoring_case(s.keyword, "EndPrmText")) {
             block_ = Block::None;
             return {};
         }
-        if (same_word(s.keyword, "Text")) {
+        if (equal_ignoring_case(s.keyword, "Text")) {
             if (!s.argument) return error("Text: the value in parentheses is missing");
             Result<std::int64_t> value = number(*s.argument, "Text");
             if (!value) return Error{value.error()};
@@ -426,7 +424,7 @@ class GsdParser {
     Result<void> in_user_prm(const Statement& s, std::string_view text) {
         GsdUserPrm& prm = device_.user_prms.back();
         const std::string_view k = s.keyword;
-        if (same_word(k, "EndExtUserPrmData")) {
+        if (equal_ignoring_case(k, "EndExtUserPrmData")) {
             if (!user_prm_typed_)
                 return error(
                     fmt::format("ExtUserPrmData {}: no data type line before "
@@ -435,7 +433,7 @@ class GsdParser {
             block_ = Block::None;
             return {};
         }
-        if (same_word(k, "Prm_Text_Ref")) {
+        if (equal_ignoring_case(k, "Prm_Text_Ref")) {
             Result<std::uint32_t> n = count(s.value, k);
             if (!n) return Error{n.error()};
             prm.text_reference = *n;
@@ -456,7 +454,7 @@ class GsdParser {
             {"Signed32", GsdDataType::Signed32},
         };
         for (const TypeName& t : kTypes) {
-            if (!same_word(k, t.name)) continue;
+            if (!equal_ignoring_case(k, t.name)) continue;
             prm.type = t.type;
             if (t.type == GsdDataType::Bit || t.type == GsdDataType::BitArea) {
                 if (!s.argument)
@@ -524,7 +522,7 @@ class GsdParser {
     Result<void> in_module(const Statement& s, std::string_view text) {
         GsdModule& module = device_.modules.back();
         ++module_lines_;
-        if (same_word(s.keyword, "EndModule")) {
+        if (equal_ignoring_case(s.keyword, "EndModule")) {
             block_ = Block::None;
             return {};
         }
@@ -535,19 +533,19 @@ class GsdParser {
                 return {};
             }
         }
-        if (same_word(s.keyword, "Ext_User_Prm_Data_Ref") ||
-            same_word(s.keyword, "Ext_User_Prm_Data_Const"))
+        if (equal_ignoring_case(s.keyword, "Ext_User_Prm_Data_Ref") ||
+            equal_ignoring_case(s.keyword, "Ext_User_Prm_Data_Const"))
             return prm_assignment(s, module.prm_refs, module.prm_consts);
         ++device_.keywords_skipped;
         return {};
     }
 
     Result<void> in_diag_area(const Statement& s) {
-        if (same_word(s.keyword, "Unit_Diag_Area_End")) {
+        if (equal_ignoring_case(s.keyword, "Unit_Diag_Area_End")) {
             block_ = Block::None;
             return {};
         }
-        if (same_word(s.keyword, "Value")) {
+        if (equal_ignoring_case(s.keyword, "Value")) {
             if (!s.argument) return error("Value: the value in parentheses is missing");
             Result<std::int64_t> value = number(*s.argument, "Value");
             if (!value) return Error{value.error()};
@@ -589,7 +587,7 @@ std::string_view gsd_data_type_name(GsdDataType type) noexcept {
 
 std::optional<std::uint32_t> GsdDevice::max_tsdr_at(std::string_view rate) const {
     for (const GsdMaxTsdr& t : max_tsdr)
-        if (same_word(t.rate, rate)) return t.bit_times;
+        if (equal_ignoring_case(t.rate, rate)) return t.bit_times;
     return std::nullopt;
 }
 
@@ -620,7 +618,7 @@ Result<GsdDevice> parse_gsd(std::string_view bytes, std::string_view file) {
     if (!lines) return Error{lines.error()};
     // Any text may come before the "#Profibus_DP" line; the description starts after it.
     auto header = std::find_if(lines->begin(), lines->end(), [](const LogicalLine& l) {
-        return same_word(trim(l.text), "#Profibus_DP");
+        return equal_ignoring_case(trim(l.text), "#Profibus_DP");
     });
     if (header == lines->end())
         return Error{
