@@ -227,6 +227,11 @@ const FaultScenario kFaultScenarios[] = {
     FaultScenario{"gsd_poll_interval", 120, {{"gsd_poll_interval", 1}}},
 };
 
+TEST(SessionTrackerTest, GsdKindsAreTheDeviceDescriptionComponent) {
+    std::vector<FindingKind> component = finding_kinds_of(FindingComponent::DeviceDescription);
+    EXPECT_EQ(component, std::vector<FindingKind>(kGsdKinds.begin(), kGsdKinds.end()));
+}
+
 TEST(SessionTrackerTest, CleanSessionKeepsToItsGsdFiles) {
     SimulatorOptions options = three_slaves(200);
     Result<SimulatedSlave> dpv1_slave = parse_slave_spec("4:2:profidrive:dpv1");
@@ -243,9 +248,7 @@ TEST(SessionTrackerTest, CleanSessionKeepsToItsGsdFiles) {
     for (const std::optional<GsdCheckStats>& gsd : run.gsd) {
         ASSERT_TRUE(gsd);
         ASSERT_NE(gsd->device, nullptr);
-        const std::size_t ident = static_cast<std::size_t>(FindingKind::GsdIdentMismatch) -
-                                  static_cast<std::size_t>(kFirstGsdKind);
-        EXPECT_GE(gsd->judged[ident], 3u);  // Slave_Diag, Set_Prm, Slave_Diag
+        EXPECT_GE(gsd->judged_by(FindingKind::GsdIdentMismatch), 3u);  // Diag, Set_Prm, Diag
         for (std::uint64_t broken : gsd->broken)
             EXPECT_EQ(broken, 0u);
         EXPECT_GT(gsd->response_ns.count(), 200u);

@@ -11,11 +11,6 @@ namespace dpscope::report {
 namespace {
 
 double to_us(std::uint64_t ns) { return static_cast<double>(ns) / 1e3; }
-double to_ms(std::uint64_t ns) { return static_cast<double>(ns) / 1e6; }
-
-std::size_t rule_of(FindingKind kind) noexcept {
-    return static_cast<std::size_t>(kind) - static_cast<std::size_t>(kFirstGsdKind);
-}
 
 class GsdSection final : public StationSection {
   public:
@@ -24,7 +19,7 @@ class GsdSection final : public StationSection {
           g_(*stats.gsd),
           modules_(std::move(modules)),
           by_severity_(stats.findings_by_severity) {
-        for (FindingKind kind : kAllKinds)
+        for (FindingKind kind : kGsdKinds)
             if (covers(kind))
                 findings_[static_cast<std::size_t>(kind)] =
                     stats.findings[static_cast<std::size_t>(kind)];
@@ -42,7 +37,7 @@ class GsdSection final : public StationSection {
     // The GSD checks that were run on the slave (a check not run is no passed test).
     bool covers(FindingKind kind) const override {
         if (finding_component(kind) != FindingComponent::DeviceDescription) return false;
-        return g_.judged[rule_of(kind)] > 0 || c_.findings[static_cast<std::size_t>(kind)] > 0;
+        return g_.judged_by(kind) > 0 || c_.findings[static_cast<std::size_t>(kind)] > 0;
     }
 
     void write_text(const ReportContext& /*c*/, TextBuffer& b) const override {
@@ -112,19 +107,17 @@ class GsdSection final : public StationSection {
         else
             w.null();
         w.key("checks").begin_object();
-        for (FindingKind kind : kAllKinds) {
-            if (finding_component(kind) != FindingComponent::DeviceDescription) continue;
+        for (FindingKind kind : kGsdKinds) {
             w.key(finding_kind_name(kind)).begin_object();
-            w.key("judged").integer(static_cast<std::int64_t>(g_.judged[rule_of(kind)]));
-            w.key("broken").integer(static_cast<std::int64_t>(g_.broken[rule_of(kind)]));
+            w.key("judged").integer(static_cast<std::int64_t>(g_.judged_by(kind)));
+            w.key("broken").integer(static_cast<std::int64_t>(g_.broken_by(kind)));
             w.end_object();
         }
         w.end_object();
         w.key("findings").begin_object();
-        for (FindingKind kind : kAllKinds)
-            if (finding_component(kind) == FindingComponent::DeviceDescription)
-                w.key(finding_kind_name(kind))
-                    .integer(static_cast<std::int64_t>(findings_[static_cast<std::size_t>(kind)]));
+        for (FindingKind kind : kGsdKinds)
+            w.key(finding_kind_name(kind))
+                .integer(static_cast<std::int64_t>(findings_[static_cast<std::size_t>(kind)]));
         w.end_object();
         w.end_object();
     }
@@ -228,11 +221,10 @@ class GsdSection final : public StationSection {
     // "gsd_ident_mismatch 3 ok, gsd_late_response 1 of 200 broken, ..." for the checks run.
     std::string checks_text() const {
         std::string text;
-        for (FindingKind kind : kAllKinds) {
-            if (finding_component(kind) != FindingComponent::DeviceDescription) continue;
-            const std::uint64_t judged = g_.judged[rule_of(kind)];
+        for (FindingKind kind : kGsdKinds) {
+            const std::uint64_t judged = g_.judged_by(kind);
             if (judged == 0) continue;
-            const std::uint64_t broken = g_.broken[rule_of(kind)];
+            const std::uint64_t broken = g_.broken_by(kind);
             if (!text.empty()) text += ", ";
             text += broken
                         ? fmt::format("{} {} of {} broken", finding_kind_name(kind), broken, judged)

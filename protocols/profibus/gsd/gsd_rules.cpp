@@ -14,17 +14,15 @@ namespace {
 // PROFIBUS sends 11 bits a character (start, 8 data, even parity, stop).
 constexpr std::uint64_t kBitsPerCharacter = 11;
 
-std::size_t rule_of(FindingKind kind) noexcept {
-    return static_cast<std::size_t>(kind) - static_cast<std::size_t>(kFirstGsdKind);
-}
-
 Finding& add(FindingList& out, GsdCheckStats& stats, FindingKind kind, const DecodedTelegram& t,
              std::uint64_t request_frame = 0) {
-    ++stats.broken[rule_of(kind)];
+    ++stats.broken[gsd_rule_index(kind)];
     return add_finding(out, kind, t.frame, t.time_ns, request_frame, true, t.master, t.slave);
 }
 
-void judged(GsdCheckStats& stats, FindingKind kind) noexcept { ++stats.judged[rule_of(kind)]; }
+void judged(GsdCheckStats& stats, FindingKind kind) noexcept {
+    ++stats.judged[gsd_rule_index(kind)];
+}
 
 void check_ident(GsdCheckState& state, const DecodedTelegram& t, std::uint16_t ident,
                  std::string_view where, FindingList& out) {
@@ -186,7 +184,7 @@ void check_timing(GsdCheckState& state, const DecodedTelegram& t, const GsdLine&
                         static_cast<double>(stats.min_slave_interval_ns) / 1e6,
                         *device.min_slave_interval);
                 else
-                    ++stats.broken[rule_of(FindingKind::GsdPollInterval)];
+                    ++stats.broken[gsd_rule_index(FindingKind::GsdPollInterval)];
                 state.fast_run = true;
             } else {
                 state.fast_run = false;
@@ -215,7 +213,7 @@ void check_timing(GsdCheckState& state, const DecodedTelegram& t, const GsdLine&
         return;
     }
     if (state.late_run) {
-        ++stats.broken[rule_of(FindingKind::GsdLateResponse)];
+        ++stats.broken[gsd_rule_index(FindingKind::GsdLateResponse)];
         return;
     }
     state.late_run = true;

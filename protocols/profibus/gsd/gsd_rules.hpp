@@ -28,6 +28,17 @@ namespace dpscope {
 
 inline constexpr std::size_t kGsdCheckCount = 8;  // the kinds above, in FindingKind order
 inline constexpr FindingKind kFirstGsdKind = FindingKind::GsdIdentMismatch;
+// The kinds of the GSD rules (component DeviceDescription), in FindingKind order.
+inline constexpr std::array<FindingKind, kGsdCheckCount> kGsdKinds = [] {
+    std::array<FindingKind, kGsdCheckCount> kinds{};
+    for (std::size_t i = 0; i < kGsdCheckCount; ++i)
+        kinds[i] = static_cast<FindingKind>(static_cast<std::size_t>(kFirstGsdKind) + i);
+    return kinds;
+}();
+// The index of a GSD rule's kind in kGsdKinds and GsdCheckStats' arrays.
+constexpr std::size_t gsd_rule_index(FindingKind kind) noexcept {
+    return static_cast<std::size_t>(kind) - static_cast<std::size_t>(kFirstGsdKind);
+}
 
 // What the rules found about one slave (the report's "device" part).
 struct GsdCheckStats {
@@ -35,6 +46,12 @@ struct GsdCheckStats {
     // Per rule (FindingKind - kFirstGsdKind): telegrams it judged, and how many broke it.
     std::array<std::uint64_t, kGsdCheckCount> judged{};
     std::array<std::uint64_t, kGsdCheckCount> broken{};
+    std::uint64_t judged_by(FindingKind kind) const noexcept {
+        return judged[gsd_rule_index(kind)];
+    }
+    std::uint64_t broken_by(FindingKind kind) const noexcept {
+        return broken[gsd_rule_index(kind)];
+    }
     // The slave's answer times (from the end of the request to the answer's first byte), in ns,
     // when times and the baud rate are known; and MaxTsdr at that rate in ns (0: not known).
     LogHistogram response_ns;
