@@ -235,18 +235,21 @@ void add_tracking_options(CLI::App& app, DecodeOptionValues& values) {
     app.add_flag("--strict", values.strict,
                  "Session tracker: RC 8 (no operating authority) after a read request is an "
                  "unexpected response type, not only unusual");
-    add_params_option(app, values.params);
+    add_params_option(app, values.params, values.conversions);
     app.add_option("--drive", values.drives,
                    "The drive family whose parameter database names the PNUs (docs/"
                    "parameters.md; dpscope params lists the families): FAMILY for every station, "
                    "ADDR=FAMILY for one (0 to 126); repeatable. Default: the FC protocol's drives "
                    "fc, VLT 2000's vlt2000, a PROFIBUS slave's by its --dialect (vlt: vlt5000, "
-                   "ge: af600, profidrive: fc)")
+                   "ge: af600, profidrive: profidrive, the PROFIdrive profile's parameters); on "
+                   "PROFIBUS the profile's parameters (PNU 900-999, 60000 and up) a family has no "
+                   "row for are named by the profidrive family")
         ->type_name("FAMILY|ADDR=FAMILY")
         ->allow_extra_args(false);
 }
 
-void add_params_option(CLI::App& app, std::vector<std::string>& files) {
+void add_params_option(CLI::App& app, std::vector<std::string>& files,
+                       std::vector<std::string>& conversions) {
     app.add_option("--params", files,
                    "Read a drive parameter database from FILE beside the shipped ones "
                    "(docs/parameters.md: one row a parameter); a family already known takes its "
@@ -255,6 +258,19 @@ void add_params_option(CLI::App& app, std::vector<std::string>& files) {
                    "repeatable")
         ->type_name("FILE")
         ->allow_extra_args(false);
+    app.add_option("--conversion-index", conversions,
+                   "Give conversion index INDEX (-128 to 127) the factor FACTOR (a decimal "
+                   "number above 0, at most 1e9; its decimals are those shown): the value in the "
+                   "row's unit is the raw number times FACTOR. Default: the powers of ten, and "
+                   "factor 1 for 67, 70, 74, 75, 77 and 100, the indices that name their unit "
+                   "(docs/parameters.md, Scaling: older manuals give 74 as 0.1 or 3.6); "
+                   "repeatable")
+        ->type_name("INDEX=FACTOR")
+        ->allow_extra_args(false)
+        ->check([](const std::string& text) -> std::string {
+            Result<ConversionOverride> parsed = parse_conversion_override(text);
+            return parsed ? std::string{} : parsed.error();
+        });
 }
 
 namespace {
@@ -318,7 +334,7 @@ Result<void> resolve_drive_options(const std::vector<std::string>& items, DriveH
 }  // namespace
 
 std::shared_ptr<const ParameterDatabase> load_parameter_databases(
-    const std::vector<std::string>& files) {
+    const std::vector<std::string>& files, const std::vector<std::string>& conversions) {
     auto database = std::make_shared<ParameterDatabase>();
     const auto load = [&](std::string_view text, std::string_view name) {
         Result<ParameterFile> parsed = parse_parameter_database(text, name);
@@ -341,6 +357,9 @@ std::shared_ptr<const ParameterDatabase> load_parameter_databases(
         }
         load(*text, file);
     }
+    for (const std::string& text : conversions)
+        if (Result<ConversionOverride> parsed = parse_conversion_override(text))
+            database->override_conversion(*parsed);
     return database;
 }
 
@@ -488,7 +507,7 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     }
     if (Result<void> drives = resolve_drive_options(values.drives, settings.drives); !drives)
         return Error{drives.error()};
-    settings.parameters = load_parameter_databases(values.params);
+    settings.parameters = load_parameter_databases(values.params, values.conversions);
     if (!values.pnus.empty()) {
         const std::vector<std::string> families = families_in_play(settings);
         for (const std::string& text : values.pnus) {

@@ -83,6 +83,7 @@ struct DecodeOptionValues {
     std::vector<std::string> gsd_files;  // --gsd FILE or ADDR=FILE
     std::vector<std::string> gsd_dirs;   // --gsd-dir DIR
     std::vector<std::string> params;  // --params FILE: parameter databases beside the shipped
+    std::vector<std::string> conversions;  // --conversion-index INDEX=FACTOR
     std::vector<std::string> drives;  // --drive [ADDR=]FAMILY
     std::string bus;  // --bus: "" = from the capture
     unsigned fc_pnu_bits = 12;
@@ -106,7 +107,10 @@ struct DecodeOptionValues {
 void add_tracking_options(CLI::App& app, DecodeOptionValues& values);
 // --params FILE (repeatable): a parameter database read beside the shipped ones (decode, hex,
 // report, sniff through add_tracking_options; params).
-void add_params_option(CLI::App& app, std::vector<std::string>& files);
+// --conversion-index INDEX=FACTOR (repeatable): the factor of a conversion index (checked when
+// parsed: exit 2 on a bad one).
+void add_params_option(CLI::App& app, std::vector<std::string>& files,
+                       std::vector<std::string>& conversions);
 // decode, hex and report: --baud, the line rate of a capture read from a file (sniff has its own
 // --baud for the port and sets the same setting).
 void add_line_options(CLI::App& app, DecodeOptionValues& values);
@@ -178,8 +182,9 @@ Result<std::string> read_small_file(const std::string& path, std::size_t max_byt
 // takes its rows: docs/parameters.md). A file that cannot be read or parsed is named in a
 // warning ("FILE:LINE: what") and left out; dpscope goes on without it. So is a row's conversion
 // index without a known meaning (its values are not scaled).
+// Then each --conversion-index (already checked) gives its index its factor.
 std::shared_ptr<const ParameterDatabase> load_parameter_databases(
-    const std::vector<std::string>& files);
+    const std::vector<std::string>& files, const std::vector<std::string>& conversions = {});
 
 // The families whose databases may name the PNUs of a capture decoded with `settings` (its
 // --bus, else every bus; --drive, --dialect): what --pnu NAME is looked up in.

@@ -27,6 +27,7 @@ struct ParamsCommand {
     std::string pattern;
     std::string format = "text";
     std::vector<std::string> params;
+    std::vector<std::string> conversions;
 };
 
 // The rows of a family that PATTERN selects.
@@ -150,7 +151,7 @@ void write_csv(Output& out, const std::vector<Listed>& listed) {
 }
 
 int run_params(const ParamsCommand& command) {
-    std::shared_ptr<const ParameterDatabase> database = load_parameter_databases(command.params);
+    std::shared_ptr<const ParameterDatabase> database = load_parameter_databases(command.params, command.conversions);
     std::vector<std::string> ids;
     for (const ParameterFamily& family : database->families())
         ids.push_back(family.id);
@@ -203,7 +204,7 @@ void add_params_command(CLI::App& app, int& exit_code) {
                     "without regard to case")
         ->type_name("PATTERN");
     sub->add_option("--family", command->family,
-                    "List only this family (fc, vlt5000, vlt2000, af600, or one a --params file "
+                    "List only this family (fc, vlt5000, vlt2000, af600, profidrive, or one a --params file "
                     "defines)")
         ->type_name("NAME");
     sub->add_option("-T,--format", command->format,
@@ -211,7 +212,7 @@ void add_params_command(CLI::App& app, int& exit_code) {
                     "csv (one row a parameter)")
         ->check(CLI::IsMember({"text", "json", "csv"}))
         ->default_str("text");
-    add_params_option(*sub, command->params);
+    add_params_option(*sub, command->params, command->conversions);
     sub->footer(std::string(kExitCodeHelp));
     sub->callback([command, &exit_code] { exit_code = run_params(*command); });
 }

@@ -7,7 +7,7 @@ namespace dpscope {
 std::string_view family_of_dialect(Dialect dialect) noexcept {
     switch (dialect) {
         case Dialect::Ge: return "af600";
-        case Dialect::Profidrive:
+        case Dialect::Profidrive: return kProfileFamily;
         case Dialect::Fc: return "fc";
         case Dialect::Vlt2000: return "vlt2000";
         case Dialect::Vlt: break;

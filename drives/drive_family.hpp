@@ -2,7 +2,9 @@
 // docs/decisions.md, "Drive parameter databases"): a hint when there is one (--drive, and later
 // what a slave's GSD file says), else the bus's own family (the FC protocol: fc; VLT 2000:
 // vlt2000), else for a PROFIBUS slave its parameter-channel dialect's (vlt: vlt5000, ge: af600,
-// profidrive: fc).
+// profidrive: profidrive, the profile's own parameters, whoever made the drive). On PROFIBUS, a
+// profile parameter (is_profile_pnu) a station's family has no row for is named by the
+// profidrive family (ParameterNaming).
 #pragma once
 
 #include <array>
@@ -16,8 +18,17 @@
 
 namespace dpscope {
 
-// The family of a PROFIBUS slave decoded in `dialect`: vlt5000, af600 or fc.
+// The family of a PROFIBUS slave decoded in `dialect`: vlt5000, af600 or profidrive.
 std::string_view family_of_dialect(Dialect dialect) noexcept;
+
+// The family of the PROFIdrive profile's parameters (drives/databases/profidrive.params).
+inline constexpr std::string_view kProfileFamily = "profidrive";
+
+// A PNU the PROFIdrive profile defines for every drive (900 to 999 and 60000 to 65535); the others
+// are the maker's.
+constexpr bool is_profile_pnu(std::uint16_t pnu) noexcept {
+    return (pnu >= 900 && pnu <= 999) || pnu >= 60000;
+}
 
 // The family whose database names the PNUs of a station on `bus`; `dialect` is the PROFIBUS
 // slave's (ignored on the other buses). The result names a family that may not be loaded.

@@ -7,6 +7,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <iterator>
 #include <utility>
 
@@ -220,7 +221,8 @@ class DatabaseParser {
                                 "from -128 to 127, or '-' for none",
                                 quoted_excerpt(cells[3], 40)));
             row.conversion = index;
-            if (!conversion_of_index(index))
+            row.scaling = conversion_of_index(index);
+            if (!row.scaling)
                 file_result_.warnings.push_back(fmt::format(
                     "{}:{}: conversion index {} has no meaning dpscope knows: the values of PNU {} "
                     "are not scaled",
@@ -285,7 +287,16 @@ std::string_view parameter_type_name_list() noexcept {
 }
 
 std::optional<Conversion> conversion_of_index(int index) noexcept {
-    if (index == 100) return Conversion{1.0, 0};
+    switch (index) {
+        case 67:   // revolutions a minute
+        case 70:   // minutes
+        case 74:   // hours
+        case 75:   // (3 600 000 in the FC 300 Design Guide: hours counted in milliseconds' base)
+        case 77:   // days
+        case 100:  // degrees Celsius
+            return Conversion{1.0, 0};
+        default: break;
+    }
     if (index < -kLargestPowerIndex || index > kLargestPowerIndex) return std::nullopt;
     return Conversion{std::pow(10.0, index), index < 0 ? -index : 0};
 }
@@ -363,18 +374,59 @@ std::optional<ScaledValue> scale_value(const ParameterRow& row, std::int64_t raw
         case ParameterType::Date: return std::nullopt;
         default: break;
     }
-    if (!row.conversion) return std::nullopt;
-    const std::optional<Conversion> conversion = conversion_of_index(*row.conversion);
-    if (!conversion) return std::nullopt;
-    // A negative index divides by the power of ten, which is exact where multiplying by its
-    // inexact inverse is not (-1: 3 * 0.1 is 0.30000000000000004).
-    const double value = *row.conversion < 0
-                             ? static_cast<double>(raw) / std::pow(10.0, -*row.conversion)
-                             : static_cast<double>(raw) * conversion->factor;
-    return ScaledValue{value, conversion->decimals};
+    if (!row.scaling) return std::nullopt;
+    const Conversion& conversion = *row.scaling;
+    // A factor of a power of ten below 1 divides by its inverse, which is exact where multiplying
+    // by the inexact factor is not (0.1: 3 * 0.1 is 0.30000000000000004).
+    const double inverse = 1.0 / conversion.factor;
+    const double value = conversion.factor < 1.0 && inverse == std::round(inverse)
+                             ? static_cast<double>(raw) / inverse
+                             : static_cast<double>(raw) * conversion.factor;
+    return ScaledValue{value, conversion.decimals};
+}
+
+Result<ConversionOverride> parse_conversion_override(std::string_view text) {
+    const auto fail = [&](std::string_view why) {
+        return Error{fmt::format("'{}': {}", quoted_excerpt(text, 40), why)};
+    };
+    const std::size_t equals = text.find('=');
+    if (equals == std::string_view::npos)
+        return fail("write INDEX=FACTOR, e.g. 74=0.1 (a conversion index and its factor)");
+    const std::string_view index_text = text.substr(0, equals);
+    const std::string_view factor_text = text.substr(equals + 1);
+    std::int16_t index = 0;
+    if (!parse_decimal(index_text, index) || index < -128 || index > 127)
+        return fail("the conversion index is a whole number from -128 to 127");
+    // The factor: digits with at most one point, at most 9 after it.
+    const std::size_t point = factor_text.find('.');
+    const std::string_view whole = factor_text.substr(0, point);
+    const std::string_view fraction =
+        point == std::string_view::npos ? std::string_view{} : factor_text.substr(point + 1);
+    const auto digits = [](std::string_view part) {
+        return std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    if (factor_text.empty() || (whole.empty() && fraction.empty()) || !digits(whole) ||
+        !digits(fraction) || (point != std::string_view::npos && fraction.empty()) ||
+        whole.size() > 10 || fraction.size() > 9)
+        return fail("the factor is a decimal number such as 0.1 or 3600 (at most 9 decimals)");
+    const double factor = std::strtod(std::string(factor_text).c_str(), nullptr);
+    if (!(factor > 0.0) || factor > 1e9)
+        return fail("the factor is above 0 and at most 1000000000");
+    return ConversionOverride{index, Conversion{factor, static_cast<int>(fraction.size())}};
+}
+
+void ParameterDatabase::override_conversion(const ConversionOverride& o) {
+    std::erase_if(overrides_, [&](const ConversionOverride& held) { return held.index == o.index; });
+    overrides_.push_back(o);
+    for (ParameterFamily& family : families_)
+        for (ParameterRow& row : family.rows)
+            if (row.conversion == o.index) row.scaling = o.conversion;
 }
 
 void ParameterDatabase::add(ParameterFamily family) {
+    for (ParameterRow& row : family.rows)
+        for (const ConversionOverride& o : overrides_)
+            if (row.conversion == o.index) row.scaling = o.conversion;
     for (ParameterFamily& held : families_) {
         if (held.id != family.id) continue;
         const auto offset = static_cast<std::uint32_t>(held.sources.size());

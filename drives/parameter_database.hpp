@@ -48,14 +48,27 @@ std::string_view parameter_type_name_list() noexcept;
 enum class PnuNumbering : std::uint8_t { Plain, Group };
 
 // What a Danfoss conversion index does to a raw whole number: value = raw * factor, shown with
-// `decimals` decimals. Plain powers of ten (-7 to 7: factor 10^index) and 100 (factor 1, the
-// index of temperatures in degrees Celsius); the other special indices (67, 70, 74, 75, ...)
-// have no agreed meaning in the sources yet (docs/parameters.md) and give nullopt.
+// `decimals` decimals. Plain powers of ten (-7 to 7: factor 10^index); 100 (factor 1, the index of
+// temperatures in degrees Celsius); and the indices that name a unit which is no power of ten of
+// the base unit (67 revolutions a minute, 70 minutes, 74 hours, 75, 77 days): the raw number counts
+// that unit, which the row's unit names, so factor 1 (docs/parameters.md, "Scaling", where the
+// sources that disagree are named; --conversion-index gives such an index another factor). Other
+// indices give nullopt.
 struct Conversion {
     double factor = 1.0;
     int decimals = 0;
 };
 std::optional<Conversion> conversion_of_index(int index) noexcept;
+
+// --conversion-index INDEX=FACTOR: the factors given to conversion indices in place of dpscope's
+// (a factor as written, "0.1", "3600": its decimals are the digits after its point).
+struct ConversionOverride {
+    std::int16_t index = 0;
+    Conversion conversion;
+};
+// "74=0.1" -> index 74, factor 0.1, 1 decimal; the error says what is wrong (an index from -128 to
+// 127, a factor above 0 and at most 1e9 written with at most 9 decimals).
+Result<ConversionOverride> parse_conversion_override(std::string_view text);
 
 // A value scaled into its unit: shown with `decimals` decimals ("50.0").
 struct ScaledValue {
@@ -71,6 +84,8 @@ struct ParameterRow {
     std::string name;
     std::string unit;                        // "" when the file says '-'
     std::optional<std::int16_t> conversion;  // the conversion index; nullopt when '-'
+    // What the index does (conversion_of_index, or a --conversion-index); nullopt: not scaled.
+    std::optional<Conversion> scaling;
     ParameterType type = ParameterType::Uint16;
     std::uint32_t elements = 1;      // array elements (IND), at least 1
     std::string source;              // the source cell as written: "PG302 p. 212"
@@ -129,8 +144,8 @@ std::optional<std::uint16_t> parse_pnu_text(std::string_view text) noexcept;
 // low 8 or 16 bits sign-extended for int8 and int16, the low bits for the unsigned types.
 std::int64_t raw_value_of_type(ParameterType type, std::uint32_t bits) noexcept;
 
-// `raw` scaled by the row's conversion index; nullopt when the row has no known conversion or a
-// type that is not a number (v2, string, time, date).
+// `raw` scaled by the row's conversion (its `scaling`); nullopt when the row has none or a type
+// that is not a number (v2, string, time, date).
 std::optional<ScaledValue> scale_value(const ParameterRow& row, std::int64_t raw) noexcept;
 
 // A parameter found by name: its family and row.
@@ -145,6 +160,9 @@ class ParameterDatabase {
     // Adds a family; one already held takes the new family's rows (a PNU it has is replaced by
     // the new row, the others are added) and sources, and keeps its id, title and numbering.
     void add(ParameterFamily family);
+    // Gives every row of conversion index `o.index` (those held and those added later) the
+    // factor `o.conversion`.
+    void override_conversion(const ConversionOverride& o);
 
     const ParameterFamily* family(std::string_view id) const noexcept;
     const std::deque<ParameterFamily>& families() const noexcept { return families_; }
@@ -161,7 +179,8 @@ class ParameterDatabase {
                                                      std::span<const std::string> ids = {}) const;
 
   private:
-    std::deque<ParameterFamily> families_;  // a deque: a family's address never changes
+    std::deque<ParameterFamily> families_;
+    std::vector<ConversionOverride> overrides_;  // a deque: a family's address never changes
 };
 
 }  // namespace dpscope

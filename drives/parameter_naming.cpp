@@ -10,7 +10,8 @@ namespace dpscope {
 ParameterNaming::ParameterNaming(std::shared_ptr<const ParameterDatabase> database, Protocol bus,
                                  const std::array<Dialect, kStationCount>& dialects,
                                  const DriveHints& drives)
-    : database_(std::move(database)) {
+    : database_(std::move(database)),
+      profile_(bus == Protocol::ProfibusDp ? database_->family(kProfileFamily) : nullptr) {
     for (std::size_t station = 0; station < kStationCount; ++station) {
         const auto address = static_cast<std::uint8_t>(station);
         families_[station] =
@@ -31,9 +32,11 @@ std::shared_ptr<const ParameterDatabase> shipped_parameter_database() {
 
 NamedParameter ParameterNaming::parameter(std::uint8_t station, std::uint16_t pnu) const noexcept {
     const ParameterFamily* family = families_[station & 0x7F];
-    if (!family) return {};
-    const ParameterRow* row = family->find(pnu);
-    return row ? NamedParameter{family, row} : NamedParameter{};
+    if (family)
+        if (const ParameterRow* row = family->find(pnu)) return {family, row};
+    if (profile_ && is_profile_pnu(pnu))
+        if (const ParameterRow* row = profile_->find(pnu)) return {profile_, row};
+    return {};
 }
 
 }  // namespace dpscope

@@ -16,6 +16,17 @@
 
 namespace dpscope {
 
+class ParameterNaming;
+
+// What names one station's PNUs (ParameterNaming::parameter for one station): cheap to copy; a
+// default one names nothing.
+struct StationNaming {
+    const ParameterNaming* naming = nullptr;
+    std::uint8_t station = 0;
+
+    NamedParameter operator()(std::uint16_t pnu) const noexcept;
+};
+
 class ParameterNaming {
   public:
     // `dialects`: each PROFIBUS slave's (ignored on the other buses).
@@ -28,17 +39,32 @@ class ParameterNaming {
     }
     // The row of `pnu` for `station`'s drive: its family and row, both null when there is none.
     NamedParameter parameter(std::uint8_t station, std::uint16_t pnu) const noexcept;
+    StationNaming station(std::uint8_t address) const noexcept {
+        return StationNaming{this, static_cast<std::uint8_t>(address & 0x7F)};
+    }
     const ParameterDatabase& database() const noexcept { return *database_; }
 
   private:
     std::shared_ptr<const ParameterDatabase> database_;
     std::array<const ParameterFamily*, kStationCount> families_{};
+    // On PROFIBUS, the profile family that names the profile PNUs a station's family has no row
+    // for; null elsewhere or when not loaded.
+    const ParameterFamily* profile_ = nullptr;
 };
 
 // The shipped databases (drives/shipped_databases.hpp), parsed once; a database that does not
 // parse is left out (a test keeps them free of errors). For what has no command line to name
 // --params files: the Wireshark plugin.
 std::shared_ptr<const ParameterDatabase> shipped_parameter_database();
+
+inline NamedParameter StationNaming::operator()(std::uint16_t pnu) const noexcept {
+    return naming ? naming->parameter(station, pnu) : NamedParameter{};
+}
+
+// What names the PNUs of `station`; names nothing without a naming.
+inline StationNaming station_naming(const ParameterNaming* naming, std::uint8_t station) noexcept {
+    return naming ? naming->station(station) : StationNaming{};
+}
 
 // The row naming `pnu` of the telegram's drive (its slave), by the naming its decoder was given;
 // both null when there is none.

@@ -65,20 +65,20 @@ std::string view_value_text(const TelegramParameterView& view) {
     return fmt::to_string(b);
 }
 
-std::string pnu_label(const ParameterFamily* family, std::uint16_t pnu) {
-    const ParameterRow* row = family ? family->find(pnu) : nullptr;
-    if (!row) return fmt::format("{}", pnu);
+std::string pnu_label(StationNaming names, std::uint16_t pnu) {
+    const NamedParameter named = names(pnu);
+    if (!named.row) return fmt::format("{}", pnu);
     TextBuffer b;
     fmt::format_to(std::back_inserter(b), "{}", pnu);
-    append_parameter_name(b, NamedParameter{family, row});
+    append_parameter_name(b, named);
     return fmt::to_string(b);
 }
 
-void pnu_name_key(JsonWriter& w, const ParameterFamily* family, std::uint16_t pnu) {
-    const ParameterRow* row = family ? family->find(pnu) : nullptr;
+void pnu_name_key(JsonWriter& w, StationNaming names, std::uint16_t pnu) {
+    const NamedParameter named = names(pnu);
     w.key("pnu_name");
-    if (row)
-        w.string(row->name);
+    if (named.row)
+        w.string(named.row->name);
     else
         w.null();
 }

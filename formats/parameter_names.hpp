@@ -57,9 +57,9 @@ std::string parameter_name_text(const NamedParameter& p);
 std::string view_value_text(const TelegramParameterView& view);
 
 // A PNU in a report's tables: "1613 (16-13 Frequency)", or "1613" without a row in `family`.
-std::string pnu_label(const ParameterFamily* family, std::uint16_t pnu);
+std::string pnu_label(StationNaming names, std::uint16_t pnu);
 // "pnu_name": the name of the PNU's row in `family`, or null.
-void pnu_name_key(JsonWriter& w, const ParameterFamily* family, std::uint16_t pnu);
+void pnu_name_key(JsonWriter& w, StationNaming names, std::uint16_t pnu);
 
 // jsonl: "pnu_name" (the row's name), "value_scaled" (the value in its unit, with the row's
 // decimals; null when there is no value or it is not scaled) and "unit"; each null without a

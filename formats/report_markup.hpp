@@ -40,7 +40,7 @@ std::array<std::uint64_t, 3> severity_totals(const FindingCounts& findings,
 // With `family`, each PNU's name after it (issue 29).
 template <typename ParameterMap>
 bool html_parameter_table(TextBuffer& b, const ParameterMap& parameters,
-                          const ParameterFamily* family = nullptr) {
+                          StationNaming names = {}) {
     if (parameters.empty()) {
         fmt::format_to(std::back_inserter(b), "<p class=\"meta\">None.</p>\n");
         return false;
@@ -53,7 +53,7 @@ bool html_parameter_table(TextBuffer& b, const ParameterMap& parameters,
         fmt::format_to(it,
                        "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td "
                        "class=\"n\">{}</td></tr>\n",
-                       xml(pnu_label(family, pnu)), access.reads, access.writes);
+                       xml(pnu_label(names, pnu)), access.reads, access.writes);
     fmt::format_to(it, "</table>\n");
     return true;
 }

@@ -33,7 +33,7 @@
 #include <utility>
 #include <vector>
 
-#include "drives/parameter_database.hpp"
+#include "drives/parameter_naming.hpp"
 #include "formats/describe.hpp"
 #include "formats/json_writer.hpp"
 #include "formats/report.hpp"
@@ -97,9 +97,9 @@ class StationSection {
 
 // DP-V1 parameter access of a DP slave (PROFIdrive over MSAC_C1/MSAC_C2), as the session
 // tracker counted it (the PROFIBUS sections add it after the slave's cyclic section).
-// `family`: what names the slave's PNUs (issue 29); null: numbers alone.
+// `names`: what names the slave's PNUs (issue 29); a default one: numbers alone.
 std::unique_ptr<StationSection> make_dpv1_section(const ChannelStats& stats,
-                                                  const ParameterFamily* family = nullptr);
+                                                  StationNaming names = {});
 
 // What the writers say differently per bus: its BusReport's row.
 struct BusWording {

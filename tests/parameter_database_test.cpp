@@ -50,6 +50,7 @@ ParameterRow row_of(ParameterType type, std::optional<std::int16_t> conversion) 
     ParameterRow row;
     row.type = type;
     row.conversion = conversion;
+    if (conversion) row.scaling = conversion_of_index(*conversion);
     return row;
 }
 
@@ -217,21 +218,70 @@ TEST(ParameterDatabaseTest, BrokenFilesNameTheFileAndLine) {
 
 TEST(ParameterDatabaseTest, AnUnknownConversionIndexIsAWarningAndScalesNothing) {
     Result<ParameterFile> parsed = parse_parameter_database(
-        kHeader +
-            "1-00 | Speed | RPM | 67 | uint16 | 1 | D\n1-01 | Hours | h | 74 | uint32 | 1 | D",
+        kHeader + "1-00 | Odd | - | 99 | uint16 | 1 | D\n1-01 | Tiny | - | -8 | uint32 | 1 | D",
         "t.params");
     ASSERT_TRUE(parsed) << parsed.error();
     ASSERT_EQ(parsed->warnings.size(), 2u);
     EXPECT_EQ(parsed->warnings[0],
-              "t.params:5: conversion index 67 has no meaning dpscope knows: the values of PNU "
+              "t.params:5: conversion index 99 has no meaning dpscope knows: the values of PNU "
               "1-00 are not scaled");
-    EXPECT_EQ(parsed->warnings[1].rfind("t.params:6: conversion index 74", 0), 0u);
+    EXPECT_EQ(parsed->warnings[1].rfind("t.params:6: conversion index -8", 0), 0u);
     EXPECT_EQ(scaled(parsed->family.rows[0], 1500), "none");
     EXPECT_EQ(scaled(parsed->family.rows[1], 12), "none");
 }
 
+// The indices that name a unit which is no power of ten of its base unit (67 RPM, 70 minutes,
+// 74 hours, 75, 77 days): the raw number counts that unit, so it is shown as it is; no warning.
+TEST(ParameterDatabaseTest, TheIndicesThatNameTheirUnitShowTheNumberInIt) {
+    Result<ParameterFile> parsed = parse_parameter_database(
+        kHeader +
+            "1-00 | Speed | RPM | 67 | uint16 | 1 | D\n1-01 | Hours | h | 74 | uint32 | 1 | D\n"
+            "1-02 | Minutes | min | 70 | uint32 | 1 | D\n1-03 | Days | d | 77 | uint32 | 1 | D\n"
+            "1-04 | Odd | - | 75 | uint32 | 1 | D",
+        "t.params");
+    ASSERT_TRUE(parsed) << parsed.error();
+    EXPECT_TRUE(parsed->warnings.empty());
+    EXPECT_EQ(scaled(parsed->family.rows[0], 1500), "1500");
+    EXPECT_EQ(scaled(parsed->family.rows[1], 12), "12");
+    EXPECT_EQ(scaled(parsed->family.rows[2], 90), "90");
+    EXPECT_EQ(scaled(parsed->family.rows[3], 3), "3");
+    EXPECT_EQ(scaled(parsed->family.rows[4], 7), "7");
+}
+
+// --conversion-index INDEX=FACTOR: the contested meaning of an index, as the user's manual gives
+// it, for the rows held and those added later; the decimals shown are the factor's.
+TEST(ParameterDatabaseTest, AConversionOverrideGivesAnIndexItsFactor) {
+    Result<ConversionOverride> tenth = parse_conversion_override("74=0.1");
+    ASSERT_TRUE(tenth) << tenth.error();
+    EXPECT_EQ(tenth->index, 74);
+    EXPECT_EQ(tenth->conversion.decimals, 1);
+    ParameterDatabase db;
+    Result<ParameterFile> first =
+        parse_parameter_database(kHeader + "1-01 | Hours | h | 74 | uint32 | 1 | D", "a.params");
+    ASSERT_TRUE(first) << first.error();
+    db.add(std::move(first->family));
+    db.override_conversion(*tenth);
+    EXPECT_EQ(scaled(*db.lookup("t", 101), 123), "12.3");
+    Result<ConversionOverride> three = parse_conversion_override("74=3.6");
+    ASSERT_TRUE(three);
+    db.override_conversion(*three);  // the later one wins
+    EXPECT_EQ(scaled(*db.lookup("t", 101), 10), "36.0");
+    Result<ParameterFile> second =
+        parse_parameter_database(kHeader + "1-02 | More | h | 74 | uint32 | 1 | D", "b.params");
+    ASSERT_TRUE(second);
+    db.add(std::move(second->family));
+    EXPECT_EQ(scaled(*db.lookup("t", 102), 10), "36.0");
+    Result<ConversionOverride> whole = parse_conversion_override("-1=3600");
+    ASSERT_TRUE(whole);
+    EXPECT_EQ(whole->index, -1);
+    EXPECT_EQ(whole->conversion.decimals, 0);
+    for (const char* bad : {"74", "74=", "=0.1", "128=1", "-129=1", "74=0", "74=-1", "74=1e3",
+                            "74=0.0000000001", "74=2000000000", "74=1/60", "x=1", "74=.", "74=1."})
+        EXPECT_FALSE(parse_conversion_override(bad)) << bad;
+}
+
 TEST(ParameterDatabaseTest, ScalesByEveryConversionIndex) {
-    // Powers of ten from -7 to 7, 100 (factor 1); others have no known meaning.
+    // Powers of ten from -7 to 7, 100 and the unit-naming indices (factor 1); others have none.
     EXPECT_EQ(scaled(row_of(ParameterType::Int32, 0), 500), "500");
     EXPECT_EQ(scaled(row_of(ParameterType::Int32, -1), 500), "50.0");
     EXPECT_EQ(scaled(row_of(ParameterType::Int32, -2), 1234), "12.34");
@@ -245,7 +295,7 @@ TEST(ParameterDatabaseTest, ScalesByEveryConversionIndex) {
     EXPECT_EQ(scaled(row_of(ParameterType::Int32, 3), 7), "7000");
     EXPECT_EQ(scaled(row_of(ParameterType::Uint32, 7), 4294967295), "42949672950000000");
     EXPECT_EQ(scaled(row_of(ParameterType::Uint8, 100), 45), "45");
-    for (int index : {-8, 8, 67, 70, 74, 75, 99, 101, -128, 127})
+    for (int index : {-8, 8, 66, 68, 71, 76, 78, 99, 101, -128, 127})
         EXPECT_FALSE(conversion_of_index(index)) << index;
     // Negative values, sign-extended by the type.
     EXPECT_EQ(scaled(row_of(ParameterType::Int32, -1), -500), "-50.0");
@@ -406,7 +456,7 @@ TEST(ParameterDatabaseTest, TheFamilyComesFromTheHintTheBusOrTheDialect) {
     EXPECT_EQ(drive_family(Protocol::Vlt2000, Dialect::Ge), "vlt2000");
     EXPECT_EQ(drive_family(Protocol::ProfibusDp, Dialect::Vlt), "vlt5000");
     EXPECT_EQ(drive_family(Protocol::ProfibusDp, Dialect::Ge), "af600");
-    EXPECT_EQ(drive_family(Protocol::ProfibusDp, Dialect::Profidrive), "fc");
+    EXPECT_EQ(drive_family(Protocol::ProfibusDp, Dialect::Profidrive), "profidrive");
     EXPECT_EQ(drive_family(Protocol::ProfibusDp, Dialect::Vlt, "fc"), "fc");
     EXPECT_EQ(drive_family(Protocol::Fc, Dialect::Vlt, "vlt5000"), "vlt5000");
     EXPECT_EQ(drive_family(Protocol::ProfibusDp, Dialect::Ge, ""), "af600");
@@ -450,7 +500,9 @@ void configure(const std::string& sample, DecoderOptions& options, DriveHints& d
 // The PNUs each sample's telegrams name, by the family the family rule gives their station:
 // decoded, not listed by hand. Left out: PNU 0 in a PROFIBUS PCV, the idle parameter channel
 // (a PKW of zeros) and the PNU a rejection (RC 7) leaves out, which names no parameter.
-std::map<std::string, std::map<std::uint16_t, std::set<std::string>>> pnus_of_the_samples() {
+// `on_profibus`: the (family, PNU) a PROFIBUS telegram names, which the profile family may name.
+std::map<std::string, std::map<std::uint16_t, std::set<std::string>>> pnus_of_the_samples(
+    std::set<std::pair<std::string, std::uint16_t>>& on_profibus) {
     std::map<std::string, std::map<std::uint16_t, std::set<std::string>>> used;
     DIR* folder = ::opendir((test::source_dir() + "/samples").c_str());
     EXPECT_NE(folder, nullptr);
@@ -480,7 +532,11 @@ std::map<std::string, std::map<std::uint16_t, std::set<std::string>>> pnus_of_th
             choice.protocol->mark_pnus(t, named);
             if (t.dp.has_pcv && t.dp.pcv.pnu != 0) named.set(t.dp.pcv.pnu);
             for (std::size_t pnu = 0; pnu < named.size(); ++pnu)
-                if (named.test(pnu)) used[family][static_cast<std::uint16_t>(pnu)].insert(sample);
+                if (named.test(pnu)) {
+                    used[family][static_cast<std::uint16_t>(pnu)].insert(sample);
+                    if (t.protocol == Protocol::ProfibusDp)
+                        on_profibus.emplace(family, static_cast<std::uint16_t>(pnu));
+                }
         }
     }
     return used;
@@ -514,7 +570,8 @@ TEST(ParameterDatabaseTest, EveryPnuTheSamplesUseHasARowInItsFamily) {
         ASSERT_TRUE(parsed) << parsed.error();
         shipped.add(std::move(parsed->family));
     }
-    const auto used = pnus_of_the_samples();
+    std::set<std::pair<std::string, std::uint16_t>> profibus;
+    const auto used = pnus_of_the_samples(profibus);
     const auto unsourced = unsourced_pnus();
     std::size_t checked = 0;
     for (const auto& [family, pnus] : used) {
@@ -523,7 +580,12 @@ TEST(ParameterDatabaseTest, EveryPnuTheSamplesUseHasARowInItsFamily) {
             std::string where;
             for (const std::string& sample : samples)
                 where += (where.empty() ? "" : ", ") + sample;
-            const bool has_row = shipped.lookup(family, pnu) != nullptr;
+            // A drive known only by its profile: its maker's PNUs are no family's.
+            if (family == kProfileFamily && !is_profile_pnu(pnu)) continue;
+            // On PROFIBUS the profile's family names the profile PNUs (ParameterNaming).
+            const bool has_row = shipped.lookup(family, pnu) != nullptr ||
+                                 (is_profile_pnu(pnu) && profibus.count({family, pnu}) &&
+                                  shipped.lookup(kProfileFamily, pnu) != nullptr);
             const bool listed = unsourced.count({family, pnu}) > 0;
             EXPECT_TRUE(has_row || listed)
                 << "PNU " << pnu << " (" << where << ") has no row in " << family;
@@ -537,7 +599,7 @@ TEST(ParameterDatabaseTest, EveryPnuTheSamplesUseHasARowInItsFamily) {
             << family << " " << pnu << " is in unsourced.txt but no sample uses it";
     }
     // The samples name parameters of every family (samples/ge.pcap: two GE AF-600 slaves).
-    for (const char* family : {"fc", "vlt5000", "vlt2000", "af600"})
+    for (const char* family : {"fc", "vlt5000", "vlt2000", "af600", "profidrive"})
         EXPECT_TRUE(used.count(family)) << family;
     EXPECT_GT(checked, 10u);
 }

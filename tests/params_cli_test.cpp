@@ -110,13 +110,35 @@ TEST(ParamsCliTest, ABrokenOrMissingFileIsAWarningAndLeftOut) {
 
 TEST(ParamsCliTest, AnUnknownConversionIndexIsWarnedAtLoading) {
     const std::string odd = write_database(
-        "odd.params", "@family odd\n@source D = d\n120 | Speed | RPM | 67 | uint16 | 1 | D\n");
+        "odd.params", "@family odd\n@source D = d\n120 | Speed | RPM | 99 | uint16 | 1 | D\n");
     CommandResult r = run_dpscope({"params", "--params", odd, "--family", "odd"});
     EXPECT_EQ(r.exit_code, 0);
     EXPECT_EQ(r.err, "dpscope: warning: " + odd +
-                         ":3: conversion index 67 has no meaning dpscope knows: the values of PNU "
+                         ":3: conversion index 99 has no meaning dpscope knows: the values of PNU "
                          "120 are not scaled\n");
     EXPECT_NE(r.out.find("120  Speed  RPM"), std::string::npos) << r.out;
+}
+
+// --conversion-index gives a contested index the factor of the user's manual; a bad one is exit 2
+// naming the option and what is wrong.
+TEST(ParamsCliTest, ConversionIndexGivesAnIndexAFactorAndIsChecked) {
+    const std::string hours = write_database(
+        "hours.params",
+        "@family fc\n@source D = d\n1500 | Operating hours | h | 74 | uint32 | 1 | D\n");
+    // FC 15-00 written with PWE 0x7B = 123: hours as they are, or tenths with 74=0.1.
+    const std::string telegram = write_database(
+        "read-1500.hex", "02 0E 01 35 DC 00 00 00 00 00 7B 00 00 00 00 9F\n");
+    CommandResult plain =
+        run_dpscope({"decode", "--bus", "fc", "--params", hours, "-T", "jsonl", telegram});
+    EXPECT_NE(plain.out.find("\"value_scaled\":123,"), std::string::npos) << plain.out << plain.err;
+    CommandResult tenths = run_dpscope({"decode", "--bus", "fc", "--params", hours,
+                                        "--conversion-index", "74=0.1", "-T", "jsonl", telegram});
+    EXPECT_NE(tenths.out.find("\"value_scaled\":12.3,"), std::string::npos) << tenths.out;
+    for (const char* bad : {"74", "74=0", "300=1", "74=x"}) {
+        CommandResult r = run_dpscope({"decode", "--conversion-index", bad, telegram});
+        EXPECT_EQ(r.exit_code, 2) << bad;
+        EXPECT_NE(r.err.find("--conversion-index"), std::string::npos) << r.err;
+    }
 }
 
 TEST(ParamsCliTest, PnuTakesANumberAGroupAndNumberOrAName) {

@@ -31,11 +31,11 @@ std::string commands_by_ak_text(const FcStationStats& s) {
     return text.empty() ? "none" : text;
 }
 
-std::string parameters_text(const FcStationStats& s, const ParameterFamily* family) {
+std::string parameters_text(const FcStationStats& s, StationNaming names) {
     std::string text;
     for (const auto& [pnu, access] : s.parameters)
         text += fmt::format("{}PNU {} ({} read{}, {} write{})", text.empty() ? "" : ", ",
-                            pnu_label(family, pnu), access.reads, access.reads == 1 ? "" : "s",
+                            pnu_label(names, pnu), access.reads, access.reads == 1 ? "" : "s",
                             access.writes, access.writes == 1 ? "" : "s");
     if (s.parameters_not_counted)
         text += fmt::format("{}{} more accesses to further parameters", text.empty() ? "" : "; ",
@@ -55,7 +55,7 @@ class FcSection final : public StationSection {
                     stats.findings[static_cast<std::size_t>(kind)];
         response_ms_ = fc_tracker(c).options().response_ns / 1'000'000;
         latency_ = DriveLatency::of(stats.latency_ns, stats.mean_latency_ns());
-        family_ = c.naming ? c.naming->family(stats.address) : nullptr;
+        names_ = station_naming(c.naming, stats.address);
     }
 
     std::uint8_t master() const override { return 0; }
@@ -75,13 +75,13 @@ class FcSection final : public StationSection {
             fmt::format_to(it, "  responses      {}; {}\n", responses_text(), late_text());
         }
         fmt::format_to(it, "  latency ms     {}\n", latency_text());
-        fmt::format_to(it, "  parameters     {}\n", parameters_text(s, family_));
+        fmt::format_to(it, "  parameters     {}\n", parameters_text(s, names_));
         if (!s.channel.rejections.empty()) {
             append(b, "  rejections    ");
             const char* separator = " ";
             for (const auto& [key, count] : s.channel.rejections) {
                 fmt::format_to(it, "{}PNU {} fault code {} ({}) {}x", separator,
-                               pnu_label(family_, key.first), key.second, fault_text(key.second),
+                               pnu_label(names_, key.first), key.second, fault_text(key.second),
                                count);
                 separator = "; ";
             }
@@ -110,10 +110,10 @@ class FcSection final : public StationSection {
             fmt::format_to(it, "- Responses: {}; {}\n", responses_text(), late_text());
         }
         fmt::format_to(it, "- Latency ms: {}\n", latency_text());
-        fmt::format_to(it, "- Parameters: {}\n", parameters_text(s, family_));
+        fmt::format_to(it, "- Parameters: {}\n", parameters_text(s, names_));
         for (const auto& [key, count] : s.channel.rejections)
             fmt::format_to(it, "- Rejected: PNU {} fault code {} ({}), {}x\n",
-                           pnu_label(family_, key.first), key.second,
+                           pnu_label(names_, key.first), key.second,
                            md_escape(fault_text(key.second)), count);
         fmt::format_to(it, "- Findings: {}\n", md_escape(findings_by_kind_text(findings_)));
     }
@@ -171,7 +171,7 @@ class FcSection final : public StationSection {
         for (const auto& [pnu, access] : s.parameters) {
             w.begin_object();
             w.key("pnu").integer(pnu);
-            pnu_name_key(w, family_, pnu);
+            pnu_name_key(w, names_, pnu);
             count("reads", access.reads);
             count("writes", access.writes);
             w.end_object();
@@ -182,7 +182,7 @@ class FcSection final : public StationSection {
         for (const auto& [key, n] : s.channel.rejections) {
             w.begin_object();
             w.key("pnu").integer(key.first);
-            pnu_name_key(w, family_, key.first);
+            pnu_name_key(w, names_, key.first);
             w.key("fault_code").integer(key.second);
             w.key("fault_text").string(fault_text(key.second));
             count("count", n);
@@ -233,7 +233,7 @@ class FcSection final : public StationSection {
                "style=\"background:#2e90fa\"></i>notes</span></div>\n");
         svg_timeline(b, timeline_, title_lower(), c);
         append(b, "<h3>Parameters accessed</h3>\n");
-        if (html_parameter_table(b, s.parameters, family_) && s.parameters_not_counted)
+        if (html_parameter_table(b, s.parameters, names_) && s.parameters_not_counted)
             fmt::format_to(it, "<p class=\"meta\">{} more accesses to further parameters.</p>\n",
                            s.parameters_not_counted);
         if (!s.channel.rejections.empty()) {
@@ -245,7 +245,7 @@ class FcSection final : public StationSection {
                 fmt::format_to(it,
                                "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td>"
                                "<td class=\"n\">{}</td></tr>\n",
-                               xml(pnu_label(family_, key.first)), key.second,
+                               xml(pnu_label(names_, key.first)), key.second,
                                xml(fault_text(key.second)), count);
             append(b, "</table>\n");
         }
@@ -301,7 +301,7 @@ class FcSection final : public StationSection {
     std::string latency_text() const { return latency_.text(broadcast(), s_.timed()); }
 
     const FcStationStats& s_;
-    const ParameterFamily* family_ = nullptr;  // what names its PNUs (issue 29)
+    StationNaming names_;  // what names its PNUs (issue 29)
     const Timeline& timeline_;
     FindingCounts findings_{};
     const FindingSeverityCounts& by_severity_;

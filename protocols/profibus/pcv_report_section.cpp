@@ -68,10 +68,10 @@ std::string outcomes_text(const TransactionCounts& t) {
                        t.positive, t.rejected, t.no_authority, t.mismatched, t.unexpected);
 }
 
-std::string parameters_text(const ChannelStats& s, const ParameterFamily* family) {
+std::string parameters_text(const ChannelStats& s, StationNaming names) {
     std::string text;
     for (const auto& [pnu, count] : s.pnu_requests)
-        text += fmt::format("{}{} ({}x)", text.empty() ? "" : ", ", pnu_label(family, pnu), count);
+        text += fmt::format("{}{} ({}x)", text.empty() ? "" : ", ", pnu_label(names, pnu), count);
     return text.empty() ? "none" : text;
 }
 
@@ -111,7 +111,7 @@ class PcvSection final : public StationSection {
             if (covers(kind))
                 findings_[static_cast<std::size_t>(kind)] =
                     stats.findings[static_cast<std::size_t>(kind)];
-        family_ = c.naming ? c.naming->family(stats.slave) : nullptr;
+        names_ = station_naming(c.naming, stats.slave);
         const StationConfig& config = profibus_station(c, stats.slave);
         has_ident_ = config.has_ident;
         ident_ = config.ident;
@@ -173,13 +173,13 @@ class PcvSection final : public StationSection {
         if (l.any_cycles)
             fmt::format_to(it, "  latency cycles min {}  median {}  p95 {}  max {}\n", l.min_cycles,
                            l.median_cycles, l.p95_cycles, l.max_cycles);
-        fmt::format_to(it, "  parameters     {}\n", parameters_text(s, family_));
+        fmt::format_to(it, "  parameters     {}\n", parameters_text(s, names_));
         if (!s.rejections.empty()) {
             append(b, "  rejections    ");
             const char* separator = " ";
             for (const auto& [key, count] : s.rejections) {
                 fmt::format_to(it, "{}PNU {} error {} ({}) {}x", separator,
-                               pnu_label(family_, key.first), key.second,
+                               pnu_label(names_, key.first), key.second,
                                error_text_or_unknown(s.dialect, key.second), count);
                 separator = "; ";
             }
@@ -221,10 +221,10 @@ class PcvSection final : public StationSection {
                        outcomes_text(s.transactions));
         fmt::format_to(it, "- Unanswered: {}, {} abandoned; spontaneous messages: {}\n",
                        timeouts_text(), s.abandoned, s.spontaneous);
-        fmt::format_to(it, "- Parameters: {}\n", parameters_text(s, family_));
+        fmt::format_to(it, "- Parameters: {}\n", parameters_text(s, names_));
         for (const auto& [key, count] : s.rejections) {
             fmt::format_to(it, "- Rejected: PNU {} error {} ({}), {}x\n",
-                           pnu_label(family_, key.first), key.second,
+                           pnu_label(names_, key.first), key.second,
                            md_escape(error_text_or_unknown(s.dialect, key.second)), count);
         }
         fmt::format_to(it, "- Findings: {}\n", md_escape(findings_by_kind_text(findings_)));
@@ -276,7 +276,7 @@ class PcvSection final : public StationSection {
         for (const auto& [pnu, n] : s.pnu_requests) {
             w.begin_object();
             w.key("pnu").integer(pnu);
-            pnu_name_key(w, family_, pnu);
+            pnu_name_key(w, names_, pnu);
             count("requests", n);
             w.end_object();
         }
@@ -285,7 +285,7 @@ class PcvSection final : public StationSection {
         for (const auto& [key, n] : s.rejections) {
             w.begin_object();
             w.key("pnu").integer(key.first);
-            pnu_name_key(w, family_, key.first);
+            pnu_name_key(w, names_, key.first);
             w.key("error").integer(key.second);
             w.key("error_text").string(error_text_or_unknown(s.dialect, key.second));
             count("count", n);
@@ -365,7 +365,7 @@ class PcvSection final : public StationSection {
                    "class=\"n\">requests</th></tr>\n");
             for (const auto& [pnu, count] : s.pnu_requests)
                 fmt::format_to(it, "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td></tr>\n",
-                               xml(pnu_label(family_, pnu)), count);
+                               xml(pnu_label(names_, pnu)), count);
             append(b, "</table>\n");
         }
         if (!s.rejections.empty()) {
@@ -378,7 +378,7 @@ class PcvSection final : public StationSection {
                 fmt::format_to(it,
                                "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td>"
                                "<td class=\"n\">{}</td></tr>\n",
-                               xml(pnu_label(family_, key.first)), key.second, xml(text), count);
+                               xml(pnu_label(names_, key.first)), key.second, xml(text), count);
             }
             append(b, "</table>\n");
         }
@@ -404,7 +404,7 @@ class PcvSection final : public StationSection {
     }
 
     const ChannelStats& s_;
-    const ParameterFamily* family_ = nullptr;  // what names its PNUs (issue 29)
+    StationNaming names_;  // what names its PNUs (issue 29)
     const Timeline& timeline_;
     FindingCounts findings_{};  // the kinds the section covers
     const FindingSeverityCounts& by_severity_;
@@ -438,7 +438,7 @@ void add_profibus_sections(const ReportContext& c, const ChannelTimelines& timel
                 std::make_unique<PcvSection>(c, *stats, timelines.of(stats->master, stats->slave)));
         if (dpv1)
             m.stations.push_back(
-                make_dpv1_section(*stats, c.naming ? c.naming->family(stats->slave) : nullptr));
+                make_dpv1_section(*stats, station_naming(c.naming, stats->slave)));
         // The slave against its GSD file, when it has one (--gsd).
         if (stats->gsd && stats->gsd->device)
             m.stations.push_back(

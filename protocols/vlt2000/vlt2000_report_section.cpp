@@ -74,12 +74,12 @@ std::string checksums_text(const Vlt2000StationStats& s) {
                        counted(s.checksum_disabled, "telegram", "telegrams"));
 }
 
-std::string parameters_text(const Vlt2000StationStats& s, const ParameterFamily* family) {
+std::string parameters_text(const Vlt2000StationStats& s, StationNaming names) {
     std::string text;
     for (const auto& [parameter, access] : s.parameters)
         text +=
             fmt::format("{}{} ({} read{}, {} write{})", text.empty() ? "" : ", ",
-                        pnu_label(family, parameter), access.reads, access.reads == 1 ? "" : "s",
+                        pnu_label(names, parameter), access.reads, access.reads == 1 ? "" : "s",
                         access.writes, access.writes == 1 ? "" : "s");
     if (s.parameters_not_counted)
         text += fmt::format("{}{} more accesses to further parameters", text.empty() ? "" : "; ",
@@ -97,7 +97,7 @@ class Vlt2000Section final : public StationSection {
                 findings_[static_cast<std::size_t>(kind)] =
                     stats.findings[static_cast<std::size_t>(kind)];
         latency_ = DriveLatency::of(stats.latency_ns, stats.mean_latency_ns());
-        family_ = c.naming ? c.naming->family(stats.address) : nullptr;
+        names_ = station_naming(c.naming, stats.address);
     }
 
     std::uint8_t master() const override { return 0; }
@@ -118,7 +118,7 @@ class Vlt2000Section final : public StationSection {
         fmt::format_to(it, "  failed         {}: {}\n", s.failed, failures_text(s));
         fmt::format_to(it, "  checksums      {}\n", checksums_text(s));
         fmt::format_to(it, "  latency ms     {}\n", latency_text());
-        fmt::format_to(it, "  parameters     {}\n", parameters_text(s, family_));
+        fmt::format_to(it, "  parameters     {}\n", parameters_text(s, names_));
         fmt::format_to(it, "  findings       {}\n", findings_by_kind_text(findings_));
     }
 
@@ -146,7 +146,7 @@ class Vlt2000Section final : public StationSection {
             fmt::format_to(it, "- Failed: no reason code, {}x\n", s.failures_without_reason);
         fmt::format_to(it, "- Checksums: {}\n", md_escape(checksums_text(s)));
         fmt::format_to(it, "- Latency ms: {}\n", latency_text());
-        fmt::format_to(it, "- Parameters: {}\n", parameters_text(s, family_));
+        fmt::format_to(it, "- Parameters: {}\n", parameters_text(s, names_));
         fmt::format_to(it, "- Findings: {}\n", md_escape(findings_by_kind_text(findings_)));
     }
 
@@ -216,7 +216,7 @@ class Vlt2000Section final : public StationSection {
         for (const auto& [parameter, access] : s.parameters) {
             w.begin_object();
             w.key("pnu").integer(parameter);
-            pnu_name_key(w, family_, parameter);
+            pnu_name_key(w, names_, parameter);
             count("reads", access.reads);
             count("writes", access.writes);
             w.end_object();
@@ -267,7 +267,7 @@ class Vlt2000Section final : public StationSection {
                "style=\"background:#2e90fa\"></i>notes</span></div>\n");
         svg_timeline(b, timeline_, title_lower(), c);
         append(b, "<h3>Parameters accessed</h3>\n");
-        if (html_parameter_table(b, s.parameters, family_) && s.parameters_not_counted)
+        if (html_parameter_table(b, s.parameters, names_) && s.parameters_not_counted)
             fmt::format_to(it, "<p class=\"meta\">{} more accesses to further parameters.</p>\n",
                            s.parameters_not_counted);
         if (s.failed > 0) {
@@ -337,7 +337,7 @@ class Vlt2000Section final : public StationSection {
     std::string latency_text() const { return latency_.text(broadcast(), s_.timed()); }
 
     const Vlt2000StationStats& s_;
-    const ParameterFamily* family_ = nullptr;  // what names its parameters (issue 29)
+    StationNaming names_;  // what names its parameters (issue 29)
     const Timeline& timeline_;
     FindingCounts findings_{};
     const FindingSeverityCounts& by_severity_;

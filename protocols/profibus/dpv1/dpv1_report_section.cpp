@@ -16,14 +16,14 @@ std::string plural_count(std::uint64_t n, std::string_view singular, std::string
 }
 
 // "12 (2 reads), 40 (1 read, 1 write)", or "none".
-std::string parameters_text(const Dpv1Stats& s, const ParameterFamily* family) {
+std::string parameters_text(const Dpv1Stats& s, StationNaming names) {
     std::string text;
     for (const auto& [pnu, use] : s.parameters) {
         std::string uses;
         if (use.reads) uses = plural_count(use.reads, "read", "reads");
         if (use.writes)
             uses += (uses.empty() ? "" : ", ") + plural_count(use.writes, "write", "writes");
-        text += fmt::format("{}{} ({})", text.empty() ? "" : ", ", pnu_label(family, pnu), uses);
+        text += fmt::format("{}{} ({})", text.empty() ? "" : ", ", pnu_label(names, pnu), uses);
     }
     if (text.empty()) text = "none";
     if (s.parameters_not_counted)
@@ -65,8 +65,8 @@ std::string error_text_of(const Dpv1Stats& s, std::uint16_t error) {
 
 class Dpv1Section final : public StationSection {
   public:
-    Dpv1Section(const ChannelStats& stats, const ParameterFamily* family)
-        : c_(stats), s_(stats.dpv1), family_(family), by_severity_(stats.findings_by_severity) {
+    Dpv1Section(const ChannelStats& stats, StationNaming names)
+        : c_(stats), s_(stats.dpv1), names_(names), by_severity_(stats.findings_by_severity) {
         for (FindingKind kind : kAllKinds)
             if (covers(kind))
                 findings_[static_cast<std::size_t>(kind)] =
@@ -100,7 +100,7 @@ class Dpv1Section final : public StationSection {
         fmt::format_to(it, "  transactions   {}\n", transactions_text(s_, timed_));
         fmt::format_to(it, "  latency ms     {}\n", latency_text());
         fmt::format_to(it, "  polls          {}\n", polls_text(s_));
-        fmt::format_to(it, "  parameters     {}\n", parameters_text(s_, family_));
+        fmt::format_to(it, "  parameters     {}\n", parameters_text(s_, names_));
         fmt::format_to(it, "  negative       {}", s_.negative_responses);
         const char* separator = ":";
         for (const auto& [error, n] : s_.negative_errors) {
@@ -134,7 +134,7 @@ class Dpv1Section final : public StationSection {
         fmt::format_to(it, "- Transactions: {}\n", md_escape(transactions_text(s_, timed_)));
         fmt::format_to(it, "- Latency ms: {}\n", md_escape(latency_text()));
         fmt::format_to(it, "- Polls: {}\n", md_escape(polls_text(s_)));
-        fmt::format_to(it, "- Parameters: {}\n", md_escape(parameters_text(s_, family_)));
+        fmt::format_to(it, "- Parameters: {}\n", md_escape(parameters_text(s_, names_)));
         fmt::format_to(it, "- Negative responses: {}\n", s_.negative_responses);
         for (const auto& [error, n] : s_.negative_errors)
             fmt::format_to(it, "- Error 0x{:02X} ({}), {}x\n", error,
@@ -190,7 +190,7 @@ class Dpv1Section final : public StationSection {
         for (const auto& [pnu, use] : s_.parameters) {
             w.begin_object();
             w.key("pnu").integer(pnu);
-            pnu_name_key(w, family_, pnu);
+            pnu_name_key(w, names_, pnu);
             count("reads", use.reads);
             count("writes", use.writes);
             w.end_object();
@@ -243,7 +243,7 @@ class Dpv1Section final : public StationSection {
         html_kv(b, "Negative responses", fmt::format("{}", s_.negative_responses));
         html_kv(b, "Error PDUs", fmt::format("{}", s_.error_pdus));
         append(b, "</table>\n<h3>Parameters accessed</h3>\n");
-        if (html_parameter_table(b, s_.parameters, family_) && s_.parameters_not_counted)
+        if (html_parameter_table(b, s_.parameters, names_) && s_.parameters_not_counted)
             fmt::format_to(it, "<p class=\"meta\">{} to further PNUs not counted.</p>\n",
                            plural_count(s_.parameters_not_counted, "access", "accesses"));
         if (!s_.negative_errors.empty()) {
@@ -284,7 +284,7 @@ class Dpv1Section final : public StationSection {
 
     const ChannelStats& c_;
     const Dpv1Stats& s_;
-    const ParameterFamily* family_;  // what names its PNUs (issue 29); null: none
+    StationNaming names_;  // what names its PNUs (issue 29); null: none
     FindingCounts findings_{};  // the DP-V1 kinds only
     const FindingSeverityCounts& by_severity_;
     bool timed_ = false;
@@ -295,8 +295,8 @@ class Dpv1Section final : public StationSection {
 }  // namespace
 
 std::unique_ptr<StationSection> make_dpv1_section(const ChannelStats& stats,
-                                                  const ParameterFamily* family) {
-    return std::make_unique<Dpv1Section>(stats, family);
+                                                  StationNaming names) {
+    return std::make_unique<Dpv1Section>(stats, names);
 }
 
 }  // namespace dpscope::report
