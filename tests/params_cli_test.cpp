@@ -71,7 +71,7 @@ TEST(ParamsCliTest, ListsTheFamiliesAndSelectsByPattern) {
               "dpscope: warning: no parameter matches 'nothing-like' in the family testdrive\n");
     expect_usage_error(run_dpscope({"params", "--family", "nope"}),
                        "dpscope: error: --family nope: no database of that family is loaded "
-                       "(af600, fc, vlt2000, vlt5000)");
+                       "(af600, fc, profidrive, vlt2000, vlt5000)");
     expect_usage_error(run_dpscope({"params", "-T", "xml"}),
                        "--format: 'xml' is not one of text, json, csv");
 }
