@@ -261,16 +261,20 @@ TEST(ParameterDatabaseTest, AConversionOverrideGivesAnIndexItsFactor) {
     ASSERT_TRUE(first) << first.error();
     db.add(std::move(first->family));
     db.override_conversion(*tenth);
-    EXPECT_EQ(scaled(*db.lookup("t", 101), 123), "12.3");
+    const ParameterRow* hours = db.lookup("demo", 101);
+    ASSERT_NE(hours, nullptr);
+    EXPECT_EQ(scaled(*hours, 123), "12.3");
     Result<ConversionOverride> three = parse_conversion_override("74=3.6");
     ASSERT_TRUE(three);
     db.override_conversion(*three);  // the later one wins
-    EXPECT_EQ(scaled(*db.lookup("t", 101), 10), "36.0");
+    EXPECT_EQ(scaled(*db.lookup("demo", 101), 10), "36.0");
     Result<ParameterFile> second =
         parse_parameter_database(kHeader + "1-02 | More | h | 74 | uint32 | 1 | D", "b.params");
     ASSERT_TRUE(second);
     db.add(std::move(second->family));
-    EXPECT_EQ(scaled(*db.lookup("t", 102), 10), "36.0");
+    const ParameterRow* more = db.lookup("demo", 102);
+    ASSERT_NE(more, nullptr);
+    EXPECT_EQ(scaled(*more, 10), "36.0");
     Result<ConversionOverride> whole = parse_conversion_override("-1=3600");
     ASSERT_TRUE(whole);
     EXPECT_EQ(whole->index, -1);
