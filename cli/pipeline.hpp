@@ -78,8 +78,13 @@ class Pipeline {
     // The health events (station lost, returned) the last feed() caused.
     std::span<const HealthEvent> health_events() const noexcept { return health_events_; }
     const ChannelTimelines& timelines() const noexcept { return timelines_; }
-    // What names the capture's PNUs (drives/parameter_naming.hpp).
-    const ParameterNaming& naming() const noexcept { return *naming_; }
+    // What names the capture's PNUs (drives/parameter_naming.hpp): the decoder's as of now when
+    // it keeps its own (what the drives described, the families their GSD files name), so the
+    // report written after the decode names as the last telegram was named.
+    const ParameterNaming& naming() const noexcept {
+        const ParameterNaming* own = decoder_->naming();
+        return own ? *own : *naming_;
+    }
 
   private:
     // The telegrams need more time at the baud rate given than the capture lasts: the line was

@@ -30,6 +30,10 @@ class TelegramDecoder {
                                           std::uint64_t frame) = 0;
     // A copy of the decoder with its state.
     virtual std::unique_ptr<TelegramDecoder> clone() const = 0;
+    // What names the PNUs as of now, when the decoder keeps its own (what the drives described,
+    // the families their GSD files name: drives/parameter_naming.hpp); null: the capture's, as
+    // it was given.
+    virtual const ParameterNaming* naming() const noexcept { return nullptr; }
 
   protected:
     TelegramDecoder() = default;

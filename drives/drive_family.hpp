@@ -35,6 +35,13 @@ constexpr bool is_profile_pnu(std::uint16_t pnu) noexcept {
 std::string_view drive_family(Protocol bus, Dialect dialect,
                               std::optional<std::string_view> hint = std::nullopt) noexcept;
 
+// The family a slave's GSD file names by its Vendor_Name and Model_Name (issue 29; after --drive,
+// before the bus and the dialect): Danfoss "VLT 5000"/"VLT 5xxx" vlt5000, Danfoss "FC 1xx/2xx/3xx"
+// or a VLT drive name of the FC series ("AutomationDrive", "HVAC Drive", "AQUA Drive") fc, GE
+// "AF-600"/"AF-650" af600; nullopt for any other device (matched without regard to case).
+std::optional<std::string_view> family_of_device(std::string_view vendor,
+                                                 std::string_view model) noexcept;
+
 // --drive [ADDR=]FAMILY: the family named for every station, and for single stations (a station's
 // own wins). Empty: none named.
 struct DriveHints {

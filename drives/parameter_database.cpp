@@ -423,6 +423,12 @@ void ParameterDatabase::override_conversion(const ConversionOverride& o) {
             if (row.conversion == o.index) row.scaling = o.conversion;
 }
 
+std::optional<Conversion> ParameterDatabase::conversion(int index) const noexcept {
+    for (const ConversionOverride& o : overrides_)
+        if (o.index == index) return o.conversion;
+    return conversion_of_index(index);
+}
+
 void ParameterDatabase::add(ParameterFamily family) {
     for (ParameterRow& row : family.rows)
         for (const ConversionOverride& o : overrides_)

@@ -163,6 +163,9 @@ class ParameterDatabase {
     // Gives every row of conversion index `o.index` (those held and those added later) the
     // factor `o.conversion`.
     void override_conversion(const ConversionOverride& o);
+    // What conversion index `index` does here: a --conversion-index given for it, else
+    // conversion_of_index.
+    std::optional<Conversion> conversion(int index) const noexcept;
 
     const ParameterFamily* family(std::string_view id) const noexcept;
     const std::deque<ParameterFamily>& families() const noexcept { return families_; }

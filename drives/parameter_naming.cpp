@@ -16,7 +16,23 @@ ParameterNaming::ParameterNaming(std::shared_ptr<const ParameterDatabase> databa
         const auto address = static_cast<std::uint8_t>(station);
         families_[station] =
             database_->family(drive_family(bus, dialects[station], drives.of(address)));
+        hinted_[station] = drives.of(address).has_value();
     }
+}
+
+void ParameterNaming::set_device_family(std::uint8_t station, std::string_view family) noexcept {
+    if (hinted_[station & 0x7F]) return;
+    if (const ParameterFamily* held = database_->family(family)) families_[station & 0x7F] = held;
+}
+
+DescribingNaming::DescribingNaming(const ParameterNaming& base)
+    : described_(&base.database()), naming_(base) {
+    naming_.describe_with(&described_);
+}
+
+DescribingNaming::DescribingNaming(const DescribingNaming& other)
+    : described_(other.described_), naming_(other.naming_) {
+    naming_.describe_with(&described_);
 }
 
 std::shared_ptr<const ParameterDatabase> shipped_parameter_database() {
@@ -31,6 +47,9 @@ std::shared_ptr<const ParameterDatabase> shipped_parameter_database() {
 }
 
 NamedParameter ParameterNaming::parameter(std::uint8_t station, std::uint16_t pnu) const noexcept {
+    if (described_)
+        if (const ParameterRow* row = described_->find(station, pnu))
+            return {&described_->family(), row};
     const ParameterFamily* family = families_[station & 0x7F];
     if (family)
         if (const ParameterRow* row = family->find(pnu)) return {family, row};

@@ -11,6 +11,7 @@
 
 #include "core/code_tables.hpp"
 #include "core/telegram.hpp"
+#include "drives/described_parameters.hpp"
 #include "drives/drive_family.hpp"
 #include "drives/parameter_database.hpp"
 
@@ -43,13 +44,44 @@ class ParameterNaming {
         return StationNaming{this, static_cast<std::uint8_t>(address & 0x7F)};
     }
     const ParameterDatabase& database() const noexcept { return *database_; }
+    const std::shared_ptr<const ParameterDatabase>& database_ptr() const noexcept {
+        return database_;
+    }
+
+    // A slave's device description (its GSD file) names its family: taken unless --drive named
+    // one for the station (a family no database holds changes nothing).
+    void set_device_family(std::uint8_t station, std::string_view family) noexcept;
+
+    // What the drives of the capture said about their parameters (a decoder's, kept as it
+    // decodes): a row there wins over the databases' (parameter()). Null: none.
+    void describe_with(const DescribedParameters* described) noexcept { described_ = described; }
 
   private:
     std::shared_ptr<const ParameterDatabase> database_;
     std::array<const ParameterFamily*, kStationCount> families_{};
+    std::array<bool, kStationCount> hinted_{};  // --drive named the station's family
     // On PROFIBUS, the profile family that names the profile PNUs a station's family has no row
     // for; null elsewhere or when not loaded.
     const ParameterFamily* profile_ = nullptr;
+    const DescribedParameters* described_ = nullptr;
+};
+
+// A capture's naming with what its drives described put first (a decoder's, which learns the
+// descriptions as it decodes): one object, so that a copy (a decoder's clone) names with its own
+// copy of the descriptions.
+class DescribingNaming {
+  public:
+    explicit DescribingNaming(const ParameterNaming& base);
+    DescribingNaming(const DescribingNaming& other);
+    DescribingNaming& operator=(const DescribingNaming&) = delete;
+
+    const ParameterNaming& naming() const noexcept { return naming_; }
+    ParameterNaming& naming() noexcept { return naming_; }
+    DescribedParameters& described() noexcept { return described_; }
+
+  private:
+    DescribedParameters described_;
+    ParameterNaming naming_;
 };
 
 // The shipped databases (drives/shipped_databases.hpp), parsed once; a database that does not

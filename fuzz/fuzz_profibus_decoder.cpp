@@ -17,13 +17,18 @@
 // 7 the telegram itself). Byte 1: bits 0-2 the PPO type Chk_Cfg announces (1..5; 0, 6, 7 odd
 // configurations), bit 3 --ppo for the slave as well, bits 4-5 PCD profile (unset, fc,
 // profidrive), bit 6 the PROFIdrive request changes the value (else reads it), bit 7 two
-// parameters (else one). Then the telegram (at most 255 bytes).
+// parameters (else one; a read of two asks for the second's description element 4, which the
+// decoder, given the shipped databases' naming, learns from). Then the telegram (at most 255
+// bytes).
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "drives/parameter_naming.hpp"
 #include "fuzz/support/checksum_repair.hpp"
 #include "fuzz/support/decoded_check.hpp"
 #include "fuzz/support/fuzz_input.hpp"
@@ -141,8 +146,12 @@ std::vector<std::uint8_t> profidrive_write(bool change, bool two) {
         count};
     pdu.insert(pdu.end(), request_header.begin(), request_header.end());
     for (std::uint8_t i = 0; i < count; ++i) {
-        // attribute value, 1 element, PNU 0x0100 + i, subindex 0
-        const std::uint8_t address[] = {0x10, 0x01, 0x01, i, 0x00, 0x00};
+        // attribute value, 1 element, PNU 0x0100 + i, subindex 0; reading two, the second is
+        // description element 4 (the variable attribute), which the decoder learns from
+        const bool describe = !change && i == 1;
+        const std::uint8_t address[] = {
+            static_cast<std::uint8_t>(describe ? 0x20 : 0x10), 0x01, 0x01, i, 0x00,
+            static_cast<std::uint8_t>(describe ? 4 : 0)};
         pdu.insert(pdu.end(), std::begin(address), std::end(address));
     }
     if (change) {
@@ -323,6 +332,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const Stations s = stations_of(telegram);
     if (h1 & 0x08) options.station_ppo[s.slave] = static_cast<std::uint8_t>((h1 & 0x07) % 6);
 
+    // Names from the shipped databases, with what the drive describes first: the description
+    // answers reach the learning (drives/described_parameters.hpp).
+    static const std::shared_ptr<const dpscope::ParameterNaming> naming =
+        std::make_shared<dpscope::ParameterNaming>(
+            dpscope::shipped_parameter_database(), dpscope::Protocol::ProfibusDp,
+            std::array<dpscope::Dialect, dpscope::kStationCount>{}, dpscope::DriveHints{});
+    options.naming = naming;
     Run run(options);
     decode_context(run, s, h0, h1, telegram);
     dpscope::fuzz::decode_and_check(run, telegram, dpscope::Protocol::ProfibusDp,

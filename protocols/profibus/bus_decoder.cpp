@@ -43,7 +43,9 @@ BusDecoder::BusDecoder(DecoderOptions options) : options_(std::move(options)) {
     if (options_.gsd)
         for (std::size_t a = 0; a < stations_.size(); ++a)
             stations_[a].device = options_.gsd->forced(static_cast<std::uint8_t>(a));
-    current_.naming = options_.naming.get();
+    if (options_.naming) naming_.emplace(*options_.naming);
+    for (const StationConfig& station : stations_)
+        take_device_family(station);
 }
 
 void BusDecoder::layout_for(std::uint8_t slave, std::size_t du_length,
@@ -97,6 +99,7 @@ const DecodedTelegram& BusDecoder::decode(Bytes bytes, std::int64_t time_ns, std
     t.frame = frame;
     t.time_ns = time_ns;
     t.bytes = bytes;
+    t.naming = naming_ ? &naming_->naming() : nullptr;  // this decoder's (a clone has its own)
     t.dp.service = Service::Unknown;
     t.has_roles = false;
     t.master = t.slave = 0;
@@ -250,9 +253,17 @@ void BusDecoder::read_service_data(DecodedTelegram& t, StationConfig& station) {
     }
 }
 
-void BusDecoder::match_gsd(StationConfig& station, std::uint16_t ident) const noexcept {
+void BusDecoder::match_gsd(StationConfig& station, std::uint16_t ident) noexcept {
     if (station.device || !options_.gsd) return;
     station.device = options_.gsd->by_ident(ident);
+    take_device_family(station);
+}
+
+void BusDecoder::take_device_family(const StationConfig& station) noexcept {
+    if (!station.device || !naming_) return;
+    if (const auto family = family_of_device(station.device->vendor, station.device->model))
+        naming_->naming().set_device_family(static_cast<std::uint8_t>(&station - stations_.data()),
+                                            *family);
 }
 
 void BusDecoder::read_gsd(DecodedTelegram& t, StationConfig& station) {
@@ -333,8 +344,26 @@ void BusDecoder::read_dpv1(DecodedTelegram& t, ByteReader du) {
             parsed.addresses.assign(kept->addresses.begin(), kept->addresses.end());
             // A request names one response: a second one (an orphan) is not named after it.
             // A damaged response is read again by the master, so it answers nothing yet.
-            if (t.dp.fdl.fcs_ok) kept->answered = true;
+            if (t.dp.fdl.fcs_ok) {
+                kept->answered = true;
+                if (naming_) learn_descriptions(t, parsed);
+            }
         }
+    }
+}
+
+void BusDecoder::learn_descriptions(const DecodedTelegram& t, const ProfidriveMessage& response) {
+    const std::uint8_t id = response.id & static_cast<std::uint8_t>(~profidrive::kNegative);
+    if (id != profidrive::kRequestValue && id != profidrive::kRequestValueDoubleWord) return;
+    const std::size_t n = std::min(response.addresses.size(), response.blocks.size());
+    for (std::size_t i = 0; i < n; ++i) {
+        const ProfidriveAddress& address = response.addresses[i];
+        const ProfidriveValueBlock& block = response.blocks[i];
+        if (address.attribute != profidrive::kAttributeDescription || block.is_error() ||
+            !block.complete)
+            continue;
+        naming_->described().learn(t.slave, address.pnu, address.subindex, block.values, t.frame,
+                                   options_.naming->parameter(t.slave, address.pnu).row);
     }
 }
 

@@ -15,6 +15,7 @@
 #include "core/protocol_lane.hpp"
 #include "core/telegram.hpp"
 #include "core/time.hpp"
+#include "drives/parameter_naming.hpp"
 #include "protocols/profibus/dp_payload.hpp"
 #include "protocols/profibus/dp_service.hpp"
 #include "protocols/profibus/dpv1/dpv1.hpp"
@@ -93,6 +94,9 @@ class BusDecoder final : public TelegramDecoder {
         return stations_[address & 0x7F];
     }
     const DecoderOptions& options() const noexcept { return options_; }
+    const ParameterNaming* naming() const noexcept override {
+        return naming_ ? &naming_->naming() : nullptr;
+    }
     // The PPO layout the decoder uses for `slave`, for a data unit of `du_length` bytes.
     PpoLayout layout_for(std::uint8_t slave, std::size_t du_length) const noexcept {
         PpoLayout layout;
@@ -135,8 +139,13 @@ class BusDecoder final : public TelegramDecoder {
     KeptProfidriveRequest* kept_profidrive_request(const DecodedTelegram& t,
                                                    const Dpv1Pdu& pdu) noexcept;
     void learn_length12_type(const DecodedTelegram& t);
+    // A positive answer to a description request (attribute 0x20): what the drive says about
+    // its parameters names and scales them from now on (drives/described_parameters.hpp).
+    void learn_descriptions(const DecodedTelegram& t, const ProfidriveMessage& response);
     // The GSD of the slave that sent or was sent `ident` (when it has none yet).
-    void match_gsd(StationConfig& station, std::uint16_t ident) const noexcept;
+    void match_gsd(StationConfig& station, std::uint16_t ident) noexcept;
+    // The family the station's GSD names (family_of_device) names its PNUs from now on.
+    void take_device_family(const StationConfig& station) noexcept;
     // What the slave's GSD says about the service data just read.
     void read_gsd(DecodedTelegram& t, StationConfig& station);
     // --ppo for this slave contradicts the configuration just learnt: remember the first time.
@@ -151,6 +160,8 @@ class BusDecoder final : public TelegramDecoder {
     UnansweredRequest pending_;
     std::vector<KeptProfidriveRequest> profidrive_requests_;
     std::vector<std::uint16_t> identifier_offsets_;  // read_gsd's, kept for its capacity
+    // The naming put on the telegrams: the options', with what the drives described first.
+    std::optional<DescribingNaming> naming_;
     DecodedTelegram current_;
 };
 
