@@ -7,6 +7,7 @@
 namespace dpscope::cli {
 
 void add_decode_command(CLI::App& app, int& exit_code);
+void add_filter_command(CLI::App& app, int& exit_code);
 void add_hex_command(CLI::App& app, int& exit_code);
 void add_params_command(CLI::App& app, int& exit_code);
 void add_report_command(CLI::App& app, int& exit_code);

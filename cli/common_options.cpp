@@ -88,6 +88,14 @@ void add_display_options(CLI::App& app, DecodeOptionValues& values,
     app.add_flag("-l,--line-buffered", values.line_buffered,
                  "Write each telegram's output as soon as it is decoded, also into a pipe (as "
                  "tcpdump -l); on a terminal that is always done");
+    app.add_option("-Y,--display-filter", values.display_filter,
+                   "Show only telegrams the filter EXPR selects (docs/filter.md): fields by the "
+                   "Wireshark plugin's names (dpscope.pcv.rc == 7, dpscope.station == 5, "
+                   "dpscope.finding == \"stacked_request\", health.event == \"station_lost\"), "
+                   "== != < <= > >=, contains, in {...}, && || ! and parentheses; dpscope filter "
+                   "--fields lists the fields. With --station and --pnu, all must hold. All "
+                   "telegrams are still decoded and tracked")
+        ->type_name("EXPR");
     app.add_option("--station", values.stations,
                    "Show only telegrams to or from station ADDR (0 to 127), and those carrying a "
                    "finding about it; repeat for more stations. All telegrams are still decoded "
@@ -516,6 +524,27 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
             settings.pnus.push_back(*pnu);
         }
     }
+    // -Y, with --station and --pnu as its shorthands: one filter.
+    std::vector<std::string> parts;
+    if (!values.display_filter.empty()) {
+        Result<DisplayFilter> parsed = DisplayFilter::parse(values.display_filter);
+        if (!parsed)
+            return Error{fmt::format("-Y '{}': {}", values.display_filter, parsed.error())};
+        parts.push_back("(" + values.display_filter + ")");
+        settings.display_filter = values.display_filter;
+    }
+    if (!settings.stations.empty()) parts.push_back(station_filter_text(settings.stations));
+    if (!settings.pnus.empty()) parts.push_back("(" + pnu_filter_text(settings.pnus) + ")");
+    if (!parts.empty()) {
+        std::string joined;
+        for (const std::string& part : parts)
+            joined += (joined.empty() ? "" : " && ") + part;
+        Result<DisplayFilter> parsed = DisplayFilter::parse(joined);
+        if (!parsed) return Error{fmt::format("-Y '{}': {}", joined, parsed.error())};
+        settings.filter = std::make_shared<const DisplayFilter>(std::move(*parsed));
+        // health.* fields: the events come from the bus-health tracker.
+        if (settings.filter->reads("health.")) settings.track_health = true;
+    }
     settings.write = values.write;
     settings.write_format =
         capture_format_from_name(values.write_format).value_or(CaptureFormat::Pcap);
@@ -566,33 +595,21 @@ bool addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
 }
 
 bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
-                   std::span<const Finding> findings, std::int32_t subject_pnu) noexcept {
-    if (!settings.stations.empty()) {
-        const std::bitset<kStationCount> ends = stations_of(t);
-        const bool masters_addressed = protocol_descriptor(t.protocol).masters_addressed;
-        bool match =
-            std::any_of(settings.stations.begin(), settings.stations.end(), [&](std::uint8_t a) {
-                return ends.test(a & 0x7F) ||
-                       std::any_of(findings.begin(), findings.end(), [&](const Finding& f) {
-                           // The FC and VLT 2000 masters have no address: a finding is about
-                           // its drive.
-                           return f.has_stations &&
-                                  ((f.master == a && masters_addressed) ||
-                                   f.slave == a);
-                       });
-            });
-        if (!match) return false;
+                   std::span<const Finding> findings, std::int32_t subject_pnu,
+                   std::span<const FilterEvent> events) noexcept {
+    if (!settings.filter) return true;
+    return settings.filter->matches(FilterInput{t, findings, subject_pnu, events});
+}
+
+std::span<const FilterEvent> filter_events(std::span<const HealthEvent> events,
+                                           std::span<FilterEvent> out) noexcept {
+    std::size_t n = 0;
+    for (const HealthEvent& e : events) {
+        if (n == out.size()) break;
+        out[n++] = FilterEvent{health_event_name(e.kind),
+                               e.kind == HealthEventKind::VerdictBad ? "bad" : "", e.address};
     }
-    if (!settings.pnus.empty()) {
-        bool match =
-            std::any_of(settings.pnus.begin(), settings.pnus.end(), [&](std::uint16_t pnu) {
-                return (t.dp.has_pcv && subject_pnu == pnu) || addresses_pnu(t, pnu) ||
-                       std::any_of(findings.begin(), findings.end(),
-                                   [&](const Finding& f) { return f.pnu && *f.pnu == pnu; });
-            });
-        if (!match) return false;
-    }
-    return true;
+    return out.first(n);
 }
 
 int finish_staged_output(PendingOutputFile& file, int exit_code, std::string_view partial_why,

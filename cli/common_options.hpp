@@ -20,6 +20,7 @@
 #include "core/result.hpp"
 #include "drives/drive_family.hpp"
 #include "drives/parameter_database.hpp"
+#include "filter/display_filter.hpp"
 #include "formats/renderer.hpp"
 #include "protocols/lane_options.hpp"
 #include "protocols/profibus/health/bus_health.hpp"
@@ -78,6 +79,7 @@ struct DecodeOptionValues {
     std::uint64_t count = 0;
     std::vector<unsigned> stations;
     std::vector<std::string> pnus;  // --pnu: 1613, 16-13 or a parameter's name
+    std::string display_filter;     // -Y EXPR (filter/display_filter.hpp)
     std::vector<std::string> ppo;
     std::vector<std::string> dialects;
     std::vector<std::string> gsd_files;  // --gsd FILE or ADDR=FILE
@@ -156,7 +158,12 @@ struct DecodeSettings {
     std::uint32_t baud_given = 0;
     LineSettings line;
 
-    bool filtering() const noexcept { return !stations.empty() || !pnus.empty(); }
+    // -Y, --station and --pnu as one filter (the shorthands in the filter language, joined to
+    // -Y with &&); null: every telegram is shown.
+    std::shared_ptr<const DisplayFilter> filter;
+    std::string display_filter;  // -Y as given ("" none)
+
+    bool filtering() const noexcept { return filter != nullptr; }
 };
 
 // The line the capture was made on: the time a telegram takes on it (the FC and VLT 2000
@@ -212,19 +219,25 @@ std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept;
 // addresses parameter `pnu`; for an FC telegram, whether its PKW carries PNU `pnu`.
 bool addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept;
 
-// --station and --pnu: does the telegram pass? A telegram passes --station when it is to or
-// from one of the stations (by address or DP role) or a finding at it concerns one; --pnu when
-// its parameter channel is about one of the parameters (`subject_pnu`, from the tracker: a
-// rejection without PNU is about the request it answers) or a finding at it concerns one.
+// -Y, --station and --pnu (settings.filter): does the telegram pass? A telegram passes --station
+// when it is to or from one of the stations (by address or DP role) or a finding at it concerns
+// one; --pnu when its parameter channel is about one of the parameters (`subject_pnu`, from the
+// tracker: a rejection without PNU is about the request it answers) or a finding at it concerns
+// one; -Y when its expression holds (`events`: the health events the telegram caused).
 bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
-                   std::span<const Finding> findings, std::int32_t subject_pnu) noexcept;
+                   std::span<const Finding> findings, std::int32_t subject_pnu,
+                   std::span<const FilterEvent> events = {}) noexcept;
+
+// The health events a telegram caused as the filter reads them (at most `out.size()`).
+std::span<const FilterEvent> filter_events(std::span<const HealthEvent> events,
+                                           std::span<FilterEvent> out) noexcept;
 
 // Renders `t` when it passes the filters; otherwise lets `renderer` pass over it. Returns
 // whether it passed.
 inline bool show(TelegramRenderer* renderer, const DecodeSettings& settings,
                  const DecodedTelegram& t, std::span<const Finding> findings,
-                 std::int32_t subject_pnu) {
-    bool shown = passes_filter(settings, t, findings, subject_pnu);
+                 std::int32_t subject_pnu, std::span<const FilterEvent> events = {}) {
+    bool shown = passes_filter(settings, t, findings, subject_pnu, events);
     if (renderer) {
         if (shown)
             renderer->render(t, findings);

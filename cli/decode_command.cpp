@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <bitset>
 #include <cerrno>
 #include <cstdio>
@@ -155,7 +156,10 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
                 pnus_seen.set(static_cast<std::size_t>(subject_pnu));
             protocol_descriptor(t.protocol).mark_pnus(t, pnus_seen);
         }
-        if (!show(renderer.get(), settings, t, findings, subject_pnu)) continue;
+        std::array<FilterEvent, 8> event_buffer;
+        const std::span<const FilterEvent> events =
+            filter_events(pipeline.health_events(), event_buffer);
+        if (!show(renderer.get(), settings, t, findings, subject_pnu, events)) continue;
         if (settings.filtering()) {
             shown_summary.add(t);
             shown_summary.add_findings(findings);
@@ -210,6 +214,8 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
             InputSummary input = describe_input(source);
             input.name += settings.stations.empty() ? "" : ", telegrams of the --station list";
             input.name += settings.pnus.empty() ? "" : ", telegrams about the --pnu list";
+            input.name +=
+                settings.display_filter.empty() ? "" : ", telegrams the -Y filter selects";
             // A drive's commands by outcome are its own, whatever --station selects; of the
             // telegrams about a --pnu, the counts alone.
             shown_summary.render_text(out, input, pipeline.decoder(),

@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
     std::signal(SIGXFSZ, SIG_IGN);
     int exit_code = kExitOk;
     add_decode_command(app, exit_code);
+    add_filter_command(app, exit_code);
     add_hex_command(app, exit_code);
     add_params_command(app, exit_code);
     add_report_command(app, exit_code);

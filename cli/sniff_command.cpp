@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <array>
 #include <atomic>
 #include <cctype>
 #include <cerrno>
@@ -437,7 +438,7 @@ int run_sniff(const SniffCommand& command) {
     tty_options.idle_gap_ns = static_cast<std::int64_t>(command.idle_gap_ms) * 1'000'000;
     // Bus health: the bus load at the port's rate and character (8E1: 11 bits).
     // The report at the end has its bus-health section too (PROFIBUS), as `dpscope report` has.
-    settings->track_health = stats || !command.alarm.empty() || report;
+    settings->track_health = settings->track_health || stats || !command.alarm.empty() || report;
     settings->health.baud = port->baud();
     settings->health.character_bits = tty_options.character_bits;
     const std::string heading =
@@ -522,7 +523,9 @@ int run_sniff(const SniffCommand& command) {
             }
             const DecodedTelegram& t = pipeline.feed(record, findings);
             if (report && !findings.empty()) log.append(findings);
-            show(renderer.get(), *settings, t, findings, pipeline.subject_pnu());
+            std::array<FilterEvent, 8> event_buffer;
+            show(renderer.get(), *settings, t, findings, pipeline.subject_pnu(),
+                 filter_events(pipeline.health_events(), event_buffer));
             if (live) live->on_events(pipeline.health_events());
             // -c N: exactly N telegrams, not what else the driver still holds.
             if (settings->count != 0 && telegrams >= settings->count) break;

@@ -14,6 +14,7 @@
 #include <span>
 #include <string_view>
 
+#include "core/filter_field.hpp"
 #include "core/framing_rules.hpp"
 #include "core/telegram.hpp"
 
@@ -102,6 +103,9 @@ struct ProtocolDescriptor {
     // "fc", "vlt2000"; empty: each station's own (a PROFIBUS slave's by its dialect,
     // drives/drive_family.hpp).
     std::string_view drive_family = {};
+    // The fields of its own the filter language reads (core/filter_field.hpp, docs/filter.md):
+    // `dpscope.pcv.rc`, `dpscope.fc.ak`, ...; the fields of every bus are filter/'s.
+    std::span<const FilterField> filter_fields = {};
     // The one parameter the telegram is about, with the value it carries; nullopt when it is
     // about none (a process-data telegram, the idle PCV) or several (a DP-V1 request may address
     // up to 39). Null: the protocol names no parameters.

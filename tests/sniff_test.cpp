@@ -248,6 +248,31 @@ TEST(SniffTest, StopsAfterCountAndAfterDuration) {
     }
 }
 
+// -Y shows only what the filter selects, live (docs/filter.md); the capture is counted whole.
+TEST(SniffTest, DisplayFilterSelectsTheLiveLines) {
+    PseudoTerminal pty;
+    Sniffer sniffer(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-c", "150", "-Y",
+                          "dpscope.dp.service == \"Data_Exchange\" && "
+                          "dpscope.direction == request"}));
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    SimulatorOptions options;
+    options.cycles = 60;
+    play(pty, simulate(options), true);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    const std::string out = sniffer.out();
+    // -c counts what is read: 150 telegrams, a third of them Data_Exchange requests.
+    ASSERT_GT(std::count(out.begin(), out.end(), '\n'), 20) << out;
+    ASSERT_LT(std::count(out.begin(), out.end(), '\n'), 100) << out;
+    std::size_t start = 0;
+    while (start < out.size()) {
+        const std::size_t end = out.find('\n', start);
+        const std::string line = out.substr(start, end - start);
+        EXPECT_NE(line.find("Data_Exchange  req"), std::string::npos) << line;
+        start = end + 1;
+    }
+}
+
 TEST(SniffTest, RotationLosesNothingAtTheSeams) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("rotated.pcap");

@@ -8,6 +8,8 @@
 
 namespace dpscope {
 
+std::span<const FilterField> fc_filter_fields() noexcept;  // fc_filter_fields.cpp
+
 namespace {
 
 // The FC protocol has no link type of its own: dpscope writes it as USER0 and records the bus in
@@ -20,19 +22,12 @@ constexpr std::uint32_t kFcDefaultLineBaud = 9600;
 constexpr std::uint32_t kFcMinBaud = 2400;
 constexpr std::uint32_t kFcMaxBaud = 115'200;
 
-// The parameter an FC telegram names: its PKW's PNU (a response echoes its request's); none
-// without a PKW.
-std::optional<std::uint16_t> fc_named_pnu(const DecodedTelegram& t) noexcept {
-    if (!t.fc.has_pkw) return std::nullopt;
-    return t.fc.pkw.pnu;
-}
-
 bool fc_addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
-    return fc_named_pnu(t) == pnu;
+    return fc_named_pnu(t.fc) == pnu;
 }
 
 void fc_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
-    if (const auto pnu = fc_named_pnu(t)) seen.set(*pnu);
+    if (const auto pnu = fc_named_pnu(t.fc)) seen.set(*pnu);
 }
 
 std::optional<TelegramParameter> fc_parameter_of(const DecodedTelegram& t) noexcept {
@@ -89,6 +84,7 @@ const ProtocolDescriptor& fc_protocol() noexcept {
         .addresses_pnu = fc_addresses_pnu,
         .mark_pnus = fc_mark_pnus,
         .drive_family = "fc",
+        .filter_fields = fc_filter_fields(),
         .parameter_of = fc_parameter_of,
         .make_decoder = fc_decoder,
         .make_tracker = fc_tracker,

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 #include "core/byte_reader.hpp"
@@ -73,6 +74,13 @@ struct FcTelegram {
 
     void reset() noexcept { *this = FcTelegram{}; }
 };
+
+// The parameter an FC telegram names: its PKW's PNU (a response echoes its request's); none
+// without a PKW (--pnu, the filter's dpscope.pnu).
+inline std::optional<std::uint16_t> fc_named_pnu(const FcTelegram& fc) noexcept {
+    if (!fc.has_pkw) return std::nullopt;
+    return fc.pkw.pnu;
+}
 
 // Every problem found in an FC telegram (DecodedTelegram::problems()).
 inline const ProblemList& payload_problems(const FcTelegram& fc) noexcept { return fc.problems; }

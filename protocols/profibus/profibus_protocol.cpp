@@ -8,6 +8,8 @@
 
 namespace dpscope {
 
+std::span<const FilterField> profibus_filter_fields() noexcept;  // profibus_filter_fields.cpp
+
 namespace {
 
 constexpr std::array<PcapLinkType, 2> kProfibusLinkTypes{{
@@ -88,6 +90,7 @@ const ProtocolDescriptor& profibus_protocol() noexcept {
         .addresses_pnu = profibus_addresses_pnu,
         .mark_pnus = profibus_mark_pnus,
         .drive_family = {},  // each slave's, by its dialect (drives/drive_family.hpp)
+        .filter_fields = profibus_filter_fields(),
         .parameter_of = profibus_parameter_of,
         .make_decoder = profibus_decoder,
         .make_tracker = profibus_tracker,

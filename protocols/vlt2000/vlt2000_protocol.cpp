@@ -8,6 +8,8 @@
 
 namespace dpscope {
 
+std::span<const FilterField> vlt2000_filter_fields() noexcept;  // vlt2000_filter_fields.cpp
+
 namespace {
 
 // Its line unless --baud says otherwise: 9600 baud 8N1 (its manual: 8 data bits, no parity, 1
@@ -18,25 +20,18 @@ constexpr std::uint32_t kVlt2000DefaultLineBaud = 9600;
 // No link type of its own: dpscope writes it as USER0 and records the bus in the file.
 constexpr std::array<PcapLinkType, 1> kVlt2000LinkTypes{{{kLinkTypeUser0, "USER0"}}};
 
-// The parameter a VLT 2000 telegram names (a C telegram's is ignored); none without one.
-std::optional<std::uint16_t> vlt2000_named_pnu(const DecodedTelegram& t) noexcept {
-    if (!t.vlt2000.has_parameter || t.vlt2000.letter == Vlt2000Letter::Control)
-        return std::nullopt;
-    return t.vlt2000.parameter;
-}
-
 bool vlt2000_addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
-    return vlt2000_named_pnu(t) == pnu;
+    return vlt2000_named_pnu(t.vlt2000) == pnu;
 }
 
 void vlt2000_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
-    if (const auto pnu = vlt2000_named_pnu(t)) seen.set(*pnu);
+    if (const auto pnu = vlt2000_named_pnu(t.vlt2000)) seen.set(*pnu);
 }
 
 // Its parameter and the value it carries with its own decimal point: not a C telegram's, a failed
 // one's, an I telegram's index or a read command's (the drive fills that in).
 std::optional<TelegramParameter> vlt2000_parameter_of(const DecodedTelegram& t) noexcept {
-    const std::optional<std::uint16_t> pnu = vlt2000_named_pnu(t);
+    const std::optional<std::uint16_t> pnu = vlt2000_named_pnu(t.vlt2000);
     if (!pnu || !t.has_roles) return std::nullopt;
     const Vlt2000Telegram& v = t.vlt2000;
     TelegramParameter p;
@@ -87,6 +82,7 @@ const ProtocolDescriptor& vlt2000_protocol() noexcept {
         .addresses_pnu = vlt2000_addresses_pnu,
         .mark_pnus = vlt2000_mark_pnus,
         .drive_family = "vlt2000",
+        .filter_fields = vlt2000_filter_fields(),
         .parameter_of = vlt2000_parameter_of,
         .make_decoder = vlt2000_decoder,
         .make_tracker = vlt2000_tracker,

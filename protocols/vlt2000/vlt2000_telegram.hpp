@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 #include "core/byte_reader.hpp"
@@ -95,7 +96,14 @@ inline const ProblemList& payload_problems(const Vlt2000Telegram& v) noexcept {
     return v.problems;
 }
 
-std::string_view vlt2000_letter_name(Vlt2000Letter letter) noexcept;  // "update", ..., "unknown"
+std::string_view vlt2000_letter_name(Vlt2000Letter letter) noexcept;
+
+// The parameter a VLT 2000 telegram names (a C telegram's is ignored); none without one (--pnu,
+// the filter's dpscope.pnu).
+inline std::optional<std::uint16_t> vlt2000_named_pnu(const Vlt2000Telegram& t) noexcept {
+    if (!t.has_parameter || t.letter == Vlt2000Letter::Control) return std::nullopt;
+    return t.parameter;
+}  // "update", ..., "unknown"
 
 // The checksum of a telegram [P:VLT3500 p86]: the sum of the character codes of bytes 2..19
 // (offsets 1..18), its last two decimal digits. `telegram` holds at least 19 bytes.

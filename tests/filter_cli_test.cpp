@@ -1,0 +1,100 @@
+// The filter language on the command line (issue 30, docs/filter.md): -Y selects what decode and
+// hex show and -q counts; --station and --pnu are its shorthands (the same lines); a bad
+// expression is exit 2 naming its column; a health.* field turns the bus-health tracking on;
+// `dpscope filter` lists the fields and checks an expression.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "tests/test_support.hpp"
+
+namespace dpscope {
+namespace {
+
+using test::CommandResult;
+using test::run_dpscope;
+
+std::string sample(const std::string& name) { return test::source_dir() + "/samples/" + name; }
+
+std::size_t lines(const std::string& text) {
+    return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+TEST(FilterCliTest, DisplayFilterSelectsAsTheShorthandsDo) {
+    const std::string faults = sample("faults.pcap");
+    CommandResult station = run_dpscope({"decode", "--station", "3", faults});
+    CommandResult y = run_dpscope({"decode", "-Y", "dpscope.station == 3", faults});
+    ASSERT_EQ(station.exit_code, y.exit_code) << y.err;
+    EXPECT_EQ(station.out, y.out);
+    EXPECT_GT(lines(y.out), 10u);
+    CommandResult pnu = run_dpscope({"decode", "--pnu", "516", faults});
+    CommandResult ypnu =
+        run_dpscope({"decode", "-Y", "dpscope.pnu == 516 || dpscope.finding.pnu == 516", faults});
+    EXPECT_EQ(pnu.out, ypnu.out);
+    // -Y and a shorthand together: both must hold.
+    CommandResult both =
+        run_dpscope({"decode", "--station", "3", "-Y", "dpscope.direction == request", faults});
+    EXPECT_LT(lines(both.out), lines(station.out));
+    EXPECT_GT(lines(both.out), 0u);
+}
+
+TEST(FilterCliTest, RejectedRequestsAndFindingsByName) {
+    CommandResult r =
+        run_dpscope({"decode", "-Y", "dpscope.pcv.rc == 7 && dpscope.direction == response",
+                     sample("faults.pcap")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_GT(lines(r.out), 0u);
+    std::size_t start = 0;
+    while (start < r.out.size()) {
+        const std::size_t end = r.out.find('\n', start);
+        const std::string line = r.out.substr(start, end - start);
+        EXPECT_NE(line.find("RC=7"), std::string::npos) << line;
+        start = end + 1;
+    }
+    CommandResult stacked = run_dpscope(
+        {"decode", "-Y", "dpscope.finding == \"stacked_request\"", sample("faults.pcap")});
+    EXPECT_NE(stacked.out.find("[error stacked_request]"), std::string::npos) << stacked.out;
+    CommandResult quiet =
+        run_dpscope({"decode", "-q", "-Y", "dpscope.pcv.rc == 7", sample("faults.pcap")});
+    EXPECT_NE(quiet.out.find("telegrams the -Y filter selects"), std::string::npos);
+}
+
+TEST(FilterCliTest, HealthEventsAreTrackedForTheFilter) {
+    CommandResult lost = run_dpscope(
+        {"decode", "-Y", "health.event == \"station_lost\"", sample("bus-health.pcap")});
+    ASSERT_EQ(lost.exit_code, 0) << lost.err;
+    EXPECT_EQ(lines(lost.out), 1u) << lost.out;
+}
+
+TEST(FilterCliTest, ABadExpressionIsAUsageErrorNamingItsColumn) {
+    CommandResult r = run_dpscope({"decode", "-Y", "dpscope.pcv.rc ==", sample("faults.pcap")});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err,
+              "dpscope: error: -Y 'dpscope.pcv.rc ==': column 18: the expression ends where a "
+              "value for dpscope.pcv.rc was expected\n");
+    EXPECT_EQ(r.out, "");
+    CommandResult unknown = run_dpscope({"hex", "-Y", "pcv.rc == 1", "10 03 02 49 4E 16"});
+    EXPECT_EQ(unknown.exit_code, 2);
+    EXPECT_NE(unknown.err.find("column 1: no field 'pcv.rc'"), std::string::npos) << unknown.err;
+}
+
+TEST(FilterCliTest, FilterListsFieldsAndChecksExpressions) {
+    CommandResult fields = run_dpscope({"filter", "--fields"});
+    ASSERT_EQ(fields.exit_code, 0) << fields.err;
+    EXPECT_NE(fields.out.find("dpscope.pcv.rc"), std::string::npos);
+    EXPECT_NE(fields.out.find("health.event"), std::string::npos);
+    CommandResult json = run_dpscope({"filter", "--fields", "-T", "json"});
+    EXPECT_EQ(json.out.rfind("[{\"name\":", 0), 0u) << json.out.substr(0, 80);
+    CommandResult ok = run_dpscope({"filter", "dpscope.fc.ak in {1 2} || !dpscope.pcv"});
+    EXPECT_EQ(ok.exit_code, 0);
+    EXPECT_EQ(ok.out, "ok\n");
+    CommandResult bad = run_dpscope({"filter", "dpscope.fc.ak in {1 2"});
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("column 18: '{' is not closed"), std::string::npos) << bad.err;
+    CommandResult none = run_dpscope({"filter"});
+    EXPECT_EQ(none.exit_code, 2);
+}
+
+}  // namespace
+}  // namespace dpscope
