@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
 #include <utility>
 #include <vector>
 
@@ -416,10 +417,15 @@ class RotatingWriter final : public CaptureWriter {
           line_(line),
           first_(first) {}
 
-    // Closes the current file (if any) and starts the next one.
+    const RotationStats* rotation_stats() const noexcept override { return &stats_; }
+
+    // Closes the current file (if any) and starts the next one; then the ring removes what it
+    // keeps no more (the file just closed is complete by then).
     Result<void> open_next() {
         if (current_) {
             if (Result<void> closed = current_->close(); !closed) return closed;
+            kept_.push_back(KeptFile{index_, bytes_, records_});
+            kept_bytes_ += bytes_;
         }
         ++index_;
         std::string name = rotated_file_name(path_, index_);
@@ -435,7 +441,11 @@ class RotatingWriter final : public CaptureWriter {
                                                     : 0;
         file_start_ns_ = kNoTime;
         records_ = 0;
-        return {};
+        stats_.files_written = index_;
+        if (rotation_.ring_files > 0)
+            while (!kept_.empty() && kept_.size() + 1 > rotation_.ring_files)
+                if (Result<void> removed = remove_oldest(); !removed) return removed;
+        return keep_under_cap();
     }
 
   protected:
@@ -456,6 +466,12 @@ class RotatingWriter final : public CaptureWriter {
         if (file_start_ns_ == kNoTime) file_start_ns_ = time_ns;
         bytes_ += record_bytes;
         ++records_;
+        stats_.bytes_kept = kept_bytes_ + bytes_;
+        if (rotation_.max_disk > 0 && stats_.bytes_kept > rotation_.max_disk)
+            if (Result<void> capped = keep_under_cap(); !capped) {
+                error_ = capped.error();
+                return false;
+            }
         if (Result<void> written = current_->write(telegram, time_ns); !written) {
             error_ = written.error();
             return false;
@@ -479,6 +495,34 @@ class RotatingWriter final : public CaptureWriter {
     }
 
   private:
+    struct KeptFile {
+        unsigned index = 0;
+        std::uint64_t bytes = 0;
+        std::uint64_t records = 0;
+    };
+
+    Result<void> remove_oldest() {
+        const KeptFile oldest = kept_.front();
+        const std::string name = rotated_file_name(path_, oldest.index);
+        if (std::remove(name.c_str()) != 0 && errno != ENOENT)
+            return Error{fmt::format("{}: cannot remove the oldest file of the ring: {}", name,
+                                     std::strerror(errno))};
+        kept_.pop_front();
+        kept_bytes_ -= oldest.bytes;
+        ++stats_.files_removed;
+        stats_.records_removed += oldest.records;
+        stats_.bytes_kept = kept_bytes_ + bytes_;
+        return {};
+    }
+    // --max-disk: the oldest complete files go while the set is over the cap.
+    Result<void> keep_under_cap() {
+        stats_.bytes_kept = kept_bytes_ + bytes_;
+        if (rotation_.max_disk == 0) return {};
+        while (!kept_.empty() && kept_bytes_ + bytes_ > rotation_.max_disk)
+            if (Result<void> removed = remove_oldest(); !removed) return removed;
+        return {};
+    }
+
     std::string path_;
     CaptureFormat format_;
     int link_type_;
@@ -491,6 +535,9 @@ class RotatingWriter final : public CaptureWriter {
     std::uint64_t records_ = 0;
     std::int64_t file_start_ns_ = kNoTime;
     unsigned index_ = 0;
+    std::deque<KeptFile> kept_;  // the complete files on disk, oldest first
+    std::uint64_t kept_bytes_ = 0;
+    RotationStats stats_;
 };
 
 }  // namespace

@@ -21,9 +21,19 @@ enum class CaptureFormat { Pcap, Pcapng, Raw, Hex };
 std::string_view capture_format_name(CaptureFormat format);  // "pcap", "pcapng", "raw", "hex"
 std::optional<CaptureFormat> capture_format_from_name(std::string_view name);
 
+// What a rotating writer did with its files (the ring: sniff --ring, --max-disk).
+struct RotationStats {
+    unsigned files_written = 0;         // stem-00001 ... the current one
+    unsigned files_removed = 0;         // the oldest, removed by the ring or the disk cap
+    std::uint64_t records_removed = 0;  // the telegrams those held
+    std::uint64_t bytes_kept = 0;       // what the files left on disk hold
+};
+
 class CaptureWriter {
   public:
     virtual ~CaptureWriter() = default;
+    // A rotating writer's account of its files; null for one that writes one file.
+    virtual const RotationStats* rotation_stats() const noexcept { return nullptr; }
     // Each fails from the first write error on, saying what happened (naming the file).
     Result<void> write(Bytes telegram, std::int64_t time_ns) {
         return outcome(write_record(telegram, time_ns, {}));
@@ -77,6 +87,12 @@ WriterResult open_capture_writer(FILE* file, std::string name, CaptureFormat for
 struct RotationOptions {
     std::uint64_t max_bytes = 0;  // start a new file before one grows past this (0: no limit)
     std::int64_t max_ns = 0;      // ... or once its first telegram is this old (0: no limit)
+    // The ring (as dumpcap -b files:N): keep at most this many files, the current one included,
+    // removing the oldest once the file before the current one is complete (0: keep all).
+    unsigned ring_files = 0;
+    // And at most this many bytes in the files kept, removing the oldest complete files (never
+    // the current one) when the set grows past it (0: no cap).
+    std::uint64_t max_disk = 0;
 };
 
 // With rotation, FILE is written as stem-00001.ext, stem-00002.ext, ... (see

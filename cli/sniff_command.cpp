@@ -300,6 +300,22 @@ int run_sniff(const SniffCommand& command) {
         print_error("-w -: cannot rotate standard output; give a file name to rotate");
         return kExitUsage;
     }
+    // The ring keeps rotated files: it needs a rotation to have files to keep.
+    if ((command.ring > 0 || command.max_disk > 0) && !command.output.empty() &&
+        command.rotate_size == 0 && command.rotate_seconds == 0) {
+        print_error(fmt::format(
+            "{} keeps the files of a rotation: give --rotate-size or --rotate-seconds too",
+            command.ring > 0 ? "--ring" : "--max-disk"));
+        return kExitUsage;
+    }
+    if (command.max_disk > 0 && command.rotate_size > 0 &&
+        command.max_disk < 2 * command.rotate_size) {
+        print_error(
+            fmt::format("--max-disk {} is less than two files of --rotate-size {}: the "
+                        "ring could keep no complete file",
+                        command.max_disk, command.rotate_size));
+        return kExitUsage;
+    }
     if (Result<void> usage = check_report_options(command); !usage) {
         print_error(usage.error());
         return kExitUsage;
@@ -312,6 +328,8 @@ int run_sniff(const SniffCommand& command) {
     if (command.output.empty()) {
         const char* unused = command.rotate_size > 0      ? "--rotate-size"
                              : command.rotate_seconds > 0 ? "--rotate-seconds"
+                             : command.ring > 0           ? "--ring"
+                             : command.max_disk > 0       ? "--max-disk"
                              : !command.link_type.empty() ? "--linktype"
                                                           : nullptr;
         if (unused) {
@@ -368,7 +386,8 @@ int run_sniff(const SniffCommand& command) {
         }
         capture_file = std::move(staged).value();
         RotationOptions rotation{command.rotate_size,
-                                 static_cast<std::int64_t>(command.rotate_seconds * 1e9)};
+                                 static_cast<std::int64_t>(command.rotate_seconds * 1e9),
+                                 command.ring, command.max_disk};
         // The line as asked (the port, set up later, reads it back within 1 %): decode,
         // report and stats read the capture at its rate without --baud.
         const LineSettings line{baud, parity, command.stop_bits};
@@ -568,6 +587,15 @@ int run_sniff(const SniffCommand& command) {
             print_error(closed.error());
             output_failed = true;
         }
+        // What the ring removed: every telegram is in a file kept or counted here.
+        if (const RotationStats* ring = writer->rotation_stats();
+            ring && ring->files_removed > 0 && !extcap)
+            write_standard_error(fmt::format(
+                "dpscope: the ring kept files {} to {} ({} bytes); it removed the {} oldest, "
+                "which held {} telegrams\n",
+                rotated_file_name(command.output, ring->files_removed + 1),
+                rotated_file_name(command.output, ring->files_written), ring->bytes_kept,
+                ring->files_removed, ring->records_removed));
     }
     double seconds = static_cast<double>(monotonic_ns() - start) / 1e9;
     if (live) live->after_finish(telegrams, seconds);
@@ -724,6 +752,20 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
                     "Start a new file once the current one holds SECONDS of capture")
         ->check(finite_number(0.001, kMaxSeconds, " seconds"))
         ->type_name("SECONDS");
+    sub->add_option("--ring", command->ring,
+                    "With --rotate-size or --rotate-seconds: keep only the last N files (2 to "
+                    "100000), the current one included, as dumpcap -b files:N; the oldest is "
+                    "removed only once the file after it is complete. At the end, what the ring "
+                    "removed is counted on standard error")
+        ->check(whole_number(2, 100000))
+        ->type_name("N");
+    sub->add_option("--max-disk", command->max_disk,
+                    "With --rotate-size or --rotate-seconds: keep at most SIZE bytes in the files "
+                    "(e.g. 10G), removing the oldest complete files, never the current one; at "
+                    "least two files of --rotate-size")
+        ->transform(CLI::AsSizeValue(false))
+        ->transform(rotate_size_range())
+        ->type_name("SIZE");
     sub->add_option("--duration", command->duration, "Stop after SECONDS")
         ->check(finite_number(0.001, kMaxSeconds, " seconds"))
         ->type_name("SECONDS");

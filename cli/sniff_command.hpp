@@ -19,6 +19,8 @@ struct SniffCommand {
     std::string link_type;  // "" = profibus
     std::uint64_t rotate_size = 0;
     double rotate_seconds = 0;
+    unsigned ring = 0;           // --ring N: keep the last N files
+    std::uint64_t max_disk = 0;  // --max-disk SIZE: and at most SIZE bytes in them
     double duration = 0;
     bool report = false;
     std::string report_format = "text";

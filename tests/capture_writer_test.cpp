@@ -3,6 +3,7 @@
 #include "capture/capture_writer.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <string>
@@ -379,6 +380,93 @@ TEST(CaptureWriterTest, WriteErrorIsReportedOnClose) {
         EXPECT_FALSE(closed);
         EXPECT_EQ(closed.error().rfind("/dev/full: write failed: ", 0), 0u) << closed.error();
     }
+}
+
+// ---- the ring (sniff --ring, --max-disk; issue 30) ----------------------------------------------
+
+// 40 telegrams of 14 bytes (30 bytes a record in pcap) through a writer rotating at 100 bytes (the
+// 24-byte header and two records a file): the ring of 3 keeps the last 3 files, removes the older
+// ones only after the next is complete, and counts what it removed; what is kept is the session's
+// end, whole and in order, in readable files.
+TEST(CaptureWriterTest, TheRingKeepsTheLastFilesAndCountsWhatItRemoved) {
+    const std::string path = test::temp_path("ring.pcap");
+    RotationOptions rotation;
+    rotation.max_bytes = 100;
+    rotation.ring_files = 3;
+    WriterResult opened = open_rotating_writer(path, CaptureFormat::Pcap, 257, rotation);
+    ASSERT_TRUE(opened) << opened.error();
+    CaptureWriter& writer = *opened.value();
+    std::vector<std::vector<std::uint8_t>> sent;
+    for (int i = 0; i < 40; ++i) {
+        std::vector<std::uint8_t> bytes = hex("68 07 07 68 83 82 7D 3E 3E F3 F1 E2 16");
+        bytes.push_back(static_cast<std::uint8_t>(i));
+        sent.push_back(bytes);
+        ASSERT_TRUE(writer.write(Bytes(sent.back().data(), sent.back().size()), kT0 + i * 1000));
+        // Never more than 3 files on disk, the current one included.
+        unsigned on_disk = 0;
+        for (unsigned index = 1; index <= 30; ++index)
+            on_disk += access(rotated_file_name(path, index).c_str(), F_OK) == 0 ? 1 : 0;
+        EXPECT_LE(on_disk, 3u) << i;
+    }
+    ASSERT_TRUE(writer.close());
+    const RotationStats* stats = writer.rotation_stats();
+    ASSERT_NE(stats, nullptr);
+    EXPECT_EQ(stats->files_written, 20u);  // two records a file
+    EXPECT_EQ(stats->files_removed, 17u);
+    EXPECT_EQ(stats->records_removed, 34u);
+    EXPECT_EQ(stats->bytes_kept, 3u * (24 + 2 * 30));
+    std::vector<Telegram> kept;
+    for (unsigned index = 1; index <= 20; ++index) {
+        const std::string name = rotated_file_name(path, index);
+        if (index <= 17) {
+            EXPECT_NE(access(name.c_str(), F_OK), 0) << name;  // removed
+            continue;
+        }
+        ReadBack back = read_back(name);
+        EXPECT_EQ(back.status, InputStatus::Ok) << name;
+        kept.insert(kept.end(), back.telegrams.begin(), back.telegrams.end());
+        std::remove(name.c_str());
+    }
+    ASSERT_EQ(kept.size(), 6u);
+    for (std::size_t i = 0; i < kept.size(); ++i)
+        EXPECT_EQ(kept[i].bytes, sent[34 + i]) << i;
+}
+
+// --max-disk: the oldest complete files go while the set is over the cap, never the current one.
+TEST(CaptureWriterTest, TheDiskCapRemovesTheOldestCompleteFiles) {
+    const std::string path = test::temp_path("capped.pcap");
+    RotationOptions rotation;
+    rotation.max_bytes = 100;
+    rotation.max_disk = 250;  // two full files of 84 bytes and a part of the third
+    WriterResult opened = open_rotating_writer(path, CaptureFormat::Pcap, 257, rotation);
+    ASSERT_TRUE(opened) << opened.error();
+    CaptureWriter& writer = *opened.value();
+    const std::vector<std::uint8_t> bytes = hex("68 07 07 68 83 82 7D 3E 3E F3 F1 E2 16 00");
+    for (int i = 0; i < 20; ++i) {
+        ASSERT_TRUE(writer.write(Bytes(bytes.data(), bytes.size()), kT0 + i * 1000));
+        EXPECT_LE(writer.rotation_stats()->bytes_kept, 250u) << i;
+    }
+    ASSERT_TRUE(writer.close());
+    const RotationStats* stats = writer.rotation_stats();
+    EXPECT_EQ(stats->files_written, 10u);
+    EXPECT_EQ(stats->records_removed, 2u * stats->files_removed);
+    unsigned kept = 0;
+    std::uint64_t kept_bytes = 0;
+    for (unsigned index = 1; index <= 10; ++index) {
+        const std::string name = rotated_file_name(path, index);
+        if (access(name.c_str(), F_OK) != 0) {
+            EXPECT_LE(index, stats->files_removed) << name;  // the oldest went
+            continue;
+        }
+        ++kept;
+        kept_bytes += test::read_file(name).size();
+        EXPECT_EQ(read_back(name).status, InputStatus::Ok) << name;
+        std::remove(name.c_str());
+    }
+    EXPECT_EQ(kept + stats->files_removed, 10u);
+    EXPECT_GE(kept, 2u);
+    EXPECT_EQ(kept_bytes, stats->bytes_kept);
+    EXPECT_LE(kept_bytes, 250u);
 }
 
 }  // namespace

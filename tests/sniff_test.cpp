@@ -303,6 +303,45 @@ TEST(SniffTest, RotationLosesNothingAtTheSeams) {
     EXPECT_EQ(all, session.expected);
 }
 
+// --ring 3: the last three files stay, each a readable capture; the telegrams they hold are the
+// end of the session, and the ring counts the ones it removed, so every telegram is accounted for.
+TEST(SniffTest, TheRingKeepsTheLastFilesAndAccountsForTheRest) {
+    PseudoTerminal pty;
+    std::string pcap = test::temp_path("ring.pcap");
+    SimulatorOptions options;
+    options.cycles = 40;
+    Session session = simulate(options);
+    const std::size_t total = session.expected.size();
+    // -c: the sniffer stops by itself once it has read the whole session.
+    Sniffer sniffer(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", pcap, "-q",
+                          "--rotate-size", "2000", "--ring", "3", "-c", std::to_string(total)}));
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    play(pty, session, true);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    Telegrams kept;
+    unsigned files = 0;
+    for (unsigned index = 1; index < 400; ++index) {
+        std::string name = rotated_file_name(pcap, index);
+        if (access(name.c_str(), F_OK) != 0) continue;
+        ++files;
+        Capture part = read_capture(name);
+        EXPECT_EQ(part.status, InputStatus::Ok) << name;
+        kept.insert(kept.end(), part.telegrams.begin(), part.telegrams.end());
+        std::remove(name.c_str());
+    }
+    EXPECT_EQ(files, 3u);
+    ASSERT_LT(kept.size(), total);
+    // The tail of the session, whole and in order.
+    EXPECT_TRUE(std::equal(kept.begin(), kept.end(), session.expected.end() - kept.size()));
+    // "... it removed the N oldest, which held M telegrams": M + kept = the session.
+    const std::string err = sniffer.err();
+    const std::size_t held = err.find("which held ");
+    ASSERT_NE(held, std::string::npos) << err;
+    const std::size_t removed = std::stoul(err.substr(held + 11));
+    EXPECT_EQ(removed + kept.size(), total) << err;
+}
+
 TEST(SniffTest, RotationByTimeSpan) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("timed.pcap");
@@ -1094,6 +1133,25 @@ TEST(SniffTest, UsageErrorsNameTheProblem) {
         {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", "-", "--rotate-size", "1000"});
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("cannot rotate standard output"), std::string::npos) << result.err;
+    // The ring needs a rotation and a -w file; --max-disk at least two files; --ring 2 to 100000.
+    const std::string ring = test::temp_path("ring-never.pcap");
+    result = test::run_dpscope(
+        {"sniff", "-i", pty.slave, "--baud", "1500000", "-w", ring, "--ring", "3"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("--ring keeps the files of a rotation"), std::string::npos)
+        << result.err;
+    result = test::run_dpscope({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", ring,
+                                "--rotate-size", "1M", "--max-disk", "1M"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("less than two files of --rotate-size"), std::string::npos)
+        << result.err;
+    result = test::run_dpscope({"sniff", "-i", pty.slave, "--baud", "1500000", "--ring", "3"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("--ring is about the capture file of -w FILE"), std::string::npos);
+    result = test::run_dpscope({"sniff", "-i", pty.slave, "--baud", "1500000", "-w", ring,
+                                "--rotate-size", "1M", "--ring", "1"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_FALSE(std::filesystem::exists(rotated_file_name(ring, 1)));
 }
 
 TEST(SniffTest, FcBusDefaultsTo9600Baud8E1AndWritesATaggedUser0Capture) {
