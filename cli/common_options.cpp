@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 
 #include "capture/gsd_files.hpp"
 #include "cli/pipeline.hpp"
@@ -533,6 +534,24 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
         parts.push_back("(" + values.display_filter + ")");
         settings.display_filter = values.display_filter;
     }
+    if (!values.triggers.empty()) {
+        std::string joined;
+        for (const std::string& text : values.triggers) {
+            Result<DisplayFilter> parsed = DisplayFilter::parse(text);
+            if (!parsed) return Error{fmt::format("--trigger '{}': {}", text, parsed.error())};
+            joined += (joined.empty() ? "(" : " || (") + text + ")";
+        }
+        Result<DisplayFilter> parsed = DisplayFilter::parse(joined);
+        if (!parsed) return Error{fmt::format("--trigger '{}': {}", joined, parsed.error())};
+        settings.trigger = std::make_shared<const DisplayFilter>(std::move(*parsed));
+        settings.trigger_text =
+            values.triggers.size() == 1 ? values.triggers.front() : std::move(joined);
+        settings.pre_ns = static_cast<std::int64_t>(values.pre_seconds * 1e9);
+        settings.post_ns = static_cast<std::int64_t>(values.post_seconds * 1e9);
+        settings.trigger_limit = values.trigger_limit;
+        settings.trigger_dir = values.trigger_dir;
+        if (settings.trigger->reads("health.")) settings.track_health = true;
+    }
     if (!settings.stations.empty()) parts.push_back(station_filter_text(settings.stations));
     if (!settings.pnus.empty()) parts.push_back("(" + pnu_filter_text(settings.pnus) + ")");
     if (!parts.empty()) {
@@ -599,6 +618,109 @@ bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
                    std::span<const FilterEvent> events) noexcept {
     if (!settings.filter) return true;
     return settings.filter->matches(FilterInput{t, findings, subject_pnu, events});
+}
+
+void add_trigger_options(CLI::App& app, DecodeOptionValues& values, bool with_dir) {
+    app.add_option("--trigger", values.triggers,
+                   "Keep the telegrams around each telegram the filter EXPR selects (the filter "
+                   "language of -Y, docs/filter.md; e.g. 'health.event == \"station_lost\"', "
+                   "'dpscope.finding == \"stacked_request\"'): the --pre seconds before it and "
+                   "the --post seconds after it go to their own pcapng file, "
+                   "trigger-<UTC time>-<event>-<station>.pcapng, the triggering telegram marked "
+                   "with a comment; a trigger inside a window extends it. Repeatable (any fires). "
+                   "decode: -w names the folder of the files")
+        ->type_name("EXPR")
+        ->allow_extra_args(false);
+    app.add_option("--pre", values.pre_seconds,
+                   "With --trigger: the seconds of telegrams before a trigger kept in its file "
+                   "(0 to 3600; default 10), held in memory (at most 64 MiB)")
+        ->check(finite_number(0, 3600, " seconds"))
+        ->type_name("SECONDS");
+    app.add_option("--post", values.post_seconds,
+                   "With --trigger: the seconds of telegrams after the last trigger of a window "
+                   "(0 to 3600; default 10)")
+        ->check(finite_number(0, 3600, " seconds"))
+        ->type_name("SECONDS");
+    app.add_option("--trigger-limit", values.trigger_limit,
+                   "With --trigger: at most N windows start in an hour of capture time (1 to "
+                   "100000; default 60); the triggers over it are counted, not written")
+        ->check(whole_number(1, 100000))
+        ->type_name("N");
+    if (with_dir)
+        app.add_option("--trigger-dir", values.trigger_dir,
+                       "With --trigger: the folder of the trigger files (made if missing; default: "
+                       "the folder of -w, else the current one)")
+            ->type_name("DIR");
+}
+
+std::optional<TriggerHit> trigger_hit(const DecodeSettings& settings, const DecodedTelegram& t,
+                                      std::span<const Finding> findings, std::int32_t subject_pnu,
+                                      std::span<const FilterEvent> events) {
+    if (!settings.trigger ||
+        !settings.trigger->matches(FilterInput{t, findings, subject_pnu, events}))
+        return std::nullopt;
+    TriggerHit hit;
+    if (!events.empty()) {
+        hit.event = std::string(events.front().event);
+        if (events.front().station != kSegmentAddress) hit.station = events.front().station;
+    } else if (!findings.empty()) {
+        hit.event = std::string(finding_kind_name(findings.front().kind));
+        if (findings.front().has_stations) hit.station = findings.front().slave;
+    } else {
+        hit.event = "match";
+        if (t.has_roles) hit.station = t.slave;
+    }
+    hit.comment = fmt::format("dpscope trigger: {} (frame {})", settings.trigger_text, t.frame);
+    return hit;
+}
+
+Result<std::unique_ptr<TriggerRecorder>> make_trigger_recorder(const DecodeSettings& settings,
+                                                               const std::string& folder,
+                                                               std::string_view option) {
+    if (folder.empty())
+        return Error{
+            fmt::format("--trigger writes each window to a file of its own: give {} "
+                        "FOLDER",
+                        option)};
+    if (folder == "-")
+        return Error{
+            fmt::format("--trigger writes files, not standard output: give {} a folder", option)};
+    std::error_code error;
+    if (std::filesystem::exists(folder, error)) {
+        if (!std::filesystem::is_directory(folder, error))
+            return Error{
+                fmt::format("{} {}: not a folder (with --trigger, {} names the folder "
+                            "of the trigger files)",
+                            option, folder, option)};
+    } else if (!std::filesystem::create_directories(folder, error) && error) {
+        return Error{
+            fmt::format("{} {}: cannot make the folder: {}", option, folder, error.message())};
+    }
+    Result<int> link_type = capture_link_type(
+        *settings.protocol,
+        settings.link_type_given ? std::optional<int>(settings.link_type) : std::nullopt);
+    if (!link_type) return Error{link_type.error()};
+    TriggerOptions options;
+    options.folder = folder;
+    options.pre_ns = settings.pre_ns;
+    options.post_ns = settings.post_ns;
+    options.limit_per_hour = settings.trigger_limit;
+    options.link_type = *link_type;
+    options.bus = settings.protocol->protocol;
+    options.line = settings.line;
+    return std::make_unique<TriggerRecorder>(std::move(options));
+}
+
+void say_trigger_stats(const TriggerStats& stats, const std::string& folder) {
+    std::string text = fmt::format("dpscope: --trigger: {} written in {} ({} fired)",
+                                   counted(stats.windows, "window", "windows"), folder,
+                                   counted(stats.hits, "telegram", "telegrams"));
+    if (stats.suppressed > 0)
+        text += fmt::format("; {} started no window: over --trigger-limit", stats.suppressed);
+    if (stats.pre_dropped > 0)
+        text += fmt::format("; {} let go before --pre ended: the memory cap (64 MiB)",
+                            counted(stats.pre_dropped, "telegram", "telegrams"));
+    write_standard_error(text + "\n");
 }
 
 std::span<const FilterEvent> filter_events(std::span<const HealthEvent> events,

@@ -16,6 +16,7 @@
 
 #include "capture/capture_writer.hpp"
 #include "capture/pcap_source.hpp"
+#include "capture/trigger_recorder.hpp"
 #include "core/protocol_descriptor.hpp"
 #include "core/result.hpp"
 #include "drives/drive_family.hpp"
@@ -80,6 +81,12 @@ struct DecodeOptionValues {
     std::vector<unsigned> stations;
     std::vector<std::string> pnus;  // --pnu: 1613, 16-13 or a parameter's name
     std::string display_filter;     // -Y EXPR (filter/display_filter.hpp)
+    // --trigger EXPR (repeatable), --pre, --post, --trigger-limit, --trigger-dir (issue 30).
+    std::vector<std::string> triggers;
+    double pre_seconds = 10;
+    double post_seconds = 10;
+    unsigned trigger_limit = 60;
+    std::string trigger_dir;
     std::vector<std::string> ppo;
     std::vector<std::string> dialects;
     std::vector<std::string> gsd_files;  // --gsd FILE or ADDR=FILE
@@ -162,6 +169,13 @@ struct DecodeSettings {
     // -Y with &&); null: every telegram is shown.
     std::shared_ptr<const DisplayFilter> filter;
     std::string display_filter;  // -Y as given ("" none)
+    // --trigger (any of them; null: none), the window around it and the folder of its files.
+    std::shared_ptr<const DisplayFilter> trigger;
+    std::string trigger_text;  // the --trigger expressions joined with ||
+    std::int64_t pre_ns = 0;
+    std::int64_t post_ns = 0;
+    unsigned trigger_limit = 60;
+    std::string trigger_dir;
 
     bool filtering() const noexcept { return filter != nullptr; }
 };
@@ -227,6 +241,23 @@ bool addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept;
 bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
                    std::span<const Finding> findings, std::int32_t subject_pnu,
                    std::span<const FilterEvent> events = {}) noexcept;
+
+// --trigger, --pre, --post, --trigger-limit and (sniff) --trigger-dir.
+void add_trigger_options(CLI::App& app, DecodeOptionValues& values, bool with_dir);
+
+// When a --trigger fires on the telegram: the event it is named after (the first health event,
+// else the first finding's kind, else "match"), its station and the comment marking it.
+std::optional<TriggerHit> trigger_hit(const DecodeSettings& settings, const DecodedTelegram& t,
+                                      std::span<const Finding> findings, std::int32_t subject_pnu,
+                                      std::span<const FilterEvent> events);
+
+// The recorder of --trigger's windows, writing into `folder` (made if missing); the error names
+// `option` (-w for decode, --trigger-dir for sniff): no folder, standard output, a file there.
+Result<std::unique_ptr<TriggerRecorder>> make_trigger_recorder(const DecodeSettings& settings,
+                                                               const std::string& folder,
+                                                               std::string_view option);
+// At the end, on standard error: the windows written and the triggers over the limit.
+void say_trigger_stats(const TriggerStats& stats, const std::string& folder);
 
 // The health events a telegram caused as the filter reads them (at most `out.size()`).
 std::span<const FilterEvent> filter_events(std::span<const HealthEvent> events,

@@ -77,7 +77,18 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
                  const std::string& input_path) {
     std::unique_ptr<PendingOutputFile> capture_file;
     std::unique_ptr<CaptureWriter> writer;
-    if (!settings.write.empty()) {
+    // --trigger: -w names the folder of the windows' files, written as they close.
+    std::unique_ptr<TriggerRecorder> triggers;
+    if (settings.trigger) {
+        Result<std::unique_ptr<TriggerRecorder>> made =
+            make_trigger_recorder(settings, settings.write, "-w");
+        if (!made) {
+            print_error(made.error());
+            return kExitUsage;
+        }
+        triggers = std::move(made).value();
+    }
+    if (!settings.write.empty() && !triggers) {
         if (Result<void> distinct = check_not_an_input({input_path}, settings.write, "-w");
             !distinct) {
             print_error(distinct.error());
@@ -159,6 +170,17 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         std::array<FilterEvent, 8> event_buffer;
         const std::span<const FilterEvent> events =
             filter_events(pipeline.health_events(), event_buffer);
+        if (triggers) {
+            const std::optional<TriggerHit> hit =
+                trigger_hit(settings, t, findings, subject_pnu, events);
+            if (Result<void> fed =
+                    triggers->feed(record.bytes, record.time_ns, hit ? &*hit : nullptr);
+                !fed) {
+                print_error(fmt::format("--trigger: {}; no more windows are written", fed.error()));
+                triggers.reset();
+                write_failed = true;
+            }
+        }
         if (!show(renderer.get(), settings, t, findings, subject_pnu, events)) continue;
         if (settings.filtering()) {
             shown_summary.add(t);
@@ -187,6 +209,13 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
     }
     progress.clear();
     std::span<const Finding> open_at_end = pipeline.finish();
+    if (triggers) {
+        if (Result<void> finished = triggers->finish(); !finished) {
+            print_error(fmt::format("--trigger: {}", finished.error()));
+            write_failed = true;
+        }
+        say_trigger_stats(triggers->stats(), settings.write);
+    }
     warn_ppo_overrides(pipeline.decoder());
     if (renderer) {
         renderer->render_end_findings(open_at_end);
@@ -324,6 +353,7 @@ void add_decode_command(CLI::App& app, int& exit_code) {
         ->default_str("auto");
     add_display_options(*sub, command->options, "text");
     add_write_options(*sub, command->options);
+    add_trigger_options(*sub, command->options, false);
     add_allow_empty_option(*sub, command->options.allow_empty);
     add_tracking_options(*sub, command->options);
     add_line_options(*sub, command->options);

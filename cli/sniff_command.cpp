@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <string>
@@ -401,6 +402,26 @@ int run_sniff(const SniffCommand& command) {
         }
         writer = std::move(opened).value();
     }
+    // --trigger: the windows' files go to --trigger-dir, else beside the -w file, else here.
+    std::unique_ptr<TriggerRecorder> triggers;
+    std::string trigger_folder;
+    if (settings->trigger) {
+        trigger_folder = command.options.trigger_dir;
+        if (trigger_folder.empty()) {
+            const std::filesystem::path output(command.output);
+            trigger_folder =
+                !command.output.empty() && command.output != "-" && output.has_parent_path()
+                    ? output.parent_path().string()
+                    : std::string(".");
+        }
+        Result<std::unique_ptr<TriggerRecorder>> made =
+            make_trigger_recorder(*settings, trigger_folder, "--trigger-dir");
+        if (!made) {
+            print_error(made.error());
+            return kExitUsage;
+        }
+        triggers = std::move(made).value();
+    }
     // The report is staged like every other file output: written beside FILE and moved into
     // place only when it is complete, so a run that fails leaves an existing FILE as it was.
     std::unique_ptr<PendingOutputFile> report_file;
@@ -543,8 +564,20 @@ int run_sniff(const SniffCommand& command) {
             const DecodedTelegram& t = pipeline.feed(record, findings);
             if (report && !findings.empty()) log.append(findings);
             std::array<FilterEvent, 8> event_buffer;
-            show(renderer.get(), *settings, t, findings, pipeline.subject_pnu(),
-                 filter_events(pipeline.health_events(), event_buffer));
+            const std::span<const FilterEvent> events =
+                filter_events(pipeline.health_events(), event_buffer);
+            show(renderer.get(), *settings, t, findings, pipeline.subject_pnu(), events);
+            if (triggers) {
+                const std::optional<TriggerHit> hit =
+                    trigger_hit(*settings, t, findings, pipeline.subject_pnu(), events);
+                if (Result<void> fed =
+                        triggers->feed(record.bytes, record.time_ns, hit ? &*hit : nullptr);
+                    !fed) {
+                    print_error(
+                        fmt::format("--trigger: {}; no more windows are written", fed.error()));
+                    triggers.reset();
+                }
+            }
             if (live) live->on_events(pipeline.health_events());
             // -c N: exactly N telegrams, not what else the driver still holds.
             if (settings->count != 0 && telegrams >= settings->count) break;
@@ -596,6 +629,11 @@ int run_sniff(const SniffCommand& command) {
                 rotated_file_name(command.output, ring->files_removed + 1),
                 rotated_file_name(command.output, ring->files_written), ring->bytes_kept,
                 ring->files_removed, ring->records_removed));
+    }
+    if (triggers) {
+        if (Result<void> finished = triggers->finish(); !finished)
+            print_error(fmt::format("--trigger: {}", finished.error()));
+        if (!extcap) say_trigger_stats(triggers->stats(), trigger_folder);
     }
     double seconds = static_cast<double>(monotonic_ns() - start) / 1e9;
     if (live) live->after_finish(telegrams, seconds);
@@ -825,6 +863,7 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
     sub->add_flag("--no-low-latency", command->no_low_latency,
                   "Do not ask the driver for low-latency mode (ASYNC_LOW_LATENCY)");
     add_display_options(*sub, command->options, "text");
+    add_trigger_options(*sub, command->options, true);
     add_tracking_options(*sub, command->options);
     add_health_options(*sub, command->health);
     // A live line cannot be judged before it is read: sniff takes the bus from --bus only.

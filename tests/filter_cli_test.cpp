@@ -4,6 +4,8 @@
 // `dpscope filter` lists the fields and checks an expression.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -94,6 +96,52 @@ TEST(FilterCliTest, FilterListsFieldsAndChecksExpressions) {
     EXPECT_NE(bad.err.find("column 18: '{' is not closed"), std::string::npos) << bad.err;
     CommandResult none = run_dpscope({"filter"});
     EXPECT_EQ(none.exit_code, 2);
+}
+
+// --trigger offline: decode cuts a capture into the windows around each event, in the folder -w
+// names (made if missing), the triggering telegram commented; what is wrong is exit 2.
+TEST(FilterCliTest, TriggersCutACaptureIntoItsWindows) {
+    const std::string folder = test::temp_path("cuts");
+    std::filesystem::remove_all(folder);
+    CommandResult r =
+        run_dpscope({"decode", "-q", "--trigger", "health.event == \"station_lost\"", "--pre",
+                     "0.01", "--post", "0.01", "-w", folder, sample("bus-health.pcap")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("--trigger: 1 window written in " + folder + " (1 telegram fired)"),
+              std::string::npos)
+        << r.err;
+    const std::string file = folder + "/trigger-20240101T000000Z-station_lost-4.pcapng";
+    ASSERT_TRUE(std::filesystem::exists(file));
+    CommandResult cut = run_dpscope({"decode", file});
+    EXPECT_EQ(cut.exit_code, 0) << cut.err;
+    EXPECT_GT(lines(cut.out), 10u);
+    const std::vector<std::uint8_t> bytes = test::read_file(file);
+    EXPECT_NE(std::string(bytes.begin(), bytes.end())
+                  .find("dpscope trigger: health.event == \"station_lost\" (frame 213)"),
+              std::string::npos);
+    std::filesystem::remove_all(folder);
+
+    CommandResult no_folder =
+        run_dpscope({"decode", "--trigger", "dpscope.pcv.rc == 7", sample("faults.pcap")});
+    EXPECT_EQ(no_folder.exit_code, 2);
+    EXPECT_NE(no_folder.err.find("give -w FOLDER"), std::string::npos) << no_folder.err;
+    const std::string a_file = test::temp_path("not-a-folder");
+    test::write_text_file(a_file, "mine\n");
+    CommandResult over_file = run_dpscope(
+        {"decode", "--trigger", "dpscope.pcv.rc == 7", "-w", a_file, sample("faults.pcap")});
+    EXPECT_EQ(over_file.exit_code, 2);
+    EXPECT_NE(over_file.err.find("not a folder"), std::string::npos) << over_file.err;
+    const std::vector<std::uint8_t> kept = test::read_file(a_file);
+    EXPECT_EQ(std::string(kept.begin(), kept.end()), "mine\n");
+    CommandResult bad = run_dpscope(
+        {"decode", "--trigger", "dpscope.pcv.rc = 7", "-w", folder, sample("faults.pcap")});
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("--trigger 'dpscope.pcv.rc = 7': column 16"), std::string::npos)
+        << bad.err;
+    CommandResult range = run_dpscope({"decode", "--trigger", "dpscope.pcv", "--pre", "4000", "-w",
+                                       folder, sample("faults.pcap")});
+    EXPECT_EQ(range.exit_code, 2);
+    EXPECT_FALSE(std::filesystem::exists(folder));
 }
 
 }  // namespace

@@ -273,6 +273,34 @@ TEST(SniffTest, DisplayFilterSelectsTheLiveLines) {
     }
 }
 
+// --trigger live: the window around the one stacked request of the faulty session goes to its own
+// pcapng file in --trigger-dir, named after the finding and its slave.
+TEST(SniffTest, ATriggerWritesTheWindowAroundTheEvent) {
+    PseudoTerminal pty;
+    const std::string folder = test::temp_path("triggers");
+    std::filesystem::remove_all(folder);
+    Session session = simulate(faulty_session());
+    Sniffer sniffer(without_idle_gap(
+        {"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "--timeout-ms", "3600000",
+         "--trigger", "dpscope.finding == stacked_request", "--pre", "3600", "--post", "3600",
+         "--trigger-dir", folder, "-c", std::to_string(session.expected.size())}));
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    play(pty, session, true);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    EXPECT_NE(sniffer.err().find("--trigger: 1 window written in " + folder), std::string::npos)
+        << sniffer.err();
+    std::vector<std::string> files;
+    for (const auto& entry : std::filesystem::directory_iterator(folder))
+        files.push_back(entry.path().string());
+    ASSERT_EQ(files.size(), 1u);
+    EXPECT_NE(files[0].find("-stacked_request-3.pcapng"), std::string::npos) << files[0];
+    Capture window = read_capture(files[0]);
+    EXPECT_EQ(window.status, InputStatus::Ok);
+    // An hour before and after it: the whole session, however slowly it was played.
+    EXPECT_EQ(window.telegrams.size(), session.expected.size());
+    std::filesystem::remove_all(folder);
+}
+
 TEST(SniffTest, RotationLosesNothingAtTheSeams) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("rotated.pcap");
