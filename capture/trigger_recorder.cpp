@@ -40,9 +40,10 @@ std::string TriggerRecorder::file_name(const std::string& folder, std::int64_t t
     return base + ".pcapng";
 }
 
-void TriggerRecorder::hold(Bytes telegram, std::int64_t time_ns) {
+void TriggerRecorder::hold(Bytes telegram, std::int64_t time_ns, std::int64_t record_ns) {
     if (options_.pre_ns <= 0) return;
-    pre_.push_back(Held{std::vector<std::uint8_t>(telegram.begin(), telegram.end()), time_ns});
+    pre_.push_back(
+        Held{std::vector<std::uint8_t>(telegram.begin(), telegram.end()), time_ns, record_ns});
     pre_bytes_ += telegram.size() + kHeldOverhead;
     // Older than --pre, or over the cap: let go (the cap's are counted).
     while (!pre_.empty() && time_ns != kNoTime && pre_.front().time_ns != kNoTime &&
@@ -75,7 +76,7 @@ Result<void> TriggerRecorder::open_window(std::int64_t time_ns, const TriggerHit
     for (const Held& h : pre_) {
         if (time_ns != kNoTime && h.time_ns != kNoTime && time_ns - h.time_ns > options_.pre_ns)
             continue;
-        if (Result<void> w = window_->write(Bytes(h.bytes.data(), h.bytes.size()), h.time_ns); !w)
+        if (Result<void> w = window_->write(Bytes(h.bytes.data(), h.bytes.size()), h.record_ns); !w)
             return w;
     }
     pre_.clear();
@@ -91,9 +92,10 @@ Result<void> TriggerRecorder::close_window() {
     return closed;
 }
 
-Result<void> TriggerRecorder::feed(Bytes telegram, std::int64_t time_ns, const TriggerHit* hit) {
-    // A telegram without a time is taken as at the time of the one before.
-    if (time_ns == kNoTime) time_ns = last_time_ns_;
+Result<void> TriggerRecorder::feed(Bytes telegram, std::int64_t record_ns, const TriggerHit* hit) {
+    // A telegram without a time is taken as at the time of the one before (and written as it
+    // came, without one).
+    std::int64_t time_ns = record_ns == kNoTime ? last_time_ns_ : record_ns;
     if (time_ns != kNoTime) last_time_ns_ = time_ns;
     if (window_ && time_ns != kNoTime && window_end_ns_ != kNoTime && time_ns > window_end_ns_)
         if (Result<void> closed = close_window(); !closed) return closed;
@@ -104,17 +106,17 @@ Result<void> TriggerRecorder::feed(Bytes telegram, std::int64_t time_ns, const T
                 starts_.pop_front();
             if (options_.limit_per_hour > 0 && starts_.size() >= options_.limit_per_hour) {
                 ++stats_.suppressed;
-                hold(telegram, time_ns);
+                hold(telegram, time_ns, record_ns);
                 return {};
             }
             starts_.push_back(time_ns);
             if (Result<void> opened = open_window(time_ns, *hit); !opened) return opened;
         }
         if (time_ns != kNoTime) window_end_ns_ = time_ns + options_.post_ns;
-        return window_->write(telegram, time_ns, hit->comment);
+        return window_->write(telegram, record_ns, hit->comment);
     }
-    if (window_) return window_->write(telegram, time_ns);
-    hold(telegram, time_ns);
+    if (window_) return window_->write(telegram, record_ns);
+    hold(telegram, time_ns, record_ns);
     return {};
 }
 

@@ -65,11 +65,12 @@ class TriggerRecorder {
   private:
     struct Held {
         std::vector<std::uint8_t> bytes;
-        std::int64_t time_ns = kNoTime;
+        std::int64_t time_ns = kNoTime;    // its time, or the one before's (what --pre counts)
+        std::int64_t record_ns = kNoTime;  // its time as it came (what is written)
     };
     Result<void> open_window(std::int64_t time_ns, const TriggerHit& hit);
     Result<void> close_window();
-    void hold(Bytes telegram, std::int64_t time_ns);
+    void hold(Bytes telegram, std::int64_t time_ns, std::int64_t record_ns);
 
     TriggerOptions options_;
     std::deque<Held> pre_;
