@@ -301,6 +301,15 @@ int run_sniff(const SniffCommand& command) {
         print_error("-w -: cannot rotate standard output; give a file name to rotate");
         return kExitUsage;
     }
+    if (!command.status_file.empty() &&
+        (command.status_file == command.output || command.status_file == command.report_file ||
+         command.status_file == "-")) {
+        print_error(
+            fmt::format("--status-file {}: give a file of its own (not -, -w or "
+                        "--report-file)",
+                        command.status_file));
+        return kExitUsage;
+    }
     // The ring keeps rotated files: it needs a rotation to have files to keep.
     if ((command.ring > 0 || command.max_disk > 0) && !command.output.empty() &&
         command.rotate_size == 0 && command.rotate_seconds == 0) {
@@ -542,8 +551,45 @@ int run_sniff(const SniffCommand& command) {
     };
     Record record;
     std::span<const Finding> findings;
+    // --status-interval: a line for monitoring (standard error, and --status-file).
+    const double status_seconds = command.status_interval > 0   ? command.status_interval
+                                  : command.status_file.empty() ? 0.0
+                                                                : 10.0;
+    const std::int64_t status_every_ns = std::llround(status_seconds * 1e9);
+    std::int64_t last_status = start;
+    std::uint64_t telegrams_at_status = 0;
+    std::string last_event = "none";
+    const auto write_status = [&](std::int64_t now) {
+        const double span_s = static_cast<double>(now - last_status) / 1e9;
+        const double rate =
+            span_s > 0 ? static_cast<double>(telegrams - telegrams_at_status) / span_s : 0.0;
+        std::uint64_t disk = 0;
+        if (writer)
+            if (const RotationStats* ring = writer->rotation_stats()) disk = ring->bytes_kept;
+        if (disk == 0 && !command.output.empty() && command.output != "-") {
+            struct stat info {};
+            if (::stat(command.output.c_str(), &info) == 0)
+                disk = static_cast<std::uint64_t>(info.st_size);
+        }
+        const std::string line = fmt::format(
+            "dpscope: status: {} telegrams, {:.0f}/s, {} bytes skipped, {} parity errors, {} "
+            "bytes on disk, last event {}\n",
+            telegrams, rate, source.bytes_skipped(), source.parity_errors(), disk, last_event);
+        if (command.status_interval > 0) write_standard_error(line);
+        if (!command.status_file.empty()) {
+            const std::string temporary = command.status_file + ".tmp";
+            if (FILE* f = std::fopen(temporary.c_str(), "w")) {
+                const bool ok = std::fputs(line.c_str(), f) >= 0;
+                if (std::fclose(f) == 0 && ok)
+                    std::rename(temporary.c_str(), command.status_file.c_str());
+            }
+        }
+        last_status = now;
+        telegrams_at_status = telegrams;
+    };
     for (;;) {
         std::int64_t now = monotonic_ns();
+        if (status_every_ns > 0 && now - last_status >= status_every_ns) write_status(now);
         if (!stopping &&
             (g_stop_requested.load() || (duration_ns > 0 && now - start >= duration_ns))) {
             stopping = true;
@@ -579,6 +625,12 @@ int run_sniff(const SniffCommand& command) {
                 }
             }
             if (live) live->on_events(pipeline.health_events());
+            if (!events.empty())
+                last_event = fmt::format("{} {} at frame {}", events.back().event,
+                                         events.back().station, record.number);
+            else if (!findings.empty())
+                last_event = fmt::format("{} at frame {}", finding_kind_name(findings.back().kind),
+                                         record.number);
             // -c N: exactly N telegrams, not what else the driver still holds.
             if (settings->count != 0 && telegrams >= settings->count) break;
         }
@@ -605,6 +657,7 @@ int run_sniff(const SniffCommand& command) {
         }
         if (live) live->tick(now, telegrams, static_cast<double>(now - start) / 1e9);
     }
+    if (status_every_ns > 0 || !command.status_file.empty()) write_status(monotonic_ns());
     if (live) live->before_finish();
     // Judged at the stop: a request left unanswered past the time-out before it is reported.
     std::span<const Finding> open_at_end = pipeline.finish(wall_clock_ns());
@@ -790,6 +843,18 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
                     "Start a new file once the current one holds SECONDS of capture")
         ->check(finite_number(0.001, kMaxSeconds, " seconds"))
         ->type_name("SECONDS");
+    sub->add_option("--status-interval", command->status_interval,
+                    "Every SECONDS (0.1 to 86400), a status line on standard error for "
+                    "monitoring: telegrams, their rate since the last line, bytes skipped, parity "
+                    "errors, bytes on disk (-w, the ring's files) and the last event (a health "
+                    "event or finding, with its frame); once more at the end")
+        ->check(finite_number(0.1, 86400, " seconds"))
+        ->type_name("SECONDS");
+    sub->add_option("--status-file", command->status_file,
+                    "Write the status line to FILE as well, replaced whole each time (written "
+                    "beside it and renamed), for a monitoring agent; every --status-interval "
+                    "seconds (default 10) and at the end")
+        ->type_name("FILE");
     sub->add_option("--ring", command->ring,
                     "With --rotate-size or --rotate-seconds: keep only the last N files (2 to "
                     "100000), the current one included, as dumpcap -b files:N; the oldest is "

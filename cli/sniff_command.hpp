@@ -19,6 +19,8 @@ struct SniffCommand {
     std::string link_type;  // "" = profibus
     std::uint64_t rotate_size = 0;
     double rotate_seconds = 0;
+    double status_interval = 0;  // --status-interval SECONDS (0: none)
+    std::string status_file;     // --status-file FILE: the status line, replaced each time
     unsigned ring = 0;           // --ring N: keep the last N files
     std::uint64_t max_disk = 0;  // --max-disk SIZE: and at most SIZE bytes in them
     double duration = 0;

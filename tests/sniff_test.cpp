@@ -301,6 +301,37 @@ TEST(SniffTest, ATriggerWritesTheWindowAroundTheEvent) {
     std::filesystem::remove_all(folder);
 }
 
+// --status-interval / --status-file: a status line for monitoring, on standard error and in a
+// file replaced whole; the last one at the end counts every telegram and names the last event.
+TEST(SniffTest, StatusLinesForMonitoring) {
+    PseudoTerminal pty;
+    const std::string status = test::temp_path("status.txt");
+    Session session = simulate(faulty_session());
+    Sniffer sniffer(
+        without_idle_gap({"sniff", "-i", pty.slave, "--baud", "1500000", "-q", "--timeout-ms",
+                          "3600000", "--status-interval", "0.1", "--status-file", status, "-c",
+                          std::to_string(session.expected.size())}));
+    ASSERT_TRUE(sniffer.ready()) << sniffer.err();
+    play(pty, session, true);
+    ASSERT_EQ(sniffer.wait(), 0) << sniffer.err();
+    const std::string total = std::to_string(session.expected.size());
+    EXPECT_NE(sniffer.err().find("dpscope: status: " + total + " telegrams, "), std::string::npos)
+        << sniffer.err();
+    const std::vector<std::uint8_t> bytes = test::read_file(status);
+    const std::string line(bytes.begin(), bytes.end());
+    EXPECT_EQ(line.rfind("dpscope: status: " + total + " telegrams, ", 0), 0u) << line;
+    EXPECT_NE(line.find("last event "), std::string::npos) << line;
+    EXPECT_EQ(line.find("last event none"), std::string::npos) << line;  // the faults were seen
+    EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1);
+    std::remove(status.c_str());
+    auto same =
+        test::run_dpscope({"sniff", "-i", pty.slave, "--baud", "1500000", "--status-file", "-"});
+    EXPECT_EQ(same.exit_code, 2);
+    auto range = test::run_dpscope(
+        {"sniff", "-i", pty.slave, "--baud", "1500000", "--status-interval", "0"});
+    EXPECT_EQ(range.exit_code, 2);
+}
+
 TEST(SniffTest, RotationLosesNothingAtTheSeams) {
     PseudoTerminal pty;
     std::string pcap = test::temp_path("rotated.pcap");
