@@ -609,10 +609,6 @@ std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept {
     return stations;
 }
 
-bool addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
-    return protocol_descriptor(t.protocol).addresses_pnu(t, pnu);
-}
-
 bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
                    std::span<const Finding> findings, std::int32_t subject_pnu,
                    std::span<const FilterEvent> events) noexcept {

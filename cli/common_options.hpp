@@ -229,10 +229,6 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
 // acknowledge has no addresses, only the roles of the request it answers).
 std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept;
 
-// Whether a DP-V1 telegram's PROFIdrive request, or the request its response is named after,
-// addresses parameter `pnu`; for an FC telegram, whether its PKW carries PNU `pnu`.
-bool addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept;
-
 // -Y, --station and --pnu (settings.filter): does the telegram pass? A telegram passes --station
 // when it is to or from one of the stations (by address or DP role) or a finding at it concerns
 // one; --pnu when its parameter channel is about one of the parameters (`subject_pnu`, from the

@@ -163,9 +163,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         const std::int32_t subject_pnu = pipeline.subject_pnu();
         if (settings.filtering()) {
             stations_seen |= stations_of(t);
-            if (t.dp.has_pcv && subject_pnu >= 0)
-                pnus_seen.set(static_cast<std::size_t>(subject_pnu));
-            protocol_descriptor(t.protocol).mark_pnus(t, pnus_seen);
+            mark_telegram_pnus(FilterInput{t, {}, subject_pnu}, pnus_seen);
         }
         std::array<FilterEvent, 8> event_buffer;
         const std::span<const FilterEvent> events =

@@ -94,17 +94,13 @@ struct ProtocolDescriptor {
     // Whether its masters have station addresses (PROFIBUS); otherwise a telegram and a finding
     // are about their drive alone (FC, VLT 2000).
     bool masters_addressed = false;
-    // Whether the telegram names parameter `pnu` (--pnu).
-    bool (*addresses_pnu)(const DecodedTelegram& t, std::uint16_t pnu) noexcept = nullptr;
-    // Marks in `seen` each parameter number the telegram names (what --pnu can select; the
-    // cyclic PCV's number comes from the tracker, which knows which request a response answers).
-    void (*mark_pnus)(const DecodedTelegram& t, PnuSet& seen) noexcept = nullptr;
     // The drive family whose parameter database names its PNUs (drives/, docs/parameters.md):
     // "fc", "vlt2000"; empty: each station's own (a PROFIBUS slave's by its dialect,
     // drives/drive_family.hpp).
     std::string_view drive_family = {};
     // The fields of its own the filter language reads (core/filter_field.hpp, docs/filter.md):
-    // `dpscope.pcv.rc`, `dpscope.fc.ak`, ...; the fields of every bus are filter/'s.
+    // `dpscope.pcv.rc`, `dpscope.fc.ak`, ...; the fields of every bus are filter/'s. Its
+    // `dpscope.pnu` says which parameters a telegram is about (--pnu, mark_telegram_pnus).
     std::span<const FilterField> filter_fields = {};
     // The one parameter the telegram is about, with the value it carries; nullopt when it is
     // about none (a process-data telegram, the idle PCV) or several (a DP-V1 request may address

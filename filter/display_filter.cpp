@@ -561,6 +561,25 @@ bool DisplayFilter::matches(const FilterInput& in) const noexcept {
     return nodes_.empty() || evaluate(root_, in);
 }
 
+void mark_telegram_pnus(const FilterInput& in, PnuSet& seen) {
+    class Marker final : public FilterVisitor {
+      public:
+        explicit Marker(PnuSet& seen) : seen_(seen) {}
+        bool visit(const FilterValue& value) const override {
+            if (value.integer >= 0 && value.integer <= 65535)
+                seen_.set(static_cast<std::size_t>(value.integer));
+            return false;  // every value
+        }
+
+      private:
+        PnuSet& seen_;
+    };
+    static const std::vector<const FilterField*> fields = filter_fields_named("dpscope.pnu");
+    const Marker marker(seen);
+    for (const FilterField* field : fields)
+        field->values(in, marker);
+}
+
 std::string station_filter_text(std::span<const std::uint8_t> stations) {
     if (stations.empty()) return {};
     std::string set;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/filter_field.hpp"
+#include "core/protocol_descriptor.hpp"
 #include "core/result.hpp"
 
 namespace dpscope {
@@ -73,6 +74,11 @@ class DisplayFilter {
     std::size_t root_ = 0;
     friend class FilterParser;
 };
+
+// Marks in `seen` each parameter the input is about, by the buses' `dpscope.pnu` fields (a
+// cyclic PCV's from `in.subject_pnu`, the tracker's): what --pnu can select, for the warning
+// about a --pnu no telegram names.
+void mark_telegram_pnus(const FilterInput& in, PnuSet& seen);
 
 // --station/--pnu as the filter language says them: `dpscope.station in {3 5}`,
 // `dpscope.pnu in {1613} || dpscope.finding.pnu in {1613}` (empty lists: "").

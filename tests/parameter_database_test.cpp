@@ -19,6 +19,7 @@
 #include "core/protocol_descriptor.hpp"
 #include "drives/drive_family.hpp"
 #include "drives/shipped_databases.hpp"
+#include "filter/display_filter.hpp"
 #include "protocols/lane_options.hpp"
 #include "tests/test_support.hpp"
 
@@ -533,7 +534,7 @@ std::map<std::string, std::map<std::uint16_t, std::set<std::string>>> pnus_of_th
             const std::string family(
                 drive_family(t.protocol, options.decoder.dialect_of(t.slave), drives.of(t.slave)));
             named.reset();
-            choice.protocol->mark_pnus(t, named);
+            mark_telegram_pnus(FilterInput{t}, named);
             if (t.dp.has_pcv && t.dp.pcv.pnu != 0) named.set(t.dp.pcv.pnu);
             for (std::size_t pnu = 0; pnu < named.size(); ++pnu)
                 if (named.test(pnu)) {

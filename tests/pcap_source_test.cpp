@@ -539,9 +539,7 @@ const ProtocolDescriptor kEthernetProtocol{.protocol = Protocol::ProfibusDp,
                                            .traffic_name = {},
                                            .has_bus_health = false,
                                            .timed_by_line = false,
-                                           .masters_addressed = true,
-                                           .addresses_pnu = nullptr,
-                                           .mark_pnus = nullptr};
+                                           .masters_addressed = true};
 
 TEST(PcapSourceTest, TheProtocolGivenChoosesTheLinkTypes) {
     TempFile file("ethernet-for-test-protocol.pcap");

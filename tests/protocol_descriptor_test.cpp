@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 #include "capture/bus_tag.hpp"
@@ -86,8 +87,10 @@ TEST(ProtocolDescriptorTest, EveryProtocolIsDescribedWhole) {
         EXPECT_FALSE(d->capture_noun.empty()) << d->name;
         EXPECT_FALSE(d->traffic_name.empty()) << d->name;
         EXPECT_NE(d->pcap_bus_number, 0u) << d->name;
-        EXPECT_NE(d->addresses_pnu, nullptr) << d->name;
-        EXPECT_NE(d->mark_pnus, nullptr) << d->name;
+        // What --pnu selects: the bus's dpscope.pnu filter field.
+        EXPECT_TRUE(std::any_of(d->filter_fields.begin(), d->filter_fields.end(),
+                                [](const FilterField& f) { return f.name == "dpscope.pnu"; }))
+            << d->name;
         EXPECT_EQ(d->lead_byte.has_value(), !d->lead_byte_text.empty()) << d->name;
         EXPECT_GT(d->max_telegram_bytes, 0u) << d->name;
         EXPECT_NE(d->make_decoder, nullptr) << d->name;

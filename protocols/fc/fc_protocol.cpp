@@ -22,14 +22,6 @@ constexpr std::uint32_t kFcDefaultLineBaud = 9600;
 constexpr std::uint32_t kFcMinBaud = 2400;
 constexpr std::uint32_t kFcMaxBaud = 115'200;
 
-bool fc_addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
-    return fc_named_pnu(t.fc) == pnu;
-}
-
-void fc_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
-    if (const auto pnu = fc_named_pnu(t.fc)) seen.set(*pnu);
-}
-
 std::optional<TelegramParameter> fc_parameter_of(const DecodedTelegram& t) noexcept {
     const FcTelegram& fc = t.fc;
     if (!t.has_roles || !fc.has_pkw) return std::nullopt;
@@ -81,8 +73,6 @@ const ProtocolDescriptor& fc_protocol() noexcept {
         .max_baud = kFcMaxBaud,
         .default_parity = "even",
         .masters_addressed = false,
-        .addresses_pnu = fc_addresses_pnu,
-        .mark_pnus = fc_mark_pnus,
         .drive_family = "fc",
         .filter_fields = fc_filter_fields(),
         .parameter_of = fc_parameter_of,

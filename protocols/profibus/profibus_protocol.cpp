@@ -17,20 +17,6 @@ constexpr std::array<PcapLinkType, 2> kProfibusLinkTypes{{
     {kLinkTypeUser0, "USER0"},
 }};
 
-// A DP telegram names parameters only in a PROFIdrive parameter request or response (DP-V1).
-bool profibus_addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
-    const ProfidriveMessage* message = t.dp.service_data.profidrive();
-    if (!message) return false;
-    return std::any_of(message->addresses.begin(), message->addresses.end(),
-                       [&](const ProfidriveAddress& a) { return a.pnu == pnu; });
-}
-
-void profibus_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
-    if (const ProfidriveMessage* message = t.dp.service_data.profidrive())
-        for (const ProfidriveAddress& a : message->addresses)
-            seen.set(a.pnu);
-}
-
 // The cyclic PCV's parameter (PNU 0 with RC 0 is the idle channel: none); a DP-V1 telegram's
 // when its PROFIdrive request or response addresses one parameter (its values are not given:
 // their format is the PROFIdrive message's).
@@ -87,8 +73,6 @@ const ProtocolDescriptor& profibus_protocol() noexcept {
         .has_bus_health = true,
         .timed_by_line = false,
         .masters_addressed = true,
-        .addresses_pnu = profibus_addresses_pnu,
-        .mark_pnus = profibus_mark_pnus,
         .drive_family = {},  // each slave's, by its dialect (drives/drive_family.hpp)
         .filter_fields = profibus_filter_fields(),
         .parameter_of = profibus_parameter_of,

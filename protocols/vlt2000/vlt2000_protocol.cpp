@@ -20,14 +20,6 @@ constexpr std::uint32_t kVlt2000DefaultLineBaud = 9600;
 // No link type of its own: dpscope writes it as USER0 and records the bus in the file.
 constexpr std::array<PcapLinkType, 1> kVlt2000LinkTypes{{{kLinkTypeUser0, "USER0"}}};
 
-bool vlt2000_addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
-    return vlt2000_named_pnu(t.vlt2000) == pnu;
-}
-
-void vlt2000_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
-    if (const auto pnu = vlt2000_named_pnu(t.vlt2000)) seen.set(*pnu);
-}
-
 // Its parameter and the value it carries with its own decimal point: not a C telegram's, a failed
 // one's, an I telegram's index or a read command's (the drive fills that in).
 std::optional<TelegramParameter> vlt2000_parameter_of(const DecodedTelegram& t) noexcept {
@@ -79,8 +71,6 @@ const ProtocolDescriptor& vlt2000_protocol() noexcept {
         .default_baud = kVlt2000DefaultLineBaud,
         .default_parity = "none",
         .masters_addressed = false,
-        .addresses_pnu = vlt2000_addresses_pnu,
-        .mark_pnus = vlt2000_mark_pnus,
         .drive_family = "vlt2000",
         .filter_fields = vlt2000_filter_fields(),
         .parameter_of = vlt2000_parameter_of,

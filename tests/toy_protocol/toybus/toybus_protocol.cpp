@@ -21,13 +21,15 @@ std::optional<std::uint16_t> toybus_named_pnu(const DecodedTelegram& t) noexcept
     return t.toybus.parameter;
 }
 
-bool toybus_addresses_pnu(const DecodedTelegram& t, std::uint16_t pnu) noexcept {
-    return toybus_named_pnu(t) == pnu;
-}
-
-void toybus_mark_pnus(const DecodedTelegram& t, PnuSet& seen) noexcept {
-    if (const auto pnu = toybus_named_pnu(t)) seen.set(*pnu);
-}
+// What --pnu selects: the parameter a toybus telegram names (the filter field dpscope.pnu).
+const std::array<FilterField, 1> kToybusFilterFields{{
+    {"dpscope.pnu", FilterType::Integer,
+     [](const FilterInput& in, const FilterVisitor& v) {
+         const auto pnu = in.t.protocol == Protocol::Toybus ? toybus_named_pnu(in.t) : std::nullopt;
+         return pnu && visit_integer(v, *pnu);
+     },
+     "the parameter the telegram is about (toybus: its parameter)"},
+}};
 
 // Its decoder and tracker: it has no options of its own, only the shared time-out.
 std::unique_ptr<TelegramDecoder> toybus_decoder(const LaneOptions& options) {
@@ -65,8 +67,7 @@ const ProtocolDescriptor& toybus_protocol() noexcept {
         .max_baud = 0,
         .default_parity = "none",
         .masters_addressed = false,
-        .addresses_pnu = toybus_addresses_pnu,
-        .mark_pnus = toybus_mark_pnus,
+        .filter_fields = kToybusFilterFields,
         .make_decoder = toybus_decoder,
         .make_tracker = toybus_tracker,
     };
