@@ -15,6 +15,7 @@
 #include "protocols/profibus/bus_decoder.hpp"
 #include "protocols/profibus/gsd/gsd_library.hpp"
 #include "protocols/profibus/telegram_builder.hpp"
+#include "tests/test_support.hpp"
 
 namespace dpscope {
 namespace {
@@ -37,15 +38,7 @@ std::shared_ptr<const ParameterDatabase> test_database() {
 }
 
 void put16(ByteVector& out, std::uint16_t v) { append_u16_be(out, v); }
-
-// A header and what follows it, byte by byte (GCC 12's -Warray-bounds misreads vector::insert
-// after a short initializer list in a release build).
-ByteVector joined(ByteVector header, const ByteVector& rest) {
-    header.reserve(header.size() + rest.size());
-    for (std::uint8_t b : rest)
-        header.push_back(b);
-    return header;
-}
+using test::joined;
 
 // The DP-V1 Write of a PROFIdrive request reading `attribute` element `subindex` of `pnu`.
 ByteVector read_request(std::uint8_t reference, std::uint8_t attribute, std::uint16_t pnu,

@@ -13,6 +13,7 @@
 #include "protocols/profibus/bus_decoder.hpp"
 #include "protocols/profibus/session_tracker.hpp"
 #include "protocols/profibus/telegram_builder.hpp"
+#include "tests/test_support.hpp"
 
 namespace dpscope {
 namespace {
@@ -33,14 +34,7 @@ struct Address {
 
 void put16(ByteVector& out, std::uint16_t v) { append_u16_be(out, v); }
 
-// A 4-byte header and what follows it. Appended byte by byte: GCC 12's -Warray-bounds misreads
-// vector::insert after a 4-byte initializer list in a release build.
-ByteVector joined(ByteVector header, const ByteVector& rest) {
-    header.reserve(header.size() + rest.size());
-    for (std::uint8_t b : rest)
-        header.push_back(b);
-    return header;
-}
+using test::joined;
 
 // The parameter request: header, addresses, then the value blocks given as raw bytes.
 ByteVector parameter_request(std::uint8_t reference, std::uint8_t id,

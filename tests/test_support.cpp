@@ -62,6 +62,14 @@ std::vector<std::uint8_t> fc_parameter(std::uint8_t address, std::uint8_t ak, st
     return fc_finish(std::move(bytes));
 }
 
+std::vector<std::uint8_t> joined(std::vector<std::uint8_t> header,
+                                 const std::vector<std::uint8_t>& rest) {
+    header.reserve(header.size() + rest.size());
+    for (std::uint8_t b : rest)
+        header.push_back(b);
+    return header;
+}
+
 std::vector<std::uint8_t> hex(std::string_view text) {
     Result<std::vector<std::uint8_t>> bytes = parse_hex_bytes(text);
     EXPECT_TRUE(bytes) << bytes.error();

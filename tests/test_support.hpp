@@ -21,6 +21,11 @@ namespace dpscope::test {
 // "68 07 07 68" (or "6807 0768", "0x68,0x07") -> bytes; a malformed string fails the test.
 std::vector<std::uint8_t> hex(std::string_view text);
 
+// A header and what follows it, appended byte by byte (GCC 12's -Warray-bounds misreads
+// vector::insert after a short initializer list in a release build).
+std::vector<std::uint8_t> joined(std::vector<std::uint8_t> header,
+                                 const std::vector<std::uint8_t>& rest);
+
 // The repository's root directory and the dpscope executable built with the tests.
 // Danfoss FC protocol telegrams, built by hand with their BCC (protocols/fc/fc_framing_rules.hpp):
 // the address byte in the 1-126 format (0x80 | address; address 0: the broadcast 0x80).
