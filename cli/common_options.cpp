@@ -596,19 +596,6 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
     return settings;
 }
 
-std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept {
-    std::bitset<kStationCount> stations;
-    if (!protocol_descriptor(t.protocol).masters_addressed) {
-        // The FC and VLT 2000 masters have no address: a telegram is about its drive, a broadcast
-        // about address 0 (the report's "Broadcasts" section).
-        if (t.has_roles) stations.set(t.slave & 0x7F);
-        return stations;
-    }
-    if (t.dp.fdl.has_addresses) stations.set(t.dp.fdl.da & 0x7F).set(t.dp.fdl.sa & 0x7F);
-    if (t.has_roles) stations.set(t.master & 0x7F).set(t.slave & 0x7F);
-    return stations;
-}
-
 bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
                    std::span<const Finding> findings, std::int32_t subject_pnu,
                    std::span<const FilterEvent> events) noexcept {

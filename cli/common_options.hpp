@@ -225,10 +225,6 @@ std::shared_ptr<const ParameterNaming> parameter_naming(const DecodeSettings& se
 Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
                                               std::string_view default_format);
 
-// The stations a telegram is to or from: its FDL addresses and its DP roles (a short
-// acknowledge has no addresses, only the roles of the request it answers).
-std::bitset<kStationCount> stations_of(const DecodedTelegram& t) noexcept;
-
 // -Y, --station and --pnu (settings.filter): does the telegram pass? A telegram passes --station
 // when it is to or from one of the stations (by address or DP role) or a finding at it concerns
 // one; --pnu when its parameter channel is about one of the parameters (`subject_pnu`, from the

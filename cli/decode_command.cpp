@@ -162,7 +162,7 @@ int run_decoding(TelegramSource& source, const DecodeSettings& settings,
         const DecodedTelegram& t = pipeline.feed(record, findings);
         const std::int32_t subject_pnu = pipeline.subject_pnu();
         if (settings.filtering()) {
-            stations_seen |= stations_of(t);
+            mark_telegram_stations(FilterInput{t}, stations_seen);
             mark_telegram_pnus(FilterInput{t, {}, subject_pnu}, pnus_seen);
         }
         std::array<FilterEvent, 8> event_buffer;

@@ -561,23 +561,39 @@ bool DisplayFilter::matches(const FilterInput& in) const noexcept {
     return nodes_.empty() || evaluate(root_, in);
 }
 
-void mark_telegram_pnus(const FilterInput& in, PnuSet& seen) {
+namespace {
+
+// Sets the bit of every value of `fields` on the input that is a bit of `seen`.
+template <std::size_t Bits>
+void mark_values(std::span<const FilterField* const> fields, const FilterInput& in,
+                 std::bitset<Bits>& seen) {
     class Marker final : public FilterVisitor {
       public:
-        explicit Marker(PnuSet& seen) : seen_(seen) {}
+        explicit Marker(std::bitset<Bits>& seen) : seen_(seen) {}
         bool visit(const FilterValue& value) const override {
-            if (value.integer >= 0 && value.integer <= 65535)
+            if (value.integer >= 0 && value.integer < static_cast<std::int64_t>(Bits))
                 seen_.set(static_cast<std::size_t>(value.integer));
             return false;  // every value
         }
 
       private:
-        PnuSet& seen_;
+        std::bitset<Bits>& seen_;
     };
-    static const std::vector<const FilterField*> fields = filter_fields_named("dpscope.pnu");
     const Marker marker(seen);
     for (const FilterField* field : fields)
         field->values(in, marker);
+}
+
+}  // namespace
+
+void mark_telegram_pnus(const FilterInput& in, PnuSet& seen) {
+    static const std::vector<const FilterField*> fields = filter_fields_named("dpscope.pnu");
+    mark_values(fields, in, seen);
+}
+
+void mark_telegram_stations(const FilterInput& in, std::bitset<kStationCount>& seen) {
+    static const std::vector<const FilterField*> fields = filter_fields_named("dpscope.station");
+    mark_values(fields, in, seen);
 }
 
 std::string station_filter_text(std::span<const std::uint8_t> stations) {

@@ -6,6 +6,7 @@
 // telegram without allocating. A syntax error names its column.
 #pragma once
 
+#include <bitset>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -79,6 +80,9 @@ class DisplayFilter {
 // cyclic PCV's from `in.subject_pnu`, the tracker's): what --pnu can select, for the warning
 // about a --pnu no telegram names.
 void mark_telegram_pnus(const FilterInput& in, PnuSet& seen);
+// The same for the stations, by the `dpscope.station` fields: without findings in `in`, the
+// stations the telegram is to or from (for the warning about a --station no telegram names).
+void mark_telegram_stations(const FilterInput& in, std::bitset<kStationCount>& seen);
 
 // --station/--pnu as the filter language says them: `dpscope.station in {3 5}`,
 // `dpscope.pnu in {1613} || dpscope.finding.pnu in {1613}` (empty lists: "").
