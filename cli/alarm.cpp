@@ -21,21 +21,6 @@ namespace dpscope::cli {
 
 namespace {
 
-template <class List>
-auto find_address(const List& list, std::uint8_t address) {
-    return std::find_if(list.begin(), list.end(),
-                        [address](const auto& item) { return item.address == address; });
-}
-
-std::string joined(const std::vector<std::string>& parts, std::string_view separator) {
-    std::string text;
-    for (const std::string& part : parts) {
-        if (!text.empty()) text += separator;
-        text += part;
-    }
-    return text;
-}
-
 // The commands running, where a signal handler can reach them without locking or allocating:
 // a shell's PID (its process group) from its start until it is reaped, so that the PID cannot
 // have been taken by another process.
@@ -63,73 +48,6 @@ void AlarmRunner::end_all_after_signal() noexcept {
         if (const pid_t pid = slot.load(); pid > 0) ::kill(-pid, SIGTERM);
 }
 
-AlarmEvent describe_health_event(const HealthEvent& e, const BusHealth& health) {
-    AlarmEvent event;
-    event.kind = e.kind;
-    event.address = e.address;
-    event.role = e.role;
-    event.time_ns = e.time_ns;
-    event.frame = e.frame;
-    const Judgement* judgement = nullptr;
-    if (e.address == kSegmentAddress) {
-        judgement = &health.segment.judgement;
-    } else {
-        auto master = find_address(health.masters, e.address);
-        auto station = find_address(health.stations, e.address);
-        if (e.role == StationRole::Master && master != health.masters.end())
-            judgement = &master->judgement;
-        else if (station != health.stations.end())
-            judgement = &station->judgement;
-        if (station != health.stations.end() && e.role == StationRole::Unknown)
-            event.role = station->role;
-    }
-    if (judgement) {
-        event.verdict = judgement->verdict;
-        for (const VerdictReason& reason : judgement->reasons)
-            event.reasons.push_back(describe_reason(reason, health.thresholds));
-    }
-    return event;
-}
-
-std::string iso8601_utc(std::int64_t time_ns) {
-    if (time_ns == kNoTime) return "unknown";
-    // Whole seconds rounded down, so that a time before 1970 keeps a positive fraction.
-    std::int64_t seconds = time_ns / 1'000'000'000;
-    std::int64_t rest = time_ns % 1'000'000'000;
-    if (rest < 0) {
-        --seconds;
-        rest += 1'000'000'000;
-    }
-    const std::int64_t micros = rest / 1000;
-    std::time_t t = static_cast<std::time_t>(seconds);
-    std::tm utc{};
-    if (gmtime_r(&t, &utc) == nullptr) return "unknown";
-    return fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}.{:06}Z", utc.tm_year + 1900,
-                       utc.tm_mon + 1, utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec, micros);
-}
-
-std::string event_subject(const AlarmEvent& e) {
-    if (e.address == kSegmentAddress) return "the segment";
-    if (e.role == StationRole::Master) return fmt::format("station {} (master)", e.address);
-    return fmt::format("station {}", e.address);
-}
-
-std::string health_event_line(const AlarmEvent& e) {
-    const std::string time = iso8601_utc(e.time_ns);
-    switch (e.kind) {
-        case HealthEventKind::StationLost:
-        case HealthEventKind::StationReturned:
-            return fmt::format("{} health: station {} {} ({}, frame {})", time, e.address,
-                               e.kind == HealthEventKind::StationLost ? "lost" : "returned",
-                               station_role_name(e.role), e.frame);
-        case HealthEventKind::VerdictBad:
-        case HealthEventKind::Count: break;
-    }
-    return fmt::format("{} health: verdict of {} turned {}{}{} (frame {})", time, event_subject(e),
-                       verdict_name(e.verdict), e.reasons.empty() ? "" : ": ",
-                       joined(e.reasons, "; "), e.frame);
-}
-
 std::vector<std::string> alarm_environment(const AlarmEvent& e) {
     const bool segment = e.address == kSegmentAddress;
     return {
@@ -141,7 +59,7 @@ std::vector<std::string> alarm_environment(const AlarmEvent& e) {
         fmt::format("DPSCOPE_TIME={}", iso8601_utc(e.time_ns)),
         fmt::format("DPSCOPE_FRAME={}", e.frame),
         fmt::format("DPSCOPE_VERDICT={}", verdict_name(e.verdict)),
-        fmt::format("DPSCOPE_REASONS={}", joined(e.reasons, "; ")),
+        fmt::format("DPSCOPE_REASONS={}", fmt::join(e.reasons, "; ")),
     };
 }
 
@@ -328,7 +246,7 @@ std::string AlarmRunner::summary() const {
         text += fmt::format(
             ", {} suppressed by the limit of one per event kind and station per "
             "{} s ({})",
-            suppressed, throttle_.interval_ns() / 1'000'000'000, joined(kinds, ", "));
+            suppressed, throttle_.interval_ns() / 1'000'000'000, fmt::join(kinds, ", "));
     }
     if (skipped_ > 0)
         text +=

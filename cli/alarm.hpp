@@ -15,35 +15,9 @@
 #include <vector>
 
 #include "protocols/profibus/health/bus_health.hpp"
+#include "protocols/profibus/health/health_event_describe.hpp"
 
 namespace dpscope::cli {
-
-// A health event with what the statistics said about its station when it happened.
-struct AlarmEvent {
-    HealthEventKind kind = HealthEventKind::StationLost;
-    std::uint8_t address = 0;  // kSegmentAddress: the segment
-    StationRole role = StationRole::Unknown;
-    std::int64_t time_ns = kNoTime;  // capture time of the telegram that caused it
-    std::uint64_t frame = 0;
-    Verdict verdict = Verdict::Good;
-    std::vector<std::string> reasons;  // describe_reason() of the judgement, the worst first
-};
-
-// The event `e` with the verdict and reasons `health` holds for its station: a master's own
-// judgement for a master with one, the station's otherwise, the segment's for kSegmentAddress.
-AlarmEvent describe_health_event(const HealthEvent& e, const BusHealth& health);
-
-// "2026-11-26T04:05:06.123456Z" (UTC, microseconds); "unknown" for kNoTime.
-std::string iso8601_utc(std::int64_t time_ns);
-
-// "station 5", "station 2 (master)", "the segment".
-std::string event_subject(const AlarmEvent& e);
-
-// One plain line (no newline) for the live output of `sniff --stats` off a terminal:
-// "2026-...Z health: station 5 lost (slave, frame 1234)",
-// "2026-...Z health: station 5 returned (slave, frame 2345)",
-// "2026-...Z health: verdict of station 5 turned bad: <reason>; <reason> (frame 3456)".
-std::string health_event_line(const AlarmEvent& e);
 
 // The variables the alarm command gets, as NAME=VALUE: DPSCOPE_EVENT (station_lost,
 // verdict_bad), DPSCOPE_STATION (the address, or "segment"), DPSCOPE_ROLE (master, slave,

@@ -64,6 +64,11 @@ void LiveHealth::handle(const HealthEvent& event) {
         case Show::Nothing: break;
     }
     if (alarms_) alarms_->raise(described);
+    if (listener_) listener_->on_health_event(described);
+}
+
+void LiveHealth::judged() {
+    if (listener_) listener_->on_judged(tracker_.health());
 }
 
 void LiveHealth::on_events(std::span<const HealthEvent> events) {
@@ -78,6 +83,7 @@ void LiveHealth::on_events(std::span<const HealthEvent> events) {
         handle(event);
     for (const HealthEvent& event : turned_bad)
         handle(event);
+    judged();
 }
 
 void LiveHealth::tick(std::int64_t now_ns, std::uint64_t telegrams, double seconds) {
@@ -87,6 +93,7 @@ void LiveHealth::tick(std::int64_t now_ns, std::uint64_t telegrams, double secon
     last_tick_ns_ = now_ns;
     for (const HealthEvent& event : tracker_.judge())
         handle(event);
+    judged();
     if (show_ == Show::Table) redraw(telegrams, seconds, false);
 }
 
@@ -96,6 +103,7 @@ void LiveHealth::before_finish() {
     // The statistics end with the last telegram, not at the stop: `dpscope stats` of the -w
     // file gives the same figures (Pipeline::finish() later finds the tracker finished).
     tracker_.finish();
+    judged();
 }
 
 void LiveHealth::after_finish(std::uint64_t telegrams, double seconds) {

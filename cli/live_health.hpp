@@ -15,6 +15,15 @@
 
 namespace dpscope::cli {
 
+// Told of every health event, described, and of the statistics after each judgement (the MQTT
+// events, cli/live_mqtt.hpp).
+class HealthListener {
+  public:
+    virtual ~HealthListener() = default;
+    virtual void on_health_event(const AlarmEvent& event) = 0;
+    virtual void on_judged(const BusHealth& health) = 0;
+};
+
 class LiveHealth {
   public:
     static constexpr std::int64_t kRedrawEveryNs = 250'000'000;  // at most 4 redraws a second
@@ -43,9 +52,12 @@ class LiveHealth {
     void after_finish(std::uint64_t telegrams, double seconds);
 
     std::uint64_t redraws() const noexcept { return redraws_; }
+    // `listener` (or null) is told of events and judgements from now on.
+    void listen(HealthListener* listener) noexcept { listener_ = listener; }
 
   private:
     void handle(const HealthEvent& event);
+    void judged();
     void redraw(std::uint64_t telegrams, double seconds, bool final);
 
     BusHealthTracker& tracker_;
@@ -54,6 +66,7 @@ class LiveHealth {
     Show show_;
     std::string heading_;
     AlarmRunner* alarms_;
+    HealthListener* listener_ = nullptr;
     std::int64_t last_tick_ns_ = 0;
     bool ticked_ = false;
     std::vector<std::string> recent_;  // the last event lines, shown under the table

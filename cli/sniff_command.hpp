@@ -6,6 +6,9 @@
 #include <string>
 
 #include "cli/common_options.hpp"
+#include "cli/live_mqtt.hpp"
+#include "core/protocol_descriptor.hpp"
+#include "core/result.hpp"
 
 namespace dpscope::cli {
 
@@ -37,12 +40,17 @@ struct SniffCommand {
     std::string stats_format = "text";
     std::string alarm;
     HealthOptionValues health;  // --health-config, --threshold (the verdicts of --stats, --alarm)
+    MqttOptions mqtt;           // --mqtt and its options (cli/live_mqtt.hpp)
     // The Wireshark extcap capture (cli/extcap_command.cpp): -w is Wireshark's fifo. Every
     // telegram is flushed into it at once; nothing is printed but errors (Wireshark shows
     // anything on standard error as an error); the fifo's reader going away (Wireshark stopped
     // or closed) ends the capture with exit code 0, as a signal does.
     bool extcap = false;
 };
+
+// Checks what the options say together (cli/sniff_options.cpp): a message naming the options
+// that cannot work, for exit code 2.
+Result<void> check_sniff_usage(const SniffCommand& command, const ProtocolDescriptor& bus);
 
 // Checks the options, captures until stopped (-c, --duration, a signal, the device or the
 // output failing) and returns the exit code.

@@ -18,6 +18,7 @@
 #include "capture/capture_writer.hpp"
 #include "capture/pcap_source.hpp"
 #include "capture/tty_player.hpp"
+#include "protocols/profibus/bus_decoder.hpp"
 
 namespace dpscope::test {
 
@@ -228,6 +229,27 @@ Capture read_capture(const std::string& path, const ProtocolDescriptor& protocol
     c.status = opened.value()->status();
     c.link_type = opened.value()->link_type();
     return c;
+}
+
+// `session` with the answers of `slave` taken out of the played telegrams in each of `windows`
+// (played indices, from, to): the slave stops answering there, and is lost.
+Session without_answers(const Session& session, std::uint8_t slave,
+                        std::vector<std::pair<std::size_t, std::size_t>> windows) {
+    BusDecoder decoder;
+    Session out;
+    for (std::size_t i = 0; i < session.played.size(); ++i) {
+        const auto& bytes = session.played[i];
+        const DecodedTelegram& t =
+            decoder.decode(Bytes(bytes.data(), bytes.size()), kNoTime, i + 1);
+        bool silent = std::any_of(windows.begin(), windows.end(),
+                                  [i](auto w) { return i >= w.first && i < w.second; });
+        if (silent && t.direction == Direction::Response && t.has_roles && t.slave == slave)
+            continue;
+        out.played.push_back(bytes);
+        out.times.push_back(session.times[i]);
+    }
+    out.expected = out.played;  // no garbage in these sessions
+    return out;
 }
 
 }  // namespace dpscope::test

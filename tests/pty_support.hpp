@@ -117,6 +117,11 @@ Session simulate(std::uint64_t cycles);  // the default session, `cycles` long, 
 void play(const PseudoTerminal& pty, const Session& s, bool as_fast_as_possible,
           std::size_t count = SIZE_MAX);
 
+// `session` with the answers of `slave` taken out of the played telegrams in each of `windows`
+// (played indices, from, to): the slave stops answering there, and is lost.
+Session without_answers(const Session& session, std::uint8_t slave,
+                        std::vector<std::pair<std::size_t, std::size_t>> windows);
+
 // A capture read back with dpscope's reader (the bus from the capture's own tag, if it has one).
 struct Capture {
     Telegrams telegrams;

@@ -49,6 +49,7 @@ using test::Session;
 using test::simulate;
 using test::slurp;
 using test::Telegrams;
+using test::without_answers;
 using test::without_idle_gap;
 
 // dpscope running as a child process, standard output and error in files (standard input the
@@ -1386,27 +1387,6 @@ TEST(SniffTest, FcLineOptionsAreChecked) {
 }
 
 // --- sniff --stats and --alarm ----------------------------------------------------------------
-
-// `session` with the answers of `slave` taken out of the played telegrams in each of `windows`
-// (played indices, from, to): the slave stops answering there, and is lost.
-Session without_answers(const Session& session, std::uint8_t slave,
-                        std::vector<std::pair<std::size_t, std::size_t>> windows) {
-    BusDecoder decoder;
-    Session out;
-    for (std::size_t i = 0; i < session.played.size(); ++i) {
-        const auto& bytes = session.played[i];
-        const DecodedTelegram& t =
-            decoder.decode(Bytes(bytes.data(), bytes.size()), kNoTime, i + 1);
-        bool silent = std::any_of(windows.begin(), windows.end(),
-                                  [i](auto w) { return i >= w.first && i < w.second; });
-        if (silent && t.direction == Direction::Response && t.has_roles && t.slave == slave)
-            continue;
-        out.played.push_back(bytes);
-        out.times.push_back(session.times[i]);
-    }
-    out.expected = out.played;  // no garbage in these sessions
-    return out;
-}
 
 // The text statistics of the capture at `pcap`, as sniff --stats at `baud` computes them live.
 std::string reference_stats(const std::string& pcap, const std::string& device,

@@ -28,13 +28,14 @@ simulator  decoder simulator
 capture    decoder capture pcap
 formats    decoder formats
 wireshark  decoder capture formats wireshark
+monitor    decoder monitor mosquitto
 cli        *
 '
 declare -A allowed_by_layer=()
 while read -r layer allowed; do
     [[ -n $layer ]] && allowed_by_layer[$layer]=$allowed
 done <<<"$rules"
-guarded_external=' tests fuzz bench pcap CLI gtest gmock benchmark '
+guarded_external=' tests fuzz bench pcap CLI gtest gmock benchmark mosquitto '
 
 # layer_of PATH: the layer of a path relative to the source root ("" when it has none).
 source "$(dirname "${BASH_SOURCE[0]}")/layer_of.sh"

@@ -5,7 +5,7 @@ layer_of() {
     local path=$1 first=${1%%/*} name stem
     case $first in
         core | drives) echo decoder ;;
-        capture | simulator | formats | wireshark | cli) echo "$first" ;;
+        capture | simulator | formats | wireshark | cli | monitor) echo "$first" ;;
         protocols)
             name=${path##*/}
             stem=${name%%.*}
