@@ -419,6 +419,16 @@ class RotatingWriter final : public CaptureWriter {
 
     const RotationStats* rotation_stats() const noexcept override { return &stats_; }
 
+    Result<std::string> start_next_file() override {
+        if (!current_ || !error_.empty()) return Error{error_.empty() ? "closed" : error_};
+        if (records_ == 0) return std::string();
+        if (Result<void> next = open_next(); !next) {
+            error_ = next.error();
+            return Error{error_};
+        }
+        return rotated_file_name(path_, index_);
+    }
+
     // Closes the current file (if any) and starts the next one; then the ring removes what it
     // keeps no more (the file just closed is complete by then).
     Result<void> open_next() {

@@ -34,6 +34,12 @@ class CaptureWriter {
     virtual ~CaptureWriter() = default;
     // A rotating writer's account of its files; null for one that writes one file.
     virtual const RotationStats* rotation_stats() const noexcept { return nullptr; }
+    // A rotating writer: closes the current file (complete) and starts the next one now, as
+    // sniff does on SIGHUP; nothing when the current file holds no telegram yet. Returns the new
+    // file's name ("" when none was started). An error for a writer that does not rotate.
+    virtual Result<std::string> start_next_file() {
+        return Error{"this capture writer writes one file; it has no next one"};
+    }
     // Each fails from the first write error on, saying what happened (naming the file).
     Result<void> write(Bytes telegram, std::int64_t time_ns) {
         return outcome(write_record(telegram, time_ns, {}));

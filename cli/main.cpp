@@ -4,13 +4,16 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <cerrno>
 #include <csignal>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include "cli/commands.hpp"
 #include "cli/common_options.hpp"
+#include "cli/config_file.hpp"
 #include "cli/parse_errors.hpp"
 #include "cli/version.hpp"
 
@@ -81,9 +84,31 @@ int main(int argc, char** argv) {
             return kExitUsage;
         }
     }
+    // sniff --config FILE: the file's options go in before the command line's.
+    std::vector<ConfigOrigin> origins;
+    dpscope::Result<std::vector<std::string>> arguments =
+        expand_config_option(std::vector<std::string>(argv, argv + argc), app, origins);
+    if (!arguments) {
+        print_error(arguments.error());
+        return kExitUsage;
+    }
     try {
-        app.parse(argc, argv);
+        // CLI11 takes the arguments last first, without the program's name.
+        std::vector<std::string> reversed(arguments->rbegin(), arguments->rend() - 1);
+        app.parse(reversed);
     } catch (const CLI::ParseError& e) {
+        // An option's value from the config file: the message names the file and line.
+        const std::string text = parse_error_text(e);
+        for (const ConfigOrigin& origin : origins) {
+            const std::size_t at = text.find(origin.option);
+            const std::size_t after = at + origin.option.size();
+            if (e.get_exit_code() == 0 || at == std::string::npos ||
+                (after < text.size() &&
+                 (std::isalnum(static_cast<unsigned char>(text[after])) || text[after] == '-')))
+                continue;
+            print_error(fmt::format("{} (set in {})", text, origin.where));
+            return kExitUsage;
+        }
         int rc = app.exit(e);
         return rc == 0 ? kExitOk : kExitUsage;
     } catch (const std::exception& e) {

@@ -45,6 +45,7 @@ namespace dpscope::cli {
 namespace {
 
 std::atomic<bool> g_stop_requested{false};
+std::atomic<bool> g_reopen_requested{false};
 
 // The buses whose line has a default rate, for the message that --baud is missing: "the FC
 // protocol, --bus fc, and the VLT 2000, --bus vlt2000, default to 9600".
@@ -78,19 +79,76 @@ extern "C" void request_stop(int signal_number) {
     }
 }
 
-// SIGINT, SIGTERM and SIGHUP (the terminal went away) end the capture cleanly. A closed pipe on
+extern "C" void request_reopen(int) { g_reopen_requested.store(true); }
+
+// Does sniff have a controlling terminal (run from a shell), or none (a service)?
+bool has_controlling_terminal() {
+    const int fd = ::open("/dev/tty", O_RDONLY | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0) return false;
+    ::close(fd);
+    return true;
+}
+
+// SIGINT, SIGTERM and SIGHUP (the terminal went away) end the capture cleanly; with
+// `hup_reopens`, SIGHUP asks for the -w file to be reopened instead (logrotate). A closed pipe on
 // standard output is a write error that ends it (exit code 4), not a SIGPIPE that would leave
 // the port in raw mode.
-void install_stop_handlers() {
+void install_stop_handlers(bool hup_reopens) {
     g_stop_requested.store(false);
+    g_reopen_requested.store(false);
     struct sigaction action {};
     action.sa_handler = request_stop;
     sigemptyset(&action.sa_mask);
     action.sa_flags = 0;  // no SA_RESTART: poll() returns at once
     sigaction(SIGINT, &action, nullptr);
     sigaction(SIGTERM, &action, nullptr);
+    if (hup_reopens) action.sa_handler = request_reopen;
     sigaction(SIGHUP, &action, nullptr);
     ::signal(SIGPIPE, SIG_IGN);
+}
+
+// Which file a path names (device and inode), to see whether logrotate moved it away.
+struct FileIdentity {
+    dev_t device = 0;
+    ino_t inode = 0;
+    bool known = false;
+};
+
+FileIdentity identity_of(const std::string& path) {
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) return {};
+    return {info.st_dev, info.st_ino, true};
+}
+
+// SIGHUP with reopen: a rotation starts its next file; a single -w FILE that was moved away
+// (logrotate) is closed, complete, and FILE started anew. A FILE still in place, or replaced by a
+// file that holds data, is written on: nothing is ever overwritten. Returns what to say.
+Result<std::string> reopen_capture(std::unique_ptr<CaptureWriter>& writer, FileIdentity& ours,
+                                   const std::string& path, int link_type, Protocol bus,
+                                   const LineSettings& line) {
+    if (writer->rotation_stats()) {
+        Result<std::string> next = writer->start_next_file();
+        if (!next) return Error{next.error()};
+        return next->empty()
+                   ? fmt::format("SIGHUP: {} holds no telegram yet; writing on",
+                                 rotated_file_name(path, writer->rotation_stats()->files_written))
+                   : fmt::format("SIGHUP: started {}", *next);
+    }
+    struct stat info {};
+    const bool exists = ::stat(path.c_str(), &info) == 0;
+    if (exists && info.st_dev == ours.device && info.st_ino == ours.inode)
+        return fmt::format("SIGHUP: -w {} was not moved away; writing on", path);
+    if (exists && (!S_ISREG(info.st_mode) || info.st_size > 0))
+        return fmt::format(
+            "SIGHUP: {} is another file now, holding data; it is left alone and the capture goes "
+            "on in the file that was moved away",
+            path);
+    if (Result<void> closed = writer->close(); !closed) return Error{closed.error()};
+    WriterResult opened = open_capture_writer(path, CaptureFormat::Pcap, link_type, bus, line);
+    if (!opened) return Error{opened.error()};
+    writer = std::move(opened).value();
+    ours = identity_of(path);
+    return fmt::format("SIGHUP: -w {} was moved away; writing a new {}", path, path);
 }
 
 std::int64_t monotonic_ns() {
@@ -227,6 +285,9 @@ int run_sniff(const SniffCommand& command) {
     // where it is, a valid pcap of every whole record written whenever the capture ends by itself.
     std::unique_ptr<PendingOutputFile> capture_file;
     std::unique_ptr<CaptureWriter> writer;
+    // The line as asked (the port, set up later, reads it back within 1 %): decode, report and
+    // stats read the capture at its rate without --baud.
+    const LineSettings capture_line{baud, parity, command.stop_bits};
     if (!command.output.empty()) {
         const bool rotating = command.rotate_size > 0 || command.rotate_seconds > 0;
         const std::string first = rotating ? rotated_file_name(command.output, 1) : command.output;
@@ -239,12 +300,9 @@ int run_sniff(const SniffCommand& command) {
         RotationOptions rotation{command.rotate_size,
                                  static_cast<std::int64_t>(command.rotate_seconds * 1e9),
                                  command.ring, command.max_disk};
-        // The line as asked (the port, set up later, reads it back within 1 %): decode,
-        // report and stats read the capture at its rate without --baud.
-        const LineSettings line{baud, parity, command.stop_bits};
         WriterResult opened =
             open_rotating_writer(command.output, CaptureFormat::Pcap, *link_type, rotation,
-                                 settings->protocol->protocol, line, capture_file->file());
+                                 settings->protocol->protocol, capture_line, capture_file->file());
         capture_file->release_file();  // the writer closes it
         if (!opened) {
             print_error(opened.error());
@@ -294,7 +352,10 @@ int run_sniff(const SniffCommand& command) {
         }
         stats_file = std::move(opened).value();
     }
-    install_stop_handlers();  // from here on, a signal never leaves the port in raw mode
+    // SIGHUP: stop, or reopen (logrotate; a service has no controlling terminal).
+    const bool hup_reopens =
+        command.sighup == "reopen" || (command.sighup == "auto" && !has_controlling_terminal());
+    install_stop_handlers(hup_reopens);  // from here on, a signal never leaves the port in raw mode
     if (Result<void> configured = port->configure(); !configured) {
         print_error(configured.error());
         writer.reset();
@@ -309,6 +370,8 @@ int run_sniff(const SniffCommand& command) {
             return kExitOutputError;  // the port is put back as it was found
         }
     }
+    FileIdentity capture_identity =
+        command.output.empty() || pcap_to_stdout ? FileIdentity{} : identity_of(command.output);
     FILE* text_stream = pcap_to_stdout || report_to_stdout || stats_to_stdout ? stderr : stdout;
     const bool extcap = command.extcap;
     if (!extcap) {
@@ -457,6 +520,20 @@ int run_sniff(const SniffCommand& command) {
             (g_stop_requested.load() || (duration_ns > 0 && now - start >= duration_ns))) {
             stopping = true;
             source.request_stop();
+        }
+        if (g_reopen_requested.exchange(false)) {
+            if (writer && !output_failed && !pcap_to_stdout &&
+                (writer->rotation_stats() || capture_identity.known)) {
+                Result<std::string> reopened =
+                    reopen_capture(writer, capture_identity, command.output, *link_type,
+                                   settings->protocol->protocol, capture_line);
+                if (!reopened)
+                    stop_on_write_error(reopened.error());
+                else if (!extcap)
+                    write_standard_error(fmt::format("dpscope: {}\n", *reopened));
+            } else if (!extcap) {
+                write_standard_error("dpscope: SIGHUP: no capture file to reopen; going on\n");
+            }
         }
         FramedSource::Poll polled = source.poll(record);
         if (polled == FramedSource::Poll::End) break;

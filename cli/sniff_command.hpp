@@ -41,6 +41,10 @@ struct SniffCommand {
     std::string alarm;
     HealthOptionValues health;  // --health-config, --threshold (the verdicts of --stats, --alarm)
     MqttOptions mqtt;           // --mqtt and its options (cli/live_mqtt.hpp)
+    std::string config_file;    // --config FILE (expanded before parsing: cli/config_file.hpp)
+    // SIGHUP: "stop" (the terminal hung up), "reopen" (logrotate: the -w file anew, or the next
+    // file of a rotation), "auto" (stop with a controlling terminal, reopen without: a service).
+    std::string sighup = "auto";
     // The Wireshark extcap capture (cli/extcap_command.cpp): -w is Wireshark's fifo. Every
     // telegram is flushed into it at once; nothing is printed but errors (Wireshark shows
     // anything on standard error as an error); the fifo's reader going away (Wireshark stopped

@@ -203,8 +203,9 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
         "ASCII telegram on its RS-232 or RS-485 line, default 9600 baud 8N1; without --bus, "
         "PROFIBUS), "
         "decode and track as telegrams arrive, optionally "
-        "write pcap. Stops on -c, --duration, Ctrl-C (SIGINT), SIGTERM or SIGHUP with the "
-        "capture file complete. The port is taken exclusively (lock file /run/lock/LCK..NAME, "
+        "write pcap. Stops on -c, --duration, Ctrl-C (SIGINT), SIGTERM or SIGHUP (see --sighup) "
+        "with the capture file complete. The port is taken exclusively (lock file "
+        "/run/lock/LCK..NAME, "
         "flock, TIOCEXCL) and its settings are put back as they were found when sniff ends.");
     sub->add_option("-i,--interface", command->device, "Serial device, e.g. /dev/ttyUSB0")
         ->required()
@@ -336,6 +337,19 @@ void add_sniff_command(CLI::App& app, int& exit_code) {
         ->type_name("CMD");
     sub->add_flag("--no-low-latency", command->no_low_latency,
                   "Do not ask the driver for low-latency mode (ASYNC_LOW_LATENCY)");
+    sub->add_option("--config", command->config_file,
+                    "Read options from FILE first: lines KEY = VALUE, KEY an option's long name "
+                    "without -- (interface = /dev/ttyUSB0, stats = true, a repeatable option on "
+                    "several lines; # starts a comment line); an option given on the command line "
+                    "too is the command line's (docs/service.md)")
+        ->type_name("FILE");
+    sub->add_option("--sighup", command->sighup,
+                    "What SIGHUP does: stop (the capture ends, as when the terminal hangs up), "
+                    "reopen (for logrotate: -w FILE, once moved away, is started anew; with a "
+                    "rotation the next file is started now), or auto: stop when sniff has a "
+                    "controlling terminal, reopen when it has none (a service)")
+        ->check(CLI::IsMember({"auto", "stop", "reopen"}))
+        ->default_str("auto");
     add_mqtt_options(*sub, command->mqtt);
     add_display_options(*sub, command->options, "text");
     add_trigger_options(*sub, command->options, true);

@@ -453,12 +453,7 @@ TEST(SniffMqttTest, ABrokerKilledMidCaptureAndRestartedLosesNoEvent) {
     ASSERT_TRUE(sniffer.err_says("mqtt: lost the connection to mqtt://127.0.0.1:"))
         << sniffer.err();
     // The rest of the session while the broker is down.
-    Session rest;
-    rest.played.assign(session.played.begin() + static_cast<std::ptrdiff_t>(half),
-                       session.played.end());
-    rest.times.assign(session.times.begin() + static_cast<std::ptrdiff_t>(half),
-                      session.times.end());
-    test::play(pty, rest, true);
+    test::play(pty, test::tail_of(session, half), true);
     ASSERT_TRUE(test::wait_for_records(pcap, session.expected.size())) << sniffer.err();
     broker.restart();
     ASSERT_TRUE(sniffer.err_says("mqtt: connected to mqtt://127.0.0.1:")) << sniffer.err();

@@ -38,6 +38,11 @@ Child::Child(std::vector<std::string> argv, ChildOptions options)
             rlimit limit{options.file_size_limit, options.file_size_limit};
             setrlimit(RLIMIT_FSIZE, &limit);
         }
+        if (options.new_session) {
+            setsid();
+            if (!options.controlling_terminal.empty())
+                open(options.controlling_terminal.c_str(), O_RDWR);  // becomes the session's
+        }
         setenv("TZ", "UTC", 1);
         for (const auto& [name, value] : options.env)
             setenv(name.c_str(), value.c_str(), 1);
@@ -250,6 +255,17 @@ Session without_answers(const Session& session, std::uint8_t slave,
     }
     out.expected = out.played;  // no garbage in these sessions
     return out;
+}
+
+Session tail_of(const Session& session, std::size_t from) {
+    Session rest;
+    from = std::min(from, session.played.size());
+    rest.played.assign(session.played.begin() + static_cast<std::ptrdiff_t>(from),
+                       session.played.end());
+    rest.times.assign(session.times.begin() + static_cast<std::ptrdiff_t>(from),
+                      session.times.end());
+    rest.expected = rest.played;
+    return rest;
 }
 
 }  // namespace dpscope::test

@@ -23,11 +23,20 @@ namespace dpscope::test {
 using Telegrams = std::vector<std::vector<std::uint8_t>>;
 
 struct ChildOptions {
+    ChildOptions(std::map<std::string, std::string> env_ = {},
+                 rlim_t file_size_limit_ = RLIM_INFINITY, bool stdin_from_null_ = true)
+        : env(std::move(env_)),
+          file_size_limit(file_size_limit_),
+          stdin_from_null(stdin_from_null_) {}
     std::map<std::string, std::string> env;  // set in the child (after TZ=UTC, so they win)
     rlim_t file_size_limit = RLIM_INFINITY;  // RLIMIT_FSIZE of the child (a full disk)
     // Standard input from /dev/null (extcap, tshark); false keeps the test's own (as sniff_test
     // always ran dpscope sniff, which reads its port, not standard input).
     bool stdin_from_null = true;
+    // A session of its own (setsid): no controlling terminal, as a service has; with
+    // `controlling_terminal` (a pty's slave), that terminal becomes its controlling one.
+    bool new_session = false;
+    std::string controlling_terminal;
 };
 
 // A program running as a child process (argv[0] found on PATH unless it names a file), with
@@ -116,6 +125,9 @@ Session simulate(std::uint64_t cycles);  // the default session, `cycles` long, 
 // playing fails).
 void play(const PseudoTerminal& pty, const Session& s, bool as_fast_as_possible,
           std::size_t count = SIZE_MAX);
+
+// The part of `session` from played telegram `from` on (to play the rest after a pause).
+Session tail_of(const Session& session, std::size_t from);
 
 // `session` with the answers of `slave` taken out of the played telegrams in each of `windows`
 // (played indices, from, to): the slave stops answering there, and is lost.
