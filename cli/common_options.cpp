@@ -70,6 +70,25 @@ CLI::Validator output_file_name() {
         "", "file name");  // no description: the help shows the option's type name alone
 }
 
+void add_display_filter_option(CLI::App& app, DecodeOptionValues& values, std::string_view what) {
+    app.add_option("-Y,--display-filter", values.display_filter,
+                   fmt::format("{} Fields by the Wireshark plugin's names (dpscope.pcv.rc == 7, "
+                               "dpscope.station == 5, dpscope.finding == \"stacked_request\", "
+                               "health.event == \"station_lost\"), == != < <= > >=, contains, "
+                               "in {{...}}, && || ! and parentheses; dpscope filter --fields "
+                               "lists the fields",
+                               what))
+        ->type_name("EXPR");
+}
+
+bool selected_by_filter(const DecodeSettings& settings, const Pipeline& pipeline,
+                        const DecodedTelegram& t, std::span<const Finding> findings) {
+    if (!settings.filtering()) return true;
+    std::array<FilterEvent, 8> event_buffer;
+    return passes_filter(settings, t, findings, pipeline.subject_pnu(),
+                         filter_events(pipeline.health_events(), event_buffer));
+}
+
 void add_display_options(CLI::App& app, DecodeOptionValues& values,
                          std::string_view default_format) {
     values.format.clear();  // "" until -T is given: the subcommand's default
@@ -89,14 +108,10 @@ void add_display_options(CLI::App& app, DecodeOptionValues& values,
     app.add_flag("-l,--line-buffered", values.line_buffered,
                  "Write each telegram's output as soon as it is decoded, also into a pipe (as "
                  "tcpdump -l); on a terminal that is always done");
-    app.add_option("-Y,--display-filter", values.display_filter,
-                   "Show only telegrams the filter EXPR selects (docs/filter.md): fields by the "
-                   "Wireshark plugin's names (dpscope.pcv.rc == 7, dpscope.station == 5, "
-                   "dpscope.finding == \"stacked_request\", health.event == \"station_lost\"), "
-                   "== != < <= > >=, contains, in {...}, && || ! and parentheses; dpscope filter "
-                   "--fields lists the fields. With --station and --pnu, all must hold. All "
-                   "telegrams are still decoded and tracked")
-        ->type_name("EXPR");
+    add_display_filter_option(
+        app, values,
+        "Show only telegrams the filter EXPR selects (docs/filter.md). With --station and --pnu, "
+        "all must hold. All telegrams are still decoded and tracked");
     app.add_option("--station", values.stations,
                    "Show only telegrams to or from station ADDR (0 to 127), and those carrying a "
                    "finding about it; repeat for more stations. All telegrams are still decoded "

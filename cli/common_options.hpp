@@ -124,6 +124,10 @@ void add_params_option(CLI::App& app, std::vector<std::string>& files,
 // --baud for the port and sets the same setting).
 void add_line_options(CLI::App& app, DecodeOptionValues& values);
 // What decode, hex and sniff print: -T, -V, -q, -l, --station, --pnu.
+// -Y/--display-filter EXPR, its help beginning with `what` (what the filter does for the
+// command); the fields and operators are the same for every command.
+void add_display_filter_option(CLI::App& app, DecodeOptionValues& values, std::string_view what);
+
 void add_display_options(CLI::App& app, DecodeOptionValues& values,
                          std::string_view default_format);
 // decode and hex: -w FILE, -F, --linktype, -P.
@@ -141,6 +145,10 @@ struct DecodeSettings {
     // PROFIBUS bus health (protocols/profibus/health/bus_health.hpp): kept when track_health is set
     // (stats, report, sniff --stats); its baud rate is the line's when known.
     bool track_health = false;
+    // Judge the verdicts every kJudgeEveryNs of capture time, so that a verdict turning bad is a
+    // health event (health.verdict == "bad") offline as it is live. sniff judges itself, on the
+    // wall clock (cli/live_health.hpp), and turns this off.
+    bool judge_in_capture_time = true;
     BusHealthOptions health;
     OutputFormat format = OutputFormat::Text;
     bool quiet = false;
@@ -233,6 +241,12 @@ Result<DecodeSettings> resolve_decode_options(const DecodeOptionValues& values,
 bool passes_filter(const DecodeSettings& settings, const DecodedTelegram& t,
                    std::span<const Finding> findings, std::int32_t subject_pnu,
                    std::span<const FilterEvent> events = {}) noexcept;
+
+// Does the telegram pass the filters (-Y, --station, --pnu) with its findings and the health
+// events it caused? True when nothing filters.
+class Pipeline;
+bool selected_by_filter(const DecodeSettings& settings, const Pipeline& pipeline,
+                        const DecodedTelegram& t, std::span<const Finding> findings);
 
 // --trigger, --pre, --post, --trigger-limit and (sniff) --trigger-dir.
 void add_trigger_options(CLI::App& app, DecodeOptionValues& values, bool with_dir);

@@ -5,6 +5,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "capture/output_file.hpp"
 #include "capture/telegram_source.hpp"
@@ -33,15 +34,25 @@ class Pipeline {
           decoder_(settings.protocol->make_decoder(lanes_with(settings.lanes, naming_))),
           tracker_(settings.protocol->make_tracker(settings.lanes)),
           keep_timelines_(keep_timelines) {
-        if (settings.track_health && settings.protocol->has_bus_health)
+        if (settings.track_health && settings.protocol->has_bus_health) {
             health_.emplace(settings.health);
+            judge_ = settings.judge_in_capture_time;
+        }
     }
+
+    // Offline, the verdicts are judged as often as sniff judges them live: every quarter second
+    // of capture time (every kJudgeEveryTelegrams telegrams without times).
+    static constexpr std::int64_t kJudgeEveryNs = 250'000'000;
+    static constexpr std::uint64_t kJudgeEveryTelegrams = 1000;
 
     // Decodes and tracks one record; `findings` receives what the tracker found at it.
     const DecodedTelegram& feed(const Record& record, std::span<const Finding>& findings) {
         const DecodedTelegram& t = decoder_->decode(record.bytes, record.time_ns, record.number);
         findings = tracker_->track(t);
-        if (health_) health_events_ = health_->observe(t);
+        if (health_) {
+            health_events_ = health_->observe(t);
+            if (judge_) judge_at(record);
+        }
         summary_.add(t);
         summary_.add_findings(findings);
         if (keep_timelines_) timelines_.add(findings, tracker_->completed());
@@ -87,6 +98,22 @@ class Pipeline {
     }
 
   private:
+    // Judges when a quarter second of capture time (or kJudgeEveryTelegrams) has passed since
+    // the last judgement; a verdict that turned bad joins the telegram's health events.
+    void judge_at(const Record& record) {
+        const bool timed = record.time_ns != kNoTime;
+        if (timed ? last_judged_ns_ != kNoTime && record.time_ns - last_judged_ns_ < kJudgeEveryNs
+                  : ++unjudged_ < kJudgeEveryTelegrams)
+            return;
+        last_judged_ns_ = record.time_ns;
+        unjudged_ = 0;
+        events_.assign(health_events_.begin(), health_events_.end());
+        const std::span<const HealthEvent> turned_bad = health_->judge();
+        if (turned_bad.empty()) return;
+        events_.insert(events_.end(), turned_bad.begin(), turned_bad.end());
+        health_events_ = events_;
+    }
+
     // The telegrams need more time at the baud rate given than the capture lasts: the line was
     // faster (the bus load would read over 100 %, shown as 100).
     static void warn_line_rate(const SegmentHealth& segment) {
@@ -110,6 +137,10 @@ class Pipeline {
     std::unique_ptr<TelegramTracker> tracker_;
     std::optional<BusHealthTracker> health_;
     std::span<const HealthEvent> health_events_;
+    bool judge_ = false;
+    std::int64_t last_judged_ns_ = kNoTime;
+    std::uint64_t unjudged_ = 0;
+    std::vector<HealthEvent> events_;  // the observed events and the verdicts turned bad
     Summary summary_;
     ChannelTimelines timelines_;
     bool keep_timelines_ = false;

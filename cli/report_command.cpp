@@ -50,6 +50,7 @@ int write_report(const ReportCommand& command, ReportFormat format, const Pipeli
     ReportContext context = report_context(
         pipeline, source, log, fail_on_from_name(command.fail_on).value_or(FailOn::Error));
     context.allow_empty = command.allow_empty;
+    context.display_filter = command.options.display_filter;
     for (unsigned station : command.stations) {
         context.stations.push_back(static_cast<std::uint8_t>(station));
         if (!station_in_capture(pipeline, station)) {
@@ -126,8 +127,11 @@ int run_report(const ReportCommand& command) {
             ProgressMeter progress = ProgressMeter::for_source(source);
             while (source.next(record)) {
                 ++read;
-                pipeline.feed(record, findings);
-                if (!findings.empty()) log.append(findings);
+                const DecodedTelegram& t = pipeline.feed(record, findings);
+                // -Y: every telegram is tracked; the report lists the findings of those the
+                // filter selects (and, as decode shows them, those open at the end).
+                if (!findings.empty() && selected_by_filter(*settings, pipeline, t, findings))
+                    log.append(findings);
                 progress.tick(source);
             }
         }
@@ -193,6 +197,12 @@ void add_report_command(CLI::App& app, int& exit_code) {
                   "telegram with a parameter channel from the slaves reported; FC: no command to a "
                   "drive; VLT 2000: no command a drive answered); by default the "
                   "report says \"nothing checked\" and exits 1");
+    add_display_filter_option(*sub, command->options,
+                              "List only the findings of telegrams the filter EXPR selects "
+                              "(docs/filter.md), and judge --fail-on by them; every telegram is "
+                              "still decoded and tracked (a request and its answer are paired "
+                              "whatever the filter says), the sections' figures are the whole "
+                              "capture's, and findings open at the end are listed");
     add_tracking_options(*sub, command->options);
     add_line_options(*sub, command->options);
     add_health_options(*sub, command->health);

@@ -391,7 +391,11 @@ int run_sniff(const SniffCommand& command) {
     tty_options.idle_gap_ns = static_cast<std::int64_t>(command.idle_gap_ms) * 1'000'000;
     // Bus health: the bus load at the port's rate and character (8E1: 11 bits).
     // The report at the end has its bus-health section too (PROFIBUS), as `dpscope report` has.
-    settings->track_health = settings->track_health || stats || !command.alarm.empty() || report;
+    // LiveHealth judges the verdicts on the wall clock, also while the line is quiet.
+    settings->judge_in_capture_time = false;
+    // --mqtt publishes the health events too (PROFIBUS).
+    settings->track_health = settings->track_health || stats || !command.alarm.empty() || report ||
+                             (!command.mqtt.url.empty() && bus.has_bus_health);
     settings->health.baud = port->baud();
     settings->health.character_bits = tty_options.character_bits;
     const std::string heading =

@@ -1,6 +1,7 @@
 // dpscope stats: the bus-health statistics of a PROFIBUS capture (docs/bus-health.md).
 #include <fmt/format.h>
 
+#include <bitset>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -14,6 +15,7 @@
 #include "cli/pipeline.hpp"
 #include "cli/progress.hpp"
 #include "cli/version.hpp"
+#include "filter/display_filter.hpp"
 #include "protocols/profibus/health/stats_render.hpp"
 
 namespace dpscope::cli {
@@ -34,10 +36,23 @@ struct StatsCommand {
 
 // Renders the statistics and returns the exit code.
 int write_stats(const StatsCommand& command, const Pipeline& pipeline, const TelegramSource& source,
-                Output& out) {
-    const BusHealth& health = pipeline.health()->health();
+                const std::bitset<kStationCount>* selected, Output& out) {
+    const BusHealth& all = pipeline.health()->health();
+    // -Y: the stations and masters the selected telegrams are to or from; the segment and its
+    // verdict stay the whole capture's.
+    BusHealth shown;
+    if (selected) {
+        shown = all;
+        std::erase_if(shown.stations,
+                      [&](const StationHealth& s) { return !selected->test(s.address); });
+        std::erase_if(shown.masters,
+                      [&](const MasterHealth& m) { return !selected->test(m.address); });
+    }
+    const BusHealth& health = selected ? shown : all;
+    InputSummary input = describe_input(source);
+    if (selected) input.name += ", stations of the telegrams the -Y filter selects";
     const StatsFormat format = stats_format_from_name(command.format).value_or(StatsFormat::Text);
-    render_stats(format, StatsContext{describe_input(source), &health, kVersion}, out);
+    render_stats(format, StatsContext{input, &health, kVersion}, out);
     if (!out.flush()) {
         print_error(fmt::format("cannot write the statistics to {}: {}",
                                 command.output == "-" ? "standard output" : command.output,
@@ -100,12 +115,15 @@ int run_stats(const StatsCommand& command) {
         Record record;
         std::uint64_t read = 0;
         std::span<const Finding> findings;
+        std::bitset<kStationCount> selected;  // -Y: the stations of the selected telegrams
         source.stop_after(settings->count);
         {
             ProgressMeter progress = ProgressMeter::for_source(source);
             while (source.next(record)) {
                 ++read;
-                pipeline.feed(record, findings);
+                const DecodedTelegram& t = pipeline.feed(record, findings);
+                if (settings->filtering() && selected_by_filter(*settings, pipeline, t, findings))
+                    mark_telegram_stations(FilterInput{t}, selected);
                 progress.tick(source);
             }
         }
@@ -117,7 +135,8 @@ int run_stats(const StatsCommand& command) {
             print_error(found.error());
             return kExitUsage;
         }
-        return write_stats(command, pipeline, source, out);
+        return write_stats(command, pipeline, source, settings->filtering() ? &selected : nullptr,
+                           out);
     });
 }
 
@@ -170,6 +189,11 @@ void add_stats_command(CLI::App& app, int& exit_code) {
         ->type_name("BAUD");
     add_allow_empty_option(*sub, command->allow_empty);
     add_health_options(*sub, command->health);
+    add_display_filter_option(*sub, command->options,
+                              "List only the stations and masters that telegrams the filter EXPR "
+                              "selects are to or from (docs/filter.md); every telegram still "
+                              "counts in their figures, and the segment's line and verdict (and "
+                              "--fail-on) are the whole capture's.");
     sub->add_option("-c,--count", command->options.count, "Stop after reading N telegrams")
         ->check(whole_number(1, kMaxCount, " telegrams"))
         ->type_name("N");

@@ -57,6 +57,8 @@ struct ReportContext {
     // a parameter channel from the slaves reported) passes; by default it fails.
     bool allow_empty = false;
     std::vector<std::uint8_t> stations;  // report only these slaves (empty: all)
+    // -Y: the findings listed are those of the telegrams this filter selects ("": all).
+    std::string display_filter;
     std::string version;                 // dpscope's version, named in the report
 };
 

@@ -74,7 +74,7 @@ void write_html(const ReportContext& c, const ReportModel& m, Output& out) {
                        "</p>\n",
                        xml(c.input.name), xml(c.input.format), xml(c.version), xml(bus_text(c)),
                        xml(checks_text(c, m)));
-    if (!c.stations.empty())
+    if (!c.stations.empty() || !c.display_filter.empty())
         fmt::format_to(it,
                        "<p class=\"meta\">Filter: {} (telegram counts cover the whole "
                        "capture)</p>\n",

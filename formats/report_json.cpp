@@ -42,6 +42,8 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
             w.integer(station);
         w.end_array();
     }
+    // Only when given: the reports of every capture without -Y stay as they were.
+    if (!c.display_filter.empty()) w.key("display_filter").string(c.display_filter);
     w.end_object();
     w.key("result").string(m.fails ? "fail" : "pass");
     w.key("nothing_checked").boolean(m.nothing_checked);

@@ -22,7 +22,7 @@ void write_markdown(const ReportContext& c, const ReportModel& m, Output& out) {
                        tracker.strict() ? "strict" : "lenient");
     else
         fmt::format_to(it, "- Checks: {}\n", checks_text(c, m));
-    if (!c.stations.empty())
+    if (!c.stations.empty() || !c.display_filter.empty())
         fmt::format_to(it, "- Filter: {} (telegram counts cover the whole capture)\n",
                        filter_text(c));
     fmt::format_to(it, "- dpscope {}\n\n", c.version);

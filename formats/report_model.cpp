@@ -98,6 +98,9 @@ std::string filter_text(const ReportContext& c) {
         c.stations.size() == 1 ? bus_wording(c).station : bus_wording(c).stations;
     for (std::uint8_t station : c.stations)
         text += text.empty() ? fmt::format("{} {}", noun, station) : fmt::format(", {}", station);
+    if (!c.display_filter.empty())
+        text += fmt::format("{}-Y {}: the findings of the telegrams it selects",
+                            text.empty() ? "" : "; ", c.display_filter);
     return text;
 }
 

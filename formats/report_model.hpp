@@ -243,7 +243,7 @@ std::string checks_text(const ReportContext& c, const ReportModel& m);
 std::string verdict_text(const ReportContext& c, const ReportModel& m);
 // "time-out 1000 ms", or kNoTimestamps without timestamps.
 std::string timeout_rule_text(const ReportContext& c, const ReportModel& m);
-// "" without a station filter, else "slaves 3, 5".
+// "" without a station filter or -Y, else "slaves 3, 5", "-Y EXPR: the findings of ...".
 std::string filter_text(const ReportContext& c);
 // Seconds since the capture's first telegram ("0.027865"), or "-".
 std::string relative_seconds(const ReportContext& c, std::int64_t time_ns);

@@ -29,7 +29,7 @@ void write_text(const ReportContext& c, const ReportModel& m, Output& out) {
                        tracker.strict() ? "an unexpected response (strict)" : "unusual, a warning");
     else
         fmt::format_to(it, "Checks:  {}\n", checks_text(c, m));
-    if (!c.stations.empty())
+    if (!c.stations.empty() || !c.display_filter.empty())
         fmt::format_to(it, "Filter:  {} (telegram counts cover the whole capture)\n",
                        filter_text(c));
     fmt::format_to(it, "Result:  {}\n\n", verdict_text(c, m));

@@ -67,6 +67,21 @@ TEST(FilterCliTest, HealthEventsAreTrackedForTheFilter) {
         {"decode", "-Y", "health.event == \"station_lost\"", sample("bus-health.pcap")});
     ASSERT_EQ(lost.exit_code, 0) << lost.err;
     EXPECT_EQ(lines(lost.out), 1u) << lost.out;
+    // Verdicts are judged offline as sniff judges them live (every quarter second of capture
+    // time): a verdict turning bad is an event at the telegram where it was judged.
+    CommandResult bad =
+        run_dpscope({"decode", "-Y", "health.event == \"verdict_bad\"", sample("bus-health.pcap")});
+    ASSERT_EQ(bad.exit_code, 0) << bad.err;
+    EXPECT_GE(lines(bad.out), 1u) << bad.out;
+    CommandResult same =
+        run_dpscope({"decode", "-Y", "health.verdict == \"bad\"", sample("bus-health.pcap")});
+    EXPECT_EQ(same.out, bad.out);
+    // stats -Y selecting every station lists them all, with the same figures.
+    CommandResult stats = run_dpscope({"stats", "-T", "json", sample("bus-health.pcap")});
+    CommandResult stats_all = run_dpscope(
+        {"stats", "-T", "json", "-Y", "dpscope.station in {0..127}", sample("bus-health.pcap")});
+    EXPECT_EQ(stats.out.substr(stats.out.find("\"segment\"")),
+              stats_all.out.substr(stats_all.out.find("\"segment\"")));
 }
 
 TEST(FilterCliTest, ABadExpressionIsAUsageErrorNamingItsColumn) {
@@ -142,6 +157,63 @@ TEST(FilterCliTest, TriggersCutACaptureIntoItsWindows) {
                                        folder, sample("faults.pcap")});
     EXPECT_EQ(range.exit_code, 2);
     EXPECT_FALSE(std::filesystem::exists(folder));
+}
+
+}  // namespace
+}  // namespace dpscope
+
+namespace dpscope {
+namespace {
+
+// report -Y: every telegram is tracked, the report lists the findings of the selected telegrams
+// and judges --fail-on by them.
+TEST(FilterCliTest, ReportListsTheFindingsOfTheSelectedTelegrams) {
+    const std::string faults = sample("faults.pcap");
+    CommandResult all = run_dpscope({"report", "-T", "json", faults});
+    CommandResult stacked = run_dpscope(
+        {"report", "-T", "json", "-Y", "dpscope.finding == \"stacked_request\"", faults});
+    ASSERT_EQ(stacked.exit_code, 1) << stacked.err;  // the stacked request is an error
+    EXPECT_NE(stacked.out.find("\"display_filter\":\"dpscope.finding == \\\"stacked_request\\\"\""),
+              std::string::npos);
+    EXPECT_NE(stacked.out.find("\"summary\":{\"telegrams\":458"), std::string::npos);
+    EXPECT_NE(stacked.out.find("\"findings\":{\"error\":1,\"warning\":0,\"note\":0}"),
+              std::string::npos)
+        << stacked.out.substr(0, 800);
+    EXPECT_EQ(all.out.find("display_filter"), std::string::npos);
+    // Findings of no selected telegram: nothing listed, the report passes.
+    CommandResult none =
+        run_dpscope({"report", "-Y", "dpscope.finding == \"response_timeout\"", faults});
+    EXPECT_EQ(none.exit_code, 0) << none.out;
+    EXPECT_NE(none.out.find("Filter:  -Y dpscope.finding == \"response_timeout\": the findings "
+                            "of the telegrams it selects (telegram counts cover the whole "
+                            "capture)"),
+              std::string::npos)
+        << none.out;
+    // A bad expression: exit 2, its column named.
+    CommandResult bad = run_dpscope({"report", "-Y", "dpscope.station ==", faults});
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("column 19"), std::string::npos) << bad.err;
+}
+
+// stats -Y: the stations and masters of the selected telegrams, with their whole figures; the
+// segment stays the capture's.
+TEST(FilterCliTest, StatsListTheStationsOfTheSelectedTelegrams) {
+    const std::string health = sample("bus-health.pcap");
+    CommandResult all = run_dpscope({"stats", "-T", "csv", health});
+    CommandResult five = run_dpscope({"stats", "-T", "csv", "-Y", "dpscope.station == 5", health});
+    ASSERT_EQ(five.exit_code, all.exit_code) << five.err;
+    // Station 5's row and its master's are the same as without the filter; no other station.
+    const std::vector<std::string> rows = test::lines_of(five.out);
+    std::vector<std::string> from_all;
+    for (const std::string& row : test::lines_of(all.out))
+        if (std::find(rows.begin(), rows.end(), row) != rows.end()) from_all.push_back(row);
+    EXPECT_EQ(from_all.size(), rows.size()) << five.out;
+    EXPECT_LT(rows.size(), test::lines_of(all.out).size());
+    CommandResult text = run_dpscope({"stats", "-Y", "dpscope.station == 5", health});
+    EXPECT_NE(text.out.find("stations of the telegrams the -Y filter selects"), std::string::npos);
+    EXPECT_NE(text.out.find("Live list (2 stations)"), std::string::npos) << text.out;
+    CommandResult bad = run_dpscope({"stats", "-Y", "no.such.field == 1", health});
+    EXPECT_EQ(bad.exit_code, 2);
 }
 
 }  // namespace

@@ -56,6 +56,7 @@ class Child {
     std::string out() const;
     std::string err() const;
     const std::string& out_path() const { return out_; }  // the file standard output goes to
+    pid_t pid() const { return pid_; }
 
   private:
     std::string out_;
