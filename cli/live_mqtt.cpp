@@ -147,8 +147,7 @@ Result<MqttCredentials> read_mqtt_credentials(const std::string& file) {
             return Error{
                 fmt::format("--mqtt-credentials {}:{}: expected username=NAME or password=SECRET",
                             file, number)};
-        // The value as it stands after '=' (a password may begin or end with blanks? no: a
-        // line's blanks around it are trimmed, as an editor leaves them unseen).
+        // Blanks around the value are trimmed: an editor leaves them unseen.
         (key == "username" ? credentials.username : credentials.password) =
             trimmed(text.substr(equals + 1));
     }

@@ -73,6 +73,16 @@ class Child {
 // The dpscope built with the tests, with `args`: the argv of a Child or of exec_or_exit.
 std::vector<std::string> dpscope_argv(const std::vector<std::string>& args);
 
+// dpscope running as a child process, standard output and error in files (standard input the
+// test's own, as it always was here).
+class Sniffer : public Child {
+  public:
+    explicit Sniffer(std::vector<std::string> args, rlim_t file_size_limit = RLIM_INFINITY)
+        : Child(dpscope_argv(args), {{}, file_size_limit, false}) {}
+    // Waits until the sniffer says it is capturing.
+    bool ready() const { return err_says("capturing on"); }
+};
+
 // `args` of dpscope capturing on a pty the test writes into (sniff), with --idle-gap-ms 0: a
 // thread of the test writing the pty, or relaying into it, can pause anywhere, within a telegram
 // too, for as long as a loaded machine keeps it waiting, and an idle gap would cut the telegram
