@@ -17,6 +17,7 @@
 #include "capture/capture_writer.hpp"
 #include "capture/pcap_source.hpp"
 #include "capture/trigger_recorder.hpp"
+#include "cli/small_file.hpp"
 #include "core/protocol_descriptor.hpp"
 #include "core/result.hpp"
 #include "drives/drive_family.hpp"
@@ -200,12 +201,6 @@ Result<int> capture_link_type(const ProtocolDescriptor& protocol, std::optional<
 
 // The largest parameter database file read (--params): the shipped ones are a few dozen KiB.
 inline constexpr std::size_t kMaxParameterFileBytes = 16 * 1024 * 1024;
-
-// The whole of a regular file of at most `max_bytes` (a device, FIFO or directory is refused
-// before anything is read); the error is "OPTION FILE: why" (OPTION "--health-config"), naming
-// `what` the file must be ("a parameter database").
-Result<std::string> read_small_file(const std::string& path, std::size_t max_bytes,
-                                    std::string_view option, std::string_view what);
 
 // The shipped parameter databases, then each --params file in order (a family already loaded
 // takes its rows: docs/parameters.md). A file that cannot be read or parsed is named in a

@@ -3,14 +3,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <sstream>
+#include <optional>
+
+#include "cli/small_file.hpp"
 
 namespace dpscope::cli {
 
 namespace {
+
+// A config file is a few dozen lines; a larger one is no config file.
+constexpr std::size_t kMaxConfigFileBytes = 1024 * 1024;
 
 std::string_view trimmed(std::string_view text) {
     const std::size_t first = text.find_first_not_of(" \t\r");
@@ -177,12 +179,10 @@ Result<std::vector<std::string>> expand_config_option(const std::vector<std::str
         rest.push_back(a);
     }
     if (!found) return argv;
-    std::ifstream in(file, std::ios::binary);
-    if (!in)
-        return Error{fmt::format("--config {}: cannot read it: {}", file, std::strerror(errno))};
-    std::ostringstream text;
-    text << in.rdbuf();
-    Result<std::vector<ConfigEntry>> entries = parse_config_text(text.str(), file);
+    Result<std::string> text =
+        read_small_file(file, kMaxConfigFileBytes, "--config", "a file of KEY = VALUE lines");
+    if (!text) return Error{text.error()};
+    Result<std::vector<ConfigEntry>> entries = parse_config_text(*text, file);
     if (!entries) return Error{entries.error()};
     Result<std::vector<std::string>> arguments = config_arguments(*entries, *command, rest, file);
     if (!arguments) return Error{arguments.error()};

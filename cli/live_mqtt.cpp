@@ -9,15 +9,27 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 
 #include "cli/common_options.hpp"
+#include "cli/small_file.hpp"
 #include "formats/json_writer.hpp"
 #include "protocols/profibus/health/health_event_describe.hpp"
 
 namespace dpscope::cli {
 
 namespace {
+
+std::vector<std::string> split_lines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::size_t at = 0;
+    while (at < text.size()) {
+        std::size_t end = text.find('\n', at);
+        if (end == std::string::npos) end = text.size();
+        lines.push_back(text.substr(at, end - at));
+        at = end + 1;
+    }
+    return lines;
+}
 
 std::string trimmed(std::string_view text) {
     const std::size_t first = text.find_first_not_of(" \t\r");
@@ -130,26 +142,24 @@ Result<MqttCredentials> read_mqtt_credentials(const std::string& file) {
             return Error{"DPSCOPE_MQTT_PASSWORD is set without DPSCOPE_MQTT_USERNAME"};
         return credentials;
     }
-    std::ifstream in(file);
-    if (!in)
-        return Error{
-            fmt::format("--mqtt-credentials {}: cannot read it: {}", file, std::strerror(errno))};
-    std::string line;
+    Result<std::string> text = read_small_file(file, 64 * 1024, "--mqtt-credentials",
+                                               "a file of username= and password= lines");
+    if (!text) return Error{text.error()};
     unsigned number = 0;
-    while (std::getline(in, line)) {
+    for (const std::string& raw : split_lines(*text)) {
         ++number;
-        const std::string text = trimmed(line);
-        if (text.empty() || text.front() == '#') continue;
-        const std::size_t equals = text.find('=');
+        const std::string line = trimmed(raw);
+        if (line.empty() || line.front() == '#') continue;
+        const std::size_t equals = line.find('=');
         const std::string key =
-            equals == std::string::npos ? text : trimmed(text.substr(0, equals));
+            equals == std::string::npos ? line : trimmed(line.substr(0, equals));
         if (equals == std::string::npos || (key != "username" && key != "password"))
             return Error{
                 fmt::format("--mqtt-credentials {}:{}: expected username=NAME or password=SECRET",
                             file, number)};
         // Blanks around the value are trimmed: an editor leaves them unseen.
         (key == "username" ? credentials.username : credentials.password) =
-            trimmed(text.substr(equals + 1));
+            trimmed(line.substr(equals + 1));
     }
     if (credentials.username.empty())
         return Error{fmt::format("--mqtt-credentials {}: no username= line", file)};

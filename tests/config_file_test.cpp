@@ -130,8 +130,14 @@ TEST(ConfigFileTest, ExpansionPutsTheFileFirstAndLeavesOtherCommandsAlone) {
     auto missing =
         expand_config_option({"dpscope", "sniff", "--config", file + ".none"}, c.app, origins);
     ASSERT_FALSE(missing);
-    EXPECT_NE(missing.error().find("--config " + file + ".none: cannot read it"),
-              std::string::npos);
+    EXPECT_NE(missing.error().find("--config " + file + ".none: cannot read"), std::string::npos);
+    // Only a small regular file is read: not a device that never ends, not a folder.
+    for (const std::string& not_a_file : {std::string("/dev/zero"), test::source_dir()}) {
+        auto refused =
+            expand_config_option({"dpscope", "sniff", "--config", not_a_file}, c.app, origins);
+        ASSERT_FALSE(refused) << not_a_file;
+        EXPECT_NE(refused.error().find("not a regular file"), std::string::npos) << refused.error();
+    }
     auto twice = expand_config_option({"dpscope", "sniff", "--config", file, "--config", file},
                                       c.app, origins);
     ASSERT_FALSE(twice);
