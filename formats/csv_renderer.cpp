@@ -2,6 +2,8 @@
 // or a quote are quoted (RFC 4180). Both buses share the header; an FC protocol row fills the
 // columns that apply to it, and so does a VLT 2000 row (README.md). Each protocol's columns are
 // written by its <name>_csv_columns (formats/protocol_rendering.hpp).
+#include <fmt/compile.h>
+
 #include <iterator>
 
 #include "formats/describe.hpp"
@@ -26,12 +28,12 @@ class CsvRenderer final : public TelegramRenderer {
 
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
         TextBuffer& b = out_.buffer();
-        auto it = std::back_inserter(b);
+        auto it = fmt::appender(b);
         render_csv_columns(b, t);
         bool first = true;
         for (const Problem& p : t.problems()) {
             if (!first) b.push_back(' ');
-            fmt::format_to(it, "{}@{}", problem_kind_name(p.kind), p.offset);
+            fmt::format_to(it, FMT_COMPILE("{}@{}"), problem_kind_name(p.kind), p.offset);
             first = false;
         }
         b.push_back(',');

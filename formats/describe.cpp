@@ -1,5 +1,7 @@
 #include "formats/describe.hpp"
 
+#include <fmt/compile.h>
+
 #include <algorithm>
 #include <ctime>
 #include <iterator>
@@ -30,7 +32,7 @@ void append_iso_time(TextBuffer& out, std::int64_t time_ns) {
     std::time_t t = static_cast<std::time_t>(seconds);
     std::tm tm{};
     gmtime_r(&t, &tm);
-    fmt::format_to(std::back_inserter(out), "{:04}-{:02}-{:02}T{:02}:{:02}:{:02}.{:09}Z",
+    fmt::format_to(fmt::appender(out), FMT_COMPILE("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}.{:09}Z"),
                    tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec,
                    nanos);
 }
@@ -39,7 +41,7 @@ std::string relative_seconds_text(std::int64_t relative_ns) {
     const bool negative = relative_ns < 0;
     const std::uint64_t magnitude = negative ? 0 - static_cast<std::uint64_t>(relative_ns)
                                              : static_cast<std::uint64_t>(relative_ns);
-    return fmt::format("{}{}.{:06}", negative ? "-" : "", magnitude / 1'000'000'000,
+    return fmt::format(FMT_COMPILE("{}{}.{:06}"), negative ? "-" : "", magnitude / 1'000'000'000,
                        (magnitude % 1'000'000'000) / 1000);
 }
 
@@ -47,7 +49,7 @@ void append_epoch_seconds(TextBuffer& out, std::int64_t time_ns) {
     // Sign and magnitude: -1.5 s is "-1.500000000", not "-2" and a positive fraction.
     std::uint64_t magnitude =
         time_ns < 0 ? 0 - static_cast<std::uint64_t>(time_ns) : static_cast<std::uint64_t>(time_ns);
-    fmt::format_to(std::back_inserter(out), "{}{}.{:09}", time_ns < 0 ? "-" : "",
+    fmt::format_to(fmt::appender(out), FMT_COMPILE("{}{}.{:09}"), time_ns < 0 ? "-" : "",
                    magnitude / kNanos, magnitude % kNanos);
 }
 
@@ -75,10 +77,10 @@ void append_hex(TextBuffer& out, Bytes bytes, std::string_view separator) {
 
 void append_frame_control(TextBuffer& out, FrameControl fc) {
     if (fc.is_request()) {
-        fmt::format_to(std::back_inserter(out), "request, FCB {}, FCV {}, {}", fc.fcb() ? 1 : 0,
-                       fc.fcv() ? 1 : 0, request_function_name(fc));
+        fmt::format_to(fmt::appender(out), FMT_COMPILE("request, FCB {}, FCV {}, {}"),
+                       fc.fcb() ? 1 : 0, fc.fcv() ? 1 : 0, request_function_name(fc));
     } else {
-        fmt::format_to(std::back_inserter(out), "response, {}, {} ({})",
+        fmt::format_to(fmt::appender(out), FMT_COMPILE("response, {}, {} ({})"),
                        station_type_name(fc.station_type()), response_status_name(fc.function()),
                        response_status_text(fc.function()));
     }
@@ -88,24 +90,26 @@ void append_ppo_short(TextBuffer& out, const PpoLayout& layout) {
     const char* guess = layout.source == PpoSource::Length ? "?" : "";
     if (layout.type != 0) {
         if (layout.alternative != 0)
-            fmt::format_to(std::back_inserter(out), "PPO{}/{}{}", layout.type, layout.alternative,
-                           guess);
+            fmt::format_to(fmt::appender(out), FMT_COMPILE("PPO{}/{}{}"), layout.type,
+                           layout.alternative, guess);
         else
-            fmt::format_to(std::back_inserter(out), "PPO{}{}", layout.type, guess);
+            fmt::format_to(fmt::appender(out), FMT_COMPILE("PPO{}{}"), layout.type, guess);
         return;
     }
     if (layout.has_pcv)
-        fmt::format_to(std::back_inserter(out), "PCV+{}w", (layout.output_bytes - kPcvBytes) / 2);
+        fmt::format_to(fmt::appender(out), FMT_COMPILE("PCV+{}w"),
+                       (layout.output_bytes - kPcvBytes) / 2);
     else
-        fmt::format_to(std::back_inserter(out), "{}w", layout.output_bytes / 2);
+        fmt::format_to(fmt::appender(out), FMT_COMPILE("{}w"), layout.output_bytes / 2);
 }
 
 std::string command_outcomes_text(std::uint64_t answered, std::uint64_t unanswered,
                                   std::uint64_t abandoned, std::uint64_t damaged,
                                   std::uint64_t not_judged) {
-    std::string text = fmt::format("{} answered, {} unanswered, {} abandoned, {} damaged", answered,
-                                   unanswered, abandoned, damaged);
-    if (not_judged) text += fmt::format(", {} not judged", not_judged);
+    std::string text =
+        fmt::format(FMT_COMPILE("{} answered, {} unanswered, {} abandoned, {} damaged"), answered,
+                    unanswered, abandoned, damaged);
+    if (not_judged) text += fmt::format(FMT_COMPILE(", {} not judged"), not_judged);
     return text;
 }
 
@@ -118,20 +122,20 @@ void append_ppo_long(TextBuffer& out, const PpoLayout& layout) {
         return (bytes - (layout.has_pcv ? kPcvBytes : 0)) / 2;
     };
     if (layout.type != 0) {
-        fmt::format_to(std::back_inserter(out), "PPO {}", layout.type);
+        fmt::format_to(fmt::appender(out), FMT_COMPILE("PPO {}"), layout.type);
         if (layout.alternative != 0)
-            fmt::format_to(std::back_inserter(out), " or PPO {}", layout.alternative);
+            fmt::format_to(fmt::appender(out), FMT_COMPILE(" or PPO {}"), layout.alternative);
         append(out, " (");
     } else {
         append(out, "no standard PPO (");
     }
     if (layout.has_pcv) append(out, "PCV + ");
     if (layout.output_bytes == layout.input_bytes)
-        fmt::format_to(std::back_inserter(out), "{}, {} each way)",
+        fmt::format_to(fmt::appender(out), FMT_COMPILE("{}, {} each way)"),
                        counted(words(layout.output_bytes), "PCD word", "PCD words"),
                        counted(layout.output_bytes, "byte", "bytes"));
     else
-        fmt::format_to(std::back_inserter(out), "{} out, {} in; {} out, {} in)",
+        fmt::format_to(fmt::appender(out), FMT_COMPILE("{} out, {} in; {} out, {} in)"),
                        counted(words(layout.output_bytes), "PCD word", "PCD words"),
                        words(layout.input_bytes), counted(layout.output_bytes, "byte", "bytes"),
                        layout.input_bytes);
@@ -147,20 +151,21 @@ void append_ppo_long(TextBuffer& out, const PpoLayout& layout) {
 void append_pcv_summary(TextBuffer& out, const DecodedTelegram& t) {
     const Pcv& pcv = t.dp.pcv;
     bool request = t.direction == Direction::Request;
-    fmt::format_to(std::back_inserter(out), "RC={} {}", pcv.rc, t.dp.pcv_meaning(t.direction));
+    fmt::format_to(fmt::appender(out), FMT_COMPILE("RC={} {}"), pcv.rc,
+                   t.dp.pcv_meaning(t.direction));
     if (pcv.spm) append(out, " SPM=1");
     // The parameter's name and the value in its unit from its drive's database (issue 29).
     const TelegramParameterView view = parameter_view(t);
-    fmt::format_to(std::back_inserter(out), " PNU={}", pcv.pnu);
+    fmt::format_to(fmt::appender(out), FMT_COMPILE(" PNU={}"), pcv.pnu);
     append_parameter_name(out, view.named);
-    fmt::format_to(std::back_inserter(out), " IND={}", pcv.ind);
+    fmt::format_to(fmt::appender(out), FMT_COMPILE(" IND={}"), pcv.ind);
     if (!request && response_code(t.dp.dialect, pcv.rc).kind == ResponseKind::Rejected) {
         std::uint16_t error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
-        fmt::format_to(std::back_inserter(out), " error {} ({})", error,
+        fmt::format_to(fmt::appender(out), FMT_COMPILE(" error {} ({})"), error,
                        error_text_or_unknown(t.dp.dialect, error));
         return;
     }
-    fmt::format_to(std::back_inserter(out), " PVA={}", t.dp.pcv_value(t.direction));
+    fmt::format_to(fmt::appender(out), FMT_COMPILE(" PVA={}"), t.dp.pcv_value(t.direction));
     append_view_value(out, view);
 }
 
@@ -177,12 +182,13 @@ void append_pcd_summary(TextBuffer& out, const DecodedTelegram& t) {
         append(out, "no PCD");
         return;
     }
-    fmt::format_to(std::back_inserter(out), "{}=0x{:04X}", pcd_word_name(t.direction, 0), *first);
+    fmt::format_to(fmt::appender(out), FMT_COMPILE("{}=0x{:04X}"), pcd_word_name(t.direction, 0),
+                   *first);
     if (auto second = reader.u16_be())
-        fmt::format_to(std::back_inserter(out), " {}={:.2f}%", pcd_word_name(t.direction, 1),
-                       reference_percent(*second));
+        fmt::format_to(fmt::appender(out), FMT_COMPILE(" {}={:.2f}%"),
+                       pcd_word_name(t.direction, 1), reference_percent(*second));
     if (std::size_t more = reader.remaining() / 2; more > 0)
-        fmt::format_to(std::back_inserter(out), " +{}w", more);
+        fmt::format_to(fmt::appender(out), FMT_COMPILE(" +{}w"), more);
 }
 
 void append_cfg_summary(TextBuffer& out, Bytes identifiers, std::span<const CfgModule> modules) {
@@ -206,7 +212,7 @@ void append_gsd_modules(TextBuffer& out, std::span<const GsdModuleMatch> matches
         if (!first) append(out, " + ");
         first = false;
         if (m.module)
-            fmt::format_to(std::back_inserter(out), "\"{}\"", m.module->name);
+            fmt::format_to(fmt::appender(out), FMT_COMPILE("\"{}\""), m.module->name);
         else
             append(out, "no module");
     }
@@ -214,19 +220,19 @@ void append_gsd_modules(TextBuffer& out, std::span<const GsdModuleMatch> matches
 }
 
 void append_gsd_value(TextBuffer& out, const GsdPrmValue& v) {
-    auto it = std::back_inserter(out);
+    auto it = fmt::appender(out);
     if (v.text)
-        fmt::format_to(it, "{}={}", v.prm->name, v.text->text);
+        fmt::format_to(it, FMT_COMPILE("{}={}"), v.prm->name, v.text->text);
     else
-        fmt::format_to(it, "{}={}", v.prm->name, v.value);
+        fmt::format_to(it, FMT_COMPILE("{}={}"), v.prm->name, v.value);
     if (!v.in_range) append(out, " (not allowed)");
 }
 
 void append_gsd_diag_text(TextBuffer& out, const GsdDiagText& d) {
     if (d.source == GsdDiagText::Source::Slot)
-        fmt::format_to(std::back_inserter(out), "slot {} \"{}\"", d.bit, d.text);
+        fmt::format_to(fmt::appender(out), FMT_COMPILE("slot {} \"{}\""), d.bit, d.text);
     else
-        fmt::format_to(std::back_inserter(out), "\"{}\"", d.text);
+        fmt::format_to(fmt::appender(out), FMT_COMPILE("\"{}\""), d.text);
 }
 
 namespace {
@@ -236,19 +242,19 @@ namespace {
 // With `t`, the parameter's name after it (issue 29): "PNU 1613[0] (16-13 Frequency)".
 void append_parameter_address(TextBuffer& out, const ProfidriveMessage& m, std::size_t k,
                               bool subindex = true, const DecodedTelegram* t = nullptr) {
-    auto it = std::back_inserter(out);
+    auto it = fmt::appender(out);
     if (k >= m.addresses.size()) {
-        fmt::format_to(it, "param {}", k + 1);
+        fmt::format_to(it, FMT_COMPILE("param {}"), k + 1);
         return;
     }
     const ProfidriveAddress& a = m.addresses[k];
     if (!subindex)
-        fmt::format_to(it, "PNU {}", a.pnu);
+        fmt::format_to(it, FMT_COMPILE("PNU {}"), a.pnu);
     else if (a.elements > 1)
-        fmt::format_to(it, "PNU {}[{}..{}]", a.pnu, a.subindex,
+        fmt::format_to(it, FMT_COMPILE("PNU {}[{}..{}]"), a.pnu, a.subindex,
                        std::min(0xFFFF, a.subindex + a.elements - 1));  // subindexes end there
     else
-        fmt::format_to(it, "PNU {}[{}]", a.pnu, a.subindex);
+        fmt::format_to(it, FMT_COMPILE("PNU {}[{}]"), a.pnu, a.subindex);
     if (t) append_parameter_name(out, profidrive_parameter(*t, m, k));
 }
 
@@ -269,9 +275,10 @@ void append_block_values(TextBuffer& out, const ProfidriveValueBlock& block,
         }
     }
     if (profidrive_format_size(block.format) < 0)  // a reserved format: name its number
-        fmt::format_to(std::back_inserter(out), "format 0x{:02X}, reserved)", block.format);
+        fmt::format_to(fmt::appender(out), FMT_COMPILE("format 0x{:02X}, reserved)"), block.format);
     else
-        fmt::format_to(std::back_inserter(out), "{})", profidrive_format_name(block.format));
+        fmt::format_to(fmt::appender(out), FMT_COMPILE("{})"),
+                       profidrive_format_name(block.format));
 }
 
 }  // namespace
@@ -299,15 +306,16 @@ std::optional<ScaledValue> profidrive_value_in_unit(const DecodedTelegram& t,
 }
 
 void append_profidrive_block(TextBuffer& out, const ProfidriveValueBlock& block, Dialect dialect) {
-    auto it = std::back_inserter(out);
+    auto it = fmt::appender(out);
     if (block.is_error()) {
         if (block.values.size() < 2) {
             append(out, "error (number cut short)");
             return;
         }
-        fmt::format_to(it, "error 0x{:02X} {}", block.error_number(),
+        fmt::format_to(it, FMT_COMPILE("error 0x{:02X} {}"), block.error_number(),
                        profidrive_error_text(block.error_number(), dialect));
-        if (block.has_error_info()) fmt::format_to(it, " (subindex {})", block.error_info());
+        if (block.has_error_info())
+            fmt::format_to(it, FMT_COMPILE(" (subindex {})"), block.error_info());
         return;
     }
     if (block.format == profidrive::kFormatZero) {
@@ -319,19 +327,21 @@ void append_profidrive_block(TextBuffer& out, const ProfidriveValueBlock& block,
 
 void append_profidrive_summary(TextBuffer& out, const ProfidriveMessage& m, Dialect dialect,
                                const DecodedTelegram* t) {
-    auto it = std::back_inserter(out);
+    auto it = fmt::appender(out);
     if (!m.has_header) {
         append(out, "PROFIdrive header cut short");
         return;
     }
     std::string_view id_name =
         m.is_response ? profidrive_response_id_name(m.id) : profidrive_request_id_name(m.id);
-    fmt::format_to(it, "PROFIdrive {} ref {} ", m.is_response ? "rsp" : "req", m.reference);
+    fmt::format_to(it, FMT_COMPILE("PROFIdrive {} ref {} "), m.is_response ? "rsp" : "req",
+                   m.reference);
     if (id_name.empty())
-        fmt::format_to(it, "ID 0x{:02X}", m.id);
+        fmt::format_to(it, FMT_COMPILE("ID 0x{:02X}"), m.id);
     else
         append(out, id_name);
-    fmt::format_to(it, " axis {}, {} param{}", m.axis, m.count, m.count == 1 ? "" : "s");
+    fmt::format_to(it, FMT_COMPILE(" axis {}, {} param{}"), m.axis, m.count,
+                   m.count == 1 ? "" : "s");
     if (m.is_response) {
         if (!m.blocks.empty()) append(out, ":");
         for (std::size_t k = 0; k < m.blocks.size(); ++k) {
@@ -353,9 +363,9 @@ void append_profidrive_summary(TextBuffer& out, const ProfidriveMessage& m, Dial
             append_parameter_address(out, m, k, true, t);
             std::string_view attribute = profidrive_attribute_name(m.addresses[k].attribute);
             if (attribute.empty())
-                fmt::format_to(it, " attribute 0x{:02X}", m.addresses[k].attribute);
+                fmt::format_to(it, FMT_COMPILE(" attribute 0x{:02X}"), m.addresses[k].attribute);
             else
-                fmt::format_to(it, " {}", attribute);
+                fmt::format_to(it, FMT_COMPILE(" {}"), attribute);
             if (k < m.blocks.size()) {
                 append(out, " = ");
                 append_block_values(out, m.blocks[k], t, &m, k);
@@ -363,18 +373,20 @@ void append_profidrive_summary(TextBuffer& out, const ProfidriveMessage& m, Dial
         }
     }
     if (m.trailing > 0)
-        fmt::format_to(it, " +{} after the message", counted(m.trailing, "byte", "bytes"));
+        fmt::format_to(it, FMT_COMPILE(" +{} after the message"),
+                       counted(m.trailing, "byte", "bytes"));
 }
 
 void append_dpv1_summary(TextBuffer& out, const DecodedTelegram& t) {
     const FdlTelegram& f = t.dp.fdl;
     const Dpv1Pdu* pdu = t.dp.service_data.dpv1();
-    auto it = std::back_inserter(out);
+    auto it = fmt::appender(out);
     if (!pdu || pdu->layout == Dpv1Pdu::Layout::None) {
         if (t.direction == Direction::Request)
             append(out, "no PDU (link-level poll)");
         else if (f.has_fc)
-            fmt::format_to(it, "no PDU: {} ({})", response_status_name(f.fc.function()),
+            fmt::format_to(it, FMT_COMPILE("no PDU: {} ({})"),
+                           response_status_name(f.fc.function()),
                            response_status_text(f.fc.function()));
         else
             append(out, "no PDU");
@@ -382,7 +394,7 @@ void append_dpv1_summary(TextBuffer& out, const DecodedTelegram& t) {
     }
     std::string_view name = dpv1_function_name(pdu->function);
     if (name.empty())
-        fmt::format_to(it, "function 0x{:02X}", pdu->function);
+        fmt::format_to(it, FMT_COMPILE("function 0x{:02X}"), pdu->function);
     else
         append(out, name);
     if (!pdu->complete && pdu->layout != Dpv1Pdu::Layout::Initiate) {
@@ -393,27 +405,28 @@ void append_dpv1_summary(TextBuffer& out, const DecodedTelegram& t) {
         case Dpv1Pdu::Layout::Error: {
             std::string_view decode = dpv1_error_decode_name(pdu->error_decode);
             if (decode.empty())
-                fmt::format_to(it, " Error_Decode 0x{:02X}", pdu->error_decode);
+                fmt::format_to(it, FMT_COMPILE(" Error_Decode 0x{:02X}"), pdu->error_decode);
             else
-                fmt::format_to(it, " {}", decode);
+                fmt::format_to(it, FMT_COMPILE(" {}"), decode);
             std::string_view error_class = dpv1_error_class_name(pdu->error_code_1);
             if (pdu->error_decode == kDpv1ErrorDecodeDpv1)
-                fmt::format_to(it, " {}{}{} (0x{:02X})", error_class,
+                fmt::format_to(it, FMT_COMPILE(" {}{}{} (0x{:02X})"), error_class,
                                error_class.empty() ? "" : ": ",
                                dpv1_error_code_name(pdu->error_code_1), pdu->error_code_1);
             else
-                fmt::format_to(it, " Error_Code_1 0x{:02X}", pdu->error_code_1);
+                fmt::format_to(it, FMT_COMPILE(" Error_Code_1 0x{:02X}"), pdu->error_code_1);
             if (pdu->error_code_2 != 0)
-                fmt::format_to(it, " Error_Code_2 0x{:02X}", pdu->error_code_2);
+                fmt::format_to(it, FMT_COMPILE(" Error_Code_2 0x{:02X}"), pdu->error_code_2);
             return;
         }
         case Dpv1Pdu::Layout::Addressed:
             if (pdu->base_function() == dpv1_function::kAlarmAck) {
-                fmt::format_to(it, " slot {} alarm type {} specifier 0x{:02X}", pdu->slot,
-                               pdu->index, pdu->length);
+                fmt::format_to(it, FMT_COMPILE(" slot {} alarm type {} specifier 0x{:02X}"),
+                               pdu->slot, pdu->index, pdu->length);
                 return;
             }
-            fmt::format_to(it, " slot {} idx {} len {}", pdu->slot, pdu->index, pdu->length);
+            fmt::format_to(it, FMT_COMPILE(" slot {} idx {} len {}"), pdu->slot, pdu->index,
+                           pdu->length);
             if (const ProfidriveMessage* m = t.dp.service_data.profidrive()) {
                 append(out, " | ");
                 append_profidrive_summary(out, *m, t.dp.dialect, &t);
@@ -430,19 +443,20 @@ void append_dpv1_summary(TextBuffer& out, const DecodedTelegram& t) {
                 return;
             }
             if (t.direction == Direction::Request)
-                fmt::format_to(it, " send timeout {} ms", i.send_timeout * 10);
+                fmt::format_to(it, FMT_COMPILE(" send timeout {} ms"), i.send_timeout * 10);
             else
-                fmt::format_to(it, " max data unit {}", i.max_len_data_unit);
+                fmt::format_to(it, FMT_COMPILE(" max data unit {}"), i.max_len_data_unit);
             fmt::format_to(
-                it, " features 0x{:04X} profile features 0x{:04X} profile ident 0x{:04X}",
+                it,
+                FMT_COMPILE(" features 0x{:04X} profile features 0x{:04X} profile ident 0x{:04X}"),
                 i.features_supported, i.profile_features_supported, i.profile_ident_number);
             if (i.has_addresses)
-                fmt::format_to(it, " S_Type {} S_Len {} D_Type {} D_Len {}", i.s_type, i.s_len,
-                               i.d_type, i.d_len);
+                fmt::format_to(it, FMT_COMPILE(" S_Type {} S_Len {} D_Type {} D_Len {}"), i.s_type,
+                               i.s_len, i.d_type, i.d_len);
             return;
         }
         case Dpv1Pdu::Layout::Abort:
-            fmt::format_to(it, " subnet {} {}: {}", pdu->abort.subnet,
+            fmt::format_to(it, FMT_COMPILE(" subnet {} {}: {}"), pdu->abort.subnet,
                            dpv1_abort_instance_name(pdu->abort.instance_reason),
                            dpv1_abort_reason_name(pdu->abort.instance_reason));
             return;
@@ -470,7 +484,7 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
         case Service::Token: append(out, "token"); return;
         case Service::DataExchange:
             if (f.du.empty() && f.has_fc && !f.fc.is_request()) {  // RS, RR, ...: no inputs
-                fmt::format_to(std::back_inserter(out), "no data: {} ({})",
+                fmt::format_to(fmt::appender(out), FMT_COMPILE("no data: {} ({})"),
                                response_status_name(f.fc.function()),
                                response_status_text(f.fc.function()));
                 return;
@@ -489,13 +503,13 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
                 return;
             }
             if (const SlaveDiag* diag = data.slave_diag()) {
-                fmt::format_to(std::back_inserter(out), "ident 0x{:04X}", diag->ident);
+                fmt::format_to(fmt::appender(out), FMT_COMPILE("ident 0x{:04X}"), diag->ident);
                 append_gsd_device(out, t);
                 append(out, " master ");
                 if (diag->master_address == kNoMasterAddress)
                     append(out, "none");
                 else
-                    fmt::format_to(std::back_inserter(out), "{}", diag->master_address);
+                    fmt::format_to(fmt::appender(out), FMT_COMPILE("{}"), diag->master_address);
                 append(out, " [");
                 TextBuffer second;
                 bool first_any =
@@ -507,7 +521,7 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
                 if (!first_any && !second_any) append(out, "OK");
                 append(out, "]");
                 if (!diag->extended.empty())
-                    fmt::format_to(std::back_inserter(out), " +{}",
+                    fmt::format_to(fmt::appender(out), FMT_COMPILE(" +{}"),
                                    counted(diag->extended.size(), "ext byte", "ext bytes"));
                 const char* separator = ": ";
                 for (const GsdDiagText& d : data.gsd_diag()) {
@@ -520,22 +534,24 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
             break;
         case Service::SetPrm:
             if (const SetPrm* prm = data.set_prm()) {
-                fmt::format_to(std::back_inserter(out), "ident 0x{:04X}", prm->ident);
+                fmt::format_to(fmt::appender(out), FMT_COMPILE("ident 0x{:04X}"), prm->ident);
                 append_gsd_device(out, t);
                 out.push_back(' ');
                 if (prm->watchdog_on() && prm->watchdog_base_uncertain())
-                    fmt::format_to(std::back_inserter(out),
-                                   "WD {} ms (1 ms base) or {} ms (10 ms base) ",
+                    fmt::format_to(fmt::appender(out),
+                                   FMT_COMPILE("WD {} ms (1 ms base) or {} ms (10 ms base) "),
                                    prm->watchdog_ms(), prm->watchdog_ms_10ms_base());
                 else if (prm->watchdog_on())
-                    fmt::format_to(std::back_inserter(out), "WD {} ms ", prm->watchdog_ms());
+                    fmt::format_to(fmt::appender(out), FMT_COMPILE("WD {} ms "),
+                                   prm->watchdog_ms());
                 append(out, "[");
                 append_flags(out, prm->station_status, set_prm_station_flags());
-                fmt::format_to(std::back_inserter(out), "] group 0x{:02X}", prm->group_ident);
+                fmt::format_to(fmt::appender(out), FMT_COMPILE("] group 0x{:02X}"),
+                               prm->group_ident);
                 // "DP-V1" only when DPV1_Enable is set; status bytes without it are DP-V0 mode.
                 if (prm->dpv1_enabled()) append(out, " DP-V1");
                 if (!prm->user_prm.empty())
-                    fmt::format_to(std::back_inserter(out), " user {}",
+                    fmt::format_to(fmt::appender(out), FMT_COMPILE(" user {}"),
                                    counted(prm->user_prm.size(), "byte", "bytes"));
                 if (const GsdPrmReading* reading = data.gsd_prm()) {
                     const char* separator = ": ";
@@ -578,7 +594,8 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
         case Service::GlobalControl:
             if (const GlobalControl* gc = data.global_control()) {
                 append_flags(out, gc->command, global_control_flags(), "operate");
-                fmt::format_to(std::back_inserter(out), " group 0x{:02X}", gc->group_select);
+                fmt::format_to(fmt::appender(out), FMT_COMPILE(" group 0x{:02X}"),
+                               gc->group_select);
                 return;
             }
             break;
@@ -591,7 +608,7 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
             break;
         case Service::SetSlaveAdd:
             if (const SetSlaveAdd* ssa = data.set_slave_add()) {
-                fmt::format_to(std::back_inserter(out), "new address {} ident 0x{:04X}",
+                fmt::format_to(fmt::appender(out), FMT_COMPILE("new address {} ident 0x{:04X}"),
                                ssa->new_address, ssa->ident);
                 return;
             }
@@ -603,14 +620,15 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
         if (f.fc.is_request())
             append(out, request_function_name(f.fc));
         else
-            fmt::format_to(std::back_inserter(out), "{} {}", response_status_name(f.fc.function()),
+            fmt::format_to(fmt::appender(out), FMT_COMPILE("{} {}"),
+                           response_status_name(f.fc.function()),
                            station_type_name(f.fc.station_type()));
     }
     if (f.has_dsap || f.has_ssap) {
         append(out, " SAP ");
-        if (f.has_ssap) fmt::format_to(std::back_inserter(out), "{}", f.ssap);
+        if (f.has_ssap) fmt::format_to(fmt::appender(out), FMT_COMPILE("{}"), f.ssap);
         append(out, "->");
-        if (f.has_dsap) fmt::format_to(std::back_inserter(out), "{}", f.dsap);
+        if (f.has_dsap) fmt::format_to(fmt::appender(out), FMT_COMPILE("{}"), f.dsap);
     }
     if (!f.du.empty()) {
         append(out, " data ");

@@ -1,5 +1,6 @@
 #include "formats/parameter_names.hpp"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <iterator>
@@ -11,7 +12,8 @@ namespace dpscope {
 void append_parameter_label(TextBuffer& b, const NamedParameter& p) {
     if (!p.row) return;
     if (p.family->numbering == PnuNumbering::Group)
-        fmt::format_to(std::back_inserter(b), "{}-{:02} ", p.row->pnu / 100, p.row->pnu % 100);
+        fmt::format_to(fmt::appender(b), FMT_COMPILE("{}-{:02} "), p.row->pnu / 100,
+                       p.row->pnu % 100);
     append(b, p.row->name);
 }
 
@@ -25,19 +27,20 @@ void append_parameter_name(TextBuffer& b, const NamedParameter& p) {
 void append_parameter_details(TextBuffer& b, const NamedParameter& p) {
     if (!p.row) return;
     append_parameter_label(b, p);
-    fmt::format_to(std::back_inserter(b), " ({}: ", p.family->id);
-    if (!p.row->unit.empty()) fmt::format_to(std::back_inserter(b), "unit {}, ", p.row->unit);
+    fmt::format_to(fmt::appender(b), FMT_COMPILE(" ({}: "), p.family->id);
+    if (!p.row->unit.empty())
+        fmt::format_to(fmt::appender(b), FMT_COMPILE("unit {}, "), p.row->unit);
     if (p.row->conversion)
-        fmt::format_to(std::back_inserter(b), "conversion index {}, ", *p.row->conversion);
+        fmt::format_to(fmt::appender(b), FMT_COMPILE("conversion index {}, "), *p.row->conversion);
     append(b, parameter_type_name(p.row->type));
-    if (p.row->elements > 1) fmt::format_to(std::back_inserter(b), "[{}]", p.row->elements);
-    fmt::format_to(std::back_inserter(b), ", source {})", p.row->source);
+    if (p.row->elements > 1) fmt::format_to(fmt::appender(b), FMT_COMPILE("[{}]"), p.row->elements);
+    fmt::format_to(fmt::appender(b), FMT_COMPILE(", source {})"), p.row->source);
 }
 
 void append_value_details(TextBuffer& b, const ParameterRow& row, const ScaledValue& value) {
     append_scaled(b, row, value);
     if (row.conversion)
-        fmt::format_to(std::back_inserter(b), " (conversion index {})", *row.conversion);
+        fmt::format_to(fmt::appender(b), FMT_COMPILE(" (conversion index {})"), *row.conversion);
 }
 
 std::optional<ScaledValue> parameter_value(const ParameterRow* row, std::uint32_t bits) noexcept {
@@ -46,7 +49,7 @@ std::optional<ScaledValue> parameter_value(const ParameterRow* row, std::uint32_
 }
 
 void append_scaled(TextBuffer& b, const ParameterRow& row, const ScaledValue& value) {
-    fmt::format_to(std::back_inserter(b), "{:.{}f}", value.value, value.decimals);
+    fmt::format_to(fmt::appender(b), FMT_COMPILE("{:.{}f}"), value.value, value.decimals);
     if (!row.unit.empty()) {
         b.push_back(' ');
         append(b, row.unit);
@@ -67,9 +70,9 @@ std::string view_value_text(const TelegramParameterView& view) {
 
 std::string pnu_label(StationNaming names, std::uint16_t pnu) {
     const NamedParameter named = names(pnu);
-    if (!named.row) return fmt::format("{}", pnu);
+    if (!named.row) return fmt::format(FMT_COMPILE("{}"), pnu);
     TextBuffer b;
-    fmt::format_to(std::back_inserter(b), "{}", pnu);
+    fmt::format_to(fmt::appender(b), FMT_COMPILE("{}"), pnu);
     append_parameter_name(b, named);
     return fmt::to_string(b);
 }
@@ -130,7 +133,7 @@ void append_view_value(TextBuffer& b, const TelegramParameterView& view) {
 namespace {
 
 void write_scaled(fmt::memory_buffer& out, const ScaledValue& value) {
-    fmt::format_to(std::back_inserter(out), "{:.{}f}", value.value, value.decimals);
+    fmt::format_to(fmt::appender(out), FMT_COMPILE("{:.{}f}"), value.value, value.decimals);
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 // ("all" for a broadcast), the frame type "FC" and the service column the block. A VLT 2000
 // telegram: the master "M" and the drive's two-digit address ("all" for address 00), the frame
 // type "VLT" and the service column the control letter with its name ("U update").
+#include <fmt/compile.h>
+
 #include <algorithm>
 #include <iterator>
 
@@ -30,18 +32,19 @@ void append_relative_time(TextBuffer& b, std::int64_t relative_ns) {
     for (std::uint64_t rest = seconds; rest >= 10; rest /= 10)
         ++integer_digits;
     const int decimals = std::clamp(kTimeColumn - 1 - integer_digits, 0, 6);
-    auto it = std::back_inserter(b);
+    auto it = fmt::appender(b);
     if (decimals == 0) {
-        fmt::format_to(it, "{:>{}} ", fmt::format("{}{}", negative ? "-" : "", seconds),
-                       kTimeColumn);
+        fmt::format_to(it, FMT_COMPILE("{:>{}} "),
+                       fmt::format(FMT_COMPILE("{}{}"), negative ? "-" : "", seconds), kTimeColumn);
         return;
     }
     std::uint64_t fraction = magnitude % 1'000'000'000;
     for (int i = decimals; i < 9; ++i)
         fraction /= 10;
-    fmt::format_to(it, "{:>{}} ",
-                   fmt::format("{}{}.{:0{}}", negative ? "-" : "", seconds, fraction, decimals),
-                   kTimeColumn);
+    fmt::format_to(
+        it, FMT_COMPILE("{:>{}} "),
+        fmt::format(FMT_COMPILE("{}{}.{:0{}}"), negative ? "-" : "", seconds, fraction, decimals),
+        kTimeColumn);
 }
 
 }  // namespace
@@ -60,7 +63,7 @@ void append_telegram_columns(TextBuffer& b, const DecodedTelegram& t,
         append(b, "]");
     }
     for (const Finding& f : findings)
-        fmt::format_to(std::back_inserter(b), " [{} {}]", severity_name(f.severity),
+        fmt::format_to(fmt::appender(b), FMT_COMPILE(" [{} {}]"), severity_name(f.severity),
                        finding_kind_name(f.kind));
 }
 
@@ -76,7 +79,7 @@ class TextRenderer final : public TelegramRenderer {
 
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
         TextBuffer& b = out_.buffer();
-        fmt::format_to(std::back_inserter(b), "{:>6} ", t.frame);
+        fmt::format_to(fmt::appender(b), FMT_COMPILE("{:>6} "), t.frame);
         if (t.has_time()) {
             if (first_time_ == kNoTime) first_time_ = t.time_ns;
             append_relative_time(b, t.time_ns - first_time_);
@@ -90,7 +93,8 @@ class TextRenderer final : public TelegramRenderer {
 
     void render_end_findings(std::span<const Finding> findings) override {
         for (const Finding& f : findings)
-            fmt::format_to(std::back_inserter(out_.buffer()), "     - end of capture [{} {}] {}\n",
+            fmt::format_to(fmt::appender(out_.buffer()),
+                           FMT_COMPILE("     - end of capture [{} {}] {}\n"),
                            severity_name(f.severity), finding_kind_name(f.kind), f.message);
         out_.end_record();
     }

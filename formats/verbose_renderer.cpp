@@ -1,5 +1,7 @@
 // The whole field tree of each telegram, like tshark -V: the frame, its bytes, the protocol's
 // fields (each protocol's <name>_verbose, in its folder), problems and findings.
+#include <fmt/compile.h>
+
 #include <iterator>
 
 #include "formats/describe.hpp"
@@ -17,8 +19,9 @@ class VerboseRenderer final : public TelegramRenderer {
 
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
         TextBuffer& b = out_.buffer();
-        auto it = std::back_inserter(b);
-        fmt::format_to(it, "Frame {}: {}", t.frame, counted(t.bytes.size(), "byte", "bytes"));
+        auto it = fmt::appender(b);
+        fmt::format_to(it, FMT_COMPILE("Frame {}: {}"), t.frame,
+                       counted(t.bytes.size(), "byte", "bytes"));
         if (t.has_time()) {
             append(b, ", ");
             append_iso_time(b, t.time_ns);
@@ -33,7 +36,7 @@ class VerboseRenderer final : public TelegramRenderer {
             append(b, "Problems\n");
             for (const Problem& p : t.problems()) {
                 tree.line(1, "");
-                fmt::format_to(it, "{} ({}): {}\n", problem_kind_name(p.kind),
+                fmt::format_to(it, FMT_COMPILE("{} ({}): {}\n"), problem_kind_name(p.kind),
                                severity_name(problem_severity(p.kind)), problem_message(p));
             }
         }
@@ -41,7 +44,7 @@ class VerboseRenderer final : public TelegramRenderer {
             append(b, "Findings\n");
             for (const Finding& f : findings) {
                 tree.line(1, "");
-                fmt::format_to(it, "{} {}: {}\n", severity_name(f.severity),
+                fmt::format_to(it, FMT_COMPILE("{} {}: {}\n"), severity_name(f.severity),
                                finding_kind_name(f.kind), f.message);
             }
         }

@@ -2,6 +2,8 @@
 // line's columns (the master "M", the drive's address or "all", frame type "FC", the block as the
 // service), the csv columns that apply to it, the jsonl "fc_protocol" object (README.md), and the
 // verbose tree field by field (STX, LGE, ADR, PKE, IND, PWE or text, PCD 1 bits, PCD 2, BCC).
+#include <fmt/compile.h>
+
 #include <algorithm>
 #include <iterator>
 #include <span>
@@ -22,19 +24,19 @@ namespace dpscope {
 // The FC master has no address ("M"); a broadcast goes to "all". The frame type column says
 // "FC", the service column the block.
 void fc_text_columns(TextBuffer& b, const DecodedTelegram& t) {
-    auto it = std::back_inserter(b);
+    auto it = fmt::appender(b);
     if (!t.has_roles) {
         append(b, "  ? → ?   ");
     } else {
         const std::string drive =
-            t.fc.broadcast ? std::string("all") : fmt::format("{}", t.fc.address);
+            t.fc.broadcast ? std::string("all") : fmt::format(FMT_COMPILE("{}"), t.fc.address);
         if (t.direction == Direction::Request)
-            fmt::format_to(it, "{:>3} → {:<3} ", "M", drive);
+            fmt::format_to(it, FMT_COMPILE("{:>3} → {:<3} "), "M", drive);
         else
-            fmt::format_to(it, "{:>3} → {:<3} ", drive, "M");
+            fmt::format_to(it, FMT_COMPILE("{:>3} → {:<3} "), drive, "M");
     }
-    fmt::format_to(it, "{:<3} {:<14} {} ", t.has_roles ? "FC" : "bad", fc_block_name(t.fc.block),
-                   t.direction == Direction::Request ? "req" : "rsp");
+    fmt::format_to(it, FMT_COMPILE("{:<3} {:<14} {} "), t.has_roles ? "FC" : "bad",
+                   fc_block_name(t.fc.block), t.direction == Direction::Request ? "req" : "rsp");
     append_fc_detail(b, t);
 }
 
@@ -45,26 +47,26 @@ void fc_text_columns(TextBuffer& b, const DecodedTelegram& t) {
 // BCC; rc the AK, ind the index, pva PWE (per the AK's width), meaning the AK's name, error
 // and error_text the AK 7 fault code and its text; pcd PCD 1 and PCD 2.
 void fc_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
-    auto it = std::back_inserter(b);
+    auto it = fmt::appender(b);
     const FcTelegram& fc = t.fc;
-    fmt::format_to(it, "{},", t.frame);
+    fmt::format_to(it, FMT_COMPILE("{},"), t.frame);
     if (t.has_time()) append_epoch_seconds(b, t.time_ns);
-    fmt::format_to(it, ",{},,,,,,,{},{},", t.bytes.size(), fc_block_name(fc.block),
+    fmt::format_to(it, FMT_COMPILE(",{},,,,,,,{},{},"), t.bytes.size(), fc_block_name(fc.block),
                    direction_name(t.direction));
     csv_optional(b, t.has_roles, t.master);
     csv_optional(b, t.has_roles, t.slave);
     csv_optional(b, t.request_frame != 0, static_cast<unsigned>(t.request_frame));
-    fmt::format_to(it, "{},,", fc.bcc_ok ? "true" : "false");
+    fmt::format_to(it, FMT_COMPILE("{},,"), fc.bcc_ok ? "true" : "false");
     if (fc.has_pkw) {
         const bool rejected = fc_rejected(t);
         const bool pwe = fc.block == FcBlock::Parameter && !rejected;
-        fmt::format_to(it, "{},,{},{},", fc.pkw.rc, fc.pkw.pnu, fc.pkw.ind);
-        if (pwe) fmt::format_to(it, "{}", pcv_value(fc.pkw, fc_ak_width(t)));
+        fmt::format_to(it, FMT_COMPILE("{},,{},{},"), fc.pkw.rc, fc.pkw.pnu, fc.pkw.ind);
+        if (pwe) fmt::format_to(it, FMT_COMPILE("{}"), pcv_value(fc.pkw, fc_ak_width(t)));
         b.push_back(',');
         csv_quoted(b, fc_ak_meaning(t));
         b.push_back(',');
         if (rejected) {
-            fmt::format_to(it, "{},", fc_fault_code(fc));
+            fmt::format_to(it, FMT_COMPILE("{},"), fc_fault_code(fc));
             csv_quoted(b, fc_fault_text_or_unknown(fc_fault_code(fc)));
         } else {
             b.push_back(',');
@@ -73,7 +75,7 @@ void fc_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
         append(b, ",,,,,,,");
     }
     b.push_back(',');
-    if (fc.has_pcd) fmt::format_to(it, "{:04X} {:04X}", fc.pcd1, fc.pcd2);
+    if (fc.has_pcd) fmt::format_to(it, FMT_COMPILE("{:04X} {:04X}"), fc.pcd1, fc.pcd2);
     b.push_back(',');
     TextBuffer detail;
     append_fc_detail(detail, t);
@@ -191,7 +193,7 @@ void fc_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     w.key("pcd2").optional_integer(fc.has_pcd, fc.pcd2);
     w.key("pcd2_percent");
     if (fc.has_pcd)
-        w.number_text(fmt::format("{:.2f}", reference_percent(fc.pcd2)));
+        w.number_text(fmt::format(FMT_COMPILE("{:.2f}"), reference_percent(fc.pcd2)));
     else
         w.null();
     w.key("bcc").optional_integer(fc.complete, fc.bcc);
@@ -216,17 +218,19 @@ class FcVerboseTree final : public VerboseTree {
     void render_fc(const DecodedTelegram& t) {
         const FcTelegram& fc = t.fc;
         TextBuffer& b = buffer();
-        auto it = std::back_inserter(b);
+        auto it = fmt::appender(b);
         const bool request = t.direction == Direction::Request;
         append(b, "FC protocol");
         if (t.has_roles) {
-            fmt::format_to(it, ": {} block {}", fc_block_name(fc.block),
+            fmt::format_to(it, FMT_COMPILE(": {} block {}"), fc_block_name(fc.block),
                            request ? "request" : "response");
             if (fc.broadcast)
                 append(b, " to every drive (broadcast)");
             else
-                fmt::format_to(it, " {} drive {}", request ? "to" : "from", fc.address);
-            if (t.request_frame != 0) fmt::format_to(it, ", answers frame {}", t.request_frame);
+                fmt::format_to(it, FMT_COMPILE(" {} drive {}"), request ? "to" : "from",
+                               fc.address);
+            if (t.request_frame != 0)
+                fmt::format_to(it, FMT_COMPILE(", answers frame {}"), t.request_frame);
         }
         b.push_back('\n');
         if (t.bytes.empty()) return;
@@ -243,12 +247,12 @@ class FcVerboseTree final : public VerboseTree {
                   fc.lge + 2);
         if (!t.has_roles) return;
         line(1, "");
-        fmt::format_to(it, "ADR: 0x{:02X} ({} format, ", fc.adr,
+        fmt::format_to(it, FMT_COMPILE("ADR: 0x{:02X} ({} format, "), fc.adr,
                        fc_address_format_name(fc.address_format));
         if (fc.broadcast)
             append(b, "broadcast)\n");
         else
-            fmt::format_to(it, "address {})\n", fc.address);
+            fmt::format_to(it, FMT_COMPILE("address {})\n"), fc.address);
         if (fc.has_pkw) {
             const Pcv& pkw = fc.pkw;
             field(1, "PKE: 0x{:04X}", pkw.pca);
@@ -272,7 +276,7 @@ class FcVerboseTree final : public VerboseTree {
             field(2, "index (low byte): {}", pkw.ind);
             if (fc.block == FcBlock::Text) {
                 line(1, "");
-                fmt::format_to(it, "Text: {} characters \"", fc.text.size());
+                fmt::format_to(it, FMT_COMPILE("Text: {} characters \""), fc.text.size());
                 append_fc_text(b, fc.text);
                 append(b, "\"\n");
             } else if (fc_rejected(t)) {

@@ -1,6 +1,8 @@
 // The verbose tree (like tshark -V) of a PROFIBUS telegram: the FDL frame, then its DP service
 // field by field (Data_Exchange with the PPO's PCV and PCD, diagnosis, parameters, configuration,
 // DP-V1 and PROFIdrive parameter access).
+#include <fmt/compile.h>
+
 #include <algorithm>
 #include <iterator>
 #include <span>
@@ -31,7 +33,7 @@ class ProfibusVerboseTree final : public VerboseTree {
     void render_fdl(const DecodedTelegram& t) {
         const FdlTelegram& f = t.dp.fdl;
         TextBuffer& b = buffer();
-        auto it = std::back_inserter(b);
+        auto it = fmt::appender(b);
         append(b, "PROFIBUS FDL\n");
         if (f.type == FrameType::Invalid) {
             field(1, "Start delimiter: 0x{:02X} (not a start delimiter)",
@@ -40,30 +42,33 @@ class ProfibusVerboseTree final : public VerboseTree {
         }
         field(1, "Start delimiter: {} (0x{:02X})", frame_type_name(f.type), t.bytes[0]);
         if (f.type == FrameType::Sd2) {
-            field(
-                1, "Length: LE {}, LEr {}", f.length_field,
-                f.has_length_repeat ? fmt::format("{}", f.length_repeat) : std::string("missing"));
+            field(1, "Length: LE {}, LEr {}", f.length_field,
+                  f.has_length_repeat ? fmt::format(FMT_COMPILE("{}"), f.length_repeat)
+                                      : std::string("missing"));
         }
         if (f.has_addresses) {
             line(1, "");
-            fmt::format_to(it, "Destination address: {}{}", f.da,
+            fmt::format_to(it, FMT_COMPILE("Destination address: {}{}"), f.da,
                            f.da == kBroadcastAddress ? " (broadcast)" : "");
             // The slave's SAP is the DSAP of a request and the SSAP of a response.
             bool request = f.has_fc && f.fc.is_request();
             if (f.has_dsap)
-                fmt::format_to(it, ", DSAP {} ({})", f.dsap, sap_label(f.dsap, request));
-            if (f.has_dest_segment) fmt::format_to(it, ", segment {}", f.dest_segment);
+                fmt::format_to(it, FMT_COMPILE(", DSAP {} ({})"), f.dsap,
+                               sap_label(f.dsap, request));
+            if (f.has_dest_segment) fmt::format_to(it, FMT_COMPILE(", segment {}"), f.dest_segment);
             b.push_back('\n');
             line(1, "");
-            fmt::format_to(it, "Source address: {}", f.sa);
+            fmt::format_to(it, FMT_COMPILE("Source address: {}"), f.sa);
             if (f.has_ssap)
-                fmt::format_to(it, ", SSAP {} ({})", f.ssap, sap_label(f.ssap, !request));
-            if (f.has_source_segment) fmt::format_to(it, ", segment {}", f.source_segment);
+                fmt::format_to(it, FMT_COMPILE(", SSAP {} ({})"), f.ssap,
+                               sap_label(f.ssap, !request));
+            if (f.has_source_segment)
+                fmt::format_to(it, FMT_COMPILE(", segment {}"), f.source_segment);
             b.push_back('\n');
         }
         if (f.has_fc) {
             line(1, "");
-            fmt::format_to(it, "Frame control: 0x{:02X} (", f.fc.raw);
+            fmt::format_to(it, FMT_COMPILE("Frame control: 0x{:02X} ("), f.fc.raw);
             append_frame_control(b, f.fc);
             append(b, ")\n");
         }
@@ -85,12 +90,13 @@ class ProfibusVerboseTree final : public VerboseTree {
     void render_dp(const DecodedTelegram& t) {
         if (t.dp.fdl.type == FrameType::Invalid) return;
         TextBuffer& b = buffer();
-        auto it = std::back_inserter(b);
-        fmt::format_to(it, "PROFIBUS DP: {} {}", service_name(t.dp.service),
+        auto it = fmt::appender(b);
+        fmt::format_to(it, FMT_COMPILE("PROFIBUS DP: {} {}"), service_name(t.dp.service),
                        direction_name(t.direction));
         if (t.has_roles && t.dp.service != Service::Token)
-            fmt::format_to(it, ", master {} / slave {}", t.master, t.slave);
-        if (t.request_frame != 0) fmt::format_to(it, ", answers frame {}", t.request_frame);
+            fmt::format_to(it, FMT_COMPILE(", master {} / slave {}"), t.master, t.slave);
+        if (t.request_frame != 0)
+            fmt::format_to(it, FMT_COMPILE(", answers frame {}"), t.request_frame);
         b.push_back('\n');
         const DpServiceData& data = t.dp.service_data;
         switch (t.dp.service) {
@@ -154,17 +160,18 @@ class ProfibusVerboseTree final : public VerboseTree {
             (data.gsd_modules().empty() && !prm && data.gsd_diag().empty() && !data.slave_diag()))
             return;
         field(1, "GSD: {} ({}{})", device->file, gsd_device_title(*device),
-              device->ident_number ? fmt::format(", ident 0x{:04X}", *device->ident_number)
-                                   : std::string());
+              device->ident_number
+                  ? fmt::format(FMT_COMPILE(", ident 0x{:04X}"), *device->ident_number)
+                  : std::string());
         for (const GsdModuleMatch& m : data.gsd_modules()) {
-            line(2, m.module ? fmt::format("module \"{}\"", m.module->name)
+            line(2, m.module ? fmt::format(FMT_COMPILE("module \"{}\""), m.module->name)
                              : std::string("no module of the GSD"));
-            auto it = std::back_inserter(buffer());
+            auto it = fmt::appender(buffer());
             if (m.identifiers > 1)
-                fmt::format_to(it, ": slots {}-{} (", m.first_identifier,
+                fmt::format_to(it, FMT_COMPILE(": slots {}-{} ("), m.first_identifier,
                                m.first_identifier + m.identifiers - 1);
             else
-                fmt::format_to(it, ": slot {} (", m.first_identifier);
+                fmt::format_to(it, FMT_COMPILE(": slot {} ("), m.first_identifier);
             append_hex(buffer(), t.bytes.subspan(m.offset, m.length));
             append(buffer(), ")\n");
         }
@@ -172,13 +179,15 @@ class ProfibusVerboseTree final : public VerboseTree {
             for (const GsdPrmValue& v : prm->values) {
                 line(2, "");
                 fmt::format_to(
-                    std::back_inserter(buffer()),
-                    "user parameter \"{}\" (byte {}{}): ", v.prm->name, v.offset,
-                    v.module ? fmt::format(", module \"{}\"", v.module->name) : std::string());
+                    fmt::appender(buffer()), FMT_COMPILE("user parameter \"{}\" (byte {}{}): "),
+                    v.prm->name, v.offset,
+                    v.module ? fmt::format(FMT_COMPILE(", module \"{}\""), v.module->name)
+                             : std::string());
                 if (v.text)
-                    fmt::format_to(std::back_inserter(buffer()), "{} ({})", v.value, v.text->text);
+                    fmt::format_to(fmt::appender(buffer()), FMT_COMPILE("{} ({})"), v.value,
+                                   v.text->text);
                 else
-                    fmt::format_to(std::back_inserter(buffer()), "{}", v.value);
+                    fmt::format_to(fmt::appender(buffer()), FMT_COMPILE("{}"), v.value);
                 if (!v.in_range) append(buffer(), " (not allowed)");
                 buffer().push_back('\n');
             }
@@ -191,16 +200,18 @@ class ProfibusVerboseTree final : public VerboseTree {
         for (const GsdDiagText& d : data.gsd_diag()) {
             line(2, "diagnosis ");
             append_gsd_diag_text(buffer(), d);
-            auto it = std::back_inserter(buffer());
+            auto it = fmt::appender(buffer());
             switch (d.source) {
-                case GsdDiagText::Source::Bit: fmt::format_to(it, " (bit {}", d.bit); break;
-                case GsdDiagText::Source::Area:
-                    fmt::format_to(it, " (bits from {} = {}", d.bit, d.value);
+                case GsdDiagText::Source::Bit:
+                    fmt::format_to(it, FMT_COMPILE(" (bit {}"), d.bit);
                     break;
-                case GsdDiagText::Source::Slot: fmt::format_to(it, " ("); break;
+                case GsdDiagText::Source::Area:
+                    fmt::format_to(it, FMT_COMPILE(" (bits from {} = {}"), d.bit, d.value);
+                    break;
+                case GsdDiagText::Source::Slot: fmt::format_to(it, FMT_COMPILE(" (")); break;
             }
-            fmt::format_to(it, "{}byte {})\n", d.source == GsdDiagText::Source::Slot ? "" : ", ",
-                           d.offset);
+            fmt::format_to(it, FMT_COMPILE("{}byte {})\n"),
+                           d.source == GsdDiagText::Source::Slot ? "" : ", ", d.offset);
         }
     }
 
@@ -241,7 +252,7 @@ class ProfibusVerboseTree final : public VerboseTree {
                 }
                 if (!pdu.data.empty()) {
                     line(2, "");
-                    fmt::format_to(std::back_inserter(b), "Data ({} from byte {}): ",
+                    fmt::format_to(fmt::appender(b), FMT_COMPILE("Data ({} from byte {}): "),
                                    counted(pdu.data.size(), "byte", "bytes"), pdu.data_offset);
                     append_hex(b, pdu.data);
                     b.push_back('\n');
@@ -465,7 +476,7 @@ class ProfibusVerboseTree final : public VerboseTree {
                     for (std::size_t i = 0; i < block.data.size(); ++i)
                         for (int bit = 0; bit < 8; ++bit)
                             if ((block.data[i] >> bit) & 1) {
-                                fmt::format_to(std::back_inserter(b), " {}", i * 8 + bit);
+                                fmt::format_to(fmt::appender(b), FMT_COMPILE(" {}"), i * 8 + bit);
                                 any = true;
                             }
                     if (!any) append(b, " none");
@@ -485,7 +496,7 @@ class ProfibusVerboseTree final : public VerboseTree {
     // A device-related block is a DP-V1 alarm or status (type, slot, specifier) only when the
     // slave's Set_Prm enabled DP-V1; otherwise its bytes are manufacturer-specific.
     void render_device_block(const DiagBlock& block, SlaveDpv1 dpv1) {
-        auto it = std::back_inserter(buffer());
+        auto it = fmt::appender(buffer());
         bool fits = block.data.size() >= 3;
         switch (dpv1) {
             case SlaveDpv1::Disabled:
@@ -493,16 +504,17 @@ class ProfibusVerboseTree final : public VerboseTree {
                 return;
             case SlaveDpv1::Enabled:
                 if (fits)
-                    fmt::format_to(it, " (DP-V1: {}, slot {})",
+                    fmt::format_to(it, FMT_COMPILE(" (DP-V1: {}, slot {})"),
                                    dpv1_alarm_or_status_text(block.data[0]), block.data[1]);
                 else
-                    fmt::format_to(it, " (DP-V1, but {}: too short for an alarm or status)",
-                                   counted(block.data.size(), "byte", "bytes"));
+                    fmt::format_to(
+                        it, FMT_COMPILE(" (DP-V1, but {}: too short for an alarm or status)"),
+                        counted(block.data.size(), "byte", "bytes"));
                 return;
             case SlaveDpv1::Unknown:
                 append(buffer(), " (DP-V1 or manufacturer-specific: no Set_Prm seen");
                 if (fits)
-                    fmt::format_to(it, "; as DP-V1: {}, slot {}",
+                    fmt::format_to(it, FMT_COMPILE("; as DP-V1: {}, slot {}"),
                                    dpv1_alarm_or_status_text(block.data[0]), block.data[1]);
                 buffer().push_back(')');
                 return;
@@ -514,11 +526,12 @@ class ProfibusVerboseTree final : public VerboseTree {
         std::string watchdog = " (off)";
         if (prm.watchdog_on() && prm.watchdog_base_uncertain())
             watchdog = fmt::format(
-                " = {} ms with WD_Base_1ms, or {} ms if the bytes read as DPV1_Status are "
-                "User_Prm_Data (10 ms base)",
+                FMT_COMPILE(
+                    " = {} ms with WD_Base_1ms, or {} ms if the bytes read as DPV1_Status are "
+                    "User_Prm_Data (10 ms base)"),
                 prm.watchdog_ms(), prm.watchdog_ms_10ms_base());
         else if (prm.watchdog_on())
-            watchdog = fmt::format(" = {} ms", prm.watchdog_ms());
+            watchdog = fmt::format(FMT_COMPILE(" = {} ms"), prm.watchdog_ms());
         field(1, "Watchdog: factors {} x {}{}", prm.wd_fact_1, prm.wd_fact_2, watchdog);
         field(1, "min TSDR: {} bit times", prm.min_tsdr);
         field(1, "Ident number: 0x{:04X}", prm.ident);
@@ -527,9 +540,10 @@ class ProfibusVerboseTree final : public VerboseTree {
             flags_field(1, "DPV1_Status_1", prm.dpv1_status[0], dpv1_status_1_flags());
             flags_field(1, "DPV1_Status_2", prm.dpv1_status[1], dpv1_status_2_flags());
             line(1, "");
-            fmt::format_to(std::back_inserter(buffer()),
-                           "DPV1_Status_3: 0x{:02X} (Alarm_Mode {} = {}", prm.dpv1_status[2],
-                           prm.dpv1_status[2] & 0x07, dpv1_alarm_mode_text(prm.dpv1_status[2]));
+            fmt::format_to(fmt::appender(buffer()),
+                           FMT_COMPILE("DPV1_Status_3: 0x{:02X} (Alarm_Mode {} = {}"),
+                           prm.dpv1_status[2], prm.dpv1_status[2] & 0x07,
+                           dpv1_alarm_mode_text(prm.dpv1_status[2]));
             TextBuffer flags;
             if (append_flags(flags, prm.dpv1_status[2], dpv1_status_3_flags(), "")) {
                 append(buffer(), "; ");
@@ -556,16 +570,19 @@ class ProfibusVerboseTree final : public VerboseTree {
             }
             std::string lengths;
             if (m.output_units)
-                lengths += fmt::format(" out {}{}", cfg_units(m.output_units, m.output_words),
-                                       m.output_consistent ? " consistent" : "");
+                lengths +=
+                    fmt::format(FMT_COMPILE(" out {}{}"), cfg_units(m.output_units, m.output_words),
+                                m.output_consistent ? " consistent" : "");
             if (m.input_units)
-                lengths += fmt::format(" in {}{}", cfg_units(m.input_units, m.input_words),
-                                       m.input_consistent ? " consistent" : "");
+                lengths +=
+                    fmt::format(FMT_COMPILE(" in {}{}"), cfg_units(m.input_units, m.input_words),
+                                m.input_consistent ? " consistent" : "");
             field(2, "module {}: 0x{:02X} {}{}{}{}", number++, m.identifier,
                   m.special ? "special format," : "", cfg_direction_name(m.direction), lengths,
                   m.manufacturer_bytes
-                      ? fmt::format(", {}", counted(m.manufacturer_bytes, "manufacturer byte",
-                                                    "manufacturer bytes"))
+                      ? fmt::format(FMT_COMPILE(", {}"),
+                                    counted(m.manufacturer_bytes, "manufacturer byte",
+                                            "manufacturer bytes"))
                       : std::string());
         }
         line(1, "Layout: ");

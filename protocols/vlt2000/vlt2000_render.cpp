@@ -3,6 +3,8 @@
 // letter with its name as the service), the csv columns that apply to it, the jsonl "vlt2000"
 // object (README.md), and the verbose tree field by field with the byte numbers of each as the
 // manual counts them, from 1 ([5-8] the control or status word, all 16 bits).
+#include <fmt/compile.h>
+
 #include <algorithm>
 #include <iterator>
 #include <span>
@@ -24,20 +26,20 @@ namespace dpscope {
 // The VLT 2000 master has no address either ("M"); a drive is shown by its two-digit address
 // as the telegram carries it, a broadcast (00) goes to "all".
 void vlt2000_text_columns(TextBuffer& b, const DecodedTelegram& t) {
-    auto it = std::back_inserter(b);
+    auto it = fmt::appender(b);
     if (!t.has_roles) {
         append(b, "  ? → ?   ");
     } else {
         // A reply with address 00 (nobody should send one) comes from "00".
         const std::string drive = t.vlt2000.broadcast && t.direction == Direction::Request
                                       ? std::string("all")
-                                      : fmt::format("{:02}", t.vlt2000.address);
+                                      : fmt::format(FMT_COMPILE("{:02}"), t.vlt2000.address);
         if (t.direction == Direction::Request)
-            fmt::format_to(it, "{:>3} → {:<3} ", "M", drive);
+            fmt::format_to(it, FMT_COMPILE("{:>3} → {:<3} "), "M", drive);
         else
-            fmt::format_to(it, "{:>3} → {:<3} ", drive, "M");
+            fmt::format_to(it, FMT_COMPILE("{:>3} → {:<3} "), drive, "M");
     }
-    fmt::format_to(it, "{:<3} {:<14} {} ", t.has_roles ? "VLT" : "bad",
+    fmt::format_to(it, FMT_COMPILE("{:<3} {:<14} {} "), t.has_roles ? "VLT" : "bad",
                    t.has_roles ? vlt2000_letter_text(t) : std::string("-"),
                    t.direction == Direction::Request ? "req" : "rsp");
     append_vlt2000_detail(b, t);
@@ -52,17 +54,18 @@ void vlt2000_text_columns(TextBuffer& b, const DecodedTelegram& t) {
 // decimal point, meaning the letter's name, error and error_text a failed reply's reason code
 // and its text; pcd the control or status word in hex.
 void vlt2000_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
-    auto it = std::back_inserter(b);
+    auto it = fmt::appender(b);
     const Vlt2000Telegram& v = t.vlt2000;
-    fmt::format_to(it, "{},", t.frame);
+    fmt::format_to(it, FMT_COMPILE("{},"), t.frame);
     if (t.has_time()) append_epoch_seconds(b, t.time_ns);
-    fmt::format_to(it, ",{},,,,,,,", t.bytes.size());
+    fmt::format_to(it, FMT_COMPILE(",{},,,,,,,"), t.bytes.size());
     if (vlt2000_has_letter(t)) csv_quoted(b, vlt2000_letter_text(t));
-    fmt::format_to(it, ",{},", direction_name(t.direction));
+    fmt::format_to(it, FMT_COMPILE(",{},"), direction_name(t.direction));
     csv_optional(b, t.has_roles, t.master);
     csv_optional(b, t.has_roles, t.slave);
     csv_optional(b, t.request_frame != 0, static_cast<unsigned>(t.request_frame));
-    fmt::format_to(it, "{},,,,", v.checksum_ok || v.checksum_disabled ? "true" : "false");
+    fmt::format_to(it, FMT_COMPILE("{},,,,"),
+                   v.checksum_ok || v.checksum_disabled ? "true" : "false");
     csv_optional(b, v.has_parameter && v.letter != Vlt2000Letter::Control, v.parameter);
     csv_optional(b, v.letter == Vlt2000Letter::ReadIndex && v.has_index_number, v.index_number);
     if (v.has_value && vlt2000_carries_value(v)) append(b, vlt2000_value_text(v));
@@ -72,7 +75,7 @@ void vlt2000_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
     csv_optional(b, v.failed && v.has_reason, v.reason);
     if (v.failed) csv_quoted(b, vlt2000_reason_or_unknown(v));
     b.push_back(',');
-    if (v.has_word) fmt::format_to(it, "{:04X}", v.word);
+    if (v.has_word) fmt::format_to(it, FMT_COMPILE("{:04X}"), v.word);
     b.push_back(',');
     TextBuffer detail;
     append_vlt2000_detail(detail, t);
@@ -200,20 +203,23 @@ class Vlt2000VerboseTree final : public VerboseTree {
     void render_vlt2000(const DecodedTelegram& t) {
         const Vlt2000Telegram& v = t.vlt2000;
         TextBuffer& b = buffer();
-        auto it = std::back_inserter(b);
+        auto it = fmt::appender(b);
         const bool request = t.direction == Direction::Request;
         const std::size_t size = t.bytes.size();
         const auto has = [&](std::size_t at, std::size_t count) { return at + count <= size; };
         append(b, "VLT 2000 telegram");
         if (t.has_roles) {
-            fmt::format_to(it, ": {} {}", vlt2000_letter_text(t), request ? "command" : "reply");
+            fmt::format_to(it, FMT_COMPILE(": {} {}"), vlt2000_letter_text(t),
+                           request ? "command" : "reply");
             if (v.broadcast && request)
                 append(b, " to every drive (broadcast, address 00)");
             else if (v.broadcast)
                 append(b, " from address 00 (a broadcast; nobody should reply)");
             else
-                fmt::format_to(it, " {} drive {:02}", request ? "to" : "from", v.address);
-            if (t.request_frame != 0) fmt::format_to(it, ", answers frame {}", t.request_frame);
+                fmt::format_to(it, FMT_COMPILE(" {} drive {:02}"), request ? "to" : "from",
+                               v.address);
+            if (t.request_frame != 0)
+                fmt::format_to(it, FMT_COMPILE(", answers frame {}"), t.request_frame);
         }
         b.push_back('\n');
         if (size == 0) return;
@@ -272,8 +278,9 @@ class Vlt2000VerboseTree final : public VerboseTree {
             } else if (v.has_value) {
                 const std::string note = vlt2000_value_note(v);
                 line(1, "");
-                fmt::format_to(it, "[14-18] Value: {:05} = {}", v.digits, vlt2000_value_text(v));
-                if (!note.empty()) fmt::format_to(it, " ({})", note);
+                fmt::format_to(it, FMT_COMPILE("[14-18] Value: {:05} = {}"), v.digits,
+                               vlt2000_value_text(v));
+                if (!note.empty()) fmt::format_to(it, FMT_COMPILE(" ({})"), note);
                 append(b, ignored);
                 b.push_back('\n');
                 if (view.value && !view.named.row->unit.empty())
