@@ -57,8 +57,8 @@ class VerboseRenderer final : public TelegramRenderer {
         append(out_.buffer(), "End of capture\nFindings\n");
         VerboseTree tree(out_.buffer());
         for (const Finding& f : findings)
-            tree.field(1, "{} {}: {}", severity_name(f.severity), finding_kind_name(f.kind),
-                       f.message);
+            tree.field(1, FMT_COMPILE("{} {}: {}"), severity_name(f.severity),
+                       finding_kind_name(f.kind), f.message);
         out_.buffer().push_back('\n');
         out_.end_record();
     }

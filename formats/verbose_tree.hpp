@@ -4,6 +4,7 @@
 // (formats/protocol_rendering.hpp).
 #pragma once
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <cstdint>
@@ -30,11 +31,11 @@ class VerboseTree {
         append(b, text);
     }
 
-    // A whole line at `level`.
-    template <typename... Args>
-    void field(int level, fmt::format_string<Args...> format, Args&&... args) {
+    // A whole line at `level`. `format` is a compile-time format string: FMT_COMPILE("...").
+    template <typename Format, typename... Args>
+    void field(int level, const Format& format, Args&&... args) {
         line(level, "");
-        fmt::format_to(std::back_inserter(buffer_), format, std::forward<Args>(args)...);
+        fmt::format_to(fmt::appender(buffer_), format, std::forward<Args>(args)...);
         buffer_.push_back('\n');
     }
 
@@ -42,7 +43,7 @@ class VerboseTree {
     void flags_field(int level, std::string_view name, std::uint8_t value,
                      std::span<const FlagBit> flags, std::uint8_t ignore = 0) {
         line(level, "");
-        fmt::format_to(std::back_inserter(buffer_), "{}: 0x{:02X} (", name, value);
+        fmt::format_to(fmt::appender(buffer_), FMT_COMPILE("{}: 0x{:02X} ("), name, value);
         append_flags(buffer_, value, flags, "none", ignore);
         append(buffer_, ")\n");
     }

@@ -235,16 +235,17 @@ class FcVerboseTree final : public VerboseTree {
         b.push_back('\n');
         if (t.bytes.empty()) return;
         if (t.bytes[0] != kFcStx) {
-            field(1, "STX: 0x{:02X} (not STX 0x02)", t.bytes[0]);
+            field(1, FMT_COMPILE("STX: 0x{:02X} (not STX 0x02)"), t.bytes[0]);
             return;
         }
-        field(1, "STX: 0x02");
+        field(1, FMT_COMPILE("STX: 0x02"));
         if (t.bytes.size() < 2) return;
         if (fc.block == FcBlock::Unknown)
-            field(1, "LGE: {} (no block has this length; telegram {} bytes)", fc.lge, fc.lge + 2);
-        else
-            field(1, "LGE: {} ({} block, telegram {} bytes)", fc.lge, fc_block_name(fc.block),
+            field(1, FMT_COMPILE("LGE: {} (no block has this length; telegram {} bytes)"), fc.lge,
                   fc.lge + 2);
+        else
+            field(1, FMT_COMPILE("LGE: {} ({} block, telegram {} bytes)"), fc.lge,
+                  fc_block_name(fc.block), fc.lge + 2);
         if (!t.has_roles) return;
         line(1, "");
         fmt::format_to(it, FMT_COMPILE("ADR: 0x{:02X} ({} format, "), fc.adr,
@@ -255,25 +256,25 @@ class FcVerboseTree final : public VerboseTree {
             fmt::format_to(it, FMT_COMPILE("address {})\n"), fc.address);
         if (fc.has_pkw) {
             const Pcv& pkw = fc.pkw;
-            field(1, "PKE: 0x{:04X}", pkw.pca);
-            field(2, "AK: {} = {}{}", pkw.rc, fc_ak_meaning(t),
+            field(1, FMT_COMPILE("PKE: 0x{:04X}"), pkw.pca);
+            field(2, FMT_COMPILE("AK: {} = {}{}"), pkw.rc, fc_ak_meaning(t),
                   fc_ak_defined(t)
                       ? ""
                       : (request ? " (not a defined command)" : " (not a defined response)"));
-            field(2, "PNU: {} (parameter {})", pkw.pnu, fc_parameter_name(pkw.pnu));
+            field(2, FMT_COMPILE("PNU: {} (parameter {})"), pkw.pnu, fc_parameter_name(pkw.pnu));
             const TelegramParameterView view = parameter_view(t);
             if (view.named.row) {
                 TextBuffer details;
                 append_parameter_details(details, view.named);
-                field(3, "name: {}", std::string_view(details.data(), details.size()));
+                field(3, FMT_COMPILE("name: {}"), std::string_view(details.data(), details.size()));
             }
-            field(1, "IND: 0x{:02X}{:02X}", fc.ind_high, pkw.ind_low);
+            field(1, FMT_COMPILE("IND: 0x{:02X}{:02X}"), fc.ind_high, pkw.ind_low);
             std::string_view mode = fc_text_mode_name(fc.ind_high);
             if (fc.block == FcBlock::Text && !mode.empty())
-                field(2, "high byte: 0x{:02X} ({} text)", fc.ind_high, mode);
+                field(2, FMT_COMPILE("high byte: 0x{:02X} ({} text)"), fc.ind_high, mode);
             else
-                field(2, "high byte: 0x{:02X}", fc.ind_high);
-            field(2, "index (low byte): {}", pkw.ind);
+                field(2, FMT_COMPILE("high byte: 0x{:02X}"), fc.ind_high);
+            field(2, FMT_COMPILE("index (low byte): {}"), pkw.ind);
             if (fc.block == FcBlock::Text) {
                 line(1, "");
                 fmt::format_to(it, FMT_COMPILE("Text: {} characters \""), fc.text.size());
@@ -281,44 +282,47 @@ class FcVerboseTree final : public VerboseTree {
                 append(b, "\"\n");
             } else if (fc_rejected(t)) {
                 const std::uint16_t code = fc_fault_code(fc);
-                field(1, "PWE: 0x{:08X}", pkw.pva);
-                field(2, "Fault code: {} = {}", code, fc_fault_text_or_unknown(code));
+                field(1, FMT_COMPILE("PWE: 0x{:08X}"), pkw.pva);
+                field(2, FMT_COMPILE("Fault code: {} = {}"), code, fc_fault_text_or_unknown(code));
             } else {
                 const ValueWidth width = fc_ak_width(t);
                 if (width == ValueWidth::Word)
-                    field(1, "PWE: 0x{:08X}, word value {}", pkw.pva, pcv_value(pkw, width));
+                    field(1, FMT_COMPILE("PWE: 0x{:08X}, word value {}"), pkw.pva,
+                          pcv_value(pkw, width));
                 else if (width == ValueWidth::DoubleWord)
-                    field(1, "PWE: 0x{:08X}, double word value {}", pkw.pva, pkw.pva);
+                    field(1, FMT_COMPILE("PWE: 0x{:08X}, double word value {}"), pkw.pva, pkw.pva);
                 else
-                    field(1, "PWE: 0x{:08X} (the AK carries no value)", pkw.pva);
+                    field(1, FMT_COMPILE("PWE: 0x{:08X} (the AK carries no value)"), pkw.pva);
                 if (view.value && view.parameter.has_raw) {
                     TextBuffer value;
                     append_value_details(value, *view.named.row, *view.value);
-                    field(2, "in its unit: {}", std::string_view(value.data(), value.size()));
+                    field(2, FMT_COMPILE("in its unit: {}"),
+                          std::string_view(value.data(), value.size()));
                 }
             }
         }
         if (fc.has_pcd) {
-            field(1, "PCD 1 {}: 0x{:04X} ({} word, FC profile)", pcd_word_name(t.direction, 0),
-                  fc.pcd1, request ? "control" : "status");
+            field(1, FMT_COMPILE("PCD 1 {}: 0x{:04X} ({} word, FC profile)"),
+                  pcd_word_name(t.direction, 0), fc.pcd1, request ? "control" : "status");
             const WordBits& bits = request ? control_word_bits(PcdProfile::Fc, true)
                                            : status_word_bits(PcdProfile::Fc, true);
             for (int bit = 0; bit < 16; ++bit) {
                 const bool set = (fc.pcd1 >> bit) & 1;
                 const WordBit& meaning = bits[static_cast<std::size_t>(bit)];
-                field(2, "bit {:>2} = {}: {}", bit, set ? 1 : 0,
+                field(2, FMT_COMPILE("bit {:>2} = {}: {}"), bit, set ? 1 : 0,
                       set ? meaning.when_1 : meaning.when_0);
             }
-            field(1, "PCD 2 {}: 0x{:04X} = {:.2f} %", pcd_word_name(t.direction, 1), fc.pcd2,
-                  reference_percent(fc.pcd2));
+            field(1, FMT_COMPILE("PCD 2 {}: 0x{:04X} = {:.2f} %"), pcd_word_name(t.direction, 1),
+                  fc.pcd2, reference_percent(fc.pcd2));
         }
         if (fc.complete) {
             if (fc.bcc_ok)
-                field(1, "BCC: 0x{:02X} (correct)", fc.bcc);
+                field(1, FMT_COMPILE("BCC: 0x{:02X} (correct)"), fc.bcc);
             else
-                field(1, "BCC: 0x{:02X} (wrong: computed 0x{:02X})", fc.bcc, fc.bcc_computed);
+                field(1, FMT_COMPILE("BCC: 0x{:02X} (wrong: computed 0x{:02X})"), fc.bcc,
+                      fc.bcc_computed);
         } else {
-            field(1, "BCC: missing (telegram cut short)");
+            field(1, FMT_COMPILE("BCC: missing (telegram cut short)"));
         }
     }
 };

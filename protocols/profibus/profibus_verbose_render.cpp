@@ -36,13 +36,14 @@ class ProfibusVerboseTree final : public VerboseTree {
         auto it = fmt::appender(b);
         append(b, "PROFIBUS FDL\n");
         if (f.type == FrameType::Invalid) {
-            field(1, "Start delimiter: 0x{:02X} (not a start delimiter)",
+            field(1, FMT_COMPILE("Start delimiter: 0x{:02X} (not a start delimiter)"),
                   t.bytes.empty() ? 0 : t.bytes[0]);
             return;
         }
-        field(1, "Start delimiter: {} (0x{:02X})", frame_type_name(f.type), t.bytes[0]);
+        field(1, FMT_COMPILE("Start delimiter: {} (0x{:02X})"), frame_type_name(f.type),
+              t.bytes[0]);
         if (f.type == FrameType::Sd2) {
-            field(1, "Length: LE {}, LEr {}", f.length_field,
+            field(1, FMT_COMPILE("Length: LE {}, LEr {}"), f.length_field,
                   f.has_length_repeat ? fmt::format(FMT_COMPILE("{}"), f.length_repeat)
                                       : std::string("missing"));
         }
@@ -73,17 +74,17 @@ class ProfibusVerboseTree final : public VerboseTree {
             append(b, ")\n");
         }
         if (!f.du.empty())
-            field(1, "Data unit: {} from byte {}", counted(f.du.size(), "byte", "bytes"),
-                  f.du_offset);
+            field(1, FMT_COMPILE("Data unit: {} from byte {}"),
+                  counted(f.du.size(), "byte", "bytes"), f.du_offset);
         if (f.has_fcs) {
             if (f.fcs_ok)
-                field(1, "FCS: 0x{:02X} (correct)", f.fcs);
+                field(1, FMT_COMPILE("FCS: 0x{:02X} (correct)"), f.fcs);
             else
-                field(1, "FCS: 0x{:02X} (wrong)", f.fcs);
+                field(1, FMT_COMPILE("FCS: 0x{:02X} (wrong)"), f.fcs);
         }
         if (f.type == FrameType::Sd1 || f.type == FrameType::Sd2 || f.type == FrameType::Sd3) {
             if (t.bytes.size() >= f.size && f.size > 0)
-                field(1, "End delimiter: 0x{:02X}", t.bytes[f.size - 1]);
+                field(1, FMT_COMPILE("End delimiter: 0x{:02X}"), t.bytes[f.size - 1]);
         }
     }
 
@@ -117,15 +118,15 @@ class ProfibusVerboseTree final : public VerboseTree {
             case Service::GlobalControl:
                 if (const GlobalControl* gc = data.global_control()) {
                     flags_field(1, "Control command", gc->command, global_control_flags());
-                    field(1, "Group select: 0x{:02X}{}", gc->group_select,
+                    field(1, FMT_COMPILE("Group select: 0x{:02X}{}"), gc->group_select,
                           gc->group_select == 0 ? " (all slaves)" : "");
                 }
                 break;
             case Service::SetSlaveAdd:
                 if (const SetSlaveAdd* ssa = data.set_slave_add()) {
-                    field(1, "New slave address: {}", ssa->new_address);
-                    field(1, "Ident number: 0x{:04X}", ssa->ident);
-                    field(1, "No_Add_Chg: {}", ssa->no_add_chg);
+                    field(1, FMT_COMPILE("New slave address: {}"), ssa->new_address);
+                    field(1, FMT_COMPILE("Ident number: 0x{:04X}"), ssa->ident);
+                    field(1, FMT_COMPILE("No_Add_Chg: {}"), ssa->no_add_chg);
                     if (!ssa->rem_slave_data.empty()) {
                         line(1, "Rem_Slave_Data: ");
                         append_hex(b, ssa->rem_slave_data);
@@ -159,7 +160,7 @@ class ProfibusVerboseTree final : public VerboseTree {
         if (!device ||
             (data.gsd_modules().empty() && !prm && data.gsd_diag().empty() && !data.slave_diag()))
             return;
-        field(1, "GSD: {} ({}{})", device->file, gsd_device_title(*device),
+        field(1, FMT_COMPILE("GSD: {} ({}{})"), device->file, gsd_device_title(*device),
               device->ident_number
                   ? fmt::format(FMT_COMPILE(", ident 0x{:04X}"), *device->ident_number)
                   : std::string());
@@ -195,7 +196,8 @@ class ProfibusVerboseTree final : public VerboseTree {
                 std::any_of(device->modules.begin(), device->modules.end(),
                             [](const GsdModule& m) { return !m.prm_refs.empty(); });
             if (!prm->modules_known && module_prms)
-                field(2, "module parameters not read: no configuration of the slave seen yet");
+                field(2, FMT_COMPILE(
+                             "module parameters not read: no configuration of the slave seen yet"));
         }
         for (const GsdDiagText& d : data.gsd_diag()) {
             line(2, "diagnosis ");
@@ -218,37 +220,37 @@ class ProfibusVerboseTree final : public VerboseTree {
     void render_dpv1(const DecodedTelegram& t, const Dpv1Pdu& pdu) {
         TextBuffer& b = buffer();
         if (pdu.layout == Dpv1Pdu::Layout::None) {
-            field(1, "DP-V1 PDU: none (empty data unit: a link-level poll)");
+            field(1, FMT_COMPILE("DP-V1 PDU: none (empty data unit: a link-level poll)"));
             return;
         }
         std::string_view name = dpv1_function_name(pdu.function);
-        field(1, "DP-V1 function: 0x{:02X} ({}){}", pdu.function,
+        field(1, FMT_COMPILE("DP-V1 function: 0x{:02X} ({}){}"), pdu.function,
               name.empty() ? "not defined by DP-V1" : name,
               pdu.negative() ? ", negative response" : "");
-        if (!pdu.complete) field(2, "PDU cut short: the fields below are those read");
+        if (!pdu.complete) field(2, FMT_COMPILE("PDU cut short: the fields below are those read"));
         switch (pdu.layout) {
             case Dpv1Pdu::Layout::Error: {
                 std::string_view decode = dpv1_error_decode_name(pdu.error_decode);
-                field(2, "Error_Decode: 0x{:02X} ({})", pdu.error_decode,
+                field(2, FMT_COMPILE("Error_Decode: 0x{:02X} ({})"), pdu.error_decode,
                       decode.empty() ? "unknown" : decode);
                 std::string_view error_class = dpv1_error_class_name(pdu.error_code_1);
-                field(2, "Error_Code_1: 0x{:02X}", pdu.error_code_1);
-                field(3, "Error class: {} ({})", pdu.error_code_1 >> 4,
+                field(2, FMT_COMPILE("Error_Code_1: 0x{:02X}"), pdu.error_code_1);
+                field(3, FMT_COMPILE("Error class: {} ({})"), pdu.error_code_1 >> 4,
                       error_class.empty() ? "reserved" : error_class);
-                field(3, "Error code: {} ({})", pdu.error_code_1 & 0x0F,
+                field(3, FMT_COMPILE("Error code: {} ({})"), pdu.error_code_1 & 0x0F,
                       dpv1_error_code_name(pdu.error_code_1));
-                field(2, "Error_Code_2: 0x{:02X}", pdu.error_code_2);
+                field(2, FMT_COMPILE("Error_Code_2: 0x{:02X}"), pdu.error_code_2);
                 break;
             }
             case Dpv1Pdu::Layout::Addressed:
-                field(2, "Slot: {}", pdu.slot);
+                field(2, FMT_COMPILE("Slot: {}"), pdu.slot);
                 if (pdu.base_function() == dpv1_function::kAlarmAck) {
-                    field(2, "Alarm type: {}", pdu.index);
-                    field(2, "Specifier: 0x{:02X}", pdu.length);
+                    field(2, FMT_COMPILE("Alarm type: {}"), pdu.index);
+                    field(2, FMT_COMPILE("Specifier: 0x{:02X}"), pdu.length);
                 } else {
-                    field(2, "Index: {}{}", pdu.index,
+                    field(2, FMT_COMPILE("Index: {}{}"), pdu.index,
                           pdu.index == kProfidriveIndex ? " (PROFIdrive parameter channel)" : "");
-                    field(2, "Length: {}", pdu.length);
+                    field(2, FMT_COMPILE("Length: {}"), pdu.length);
                 }
                 if (!pdu.data.empty()) {
                     line(2, "");
@@ -261,18 +263,20 @@ class ProfibusVerboseTree final : public VerboseTree {
             case Dpv1Pdu::Layout::Initiate: {
                 const Dpv1Initiate& i = pdu.initiate;
                 if (t.direction == Direction::Request)
-                    field(2, "Send_Timeout: {} ({} ms)", i.send_timeout, i.send_timeout * 10);
+                    field(2, FMT_COMPILE("Send_Timeout: {} ({} ms)"), i.send_timeout,
+                          i.send_timeout * 10);
                 else
-                    field(2, "Max_Len_Data_Unit: {}", i.max_len_data_unit);
-                field(2, "Features_Supported: 0x{:04X}", i.features_supported);
-                field(2, "Profile_Features_Supported: 0x{:04X}", i.profile_features_supported);
-                field(2, "Profile_Ident_Number: 0x{:04X}", i.profile_ident_number);
+                    field(2, FMT_COMPILE("Max_Len_Data_Unit: {}"), i.max_len_data_unit);
+                field(2, FMT_COMPILE("Features_Supported: 0x{:04X}"), i.features_supported);
+                field(2, FMT_COMPILE("Profile_Features_Supported: 0x{:04X}"),
+                      i.profile_features_supported);
+                field(2, FMT_COMPILE("Profile_Ident_Number: 0x{:04X}"), i.profile_ident_number);
                 if (i.has_addresses) {
-                    field(2, "S_Type: {}, S_Len: {}", i.s_type, i.s_len);
+                    field(2, FMT_COMPILE("S_Type: {}, S_Len: {}"), i.s_type, i.s_len);
                     line(2, "S_Addr: ");
                     append_hex(b, i.s_addr);
                     b.push_back('\n');
-                    field(2, "D_Type: {}, D_Len: {}", i.d_type, i.d_len);
+                    field(2, FMT_COMPILE("D_Type: {}, D_Len: {}"), i.d_type, i.d_len);
                     line(2, "D_Addr: ");
                     append_hex(b, i.d_addr);
                     b.push_back('\n');
@@ -280,11 +284,11 @@ class ProfibusVerboseTree final : public VerboseTree {
                 break;
             }
             case Dpv1Pdu::Layout::Abort:
-                field(2, "Subnet: {}", pdu.abort.subnet);
-                field(2, "Instance_Reason_Code: 0x{:02X}", pdu.abort.instance_reason);
-                field(3, "Instance: {} ({})", pdu.abort.instance(),
+                field(2, FMT_COMPILE("Subnet: {}"), pdu.abort.subnet);
+                field(2, FMT_COMPILE("Instance_Reason_Code: 0x{:02X}"), pdu.abort.instance_reason);
+                field(3, FMT_COMPILE("Instance: {} ({})"), pdu.abort.instance(),
                       dpv1_abort_instance_name(pdu.abort.instance_reason));
-                field(3, "Reason code: {} ({})", pdu.abort.reason(),
+                field(3, FMT_COMPILE("Reason code: {} ({})"), pdu.abort.reason(),
                       dpv1_abort_reason_name(pdu.abort.instance_reason));
                 break;
             case Dpv1Pdu::Layout::Unknown:
@@ -304,72 +308,76 @@ class ProfibusVerboseTree final : public VerboseTree {
     // With `t`, each parameter's name and a value in its unit (issue 29).
     void render_profidrive(const ProfidriveMessage& m, Dialect dialect,
                            const DecodedTelegram* t = nullptr) {
-        field(1, "PROFIdrive parameter {}", m.is_response ? "response" : "request");
+        field(1, FMT_COMPILE("PROFIdrive parameter {}"), m.is_response ? "response" : "request");
         if (!m.has_header) {
-            field(2, "header cut short");
+            field(2, FMT_COMPILE("header cut short"));
             return;
         }
-        field(2, "Request reference: {}", m.reference);
+        field(2, FMT_COMPILE("Request reference: {}"), m.reference);
         std::string_view id_name =
             m.is_response ? profidrive_response_id_name(m.id) : profidrive_request_id_name(m.id);
-        field(2, "{} ID: 0x{:02X} ({})", m.is_response ? "Response" : "Request", m.id,
+        field(2, FMT_COMPILE("{} ID: 0x{:02X} ({})"), m.is_response ? "Response" : "Request", m.id,
               id_name.empty() ? "not defined" : id_name);
-        field(2, "Axis: {}", m.axis);
-        field(2, "Number of parameters: {}", m.count);
+        field(2, FMT_COMPILE("Axis: {}"), m.axis);
+        field(2, FMT_COMPILE("Number of parameters: {}"), m.count);
         if (m.is_response) {
             if (m.has_request)
-                field(2, "Answers the request in frame {} (ref {}, ID 0x{:02X})", m.request_frame,
-                      m.request_reference, m.request_id);
+                field(2, FMT_COMPILE("Answers the request in frame {} (ref {}, ID 0x{:02X})"),
+                      m.request_frame, m.request_reference, m.request_id);
             else
-                field(2, "Request not in the capture: parameter numbers unknown");
+                field(2, FMT_COMPILE("Request not in the capture: parameter numbers unknown"));
         }
         std::size_t parameters = std::max(m.addresses.size(), m.blocks.size());
         for (std::size_t k = 0; k < parameters; ++k) {
-            field(2, "Parameter {}", k + 1);
+            field(2, FMT_COMPILE("Parameter {}"), k + 1);
             if (k < m.addresses.size()) {
                 const ProfidriveAddress& a = m.addresses[k];
                 std::string_view attribute = profidrive_attribute_name(a.attribute);
-                field(3, "Attribute: 0x{:02X} ({})", a.attribute,
+                field(3, FMT_COMPILE("Attribute: 0x{:02X} ({})"), a.attribute,
                       attribute.empty() ? "not defined" : attribute);
-                field(3, "Number of elements: {}", a.elements);
-                field(3, "Parameter number: {}", a.pnu);
+                field(3, FMT_COMPILE("Number of elements: {}"), a.elements);
+                field(3, FMT_COMPILE("Parameter number: {}"), a.pnu);
                 if (t) {
                     const NamedParameter named = profidrive_parameter(*t, m, k);
                     if (named.row) {
                         TextBuffer details;
                         append_parameter_details(details, named);
-                        field(4, "name: {}", std::string_view(details.data(), details.size()));
+                        field(4, FMT_COMPILE("name: {}"),
+                              std::string_view(details.data(), details.size()));
                     }
                 }
-                field(3, "Subindex: {}", a.subindex);
+                field(3, FMT_COMPILE("Subindex: {}"), a.subindex);
             }
             if (k >= m.blocks.size()) continue;
             const ProfidriveValueBlock& block = m.blocks[k];
-            field(3, "Format: 0x{:02X} ({})", block.format, profidrive_format_name(block.format));
-            field(3, "Number of values: {}", block.count);
+            field(3, FMT_COMPILE("Format: 0x{:02X} ({})"), block.format,
+                  profidrive_format_name(block.format));
+            field(3, FMT_COMPILE("Number of values: {}"), block.count);
             if (block.is_error()) {
                 if (block.values.size() >= 2)
-                    field(3, "Error number: 0x{:02X} ({})", block.error_number(),
+                    field(3, FMT_COMPILE("Error number: 0x{:02X} ({})"), block.error_number(),
                           profidrive_error_text(block.error_number(), dialect));
                 if (block.has_error_info())
-                    field(3, "Additional information: {}", block.error_info());
+                    field(3, FMT_COMPILE("Additional information: {}"), block.error_info());
             } else if (block.format != profidrive::kFormatZero) {
                 std::string values;
                 append_profidrive_values(block, values);
-                field(3, "Values: {}", values);
+                field(3, FMT_COMPILE("Values: {}"), values);
                 if (t) {
                     if (const std::optional<ScaledValue> value =
                             profidrive_value_in_unit(*t, m, k)) {
                         TextBuffer text;
                         append_value_details(text, *profidrive_parameter(*t, m, k).row, *value);
-                        field(4, "in its unit: {}", std::string_view(text.data(), text.size()));
+                        field(4, FMT_COMPILE("in its unit: {}"),
+                              std::string_view(text.data(), text.size()));
                     }
                 }
             }
-            if (!block.complete) field(3, "(block cut short)");
-            if (block.padded) field(3, "Pad byte");
+            if (!block.complete) field(3, FMT_COMPILE("(block cut short)"));
+            if (block.padded) field(3, FMT_COMPILE("Pad byte"));
         }
-        if (m.trailing > 0) field(2, "{} after the message", counted(m.trailing, "byte", "bytes"));
+        if (m.trailing > 0)
+            field(2, FMT_COMPILE("{} after the message"), counted(m.trailing, "byte", "bytes"));
     }
 
     void render_data_exchange(const DecodedTelegram& t) {
@@ -377,55 +385,57 @@ class ProfibusVerboseTree final : public VerboseTree {
         line(1, "PPO: ");
         append_ppo_long(b, t.dp.ppo);
         b.push_back('\n');
-        field(1, "Dialect: {}; control/status word profile: {}{}",
+        field(1, FMT_COMPILE("Dialect: {}; control/status word profile: {}{}"),
               t.dp.ppo.has_pcv ? dialect_name(t.dp.dialect) : "none (no parameter channel)",
               pcd_profile_name(t.dp.pcd_profile),
               t.dp.pcd_profile == PcdProfile::Profidrive && t.dp.danfoss_pcd() ? " (Danfoss)" : "");
         bool request = t.direction == Direction::Request;
         if (t.dp.has_pcv) {
             const Pcv& pcv = t.dp.pcv;
-            field(1, "PCV (parameter channel), bytes {}-{}", t.dp.fdl.du_offset,
+            field(1, FMT_COMPILE("PCV (parameter channel), bytes {}-{}"), t.dp.fdl.du_offset,
                   t.dp.fdl.du_offset + kPcvBytes - 1);
-            field(2, "PCA: 0x{:04X}", pcv.pca);
+            field(2, FMT_COMPILE("PCA: 0x{:04X}"), pcv.pca);
             bool defined =
                 request ? request_code(t.dp.dialect, pcv.rc).defined
                         : response_code(t.dp.dialect, pcv.rc).kind != ResponseKind::Undefined;
-            field(3, "RC: {} = {}{}", pcv.rc, t.dp.pcv_meaning(t.direction),
+            field(3, FMT_COMPILE("RC: {} = {}{}"), pcv.rc, t.dp.pcv_meaning(t.direction),
                   defined ? "" : " (not defined by the dialect)");
-            field(3, "SPM: {}", pcv.spm ? 1 : 0);
-            field(3, "PNU: {}", pcv.pnu);
+            field(3, FMT_COMPILE("SPM: {}"), pcv.spm ? 1 : 0);
+            field(3, FMT_COMPILE("PNU: {}"), pcv.pnu);
             const TelegramParameterView view = parameter_view(t);
             if (view.named.row) {
                 TextBuffer details;
                 append_parameter_details(details, view.named);
-                field(4, "name: {}", std::string_view(details.data(), details.size()));
+                field(4, FMT_COMPILE("name: {}"), std::string_view(details.data(), details.size()));
             }
-            field(2, "IND: {} (byte 4: 0x{:02X})", pcv.ind, pcv.ind_low);
+            field(2, FMT_COMPILE("IND: {} (byte 4: 0x{:02X})"), pcv.ind, pcv.ind_low);
             ValueWidth width = request ? request_code(t.dp.dialect, pcv.rc).width
                                        : response_code(t.dp.dialect, pcv.rc).width;
             bool rejected =
                 !request && response_code(t.dp.dialect, pcv.rc).kind == ResponseKind::Rejected;
             if (rejected) {
                 auto error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
-                field(2, "PVA: 0x{:08X}", pcv.pva);
-                field(2, "Error number: {} = {}", error,
+                field(2, FMT_COMPILE("PVA: 0x{:08X}"), pcv.pva);
+                field(2, FMT_COMPILE("Error number: {} = {}"), error,
                       error_text_or_unknown(t.dp.dialect, error));
             } else if (width == ValueWidth::Word) {
-                field(2, "PVA: 0x{:08X}, word value {}", pcv.pva, pcv_value(pcv, width));
+                field(2, FMT_COMPILE("PVA: 0x{:08X}, word value {}"), pcv.pva,
+                      pcv_value(pcv, width));
             } else if (width == ValueWidth::DoubleWord) {
-                field(2, "PVA: 0x{:08X}, double word value {}", pcv.pva, pcv.pva);
+                field(2, FMT_COMPILE("PVA: 0x{:08X}, double word value {}"), pcv.pva, pcv.pva);
             } else {
-                field(2, "PVA: 0x{:08X} (the code carries no value)", pcv.pva);
+                field(2, FMT_COMPILE("PVA: 0x{:08X} (the code carries no value)"), pcv.pva);
             }
             if (view.value && view.parameter.has_raw) {
                 TextBuffer value;
                 append_value_details(value, *view.named.row, *view.value);
-                field(3, "in its unit: {}", std::string_view(value.data(), value.size()));
+                field(3, FMT_COMPILE("in its unit: {}"),
+                      std::string_view(value.data(), value.size()));
             }
         }
         ByteReader reader(t.dp.pcd, t.dp.pcd_offset);
         if (reader.empty()) return;
-        field(1, "PCD ({} words)", reader.remaining() / 2);
+        field(1, FMT_COMPILE("PCD ({} words)"), reader.remaining() / 2);
         const WordBits& bits = request ? control_word_bits(t.dp.pcd_profile, t.dp.danfoss_pcd())
                                        : status_word_bits(t.dp.pcd_profile, t.dp.danfoss_pcd());
         for (std::size_t index = 0;; ++index) {
@@ -433,20 +443,21 @@ class ProfibusVerboseTree final : public VerboseTree {
             if (!word) break;
             std::string_view name = pcd_word_name(t.direction, index);
             if (index == 0) {
-                field(2, "PCD 1 {}: 0x{:04X}", name, *word);
+                field(2, FMT_COMPILE("PCD 1 {}: 0x{:04X}"), name, *word);
                 for (int bit = 0; bit < 16; ++bit) {
                     bool set = (*word >> bit) & 1;
                     const WordBit& meaning = bits[static_cast<std::size_t>(bit)];
-                    field(3, "bit {:>2} = {}: {}", bit, set ? 1 : 0,
+                    field(3, FMT_COMPILE("bit {:>2} = {}: {}"), bit, set ? 1 : 0,
                           set ? meaning.when_1 : meaning.when_0);
                 }
             } else if (index == 1) {
-                field(2, "PCD 2 {}: 0x{:04X} = {:.2f} %", name, *word, reference_percent(*word));
+                field(2, FMT_COMPILE("PCD 2 {}: 0x{:04X} = {:.2f} %"), name, *word,
+                      reference_percent(*word));
             } else {
-                field(2, "PCD {}: 0x{:04X} ({})", index + 1, *word, *word);
+                field(2, FMT_COMPILE("PCD {}: 0x{:04X} ({})"), index + 1, *word, *word);
             }
         }
-        if (!reader.empty()) field(2, "odd trailing byte: 0x{:02X}", *reader.u8());
+        if (!reader.empty()) field(2, FMT_COMPILE("odd trailing byte: 0x{:02X}"), *reader.u8());
     }
 
     void render_diag(const SlaveDiag& diag, std::span<const DiagBlock> blocks, SlaveDpv1 dpv1) {
@@ -454,22 +465,27 @@ class ProfibusVerboseTree final : public VerboseTree {
         flags_field(1, "Station status 2", diag.station_status_2, station_status_2_flags());
         flags_field(1, "Station status 3", diag.station_status_3, station_status_3_flags());
         if (diag.master_address == kNoMasterAddress)
-            field(1, "Master address: 255 (not parameterised)");
+            field(1, FMT_COMPILE("Master address: 255 (not parameterised)"));
         else
-            field(1, "Master address: {}", diag.master_address);
-        field(1, "Ident number: 0x{:04X}", diag.ident);
+            field(1, FMT_COMPILE("Master address: {}"), diag.master_address);
+        field(1, FMT_COMPILE("Ident number: 0x{:04X}"), diag.ident);
         if (diag.extended.empty()) return;
-        field(1, "Extended diagnosis: {}", counted(diag.extended.size(), "byte", "bytes"));
+        field(1, FMT_COMPILE("Extended diagnosis: {}"),
+              counted(diag.extended.size(), "byte", "bytes"));
         for (const DiagBlock& block : blocks) {
             TextBuffer& b = buffer();
             switch (block.type) {
                 case DiagBlockType::Channel:
-                    field(2, "channel-related: module {}, channel {}, {}, {}: error {} ({})",
+                    field(2,
+                          FMT_COMPILE(
+                              "channel-related: module {}, channel {}, {}, {}: error {} ({})"),
                           block.module, block.channel, channel_io_text(block.io),
                           channel_type_text(block.channel_type), block.error_type,
                           channel_error_text(block.error_type));
                     break;
-                case DiagBlockType::Revision: field(2, "revision number {}", block.revision); break;
+                case DiagBlockType::Revision:
+                    field(2, FMT_COMPILE("revision number {}"), block.revision);
+                    break;
                 case DiagBlockType::Identifier: {
                     line(2, "identifier-related: modules with diagnosis:");
                     bool any = false;
@@ -532,10 +548,11 @@ class ProfibusVerboseTree final : public VerboseTree {
                 prm.watchdog_ms(), prm.watchdog_ms_10ms_base());
         else if (prm.watchdog_on())
             watchdog = fmt::format(FMT_COMPILE(" = {} ms"), prm.watchdog_ms());
-        field(1, "Watchdog: factors {} x {}{}", prm.wd_fact_1, prm.wd_fact_2, watchdog);
-        field(1, "min TSDR: {} bit times", prm.min_tsdr);
-        field(1, "Ident number: 0x{:04X}", prm.ident);
-        field(1, "Group ident: 0x{:02X}", prm.group_ident);
+        field(1, FMT_COMPILE("Watchdog: factors {} x {}{}"), prm.wd_fact_1, prm.wd_fact_2,
+              watchdog);
+        field(1, FMT_COMPILE("min TSDR: {} bit times"), prm.min_tsdr);
+        field(1, FMT_COMPILE("Ident number: 0x{:04X}"), prm.ident);
+        field(1, FMT_COMPILE("Group ident: 0x{:02X}"), prm.group_ident);
         if (prm.has_dpv1_status) {
             flags_field(1, "DPV1_Status_1", prm.dpv1_status[0], dpv1_status_1_flags());
             flags_field(1, "DPV1_Status_2", prm.dpv1_status[1], dpv1_status_2_flags());
@@ -565,7 +582,7 @@ class ProfibusVerboseTree final : public VerboseTree {
         std::size_t number = 1;
         for (const CfgModule& m : modules) {
             if (m.free_place) {
-                field(2, "module {}: 0x00 free place", number++);
+                field(2, FMT_COMPILE("module {}: 0x00 free place"), number++);
                 continue;
             }
             std::string lengths;
@@ -577,7 +594,7 @@ class ProfibusVerboseTree final : public VerboseTree {
                 lengths +=
                     fmt::format(FMT_COMPILE(" in {}{}"), cfg_units(m.input_units, m.input_words),
                                 m.input_consistent ? " consistent" : "");
-            field(2, "module {}: 0x{:02X} {}{}{}{}", number++, m.identifier,
+            field(2, FMT_COMPILE("module {}: 0x{:02X} {}{}{}{}"), number++, m.identifier,
                   m.special ? "special format," : "", cfg_direction_name(m.direction), lengths,
                   m.manufacturer_bytes
                       ? fmt::format(FMT_COMPILE(", {}"),

@@ -224,56 +224,60 @@ class Vlt2000VerboseTree final : public VerboseTree {
         b.push_back('\n');
         if (size == 0) return;
         if (t.bytes[0] != kVlt2000Start) {
-            field(1, "[1] Start: {} (not '<')", chars(t, 0, 1));
+            field(1, FMT_COMPILE("[1] Start: {} (not '<')"), chars(t, 0, 1));
             return;
         }
-        field(1, "[1] Start: '<'");
+        field(1, FMT_COMPILE("[1] Start: '<'"));
         if (!has(kVlt2000AddressAt, 2)) return;
         if (t.has_roles)
-            field(1, "[2-3] Address: {:02}{}", v.address,
+            field(1, FMT_COMPILE("[2-3] Address: {:02}{}"), v.address,
                   v.broadcast ? " (broadcast: every drive acts, none replies)" : "");
         else
-            field(1, "[2-3] Address: {} (not two digits)", chars(t, kVlt2000AddressAt, 2));
+            field(1, FMT_COMPILE("[2-3] Address: {} (not two digits)"),
+                  chars(t, kVlt2000AddressAt, 2));
         if (!has(kVlt2000LetterAt, 1)) return;
-        field(1, "[4] Control letter: {} ({}{})", chars(t, kVlt2000LetterAt, 1),
+        field(1, FMT_COMPILE("[4] Control letter: {} ({}{})"), chars(t, kVlt2000LetterAt, 1),
               vlt2000_letter_name(v.letter),
               v.letter == Vlt2000Letter::Unknown ? ": not U, R, C or I" : "");
         if (!has(kVlt2000WordAt, 4)) return;
-        field(1, "[5-8] {} word: {} = 0x{:04X} ({})", request ? "Control" : "Status",
+        field(1, FMT_COMPILE("[5-8] {} word: {} = 0x{:04X} ({})"), request ? "Control" : "Status",
               chars(t, kVlt2000WordAt, 4), v.word, request ? "to the drive" : "from the drive");
         for (unsigned bit = 0; bit < 16; ++bit) {
             if (vlt2000_bit_kept(v, bit)) {
-                if (bit % 4 == 0) field(2, "bits {}-{}: group kept (P)", bit, bit + 3);
+                if (bit % 4 == 0) field(2, FMT_COMPILE("bits {}-{}: group kept (P)"), bit, bit + 3);
                 continue;
             }
-            field(2, "bit {:>2} = {}: {}", bit, (v.word >> bit) & 1u,
+            field(2, FMT_COMPILE("bit {:>2} = {}: {}"), bit, (v.word >> bit) & 1u,
                   vlt2000_bit_meaning(v, t.direction, bit));
         }
         if (!has(kVlt2000ParameterAt, 4)) return;
         const bool control = v.letter == Vlt2000Letter::Control;
         const std::string_view ignored = control ? " (ignored with C)" : "";
         if (v.has_parameter)
-            field(1, "[9-12] Parameter: {}{}", v.parameter, ignored);
+            field(1, FMT_COMPILE("[9-12] Parameter: {}{}"), v.parameter, ignored);
         else
-            field(1, "[9-12] Parameter: {} (not four digits)", chars(t, kVlt2000ParameterAt, 4));
+            field(1, FMT_COMPILE("[9-12] Parameter: {} (not four digits)"),
+                  chars(t, kVlt2000ParameterAt, 4));
         const TelegramParameterView view = parameter_view(t);
         if (view.named.row) {
             TextBuffer details;
             append_parameter_details(details, view.named);
-            field(2, "name: {}", std::string_view(details.data(), details.size()));
+            field(2, FMT_COMPILE("name: {}"), std::string_view(details.data(), details.size()));
         }
         if (!has(kVlt2000SignAt, 1)) return;
         if (v.letter == Vlt2000Letter::ReadIndex && !v.index.empty()) {
             if (v.has_index_number)
-                field(1, "[13-18] Index: {} = {}", chars(t, kVlt2000SignAt, 6), v.index_number);
+                field(1, FMT_COMPILE("[13-18] Index: {} = {}"), chars(t, kVlt2000SignAt, 6),
+                      v.index_number);
             else
-                field(1, "[13-18] Index: {} (not a number)", chars(t, kVlt2000SignAt, 6));
+                field(1, FMT_COMPILE("[13-18] Index: {} (not a number)"),
+                      chars(t, kVlt2000SignAt, 6));
         } else {
-            field(1, "[13] Sign: {} ({}){}", chars(t, kVlt2000SignAt, 1),
+            field(1, FMT_COMPILE("[13] Sign: {} ({}){}"), chars(t, kVlt2000SignAt, 1),
                   v.negative ? "negative" : "positive", ignored);
             if (!has(kVlt2000ValueAt, 5)) return;
             if (v.failed) {
-                field(1, "[14-18] Value: {} (none: the command failed)",
+                field(1, FMT_COMPILE("[14-18] Value: {} (none: the command failed)"),
                       chars(t, kVlt2000ValueAt, 5));
             } else if (v.has_value) {
                 const std::string note = vlt2000_value_note(v);
@@ -284,40 +288,45 @@ class Vlt2000VerboseTree final : public VerboseTree {
                 append(b, ignored);
                 b.push_back('\n');
                 if (view.value && !view.named.row->unit.empty())
-                    field(2, "in its unit: {} {}", vlt2000_value_text(v), view.named.row->unit);
+                    field(2, FMT_COMPILE("in its unit: {} {}"), vlt2000_value_text(v),
+                          view.named.row->unit);
             } else {
-                field(1, "[14-18] Value: {} (not five digits)", chars(t, kVlt2000ValueAt, 5));
+                field(1, FMT_COMPILE("[14-18] Value: {} (not five digits)"),
+                      chars(t, kVlt2000ValueAt, 5));
             }
         }
         if (v.failed) {
             if (v.has_reason)
-                field(2, "[17-18] Reason code: {:02} = {}", v.reason, vlt2000_reason_or_unknown(v));
+                field(2, FMT_COMPILE("[17-18] Reason code: {:02} = {}"), v.reason,
+                      vlt2000_reason_or_unknown(v));
             else
-                field(2, "[17-18] Reason code: {} ({})", chars(t, kVlt2000ReasonAt, 2),
+                field(2, FMT_COMPILE("[17-18] Reason code: {} ({})"), chars(t, kVlt2000ReasonAt, 2),
                       vlt2000_reason_or_unknown(v));
         }
         if (!has(kVlt2000DecimalsAt, 1)) return;
         if (!v.has_decimals)
-            field(1, "[19] Decimal position: {} (not a digit)", chars(t, kVlt2000DecimalsAt, 1));
+            field(1, FMT_COMPILE("[19] Decimal position: {} (not a digit)"),
+                  chars(t, kVlt2000DecimalsAt, 1));
         else if (v.failed)
-            field(1, "[19] Decimal position: 9 (unknown parameter or the command failed)");
+            field(1, FMT_COMPILE(
+                         "[19] Decimal position: 9 (unknown parameter or the command failed)"));
         else if (v.decimals > 5)
-            field(1, "[19] Decimal position: {} (out of range 0-5)", v.decimals);
+            field(1, FMT_COMPILE("[19] Decimal position: {} (out of range 0-5)"), v.decimals);
         else
-            field(1, "[19] Decimal position: {}", v.decimals);
+            field(1, FMT_COMPILE("[19] Decimal position: {}"), v.decimals);
         if (has(kVlt2000ChecksumAt, 2)) {
             line(1, "[20-21] Checksum: ");
             append_vlt2000_checksum(b, t);
             b.push_back('\n');
         } else {
-            field(1, "[20-21] Checksum: missing (telegram cut short)");
+            field(1, FMT_COMPILE("[20-21] Checksum: missing (telegram cut short)"));
             return;
         }
         if (!has(kVlt2000StopAt, 1)) return;
         if (t.bytes[kVlt2000StopAt] == kVlt2000Stop)
-            field(1, "[22] Stop: '>'");
+            field(1, FMT_COMPILE("[22] Stop: '>'"));
         else
-            field(1, "[22] Stop: {} (not '>')", chars(t, kVlt2000StopAt, 1));
+            field(1, FMT_COMPILE("[22] Stop: {} (not '>')"), chars(t, kVlt2000StopAt, 1));
     }
 };
 
