@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 
 #include "cli/common_options.hpp"
 #include "cli/small_file.hpp"
@@ -119,16 +120,17 @@ void add_mqtt_options(CLI::App& sub, MqttOptions& o) {
 
 std::string mqtt_option_without_url(const MqttOptions& o) {
     if (!o.url.empty()) return {};
-    if (o.topic != "dpscope") return "--mqtt-topic";
-    if (!o.segment.empty()) return "--mqtt-segment";
-    if (!o.client_id.empty()) return "--mqtt-client-id";
-    if (!o.credentials.empty()) return "--mqtt-credentials";
-    if (!o.ca_file.empty()) return "--mqtt-ca";
-    if (!o.cert_file.empty()) return "--mqtt-cert";
-    if (!o.key_file.empty()) return "--mqtt-key";
-    if (o.queue != 10000) return "--mqtt-queue";
-    if (o.stats_interval != 10) return "--mqtt-stats-interval";
-    if (o.wait_at_end != 5) return "--mqtt-wait";
+    const MqttOptions defaults;
+    if (o.topic != defaults.topic) return "--mqtt-topic";
+    if (o.segment != defaults.segment) return "--mqtt-segment";
+    if (o.client_id != defaults.client_id) return "--mqtt-client-id";
+    if (o.credentials != defaults.credentials) return "--mqtt-credentials";
+    if (o.ca_file != defaults.ca_file) return "--mqtt-ca";
+    if (o.cert_file != defaults.cert_file) return "--mqtt-cert";
+    if (o.key_file != defaults.key_file) return "--mqtt-key";
+    if (o.queue != defaults.queue) return "--mqtt-queue";
+    if (o.stats_interval != defaults.stats_interval) return "--mqtt-stats-interval";
+    if (o.wait_at_end != defaults.wait_at_end) return "--mqtt-wait";
     return {};
 }
 
@@ -250,27 +252,19 @@ void LiveMqtt::on_judged(const BusHealth& health) {
         publisher_->publish({topics_.live(), live, 1, true});
         live_published_ = std::move(live);
     }
-    for (const StationHealth& station : health.stations) {
-        const Verdict verdict = verdict_of(health, station.address);
-        auto known = std::find_if(verdicts_published_.begin(), verdicts_published_.end(),
-                                  [&](const auto& p) { return p.first == station.address; });
-        if (known != verdicts_published_.end() && known->second == verdict) continue;
-        if (known == verdicts_published_.end())
-            verdicts_published_.emplace_back(station.address, verdict);
-        else
-            known->second = verdict;
-        publisher_->publish(
-            {topics_.verdict(station.address),
-             json_text([&](JsonWriter& w) { verdict_json(w, health, station.address); }), 1, true});
-    }
-    const Verdict segment = verdict_of(health, kSegmentAddress);
-    if (health.segment.judged() && (!segment_verdict_published_ || segment != segment_verdict_)) {
-        segment_verdict_published_ = true;
-        segment_verdict_ = segment;
-        publisher_->publish(
-            {topics_.verdict(kSegmentAddress),
-             json_text([&](JsonWriter& w) { verdict_json(w, health, kSegmentAddress); }), 1, true});
-    }
+    for (const StationHealth& station : health.stations)
+        publish_verdict_on_change(health, station.address);
+    if (health.segment.judged()) publish_verdict_on_change(health, kSegmentAddress);
+}
+
+void LiveMqtt::publish_verdict_on_change(const BusHealth& health, std::uint8_t address) {
+    const Verdict verdict = verdict_of(health, address);
+    std::optional<Verdict>& sent = verdicts_published_[address];
+    if (sent == verdict) return;
+    sent = verdict;
+    publisher_->publish({topics_.verdict(address),
+                         json_text([&](JsonWriter& w) { verdict_json(w, health, address); }), 1,
+                         true});
 }
 
 void LiveMqtt::publish_stats(MonitorFigures figures) {

@@ -5,9 +5,11 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -80,6 +82,9 @@ class LiveMqtt : public HealthListener {
   private:
     LiveMqtt() = default;
     void say_warnings();
+    // Publishes the verdict of `address` (kSegmentAddress: the segment's), retained, when it is
+    // not the one last sent.
+    void publish_verdict_on_change(const BusHealth& health, std::uint8_t address);
 
     monitor::MqttSettings settings_;
     std::unique_ptr<monitor::MqttPublisher> publisher_;
@@ -89,9 +94,8 @@ class LiveMqtt : public HealthListener {
     std::int64_t last_stats_ns_ = 0;
     int wait_at_end_ms_ = 0;
     std::string live_published_;                                        // the last live list sent
-    std::vector<std::pair<std::uint8_t, Verdict>> verdicts_published_;  // the last verdicts sent
-    bool segment_verdict_published_ = false;
-    Verdict segment_verdict_ = Verdict::Good;
+    // The last verdict sent for each station, and for the segment at kSegmentAddress.
+    std::array<std::optional<Verdict>, 256> verdicts_published_{};
     // The publisher's warnings, from its thread, printed by the capture's.
     struct Warnings {
         std::mutex mutex;

@@ -205,7 +205,6 @@ void MqttPublisher::State::on_publish(mosquitto*, void* user, int mid) {
         std::lock_guard lock(s->mutex);
         if (s->in_flight.erase(mid) == 0) return;
         ++s->counters.acknowledged;
-        s->counters.waiting = s->queue.size() + s->in_flight.size();
     }
     s->changed.notify_all();
 }
@@ -283,7 +282,6 @@ void MqttPublisher::State::close_connection(std::string_view why) {
         in_flight.clear();
         counters.resent += requeued;
         counters.connected = false;
-        counters.waiting = queue.size();
     }
     changed.notify_all();
     ++failed_attempts;
@@ -435,7 +433,6 @@ void MqttPublisher::publish(MqttMessage message) {
             queue.erase(event);
         }
         queue.push_back(std::move(message));
-        c.waiting = queue.size() + state_->in_flight.size();
     }
     state_->wake();
 }

@@ -76,7 +76,7 @@ struct MqttCounters {
     std::uint64_t replaced = 0;      // retained states replaced by a newer one while waiting
     std::uint64_t resent = 0;        // sent again after a connection was lost
     std::uint64_t connections = 0;   // connections the broker accepted
-    std::uint64_t waiting = 0;       // in the queue or sent and not yet acknowledged
+    std::uint64_t waiting = 0;       // in the queue or sent and not yet acknowledged (counters())
     bool connected = false;
 };
 

@@ -15,15 +15,22 @@ auto find_address(const List& list, std::uint8_t address) {
                         [address](const auto& item) { return item.address == address; });
 }
 
-// The judgement health holds for `address` (as a master's own for a master), or null.
+// The judgement health holds for `address` seen in `role`: a master's own judgement when it acts
+// as a master and has one, else the station's (kSegmentAddress: the segment's); null when
+// health does not list it.
 const Judgement* judgement_of(const BusHealth& health, std::uint8_t address, StationRole role) {
     if (address == kSegmentAddress) return &health.segment.judgement;
     auto master = find_address(health.masters, address);
     auto station = find_address(health.stations, address);
-    if (station != health.stations.end() && role == StationRole::Unknown) role = station->role;
     if (role == StationRole::Master && master != health.masters.end()) return &master->judgement;
     if (station != health.stations.end()) return &station->judgement;
     return nullptr;
+}
+
+// The role the live list gives `address` (Unknown when it does not list it).
+StationRole listed_role(const BusHealth& health, std::uint8_t address) {
+    auto station = find_address(health.stations, address);
+    return station != health.stations.end() ? station->role : StationRole::Unknown;
 }
 
 void station_and_role(JsonWriter& w, std::uint8_t address, StationRole role) {
@@ -45,19 +52,9 @@ AlarmEvent describe_health_event(const HealthEvent& e, const BusHealth& health) 
     event.role = e.role;
     event.time_ns = e.time_ns;
     event.frame = e.frame;
-    const Judgement* judgement = nullptr;
-    if (e.address == kSegmentAddress) {
-        judgement = &health.segment.judgement;
-    } else {
-        auto master = find_address(health.masters, e.address);
-        auto station = find_address(health.stations, e.address);
-        if (e.role == StationRole::Master && master != health.masters.end())
-            judgement = &master->judgement;
-        else if (station != health.stations.end())
-            judgement = &station->judgement;
-        if (station != health.stations.end() && e.role == StationRole::Unknown)
-            event.role = station->role;
-    }
+    const Judgement* judgement = judgement_of(health, e.address, e.role);
+    if (e.address != kSegmentAddress && e.role == StationRole::Unknown)
+        event.role = listed_role(health, e.address);
     if (judgement) {
         event.verdict = judgement->verdict;
         for (const VerdictReason& reason : judgement->reasons)
@@ -134,14 +131,12 @@ void live_list_json(JsonWriter& w, const BusHealth& health) {
 }
 
 Verdict verdict_of(const BusHealth& health, std::uint8_t address) {
-    const Judgement* j = judgement_of(health, address, StationRole::Unknown);
+    const Judgement* j = judgement_of(health, address, listed_role(health, address));
     return j ? j->verdict : Verdict::Good;
 }
 
 void verdict_json(JsonWriter& w, const BusHealth& health, std::uint8_t address) {
-    StationRole role = StationRole::Unknown;
-    if (auto station = find_address(health.stations, address); station != health.stations.end())
-        role = station->role;
+    const StationRole role = listed_role(health, address);
     const Judgement* j = judgement_of(health, address, role);
     w.begin_object();
     station_and_role(w, address, role);
