@@ -3,6 +3,7 @@
 #include <fmt/compile.h>
 
 #include <algorithm>
+#include <cstring>
 #include <ctime>
 #include <iterator>
 #include <vector>
@@ -49,8 +50,10 @@ void append_epoch_seconds(TextBuffer& out, std::int64_t time_ns) {
     // Sign and magnitude: -1.5 s is "-1.500000000", not "-2" and a positive fraction.
     std::uint64_t magnitude =
         time_ns < 0 ? 0 - static_cast<std::uint64_t>(time_ns) : static_cast<std::uint64_t>(time_ns);
-    fmt::format_to(fmt::appender(out), FMT_COMPILE("{}{}.{:09}"), time_ns < 0 ? "-" : "",
-                   magnitude / kNanos, magnitude % kNanos);
+    if (time_ns < 0) out.push_back('-');
+    append_decimal(out, magnitude / kNanos);
+    out.push_back('.');
+    append_decimal_padded(out, magnitude % kNanos, 9);
 }
 
 bool append_flags(TextBuffer& out, std::uint8_t value, std::span<const FlagBit> flags,
@@ -68,21 +71,27 @@ bool append_flags(TextBuffer& out, std::uint8_t value, std::span<const FlagBit> 
 
 void append_hex(TextBuffer& out, Bytes bytes, std::string_view separator) {
     static constexpr char kDigits[] = "0123456789ABCDEF";
+    if (bytes.empty()) return;
+    // Room for all of it at once: two digits a byte, a separator between bytes.
+    const std::size_t step = 2 + separator.size();
+    char* p = append_room(out, bytes.size() * step - separator.size());
     for (std::size_t i = 0; i < bytes.size(); ++i) {
-        if (i > 0) append(out, separator);
-        out.push_back(kDigits[bytes[i] >> 4]);
-        out.push_back(kDigits[bytes[i] & 0x0F]);
+        if (i > 0 && !separator.empty()) {
+            std::memcpy(p, separator.data(), separator.size());
+            p += separator.size();
+        }
+        *p++ = kDigits[bytes[i] >> 4];
+        *p++ = kDigits[bytes[i] & 0x0F];
     }
 }
 
 void append_frame_control(TextBuffer& out, FrameControl fc) {
     if (fc.is_request()) {
-        fmt::format_to(fmt::appender(out), FMT_COMPILE("request, FCB {}, FCV {}, {}"),
-                       fc.fcb() ? 1 : 0, fc.fcv() ? 1 : 0, request_function_name(fc));
+        put(out, "request, FCB ", fc.fcb() ? '1' : '0', ", FCV ", fc.fcv() ? '1' : '0', ", ",
+            request_function_name(fc));
     } else {
-        fmt::format_to(fmt::appender(out), FMT_COMPILE("response, {}, {} ({})"),
-                       station_type_name(fc.station_type()), response_status_name(fc.function()),
-                       response_status_text(fc.function()));
+        put(out, "response, ", station_type_name(fc.station_type()), ", ",
+            response_status_name(fc.function()), " (", response_status_text(fc.function()), ')');
     }
 }
 
@@ -90,17 +99,15 @@ void append_ppo_short(TextBuffer& out, const PpoLayout& layout) {
     const char* guess = layout.source == PpoSource::Length ? "?" : "";
     if (layout.type != 0) {
         if (layout.alternative != 0)
-            fmt::format_to(fmt::appender(out), FMT_COMPILE("PPO{}/{}{}"), layout.type,
-                           layout.alternative, guess);
+            put(out, "PPO", layout.type, '/', layout.alternative, guess);
         else
-            fmt::format_to(fmt::appender(out), FMT_COMPILE("PPO{}{}"), layout.type, guess);
+            put(out, "PPO", layout.type, guess);
         return;
     }
     if (layout.has_pcv)
-        fmt::format_to(fmt::appender(out), FMT_COMPILE("PCV+{}w"),
-                       (layout.output_bytes - kPcvBytes) / 2);
+        put(out, "PCV+", (layout.output_bytes - kPcvBytes) / 2, 'w');
     else
-        fmt::format_to(fmt::appender(out), FMT_COMPILE("{}w"), layout.output_bytes / 2);
+        put(out, layout.output_bytes / 2, 'w');
 }
 
 std::string command_outcomes_text(std::uint64_t answered, std::uint64_t unanswered,
@@ -151,21 +158,19 @@ void append_ppo_long(TextBuffer& out, const PpoLayout& layout) {
 void append_pcv_summary(TextBuffer& out, const DecodedTelegram& t) {
     const Pcv& pcv = t.dp.pcv;
     bool request = t.direction == Direction::Request;
-    fmt::format_to(fmt::appender(out), FMT_COMPILE("RC={} {}"), pcv.rc,
-                   t.dp.pcv_meaning(t.direction));
+    put(out, "RC=", pcv.rc, ' ', t.dp.pcv_meaning(t.direction));
     if (pcv.spm) append(out, " SPM=1");
     // The parameter's name and the value in its unit from its drive's database (issue 29).
     const TelegramParameterView view = parameter_view(t);
-    fmt::format_to(fmt::appender(out), FMT_COMPILE(" PNU={}"), pcv.pnu);
+    put(out, " PNU=", pcv.pnu);
     append_parameter_name(out, view.named);
-    fmt::format_to(fmt::appender(out), FMT_COMPILE(" IND={}"), pcv.ind);
+    put(out, " IND=", pcv.ind);
     if (!request && response_code(t.dp.dialect, pcv.rc).kind == ResponseKind::Rejected) {
         std::uint16_t error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
-        fmt::format_to(fmt::appender(out), FMT_COMPILE(" error {} ({})"), error,
-                       error_text_or_unknown(t.dp.dialect, error));
+        put(out, " error ", error, " (", error_text_or_unknown(t.dp.dialect, error), ')');
         return;
     }
-    fmt::format_to(fmt::appender(out), FMT_COMPILE(" PVA={}"), t.dp.pcv_value(t.direction));
+    put(out, " PVA=", t.dp.pcv_value(t.direction));
     append_view_value(out, view);
 }
 
@@ -182,13 +187,11 @@ void append_pcd_summary(TextBuffer& out, const DecodedTelegram& t) {
         append(out, "no PCD");
         return;
     }
-    fmt::format_to(fmt::appender(out), FMT_COMPILE("{}=0x{:04X}"), pcd_word_name(t.direction, 0),
-                   *first);
+    put(out, pcd_word_name(t.direction, 0), "=0x", hex(*first, 4));
     if (auto second = reader.u16_be())
         fmt::format_to(fmt::appender(out), FMT_COMPILE(" {}={:.2f}%"),
                        pcd_word_name(t.direction, 1), reference_percent(*second));
-    if (std::size_t more = reader.remaining() / 2; more > 0)
-        fmt::format_to(fmt::appender(out), FMT_COMPILE(" +{}w"), more);
+    if (std::size_t more = reader.remaining() / 2; more > 0) put(out, " +", more, 'w');
 }
 
 void append_cfg_summary(TextBuffer& out, Bytes identifiers, std::span<const CfgModule> modules) {
@@ -484,9 +487,8 @@ void append_service_detail(TextBuffer& out, const DecodedTelegram& t) {
         case Service::Token: append(out, "token"); return;
         case Service::DataExchange:
             if (f.du.empty() && f.has_fc && !f.fc.is_request()) {  // RS, RR, ...: no inputs
-                fmt::format_to(fmt::appender(out), FMT_COMPILE("no data: {} ({})"),
-                               response_status_name(f.fc.function()),
-                               response_status_text(f.fc.function()));
+                put(out, "no data: ", response_status_name(f.fc.function()), " (",
+                    response_status_text(f.fc.function()), ')');
                 return;
             }
             append_ppo_short(out, t.dp.ppo);

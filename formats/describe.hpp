@@ -12,16 +12,11 @@
 #include "core/counted.hpp"
 #include "core/finding.hpp"
 #include "drives/parameter_naming.hpp"
+#include "formats/text_buffer.hpp"
 #include "protocols/profibus/bus_decoder.hpp"
 #include "protocols/profibus/dp_payload.hpp"
 
 namespace dpscope {
-
-using TextBuffer = fmt::memory_buffer;
-
-inline void append(TextBuffer& out, std::string_view text) {
-    out.append(text.data(), text.data() + text.size());
-}
 
 // 2024-01-01T00:00:00.000123000Z
 void append_iso_time(TextBuffer& out, std::int64_t time_ns);

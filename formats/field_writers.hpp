@@ -68,7 +68,7 @@ inline void csv_quoted(TextBuffer& b, std::string_view text) {
 
 // A number field followed by its comma; empty when not present.
 inline void csv_optional(TextBuffer& b, bool present, unsigned value) {
-    if (present) fmt::format_to(std::back_inserter(b), "{}", value);
+    if (present) append_decimal(b, value);
     b.push_back(',');
 }
 

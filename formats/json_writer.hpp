@@ -24,6 +24,8 @@
 #include <string>
 #include <string_view>
 
+#include "formats/text_buffer.hpp"
+
 namespace dpscope {
 
 namespace json {
@@ -31,10 +33,7 @@ namespace json {
 // A JSON string with the required escapes, appended to `out`.
 void string(fmt::memory_buffer& out, std::string_view text);
 
-inline void integer(fmt::memory_buffer& out, std::int64_t value) {
-    fmt::format_int digits(value);
-    out.append(digits.data(), digits.data() + digits.size());
-}
+inline void integer(fmt::memory_buffer& out, std::int64_t value) { append_signed(out, value); }
 
 }  // namespace json
 
@@ -136,9 +135,9 @@ class JsonWriter {
         --depth_;
         return wrote();
     }
-    JsonWriter& literal(std::string_view text) {
+    [[gnu::always_inline]] JsonWriter& literal(std::string_view text) {
         separate();
-        out_.append(text.data(), text.data() + text.size());
+        append(out_, text);
         return wrote();
     }
 

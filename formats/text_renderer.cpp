@@ -32,19 +32,23 @@ void append_relative_time(TextBuffer& b, std::int64_t relative_ns) {
     for (std::uint64_t rest = seconds; rest >= 10; rest /= 10)
         ++integer_digits;
     const int decimals = std::clamp(kTimeColumn - 1 - integer_digits, 0, 6);
-    auto it = fmt::appender(b);
-    if (decimals == 0) {
-        fmt::format_to(it, FMT_COMPILE("{:>{}} "),
-                       fmt::format(FMT_COMPILE("{}{}"), negative ? "-" : "", seconds), kTimeColumn);
-        return;
+    // Written backwards into a small buffer, then right-aligned in the column.
+    char text[32];
+    char* end = text + sizeof text;
+    char* start = end;
+    if (decimals > 0) {
+        std::uint64_t fraction = magnitude % 1'000'000'000;
+        for (int i = decimals; i < 9; ++i)
+            fraction /= 10;
+        start = text_detail::write_decimal_backwards(end, fraction);
+        while (end - start < decimals)
+            *--start = '0';
+        *--start = '.';
     }
-    std::uint64_t fraction = magnitude % 1'000'000'000;
-    for (int i = decimals; i < 9; ++i)
-        fraction /= 10;
-    fmt::format_to(
-        it, FMT_COMPILE("{:>{}} "),
-        fmt::format(FMT_COMPILE("{}{}.{:0{}}"), negative ? "-" : "", seconds, fraction, decimals),
-        kTimeColumn);
+    start = text_detail::write_decimal_backwards(start, seconds);
+    if (negative) *--start = '-';
+    append_right(b, std::string_view(start, static_cast<std::size_t>(end - start)), kTimeColumn);
+    b.push_back(' ');
 }
 
 }  // namespace
@@ -63,8 +67,7 @@ void append_telegram_columns(TextBuffer& b, const DecodedTelegram& t,
         append(b, "]");
     }
     for (const Finding& f : findings)
-        fmt::format_to(fmt::appender(b), FMT_COMPILE(" [{} {}]"), severity_name(f.severity),
-                       finding_kind_name(f.kind));
+        put(b, " [", severity_name(f.severity), ' ', finding_kind_name(f.kind), ']');
 }
 
 namespace {
@@ -79,7 +82,8 @@ class TextRenderer final : public TelegramRenderer {
 
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
         TextBuffer& b = out_.buffer();
-        fmt::format_to(fmt::appender(b), FMT_COMPILE("{:>6} "), t.frame);
+        append_decimal_right(b, t.frame, 6);
+        b.push_back(' ');
         if (t.has_time()) {
             if (first_time_ == kNoTime) first_time_ = t.time_ns;
             append_relative_time(b, t.time_ns - first_time_);

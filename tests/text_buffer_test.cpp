@@ -1,0 +1,130 @@
+// The hand-written field writers (formats/text_buffer.hpp) write the text fmt writes for the
+// same value and format: the renderers' output must stay byte-identical (issue 31).
+#include "formats/text_buffer.hpp"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace dpscope {
+namespace {
+
+std::string text_of(const TextBuffer& b) { return std::string(b.data(), b.size()); }
+
+// Values at every digit-count boundary, both sides, and the extremes.
+std::vector<std::uint64_t> boundary_values() {
+    std::vector<std::uint64_t> values = {0,
+                                         1,
+                                         9,
+                                         10,
+                                         11,
+                                         99,
+                                         100,
+                                         101,
+                                         255,
+                                         256,
+                                         65535,
+                                         65536,
+                                         std::numeric_limits<std::uint64_t>::max()};
+    for (std::uint64_t p = 10; p < std::numeric_limits<std::uint64_t>::max() / 10; p *= 10) {
+        values.push_back(p - 1);
+        values.push_back(p);
+        values.push_back(p + 1);
+    }
+    return values;
+}
+
+TEST(TextBufferTest, DecimalIsFmtsDecimal) {
+    for (std::uint64_t v : boundary_values()) {
+        TextBuffer b;
+        append_decimal(b, v);
+        EXPECT_EQ(text_of(b), fmt::format("{}", v));
+    }
+}
+
+TEST(TextBufferTest, SignedIsFmtsSigned) {
+    std::vector<std::int64_t> values = {0,
+                                        -1,
+                                        1,
+                                        -9,
+                                        -10,
+                                        -99,
+                                        -100,
+                                        32767,
+                                        -32768,
+                                        std::numeric_limits<std::int64_t>::min(),
+                                        std::numeric_limits<std::int64_t>::max()};
+    for (std::int64_t v : values) {
+        TextBuffer b;
+        append_signed(b, v);
+        EXPECT_EQ(text_of(b), fmt::format("{}", v));
+    }
+}
+
+TEST(TextBufferTest, PaddedAndAlignedDecimalsAreFmts) {
+    for (std::uint64_t v : boundary_values()) {
+        for (int width : {0, 1, 3, 6, 9, 12}) {
+            TextBuffer zero, right, left;
+            append_decimal_padded(zero, v, width);
+            append_decimal_right(right, v, width);
+            append_decimal_left(left, v, width);
+            EXPECT_EQ(text_of(zero), fmt::format("{:0{}}", v, width));
+            EXPECT_EQ(text_of(right), fmt::format("{:>{}}", v, width));
+            EXPECT_EQ(text_of(left), fmt::format("{:<{}}", v, width));
+        }
+    }
+}
+
+TEST(TextBufferTest, FixedHexIsFmtsHex) {
+    for (std::uint64_t v : {0ULL, 1ULL, 0xAULL, 0xFFULL, 0x1234ULL, 0xBEEFULL, 0xFFFFULL}) {
+        TextBuffer upper, lower;
+        append_hex_fixed(upper, v, 4);
+        append_hex_fixed(lower, v, 4, true);
+        EXPECT_EQ(text_of(upper), fmt::format("{:04X}", v));
+        EXPECT_EQ(text_of(lower), fmt::format("{:04x}", v));
+    }
+    TextBuffer byte, word;
+    append_hex_byte(byte, 0x7D);
+    append_hex_word(word, 0x047F);
+    EXPECT_EQ(text_of(byte), "0x7D");
+    EXPECT_EQ(text_of(word), "0x047F");
+}
+
+TEST(TextBufferTest, AlignedTextCountsCharactersNotBytes) {
+    for (std::string_view text : {"", "SD2", "Data_Exchange", "Slave_Diag_long_name", "→", "ü→x"}) {
+        for (std::size_t width : {0, 3, 14}) {
+            TextBuffer left, right;
+            append_left(left, text, width);
+            append_right(right, text, width);
+            EXPECT_EQ(text_of(left), fmt::format("{:<{}}", text, width)) << text;
+            EXPECT_EQ(text_of(right), fmt::format("{:>{}}", text, width)) << text;
+        }
+    }
+}
+
+TEST(TextBufferTest, PutWritesEachPieceAsFmtWould) {
+    TextBuffer b;
+    const std::uint8_t ind = 7;
+    const std::int16_t negative = -12;
+    const char* guess = "?";
+    put(b, "PNU ", std::uint16_t{918}, '[', ind, "] ", negative, ' ', hex(0x3E, 2), guess,
+        std::string_view());
+    EXPECT_EQ(text_of(b), "PNU 918[7] -12 3E?");
+}
+
+TEST(TextBufferTest, GrowsPastTheInlineStorage) {
+    TextBuffer b;
+    std::string expected;
+    for (int i = 0; i < 10000; ++i) {
+        put(b, i, ',');
+        expected += fmt::format("{},", i);
+    }
+    EXPECT_EQ(text_of(b), expected);
+}
+
+}  // namespace
+}  // namespace dpscope
