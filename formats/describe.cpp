@@ -30,12 +30,45 @@ void split_time(std::int64_t time_ns, std::int64_t& seconds, std::int64_t& nanos
 void append_iso_time(TextBuffer& out, std::int64_t time_ns) {
     std::int64_t seconds = 0, nanos = 0;
     split_time(time_ns, seconds, nanos);
-    std::time_t t = static_cast<std::time_t>(seconds);
-    std::tm tm{};
-    gmtime_r(&t, &tm);
-    fmt::format_to(fmt::appender(out), FMT_COMPILE("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}.{:09}Z"),
-                   tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec,
-                   nanos);
+    // The civil date of a day count (days since 1970-01-01), in whole-number arithmetic (the
+    // proleptic Gregorian calendar gmtime uses): eras of 400 years, March-based years.
+    const std::int64_t days = seconds >= 0 ? seconds / 86400 : (seconds - 86399) / 86400;
+    const std::int64_t second_of_day = seconds - days * 86400;
+    const std::int64_t z = days + 719468;
+    const std::int64_t era = (z >= 0 ? z : z - 146096) / 146097;
+    const std::int64_t day_of_era = z - era * 146097;
+    const std::int64_t year_of_era =
+        (day_of_era - day_of_era / 1460 + day_of_era / 36524 - day_of_era / 146096) / 365;
+    const std::int64_t day_of_year =
+        day_of_era - (365 * year_of_era + year_of_era / 4 - year_of_era / 100);
+    const std::int64_t month_index = (5 * day_of_year + 2) / 153;  // 0 = March
+    const std::int64_t day = day_of_year - (153 * month_index + 2) / 5 + 1;
+    const std::int64_t month = month_index < 10 ? month_index + 3 : month_index - 9;
+    const std::int64_t year = year_of_era + era * 400 + (month <= 2 ? 1 : 0);
+    if (year < 0 || year > 9999) {  // out of the four digits: as fmt writes "{:04}"
+        fmt::format_to(fmt::appender(out), FMT_COMPILE("{:04}-"), year);
+    } else {
+        append_decimal_padded(out, static_cast<std::uint64_t>(year), 4);
+        out.push_back('-');
+    }
+    char* p = append_room(out, 25);  // MM-DDTHH:MM:SS.NNNNNNNNNZ
+    auto two = [&p](std::int64_t value) {
+        std::memcpy(p, text_detail::kDigitPairs + value * 2, 2);
+        p += 2;
+    };
+    two(month);
+    *p++ = '-';
+    two(day);
+    *p++ = 'T';
+    two(second_of_day / 3600);
+    *p++ = ':';
+    two(second_of_day / 60 % 60);
+    *p++ = ':';
+    two(second_of_day % 60);
+    *p++ = '.';
+    std::memset(p, '0', 9);
+    text_detail::write_decimal_backwards(p + 9, static_cast<std::uint64_t>(nanos));
+    p[9] = 'Z';
 }
 
 std::string relative_seconds_text(std::int64_t relative_ns) {

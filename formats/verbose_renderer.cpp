@@ -20,8 +20,7 @@ class VerboseRenderer final : public TelegramRenderer {
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
         TextBuffer& b = out_.buffer();
         auto it = fmt::appender(b);
-        fmt::format_to(it, FMT_COMPILE("Frame {}: {}"), t.frame,
-                       counted(t.bytes.size(), "byte", "bytes"));
+        put(b, "Frame ", t.frame, ": ", t.bytes.size(), t.bytes.size() == 1 ? " byte" : " bytes");
         if (t.has_time()) {
             append(b, ", ");
             append_iso_time(b, t.time_ns);

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <cstdint>
+#include <cstring>
 #include <iterator>
 #include <span>
 #include <string_view>
@@ -26,8 +27,9 @@ class VerboseTree {
     // The indentation of `level`, then `text` (no line end).
     void line(int level, std::string_view text) {
         TextBuffer& b = buffer_;
-        for (int i = 0; i < level; ++i)
-            append(b, "    ");
+        if (level > 0)
+            std::memset(append_room(b, 4 * static_cast<std::size_t>(level)), ' ',
+                        4 * static_cast<std::size_t>(level));
         append(b, text);
     }
 
@@ -39,11 +41,22 @@ class VerboseTree {
         buffer_.push_back('\n');
     }
 
+    // A whole line at `level` from pieces written by put() (formats/text_buffer.hpp): the
+    // faster form for the fields every telegram has.
+    template <typename... Pieces>
+    void put_line(int level, const Pieces&... pieces) {
+        line(level, "");
+        put(buffer_, pieces...);
+        buffer_.push_back('\n');
+    }
+
     // "name: 0x05 (flag, flag)": a byte and the names of its set bits.
     void flags_field(int level, std::string_view name, std::uint8_t value,
                      std::span<const FlagBit> flags, std::uint8_t ignore = 0) {
         line(level, "");
-        fmt::format_to(fmt::appender(buffer_), FMT_COMPILE("{}: 0x{:02X} ("), name, value);
+        put(buffer_, name, ": ");
+        append_hex_byte(buffer_, value);
+        append(buffer_, " (");
         append_flags(buffer_, value, flags, "none", ignore);
         append(buffer_, ")\n");
     }

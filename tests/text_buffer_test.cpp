@@ -2,6 +2,7 @@
 // same value and format: the renderers' output must stay byte-identical (issue 31).
 #include "formats/text_buffer.hpp"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -9,6 +10,8 @@
 #include <limits>
 #include <string>
 #include <vector>
+
+#include "formats/describe.hpp"
 
 namespace dpscope {
 namespace {
@@ -124,6 +127,37 @@ TEST(TextBufferTest, GrowsPastTheInlineStorage) {
         expected += fmt::format("{},", i);
     }
     EXPECT_EQ(text_of(b), expected);
+}
+
+// append_iso_time computes the civil date itself; gmtime_r and fmt are the reference.
+std::string iso_time_by_gmtime(std::int64_t time_ns) {
+    std::int64_t seconds = time_ns / 1'000'000'000, nanos = time_ns % 1'000'000'000;
+    if (nanos < 0) {
+        nanos += 1'000'000'000;
+        --seconds;
+    }
+    std::time_t t = static_cast<std::time_t>(seconds);
+    std::tm tm{};
+    gmtime_r(&t, &tm);
+    return fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}.{:09}Z", tm.tm_year + 1900,
+                       tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec, nanos);
+}
+
+TEST(TextBufferTest, IsoTimeIsGmtimesDate) {
+    std::vector<std::int64_t> seconds = {
+        0,          -1,         86399,      86400,        951782400,    951868800,   1704067200,
+        1709164800, 4107542400, 4107628800, 253402300799, -62135596800, -86400 * 366};
+    // Every day of 1969..2101 at a time that moves through the hours.
+    for (std::int64_t day = -366; day < 48000; ++day)
+        seconds.push_back(day * 86400 + (day * 3677) % 86400);
+    for (std::int64_t s : seconds) {
+        for (std::int64_t nanos : {0LL, 7LL, 123456789LL, 999999999LL}) {
+            const std::int64_t time_ns = s * 1'000'000'000 + (s < 0 ? -nanos : nanos);
+            TextBuffer b;
+            append_iso_time(b, time_ns);
+            ASSERT_EQ(text_of(b), iso_time_by_gmtime(time_ns)) << time_ns;
+        }
+    }
 }
 
 }  // namespace

@@ -40,8 +40,7 @@ class ProfibusVerboseTree final : public VerboseTree {
                   t.bytes.empty() ? 0 : t.bytes[0]);
             return;
         }
-        field(1, FMT_COMPILE("Start delimiter: {} (0x{:02X})"), frame_type_name(f.type),
-              t.bytes[0]);
+        put_line(1, "Start delimiter: ", frame_type_name(f.type), " (0x", hex(t.bytes[0], 2), ')');
         if (f.type == FrameType::Sd2) {
             field(1, FMT_COMPILE("Length: LE {}, LEr {}"), f.length_field,
                   f.has_length_repeat ? fmt::format(FMT_COMPILE("{}"), f.length_repeat)
@@ -49,55 +48,42 @@ class ProfibusVerboseTree final : public VerboseTree {
         }
         if (f.has_addresses) {
             line(1, "");
-            fmt::format_to(it, FMT_COMPILE("Destination address: {}{}"), f.da,
-                           f.da == kBroadcastAddress ? " (broadcast)" : "");
+            put(b, "Destination address: ", f.da, f.da == kBroadcastAddress ? " (broadcast)" : "");
             // The slave's SAP is the DSAP of a request and the SSAP of a response.
             bool request = f.has_fc && f.fc.is_request();
-            if (f.has_dsap)
-                fmt::format_to(it, FMT_COMPILE(", DSAP {} ({})"), f.dsap,
-                               sap_label(f.dsap, request));
+            if (f.has_dsap) put(b, ", DSAP ", f.dsap, " (", sap_label(f.dsap, request), ')');
             if (f.has_dest_segment) fmt::format_to(it, FMT_COMPILE(", segment {}"), f.dest_segment);
             b.push_back('\n');
             line(1, "");
-            fmt::format_to(it, FMT_COMPILE("Source address: {}"), f.sa);
-            if (f.has_ssap)
-                fmt::format_to(it, FMT_COMPILE(", SSAP {} ({})"), f.ssap,
-                               sap_label(f.ssap, !request));
+            put(b, "Source address: ", f.sa);
+            if (f.has_ssap) put(b, ", SSAP ", f.ssap, " (", sap_label(f.ssap, !request), ')');
             if (f.has_source_segment)
                 fmt::format_to(it, FMT_COMPILE(", segment {}"), f.source_segment);
             b.push_back('\n');
         }
         if (f.has_fc) {
             line(1, "");
-            fmt::format_to(it, FMT_COMPILE("Frame control: 0x{:02X} ("), f.fc.raw);
+            put(b, "Frame control: 0x", hex(f.fc.raw, 2), " (");
             append_frame_control(b, f.fc);
             append(b, ")\n");
         }
         if (!f.du.empty())
-            field(1, FMT_COMPILE("Data unit: {} from byte {}"),
-                  counted(f.du.size(), "byte", "bytes"), f.du_offset);
-        if (f.has_fcs) {
-            if (f.fcs_ok)
-                field(1, FMT_COMPILE("FCS: 0x{:02X} (correct)"), f.fcs);
-            else
-                field(1, FMT_COMPILE("FCS: 0x{:02X} (wrong)"), f.fcs);
-        }
+            put_line(1, "Data unit: ", f.du.size(), f.du.size() == 1 ? " byte" : " bytes",
+                     " from byte ", f.du_offset);
+        if (f.has_fcs) put_line(1, "FCS: 0x", hex(f.fcs, 2), f.fcs_ok ? " (correct)" : " (wrong)");
         if (f.type == FrameType::Sd1 || f.type == FrameType::Sd2 || f.type == FrameType::Sd3) {
             if (t.bytes.size() >= f.size && f.size > 0)
-                field(1, FMT_COMPILE("End delimiter: 0x{:02X}"), t.bytes[f.size - 1]);
+                put_line(1, "End delimiter: 0x", hex(t.bytes[f.size - 1], 2));
         }
     }
 
     void render_dp(const DecodedTelegram& t) {
         if (t.dp.fdl.type == FrameType::Invalid) return;
         TextBuffer& b = buffer();
-        auto it = fmt::appender(b);
-        fmt::format_to(it, FMT_COMPILE("PROFIBUS DP: {} {}"), service_name(t.dp.service),
-                       direction_name(t.direction));
+        put(b, "PROFIBUS DP: ", service_name(t.dp.service), ' ', direction_name(t.direction));
         if (t.has_roles && t.dp.service != Service::Token)
-            fmt::format_to(it, FMT_COMPILE(", master {} / slave {}"), t.master, t.slave);
-        if (t.request_frame != 0)
-            fmt::format_to(it, FMT_COMPILE(", answers frame {}"), t.request_frame);
+            put(b, ", master ", t.master, " / slave ", t.slave);
+        if (t.request_frame != 0) put(b, ", answers frame ", t.request_frame);
         b.push_back('\n');
         const DpServiceData& data = t.dp.service_data;
         switch (t.dp.service) {
@@ -385,30 +371,31 @@ class ProfibusVerboseTree final : public VerboseTree {
         line(1, "PPO: ");
         append_ppo_long(b, t.dp.ppo);
         b.push_back('\n');
-        field(1, FMT_COMPILE("Dialect: {}; control/status word profile: {}{}"),
-              t.dp.ppo.has_pcv ? dialect_name(t.dp.dialect) : "none (no parameter channel)",
-              pcd_profile_name(t.dp.pcd_profile),
-              t.dp.pcd_profile == PcdProfile::Profidrive && t.dp.danfoss_pcd() ? " (Danfoss)" : "");
+        put_line(
+            1, "Dialect: ",
+            t.dp.ppo.has_pcv ? dialect_name(t.dp.dialect) : "none (no parameter channel)",
+            "; control/status word profile: ", pcd_profile_name(t.dp.pcd_profile),
+            t.dp.pcd_profile == PcdProfile::Profidrive && t.dp.danfoss_pcd() ? " (Danfoss)" : "");
         bool request = t.direction == Direction::Request;
         if (t.dp.has_pcv) {
             const Pcv& pcv = t.dp.pcv;
-            field(1, FMT_COMPILE("PCV (parameter channel), bytes {}-{}"), t.dp.fdl.du_offset,
-                  t.dp.fdl.du_offset + kPcvBytes - 1);
-            field(2, FMT_COMPILE("PCA: 0x{:04X}"), pcv.pca);
+            put_line(1, "PCV (parameter channel), bytes ", t.dp.fdl.du_offset, '-',
+                     t.dp.fdl.du_offset + kPcvBytes - 1);
+            put_line(2, "PCA: 0x", hex(pcv.pca, 4));
             bool defined =
                 request ? request_code(t.dp.dialect, pcv.rc).defined
                         : response_code(t.dp.dialect, pcv.rc).kind != ResponseKind::Undefined;
-            field(3, FMT_COMPILE("RC: {} = {}{}"), pcv.rc, t.dp.pcv_meaning(t.direction),
-                  defined ? "" : " (not defined by the dialect)");
-            field(3, FMT_COMPILE("SPM: {}"), pcv.spm ? 1 : 0);
-            field(3, FMT_COMPILE("PNU: {}"), pcv.pnu);
+            put_line(3, "RC: ", pcv.rc, " = ", t.dp.pcv_meaning(t.direction),
+                     defined ? "" : " (not defined by the dialect)");
+            put_line(3, "SPM: ", pcv.spm ? '1' : '0');
+            put_line(3, "PNU: ", pcv.pnu);
             const TelegramParameterView view = parameter_view(t);
             if (view.named.row) {
                 TextBuffer details;
                 append_parameter_details(details, view.named);
                 field(4, FMT_COMPILE("name: {}"), std::string_view(details.data(), details.size()));
             }
-            field(2, FMT_COMPILE("IND: {} (byte 4: 0x{:02X})"), pcv.ind, pcv.ind_low);
+            put_line(2, "IND: ", pcv.ind, " (byte 4: 0x", hex(pcv.ind_low, 2), ')');
             ValueWidth width = request ? request_code(t.dp.dialect, pcv.rc).width
                                        : response_code(t.dp.dialect, pcv.rc).width;
             bool rejected =
@@ -419,12 +406,11 @@ class ProfibusVerboseTree final : public VerboseTree {
                 field(2, FMT_COMPILE("Error number: {} = {}"), error,
                       error_text_or_unknown(t.dp.dialect, error));
             } else if (width == ValueWidth::Word) {
-                field(2, FMT_COMPILE("PVA: 0x{:08X}, word value {}"), pcv.pva,
-                      pcv_value(pcv, width));
+                put_line(2, "PVA: 0x", hex(pcv.pva, 8), ", word value ", pcv_value(pcv, width));
             } else if (width == ValueWidth::DoubleWord) {
-                field(2, FMT_COMPILE("PVA: 0x{:08X}, double word value {}"), pcv.pva, pcv.pva);
+                put_line(2, "PVA: 0x", hex(pcv.pva, 8), ", double word value ", pcv.pva);
             } else {
-                field(2, FMT_COMPILE("PVA: 0x{:08X} (the code carries no value)"), pcv.pva);
+                put_line(2, "PVA: 0x", hex(pcv.pva, 8), " (the code carries no value)");
             }
             if (view.value && view.parameter.has_raw) {
                 TextBuffer value;
@@ -435,7 +421,7 @@ class ProfibusVerboseTree final : public VerboseTree {
         }
         ByteReader reader(t.dp.pcd, t.dp.pcd_offset);
         if (reader.empty()) return;
-        field(1, FMT_COMPILE("PCD ({} words)"), reader.remaining() / 2);
+        put_line(1, "PCD (", reader.remaining() / 2, " words)");
         const WordBits& bits = request ? control_word_bits(t.dp.pcd_profile, t.dp.danfoss_pcd())
                                        : status_word_bits(t.dp.pcd_profile, t.dp.danfoss_pcd());
         for (std::size_t index = 0;; ++index) {
@@ -443,18 +429,18 @@ class ProfibusVerboseTree final : public VerboseTree {
             if (!word) break;
             std::string_view name = pcd_word_name(t.direction, index);
             if (index == 0) {
-                field(2, FMT_COMPILE("PCD 1 {}: 0x{:04X}"), name, *word);
+                put_line(2, "PCD 1 ", name, ": 0x", hex(*word, 4));
                 for (int bit = 0; bit < 16; ++bit) {
                     bool set = (*word >> bit) & 1;
                     const WordBit& meaning = bits[static_cast<std::size_t>(bit)];
-                    field(3, FMT_COMPILE("bit {:>2} = {}: {}"), bit, set ? 1 : 0,
-                          set ? meaning.when_1 : meaning.when_0);
+                    put_line(3, bit < 10 ? "bit  " : "bit ", bit,
+                             set ? " = 1: " : " = 0: ", set ? meaning.when_1 : meaning.when_0);
                 }
             } else if (index == 1) {
                 field(2, FMT_COMPILE("PCD 2 {}: 0x{:04X} = {:.2f} %"), name, *word,
                       reference_percent(*word));
             } else {
-                field(2, FMT_COMPILE("PCD {}: 0x{:04X} ({})"), index + 1, *word, *word);
+                put_line(2, "PCD ", index + 1, ": 0x", hex(*word, 4), " (", *word, ')');
             }
         }
         if (!reader.empty()) field(2, FMT_COMPILE("odd trailing byte: 0x{:02X}"), *reader.u8());
