@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "formats/describe.hpp"
+#include "protocols/profibus/pcd.hpp"
 
 namespace dpscope {
 
@@ -48,6 +49,17 @@ class VerboseTree {
         line(level, "");
         put(buffer_, pieces...);
         buffer_.push_back('\n');
+    }
+
+    // A control or status word's 16 bits, one line each at `level`, with the meaning of the
+    // state each is in: "bit  3 = 1: enable".
+    void word_bit_fields(int level, std::uint16_t word, const WordBits& bits) {
+        for (int bit = 0; bit < 16; ++bit) {
+            const bool set = (word >> bit) & 1;
+            const WordBit& meaning = bits[static_cast<std::size_t>(bit)];
+            put_line(level, bit < 10 ? "bit  " : "bit ", bit,
+                     set ? " = 1: " : " = 0: ", set ? meaning.when_1 : meaning.when_0);
+        }
     }
 
     // "name: 0x05 (flag, flag)": a byte and the names of its set bits.

@@ -87,6 +87,42 @@ TEST(JsonWriterTest, EscapesQuotesBackslashesAndControlCharacters) {
     EXPECT_EQ(text(buffer), R"(["say \"hi\"\\","\n\r\t\u0008\u000c\u0001\u001f\u0000",""])");
 }
 
+// The check for "nothing to escape" takes eight bytes a step: a byte that needs an escape is
+// found at every position of strings up to three steps long, with plain bytes on both sides.
+TEST(JsonWriterTest, FindsAByteToEscapeAtEveryPositionOfAWord) {
+    struct Special {
+        std::string_view bytes;
+        std::string_view written;
+    };
+    const Special specials[] = {{"\"", "\\\""},
+                                {"\\", "\\\\"},
+                                {std::string_view("\0", 1), "\\u0000"},
+                                {"\x1f", "\\u001f"},
+                                {"\n", "\\n"},
+                                {"\x7f", "\x7f"},
+                                {"\xC3\xBC", "\xC3\xBC"},
+                                {"\x80", "\xEF\xBF\xBD"},
+                                {" ", " "},
+                                {"!", "!"},
+                                {"~", "~"}};
+    for (std::size_t length = 0; length <= 24; ++length) {
+        for (std::size_t at = 0; at <= length; ++at) {
+            for (const Special& special : specials) {
+                std::string input(at, 'a');
+                input += special.bytes;
+                input.append(length - at, 'b');
+                std::string expected = "\"" + std::string(at, 'a');
+                expected += special.written;
+                expected.append(length - at, 'b');
+                expected += '"';
+                fmt::memory_buffer buffer;
+                json::string(buffer, input);
+                ASSERT_EQ(text(buffer), expected) << "length " << length << " at " << at;
+            }
+        }
+    }
+}
+
 TEST(JsonWriterTest, CopiesNonAsciiBytesAsTheyAre) {
     fmt::memory_buffer buffer;
     JsonWriter w(buffer);

@@ -2,6 +2,8 @@
 // what FcDecoder stored in DecodedTelegram::fc; nothing parses bytes again.
 #include "protocols/fc/fc_describe.hpp"
 
+#include <fmt/compile.h>
+
 #include <algorithm>
 #include <iterator>
 
@@ -64,36 +66,39 @@ void append_fc_text(TextBuffer& out, Bytes text) {
         } else if (c >= 0x20 && c < 0x7F) {
             out.push_back(static_cast<char>(c));
         } else {
-            fmt::format_to(std::back_inserter(out), "\\x{:02X}", c);
+            append(out, "\\x");
+            append_hex_fixed(out, c, 2);
         }
     }
 }
 
 void append_fc_address(TextBuffer& out, const FcTelegram& fc) {
-    fmt::format_to(std::back_inserter(out), "ADR 0x{:02X} ({}{})", fc.adr,
-                   fc_address_format_name(fc.address_format), fc.broadcast ? ", broadcast" : "");
+    put(out, "ADR 0x", hex(fc.adr, 2), " (", fc_address_format_name(fc.address_format),
+        fc.broadcast ? ", broadcast)" : ")");
 }
 
 namespace {
 
 void append_fc_pkw(TextBuffer& out, const DecodedTelegram& t) {
     const FcTelegram& fc = t.fc;
-    auto it = std::back_inserter(out);
-    fmt::format_to(it, "AK={} {}", fc.pkw.rc, fc_ak_meaning(t));
+    put(out, "AK=", fc.pkw.rc, ' ', fc_ak_meaning(t));
     // The name as its database writes it (issue 29), else the FC series' group and number.
     const TelegramParameterView view = parameter_view(t);
-    fmt::format_to(it, " PNU={}", fc.pkw.pnu);
-    if (view.named.row)
+    put(out, " PNU=", fc.pkw.pnu);
+    if (view.named.row) {
         append_parameter_name(out, view.named);
-    else
-        fmt::format_to(it, " ({})", fc_parameter_name(fc.pkw.pnu));
-    fmt::format_to(it, " IND={}", fc.pkw.ind);
+    } else {
+        put(out, " (", fc.pkw.pnu / 100, '-');
+        append_decimal_padded(out, fc.pkw.pnu % 100, 2);
+        out.push_back(')');
+    }
+    put(out, " IND=", fc.pkw.ind);
     if (fc.block == FcBlock::Text) {
         std::string_view mode = fc_text_mode_name(fc.ind_high);
         if (mode.empty())
-            fmt::format_to(it, " IND high 0x{:02X}", fc.ind_high);
+            put(out, " IND high 0x", hex(fc.ind_high, 2));
         else
-            fmt::format_to(it, " {} text", mode);
+            put(out, ' ', mode, " text");
         append(out, " \"");
         append_fc_text(out, fc.text);
         out.push_back('"');
@@ -101,10 +106,10 @@ void append_fc_pkw(TextBuffer& out, const DecodedTelegram& t) {
     }
     if (fc_rejected(t)) {
         const std::uint16_t code = fc_fault_code(fc);
-        fmt::format_to(it, " fault {} ({})", code, fc_fault_text_or_unknown(code));
+        put(out, " fault ", code, " (", fc_fault_text_or_unknown(code), ')');
         return;
     }
-    fmt::format_to(it, " PWE={}", pcv_value(fc.pkw, fc_ak_width(t)));
+    put(out, " PWE=", pcv_value(fc.pkw, fc_ak_width(t)));
     append_view_value(out, view);
 }
 
@@ -122,9 +127,9 @@ void append_fc_detail(TextBuffer& out, const DecodedTelegram& t) {
         append_fc_pkw(out, t);
     }
     if (fc.has_pcd) {
-        fmt::format_to(std::back_inserter(out), " | {}=0x{:04X} {}={:.2f}%",
-                       pcd_word_name(t.direction, 0), fc.pcd1, pcd_word_name(t.direction, 1),
-                       reference_percent(fc.pcd2));
+        put(out, " | ", pcd_word_name(t.direction, 0), "=0x", hex(fc.pcd1, 4), ' ',
+            pcd_word_name(t.direction, 1), '=');
+        fmt::format_to(fmt::appender(out), FMT_COMPILE("{:.2f}%"), reference_percent(fc.pcd2));
     }
     if (!fc.has_pkw && !fc.has_pcd && t.bytes.size() > 3) {  // cut short, or no known block
         Bytes data = t.bytes.subspan(3);

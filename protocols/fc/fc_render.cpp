@@ -24,19 +24,25 @@ namespace dpscope {
 // The FC master has no address ("M"); a broadcast goes to "all". The frame type column says
 // "FC", the service column the block.
 void fc_text_columns(TextBuffer& b, const DecodedTelegram& t) {
-    auto it = fmt::appender(b);
     if (!t.has_roles) {
         append(b, "  ? → ?   ");
-    } else {
-        const std::string drive =
-            t.fc.broadcast ? std::string("all") : fmt::format(FMT_COMPILE("{}"), t.fc.address);
-        if (t.direction == Direction::Request)
-            fmt::format_to(it, FMT_COMPILE("{:>3} → {:<3} "), "M", drive);
+    } else if (t.direction == Direction::Request) {
+        append(b, "  M → ");
+        if (t.fc.broadcast)
+            append(b, "all");
         else
-            fmt::format_to(it, FMT_COMPILE("{:>3} → {:<3} "), drive, "M");
+            append_decimal_left(b, t.fc.address, 3);
+        b.push_back(' ');
+    } else {
+        if (t.fc.broadcast)
+            append(b, "all");
+        else
+            append_decimal_right(b, t.fc.address, 3);
+        append(b, " → M   ");
     }
-    fmt::format_to(it, FMT_COMPILE("{:<3} {:<14} {} "), t.has_roles ? "FC" : "bad",
-                   fc_block_name(t.fc.block), t.direction == Direction::Request ? "req" : "rsp");
+    append(b, t.has_roles ? "FC  " : "bad ");
+    append_left(b, fc_block_name(t.fc.block), 14);
+    append(b, t.direction == Direction::Request ? " req " : " rsp ");
     append_fc_detail(b, t);
 }
 
@@ -47,26 +53,25 @@ void fc_text_columns(TextBuffer& b, const DecodedTelegram& t) {
 // BCC; rc the AK, ind the index, pva PWE (per the AK's width), meaning the AK's name, error
 // and error_text the AK 7 fault code and its text; pcd PCD 1 and PCD 2.
 void fc_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
-    auto it = fmt::appender(b);
     const FcTelegram& fc = t.fc;
-    fmt::format_to(it, FMT_COMPILE("{},"), t.frame);
+    put(b, t.frame, ',');
     if (t.has_time()) append_epoch_seconds(b, t.time_ns);
-    fmt::format_to(it, FMT_COMPILE(",{},,,,,,,{},{},"), t.bytes.size(), fc_block_name(fc.block),
-                   direction_name(t.direction));
+    put(b, ',', t.bytes.size(), ",,,,,,,", fc_block_name(fc.block), ',',
+        direction_name(t.direction), ',');
     csv_optional(b, t.has_roles, t.master);
     csv_optional(b, t.has_roles, t.slave);
     csv_optional(b, t.request_frame != 0, static_cast<unsigned>(t.request_frame));
-    fmt::format_to(it, FMT_COMPILE("{},,"), fc.bcc_ok ? "true" : "false");
+    append(b, fc.bcc_ok ? "true,," : "false,,");
     if (fc.has_pkw) {
         const bool rejected = fc_rejected(t);
         const bool pwe = fc.block == FcBlock::Parameter && !rejected;
-        fmt::format_to(it, FMT_COMPILE("{},,{},{},"), fc.pkw.rc, fc.pkw.pnu, fc.pkw.ind);
-        if (pwe) fmt::format_to(it, FMT_COMPILE("{}"), pcv_value(fc.pkw, fc_ak_width(t)));
+        put(b, fc.pkw.rc, ",,", fc.pkw.pnu, ',', fc.pkw.ind, ',');
+        if (pwe) append_decimal(b, pcv_value(fc.pkw, fc_ak_width(t)));
         b.push_back(',');
         csv_quoted(b, fc_ak_meaning(t));
         b.push_back(',');
         if (rejected) {
-            fmt::format_to(it, FMT_COMPILE("{},"), fc_fault_code(fc));
+            put(b, fc_fault_code(fc), ',');
             csv_quoted(b, fc_fault_text_or_unknown(fc_fault_code(fc)));
         } else {
             b.push_back(',');
@@ -75,7 +80,7 @@ void fc_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
         append(b, ",,,,,,,");
     }
     b.push_back(',');
-    if (fc.has_pcd) fmt::format_to(it, FMT_COMPILE("{:04X} {:04X}"), fc.pcd1, fc.pcd2);
+    if (fc.has_pcd) put(b, hex(fc.pcd1, 4), ' ', hex(fc.pcd2, 4));
     b.push_back(',');
     TextBuffer detail;
     append_fc_detail(detail, t);
@@ -222,15 +227,12 @@ class FcVerboseTree final : public VerboseTree {
         const bool request = t.direction == Direction::Request;
         append(b, "FC protocol");
         if (t.has_roles) {
-            fmt::format_to(it, FMT_COMPILE(": {} block {}"), fc_block_name(fc.block),
-                           request ? "request" : "response");
+            put(b, ": ", fc_block_name(fc.block), request ? " block request" : " block response");
             if (fc.broadcast)
                 append(b, " to every drive (broadcast)");
             else
-                fmt::format_to(it, FMT_COMPILE(" {} drive {}"), request ? "to" : "from",
-                               fc.address);
-            if (t.request_frame != 0)
-                fmt::format_to(it, FMT_COMPILE(", answers frame {}"), t.request_frame);
+                put(b, request ? " to drive " : " from drive ", fc.address);
+            if (t.request_frame != 0) put(b, ", answers frame ", t.request_frame);
         }
         b.push_back('\n');
         if (t.bytes.empty()) return;
@@ -238,22 +240,22 @@ class FcVerboseTree final : public VerboseTree {
             field(1, FMT_COMPILE("STX: 0x{:02X} (not STX 0x02)"), t.bytes[0]);
             return;
         }
-        field(1, FMT_COMPILE("STX: 0x02"));
+        put_line(1, "STX: 0x02");
         if (t.bytes.size() < 2) return;
         if (fc.block == FcBlock::Unknown)
             field(1, FMT_COMPILE("LGE: {} (no block has this length; telegram {} bytes)"), fc.lge,
                   fc.lge + 2);
         else
-            field(1, FMT_COMPILE("LGE: {} ({} block, telegram {} bytes)"), fc.lge,
-                  fc_block_name(fc.block), fc.lge + 2);
+            put_line(1, "LGE: ", fc.lge, " (", fc_block_name(fc.block), " block, telegram ",
+                     fc.lge + 2, " bytes)");
         if (!t.has_roles) return;
         line(1, "");
-        fmt::format_to(it, FMT_COMPILE("ADR: 0x{:02X} ({} format, "), fc.adr,
-                       fc_address_format_name(fc.address_format));
+        put(b, "ADR: 0x", hex(fc.adr, 2), " (", fc_address_format_name(fc.address_format),
+            " format, ");
         if (fc.broadcast)
             append(b, "broadcast)\n");
         else
-            fmt::format_to(it, FMT_COMPILE("address {})\n"), fc.address);
+            put(b, "address ", fc.address, ")\n");
         if (fc.has_pkw) {
             const Pcv& pkw = fc.pkw;
             field(1, FMT_COMPILE("PKE: 0x{:04X}"), pkw.pca);
@@ -302,22 +304,17 @@ class FcVerboseTree final : public VerboseTree {
             }
         }
         if (fc.has_pcd) {
-            field(1, FMT_COMPILE("PCD 1 {}: 0x{:04X} ({} word, FC profile)"),
-                  pcd_word_name(t.direction, 0), fc.pcd1, request ? "control" : "status");
-            const WordBits& bits = request ? control_word_bits(PcdProfile::Fc, true)
-                                           : status_word_bits(PcdProfile::Fc, true);
-            for (int bit = 0; bit < 16; ++bit) {
-                const bool set = (fc.pcd1 >> bit) & 1;
-                const WordBit& meaning = bits[static_cast<std::size_t>(bit)];
-                field(2, FMT_COMPILE("bit {:>2} = {}: {}"), bit, set ? 1 : 0,
-                      set ? meaning.when_1 : meaning.when_0);
-            }
+            put_line(1, "PCD 1 ", pcd_word_name(t.direction, 0), ": 0x", hex(fc.pcd1, 4),
+                     request ? " (control word, FC profile)" : " (status word, FC profile)");
+            word_bit_fields(2, fc.pcd1,
+                            request ? control_word_bits(PcdProfile::Fc, true)
+                                    : status_word_bits(PcdProfile::Fc, true));
             field(1, FMT_COMPILE("PCD 2 {}: 0x{:04X} = {:.2f} %"), pcd_word_name(t.direction, 1),
                   fc.pcd2, reference_percent(fc.pcd2));
         }
         if (fc.complete) {
             if (fc.bcc_ok)
-                field(1, FMT_COMPILE("BCC: 0x{:02X} (correct)"), fc.bcc);
+                put_line(1, "BCC: 0x", hex(fc.bcc, 2), " (correct)");
             else
                 field(1, FMT_COMPILE("BCC: 0x{:02X} (wrong: computed 0x{:02X})"), fc.bcc,
                       fc.bcc_computed);

@@ -430,12 +430,7 @@ class ProfibusVerboseTree final : public VerboseTree {
             std::string_view name = pcd_word_name(t.direction, index);
             if (index == 0) {
                 put_line(2, "PCD 1 ", name, ": 0x", hex(*word, 4));
-                for (int bit = 0; bit < 16; ++bit) {
-                    bool set = (*word >> bit) & 1;
-                    const WordBit& meaning = bits[static_cast<std::size_t>(bit)];
-                    put_line(3, bit < 10 ? "bit  " : "bit ", bit,
-                             set ? " = 1: " : " = 0: ", set ? meaning.when_1 : meaning.when_0);
-                }
+                word_bit_fields(3, *word, bits);
             } else if (index == 1) {
                 field(2, FMT_COMPILE("PCD 2 {}: 0x{:04X} = {:.2f} %"), name, *word,
                       reference_percent(*word));

@@ -4,6 +4,7 @@
 #include "protocols/vlt2000/vlt2000_describe.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <iterator>
 #include <string>
 #include <vector>
@@ -19,13 +20,23 @@ bool vlt2000_has_letter(const DecodedTelegram& t) {
     return t.has_roles && t.bytes.size() > kVlt2000LetterAt;
 }
 
-std::string vlt2000_letter_text(const DecodedTelegram& t) {
-    if (!vlt2000_has_letter(t)) return "none";
+void append_vlt2000_letter(TextBuffer& out, const DecodedTelegram& t) {
+    if (!vlt2000_has_letter(t)) {
+        append(out, "none");
+        return;
+    }
     const Vlt2000Telegram& v = t.vlt2000;
-    const std::string_view name = vlt2000_letter_name(v.letter);
     if (v.letter_char > 0x20 && v.letter_char < 0x7F)
-        return fmt::format("{} {}", static_cast<char>(v.letter_char), name);
-    return fmt::format("0x{:02X} {}", v.letter_char, name);
+        out.push_back(static_cast<char>(v.letter_char));
+    else
+        append_hex_byte(out, v.letter_char);
+    put(out, ' ', vlt2000_letter_name(v.letter));
+}
+
+std::string vlt2000_letter_text(const DecodedTelegram& t) {
+    TextBuffer text;
+    append_vlt2000_letter(text, t);
+    return fmt::to_string(text);
 }
 
 std::string_view vlt2000_word_name(Direction direction) {
@@ -48,48 +59,65 @@ std::string_view vlt2000_bit_meaning(const Vlt2000Telegram& v, Direction directi
 }
 
 void append_vlt2000_word(TextBuffer& out, const Vlt2000Telegram& v, Direction direction) {
-    auto it = std::back_inserter(out);
-    fmt::format_to(it, "{}=0x{:04X} (", vlt2000_word_short_name(direction), v.word);
-    std::string kept;
+    put(out, vlt2000_word_short_name(direction), "=0x", hex(v.word, 4), " (");
+    const std::size_t start = out.size();
+    const auto separate = [&out, start](std::string_view separator) {
+        if (out.size() != start) append(out, separator);
+    };
     for (unsigned group = 0; group < 4; ++group)
-        if ((v.word_keep >> group) & 1u)
-            fmt::format_to(std::back_inserter(kept), "{}bits {}-{} group kept (P)",
-                           kept.empty() ? "" : ", ", 4 * group, 4 * group + 3);
+        if ((v.word_keep >> group) & 1u) {
+            separate(", ");
+            put(out, "bits ", 4 * group, '-', 4 * group + 3, " group kept (P)");
+        }
     // The meanings of the bits that are 1, and of those that are 0 where 0 is worth naming (an
     // OFF, a stop, "out of frequency range"), each meaning once. A control word without "data
     // valid" (bit 10) acts on nothing: its other 0 bits are not named.
     const bool control = direction == Direction::Request;
     const bool acts = !control || ((v.word >> 10) & 1u) != 0;
-    std::vector<std::string_view> named;
-    std::string bits;
+    std::string_view named[16];
+    std::size_t named_count = 0;
+    const std::size_t kept_end = out.size();
     for (unsigned bit = 0; bit < 16; ++bit) {
         if (vlt2000_bit_kept(v, bit)) continue;
         const bool set = ((v.word >> bit) & 1u) != 0;
         const Vlt2000Bit& row = control ? vlt2000_control_bit(bit) : vlt2000_status_bit(bit);
         if (!set && !(row.notable_0 && (acts || bit == 10))) continue;
         const std::string_view meaning = vlt2000_bit_meaning(v, direction, bit);
-        const std::string_view separator = bits.empty() ? "" : ", ";
+        const bool first_bit = out.size() == kept_end;
         if (meaning == "no function") {
-            fmt::format_to(std::back_inserter(bits), "{}bit {} (no function)", separator, bit);
-        } else if (std::find(named.begin(), named.end(), meaning) == named.end()) {
-            fmt::format_to(std::back_inserter(bits), "{}{}", separator, meaning);
-            named.push_back(meaning);
+            separate(first_bit ? "; " : ", ");
+            put(out, "bit ", bit, " (no function)");
+        } else if (std::find(named, named + named_count, meaning) == named + named_count) {
+            separate(first_bit ? "; " : ", ");
+            append(out, meaning);
+            named[named_count++] = meaning;
         }
     }
-    append(out, kept);
-    if (!kept.empty() && !bits.empty()) append(out, "; ");
-    append(out, bits);
-    if (kept.empty() && bits.empty()) append(out, "no bit set");
+    if (out.size() == start) append(out, "no bit set");
     out.push_back(')');
 }
 
-std::string vlt2000_value_text(const Vlt2000Telegram& v) {
+void append_vlt2000_value(TextBuffer& out, const Vlt2000Telegram& v) {
     const bool with_point = v.has_decimals && v.decimals > 0 && v.decimals <= 5;
-    const char* sign = v.negative && v.digits != 0 ? "-" : "";
-    if (!with_point) return fmt::format("{}{}", sign, v.digits);
-    std::string digits = fmt::format("{:0{}}", v.digits, v.decimals + 1);
-    digits.insert(digits.size() - v.decimals, 1, '.');
-    return fmt::format("{}{}", sign, digits);
+    if (v.negative && v.digits != 0) out.push_back('-');
+    if (!with_point) {
+        append_decimal(out, v.digits);
+        return;
+    }
+    const std::size_t at = out.size();
+    append_decimal_padded(out, v.digits, v.decimals + 1);
+    // The point goes before the last `decimals` digits.
+    out.push_back('0');
+    char* digits = out.data() + at;
+    const std::size_t length = out.size() - at - 1;
+    std::memmove(digits + length - v.decimals + 1, digits + length - v.decimals, v.decimals);
+    digits[length - v.decimals] = '.';
+}
+
+std::string vlt2000_value_text(const Vlt2000Telegram& v) {
+    TextBuffer text;
+    append_vlt2000_value(text, v);
+    return fmt::to_string(text);
 }
 
 std::string vlt2000_value_note(const Vlt2000Telegram& v) {
@@ -146,9 +174,23 @@ void append_vlt2000_checksum(TextBuffer& out, const DecodedTelegram& t) {
     }
 }
 
+namespace {
+
+// "reason 03 (text)", or the text alone when the reply gives no reason code.
+void append_vlt2000_reason(TextBuffer& out, const Vlt2000Telegram& v) {
+    if (v.has_reason) {
+        append(out, "reason ");
+        append_decimal_padded(out, v.reason, 2);
+        put(out, " (", vlt2000_reason_or_unknown(v), ')');
+    } else {
+        append(out, vlt2000_reason_or_unknown(v));
+    }
+}
+
+}  // namespace
+
 void append_vlt2000_detail(TextBuffer& out, const DecodedTelegram& t) {
     const Vlt2000Telegram& v = t.vlt2000;
-    auto it = std::back_inserter(out);
     if (!t.has_roles) {  // no address: the characters there are
         const Bytes shown = t.bytes.first(std::min<std::size_t>(t.bytes.size(), 24));
         out.push_back('"');
@@ -169,12 +211,12 @@ void append_vlt2000_detail(TextBuffer& out, const DecodedTelegram& t) {
     // A C telegram's parameter and value are ignored by the drive.
     if (v.has_parameter && v.letter != Vlt2000Letter::Control) {
         space();
-        fmt::format_to(it, "parameter {}", v.parameter);
+        put(out, "parameter ", v.parameter);
         const TelegramParameterView view = parameter_view(t);
         append_parameter_name(out, view.named);
         if (v.letter == Vlt2000Letter::ReadIndex && !v.index.empty()) {
             if (v.has_index_number) {
-                fmt::format_to(it, " index {}", v.index_number);
+                put(out, " index ", v.index_number);
             } else {
                 append(out, " index \"");
                 append_vlt2000_index(out, v);
@@ -183,27 +225,21 @@ void append_vlt2000_detail(TextBuffer& out, const DecodedTelegram& t) {
         }
         if (v.failed) {
             append(out, " failed: ");
-            if (v.has_reason)
-                fmt::format_to(it, "reason {:02} ({})", v.reason, vlt2000_reason_or_unknown(v));
-            else
-                append(out, vlt2000_reason_or_unknown(v));
+            append_vlt2000_reason(out, v);
         } else if (v.has_value && vlt2000_carries_value(v) &&
                    !(t.direction == Direction::Request && v.letter == Vlt2000Letter::Read)) {
             // A read command's value is not used: the drive fills it in.
-            fmt::format_to(it, " = {}", vlt2000_value_text(v));
+            append(out, " = ");
+            append_vlt2000_value(out, v);
             // The value carries its own decimal point: its database adds the unit (issue 29).
-            if (view.value && !view.named.row->unit.empty())
-                fmt::format_to(it, " {}", view.named.row->unit);
-            const std::string note = vlt2000_value_note(v);
-            if (!note.empty()) fmt::format_to(it, " ({})", note);
+            if (view.value && !view.named.row->unit.empty()) put(out, ' ', view.named.row->unit);
+            if (!v.has_decimals || (v.decimals > 5 && !v.failed))
+                put(out, " (", vlt2000_value_note(v), ')');
         }
     } else if (v.failed) {
         space();
-        fmt::format_to(it, "failed: ");
-        if (v.has_reason)
-            fmt::format_to(it, "reason {:02} ({})", v.reason, vlt2000_reason_or_unknown(v));
-        else
-            append(out, vlt2000_reason_or_unknown(v));
+        append(out, "failed: ");
+        append_vlt2000_reason(out, v);
     }
     // The checksum only when it is not right (a wrong one is also a problem on the line).
     if (v.complete && !v.checksum_ok) {

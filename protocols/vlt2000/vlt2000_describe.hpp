@@ -15,6 +15,7 @@ bool vlt2000_has_letter(const DecodedTelegram& t);
 // The letter with its name: "U update", "I read index", "X unknown" ("0x07 unknown" for a
 // character that is not printable; "none" when the record ends before it).
 std::string vlt2000_letter_text(const DecodedTelegram& t);
+void append_vlt2000_letter(TextBuffer& out, const DecodedTelegram& t);
 // "control" (a command: the word goes to the drive) or "status" (a reply: from the drive).
 std::string_view vlt2000_word_name(Direction direction);
 // "CTW" or "STW", as the FC protocol's PCD 1.
@@ -31,6 +32,7 @@ void append_vlt2000_word(TextBuffer& out, const Vlt2000Telegram& v, Direction di
 // The value with its decimal point applied: "23.750" (+23750, 3 decimals), "80", "-0.5"; the
 // digits as a whole number when the decimal position is 6..8 or not a digit (see the note).
 std::string vlt2000_value_text(const Vlt2000Telegram& v);
+void append_vlt2000_value(TextBuffer& out, const Vlt2000Telegram& v);
 // Why the value is shown without a decimal point ("" when it has its point):
 // "decimal position 7 is out of range (0-5): the digits as sent".
 std::string vlt2000_value_note(const Vlt2000Telegram& v);

@@ -23,25 +23,49 @@ namespace dpscope {
 
 // ---- text
 
+namespace {
+
+// The drive's address as the text columns show it: "{:02}" in a column of three, on the right
+// (a reply's source) or on the left (a command's destination).
+void put_vlt2000_address(TextBuffer& b, unsigned address, bool right) {
+    const int digits = address < 10 ? 2 : text_detail::decimal_digits(address);
+    if (right && digits < 3) b.push_back(' ');
+    append_decimal_padded(b, address, 2);
+    if (!right && digits < 3) b.push_back(' ');
+}
+
+}  // namespace
+
 // The VLT 2000 master has no address either ("M"); a drive is shown by its two-digit address
 // as the telegram carries it, a broadcast (00) goes to "all".
 void vlt2000_text_columns(TextBuffer& b, const DecodedTelegram& t) {
-    auto it = fmt::appender(b);
     if (!t.has_roles) {
         append(b, "  ? → ?   ");
     } else {
         // A reply with address 00 (nobody should send one) comes from "00".
-        const std::string drive = t.vlt2000.broadcast && t.direction == Direction::Request
-                                      ? std::string("all")
-                                      : fmt::format(FMT_COMPILE("{:02}"), t.vlt2000.address);
-        if (t.direction == Direction::Request)
-            fmt::format_to(it, FMT_COMPILE("{:>3} → {:<3} "), "M", drive);
-        else
-            fmt::format_to(it, FMT_COMPILE("{:>3} → {:<3} "), drive, "M");
+        if (t.direction == Direction::Request) {
+            append(b, "  M → ");
+            if (t.vlt2000.broadcast)
+                append(b, "all");
+            else
+                put_vlt2000_address(b, t.vlt2000.address, false);
+            b.push_back(' ');
+        } else {
+            put_vlt2000_address(b, t.vlt2000.address, true);
+            append(b, " → M   ");
+        }
     }
-    fmt::format_to(it, FMT_COMPILE("{:<3} {:<14} {} "), t.has_roles ? "VLT" : "bad",
-                   t.has_roles ? vlt2000_letter_text(t) : std::string("-"),
-                   t.direction == Direction::Request ? "req" : "rsp");
+    append(b, t.has_roles ? "VLT " : "bad ");
+    if (t.has_roles) {
+        const std::size_t at = b.size();
+        append_vlt2000_letter(b, t);
+        const std::size_t shown =
+            text_detail::shown_width(std::string_view(b.data() + at, b.size() - at));
+        if (shown < 14) text_detail::append_spaces(b, 14 - shown);
+    } else {
+        append(b, "-             ");
+    }
+    append(b, t.direction == Direction::Request ? " req " : " rsp ");
     append_vlt2000_detail(b, t);
 }
 
@@ -54,28 +78,30 @@ void vlt2000_text_columns(TextBuffer& b, const DecodedTelegram& t) {
 // decimal point, meaning the letter's name, error and error_text a failed reply's reason code
 // and its text; pcd the control or status word in hex.
 void vlt2000_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
-    auto it = fmt::appender(b);
     const Vlt2000Telegram& v = t.vlt2000;
-    fmt::format_to(it, FMT_COMPILE("{},"), t.frame);
+    put(b, t.frame, ',');
     if (t.has_time()) append_epoch_seconds(b, t.time_ns);
-    fmt::format_to(it, FMT_COMPILE(",{},,,,,,,"), t.bytes.size());
-    if (vlt2000_has_letter(t)) csv_quoted(b, vlt2000_letter_text(t));
-    fmt::format_to(it, FMT_COMPILE(",{},"), direction_name(t.direction));
+    put(b, ',', t.bytes.size(), ",,,,,,,");
+    if (vlt2000_has_letter(t)) {
+        TextBuffer letter;
+        append_vlt2000_letter(letter, t);
+        csv_quoted(b, std::string_view(letter.data(), letter.size()));
+    }
+    put(b, ',', direction_name(t.direction), ',');
     csv_optional(b, t.has_roles, t.master);
     csv_optional(b, t.has_roles, t.slave);
     csv_optional(b, t.request_frame != 0, static_cast<unsigned>(t.request_frame));
-    fmt::format_to(it, FMT_COMPILE("{},,,,"),
-                   v.checksum_ok || v.checksum_disabled ? "true" : "false");
+    append(b, v.checksum_ok || v.checksum_disabled ? "true,,,," : "false,,,,");
     csv_optional(b, v.has_parameter && v.letter != Vlt2000Letter::Control, v.parameter);
     csv_optional(b, v.letter == Vlt2000Letter::ReadIndex && v.has_index_number, v.index_number);
-    if (v.has_value && vlt2000_carries_value(v)) append(b, vlt2000_value_text(v));
+    if (v.has_value && vlt2000_carries_value(v)) append_vlt2000_value(b, v);
     b.push_back(',');
     if (vlt2000_has_letter(t)) csv_quoted(b, vlt2000_letter_name(v.letter));
     b.push_back(',');
     csv_optional(b, v.failed && v.has_reason, v.reason);
     if (v.failed) csv_quoted(b, vlt2000_reason_or_unknown(v));
     b.push_back(',');
-    if (v.has_word) fmt::format_to(it, FMT_COMPILE("{:04X}"), v.word);
+    if (v.has_word) append_hex_fixed(b, v.word, 4);
     b.push_back(',');
     TextBuffer detail;
     append_vlt2000_detail(detail, t);
