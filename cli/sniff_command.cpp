@@ -517,6 +517,7 @@ int run_sniff(const SniffCommand& command) {
         }
         last_status = now;
     };
+    std::array<FilterEvent, 8> event_buffer;  // each telegram's health events (made once)
     for (;;) {
         std::int64_t now = monotonic_ns();
         if (status_every_ns > 0 && now - last_status >= status_every_ns) write_status(now);
@@ -553,7 +554,6 @@ int run_sniff(const SniffCommand& command) {
             }
             const DecodedTelegram& t = pipeline.feed(record, findings);
             if (report && !findings.empty()) log.append(findings);
-            std::array<FilterEvent, 8> event_buffer;
             const std::span<const FilterEvent> events =
                 filter_events(pipeline.health_events(), event_buffer);
             show(renderer.get(), *settings, t, findings, pipeline.subject_pnu(), events);

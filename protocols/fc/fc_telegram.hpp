@@ -45,7 +45,10 @@ std::string_view fc_address_format_name(FcAddressFormat format) noexcept;  // "1
 inline constexpr std::uint8_t kFcTextRead = 0x04;
 inline constexpr std::uint8_t kFcTextWrite = 0x05;
 
-struct FcTelegram {
+// The fields a telegram decodes to; FcTelegram adds its problems. (Two parts so that reset() can
+// renew the fields and empty the problem list in place: building a whole new telegram for every
+// record zeroed and copied the list's storage each time; issue 31.)
+struct FcTelegramFields {
     std::uint8_t lge = 0;
     std::uint8_t adr = 0;  // the address byte as sent
     FcAddressFormat address_format = FcAddressFormat::Short;
@@ -69,10 +72,15 @@ struct FcTelegram {
     bool has_pcd = false;
     std::uint16_t pcd1 = 0;
     std::uint16_t pcd2 = 0;
+};
 
+struct FcTelegram : FcTelegramFields {
     ProblemList problems;
 
-    void reset() noexcept { *this = FcTelegram{}; }
+    void reset() noexcept {
+        static_cast<FcTelegramFields&>(*this) = FcTelegramFields{};
+        problems.clear();
+    }
 };
 
 // The parameter an FC telegram names: its PKW's PNU (a response echoes its request's); none

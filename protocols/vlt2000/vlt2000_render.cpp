@@ -222,6 +222,19 @@ class Vlt2000VerboseTree final : public VerboseTree {
         return std::string(text.data(), text.size());
     }
 
+    // The same, appended to the tree's buffer.
+    void put_chars(const DecodedTelegram& t, std::size_t at, std::size_t count) {
+        buffer().push_back('"');
+        append_fc_text(buffer(), t.bytes.subspan(at, count));
+        buffer().push_back('"');
+    }
+
+    // `label` and a two-digit number ("{:02}").
+    static void put_two_digits(TextBuffer& b, std::string_view label, unsigned value) {
+        append(b, label);
+        append_decimal_padded(b, value, 2);
+    }
+
   public:
     // The VLT 2000 telegram field by field, from what Vlt2000Decoder stored; each field with its
     // byte numbers as the manual counts them, from 1 ("[5-8]": offsets 4-7), and as far as the
@@ -229,23 +242,21 @@ class Vlt2000VerboseTree final : public VerboseTree {
     void render_vlt2000(const DecodedTelegram& t) {
         const Vlt2000Telegram& v = t.vlt2000;
         TextBuffer& b = buffer();
-        auto it = fmt::appender(b);
         const bool request = t.direction == Direction::Request;
         const std::size_t size = t.bytes.size();
         const auto has = [&](std::size_t at, std::size_t count) { return at + count <= size; };
         append(b, "VLT 2000 telegram");
         if (t.has_roles) {
-            fmt::format_to(it, FMT_COMPILE(": {} {}"), vlt2000_letter_text(t),
-                           request ? "command" : "reply");
+            append(b, ": ");
+            append_vlt2000_letter(b, t);
+            append(b, request ? " command" : " reply");
             if (v.broadcast && request)
                 append(b, " to every drive (broadcast, address 00)");
             else if (v.broadcast)
                 append(b, " from address 00 (a broadcast; nobody should reply)");
             else
-                fmt::format_to(it, FMT_COMPILE(" {} drive {:02}"), request ? "to" : "from",
-                               v.address);
-            if (t.request_frame != 0)
-                fmt::format_to(it, FMT_COMPILE(", answers frame {}"), t.request_frame);
+                put_two_digits(b, request ? " to drive " : " from drive ", v.address);
+            if (t.request_frame != 0) put(b, ", answers frame ", t.request_frame);
         }
         b.push_back('\n');
         if (size == 0) return;
@@ -253,34 +264,38 @@ class Vlt2000VerboseTree final : public VerboseTree {
             field(1, FMT_COMPILE("[1] Start: {} (not '<')"), chars(t, 0, 1));
             return;
         }
-        field(1, FMT_COMPILE("[1] Start: '<'"));
+        put_line(1, "[1] Start: '<'");
         if (!has(kVlt2000AddressAt, 2)) return;
-        if (t.has_roles)
-            field(1, FMT_COMPILE("[2-3] Address: {:02}{}"), v.address,
-                  v.broadcast ? " (broadcast: every drive acts, none replies)" : "");
-        else
+        if (t.has_roles) {
+            line(1, "");
+            put_two_digits(b, "[2-3] Address: ", v.address);
+            put(b, v.broadcast ? " (broadcast: every drive acts, none replies)\n" : "\n");
+        } else
             field(1, FMT_COMPILE("[2-3] Address: {} (not two digits)"),
                   chars(t, kVlt2000AddressAt, 2));
         if (!has(kVlt2000LetterAt, 1)) return;
-        field(1, FMT_COMPILE("[4] Control letter: {} ({}{})"), chars(t, kVlt2000LetterAt, 1),
-              vlt2000_letter_name(v.letter),
-              v.letter == Vlt2000Letter::Unknown ? ": not U, R, C or I" : "");
+        line(1, "[4] Control letter: ");
+        put_chars(t, kVlt2000LetterAt, 1);
+        put(b, " (", vlt2000_letter_name(v.letter),
+            v.letter == Vlt2000Letter::Unknown ? ": not U, R, C or I)\n" : ")\n");
         if (!has(kVlt2000WordAt, 4)) return;
-        field(1, FMT_COMPILE("[5-8] {} word: {} = 0x{:04X} ({})"), request ? "Control" : "Status",
-              chars(t, kVlt2000WordAt, 4), v.word, request ? "to the drive" : "from the drive");
+        line(1, request ? "[5-8] Control word: " : "[5-8] Status word: ");
+        put_chars(t, kVlt2000WordAt, 4);
+        put(b, " = 0x", hex(v.word, 4), request ? " (to the drive)\n" : " (from the drive)\n");
         for (unsigned bit = 0; bit < 16; ++bit) {
             if (vlt2000_bit_kept(v, bit)) {
-                if (bit % 4 == 0) field(2, FMT_COMPILE("bits {}-{}: group kept (P)"), bit, bit + 3);
+                if (bit % 4 == 0) put_line(2, "bits ", bit, '-', bit + 3, ": group kept (P)");
                 continue;
             }
-            field(2, FMT_COMPILE("bit {:>2} = {}: {}"), bit, (v.word >> bit) & 1u,
-                  vlt2000_bit_meaning(v, t.direction, bit));
+            put_line(2, bit < 10 ? "bit  " : "bit ", bit,
+                     (v.word >> bit) & 1u ? " = 1: " : " = 0: ",
+                     vlt2000_bit_meaning(v, t.direction, bit));
         }
         if (!has(kVlt2000ParameterAt, 4)) return;
         const bool control = v.letter == Vlt2000Letter::Control;
         const std::string_view ignored = control ? " (ignored with C)" : "";
         if (v.has_parameter)
-            field(1, FMT_COMPILE("[9-12] Parameter: {}{}"), v.parameter, ignored);
+            put_line(1, "[9-12] Parameter: ", v.parameter, ignored);
         else
             field(1, FMT_COMPILE("[9-12] Parameter: {} (not four digits)"),
                   chars(t, kVlt2000ParameterAt, 4));
@@ -299,18 +314,19 @@ class Vlt2000VerboseTree final : public VerboseTree {
                 field(1, FMT_COMPILE("[13-18] Index: {} (not a number)"),
                       chars(t, kVlt2000SignAt, 6));
         } else {
-            field(1, FMT_COMPILE("[13] Sign: {} ({}){}"), chars(t, kVlt2000SignAt, 1),
-                  v.negative ? "negative" : "positive", ignored);
+            line(1, "[13] Sign: ");
+            put_chars(t, kVlt2000SignAt, 1);
+            put_line(0, v.negative ? " (negative)" : " (positive)", ignored);
             if (!has(kVlt2000ValueAt, 5)) return;
             if (v.failed) {
                 field(1, FMT_COMPILE("[14-18] Value: {} (none: the command failed)"),
                       chars(t, kVlt2000ValueAt, 5));
             } else if (v.has_value) {
-                const std::string note = vlt2000_value_note(v);
-                line(1, "");
-                fmt::format_to(it, FMT_COMPILE("[14-18] Value: {:05} = {}"), v.digits,
-                               vlt2000_value_text(v));
-                if (!note.empty()) fmt::format_to(it, FMT_COMPILE(" ({})"), note);
+                line(1, "[14-18] Value: ");
+                append_decimal_padded(b, v.digits, 5);
+                append(b, " = ");
+                append_vlt2000_value(b, v);
+                if (!v.has_decimals || v.decimals > 5) put(b, " (", vlt2000_value_note(v), ')');
                 append(b, ignored);
                 b.push_back('\n');
                 if (view.value && !view.named.row->unit.empty())
@@ -339,7 +355,7 @@ class Vlt2000VerboseTree final : public VerboseTree {
         else if (v.decimals > 5)
             field(1, FMT_COMPILE("[19] Decimal position: {} (out of range 0-5)"), v.decimals);
         else
-            field(1, FMT_COMPILE("[19] Decimal position: {}"), v.decimals);
+            put_line(1, "[19] Decimal position: ", v.decimals);
         if (has(kVlt2000ChecksumAt, 2)) {
             line(1, "[20-21] Checksum: ");
             append_vlt2000_checksum(b, t);
@@ -350,7 +366,7 @@ class Vlt2000VerboseTree final : public VerboseTree {
         }
         if (!has(kVlt2000StopAt, 1)) return;
         if (t.bytes[kVlt2000StopAt] == kVlt2000Stop)
-            field(1, FMT_COMPILE("[22] Stop: '>'"));
+            put_line(1, "[22] Stop: '>'");
         else
             field(1, FMT_COMPILE("[22] Stop: {} (not '>')"), chars(t, kVlt2000StopAt, 1));
     }

@@ -48,7 +48,9 @@ enum class Vlt2000Letter : std::uint8_t {
     Unknown,    // any other character
 };
 
-struct Vlt2000Telegram {
+// The fields a telegram decodes to; Vlt2000Telegram adds its problems (two parts for reset(), as
+// FcTelegram).
+struct Vlt2000TelegramFields {
     bool complete = false;  // all 22 characters are there
     std::uint8_t address = 0;
     bool broadcast = false;  // address 00: every unit acts, none replies
@@ -77,7 +79,9 @@ struct Vlt2000Telegram {
     std::uint8_t checksum = 0;       // as sent, 0..99
     std::uint8_t checksum_computed = 0;
     bool checksum_ok = false;  // as sent and as computed agree (false when disabled)
+};
 
+struct Vlt2000Telegram : Vlt2000TelegramFields {
     // Messages number the bytes 1-22 as the manual does [S004]; offsets stay 0-based.
     ProblemList problems{kVlt2000FirstByteNumber};
 
@@ -88,7 +92,10 @@ struct Vlt2000Telegram {
     // The value with the decimal point applied (decimals 0..5); digits itself otherwise.
     double value() const noexcept;
 
-    void reset() noexcept { *this = Vlt2000Telegram{}; }
+    void reset() noexcept {
+        static_cast<Vlt2000TelegramFields&>(*this) = Vlt2000TelegramFields{};
+        problems.clear();
+    }
 };
 
 // Every problem found in a VLT 2000 telegram (DecodedTelegram::problems()).
