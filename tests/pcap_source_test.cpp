@@ -697,6 +697,120 @@ TEST(PcapSourceTest, CorruptedRecordLengthStopsWithDamage) {
         << r.issues[0].message;
 }
 
+// ---- Block reading: a regular classic pcap file's records are read a block of 256 KiB at a time
+// by PcapSource itself; anything unusual goes to libpcap. Each test compares with libpcap's own
+// reading of the same file.
+
+struct LibpcapRecord {
+    std::vector<std::uint8_t> bytes;
+    std::int64_t time_ns;
+    std::uint32_t length;
+};
+
+// Every record libpcap reads from `path` (nanosecond times, as PcapSource opens it), and whether
+// it stopped on an error.
+std::vector<LibpcapRecord> read_with_libpcap(const std::string& path, bool& error) {
+    std::vector<LibpcapRecord> records;
+    char errbuf[PCAP_ERRBUF_SIZE] = {};
+    pcap_t* handle =
+        pcap_open_offline_with_tstamp_precision(path.c_str(), PCAP_TSTAMP_PRECISION_NANO, errbuf);
+    EXPECT_NE(handle, nullptr) << errbuf;
+    error = false;
+    if (!handle) return records;
+    pcap_pkthdr* header = nullptr;
+    const u_char* data = nullptr;
+    int rc;
+    while ((rc = pcap_next_ex(handle, &header, &data)) == 1)
+        records.push_back(
+            {std::vector<std::uint8_t>(data, data + header->caplen),
+             static_cast<std::int64_t>(header->ts.tv_sec) * 1'000'000'000 + header->ts.tv_usec,
+             header->len});
+    error = rc != PCAP_ERROR_BREAK;
+    pcap_close(handle);
+    return records;
+}
+
+void expect_as_libpcap_reads(const std::string& path, std::size_t expected_records) {
+    bool libpcap_error = false;
+    const std::vector<LibpcapRecord> want = read_with_libpcap(path, libpcap_error);
+    ReadResult r = read_all(path);
+    ASSERT_EQ(want.size(), expected_records);
+    ASSERT_EQ(r.records.size(), want.size());
+    for (std::size_t i = 0; i < want.size(); ++i) {
+        ASSERT_EQ(r.data[i], want[i].bytes) << "record " << i + 1;
+        ASSERT_EQ(r.records[i].time_ns, want[i].time_ns == 0 ? kNoTime : want[i].time_ns)
+            << "record " << i + 1;
+        ASSERT_EQ(r.records[i].original_length, want[i].length) << "record " << i + 1;
+        ASSERT_EQ(r.records[i].number, i + 1);
+    }
+    EXPECT_EQ(r.status == InputStatus::Damaged, libpcap_error);
+}
+
+// Records of 1 to 300 bytes, so that many cross a block's end, in each byte order and time
+// precision.
+TEST(PcapSourceTest, BlockReadingMatchesLibpcapAcrossManyBlocks) {
+    for (bool big_endian : {false, true}) {
+        for (bool nano : {false, true}) {
+            TempFile file("blocks.pcap");
+            PcapBuilder pcap(big_endian, nano, 257);
+            std::vector<std::uint8_t> data;
+            std::uint64_t offset = 24;
+            std::vector<std::uint64_t> offsets;
+            for (std::uint32_t i = 0; i < 8000; ++i) {
+                data.assign(1 + (i * 37) % 300, static_cast<std::uint8_t>(i));
+                offsets.push_back(offset);
+                offset += 16 + data.size();
+                pcap.record(1'704'067'200 + i / 1000,
+                            (i * 7919) % (nano ? 1'000'000'000 : 1'000'000), data);
+            }
+            ASSERT_GT(pcap.bytes().size(), 4u * (1u << 18));
+            test::write_file(file.path, pcap.bytes());
+            expect_as_libpcap_reads(file.path, 8000);
+            ReadResult r = read_all(file.path);
+            for (std::size_t i = 0; i < r.records.size(); ++i)
+                ASSERT_EQ(r.records[i].offset, offsets[i]) << "record " << i + 1;
+        }
+    }
+}
+
+// A record longer than the file's snapshot length, and the ones after it, are libpcap's.
+TEST(PcapSourceTest, ARecordOverTheSnapshotLengthIsReadByLibpcap) {
+    TempFile file("over-snaplen.pcap");
+    PcapBuilder pcap(false, true, 257, 64);
+    for (int i = 0; i < 100; ++i)
+        pcap.record(1'704'067'200, static_cast<std::uint32_t>(i), kSd2);
+    pcap.record(1'704'067'200, 100, std::vector<std::uint8_t>(100, 0x42));
+    for (int i = 101; i < 200; ++i)
+        pcap.record(1'704'067'200, static_cast<std::uint32_t>(i), kSd1);
+    test::write_file(file.path, pcap.bytes());
+    bool libpcap_error = false;
+    const std::size_t records = read_with_libpcap(file.path, libpcap_error).size();
+    expect_as_libpcap_reads(file.path, records);
+}
+
+// Cut inside a record far into the file: the message names that record and its byte offset,
+// as libpcap's reading did.
+TEST(PcapSourceTest, ACutFarIntoTheFileNamesTheRecordAndItsOffset) {
+    TempFile file("cut-far.pcap");
+    PcapBuilder pcap(false, true, 257);
+    for (std::uint32_t i = 0; i < 30000; ++i)
+        pcap.record(1'704'067'200, i, kSd2);
+    std::vector<std::uint8_t> bytes = pcap.bytes();
+    const std::size_t record_size = 16 + kSd2.size();
+    bytes.resize(24 + 25000 * record_size + 20);  // into record 25,001's data
+    test::write_file(file.path, bytes);
+    ReadResult r = read_all(file.path);
+    EXPECT_EQ(r.records.size(), 25000u);
+    EXPECT_EQ(r.status, InputStatus::Damaged);
+    ASSERT_EQ(r.issues.size(), 1u);
+    const std::string where =
+        fmt::format("{}: record 25001 (byte offset {}): ", file.path, 24 + 25000 * record_size);
+    EXPECT_EQ(r.issues[0].message.rfind(where, 0), 0u) << r.issues[0].message;
+    EXPECT_NE(r.issues[0].message.find("decoding stopped after 25000 records"), std::string::npos)
+        << r.issues[0].message;
+    expect_as_libpcap_reads(file.path, 25000);
+}
+
 TEST(PcapSourceTest, TruncatedPcapngNamesRecord) {
     TempFile file("cut.pcapng");
     write_capture(file.path, CaptureFormat::Pcapng, kLinkTypeProfibusDl);
