@@ -78,7 +78,9 @@ struct FcTelegram : FcTelegramFields {
     ProblemList problems;
 
     void reset() noexcept {
-        static_cast<FcTelegramFields&>(*this) = FcTelegramFields{};
+        // Copied from a constant: a temporary built on the stack first cost a stalled load.
+        static constexpr FcTelegramFields kFresh{};
+        static_cast<FcTelegramFields&>(*this) = kFresh;
         problems.clear();
     }
 };

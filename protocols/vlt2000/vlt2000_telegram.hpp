@@ -93,7 +93,9 @@ struct Vlt2000Telegram : Vlt2000TelegramFields {
     double value() const noexcept;
 
     void reset() noexcept {
-        static_cast<Vlt2000TelegramFields&>(*this) = Vlt2000TelegramFields{};
+        // Copied from a constant: a temporary built on the stack first cost a stalled load.
+        static constexpr Vlt2000TelegramFields kFresh{};
+        static_cast<Vlt2000TelegramFields&>(*this) = kFresh;
         problems.clear();
     }
 };
