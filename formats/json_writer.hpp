@@ -72,20 +72,22 @@ class JsonWriter {
         return key_of_size(name, std::char_traits<char>::length(name));
     }
 
-    JsonWriter& integer(std::int64_t value) {
+    [[gnu::always_inline]] JsonWriter& integer(std::int64_t value) {
         separate();
         json::integer(out_, value);
         return wrote();
     }
-    JsonWriter& boolean(bool value) { return literal(value ? "true" : "false"); }
-    JsonWriter& null() { return literal("null"); }
+    [[gnu::always_inline]] JsonWriter& boolean(bool value) {
+        return value ? literal("true") : literal("false");
+    }
+    [[gnu::always_inline]] JsonWriter& null() { return literal("null"); }
     JsonWriter& string(std::string_view text) {
         separate();
         json::string(out_, text);
         return wrote();
     }
     // An integer, or null when it is not present.
-    JsonWriter& optional_integer(bool present, std::int64_t value) {
+    [[gnu::always_inline]] JsonWriter& optional_integer(bool present, std::int64_t value) {
         return present ? integer(value) : null();
     }
     // A number whose text the caller formatted ("0.125000"); written verbatim.
@@ -119,7 +121,7 @@ class JsonWriter {
         need_comma_ = false;
         return *this;
     }
-    void separate() {
+    [[gnu::always_inline]] void separate() {
         if (need_comma_) out_.push_back(',');
     }
     JsonWriter& opened() {
@@ -127,7 +129,7 @@ class JsonWriter {
         need_comma_ = false;
         return *this;
     }
-    JsonWriter& wrote() {
+    [[gnu::always_inline]] JsonWriter& wrote() {
         need_comma_ = true;
         return *this;
     }
