@@ -101,13 +101,22 @@ inline void append_signed(TextBuffer& out, std::int64_t value) {
     append_decimal(out, 0 - static_cast<std::uint64_t>(value));
 }
 
-// "{:0<width>}" of an unsigned integer: zeros in front up to `width` digits.
-inline void append_decimal_padded(TextBuffer& out, std::uint64_t value, int width) {
-    const int digits = text_detail::decimal_digits(value);
+namespace text_detail {
+
+// The digits of `value` at the right of `width` characters, `fill` in front of them.
+inline void append_decimal_filled(TextBuffer& out, std::uint64_t value, int width, char fill) {
+    const int digits = decimal_digits(value);
     const int length = digits < width ? width : digits;
     char* at = append_room(out, static_cast<std::size_t>(length));
-    std::memset(at, '0', static_cast<std::size_t>(length - digits));
-    text_detail::write_decimal_backwards(at + length, value);
+    std::memset(at, fill, static_cast<std::size_t>(length - digits));
+    write_decimal_backwards(at + length, value);
+}
+
+}  // namespace text_detail
+
+// "{:0<width>}" of an unsigned integer: zeros in front up to `width` digits.
+inline void append_decimal_padded(TextBuffer& out, std::uint64_t value, int width) {
+    text_detail::append_decimal_filled(out, value, width, '0');
 }
 
 // "{:0<digits>X}" (or "x" with `lower`) of a value that fits in `digits` hex digits: exactly
@@ -124,11 +133,7 @@ inline void append_hex_fixed(TextBuffer& out, std::uint64_t value, int digits, b
 
 // "{:>width}" of an unsigned integer: spaces in front up to `width` characters.
 inline void append_decimal_right(TextBuffer& out, std::uint64_t value, int width) {
-    const int digits = text_detail::decimal_digits(value);
-    const int length = digits < width ? width : digits;
-    char* at = append_room(out, static_cast<std::size_t>(length));
-    std::memset(at, ' ', static_cast<std::size_t>(length - digits));
-    text_detail::write_decimal_backwards(at + length, value);
+    text_detail::append_decimal_filled(out, value, width, ' ');
 }
 
 // "{:<width}" of an unsigned integer: spaces after it up to `width` characters.
