@@ -17,6 +17,8 @@ constexpr bool needs_escape(char c) noexcept {
            static_cast<unsigned char>(c) >= 0x80;
 }
 
+}  // namespace
+
 // True when no byte of `text` needs an escape. Eight bytes a step: a byte is flagged when its
 // high bit is set (0x80 and up), when it is below 0x20, or when it equals '"' or '\\' (the
 // usual "has a zero byte" test on the word XORed with each). A flag may be a false alarm only
@@ -40,8 +42,6 @@ bool plain_text(std::string_view text) noexcept {
         plain &= !needs_escape(*p);
     return plain;
 }
-
-}  // namespace
 
 void string(fmt::memory_buffer& out, std::string_view text) {
     // Most strings are names that need no escape: one pass to check, one copy.

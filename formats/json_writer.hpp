@@ -32,6 +32,8 @@ namespace json {
 
 // A JSON string with the required escapes, appended to `out`.
 void string(fmt::memory_buffer& out, std::string_view text);
+// True when no byte of `text` needs an escape (nor a check as UTF-8): it is copied as it is.
+bool plain_text(std::string_view text) noexcept;
 
 inline void integer(fmt::memory_buffer& out, std::int64_t value) { append_signed(out, value); }
 
@@ -40,25 +42,26 @@ inline void integer(fmt::memory_buffer& out, std::int64_t value) { append_signed
 class JsonWriter {
   public:
     explicit JsonWriter(fmt::memory_buffer& out) noexcept : out_(out) {}
+    ~JsonWriter() { commit(); }
     JsonWriter(const JsonWriter&) = delete;
     JsonWriter& operator=(const JsonWriter&) = delete;
 
     JsonWriter& begin_object() {
         separate();
-        out_.push_back('{');
+        put_char('{');
         return opened();
     }
     JsonWriter& end_object() {
-        out_.push_back('}');
+        put_char('}');
         return closed();
     }
     JsonWriter& begin_array() {
         separate();
-        out_.push_back('[');
+        put_char('[');
         return opened();
     }
     JsonWriter& end_array() {
-        out_.push_back(']');
+        put_char(']');
         return closed();
     }
 
@@ -74,7 +77,14 @@ class JsonWriter {
 
     [[gnu::always_inline]] JsonWriter& integer(std::int64_t value) {
         separate();
-        json::integer(out_, value);
+        std::uint64_t magnitude = static_cast<std::uint64_t>(value);
+        if (value < 0) {
+            put_char('-');
+            magnitude = 0 - magnitude;
+        }
+        const int digits = text_detail::decimal_digits(magnitude);
+        text_detail::write_decimal_backwards(room(20) + digits, magnitude);
+        cursor_ += digits;
         return wrote();
     }
     [[gnu::always_inline]] JsonWriter& boolean(bool value) {
@@ -83,7 +93,16 @@ class JsonWriter {
     [[gnu::always_inline]] JsonWriter& null() { return literal("null"); }
     JsonWriter& string(std::string_view text) {
         separate();
-        json::string(out_, text);
+        if (json::plain_text(text)) {
+            char* p = room(text.size() + 2);
+            *p = '"';
+            if (!text.empty()) std::memcpy(p + 1, text.data(), text.size());
+            p[text.size() + 1] = '"';
+            cursor_ += text.size() + 2;
+        } else {
+            let_go();
+            json::string(out_, text);
+        }
         return wrote();
     }
     // An integer, or null when it is not present.
@@ -97,21 +116,55 @@ class JsonWriter {
     template <typename Write>
     JsonWriter& raw_value(Write&& write) {
         separate();
+        let_go();
         write(out_);
         return wrote();
     }
 
     // Nesting depth: 0 once every object and array begun has ended.
     std::size_t depth() const noexcept { return depth_; }
-    fmt::memory_buffer& buffer() noexcept { return out_; }
+    // Everything written so far is in the buffer: call it before the buffer is flushed in the
+    // middle of a document (Output::end_record) or written by another hand. (A complete top-level
+    // value is there without it.)
+    void settle() noexcept { let_go(); }
+    // The buffer, with everything written so far in it.
+    fmt::memory_buffer& buffer() noexcept {
+        let_go();
+        return out_;
+    }
 
   private:
+    // The writer keeps a cursor into the buffer's spare capacity and tells the buffer its new
+    // size only when a top-level value is complete, when someone else is to write into the
+    // buffer, or at the end: the buffer's own size update was a call for every piece (issue 31).
+    [[gnu::always_inline]] char* room(std::size_t n) {
+        if (static_cast<std::size_t>(limit_ - cursor_) < n) more_room(n);
+        return cursor_;
+    }
+    void more_room(std::size_t n) {
+        commit();
+        out_.reserve(out_.size() + (n > 2048 ? n : 2048));
+        cursor_ = out_.data() + out_.size();
+        limit_ = out_.data() + out_.capacity();
+    }
+    // The buffer's size takes in what was written through the cursor.
+    void commit() noexcept {
+        if (cursor_) out_.try_resize(static_cast<std::size_t>(cursor_ - out_.data()));
+    }
+    // Before the buffer is written by another hand (which may move its storage).
+    void let_go() noexcept {
+        commit();
+        cursor_ = limit_ = nullptr;
+    }
+    [[gnu::always_inline]] void put_char(char c) {
+        *room(1) = c;
+        ++cursor_;
+    }
     // Always inline, so that a literal key's constant `size` reaches memcpy.
     [[gnu::always_inline]] JsonWriter& key_of_size(const char* name, std::size_t size) {
-        const std::size_t at = out_.size();
         const std::size_t comma = need_comma_ ? 1 : 0;
-        out_.resize(at + comma + size + 3);
-        char* p = out_.data() + at;
+        char* p = room(comma + size + 3);
+        cursor_ += comma + size + 3;
         if (comma) *p++ = ',';
         *p++ = '"';
         std::memcpy(p, name, size);
@@ -122,15 +175,18 @@ class JsonWriter {
         return *this;
     }
     [[gnu::always_inline]] void separate() {
-        if (need_comma_) out_.push_back(',');
+        if (need_comma_) put_char(',');
     }
     JsonWriter& opened() {
         ++depth_;
         need_comma_ = false;
         return *this;
     }
+    // A value was written; one at the top level is complete: the buffer is told, and the writer
+    // lets it go (its caller may write a line end into it next).
     [[gnu::always_inline]] JsonWriter& wrote() {
         need_comma_ = true;
+        if (depth_ == 0) let_go();
         return *this;
     }
     JsonWriter& closed() {
@@ -139,11 +195,14 @@ class JsonWriter {
     }
     [[gnu::always_inline]] JsonWriter& literal(std::string_view text) {
         separate();
-        append(out_, text);
+        if (!text.empty()) std::memcpy(room(text.size()), text.data(), text.size());
+        cursor_ += text.size();
         return wrote();
     }
 
     fmt::memory_buffer& out_;
+    char* cursor_ = nullptr;  // where the next character goes (null: none asked for yet)
+    char* limit_ = nullptr;   // the end of the buffer's capacity
     std::size_t depth_ = 0;
     // A value was written at this level: the next key or item is preceded by a comma. One flag
     // is enough: begin_*() and key() clear it, every value and end_*() sets it.

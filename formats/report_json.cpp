@@ -60,6 +60,7 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
     w.key("stations").begin_array();
     for (const auto& section : m.stations) {
         section->write_json(c, w);
+        w.settle();
         out.end_record();
     }
     w.end_array();
@@ -78,12 +79,14 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
         w.key("bus_health").begin_object();
         health::write_json_members(w, *c.health);
         w.end_object();
+        w.settle();
         out.end_record();
     }
     w.key("findings").begin_array();
     c.findings->for_each([&](const Finding& f) {
         if (!shows(c, f)) return;
         json::finding(w, f);
+        w.settle();
         out.end_record();
     });
     w.end_array();

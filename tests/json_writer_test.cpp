@@ -168,3 +168,48 @@ TEST(JsonWriterTest, StringsRoundTripThroughAStrictParser) {
 
 }  // namespace
 }  // namespace dpscope
+
+namespace dpscope {
+namespace {
+
+// The writer writes through a cursor into the buffer's spare room and tells the buffer its size
+// at the end of a top-level value, at settle() and before another hand writes: a document far
+// larger than the room it takes at a time comes out whole, also when the buffer is emptied in the
+// middle (as Output::end_record does) after settle().
+TEST(JsonWriterTest, ALongDocumentWrittenInPiecesComesOutWhole) {
+    fmt::memory_buffer buffer;
+    std::string flushed;
+    {
+        JsonWriter w(buffer);
+        w.begin_array();
+        std::string expected = "[";
+        for (int i = 0; i < 3000; ++i) {
+            w.begin_object().key("n").integer(-i).key("s").string(std::string(i % 50, 'x'));
+            w.key("big").string(std::string(i == 1500 ? 10000 : 1, 'y')).end_object();
+            if (i % 100 == 99) {  // flushed in the middle of the document
+                w.settle();
+                flushed.append(buffer.data(), buffer.size());
+                buffer.clear();
+            }
+        }
+        w.end_array();
+    }
+    flushed.append(buffer.data(), buffer.size());
+    std::optional<test::Json> parsed = test::parse_json(flushed);
+    ASSERT_TRUE(parsed);
+    ASSERT_EQ(parsed->items.size(), 3000u);
+    EXPECT_EQ(test::number_of((*parsed)[2999]["n"]), -2999);
+    EXPECT_EQ((*parsed)[1500]["big"].text.size(), 10000u);
+    EXPECT_EQ((*parsed)[49]["s"].text, std::string(49, 'x'));
+}
+
+TEST(JsonWriterTest, TheBufferHoldsATopLevelValueAsSoonAsItIsComplete) {
+    fmt::memory_buffer buffer;
+    JsonWriter w(buffer);
+    w.begin_object().key("a").integer(1).end_object();
+    buffer.push_back('\n');  // what the jsonl renderer does before the writer ends
+    EXPECT_EQ(text(buffer), "{\"a\":1}\n");
+}
+
+}  // namespace
+}  // namespace dpscope
