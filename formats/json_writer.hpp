@@ -105,6 +105,18 @@ class JsonWriter {
         }
         return wrote();
     }
+    // A name from the program's own code tables (a bit's meaning, a block's name): the same as
+    // string(), without the check for bytes to escape, which such names never have
+    // (tests/json_writer_test.cpp checks the tables this is used for). Never for user data.
+    JsonWriter& name(std::string_view text) {
+        separate();
+        char* p = room(text.size() + 2);
+        *p = '"';
+        if (!text.empty()) std::memcpy(p + 1, text.data(), text.size());
+        p[text.size() + 1] = '"';
+        cursor_ += text.size() + 2;
+        return wrote();
+    }
     // An integer, or null when it is not present.
     [[gnu::always_inline]] JsonWriter& optional_integer(bool present, std::int64_t value) {
         return present ? integer(value) : null();

@@ -4,7 +4,10 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "protocols/profibus/pcd.hpp"
+#include "protocols/vlt2000/vlt2000_codes.hpp"
 #include "tests/json_parser.hpp"
 
 namespace dpscope {
@@ -209,6 +212,37 @@ TEST(JsonWriterTest, TheBufferHoldsATopLevelValueAsSoonAsItIsComplete) {
     w.begin_object().key("a").integer(1).end_object();
     buffer.push_back('\n');  // what the jsonl renderer does before the writer ends
     EXPECT_EQ(text(buffer), "{\"a\":1}\n");
+}
+
+}  // namespace
+}  // namespace dpscope
+
+namespace dpscope {
+namespace {
+
+// JsonWriter::name() skips the escape check: the tables it writes from hold nothing to escape.
+TEST(JsonWriterTest, TheNamesWrittenWithoutTheEscapeCheckNeedNone) {
+    std::vector<std::string_view> names;
+    for (PcdProfile profile : {PcdProfile::Profidrive, PcdProfile::Fc})
+        for (bool danfoss : {false, true})
+            for (const WordBits* bits :
+                 {&control_word_bits(profile, danfoss), &status_word_bits(profile, danfoss)})
+                for (const WordBit& bit : *bits) {
+                    names.push_back(bit.when_0);
+                    names.push_back(bit.when_1);
+                }
+    for (unsigned bit = 0; bit < 16; ++bit)
+        for (const Vlt2000Bit* row : {&vlt2000_control_bit(bit), &vlt2000_status_bit(bit)}) {
+            names.push_back(row->when_0);
+            names.push_back(row->when_1);
+        }
+    names.push_back("group kept (P)");  // vlt2000_bit_meaning's own
+    for (std::string_view name : names)
+        EXPECT_TRUE(json::plain_text(name)) << name;
+    fmt::memory_buffer a, b;
+    JsonWriter(a).name("start");
+    JsonWriter(b).string("start");
+    EXPECT_EQ(text(a), text(b));
 }
 
 }  // namespace

@@ -190,7 +190,7 @@ void fc_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
                                        : status_word_bits(PcdProfile::Fc, true);
         w.begin_array();
         for (std::size_t bit = 0; bit < 16; ++bit)
-            w.string((fc.pcd1 >> bit) & 1 ? bits[bit].when_1 : bits[bit].when_0);
+            w.name((fc.pcd1 >> bit) & 1 ? bits[bit].when_1 : bits[bit].when_0);
         w.end_array();
     } else {
         w.null();

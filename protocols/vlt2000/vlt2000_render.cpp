@@ -143,7 +143,7 @@ void vlt2000_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     if (v.has_word) {
         w.begin_array();
         for (unsigned bit = 0; bit < 16; ++bit)
-            w.string(vlt2000_bit_meaning(v, t.direction, bit));
+            w.name(vlt2000_bit_meaning(v, t.direction, bit));
         w.end_array();
     } else {
         w.null();
