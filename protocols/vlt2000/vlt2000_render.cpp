@@ -316,7 +316,7 @@ class Vlt2000VerboseTree final : public VerboseTree {
         } else {
             line(1, "[13] Sign: ");
             put_chars(t, kVlt2000SignAt, 1);
-            put_line(0, v.negative ? " (negative)" : " (positive)", ignored);
+            put(b, v.negative ? " (negative)" : " (positive)", ignored, '\n');
             if (!has(kVlt2000ValueAt, 5)) return;
             if (v.failed) {
                 field(1, FMT_COMPILE("[14-18] Value: {} (none: the command failed)"),
