@@ -59,10 +59,13 @@ inline void optional_string(JsonWriter& w, std::string_view text) {
 // A CSV field in quotes, quotes inside doubled (RFC 4180).
 inline void csv_quoted(TextBuffer& b, std::string_view text) {
     b.push_back('"');
-    for (char c : text) {
-        if (c == '"') b.push_back('"');
-        b.push_back(c);
+    // The runs between quotes are copied whole; each quote is written twice.
+    for (std::size_t quote; (quote = text.find('"')) != std::string_view::npos;) {
+        append(b, text.substr(0, quote + 1));
+        b.push_back('"');
+        text.remove_prefix(quote + 1);
     }
+    append(b, text);
     b.push_back('"');
 }
 

@@ -9,9 +9,11 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "formats/describe.hpp"
+#include "formats/field_writers.hpp"
 
 namespace dpscope {
 namespace {
@@ -157,6 +159,29 @@ TEST(TextBufferTest, IsoTimeIsGmtimesDate) {
             append_iso_time(b, time_ns);
             ASSERT_EQ(text_of(b), iso_time_by_gmtime(time_ns)) << time_ns;
         }
+    }
+}
+
+}  // namespace
+}  // namespace dpscope
+
+namespace dpscope {
+namespace {
+
+// RFC 4180: the field in quotes, a quote inside written twice.
+TEST(TextBufferTest, CsvQuotedDoublesEveryQuote) {
+    const std::pair<std::string_view, std::string_view> cases[] = {
+        {"", "\"\""},
+        {"plain", "\"plain\""},
+        {"\"", "\"\"\"\""},
+        {"say \"hi\"", "\"say \"\"hi\"\"\""},
+        {"\"\"a\"", "\"\"\"\"\"a\"\"\""},
+        {"a,b\nc", "\"a,b\nc\""},
+    };
+    for (const auto& [text, quoted] : cases) {
+        TextBuffer b;
+        csv_quoted(b, text);
+        EXPECT_EQ(text_of(b), quoted) << text;
     }
 }
 
