@@ -16,6 +16,13 @@
 
 namespace dpscope {
 
+std::string pcap_library_version() {
+    std::string_view text = pcap_lib_version();
+    constexpr std::string_view kPrefix = "libpcap version ";
+    if (text.substr(0, kPrefix.size()) == kPrefix) text.remove_prefix(kPrefix.size());
+    return std::string(text);
+}
+
 std::string link_type_name(int link_type) {
     for (const ProtocolDescriptor* protocol : protocol_table())
         for (const PcapLinkType& type : protocol->link_types)

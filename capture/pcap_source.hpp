@@ -31,5 +31,7 @@ OpenResult open_pcapng_source(FILE* file, const std::string& name, const Protoco
 
 // The name a protocol gives the link type ("PROFIBUS_DL", "USER0"), or libpcap's name for it.
 std::string link_type_name(int link_type);
+// The libpcap dpscope runs with: "1.10.3 (with TPACKET_V3)" (dpscope --version).
+std::string pcap_library_version();
 
 }  // namespace dpscope

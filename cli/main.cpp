@@ -15,7 +15,7 @@
 #include "cli/common_options.hpp"
 #include "cli/config_file.hpp"
 #include "cli/parse_errors.hpp"
-#include "cli/version.hpp"
+#include "cli/version_text.hpp"
 
 namespace {
 
@@ -45,7 +45,16 @@ int main(int argc, char** argv) {
         "PCV/PKW: RC/AK, SPM, PNU, IND, PVA, PCD words), and the Danfoss FC protocol and VLT 2000 "
         "serial telegrams (--bus fc, --bus vlt2000).",
         "dpscope"};
-    app.set_version_flag("--version", std::string("dpscope ") + dpscope::kVersion);
+    // The text ends with its own line end; CLI11 adds one after it.
+    app.set_version_flag(
+        "--version",
+        [] {
+            std::string text = dpscope::cli::version_text();
+            text.pop_back();
+            return text;
+        },
+        "Print the version, the commit, the buses, the libraries and the Wireshark version of "
+        "the plugin, and exit");
     app.require_subcommand(1);
     // Command-line errors in dpscope's one error style; "Usage: dpscope ..." whatever argv[0].
     app.failure_message([](const CLI::App*, const CLI::Error& e) {

@@ -66,6 +66,12 @@ void initialise_library() {
 
 }  // namespace
 
+std::string mqtt_library_version() {
+    int major = 0, minor = 0, revision = 0;
+    mosquitto_lib_version(&major, &minor, &revision);
+    return fmt::format("{}.{}.{}", major, minor, revision);
+}
+
 Result<MqttEndpoint> parse_mqtt_url(std::string_view url) {
     MqttEndpoint endpoint;
     std::string_view rest;

@@ -33,6 +33,8 @@ struct MqttEndpoint {
     bool tls = false;
 };
 Result<MqttEndpoint> parse_mqtt_url(std::string_view url);
+// The libmosquitto dpscope runs with: "2.0.11" (dpscope --version).
+std::string mqtt_library_version();
 
 // The TLS files (empty: not given) can be read and go together: a message naming the option.
 Result<void> check_tls_files(bool tls, const std::string& ca_file, const std::string& cert_file,

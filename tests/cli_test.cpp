@@ -62,7 +62,15 @@ void expect_mentions(const std::string& help, const std::vector<std::string>& op
 TEST(CliTest, Version) {
     CommandResult r = run_dpscope({"--version"});
     EXPECT_EQ(r.exit_code, 0);
-    EXPECT_TRUE(std::regex_match(r.out, std::regex("dpscope [0-9]+\\.[0-9]+\\.[0-9]+\n"))) << r.out;
+    // The version and the commit, the buses, the libraries, the plugin's Wireshark (issue 32).
+    EXPECT_TRUE(std::regex_search(
+        r.out, std::regex("^dpscope [0-9]+\\.[0-9]+\\.[0-9]+ \\(commit [0-9a-z.-]+\\)\n")))
+        << r.out;
+    expect_mentions(r.out,
+                    {"buses (--bus): profibus = PROFIBUS DP, fc = ", "vlt2000 = ", "libpcap 1.",
+                     "libmosquitto ", "fmt 9.", "CLI11 2.", "Wireshark plugin: "});
+    EXPECT_EQ(r.out.back(), '\n');
+    EXPECT_EQ(r.out.find("\n\n"), std::string::npos) << r.out;
 }
 
 TEST(CliTest, AppHelpListsSubcommandsAndExitCodes) {

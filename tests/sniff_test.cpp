@@ -1395,9 +1395,9 @@ std::string reference_stats(const std::string& pcap, const std::string& device,
         tracker.observe(decoder.decode(record.bytes, record.time_ns, record.number));
     tracker.finish();
     auto version = test::run_dpscope({"--version"});
-    std::string number = version.out.substr(version.out.rfind(' ') + 1);
-    while (!number.empty() && std::isspace(static_cast<unsigned char>(number.back())))
-        number.pop_back();
+    // "dpscope 0.1.0 (commit ...)": the second word of the first line.
+    const std::size_t from = version.out.find(' ') + 1;
+    std::string number = version.out.substr(from, version.out.find(' ', from) - from);
     StatsContext context{InputSummary{device, "serial", 0, false}, &tracker.health(), number};
     return test::output_text([&](Output& out) { render_stats(StatsFormat::Text, context, out); });
 }
