@@ -5,7 +5,8 @@
 // general path: each writer makes room once (an inline capacity check; the buffer grows only when
 // full) and stores its characters there. A literal's length is a constant where the call is
 // compiled, so appending one is a few stores. The text they write is the text fmt writes for
-// "{}", "{:0N}", "{:0NX}" and "{:0Nx}" (tests/text_buffer_test.cpp compares the two).
+// "{}", "{:0N}", "{:>N}", "{:<N}", "{:0NX}" and "{:0Nx}" (tests/text_buffer_test.cpp compares
+// the two).
 #pragma once
 
 #include <fmt/format.h>
@@ -23,8 +24,9 @@ using TextBuffer = fmt::memory_buffer;
 // `n` more characters at the end of `out`, uninitialised, for the caller to fill.
 [[gnu::always_inline]] inline char* append_room(TextBuffer& out, std::size_t n) {
     const std::size_t at = out.size();
-    // buffer::try_resize, not basic_memory_buffer::resize: the compiler kept the latter a call of
-    // its own, a tenth of the jsonl renderer's time.
+    // The buffer's size changes with every piece; in the largest writers the compiler keeps that
+    // a call of its own. The JSON writer, whose pieces are many and small, writes through a
+    // cursor instead and tells the buffer its size once a value is whole (json_writer.hpp).
     out.try_resize(at + n);
     return out.data() + at;
 }
