@@ -14,13 +14,6 @@ namespace {
 // A config file is a few dozen lines; a larger one is no config file.
 constexpr std::size_t kMaxConfigFileBytes = 1024 * 1024;
 
-std::string_view trimmed(std::string_view text) {
-    const std::size_t first = text.find_first_not_of(" \t\r");
-    if (first == std::string_view::npos) return {};
-    const std::size_t last = text.find_last_not_of(" \t\r");
-    return text.substr(first, last - first + 1);
-}
-
 bool is_key_character(char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-';
 }
@@ -50,17 +43,9 @@ const CLI::Option* option_named(const CLI::App& command, std::string_view argume
 Result<std::vector<ConfigEntry>> parse_config_text(std::string_view text, std::string_view file) {
     std::vector<ConfigEntry> entries;
     unsigned number = 0;
-    std::size_t at = 0;
-    while (at <= text.size()) {
-        std::size_t end = text.find('\n', at);
-        if (end == std::string_view::npos) end = text.size();
-        const std::string_view line = trimmed(text.substr(at, end - at));
-        at = end + 1;
+    for (const std::string_view line : settings_lines(text)) {
         ++number;
-        if (line.empty() || line.front() == '#') {
-            if (end == text.size()) break;
-            continue;
-        }
+        if (line.empty() || line.front() == '#') continue;
         ConfigEntry entry;
         entry.line = number;
         std::size_t key_end = 0;
@@ -101,7 +86,6 @@ Result<std::vector<ConfigEntry>> parse_config_text(std::string_view text, std::s
             }
         }
         entries.push_back(std::move(entry));
-        if (end == text.size()) break;
     }
     return entries;
 }

@@ -20,25 +20,6 @@ namespace dpscope::cli {
 
 namespace {
 
-std::vector<std::string> split_lines(const std::string& text) {
-    std::vector<std::string> lines;
-    std::size_t at = 0;
-    while (at < text.size()) {
-        std::size_t end = text.find('\n', at);
-        if (end == std::string::npos) end = text.size();
-        lines.push_back(text.substr(at, end - at));
-        at = end + 1;
-    }
-    return lines;
-}
-
-std::string trimmed(std::string_view text) {
-    const std::size_t first = text.find_first_not_of(" \t\r");
-    if (first == std::string_view::npos) return {};
-    const std::size_t last = text.find_last_not_of(" \t\r");
-    return std::string(text.substr(first, last - first + 1));
-}
-
 // The device's name as a topic level: "/dev/ttyUSB0" -> "ttyUSB0" ('+', '#' made '_').
 std::string default_segment(const std::string& device) {
     std::string name =
@@ -148,12 +129,11 @@ Result<MqttCredentials> read_mqtt_credentials(const std::string& file) {
                                                "a file of username= and password= lines");
     if (!text) return Error{text.error()};
     unsigned number = 0;
-    for (const std::string& raw : split_lines(*text)) {
+    for (const std::string_view line : settings_lines(*text)) {
         ++number;
-        const std::string line = trimmed(raw);
         if (line.empty() || line.front() == '#') continue;
         const std::size_t equals = line.find('=');
-        const std::string key =
+        const std::string_view key =
             equals == std::string::npos ? line : trimmed(line.substr(0, equals));
         if (equals == std::string::npos || (key != "username" && key != "password"))
             return Error{
@@ -161,7 +141,7 @@ Result<MqttCredentials> read_mqtt_credentials(const std::string& file) {
                             file, number)};
         // Blanks around the value are trimmed: an editor leaves them unseen.
         (key == "username" ? credentials.username : credentials.password) =
-            trimmed(line.substr(equals + 1));
+            std::string(trimmed(line.substr(equals + 1)));
     }
     if (credentials.username.empty())
         return Error{fmt::format("--mqtt-credentials {}: no username= line", file)};

@@ -49,4 +49,22 @@ Result<std::string> read_small_file(const std::string& path, std::size_t max_byt
     return text;
 }
 
+std::string_view trimmed(std::string_view text) noexcept {
+    const std::size_t first = text.find_first_not_of(" \t\r");
+    if (first == std::string_view::npos) return {};
+    const std::size_t last = text.find_last_not_of(" \t\r");
+    return text.substr(first, last - first + 1);
+}
+
+std::vector<std::string_view> settings_lines(std::string_view text) {
+    std::vector<std::string_view> lines;
+    for (std::size_t at = 0; at < text.size();) {
+        std::size_t end = text.find('\n', at);
+        if (end == std::string_view::npos) end = text.size();
+        lines.push_back(trimmed(text.substr(at, end - at)));
+        at = end + 1;
+    }
+    return lines;
+}
+
 }  // namespace dpscope::cli

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/result.hpp"
 
@@ -15,5 +16,11 @@ namespace dpscope::cli {
 // `what` the file must be ("a parameter database").
 Result<std::string> read_small_file(const std::string& path, std::size_t max_bytes,
                                     std::string_view option, std::string_view what);
+
+// A settings file's lines, each without its line end and trimmed (spaces, tabs and a CR at either
+// end); line N of the file is element N - 1, so messages can number it.
+std::vector<std::string_view> settings_lines(std::string_view text);
+// `text` without spaces, tabs and CRs at either end.
+std::string_view trimmed(std::string_view text) noexcept;
 
 }  // namespace dpscope::cli
