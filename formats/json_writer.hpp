@@ -35,8 +35,6 @@ void string(fmt::memory_buffer& out, std::string_view text);
 // True when no byte of `text` needs an escape (nor a check as UTF-8): it is copied as it is.
 bool plain_text(std::string_view text) noexcept;
 
-inline void integer(fmt::memory_buffer& out, std::int64_t value) { append_signed(out, value); }
-
 }  // namespace json
 
 class JsonWriter {

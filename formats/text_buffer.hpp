@@ -161,14 +161,18 @@ inline void append_right(TextBuffer& out, std::string_view text, std::size_t wid
     append(out, text);
 }
 
-// "0x" and "{:02X}" / "{:04X}": a byte or a word as the text columns show them.
+// "3 bytes", "1 byte": what counted() (core/counted.hpp) says, appended.
+inline void append_counted(TextBuffer& out, std::uint64_t n, std::string_view singular,
+                           std::string_view plural) {
+    append_decimal(out, n);
+    out.push_back(' ');
+    append(out, n == 1 ? singular : plural);
+}
+
+// "0x{:02X}": a byte as the text columns show it.
 inline void append_hex_byte(TextBuffer& out, std::uint8_t value) {
     append(out, "0x");
     append_hex_fixed(out, value, 2);
-}
-inline void append_hex_word(TextBuffer& out, std::uint16_t value) {
-    append(out, "0x");
-    append_hex_fixed(out, value, 4);
 }
 
 // One piece of text for put(): hex(v, 4) is "{:04X}", hex(v, 2, true) "{:02x}".

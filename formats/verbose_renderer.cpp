@@ -20,7 +20,8 @@ class VerboseRenderer final : public TelegramRenderer {
     void render(const DecodedTelegram& t, std::span<const Finding> findings) override {
         TextBuffer& b = out_.buffer();
         auto it = fmt::appender(b);
-        put(b, "Frame ", t.frame, ": ", t.bytes.size(), t.bytes.size() == 1 ? " byte" : " bytes");
+        put(b, "Frame ", t.frame, ": ");
+        append_counted(b, t.bytes.size(), "byte", "bytes");
         if (t.has_time()) {
             append(b, ", ");
             append_iso_time(b, t.time_ns);

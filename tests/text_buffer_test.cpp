@@ -94,7 +94,7 @@ TEST(TextBufferTest, FixedHexIsFmtsHex) {
     }
     TextBuffer byte, word;
     append_hex_byte(byte, 0x7D);
-    append_hex_word(word, 0x047F);
+    put(word, "0x", hex(0x047F, 4));
     EXPECT_EQ(text_of(byte), "0x7D");
     EXPECT_EQ(text_of(word), "0x047F");
 }

@@ -14,8 +14,15 @@
 
 namespace dpscope {
 
+void append_fc_parameter_name(TextBuffer& out, std::uint16_t pnu) {
+    put(out, pnu / 100, '-');
+    append_decimal_padded(out, pnu % 100, 2);
+}
+
 std::string fc_parameter_name(std::uint16_t pnu) {
-    return fmt::format("{}-{:02}", pnu / 100, pnu % 100);
+    TextBuffer text;
+    append_fc_parameter_name(text, pnu);
+    return fmt::to_string(text);
 }
 
 std::string_view fc_ak_meaning(const DecodedTelegram& t) {
@@ -88,8 +95,8 @@ void append_fc_pkw(TextBuffer& out, const DecodedTelegram& t) {
     if (view.named.row) {
         append_parameter_name(out, view.named);
     } else {
-        put(out, " (", fc.pkw.pnu / 100, '-');
-        append_decimal_padded(out, fc.pkw.pnu % 100, 2);
+        append(out, " (");
+        append_fc_parameter_name(out, fc.pkw.pnu);
         out.push_back(')');
     }
     put(out, " IND=", fc.pkw.ind);

@@ -12,6 +12,7 @@ namespace dpscope {
 
 // FC-series parameter x-yy of a PNU: 414 -> "4-14", 1 -> "0-01".
 std::string fc_parameter_name(std::uint16_t pnu);
+void append_fc_parameter_name(TextBuffer& out, std::uint16_t pnu);
 // The AK's meaning: fc_command for a request, fc_response for a response.
 std::string_view fc_ak_meaning(const DecodedTelegram& t);
 bool fc_ak_defined(const DecodedTelegram& t);

@@ -67,9 +67,11 @@ class ProfibusVerboseTree final : public VerboseTree {
             append_frame_control(b, f.fc);
             append(b, ")\n");
         }
-        if (!f.du.empty())
-            put_line(1, "Data unit: ", f.du.size(), f.du.size() == 1 ? " byte" : " bytes",
-                     " from byte ", f.du_offset);
+        if (!f.du.empty()) {
+            line(1, "Data unit: ");
+            append_counted(b, f.du.size(), "byte", "bytes");
+            put(b, " from byte ", f.du_offset, '\n');
+        }
         if (f.has_fcs) put_line(1, "FCS: 0x", hex(f.fcs, 2), f.fcs_ok ? " (correct)" : " (wrong)");
         if (f.type == FrameType::Sd1 || f.type == FrameType::Sd2 || f.type == FrameType::Sd3) {
             if (t.bytes.size() >= f.size && f.size > 0)

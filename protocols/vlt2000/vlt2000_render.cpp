@@ -213,20 +213,21 @@ class Vlt2000VerboseTree final : public VerboseTree {
 
   private:
     // The characters of bytes [at, at + count) as sent, quoted ('"' and '\\' escaped, other bytes
-    // \xNN).
-    std::string chars(const DecodedTelegram& t, std::size_t at, std::size_t count) {
-        TextBuffer text;
-        text.push_back('"');
-        append_fc_text(text, t.bytes.subspan(at, count));
-        text.push_back('"');
-        return std::string(text.data(), text.size());
+    // \xNN), appended to `out`.
+    static void append_chars(TextBuffer& out, const DecodedTelegram& t, std::size_t at,
+                             std::size_t count) {
+        out.push_back('"');
+        append_fc_text(out, t.bytes.subspan(at, count));
+        out.push_back('"');
     }
-
-    // The same, appended to the tree's buffer.
+    // The same as a string, for a field's format; and appended to the tree's buffer.
+    static std::string chars(const DecodedTelegram& t, std::size_t at, std::size_t count) {
+        TextBuffer text;
+        append_chars(text, t, at, count);
+        return fmt::to_string(text);
+    }
     void put_chars(const DecodedTelegram& t, std::size_t at, std::size_t count) {
-        buffer().push_back('"');
-        append_fc_text(buffer(), t.bytes.subspan(at, count));
-        buffer().push_back('"');
+        append_chars(buffer(), t, at, count);
     }
 
     // `label` and a two-digit number ("{:02}").
