@@ -2,7 +2,9 @@
 // parses evaluated on a few telegrams of each bus, with findings and a health event.
 // Invariants: a parse gives a filter or an error "column N: what" with N within the text (+1);
 // evaluation neither crashes nor depends on anything but its input (the same input, the same
-// answer); a filter and its negation never both select one telegram.
+// answer); a filter and its negation never both select one telegram. The negation "!(text)" is
+// three levels deeper than the text, so a text near the 64-level limit may parse while its
+// negation is refused as nested too deep: that is the only refusal allowed.
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -52,7 +54,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     dpscope::Result<dpscope::DisplayFilter> negated =
         dpscope::DisplayFilter::parse("!(" + std::string(text) + ")");
-    check(static_cast<bool>(negated));
+    if (!negated) check(negated.error().find("nested too deep") != std::string::npos);
     dpscope::Finding finding;
     finding.has_stations = true;
     finding.master = 2;
@@ -67,7 +69,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             const dpscope::FilterInput in{t, findings, 516, events};
             const bool selected = parsed->matches(in);
             check(selected == parsed->matches(in));
-            check(!(selected && negated->matches(in)));
+            if (negated) check(!(selected && negated->matches(in)));
         }
     return 0;
 }
