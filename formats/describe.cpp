@@ -221,9 +221,11 @@ void append_pcd_summary(TextBuffer& out, const DecodedTelegram& t) {
         return;
     }
     put(out, pcd_word_name(t.direction, 0), "=0x", hex(*first, 4));
-    if (auto second = reader.u16_be())
-        fmt::format_to(fmt::appender(out), FMT_COMPILE(" {}={:.2f}%"),
-                       pcd_word_name(t.direction, 1), reference_percent(*second));
+    if (auto second = reader.u16_be()) {
+        put(out, ' ', pcd_word_name(t.direction, 1), '=');
+        append_hundredths(out, reference_percent_hundredths(*second));
+        out.push_back('%');
+    }
     if (std::size_t more = reader.remaining() / 2; more > 0) put(out, " +", more, 'w');
 }
 

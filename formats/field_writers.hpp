@@ -40,6 +40,15 @@ inline void optional_text(JsonWriter& w, bool present, std::string_view text) {
         w.null();
 }
 
+// The same for the program's own names (JsonWriter::name(): no escape check; the names are
+// checked in tests/json_writer_test.cpp).
+inline void optional_name(JsonWriter& w, bool present, std::string_view name) {
+    if (present)
+        w.name(name);
+    else
+        w.null();
+}
+
 inline void optional_boolean(JsonWriter& w, bool present, bool value) {
     if (present)
         w.boolean(value);

@@ -121,6 +121,8 @@ class JsonWriter {
     }
     // A number whose text the caller formatted ("0.125000"); written verbatim.
     JsonWriter& number_text(std::string_view text) { return literal(text); }
+    // A value that is JSON text already (an array kept by BitMeaningsJson); copied verbatim.
+    JsonWriter& json_text(std::string_view text) { return literal(text); }
     // A value whose text `write(buffer)` appends itself, verbatim (it must be valid JSON: a
     // number, or a string that needs no escapes, quotes included).
     template <typename Write>

@@ -105,6 +105,20 @@ inline void append_signed(TextBuffer& out, std::int64_t value) {
     append_decimal(out, 0 - static_cast<std::uint64_t>(value));
 }
 
+// "{:.2f}" of hundredths / 100.0 ("-3.12" for -312), without a double: the caller has the value
+// in whole hundredths already rounded (reference_percent_hundredths()).
+inline void append_hundredths(TextBuffer& out, std::int64_t hundredths) {
+    if (hundredths < 0) out.push_back('-');
+    const std::uint64_t magnitude = hundredths < 0 ? 0 - static_cast<std::uint64_t>(hundredths)
+                                                   : static_cast<std::uint64_t>(hundredths);
+    append_decimal(out, magnitude / 100);
+    char* p = append_room(out, 3);
+    const std::size_t cents = static_cast<std::size_t>(magnitude % 100);
+    p[0] = '.';
+    p[1] = text_detail::kDigitPairs[2 * cents];
+    p[2] = text_detail::kDigitPairs[2 * cents + 1];
+}
+
 namespace text_detail {
 
 // The digits of `value` at the right of `width` characters, `fill` in front of them.

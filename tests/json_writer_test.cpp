@@ -6,8 +6,10 @@
 #include <string_view>
 #include <vector>
 
+#include "protocols/fc/fc_telegram.hpp"
 #include "protocols/profibus/pcd.hpp"
 #include "protocols/vlt2000/vlt2000_codes.hpp"
+#include "protocols/vlt2000/vlt2000_describe.hpp"
 #include "tests/json_parser.hpp"
 
 namespace dpscope {
@@ -237,6 +239,17 @@ TEST(JsonWriterTest, TheNamesWrittenWithoutTheEscapeCheckNeedNone) {
             names.push_back(row->when_1);
         }
     names.push_back("group kept (P)");  // vlt2000_bit_meaning's own
+    // The enumerations' names the jsonl lines write with name().
+    for (Direction direction : {Direction::Request, Direction::Response}) {
+        names.push_back(direction_name(direction));
+        names.push_back(vlt2000_word_name(direction));
+    }
+    for (FcBlock block : {FcBlock::Process, FcBlock::Parameter, FcBlock::Text, FcBlock::Unknown})
+        names.push_back(fc_block_name(block));
+    for (FcAddressFormat format : {FcAddressFormat::Short, FcAddressFormat::Long})
+        names.push_back(fc_address_format_name(format));
+    for (int letter = 0; letter <= static_cast<int>(Vlt2000Letter::Unknown); ++letter)
+        names.push_back(vlt2000_letter_name(static_cast<Vlt2000Letter>(letter)));
     for (std::string_view name : names)
         EXPECT_TRUE(json::plain_text(name)) << name;
     fmt::memory_buffer a, b;

@@ -2,10 +2,14 @@
 // and the FC profile, and reference scaling (docs/protocol/process-data.md).
 #include "protocols/profibus/pcd.hpp"
 
+#include <fmt/compile.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
+
+#include "formats/text_buffer.hpp"
 
 namespace dpscope {
 namespace {
@@ -164,6 +168,22 @@ TEST(PcdTest, ReferencePercentExtremes) {
     EXPECT_DOUBLE_EQ(reference_percent(0x7FFF), 32767 * 100.0 / 16384.0);
     EXPECT_DOUBLE_EQ(reference_percent(0xFFFF), -100.0 / 16384.0);
     EXPECT_DOUBLE_EQ(reference_percent(0x0001), 100.0 / 16384.0);
+}
+
+// The renderers write the percentage from whole hundredths (issue 31): for every word, the text
+// is the text "{:.2f}" gives for the double, ties to the even hundredth (0x0200 is 3.125 %:
+// "3.12") and negative values included.
+TEST(PcdTest, ReferencePercentHundredthsWriteAsTwoDecimalsOfTheDouble) {
+    for (std::uint32_t word = 0; word <= 0xFFFF; ++word) {
+        const auto w = static_cast<std::uint16_t>(word);
+        TextBuffer out;
+        append_hundredths(out, reference_percent_hundredths(w));
+        ASSERT_EQ(fmt::to_string(out), fmt::format(FMT_COMPILE("{:.2f}"), reference_percent(w)))
+            << "word 0x" << std::hex << word;
+    }
+    EXPECT_EQ(reference_percent_hundredths(0x0200), 312);
+    EXPECT_EQ(reference_percent_hundredths(0x0600), 938);
+    EXPECT_EQ(reference_percent_hundredths(0xFE00), -312);
 }
 
 TEST(PcdTest, ProfileNames) {

@@ -2,8 +2,6 @@
 // what FcDecoder stored in DecodedTelegram::fc; nothing parses bytes again.
 #include "protocols/fc/fc_describe.hpp"
 
-#include <fmt/compile.h>
-
 #include <algorithm>
 #include <iterator>
 
@@ -136,7 +134,8 @@ void append_fc_detail(TextBuffer& out, const DecodedTelegram& t) {
     if (fc.has_pcd) {
         put(out, " | ", pcd_word_name(t.direction, 0), "=0x", hex(fc.pcd1, 4), ' ',
             pcd_word_name(t.direction, 1), '=');
-        fmt::format_to(fmt::appender(out), FMT_COMPILE("{:.2f}%"), reference_percent(fc.pcd2));
+        append_hundredths(out, reference_percent_hundredths(fc.pcd2));
+        out.push_back('%');
     }
     if (!fc.has_pkw && !fc.has_pcd && t.bytes.size() > 3) {  // cut short, or no known block
         Bytes data = t.bytes.subspan(3);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/bit_meanings_json.hpp"
 #include "formats/describe.hpp"
 #include "formats/field_writers.hpp"
 #include "formats/parameter_names.hpp"
@@ -95,7 +96,7 @@ void fc_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
 void fc_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     const FcTelegram& fc = t.fc;
     const bool request = t.direction == Direction::Request;
-    w.key("direction").string(direction_name(t.direction));
+    w.key("direction").name(direction_name(t.direction));
     w.key("master").optional_integer(t.has_roles, t.master);
     w.key("slave").optional_integer(t.has_roles, t.slave);
     w.key("request_frame")
@@ -107,7 +108,7 @@ void fc_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     w.key("address").optional_integer(t.has_roles, fc.address);
     w.key("address_format");
     if (t.has_roles)
-        w.string(fc_address_format_name(fc.address_format));
+        w.name(fc_address_format_name(fc.address_format));
     else
         w.null();
     w.key("broadcast");
@@ -115,7 +116,7 @@ void fc_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
         w.boolean(fc.broadcast);
     else
         w.null();
-    w.key("block").string(fc_block_name(fc.block));
+    w.key("block").name(fc_block_name(fc.block));
     w.key("complete").boolean(fc.complete);
     const Pcv& pkw = fc.pkw;
     w.key("pke").optional_integer(fc.has_pkw, pkw.pca);
@@ -180,7 +181,7 @@ void fc_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     w.key("pcd1").optional_integer(fc.has_pcd, fc.pcd1);
     w.key("pcd1_word");
     if (fc.has_pcd)
-        w.string(request ? "control" : "status");
+        w.name(request ? "control" : "status");
     else
         w.null();
     // The meaning of each bit 0..15 in the state it has (FC profile; "" where none).
@@ -188,17 +189,19 @@ void fc_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     if (fc.has_pcd) {
         const WordBits& bits = request ? control_word_bits(PcdProfile::Fc, true)
                                        : status_word_bits(PcdProfile::Fc, true);
-        w.begin_array();
-        for (std::size_t bit = 0; bit < 16; ++bit)
-            w.name((fc.pcd1 >> bit) & 1 ? bits[bit].when_1 : bits[bit].when_0);
-        w.end_array();
+        thread_local BitMeaningsJson arrays;
+        w.json_text(arrays.array(&bits, fc.pcd1, [&](unsigned bit) {
+            return (fc.pcd1 >> bit) & 1 ? bits[bit].when_1 : bits[bit].when_0;
+        }));
     } else {
         w.null();
     }
     w.key("pcd2").optional_integer(fc.has_pcd, fc.pcd2);
     w.key("pcd2_percent");
     if (fc.has_pcd)
-        w.number_text(fmt::format(FMT_COMPILE("{:.2f}"), reference_percent(fc.pcd2)));
+        w.raw_value([&](TextBuffer& out) {
+            append_hundredths(out, reference_percent_hundredths(fc.pcd2));
+        });
     else
         w.null();
     w.key("bcc").optional_integer(fc.complete, fc.bcc);

@@ -124,4 +124,14 @@ double reference_percent(std::uint16_t word) noexcept {
     return static_cast<std::int16_t>(word) * 100.0 / 16384.0;
 }
 
+std::int32_t reference_percent_hundredths(std::uint16_t word) noexcept {
+    // word * 100 / 16384 % is word * 10000 / 16384 = word * 625 / 1024 hundredths, exactly.
+    const std::int32_t value = static_cast<std::int16_t>(word);
+    const std::int32_t magnitude = (value < 0 ? -value : value) * 625;
+    std::int32_t hundredths = magnitude / 1024;
+    const std::int32_t rest = magnitude % 1024;
+    if (rest > 512 || (rest == 512 && (hundredths & 1) != 0)) ++hundredths;
+    return value < 0 ? -hundredths : hundredths;
+}
+
 }  // namespace dpscope

@@ -31,5 +31,9 @@ const WordBits& status_word_bits(PcdProfile profile, bool danfoss);
 
 // A 16-bit reference or actual value as a percentage: signed, 0x4000 = 100 %, 0xC000 = -100 %.
 double reference_percent(std::uint16_t word) noexcept;
+// The same percentage in whole hundredths, rounded as "{:.2f}" rounds reference_percent() (to
+// nearest, a tie to the even hundredth): the renderers write it with append_hundredths()
+// instead of formatting a double (tests/pcd_test.cpp compares all 65,536 words).
+std::int32_t reference_percent_hundredths(std::uint16_t word) noexcept;
 
 }  // namespace dpscope

@@ -481,7 +481,7 @@ void profibus_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     }
     w.key("fcs_ok").boolean(f.fcs_ok);
     w.key("service").string(service_name(t.dp.service));
-    w.key("direction").string(direction_name(t.direction));
+    w.key("direction").name(direction_name(t.direction));
     w.key("master").optional_integer(t.has_roles, t.master);
     w.key("slave").optional_integer(t.has_roles, t.slave);
     w.key("request_frame")

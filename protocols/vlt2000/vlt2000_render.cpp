@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/bit_meanings_json.hpp"
 #include "formats/describe.hpp"
 #include "formats/field_writers.hpp"
 #include "formats/parameter_names.hpp"
@@ -115,7 +116,7 @@ void vlt2000_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
 // object (README.md, "VLT 2000 telegrams"); no FDL or DP key.
 void vlt2000_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     const Vlt2000Telegram& v = t.vlt2000;
-    w.key("direction").string(direction_name(t.direction));
+    w.key("direction").name(direction_name(t.direction));
     w.key("master").optional_integer(t.has_roles, t.master);
     w.key("slave").optional_integer(t.has_roles, t.slave);
     w.key("request_frame")
@@ -134,17 +135,19 @@ void vlt2000_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     } else
         w.null();
     w.key("letter_name");
-    optional_text(w, letter, vlt2000_letter_name(v.letter));
+    optional_name(w, letter, vlt2000_letter_name(v.letter));
     w.key("word_name");
-    optional_text(w, v.has_word, vlt2000_word_name(t.direction));
+    optional_name(w, v.has_word, vlt2000_word_name(t.direction));
     w.key("word").optional_integer(v.has_word, v.word);
     // The meaning of each bit 0..15 in the state it has ("group kept (P)" for a kept group).
     w.key("word_bits");
     if (v.has_word) {
-        w.begin_array();
-        for (unsigned bit = 0; bit < 16; ++bit)
-            w.name(vlt2000_bit_meaning(v, t.direction, bit));
-        w.end_array();
+        // Keyed by the word, its kept groups and the direction (control or status bits).
+        thread_local BitMeaningsJson arrays;
+        const std::uint32_t key = v.word | (static_cast<std::uint32_t>(v.word_keep) & 0xFu) << 16 |
+                                  (t.direction == Direction::Request ? 1u : 0u) << 20;
+        w.json_text(arrays.array(
+            &arrays, key, [&](unsigned bit) { return vlt2000_bit_meaning(v, t.direction, bit); }));
     } else {
         w.null();
     }

@@ -277,8 +277,10 @@ void Vlt2000Tracker::command(Vlt2000StationStats& st, const DecodedTelegram& t) 
     const Vlt2000Telegram& v = t.vlt2000;
     // The master moved on: the command it sent before is left unanswered.
     if (pending_.active) {
-        const std::string pending_text =
-            describe(pending_.letter, pending_.letter_char, pending_.parameter);
+        // Written only for a finding (not for every command: issue 31).
+        const auto pending_text = [this] {
+            return describe(pending_.letter, pending_.letter_char, pending_.parameter);
+        };
         const std::optional<std::uint16_t> pnu =
             pending_.letter == Vlt2000Letter::Control
                 ? std::nullopt
@@ -293,7 +295,7 @@ void Vlt2000Tracker::command(Vlt2000StationStats& st, const DecodedTelegram& t) 
             f.pnu = pnu;
             f.message = fmt::format(
                 "new command {} to drive {:02} while the command {} from frame {} was unanswered",
-                describe(v), t.slave, pending_text, pending_.frame);
+                describe(v), t.slave, pending_text(), pending_.frame);
         } else {
             Finding& f = add_finding(current_, FindingKind::Vlt2000NoResponse, t.frame, t.time_ns,
                                      pending_.frame, true, kMaster, pending_.address);
@@ -301,7 +303,7 @@ void Vlt2000Tracker::command(Vlt2000StationStats& st, const DecodedTelegram& t) 
             f.message = fmt::format(
                 "command {} to drive {:02} from frame {} got no reply before the master's next "
                 "telegram",
-                pending_text, pending_.address, pending_.frame);
+                pending_text(), pending_.address, pending_.frame);
             ++station(pending_.address).no_responses;
         }
         close_pending();
@@ -314,12 +316,17 @@ void Vlt2000Tracker::command(Vlt2000StationStats& st, const DecodedTelegram& t) 
     if (v.has_parameter && v.letter != Vlt2000Letter::Control &&
         v.letter != Vlt2000Letter::Unknown) {
         const bool write = v.letter == Vlt2000Letter::Update;
-        auto it = st.parameters.find(v.parameter);
-        if (it == st.parameters.end() &&
-            st.parameters.size() >= Vlt2000StationStats::kMaxParameters)
-            ++st.parameters_not_counted;
-        else
-            ++(write ? st.parameters[v.parameter].writes : st.parameters[v.parameter].reads);
+        // One walk of the map: the row found is the row counted (a new one while there is room).
+        auto it = st.parameters.lower_bound(v.parameter);
+        if (it == st.parameters.end() || it->first != v.parameter) {
+            if (st.parameters.size() >= Vlt2000StationStats::kMaxParameters) {
+                ++st.parameters_not_counted;
+                it = st.parameters.end();
+            } else {
+                it = st.parameters.emplace_hint(it, v.parameter, Vlt2000ParameterAccess{});
+            }
+        }
+        if (it != st.parameters.end()) ++(write ? it->second.writes : it->second.reads);
     }
     if (v.broadcast) return;  // nobody replies to a broadcast
     pending_ = Pending{true, t.slave, t.frame, t.time_ns, v.letter_char, v.letter, v.parameter};
@@ -391,8 +398,10 @@ void Vlt2000Tracker::reply(Vlt2000StationStats& st, const DecodedTelegram& t) {
     const std::optional<std::uint16_t> pnu = command.letter == Vlt2000Letter::Control
                                                  ? std::nullopt
                                                  : std::optional<std::uint16_t>(command.parameter);
-    const std::string command_text =
-        describe(command.letter, command.letter_char, command.parameter);
+    // Written only for a finding (not for every reply: issue 31).
+    const auto command_text = [&command] {
+        return describe(command.letter, command.letter_char, command.parameter);
+    };
     if (v.letter_char != command.letter_char ||
         (command.letter != Vlt2000Letter::Control && v.parameter != command.parameter)) {
         Finding& f = add_finding(current_, FindingKind::Vlt2000MismatchedResponse, t.frame,
@@ -401,7 +410,7 @@ void Vlt2000Tracker::reply(Vlt2000StationStats& st, const DecodedTelegram& t) {
         f.message = fmt::format(
             "reply {}{} answers the command {} from frame {}", describe(v),
             v.letter_char != command.letter_char ? " (another letter)" : " (another parameter)",
-            command_text, command.frame);
+            command_text(), command.frame);
     } else if (v.failed) {
         Finding& f = add_finding(current_, FindingKind::Vlt2000CommandFailed, t.frame, t.time_ns,
                                  command.frame, true, kMaster, t.slave);
@@ -410,12 +419,12 @@ void Vlt2000Tracker::reply(Vlt2000StationStats& st, const DecodedTelegram& t) {
                         ? fmt::format(
                               "drive {:02} could not carry out the command {} from frame {}: "
                               "reason code {:02} ({})",
-                              t.slave, command_text, command.frame, v.reason,
+                              t.slave, command_text(), command.frame, v.reason,
                               error_text_or_unknown(Dialect::Vlt2000, v.reason))
                         : fmt::format(
                               "drive {:02} could not carry out the command {} from frame {} "
                               "(decimal position 9: unknown parameter or command failed)",
-                              t.slave, command_text, command.frame);
+                              t.slave, command_text(), command.frame);
     }
     pending_.active = false;
     engine_.track(sample_of(t, st.commands), current_);
