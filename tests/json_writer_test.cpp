@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "formats/bit_meanings_json.hpp"
 #include "protocols/fc/fc_telegram.hpp"
 #include "protocols/profibus/pcd.hpp"
 #include "protocols/vlt2000/vlt2000_codes.hpp"
@@ -256,6 +257,40 @@ TEST(JsonWriterTest, TheNamesWrittenWithoutTheEscapeCheckNeedNone) {
     JsonWriter(a).name("start");
     JsonWriter(b).string("start");
     EXPECT_EQ(text(a), text(b));
+}
+
+}  // namespace
+}  // namespace dpscope
+
+namespace dpscope {
+namespace {
+
+// BitMeaningsJson keeps 64 arrays: whatever the order of the words (slots shared, evicted and
+// found again), each array is the one the writer writes for that word, and two tables with the
+// same word keep apart.
+TEST(BitMeaningsJsonTest, EachArrayIsTheWritersOwnWhateverTheOrder) {
+    const WordBits& control = control_word_bits(PcdProfile::Fc, true);
+    const WordBits& status = status_word_bits(PcdProfile::Fc, true);
+    BitMeaningsJson arrays;
+    for (int pass = 0; pass < 3; ++pass)
+        for (std::uint32_t i = 0; i < 300; ++i) {
+            const std::uint16_t word = static_cast<std::uint16_t>((i * 40503u) >> (pass * 2));
+            for (const WordBits* bits : {&control, &status}) {
+                const auto meaning = [&](unsigned bit) {
+                    return (word >> bit) & 1u ? (*bits)[bit].when_1 : (*bits)[bit].when_0;
+                };
+                fmt::memory_buffer expected;
+                {
+                    JsonWriter w(expected);
+                    w.begin_array();
+                    for (unsigned bit = 0; bit < 16; ++bit)
+                        w.string(meaning(bit));
+                    w.end_array();
+                }
+                ASSERT_EQ(arrays.array(bits, word, meaning), text(expected))
+                    << "word " << word << " pass " << pass;
+            }
+        }
 }
 
 }  // namespace
