@@ -6,6 +6,9 @@
 
 namespace dpscope::cli {
 
+// dpscope completion bash|zsh (cli/completion_command.cpp): a script made from `app` itself (the
+// subcommands registered when it runs).
+void add_completion_command(CLI::App& app, int& exit_code);
 void add_decode_command(CLI::App& app, int& exit_code);
 void add_filter_command(CLI::App& app, int& exit_code);
 void add_hex_command(CLI::App& app, int& exit_code);

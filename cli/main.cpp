@@ -71,6 +71,7 @@ int main(int argc, char** argv) {
     // A file-size limit (ulimit -f) then fails a write like a full disk instead of killing us.
     std::signal(SIGXFSZ, SIG_IGN);
     int exit_code = kExitOk;
+    add_completion_command(app, exit_code);
     add_decode_command(app, exit_code);
     add_filter_command(app, exit_code);
     add_hex_command(app, exit_code);
@@ -82,14 +83,14 @@ int main(int argc, char** argv) {
     // CLI11 would only say that a subcommand is required.
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
-        for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        std::string names;
+        for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
             known = known || sub->get_name() == argv[1];
+            names += (names.empty() ? "" : ", ") + sub->get_name();
+        }
         if (!known) {
-            print_error(fmt::format(
-                "unknown subcommand '{}'; one of decode, hex, params, report, simulate, sniff, "
-                "stats "
-                "(see --help)",
-                argv[1]));
+            print_error(
+                fmt::format("unknown subcommand '{}'; one of {} (see --help)", argv[1], names));
             return kExitUsage;
         }
     }

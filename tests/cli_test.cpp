@@ -133,10 +133,10 @@ TEST(CliTest, MissingSubcommandIsUsageError) {
     EXPECT_TRUE(r.out.empty());
     CommandResult unknown = run_dpscope({"frob", kPpo1});
     EXPECT_EQ(unknown.exit_code, 2);
-    EXPECT_EQ(
-        unknown.err,
-        "dpscope: error: unknown subcommand 'frob'; one of decode, hex, params, report, simulate, "
-        "sniff, stats (see --help)\n");
+    EXPECT_EQ(unknown.err,
+              "dpscope: error: unknown subcommand 'frob'; one of completion, decode, filter, hex, "
+              "params, "
+              "report, simulate, sniff, stats (see --help)\n");
 }
 
 // ---- decode ----------------------------------------------------------------------------------
