@@ -1010,7 +1010,7 @@ void add_health_options(CLI::App& app, HealthOptionValues& values) {
         ->type_name("FILE");
     app.add_option("--threshold", values.thresholds,
                    "Set one bus-health threshold, NAME=VALUE (repeatable; after --health-config). "
-                   "The thresholds (docs/bus-health.md, README \"Bus health\"): " +
+                   "The thresholds (docs/bus-health.md): " +
                        threshold_list())
         ->type_name("NAME=VALUE")
         ->allow_extra_args(false);

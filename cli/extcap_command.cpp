@@ -274,7 +274,7 @@ int run_extcap(int argc, char** argv) {
         "dpscope as a Wireshark extcap capture interface: Wireshark (or tshark -i) runs dpscope "
         "from its extcap folder with these options to list the serial ports, the link type and "
         "the capture options, and to capture into a fifo as USER0 pcap. Install: a link named "
-        "dpscope to the dpscope program in the extcap folder (README, Wireshark).",
+        "dpscope to the dpscope program in the extcap folder (docs/wireshark.md).",
         "dpscope"};
     app.failure_message([](const CLI::App*, const CLI::Error& e) {
         return fmt::format(

@@ -169,7 +169,7 @@ void add_report_command(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "hex", "text"}))
         ->default_str("auto");
     sub->add_option("-T,--format", command->format,
-                    "Report format: text, json (stable schema, see README), markdown, html (one "
+                    "Report format: text, json (stable schema, docs/formats.md), markdown, html (one "
                     "self-contained page with SVG charts), junit (JUnit XML for CI servers)")
         ->check(CLI::IsMember({"text", "json", "markdown", "html", "junit"}))
         ->default_str("text");

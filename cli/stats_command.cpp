@@ -163,7 +163,7 @@ void add_stats_command(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember({"auto", "pcap", "pcapng", "raw", "hex"}))
         ->default_str("auto");
     sub->add_option("-T,--format", command->format,
-                    "Output format: text, json (stable schema, see README), markdown, html (one "
+                    "Output format: text, json (stable schema, docs/formats.md), markdown, html (one "
                     "self-contained page with an SVG timeline of each station's state and plots "
                     "of cycle time and token rotation), csv (one row per station and master)")
         ->check(CLI::IsMember({"text", "json", "markdown", "html", "csv"}))

@@ -447,6 +447,21 @@ TEST(SniffMqttTest, ABrokerKilledMidCaptureAndRestartedLosesNoEvent) {
     const std::size_t half = session.played.size() / 2;
     test::play(pty, session, true, half);
     ASSERT_TRUE(test::wait_for_records(pcap, half)) << sniffer.err();
+    // Before the subscriber goes: it has every event of the first half. A broker killed after
+    // acknowledging a message but before saving it loses it for a subscriber that is away (the
+    // publisher rightly sends it no more), so the test waits until a stats message counts the
+    // half's telegrams with nothing waiting in the queue: every event before it was acknowledged,
+    // and the broker delivers in order, so the subscriber had them all when it gets that one.
+    ASSERT_TRUE(subscriber.wait_for([half](const std::vector<ReceivedMessage>& messages) {
+        return std::any_of(messages.begin(), messages.end(), [half](const ReceivedMessage& m) {
+            if (m.topic != "dpscope/line3/stats") return false;
+            const std::optional<test::Json> stats = test::parse_json(m.payload);
+            const test::Json* telegrams = stats ? stats->find("telegrams") : nullptr;
+            const test::Json* waiting = stats ? stats->find("mqtt_waiting") : nullptr;
+            return telegrams && waiting && waiting->text == "0" &&
+                   std::strtoull(telegrams->text.c_str(), nullptr, 10) >= half;
+        });
+    })) << sniffer.err();
     subscriber.pause();
     ASSERT_TRUE(broker.log_says("Client dpscope-test-subscriber disconnected")) << broker.log();
     broker.kill();
