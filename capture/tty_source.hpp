@@ -10,8 +10,8 @@
 //
 // Line idle time: telegram characters follow each other without a pause, so when no byte comes
 // for `idle_gap_ns` while a telegram is incomplete, it is cut off (reported as skipped bytes) and
-// framing starts afresh. USB adapters deliver data in bursts (see README), so the gap must be
-// longer than their latency timer.
+// framing starts afresh. USB adapters deliver data in bursts (docs/cli.md, `sniff`), so the gap
+// must be longer than their latency timer.
 #pragma once
 
 #include <cstdint>

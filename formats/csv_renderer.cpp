@@ -1,7 +1,7 @@
 // Comma-separated values, one row a telegram, with a header row. Fields that could hold a comma
 // or a quote are quoted (RFC 4180). Both buses share the header; an FC protocol row fills the
-// columns that apply to it, and so does a VLT 2000 row (README.md). Each protocol's columns are
-// written by its <name>_csv_columns (formats/protocol_rendering.hpp).
+// columns that apply to it, and so does a VLT 2000 row (docs/formats.md). Each protocol's columns
+// are written by its <name>_csv_columns (formats/protocol_rendering.hpp).
 #include <fmt/compile.h>
 
 #include <iterator>

@@ -1,5 +1,5 @@
 // One JSON object a telegram. Every key is present on every line of its bus (null where it does
-// not apply); the schema is documented in README.md per bus and is stable. FC protocol lines
+// not apply); the schema is documented in docs/formats.md per bus and is stable. FC protocol lines
 // carry the common keys and an "fc_protocol" object instead of the FDL/DP keys, VLT 2000 lines the
 // common keys and a "vlt2000" object. Each protocol's keys are written by its
 // <name>_jsonl_keys (formats/protocol_rendering.hpp).

@@ -6,7 +6,7 @@
 //                         type, service, req|rsp, detail (problems and findings follow, the same
 //                         for every protocol)
 //   <name>_verbose        the verbose tree between the frame's bytes and its problems
-//   <name>_jsonl_keys     the jsonl keys between "len" and "problems" (schema per bus: README.md)
+//   <name>_jsonl_keys     the jsonl keys between "len" and "problems" (schema: docs/formats.md)
 //   <name>_csv_columns    the csv columns frame .. detail, each followed by its comma
 // The renderers call them through the dispatchers below, made from the list: a direct call per
 // protocol, which link-time optimisation can inline (through a table of function pointers the

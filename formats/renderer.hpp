@@ -1,5 +1,5 @@
 // Telegram renderers: text (one summary line a telegram, like tshark), verbose (the whole field
-// tree), jsonl (one JSON object a telegram; schema in README.md) and csv.
+// tree), jsonl (one JSON object a telegram; schema in docs/formats.md) and csv.
 #pragma once
 
 #include <memory>

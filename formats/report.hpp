@@ -2,7 +2,7 @@
 // slave's codes fit another dialect), transactions, latency, parameters accessed, rejections and
 // findings by kind; then the findings in capture order (text and Markdown: the first 1000 of each
 // kind; HTML: the first 2000; JSON: all).
-// Formats: text, json (schema in README.md, stable), markdown, html (one self-contained file
+// Formats: text, json (schema in docs/formats.md, stable), markdown, html (one self-contained file
 // with inline SVG) and junit (one test suite per slave, one test case per rule).
 // How the report is built (the model, one writer per format, one section class per channel
 // kind): formats/report_model.hpp.

@@ -1,4 +1,4 @@
-// The JSON report (schema in README.md, stable): one object, the findings all listed.
+// The JSON report (schema in docs/formats.md, stable): one object, the findings all listed.
 #include "formats/json.hpp"
 #include "formats/report_model.hpp"
 #include "protocols/profibus/health/health_render.hpp"
@@ -75,7 +75,7 @@ void write_json(const ReportContext& c, const ReportModel& m, Output& out) {
     w.end_object();
     w.end_object();
     if (c.health) {
-        // The same objects as `dpscope stats -T json` ("stats JSON" in README.md).
+        // The same objects as `dpscope stats -T json` ("stats JSON" in docs/formats.md).
         w.key("bus_health").begin_object();
         health::write_json_members(w, *c.health);
         w.end_object();

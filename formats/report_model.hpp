@@ -78,7 +78,7 @@ class StationSection {
     // Markdown: the station's row in the "Slaves" table, and its "###" block.
     virtual void write_markdown_row(const ReportContext& c, TextBuffer& b) const = 0;
     virtual void write_markdown(const ReportContext& c, TextBuffer& b) const = 0;
-    // JSON: the station's object in "stations" (schema in README.md).
+    // JSON: the station's object in "stations" (schema in docs/formats.md).
     virtual void write_json(const ReportContext& c, JsonWriter& w) const = 0;
     // HTML: the station's row in the summary table, and its <section>.
     virtual void write_html_row(const ReportContext& c, TextBuffer& b) const = 0;

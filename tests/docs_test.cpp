@@ -1,6 +1,7 @@
-// The README's reference tables list what the catalogues hold: every finding kind, every bus-health
-// threshold with its default. A new kind or threshold without its README row fails here. And every
-// relative link in the Markdown pages resolves.
+// The reference pages list what the catalogues hold: docs/findings.md every finding kind,
+// docs/bus-health.md every bus-health threshold with its default. A new kind or threshold without
+// its row fails here. The README stays a front door (issue 32): at most 250 lines, its Quick start
+// the two commands it has always had. And every relative link in the Markdown pages resolves.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -18,15 +19,16 @@
 namespace dpscope {
 namespace {
 
-std::string readme() {
-    std::ifstream in(test::source_dir() + "/README.md");
+// The text of a Markdown page, by its path in the source tree ("docs/findings.md").
+std::string page(const std::string& path) {
+    std::ifstream in(test::source_dir() + "/" + path);
     std::stringstream text;
     text << in.rdbuf();
     return text.str();
 }
 
-TEST(DocsTest, ReadmeListsEveryFindingKind) {
-    const std::string text = readme();
+TEST(DocsTest, FindingsPageListsEveryFindingKind) {
+    const std::string text = page("docs/findings.md");
     ASSERT_FALSE(text.empty());
     for (std::size_t i = 0; i < kFindingKindCount; ++i) {
         const std::string_view name = finding_kind_name(static_cast<FindingKind>(i));
@@ -34,8 +36,8 @@ TEST(DocsTest, ReadmeListsEveryFindingKind) {
     }
 }
 
-TEST(DocsTest, ReadmeListsEveryHealthThresholdWithItsDefault) {
-    const std::string text = readme();
+TEST(DocsTest, BusHealthPageListsEveryHealthThresholdWithItsDefault) {
+    const std::string text = page("docs/bus-health.md");
     ASSERT_FALSE(text.empty());
     for (const HealthThresholdRow& row : health_threshold_catalogue()) {
         const std::string unit = row.unit.empty() ? "" : fmt::format(" {}", row.unit);
@@ -43,6 +45,38 @@ TEST(DocsTest, ReadmeListsEveryHealthThresholdWithItsDefault) {
             fmt::format("| `{}` | {:g}{} |", row.name, row.default_value, unit);
         EXPECT_NE(text.find(cell), std::string::npos) << cell;
     }
+}
+
+// The README is the front door, the reference one link away (issue 32): at most 250 lines, and
+// its "## Quick start" holds one fenced block of exactly the two commands it has always had (CI,
+// .ci/run, runs the second).
+TEST(DocsTest, ReadmeIsAFrontDoorWithItsTwoQuickStartCommands) {
+    std::istringstream in(page("README.md"));
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(in, line);)
+        lines.push_back(line);
+    ASSERT_FALSE(lines.empty());
+    EXPECT_LE(lines.size(), 250u) << "README.md has " << lines.size() << " lines";
+
+    std::size_t section = 0;
+    while (section < lines.size() && lines[section] != "## Quick start")
+        ++section;
+    ASSERT_LT(section, lines.size()) << "README.md has no \"## Quick start\"";
+    std::vector<std::size_t> fences;
+    std::vector<std::string> commands;
+    for (std::size_t i = section + 1; i < lines.size() && lines[i].rfind("## ", 0) != 0; ++i) {
+        if (lines[i].rfind("```", 0) == 0)
+            fences.push_back(i);
+        else if (fences.size() % 2 == 1)
+            commands.push_back(lines[i]);
+    }
+    ASSERT_EQ(fences.size(), 2u) << "the Quick start must hold exactly one fenced block";
+    EXPECT_EQ(lines[fences[0]], "```sh");
+    EXPECT_EQ(commands, (std::vector<std::string>{
+                            "scripts/install-deps && cmake --workflow --preset release && "
+                            "build/release/dpscope decode samples/faults.pcap",
+                            "scripts/install-deps && scripts/run-tests",
+                        }));
 }
 
 // Every relative link in README.md, CONTRIBUTING.md and docs/ names a file or folder that is

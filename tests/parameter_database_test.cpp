@@ -491,7 +491,7 @@ TEST(ParameterDatabaseTest, EveryShippedDatabaseParses) {
 // (tests/golden_cases.cmake; every other slave is vlt, the default), and the family of the
 // slaves of samples/dpv1.pcap that access parameters through DP-V1 in the Danfoss dialect: FC
 // series drives (the simulator's DP-V1 parameter table is the FC series', four-digit PNUs such as
-// 1530; README "simulate"), which `--drive 3=fc --drive 5=fc` names.
+// 1530; docs/cli.md, "simulate"), which `--drive 3=fc --drive 5=fc` names.
 void configure(const std::string& sample, DecoderOptions& options, DriveHints& drives) {
     if (sample == "ge.pcap") options.dialect = Dialect::Ge;
     if (sample == "profidrive.pcap") options.dialect = Dialect::Profidrive;

@@ -1,8 +1,8 @@
 // The Wireshark dissector's registration table, private to the plugin: every field's id, the
 // subtrees and the expert infos. The files that build the tree (dissector.cpp, profibus_tree.cpp,
 // fc_tree.cpp, vlt2000_tree.cpp) add their items with these ids; register_fields()
-// (dissector_fields.cpp) registers them all. The field names are listed in the README
-// ("Wireshark", "Fields"), checked against the registered fields by
+// (dissector_fields.cpp) registers them all. The field names are listed in docs/wireshark.md
+// ("Fields"), checked against the registered fields by
 // tests/wireshark/field_table_test.sh.
 #pragma once
 

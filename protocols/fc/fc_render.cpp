@@ -1,7 +1,8 @@
 // An FC protocol telegram in the telegram formats (formats/protocol_rendering.hpp): the text
 // line's columns (the master "M", the drive's address or "all", frame type "FC", the block as the
-// service), the csv columns that apply to it, the jsonl "fc_protocol" object (README.md), and the
-// verbose tree field by field (STX, LGE, ADR, PKE, IND, PWE or text, PCD 1 bits, PCD 2, BCC).
+// service), the csv columns that apply to it, the jsonl "fc_protocol" object (docs/formats.md),
+// and the verbose tree field by field (STX, LGE, ADR, PKE, IND, PWE or text, PCD 1 bits, PCD 2,
+// BCC).
 #include <fmt/compile.h>
 
 #include <algorithm>
@@ -49,7 +50,7 @@ void fc_text_columns(TextBuffer& b, const DecodedTelegram& t) {
 
 // ---- csv
 
-// The same columns for an FC protocol telegram (README.md): sd, da, sa, dsap, ssap, fc,
+// The same columns for an FC protocol telegram (docs/formats.md): sd, da, sa, dsap, ssap, fc,
 // ppo and spm stay empty; service is the block; slave the drive (0: broadcast); fcs_ok the
 // BCC; rc the AK, ind the index, pva PWE (per the AK's width), meaning the AK's name, error
 // and error_text the AK 7 fault code and its text; pcd PCD 1 and PCD 2.
@@ -92,7 +93,7 @@ void fc_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
 // ---- jsonl
 
 // The FC protocol keys between "len" and "problems": the common header keys and the
-// "fc_protocol" object (README.md, "FC protocol lines"); no FDL or DP key.
+// "fc_protocol" object (docs/formats.md, "FC protocol lines"); no FDL or DP key.
 void fc_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     const FcTelegram& fc = t.fc;
     const bool request = t.direction == Direction::Request;

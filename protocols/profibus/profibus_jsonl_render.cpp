@@ -1,5 +1,5 @@
 // The jsonl keys of a PROFIBUS DP telegram between "len" and "problems": the FDL and DP keys, the
-// PCV and PCD, the service's own objects, DP-V1 and PROFIdrive (README.md, the jsonl schema).
+// PCV and PCD, the service's own objects, DP-V1 and PROFIdrive (docs/formats.md, the jsonl schema).
 #include <algorithm>
 #include <iterator>
 #include <vector>

@@ -1,8 +1,8 @@
 // A VLT 2000 telegram in the telegram formats (formats/protocol_rendering.hpp): the text line's
 // columns (the master "M", the drive's two-digit address or "all", frame type "VLT", the control
 // letter with its name as the service), the csv columns that apply to it, the jsonl "vlt2000"
-// object (README.md), and the verbose tree field by field with the byte numbers of each as the
-// manual counts them, from 1 ([5-8] the control or status word, all 16 bits).
+// object (docs/formats.md), and the verbose tree field by field with the byte numbers of each as
+// the manual counts them, from 1 ([5-8] the control or status word, all 16 bits).
 #include <fmt/compile.h>
 
 #include <algorithm>
@@ -72,7 +72,7 @@ void vlt2000_text_columns(TextBuffer& b, const DecodedTelegram& t) {
 
 // ---- csv
 
-// The same columns for a VLT 2000 telegram (README.md): sd, da, sa, dsap, ssap, fc, ppo, rc
+// The same columns for a VLT 2000 telegram (docs/formats.md): sd, da, sa, dsap, ssap, fc, ppo, rc
 // and spm stay empty; service is the control letter with its name ("U update"); slave the
 // drive's address (0: broadcast); fcs_ok whether the checksum is right or "??" (not checked);
 // pnu the parameter (not for C), ind the index of an I telegram, pva the value with its
@@ -113,7 +113,7 @@ void vlt2000_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
 // ---- jsonl
 
 // The VLT 2000 keys between "len" and "problems": the common header keys and the "vlt2000"
-// object (README.md, "VLT 2000 telegrams"); no FDL or DP key.
+// object (docs/formats.md, "VLT 2000 telegrams"); no FDL or DP key.
 void vlt2000_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     const Vlt2000Telegram& v = t.vlt2000;
     w.key("direction").name(direction_name(t.direction));

@@ -1,18 +1,26 @@
 #!/usr/bin/env bash
-# The README's Wireshark field table against the fields the plugin registers (`tshark -G fields`):
-#   field_table_test.sh PLUGIN README
-# Every registered dpscope.* field must have a row with its type (tshark's type without FT_), and
+# The field table of docs/wireshark.md against the fields the plugin registers (`tshark -G fields`):
+#   field_table_test.sh PLUGIN WIRESHARK_PAGE FINDINGS_PAGE FORMATS_PAGE
+# (docs/wireshark.md, docs/findings.md, docs/formats.md). Every registered dpscope.* field must
+# have a row with its type (tshark's type without FT_) in WIRESHARK_PAGE's "## Fields" table, and
 # every row must name a registered field. A row may name a run of numbered fields:
 # `dpscope.pcd.ctw.bit0` to `dpscope.pcd.ctw.bit15`. The expert infos (FT_NONE) must be
 # dpscope.problem.KIND or dpscope.finding.KIND (one name whatever the severity), KIND a problem
-# kind the README names or a kind of its Findings table, and every finding kind must have one.
+# kind FORMATS_PAGE names (its "Problem kinds:" lists) or a kind of FINDINGS_PAGE's table, and
+# every finding kind must have one.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-[ $# -eq 2 ] || {
-    echo "usage: field_table_test.sh PLUGIN README" >&2
+[ $# -eq 4 ] || {
+    echo "usage: field_table_test.sh PLUGIN WIRESHARK_PAGE FINDINGS_PAGE FORMATS_PAGE" >&2
     exit 2
 }
-plugin=$1 readme=$2
+plugin=$1 wireshark_page=$2 findings_page=$3 formats_page=$4
+for page in "$wireshark_page" "$findings_page" "$formats_page"; do
+    [ -r "$page" ] || {
+        echo "$page: cannot be read" >&2
+        exit 1
+    }
+done
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -29,12 +37,12 @@ if [ "$(wc -l <"$work/registered")" -lt 10 ]; then
     exit 1
 fi
 
-# The rows of the table headed "| field | type | meaning |" in the README's "## Wireshark" section:
+# The rows of the table headed "| field | type | meaning |" in the page's "## Fields" section:
 # | `name` | TYPE | meaning |.
-awk '/^## / { inside = ($0 == "## Wireshark") }
+awk '/^#+ / { inside = ($0 == "## Fields") }
      inside && $0 == "| field | type | meaning |" { table = 1; next }
      table && !/^\|/ { table = 0 }
-     table && !/^\|---/' "$readme" |
+     table && !/^\|---/' "$wireshark_page" |
     while IFS='|' read -r _ name type _; do
         type=$(echo "$type" | tr -d ' ')
         if [[ "$name" =~ ^\ *\`([a-z0-9_.]+[a-z_.])([0-9]+)\`\ to\ \`([a-z0-9_.]+[a-z_.])([0-9]+)\`\ *$ ]] &&
@@ -50,27 +58,32 @@ awk '/^## / { inside = ($0 == "## Wireshark") }
     done | sort >"$work/documented"
 status=0
 if ! diff "$work/registered" "$work/documented" >"$work/difference"; then
-    echo "$readme's Wireshark field table (>) differs from the plugin's fields (<):" >&2
+    echo "$wireshark_page's field table (>) differs from the plugin's fields (<):" >&2
     cat "$work/difference" >&2
     status=1
 fi
 
-# Expert infos: kinds from the README.
-grep -oE '^\| `[a-z0-9_]+` \| (note|warning|error)' "$readme" | sed -E 's/^\| `([a-z0-9_]+)`.*/\1/' |
+# Expert infos: finding kinds from the Findings table, problem kinds from the formats page.
+grep -oE '^\| `[a-z0-9_]+` \| (note|warning|error)' "$findings_page" | sed -E 's/^\| `([a-z0-9_]+)`.*/\1/' |
     sort -u >"$work/finding_kinds"
-awk '/^(FC |VLT 2000 )?[Pp]roblem kinds:/ { on = 1 } on { print } on && /\.$/ { on = 0 }' "$readme" |
+awk '/^(FC |VLT 2000 )?[Pp]roblem kinds:/ { on = 1 } on { print } on && /\.$/ { on = 0 }' \
+    "$formats_page" |
     grep -oE '`[a-z0-9_]+`' | tr -d '`' | sort -u >"$work/problem_kinds"
-if [ "$(wc -l <"$work/finding_kinds")" -lt 10 ] || [ "$(wc -l <"$work/problem_kinds")" -lt 10 ]; then
-    echo "$readme: the Findings table or the problem kinds were not found" >&2
+if [ "$(wc -l <"$work/finding_kinds")" -lt 10 ]; then
+    echo "$findings_page: the Findings table was not found" >&2
+    exit 1
+fi
+if [ "$(wc -l <"$work/problem_kinds")" -lt 10 ]; then
+    echo "$formats_page: the problem kinds were not found" >&2
     exit 1
 fi
 while read -r expert; do
     if [[ "$expert" =~ ^dpscope\.problem\.([a-z0-9_]+)$ ]]; then
         grep -qx "${BASH_REMATCH[1]}" "$work/problem_kinds" ||
-            { echo "expert info $expert: the README names no such problem kind" >&2; status=1; }
+            { echo "expert info $expert: $formats_page names no such problem kind" >&2; status=1; }
     elif [[ "$expert" =~ ^dpscope\.finding\.([a-z0-9_]+)$ ]]; then
         grep -qx "${BASH_REMATCH[1]}" "$work/finding_kinds" ||
-            { echo "expert info $expert: the README's Findings table has no such kind" >&2; status=1; }
+            { echo "expert info $expert: $findings_page's table has no such kind" >&2; status=1; }
     else
         echo "expert info $expert: neither dpscope.problem.KIND nor dpscope.finding.KIND" >&2
         status=1
@@ -81,5 +94,6 @@ while read -r kind; do
         { echo "finding kind $kind has no expert info dpscope.finding.$kind" >&2; status=1; }
 done <"$work/finding_kinds"
 [ "$status" -ne 0 ] ||
-    echo "$(wc -l <"$work/registered") fields and $(wc -l <"$work/experts") expert infos match $readme"
+    echo "$(wc -l <"$work/registered") fields and $(wc -l <"$work/experts") expert infos match" \
+        "$wireshark_page, $findings_page and $formats_page"
 exit "$status"

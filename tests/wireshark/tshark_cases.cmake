@@ -132,11 +132,13 @@ set_tests_properties(wireshark.detects_filter_mismatch PROPERTIES
 set_tests_properties(wireshark.detects_vacuous_filter wireshark.detects_filter_mismatch
                      PROPERTIES LABELS wireshark TIMEOUT 300)
 
-# The README's field table against the fields the plugin registers.
+# The field table of docs/wireshark.md against the fields the plugin registers, and the expert
+# infos against the finding kinds of docs/findings.md and the problem kinds of docs/formats.md.
 add_test(NAME wireshark.field_table
          COMMAND ${CMAKE_COMMAND} -E env ${tshark_environment} bash
                  ${CMAKE_CURRENT_SOURCE_DIR}/wireshark/field_table_test.sh
-                 $<TARGET_FILE:dpscope_wireshark> ${PROJECT_SOURCE_DIR}/README.md)
+                 $<TARGET_FILE:dpscope_wireshark> ${PROJECT_SOURCE_DIR}/docs/wireshark.md
+                 ${PROJECT_SOURCE_DIR}/docs/findings.md ${PROJECT_SOURCE_DIR}/docs/formats.md)
 set_tests_properties(wireshark.field_table PROPERTIES LABELS wireshark TIMEOUT 120)
 
 add_custom_target(update-golden-wireshark ${tshark_update_commands}

@@ -1,4 +1,4 @@
-// The bus-health JSON ("stats JSON" in README.md): the members write_json_members() writes.
+// The bus-health JSON ("stats JSON" in docs/formats.md): the members write_json_members() writes.
 #include <cmath>
 
 #include "formats/json.hpp"

@@ -35,7 +35,7 @@ bool in_slave_table(const StationHealth& s);
 // The thresholds whose value differs from the default.
 bool differs_from_default(const HealthThresholds& thresholds, HealthThreshold kind);
 
-// ---- JSON ("stats JSON" in README.md) -----------------------------------------------------------
+// ---- JSON ("stats JSON" in docs/formats.md) -----------------------------------------------------
 
 // The members "segment", "stations", "masters" and "thresholds" of the object the writer is in:
 // the whole of `dpscope stats -T json` after "dpscope" and "input", and the report's

@@ -1,7 +1,7 @@
 // The thresholds of the bus-health verdict: one catalogue row per threshold (name, default,
-// range, unit, what it judges), so that the settings file, the command line, --help, the README
-// and docs/bus-health.md all read the same table. A verdict is good, weak or bad; the station's
-// and the segment's verdict is the worst any threshold gives.
+// range, unit, what it judges), so that the settings file, the command line, --help and the
+// table in docs/bus-health.md all read the same table. A verdict is good, weak or bad; the
+// station's and the segment's verdict is the worst any threshold gives.
 //
 // Settings file (`--health-config FILE`): lines `name = value`, `#` or `;` starting a comment,
 // an optional `[thresholds]` section header; both a TOML and an INI reader take it.
@@ -62,8 +62,8 @@ struct HealthThresholdRow {
     std::string_view unit;          // "%", "ms", "" (a count)
     Verdict verdict;                // what crossing it gives (Good for settings)
     ThresholdComparison comparison;
-    std::string_view description;  // one sentence for --help, README and docs
-    std::string_view reasoning;    // why the default (README)
+    std::string_view description;  // one sentence for --help and docs
+    std::string_view reasoning;    // why the default (docs/bus-health.md)
 };
 
 // The catalogue, in enum order.

@@ -27,8 +27,8 @@ void toybus_text_columns(TextBuffer& b, const DecodedTelegram& t) {
     append_toybus_detail(b, t);
 }
 
-// The shared csv columns (README.md): service is the kind ("? read"), pnu the parameter, pva the
-// value, error the error number; the FDL, PPO, checksum and PCD columns stay empty.
+// The shared csv columns (docs/formats.md): service is the kind ("? read"), pnu the parameter,
+// pva the value, error the error number; the FDL, PPO, checksum and PCD columns stay empty.
 void toybus_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
     auto it = std::back_inserter(b);
     const ToybusTelegram& v = t.toybus;

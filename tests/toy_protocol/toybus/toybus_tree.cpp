@@ -1,7 +1,7 @@
 // The toybus telegram in the dissector: its subtree (kind, drive, parameter, value or error, line
 // end) and its record in the table of protocol trees. The items are text items under an existing
 // subtree id: the toy registers no dpscope.toybus.* fields, which would be rows in the shared
-// DPSCOPE_FIELDS table (wireshark/dissector_fields.hpp) and the README's field table.
+// DPSCOPE_FIELDS table (wireshark/dissector_fields.hpp) and the field table of docs/wireshark.md.
 #include <fmt/format.h>
 
 #include <string>
