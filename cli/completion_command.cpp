@@ -181,12 +181,25 @@ std::string bash_script(const std::vector<CompletedCommand>& commands) {
 }
 
 // zsh runs the bash script through its bash-completion layer (bashcompinit): the same words.
+// zsh loads the file as the body of the function _dpscope on the first Tab, so the bash function
+// gets another name, the body registers it for later Tabs, and completes this first one itself.
 std::string zsh_script(const std::vector<CompletedCommand>& commands) {
+    std::string bash = bash_script(commands);
+    const auto rename = [&bash](std::string_view from, std::string_view to) {
+        for (std::size_t at = bash.find(from); at != std::string::npos;
+             at = bash.find(from, at + to.size()))
+            bash.replace(at, from.size(), to);
+    };
+    rename("_dpscope() {", "_dpscope_bash() {");
+    rename("complete -F _dpscope dpscope", "complete -F _dpscope_bash dpscope");
     return "#compdef dpscope\n"
            "# zsh completion for dpscope, written by `dpscope completion zsh`: the bash script of\n"
            "# `dpscope completion bash` through zsh's bashcompinit.\n"
            "autoload -U +X bashcompinit && bashcompinit\n" +
-           bash_script(commands);
+           bash +
+           "# Loaded by the first Tab: complete it now (later ones go to _dpscope_bash directly).\n"
+           "(( $+functions[_bash_complete] )) && [[ -n ${words-} ]] && "
+           "_bash_complete -F _dpscope_bash\n";
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 # bashcompinit. Usage: completion_test.sh DPSCOPE
 set -uo pipefail
 dpscope=${1:?usage: completion_test.sh DPSCOPE}
+here=$(cd "$(dirname "$0")" && pwd)
 status=0
 script=$("$dpscope" completion bash) || { echo "dpscope completion bash failed" >&2; exit 1; }
 bash -n <<<"$script" || { echo "the bash script is not valid bash" >&2; exit 1; }
@@ -64,7 +65,21 @@ rm -f capture-one.pcap
 
 zsh_script=$("$dpscope" completion zsh) || { echo "dpscope completion zsh failed" >&2; exit 1; }
 [[ $zsh_script == "#compdef dpscope"* ]] || { echo "the zsh script does not start with #compdef" >&2; status=1; }
-[[ $zsh_script == *"$script"* ]] || { echo "the zsh script does not hold the bash one" >&2; status=1; }
+# The same words: the bash script's cases, under the function name _dpscope_bash.
+cases=${script#*"    case \$sub in"}
+cases=${cases%%"complete -F"*}
+[[ $zsh_script == *"_dpscope_bash() {"*"$cases"* ]] ||
+    { echo "the zsh script does not hold the bash one's cases" >&2; status=1; }
+# zsh itself, where it is installed: Tab in an interactive zsh (zsh_completion_test.zsh).
+if command -v zsh >/dev/null; then
+    folder=$(mktemp -d)
+    printf '%s\n' "$zsh_script" >"$folder/_dpscope"
+    timeout 120 zsh -f "$here/zsh_completion_test.zsh" "$dpscope" "$folder" ||
+        { echo "zsh does not complete 'dpscope de<TAB>' and 'dpscope decode -T j<TAB>'" >&2; status=1; }
+    rm -rf "$folder"
+else
+    echo "completion: zsh is not installed, its Tab not tried"
+fi
 "$dpscope" completion fish >/dev/null 2>&1
 [[ $? == 2 ]] || { echo "dpscope completion fish: expected exit code 2" >&2; status=1; }
 ((status == 0)) && echo "completion: ok"
