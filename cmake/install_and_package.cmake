@@ -6,10 +6,18 @@
 #   - the man pages, dpscope(1) and dpscope-SUB(1), by help2man from --help
 #     (cmake/write_man_pages.cmake; skipped with a warning when help2man is missing);
 #   - the bash and zsh completion scripts, by `dpscope completion bash|zsh`.
+# Not in the sanitizer and coverage trees, which install nothing (their tests still run
+# `dpscope completion` under the sanitizers).
+set(dpscope_build_extras ON)
+if(DPSCOPE_SANITIZE OR DPSCOPE_COVERAGE)
+    set(dpscope_build_extras OFF)
+endif()
 
 find_program(HELP2MAN_EXECUTABLE help2man)
 set(dpscope_man_dir ${CMAKE_CURRENT_BINARY_DIR}/man)
-if(HELP2MAN_EXECUTABLE)
+set(DPSCOPE_MAN_PAGES OFF)
+if(HELP2MAN_EXECUTABLE AND dpscope_build_extras)
+    set(DPSCOPE_MAN_PAGES ON)
     add_custom_command(
         OUTPUT ${dpscope_man_dir}/dpscope.1.gz
         COMMAND ${CMAKE_COMMAND} -DDPSCOPE=$<TARGET_FILE:dpscope> -DHELP2MAN=${HELP2MAN_EXECUTABLE}
@@ -20,25 +28,27 @@ if(HELP2MAN_EXECUTABLE)
     add_custom_target(dpscope_man_pages ALL DEPENDS ${dpscope_man_dir}/dpscope.1.gz)
     install(DIRECTORY ${dpscope_man_dir}/ DESTINATION ${CMAKE_INSTALL_MANDIR}/man1
             FILES_MATCHING PATTERN "*.1.gz")
-else()
+elseif(dpscope_build_extras)
     message(WARNING "help2man not found: no man pages (scripts/install-deps installs it)")
 endif()
 
-set(dpscope_completion_dir ${CMAKE_CURRENT_BINARY_DIR}/completion)
-add_custom_command(
-    OUTPUT ${dpscope_completion_dir}/dpscope ${dpscope_completion_dir}/_dpscope
-    COMMAND ${CMAKE_COMMAND} -E make_directory ${dpscope_completion_dir}
-    COMMAND dpscope completion bash > ${dpscope_completion_dir}/dpscope
-    COMMAND dpscope completion zsh > ${dpscope_completion_dir}/_dpscope
-    DEPENDS dpscope
-    COMMENT "The bash and zsh completion, from dpscope's options (dpscope completion)")
-add_custom_target(dpscope_completion ALL
-                  DEPENDS ${dpscope_completion_dir}/dpscope ${dpscope_completion_dir}/_dpscope)
-# Where Debian's bash-completion and zsh look for a package's scripts.
-install(FILES ${dpscope_completion_dir}/dpscope
-        DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions)
-install(FILES ${dpscope_completion_dir}/_dpscope
-        DESTINATION ${CMAKE_INSTALL_DATADIR}/zsh/vendor-completions)
+if(dpscope_build_extras)
+    set(dpscope_completion_dir ${CMAKE_CURRENT_BINARY_DIR}/completion)
+    add_custom_command(
+        OUTPUT ${dpscope_completion_dir}/dpscope ${dpscope_completion_dir}/_dpscope
+        COMMAND ${CMAKE_COMMAND} -E make_directory ${dpscope_completion_dir}
+        COMMAND dpscope completion bash > ${dpscope_completion_dir}/dpscope
+        COMMAND dpscope completion zsh > ${dpscope_completion_dir}/_dpscope
+        DEPENDS dpscope
+        COMMENT "The bash and zsh completion, from dpscope's options (dpscope completion)")
+    add_custom_target(dpscope_completion ALL
+                      DEPENDS ${dpscope_completion_dir}/dpscope ${dpscope_completion_dir}/_dpscope)
+    # Where Debian's bash-completion and zsh look for a package's scripts.
+    install(FILES ${dpscope_completion_dir}/dpscope
+            DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions)
+    install(FILES ${dpscope_completion_dir}/_dpscope
+            DESTINATION ${CMAKE_INSTALL_DATADIR}/zsh/vendor-completions)
+endif()
 
 # The sample captures (without the golden tests' expected outputs) and the documentation.
 install(DIRECTORY samples/ DESTINATION ${CMAKE_INSTALL_DATADIR}/dpscope/samples
