@@ -9,7 +9,9 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <string>
 #include <string_view>
@@ -221,7 +223,8 @@ void add_completion_command(CLI::App& app, int& exit_code) {
         const std::string script = *shell == "zsh" ? zsh_script(commands) : bash_script(commands);
         if (std::fwrite(script.data(), 1, script.size(), stdout) != script.size() ||
             std::fflush(stdout) != 0) {
-            print_error("cannot write the completion script to standard output");
+            print_error(fmt::format("cannot write the completion script to standard output: {}",
+                                    std::strerror(errno)));
             exit_code = kExitOutputError;
             return;
         }

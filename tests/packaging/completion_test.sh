@@ -82,5 +82,12 @@ else
 fi
 "$dpscope" completion fish >/dev/null 2>&1
 [[ $? == 2 ]] || { echo "dpscope completion fish: expected exit code 2" >&2; status=1; }
+# A full disk is said, with exit code 4 (output could not be written).
+if [[ -w /dev/full ]]; then
+    err=$("$dpscope" completion bash 2>&1 >/dev/full)
+    code=$?
+    [[ $code == 4 && $err == *"No space left on device"* ]] ||
+        { echo "completion to /dev/full: exit $code, '$err'" >&2; status=1; }
+fi
 ((status == 0)) && echo "completion: ok"
 exit $status
