@@ -24,7 +24,10 @@ expect() {
     shift
     complete_line "$line"
     for word in "$@"; do
-        if ! printf '%s\n' "${COMPREPLY[@]}" | grep -qx -- "$word"; then
+        # A loop, not printf | grep -q: under pipefail, grep leaving early fails the pipe.
+        local offered=false reply
+        for reply in "${COMPREPLY[@]}"; do [[ $reply == "$word" ]] && offered=true; done
+        if ! $offered; then
             echo "'$line<TAB>' does not offer '$word' (offered: ${COMPREPLY[*]})" >&2
             status=1
         fi

@@ -6,7 +6,7 @@
 zmodload zsh/zpty || exit 1
 dpscope=$1 folder=$2
 zpty -b z "PS1='> ' zsh -f -i"
-zpty -w z "PATH=${dpscope:h}:\$PATH; fpath=($folder \$fpath); autoload -U compinit; compinit -u; echo READY"
+zpty -w z "PATH=${dpscope:h}:\$PATH; fpath=($folder \$fpath); autoload -U compinit; compinit -u; echo RE''ADY"
 zpty -r -m z out '*READY*' || exit 1
 zpty -w -n z $'dpscope de\t'
 zpty -r -m z out '*dpscope decode*' || exit 1
