@@ -44,8 +44,11 @@ std::string describe(Vlt2000Letter letter, std::uint8_t letter_char, std::uint16
                        vlt2000_letter_name(letter), parameter);
 }
 
-std::string describe(const Vlt2000Telegram& v) {
-    return describe(v.letter, v.letter_char, v.parameter);
+// A telegram's or a pending command's letter and parameter, as findings name them. Written only
+// for a finding, never for every telegram (issue 31).
+template <typename Command>
+std::string describe(const Command& c) {
+    return describe(c.letter, c.letter_char, c.parameter);
 }
 
 // The letter's row in commands_by_letter (U, R, C, I).
@@ -177,8 +180,8 @@ void Vlt2000Tracker::check_deadline(std::int64_t now_ns, std::uint64_t frame) {
                              pending_.frame, true, kMaster, pending_.address);
     if (pending_.letter != Vlt2000Letter::Control) f.pnu = pending_.parameter;
     f.message = fmt::format("command {} to drive {:02} from frame {} got no reply within {} ms",
-                            describe(pending_.letter, pending_.letter_char, pending_.parameter),
-                            pending_.address, pending_.frame, options_.timeout_ns / 1'000'000);
+                            describe(pending_), pending_.address, pending_.frame,
+                            options_.timeout_ns / 1'000'000);
     ++station(pending_.address).no_responses;
     close_pending();
 }
@@ -277,10 +280,6 @@ void Vlt2000Tracker::command(Vlt2000StationStats& st, const DecodedTelegram& t) 
     const Vlt2000Telegram& v = t.vlt2000;
     // The master moved on: the command it sent before is left unanswered.
     if (pending_.active) {
-        // Written only for a finding (not for every command: issue 31).
-        const auto pending_text = [this] {
-            return describe(pending_.letter, pending_.letter_char, pending_.parameter);
-        };
         const std::optional<std::uint16_t> pnu =
             pending_.letter == Vlt2000Letter::Control
                 ? std::nullopt
@@ -295,7 +294,7 @@ void Vlt2000Tracker::command(Vlt2000StationStats& st, const DecodedTelegram& t) 
             f.pnu = pnu;
             f.message = fmt::format(
                 "new command {} to drive {:02} while the command {} from frame {} was unanswered",
-                describe(v), t.slave, pending_text(), pending_.frame);
+                describe(v), t.slave, describe(pending_), pending_.frame);
         } else {
             Finding& f = add_finding(current_, FindingKind::Vlt2000NoResponse, t.frame, t.time_ns,
                                      pending_.frame, true, kMaster, pending_.address);
@@ -303,7 +302,7 @@ void Vlt2000Tracker::command(Vlt2000StationStats& st, const DecodedTelegram& t) 
             f.message = fmt::format(
                 "command {} to drive {:02} from frame {} got no reply before the master's next "
                 "telegram",
-                pending_text(), pending_.address, pending_.frame);
+                describe(pending_), pending_.address, pending_.frame);
             ++station(pending_.address).no_responses;
         }
         close_pending();
@@ -398,10 +397,6 @@ void Vlt2000Tracker::reply(Vlt2000StationStats& st, const DecodedTelegram& t) {
     const std::optional<std::uint16_t> pnu = command.letter == Vlt2000Letter::Control
                                                  ? std::nullopt
                                                  : std::optional<std::uint16_t>(command.parameter);
-    // Written only for a finding (not for every reply: issue 31).
-    const auto command_text = [&command] {
-        return describe(command.letter, command.letter_char, command.parameter);
-    };
     if (v.letter_char != command.letter_char ||
         (command.letter != Vlt2000Letter::Control && v.parameter != command.parameter)) {
         Finding& f = add_finding(current_, FindingKind::Vlt2000MismatchedResponse, t.frame,
@@ -410,7 +405,7 @@ void Vlt2000Tracker::reply(Vlt2000StationStats& st, const DecodedTelegram& t) {
         f.message = fmt::format(
             "reply {}{} answers the command {} from frame {}", describe(v),
             v.letter_char != command.letter_char ? " (another letter)" : " (another parameter)",
-            command_text(), command.frame);
+            describe(command), command.frame);
     } else if (v.failed) {
         Finding& f = add_finding(current_, FindingKind::Vlt2000CommandFailed, t.frame, t.time_ns,
                                  command.frame, true, kMaster, t.slave);
@@ -419,12 +414,12 @@ void Vlt2000Tracker::reply(Vlt2000StationStats& st, const DecodedTelegram& t) {
                         ? fmt::format(
                               "drive {:02} could not carry out the command {} from frame {}: "
                               "reason code {:02} ({})",
-                              t.slave, command_text(), command.frame, v.reason,
+                              t.slave, describe(command), command.frame, v.reason,
                               error_text_or_unknown(Dialect::Vlt2000, v.reason))
                         : fmt::format(
                               "drive {:02} could not carry out the command {} from frame {} "
                               "(decimal position 9: unknown parameter or command failed)",
-                              t.slave, command_text(), command.frame);
+                              t.slave, describe(command), command.frame);
     }
     pending_.active = false;
     engine_.track(sample_of(t, st.commands), current_);
