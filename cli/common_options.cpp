@@ -721,8 +721,8 @@ void say_trigger_stats(const TriggerStats& stats, const std::string& folder) {
     write_standard_error(text + "\n");
 }
 
-std::span<const FilterEvent> filter_events(std::span<const HealthEvent> events,
-                                           std::span<FilterEvent> out) noexcept {
+std::span<const FilterEvent> name_filter_events(std::span<const HealthEvent> events,
+                                                std::span<FilterEvent> out) noexcept {
     std::size_t n = 0;
     for (const HealthEvent& e : events) {
         if (n == out.size()) break;

@@ -261,8 +261,14 @@ Result<std::unique_ptr<TriggerRecorder>> make_trigger_recorder(const DecodeSetti
 void say_trigger_stats(const TriggerStats& stats, const std::string& folder);
 
 // The health events a telegram caused as the filter reads them (at most `out.size()`).
-std::span<const FilterEvent> filter_events(std::span<const HealthEvent> events,
-                                           std::span<FilterEvent> out) noexcept;
+std::span<const FilterEvent> name_filter_events(std::span<const HealthEvent> events,
+                                                std::span<FilterEvent> out) noexcept;
+// The same, asked for every telegram: most have none, answered inline.
+inline std::span<const FilterEvent> filter_events(std::span<const HealthEvent> events,
+                                                  std::span<FilterEvent> out) noexcept {
+    if (events.empty()) return {};
+    return name_filter_events(events, out);
+}
 
 // Renders `t` when it passes the filters; otherwise lets `renderer` pass over it. Returns
 // whether it passed.

@@ -22,18 +22,28 @@
 
 namespace dpscope::cli {
 
+// What a command needs of the pipeline beyond the decode and the summary.
+struct PipelineParts {
+    // The per-channel timelines (only the HTML report shows them; the hot path of every other
+    // command skips them).
+    bool timelines = false;
+    // The protocol's tracker judging the parameter channel (its findings and the PNU a telegram
+    // is about). `dpscope stats` shows bus health only and needs it only for a -Y filter.
+    bool parameter_findings = true;
+};
+
 class Pipeline {
   public:
-    // `keep_timelines`: build the per-channel timelines (only the HTML report shows them; the
-    // hot path of every other command skips them).
     // The protocol is chosen once, from settings.protocol: its descriptor makes the decoder and
-    // the tracker that are fed (core/protocol_lane.hpp).
-    explicit Pipeline(const DecodeSettings& settings, bool keep_timelines = false)
+    // the tracker that are fed (core/protocol_lane.hpp). Without parts.parameter_findings the
+    // tracker is made but not fed: no findings, subject_pnu() -1.
+    explicit Pipeline(const DecodeSettings& settings, PipelineParts parts = {})
         : protocol_(settings.protocol->protocol),
           naming_(parameter_naming(settings)),
           decoder_(settings.protocol->make_decoder(lanes_with(settings.lanes, naming_))),
           tracker_(settings.protocol->make_tracker(settings.lanes)),
-          keep_timelines_(keep_timelines) {
+          track_parameters_(parts.parameter_findings),
+          keep_timelines_(parts.timelines) {
         if (settings.track_health && settings.protocol->has_bus_health) {
             health_.emplace(settings.health);
             judge_ = settings.judge_in_capture_time;
@@ -48,10 +58,10 @@ class Pipeline {
     // Decodes and tracks one record; `findings` receives what the tracker found at it.
     const DecodedTelegram& feed(const Record& record, std::span<const Finding>& findings) {
         const DecodedTelegram& t = decoder_->decode(record.bytes, record.time_ns, record.number);
-        findings = tracker_->track(t);
+        findings = track_parameters_ ? tracker_->track(t) : std::span<const Finding>{};
         if (health_) {
             health_events_ = health_->observe(t);
-            if (judge_) judge_at(record);
+            if (judge_ && judge_due(record)) judge_at(record);
         }
         summary_.add(t);
         summary_.add_findings(findings);
@@ -61,9 +71,12 @@ class Pipeline {
     // The end of the input: findings still open past the time-out.
     // `end_ns`: when the capture ended, if later than its last telegram (a live capture's stop).
     std::span<const Finding> finish(std::int64_t end_ns = kNoTime) {
-        std::span<const Finding> findings = tracker_->finish(end_ns);
-        for (const std::string& warning : tracker_->end_warnings(summary_.telegrams()))
-            print_warning(warning);
+        std::span<const Finding> findings;
+        if (track_parameters_) {
+            findings = tracker_->finish(end_ns);
+            for (const std::string& warning : tracker_->end_warnings(summary_.telegrams()))
+                print_warning(warning);
+        }
         // Bus health ends with the last telegram, not at a live capture's stop: sniff's figures
         // then equal those of `dpscope stats` on the capture it wrote.
         if (health_) {
@@ -81,7 +94,9 @@ class Pipeline {
     const TelegramTracker& tracker() const noexcept { return *tracker_; }
     // The parameter number the last telegram's parameter channel is about (-1: none), from the
     // protocol's tracker.
-    std::int32_t subject_pnu() const noexcept { return tracker_->subject_pnu(); }
+    std::int32_t subject_pnu() const noexcept {
+        return track_parameters_ ? tracker_->subject_pnu() : -1;
+    }
     const Summary& summary() const noexcept { return summary_; }
     // The bus-health statistics (PROFIBUS, with settings.track_health); null otherwise.
     const BusHealthTracker* health() const noexcept { return health_ ? &*health_ : nullptr; }
@@ -98,17 +113,20 @@ class Pipeline {
     }
 
   private:
-    // Judges when a quarter second of capture time (or kJudgeEveryTelegrams) has passed since
-    // the last judgement; a verdict that turned bad joins the telegram's health events.
-    void judge_at(const Record& record) {
-        const bool timed = record.time_ns != kNoTime;
-        if (timed ? last_judged_ns_ != kNoTime && record.time_ns - last_judged_ns_ < kJudgeEveryNs
-                  : ++unjudged_ < kJudgeEveryTelegrams)
-            return;
+    // Whether a quarter second of capture time (or kJudgeEveryTelegrams) has passed since the
+    // last judgement (asked for every telegram: inline, the judging is not).
+    bool judge_due(const Record& record) {
+        return record.time_ns != kNoTime
+                   ? last_judged_ns_ == kNoTime || record.time_ns - last_judged_ns_ >= kJudgeEveryNs
+                   : ++unjudged_ >= kJudgeEveryTelegrams;
+    }
+    // Judges the verdicts (judge_due() said it is time); a verdict that turned bad joins the
+    // telegram's health events.
+    [[gnu::noinline]] void judge_at(const Record& record) {
         last_judged_ns_ = record.time_ns;
         unjudged_ = 0;
         events_.assign(health_events_.begin(), health_events_.end());
-        const std::span<const HealthEvent> turned_bad = health_->judge();
+        const std::span<const HealthEvent> turned_bad = health_->judge_verdicts();
         if (turned_bad.empty()) return;
         events_.insert(events_.end(), turned_bad.begin(), turned_bad.end());
         health_events_ = events_;
@@ -135,6 +153,7 @@ class Pipeline {
     std::shared_ptr<const ParameterNaming> naming_;  // what names the PNUs (drives/)
     std::unique_ptr<TelegramDecoder> decoder_;
     std::unique_ptr<TelegramTracker> tracker_;
+    bool track_parameters_ = true;
     std::optional<BusHealthTracker> health_;
     std::span<const HealthEvent> health_events_;
     bool judge_ = false;

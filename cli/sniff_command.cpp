@@ -410,7 +410,9 @@ int run_sniff(const SniffCommand& command) {
     bool live_output_dropped = false;
     report_input_issues(source, out);
     Pipeline pipeline(
-        *settings, report && report_format_from_name(command.report_format) == ReportFormat::Html);
+        *settings,
+        PipelineParts{.timelines = report && report_format_from_name(command.report_format) ==
+                                                 ReportFormat::Html});
     // --stats on a terminal: the station table, redrawn in place, instead of a line per
     // telegram (docs/decisions.md, "Bus health: sniff").
     const bool stats_table = stats && isatty(fileno(text_stream)) != 0;

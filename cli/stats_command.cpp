@@ -111,7 +111,8 @@ int run_stats(const StatsCommand& command) {
     return write_staged_output(command.output, path, [&](Output& out, std::string&) {
         Output diagnostics(stderr);
         report_input_issues(source, diagnostics);
-        Pipeline pipeline(*settings);
+        // The parameter channel's findings are not shown: only a -Y filter reads them.
+        Pipeline pipeline(*settings, PipelineParts{.parameter_findings = settings->filtering()});
         Record record;
         std::uint64_t read = 0;
         std::span<const Finding> findings;

@@ -723,6 +723,24 @@ TEST_F(BusHealthTest, VerdictBadOnlyOnTurningBad) {
     EXPECT_TRUE(tracker().judge().empty());  // still bad: a lost event stays
 }
 
+// judge_verdicts(): the same verdicts and turned-bad events as judge(), without copying the
+// figures out: health() stays as the last judge() left it.
+TEST_F(BusHealthTest, JudgeVerdictsLeavesTheFiguresAsLastPublished) {
+    start_up(3);
+    tracker().judge();
+    const std::uint64_t published_requests = station(3)->requests;
+    for (int i = 0; i < 4; ++i)
+        feed(dx(3));
+    std::span<const HealthEvent> bad = tracker().judge_verdicts();
+    ASSERT_EQ(bad.size(), 2u);
+    EXPECT_EQ(bad[0].address, 3);
+    EXPECT_EQ(bad[1].address, kSegmentAddress);
+    EXPECT_EQ(station(3)->requests, published_requests);  // not copied out
+    EXPECT_TRUE(tracker().judge().empty());  // already bad: judge_verdicts() remembered it
+    EXPECT_EQ(station(3)->requests, published_requests + 4);
+    EXPECT_EQ(station(3)->judgement.verdict, Verdict::Bad);
+}
+
 TEST_F(BusHealthTest, ChangedThresholdsChangeVerdicts) {
     BusHealthOptions options;
     ASSERT_TRUE(options.thresholds.set(HealthThreshold::LostEventsBad, 0).has_value());

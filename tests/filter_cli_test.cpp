@@ -216,5 +216,28 @@ TEST(FilterCliTest, StatsListTheStationsOfTheSelectedTelegrams) {
     EXPECT_EQ(bad.exit_code, 2);
 }
 
+// stats without -Y leaves the parameter channel unjudged (it shows bus health only); with -Y a
+// filter on findings still sees them: the response time-out is slave 3's, the spontaneous
+// messages slave 4's, so each filter lists its slave and the master.
+TEST(FilterCliTest, StatsSelectsByFindings) {
+    const std::string timeouts = sample("timeouts.pcap");
+    const auto addresses = [](const std::string& csv) {
+        std::vector<std::string> first_column;
+        for (const std::string& row : test::lines_of(csv))
+            first_column.push_back(row.substr(0, row.find(',')));
+        return first_column;
+    };
+    CommandResult timed_out = run_dpscope(
+        {"stats", "-T", "csv", "-Y", "dpscope.finding == \"response_timeout\"", timeouts});
+    ASSERT_EQ(timed_out.exit_code, 0) << timed_out.err;
+    EXPECT_EQ(addresses(timed_out.out), (std::vector<std::string>{"address", "2", "3"}))
+        << timed_out.out;
+    CommandResult spontaneous = run_dpscope(
+        {"stats", "-T", "csv", "-Y", "dpscope.finding contains \"spontaneous\"", timeouts});
+    ASSERT_EQ(spontaneous.exit_code, 0) << spontaneous.err;
+    EXPECT_EQ(addresses(spontaneous.out), (std::vector<std::string>{"address", "2", "4"}))
+        << spontaneous.out;
+}
+
 }  // namespace
 }  // namespace dpscope

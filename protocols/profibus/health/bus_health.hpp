@@ -331,7 +331,11 @@ class BusHealthTracker {
     // Judges every station, every master and the segment now (cheap: call it at will, e.g. for a
     // live table). Returns the verdicts that turned bad since the last judge(); valid until the
     // next call to observe() or judge().
-    std::span<const HealthEvent> judge();
+    std::span<const HealthEvent> judge() { return judge(true); }
+    // The same verdicts without copying the statistics out: health() stays as of the last judge()
+    // or finish(). For judging often (offline, every quarter second of capture time) when only
+    // the verdicts that turned bad are wanted.
+    std::span<const HealthEvent> judge_verdicts() { return judge(false); }
     // The end of the capture at `end_ns` (a live capture's stop; default: the last telegram's
     // end): the open cycles are closed and everything judged.
     void finish(std::int64_t end_ns = kNoTime);
@@ -343,6 +347,8 @@ class BusHealthTracker {
   private:
     friend class BusHealthTrackerImpl;
     struct State;
+    // `publish`: copy each station's and master's figures into health_.
+    std::span<const HealthEvent> judge(bool publish);
     BusHealthOptions options_;
     BusHealth health_;
     std::unique_ptr<State> state_;

@@ -6,17 +6,12 @@
 
 namespace dpscope {
 
-// A master sent a telegram: it is active (back from lost when it was).
-void BusHealthTrackerImpl::master_sends(State& s, State::Slot& slot, const DecodedTelegram& t) {
-    make_master(s, slot, t);
-    s.masters[slot.health.address].tokens_missed_in_row = 0;
+void BusHealthTrackerImpl::becomes_active(State& s, State::Slot& slot, const DecodedTelegram& t) {
     const bool was_lost = slot.health.state == StationState::Lost;
-    if (slot.health.state != StationState::Active || was_lost) {
-        set_state(s, slot, StationState::Active, t, was_lost);
-        if (was_lost) {
-            ++slot.health.returns;
-            emit(s, HealthEventKind::StationReturned, slot, t);
-        }
+    set_state(s, slot, StationState::Active, t, was_lost);
+    if (was_lost) {
+        ++slot.health.returns;
+        emit(s, HealthEventKind::StationReturned, slot, t);
     }
 }
 
@@ -39,8 +34,9 @@ void BusHealthTrackerImpl::token_passed(State& s, const DecodedTelegram& t) {
     if (!fdl.has_addresses) return;
     State::Slot& sender = s.slots[fdl.sa];
     heard(s, sender, t);
-    master_sends(s, sender, t);
-    ++s.masters[fdl.sa].health.tokens_passed;
+    State::Master& sending = s.masters[fdl.sa];
+    master_sends(s, sender, sending, t);
+    ++sending.health.tokens_passed;
     if (fdl.da != kBroadcastAddress) {
         State::Slot& receiver = s.slots[fdl.da];
         list(receiver, t);
@@ -62,7 +58,7 @@ void BusHealthTrackerImpl::token_passed(State& s, const DecodedTelegram& t) {
 
 void BusHealthTrackerImpl::master_polls(State::Master& m, const DecodedTelegram& t,
                                         std::uint8_t slave) {
-    if (m.polled_in_cycle.test(slave) || !m.cycle_started) {
+    if (m.polled_in_cycle[slave] || !m.cycle_started) {
         if (m.cycle_started && t.time_ns != kNoTime && m.cycle_start_ns != kNoTime &&
             t.time_ns >= m.cycle_start_ns) {
             const std::int64_t cycle = t.time_ns - m.cycle_start_ns;
@@ -79,9 +75,9 @@ void BusHealthTrackerImpl::master_polls(State::Master& m, const DecodedTelegram&
         m.cycle_start_ns = t.time_ns;
         m.polled_in_cycle.reset();
     }
-    m.polled_in_cycle.set(slave);
-    if (!m.polled_ever.test(slave)) {
-        m.polled_ever.set(slave);
+    m.polled_in_cycle[slave] = true;
+    if (!m.polled_ever[slave]) {
+        m.polled_ever[slave] = true;
         ++m.health.slaves_polled;
     }
 }

@@ -24,13 +24,12 @@ namespace detail {
 template <class Entry>
 class StationTable {
   public:
+    // Called several times a telegram: the made entry is returned inline, the first use of an
+    // address makes it out of line.
     Entry& operator[](std::size_t address) {
-        std::unique_ptr<Entry>& entry = entries_[address];
-        if (!entry) {
-            entry = std::make_unique<Entry>();
-            entry->health.address = static_cast<std::uint8_t>(address);
-        }
-        return *entry;
+        if (Entry* entry = entries_[address].get(); entry != nullptr) [[likely]]
+            return *entry;
+        return make(address);
     }
 
     class iterator {
@@ -57,6 +56,13 @@ class StationTable {
     iterator end() { return iterator(entries_, kStationCount); }
 
   private:
+    [[gnu::noinline]] Entry& make(std::size_t address) {
+        std::unique_ptr<Entry>& entry = entries_[address];
+        entry = std::make_unique<Entry>();
+        entry->health.address = static_cast<std::uint8_t>(address);
+        return *entry;
+    }
+
     std::array<std::unique_ptr<Entry>, kStationCount> entries_;
 };
 
@@ -106,6 +112,7 @@ struct BusHealthTracker::State {
         std::uint8_t function = 0;
         Service service = Service::Unknown;
         bool counted = false;  // counted as a request of a listed station
+        Slot* slot = nullptr;  // the slave's entry (s.slots[slave]; entries never move)
     };
 
     detail::StationTable<Slot> slots;
@@ -159,8 +166,17 @@ class BusHealthTrackerImpl {
     // ---- the masters: token passing and rotation, poll cycle
     // (protocols/profibus/health/bus_health_masters.cpp)
 
-    // A master sent a telegram: it is active (back from lost when it was).
-    static void master_sends(State& s, State::Slot& slot, const DecodedTelegram& t);
+    // A master (`slot`, its entry `m`) sent a telegram: it is active (back from lost when it
+    // was). Inline: every request passes here, and only a change of state does more.
+    static void master_sends(State& s, State::Slot& slot, State::Master& m,
+                             const DecodedTelegram& t) {
+        slot.master = true;
+        m.tokens_missed_in_row = 0;
+        if (slot.health.state != StationState::Active) [[unlikely]]
+            becomes_active(s, slot, t);
+    }
+    // The rest of master_sends(): a master not active until now (lost, or not yet seen sending).
+    static void becomes_active(State& s, State::Slot& slot, const DecodedTelegram& t);
     // The telegram after a token passed (s.token_waiting): the token was taken when it is its
     // receiver's own; not taken lost_cycles times in a row, the receiver is lost.
     static void check_token_taken(State& s, const DecodedTelegram& t, bool damaged, bool addressed,

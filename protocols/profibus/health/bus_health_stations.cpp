@@ -76,7 +76,7 @@ void BusHealthTrackerImpl::state_from_answer(State& s, State::Slot& slot, Servic
                                              std::uint64_t lost_cycles) {
     StationHealth& h = slot.health;
     if (slot.master) {
-        if (h.state == StationState::Lost) master_sends(s, slot, t);
+        if (h.state == StationState::Lost) master_sends(s, slot, s.masters[h.address], t);
         return;
     }
     const bool was_lost = h.state == StationState::Lost;

@@ -6,6 +6,7 @@
 // protocols/profibus/health/bus_health_masters.cpp and
 // protocols/profibus/health/bus_health_verdicts.cpp.
 #include <algorithm>
+#include <limits>
 #include <memory>
 
 #include "protocols/profibus/health/bus_health_state.hpp"
@@ -14,13 +15,19 @@ namespace dpscope {
 
 namespace {
 
-bool is_damaged(const DecodedTelegram& t) {
-    if (t.dp.fdl.fcs_ok && t.problems().empty()) return false;
-    if (!t.dp.fdl.fcs_ok) return true;
-    for (const Problem& p : t.problems())
+// A DP telegram's problems are its FDL layer's (payload_problems()), read here directly: the
+// protocol is known.
+bool is_damaged(const FdlTelegram& fdl) {
+    if (fdl.fcs_ok && fdl.problems.empty()) return false;
+    if (!fdl.fcs_ok) return true;
+    for (const Problem& p : fdl.problems)
         if (problem_severity(p.kind) == Severity::Error) return true;
     return false;
 }
+
+// No time is the least time (the comparisons below lean on it: a later time is a greater one,
+// and no time is never later).
+static_assert(kNoTime == std::numeric_limits<std::int64_t>::min());
 
 bool is_data_frame(FrameType type) { return type == FrameType::Sd2 || type == FrameType::Sd3; }
 
@@ -97,13 +104,13 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
         seg.busy_ns += duration_ns;
         if (t.time_ns != kNoTime) {
             const std::int64_t end = t.time_ns + static_cast<std::int64_t>(duration_ns + 0.5);
-            if (seg.end_ns == kNoTime || end > seg.end_ns) seg.end_ns = end;
+            if (end > seg.end_ns) seg.end_ns = end;
         }
-    } else if (t.time_ns != kNoTime && (seg.end_ns == kNoTime || t.time_ns > seg.end_ns)) {
+    } else if (t.time_ns > seg.end_ns) {
         seg.end_ns = t.time_ns;
     }
 
-    const bool damaged = is_damaged(t);
+    const bool damaged = is_damaged(fdl);
     const bool addressed = fdl.has_addresses && fdl.type != FrameType::ShortAck;
     const bool is_request = fdl.type == FrameType::Sd4 || (fdl.has_fc && fdl.fc.is_request());
 
@@ -119,7 +126,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
         if (damaged && !is_request) {
             // In the place of the answer: the station asked.
             ++seg.damaged;
-            State::Slot& slot = s.slots[asked.slave];
+            State::Slot& slot = *asked.slot;
             if (slot.listed)
                 ++slot.health.fcs_errors;
             else
@@ -130,9 +137,8 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
             (fdl.type == FrameType::ShortAck ||
              (fdl.has_addresses && fdl.da == asked.master && fdl.sa == asked.slave))) {
             is_answer = true;
-        } else {
-            State::Slot& slot = s.slots[asked.slave];
-            if (asked.counted) ++slot.health.no_answers;
+        } else if (asked.counted) {
+            ++asked.slot->health.no_answers;
         }
     }
 
@@ -166,11 +172,11 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
         if (!fdl.has_addresses || !fdl.has_fc) return s.events;
         State::Slot& sender = s.slots[fdl.sa];
         Impl::heard(s, sender, t);
-        Impl::master_sends(s, sender, t);
         State::Master& m = s.masters[fdl.sa];
+        Impl::master_sends(s, sender, m, t);
         ++m.health.requests;
         if (fdl.da == kBroadcastAddress) return s.events;
-        s.link_asked[fdl.sa].set(fdl.da);
+        s.link_asked[fdl.sa][fdl.da] = true;
         const std::uint8_t function = fdl.fc.function();
         const bool fdl_status = function == static_cast<std::uint8_t>(FdlFunction::FdlStatus);
         State::Slot& slot = s.slots[fdl.da];
@@ -208,7 +214,8 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
             }
         }
         if (expects)
-            s.pending = State::Pending{true, fdl.sa, fdl.da, function, t.dp.service, slot.listed};
+            s.pending =
+                State::Pending{true, fdl.sa, fdl.da, function, t.dp.service, slot.listed, &slot};
 
         // The master's poll cycle.
         if (t.dp.service == Service::DataExchange && !repeat) Impl::master_polls(m, t, fdl.da);
@@ -223,12 +230,12 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
         Impl::heard(s, sender, t);
         // Before the first request from that master to it, the answer's request may have come
         // before the capture: not judged.
-        if (fdl.da != kBroadcastAddress && s.link_asked[fdl.da].test(fdl.sa))
+        if (fdl.da != kBroadcastAddress && s.link_asked[fdl.da][fdl.sa])
             ++sender.health.illegal_answers[static_cast<std::size_t>(IllegalAnswer::NotAsked)];
         return s.events;
     }
 
-    State::Slot& slot = s.slots[asked.slave];
+    State::Slot& slot = *asked.slot;
     StationHealth& h = slot.health;
     if (!slot.listed) {
         Impl::list(slot, t);

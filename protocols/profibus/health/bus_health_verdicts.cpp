@@ -40,15 +40,17 @@ void conclude(Judgement& judgement) {
 
 }  // namespace
 
-std::span<const HealthEvent> BusHealthTracker::judge() {
+std::span<const HealthEvent> BusHealthTracker::judge(bool publish) {
     using Impl = BusHealthTrackerImpl;
     State& s = *state_;
     s.verdict_events.clear();
     const HealthThresholds& limits = health_.thresholds;
     using enum HealthThreshold;
 
-    health_.stations.clear();
-    health_.masters.clear();
+    if (publish) {
+        health_.stations.clear();
+        health_.masters.clear();
+    }
     Verdict segment = Verdict::Good;
     auto turned_bad = [&](Verdict& last, Verdict now, std::uint8_t address, StationRole role) {
         if (now == Verdict::Bad && last != Verdict::Bad)
@@ -91,7 +93,7 @@ std::span<const HealthEvent> BusHealthTracker::judge() {
         conclude(j);
         turned_bad(slot.last_verdict, j.verdict, h.address, h.role);
         segment = worse(segment, j.verdict);
-        health_.stations.push_back(h);
+        if (publish) health_.stations.push_back(h);
 
         if (!slot.master) continue;
         State::Master& m = s.masters[h.address];
@@ -115,7 +117,7 @@ std::span<const HealthEvent> BusHealthTracker::judge() {
         conclude(mj);
         turned_bad(m.last_verdict, mj.verdict, h.address, StationRole::Master);
         segment = worse(segment, mj.verdict);
-        health_.masters.push_back(m.health);
+        if (publish) health_.masters.push_back(m.health);
     }
 
     SegmentHealth& seg = health_.segment;
