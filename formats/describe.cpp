@@ -3,6 +3,7 @@
 #include <fmt/compile.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <ctime>
 #include <iterator>
@@ -80,13 +81,10 @@ std::string relative_seconds_text(std::int64_t relative_ns) {
 }
 
 void append_epoch_seconds(TextBuffer& out, std::int64_t time_ns) {
-    // Sign and magnitude: -1.5 s is "-1.500000000", not "-2" and a positive fraction.
-    std::uint64_t magnitude =
-        time_ns < 0 ? 0 - static_cast<std::uint64_t>(time_ns) : static_cast<std::uint64_t>(time_ns);
-    if (time_ns < 0) out.push_back('-');
-    append_decimal(out, magnitude / kNanos);
-    out.push_back('.');
-    append_decimal_padded(out, magnitude % kNanos, 9);
+    const std::size_t at = out.size();
+    char* end =
+        text_detail::write_epoch_seconds(append_room(out, text_detail::kEpochSecondsMax), time_ns);
+    out.try_resize(at + static_cast<std::size_t>(end - (out.data() + at)));
 }
 
 bool append_flags(TextBuffer& out, std::uint8_t value, std::span<const FlagBit> flags,
@@ -102,19 +100,40 @@ bool append_flags(TextBuffer& out, std::uint8_t value, std::span<const FlagBit> 
     return any;
 }
 
+namespace {
+
+// "00" "01" ... "FF": a byte's two hex digits a step.
+constexpr std::array<char, 512> kHexPairs = [] {
+    constexpr char kDigits[] = "0123456789ABCDEF";
+    std::array<char, 512> pairs{};
+    for (std::size_t byte = 0; byte < 256; ++byte) {
+        pairs[2 * byte] = kDigits[byte >> 4];
+        pairs[2 * byte + 1] = kDigits[byte & 0x0F];
+    }
+    return pairs;
+}();
+
+}  // namespace
+
 void append_hex(TextBuffer& out, Bytes bytes, std::string_view separator) {
-    static constexpr char kDigits[] = "0123456789ABCDEF";
     if (bytes.empty()) return;
     // Room for all of it at once: two digits a byte, a separator between bytes.
     const std::size_t step = 2 + separator.size();
     char* p = append_room(out, bytes.size() * step - separator.size());
+    if (separator.empty()) {  // jsonl's and csv's data: the bytes' digits only
+        for (const std::uint8_t byte : bytes) {
+            std::memcpy(p, kHexPairs.data() + 2 * byte, 2);
+            p += 2;
+        }
+        return;
+    }
     for (std::size_t i = 0; i < bytes.size(); ++i) {
-        if (i > 0 && !separator.empty()) {
+        if (i > 0) {
             std::memcpy(p, separator.data(), separator.size());
             p += separator.size();
         }
-        *p++ = kDigits[bytes[i] >> 4];
-        *p++ = kDigits[bytes[i] & 0x0F];
+        std::memcpy(p, kHexPairs.data() + 2 * bytes[i], 2);
+        p += 2;
     }
 }
 

@@ -8,7 +8,7 @@ void time(JsonWriter& w, std::int64_t time_ns) {
     if (time_ns == kNoTime)
         w.null();
     else
-        w.raw_value([time_ns](TextBuffer& b) { append_epoch_seconds(b, time_ns); });
+        w.epoch_seconds(time_ns);
 }
 
 void finding(JsonWriter& w, const Finding& f) {

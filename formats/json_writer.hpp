@@ -80,9 +80,29 @@ class JsonWriter {
             put_char('-');
             magnitude = 0 - magnitude;
         }
+        // Most of a line's integers (addresses, SAPs, codes, indices) have one or two digits:
+        // written here, without the general writer's call.
+        if (magnitude < 100) {
+            char* p = room(2);
+            if (magnitude < 10) {
+                *p = static_cast<char>('0' + magnitude);
+                cursor_ += 1;
+            } else {
+                std::memcpy(p, text_detail::kDigitPairs + 2 * magnitude, 2);
+                cursor_ += 2;
+            }
+            return wrote();
+        }
         const int digits = text_detail::decimal_digits(magnitude);
         text_detail::write_decimal_backwards(room(20) + digits, magnitude);
         cursor_ += digits;
+        return wrote();
+    }
+    // Seconds since 1970 with nine decimals (write_epoch_seconds()).
+    JsonWriter& epoch_seconds(std::int64_t time_ns) {
+        separate();
+        char* p = room(text_detail::kEpochSecondsMax);
+        cursor_ = text_detail::write_epoch_seconds(p, time_ns);
         return wrote();
     }
     [[gnu::always_inline]] JsonWriter& boolean(bool value) {
@@ -111,6 +131,10 @@ class JsonWriter {
     [[gnu::always_inline]] JsonWriter& optional_integer(bool present, std::int64_t value) {
         return present ? integer(value) : null();
     }
+    // Members of the object being written, spelled out as JSON text by the caller
+    // ("\"a\":null,\"b\":null"): a run of keys with constant values in one copy, where a line
+    // has many of them (the jsonl objects a telegram does not have). After a comma when due.
+    [[gnu::always_inline]] JsonWriter& members(std::string_view text) { return literal(text); }
     // A number whose text the caller formatted ("0.125000"); written verbatim.
     JsonWriter& number_text(std::string_view text) { return literal(text); }
     // A value that is JSON text already (an array kept by BitMeaningsJson); copied verbatim.

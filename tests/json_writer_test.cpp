@@ -6,9 +6,15 @@
 #include <string_view>
 #include <vector>
 
+#include "core/code_tables.hpp"
 #include "formats/bit_meanings_json.hpp"
 #include "protocols/fc/fc_telegram.hpp"
+#include "protocols/profibus/dp_service.hpp"
+#include "protocols/profibus/dpv1/dpv1.hpp"
+#include "protocols/profibus/dpv1/profidrive.hpp"
+#include "protocols/profibus/fdl.hpp"
 #include "protocols/profibus/pcd.hpp"
+#include "protocols/profibus/ppo.hpp"
 #include "protocols/vlt2000/vlt2000_codes.hpp"
 #include "protocols/vlt2000/vlt2000_describe.hpp"
 #include "tests/json_parser.hpp"
@@ -251,6 +257,36 @@ TEST(JsonWriterTest, TheNamesWrittenWithoutTheEscapeCheckNeedNone) {
         names.push_back(fc_address_format_name(format));
     for (int letter = 0; letter <= static_cast<int>(Vlt2000Letter::Unknown); ++letter)
         names.push_back(vlt2000_letter_name(static_cast<Vlt2000Letter>(letter)));
+    // PROFIBUS DP's (profibus_jsonl_render.cpp): every value each table can be asked for.
+    for (int type = 0; type <= static_cast<int>(FrameType::Invalid); ++type)
+        names.push_back(frame_type_name(static_cast<FrameType>(type)));
+    for (std::size_t service = 0; service < kServiceCount; ++service)
+        names.push_back(service_name(static_cast<Service>(service)));
+    for (int source = 0; source <= static_cast<int>(PpoSource::Option); ++source)
+        names.push_back(ppo_source_name(static_cast<PpoSource>(source)));
+    for (int dialect = 0; dialect <= static_cast<int>(Dialect::Vlt2000); ++dialect) {
+        names.push_back(dialect_name(static_cast<Dialect>(dialect)));
+        for (unsigned rc = 0; rc < 16; ++rc) {
+            names.push_back(
+                request_code(static_cast<Dialect>(dialect), static_cast<std::uint8_t>(rc)).meaning);
+            names.push_back(
+                response_code(static_cast<Dialect>(dialect), static_cast<std::uint8_t>(rc))
+                    .meaning);
+        }
+    }
+    for (unsigned byte = 0; byte < 256; ++byte) {
+        const auto b = static_cast<std::uint8_t>(byte);
+        names.push_back(request_function_name(FrameControl{b}));
+        names.push_back(response_status_name(b));
+        names.push_back(station_type_name(b & 0x03));
+        names.push_back(dpv1_function_name(b));
+        names.push_back(profidrive_request_id_name(b));
+        names.push_back(profidrive_response_id_name(b));
+        names.push_back(profidrive_attribute_name(b));
+        names.push_back(profidrive_format_name(b));
+    }
+    names.push_back("word");
+    names.push_back("dword");
     for (std::string_view name : names)
         EXPECT_TRUE(json::plain_text(name)) << name;
     fmt::memory_buffer a, b;

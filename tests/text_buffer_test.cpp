@@ -163,6 +163,44 @@ TEST(TextBufferTest, IsoTimeIsGmtimesDate) {
     }
 }
 
+// The jsonl and csv "time": seconds, a point and nine digits, the sign in front ("-1.500000000").
+TEST(TextBufferTest, EpochSecondsAreSignSecondsAndNineDigits) {
+    std::vector<std::int64_t> times = {std::numeric_limits<std::int64_t>::min(),
+                                       std::numeric_limits<std::int64_t>::max()};
+    for (std::uint64_t v : boundary_values()) {
+        if (v > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) continue;
+        times.push_back(static_cast<std::int64_t>(v));
+        times.push_back(-static_cast<std::int64_t>(v));
+    }
+    for (std::int64_t t : times) {
+        const bool negative = t < 0;
+        const std::uint64_t magnitude =
+            negative ? 0 - static_cast<std::uint64_t>(t) : static_cast<std::uint64_t>(t);
+        TextBuffer b;
+        append_epoch_seconds(b, t);
+        ASSERT_EQ(text_of(b), fmt::format("{}{}.{:09}", negative ? "-" : "",
+                                          magnitude / 1'000'000'000, magnitude % 1'000'000'000))
+            << t;
+    }
+}
+
+// A telegram's bytes in hex: two upper-case digits a byte, the separator between bytes.
+TEST(TextBufferTest, HexIsTwoDigitsAByteWithTheSeparatorBetween) {
+    std::vector<std::uint8_t> bytes(256);
+    for (std::size_t i = 0; i < bytes.size(); ++i)
+        bytes[i] = static_cast<std::uint8_t>(255 - i);
+    for (std::string_view separator : {"", " ", ", "}) {
+        for (std::size_t n : {0, 1, 2, 256}) {
+            std::string expected;
+            for (std::size_t i = 0; i < n; ++i)
+                expected += fmt::format("{}{:02X}", i == 0 ? "" : separator, bytes[i]);
+            TextBuffer b;
+            append_hex(b, Bytes(bytes.data(), n), separator);
+            ASSERT_EQ(text_of(b), expected) << n << " '" << separator << "'";
+        }
+    }
+}
+
 }  // namespace
 }  // namespace dpscope
 

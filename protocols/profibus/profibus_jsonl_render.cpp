@@ -43,14 +43,14 @@ void render_pcv(JsonWriter& w, const DecodedTelegram& t) {
     w.key("pva_raw").integer(pcv.pva);
     w.key("width");
     if (width == ValueWidth::Word)
-        w.string("word");
+        w.name("word");
     else if (width == ValueWidth::DoubleWord)
-        w.string("dword");
+        w.name("dword");
     else
         w.null();
     // The parameter's row in its drive's database (issue 29).
     parameter_jsonl_keys(w, parameter_view(t));
-    w.key("meaning").string(t.dp.pcv_meaning(t.direction));
+    w.key("meaning").name(t.dp.pcv_meaning(t.direction));
     w.key("code_known").boolean(known);
     w.key("error");
     if (rejected) {
@@ -86,10 +86,7 @@ void render_profidrive(JsonWriter& w, const ProfidriveMessage& m, Dialect dialec
         m.is_response ? profidrive_response_id_name(m.id) : profidrive_request_id_name(m.id);
     w.key(m.is_response ? "response_id" : "request_id").optional_integer(m.has_header, m.id);
     w.key("id_name");
-    if (m.has_header)
-        optional_string(w, id_name);
-    else
-        w.null();
+    optional_name(w, m.has_header && !id_name.empty(), id_name);
     w.key("negative").boolean(m.negative());
     w.key("axis").optional_integer(m.has_header, m.axis);
     w.key("count").optional_integer(m.has_header, m.count);
@@ -105,10 +102,9 @@ void render_profidrive(JsonWriter& w, const ProfidriveMessage& m, Dialect dialec
         const ProfidriveAddress a = address ? m.addresses[k] : ProfidriveAddress{};
         w.key("attribute").optional_integer(address, a.attribute);
         w.key("attribute_name");
-        if (address)
-            optional_string(w, profidrive_attribute_name(a.attribute));
-        else
-            w.null();
+        const std::string_view attribute_name =
+            address ? profidrive_attribute_name(a.attribute) : std::string_view{};
+        optional_name(w, !attribute_name.empty(), attribute_name);
         w.key("elements").optional_integer(address, a.elements);
         w.key("pnu").optional_integer(address, a.pnu);
         w.key("subindex").optional_integer(address, a.subindex);
@@ -117,7 +113,7 @@ void render_profidrive(JsonWriter& w, const ProfidriveMessage& m, Dialect dialec
         w.key("format").optional_integer(has_block, has_block ? block->format : 0);
         w.key("format_name");
         if (block)
-            w.string(profidrive_format_name(block->format));
+            w.name(profidrive_format_name(block->format));
         else
             w.null();
         w.key("value_count").optional_integer(has_block, has_block ? block->count : 0);
@@ -170,51 +166,17 @@ void render_profidrive(JsonWriter& w, const ProfidriveMessage& m, Dialect dialec
     w.end_object();
 }
 
-void render_dpv1(JsonWriter& w, const DecodedTelegram& t, const Dpv1Pdu& pdu) {
+// The DP-V1 object's "initiate" and "abort" members.
+void render_dpv1_initiate_abort(JsonWriter& w, const DecodedTelegram& t, const Dpv1Pdu& pdu) {
     using Layout = Dpv1Pdu::Layout;
-    w.begin_object();
-    bool has_function = pdu.layout != Layout::None;
-    w.key("function").optional_integer(has_function, pdu.function);
-    w.key("function_name");
-    if (has_function)
-        optional_string(w, dpv1_function_name(pdu.function));
-    else
-        w.null();
-    w.key("negative").boolean(pdu.negative());
-    w.key("complete").boolean(pdu.complete);
-    bool addressed = pdu.layout == Layout::Addressed && pdu.complete;
-    bool alarm = addressed && pdu.base_function() == dpv1_function::kAlarmAck;
-    w.key("slot").optional_integer(addressed, pdu.slot);
-    w.key("index").optional_integer(addressed && !alarm, pdu.index);
-    w.key("length").optional_integer(addressed && !alarm, pdu.length);
-    w.key("data_length")
-        .optional_integer(addressed || pdu.layout == Layout::Unknown,
-                          static_cast<std::int64_t>(pdu.data.size()));
-    w.key("alarm_type").optional_integer(alarm, pdu.index);
-    w.key("specifier").optional_integer(alarm, pdu.length);
-    bool error = pdu.layout == Layout::Error && pdu.complete;
-    w.key("error_decode").optional_integer(error, pdu.error_decode);
-    w.key("error_decode_name");
-    if (error)
-        optional_string(w, dpv1_error_decode_name(pdu.error_decode));
-    else
-        w.null();
-    w.key("error_code_1").optional_integer(error, pdu.error_code_1);
-    w.key("error_class").optional_integer(error, pdu.error_code_1 >> 4);
-    w.key("error_class_name");
-    if (error)
-        optional_string(w, dpv1_error_class_name(pdu.error_code_1));
-    else
-        w.null();
-    w.key("error_code").optional_integer(error, pdu.error_code_1 & 0x0F);
-    w.key("error_code_name");
-    if (error)
-        w.string(dpv1_error_code_name(pdu.error_code_1));
-    else
-        w.null();
-    w.key("error_code_2").optional_integer(error, pdu.error_code_2);
+    const bool initiate = pdu.layout == Layout::Initiate && pdu.complete;
+    const bool abort = pdu.layout == Layout::Abort && pdu.complete;
+    if (!initiate && !abort) {
+        w.members("\"initiate\":null,\"abort\":null");
+        return;
+    }
     w.key("initiate");
-    if (pdu.layout == Layout::Initiate && pdu.complete) {
+    if (initiate) {
         const Dpv1Initiate& i = pdu.initiate;
         bool request = t.direction == Direction::Request;
         w.begin_object();
@@ -236,7 +198,7 @@ void render_dpv1(JsonWriter& w, const DecodedTelegram& t, const Dpv1Pdu& pdu) {
         w.null();
     }
     w.key("abort");
-    if (pdu.layout == Layout::Abort && pdu.complete) {
+    if (abort) {
         w.begin_object();
         w.key("subnet").integer(pdu.abort.subnet);
         w.key("instance").integer(pdu.abort.instance());
@@ -247,6 +209,60 @@ void render_dpv1(JsonWriter& w, const DecodedTelegram& t, const Dpv1Pdu& pdu) {
     } else {
         w.null();
     }
+}
+
+void render_dpv1(JsonWriter& w, const DecodedTelegram& t, const Dpv1Pdu& pdu) {
+    using Layout = Dpv1Pdu::Layout;
+    w.begin_object();
+    bool has_function = pdu.layout != Layout::None;
+    w.key("function").optional_integer(has_function, pdu.function);
+    w.key("function_name");
+    const std::string_view function_name =
+        has_function ? dpv1_function_name(pdu.function) : std::string_view{};
+    optional_name(w, !function_name.empty(), function_name);
+    w.key("negative").boolean(pdu.negative());
+    w.key("complete").boolean(pdu.complete);
+    bool addressed = pdu.layout == Layout::Addressed && pdu.complete;
+    bool alarm = addressed && pdu.base_function() == dpv1_function::kAlarmAck;
+    w.key("slot").optional_integer(addressed, pdu.slot);
+    w.key("index").optional_integer(addressed && !alarm, pdu.index);
+    w.key("length").optional_integer(addressed && !alarm, pdu.length);
+    w.key("data_length")
+        .optional_integer(addressed || pdu.layout == Layout::Unknown,
+                          static_cast<std::int64_t>(pdu.data.size()));
+    w.key("alarm_type").optional_integer(alarm, pdu.index);
+    w.key("specifier").optional_integer(alarm, pdu.length);
+    bool error = pdu.layout == Layout::Error && pdu.complete;
+    if (!error) {
+        w.members(
+            "\"error_decode\":null,\"error_decode_name\":null,\"error_code_1\":null,"
+            "\"error_class\":null,\"error_class_name\":null,\"error_code\":null,"
+            "\"error_code_name\":null,\"error_code_2\":null");
+        render_dpv1_initiate_abort(w, t, pdu);
+        w.end_object();
+        return;
+    }
+    w.key("error_decode").optional_integer(error, pdu.error_decode);
+    w.key("error_decode_name");
+    if (error)
+        optional_string(w, dpv1_error_decode_name(pdu.error_decode));
+    else
+        w.null();
+    w.key("error_code_1").optional_integer(error, pdu.error_code_1);
+    w.key("error_class").optional_integer(error, pdu.error_code_1 >> 4);
+    w.key("error_class_name");
+    if (error)
+        optional_string(w, dpv1_error_class_name(pdu.error_code_1));
+    else
+        w.null();
+    w.key("error_code").optional_integer(error, pdu.error_code_1 & 0x0F);
+    w.key("error_code_name");
+    if (error)
+        w.string(dpv1_error_code_name(pdu.error_code_1));
+    else
+        w.null();
+    w.key("error_code_2").optional_integer(error, pdu.error_code_2);
+    render_dpv1_initiate_abort(w, t, pdu);
     w.end_object();
 }
 
@@ -309,126 +325,142 @@ void render_gsd(JsonWriter& w, const DecodedTelegram& t) {
     w.end_object();
 }
 
+// "diag": a Slave_Diag answer's.
+void render_diag(JsonWriter& w, const DecodedTelegram& t, const SlaveDiag& diag) {
+    w.begin_object();
+    w.key("ident").integer(diag.ident);
+    w.key("master").optional_integer(diag.master_address != kNoMasterAddress, diag.master_address);
+    w.key("station_status").begin_array();
+    w.integer(diag.station_status_1);
+    w.integer(diag.station_status_2);
+    w.integer(diag.station_status_3);
+    w.end_array();
+    w.key("flags").begin_array();
+    for (const FlagBit& flag : station_status_1_flags())
+        if (diag.station_status_1 & flag.mask) w.string(flag.name);
+    for (const FlagBit& flag : station_status_2_flags())
+        if ((diag.station_status_2 & flag.mask) && flag.mask != kDiagAlwaysOne) w.string(flag.name);
+    for (const FlagBit& flag : station_status_3_flags())
+        if (diag.station_status_3 & flag.mask) w.string(flag.name);
+    w.end_array();
+    w.key("ext");
+    if (diag.extended.empty())
+        w.null();
+    else
+        hex_string(w, diag.extended);
+    w.key("dpv1");
+    if (t.dp.slave_dpv1 == SlaveDpv1::Unknown)
+        w.null();
+    else
+        w.boolean(t.dp.slave_dpv1 == SlaveDpv1::Enabled);
+    w.end_object();
+}
+
+// "prm": a Set_Prm request's.
+void render_set_prm(JsonWriter& w, const SetPrm& prm) {
+    w.begin_object();
+    w.key("ident").integer(prm.ident);
+    w.key("station_status").integer(prm.station_status);
+    w.key("flags");
+    flag_array(w, prm.station_status, set_prm_station_flags());
+    w.key("wd_fact_1").integer(prm.wd_fact_1);
+    w.key("wd_fact_2").integer(prm.wd_fact_2);
+    w.key("watchdog_ms").optional_integer(prm.watchdog_on(), prm.watchdog_ms());
+    w.key("watchdog_ms_alt")
+        .optional_integer(prm.watchdog_on() && prm.watchdog_base_uncertain(),
+                          prm.watchdog_ms_10ms_base());
+    w.key("min_tsdr").integer(prm.min_tsdr);
+    w.key("group").integer(prm.group_ident);
+    w.key("dpv1_status");
+    if (prm.has_dpv1_status) {
+        w.begin_array();
+        for (std::size_t i = 0; i < 3; ++i)
+            w.integer(prm.dpv1_status[i]);
+        w.end_array();
+    } else {
+        w.null();
+    }
+    w.key("user_prm");
+    hex_string(w, prm.user_prm);
+    w.end_object();
+}
+
+// "cfg": a Chk_Cfg request's or a Get_Cfg answer's modules.
+void render_cfg(JsonWriter& w, const DecodedTelegram& t, const std::vector<CfgModule>& modules) {
+    w.begin_object();
+    w.key("bytes").begin_array();
+    for (std::uint8_t byte : t.dp.fdl.du)
+        w.integer(byte);
+    w.end_array();
+    w.key("modules").begin_array();
+    for (const CfgModule& m : modules) {
+        bool use_output = m.output_units != 0;
+        w.begin_object();
+        w.key("identifier").integer(m.identifier);
+        w.key("special").boolean(m.special);
+        w.key("dir").string(cfg_direction_name(m.direction));
+        w.key("out_bytes").integer(m.output_bytes());
+        w.key("in_bytes").integer(m.input_bytes());
+        w.key("unit").string((use_output ? m.output_words : m.input_words) ? "word" : "byte");
+        w.key("consistent").boolean(use_output ? m.output_consistent : m.input_consistent);
+        w.key("manufacturer_bytes").integer(m.manufacturer_bytes);
+        w.end_object();
+    }
+    w.end_array();
+    PpoLayout layout = ppo_from_cfg(modules, PpoSource::ChkCfg);
+    w.key("ppo").optional_integer(layout.type != 0, layout.type);
+    w.key("has_pcv").boolean(layout.has_pcv);
+    w.end_object();
+}
+
+// "global_control": a Global_Control request's.
+void render_global_control(JsonWriter& w, const GlobalControl& gc) {
+    w.begin_object();
+    w.key("command").integer(gc.command);
+    w.key("flags");
+    flag_array(w, gc.command, global_control_flags());
+    w.key("group").integer(gc.group_select);
+    w.end_object();
+}
+
 void render_service_objects(JsonWriter& w, const DecodedTelegram& t) {
     const DpServiceData& data = t.dp.service_data;
-
-    w.key("diag");
-    if (const SlaveDiag* diag = data.slave_diag()) {
-        w.begin_object();
-        w.key("ident").integer(diag->ident);
-        w.key("master").optional_integer(diag->master_address != kNoMasterAddress,
-                                         diag->master_address);
-        w.key("station_status").begin_array();
-        w.integer(diag->station_status_1);
-        w.integer(diag->station_status_2);
-        w.integer(diag->station_status_3);
-        w.end_array();
-        w.key("flags").begin_array();
-        for (const FlagBit& flag : station_status_1_flags())
-            if (diag->station_status_1 & flag.mask) w.string(flag.name);
-        for (const FlagBit& flag : station_status_2_flags())
-            if ((diag->station_status_2 & flag.mask) && flag.mask != kDiagAlwaysOne)
-                w.string(flag.name);
-        for (const FlagBit& flag : station_status_3_flags())
-            if (diag->station_status_3 & flag.mask) w.string(flag.name);
-        w.end_array();
-        w.key("ext");
-        if (diag->extended.empty())
-            w.null();
-        else
-            hex_string(w, diag->extended);
-        w.key("dpv1");
-        if (t.dp.slave_dpv1 == SlaveDpv1::Unknown)
-            w.null();
-        else
-            w.boolean(t.dp.slave_dpv1 == SlaveDpv1::Enabled);
-        w.end_object();
-    } else {
-        w.null();
-    }
-
-    w.key("prm");
-    if (const SetPrm* prm = data.set_prm()) {
-        w.begin_object();
-        w.key("ident").integer(prm->ident);
-        w.key("station_status").integer(prm->station_status);
-        w.key("flags");
-        flag_array(w, prm->station_status, set_prm_station_flags());
-        w.key("wd_fact_1").integer(prm->wd_fact_1);
-        w.key("wd_fact_2").integer(prm->wd_fact_2);
-        w.key("watchdog_ms").optional_integer(prm->watchdog_on(), prm->watchdog_ms());
-        w.key("watchdog_ms_alt")
-            .optional_integer(prm->watchdog_on() && prm->watchdog_base_uncertain(),
-                              prm->watchdog_ms_10ms_base());
-        w.key("min_tsdr").integer(prm->min_tsdr);
-        w.key("group").integer(prm->group_ident);
-        w.key("dpv1_status");
-        if (prm->has_dpv1_status) {
-            w.begin_array();
-            for (std::size_t i = 0; i < 3; ++i)
-                w.integer(prm->dpv1_status[i]);
-            w.end_array();
-        } else {
-            w.null();
-        }
-        w.key("user_prm");
-        hex_string(w, prm->user_prm);
-        w.end_object();
-    } else {
-        w.null();
-    }
-
-    w.key("cfg");
+    const SlaveDiag* diag = data.slave_diag();
+    const SetPrm* prm = data.set_prm();
     // An empty configuration is null, as when there is none.
     const std::vector<CfgModule>* modules = data.cfg_modules();
-    if (modules && !t.dp.fdl.du.empty()) {
-        w.begin_object();
-        w.key("bytes").begin_array();
-        for (std::uint8_t byte : t.dp.fdl.du)
-            w.integer(byte);
-        w.end_array();
-        w.key("modules").begin_array();
-        for (const CfgModule& m : *modules) {
-            bool use_output = m.output_units != 0;
-            w.begin_object();
-            w.key("identifier").integer(m.identifier);
-            w.key("special").boolean(m.special);
-            w.key("dir").string(cfg_direction_name(m.direction));
-            w.key("out_bytes").integer(m.output_bytes());
-            w.key("in_bytes").integer(m.input_bytes());
-            w.key("unit").string((use_output ? m.output_words : m.input_words) ? "word"
-                                                                               : "byte");
-            w.key("consistent").boolean(use_output ? m.output_consistent : m.input_consistent);
-            w.key("manufacturer_bytes").integer(m.manufacturer_bytes);
-            w.end_object();
-        }
-        w.end_array();
-        PpoLayout layout = ppo_from_cfg(*modules, PpoSource::ChkCfg);
-        w.key("ppo").optional_integer(layout.type != 0, layout.type);
-        w.key("has_pcv").boolean(layout.has_pcv);
-        w.end_object();
-    } else {
-        w.null();
-    }
-
-    w.key("global_control");
+    const bool cfg = modules && !t.dp.fdl.du.empty();
     // Only a request's: a response's bytes in this layout (DpServiceData) are not shown here.
     const GlobalControl* gc =
         t.direction == Direction::Request ? data.global_control() : nullptr;
-    if (gc) {
-        w.begin_object();
-        w.key("command").integer(gc->command);
-        w.key("flags");
-        flag_array(w, gc->command, global_control_flags());
-        w.key("group").integer(gc->group_select);
-        w.end_object();
+
+    if (!diag && !prm && !cfg && !gc) {  // most lines: none of the four
+        w.members("\"diag\":null,\"prm\":null,\"cfg\":null,\"global_control\":null");
     } else {
-        w.null();
+        w.key("diag");
+        if (diag)
+            render_diag(w, t, *diag);
+        else
+            w.null();
+        w.key("prm");
+        if (prm)
+            render_set_prm(w, *prm);
+        else
+            w.null();
+        w.key("cfg");
+        if (cfg)
+            render_cfg(w, t, *modules);
+        else
+            w.null();
+        w.key("global_control");
+        if (gc)
+            render_global_control(w, *gc);
+        else
+            w.null();
     }
 
     // Only on the management lines of a slave that has a GSD file (--gsd): what the file says.
-    if (t.dp.device && (data.set_prm() || data.slave_diag() || (modules && !t.dp.fdl.du.empty())))
-        render_gsd(w, t);
+    if (t.dp.device && (prm || diag || cfg)) render_gsd(w, t);
 
     // Only on DP-V1 lines (MSAC_C1, MSAC_C2): other lines keep the schema they had.
     if (t.dp.service == Service::MsacC1 || t.dp.service == Service::MsacC2) {
@@ -454,7 +486,7 @@ void profibus_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     const bool data_exchange = t.dp.service == Service::DataExchange;
     w.key("sd");
     if (valid)
-        w.string(frame_type_name(f.type));
+        w.name(frame_type_name(f.type));
     else
         w.null();
     w.key("da").optional_integer(f.has_addresses, f.da);
@@ -469,49 +501,53 @@ void profibus_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
             w.key("request").boolean(true);
             w.key("fcb").boolean(f.fc.fcb());
             w.key("fcv").boolean(f.fc.fcv());
-            w.key("function").string(request_function_name(f.fc));
+            w.key("function").name(request_function_name(f.fc));
         } else {
             w.key("request").boolean(false);
-            w.key("station").string(station_type_name(f.fc.station_type()));
-            w.key("status").string(response_status_name(f.fc.function()));
+            w.key("station").name(station_type_name(f.fc.station_type()));
+            w.key("status").name(response_status_name(f.fc.function()));
         }
         w.end_object();
     } else {
         w.null();
     }
     w.key("fcs_ok").boolean(f.fcs_ok);
-    w.key("service").string(service_name(t.dp.service));
+    w.key("service").name(service_name(t.dp.service));
     w.key("direction").name(direction_name(t.direction));
     w.key("master").optional_integer(t.has_roles, t.master);
     w.key("slave").optional_integer(t.has_roles, t.slave);
     w.key("request_frame")
         .optional_integer(t.request_frame != 0, static_cast<std::int64_t>(t.request_frame));
-    w.key("ppo").optional_integer(data_exchange && t.dp.ppo.type != 0, t.dp.ppo.type);
-    w.key("ppo_source");
-    if (data_exchange)
-        w.string(ppo_source_name(t.dp.ppo.source));
-    else
-        w.null();
-    // The dialect names the parameter channel's code tables: none without a PCV.
-    w.key("dialect");
-    if (data_exchange && t.dp.ppo.has_pcv)
-        w.string(dialect_name(t.dp.dialect));
-    else
-        w.null();
-    w.key("pcv");
-    if (t.dp.has_pcv)
-        render_pcv(w, t);
-    else
-        w.null();
-    w.key("pcd");
-    if (data_exchange) {
-        w.begin_array();
-        ByteReader reader(t.dp.pcd);
-        while (auto word = reader.u16_be())
-            w.integer(*word);
-        w.end_array();
+    if (!data_exchange && !t.dp.has_pcv) {  // no cyclic data: five nulls in one copy
+        w.members("\"ppo\":null,\"ppo_source\":null,\"dialect\":null,\"pcv\":null,\"pcd\":null");
     } else {
-        w.null();
+        w.key("ppo").optional_integer(data_exchange && t.dp.ppo.type != 0, t.dp.ppo.type);
+        w.key("ppo_source");
+        if (data_exchange)
+            w.name(ppo_source_name(t.dp.ppo.source));
+        else
+            w.null();
+        // The dialect names the parameter channel's code tables: none without a PCV.
+        w.key("dialect");
+        if (data_exchange && t.dp.ppo.has_pcv)
+            w.name(dialect_name(t.dp.dialect));
+        else
+            w.null();
+        w.key("pcv");
+        if (t.dp.has_pcv)
+            render_pcv(w, t);
+        else
+            w.null();
+        w.key("pcd");
+        if (data_exchange) {
+            w.begin_array();
+            ByteReader reader(t.dp.pcd);
+            while (auto word = reader.u16_be())
+                w.integer(*word);
+            w.end_array();
+        } else {
+            w.null();
+        }
     }
     render_service_objects(w, t);
     w.key("data");
