@@ -30,6 +30,10 @@ struct PipelineParts {
     // The protocol's tracker judging the parameter channel (its findings and the PNU a telegram
     // is about). `dpscope stats` shows bus health only and needs it only for a -Y filter.
     bool parameter_findings = true;
+    // Each telegram's health events are read (by a filter or a trigger): the verdicts are then
+    // judged every quarter second of capture time, and one that turns bad is such an event.
+    // report and stats read them only for -Y; their figures are judged at the end either way.
+    bool health_events = true;
 };
 
 class Pipeline {
@@ -46,7 +50,7 @@ class Pipeline {
           keep_timelines_(parts.timelines) {
         if (settings.track_health && settings.protocol->has_bus_health) {
             health_.emplace(settings.health);
-            judge_ = settings.judge_in_capture_time;
+            judge_ = settings.judge_in_capture_time && parts.health_events;
         }
     }
 

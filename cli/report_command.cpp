@@ -117,7 +117,8 @@ int run_report(const ReportCommand& command) {
         report_input_issues(source, diagnostics);
         const ReportFormat format =
             report_format_from_name(command.format).value_or(ReportFormat::Text);
-        Pipeline pipeline(*settings, PipelineParts{.timelines = format == ReportFormat::Html});
+        Pipeline pipeline(*settings, PipelineParts{.timelines = format == ReportFormat::Html,
+                                                   .health_events = settings->filtering()});
         FindingLog log;
         Record record;
         std::uint64_t read = 0;

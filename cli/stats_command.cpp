@@ -112,7 +112,8 @@ int run_stats(const StatsCommand& command) {
         Output diagnostics(stderr);
         report_input_issues(source, diagnostics);
         // The parameter channel's findings are not shown: only a -Y filter reads them.
-        Pipeline pipeline(*settings, PipelineParts{.parameter_findings = settings->filtering()});
+        Pipeline pipeline(*settings, PipelineParts{.parameter_findings = settings->filtering(),
+                                                   .health_events = settings->filtering()});
         Record record;
         std::uint64_t read = 0;
         std::span<const Finding> findings;

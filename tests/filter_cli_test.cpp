@@ -214,6 +214,16 @@ TEST(FilterCliTest, StatsListTheStationsOfTheSelectedTelegrams) {
     EXPECT_NE(text.out.find("Live list (2 stations)"), std::string::npos) << text.out;
     CommandResult bad = run_dpscope({"stats", "-Y", "no.such.field == 1", health});
     EXPECT_EQ(bad.exit_code, 2);
+    // A filter on the verdicts that turn bad: judged every quarter second of capture time, as
+    // decode judges them (report and stats judge them so only for -Y). The segment turns bad at
+    // frame 659, a poll of station 3 by master 2.
+    CommandResult turned_bad =
+        run_dpscope({"stats", "-T", "csv", "-Y", "health.event == \"verdict_bad\"", health});
+    ASSERT_EQ(turned_bad.exit_code, 1) << turned_bad.err;  // the segment is bad
+    const std::vector<std::string> turned_rows = test::lines_of(turned_bad.out);
+    ASSERT_EQ(turned_rows.size(), 3u) << turned_bad.out;
+    EXPECT_EQ(turned_rows[1].substr(0, 2), "2,");
+    EXPECT_EQ(turned_rows[2].substr(0, 2), "3,");
 }
 
 // stats without -Y leaves the parameter channel unjudged (it shows bus health only); with -Y a
