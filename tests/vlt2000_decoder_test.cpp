@@ -366,6 +366,38 @@ TEST(Vlt2000DecoderTest, CharacterOutsidePrintableAsciiIsAProblem) {
     EXPECT_EQ(vlt2000_framing_rules().judge(span_of(sign), true).status, FramingStatus::Invalid);
 }
 
+// The characters are checked eight at a time: the first one outside printable ASCII is found at
+// every place between '<' and '>', whichever kind it is, and a later one is not reported.
+TEST(Vlt2000DecoderTest, TheFirstCharacterOutsidePrintableAsciiIsNamedWhereverItIs) {
+    Vlt2000Decoder decoder;
+    const Telegram whole = bytes_of("<01UOGD@0516+00080007>");
+    for (std::size_t at = 1; at + 1 < whole.size(); ++at) {
+        for (const std::uint8_t bad :
+             std::initializer_list<std::uint8_t>{0x00, 0x1F, 0x7F, 0x80, 0xFF}) {
+            Telegram bytes = whole;
+            bytes[at] = bad;
+            if (at + 2 < whole.size()) bytes[at + 1] = 0x01;  // a second one, after it
+            const DecodedTelegram& t = decoder.decode(span_of(bytes), kNoTime, 1);
+            std::size_t found = 0;
+            for (const Problem& p : t.problems())
+                if (p.kind == ProblemKind::Vlt2000CharacterInvalid) {
+                    ++found;
+                    EXPECT_EQ(p.offset, at) << int{bad};
+                }
+            EXPECT_EQ(found, 1u) << at << " " << int{bad};
+        }
+    }
+    // Every printable character passes.
+    Telegram printable = whole;
+    for (std::uint8_t c = 0x20; c <= 0x7E; ++c) {
+        printable[1 + (c % 20)] = c;
+        EXPECT_FALSE(decoder.decode(span_of(printable), kNoTime, 1)
+                         .problems()
+                         .contains(ProblemKind::Vlt2000CharacterInvalid))
+            << int{c};
+    }
+}
+
 TEST(Vlt2000DecoderTest, EveryPrefixIsTruncatedAndNeverCrashes) {
     const Telegram whole = bytes_of("<01UOGD@0516+00080007>");
     Vlt2000Decoder decoder;

@@ -1,6 +1,7 @@
 #include "protocols/vlt2000/vlt2000_decoder.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 #include "protocols/vlt2000/vlt2000_codes.hpp"
 #include "protocols/vlt2000/vlt2000_framing_rules.hpp"
@@ -10,6 +11,25 @@ namespace dpscope {
 namespace {
 
 constexpr bool is_digit(std::uint8_t c) noexcept { return c >= '0' && c <= '9'; }
+
+// The first of bytes[from, to) that vlt2000_char_valid() refuses, or `to`: eight characters a
+// step (a byte below 0x20, 0x7F or above), then the step that holds one byte by byte.
+std::size_t first_invalid_char(Bytes bytes, std::size_t from, std::size_t to) noexcept {
+    constexpr std::uint64_t kOnes = 0x0101010101010101ULL;
+    constexpr std::uint64_t kHighs = 0x8080808080808080ULL;
+    auto has_zero_byte = [](std::uint64_t w) { return (w - kOnes) & ~w & kHighs; };
+    std::size_t i = from;
+    for (; i + 8 <= to; i += 8) {
+        std::uint64_t w;
+        std::memcpy(&w, bytes.data() + i, 8);
+        if (((w & kHighs) | ((w - kOnes * 0x20) & ~w & kHighs) |
+             has_zero_byte(w ^ (kOnes * 0x7F))) != 0)
+            break;
+    }
+    for (; i < to; ++i)
+        if (!vlt2000_char_valid(bytes[i])) return i;
+    return to;
+}
 
 // The number `count` digits from `at` spell, or nullopt (with a problem at the first character
 // that is no digit). Only the characters present are read.
@@ -48,11 +68,9 @@ void parse_vlt2000(Bytes bytes, Vlt2000Telegram& v, bool check_checksum) noexcep
     // control character or a byte above 0x7E means the line broke), and neither does a record
     // from elsewhere (a capture file) pass unremarked. The first one that is not is reported; the
     // fields are still read.
-    for (std::size_t i = 1; i < std::min(size, kVlt2000StopAt); ++i) {
-        if (!vlt2000_char_valid(bytes[i])) {
+    if (const std::size_t end = std::min(size, kVlt2000StopAt); end > 1) {
+        if (const std::size_t i = first_invalid_char(bytes, 1, end); i < end)
             problems.add(ProblemKind::Vlt2000CharacterInvalid, i, 0, bytes[i]);
-            break;
-        }
     }
     // Fields are read as far as the characters go; a field cut short is left unset.
     const auto has = [&](std::size_t at, std::size_t count) { return at + count <= size; };
