@@ -69,7 +69,7 @@ class Pipeline {
         }
         summary_.add(t);
         summary_.add_findings(findings);
-        if (keep_timelines_) timelines_.add(findings, tracker_->completed());
+        if (keep_timelines_ && track_parameters_) timelines_.add(findings, tracker_->completed());
         return t;
     }
     // The end of the input: findings still open past the time-out.

@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "tests/json_parser.hpp"
 #include "tests/test_support.hpp"
 
 namespace dpscope {
@@ -224,6 +226,33 @@ TEST(FilterCliTest, StatsListTheStationsOfTheSelectedTelegrams) {
     ASSERT_EQ(turned_rows.size(), 3u) << turned_bad.out;
     EXPECT_EQ(turned_rows[1].substr(0, 2), "2,");
     EXPECT_EQ(turned_rows[2].substr(0, 2), "3,");
+}
+
+// report -Y on the verdicts that turn bad: report judges them every quarter second of capture
+// time when a filter reads them, as decode does, and lists the findings of the telegram where
+// one turned bad (in this simulated session, frame 2652: a slave silent and an SPM violation;
+// without the judging, nothing would be selected).
+TEST(FilterCliTest, ReportSelectsTheTelegramWhereAVerdictTurnedBad) {
+    CommandResult session =
+        run_dpscope({"simulate", "-c", "20000", "--seed", "3", "--fault", "station_lost", "--fault",
+                     "request_rejected=0.3", "--fault", "unknown_code=0.3", "--fault",
+                     "spm_violation=0.3", "-w", "-"});
+    ASSERT_EQ(session.exit_code, 0) << session.err;
+    const std::string filter = "health.event == \"verdict_bad\"";
+    CommandResult decoded = run_dpscope({"decode", "-T", "csv", "-Y", filter, "-"}, session.out);
+    ASSERT_EQ(decoded.exit_code, 0) << decoded.err;
+    const std::vector<std::string> rows = test::lines_of(decoded.out);
+    ASSERT_EQ(rows.size(), 2u) << decoded.out;  // the heading and the one telegram
+    const long long frame = std::stoll(rows[1].substr(0, rows[1].find(',')));
+    CommandResult report = run_dpscope({"report", "-T", "json", "-Y", filter, "-"}, session.out);
+    const std::optional<test::Json> json = test::parse_json(report.out);
+    ASSERT_TRUE(json) << report.out;
+    const std::vector<test::Json>& findings = (*json)["findings"].items;
+    ASSERT_EQ(findings.size(), 2u) << report.out;  // as decode shows them at that telegram
+    for (const test::Json& finding : findings)
+        EXPECT_EQ(finding["frame"].integer(), frame);
+    EXPECT_EQ(findings[0]["kind"].string(), "fdl_no_response");
+    EXPECT_EQ(findings[1]["kind"].string(), "spm_violation");
 }
 
 // stats without -Y leaves the parameter channel unjudged (it shows bus health only); with -Y a

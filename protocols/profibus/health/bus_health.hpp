@@ -332,9 +332,10 @@ class BusHealthTracker {
     // live table). Returns the verdicts that turned bad since the last judge(); valid until the
     // next call to observe() or judge().
     std::span<const HealthEvent> judge() { return judge(true); }
-    // The same verdicts without copying the statistics out: health() stays as of the last judge()
-    // or finish(). For judging often (offline, every quarter second of capture time) when only
-    // the verdicts that turned bad are wanted.
+    // The same verdicts without copying the stations' and masters' figures out: health()'s
+    // stations and masters stay as of the last judge() or finish() (its segment is live as
+    // always, its judgement this one's). For judging often (offline, every quarter second of
+    // capture time) when only the verdicts that turned bad are wanted.
     std::span<const HealthEvent> judge_verdicts() { return judge(false); }
     // The end of the capture at `end_ns` (a live capture's stop; default: the last telegram's
     // end): the open cycles are closed and everything judged.
