@@ -4,6 +4,7 @@
 #include <cstring>
 #include <iterator>
 
+#include "core/byte_word.hpp"
 #include "core/text_encoding.hpp"
 
 namespace dpscope::json {
@@ -19,23 +20,16 @@ constexpr bool needs_escape(char c) noexcept {
 
 }  // namespace
 
-// True when no byte of `text` needs an escape. Eight bytes a step: a byte is flagged when its
-// high bit is set (0x80 and up), when it is below 0x20, or when it equals '"' or '\\' (the
-// usual "has a zero byte" test on the word XORed with each). A flag may be a false alarm only
-// for a byte after a real one, so "no flag" is exact.
+// True when no byte of `text` needs an escape. Eight bytes a step (core/byte_word.hpp): a byte
+// is flagged when it is 0x80 or more, below 0x20, or '"' or '\\'.
 bool plain_text(std::string_view text) noexcept {
-    constexpr std::uint64_t kOnes = 0x0101010101010101ULL;
-    constexpr std::uint64_t kHighs = 0x8080808080808080ULL;
-    auto has_zero_byte = [](std::uint64_t w) { return (w - kOnes) & ~w & kHighs; };
+    using namespace byte_word;
     const char* p = text.data();
     std::size_t left = text.size();
     for (; left >= 8; p += 8, left -= 8) {
-        std::uint64_t w;
-        std::memcpy(&w, p, 8);
-        const std::uint64_t flags = (w & kHighs) | ((w - kOnes * 0x20) & ~w & kHighs) |
-                                    has_zero_byte(w ^ (kOnes * '"')) |
-                                    has_zero_byte(w ^ (kOnes * '\\'));
-        if (flags != 0) return false;
+        const std::uint64_t w = load(p);
+        if ((any_high(w) | any_below(w, 0x20) | any_equal(w, '"') | any_equal(w, '\\')) != 0)
+            return false;
     }
     bool plain = true;
     for (; left > 0; ++p, --left)

@@ -232,36 +232,23 @@ void render_dpv1(JsonWriter& w, const DecodedTelegram& t, const Dpv1Pdu& pdu) {
                           static_cast<std::int64_t>(pdu.data.size()));
     w.key("alarm_type").optional_integer(alarm, pdu.index);
     w.key("specifier").optional_integer(alarm, pdu.length);
-    bool error = pdu.layout == Layout::Error && pdu.complete;
-    if (!error) {
+    if (pdu.layout == Layout::Error && pdu.complete) {
+        w.key("error_decode").integer(pdu.error_decode);
+        w.key("error_decode_name");
+        optional_string(w, dpv1_error_decode_name(pdu.error_decode));
+        w.key("error_code_1").integer(pdu.error_code_1);
+        w.key("error_class").integer(pdu.error_code_1 >> 4);
+        w.key("error_class_name");
+        optional_string(w, dpv1_error_class_name(pdu.error_code_1));
+        w.key("error_code").integer(pdu.error_code_1 & 0x0F);
+        w.key("error_code_name").string(dpv1_error_code_name(pdu.error_code_1));
+        w.key("error_code_2").integer(pdu.error_code_2);
+    } else {
         w.members(
             "\"error_decode\":null,\"error_decode_name\":null,\"error_code_1\":null,"
             "\"error_class\":null,\"error_class_name\":null,\"error_code\":null,"
             "\"error_code_name\":null,\"error_code_2\":null");
-        render_dpv1_initiate_abort(w, t, pdu);
-        w.end_object();
-        return;
     }
-    w.key("error_decode").optional_integer(error, pdu.error_decode);
-    w.key("error_decode_name");
-    if (error)
-        optional_string(w, dpv1_error_decode_name(pdu.error_decode));
-    else
-        w.null();
-    w.key("error_code_1").optional_integer(error, pdu.error_code_1);
-    w.key("error_class").optional_integer(error, pdu.error_code_1 >> 4);
-    w.key("error_class_name");
-    if (error)
-        optional_string(w, dpv1_error_class_name(pdu.error_code_1));
-    else
-        w.null();
-    w.key("error_code").optional_integer(error, pdu.error_code_1 & 0x0F);
-    w.key("error_code_name");
-    if (error)
-        w.string(dpv1_error_code_name(pdu.error_code_1));
-    else
-        w.null();
-    w.key("error_code_2").optional_integer(error, pdu.error_code_2);
     render_dpv1_initiate_abort(w, t, pdu);
     w.end_object();
 }

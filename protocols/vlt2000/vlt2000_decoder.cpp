@@ -1,8 +1,8 @@
 #include "protocols/vlt2000/vlt2000_decoder.hpp"
 
 #include <algorithm>
-#include <cstring>
 
+#include "core/byte_word.hpp"
 #include "protocols/vlt2000/vlt2000_codes.hpp"
 #include "protocols/vlt2000/vlt2000_framing_rules.hpp"
 
@@ -13,18 +13,14 @@ namespace {
 constexpr bool is_digit(std::uint8_t c) noexcept { return c >= '0' && c <= '9'; }
 
 // The first of bytes[from, to) that vlt2000_char_valid() refuses, or `to`: eight characters a
-// step (a byte below 0x20, 0x7F or above), then the step that holds one byte by byte.
+// step (core/byte_word.hpp: a byte below 0x20, 0x7F or above), then the step that holds one byte
+// by byte.
 std::size_t first_invalid_char(Bytes bytes, std::size_t from, std::size_t to) noexcept {
-    constexpr std::uint64_t kOnes = 0x0101010101010101ULL;
-    constexpr std::uint64_t kHighs = 0x8080808080808080ULL;
-    auto has_zero_byte = [](std::uint64_t w) { return (w - kOnes) & ~w & kHighs; };
+    using namespace byte_word;
     std::size_t i = from;
     for (; i + 8 <= to; i += 8) {
-        std::uint64_t w;
-        std::memcpy(&w, bytes.data() + i, 8);
-        if (((w & kHighs) | ((w - kOnes * 0x20) & ~w & kHighs) |
-             has_zero_byte(w ^ (kOnes * 0x7F))) != 0)
-            break;
+        const std::uint64_t w = load(bytes.data() + i);
+        if ((any_high(w) | any_below(w, 0x20) | any_equal(w, 0x7F)) != 0) break;
     }
     for (; i < to; ++i)
         if (!vlt2000_char_valid(bytes[i])) return i;
