@@ -13,17 +13,20 @@ namespace dpscope {
 
 class LogHistogram {
   public:
-    void add(std::uint64_t value) {
-        std::size_t bucket = bucket_of(value);
-        if (bucket >= counts_.size()) counts_.resize(bucket + 1, 0);
+    // Inline (a sample per poll cycle, token or answer): a new bucket is made out of line.
+    [[gnu::always_inline]] void add(std::uint64_t value) {
+        const std::size_t bucket = bucket_of(value);
+        if (bucket >= counts_.size()) [[unlikely]]
+            grow(bucket);
         ++counts_[bucket];
-        if (count_ == 0 || value < min_) min_ = value;
-        if (count_ == 0 || value > max_) max_ = value;
+        min_ = std::min(min_, value);
+        max_ = std::max(max_, value);
         ++count_;
     }
 
     std::uint64_t count() const noexcept { return count_; }
-    std::uint64_t min() const noexcept { return min_; }
+    // 0 when empty.
+    std::uint64_t min() const noexcept { return count_ == 0 ? 0 : min_; }
     std::uint64_t max() const noexcept { return max_; }
 
     // Nearest-rank percentile (p in 0..100): the middle of the bucket holding the sample of rank
@@ -37,7 +40,7 @@ class LogHistogram {
             seen += counts_[b];
             if (seen >= rank) {
                 std::uint64_t middle = lower_of(b) + (upper_of(b) - lower_of(b)) / 2;
-                return std::clamp(middle, min_, max_);
+                return std::clamp(middle, min(), max_);
             }
         }
         return max_;
@@ -70,13 +73,15 @@ class LogHistogram {
     }
 
   private:
+    [[gnu::noinline]] void grow(std::size_t bucket) { counts_.resize(bucket + 1, 0); }
+
     static constexpr int kSubBits = 6;
     static constexpr std::uint64_t kSteps = 64;
     static constexpr std::uint64_t kExact = 128;
 
     std::vector<std::uint32_t> counts_;
     std::uint64_t count_ = 0;
-    std::uint64_t min_ = 0;
+    std::uint64_t min_ = UINT64_MAX;  // of the samples (none: the greatest value)
     std::uint64_t max_ = 0;
 };
 

@@ -107,16 +107,7 @@ std::string describe_reason(const VerdictReason& reason, const HealthThresholds&
                        verdict_name(reason.verdict), comparison, figure(limit), unit);
 }
 
-void TimeSeries::add(std::int64_t time_ns, std::int64_t value_ns) {
-    if (!points_.empty() && points_.back().count < per_point_) {
-        Point& p = points_.back();
-        p.last_ns = time_ns;
-        p.min_ns = std::min(p.min_ns, value_ns);
-        p.max_ns = std::max(p.max_ns, value_ns);
-        p.sum_ns += static_cast<double>(value_ns);
-        ++p.count;
-        return;
-    }
+void TimeSeries::add_point(std::int64_t time_ns, std::int64_t value_ns) {
     if (points_.size() == kMaxPoints) {
         // Merge neighbours pairwise: half the points, each spanning twice the samples.
         std::size_t out = 0;

@@ -10,6 +10,7 @@
 // The rules, in full: docs/bus-health.md.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -97,13 +98,29 @@ class TimeSeries {
             return count == 0 ? 0.0 : sum_ns / static_cast<double>(count);
         }
     };
-    // A sample `value_ns` taken at `time_ns` (samples come in time order).
-    void add(std::int64_t time_ns, std::int64_t value_ns);
+    // A sample `value_ns` taken at `time_ns` (samples come in time order). Inline: most samples
+    // join the last point; a new point is made out of line.
+    void add(std::int64_t time_ns, std::int64_t value_ns) {
+        if (!points_.empty() && points_.back().count < per_point_) [[likely]] {
+            Point& p = points_.back();
+            p.last_ns = time_ns;
+            p.min_ns = std::min(p.min_ns, value_ns);
+            p.max_ns = std::max(p.max_ns, value_ns);
+            p.sum_ns += static_cast<double>(value_ns);
+            ++p.count;
+            return;
+        }
+        add_point(time_ns, value_ns);
+    }
     std::span<const Point> points() const noexcept { return points_; }
     // Samples each point gathers before the next one starts (doubles at each merge).
     std::uint64_t samples_per_point() const noexcept { return per_point_; }
 
   private:
+    // add() when the last point is full (or there is none): a new one, after merging the points
+    // pairwise when kMaxPoints are there.
+    void add_point(std::int64_t time_ns, std::int64_t value_ns);
+
     std::vector<Point> points_;
     std::uint64_t per_point_ = 1;
 };
@@ -314,6 +331,10 @@ struct BusHealthOptions {
     HealthThresholds thresholds;
     std::uint32_t baud = 0;  // line rate for bus load and idle time (0: unknown)
     std::uint32_t character_bits = 11;
+    // The steady poll's short path (protocols/profibus/health/bus_health_state.hpp); false takes
+    // every telegram through the full rules. The figures are the same either way: the tests
+    // compare the two.
+    bool steady_path = true;
 };
 
 class BusHealthTracker {

@@ -56,30 +56,22 @@ void BusHealthTrackerImpl::token_passed(State& s, const DecodedTelegram& t) {
     }
 }
 
-void BusHealthTrackerImpl::master_polls(State::Master& m, const DecodedTelegram& t,
-                                        std::uint8_t slave) {
-    if (m.polled_in_cycle[slave] || !m.cycle_started) {
-        if (m.cycle_started && t.time_ns != kNoTime && m.cycle_start_ns != kNoTime &&
-            t.time_ns >= m.cycle_start_ns) {
-            const std::int64_t cycle = t.time_ns - m.cycle_start_ns;
-            m.health.cycle.add(cycle);
-            m.health.cycle_series.add(t.time_ns, cycle);
-            if (m.last_cycle_ns >= 0) {
-                m.jitter_sum += std::fabs(static_cast<double>(cycle - m.last_cycle_ns));
-                ++m.jitter_count;
-                m.health.cycle_jitter_ns = m.jitter_sum / static_cast<double>(m.jitter_count);
-            }
-            m.last_cycle_ns = cycle;
+void BusHealthTrackerImpl::new_poll_cycle(State::Master& m, const DecodedTelegram& t) {
+    if (m.cycle_started && t.time_ns != kNoTime && m.cycle_start_ns != kNoTime &&
+        t.time_ns >= m.cycle_start_ns) {
+        const std::int64_t cycle = t.time_ns - m.cycle_start_ns;
+        m.health.cycle.add(cycle);
+        m.health.cycle_series.add(t.time_ns, cycle);
+        if (m.last_cycle_ns >= 0) {
+            m.jitter_sum += std::fabs(static_cast<double>(cycle - m.last_cycle_ns));
+            ++m.jitter_count;
+            m.health.cycle_jitter_ns = m.jitter_sum / static_cast<double>(m.jitter_count);
         }
-        m.cycle_started = true;
-        m.cycle_start_ns = t.time_ns;
-        m.polled_in_cycle.reset();
+        m.last_cycle_ns = cycle;
     }
-    m.polled_in_cycle[slave] = true;
-    if (!m.polled_ever[slave]) {
-        m.polled_ever[slave] = true;
-        ++m.health.slaves_polled;
-    }
+    m.cycle_started = true;
+    m.cycle_start_ns = t.time_ns;
+    m.polled_in_cycle.clear();
 }
 
 }  // namespace dpscope

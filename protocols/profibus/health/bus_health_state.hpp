@@ -5,9 +5,9 @@
 #pragma once
 
 #include <array>
-#include <bitset>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "protocols/profibus/dp_service.hpp"
@@ -31,6 +31,8 @@ class StationTable {
             return *entry;
         return make(address);
     }
+    // The entry made for `address`, or null (nothing is made).
+    Entry* find(std::size_t address) noexcept { return entries_[address].get(); }
 
     class iterator {
       public:
@@ -64,6 +66,21 @@ class StationTable {
     }
 
     std::array<std::unique_ptr<Entry>, kStationCount> entries_;
+};
+
+// A set of the 128 station addresses (two words: tested and set inline).
+class AddressSet {
+  public:
+    bool contains(std::uint8_t address) const noexcept {
+        return (words_[(address >> 6) & 1] >> (address & 63) & 1) != 0;
+    }
+    void insert(std::uint8_t address) noexcept {
+        words_[(address >> 6) & 1] |= std::uint64_t{1} << (address & 63);
+    }
+    void clear() noexcept { words_ = {}; }
+
+  private:
+    std::array<std::uint64_t, 2> words_{};
 };
 
 }  // namespace detail
@@ -100,8 +117,8 @@ struct BusHealthTracker::State {
         std::int64_t last_cycle_ns = -1;
         double jitter_sum = 0;
         std::uint64_t jitter_count = 0;
-        std::bitset<kStationCount> polled_in_cycle;
-        std::bitset<kStationCount> polled_ever;
+        detail::AddressSet polled_in_cycle;
+        detail::AddressSet polled_ever;
         Verdict last_verdict = Verdict::Good;
     };
     // The request waiting for its reply.
@@ -117,11 +134,13 @@ struct BusHealthTracker::State {
 
     detail::StationTable<Slot> slots;
     detail::StationTable<Master> masters;
-    // Frame count per master -> slave link: bit 0 valid, bit 1 the last FCB.
-    std::array<std::array<std::uint8_t, kStationCount>, kStationCount> link_fcb{};
-    // The links (master -> slave) an intact request was seen on: before it, nothing the slave
-    // sends that master is judged (a capture may begin with the answer to a request before it).
-    std::array<std::bitset<kStationCount>, kStationCount> link_asked{};
+    // Per master -> slave link (links[master][slave]), kLink* bits: its frame count (valid, the
+    // last FCB), and whether an intact request was seen on it (before one, nothing the slave
+    // sends that master is judged: a capture may begin with the answer to a request before it).
+    static constexpr std::uint8_t kLinkFcbValid = 1;
+    static constexpr std::uint8_t kLinkFcb = 2;
+    static constexpr std::uint8_t kLinkAsked = 4;
+    std::array<std::array<std::uint8_t, kStationCount>, kStationCount> links{};
     Pending pending;
     bool token_waiting = false;
     std::uint8_t token_holder = 0;
@@ -132,7 +151,9 @@ struct BusHealthTracker::State {
     Verdict segment_last_verdict = Verdict::Good;
     bool finished = false;
     double ns_per_byte = 0;  // a character's time on the line (0: baud not known)
+    bool has_baud = false;   // ns_per_byte != 0
     std::uint64_t lost_cycles = 3;
+    bool steady_path = true;  // BusHealthOptions::steady_path
 };
 
 // The work of observe() and finish(), out of the class to keep the public header small: a friend
@@ -141,23 +162,98 @@ class BusHealthTrackerImpl {
   public:
     using State = BusHealthTracker::State;
 
+    // ---- the telegram's steps (protocols/profibus/health/bus_health_tracker.cpp)
+    //
+    // observe() counts the segment, then takes the telegrams of a running bus in a few steps
+    // (the steady path): an intact SRD request (frame count valid) from the active master to a
+    // listed station (steady_request), the intact answer to the request waiting from a listed
+    // slave whose state it leaves as it is (steady_answer), the intact token passed on by the
+    // master holding it to a known master (steady_token). Each tests first and counts after,
+    // through the same helpers as the full rules (heard, count_frame, count_request,
+    // count_answer, exchanged, master_polls, token_passed); a test that fails hands the
+    // telegram, untouched, to the full rules (observe_rest). BusHealthSteadyPathTest compares the
+    // two over simulated sessions with every fault. Each step returns the telegram's events
+    // (none on the steady path).
+
+    // The segment's counts and times (every PROFIBUS telegram).
+    static void count_segment(State& s, SegmentHealth& seg, const DecodedTelegram& t);
+    // An intact telegram while no request waits, or ...
+    static std::span<const HealthEvent> steady_request(State& s, SegmentHealth& seg,
+                                                       const DecodedTelegram& t);
+    // ... while one does.
+    static std::span<const HealthEvent> steady_answer(State& s, SegmentHealth& seg,
+                                                      const DecodedTelegram& t);
+    // An intact token (from steady_request()).
+    static std::span<const HealthEvent> steady_token(State& s, SegmentHealth& seg,
+                                                     const DecodedTelegram& t);
+    // The full rules for a telegram the segment has counted.
+    static std::span<const HealthEvent> observe_rest(State& s, SegmentHealth& seg,
+                                                     const DecodedTelegram& t);
+    // The frame count of a link (State::links) after an SRD/SDA request with FCV set and `fcb`:
+    // whether it repeats the last request (same FCB as last time).
+    static bool count_frame(std::uint8_t& link, bool fcb);
+    // A request for `service` to the listed station `slot` (`expects`: it waits for a reply;
+    // `repeat`: an FDL retry): its counts. True when it starts a poll cycle (it waits for a reply
+    // and is no retry): the caller closes the last one and opens it.
+    static bool count_request(State::Slot& slot, Service service, bool repeat, bool expects);
+    // The answer `fdl` of `slot` to a request of `function` for `service`: negative answers and
+    // illegal ones (a wrong kind; a short acknowledge where data was due).
+    static void count_answer(State::Slot& slot, const FdlTelegram& fdl, std::uint8_t function,
+                             Service service);
+
     // ---- the live list and each station's state
     // (protocols/profibus/health/bus_health_stations.cpp)
 
     // Lists the station (once): first seen now.
-    static void list(State::Slot& slot, const DecodedTelegram& t);
+    static void list(State::Slot& slot, const DecodedTelegram& t) {
+        if (!slot.listed) [[unlikely]]
+            first_listed(slot, t);
+    }
+    static void first_listed(State::Slot& slot, const DecodedTelegram& t);
     static void set_state(State& s, State::Slot& slot, StationState next, const DecodedTelegram& t,
                           bool returned);
     static StationRole role_of(const State::Slot& slot);
     static void emit(State& s, HealthEventKind kind, const State::Slot& slot,
                      const DecodedTelegram& t);
     static void go_lost(State& s, State::Slot& slot, const DecodedTelegram& t);
-    // A station that sent a telegram.
-    static void heard(State& s, State::Slot& slot, const DecodedTelegram& t);
+    // A station that sent a telegram (listed now if it was not).
+    static void heard(State& s, State::Slot& slot, const DecodedTelegram& t) {
+        list(slot, t);
+        heard_listed(slot, t);
+        (void)s;
+    }
+    // heard() of a listed station.
+    static void heard_listed(State::Slot& slot, const DecodedTelegram& t) {
+        ++slot.health.telegrams_sent;
+        slot.health.last_seen_ns = t.time_ns;
+        slot.health.last_frame = t.frame;
+    }
     static void make_master(State& s, State::Slot& slot, const DecodedTelegram& t);
     // Closes a slave's poll cycle: an unanswered one counts toward lost.
     static void close_cycle(State& s, State::Slot& slot, const DecodedTelegram& t,
-                            std::uint64_t lost_cycles);
+                            std::uint64_t lost_cycles) {
+        if (!slot.cycle_open) return;
+        slot.cycle_open = false;
+        if (!slot.cycle_answered) [[unlikely]]
+            unanswered_cycle(s, slot, t, lost_cycles);
+    }
+    // A slave's poll cycle starts (close_cycle() closed the last one).
+    static void open_cycle(State::Slot& slot) {
+        slot.cycle_open = true;
+        slot.cycle_answered = false;
+        slot.cycle_repeats = 0;
+    }
+    // The rest of close_cycle() for a cycle that went unanswered.
+    static void unanswered_cycle(State& s, State::Slot& slot, const DecodedTelegram& t,
+                                 std::uint64_t lost_cycles);
+    // A slave that answered Data_Exchange (`data`: with data), in whatever state: what its rules
+    // remember of it (the state itself is state_from_answer's).
+    static void exchanged(State::Slot& slot, bool data) {
+        slot.diag_streak = 0;
+        slot.parameterised = true;
+        slot.exchanged_since_prm = true;
+        if (data) slot.exchange_data_seen = true;
+    }
     // The state of the station that answered a request for `service` (`data`: with data): a
     // slave's from the service, a lost master's back to active.
     static void state_from_answer(State& s, State::Slot& slot, Service service, bool data,
@@ -183,8 +279,20 @@ class BusHealthTrackerImpl {
                                   std::uint64_t lost_cycles);
     // An intact token (SD4): passed by its sender, received by its addressee (token rotation).
     static void token_passed(State& s, const DecodedTelegram& t);
-    // Master `m` sent a Data_Exchange request (not a repeat) to `slave`: its poll cycle.
-    static void master_polls(State::Master& m, const DecodedTelegram& t, std::uint8_t slave);
+    // Master `m` sent a Data_Exchange request (not a repeat) to `slave`: its poll cycle (a new
+    // one when it polled `slave` in this one already).
+    [[gnu::always_inline]] static void master_polls(State::Master& m, const DecodedTelegram& t,
+                                                    std::uint8_t slave) {
+        if (m.polled_in_cycle.contains(slave) || !m.cycle_started) [[unlikely]]
+            new_poll_cycle(m, t);
+        m.polled_in_cycle.insert(slave);
+        if (!m.polled_ever.contains(slave)) [[unlikely]] {
+            m.polled_ever.insert(slave);
+            ++m.health.slaves_polled;
+        }
+    }
+    // The poll cycle that ended (its time measured) and the one that starts at `t`.
+    static void new_poll_cycle(State::Master& m, const DecodedTelegram& t);
 };
 
 }  // namespace dpscope

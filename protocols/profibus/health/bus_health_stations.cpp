@@ -5,8 +5,7 @@
 
 namespace dpscope {
 
-void BusHealthTrackerImpl::list(State::Slot& slot, const DecodedTelegram& t) {
-    if (slot.listed) return;
+void BusHealthTrackerImpl::first_listed(State::Slot& slot, const DecodedTelegram& t) {
     slot.listed = true;
     slot.health.first_seen_ns = t.time_ns;
     slot.health.first_frame = t.frame;
@@ -46,27 +45,14 @@ void BusHealthTrackerImpl::go_lost(State& s, State::Slot& slot, const DecodedTel
     emit(s, HealthEventKind::StationLost, slot, t);
 }
 
-// A station that sent a telegram.
-void BusHealthTrackerImpl::heard(State& s, State::Slot& slot, const DecodedTelegram& t) {
-    list(slot, t);
-    ++slot.health.telegrams_sent;
-    slot.health.last_seen_ns = t.time_ns;
-    slot.health.last_frame = t.frame;
-    (void)s;
-}
-
 void BusHealthTrackerImpl::make_master(State& s, State::Slot& slot, const DecodedTelegram& t) {
     slot.master = true;
     (void)s;
     (void)t;
 }
 
-// Closes a slave's poll cycle: an unanswered one counts toward lost.
-void BusHealthTrackerImpl::close_cycle(State& s, State::Slot& slot, const DecodedTelegram& t,
-                                       std::uint64_t lost_cycles) {
-    if (!slot.cycle_open) return;
-    slot.cycle_open = false;
-    if (slot.cycle_answered) return;
+void BusHealthTrackerImpl::unanswered_cycle(State& s, State::Slot& slot, const DecodedTelegram& t,
+                                            std::uint64_t lost_cycles) {
     ++slot.unanswered_cycles;
     if (!slot.master && slot.unanswered_cycles >= lost_cycles) go_lost(s, slot, t);
 }
@@ -94,10 +80,7 @@ void BusHealthTrackerImpl::state_from_answer(State& s, State::Slot& slot, Servic
             break;
         case Service::DataExchange:
             next = StationState::DataExchange;
-            slot.diag_streak = 0;
-            slot.parameterised = true;
-            slot.exchanged_since_prm = true;
-            if (data) slot.exchange_data_seen = true;
+            exchanged(slot, data);
             break;
         case Service::SlaveDiag:
             if (was_lost ||

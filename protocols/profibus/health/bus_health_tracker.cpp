@@ -6,6 +6,7 @@
 // protocols/profibus/health/bus_health_masters.cpp and
 // protocols/profibus/health/bus_health_verdicts.cpp.
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <memory>
 
@@ -29,16 +30,18 @@ bool is_damaged(const FdlTelegram& fdl) {
 // and no time is never later).
 static_assert(kNoTime == std::numeric_limits<std::int64_t>::min());
 
-bool is_data_frame(FrameType type) { return type == FrameType::Sd2 || type == FrameType::Sd3; }
+constexpr bool is_data_frame(FrameType type) {
+    return type == FrameType::Sd2 || type == FrameType::Sd3;
+}
 
-bool status_is_refusal(std::uint8_t status) {
+constexpr bool status_is_refusal(std::uint8_t status) {
     return status == static_cast<std::uint8_t>(FdlStatus::UserError) ||
            status == static_cast<std::uint8_t>(FdlStatus::NoResource) ||
            status == static_cast<std::uint8_t>(FdlStatus::NoService);
 }
 
 // The SRD statuses that carry (or stand for) response data: DL, NR, DH, RDL, RDH.
-bool status_is_srd_data(std::uint8_t status) {
+constexpr bool status_is_srd_data(std::uint8_t status) {
     switch (static_cast<FdlStatus>(status)) {
         case FdlStatus::DataLow:
         case FdlStatus::NoResponseData:
@@ -49,7 +52,7 @@ bool status_is_srd_data(std::uint8_t status) {
     }
 }
 
-int negative_index(std::uint8_t status) {
+constexpr int negative_index(std::uint8_t status) {
     switch (static_cast<FdlStatus>(status)) {
         case FdlStatus::UserError: return static_cast<int>(NegativeAnswer::UE);
         case FdlStatus::NoResource: return static_cast<int>(NegativeAnswer::RR);
@@ -60,6 +63,20 @@ int negative_index(std::uint8_t status) {
         default: return -1;
     }
 }
+
+// The three above for each response status (the FC's low nibble), read once an answer.
+struct StatusTraits {
+    std::int8_t negative = -1;
+    bool refusal = false;
+    bool srd_data = false;
+};
+constexpr std::array<StatusTraits, 16> kStatusTraits = [] {
+    std::array<StatusTraits, 16> rows{};
+    for (std::uint8_t status = 0; status < rows.size(); ++status)
+        rows[status] = {static_cast<std::int8_t>(negative_index(status)), status_is_refusal(status),
+                        status_is_srd_data(status)};
+    return rows;
+}();
 
 bool data_always_due(Service service) {
     return service == Service::SlaveDiag || service == Service::GetCfg ||
@@ -74,11 +91,13 @@ BusHealthTracker::BusHealthTracker(BusHealthOptions options)
     health_.segment.baud = options_.baud;
     health_.segment.character_bits = options_.character_bits;
     state_->events.reserve(8);
+    state_->steady_path = options_.steady_path;
     state_->lost_cycles =
         static_cast<std::uint64_t>(health_.thresholds.get(HealthThreshold::LostCycles));
     if (options_.baud != 0)
         state_->ns_per_byte =
             static_cast<double>(options_.character_bits) * 1e9 / static_cast<double>(options_.baud);
+    state_->has_baud = state_->ns_per_byte != 0;
 }
 
 BusHealthTracker::~BusHealthTracker() = default;
@@ -86,29 +105,198 @@ BusHealthTracker::~BusHealthTracker() = default;
 std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t) {
     using Impl = BusHealthTrackerImpl;
     State& s = *state_;
-    if (!s.events.empty()) s.events.clear();
     if (t.protocol != Protocol::ProfibusDp) return {};
-    SegmentHealth& seg = health_.segment;
+    Impl::count_segment(s, health_.segment, t);
+    // The steady path for an intact telegram, else the full rules (bus_health_state.hpp).
     const FdlTelegram& fdl = t.dp.fdl;
-    const std::uint64_t lost_cycles = s.lost_cycles;
+    if (fdl.fcs_ok && fdl.problems.empty() && s.steady_path) [[likely]]
+        return s.pending.active ? Impl::steady_answer(s, health_.segment, t)
+                                : Impl::steady_request(s, health_.segment, t);
+    return Impl::observe_rest(s, health_.segment, t);
+}
 
+[[gnu::always_inline]] inline void BusHealthTrackerImpl::count_segment(State& s, SegmentHealth& seg,
+                                                                       const DecodedTelegram& t) {
     ++seg.telegrams;
-    seg.bytes += t.bytes.size();
     s.last_frame = t.frame;
-    if (t.time_ns != kNoTime) {
-        s.last_time_ns = t.time_ns;
-        if (seg.first_ns == kNoTime) seg.first_ns = t.time_ns;
+    const std::int64_t time = t.time_ns;
+    if (time != kNoTime) {
+        s.last_time_ns = time;
+        if (seg.first_ns == kNoTime) [[unlikely]]
+            seg.first_ns = time;
     }
-    if (s.ns_per_byte != 0) {
+    seg.bytes += t.bytes.size();  // apart from telegrams: two adds, not a vector add
+    if (s.has_baud) [[unlikely]] {
         const double duration_ns = static_cast<double>(t.bytes.size()) * s.ns_per_byte;
         seg.busy_ns += duration_ns;
-        if (t.time_ns != kNoTime) {
-            const std::int64_t end = t.time_ns + static_cast<std::int64_t>(duration_ns + 0.5);
+        if (time != kNoTime) {
+            const std::int64_t end = time + static_cast<std::int64_t>(duration_ns + 0.5);
             if (end > seg.end_ns) seg.end_ns = end;
         }
-    } else if (t.time_ns > seg.end_ns) {
-        seg.end_ns = t.time_ns;
+    } else if (time > seg.end_ns) {
+        seg.end_ns = time;
     }
+}
+
+[[gnu::always_inline]] inline bool BusHealthTrackerImpl::count_frame(std::uint8_t& link, bool fcb) {
+    const bool repeat =
+        (link & State::kLinkFcbValid) != 0 && ((link & State::kLinkFcb) != 0) == fcb;
+    link = static_cast<std::uint8_t>((link & State::kLinkAsked) | State::kLinkFcbValid |
+                                     (fcb ? State::kLinkFcb : 0));
+    return repeat;
+}
+
+[[gnu::always_inline]] inline bool BusHealthTrackerImpl::count_request(State::Slot& slot,
+                                                                       Service service, bool repeat,
+                                                                       bool expects) {
+    StationHealth& h = slot.health;
+    ++h.requests;
+    if (service == Service::SlaveDiag) ++h.diag_requests;
+    if (expects) ++h.replies_due;
+    if (repeat) {
+        ++h.repeats;
+        ++slot.cycle_repeats;
+        h.max_repeats_per_cycle = std::max(h.max_repeats_per_cycle, slot.cycle_repeats);
+    }
+    return expects && !repeat;
+}
+
+[[gnu::always_inline]] inline void BusHealthTrackerImpl::count_answer(State::Slot& slot,
+                                                                      const FdlTelegram& fdl,
+                                                                      std::uint8_t function,
+                                                                      Service service) {
+    StationHealth& h = slot.health;
+    const bool short_ack = fdl.type == FrameType::ShortAck;
+    const std::uint8_t status = fdl.has_fc ? fdl.fc.function() : 0;
+    const StatusTraits traits = kStatusTraits[status];
+    const bool data = is_data_frame(fdl.type);
+    // (Without a frame control byte the status reads 0, no negative answer.)
+    if (traits.negative >= 0) ++h.negative_answers[static_cast<std::size_t>(traits.negative)];
+    // Illegal answers: wrong kind, then a short acknowledge where data was due.
+    bool wrong_kind = false;
+    if (function_is_sda(function)) {
+        wrong_kind = data || (fdl.type == FrameType::Sd1 && traits.srd_data);
+    } else if (function == static_cast<std::uint8_t>(FdlFunction::FdlStatus)) {
+        wrong_kind = data;
+    } else if (function_is_srd(function)) {
+        wrong_kind =
+            fdl.type == FrameType::Sd1 && status == static_cast<std::uint8_t>(FdlStatus::Ok);
+    }
+    const bool no_data = short_ack || (fdl.type == FrameType::Sd1 && !traits.refusal);
+    if (wrong_kind) {
+        ++h.illegal_answers[static_cast<std::size_t>(IllegalAnswer::WrongKind)];
+    } else if (no_data && (data_always_due(service) ||
+                           (service == Service::DataExchange && slot.exchange_data_seen))) {
+        ++h.illegal_answers[static_cast<std::size_t>(IllegalAnswer::ShortAck)];
+    }
+}
+
+// Out of line, as steady_answer() and observe_rest(): observe() only counts and chooses, and each
+// path keeps its own registers.
+[[gnu::noinline]] std::span<const HealthEvent> BusHealthTrackerImpl::steady_request(
+    State& s, SegmentHealth& seg, const DecodedTelegram& t) {
+    const FdlTelegram& fdl = t.dp.fdl;
+    // Read once: the stores below are of bytes, which the compiler must assume may change t.
+    const FrameControl fc = fdl.fc;
+    const std::uint8_t sa = fdl.sa;
+    const std::uint8_t da = fdl.da;
+    const Service service = t.dp.service;
+    // SRD low or high with FCV set (FC bit 7 clear, bit 6 set: a request, bit 4 set, function
+    // 0xC or 0xD); SD1 to SD3 carry a frame control byte and both addresses.
+    if (!fdl.has_fc || (fc.raw & 0xDE) != 0x5C)
+        return fdl.type == FrameType::Sd4 ? steady_token(s, seg, t) : observe_rest(s, seg, t);
+    // The token passed last is taken when its receiver sends (check_token_taken()).
+    if (da == kBroadcastAddress || (s.token_waiting && sa != s.token_holder))
+        return observe_rest(s, seg, t);
+    State::Slot* sender = s.slots.find(sa);
+    State::Slot* slot = s.slots.find(da);
+    State::Master* m = s.masters.find(sa);
+    // An active master (listed, and a master, as only masters become active) asking a listed
+    // station whose poll cycle does not close unanswered (that counts toward lost).
+    if (sender == nullptr || slot == nullptr || m == nullptr ||
+        sender->health.state != StationState::Active || !slot->listed ||
+        (slot->cycle_open && !slot->cycle_answered))
+        return observe_rest(s, seg, t);
+
+    s.token_waiting = false;
+    heard_listed(*sender, t);
+    m->tokens_missed_in_row = 0;  // master_sends() of an active master
+    ++m->health.requests;
+    std::uint8_t link = s.links[sa][da] | State::kLinkAsked;
+    const bool repeat = count_frame(link, fc.fcb());
+    s.links[sa][da] = link;
+    // The cycle this one closes was answered (tested above): nothing counts toward lost.
+    if (count_request(*slot, service, repeat, true)) open_cycle(*slot);
+    s.pending = State::Pending{true, sa, da, fc.function(), service, true, slot};
+    if (service == Service::DataExchange && !repeat) master_polls(*m, t, da);
+    return {};
+}
+
+[[gnu::noinline]] std::span<const HealthEvent> BusHealthTrackerImpl::steady_token(
+    State& s, SegmentHealth& seg, const DecodedTelegram& t) {
+    const FdlTelegram& fdl = t.dp.fdl;
+    const std::uint8_t sa = fdl.sa;
+    const std::uint8_t da = fdl.da;
+    // Passed by the master that holds it (taken, when it was just passed to it) to a station
+    // known as a master (passing to a new one, or to all, takes the full rules).
+    if (!fdl.has_addresses || da == kBroadcastAddress || (s.token_waiting && sa != s.token_holder))
+        return observe_rest(s, seg, t);
+    const State::Slot* sender = s.slots.find(sa);
+    const State::Slot* receiver = s.slots.find(da);
+    if (sender == nullptr || receiver == nullptr || s.masters.find(sa) == nullptr ||
+        s.masters.find(da) == nullptr || sender->health.state != StationState::Active ||
+        !receiver->listed || !receiver->master)
+        return observe_rest(s, seg, t);
+
+    s.token_waiting = false;  // check_token_taken(): taken
+    token_passed(s, t);
+    return {};
+}
+
+[[gnu::noinline]] std::span<const HealthEvent> BusHealthTrackerImpl::steady_answer(
+    State& s, SegmentHealth& seg, const DecodedTelegram& t) {
+    const FdlTelegram& fdl = t.dp.fdl;
+    // Read once (as in steady_request()).
+    const State::Pending asked = s.pending;
+    const FrameType type = fdl.type;
+    if (s.token_waiting) return observe_rest(s, seg, t);
+    // A short acknowledge, or a response (SD1 to SD3) from the station asked to its master.
+    if (type != FrameType::ShortAck &&
+        (!fdl.has_fc || fdl.fc.is_request() || fdl.da != asked.master || fdl.sa != asked.slave))
+        return observe_rest(s, seg, t);
+    State::Slot& slot = *asked.slot;
+    const StationHealth& h = slot.health;
+    // A listed slave that stays in its state (state_from_answer() changes nothing).
+    if (!slot.listed || slot.master || h.state == StationState::Lost ||
+        asked.function == static_cast<std::uint8_t>(FdlFunction::FdlStatus))
+        return observe_rest(s, seg, t);
+    switch (asked.service) {
+        case Service::SetPrm:
+        case Service::ChkCfg:
+        case Service::SlaveDiag: return observe_rest(s, seg, t);
+        case Service::DataExchange:
+            if (h.state != StationState::DataExchange) return observe_rest(s, seg, t);
+            break;
+        default: break;
+    }
+
+    s.pending.active = false;
+    heard_listed(slot, t);
+    ++slot.health.answers;
+    slot.answered = true;
+    slot.cycle_answered = true;
+    slot.unanswered_cycles = 0;
+    count_answer(slot, fdl, asked.function, asked.service);
+    if (asked.service == Service::DataExchange) exchanged(slot, is_data_frame(type));
+    return {};
+}
+
+[[gnu::noinline]] std::span<const HealthEvent> BusHealthTrackerImpl::observe_rest(
+    State& s, SegmentHealth& seg, const DecodedTelegram& t) {
+    using Impl = BusHealthTrackerImpl;
+    const FdlTelegram& fdl = t.dp.fdl;
+    const std::uint64_t lost_cycles = s.lost_cycles;
+    if (!s.events.empty()) s.events.clear();  // the last call's (the steady steps leave none)
 
     const bool damaged = is_damaged(fdl);
     const bool addressed = fdl.has_addresses && fdl.type != FrameType::ShortAck;
@@ -156,7 +344,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
         if (is_request && fdl.has_fc && fdl.has_addresses && fdl.da != kBroadcastAddress &&
             (function_is_srd(fdl.fc.function()) || function_is_sda(fdl.fc.function())) &&
             fdl.fc.fcv()) {
-            s.link_fcb[fdl.sa][fdl.da] = static_cast<std::uint8_t>(1 | (fdl.fc.fcb() ? 2 : 0));
+            (void)Impl::count_frame(s.links[fdl.sa][fdl.da], fdl.fc.fcb());
         }
         return s.events;
     }
@@ -176,7 +364,8 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
         Impl::master_sends(s, sender, m, t);
         ++m.health.requests;
         if (fdl.da == kBroadcastAddress) return s.events;
-        s.link_asked[fdl.sa][fdl.da] = true;
+        std::uint8_t& link = s.links[fdl.sa][fdl.da];
+        link |= State::kLinkAsked;
         const std::uint8_t function = fdl.fc.function();
         const bool fdl_status = function == static_cast<std::uint8_t>(FdlFunction::FdlStatus);
         State::Slot& slot = s.slots[fdl.da];
@@ -184,34 +373,18 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
 
         // Frame count: the repeat rule of fdl_retry.
         bool repeat = false;
-        std::uint8_t& link = s.link_fcb[fdl.sa][fdl.da];
         if (fdl_status) {
-            link = 0;
+            link = State::kLinkAsked;
         } else if (function_is_srd(function) || function_is_sda(function)) {
-            if (!fdl.fc.fcv()) {
-                link = 0;
-            } else {
-                const bool fcb = fdl.fc.fcb();
-                repeat = (link & 1) != 0 && ((link & 2) != 0) == fcb;
-                link = static_cast<std::uint8_t>(1 | (fcb ? 2 : 0));
-            }
+            if (!fdl.fc.fcv())
+                link = State::kLinkAsked;
+            else
+                repeat = Impl::count_frame(link, fdl.fc.fcb());
         }
         const bool expects = function_expects_reply(function) && !fdl.fc.is_reserved();
-        if (slot.listed) {
-            StationHealth& h = slot.health;
-            ++h.requests;
-            if (t.dp.service == Service::SlaveDiag) ++h.diag_requests;
-            if (expects) ++h.replies_due;
-            if (repeat) {
-                ++h.repeats;
-                ++slot.cycle_repeats;
-                h.max_repeats_per_cycle = std::max(h.max_repeats_per_cycle, slot.cycle_repeats);
-            } else if (expects) {
-                Impl::close_cycle(s, slot, t, lost_cycles);
-                slot.cycle_open = true;
-                slot.cycle_answered = false;
-                slot.cycle_repeats = 0;
-            }
+        if (slot.listed && Impl::count_request(slot, t.dp.service, repeat, expects)) {
+            Impl::close_cycle(s, slot, t, lost_cycles);
+            Impl::open_cycle(slot);
         }
         if (expects)
             s.pending =
@@ -230,7 +403,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
         Impl::heard(s, sender, t);
         // Before the first request from that master to it, the answer's request may have come
         // before the capture: not judged.
-        if (fdl.da != kBroadcastAddress && s.link_asked[fdl.da][fdl.sa])
+        if (fdl.da != kBroadcastAddress && (s.links[fdl.da][fdl.sa] & State::kLinkAsked) != 0)
             ++sender.health.illegal_answers[static_cast<std::size_t>(IllegalAnswer::NotAsked)];
         return s.events;
     }
@@ -248,34 +421,11 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     slot.cycle_answered = true;
     slot.unanswered_cycles = 0;
 
-    const bool short_ack = fdl.type == FrameType::ShortAck;
-    const std::uint8_t status = fdl.has_fc ? fdl.fc.function() : 0;
+    Impl::count_answer(slot, fdl, asked.function, asked.service);
     const bool data = is_data_frame(fdl.type);
-    if (fdl.has_fc) {
-        const int negative = negative_index(status);
-        if (negative >= 0) ++h.negative_answers[static_cast<std::size_t>(negative)];
-    }
-
-    // Illegal answers: wrong kind, then a short acknowledge where data was due.
-    const bool fdl_status = asked.function == static_cast<std::uint8_t>(FdlFunction::FdlStatus);
-    bool wrong_kind = false;
-    if (function_is_sda(asked.function)) {
-        wrong_kind = data || (fdl.type == FrameType::Sd1 && status_is_srd_data(status));
-    } else if (fdl_status) {
-        wrong_kind = data;
-    } else if (function_is_srd(asked.function)) {
-        wrong_kind =
-            fdl.type == FrameType::Sd1 && status == static_cast<std::uint8_t>(FdlStatus::Ok);
-    }
-    const bool no_data = short_ack || (fdl.type == FrameType::Sd1 && !status_is_refusal(status));
-    if (wrong_kind) {
-        ++h.illegal_answers[static_cast<std::size_t>(IllegalAnswer::WrongKind)];
-    } else if (no_data && (data_always_due(asked.service) ||
-                           (asked.service == Service::DataExchange && slot.exchange_data_seen))) {
-        ++h.illegal_answers[static_cast<std::size_t>(IllegalAnswer::ShortAck)];
-    }
 
     // FDL_Status answers name the station type.
+    const bool fdl_status = asked.function == static_cast<std::uint8_t>(FdlFunction::FdlStatus);
     if (fdl_status && fdl.type == FrameType::Sd1 && fdl.has_fc && fdl.fc.station_type() != 0)
         Impl::make_master(s, slot, t);
 
