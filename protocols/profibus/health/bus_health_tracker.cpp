@@ -174,13 +174,13 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     if (traits.negative >= 0) ++h.negative_answers[static_cast<std::size_t>(traits.negative)];
     // Illegal answers: wrong kind, then a short acknowledge where data was due.
     bool wrong_kind = false;
-    if (function_is_sda(function)) {
+    if (function_is_srd(function)) {
+        wrong_kind =
+            fdl.type == FrameType::Sd1 && status == static_cast<std::uint8_t>(FdlStatus::Ok);
+    } else if (function_is_sda(function)) {
         wrong_kind = data || (fdl.type == FrameType::Sd1 && traits.srd_data);
     } else if (function == static_cast<std::uint8_t>(FdlFunction::FdlStatus)) {
         wrong_kind = data;
-    } else if (function_is_srd(function)) {
-        wrong_kind =
-            fdl.type == FrameType::Sd1 && status == static_cast<std::uint8_t>(FdlStatus::Ok);
     }
     const bool no_data = short_ack || (fdl.type == FrameType::Sd1 && !traits.refusal);
     if (wrong_kind) {
