@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <span>
 
 namespace dpscope {
 
@@ -34,6 +35,52 @@ std::uint32_t tally_key(const Finding& f) {
         f.has_stations ? (1u << 16 | static_cast<std::uint32_t>(f.master) << 8 | f.slave) : 0u;
     return static_cast<std::uint32_t>(f.kind) << 19 | static_cast<std::uint32_t>(f.severity) << 17 |
            stations;
+}
+
+// Appends `f` to `records` as a SpilledFinding and its message's bytes.
+void add_record(std::vector<char>& records, const Finding& f) {
+    const SpilledFinding s{f.frame,
+                           f.request_frame,
+                           f.time_ns,
+                           static_cast<std::uint32_t>(f.message.size()),
+                           f.pnu.value_or(0),
+                           static_cast<std::uint8_t>(f.kind),
+                           static_cast<std::uint8_t>(f.severity),
+                           f.master,
+                           f.slave,
+                           static_cast<std::uint8_t>((f.has_stations ? 1 : 0) | (f.pnu ? 2 : 0))};
+    const std::size_t at = records.size();
+    records.resize(at + sizeof s + f.message.size());
+    std::memcpy(records.data() + at, &s, sizeof s);
+    if (!f.message.empty())
+        std::memcpy(records.data() + at + sizeof s, f.message.data(), f.message.size());
+}
+
+// Calls f for each whole record at the start of `bytes` (into `finding`, reused); returns the
+// bytes they took (a record cut off at the end is left).
+template <class F>
+std::size_t read_records(std::span<const char> bytes, Finding& finding, std::uint64_t& given,
+                         const F& f) {
+    std::size_t at = 0;
+    while (bytes.size() - at >= sizeof(SpilledFinding)) {
+        SpilledFinding s{};
+        std::memcpy(&s, bytes.data() + at, sizeof s);
+        if (bytes.size() - at - sizeof s < s.message_length) break;
+        finding.frame = s.frame;
+        finding.request_frame = s.request_frame;
+        finding.time_ns = s.time_ns;
+        finding.kind = static_cast<FindingKind>(s.kind);
+        finding.severity = static_cast<Severity>(s.severity);
+        finding.master = s.master;
+        finding.slave = s.slave;
+        finding.has_stations = (s.flags & 1) != 0;
+        finding.pnu = (s.flags & 2) ? std::optional<std::uint16_t>(s.pnu) : std::nullopt;
+        finding.message.assign(bytes.data() + at + sizeof s, s.message_length);
+        at += sizeof s + s.message_length;
+        ++given;
+        f(finding);
+    }
+    return at;
 }
 
 // Writes all of `bytes` at the file's end; false (errno set) when a write failed.
@@ -68,12 +115,13 @@ void FindingLog::append(std::span<const Finding> findings) {
     for (const Finding& f : findings) {
         ++count_;
         ++tallies_[tally_key(f)];
-        if (spill_failed_ && memory_.size() >= kKeepInMemory) {
+        if (spill_failed_ && in_memory_ >= kKeepInMemory) {
             ++unlisted_;
             continue;
         }
-        memory_.push_back(f);
-        if (memory_.size() >= kKeepInMemory && !spill_failed_) spill();
+        add_record(records_, f);
+        ++in_memory_;
+        if (in_memory_ >= kKeepInMemory && !spill_failed_) spill();
     }
 }
 
@@ -90,23 +138,7 @@ void FindingLog::spill() {
         }
         ::unlink(pattern.c_str());
     }
-    std::vector<char> bytes;
-    for (const Finding& f : memory_) {
-        SpilledFinding s{f.frame,
-                         f.request_frame,
-                         f.time_ns,
-                         static_cast<std::uint32_t>(f.message.size()),
-                         f.pnu.value_or(0),
-                         static_cast<std::uint8_t>(f.kind),
-                         static_cast<std::uint8_t>(f.severity),
-                         f.master,
-                         f.slave,
-                         static_cast<std::uint8_t>((f.has_stations ? 1 : 0) | (f.pnu ? 2 : 0))};
-        const char* raw = reinterpret_cast<const char*>(&s);
-        bytes.insert(bytes.end(), raw, raw + sizeof s);
-        bytes.insert(bytes.end(), f.message.begin(), f.message.end());
-    }
-    if (!write_all(spill_fd_, bytes)) {
+    if (!write_all(spill_fd_, records_)) {
         // Cut the file back to its whole records; the findings of this batch stay in memory
         // (after those in the file: capture order), later ones are only counted.
         lost_ = fmt::format("cannot write the temporary file in {}: {}", spill_folder_,
@@ -117,9 +149,10 @@ void FindingLog::spill() {
         }
         return;
     }
-    spilled_bytes_ += bytes.size();
-    spilled_ += memory_.size();
-    memory_.clear();
+    spilled_bytes_ += records_.size();
+    spilled_ += in_memory_;
+    records_.clear();
+    in_memory_ = 0;
 }
 
 void FindingLog::for_each(const std::function<void(const Finding&)>& f) const {
@@ -143,32 +176,14 @@ void FindingLog::for_each(const std::function<void(const Finding&)>& f) const {
             }
             offset += static_cast<std::uint64_t>(got);
             pending.insert(pending.end(), chunk.begin(), chunk.begin() + got);
-            std::size_t at = 0;
-            while (pending.size() - at >= sizeof(SpilledFinding)) {
-                SpilledFinding s{};
-                std::memcpy(&s, pending.data() + at, sizeof s);
-                if (pending.size() - at - sizeof s < s.message_length) break;
-                finding.frame = s.frame;
-                finding.request_frame = s.request_frame;
-                finding.time_ns = s.time_ns;
-                finding.kind = static_cast<FindingKind>(s.kind);
-                finding.severity = static_cast<Severity>(s.severity);
-                finding.master = s.master;
-                finding.slave = s.slave;
-                finding.has_stations = (s.flags & 1) != 0;
-                finding.pnu = (s.flags & 2) ? std::optional<std::uint16_t>(s.pnu) : std::nullopt;
-                const char* message = pending.data() + at + sizeof s;
-                finding.message.assign(message, s.message_length);
-                at += sizeof s + s.message_length;
-                ++given;
-                f(finding);
-            }
+            const std::size_t at = read_records(pending, finding, given, f);
             pending.erase(pending.begin(), pending.begin() + static_cast<std::ptrdiff_t>(at));
         }
         unreadable_ = 0;
     }
-    for (const Finding& finding : memory_)
-        f(finding);
+    Finding finding;
+    std::uint64_t given = 0;
+    read_records(records_, finding, given, f);
 }
 
 void FindingLog::for_each_tally(const std::function<void(const FindingTally&)>& f) const {

@@ -60,7 +60,11 @@ class FindingLog {
     void spill();
 
     std::string spill_folder_;
-    std::vector<Finding> memory_;  // the findings after those in the spill file
+    // The findings after those in the spill file, as the records the file holds (a fixed part,
+    // then the message's bytes): appending one is a copy into this buffer, spilling them one
+    // write, and the buffer is used again after it.
+    std::vector<char> records_;
+    std::uint64_t in_memory_ = 0;  // findings in records_
     int spill_fd_ = -1;
     std::uint64_t spilled_bytes_ = 0;  // whole records in the spill file
     std::uint64_t spilled_ = 0;        // findings in the spill file

@@ -13,8 +13,8 @@ void time(JsonWriter& w, std::int64_t time_ns) {
 
 void finding(JsonWriter& w, const Finding& f) {
     w.begin_object();
-    w.key("kind").string(finding_kind_name(f.kind));
-    w.key("severity").string(severity_name(f.severity));
+    w.key("kind").name(finding_kind_name(f.kind));
+    w.key("severity").name(severity_name(f.severity));
     w.key("frame").integer(static_cast<std::int64_t>(f.frame));
     w.key("request_frame")
         .optional_integer(f.request_frame != 0, static_cast<std::int64_t>(f.request_frame));

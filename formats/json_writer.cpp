@@ -20,12 +20,22 @@ constexpr bool needs_escape(char c) noexcept {
 
 }  // namespace
 
-// True when no byte of `text` needs an escape. Eight bytes a step (core/byte_word.hpp): a byte
-// is flagged when it is 0x80 or more, below 0x20, or '"' or '\\'.
+// True when no byte of `text` needs an escape. Sixteen bytes a step (a vector of the GCC and
+// Clang extension: SSE2 on x86-64, NEON on arm64), then eight (core/byte_word.hpp): a byte is
+// flagged when it is 0x80 or more, below 0x20, or '"' or '\\'.
 bool plain_text(std::string_view text) noexcept {
     using namespace byte_word;
     const char* p = text.data();
     std::size_t left = text.size();
+    using Bytes16 = std::uint8_t __attribute__((vector_size(16)));
+    for (; left >= 16; p += 16, left -= 16) {
+        Bytes16 v;
+        std::memcpy(&v, p, sizeof v);
+        const auto flagged = (v >= 0x80) | (v < 0x20) | (v == '"') | (v == '\\');
+        std::uint64_t halves[2];
+        std::memcpy(halves, &flagged, sizeof halves);
+        if ((halves[0] | halves[1]) != 0) return false;
+    }
     for (; left >= 8; p += 8, left -= 8) {
         const std::uint64_t w = load(p);
         if ((any_high(w) | any_below(w, 0x20) | any_equal(w, '"') | any_equal(w, '\\')) != 0)

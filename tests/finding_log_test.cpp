@@ -28,6 +28,9 @@ Finding finding(std::uint64_t i) {
     f.slave = f.has_stations ? static_cast<std::uint8_t>(3 + i % 4) : 0;
     if (i % 2 == 0) f.pnu = static_cast<std::uint16_t>(i % 2000);
     f.message = "finding " + std::to_string(i);
+    // Now and then none, and now and then one longer than the log reads back at a time.
+    if (i % 11 == 0) f.message.clear();
+    if (i % 1000 == 7) f.message.append(70'000, static_cast<char>('a' + i % 26));
     return f;
 }
 
@@ -70,6 +73,7 @@ TEST(FindingLogTest, SpillsIntoTheFolderGivenAndListsEveryFindingInOrder) {
         EXPECT_EQ(f.request_frame, expected.request_frame);
         EXPECT_EQ(f.time_ns, expected.time_ns);
         EXPECT_EQ(f.has_stations, expected.has_stations);
+        EXPECT_EQ(f.master, expected.master);
         EXPECT_EQ(f.slave, expected.slave);
         EXPECT_EQ(f.pnu, expected.pnu);
         EXPECT_EQ(f.message, expected.message);
@@ -81,6 +85,22 @@ TEST(FindingLogTest, SpillsIntoTheFolderGivenAndListsEveryFindingInOrder) {
     EXPECT_EQ(sums.all, kMany);
     EXPECT_EQ(sums.errors, (kMany + 2) / 3);
     EXPECT_EQ(sums.without_stations, kMany / 5);
+}
+
+// Fewer than it keeps in memory: no spill file, every finding given back as appended.
+TEST(FindingLogTest, KeepsAFewFindingsInMemory) {
+    FindingLog log(test::temp_folder() + "/no-such-folder");  // never needed
+    append(log, 1500);
+    std::uint64_t next = 0;
+    log.for_each([&](const Finding& f) {
+        const Finding expected = finding(next++);
+        EXPECT_EQ(f.frame, expected.frame);
+        EXPECT_EQ(f.pnu, expected.pnu);
+        EXPECT_EQ(f.message, expected.message);
+    });
+    EXPECT_EQ(next, 1500u);
+    EXPECT_EQ(log.unlisted(), 0u);
+    EXPECT_EQ(log.lost(), "");
 }
 
 TEST(FindingLogTest, CountsStayExactWhenTheSpillFolderCannotBeUsed) {

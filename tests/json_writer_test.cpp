@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "core/code_tables.hpp"
+#include "core/finding.hpp"
+#include "core/problem.hpp"
 #include "formats/bit_meanings_json.hpp"
 #include "protocols/fc/fc_telegram.hpp"
 #include "protocols/profibus/dp_service.hpp"
@@ -99,8 +101,10 @@ TEST(JsonWriterTest, EscapesQuotesBackslashesAndControlCharacters) {
     EXPECT_EQ(text(buffer), R"(["say \"hi\"\\","\n\r\t\u0008\u000c\u0001\u001f\u0000",""])");
 }
 
-// The check for "nothing to escape" takes eight bytes a step: a byte that needs an escape is
-// found at every position of strings up to three steps long, with plain bytes on both sides.
+// The check for "nothing to escape" takes sixteen bytes a step, then eight, then one: a byte that
+// needs an escape (and none of the bytes at the edges of the tests) is found at every position of
+// strings up to two sixteen-byte steps, an eight-byte step and a tail long, with plain bytes on
+// both sides.
 TEST(JsonWriterTest, FindsAByteToEscapeAtEveryPositionOfAWord) {
     struct Special {
         std::string_view bytes;
@@ -117,7 +121,7 @@ TEST(JsonWriterTest, FindsAByteToEscapeAtEveryPositionOfAWord) {
                                 {" ", " "},
                                 {"!", "!"},
                                 {"~", "~"}};
-    for (std::size_t length = 0; length <= 24; ++length) {
+    for (std::size_t length = 0; length <= 44; ++length) {
         for (std::size_t at = 0; at <= length; ++at) {
             for (const Special& special : specials) {
                 std::string input(at, 'a');
@@ -287,6 +291,11 @@ TEST(JsonWriterTest, TheNamesWrittenWithoutTheEscapeCheckNeedNone) {
     }
     names.push_back("word");
     names.push_back("dword");
+    // A finding's kind and severity (json::finding).
+    for (std::size_t kind = 0; kind < kFindingKindCount; ++kind)
+        names.push_back(finding_kind_name(static_cast<FindingKind>(kind)));
+    for (Severity severity : {Severity::Note, Severity::Warning, Severity::Error})
+        names.push_back(severity_name(severity));
     for (std::string_view name : names)
         EXPECT_TRUE(json::plain_text(name)) << name;
     fmt::memory_buffer a, b;
