@@ -168,7 +168,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     StationHealth& h = slot.health;
     const bool short_ack = fdl.type == FrameType::ShortAck;
     const std::uint8_t status = fdl.has_fc ? fdl.fc.function() : 0;
-    const StatusTraits traits = kStatusTraits[status];
+    const StatusTraits& traits = kStatusTraits[status];
     const bool data = is_data_frame(fdl.type);
     // (Without a frame control byte the status reads 0, no negative answer.)
     if (traits.negative >= 0) ++h.negative_answers[static_cast<std::size_t>(traits.negative)];
