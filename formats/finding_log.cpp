@@ -39,16 +39,18 @@ std::uint32_t tally_key(const Finding& f) {
 
 // Appends `f` to `records` as a SpilledFinding and its message's bytes.
 void add_record(std::vector<char>& records, const Finding& f) {
-    const SpilledFinding s{f.frame,
-                           f.request_frame,
-                           f.time_ns,
-                           static_cast<std::uint32_t>(f.message.size()),
-                           f.pnu.value_or(0),
-                           static_cast<std::uint8_t>(f.kind),
-                           static_cast<std::uint8_t>(f.severity),
-                           f.master,
-                           f.slave,
-                           static_cast<std::uint8_t>((f.has_stations ? 1 : 0) | (f.pnu ? 2 : 0))};
+    SpilledFinding s;
+    std::memset(&s, 0, sizeof s);  // the padding too: the file holds no uninitialised bytes
+    s.frame = f.frame;
+    s.request_frame = f.request_frame;
+    s.time_ns = f.time_ns;
+    s.message_length = static_cast<std::uint32_t>(f.message.size());
+    s.pnu = f.pnu.value_or(0);
+    s.kind = static_cast<std::uint8_t>(f.kind);
+    s.severity = static_cast<std::uint8_t>(f.severity);
+    s.master = f.master;
+    s.slave = f.slave;
+    s.flags = static_cast<std::uint8_t>((f.has_stations ? 1 : 0) | (f.pnu ? 2 : 0));
     const std::size_t at = records.size();
     records.resize(at + sizeof s + f.message.size());
     std::memcpy(records.data() + at, &s, sizeof s);

@@ -11,18 +11,25 @@
 // Invariants checked (a violation traps): every finding names a telegram that was seen (its frame,
 // and its request's, at most the current one; the request not after the finding), every completed
 // transaction's answer is a telegram seen, the trackers' per-severity counts equal the findings
-// they returned, and the bus-health segment counted every telegram fed.
+// they returned, and the bus-health segment counted every telegram fed. A second bus-health
+// tracker without the steady path (BusHealthOptions::steady_path) is fed the same telegrams: its
+// events, telegram by telegram, and its figures at every judgement must be the first one's.
+#include <fmt/format.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <type_traits>
 
+#include "formats/json_writer.hpp"
 #include "fuzz/support/fuzz_input.hpp"
 #include "fuzz/support/telegram_script.hpp"
 #include "protocols/fc/fc_decoder.hpp"
 #include "protocols/fc/fc_tracker.hpp"
 #include "protocols/profibus/bus_decoder.hpp"
 #include "protocols/profibus/health/bus_health.hpp"
+#include "protocols/profibus/health/health_render.hpp"
 #include "protocols/profibus/session_tracker.hpp"
 #include "protocols/vlt2000/vlt2000_decoder.hpp"
 #include "protocols/vlt2000/vlt2000_tracker.hpp"
@@ -62,11 +69,32 @@ void check_totals(const Tracker& tracker, const Counts& counts) {
           counts.findings);
 }
 
+// Every figure of the bus health as the stats JSON writes it.
+std::string health_json(const BusHealth& h) {
+    fmt::memory_buffer out;
+    {
+        JsonWriter w(out);
+        w.begin_object();
+        health::write_json_members(w, h);
+        w.end_object();
+    }
+    return fmt::to_string(out);
+}
+
+bool same_events(std::span<const HealthEvent> a, std::span<const HealthEvent> b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i].kind != b[i].kind || a[i].address != b[i].address ||
+            a[i].time_ns != b[i].time_ns || a[i].frame != b[i].frame || a[i].role != b[i].role)
+            return false;
+    return true;
+}
+
 // Decodes and tracks every telegram of the script with the bus's decoder and tracker (and, on
-// PROFIBUS, a BusHealthTracker).
+// PROFIBUS, a BusHealthTracker and `full`, one without the steady path, compared with it).
 template <class Decoder, class Tracker>
 void run_lane(const fuzz::TelegramScript& script, Decoder& decoder, Tracker& tracker,
-              BusHealthTracker* health) {
+              BusHealthTracker* health, BusHealthTracker* full = nullptr) {
     Counts counts;
     std::uint64_t frame = 0;
     for (const fuzz::ScriptedTelegram& s : script.telegrams) {
@@ -78,8 +106,12 @@ void run_lane(const fuzz::TelegramScript& script, Decoder& decoder, Tracker& tra
         check_completed(tracker.completed(), frame);
         (void)tracker.subject_pnu();
         if (health) {
-            (void)health->observe(t);
-            if (s.frame % 32 == 0) (void)health->judge();
+            const std::span<const HealthEvent> events = health->observe(t);
+            check(same_events(events, full->observe(t)));
+            if (s.frame % 32 == 0) {
+                check(same_events(health->judge(), full->judge()));
+                check(health_json(health->health()) == health_json(full->health()));
+            }
         }
     }
     check_findings(tracker.finish(), frame, counts);
@@ -87,6 +119,8 @@ void run_lane(const fuzz::TelegramScript& script, Decoder& decoder, Tracker& tra
     (void)tracker.transactions();
     if (health) {
         health->finish();
+        full->finish();
+        check(health_json(health->health()) == health_json(full->health()));
         const BusHealth& h = health->health();
         check(h.segment.telegrams == script.telegrams.size());
         for (std::size_t i = 1; i < h.stations.size(); ++i)
@@ -113,7 +147,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             (void)options.thresholds.set(HealthThreshold::LostCycles,
                                          1 + (size > 0 ? data[0] >> 2 : 0) % 5);
             BusHealthTracker health(options);
-            run_lane(script, decoder, tracker, &health);
+            BusHealthOptions full_options = options;
+            full_options.steady_path = false;
+            BusHealthTracker full(full_options);
+            run_lane(script, decoder, tracker, &health, &full);
         } else {
             run_lane(script, decoder, tracker, nullptr);
         }

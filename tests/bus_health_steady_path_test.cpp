@@ -13,6 +13,7 @@
 #include "protocols/profibus/bus_decoder.hpp"
 #include "protocols/profibus/health/bus_health.hpp"
 #include "protocols/profibus/health/health_render.hpp"
+#include "protocols/profibus/telegram_builder.hpp"
 #include "simulator/simulator.hpp"
 
 namespace dpscope {
@@ -63,6 +64,16 @@ struct Session {
     double damage_rate = 0;  // the chance a telegram has one byte changed
 };
 
+// Feeds both trackers the same telegram; false (and a failure) when their events differ.
+bool same_events(BusHealthTracker& steady, BusHealthTracker& full, const DecodedTelegram& t) {
+    const std::string steady_events = events_text(steady.observe(t));
+    const std::string full_events = events_text(full.observe(t));
+    if (steady_events == full_events) return true;
+    ADD_FAILURE() << "events differ at frame " << t.frame << ":\n  steady: " << steady_events
+                  << "\n  full:   " << full_events;
+    return false;
+}
+
 // Feeds the session to both trackers; returns the number of telegrams.
 std::uint64_t compare(const Session& session) {
     Simulator simulator(session.options);
@@ -84,13 +95,7 @@ std::uint64_t compare(const Session& session) {
             bytes[random() % bytes.size()] ^= static_cast<std::uint8_t>(1 + random() % 255);
         const DecodedTelegram& t =
             decoder.decode(Bytes(bytes.data(), bytes.size()), time_ns, frame);
-        const std::string steady_events = events_text(steady.observe(t));
-        const std::string full_events = events_text(full.observe(t));
-        if (steady_events != full_events) {
-            ADD_FAILURE() << "events differ at frame " << frame << ":\n  steady: " << steady_events
-                          << "\n  full:   " << full_events;
-            return frame;
-        }
+        if (!same_events(steady, full, t)) return frame;
         if (frame % 997 == 0) {
             const std::string steady_bad = events_text(steady.judge());
             const std::string full_bad = events_text(full.judge());
@@ -106,6 +111,11 @@ std::uint64_t compare(const Session& session) {
     steady.finish();
     full.finish();
     EXPECT_EQ(figures(steady.health()), figures(full.health()));
+    EXPECT_EQ(full.steady_telegrams(), 0u);
+    // A running bus is mostly steady polls: the short path is taken, not only never wrong.
+    if (session.damage_rate == 0) {
+        EXPECT_GT(steady.steady_telegrams(), frame / 2);
+    }
     return frame;
 }
 
@@ -156,6 +166,107 @@ TEST(BusHealthSteadyPathTest, RingsLineRatesAndDamageGiveTheSameFiguresAndEvents
         }
         EXPECT_GT(compare(session), 5000u);
     }
+}
+
+// Telegrams the simulator never sends, at random among five stations (two masters passing the
+// token, three slaves; any of them may become the other): requests of every FDL function with
+// and without FCV, reserved frame control bytes, requests to the sender itself and to all,
+// answers of every status and station type from anyone to anyone (a master answering, an answer
+// nobody asked for), short acknowledges, now and then a token to a slave; each decoded intact,
+// both trackers compared after every one.
+TEST(BusHealthSteadyPathTest, OddTelegramsGiveTheSameFiguresAndEvents) {
+    constexpr std::uint8_t kStations[] = {1, 2, 3, 4, 5};
+    constexpr std::uint8_t kMasters[] = {1, 2};
+    constexpr std::uint8_t kSlaves[] = {3, 4, 5};
+    constexpr FdlFunction kFunctions[] = {
+        FdlFunction::SrdHigh,   FdlFunction::SrdLow, FdlFunction::SdaHigh, FdlFunction::SdnLow,
+        FdlFunction::FdlStatus, FdlFunction::Msrd,   FdlFunction::Ident};
+    constexpr FdlStatus kStatuses[] = {FdlStatus::Ok,
+                                       FdlStatus::UserError,
+                                       FdlStatus::NoService,
+                                       FdlStatus::DataLow,
+                                       FdlStatus::DataHigh,
+                                       FdlStatus::NoResponseData,
+                                       FdlStatus::NotReceivedDataHigh};
+    constexpr int kSaps[] = {-1, -1, -1, 60, 61, 62, 51};  // none: Data_Exchange
+    std::uint64_t steady_taken = 0;
+    for (std::uint64_t seed = 1; seed <= 25; ++seed) {
+        SCOPED_TRACE(seed);
+        std::mt19937_64 random(seed);
+        const auto pick = [&](std::size_t n) { return static_cast<std::size_t>(random() % n); };
+        BusDecoder decoder;
+        BusHealthOptions full_options;
+        full_options.steady_path = false;
+        BusHealthTracker steady;
+        BusHealthTracker full(full_options);
+        std::int64_t time_ns = 1'000'000'000;
+        std::vector<std::uint8_t> bytes;
+        std::uint8_t last_master = 1;
+        std::uint8_t last_slave = 3;
+        bool fcb = false;
+        bool ok = true;
+        for (std::uint64_t frame = 1; frame <= 4000 && ok; ++frame) {
+            bytes.clear();
+            const std::uint8_t a = kStations[pick(5)];
+            const std::uint8_t b = pick(20) == 0 ? 127 : kStations[pick(5)];
+            const std::size_t kind = pick(10);
+            const std::uint8_t data[4] = {static_cast<std::uint8_t>(random()), 0x22, 0x33, 0x44};
+            const int sap = kSaps[pick(std::size(kSaps))];
+            const std::optional<std::uint8_t> dsap =
+                sap < 0 ? std::nullopt
+                        : std::optional<std::uint8_t>(static_cast<std::uint8_t>(sap));
+            const std::optional<std::uint8_t> ssap =
+                sap < 0 ? std::nullopt : std::optional<std::uint8_t>(std::uint8_t{62});
+            if (kind <= 3) {
+                // Mostly the steady kind: an SRD with FCV from the last master to the last slave.
+                const bool steady_kind = kind <= 1;
+                // (A slave that sends a request is a master from then on: now and then.)
+                const std::uint8_t sa =
+                    steady_kind ? last_master : (pick(100) == 0 ? a : kMasters[pick(2)]);
+                const std::uint8_t da = steady_kind ? kSlaves[pick(3)] : b;
+                fcb = pick(8) == 0 ? fcb : !fcb;  // now and then a repeat
+                const FdlFunction function =
+                    steady_kind ? FdlFunction::SrdHigh : kFunctions[pick(std::size(kFunctions))];
+                auto fc = request_fc(function, fcb, steady_kind || pick(3) != 0);
+                if (pick(30) == 0) fc = static_cast<std::uint8_t>(fc | 0x80);  // reserved
+                append_telegram(bytes, {da, sa, fc, dsap, ssap, Bytes(data, pick(5))});
+                last_master = sa;
+                last_slave = da;
+            } else if (kind <= 6) {
+                // An answer: mostly from the slave asked to its master.
+                const bool asked = kind <= 5;
+                const std::uint8_t sa = asked ? last_slave : a;
+                const std::uint8_t da = asked ? last_master : b;
+                const FdlStatus status = kStatuses[pick(std::size(kStatuses))];
+                const auto type = static_cast<std::uint8_t>(pick(4));
+                const std::size_t length =
+                    status == FdlStatus::DataLow || status == FdlStatus::DataHigh ? 1 + pick(4) : 0;
+                append_telegram(bytes, {da, sa, response_fc(status, type),
+                                        dsap ? ssap : std::nullopt, dsap, Bytes(data, length)});
+            } else if (kind == 7) {
+                append_short_ack(bytes);
+            } else {
+                // Between the two masters; now and then to another station, which makes it one.
+                const std::uint8_t to = pick(300) == 0 ? b : kMasters[pick(2)];
+                append_token(bytes, to, last_master);
+                if (to != 127) last_master = to;
+            }
+            time_ns += 100'000 + static_cast<std::int64_t>(pick(50'000));
+            const DecodedTelegram& t =
+                decoder.decode(Bytes(bytes.data(), bytes.size()), time_ns, frame);
+            ok = same_events(steady, full, t);
+            if (frame % 250 == 0) {
+                EXPECT_EQ(events_text(steady.judge()), events_text(full.judge()));
+                ok = ok && figures(steady.health()) == figures(full.health());
+                EXPECT_TRUE(ok) << "figures differ at frame " << frame;
+            }
+        }
+        steady.finish();
+        full.finish();
+        EXPECT_EQ(figures(steady.health()), figures(full.health()));
+        steady_taken += steady.steady_telegrams();
+    }
+    EXPECT_GT(steady_taken, 1000u);  // the odd telegrams are mixed with steady ones
 }
 
 }  // namespace

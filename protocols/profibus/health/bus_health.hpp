@@ -365,6 +365,9 @@ class BusHealthTracker {
     // The statistics so far (judged as of the last judge() or finish()).
     const BusHealth& health() const noexcept { return health_; }
     const BusHealthOptions& options() const noexcept { return options_; }
+    // Telegrams taken by the steady path (BusHealthOptions::steady_path; for its tests and
+    // profiles: the figures do not depend on it).
+    std::uint64_t steady_telegrams() const noexcept;
 
   private:
     friend class BusHealthTrackerImpl;

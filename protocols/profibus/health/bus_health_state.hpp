@@ -150,6 +150,7 @@ struct BusHealthTracker::State {
     std::uint64_t last_frame = 0;
     Verdict segment_last_verdict = Verdict::Good;
     bool finished = false;
+    std::uint64_t steady_telegrams = 0;  // taken by the steady path (steady_telegrams())
     double ns_per_byte = 0;  // a character's time on the line (0: baud not known)
     bool has_baud = false;   // ns_per_byte != 0
     std::uint64_t lost_cycles = 3;
@@ -169,14 +170,15 @@ class BusHealthTrackerImpl {
     // listed station (steady_request), the intact answer to the request waiting from a listed
     // slave whose state it leaves as it is (steady_answer), the intact token passed on by the
     // master holding it to a known master (steady_token). Each tests first and counts after,
-    // through the same helpers as the full rules (heard, count_frame, count_request,
-    // count_answer, exchanged, master_polls, token_passed); a test that fails hands the
+    // through the same helpers as the full rules (heard_listed, master_sends, count_frame,
+    // count_request, answered, count_answer, exchanged, master_polls, token_passed); a test that
+    // fails hands the
     // telegram, untouched, to the full rules (observe_rest). BusHealthSteadyPathTest compares the
     // two over simulated sessions with every fault. Each step returns the telegram's events
     // (none on the steady path).
 
     // The segment's counts and times (every PROFIBUS telegram).
-    static void count_segment(State& s, SegmentHealth& seg, const DecodedTelegram& t);
+    static inline void count_segment(State& s, SegmentHealth& seg, const DecodedTelegram& t);
     // An intact telegram while no request waits, or ...
     static std::span<const HealthEvent> steady_request(State& s, SegmentHealth& seg,
                                                        const DecodedTelegram& t);
@@ -191,15 +193,22 @@ class BusHealthTrackerImpl {
                                                      const DecodedTelegram& t);
     // The frame count of a link (State::links) after an SRD/SDA request with FCV set and `fcb`:
     // whether it repeats the last request (same FCB as last time).
-    static bool count_frame(std::uint8_t& link, bool fcb);
+    static inline bool count_frame(std::uint8_t& link, bool fcb);
     // A request for `service` to the listed station `slot` (`expects`: it waits for a reply;
     // `repeat`: an FDL retry): its counts. True when it starts a poll cycle (it waits for a reply
     // and is no retry): the caller closes the last one and opens it.
-    static bool count_request(State::Slot& slot, Service service, bool repeat, bool expects);
+    static inline bool count_request(State::Slot& slot, Service service, bool repeat, bool expects);
     // The answer `fdl` of `slot` to a request of `function` for `service`: negative answers and
     // illegal ones (a wrong kind; a short acknowledge where data was due).
-    static void count_answer(State::Slot& slot, const FdlTelegram& fdl, std::uint8_t function,
-                             Service service);
+    static inline void count_answer(State::Slot& slot, const FdlTelegram& fdl,
+                                    std::uint8_t function, Service service);
+    // The slave asked answered: its counts and its poll cycle (answered).
+    static void answered(State::Slot& slot) {
+        ++slot.health.answers;
+        slot.answered = true;
+        slot.cycle_answered = true;
+        slot.unanswered_cycles = 0;
+    }
 
     // ---- the live list and each station's state
     // (protocols/profibus/health/bus_health_stations.cpp)

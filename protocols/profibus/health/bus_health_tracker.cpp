@@ -102,6 +102,10 @@ BusHealthTracker::BusHealthTracker(BusHealthOptions options)
 
 BusHealthTracker::~BusHealthTracker() = default;
 
+std::uint64_t BusHealthTracker::steady_telegrams() const noexcept {
+    return state_->steady_telegrams;
+}
+
 std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t) {
     using Impl = BusHealthTrackerImpl;
     State& s = *state_;
@@ -220,7 +224,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
 
     s.token_waiting = false;
     heard_listed(*sender, t);
-    m->tokens_missed_in_row = 0;  // master_sends() of an active master
+    master_sends(s, *sender, *m, t);
     ++m->health.requests;
     std::uint8_t link = s.links[sa][da] | State::kLinkAsked;
     const bool repeat = count_frame(link, fc.fcb());
@@ -229,6 +233,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     if (count_request(*slot, service, repeat, true)) open_cycle(*slot);
     s.pending = State::Pending{true, sa, da, fc.function(), service, true, slot};
     if (service == Service::DataExchange && !repeat) master_polls(*m, t, da);
+    ++s.steady_telegrams;
     return {};
 }
 
@@ -250,6 +255,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
 
     s.token_waiting = false;  // check_token_taken(): taken
     token_passed(s, t);
+    ++s.steady_telegrams;
     return {};
 }
 
@@ -282,12 +288,10 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
 
     s.pending.active = false;
     heard_listed(slot, t);
-    ++slot.health.answers;
-    slot.answered = true;
-    slot.cycle_answered = true;
-    slot.unanswered_cycles = 0;
+    answered(slot);
     count_answer(slot, fdl, asked.function, asked.service);
     if (asked.service == Service::DataExchange) exchanged(slot, is_data_frame(type));
+    ++s.steady_telegrams;
     return {};
 }
 
@@ -416,10 +420,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
         ++h.replies_due;
     }
     Impl::heard(s, slot, t);
-    ++h.answers;
-    slot.answered = true;
-    slot.cycle_answered = true;
-    slot.unanswered_cycles = 0;
+    Impl::answered(slot);
 
     Impl::count_answer(slot, fdl, asked.function, asked.service);
     const bool data = is_data_frame(fdl.type);
