@@ -158,13 +158,13 @@ void FindingLog::spill() {
 }
 
 void FindingLog::for_each(const std::function<void(const Finding&)>& f) const {
+    Finding finding;          // each record read into it in turn
+    std::uint64_t given = 0;  // of the spilled findings
     if (spilled_bytes_ > 0) {
         // Read back in chunks; a record may span two of them.
         std::vector<char> chunk(1 << 16);
         std::vector<char> pending;
         std::uint64_t offset = 0;
-        std::uint64_t given = 0;
-        Finding finding;
         while (offset < spilled_bytes_) {
             const std::size_t want = static_cast<std::size_t>(
                 std::min<std::uint64_t>(chunk.size(), spilled_bytes_ - offset));
@@ -183,9 +183,8 @@ void FindingLog::for_each(const std::function<void(const Finding&)>& f) const {
         }
         unreadable_ = 0;
     }
-    Finding finding;
-    std::uint64_t given = 0;
-    read_records(records_, finding, given, f);
+    std::uint64_t kept = 0;
+    read_records(records_, finding, kept, f);
 }
 
 void FindingLog::for_each_tally(const std::function<void(const FindingTally&)>& f) const {

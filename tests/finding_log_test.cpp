@@ -60,24 +60,27 @@ Sums sums_of(const FindingLog& log) {
 
 constexpr std::uint64_t kMany = 10'000;  // more than the log keeps in memory
 
+// Every field of `f` is that of finding(`i`).
+void expect_finding(const Finding& f, std::uint64_t i) {
+    const Finding expected = finding(i);
+    EXPECT_EQ(f.kind, expected.kind);
+    EXPECT_EQ(f.severity, expected.severity);
+    EXPECT_EQ(f.frame, expected.frame);
+    EXPECT_EQ(f.request_frame, expected.request_frame);
+    EXPECT_EQ(f.time_ns, expected.time_ns);
+    EXPECT_EQ(f.has_stations, expected.has_stations);
+    EXPECT_EQ(f.master, expected.master);
+    EXPECT_EQ(f.slave, expected.slave);
+    EXPECT_EQ(f.pnu, expected.pnu);
+    EXPECT_EQ(f.message, expected.message);
+}
+
 TEST(FindingLogTest, SpillsIntoTheFolderGivenAndListsEveryFindingInOrder) {
     FindingLog log(test::temp_folder());
     append(log, kMany);
     EXPECT_EQ(log.size(), kMany);
     std::uint64_t next = 0;
-    log.for_each([&](const Finding& f) {
-        const Finding expected = finding(next++);
-        EXPECT_EQ(f.kind, expected.kind);
-        EXPECT_EQ(f.severity, expected.severity);
-        EXPECT_EQ(f.frame, expected.frame);
-        EXPECT_EQ(f.request_frame, expected.request_frame);
-        EXPECT_EQ(f.time_ns, expected.time_ns);
-        EXPECT_EQ(f.has_stations, expected.has_stations);
-        EXPECT_EQ(f.master, expected.master);
-        EXPECT_EQ(f.slave, expected.slave);
-        EXPECT_EQ(f.pnu, expected.pnu);
-        EXPECT_EQ(f.message, expected.message);
-    });
+    log.for_each([&](const Finding& f) { expect_finding(f, next++); });
     EXPECT_EQ(next, kMany);
     EXPECT_EQ(log.unlisted(), 0u);
     EXPECT_EQ(log.lost(), "");
@@ -92,12 +95,7 @@ TEST(FindingLogTest, KeepsAFewFindingsInMemory) {
     FindingLog log(test::temp_folder() + "/no-such-folder");  // never needed
     append(log, 1500);
     std::uint64_t next = 0;
-    log.for_each([&](const Finding& f) {
-        const Finding expected = finding(next++);
-        EXPECT_EQ(f.frame, expected.frame);
-        EXPECT_EQ(f.pnu, expected.pnu);
-        EXPECT_EQ(f.message, expected.message);
-    });
+    log.for_each([&](const Finding& f) { expect_finding(f, next++); });
     EXPECT_EQ(next, 1500u);
     EXPECT_EQ(log.unlisted(), 0u);
     EXPECT_EQ(log.lost(), "");
