@@ -116,11 +116,20 @@ FindingLog::~FindingLog() {
 void FindingLog::append(std::span<const Finding> findings) {
     for (const Finding& f : findings) {
         ++count_;
-        ++tallies_[tally_key(f)];
+        // Findings come in runs of one kind at one station: the last tally is tried first.
+        const std::uint32_t key = tally_key(f);
+        if (last_tally_ == nullptr || key != last_tally_key_) [[unlikely]] {
+            last_tally_ = &tallies_[key];
+            last_tally_key_ = key;
+        }
+        ++*last_tally_;
         if (spill_failed_ && in_memory_ >= kKeepInMemory) {
             ++unlisted_;
             continue;
         }
+        // Room for a batch up front (spilled at kKeepInMemory findings): no growing copies.
+        if (records_.capacity() == 0) [[unlikely]]
+            records_.reserve(kKeepInMemory * kRecordBytesGuess);
         add_record(records_, f);
         ++in_memory_;
         if (in_memory_ >= kKeepInMemory && !spill_failed_) spill();
@@ -161,14 +170,18 @@ void FindingLog::for_each(const std::function<void(const Finding&)>& f) const {
     Finding finding;          // each record read into it in turn
     std::uint64_t given = 0;  // of the spilled findings
     if (spilled_bytes_ > 0) {
-        // Read back in chunks; a record may span two of them.
-        std::vector<char> chunk(1 << 16);
-        std::vector<char> pending;
+        // Read back in chunks of 64 KiB into one buffer; a record that spans two chunks (its
+        // start left over, `held` bytes) is moved to the buffer's front and completed there.
+        constexpr std::size_t kChunk = std::size_t{1} << 16;
+        std::vector<char> buffer(kChunk);
+        std::size_t held = 0;
         std::uint64_t offset = 0;
         while (offset < spilled_bytes_) {
-            const std::size_t want = static_cast<std::size_t>(
-                std::min<std::uint64_t>(chunk.size(), spilled_bytes_ - offset));
-            const ssize_t got = ::pread(spill_fd_, chunk.data(), want, static_cast<off_t>(offset));
+            if (buffer.size() - held < kChunk) buffer.resize(held + kChunk);  // a long record
+            const std::size_t want =
+                static_cast<std::size_t>(std::min<std::uint64_t>(kChunk, spilled_bytes_ - offset));
+            const ssize_t got =
+                ::pread(spill_fd_, buffer.data() + held, want, static_cast<off_t>(offset));
             if (got <= 0) {
                 if (got < 0 && errno == EINTR) continue;
                 lost_ = fmt::format("cannot read the temporary file of findings back: {}",
@@ -177,9 +190,11 @@ void FindingLog::for_each(const std::function<void(const Finding&)>& f) const {
                 return;
             }
             offset += static_cast<std::uint64_t>(got);
-            pending.insert(pending.end(), chunk.begin(), chunk.begin() + got);
-            const std::size_t at = read_records(pending, finding, given, f);
-            pending.erase(pending.begin(), pending.begin() + static_cast<std::ptrdiff_t>(at));
+            const std::size_t filled = held + static_cast<std::size_t>(got);
+            const std::size_t at =
+                read_records(std::span<const char>(buffer.data(), filled), finding, given, f);
+            held = filled - at;
+            if (held > 0) std::memmove(buffer.data(), buffer.data() + at, held);
         }
         unreadable_ = 0;
     }

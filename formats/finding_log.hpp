@@ -57,6 +57,8 @@ class FindingLog {
 
   private:
     static constexpr std::size_t kKeepInMemory = 4096;
+    // A record's usual size (its fixed part and a message), to reserve a batch's room once.
+    static constexpr std::size_t kRecordBytesGuess = 320;
     void spill();
 
     std::string spill_folder_;
@@ -73,6 +75,8 @@ class FindingLog {
     std::uint64_t unlisted_ = 0;                      // findings counted but not kept
     mutable std::uint64_t unreadable_ = 0;            // findings the spill file did not give back
     std::map<std::uint32_t, std::uint64_t> tallies_;  // by kind, severity, stations
+    std::uint64_t* last_tally_ = nullptr;  // the count of the last finding's key (map nodes stay)
+    std::uint32_t last_tally_key_ = 0;
     mutable std::string lost_;  // for_each() is const but may find the spill file unreadable
 };
 

@@ -7,7 +7,9 @@
 #include <sys/stat.h>
 
 #include <cstdlib>
+#include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "tests/test_support.hpp"
@@ -117,6 +119,41 @@ TEST(FindingLogTest, CountsStayExactWhenTheSpillFolderCannotBeUsed) {
     EXPECT_EQ(sums.all, kMany);
     EXPECT_EQ(sums.errors, (kMany + 2) / 3);
     EXPECT_EQ(sums.without_stations, kMany / 5);
+}
+
+// Each tally counts its kind, severity and stations exactly, whether findings come in runs of
+// one key or alternate (the log tries the last finding's tally first).
+TEST(FindingLogTest, TalliesCountEachKeyExactlyInRunsAndAlternating) {
+    FindingLog log(test::temp_folder());
+    std::map<std::tuple<FindingKind, Severity, bool, int, int>, std::uint64_t> expected;
+    auto add = [&](FindingKind kind, Severity severity, bool has_stations, std::uint8_t slave,
+                   int times) {
+        for (int i = 0; i < times; ++i) {
+            Finding f;
+            f.kind = kind;
+            f.severity = severity;
+            f.has_stations = has_stations;
+            f.master = has_stations ? 2 : 0;
+            f.slave = has_stations ? slave : 0;
+            log.append(std::span<const Finding>(&f, 1));
+            ++expected[{kind, severity, has_stations, f.master, f.slave}];
+        }
+    };
+    add(FindingKind::StackedRequest, Severity::Error, true, 5, 7);
+    add(FindingKind::StackedRequest, Severity::Error, true, 6, 1);  // another slave
+    add(FindingKind::StackedRequest, Severity::Error, true, 5, 3);  // back to the first
+    add(FindingKind::StackedRequest, Severity::Warning, true, 5, 2);
+    add(FindingKind::FcsError, Severity::Error, false, 0, 4);
+    for (int round = 0; round < 50; ++round) {  // alternating keys
+        add(FindingKind::FcsError, Severity::Error, false, 0, 1);
+        add(FindingKind::StackedRequest, Severity::Error, true, 5, 1);
+    }
+    std::map<std::tuple<FindingKind, Severity, bool, int, int>, std::uint64_t> tallied;
+    log.for_each_tally([&](const FindingTally& t) {
+        tallied[{t.kind, t.severity, t.has_stations, t.master, t.slave}] += t.count;
+    });
+    EXPECT_EQ(tallied, expected);
+    EXPECT_EQ(log.size(), 117u);
 }
 
 TEST(FindingLogTest, TheTemporaryFolderIsTmpdir) {
