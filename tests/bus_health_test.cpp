@@ -653,6 +653,39 @@ TEST_F(BusHealthTest, RatesLoadAndIdle) {
     EXPECT_NEAR(seg.telegrams_per_second(), 20'000, 1e-6);
 }
 
+// The segment's times whatever order the telegrams' times come in: the first time is the first
+// telegram that has one, the end the latest time; a telegram without a time, at the same time or
+// earlier (a capture's clock stepping back) moves neither, and the next later one moves the end.
+TEST_F(BusHealthTest, SegmentTimesWhateverOrderTheTimesComeIn) {
+    const SegmentHealth& seg = tracker().health().segment;
+    feed(token(kMaster, kMaster), kNoTime);
+    EXPECT_EQ(seg.first_ns, kNoTime);
+    EXPECT_EQ(seg.end_ns, kNoTime);
+    feed(token(kMaster, kMaster), kMs);
+    const std::int64_t first = now();
+    EXPECT_EQ(seg.first_ns, first);
+    EXPECT_EQ(seg.end_ns, first);
+    feed(token(kMaster, kMaster), 2 * kMs);
+    EXPECT_EQ(seg.end_ns, first + 2 * kMs);
+    feed(token(kMaster, kMaster), -5 * kMs);  // earlier than the first
+    EXPECT_EQ(seg.end_ns, first + 2 * kMs);
+    feed(token(kMaster, kMaster), 5 * kMs);  // the same time as the end
+    feed(token(kMaster, kMaster), kNoTime);
+    EXPECT_EQ(seg.first_ns, first);
+    EXPECT_EQ(seg.end_ns, first + 2 * kMs);
+    feed(token(kMaster, kMaster), kMs);
+    EXPECT_EQ(seg.end_ns, first + 3 * kMs);
+    tracker().finish();
+    EXPECT_EQ(seg.telegrams, 7u);
+    EXPECT_EQ(seg.bytes, 21u);
+    EXPECT_EQ(seg.first_ns, first);
+    EXPECT_EQ(seg.end_ns, first + 3 * kMs);
+    EXPECT_EQ(seg.busy_ns, 0.0);  // no baud
+    // A rotation between timed tokens in order: not to the one that went back, nor from the one
+    // without a time.
+    EXPECT_EQ(master(kMaster)->token_rotation.count(), 3u);
+}
+
 TEST_F(BusHealthTest, BusLoadVerdicts) {
     BusHealthOptions options;
     options.baud = 1'100'000;

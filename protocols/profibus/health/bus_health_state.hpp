@@ -153,6 +153,9 @@ struct BusHealthTracker::State {
     std::uint64_t steady_telegrams = 0;  // taken by the steady path (steady_telegrams())
     double ns_per_byte = 0;  // a character's time on the line (0: baud not known)
     bool has_baud = false;   // ns_per_byte != 0
+    // !has_baud and the segment's first time known: a telegram later than the segment's end
+    // only moves the times (count_segment()).
+    bool plain_times = false;
     std::uint64_t lost_cycles = 3;
     bool steady_path = true;  // BusHealthOptions::steady_path
 };
@@ -179,6 +182,9 @@ class BusHealthTrackerImpl {
 
     // The segment's counts and times (every PROFIBUS telegram).
     static inline void count_segment(State& s, SegmentHealth& seg, const DecodedTelegram& t);
+    // The times of count_segment() for a telegram that is not the usual one (the first with a
+    // time, one without a time or not later than the last, a line rate known).
+    static void count_segment_times(State& s, SegmentHealth& seg, const DecodedTelegram& t);
     // An intact telegram while no request waits, or ...
     static std::span<const HealthEvent> steady_request(State& s, SegmentHealth& seg,
                                                        const DecodedTelegram& t);

@@ -123,14 +123,27 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
                                                                        const DecodedTelegram& t) {
     ++seg.telegrams;
     s.last_frame = t.frame;
+    seg.bytes += t.bytes.size();  // apart from telegrams: two adds, not a vector add
+    const std::int64_t time = t.time_ns;
+    // The usual telegram: later than the segment's end, its first time known, no baud to time
+    // the line with (s.plain_times). Then only the times move.
+    if (time > seg.end_ns && s.plain_times) [[likely]] {
+        s.last_time_ns = time;
+        seg.end_ns = time;
+        return;
+    }
+    count_segment_times(s, seg, t);
+}
+
+[[gnu::noinline]] void BusHealthTrackerImpl::count_segment_times(State& s, SegmentHealth& seg,
+                                                                 const DecodedTelegram& t) {
     const std::int64_t time = t.time_ns;
     if (time != kNoTime) {
         s.last_time_ns = time;
         if (seg.first_ns == kNoTime) [[unlikely]]
             seg.first_ns = time;
     }
-    seg.bytes += t.bytes.size();  // apart from telegrams: two adds, not a vector add
-    if (s.has_baud) [[unlikely]] {
+    if (s.has_baud) {
         const double duration_ns = static_cast<double>(t.bytes.size()) * s.ns_per_byte;
         seg.busy_ns += duration_ns;
         if (time != kNoTime) {
@@ -140,6 +153,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     } else if (time > seg.end_ns) {
         seg.end_ns = time;
     }
+    s.plain_times = !s.has_baud && seg.first_ns != kNoTime;
 }
 
 [[gnu::always_inline]] inline bool BusHealthTrackerImpl::count_frame(std::uint8_t& link, bool fcb) {
