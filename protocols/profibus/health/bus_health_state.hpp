@@ -20,25 +20,46 @@ namespace detail {
 // Per-address entries (a station's Slot, a master's Master), each made on first use with its
 // address: a capture names a handful of the 128 addresses, and all 128 made up front (about
 // 100 KB) cost more than tracking a short capture. Iterating visits the entries made so far, in
-// address order.
+// address order. An address with no entry yet points at the table's own blank entry (a station
+// never heard: not listed, state Unknown), so that peek() can hand out a pointer without testing
+// it; the blank entry is never written.
 template <class Entry>
 class StationTable {
   public:
+    StationTable() { entries_.fill(&blank_); }
+    ~StationTable() {
+        for (Entry* entry : entries_)
+            if (entry != &blank_) delete entry;
+    }
+    StationTable(const StationTable&) = delete;
+    StationTable& operator=(const StationTable&) = delete;
+
     // Called several times a telegram: the made entry is returned inline, the first use of an
     // address makes it out of line.
     Entry& operator[](std::size_t address) {
-        if (Entry* entry = entries_[address].get(); entry != nullptr) [[likely]]
+        if (Entry* entry = entries_[address]; entry != &blank_) [[likely]]
             return *entry;
         return make(address);
     }
     // The entry made for `address`, or null (nothing is made).
-    Entry* find(std::size_t address) noexcept { return entries_[address].get(); }
+    Entry* find(std::size_t address) noexcept {
+        Entry* entry = entries_[address];
+        return entry != &blank_ ? entry : nullptr;
+    }
+    // The entry made for `address`, or the blank entry: never null. The caller writes through it
+    // only after a test that the blank entry fails (listed, or an active state): it is never
+    // written.
+    Entry* peek(std::size_t address) noexcept { return entries_[address]; }
+    // Whether peek() gave the blank entry.
+    bool is_blank(const Entry* entry) const noexcept { return entry == &blank_; }
 
     class iterator {
       public:
-        using Slots = std::array<std::unique_ptr<Entry>, kStationCount>;
-        iterator(Slots& entries, std::size_t at) : entries_(&entries), at_(at) { skip_empty(); }
-        Entry& operator*() const { return *(*entries_)[at_]; }
+        using Slots = std::array<Entry*, kStationCount>;
+        iterator(const StationTable& table, std::size_t at) : table_(&table), at_(at) {
+            skip_empty();
+        }
+        Entry& operator*() const { return *table_->entries_[at_]; }
         iterator& operator++() {
             ++at_;
             skip_empty();
@@ -48,24 +69,25 @@ class StationTable {
 
       private:
         void skip_empty() {
-            while (at_ < kStationCount && !(*entries_)[at_])
+            while (at_ < kStationCount && table_->entries_[at_] == &table_->blank_)
                 ++at_;
         }
-        Slots* entries_;
+        const StationTable* table_;
         std::size_t at_;
     };
-    iterator begin() { return iterator(entries_, 0); }
-    iterator end() { return iterator(entries_, kStationCount); }
+    iterator begin() { return iterator(*this, 0); }
+    iterator end() { return iterator(*this, kStationCount); }
 
   private:
     [[gnu::noinline]] Entry& make(std::size_t address) {
-        std::unique_ptr<Entry>& entry = entries_[address];
-        entry = std::make_unique<Entry>();
+        auto entry = std::make_unique<Entry>();
         entry->health.address = static_cast<std::uint8_t>(address);
-        return *entry;
+        entries_[address] = entry.get();
+        return *entry.release();
     }
 
-    std::array<std::unique_ptr<Entry>, kStationCount> entries_;
+    Entry blank_{};
+    std::array<Entry*, kStationCount> entries_;
 };
 
 // A set of the 128 station addresses (two words: tested and set inline).
@@ -121,9 +143,14 @@ struct BusHealthTracker::State {
         detail::AddressSet polled_ever;
         Verdict last_verdict = Verdict::Good;
     };
-    // The request waiting for its reply.
+    // The request waiting for its reply (Pending::active): none, one the full rules took, or
+    // one steady_request() took (an SRD request with FCV to a listed station, the token not
+    // waiting: what steady_answer() would otherwise test again).
+    static constexpr std::uint8_t kNoRequest = 0;
+    static constexpr std::uint8_t kFullRequest = 1;
+    static constexpr std::uint8_t kSteadyRequest = 2;
     struct Pending {
-        bool active = false;
+        std::uint8_t active = kNoRequest;
         std::uint8_t master = 0;
         std::uint8_t slave = 0;
         std::uint8_t function = 0;
@@ -150,11 +177,11 @@ struct BusHealthTracker::State {
     std::uint64_t last_frame = 0;
     Verdict segment_last_verdict = Verdict::Good;
     bool finished = false;
-    std::uint64_t steady_telegrams = 0;  // taken by the steady path (steady_telegrams())
+    std::uint64_t full_telegrams = 0;  // taken by the full rules (steady_telegrams(): the others)
     double ns_per_byte = 0;  // a character's time on the line (0: baud not known)
     bool has_baud = false;   // ns_per_byte != 0
     // !has_baud and the segment's first time known: a telegram later than the segment's end
-    // only moves the times (count_segment()).
+    // only moves the times (observe()).
     bool plain_times = false;
     std::uint64_t lost_cycles = 3;
     bool steady_path = true;  // BusHealthOptions::steady_path
@@ -172,19 +199,22 @@ class BusHealthTrackerImpl {
     // (the steady path): an intact SRD request (frame count valid) from the active master to a
     // listed station (steady_request), the intact answer to the request waiting from a listed
     // slave whose state it leaves as it is (steady_answer), the intact token passed on by the
-    // master holding it to a known master (steady_token). Each tests first and counts after,
-    // through the same helpers as the full rules (heard_listed, master_sends, count_frame,
-    // count_request, answered, count_answer, exchanged, master_polls, token_passed); a test that
-    // fails hands the
+    // active master holding it (steady_token). Each tests first and counts after, through the
+    // same helpers as the full rules (heard_listed, master_sends, count_frame, count_request,
+    // answered, count_answer, exchanged, master_polls, token_passed); a test that fails hands the
     // telegram, untouched, to the full rules (observe_rest). BusHealthSteadyPathTest compares the
     // two over simulated sessions with every fault. Each step returns the telegram's events
     // (none on the steady path).
 
-    // The segment's counts and times (every PROFIBUS telegram).
-    static inline void count_segment(State& s, SegmentHealth& seg, const DecodedTelegram& t);
-    // The times of count_segment() for a telegram that is not the usual one (the first with a
-    // time, one without a time or not later than the last, a line rate known).
+    // observe() counts the segment; the times of a telegram that is not the usual one (the
+    // first with a time, one without a time or not later than the last, a line rate known) are
+    // count_segment_times()'s, and observe_times() goes on from there.
+    static std::span<const HealthEvent> observe_times(State& s, SegmentHealth& seg,
+                                                      const DecodedTelegram& t);
     static void count_segment_times(State& s, SegmentHealth& seg, const DecodedTelegram& t);
+    // A steady step for an intact telegram, else the full rules.
+    static inline std::span<const HealthEvent> choose_path(State& s, SegmentHealth& seg,
+                                                           const DecodedTelegram& t);
     // An intact telegram while no request waits, or ...
     static std::span<const HealthEvent> steady_request(State& s, SegmentHealth& seg,
                                                        const DecodedTelegram& t);

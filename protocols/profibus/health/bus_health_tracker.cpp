@@ -103,40 +103,47 @@ BusHealthTracker::BusHealthTracker(BusHealthOptions options)
 BusHealthTracker::~BusHealthTracker() = default;
 
 std::uint64_t BusHealthTracker::steady_telegrams() const noexcept {
-    return state_->steady_telegrams;
+    return health_.segment.telegrams - state_->full_telegrams;
 }
 
 std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t) {
     using Impl = BusHealthTrackerImpl;
-    State& s = *state_;
     if (t.protocol != Protocol::ProfibusDp) return {};
-    Impl::count_segment(s, health_.segment, t);
-    // The steady path for an intact telegram, else the full rules (bus_health_state.hpp).
-    const FdlTelegram& fdl = t.dp.fdl;
-    if (fdl.fcs_ok && fdl.problems.empty() && s.steady_path) [[likely]]
-        return s.pending.active ? Impl::steady_answer(s, health_.segment, t)
-                                : Impl::steady_request(s, health_.segment, t);
-    return Impl::observe_rest(s, health_.segment, t);
-}
-
-[[gnu::always_inline]] inline void BusHealthTrackerImpl::count_segment(State& s, SegmentHealth& seg,
-                                                                       const DecodedTelegram& t) {
+    State& s = *state_;
+    SegmentHealth& seg = health_.segment;
+    // The segment's counts and times. The usual telegram is later than the segment's end, on a
+    // segment whose first time is known and whose line rate is not (s.plain_times): only the
+    // times move. Another one (the first with a time, one without a time or not later than the
+    // end, a line rate known) takes count_segment_times(), out of line.
     ++seg.telegrams;
     s.last_frame = t.frame;
     seg.bytes += t.bytes.size();  // apart from telegrams: two adds, not a vector add
     const std::int64_t time = t.time_ns;
-    // The usual telegram: later than the segment's end, its first time known, no baud to time
-    // the line with (s.plain_times). Then only the times move.
-    if (time > seg.end_ns && s.plain_times) [[likely]] {
-        s.last_time_ns = time;
-        seg.end_ns = time;
-        return;
-    }
-    count_segment_times(s, seg, t);
+    if (!(time > seg.end_ns && s.plain_times)) [[unlikely]]
+        return Impl::observe_times(s, seg, t);
+    s.last_time_ns = time;
+    seg.end_ns = time;
+    return Impl::choose_path(s, seg, t);
 }
 
-[[gnu::noinline]] void BusHealthTrackerImpl::count_segment_times(State& s, SegmentHealth& seg,
-                                                                 const DecodedTelegram& t) {
+[[gnu::noinline]] std::span<const HealthEvent> BusHealthTrackerImpl::observe_times(
+    State& s, SegmentHealth& seg, const DecodedTelegram& t) {
+    count_segment_times(s, seg, t);
+    return choose_path(s, seg, t);
+}
+
+[[gnu::always_inline]] inline std::span<const HealthEvent> BusHealthTrackerImpl::choose_path(
+    State& s, SegmentHealth& seg, const DecodedTelegram& t) {
+    // The steady path for an intact telegram, else the full rules (bus_health_state.hpp).
+    const FdlTelegram& fdl = t.dp.fdl;
+    if (fdl.fcs_ok && fdl.problems.empty() && s.steady_path) [[likely]]
+        return s.pending.active != State::kNoRequest ? steady_answer(s, seg, t)
+                                                     : steady_request(s, seg, t);
+    return observe_rest(s, seg, t);
+}
+
+void BusHealthTrackerImpl::count_segment_times(State& s, SegmentHealth& seg,
+                                               const DecodedTelegram& t) {
     const std::int64_t time = t.time_ns;
     if (time != kNoTime) {
         s.last_time_ns = time;
@@ -157,10 +164,11 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
 }
 
 [[gnu::always_inline]] inline bool BusHealthTrackerImpl::count_frame(std::uint8_t& link, bool fcb) {
-    const bool repeat =
-        (link & State::kLinkFcbValid) != 0 && ((link & State::kLinkFcb) != 0) == fcb;
-    link = static_cast<std::uint8_t>((link & State::kLinkAsked) | State::kLinkFcbValid |
-                                     (fcb ? State::kLinkFcb : 0));
+    // A repeat: the count valid and its FCB the same (both bits as they are now).
+    const std::uint8_t now =
+        static_cast<std::uint8_t>(State::kLinkFcbValid | (fcb ? State::kLinkFcb : 0));
+    const bool repeat = (link & (State::kLinkFcbValid | State::kLinkFcb)) == now;
+    link = static_cast<std::uint8_t>((link & State::kLinkAsked) | now);
     return repeat;
 }
 
@@ -210,7 +218,8 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
 }
 
 // Out of line, as steady_answer() and observe_rest(): observe() only counts and chooses, and each
-// path keeps its own registers.
+// path keeps its own registers (inlined into observe(), the steps cost every telegram the saving
+// of the registers the request needs).
 [[gnu::noinline]] std::span<const HealthEvent> BusHealthTrackerImpl::steady_request(
     State& s, SegmentHealth& seg, const DecodedTelegram& t) {
     const FdlTelegram& fdl = t.dp.fdl;
@@ -221,21 +230,27 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     const Service service = t.dp.service;
     // SRD low or high with FCV set (FC bit 7 clear, bit 6 set: a request, bit 4 set, function
     // 0xC or 0xD); SD1 to SD3 carry a frame control byte and both addresses.
-    if (!fdl.has_fc || (fc.raw & 0xDE) != 0x5C)
+    if (!fdl.has_fc || (fc.raw & 0xDE) != 0x5C) [[unlikely]]
         return fdl.type == FrameType::Sd4 ? steady_token(s, seg, t) : observe_rest(s, seg, t);
-    // The token passed last is taken when its receiver sends (check_token_taken()).
-    if (da == kBroadcastAddress || (s.token_waiting && sa != s.token_holder))
-        return observe_rest(s, seg, t);
-    State::Slot* sender = s.slots.find(sa);
-    State::Slot* slot = s.slots.find(da);
-    State::Master* m = s.masters.find(sa);
-    // An active master (listed, and a master, as only masters become active) asking a listed
-    // station whose poll cycle does not close unanswered (that counts toward lost).
-    if (sender == nullptr || slot == nullptr || m == nullptr ||
+    // Entries not made yet are the tables' blank ones (not listed, state Unknown): the tests
+    // below fail for them, and nothing is written to them.
+    State::Slot* sender = s.slots.peek(sa);
+    State::Slot* slot = s.slots.peek(da);
+    // Not to all; the token passed last is taken when its receiver sends (check_token_taken());
+    // an active master (listed, and a master, as only master_sends() makes a station active)
+    // asking a listed station whose poll cycle does not close unanswered (that counts toward
+    // lost).
+    if (da == kBroadcastAddress || (s.token_waiting && sa != s.token_holder) ||
         sender->health.state != StationState::Active || !slot->listed ||
-        (slot->cycle_open && !slot->cycle_answered))
+        (slot->cycle_open && !slot->cycle_answered)) [[unlikely]]
+        return observe_rest(s, seg, t);
+    // Made by master_sends()'s callers before it made the master active: never blank here.
+    State::Master* m = s.masters.peek(sa);
+    if (s.masters.is_blank(m)) [[unlikely]]
         return observe_rest(s, seg, t);
 
+    // First, so that fewer values stay live: what steady_answer() may then skip testing.
+    s.pending = State::Pending{State::kSteadyRequest, sa, da, fc.function(), service, true, slot};
     s.token_waiting = false;
     heard_listed(*sender, t);
     master_sends(s, *sender, *m, t);
@@ -245,9 +260,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     s.links[sa][da] = link;
     // The cycle this one closes was answered (tested above): nothing counts toward lost.
     if (count_request(*slot, service, repeat, true)) open_cycle(*slot);
-    s.pending = State::Pending{true, sa, da, fc.function(), service, true, slot};
     if (service == Service::DataExchange && !repeat) master_polls(*m, t, da);
-    ++s.steady_telegrams;
     return {};
 }
 
@@ -255,21 +268,15 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     State& s, SegmentHealth& seg, const DecodedTelegram& t) {
     const FdlTelegram& fdl = t.dp.fdl;
     const std::uint8_t sa = fdl.sa;
-    const std::uint8_t da = fdl.da;
-    // Passed by the master that holds it (taken, when it was just passed to it) to a station
-    // known as a master (passing to a new one, or to all, takes the full rules).
-    if (!fdl.has_addresses || da == kBroadcastAddress || (s.token_waiting && sa != s.token_holder))
-        return observe_rest(s, seg, t);
-    const State::Slot* sender = s.slots.find(sa);
-    const State::Slot* receiver = s.slots.find(da);
-    if (sender == nullptr || receiver == nullptr || s.masters.find(sa) == nullptr ||
-        s.masters.find(da) == nullptr || sender->health.state != StationState::Active ||
-        !receiver->listed || !receiver->master)
+    // Passed by the master that holds it (taken, when it was just passed to it), an active one:
+    // then token_passed() raises no event whoever receives it (only a master that becomes
+    // active does; listing the receiver and making it a master raise none).
+    if (!fdl.has_addresses || (s.token_waiting && sa != s.token_holder) ||
+        s.slots.peek(sa)->health.state != StationState::Active)
         return observe_rest(s, seg, t);
 
     s.token_waiting = false;  // check_token_taken(): taken
     token_passed(s, t);
-    ++s.steady_telegrams;
     return {};
 }
 
@@ -279,16 +286,19 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     // Read once (as in steady_request()).
     const State::Pending asked = s.pending;
     const FrameType type = fdl.type;
-    if (s.token_waiting) return observe_rest(s, seg, t);
+    // Asked through steady_request(), by the telegram before this one (the full rules end any
+    // request waiting): the token is not waiting, the station asked is listed, the function is
+    // SRD.
+    if (asked.active != State::kSteadyRequest) [[unlikely]]
+        return observe_rest(s, seg, t);
     // A short acknowledge, or a response (SD1 to SD3) from the station asked to its master.
     if (type != FrameType::ShortAck &&
         (!fdl.has_fc || fdl.fc.is_request() || fdl.da != asked.master || fdl.sa != asked.slave))
         return observe_rest(s, seg, t);
     State::Slot& slot = *asked.slot;
     const StationHealth& h = slot.health;
-    // A listed slave that stays in its state (state_from_answer() changes nothing).
-    if (!slot.listed || slot.master || h.state == StationState::Lost ||
-        asked.function == static_cast<std::uint8_t>(FdlFunction::FdlStatus))
+    // A slave that stays in its state (state_from_answer() changes nothing).
+    if (slot.master || h.state == StationState::Lost) [[unlikely]]
         return observe_rest(s, seg, t);
     switch (asked.service) {
         case Service::SetPrm:
@@ -300,12 +310,12 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
         default: break;
     }
 
-    s.pending.active = false;
+    s.pending.active = State::kNoRequest;
     heard_listed(slot, t);
     answered(slot);
-    count_answer(slot, fdl, asked.function, asked.service);
+    // SRD low or high (steady_request()): count_answer() reads only that it is SRD.
+    count_answer(slot, fdl, static_cast<std::uint8_t>(FdlFunction::SrdLow), asked.service);
     if (asked.service == Service::DataExchange) exchanged(slot, is_data_frame(type));
-    ++s.steady_telegrams;
     return {};
 }
 
@@ -315,6 +325,7 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     const FdlTelegram& fdl = t.dp.fdl;
     const std::uint64_t lost_cycles = s.lost_cycles;
     if (!s.events.empty()) s.events.clear();  // the last call's (the steady steps leave none)
+    ++s.full_telegrams;
 
     const bool damaged = is_damaged(fdl);
     const bool addressed = fdl.has_addresses && fdl.type != FrameType::ShortAck;
@@ -327,8 +338,8 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
     // something else (then the request went unanswered)?
     bool is_answer = false;
     State::Pending asked = s.pending;
-    if (s.pending.active) {
-        s.pending.active = false;
+    if (s.pending.active != State::kNoRequest) {
+        s.pending.active = State::kNoRequest;
         if (damaged && !is_request) {
             // In the place of the answer: the station asked.
             ++seg.damaged;
@@ -405,8 +416,8 @@ std::span<const HealthEvent> BusHealthTracker::observe(const DecodedTelegram& t)
             Impl::open_cycle(slot);
         }
         if (expects)
-            s.pending =
-                State::Pending{true, fdl.sa, fdl.da, function, t.dp.service, slot.listed, &slot};
+            s.pending = State::Pending{State::kFullRequest, fdl.sa,      fdl.da, function,
+                                       t.dp.service,        slot.listed, &slot};
 
         // The master's poll cycle.
         if (t.dp.service == Service::DataExchange && !repeat) Impl::master_polls(m, t, fdl.da);
@@ -485,7 +496,8 @@ void BusHealthTracker::finish(std::int64_t end_ns) {
         for (State::Slot& slot : s.slots) {
             if (!slot.listed || !slot.cycle_open) continue;
             // A poll still waiting for its reply when the capture ended is not judged.
-            if (s.pending.active && s.pending.slave == slot.health.address) continue;
+            if (s.pending.active != State::kNoRequest && s.pending.slave == slot.health.address)
+                continue;
             Impl::close_cycle(s, slot, end, lost_cycles);
         }
         if (end_ns != kNoTime && health_.segment.first_ns != kNoTime &&
