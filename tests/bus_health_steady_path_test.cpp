@@ -12,6 +12,7 @@
 #include "formats/json_writer.hpp"
 #include "protocols/profibus/bus_decoder.hpp"
 #include "protocols/profibus/health/bus_health.hpp"
+#include "protocols/profibus/health/bus_health_state.hpp"
 #include "protocols/profibus/health/health_render.hpp"
 #include "protocols/profibus/telegram_builder.hpp"
 #include "simulator/simulator.hpp"
@@ -267,6 +268,44 @@ TEST(BusHealthSteadyPathTest, OddTelegramsGiveTheSameFiguresAndEvents) {
         steady_taken += steady.steady_telegrams();
     }
     EXPECT_GT(steady_taken, 1000u);  // the odd telegrams are mixed with steady ones
+}
+
+// The tracker's per-address table (bus_health_state.hpp): an address without an entry gives null
+// from find() and the table's blank entry from peek() (a station never heard, which the steady
+// tests turn away); made entries are found, peeked and iterated in address order, and making
+// them leaves the blank entry as it was.
+struct TableEntry {  // what the table needs of an entry, and what the steady tests read
+    struct {
+        std::uint8_t address = 0;
+        StationState state = StationState::Unknown;
+    } health;
+    bool listed = false;
+};
+
+TEST(BusHealthStationTableTest, BlankUntilMadeThenFoundPeekedAndIterated) {
+    using Slot = TableEntry;
+    detail::StationTable<Slot> table;
+    for (std::size_t address = 0; address < kStationCount; ++address) {
+        EXPECT_EQ(table.find(address), nullptr);
+        ASSERT_TRUE(table.is_blank(table.peek(address)));
+    }
+    EXPECT_TRUE(table.begin() == table.end());
+    table[70].listed = true;
+    table[5].health.state = StationState::Active;
+    ASSERT_NE(table.find(5), nullptr);
+    EXPECT_EQ(table.find(5)->health.address, 5);
+    EXPECT_EQ(table.peek(70), table.find(70));
+    EXPECT_FALSE(table.is_blank(table.peek(5)));
+    std::vector<int> visited;
+    for (Slot& slot : table)
+        visited.push_back(slot.health.address);
+    EXPECT_EQ(visited, (std::vector<int>{5, 70}));
+    const Slot* blank = table.peek(6);
+    ASSERT_TRUE(table.is_blank(blank));
+    EXPECT_FALSE(blank->listed);
+    EXPECT_EQ(blank->health.state, StationState::Unknown);
+    EXPECT_EQ(blank->health.address, 0);
+    EXPECT_EQ(table.peek(6), table.peek(127));  // one blank entry for every empty address
 }
 
 }  // namespace

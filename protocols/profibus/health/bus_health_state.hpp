@@ -55,7 +55,6 @@ class StationTable {
 
     class iterator {
       public:
-        using Slots = std::array<Entry*, kStationCount>;
         iterator(const StationTable& table, std::size_t at) : table_(&table), at_(at) {
             skip_empty();
         }
