@@ -206,8 +206,8 @@ class BusHealthTrackerImpl {
     // (none on the steady path).
 
     // observe() counts the segment; the times of a telegram that is not the usual one (the
-    // first with a time, one without a time or not later than the last, a line rate known) are
-    // count_segment_times()'s, and observe_times() goes on from there.
+    // first with a time, one without a time or not later than the segment's end, a line rate
+    // known) are count_segment_times()'s, and observe_times() goes on from there.
     static std::span<const HealthEvent> observe_times(State& s, SegmentHealth& seg,
                                                       const DecodedTelegram& t);
     static void count_segment_times(State& s, SegmentHealth& seg, const DecodedTelegram& t);
