@@ -283,8 +283,7 @@ struct TableEntry {  // what the table needs of an entry, and what the steady te
 };
 
 TEST(BusHealthStationTableTest, BlankUntilMadeThenFoundPeekedAndIterated) {
-    using Slot = TableEntry;
-    detail::StationTable<Slot> table;
+    detail::StationTable<TableEntry> table;
     for (std::size_t address = 0; address < kStationCount; ++address) {
         EXPECT_EQ(table.find(address), nullptr);
         ASSERT_TRUE(table.is_blank(table.peek(address)));
@@ -297,10 +296,10 @@ TEST(BusHealthStationTableTest, BlankUntilMadeThenFoundPeekedAndIterated) {
     EXPECT_EQ(table.peek(70), table.find(70));
     EXPECT_FALSE(table.is_blank(table.peek(5)));
     std::vector<int> visited;
-    for (Slot& slot : table)
-        visited.push_back(slot.health.address);
+    for (TableEntry& entry : table)
+        visited.push_back(entry.health.address);
     EXPECT_EQ(visited, (std::vector<int>{5, 70}));
-    const Slot* blank = table.peek(6);
+    const TableEntry* blank = table.peek(6);
     ASSERT_TRUE(table.is_blank(blank));
     EXPECT_FALSE(blank->listed);
     EXPECT_EQ(blank->health.state, StationState::Unknown);
