@@ -178,9 +178,8 @@ struct BusHealthTracker::State {
     bool finished = false;
     std::uint64_t full_telegrams = 0;  // taken by the full rules (steady_telegrams(): the others)
     double ns_per_byte = 0;  // a character's time on the line (0: baud not known)
-    bool has_baud = false;   // ns_per_byte != 0
-    // !has_baud and the segment's first time known: a telegram later than the segment's end
-    // only moves the times (observe()).
+    // No line rate (ns_per_byte 0) and the segment's first time known: a telegram later than the
+    // segment's end only moves the times (observe()).
     bool plain_times = false;
     std::uint64_t lost_cycles = 3;
     bool steady_path = true;  // BusHealthOptions::steady_path

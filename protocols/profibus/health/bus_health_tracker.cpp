@@ -97,7 +97,6 @@ BusHealthTracker::BusHealthTracker(BusHealthOptions options)
     if (options_.baud != 0)
         state_->ns_per_byte =
             static_cast<double>(options_.character_bits) * 1e9 / static_cast<double>(options_.baud);
-    state_->has_baud = state_->ns_per_byte != 0;
 }
 
 BusHealthTracker::~BusHealthTracker() = default;
@@ -150,7 +149,7 @@ void BusHealthTrackerImpl::count_segment_times(State& s, SegmentHealth& seg,
         if (seg.first_ns == kNoTime) [[unlikely]]
             seg.first_ns = time;
     }
-    if (s.has_baud) {
+    if (s.ns_per_byte != 0) {
         const double duration_ns = static_cast<double>(t.bytes.size()) * s.ns_per_byte;
         seg.busy_ns += duration_ns;
         if (time != kNoTime) {
@@ -160,7 +159,7 @@ void BusHealthTrackerImpl::count_segment_times(State& s, SegmentHealth& seg,
     } else if (time > seg.end_ns) {
         seg.end_ns = time;
     }
-    s.plain_times = !s.has_baud && seg.first_ns != kNoTime;
+    s.plain_times = s.ns_per_byte == 0 && seg.first_ns != kNoTime;
 }
 
 [[gnu::always_inline]] inline bool BusHealthTrackerImpl::count_frame(std::uint8_t& link, bool fcb) {
