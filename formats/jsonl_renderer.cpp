@@ -24,6 +24,13 @@ class JsonlRenderer final : public TelegramRenderer {
         json::time(w, t.time_ns);
         w.key("len").integer(static_cast<std::int64_t>(t.bytes.size()));
         render_jsonl_keys(w, t);
+        if (t.problems().empty() && findings.empty()) {  // most lines
+            w.members("\"problems\":[],\"findings\":[]");
+            w.end_object();
+            out_.put('\n');
+            out_.end_record();
+            return;
+        }
         w.key("problems").begin_array();
         for (const Problem& p : t.problems()) {
             w.begin_object();

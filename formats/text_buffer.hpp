@@ -94,8 +94,18 @@ namespace text_detail {
 // nine digits.
 inline constexpr std::size_t kEpochSecondsMax = 21;
 
+// The digits of the whole seconds write_epoch_seconds() wrote last (in this thread): a capture's
+// telegrams share their second with thousands of others, whose lines copy them.
+struct EpochSecondsDigits {
+    std::uint64_t seconds = ~std::uint64_t{0};  // none yet
+    int size = 0;
+    char digits[16] = {};  // at most 10 (a 64-bit count of nanoseconds), copied 16 at a time
+};
+inline thread_local EpochSecondsDigits last_epoch_seconds;
+
 // Seconds since 1970 with nine decimals ("1704067200.000389997", "-1.500000000": sign and
-// magnitude) from `p` on; returns the end. Every jsonl and csv line has one.
+// magnitude) from `p` on, which has room for kEpochSecondsMax characters; returns the end. Every
+// jsonl and csv line has one.
 inline char* write_epoch_seconds(char* p, std::int64_t time_ns) noexcept {
     constexpr std::uint64_t kNanos = 1'000'000'000;
     const bool negative = time_ns < 0;
@@ -104,8 +114,16 @@ inline char* write_epoch_seconds(char* p, std::int64_t time_ns) noexcept {
     const std::uint64_t seconds = magnitude / kNanos;
     auto nanos = static_cast<std::uint32_t>(magnitude % kNanos);
     if (negative) *p++ = '-';
-    const int digits = decimal_digits(seconds);
-    p = write_decimal_backwards(p + digits, seconds) + digits;
+    EpochSecondsDigits& last = last_epoch_seconds;
+    if (seconds != last.seconds) [[unlikely]] {
+        last.size = decimal_digits(seconds);
+        write_decimal_backwards(last.digits + last.size, seconds);
+        last.seconds = seconds;
+    }
+    // 16 bytes fit: the sign, 10 digits, the point and nine decimals are kEpochSecondsMax.
+    static_assert(kEpochSecondsMax >= 1 + sizeof last.digits);
+    std::memcpy(p, last.digits, sizeof last.digits);
+    p += last.size;
     // The fraction's nine digits, zeros kept: four pairs and a digit.
     *p = '.';
     p[9] = static_cast<char>('0' + nanos % 10);

@@ -180,6 +180,40 @@ TEST(RendererTest, JsonlEveryLineIsOneObjectWithTheDocumentedKeys) {
     }
 }
 
+// The "fc" object of every frame control byte (jsonl copies it from a text made once a byte):
+// its bits and names as the FDL layer reads them.
+TEST(RendererTest, JsonlFcObjectOfEveryFrameControlByte) {
+    std::vector<Input> inputs;
+    for (int raw = 0; raw < 256; ++raw) {
+        const auto fc = static_cast<std::uint8_t>(raw);
+        const auto fcs = static_cast<std::uint8_t>(3 + kMaster + fc);
+        inputs.push_back({{0x10, 3, kMaster, fc, fcs, 0x16}, kT0 + raw * 1000, {}});
+    }
+    std::vector<Json> lines = jsonl(inputs);
+    ASSERT_EQ(lines.size(), 256u);
+    for (int raw = 0; raw < 256; ++raw) {
+        const FrameControl fc{static_cast<std::uint8_t>(raw)};
+        const Json& object = lines[static_cast<std::size_t>(raw)]["fc"];
+        EXPECT_EQ(object["raw"].integer(), raw);
+        EXPECT_EQ(object["request"].boolean, fc.is_request()) << raw;
+        if (fc.is_request()) {
+            EXPECT_EQ(object.keys(),
+                      (std::vector<std::string>{"raw", "request", "fcb", "fcv", "function"}));
+            EXPECT_EQ(object["fcb"].boolean, fc.fcb()) << raw;
+            EXPECT_EQ(object["fcv"].boolean, fc.fcv()) << raw;
+            EXPECT_EQ(object["function"].string(), request_function_name(fc)) << raw;
+        } else {
+            EXPECT_EQ(object.keys(),
+                      (std::vector<std::string>{"raw", "request", "station", "status"}));
+            EXPECT_EQ(object["station"].string(), station_type_name(fc.station_type())) << raw;
+            EXPECT_EQ(object["status"].string(), response_status_name(fc.function())) << raw;
+        }
+        const Json& line = lines[static_cast<std::size_t>(raw)];
+        EXPECT_EQ(line["direction"].string(), fc.is_request() ? "request" : "response") << raw;
+        EXPECT_FALSE(line["service"].string().empty()) << raw;
+    }
+}
+
 TEST(RendererTest, JsonlDataExchangeWithPcv) {
     std::vector<Json> lines = jsonl(session());
     ASSERT_EQ(lines.size(), 12u);

@@ -14,6 +14,8 @@
 
 #include "formats/describe.hpp"
 #include "formats/field_writers.hpp"
+#include "formats/verbose_tree.hpp"
+#include "protocols/profibus/pcd.hpp"
 
 namespace dpscope {
 namespace {
@@ -182,6 +184,65 @@ TEST(TextBufferTest, EpochSecondsAreSignSecondsAndNineDigits) {
                                           magnitude / 1'000'000'000, magnitude % 1'000'000'000))
             << t;
     }
+}
+
+// The whole seconds are kept from one time to the next (write_epoch_seconds()): a run in one
+// second, a second forward and back, fewer and more digits, the sign, all in one thread's turn.
+TEST(TextBufferTest, EpochSecondsStayRightWhenTheirSecondRepeatsOrChanges) {
+    const std::vector<std::int64_t> times = {1'704'067'200'000'000'001,
+                                             1'704'067'200'999'999'999,
+                                             1'704'067'200'500'000'000,
+                                             1'704'067'201'000'000'000,
+                                             1'704'067'200'000'389'997,
+                                             9'000'000'000,
+                                             9'999'999'999,
+                                             10'000'000'000,
+                                             0,
+                                             -1,
+                                             -1'500'000'000,
+                                             1'500'000'000,
+                                             1'704'067'200'000'000'000,
+                                             -1'704'067'200'000'000'000,
+                                             std::numeric_limits<std::int64_t>::max(),
+                                             1'704'067'200'000'000'002};
+    for (int round = 0; round < 2; ++round)
+        for (std::int64_t t : times) {
+            const bool negative = t < 0;
+            const std::uint64_t magnitude =
+                negative ? 0 - static_cast<std::uint64_t>(t) : static_cast<std::uint64_t>(t);
+            TextBuffer b;
+            append(b, "x");
+            append_epoch_seconds(b, t);
+            append(b, "y");
+            ASSERT_EQ(text_of(b), fmt::format("x{}{}.{:09}y", negative ? "-" : "",
+                                              magnitude / 1'000'000'000, magnitude % 1'000'000'000))
+                << t;
+        }
+}
+
+// A control or status word's bit lines (the verbose tree): the indentation of the level, the
+// bit's number right-aligned in two places, its state and its meaning, at any depth.
+TEST(TextBufferTest, WordBitLinesAtEveryLevel) {
+    WordBits bits{};
+    for (std::size_t i = 0; i < bits.size(); ++i)
+        bits[i] = WordBit{
+            i % 3 == 0 ? std::string_view() : std::string_view("off"),
+            i % 2 == 0 ? std::string_view("on, with a longer meaning") : std::string_view("on")};
+    for (int level = 0; level <= 10; ++level)
+        for (int value : {0x0000, 0xFFFF, 0x0E07, 0xA5A5}) {
+            const auto word = static_cast<std::uint16_t>(value);
+            std::string expected;
+            for (int bit = 0; bit < 16; ++bit) {
+                const bool set = (word >> bit) & 1;
+                expected += fmt::format("{}bit {:2} = {}: {}\n", std::string(4 * level, ' '), bit,
+                                        set ? 1 : 0, set ? bits[bit].when_1 : bits[bit].when_0);
+            }
+            TextBuffer b;
+            append(b, "before\n");
+            VerboseTree tree(b);
+            tree.word_bit_fields(level, word, bits);
+            ASSERT_EQ(text_of(b), "before\n" + expected) << level << " " << word;
+        }
 }
 
 // A telegram's bytes in hex: two upper-case digits a byte, the separator between bytes.

@@ -1,7 +1,10 @@
 // The jsonl keys of a PROFIBUS DP telegram between "len" and "problems": the FDL and DP keys, the
 // PCV and PCD, the service's own objects, DP-V1 and PROFIdrive (docs/formats.md, the jsonl schema).
 #include <algorithm>
+#include <array>
 #include <iterator>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "formats/describe.hpp"
@@ -15,6 +18,63 @@
 namespace dpscope {
 
 namespace {
+
+// The "fc" object of a frame control byte: what it is follows from the byte alone.
+void write_fc_object(JsonWriter& w, FrameControl fc) {
+    w.begin_object();
+    w.key("raw").integer(fc.raw);
+    if (fc.is_request()) {
+        w.key("request").boolean(true);
+        w.key("fcb").boolean(fc.fcb());
+        w.key("fcv").boolean(fc.fcv());
+        w.key("function").name(request_function_name(fc));
+    } else {
+        w.key("request").boolean(false);
+        w.key("station").name(station_type_name(fc.station_type()));
+        w.key("status").name(response_status_name(fc.function()));
+    }
+    w.end_object();
+}
+
+// JSON text made once for each of `count` values by `write`, for the values of a telegram that
+// follow from one byte (jsonl copies the text instead of writing it every line).
+template <std::size_t Count, typename Write>
+std::array<std::string, Count> json_texts(Write&& write) {
+    std::array<std::string, Count> texts;
+    for (std::size_t value = 0; value < Count; ++value) {
+        fmt::memory_buffer text;
+        {
+            JsonWriter w(text);
+            write(w, value);
+        }
+        texts[value] = fmt::to_string(text);
+    }
+    return texts;
+}
+
+// write_fc_object() of a frame control byte (the texts made on first use).
+const std::string& fc_object(FrameControl fc) {
+    static const std::array<std::string, 256> objects =
+        json_texts<256>([](JsonWriter& w, std::size_t raw) {
+            write_fc_object(w, FrameControl{static_cast<std::uint8_t>(raw)});
+        });
+    return objects[fc.raw];
+}
+
+// The members "service" and "direction" of a telegram, as JSON text without braces (made on
+// first use for every service and direction).
+std::string_view service_members(Service service, Direction direction) {
+    static const std::array<std::string, kServiceCount* 2> objects =
+        json_texts<kServiceCount * 2>([](JsonWriter& w, std::size_t index) {
+            w.begin_object();
+            w.key("service").name(service_name(static_cast<Service>(index / 2)));
+            w.key("direction").name(direction_name(static_cast<Direction>(index % 2)));
+            w.end_object();
+        });
+    const std::string& object =
+        objects[static_cast<std::size_t>(service) * 2 + static_cast<std::size_t>(direction)];
+    return std::string_view(object).substr(1, object.size() - 2);
+}
 
 void render_pcv(JsonWriter& w, const DecodedTelegram& t) {
     const Pcv& pcv = t.dp.pcv;
@@ -52,14 +112,12 @@ void render_pcv(JsonWriter& w, const DecodedTelegram& t) {
     parameter_jsonl_keys(w, parameter_view(t));
     w.key("meaning").name(t.dp.pcv_meaning(t.direction));
     w.key("code_known").boolean(known);
-    w.key("error");
     if (rejected) {
         auto error = static_cast<std::uint16_t>(pcv.pva & 0xFFFF);
-        w.integer(error);
+        w.key("error").integer(error);
         w.key("error_text").string(error_text_or_unknown(t.dp.dialect, error));
     } else {
-        w.null();
-        w.key("error_text").null();
+        w.members("\"error\":null,\"error_text\":null");
     }
     w.end_object();
 }
@@ -478,29 +536,19 @@ void profibus_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
         w.null();
     w.key("da").optional_integer(f.has_addresses, f.da);
     w.key("sa").optional_integer(f.has_addresses, f.sa);
-    w.key("dsap").optional_integer(f.has_dsap, f.dsap);
-    w.key("ssap").optional_integer(f.has_ssap, f.ssap);
-    w.key("fc");
-    if (f.has_fc) {
-        w.begin_object();
-        w.key("raw").integer(f.fc.raw);
-        if (f.fc.is_request()) {
-            w.key("request").boolean(true);
-            w.key("fcb").boolean(f.fc.fcb());
-            w.key("fcv").boolean(f.fc.fcv());
-            w.key("function").name(request_function_name(f.fc));
-        } else {
-            w.key("request").boolean(false);
-            w.key("station").name(station_type_name(f.fc.station_type()));
-            w.key("status").name(response_status_name(f.fc.function()));
-        }
-        w.end_object();
+    if (!f.has_dsap && !f.has_ssap) {  // most telegrams: no address extension
+        w.members("\"dsap\":null,\"ssap\":null");
     } else {
-        w.null();
+        w.key("dsap").optional_integer(f.has_dsap, f.dsap);
+        w.key("ssap").optional_integer(f.has_ssap, f.ssap);
     }
+    w.key("fc");
+    if (f.has_fc)
+        w.json_text(fc_object(f.fc));
+    else
+        w.null();
     w.key("fcs_ok").boolean(f.fcs_ok);
-    w.key("service").name(service_name(t.dp.service));
-    w.key("direction").name(direction_name(t.direction));
+    w.members(service_members(t.dp.service, t.direction));
     w.key("master").optional_integer(t.has_roles, t.master);
     w.key("slave").optional_integer(t.has_roles, t.slave);
     w.key("request_frame")

@@ -434,8 +434,11 @@ class ProfibusVerboseTree final : public VerboseTree {
                 put_line(2, "PCD 1 ", name, ": 0x", hex(*word, 4));
                 word_bit_fields(3, *word, bits);
             } else if (index == 1) {
-                field(2, FMT_COMPILE("PCD 2 {}: 0x{:04X} = {:.2f} %"), name, *word,
-                      reference_percent(*word));
+                // "{:.2f}" of reference_percent(), from whole hundredths (no double formatted).
+                line(2, "");
+                put(b, "PCD 2 ", name, ": 0x", hex(*word, 4), " = ");
+                append_hundredths(b, reference_percent_hundredths(*word));
+                append(b, " %\n");
             } else {
                 put_line(2, "PCD ", index + 1, ": 0x", hex(*word, 4), " (", *word, ')');
             }
