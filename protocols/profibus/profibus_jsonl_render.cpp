@@ -64,15 +64,20 @@ const std::string& fc_object(FrameControl fc) {
 // The members "service" and "direction" of a telegram, as JSON text without braces (made on
 // first use for every service and direction).
 std::string_view service_members(Service service, Direction direction) {
-    static const std::array<std::string, kServiceCount* 2> objects =
-        json_texts<kServiceCount * 2>([](JsonWriter& w, std::size_t index) {
+    constexpr std::size_t kRows = kServiceCount * 2;  // a service's request, then its response
+    static const std::array<std::string, kRows> objects =
+        json_texts<kRows>([](JsonWriter& w, std::size_t index) {
             w.begin_object();
             w.key("service").name(service_name(static_cast<Service>(index / 2)));
             w.key("direction").name(direction_name(static_cast<Direction>(index % 2)));
             w.end_object();
         });
-    const std::string& object =
-        objects[static_cast<std::size_t>(service) * 2 + static_cast<std::size_t>(direction)];
+    // As service_name() and direction_name() read a value outside their enums: "Unknown",
+    // "response".
+    const auto row = static_cast<std::size_t>(service) < kServiceCount
+                         ? static_cast<std::size_t>(service)
+                         : static_cast<std::size_t>(Service::Unknown);
+    const std::string& object = objects[row * 2 + (direction == Direction::Request ? 0 : 1)];
     return std::string_view(object).substr(1, object.size() - 2);
 }
 
