@@ -80,7 +80,7 @@ class VerboseTree {
             const std::string_view text = set ? meaning.when_1 : meaning.when_0;
             char* p = append_room(buffer_, prefix.size() + text.size() + 1);
             std::memcpy(p, prefix.data(), prefix.size());
-            std::memcpy(p + prefix.size(), text.data(), text.size());
+            if (!text.empty()) std::memcpy(p + prefix.size(), text.data(), text.size());
             p[prefix.size() + text.size()] = '\n';
         }
     }
