@@ -1,5 +1,6 @@
 #include "protocols/vlt2000/vlt2000_tracker.hpp"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -39,8 +40,8 @@ constexpr std::uint8_t kMaster = 0;  // the master has no address
 std::string describe(Vlt2000Letter letter, std::uint8_t letter_char, std::uint16_t parameter) {
     if (letter == Vlt2000Letter::Control) return "C (control)";
     if (letter == Vlt2000Letter::Unknown)
-        return fmt::format("letter 0x{:02X} parameter {}", letter_char, parameter);
-    return fmt::format("{} ({}) parameter {}", vlt2000_letter_char(letter),
+        return fmt::format(FMT_COMPILE("letter 0x{:02X} parameter {}"), letter_char, parameter);
+    return fmt::format(FMT_COMPILE("{} ({}) parameter {}"), vlt2000_letter_char(letter),
                        vlt2000_letter_name(letter), parameter);
 }
 
@@ -410,15 +411,15 @@ void Vlt2000Tracker::reply(Vlt2000StationStats& st, const DecodedTelegram& t) {
         Finding& f = add_finding(current_, FindingKind::Vlt2000CommandFailed, t.frame, t.time_ns,
                                  command.frame, true, kMaster, t.slave);
         f.pnu = pnu;
-        f.message = v.has_reason
-                        ? fmt::format(
-                              "drive {:02} could not carry out the command {} from frame {}: "
-                              "reason code {:02} ({})",
+        f.message =
+            v.has_reason
+                ? fmt::format(FMT_COMPILE("drive {:02} could not carry out the command {} from "
+                                          "frame {}: reason code {:02} ({})"),
                               t.slave, describe(command), command.frame, v.reason,
                               error_text_or_unknown(Dialect::Vlt2000, v.reason))
-                        : fmt::format(
-                              "drive {:02} could not carry out the command {} from frame {} "
-                              "(decimal position 9: unknown parameter or command failed)",
+                : fmt::format(FMT_COMPILE("drive {:02} could not carry out the command {} from "
+                                          "frame {} (decimal position 9: unknown parameter or "
+                                          "command failed)"),
                               t.slave, describe(command), command.frame);
     }
     pending_.active = false;
