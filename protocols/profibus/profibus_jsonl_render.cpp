@@ -36,8 +36,8 @@ void write_fc_object(JsonWriter& w, FrameControl fc) {
     w.end_object();
 }
 
-// JSON text made once for each of `count` values by `write`, for the values of a telegram that
-// follow from one byte (jsonl copies the text instead of writing it every line).
+// JSON text made once for each of `Count` values by `write`, for the parts of a line that follow
+// from one small value (jsonl copies the text instead of writing it every line).
 template <std::size_t Count, typename Write>
 std::array<std::string, Count> json_texts(Write&& write) {
     std::array<std::string, Count> texts;
