@@ -449,7 +449,8 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
             stats.latency_sum_ns += latency;
         }
     }
-    const std::string about = request_text(tx->reference, tx->id, tx->addresses);
+    // The request as findings name it: written only for a finding (most responses have none).
+    const auto about = [&tx] { return request_text(tx->reference, tx->id, tx->addresses); };
     auto add = [&](FindingKind kind) -> Finding& {
         Finding& f = ch.add(out, kind, t, tx->frame);
         f.pnu = tx->first_pnu();
@@ -460,26 +461,26 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
         add(FindingKind::Dpv1LengthError).message = fmt::format(
             "parameter response of {} has no complete header (request of frame {}: {})",
             counted(std::min<std::size_t>(pdu.length, pdu.data.size()), "byte", "bytes"), tx->frame,
-            about);
+            about());
         ch.close(tx);
         return;
     }
     if (m.reference != tx->reference)
         add(FindingKind::Dpv1ReferenceMismatch).message = fmt::format(
-            "response reference {} to the request of frame {} ({})", m.reference, tx->frame, about);
+            "response reference {} to the request of frame {} ({})", m.reference, tx->frame, about());
     // The answer to a request ID no table has cannot be judged (dpv1_unknown_code named it).
     const bool id_known = !profidrive_request_id_name(tx->id).empty();
     if (id_known && !profidrive_response_answers(m.id, tx->id))
         add(FindingKind::Dpv1UnexpectedResponseId).message =
             fmt::format("response ID {} does not answer the request of frame {} ({})",
-                        response_id_text(m.id), tx->frame, about);
+                        response_id_text(m.id), tx->frame, about());
     const bool count_mirrored = m.count == tx->count;
     if (!count_mirrored || m.axis != tx->axis) {
         Inconsistencies differ;
         if (m.axis != tx->axis) differ.add("axis {} (request: {})", m.axis, tx->axis);
         if (!count_mirrored) differ.add("{} parameters (request: {})", m.count, tx->count);
         add(FindingKind::Dpv1ParameterCountMismatch).message = fmt::format(
-            "response with {} to the request of frame {} ({})", differ.text, tx->frame, about);
+            "response with {} to the request of frame {} ({})", differ.text, tx->frame, about());
     }
 
     const bool negative = m.negative();
@@ -506,7 +507,7 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
         }
         add(FindingKind::Dpv1NegativeResponse).message = fmt::format(
             "negative response {} to the request of frame {} ({}): {}", response_id_text(m.id),
-            tx->frame, about, errors.empty() ? std::string("no error number") : errors);
+            tx->frame, about(), errors.empty() ? std::string("no error number") : errors);
     }
 
     // Lengths and value blocks against the request.
@@ -566,7 +567,7 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
     }
     if (!found.text.empty())
         add(FindingKind::Dpv1LengthError).message = fmt::format(
-            "parameter response to the request of frame {} ({}): {}", tx->frame, about, found.text);
+            "parameter response to the request of frame {} ({}): {}", tx->frame, about(), found.text);
     ch.close(tx);
 }
 
