@@ -466,8 +466,9 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
         return;
     }
     if (m.reference != tx->reference)
-        add(FindingKind::Dpv1ReferenceMismatch).message = fmt::format(
-            "response reference {} to the request of frame {} ({})", m.reference, tx->frame, about());
+        add(FindingKind::Dpv1ReferenceMismatch).message =
+            fmt::format("response reference {} to the request of frame {} ({})", m.reference,
+                        tx->frame, about());
     // The answer to a request ID no table has cannot be judged (dpv1_unknown_code named it).
     const bool id_known = !profidrive_request_id_name(tx->id).empty();
     if (id_known && !profidrive_response_answers(m.id, tx->id))
@@ -566,8 +567,9 @@ void Dpv1ParameterAccessTracker::parameter_response(Channel& ch, const DecodedTe
             found.add("{} after the last value block", counted(m.trailing, "byte", "bytes"));
     }
     if (!found.text.empty())
-        add(FindingKind::Dpv1LengthError).message = fmt::format(
-            "parameter response to the request of frame {} ({}): {}", tx->frame, about(), found.text);
+        add(FindingKind::Dpv1LengthError).message =
+            fmt::format("parameter response to the request of frame {} ({}): {}", tx->frame,
+                        about(), found.text);
     ch.close(tx);
 }
 
