@@ -35,14 +35,6 @@ std::string host_name() {
     return name;
 }
 
-template <class Write>
-std::string json_text(Write&& write) {
-    fmt::memory_buffer buffer;
-    JsonWriter w(buffer);
-    write(w);
-    return std::string(buffer.data(), buffer.size());
-}
-
 }  // namespace
 
 void add_mqtt_options(CLI::App& sub, MqttOptions& o) {
@@ -223,11 +215,11 @@ void LiveMqtt::on_findings(std::span<const Finding> findings) {
 
 void LiveMqtt::on_health_event(const AlarmEvent& event) {
     publisher_->publish({topics_.health(),
-                         json_text([&](JsonWriter& w) { health_event_json(w, event); }), 1, false});
+                         json::text_of([&](JsonWriter& w) { health_event_json(w, event); }), 1, false});
 }
 
 void LiveMqtt::on_judged(const BusHealth& health) {
-    std::string live = json_text([&](JsonWriter& w) { live_list_json(w, health); });
+    std::string live = json::text_of([&](JsonWriter& w) { live_list_json(w, health); });
     if (live != live_published_) {
         publisher_->publish({topics_.live(), live, 1, true});
         live_published_ = std::move(live);
@@ -243,7 +235,7 @@ void LiveMqtt::publish_verdict_on_change(const BusHealth& health, std::uint8_t a
     if (sent == verdict) return;
     sent = verdict;
     publisher_->publish({topics_.verdict(address),
-                         json_text([&](JsonWriter& w) { verdict_json(w, health, address); }), 1,
+                         json::text_of([&](JsonWriter& w) { verdict_json(w, health, address); }), 1,
                          true});
 }
 

@@ -245,4 +245,20 @@ class JsonWriter {
     bool need_comma_ = false;
 };
 
+namespace json {
+
+// The JSON text `write` writes through a JsonWriter (write(JsonWriter&)), as a string: an MQTT
+// message, or a value made once to be copied into many lines.
+template <class Write>
+std::string text_of(Write&& write) {
+    fmt::memory_buffer buffer;
+    {
+        JsonWriter w(buffer);
+        write(w);
+    }
+    return std::string(buffer.data(), buffer.size());
+}
+
+}  // namespace json
+
 }  // namespace dpscope

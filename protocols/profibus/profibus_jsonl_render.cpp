@@ -41,14 +41,8 @@ void write_fc_object(JsonWriter& w, FrameControl fc) {
 template <std::size_t Count, typename Write>
 std::array<std::string, Count> json_texts(Write&& write) {
     std::array<std::string, Count> texts;
-    for (std::size_t value = 0; value < Count; ++value) {
-        fmt::memory_buffer text;
-        {
-            JsonWriter w(text);
-            write(w, value);
-        }
-        texts[value] = fmt::to_string(text);
-    }
+    for (std::size_t value = 0; value < Count; ++value)
+        texts[value] = json::text_of([&](JsonWriter& w) { write(w, value); });
     return texts;
 }
 
