@@ -24,27 +24,24 @@ class JsonlRenderer final : public TelegramRenderer {
         json::time(w, t.time_ns);
         w.key("len").integer(static_cast<std::int64_t>(t.bytes.size()));
         render_jsonl_keys(w, t);
-        if (t.problems().empty() && findings.empty()) {  // most lines
+        if (t.problems().empty() && findings.empty()) {  // most lines: one copy
             w.members("\"problems\":[],\"findings\":[]");
-            w.end_object();
-            out_.put('\n');
-            out_.end_record();
-            return;
+        } else {
+            w.key("problems").begin_array();
+            for (const Problem& p : t.problems()) {
+                w.begin_object();
+                w.key("kind").string(problem_kind_name(p.kind));
+                w.key("severity").string(severity_name(problem_severity(p.kind)));
+                w.key("offset").integer(p.offset);
+                w.key("message").string(problem_message(p));
+                w.end_object();
+            }
+            w.end_array();
+            w.key("findings").begin_array();
+            for (const Finding& finding : findings)
+                json::finding(w, finding);
+            w.end_array();
         }
-        w.key("problems").begin_array();
-        for (const Problem& p : t.problems()) {
-            w.begin_object();
-            w.key("kind").string(problem_kind_name(p.kind));
-            w.key("severity").string(severity_name(problem_severity(p.kind)));
-            w.key("offset").integer(p.offset);
-            w.key("message").string(problem_message(p));
-            w.end_object();
-        }
-        w.end_array();
-        w.key("findings").begin_array();
-        for (const Finding& finding : findings)
-            json::finding(w, finding);
-        w.end_array();
         w.end_object();
         out_.put('\n');
         out_.end_record();
