@@ -41,11 +41,6 @@ class StationTable {
             return *entry;
         return make(address);
     }
-    // The entry made for `address`, or null (nothing is made).
-    Entry* find(std::size_t address) noexcept {
-        Entry* entry = entries_[address];
-        return entry != &blank_ ? entry : nullptr;
-    }
     // The entry made for `address`, or the blank entry: never null. The caller writes through it
     // only after a test that the blank entry fails (listed, or an active state): it is never
     // written.
