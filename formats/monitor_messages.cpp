@@ -20,10 +20,6 @@ std::string utc_seconds(std::int64_t time_ns) {
                        utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec);
 }
 
-std::string written(const fmt::memory_buffer& buffer) {
-    return std::string(buffer.data(), buffer.size());
-}
-
 Result<void> check_level(std::string_view level, std::string_view option, std::string_view whole) {
     if (level.empty())
         return Error{
@@ -74,46 +70,41 @@ std::string MqttTopics::verdict(std::uint8_t address) const {
 
 std::string status_payload(const MonitorIdentity& who, std::string_view state,
                            std::string_view reason, const std::uint64_t* telegrams) {
-    fmt::memory_buffer buffer;
-    JsonWriter w(buffer);
-    w.begin_object();
-    w.key("state").string(state);
-    if (!reason.empty()) w.key("reason").string(reason);
-    w.key("segment").string(who.segment);
-    w.key("device").string(who.device);
-    w.key("bus").string(who.bus);
-    w.key("baud").integer(who.baud);
-    w.key("version").string(who.version);
-    w.key("since").string(utc_seconds(who.since_ns));
-    if (telegrams) w.key("telegrams").integer(static_cast<std::int64_t>(*telegrams));
-    w.end_object();
-    return written(buffer);
+    return json::text_of([&](JsonWriter& w) {
+        w.begin_object();
+        w.key("state").string(state);
+        if (!reason.empty()) w.key("reason").string(reason);
+        w.key("segment").string(who.segment);
+        w.key("device").string(who.device);
+        w.key("bus").string(who.bus);
+        w.key("baud").integer(who.baud);
+        w.key("version").string(who.version);
+        w.key("since").string(utc_seconds(who.since_ns));
+        if (telegrams) w.key("telegrams").integer(static_cast<std::int64_t>(*telegrams));
+        w.end_object();
+    });
 }
 
 std::string finding_payload(const Finding& f) {
-    fmt::memory_buffer buffer;
-    JsonWriter w(buffer);
-    json::finding(w, f);
-    return written(buffer);
+    return json::text_of([&](JsonWriter& w) { json::finding(w, f); });
 }
 
 std::string stats_payload(const MonitorFigures& f) {
-    fmt::memory_buffer buffer;
-    JsonWriter w(buffer);
-    w.begin_object();
-    w.key("time").string(utc_seconds(f.time_ns));
-    w.key("telegrams").integer(static_cast<std::int64_t>(f.telegrams));
-    w.key("rate").number_text(fmt::format("{:.1f}", f.rate));
-    w.key("bytes_skipped").integer(static_cast<std::int64_t>(f.bytes_skipped));
-    w.key("parity_errors").integer(static_cast<std::int64_t>(f.parity_errors));
-    w.key("disk_bytes").integer(static_cast<std::int64_t>(f.disk_bytes));
-    w.key("findings").integer(static_cast<std::int64_t>(f.findings));
-    w.key("health_events").integer(static_cast<std::int64_t>(f.health_events));
-    w.key("last_event").string(f.last_event);
-    w.key("mqtt_dropped").integer(static_cast<std::int64_t>(f.mqtt_dropped));
-    w.key("mqtt_waiting").integer(static_cast<std::int64_t>(f.mqtt_waiting));
-    w.end_object();
-    return written(buffer);
+    return json::text_of([&](JsonWriter& w) {
+        w.begin_object();
+        w.key("time").string(utc_seconds(f.time_ns));
+        w.key("telegrams").integer(static_cast<std::int64_t>(f.telegrams));
+        w.key("rate").number_text(fmt::format("{:.1f}", f.rate));
+        w.key("bytes_skipped").integer(static_cast<std::int64_t>(f.bytes_skipped));
+        w.key("parity_errors").integer(static_cast<std::int64_t>(f.parity_errors));
+        w.key("disk_bytes").integer(static_cast<std::int64_t>(f.disk_bytes));
+        w.key("findings").integer(static_cast<std::int64_t>(f.findings));
+        w.key("health_events").integer(static_cast<std::int64_t>(f.health_events));
+        w.key("last_event").string(f.last_event);
+        w.key("mqtt_dropped").integer(static_cast<std::int64_t>(f.mqtt_dropped));
+        w.key("mqtt_waiting").integer(static_cast<std::int64_t>(f.mqtt_waiting));
+        w.end_object();
+    });
 }
 
 }  // namespace dpscope
