@@ -1,0 +1,111 @@
+# Profile-guided optimisation (DPSCOPE_PGO; the package preset turns it on). The build first makes
+# an instrumented dpscope of the same sources in BUILD/pgo/instrumented (an ExternalProject), runs
+# it over simulated sessions of every bus and the bundled samples (scripts/pgo-train), and then
+# compiles everything with the profile that run wrote (BUILD/pgo/profile). The dpscope built that
+# way is then run over the same inputs, and its outputs must equal the instrumented build's, or
+# the build fails. docs/performance.md, "Profile-guided package", has the figures; docs/decisions.md
+# says why only the package is built this way.
+#
+# Included by the top-level CMakeLists.txt before any target; dpscope_pgo_finish() at its end,
+# once every target exists.
+
+option(DPSCOPE_PGO "Build with profile-guided optimisation (GCC; trains an instrumented build first)"
+       OFF)
+# Set only by the instrumented build that DPSCOPE_PGO makes: where its runs write the profile.
+set(DPSCOPE_PGO_GENERATE "" CACHE PATH
+    "Internal to DPSCOPE_PGO: the instrumented build writes its profile to this folder")
+mark_as_advanced(DPSCOPE_PGO_GENERATE)
+
+set(dpscope_pgo_folder ${CMAKE_BINARY_DIR}/pgo)
+set(dpscope_pgo_profile ${dpscope_pgo_folder}/profile)
+set(dpscope_pgo_training ${dpscope_pgo_folder}/training)
+
+if(DPSCOPE_PGO_GENERATE)
+    # The profile's files are named by the objects' paths below this build's folder
+    # (-fprofile-prefix-path): the optimised build finds them under the same names.
+    add_compile_options(-fprofile-generate=${DPSCOPE_PGO_GENERATE} -fprofile-update=single
+                        -fprofile-prefix-path=${CMAKE_BINARY_DIR})
+    add_link_options(-fprofile-generate=${DPSCOPE_PGO_GENERATE})
+elseif(DPSCOPE_PGO)
+    if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+        message(FATAL_ERROR "DPSCOPE_PGO needs GCC (the profile is GCC's -fprofile-generate)")
+    endif()
+    if(DPSCOPE_SANITIZE OR DPSCOPE_COVERAGE OR DPSCOPE_BUILD_FUZZERS)
+        message(FATAL_ERROR "DPSCOPE_PGO is for a release build, not with sanitizers, "
+                            "coverage or fuzzers")
+    endif()
+    include(ExternalProject)
+    # The instrumented build runs alone (everything else waits for its profile): on every core.
+    cmake_host_system_information(RESULT dpscope_pgo_jobs QUERY NUMBER_OF_LOGICAL_CORES)
+    # The same configuration as this build (its type, compiler and flags, position-independent
+    # code when the plugin is built), without tests or benchmarks; only dpscope is built. Flags
+    # that change the code (a distribution's hardening flags) must be the same in both builds, or
+    # GCC finds the profile's functions changed and drops their profile.
+    string(TOUPPER "${CMAKE_BUILD_TYPE}" dpscope_pgo_type)
+    ExternalProject_Add(dpscope_pgo_instrumented
+        SOURCE_DIR ${PROJECT_SOURCE_DIR}
+        BINARY_DIR ${dpscope_pgo_folder}/instrumented
+        CMAKE_ARGS -DCMAKE_BUILD_TYPE=${CMAKE_BUILD_TYPE}
+                   -DCMAKE_CXX_COMPILER=${CMAKE_CXX_COMPILER}
+                   -DCMAKE_CXX_FLAGS=${CMAKE_CXX_FLAGS}
+                   -DCMAKE_CXX_FLAGS_${dpscope_pgo_type}=${CMAKE_CXX_FLAGS_${dpscope_pgo_type}}
+                   -DCMAKE_EXE_LINKER_FLAGS=${CMAKE_EXE_LINKER_FLAGS}
+                   -DDPSCOPE_PGO_GENERATE=${dpscope_pgo_profile}
+                   -DDPSCOPE_BUILD_TESTS=OFF -DDPSCOPE_BUILD_BENCH=OFF
+                   -DDPSCOPE_BUILD_WIRESHARK_PLUGIN=${DPSCOPE_BUILD_WIRESHARK_PLUGIN}
+        BUILD_COMMAND ${CMAKE_COMMAND} --build <BINARY_DIR> --target dpscope
+                      --parallel ${dpscope_pgo_jobs}
+        BUILD_BYPRODUCTS ${dpscope_pgo_folder}/instrumented/dpscope
+        INSTALL_COMMAND ""
+        # Its sources are this build's: make decides whether anything is to be rebuilt.
+        BUILD_ALWAYS ON)
+    # A new instrumented dpscope trains again, from an empty profile.
+    add_custom_command(
+        OUTPUT ${dpscope_pgo_training}/trained
+        COMMAND ${CMAKE_COMMAND} -E rm -rf ${dpscope_pgo_profile} ${dpscope_pgo_training}
+        COMMAND ${PROJECT_SOURCE_DIR}/scripts/pgo-train train
+                ${dpscope_pgo_folder}/instrumented/dpscope ${dpscope_pgo_training}
+        DEPENDS dpscope_pgo_instrumented ${dpscope_pgo_folder}/instrumented/dpscope
+                ${PROJECT_SOURCE_DIR}/scripts/pgo-train
+        COMMENT "Training the instrumented dpscope (scripts/pgo-train)"
+        VERBATIM)
+    add_custom_target(dpscope_pgo_profile DEPENDS ${dpscope_pgo_training}/trained)
+    # Code the training did not run is optimised as without a profile (-fprofile-partial-training,
+    # -Wno-missing-profile: the tests and the plugin's own files have none). The profile is of
+    # these sources, made just before; what GCC would call a mismatch is a generated file's
+    # other path in the instrumented build (-Wno-coverage-mismatch).
+    add_compile_options(-fprofile-use=${dpscope_pgo_profile} -fprofile-partial-training
+                        -fprofile-prefix-path=${CMAKE_BINARY_DIR} -Wno-missing-profile
+                        -Wno-coverage-mismatch)
+endif()
+
+# Every target of `folder` and its subfolders, in `out`.
+function(dpscope_pgo_targets folder out)
+    get_property(targets DIRECTORY ${folder} PROPERTY BUILDSYSTEM_TARGETS)
+    get_property(subfolders DIRECTORY ${folder} PROPERTY SUBDIRECTORIES)
+    foreach(subfolder IN LISTS subfolders)
+        dpscope_pgo_targets(${subfolder} more)
+        list(APPEND targets ${more})
+    endforeach()
+    set(${out} ${targets} PARENT_SCOPE)
+endfunction()
+
+# With DPSCOPE_PGO: every target that compiles waits for the profile, and dpscope, once built, is
+# checked against the instrumented build's outputs.
+function(dpscope_pgo_finish)
+    if(NOT DPSCOPE_PGO OR DPSCOPE_PGO_GENERATE)
+        return()
+    endif()
+    dpscope_pgo_targets(${PROJECT_SOURCE_DIR} targets)
+    foreach(target IN LISTS targets)
+        get_target_property(type ${target} TYPE)
+        if(type MATCHES "^(EXECUTABLE|STATIC_LIBRARY|SHARED_LIBRARY|MODULE_LIBRARY|OBJECT_LIBRARY)$")
+            add_dependencies(${target} dpscope_pgo_profile)
+        endif()
+    endforeach()
+    add_custom_command(TARGET dpscope POST_BUILD
+        COMMAND ${PROJECT_SOURCE_DIR}/scripts/pgo-train check $<TARGET_FILE:dpscope>
+                ${dpscope_pgo_training}
+        COMMENT "Checking the profile-guided dpscope against the instrumented one"
+        VERBATIM)
+endfunction()

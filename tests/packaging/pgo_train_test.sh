@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# scripts/pgo-train, the profile-guided build's training run and its check
+# (cmake/profile_guided.cmake), with the release dpscope standing in for both builds: the check
+# passes for the same binary, and fails for one whose output or exit code differs, or that dies
+# on a signal. Usage: pgo_train_test.sh PGO_TRAIN DPSCOPE
+set -uo pipefail
+train=${1:?usage: pgo_train_test.sh PGO_TRAIN DPSCOPE}
+dpscope=$(realpath "${2:?usage: pgo_train_test.sh PGO_TRAIN DPSCOPE}")
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/dpscope-pgo.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT
+status=0
+fail() {
+    echo "FAILED: $*" >&2
+    status=1
+}
+
+# Usage errors: exit 2.
+"$train" >/dev/null 2>&1
+[[ $? == 2 ]] || fail "no arguments: not exit 2"
+"$train" learn "$dpscope" "$tmp/x" >/dev/null 2>&1
+[[ $? == 2 ]] || fail "an unknown mode: not exit 2"
+
+# Training: a checksum, an exit code and a name a run, and the mark that it is done.
+if ! "$train" train "$dpscope" "$tmp/training" >"$tmp/train.out" 2>&1; then
+    fail "training with $dpscope: $(cat "$tmp/train.out")"
+fi
+[[ -f $tmp/training/trained ]] || fail "no 'trained' mark"
+runs=$(wc -l <"$tmp/training/outputs.sha256")
+[[ $runs -ge 60 ]] || fail "only $runs runs recorded"
+grep -Eq '^[0-9a-f]{64} 1 profibus\.report$' "$tmp/training/outputs.sha256" ||
+    fail "the PROFIBUS report's line (findings: exit code 1) is not recorded"
+grep -Eq '^[0-9a-f]{64} 0 dpv1\.jsonl$' "$tmp/training/outputs.sha256" ||
+    fail "the DP-V1 jsonl line is not recorded"
+
+# The same binary passes the check.
+"$train" check "$dpscope" "$tmp/training" >"$tmp/check.out" 2>&1 ||
+    fail "the same binary fails the check: $(cat "$tmp/check.out")"
+
+# A binary whose report writes one more line fails it, naming the runs.
+cat >"$tmp/other-output" <<EOF
+#!/usr/bin/env bash
+"$dpscope" "\$@"
+code=\$?
+[[ \$1 == report ]] && echo one more line
+exit \$code
+EOF
+chmod +x "$tmp/other-output"
+if "$train" check "$tmp/other-output" "$tmp/training" >"$tmp/other.out" 2>&1; then
+    fail "a binary with another report passes the check"
+elif ! grep -q 'profibus\.report' "$tmp/other.out"; then
+    fail "the check does not name the run that differs: $(cat "$tmp/other.out")"
+fi
+
+# A binary with another exit code fails it.
+cat >"$tmp/other-code" <<EOF
+#!/usr/bin/env bash
+"$dpscope" "\$@"
+code=\$?
+[[ \$1 == stats ]] && exit 4
+exit \$code
+EOF
+chmod +x "$tmp/other-code"
+"$train" check "$tmp/other-code" "$tmp/training" >/dev/null 2>&1 &&
+    fail "a binary with another exit code passes the check"
+
+# A binary that dies on a signal fails training, with the exit code in the message.
+cat >"$tmp/crashing" <<EOF
+#!/usr/bin/env bash
+[[ \$1 == decode && \$2 == -q ]] && kill -SEGV \$\$
+exec "$dpscope" "\$@"
+EOF
+chmod +x "$tmp/crashing"
+if "$train" train "$tmp/crashing" "$tmp/crash" >"$tmp/crash.out" 2>&1; then
+    fail "a binary that crashes trains"
+elif ! grep -q 'exit code 139' "$tmp/crash.out"; then
+    fail "the crash's message does not give its exit code: $(cat "$tmp/crash.out")"
+fi
+[[ -f $tmp/crash/trained ]] && fail "a failed training is marked done"
+
+[[ $status == 0 ]] && echo "pgo-train: every case as expected"
+exit $status
