@@ -2,9 +2,11 @@
 # an instrumented dpscope of the same sources in BUILD/pgo/instrumented (an ExternalProject), runs
 # it over simulated sessions of every bus and the bundled samples (scripts/pgo-train), and then
 # compiles everything with the profile that run wrote (BUILD/pgo/profile). The dpscope built that
-# way is then run over the same inputs, and its outputs must equal the instrumented build's, or
-# the build fails. docs/performance.md, "Profile-guided package", has the figures; docs/decisions.md
-# says why only the package is built this way.
+# way is then run over the same inputs (dpscope_pgo_check, part of the build's "all"), and its
+# outputs must equal the instrumented build's, or the build fails. An incremental build recompiles
+# only the files that changed; the others keep the code of the profile they were compiled with.
+# docs/performance.md, "Profile-guided package", has the figures; docs/decisions.md says why only
+# the package is built this way.
 #
 # Included by the top-level CMakeLists.txt before any target; dpscope_pgo_finish() at its end,
 # once every target exists.
@@ -35,48 +37,67 @@ elseif(DPSCOPE_PGO)
                             "coverage or fuzzers")
     endif()
     include(ExternalProject)
-    # The instrumented build runs alone (everything else waits for its profile): on every core.
-    cmake_host_system_information(RESULT dpscope_pgo_jobs QUERY NUMBER_OF_LOGICAL_CORES)
-    # The same configuration as this build (its type, compiler and flags, position-independent
-    # code when the plugin is built), without tests or benchmarks; only dpscope is built. Flags
-    # that change the code (a distribution's hardening flags) must be the same in both builds, or
-    # GCC finds the profile's functions changed and drops their profile.
+    # The same configuration as this build (its type, compiler and flags, where it finds the
+    # libraries, position-independent code when the plugin is built), without tests or
+    # benchmarks; only dpscope is built. Flags that change the code (a distribution's hardening
+    # flags) must be the same in both builds, or GCC finds the profile's functions changed.
     string(TOUPPER "${CMAKE_BUILD_TYPE}" dpscope_pgo_type)
+    set(dpscope_pgo_args
+        -DCMAKE_BUILD_TYPE=${CMAKE_BUILD_TYPE}
+        -DCMAKE_CXX_COMPILER=${CMAKE_CXX_COMPILER}
+        -DCMAKE_CXX_FLAGS=${CMAKE_CXX_FLAGS}
+        -DCMAKE_CXX_FLAGS_${dpscope_pgo_type}=${CMAKE_CXX_FLAGS_${dpscope_pgo_type}}
+        -DCMAKE_EXE_LINKER_FLAGS=${CMAKE_EXE_LINKER_FLAGS}
+        -DCMAKE_EXE_LINKER_FLAGS_${dpscope_pgo_type}=${CMAKE_EXE_LINKER_FLAGS_${dpscope_pgo_type}}
+        -DDPSCOPE_PGO_GENERATE=${dpscope_pgo_profile}
+        -DDPSCOPE_BUILD_TESTS=OFF -DDPSCOPE_BUILD_BENCH=OFF
+        -DDPSCOPE_BUILD_WIRESHARK_PLUGIN=${DPSCOPE_BUILD_WIRESHARK_PLUGIN})
+    foreach(variable CMAKE_TOOLCHAIN_FILE CMAKE_PREFIX_PATH CMAKE_CXX_COMPILER_LAUNCHER fmt_DIR
+                     CLI11_DIR)
+        if(DEFINED ${variable} AND NOT "${${variable}}" STREQUAL "")
+            # A list's ";" travels as "|" (LIST_SEPARATOR below).
+            string(REPLACE ";" "|" value "${${variable}}")
+            list(APPEND dpscope_pgo_args "-D${variable}=${value}")
+        endif()
+    endforeach()
+    # With make, the instrumented build takes its jobs from this build's -j (the jobserver).
+    if(CMAKE_GENERATOR MATCHES "Makefiles")
+        set(dpscope_pgo_build_command $(MAKE) dpscope)
+    else()
+        set(dpscope_pgo_build_command ${CMAKE_COMMAND} --build <BINARY_DIR> --target dpscope)
+    endif()
     ExternalProject_Add(dpscope_pgo_instrumented
         SOURCE_DIR ${PROJECT_SOURCE_DIR}
         BINARY_DIR ${dpscope_pgo_folder}/instrumented
-        CMAKE_ARGS -DCMAKE_BUILD_TYPE=${CMAKE_BUILD_TYPE}
-                   -DCMAKE_CXX_COMPILER=${CMAKE_CXX_COMPILER}
-                   -DCMAKE_CXX_FLAGS=${CMAKE_CXX_FLAGS}
-                   -DCMAKE_CXX_FLAGS_${dpscope_pgo_type}=${CMAKE_CXX_FLAGS_${dpscope_pgo_type}}
-                   -DCMAKE_EXE_LINKER_FLAGS=${CMAKE_EXE_LINKER_FLAGS}
-                   -DDPSCOPE_PGO_GENERATE=${dpscope_pgo_profile}
-                   -DDPSCOPE_BUILD_TESTS=OFF -DDPSCOPE_BUILD_BENCH=OFF
-                   -DDPSCOPE_BUILD_WIRESHARK_PLUGIN=${DPSCOPE_BUILD_WIRESHARK_PLUGIN}
-        BUILD_COMMAND ${CMAKE_COMMAND} --build <BINARY_DIR> --target dpscope
-                      --parallel ${dpscope_pgo_jobs}
+        LIST_SEPARATOR |
+        CMAKE_ARGS ${dpscope_pgo_args}
+        BUILD_COMMAND ${dpscope_pgo_build_command}
         BUILD_BYPRODUCTS ${dpscope_pgo_folder}/instrumented/dpscope
         INSTALL_COMMAND ""
         # Its sources are this build's: make decides whether anything is to be rebuilt.
         BUILD_ALWAYS ON)
-    # A new instrumented dpscope trains again, from an empty profile.
+    # A new instrumented dpscope, a changed sample or training script trains again, from an empty
+    # profile (the training copies the samples it reads: its check reads the same ones).
+    file(GLOB dpscope_pgo_samples CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/samples/*.pcap
+         ${PROJECT_SOURCE_DIR}/samples/*.pcapng)
     add_custom_command(
         OUTPUT ${dpscope_pgo_training}/trained
         COMMAND ${CMAKE_COMMAND} -E rm -rf ${dpscope_pgo_profile} ${dpscope_pgo_training}
         COMMAND ${PROJECT_SOURCE_DIR}/scripts/pgo-train train
                 ${dpscope_pgo_folder}/instrumented/dpscope ${dpscope_pgo_training}
         DEPENDS dpscope_pgo_instrumented ${dpscope_pgo_folder}/instrumented/dpscope
-                ${PROJECT_SOURCE_DIR}/scripts/pgo-train
+                ${PROJECT_SOURCE_DIR}/scripts/pgo-train ${dpscope_pgo_samples}
         COMMENT "Training the instrumented dpscope (scripts/pgo-train)"
         VERBATIM)
     add_custom_target(dpscope_pgo_profile DEPENDS ${dpscope_pgo_training}/trained)
-    # Code the training did not run is optimised as without a profile (-fprofile-partial-training,
-    # -Wno-missing-profile: the tests and the plugin's own files have none). The profile is of
-    # these sources, made just before; what GCC would call a mismatch is a generated file's
-    # other path in the instrumented build (-Wno-coverage-mismatch).
+    # Code the training did not run is optimised as without a profile
+    # (-fprofile-partial-training); a file without a profile (the tests, the plugin's own files)
+    # is no error (-Wno-missing-profile; dpscope_pgo_finish() asks for a warning where dpscope's
+    # own files lack one). A function GCC finds changed since the profile stays an error, except in
+    # the generated parameter databases, whose path differs in the instrumented build (so GCC
+    # finds their start-up functions neither matching nor there: both warnings off for that file).
     add_compile_options(-fprofile-use=${dpscope_pgo_profile} -fprofile-partial-training
-                        -fprofile-prefix-path=${CMAKE_BINARY_DIR} -Wno-missing-profile
-                        -Wno-coverage-mismatch)
+                        -fprofile-prefix-path=${CMAKE_BINARY_DIR} -Wno-missing-profile)
 endif()
 
 # Every target of `folder` and its subfolders, in `out`.
@@ -90,8 +111,27 @@ function(dpscope_pgo_targets folder out)
     set(${out} ${targets} PARENT_SCOPE)
 endfunction()
 
-# With DPSCOPE_PGO: every target that compiles waits for the profile, and dpscope, once built, is
-# checked against the instrumented build's outputs.
+# The static libraries of this project that `target` links, directly or through others, in `out`.
+function(dpscope_pgo_linked_libraries target out)
+    set(found "")
+    get_target_property(linked ${target} LINK_LIBRARIES)
+    foreach(library IN LISTS linked)
+        if(TARGET ${library})
+            get_target_property(imported ${library} IMPORTED)
+            get_target_property(type ${library} TYPE)
+            if(NOT imported AND type STREQUAL "STATIC_LIBRARY")
+                dpscope_pgo_linked_libraries(${library} more)
+                list(APPEND found ${library} ${more})
+            endif()
+        endif()
+    endforeach()
+    list(REMOVE_DUPLICATES found)
+    set(${out} ${found} PARENT_SCOPE)
+endfunction()
+
+# With DPSCOPE_PGO: every target that compiles waits for the profile; dpscope's own files warn when
+# they find none (the names no longer match); and the build checks dpscope against the
+# instrumented build's outputs.
 function(dpscope_pgo_finish)
     if(NOT DPSCOPE_PGO OR DPSCOPE_PGO_GENERATE)
         return()
@@ -103,9 +143,20 @@ function(dpscope_pgo_finish)
             add_dependencies(${target} dpscope_pgo_profile)
         endif()
     endforeach()
-    add_custom_command(TARGET dpscope POST_BUILD
+    dpscope_pgo_linked_libraries(dpscope libraries)
+    foreach(target dpscope ${libraries})
+        target_compile_options(${target} PRIVATE -Wmissing-profile -Wno-error=missing-profile)
+    endforeach()
+    set_source_files_properties(${dpscope_shipped_databases_cpp} DIRECTORY ${PROJECT_SOURCE_DIR}
+                                PROPERTIES COMPILE_OPTIONS "-Wno-coverage-mismatch;-Wno-missing-profile")
+    # Run again whenever dpscope is relinked or the training ran again.
+    add_custom_command(
+        OUTPUT ${dpscope_pgo_training}/checked
         COMMAND ${PROJECT_SOURCE_DIR}/scripts/pgo-train check $<TARGET_FILE:dpscope>
                 ${dpscope_pgo_training}
+        COMMAND ${CMAKE_COMMAND} -E touch ${dpscope_pgo_training}/checked
+        DEPENDS dpscope ${dpscope_pgo_training}/trained ${PROJECT_SOURCE_DIR}/scripts/pgo-train
         COMMENT "Checking the profile-guided dpscope against the instrumented one"
         VERBATIM)
+    add_custom_target(dpscope_pgo_check ALL DEPENDS ${dpscope_pgo_training}/checked)
 endfunction()
