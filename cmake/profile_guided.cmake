@@ -52,8 +52,7 @@ elseif(DPSCOPE_PGO)
         -DDPSCOPE_PGO_GENERATE=${dpscope_pgo_profile}
         -DDPSCOPE_BUILD_TESTS=OFF -DDPSCOPE_BUILD_BENCH=OFF
         -DDPSCOPE_BUILD_WIRESHARK_PLUGIN=${DPSCOPE_BUILD_WIRESHARK_PLUGIN})
-    foreach(variable CMAKE_TOOLCHAIN_FILE CMAKE_PREFIX_PATH CMAKE_CXX_COMPILER_LAUNCHER fmt_DIR
-                     CLI11_DIR)
+    foreach(variable CMAKE_TOOLCHAIN_FILE CMAKE_PREFIX_PATH CMAKE_CXX_COMPILER_LAUNCHER)
         if(DEFINED ${variable} AND NOT "${${variable}}" STREQUAL "")
             # A list's ";" travels as "|" (LIST_SEPARATOR below).
             string(REPLACE ";" "|" value "${${variable}}")
@@ -111,21 +110,25 @@ function(dpscope_pgo_targets folder out)
     set(${out} ${targets} PARENT_SCOPE)
 endfunction()
 
-# The static libraries of this project that `target` links, directly or through others, in `out`.
+# The static libraries of this project that `target` links, directly or through others, in `out`
+# (each once, whatever cycles the links make).
 function(dpscope_pgo_linked_libraries target out)
     set(found "")
-    get_target_property(linked ${target} LINK_LIBRARIES)
-    foreach(library IN LISTS linked)
-        if(TARGET ${library})
-            get_target_property(imported ${library} IMPORTED)
-            get_target_property(type ${library} TYPE)
-            if(NOT imported AND type STREQUAL "STATIC_LIBRARY")
-                dpscope_pgo_linked_libraries(${library} more)
-                list(APPEND found ${library} ${more})
+    set(queue ${target})
+    while(queue)
+        list(POP_FRONT queue current)
+        get_target_property(linked ${current} LINK_LIBRARIES)
+        foreach(library IN LISTS linked)
+            if(TARGET ${library} AND NOT library IN_LIST found)
+                get_target_property(imported ${library} IMPORTED)
+                get_target_property(type ${library} TYPE)
+                if(NOT imported AND type STREQUAL "STATIC_LIBRARY")
+                    list(APPEND found ${library})
+                    list(APPEND queue ${library})
+                endif()
             endif()
-        endif()
-    endforeach()
-    list(REMOVE_DUPLICATES found)
+        endforeach()
+    endwhile()
     set(${out} ${found} PARENT_SCOPE)
 endfunction()
 
@@ -147,8 +150,9 @@ function(dpscope_pgo_finish)
     foreach(target dpscope ${libraries})
         target_compile_options(${target} PRIVATE -Wmissing-profile -Wno-error=missing-profile)
     endforeach()
-    set_source_files_properties(${dpscope_shipped_databases_cpp} DIRECTORY ${PROJECT_SOURCE_DIR}
-                                PROPERTIES COMPILE_OPTIONS "-Wno-coverage-mismatch;-Wno-missing-profile")
+    set_source_files_properties(
+        ${dpscope_shipped_databases_cpp} DIRECTORY ${PROJECT_SOURCE_DIR}
+        PROPERTIES COMPILE_OPTIONS "-Wno-coverage-mismatch;-Wno-missing-profile")
     # Run again whenever dpscope is relinked or the training ran again.
     add_custom_command(
         OUTPUT ${dpscope_pgo_training}/checked

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/pgo-train, the profile-guided build's training run and its check
 # (cmake/profile_guided.cmake), with the release dpscope standing in for both builds: the check
-# passes for the same binary, and fails for one whose output, messages or exit code differ; a run
+# passes for the same binary, and fails for one whose captures, output, messages or exit code
+# differ; a run
 # that dies on a signal, ends in a usage error or writes nothing fails the training.
 # Usage: pgo_train_test.sh PGO_TRAIN DPSCOPE
 set -uo pipefail
@@ -55,6 +56,21 @@ if "$train" check "$tmp/other-output" "$tmp/training" >"$tmp/other.out" 2>&1; th
     fail "a binary with another report passes the check"
 elif ! grep -q 'profibus\.report' "$tmp/other.out"; then
     fail "the check does not name the run that differs: $(cat "$tmp/other.out")"
+fi
+
+# A binary whose simulator writes another capture fails it (simulate --bus BUS -w FILE ...).
+cat >"$tmp/other-capture" <<EOF
+#!/usr/bin/env bash
+"$dpscope" "\$@"
+code=\$?
+[[ \$1 == simulate && \$4 == -w ]] && echo one more byte >> "\$5"
+exit \$code
+EOF
+chmod +x "$tmp/other-capture"
+if "$train" check "$tmp/other-capture" "$tmp/training" >"$tmp/capture.out" 2>&1; then
+    fail "a binary whose simulator writes another capture passes the check"
+elif ! grep -q 'profibus\.simulate' "$tmp/capture.out"; then
+    fail "the check does not name the session that differs: $(cat "$tmp/capture.out")"
 fi
 
 # A binary with another message on standard error fails it.
