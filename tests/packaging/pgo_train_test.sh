@@ -2,8 +2,7 @@
 # scripts/pgo-train, the profile-guided build's training run and its check
 # (cmake/profile_guided.cmake), with the release dpscope standing in for both builds: the check
 # passes for the same binary, and fails for one whose captures, output, messages or exit code
-# differ; a run
-# that dies on a signal, ends in a usage error or writes nothing fails the training.
+# differ; a run that dies on a signal, ends in a usage error or writes nothing fails the training.
 # Usage: pgo_train_test.sh PGO_TRAIN DPSCOPE
 set -uo pipefail
 train=${1:?usage: pgo_train_test.sh PGO_TRAIN DPSCOPE}
@@ -43,93 +42,47 @@ grep -q ' sample\.faults\.pcap\.report$' "$tmp/training/outputs.sha256" ||
 "$train" check "$dpscope" "$tmp/training" >"$tmp/check.out" 2>&1 ||
     fail "the same binary fails the check: $(cat "$tmp/check.out")"
 
-# A binary whose report writes one more line fails it, naming the runs.
-cat >"$tmp/other-output" <<EOF
-#!/usr/bin/env bash
-"$dpscope" "\$@"
-code=\$?
-[[ \$1 == report ]] && echo one more line
-exit \$code
-EOF
-chmod +x "$tmp/other-output"
-if "$train" check "$tmp/other-output" "$tmp/training" >"$tmp/other.out" 2>&1; then
-    fail "a binary with another report passes the check"
-elif ! grep -q 'profibus\.report' "$tmp/other.out"; then
-    fail "the check does not name the run that differs: $(cat "$tmp/other.out")"
-fi
+# after NAME LINE: $tmp/NAME runs dpscope, then LINE (bash; dpscope's arguments are $1...), and
+# exits with dpscope's exit code. before NAME LINE: LINE first, then dpscope in its place.
+after() {
+    printf '#!/usr/bin/env bash\n%q "$@"\ncode=$?\n%s\nexit $code\n' "$dpscope" "$2" >"$tmp/$1"
+    chmod +x "$tmp/$1"
+}
+before() {
+    printf '#!/usr/bin/env bash\n%s\nexec %q "$@"\n' "$2" "$dpscope" >"$tmp/$1"
+    chmod +x "$tmp/$1"
+}
+# fails MODE NAME WHAT [SAID]: `pgo-train MODE $tmp/NAME` fails (and its messages hold SAID).
+fails() {
+    local mode=$1 name=$2 what=$3 said=${4:-} folder=$tmp/training
+    [[ $mode == train ]] && folder=$tmp/$name.training
+    if "$train" "$mode" "$tmp/$name" "$folder" >"$tmp/$name.out" 2>&1; then
+        fail "$what: $mode passes"
+    elif [[ -n $said ]] && ! grep -q "$said" "$tmp/$name.out"; then
+        fail "$what: $mode does not say '$said': $(cat "$tmp/$name.out")"
+    fi
+    [[ $mode == train && -f $folder/trained ]] && fail "$what: the failed training is marked done"
+}
 
-# A binary whose simulator writes another capture fails it (simulate --bus BUS -w FILE ...).
-cat >"$tmp/other-capture" <<EOF
-#!/usr/bin/env bash
-"$dpscope" "\$@"
-code=\$?
-[[ \$1 == simulate && \$4 == -w ]] && echo one more byte >> "\$5"
-exit \$code
-EOF
-chmod +x "$tmp/other-capture"
-if "$train" check "$tmp/other-capture" "$tmp/training" >"$tmp/capture.out" 2>&1; then
-    fail "a binary whose simulator writes another capture passes the check"
-elif ! grep -q 'profibus\.simulate' "$tmp/capture.out"; then
-    fail "the check does not name the session that differs: $(cat "$tmp/capture.out")"
-fi
+# The check fails for another output, naming the run; another capture of the simulator, naming
+# the session; another message on standard error; another exit code.
+after other-output '[[ $1 == report ]] && echo one more line'
+fails check other-output "a binary with another report" 'profibus\.report'
+after other-capture '[[ $1 == simulate && $4 == -w ]] && echo one more byte >> "$5"'
+fails check other-capture "a simulator writing another capture" 'profibus\.simulate'
+after other-message '[[ $1 == decode && $2 == -V ]] && echo "dpscope: note: one more" >&2'
+fails check other-message "a binary with another message"
+after other-code '[[ $1 == stats ]] && exit 4'
+fails check other-code "a binary with another exit code"
 
-# A binary with another message on standard error fails it.
-cat >"$tmp/other-message" <<EOF
-#!/usr/bin/env bash
-"$dpscope" "\$@"
-code=\$?
-[[ \$1 == decode && \$2 == -V ]] && echo "dpscope: note: one more" >&2
-exit \$code
-EOF
-chmod +x "$tmp/other-message"
-"$train" check "$tmp/other-message" "$tmp/training" >/dev/null 2>&1 &&
-    fail "a binary with another message passes the check"
-
-# A binary with another exit code fails it.
-cat >"$tmp/other-code" <<EOF
-#!/usr/bin/env bash
-"$dpscope" "\$@"
-code=\$?
-[[ \$1 == stats ]] && exit 4
-exit \$code
-EOF
-chmod +x "$tmp/other-code"
-"$train" check "$tmp/other-code" "$tmp/training" >/dev/null 2>&1 &&
-    fail "a binary with another exit code passes the check"
-
-# A binary that dies on a signal fails training, with the exit code in the message.
-cat >"$tmp/crashing" <<EOF
-#!/usr/bin/env bash
-[[ \$1 == decode && \$2 == -q ]] && kill -SEGV \$\$
-exec "$dpscope" "\$@"
-EOF
-chmod +x "$tmp/crashing"
-if "$train" train "$tmp/crashing" "$tmp/crash" >"$tmp/crash.out" 2>&1; then
-    fail "a binary that crashes trains"
-elif ! grep -q 'exit code 139' "$tmp/crash.out"; then
-    fail "the crash's message does not give its exit code: $(cat "$tmp/crash.out")"
-fi
-[[ -f $tmp/crash/trained ]] && fail "a failed training is marked done"
-
-# A run that ends in a usage error (exit 2), or writes nothing, fails the training.
-cat >"$tmp/usage-error" <<EOF
-#!/usr/bin/env bash
-[[ \$1 == stats ]] && { echo "dpscope: error: no such option" >&2; exit 2; }
-exec "$dpscope" "\$@"
-EOF
-chmod +x "$tmp/usage-error"
-if "$train" train "$tmp/usage-error" "$tmp/usage" >"$tmp/usage.out" 2>&1; then
-    fail "a run ending in a usage error trains"
-elif ! grep -q 'no such option' "$tmp/usage.out"; then
-    fail "the usage error's message is not shown: $(cat "$tmp/usage.out")"
-fi
-cat >"$tmp/silent" <<EOF
-#!/usr/bin/env bash
-[[ \$1 == report ]] && exit 0
-exec "$dpscope" "\$@"
-EOF
-chmod +x "$tmp/silent"
-"$train" train "$tmp/silent" "$tmp/silent-run" >/dev/null 2>&1 && fail "a run writing nothing trains"
+# The training fails for a run that dies on a signal (its exit code said), that ends in a usage
+# error (exit 2; its message shown), or that writes nothing.
+before crashing '[[ $1 == decode && $2 == -q ]] && kill -SEGV $$'
+fails train crashing "a binary that crashes" 'exit code 139'
+before usage-error '[[ $1 == stats ]] && { echo "dpscope: error: no such option" >&2; exit 2; }'
+fails train usage-error "a run ending in a usage error" 'no such option'
+before silent '[[ $1 == report ]] && exit 0'
+fails train silent "a run writing nothing"
 
 [[ $status == 0 ]] && echo "pgo-train: every case as expected"
 exit $status
