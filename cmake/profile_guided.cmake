@@ -78,7 +78,9 @@ elseif(DPSCOPE_PGO)
     # A new instrumented dpscope, a changed sample or training script trains again, from an empty
     # profile (the training copies the samples it reads: its check reads the same ones).
     file(GLOB dpscope_pgo_samples CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/samples/*.pcap
-         ${PROJECT_SOURCE_DIR}/samples/*.pcapng)
+         ${PROJECT_SOURCE_DIR}/samples/*.pcapng ${PROJECT_SOURCE_DIR}/samples/serial.*
+         ${PROJECT_SOURCE_DIR}/samples/terminal.log ${PROJECT_SOURCE_DIR}/samples/fc-examples.hex
+         ${PROJECT_SOURCE_DIR}/samples/vlt2000-examples.txt)
     add_custom_command(
         OUTPUT ${dpscope_pgo_training}/trained
         COMMAND ${CMAKE_COMMAND} -E rm -rf ${dpscope_pgo_profile} ${dpscope_pgo_training}
