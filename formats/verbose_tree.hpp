@@ -54,34 +54,24 @@ class VerboseTree {
     // A control or status word's 16 bits, one line each at `level`, with the meaning of the
     // state each is in: "bit  3 = 1: enable".
     void word_bit_fields(int level, std::uint16_t word, const WordBits& bits) {
-        // Each line's start made once: the indentation and "bit NN = S: ", the number and the
-        // state S then written into it (a tree deeper than kMaxLevel takes the pieces' way).
-        constexpr int kMaxLevel = 8;
-        if (level > kMaxLevel) [[unlikely]] {
-            for (int bit = 0; bit < 16; ++bit) {
-                const bool set = (word >> bit) & 1;
-                const WordBit& meaning = bits[static_cast<std::size_t>(bit)];
-                put_line(level, bit < 10 ? "bit  " : "bit ", bit,
-                         set ? " = 1: " : " = 0: ", set ? meaning.when_1 : meaning.when_0);
-            }
-            return;
-        }
-        char start[4 * kMaxLevel + 12];
+        // Each line in one append: the indentation, "bit NN = S: " from one template with the
+        // number and the state S put in, the meaning and the line end.
+        char start[] = "bit  0 = 0: ";
+        constexpr std::size_t kStart = sizeof start - 1;
         const std::size_t indent = level > 0 ? 4 * static_cast<std::size_t>(level) : 0;
-        std::memset(start, ' ', indent);
-        std::memcpy(start + indent, "bit  0 = 0: ", 12);
-        const std::string_view prefix(start, indent + 12);
         for (int bit = 0; bit < 16; ++bit) {
             const bool set = (word >> bit) & 1;
             const WordBit& meaning = bits[static_cast<std::size_t>(bit)];
-            start[indent + 4] = bit < 10 ? ' ' : '1';
-            start[indent + 5] = static_cast<char>('0' + bit % 10);
-            start[indent + 9] = set ? '1' : '0';
+            start[4] = bit < 10 ? ' ' : '1';
+            start[5] = static_cast<char>('0' + bit % 10);
+            start[9] = set ? '1' : '0';
             const std::string_view text = set ? meaning.when_1 : meaning.when_0;
-            char* p = append_room(buffer_, prefix.size() + text.size() + 1);
-            std::memcpy(p, prefix.data(), prefix.size());
-            if (!text.empty()) std::memcpy(p + prefix.size(), text.data(), text.size());
-            p[prefix.size() + text.size()] = '\n';
+            char* p = append_room(buffer_, indent + kStart + text.size() + 1);
+            std::memset(p, ' ', indent);
+            p += indent;
+            std::memcpy(p, start, kStart);
+            if (!text.empty()) std::memcpy(p + kStart, text.data(), text.size());
+            p[kStart + text.size()] = '\n';
         }
     }
 
