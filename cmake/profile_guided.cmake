@@ -87,7 +87,8 @@ elseif(DPSCOPE_PGO)
         COMMAND ${PROJECT_SOURCE_DIR}/scripts/pgo-train train
                 ${dpscope_pgo_folder}/instrumented/dpscope ${dpscope_pgo_training}
         DEPENDS dpscope_pgo_instrumented ${dpscope_pgo_folder}/instrumented/dpscope
-                ${PROJECT_SOURCE_DIR}/scripts/pgo-train ${dpscope_pgo_samples}
+                ${PROJECT_SOURCE_DIR}/scripts/pgo-train
+                ${PROJECT_SOURCE_DIR}/bench/simulated_sessions.sh ${dpscope_pgo_samples}
         COMMENT "Training the instrumented dpscope (scripts/pgo-train)"
         VERBATIM)
     add_custom_target(dpscope_pgo_profile DEPENDS ${dpscope_pgo_training}/trained)
