@@ -107,10 +107,12 @@ endif()
 # cpack writes it into the source folder (git ignores it) before it copies the tree.
 set(CPACK_SOURCE_GENERATOR TGZ)
 set(CPACK_SOURCE_PACKAGE_FILE_NAME dpscope-${PROJECT_VERSION})
-# Anchored at the source folder (a source folder under some build/ folder is still copied).
+# Anchored at the source folder (a source folder under some build/ folder is still copied). A
+# literal dot is written [.]: CPack reads these back from a generated file, where a backslash
+# escape is CMake syntax first (policy CMP0010 warned of "\\." as an invalid escape).
 set(dpscope_src "^${PROJECT_SOURCE_DIR}")
-set(CPACK_SOURCE_IGNORE_FILES "${dpscope_src}/build/" "${dpscope_src}/\\.git(/|$)"
-    "${dpscope_src}/\\.cache/" "${dpscope_src}/bench/data/" "\\.swp$")
+set(CPACK_SOURCE_IGNORE_FILES "${dpscope_src}/build/" "${dpscope_src}/[.]git(/|$)"
+    "${dpscope_src}/[.]cache/" "${dpscope_src}/bench/data/" "[.]swp$")
 set(CPACK_GENERATOR DEB)  # `cpack` without -G in the package tree
 configure_file(${PROJECT_SOURCE_DIR}/packaging/cpack_project_config.cmake.in
                ${CMAKE_CURRENT_BINARY_DIR}/packaging/cpack_project_config.cmake @ONLY)
