@@ -62,4 +62,15 @@ inline void render_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
 
 #undef DPSCOPE_PROTOCOL_DISPATCH
 
+// The jsonl keys every protocol's part holds, in this order: "master" and "slave" (null when the
+// telegram's roles are not known) and "request_frame" (the request an answer answers; null for
+// none, frame 0 being no telegram's). Always inlined: GCC otherwise kept one copy for the four
+// callers, and the call cost PROFIBUS jsonl 0.6 % more instructions.
+[[gnu::always_inline]] inline void jsonl_role_keys(JsonWriter& w, const DecodedTelegram& t) {
+    w.key("master").optional_integer(t.has_roles, t.master);
+    w.key("slave").optional_integer(t.has_roles, t.slave);
+    w.key("request_frame")
+        .optional_integer(t.request_frame != 0, static_cast<std::int64_t>(t.request_frame));
+}
+
 }  // namespace dpscope

@@ -98,10 +98,7 @@ void fc_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     const FcTelegram& fc = t.fc;
     const bool request = t.direction == Direction::Request;
     w.key("direction").name(direction_name(t.direction));
-    w.key("master").optional_integer(t.has_roles, t.master);
-    w.key("slave").optional_integer(t.has_roles, t.slave);
-    w.key("request_frame")
-        .optional_integer(t.request_frame != 0, static_cast<std::int64_t>(t.request_frame));
+    jsonl_role_keys(w, t);
     w.key("fc_protocol").begin_object();
     const bool has_lge = t.bytes.size() >= 2 && t.bytes[0] == kFcStx;
     w.key("lge").optional_integer(has_lge, fc.lge);

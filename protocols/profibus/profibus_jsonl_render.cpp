@@ -548,10 +548,7 @@ void profibus_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
         w.null();
     w.key("fcs_ok").boolean(f.fcs_ok);
     w.members(service_members(t.dp.service, t.direction));
-    w.key("master").optional_integer(t.has_roles, t.master);
-    w.key("slave").optional_integer(t.has_roles, t.slave);
-    w.key("request_frame")
-        .optional_integer(t.request_frame != 0, static_cast<std::int64_t>(t.request_frame));
+    jsonl_role_keys(w, t);
     if (!data_exchange && !t.dp.has_pcv) {  // no cyclic data: five nulls in one copy
         w.members("\"ppo\":null,\"ppo_source\":null,\"dialect\":null,\"pcv\":null,\"pcd\":null");
     } else {

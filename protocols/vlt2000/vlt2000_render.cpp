@@ -117,10 +117,7 @@ void vlt2000_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
 void vlt2000_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     const Vlt2000Telegram& v = t.vlt2000;
     w.key("direction").name(direction_name(t.direction));
-    w.key("master").optional_integer(t.has_roles, t.master);
-    w.key("slave").optional_integer(t.has_roles, t.slave);
-    w.key("request_frame")
-        .optional_integer(t.request_frame != 0, static_cast<std::int64_t>(t.request_frame));
+    jsonl_role_keys(w, t);
     w.key("vlt2000").begin_object();
     w.key("complete").boolean(v.complete);
     w.key("address").optional_integer(t.has_roles, v.address);

@@ -58,10 +58,7 @@ void toybus_csv_columns(TextBuffer& b, const DecodedTelegram& t) {
 void toybus_jsonl_keys(JsonWriter& w, const DecodedTelegram& t) {
     const ToybusTelegram& v = t.toybus;
     w.key("direction").string(direction_name(t.direction));
-    w.key("master").optional_integer(t.has_roles, t.master);
-    w.key("slave").optional_integer(t.has_roles, t.slave);
-    w.key("request_frame")
-        .optional_integer(t.request_frame != 0, static_cast<std::int64_t>(t.request_frame));
+    jsonl_role_keys(w, t);
     w.key("toybus").begin_object();
     w.key("kind").string(toybus_kind_name(v.kind));
     w.key("complete").boolean(v.complete);
